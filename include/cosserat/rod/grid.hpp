@@ -1,0 +1,17 @@
+#pragma once
+/// \file
+/// Discretisation of [0, L] into grid nodes that include every profile breakpoint, so a jump in
+/// stiffness never falls inside an integration step.
+
+#include <vector>
+
+namespace cosserat {
+
+/// Returns num_nodes arc lengths 0 = s_0 < … < s_{N−1} = length (m). The interior breakpoints
+/// split [0, L] into pieces; each piece gets a share of the N − 1 segments proportional to its
+/// length (at least one), and is divided uniformly. Without breakpoints the grid is uniform.
+/// Breakpoints outside (0, L) or closer than 1e-12 L to another are ignored.
+/// Requires num_nodes >= 2 + (number of distinct interior breakpoints).
+std::vector<double> MakeGrid(double length, int num_nodes, std::vector<double> breakpoints);
+
+}  // namespace cosserat

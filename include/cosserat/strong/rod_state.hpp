@@ -1,0 +1,30 @@
+#pragma once
+/// \file
+/// RodState: the solution along the grid, written by the solvers.
+
+#include <vector>
+
+#include "cosserat/lie/types.hpp"
+
+namespace cosserat {
+
+/// Fields sampled at the grid nodes s_i. The internal wrench W = [m; n] is the wrench the part
+/// (s, L] of the rod exerts on the part [0, s]; for a linear elastic rod W = K (ξ − ξ*), which is
+/// −Λ in seed 002's sign convention (eq. 16).
+struct RodState {
+  std::vector<double> s;           ///< arc length, m
+  std::vector<Vec3> position_W;    ///< centreline p(s), world frame, m
+  std::vector<Mat3> rotation_WB;   ///< R(s): body (section) frame to world
+  std::vector<Vec6> strain;        ///< ξ = [K; Γ], body frame, (1/m; –)
+  std::vector<Vec6> wrench_B;      ///< W = [m; n], body frame, (N·m; N)
+
+  void Resize(int num_nodes);
+  int size() const { return static_cast<int>(s.size()); }
+  const Vec3& tip_position_W() const { return position_W.back(); }
+  const Mat3& tip_rotation_WB() const { return rotation_WB.back(); }
+  /// The wrench the support applies to the rod at s = 0, world frame, moment about p(0):
+  /// [m; n] = −[R m_B; R n_B] at s = 0. It balances the external loads.
+  Vec6 BaseReaction_W() const;
+};
+
+}  // namespace cosserat

@@ -1,0 +1,121 @@
+#pragma once
+/// \file
+/// Static cantilever by shooting on the SE(3) strong form (seed 002 eqs. 14 and 16 with V = 0).
+///
+/// Unknowns: the internal wrench at the base, W(0) = [m; n] in the base body frame (6).
+/// Integrate in s from 0 to L with fixed-step RK4 on the grid nodes (4th order):
+///   p' = R Γ,  R' = R K̂,  n_W' = −f_W,  m_W' = −p' × n_W,
+///   ξ = [K; Γ] = ξ* + K(s)⁻¹ [Rᵀ m_W; Rᵀ n_W],
+/// where f_W = ρ A g + the distributed force (N/m). The residual is the tip condition
+/// W(L) − W_tip in the tip body frame; Levenberg–Marquardt (ceres::TinySolver) with an exact
+/// Jacobian (forward-mode ceres::Jet through the integrator) drives it to zero.
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "cosserat/lie/se3.hpp"
+#include "cosserat/loads/static_loads.hpp"
+#include "cosserat/rod/actuation.hpp"
+#include "cosserat/rod/rod_model.hpp"
+#include "cosserat/strong/rod_state.hpp"
+#include "cosserat/strong/solver_status.hpp"
+
+namespace cosserat {
+
+struct StaticShootingOptions {
+  /// Convergence: ‖r‖₂ < tolerance, with the residual made dimensionless by the moment scale
+  /// EI/L and the force scale EI/L² (EI: the largest bending stiffness at s = 0).
+  double tolerance = 1e-10;
+  /// Levenberg–Marquardt iterations per solve (per load step when stepping).
+  int max_iterations = 50;
+  /// Reuse the Jacobian of the last solve (Broyden-updated quasi-Newton) before falling back to
+  /// LM. This is what makes a warm re-solve cost a few shots.
+  bool reuse_jacobian = true;
+  /// Continuation in the load when a direct solve fails.
+  bool load_stepping = true;
+  /// Largest load increment per solve, measured as the change of the rigid-body base wrench in
+  /// units of EI/L and EI/L² (for a tip force P that is PL²/EI). Larger changes are applied in
+  /// steps, whatever load_stepping says, so the solver follows the equilibrium branch it starts
+  /// on instead of jumping to a folded one (the elastica has several for PL²/EI ≳ 10).
+  double max_load_increment = 3.0;
+  /// Give up when the load increment falls below this fraction of the full load.
+  double min_load_step = 1.0 / 4096.0;
+  /// Hard cap on load steps (successful and failed) in one Solve.
+  int max_load_steps = 400;
+
+  bool IsValid(std::string* why) const;
+};
+
+struct StaticShootingSummary {
+  SolveStatus status = SolveStatus::kNotRun;
+  int iterations = 0;   ///< LM plus quasi-Newton iterations, all load steps
+  int shots = 0;        ///< integrations from 0 to L (a Jacobian shot counts once)
+  int load_steps = 0;   ///< continuation steps taken (0: the direct solve converged)
+  double residual = 0;  ///< final dimensionless residual norm
+  double wall_time_s = 0;
+  bool warm_started = false;
+  bool converged() const { return status == SolveStatus::kConverged; }
+};
+
+/// A cantilever statics solver for one rod model and grid. Construction allocates every buffer;
+/// Solve() reuses them and warm-starts from the previous solution.
+class StaticShootingSolver {
+ public:
+  StaticShootingSolver(const RodModel& model, int num_nodes,
+                       const StaticShootingOptions& options = {},
+                       const Actuation& actuation = {});
+
+  /// Solve with the base pose (R_WB of the clamp, p_W of s = 0) and the loads. Warm-starts from
+  /// the previous converged solution, if any. The state is valid when the status is converged,
+  /// and holds the last iterate otherwise.
+  StaticShootingSummary Solve(const lie::SE3& base, const StaticLoads& loads);
+
+  /// Forget the previous solution: the next Solve starts cold.
+  void ResetWarmStart() { has_solution_ = false; }
+
+  const RodState& state() const { return state_; }
+  const std::vector<double>& grid() const { return grid_; }
+  const StaticShootingOptions& options() const { return options_; }
+  /// The unknown of the last solve: W(0) = [m; n] in the base body frame (N·m; N).
+  Vec6 base_wrench_B() const;
+
+  // Used internally by the solver and by the tests of its Jacobian. One sample per grid node
+  // (even index 2i) and per segment midpoint (odd index 2i+1).
+  struct Sample {
+    Mat6 compliance;  ///< K(s)⁻¹
+    Vec6 rest_strain;
+    double mass_per_length;  ///< ρ A, kg/m
+  };
+  /// The dimensionless residual at a dimensionless unknown x (W(0) scaled); fills the state.
+  Vec6 Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& x);
+  /// Its Jacobian d residual / d x (6 × 6), the exact derivative of the discrete map (forward-mode
+  /// automatic differentiation). Optionally also the residual.
+  Mat6 ResidualJacobian(const lie::SE3& base, const StaticLoads& loads, const Vec6& x,
+                        Vec6* residual = nullptr) const;
+
+ private:
+  bool TryQuasiNewton(const lie::SE3& base, const StaticLoads& loads, Vec6* x,
+                      StaticShootingSummary* summary);
+  bool TryLevenbergMarquardt(const lie::SE3& base, const StaticLoads& loads, double tolerance,
+                             Vec6* x, StaticShootingSummary* summary);
+  Vec6 RigidGuess(const lie::SE3& base, const StaticLoads& loads) const;
+
+  RodModel model_;
+  StaticShootingOptions options_;
+  std::vector<double> grid_;
+  std::vector<Sample> samples_;
+  Vec6 scale_;  ///< W = scale ⊙ x: [EI/L ×3, EI/L² ×3]
+  RodState state_;
+  std::vector<Vec3> rest_position_B_;  ///< rest shape in the base body frame, for guesses
+  std::vector<Mat3> rest_rotation_B_;
+
+  bool has_solution_ = false;
+  Vec6 x_ = Vec6::Zero();
+  lie::SE3 solved_base_;
+  StaticLoads solved_loads_;
+  Mat6 jacobian_ = Mat6::Identity();  ///< d r / d x at the last solution
+  bool has_jacobian_ = false;
+};
+
+}  // namespace cosserat

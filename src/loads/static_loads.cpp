@@ -1,0 +1,36 @@
+#include "cosserat/loads/static_loads.hpp"
+
+namespace cosserat {
+
+StaticLoads StaticLoads::Scaled(double lambda) const {
+  StaticLoads out = *this;
+  out.gravity_W *= lambda;
+  out.distributed_force_W *= lambda;
+  out.tip_force *= lambda;
+  out.tip_moment *= lambda;
+  return out;
+}
+
+StaticLoads StaticLoads::Blend(const StaticLoads& a, const StaticLoads& b, double t) {
+  StaticLoads out = b;
+  out.gravity_W = a.gravity_W + t * (b.gravity_W - a.gravity_W);
+  out.distributed_force_W =
+      a.distributed_force_W + t * (b.distributed_force_W - a.distributed_force_W);
+  out.tip_force = a.tip_force + t * (b.tip_force - a.tip_force);
+  out.tip_moment = a.tip_moment + t * (b.tip_moment - a.tip_moment);
+  return out;
+}
+
+bool StaticLoads::IsValid(std::string* why) const {
+  auto fail = [&](const char* name) {
+    if (why) *why = std::string(name) + " must be finite";
+    return false;
+  };
+  if (!gravity_W.allFinite()) return fail("gravity");
+  if (!distributed_force_W.allFinite()) return fail("distributed_force");
+  if (!tip_force.allFinite()) return fail("tip_force");
+  if (!tip_moment.allFinite()) return fail("tip_moment");
+  return true;
+}
+
+}  // namespace cosserat

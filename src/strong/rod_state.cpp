@@ -1,0 +1,21 @@
+#include "cosserat/strong/rod_state.hpp"
+
+namespace cosserat {
+
+void RodState::Resize(int n) {
+  s.resize(n);
+  position_W.resize(n);
+  rotation_WB.resize(n);
+  strain.resize(n);
+  wrench_B.resize(n);
+}
+
+Vec6 RodState::BaseReaction_W() const {
+  Vec6 out;
+  const Mat3& R = rotation_WB.front();
+  out.head<3>() = -R * wrench_B.front().head<3>();
+  out.tail<3>() = -R * wrench_B.front().tail<3>();
+  return out;
+}
+
+}  // namespace cosserat
