@@ -59,30 +59,39 @@ ShotState<T> Axpy(const ShotState<T>& y, double a, const ShotState<T>& d) {
   return {y.p + a * d.p, y.R + a * d.R, y.n + a * d.n, y.m + a * d.m};
 }
 
-// Body-frame wrench W = [Rᵀ m_W; Rᵀ n_W] and strain ξ = ξ* + C W (C = K⁻¹).
+// Body-frame wrench W = [Rᵀ m_W; Rᵀ n_W] and strain ξ = ξ* + C W (C = K⁻¹; diagonal for
+// principal-axes sections, which gets the cheap path).
 template <typename T>
 void Strain(const Sample& smp, const ShotState<T>& y, Vector6<T>* W, Vector6<T>* xi) {
   W->template head<3>() = y.R.transpose() * y.m;
   W->template tail<3>() = y.R.transpose() * y.n;
+  if (smp.diagonal) {
+    for (int i = 0; i < 6; ++i) (*xi)(i) = smp.rest_strain(i) + smp.compliance(i, i) * (*W)(i);
+    return;
+  }
   for (int i = 0; i < 6; ++i) {
     T acc = T(smp.rest_strain(i));
-    for (int j = 0; j < 6; ++j)
-      if (smp.compliance(i, j) != 0.0) acc += smp.compliance(i, j) * (*W)(j);
+    for (int j = 0; j < 6; ++j) acc += smp.compliance(i, j) * (*W)(j);
     (*xi)(i) = acc;
   }
 }
 
 // d/ds of the state (seed 002 eqs. 14 and 16 with V = 0, written with world-frame wrenches).
+// Also returns the body wrench and strain it computed, for recording.
 template <typename T>
-ShotState<T> Derivative(const Sample& smp, const Vec3& f_W, const ShotState<T>& y) {
+ShotState<T> Derivative(const Sample& smp, const Vec3& f_W, const ShotState<T>& y,
+                        Vector6<T>* W_out = nullptr, Vector6<T>* xi_out = nullptr) {
   Vector6<T> W, xi;
   Strain(smp, y, &W, &xi);
   ShotState<T> d;
   const Vector3<T> K = xi.template head<3>();
   d.p = y.R * xi.template tail<3>();
-  d.R = y.R * lie::hat(K);
-  d.n = -f_W.cast<T>();
-  d.m = -d.p.cross(y.n);
+  // (R K̂) row i = (row i of R) × K.
+  for (int i = 0; i < 3; ++i) d.R.row(i) = y.R.row(i).cross(K.transpose());
+  d.n = -f_W.template cast<T>();
+  d.m = y.n.cross(d.p);
+  if (W_out) *W_out = W;
+  if (xi_out) *xi_out = xi;
   return d;
 }
 
@@ -109,7 +118,7 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
     smp.compliance = p.stiffness.inverse();
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j)
-        if (std::abs(smp.compliance(i, j)) < 1e-300) smp.compliance(i, j) = 0.0;
+        if (i != j && smp.compliance(i, j) != 0.0) smp.diagonal = false;
     smp.rest_strain = model_.RestStrainAt(s);
     smp.mass_per_length = p.mass(5, 5);
     return smp;
@@ -164,11 +173,9 @@ Vector6<T> Shoot(const std::vector<double>& grid, const std::vector<Sample>& sam
   auto f_at = [&](const Sample& smp) -> Vec3 {
     return smp.mass_per_length * loads.gravity_W + loads.distributed_force_W;
   };
-  auto write = [&](int i, const Sample& smp) {
+  auto record_node = [&](int i, const Vector6<T>& W, const Vector6<T>& xi) {
     if constexpr (std::is_same_v<T, double>) {
       if (!record) return;
-      Vec6 W, xi;
-      Strain(smp, y, &W, &xi);
       record->position_W[i] = y.p;
       record->rotation_WB[i] = y.R;
       record->wrench_B[i] = W;
@@ -176,18 +183,29 @@ Vector6<T> Shoot(const std::vector<double>& grid, const std::vector<Sample>& sam
     }
   };
 
-  write(0, samples[0]);
+  Vector6<T> W, xi;
   for (int i = 0; i + 1 < n; ++i) {
     const double h = grid[i + 1] - grid[i];
     const Sample& s0 = samples[3 * i];
     const Sample& sm = samples[3 * i + 1];
     const Sample& s1 = samples[3 * i + 2];
-    const auto k1 = Derivative(s0, f_at(s0), y);
-    const auto k2 = Derivative(sm, f_at(sm), Axpy(y, 0.5 * h, k1));
-    const auto k3 = Derivative(sm, f_at(sm), Axpy(y, 0.5 * h, k2));
-    const auto k4 = Derivative(s1, f_at(s1), Axpy(y, h, k3));
-    y = Axpy(Axpy(Axpy(Axpy(y, h / 6, k1), h / 3, k2), h / 3, k3), h / 6, k4);
-    write(i + 1, s1);
+    const Vec3 f0 = f_at(s0), fm = f_at(sm), f1 = f_at(s1);
+    const auto k1 = Derivative(s0, f0, y, &W, &xi);
+    record_node(i, W, xi);
+    const auto k2 = Derivative(sm, fm, Axpy(y, 0.5 * h, k1));
+    const auto k3 = Derivative(sm, fm, Axpy(y, 0.5 * h, k2));
+    const auto k4 = Derivative(s1, f1, Axpy(y, h, k3));
+    const double a = h / 6, b = h / 3;
+    y.p += a * (k1.p + k4.p) + b * (k2.p + k3.p);
+    y.R += a * (k1.R + k4.R) + b * (k2.R + k3.R);
+    y.n += a * (k1.n + k4.n) + b * (k2.n + k3.n);
+    y.m += a * (k1.m + k4.m) + b * (k2.m + k3.m);
+  }
+  if constexpr (std::is_same_v<T, double>) {
+    if (record) {
+      Strain(samples[3 * (n - 2) + 2], y, &W, &xi);
+      record_node(n - 1, W, xi);
+    }
   }
 
   // Tip condition W(L) = W_tip, both in the tip body frame.

@@ -86,6 +86,7 @@ class StaticShootingSolver {
     Mat6 compliance;  ///< K(s)⁻¹
     Vec6 rest_strain;
     double mass_per_length;  ///< ρ A, kg/m
+    bool diagonal = true;    ///< compliance has no off-diagonal entries
   };
   /// The dimensionless residual at a dimensionless unknown x (W(0) scaled); fills the state.
   Vec6 Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& x);

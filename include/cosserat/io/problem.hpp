@@ -1,0 +1,71 @@
+#pragma once
+/// \file
+/// Problem files ("cosserat-problem/1", see docs/problem-format.md): parsing into the library's
+/// types, with every input error reported as one line `<json.path>: expected <what>, got <found>`.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cosserat/lie/se3.hpp"
+#include "cosserat/lie/types.hpp"
+#include "cosserat/loads/static_loads.hpp"
+#include "cosserat/rod/rod_model.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+
+namespace cosserat::io {
+
+/// The only value of the required top-level "format" key this version reads.
+inline constexpr const char* kProblemFormat = "cosserat-problem/1";
+
+/// A validated problem. Every field holds a value from the file or its documented default.
+struct Problem {
+  std::string analysis = "statics";          ///< "statics" | "dynamics" | "buckling" | "modes"
+  std::string formulation = "se3-shooting";  ///< or "quaternion-fd"
+  RodModel rod;                              ///< length, section profile, rest strain
+  int nodes = 41;                            ///< grid points along s, ends included
+  lie::SE3 base;                             ///< clamp pose: R_WB (body z = rod tangent), p_W
+  std::string boundary = "cantilever";
+  StaticLoads loads;
+  StaticShootingOptions solver;  ///< "solver": {"tolerance", "max_iterations"}
+
+  // Parsed and validated now, run by later versions.
+  struct Dynamics {
+    double dt = 0.002;       ///< s
+    double duration = 1.0;   ///< s
+    std::string initial = "static";
+    std::optional<StaticLoads> initial_loads;  ///< empty: start from equilibrium under `loads`
+  } dynamics;
+  bool has_dynamics = false;
+
+  struct Buckling {
+    std::string load = "tip_force";
+    Vec3 direction{0, 0, -1};  ///< unit vector (normalised on input)
+    double max = 0;            ///< largest load magnitude searched
+  } buckling;
+  bool has_buckling = false;
+
+  struct Modes {
+    int count = 4;
+  } modes;
+  bool has_modes = false;
+};
+
+struct ParseResult {
+  std::optional<Problem> problem;   ///< set exactly when there are no errors
+  std::vector<std::string> errors;  ///< one line per problem found, in document order
+  bool ok() const { return errors.empty(); }
+};
+
+/// Parses and validates a problem given as JSON text, collecting every error. `source_name`
+/// prefixes the message for malformed JSON (e.g. the file name).
+ParseResult ParseProblem(const std::string& json_text, const std::string& source_name = "<input>");
+
+/// Reads a file and parses it; an unreadable file gives one error naming the path.
+ParseResult LoadProblemFile(const std::string& path);
+
+/// Things the contract names but this version cannot run yet: an analysis other than "statics",
+/// a formulation other than "se3-shooting", a boundary other than "cantilever". One line each.
+std::vector<std::string> UnsupportedFeatures(const Problem& problem);
+
+}  // namespace cosserat::io
