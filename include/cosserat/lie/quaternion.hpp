@@ -5,9 +5,8 @@
 /// i.e. the same R as SO3Exp(θ a) for q = [cos(θ/2), sin(θ/2) a]. Used by the quaternion
 /// finite-difference model (seed 000). Note that Eigen::Quaterniond stores [x, y, z, w] in memory.
 
-#include <cmath>
-
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "cosserat/lie/so3.hpp"
 
@@ -72,8 +71,8 @@ inline Vec4 QuatFromAxisAngle(const Vec3& w) {
   const double t2 = w.squaredNorm();
   const double theta = std::sqrt(t2);
   // sin(θ/2)/θ = 1/2 − θ²/48 + θ⁴/3840 − …
-  const double f = t2 < kSO3Taylor2 ? 0.5 - t2 / 48.0 * (1.0 - t2 / 80.0)
-                                    : std::sin(0.5 * theta) / theta;
+  const double f =
+      t2 < kSO3Taylor2 ? 0.5 - t2 / 48.0 * (1.0 - t2 / 80.0) : std::sin(0.5 * theta) / theta;
   Vec4 q;
   q << std::cos(0.5 * theta), f * w;
   return q;

@@ -108,9 +108,9 @@ inline Mat6 ad(const Vec6& xi) {
 /// Coadjoint on wrenches μ = [m; n]: coad(ξ) = ad(ξ)^T = [[−hat(ω), −hat(v)], [0, −hat(ω)]],
 /// defined by <coad(ξ) μ, η> = <μ, ad(ξ) η> for every twist η. Explicitly
 /// coad(ξ) [m; n] = −[ω × m + v × n; ω × n].
-/// Seed 002 eq. 6 writes ad* = [[−Ω̂, 0], [−v̂, −Ω̂]], which is the same operator in the opposite block
-/// ordering ([v; ω], wrench [n; m]); this library uses [ω; v] and [m; n] throughout. With this
-/// definition seed 002 eq. 16 reads Λ' = … + coad(E) Λ − F_ext unchanged.
+/// Seed 002 eq. 6 writes ad* = [[−Ω̂, 0], [−v̂, −Ω̂]], which is the same operator in the opposite
+/// block ordering ([v; ω], wrench [n; m]); this library uses [ω; v] and [m; n] throughout. With
+/// this definition seed 002 eq. 16 reads Λ' = … + coad(E) Λ − F_ext unchanged.
 inline Mat6 coad(const Vec6& xi) {
   const Mat3 Wt = -hat<double>(xi.head<3>());
   Mat6 A;
@@ -126,7 +126,8 @@ inline constexpr double kSE3Taylor2 = 1e-2;
 
 namespace detail {
 /// Lower-left block of the SE(3) left Jacobian for ξ = [ω; v] (Barfoot's Q(ρ = v, φ = ω)):
-/// Q = V/2 + c1 (WV + VW + WVW) + c2 (W²V + VW² − 3 WVW) + c3 (WVW² + W²VW), W = hat(ω), V = hat(v).
+/// Q = V/2 + c1 (WV + VW + WVW) + c2 (W²V + VW² − 3 WVW) + c3 (WVW² + W²VW), W = hat(ω), V =
+/// hat(v).
 inline Mat3 se3_Q(const Vec3& w, const Vec3& v) {
   const double t2 = w.squaredNorm();
   double c1, c2, c3;
@@ -136,8 +137,8 @@ inline Mat3 se3_Q(const Vec3& w, const Vec3& v) {
     c3 = 1.0 / 120.0 - t2 / 2520.0 * (1.0 - t2 / 48.0 * (1.0 - 2.0 * t2 / 165.0));
   } else {
     const double t = std::sqrt(t2), s = std::sin(t), c = std::cos(t), sh2 = 2.0 * std::sin(0.5 * t);
-    c1 = (t - s) / (t2 * t);                                // (θ − sin θ) / θ³
-    c2 = (t - sh2) * (t + sh2) / (2.0 * t2 * t2);           // (θ² + 2 cos θ − 2) / (2 θ⁴)
+    c1 = (t - s) / (t2 * t);                                 // (θ − sin θ) / θ³
+    c2 = (t - sh2) * (t + sh2) / (2.0 * t2 * t2);            // (θ² + 2 cos θ − 2) / (2 θ⁴)
     c3 = (2.0 * t - 3.0 * s + t * c) / (2.0 * t2 * t2 * t);  // (2θ − 3 sin θ + θ cos θ) / (2 θ⁵)
   }
   const Mat3 W = hat(w), V = hat(v);
@@ -167,7 +168,8 @@ inline Mat6 SE3LeftJacobianInverse(const Vec6& xi) {
   return A;
 }
 
-/// Inverse of the right Jacobian: J_r^{-1}(ξ) = J_l^{-1}(−ξ); J_r^{-1}(Log g) = ∂ Log(g Exp(δ)) / ∂δ.
+/// Inverse of the right Jacobian: J_r^{-1}(ξ) = J_l^{-1}(−ξ); J_r^{-1}(Log g) = ∂ Log(g Exp(δ)) /
+/// ∂δ.
 inline Mat6 SE3RightJacobianInverse(const Vec6& xi) { return SE3LeftJacobianInverse(-xi); }
 
 }  // namespace cosserat::lie

@@ -42,7 +42,7 @@ struct SO3Coeffs {
 };
 inline SO3Coeffs so3_coeffs(double theta2) {
   if (theta2 < kSO3Taylor2) {
-    return {1.0 - theta2 / 6.0 * (1.0 - theta2 / 20.0),    //
+    return {1.0 - theta2 / 6.0 * (1.0 - theta2 / 20.0),   //
             0.5 - theta2 / 24.0 * (1.0 - theta2 / 30.0),  //
             1.0 / 6.0 - theta2 / 120.0 * (1.0 - theta2 / 42.0)};
   }
@@ -71,8 +71,8 @@ inline Mat3 SO3Exp(const Vec3& w) {
 /// skew part, sin θ · a = vee(R); for θ ≥ π/2 it comes from the symmetric part
 /// (R + R^T)/2 − cos θ I = (1 − cos θ) a a^T, whose largest column is well conditioned up to θ = π.
 inline Vec3 SO3Log(const Mat3& R) {
-  const Vec3 sin_axis = vee(R);               // sin θ · a
-  const double c = 0.5 * (R.trace() - 1.0);   // cos θ
+  const Vec3 sin_axis = vee(R);              // sin θ · a
+  const double c = 0.5 * (R.trace() - 1.0);  // cos θ
   const double theta = std::atan2(sin_axis.norm(), c);
   const double theta2 = theta * theta;
   if (c > 0.0) {
