@@ -1,10 +1,10 @@
 #include "cosserat/strong/static_shooting.hpp"
 
-#include <ceres/jet.h>
 #include <ceres/tiny_solver.h>
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -43,56 +43,200 @@ namespace {
 constexpr double kIntermediateTolerance = 1e-6;
 
 using Sample = StaticShootingSolver::Sample;
-using Jet6 = ceres::Jet<double, 6>;
+using Mat36 = Eigen::Matrix<double, 3, 6>;
 
 // State of the spatial integration: centreline, frame and the internal wrench in world frame.
-template <typename T>
 struct ShotState {
-  Vector3<T> p;  // p_W, m
-  Matrix3<T> R;  // R_WB
-  Vector3<T> n;  // n_W, N
-  Vector3<T> m;  // m_W about p(s), N·m
+  Vec3 p;  // p_W, m
+  Mat3 R;  // R_WB
+  Vec3 n;  // n_W, N
+  Vec3 m;  // m_W about p(s), N·m
 };
 
-template <typename T>
-ShotState<T> Axpy(const ShotState<T>& y, double a, const ShotState<T>& d) {
+// Derivative of ShotState with respect to the 6 unknowns (one column each), in the same
+// coordinates, so RK4 applied to (state, tangent) gives the exact derivative of the discrete map.
+struct ShotTangent {
+  Mat36 p;
+  std::array<Mat36, 3> R;  // d(R e_j)
+  Mat36 n;
+  Mat36 m;
+};
+
+ShotState Axpy(const ShotState& y, double a, const ShotState& d) {
   return {y.p + a * d.p, y.R + a * d.R, y.n + a * d.n, y.m + a * d.m};
 }
 
-// Body-frame wrench W = [Rᵀ m_W; Rᵀ n_W] and strain ξ = ξ* + C W (C = K⁻¹; diagonal for
-// principal-axes sections, which gets the cheap path).
-template <typename T>
-void Strain(const Sample& smp, const ShotState<T>& y, Vector6<T>* W, Vector6<T>* xi) {
-  W->template head<3>() = y.R.transpose() * y.m;
-  W->template tail<3>() = y.R.transpose() * y.n;
-  if (smp.diagonal) {
-    for (int i = 0; i < 6; ++i) (*xi)(i) = smp.rest_strain(i) + smp.compliance(i, i) * (*W)(i);
-    return;
-  }
-  for (int i = 0; i < 6; ++i) {
-    T acc = T(smp.rest_strain(i));
-    for (int j = 0; j < 6; ++j) acc += smp.compliance(i, j) * (*W)(j);
-    (*xi)(i) = acc;
-  }
+ShotTangent Axpy(const ShotTangent& y, double a, const ShotTangent& d) {
+  return {y.p + a * d.p, {y.R[0] + a * d.R[0], y.R[1] + a * d.R[1], y.R[2] + a * d.R[2]},
+          y.n + a * d.n, y.m + a * d.m};
 }
 
-// d/ds of the state (seed 002 eqs. 14 and 16 with V = 0, written with world-frame wrenches).
-// Also returns the body wrench and strain it computed, for recording.
-template <typename T>
-ShotState<T> Derivative(const Sample& smp, const Vec3& f_W, const ShotState<T>& y,
-                        Vector6<T>* W_out = nullptr, Vector6<T>* xi_out = nullptr) {
-  Vector6<T> W, xi;
-  Strain(smp, y, &W, &xi);
-  ShotState<T> d;
-  const Vector3<T> K = xi.template head<3>();
-  d.p = y.R * xi.template tail<3>();
-  // (R K̂) row i = (row i of R) × K.
-  for (int i = 0; i < 3; ++i) d.R.row(i) = y.R.row(i).cross(K.transpose());
-  d.n = -f_W.template cast<T>();
+// RK4 combination y += h/6 (k1 + 2 k2 + 2 k3 + k4), for states and tangents.
+void Rk4Update(double h, const ShotState& k1, const ShotState& k2, const ShotState& k3,
+               const ShotState& k4, ShotState* y) {
+  const double a = h / 6, b = h / 3;
+  y->p += a * (k1.p + k4.p) + b * (k2.p + k3.p);
+  y->R += a * (k1.R + k4.R) + b * (k2.R + k3.R);
+  y->n += a * (k1.n + k4.n) + b * (k2.n + k3.n);
+  y->m += a * (k1.m + k4.m) + b * (k2.m + k3.m);
+}
+
+void Rk4Update(double h, const ShotTangent& k1, const ShotTangent& k2, const ShotTangent& k3,
+               const ShotTangent& k4, ShotTangent* y) {
+  const double a = h / 6, b = h / 3;
+  y->p += a * (k1.p + k4.p) + b * (k2.p + k3.p);
+  for (int j = 0; j < 3; ++j) y->R[j] += a * (k1.R[j] + k4.R[j]) + b * (k2.R[j] + k3.R[j]);
+  y->n += a * (k1.n + k4.n) + b * (k2.n + k3.n);
+  y->m += a * (k1.m + k4.m) + b * (k2.m + k3.m);
+}
+
+// ξ = ξ* + C W (C = K⁻¹; diagonal for principal-axes sections, which gets the cheap path).
+Vec6 Compliance(const Sample& smp, const Vec6& W) {
+  if (smp.diagonal) return smp.rest_strain + smp.compliance.diagonal().cwiseProduct(W);
+  return smp.rest_strain + smp.compliance * W;
+}
+
+// Body-frame wrench W = [Rᵀ m_W; Rᵀ n_W].
+Vec6 BodyWrench(const ShotState& y) {
+  Vec6 W;
+  W << y.R.transpose() * y.m, y.R.transpose() * y.n;
+  return W;
+}
+
+// d/ds of the state (seed 002 eqs. 14 and 16 with V = 0, written with world-frame wrenches):
+//   p' = R Γ,  R' = R K̂,  n_W' = −f_W,  m_W' = n_W × p'.
+// Returns the body wrench and strain it computed, for recording.
+ShotState Derivative(const Sample& smp, const Vec3& f_W, const ShotState& y, Vec6* W, Vec6* xi) {
+  *W = BodyWrench(y);
+  *xi = Compliance(smp, *W);
+  const Vec3 K = xi->head<3>();
+  ShotState d;
+  d.p = y.R * xi->tail<3>();
+  for (int i = 0; i < 3; ++i) d.R.row(i) = y.R.row(i).cross(K.transpose());  // (R K̂) row i
+  d.n = -f_W;
   d.m = y.n.cross(d.p);
-  if (W_out) *W_out = W;
-  if (xi_out) *xi_out = xi;
   return d;
+}
+
+// The linearisation of Derivative along the tangent dy, given the primal results.
+ShotTangent TangentDerivative(const Sample& smp, const ShotState& y, const ShotTangent& dy,
+                              const Vec6& W, const Vec6& xi, const ShotState& d) {
+  Mat6 dW;
+  dW.topRows<3>() = y.R.transpose() * dy.m;
+  dW.bottomRows<3>() = y.R.transpose() * dy.n;
+  for (int j = 0; j < 3; ++j) {
+    dW.row(j) += y.m.transpose() * dy.R[j];      // (dR e_j) · m_W
+    dW.row(3 + j) += y.n.transpose() * dy.R[j];  // (dR e_j) · n_W
+  }
+  const Mat6 dxi = smp.diagonal ? Mat6(smp.compliance.diagonal().asDiagonal() * dW)
+                                : Mat6(smp.compliance * dW);
+  const auto dK = dxi.topRows<3>();
+  const Vec3 K = xi.head<3>(), G = xi.tail<3>();
+  (void)W;
+  ShotTangent dd;
+  // d(R Γ) = dR Γ + R dΓ
+  dd.p = y.R * dxi.bottomRows<3>() + G(0) * dy.R[0] + G(1) * dy.R[1] + G(2) * dy.R[2];
+  // d(R K̂ e_j) = dR (K × e_j) + R (dK × e_j)
+  for (int j = 0; j < 3; ++j) {
+    const Vec3 c = K.cross(Vec3::Unit(j));
+    Mat36 dK_x_ej;
+    const int a = (j + 1) % 3, b = (j + 2) % 3;  // v × e_j has v_b at a and −v_a at b
+    dK_x_ej.row(j).setZero();
+    dK_x_ej.row(a) = dK.row(b);
+    dK_x_ej.row(b) = -dK.row(a);
+    dd.R[j] = c(0) * dy.R[0] + c(1) * dy.R[1] + c(2) * dy.R[2] + y.R * dK_x_ej;
+  }
+  dd.n.setZero();
+  // d(n × p') = dn × p' + n × dp'
+  for (int k = 0; k < 6; ++k) dd.m.col(k) = dy.n.col(k).cross(d.p) + y.n.cross(dd.p.col(k));
+  return dd;
+}
+
+// Rows (dR e_j) · v for j = 0..2: the derivative of Rᵀ v (v fixed) along the tangent.
+Mat36 TransposeTimesFixed(const ShotTangent& dy, const Vec3& v) {
+  Mat36 out;
+  for (int j = 0; j < 3; ++j) out.row(j) = v.transpose() * dy.R[j];
+  return out;
+}
+
+// Tip condition W(L) = W_tip in the tip body frame, made dimensionless by scale.
+Vec6 TipResidual(const Mat3& R_tip, const Vec6& W_tip_B, const StaticLoads& loads,
+                 const Vec6& scale) {
+  const Mat3 Rt = R_tip.transpose();
+  Vec6 target;
+  target << (loads.tip_moment_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_moment)
+                                                          : loads.tip_moment),
+      (loads.tip_force_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_force) : loads.tip_force);
+  return (W_tip_B - target).cwiseQuotient(scale);
+}
+
+// Integrates from s = 0 to L with RK4 on the grid and returns the dimensionless tip residual.
+// With record, writes the node values; with J, propagates the tangent and writes d r / d x.
+Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples,
+           const Vec6& scale, const lie::SE3& base, const StaticLoads& loads, const Vec6& x,
+           RodState* record, Mat6* J) {
+  const int n = static_cast<int>(grid.size());
+  const Vec6 W0 = scale.cwiseProduct(x);
+  ShotState y{base.p, base.R, base.R * W0.tail<3>(), base.R * W0.head<3>()};
+  ShotTangent dy;
+  if (J) {
+    dy.p.setZero();
+    for (auto& c : dy.R) c.setZero();
+    dy.m.setZero();
+    dy.n.setZero();
+    dy.m.leftCols<3>() = base.R * scale.head<3>().asDiagonal();
+    dy.n.rightCols<3>() = base.R * scale.tail<3>().asDiagonal();
+  }
+  auto f_at = [&](const Sample& smp) -> Vec3 {
+    return smp.mass_per_length * loads.gravity_W + loads.distributed_force_W;
+  };
+  auto record_node = [&](int i, const Vec6& W, const Vec6& xi) {
+    record->position_W[i] = y.p;
+    record->rotation_WB[i] = y.R;
+    record->wrench_B[i] = W;
+    record->strain[i] = xi;
+  };
+
+  Vec6 W1, xi1, W2, xi2, W3, xi3, W4, xi4;
+  for (int i = 0; i + 1 < n; ++i) {
+    const double h = grid[i + 1] - grid[i];
+    const Sample& s0 = samples[3 * i];
+    const Sample& sm = samples[3 * i + 1];
+    const Sample& s1 = samples[3 * i + 2];
+    const Vec3 f0 = f_at(s0), fm = f_at(sm), f1 = f_at(s1);
+    const ShotState k1 = Derivative(s0, f0, y, &W1, &xi1);
+    if (record) record_node(i, W1, xi1);
+    const ShotState y2 = Axpy(y, 0.5 * h, k1);
+    const ShotState k2 = Derivative(sm, fm, y2, &W2, &xi2);
+    const ShotState y3 = Axpy(y, 0.5 * h, k2);
+    const ShotState k3 = Derivative(sm, fm, y3, &W3, &xi3);
+    const ShotState y4 = Axpy(y, h, k3);
+    const ShotState k4 = Derivative(s1, f1, y4, &W4, &xi4);
+    if (J) {
+      const ShotTangent t1 = TangentDerivative(s0, y, dy, W1, xi1, k1);
+      const ShotTangent t2 = TangentDerivative(sm, y2, Axpy(dy, 0.5 * h, t1), W2, xi2, k2);
+      const ShotTangent t3 = TangentDerivative(sm, y3, Axpy(dy, 0.5 * h, t2), W3, xi3, k3);
+      const ShotTangent t4 = TangentDerivative(s1, y4, Axpy(dy, h, t3), W4, xi4, k4);
+      Rk4Update(h, t1, t2, t3, t4, &dy);
+    }
+    Rk4Update(h, k1, k2, k3, k4, &y);
+  }
+  if (record) {
+    const Vec6 W = BodyWrench(y);
+    record_node(n - 1, W, Compliance(samples[3 * (n - 2) + 2], W));
+  }
+
+  const Mat3 Rt = y.R.transpose();
+  if (J) {
+    const bool force_W = loads.tip_force_frame == LoadFrame::kWorld;
+    const bool moment_W = loads.tip_moment_frame == LoadFrame::kWorld;
+    J->topRows<3>() = Rt * dy.m + TransposeTimesFixed(dy, y.m);
+    J->bottomRows<3>() = Rt * dy.n + TransposeTimesFixed(dy, y.n);
+    if (moment_W) J->topRows<3>() -= TransposeTimesFixed(dy, loads.tip_moment);
+    if (force_W) J->bottomRows<3>() -= TransposeTimesFixed(dy, loads.tip_force);
+    *J = scale.cwiseInverse().asDiagonal() * *J;
+  }
+  return TipResidual(y.R, BodyWrench(y), loads, scale);
 }
 
 }  // namespace
@@ -137,110 +281,24 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
   for (int i = 0; i < n; ++i) state_.s[i] = grid_[i];
 
   // Rest shape in the base body frame (zero wrench), for the rigid-body initial guess.
-  rest_position_B_.assign(n, Vec3::Zero());
-  rest_rotation_B_.assign(n, Mat3::Identity());
-  ShotState<double> y{Vec3::Zero(), Mat3::Identity(), Vec3::Zero(), Vec3::Zero()};
-  for (int i = 0; i + 1 < n; ++i) {
-    const double h = grid_[i + 1] - grid_[i];
-    const Vec3 zero = Vec3::Zero();
-    const auto k1 = Derivative(samples_[3 * i], zero, y);
-    const auto k2 = Derivative(samples_[3 * i + 1], zero, Axpy(y, 0.5 * h, k1));
-    const auto k3 = Derivative(samples_[3 * i + 1], zero, Axpy(y, 0.5 * h, k2));
-    const auto k4 = Derivative(samples_[3 * i + 2], zero, Axpy(y, h, k3));
-    y = Axpy(Axpy(Axpy(Axpy(y, h / 6, k1), h / 3, k2), h / 3, k3), h / 6, k4);
-    rest_position_B_[i + 1] = y.p;
-    rest_rotation_B_[i + 1] = y.R;
-  }
+  RodState rest;
+  rest.Resize(n);
+  Shoot(grid_, samples_, scale_, lie::SE3{}, StaticLoads{}, Vec6::Zero(), &rest, nullptr);
+  rest_position_B_ = rest.position_W;
+  rest_rotation_B_ = rest.rotation_WB;
 }
-
-namespace {
-
-// Integrates from s = 0 to L with RK4 on the grid and returns the dimensionless tip residual.
-// When record is non-null, the node values are written to it (T = double only).
-template <typename T>
-Vector6<T> Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples,
-                 const Vec6& scale, const lie::SE3& base, const StaticLoads& loads,
-                 const Vector6<T>& x, RodState* record) {
-  const int n = static_cast<int>(grid.size());
-  Vector6<T> W0;
-  for (int i = 0; i < 6; ++i) W0(i) = scale(i) * x(i);
-  ShotState<T> y;
-  y.p = base.p.cast<T>();
-  y.R = base.R.cast<T>();
-  y.m = y.R * W0.template head<3>();
-  y.n = y.R * W0.template tail<3>();
-
-  auto f_at = [&](const Sample& smp) -> Vec3 {
-    return smp.mass_per_length * loads.gravity_W + loads.distributed_force_W;
-  };
-  auto record_node = [&](int i, const Vector6<T>& W, const Vector6<T>& xi) {
-    if constexpr (std::is_same_v<T, double>) {
-      if (!record) return;
-      record->position_W[i] = y.p;
-      record->rotation_WB[i] = y.R;
-      record->wrench_B[i] = W;
-      record->strain[i] = xi;
-    }
-  };
-
-  Vector6<T> W, xi;
-  for (int i = 0; i + 1 < n; ++i) {
-    const double h = grid[i + 1] - grid[i];
-    const Sample& s0 = samples[3 * i];
-    const Sample& sm = samples[3 * i + 1];
-    const Sample& s1 = samples[3 * i + 2];
-    const Vec3 f0 = f_at(s0), fm = f_at(sm), f1 = f_at(s1);
-    const auto k1 = Derivative(s0, f0, y, &W, &xi);
-    record_node(i, W, xi);
-    const auto k2 = Derivative(sm, fm, Axpy(y, 0.5 * h, k1));
-    const auto k3 = Derivative(sm, fm, Axpy(y, 0.5 * h, k2));
-    const auto k4 = Derivative(s1, f1, Axpy(y, h, k3));
-    const double a = h / 6, b = h / 3;
-    y.p += a * (k1.p + k4.p) + b * (k2.p + k3.p);
-    y.R += a * (k1.R + k4.R) + b * (k2.R + k3.R);
-    y.n += a * (k1.n + k4.n) + b * (k2.n + k3.n);
-    y.m += a * (k1.m + k4.m) + b * (k2.m + k3.m);
-  }
-  if constexpr (std::is_same_v<T, double>) {
-    if (record) {
-      Strain(samples[3 * (n - 2) + 2], y, &W, &xi);
-      record_node(n - 1, W, xi);
-    }
-  }
-
-  // Tip condition W(L) = W_tip, both in the tip body frame.
-  const Matrix3<T> Rt = y.R.transpose();
-  const Vector3<T> F_B = loads.tip_force_frame == LoadFrame::kWorld
-                             ? Vector3<T>(Rt * loads.tip_force.cast<T>())
-                             : Vector3<T>(loads.tip_force.cast<T>());
-  const Vector3<T> M_B = loads.tip_moment_frame == LoadFrame::kWorld
-                             ? Vector3<T>(Rt * loads.tip_moment.cast<T>())
-                             : Vector3<T>(loads.tip_moment.cast<T>());
-  Vector6<T> r;
-  r.template head<3>() = Rt * y.m - M_B;
-  r.template tail<3>() = Rt * y.n - F_B;
-  for (int i = 0; i < 6; ++i) r(i) /= scale(i);
-  return r;
-}
-
-
-}  // namespace
 
 Vec6 StaticShootingSolver::Residual(const lie::SE3& base, const StaticLoads& loads,
                                     const Vec6& x) {
-  return Shoot<double>(grid_, samples_, scale_, base, loads, x, &state_);
+  state_is_solution_ = false;
+  return Shoot(grid_, samples_, scale_, base, loads, x, &state_, nullptr);
 }
 
 Mat6 StaticShootingSolver::ResidualJacobian(const lie::SE3& base, const StaticLoads& loads,
                                             const Vec6& x, Vec6* residual) const {
-  Vector6<Jet6> xj;
-  for (int i = 0; i < 6; ++i) xj(i) = Jet6(x(i), i);
-  const Vector6<Jet6> r = Shoot<Jet6>(grid_, samples_, scale_, base, loads, xj, nullptr);
   Mat6 J;
-  for (int i = 0; i < 6; ++i) {
-    J.row(i) = r(i).v.transpose();
-    if (residual) (*residual)(i) = r(i).a;
-  }
+  const Vec6 r = Shoot(grid_, samples_, scale_, base, loads, x, nullptr, &J);
+  if (residual) *residual = r;
   return J;
 }
 
@@ -339,8 +397,16 @@ bool StaticShootingSolver::TryQuasiNewton(const lie::SE3& base, const StaticLoad
   // Newton with the last solution's Jacobian, kept current by Broyden's rank-one update. Gives
   // up (and lets LM take over) as soon as a step fails to halve the residual.
   Vec6 x = *x_io;
-  Vec6 r = Residual(base, loads, x);
-  ++summary->shots;
+  Vec6 r;
+  if (state_is_solution_ && loads.gravity_W == solved_loads_.gravity_W &&
+      loads.distributed_force_W == solved_loads_.distributed_force_W) {
+    // Only the tip load changed: the stored shot of the previous solution is the shot at x, and
+    // only its tip condition differs. No integration needed.
+    r = TipResidual(state_.rotation_WB.back(), state_.wrench_B.back(), loads, scale_);
+  } else {
+    r = Residual(base, loads, x);
+    ++summary->shots;
+  }
   Mat6 J = jacobian_;
   Eigen::PartialPivLU<Mat6> lu(J);
   for (int it = 0; it <= options_.max_iterations; ++it) {
@@ -440,19 +506,20 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
                                               : SolveStatus::kMaxIterations;
   }
 
-  if (ok) {
-    summary.status = SolveStatus::kConverged;
-    x_ = x;
-    solved_base_ = base;
-    solved_loads_ = loads;
-    has_solution_ = true;
-  }
   if (!state_current) {
     const Vec6 r = Residual(base, loads, x);
     ++summary.shots;
     summary.residual = r.norm();
     if (!r.allFinite() && summary.status != SolveStatus::kConverged)
       summary.status = SolveStatus::kNonFinite;
+  }
+  if (ok) {
+    state_is_solution_ = true;
+    summary.status = SolveStatus::kConverged;
+    x_ = x;
+    solved_base_ = base;
+    solved_loads_ = loads;
+    has_solution_ = true;
   }
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -72,7 +72,7 @@ class StaticShootingSolver {
   StaticShootingSummary Solve(const lie::SE3& base, const StaticLoads& loads);
 
   /// Forget the previous solution: the next Solve starts cold.
-  void ResetWarmStart() { has_solution_ = false; }
+  void ResetWarmStart() { has_solution_ = false; has_jacobian_ = false; }
 
   const RodState& state() const { return state_; }
   const std::vector<double>& grid() const { return grid_; }
@@ -112,6 +112,7 @@ class StaticShootingSolver {
   std::vector<Mat3> rest_rotation_B_;
 
   bool has_solution_ = false;
+  bool state_is_solution_ = false;  ///< state_ holds the shot of x_ at solved_base_/solved_loads_
   Vec6 x_ = Vec6::Zero();
   lie::SE3 solved_base_;
   StaticLoads solved_loads_;
