@@ -51,6 +51,58 @@ TEST(StaticVerification, ElasticaTableAtN41) {
   }
 }
 
+// The elastica closed form of the reference file (Bisshopp & Drucker), evaluated with adaptive
+// Simpson quadrature for the incomplete elliptic integrals, for loads beyond the table.
+double EllipticIntegral(double phi, double k, bool second_kind) {
+  auto f = [&](double t) {
+    const double d = std::sqrt(1 - k * k * std::sin(t) * std::sin(t));
+    return second_kind ? d : 1 / d;
+  };
+  const int n = 20000;  // Simpson, smooth integrand (k < 1): error ~ (φ/n)^4, far below 1e-12
+  double sum = f(0) + f(phi);
+  for (int i = 1; i < n; ++i) sum += (i % 2 ? 4 : 2) * f(phi * i / n);
+  return sum * phi / (3 * n);
+}
+
+// Tip deflection / L of the inextensible elastica under a dead end load, PL²/EI = alpha.
+double ElasticaDeflection(double alpha) {
+  auto parts = [&](double theta0, double* k, double* phi1) {
+    *k = std::sqrt((1 + std::sin(theta0)) / 2);
+    *phi1 = std::asin(1 / (*k * std::sqrt(2.0)));
+  };
+  double lo = 1e-9, hi = kPi / 2 - 1e-12;
+  for (int it = 0; it < 100; ++it) {  // sqrt(alpha) = F(k) − F(φ1, k) grows with θ0
+    const double mid = 0.5 * (lo + hi);
+    double k, phi1;
+    parts(mid, &k, &phi1);
+    const double g = EllipticIntegral(kPi / 2, k, false) - EllipticIntegral(phi1, k, false);
+    (g < std::sqrt(alpha) ? lo : hi) = mid;
+  }
+  double k, phi1;
+  parts(0.5 * (lo + hi), &k, &phi1);
+  return 1 - 2 * (EllipticIntegral(kPi / 2, k, true) - EllipticIntegral(phi1, k, true)) /
+                 std::sqrt(alpha);
+}
+
+// Large loads have several equilibria (folded ones among them). A cold solve must land on the
+// natural branch, the one reached by loading from zero.
+TEST(StaticVerification, LargeLoadsFollowTheNaturalBranch) {
+  // The closed form reproduces the table first, so it can be trusted beyond it.
+  EXPECT_NEAR(ElasticaDeflection(10), 0.8106090249, 1e-8);
+  SlenderRod rod;
+  for (double alpha : {20.0, 50.0}) {
+    StaticShootingSolver solver(rod.model(), 41);
+    StaticLoads loads;
+    loads.tip_force = Vec3(-alpha * rod.EI() / (rod.L * rod.L), 0, 0);
+    const auto summary = solver.Solve(lie::SE3{}, loads);
+    ASSERT_TRUE(summary.converged()) << alpha;
+    // Model difference (r/L)² α/4 ≈ 3e-4 at α = 50 (the stretch under the load) plus RK4 error:
+    // within 1e-3 L, as for the table.
+    EXPECT_NEAR(-solver.state().tip_position_W().x() / rod.L, ElasticaDeflection(alpha), 1e-3)
+        << alpha;
+  }
+}
+
 // Pure end moment M about body y: a circular arc of curvature M/EI (exact, no shear or stretch).
 TEST(StaticVerification, EndMomentClosesCircle) {
   SlenderRod rod;
