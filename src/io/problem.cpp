@@ -26,6 +26,8 @@ constexpr int kMaxNodes = 1000000;
 constexpr int kMaxIterations = 1000000;
 constexpr int kMaxModes = 1000;
 constexpr double kRotationTolerance = 1e-6;
+/// Overflowing numbers recovered from (each costs a re-parse); beyond this the parse stops.
+constexpr std::size_t kMaxOverflowRetries = 64;
 
 // ---------------------------------------------------------------------------------------------
 // JSON paths and the text of messages
@@ -286,7 +288,7 @@ Document ReadDocument(const std::string& text, const std::string& source_name) {
       return doc;
     }
     const DocumentBuilder::Failure failure = builder.failure().value_or(DocumentBuilder::Failure{});
-    const bool overflow = failure.id == 406;
+    const bool overflow = failure.id == 406 && overflowed.size() < kMaxOverflowRetries;
     if (overflow && !overflowed.count(failure.path) &&
         BlankToken(&work, failure.position, failure.token)) {
       const double inf = std::numeric_limits<double>::infinity();
@@ -921,11 +923,8 @@ void CheckWithLibrary(const Problem& p, Report* report) {
 ParseResult ParseProblem(const std::string& json_text, const std::string& source_name) {
   ParseResult result;
   Document doc = ReadDocument(json_text, source_name);
-  if (!doc.value) {
-    result.errors = std::move(doc.errors);
-    return result;
-  }
-  result.errors = std::move(doc.errors);  // duplicate keys, already formatted
+  result.errors = std::move(doc.errors);  // malformed JSON, or duplicate keys
+  if (!doc.value) return result;
   Report report;
   if (!doc.value->is_object()) {
     report.Expected("", "an object", Describe(*doc.value));

@@ -6,7 +6,7 @@
 namespace cosserat::io {
 namespace {
 
-using json = nlohmann::json;
+using json = nlohmann::ordered_json;
 
 template <typename Vector>
 json ToArray(const Vector& v) {

@@ -17,8 +17,9 @@ namespace cosserat::io {
 ///     moment about the base point (RodState::BaseReaction_W),
 ///   nodes {s, position, curvature (body-frame [k1, k2, k3], 1/m),
 ///          moment_body, force_body (internal wrench W = [m; n] in the section frame)}.
-/// Non-finite numbers (only possible when the solve failed) are written as null.
-nlohmann::json StaticResultToJson(const StaticShootingSummary& summary, const RodState& state);
+/// Keys keep this order (status first). Non-finite numbers (only possible when the solve failed)
+/// are written as null.
+nlohmann::ordered_json StaticResultToJson(const StaticShootingSummary& summary, const RodState& state);
 
 /// One row per node, header `s,x,y,z,k1,k2,k3` (m; 1/m), full double precision.
 void WriteNodesCsv(std::ostream& out, const RodState& state);

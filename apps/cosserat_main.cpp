@@ -1,0 +1,186 @@
+// The `cosserat` command:
+//   cosserat solve PROBLEM.json [--out RESULT.json] [--csv NODES.csv]
+//   cosserat validate PROBLEM.json
+//   cosserat --version | --help
+// Exit codes: 0 converged (or valid), 1 solved but not converged, 2 bad input or usage.
+
+#include <cerrno>
+#include <cstring>
+#include <exception>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cosserat/io/problem.hpp"
+#include "cosserat/io/result_writer.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+
+namespace {
+
+constexpr int kExitConverged = 0;
+constexpr int kExitNotConverged = 1;
+constexpr int kExitBadInput = 2;
+
+const char* const kUsage =
+    "usage:\n"
+    "  cosserat solve PROBLEM.json [--out RESULT.json] [--csv NODES.csv]\n"
+    "  cosserat validate PROBLEM.json\n"
+    "  cosserat --version\n"
+    "  cosserat --help\n"
+    "\n"
+    "solve     solve the problem; the result JSON goes to stdout or to --out, the node table\n"
+    "          (s,x,y,z,k1,k2,k3) to --csv. A one-line summary is printed on stderr.\n"
+    "validate  check the problem file and print every error found.\n"
+    "\n"
+    "exit status: 0 converged (or valid), 1 ran but did not converge (the result is still\n"
+    "written, its \"status\" says why), 2 bad input or bad usage.\n"
+    "The problem format is described in docs/problem-format.md.\n";
+
+struct UsageError {
+  std::string message;
+};
+
+struct Command {
+  std::string name;  // "solve", "validate", "version", "help"
+  std::string problem_path;
+  std::optional<std::string> out_path;
+  std::optional<std::string> csv_path;
+};
+
+/// Takes the value of an option such as `--out FILE` or `--out=FILE`.
+std::string OptionValue(const std::vector<std::string>& args, std::size_t* i,
+                        const std::string& option) {
+  const std::string& arg = args[*i];
+  if (arg.size() > option.size() && arg.compare(0, option.size() + 1, option + "=") == 0)
+    return arg.substr(option.size() + 1);
+  if (*i + 1 >= args.size()) throw UsageError{option + " needs a file name"};
+  return args[++*i];
+}
+
+Command ParseCommandLine(const std::vector<std::string>& args) {
+  if (args.empty()) throw UsageError{"no command given"};
+  Command cmd;
+  const std::string& first = args[0];
+  if (first == "--version" || first == "-V") cmd.name = "version";
+  else if (first == "--help" || first == "-h" || first == "help") cmd.name = "help";
+  else if (first == "solve" || first == "validate") cmd.name = first;
+  else throw UsageError{"unknown command '" + first + "'"};
+
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    const bool is_out = arg == "--out" || arg.rfind("--out=", 0) == 0;
+    const bool is_csv = arg == "--csv" || arg.rfind("--csv=", 0) == 0;
+    if (arg == "--help" || arg == "-h") cmd.name = "help";
+    else if (cmd.name == "solve" && is_out) cmd.out_path = OptionValue(args, &i, "--out");
+    else if (cmd.name == "solve" && is_csv) cmd.csv_path = OptionValue(args, &i, "--csv");
+    else if (arg.size() > 1 && arg[0] == '-') throw UsageError{"unknown option '" + arg + "'"};
+    else if (cmd.problem_path.empty()) cmd.problem_path = arg;
+    else throw UsageError{"unexpected argument '" + arg + "'"};
+  }
+  if (cmd.name == "help") return cmd;
+  if (cmd.name == "version" && !cmd.problem_path.empty())
+    throw UsageError{"--version takes no arguments"};
+  if ((cmd.name == "solve" || cmd.name == "validate") && cmd.problem_path.empty())
+    throw UsageError{cmd.name + " needs a problem file"};
+  return cmd;
+}
+
+void PrintLines(const std::vector<std::string>& lines) {
+  for (const std::string& line : lines) std::cerr << line << '\n';
+}
+
+/// Parses the file and checks that this version can run it; prints the errors if not.
+std::optional<cosserat::io::Problem> LoadRunnableProblem(const std::string& path) {
+  cosserat::io::ParseResult parsed = cosserat::io::LoadProblemFile(path);
+  if (!parsed.ok()) {
+    PrintLines(parsed.errors);
+    return std::nullopt;
+  }
+  const std::vector<std::string> unsupported = cosserat::io::UnsupportedFeatures(*parsed.problem);
+  if (!unsupported.empty()) {
+    PrintLines(unsupported);
+    return std::nullopt;
+  }
+  return std::move(parsed.problem);
+}
+
+int RunValidate(const Command& cmd) {
+  if (!LoadRunnableProblem(cmd.problem_path)) return kExitBadInput;
+  std::cout << cmd.problem_path << ": ok\n";
+  return kExitConverged;
+}
+
+/// Opens an output file before the solve, so a bad path fails fast.
+std::ofstream OpenOutput(const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write '" + path + "' (" + std::strerror(errno) + ")");
+  return out;
+}
+
+std::string Summary(const cosserat::StaticShootingSummary& s, const cosserat::RodState& state) {
+  std::ostringstream line;
+  line << "cosserat: " << cosserat::ToString(s.status) << ", " << s.iterations << " iterations, "
+       << "residual " << std::setprecision(3) << s.residual;
+  if (state.size() > 0) {
+    const cosserat::Vec3& tip = state.tip_position_W();
+    line << ", tip at [" << std::setprecision(6) << tip.x() << ", " << tip.y() << ", " << tip.z()
+         << "] m";
+  }
+  line << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms";
+  return line.str();
+}
+
+int RunSolve(const Command& cmd) {
+  const std::optional<cosserat::io::Problem> problem = LoadRunnableProblem(cmd.problem_path);
+  if (!problem) return kExitBadInput;
+  std::optional<std::ofstream> out_file, csv_file;
+  if (cmd.out_path) out_file = OpenOutput(*cmd.out_path);
+  if (cmd.csv_path) csv_file = OpenOutput(*cmd.csv_path);
+
+  cosserat::StaticShootingSolver solver(problem->rod, problem->nodes, problem->solver);
+  const cosserat::StaticShootingSummary summary = solver.Solve(problem->base, problem->loads);
+
+  std::ostream& out = out_file ? static_cast<std::ostream&>(*out_file) : std::cout;
+  out << cosserat::io::StaticResultToJson(summary, solver.state()).dump(2) << '\n';
+  if (csv_file) cosserat::io::WriteNodesCsv(*csv_file, solver.state());
+  out.flush();
+  if (!out || (csv_file && !csv_file->flush()))
+    throw std::runtime_error("writing the result failed");
+
+  std::cerr << Summary(summary, solver.state()) << '\n';
+  return summary.converged() ? kExitConverged : kExitNotConverged;
+}
+
+int Run(const std::vector<std::string>& args) {
+  const Command cmd = ParseCommandLine(args);
+  if (cmd.name == "help") {
+    std::cout << kUsage;
+    return 0;
+  }
+  if (cmd.name == "version") {
+    std::cout << "cosserat " << COSSERAT_VERSION_STRING << '\n';
+    return 0;
+  }
+  if (cmd.name == "validate") return RunValidate(cmd);
+  return RunSolve(cmd);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Run(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const UsageError& e) {
+    std::cerr << "cosserat: " << e.message << "\n\n" << kUsage;
+  } catch (const std::exception& e) {
+    std::cerr << "cosserat: error: " << e.what() << '\n';
+  } catch (...) {
+    std::cerr << "cosserat: error: unexpected failure\n";
+  }
+  return kExitBadInput;
+}

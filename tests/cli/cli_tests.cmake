@@ -1,0 +1,67 @@
+# Tests of the `cosserat` command: exit codes and messages for good and bad input.
+# Included from tests/CMakeLists.txt, where the target cosserat_cli exists.
+
+set(_cli_dir "${CMAKE_CURRENT_LIST_DIR}")
+get_filename_component(_cli_example "${CMAKE_CURRENT_LIST_DIR}/../../examples/cantilever.json"
+                       ABSOLUTE)
+set(_cli_out "${CMAKE_CURRENT_BINARY_DIR}/cli_out")
+file(MAKE_DIRECTORY "${_cli_out}")
+
+# cosserat_cli_test(NAME name ARGS a b c CODE n [STDERR regex] [STDOUT regex] [FILES f ...])
+function(cosserat_cli_test)
+  cmake_parse_arguments(T "" "NAME;CODE;STDERR;STDOUT" "ARGS;FILES" ${ARGN})
+  string(REPLACE ";" "|" _args "${T_ARGS}")
+  set(_cmd ${CMAKE_COMMAND} "-DEXE=$<TARGET_FILE:cosserat_cli>" "-DARGS=${_args}"
+           "-DEXPECT_CODE=${T_CODE}")
+  if(DEFINED T_STDERR)
+    list(APPEND _cmd "-DEXPECT_STDERR=${T_STDERR}")
+  endif()
+  if(DEFINED T_STDOUT)
+    list(APPEND _cmd "-DEXPECT_STDOUT=${T_STDOUT}")
+  endif()
+  if(T_FILES)
+    string(REPLACE ";" "|" _files "${T_FILES}")
+    list(APPEND _cmd "-DEXPECT_FILES=${_files}")
+  endif()
+  add_test(NAME cli.${T_NAME} COMMAND ${_cmd} -P "${_cli_dir}/expect.cmake")
+endfunction()
+
+# Good input.
+cosserat_cli_test(NAME version ARGS --version CODE 0 STDOUT "^cosserat [0-9]+\\.[0-9]+")
+cosserat_cli_test(NAME help ARGS --help CODE 0 STDOUT "cosserat solve PROBLEM.json")
+cosserat_cli_test(NAME validate_example ARGS validate "${_cli_example}" CODE 0
+                  STDOUT "cantilever.json: ok")
+cosserat_cli_test(NAME solve_example ARGS solve "${_cli_example}" CODE 0
+                  STDOUT "\"status\": \"converged\"" STDERR "converged")
+cosserat_cli_test(NAME solve_example_files
+                  ARGS solve "${_cli_example}" --out "${_cli_out}/result.json"
+                       --csv "${_cli_out}/nodes.csv"
+                  CODE 0 STDERR "converged"
+                  FILES "${_cli_out}/result.json" "${_cli_out}/nodes.csv")
+
+# Bad usage.
+cosserat_cli_test(NAME no_command CODE 2 STDERR "usage:")
+cosserat_cli_test(NAME unknown_command ARGS frobnicate CODE 2 STDERR "unknown command")
+cosserat_cli_test(NAME unknown_option ARGS solve "${_cli_example}" --fast CODE 2
+                  STDERR "unknown option '--fast'")
+cosserat_cli_test(NAME missing_problem ARGS solve CODE 2 STDERR "needs a problem file")
+cosserat_cli_test(NAME missing_file ARGS validate "${_cli_dir}/does_not_exist.json" CODE 2
+                  STDERR "does_not_exist.json: cannot read")
+
+# Bad input files: exit 2, and stderr names the JSON path.
+cosserat_cli_test(NAME malformed ARGS validate "${_cli_dir}/malformed.json" CODE 2
+                  STDERR "malformed.json: invalid JSON at line 6, column")
+cosserat_cli_test(NAME negative_length ARGS solve "${_cli_dir}/negative_length.json" CODE 2
+                  STDERR "rod.length: expected a positive number, got -0.5")
+cosserat_cli_test(NAME unknown_key ARGS validate "${_cli_dir}/unknown_key.json" CODE 2
+                  STDERR "loads.gravty: unknown key \\(did you mean \"gravity\"\\?\\)")
+cosserat_cli_test(NAME wrong_type ARGS validate "${_cli_dir}/wrong_type.json" CODE 2
+                  STDERR "rod.section.radius: expected a positive number, got a string")
+cosserat_cli_test(NAME overflow ARGS validate "${_cli_dir}/overflow.json" CODE 2
+                  STDERR "rod.material.youngs_modulus: expected a positive number.*overflow")
+cosserat_cli_test(NAME bad_rotation ARGS validate "${_cli_dir}/bad_rotation.json" CODE 2
+                  STDERR "base.rotation: expected a rotation matrix")
+cosserat_cli_test(NAME many_errors ARGS validate "${_cli_dir}/many_errors.json" CODE 2
+                  STDERR "format: .*rod.nodes: .*rod.material: .*loads.tip_force\\[2\\]: ")
+cosserat_cli_test(NAME not_implemented ARGS solve "${_cli_dir}/dynamics.json" CODE 2
+                  STDERR "analysis: \"dynamics\" is not implemented in this version")

@@ -1,0 +1,485 @@
+// Problem files: parsing, mapping onto the library types, and the error messages for bad input.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "cosserat/io/problem.hpp"
+#include "cosserat/io/result_writer.hpp"
+#include "cosserat/rod/section_profile.hpp"
+
+namespace cosserat::io {
+namespace {
+
+using json = nlohmann::json;
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string SourceDir() {
+#ifdef COSSERAT_SOURCE_DIR
+  return COSSERAT_SOURCE_DIR;
+#else
+  const std::string file = __FILE__;
+  return file.substr(0, file.rfind("/tests/"));
+#endif
+}
+
+/// A small valid problem to break in each test.
+json ValidProblem() {
+  return json::parse(R"({
+    "format": "cosserat-problem/1",
+    "rod": {
+      "length": 0.5,
+      "nodes": 21,
+      "section": { "shape": "circle", "radius": 0.001 },
+      "material": { "youngs_modulus": 200e9, "shear_modulus": 80e9, "density": 8000 }
+    }
+  })");
+}
+
+ParseResult Parse(const json& j) { return ParseProblem(j.dump(2)); }
+
+std::string AllErrors(const ParseResult& r) {
+  std::string out;
+  for (const std::string& e : r.errors) out += "  " + e + "\n";
+  return out;
+}
+
+/// True if one error line contains every part.
+bool HasError(const ParseResult& r, std::initializer_list<std::string> parts) {
+  for (const std::string& e : r.errors) {
+    bool all = true;
+    for (const std::string& p : parts) all = all && e.find(p) != std::string::npos;
+    if (all) return true;
+  }
+  return false;
+}
+
+#define EXPECT_ERROR(result, ...) \
+  EXPECT_TRUE(HasError(result, {__VA_ARGS__})) << "errors were:\n" << AllErrors(result)
+
+// ----- valid input ---------------------------------------------------------------------------
+
+TEST(ProblemIo, DefaultExampleParsesAndMapsValues) {
+  const ParseResult r = LoadProblemFile(SourceDir() + "/examples/cantilever.json");
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  ASSERT_TRUE(r.problem.has_value());
+  const Problem& p = *r.problem;
+  EXPECT_EQ(p.analysis, "statics");
+  EXPECT_EQ(p.formulation, "se3-shooting");
+  EXPECT_EQ(p.boundary, "cantilever");
+  EXPECT_DOUBLE_EQ(p.rod.length, 0.5);
+  EXPECT_EQ(p.nodes, 41);
+
+  const auto uniform = std::dynamic_pointer_cast<const UniformSection>(p.rod.section);
+  ASSERT_TRUE(uniform);
+  const double I = kPi * std::pow(0.001, 4) / 4.0;
+  EXPECT_NEAR(uniform->section().I1, I, 1e-12 * I);
+  EXPECT_DOUBLE_EQ(uniform->material().youngs_modulus, 200e9);
+  EXPECT_DOUBLE_EQ(uniform->material().shear_modulus, 80e9);
+  EXPECT_DOUBLE_EQ(uniform->material().density, 8000);
+  const SectionProperties props = p.rod.section->At(0.25, Actuation{});
+  EXPECT_NEAR(props.stiffness(0, 0), 200e9 * I, 1e-9 * 200e9 * I);  // EI
+  EXPECT_NEAR(props.stiffness(2, 2), 80e9 * 2 * I, 1e-9 * 80e9 * I);  // GJ
+
+  EXPECT_TRUE(p.loads.gravity_W.isApprox(Vec3(-9.81, 0, 0)));
+  EXPECT_TRUE(p.loads.tip_force.isApprox(Vec3(-0.2, 0, 0)));
+  EXPECT_EQ(p.loads.tip_force_frame, LoadFrame::kWorld);
+  EXPECT_TRUE(p.loads.tip_moment.isZero());
+  EXPECT_TRUE(p.base.R.isIdentity());
+  EXPECT_TRUE(p.base.p.isZero());
+  EXPECT_DOUBLE_EQ(p.solver.tolerance, 1e-10);
+  EXPECT_EQ(p.solver.max_iterations, 50);
+  EXPECT_TRUE(UnsupportedFeatures(p).empty());
+}
+
+TEST(ProblemIo, OptionalBlocksTakeTheirDefaults) {
+  const ParseResult r = Parse(ValidProblem());
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const Problem& p = *r.problem;
+  EXPECT_EQ(p.analysis, "statics");
+  EXPECT_EQ(p.boundary, "cantilever");
+  EXPECT_TRUE(p.loads.gravity_W.isZero());
+  EXPECT_TRUE(p.base.R.isIdentity());
+  EXPECT_DOUBLE_EQ(p.solver.tolerance, 1e-10);
+  EXPECT_EQ(p.solver.max_iterations, 50);
+  EXPECT_FALSE(p.has_dynamics || p.has_buckling || p.has_modes);
+  EXPECT_TRUE(p.rod.RestStrainAt(0.1).isApprox(StraightRestStrain()));
+}
+
+TEST(ProblemIo, PoissonRatioGivesTheShearModulus) {
+  json j = ValidProblem();
+  j["rod"]["material"].erase("shear_modulus");
+  j["rod"]["material"]["poisson_ratio"] = 0.3;
+  const ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const auto uniform = std::dynamic_pointer_cast<const UniformSection>(r.problem->rod.section);
+  ASSERT_TRUE(uniform);
+  EXPECT_NEAR(uniform->material().shear_modulus, 200e9 / 2.6, 1.0);
+}
+
+TEST(ProblemIo, SectionsRestCurvatureDampingAndBase) {
+  json j = ValidProblem();
+  j["rod"]["section"] = {{"shape", "rectangle"}, {"width", 0.004}, {"height", 0.002}};
+  j["rod"]["rest_curvature"] = {1.0, 0.0, 0.5};
+  j["rod"]["material"]["damping"] = {{"bending", 1e-4}, {"shear", 0.1}};
+  j["base"] = {{"position", {1, 2, 3}}, {"rotation", {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}}}};
+  j["loads"] = {{"tip_moment", {0, 0, 0.01}}, {"tip_moment_frame", "body"}};
+  const ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const Problem& p = *r.problem;
+  const auto uniform = std::dynamic_pointer_cast<const UniformSection>(p.rod.section);
+  ASSERT_TRUE(uniform);
+  EXPECT_NEAR(uniform->section().I1, 0.004 * std::pow(0.002, 3) / 12, 1e-20);
+  EXPECT_DOUBLE_EQ(uniform->material().damping.bending, 1e-4);
+  EXPECT_DOUBLE_EQ(uniform->material().damping.shear, 0.1);
+  EXPECT_DOUBLE_EQ(uniform->material().damping.torsion, 0.0);
+  EXPECT_TRUE(p.rod.RestStrainAt(0.2).head<3>().isApprox(Vec3(1.0, 0.0, 0.5)));
+  EXPECT_DOUBLE_EQ(p.rod.RestStrainAt(0.2)(5), 1.0);
+  EXPECT_TRUE(p.base.p.isApprox(Vec3(1, 2, 3)));
+  EXPECT_DOUBLE_EQ(p.base.R(0, 1), -1.0);  // row-major in the file
+  EXPECT_DOUBLE_EQ(p.base.R(1, 0), 1.0);
+  EXPECT_EQ(p.loads.tip_moment_frame, LoadFrame::kBody);
+}
+
+TEST(ProblemIo, ExplicitSectionWithoutShape) {
+  json j = ValidProblem();
+  j["rod"]["section"] = {{"area", 1e-6}, {"I1", 1e-13}, {"I2", 2e-13}, {"J", 3e-13}};
+  const ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const auto uniform = std::dynamic_pointer_cast<const UniformSection>(r.problem->rod.section);
+  ASSERT_TRUE(uniform);
+  EXPECT_EQ(uniform->section().shape, SectionShape::kExplicit);
+  EXPECT_DOUBLE_EQ(uniform->section().I2, 2e-13);
+}
+
+TEST(ProblemIo, StiffnessProfileBuildsBands) {
+  json j = ValidProblem();
+  j["rod"]["stiffness_profile"] = json::parse(R"([{"start": 0.1, "end": 0.2, "factor": 0.36}])");
+  const ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const auto& section = r.problem->rod.section;
+  ASSERT_TRUE(std::dynamic_pointer_cast<const BandedSection>(section));
+  EXPECT_EQ(section->Breakpoints().size(), 2u);
+  const double ei_out = section->At(0.05, Actuation{}).stiffness(0, 0);
+  const double ei_in = section->At(0.15, Actuation{}).stiffness(0, 0);
+  EXPECT_NEAR(ei_in / ei_out, 0.36, 1e-12);
+}
+
+TEST(ProblemIo, NearlyOrthonormalRotationIsAcceptedAndCleaned) {
+  json j = ValidProblem();
+  j["base"]["rotation"] = {{1, 1e-8, 0}, {0, 1, 0}, {0, 0, 1}};
+  const ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const Mat3& R = r.problem->base.R;
+  EXPECT_LT((R.transpose() * R - Mat3::Identity()).norm(), 1e-14);
+}
+
+TEST(ProblemIo, LaterAnalysesParseButAreGated) {
+  json j = ValidProblem();
+  j["analysis"] = "buckling";
+  j["formulation"] = "quaternion-fd";
+  j["boundary"] = "pinned-pinned";
+  j["buckling"] = {{"load", "tip_force"}, {"direction", {0, 0, -2}}, {"max", 10.0}};
+  j["dynamics"] = {{"dt", 0.001}, {"duration", 0.5}, {"initial_loads", {{"gravity", {0, 0, -9.81}}}}};
+  j["modes"] = {{"count", 6}};
+  const ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const Problem& p = *r.problem;
+  EXPECT_TRUE(p.has_buckling && p.has_dynamics && p.has_modes);
+  EXPECT_TRUE(p.buckling.direction.isApprox(Vec3(0, 0, -1)));
+  EXPECT_DOUBLE_EQ(p.buckling.max, 10.0);
+  EXPECT_DOUBLE_EQ(p.dynamics.dt, 0.001);
+  ASSERT_TRUE(p.dynamics.initial_loads.has_value());
+  EXPECT_DOUBLE_EQ(p.dynamics.initial_loads->gravity_W.z(), -9.81);
+  EXPECT_EQ(p.modes.count, 6);
+
+  const std::vector<std::string> gated = UnsupportedFeatures(p);
+  ASSERT_EQ(gated.size(), 3u);
+  EXPECT_EQ(gated[0],
+            R"(analysis: "buckling" is not implemented in this version (supported: "statics"))");
+  EXPECT_NE(gated[1].find("formulation"), std::string::npos);
+  EXPECT_NE(gated[2].find("boundary"), std::string::npos);
+}
+
+// ----- bad input: one test per class --------------------------------------------------------
+
+TEST(ProblemIoErrors, MalformedJsonGivesOneLineWithPosition) {
+  const ParseResult r = ParseProblem("{\n  \"format\": \"cosserat-problem/1\",\n  rod: {}\n}",
+                                     "bad.json");
+  ASSERT_EQ(r.errors.size(), 1u) << AllErrors(r);
+  EXPECT_FALSE(r.problem.has_value());
+  EXPECT_ERROR(r, "bad.json: invalid JSON at line 3, column");
+}
+
+TEST(ProblemIoErrors, EmptyInputAndTrailingGarbage) {
+  EXPECT_ERROR(ParseProblem(""), "invalid JSON", "line 1");
+  EXPECT_ERROR(ParseProblem("{} x"), "invalid JSON");
+  EXPECT_ERROR(ParseProblem("[1, 2]"), "(top level): expected an object, got an array");
+}
+
+TEST(ProblemIoErrors, UnreadableFileNamesThePath) {
+  const ParseResult r = LoadProblemFile("/nonexistent/dir/problem.json");
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_ERROR(r, "/nonexistent/dir/problem.json", "cannot read");
+}
+
+TEST(ProblemIoErrors, WrongTypes) {
+  json j = ValidProblem();
+  j["rod"]["length"] = "0.5";
+  j["rod"]["nodes"] = 20.5;
+  j["rod"]["section"] = 3;
+  j["solver"] = {{"max_iterations", true}};
+  const ParseResult r = Parse(j);
+  EXPECT_FALSE(r.problem.has_value());
+  EXPECT_ERROR(r, "rod.length: expected a positive number, got a string (\"0.5\")");
+  EXPECT_ERROR(r, "rod.nodes: expected an integer", "got 20.5");
+  EXPECT_ERROR(r, "rod.section: expected an object, got 3");
+  EXPECT_ERROR(r, "solver.max_iterations: expected an integer", "got true");
+}
+
+TEST(ProblemIoErrors, NegativeAndZeroSizes) {
+  json j = ValidProblem();
+  j["rod"]["length"] = -0.5;
+  j["rod"]["nodes"] = 2;
+  j["rod"]["section"]["radius"] = 0;
+  j["rod"]["material"]["youngs_modulus"] = 0;
+  j["rod"]["material"]["density"] = -1;
+  const ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "rod.length: expected a positive number, got -0.5");
+  EXPECT_ERROR(r, "rod.nodes: expected an integer between 3 and", "got 2");
+  EXPECT_ERROR(r, "rod.section.radius: expected a positive number, got 0");
+  EXPECT_ERROR(r, "rod.material.youngs_modulus: expected a positive number, got 0");
+  EXPECT_ERROR(r, "rod.material.density: expected a number >= 0, got -1");
+}
+
+TEST(ProblemIoErrors, AnnulusAndBandRanges) {
+  json j = ValidProblem();
+  j["rod"]["section"] = {{"shape", "annulus"}, {"outer_radius", 0.002}, {"inner_radius", 0.003}};
+  j["rod"]["stiffness_profile"] =
+      json::parse(R"([{"start": 0.3, "end": 0.2, "factor": 1}, {"start": 0, "end": 0.6,
+                      "factor": -1}, 5])");
+  j["rod"]["material"]["poisson_ratio"] = 0.7;
+  j["rod"]["material"].erase("shear_modulus");
+  const ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "rod.section.inner_radius: expected a number smaller than outer_radius");
+  EXPECT_ERROR(r, "rod.stiffness_profile[0].end: expected a number greater than start");
+  EXPECT_ERROR(r, "rod.stiffness_profile[1].factor: expected a positive number, got -1");
+  EXPECT_ERROR(r, "rod.stiffness_profile[2]: expected a band", "got 5");
+  EXPECT_ERROR(r, "rod.material.poisson_ratio: expected a number in (-1, 0.5], got 0.7");
+}
+
+TEST(ProblemIoErrors, BandEndBeyondLengthAndTooFewNodes) {
+  json j = ValidProblem();
+  j["rod"]["nodes"] = 3;
+  j["rod"]["stiffness_profile"] = json::parse(R"([{"start": 0.1, "end": 0.2, "factor": 2},
+                                                  {"start": 0.3, "end": 0.7, "factor": 2}])");
+  ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile[1].end: expected a number <= rod.length (0.5), got 0.7");
+  j["rod"]["stiffness_profile"][1]["end"] = 0.4;
+  r = Parse(j);
+  EXPECT_ERROR(r, "rod.nodes: expected at least 6", "got 3");
+}
+
+TEST(ProblemIoErrors, NonFiniteNumbersFromOverflow) {
+  const std::string text = R"({
+    "format": "cosserat-problem/1",
+    "rod": {
+      "length": 1e999,
+      "nodes": 21,
+      "section": { "shape": "circle", "radius": 0.001 },
+      "material": { "youngs_modulus": 200e9, "shear_modulus": 80e9, "density": -1e999 }
+    }
+  })";
+  const ParseResult r = ParseProblem(text);
+  EXPECT_EQ(r.errors.size(), 2u) << AllErrors(r);
+  EXPECT_FALSE(r.problem.has_value());
+  EXPECT_ERROR(r, "rod.length: expected a positive number", "overflow");
+  EXPECT_ERROR(r, "rod.material.density: expected a number >= 0", "overflow");
+}
+
+TEST(ProblemIoErrors, OverflowInsideAnArrayNamesTheElement) {
+  json j = ValidProblem();
+  j["loads"]["gravity"] = {0, 0, 1};
+  std::string text = j.dump();
+  text.replace(text.find("[0,0,1]"), 7, "[0,0,1e400]");
+  EXPECT_ERROR(ParseProblem(text), "loads.gravity[2]: expected a finite number", "overflow");
+}
+
+TEST(ProblemIoErrors, UnknownKeysWithSuggestions) {
+  json j = ValidProblem();
+  j["rod"]["lenght"] = j["rod"]["length"];
+  j["rod"].erase("length");
+  j["loads"] = {{"Gravity", {0, 0, -9.81}}, {"wind", {1, 0, 0}}};
+  j["rod"]["section"]["width"] = 0.01;
+  const ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "rod.lenght: unknown key (did you mean \"length\"?)");
+  EXPECT_ERROR(r, "rod.length: expected a positive number, got nothing");
+  EXPECT_ERROR(r, "loads.Gravity: unknown key (did you mean \"gravity\"?)");
+  EXPECT_ERROR(r, "loads.wind: unknown key (allowed: \"gravity\"");
+  EXPECT_ERROR(r, "rod.section.width: unknown key for a \"circle\" section");
+}
+
+TEST(ProblemIoErrors, MissingRequiredKeys) {
+  json j = ValidProblem();
+  j.erase("format");
+  j["rod"].erase("material");
+  j["rod"]["section"].erase("radius");
+  const ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "format: expected \"cosserat-problem/1\", got nothing (required key is missing)");
+  EXPECT_ERROR(r, "rod.material: expected an object, got nothing (required key is missing)");
+  EXPECT_ERROR(r, "rod.section.radius: expected a positive number, got nothing");
+  EXPECT_ERROR(Parse(json::object({{"format", "cosserat-problem/1"}})), "rod: expected an object",
+               "missing");
+}
+
+TEST(ProblemIoErrors, WrongFormatVersion) {
+  json j = ValidProblem();
+  j["format"] = "cosserat-problem/2";
+  EXPECT_ERROR(Parse(j), "format: expected \"cosserat-problem/1\", got a string (\"cosserat-problem/2\")");
+}
+
+TEST(ProblemIoErrors, BadEnumerationsListTheChoices) {
+  json j = ValidProblem();
+  j["analysis"] = "static";
+  j["boundary"] = "fixed";
+  j["rod"]["section"]["shape"] = "cirlce";
+  j["loads"] = {{"tip_force_frame", "local"}};
+  const ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "analysis: expected one of \"statics\", \"dynamics\", \"buckling\", \"modes\"",
+               "got \"static\" (did you mean \"statics\"?)");
+  EXPECT_ERROR(r, "boundary: expected one of \"cantilever\"", "got \"fixed\"");
+  EXPECT_ERROR(r, "rod.section.shape: expected one of \"circle\"", "did you mean \"circle\"?");
+  EXPECT_ERROR(r, "loads.tip_force_frame: expected one of \"world\", \"body\", got \"local\"");
+}
+
+TEST(ProblemIoErrors, RotationMustBeOrthonormalWithPositiveDeterminant) {
+  json j = ValidProblem();
+  j["base"]["rotation"] = {{1, 0, 0}, {0, 2, 0}, {0, 0, 1}};
+  EXPECT_ERROR(Parse(j), "base.rotation: expected a rotation matrix", "1e-6", "got max |R^T R - I| = 3");
+  j["base"]["rotation"] = {{1, 0, 0}, {0, 1, 0}, {0, 0, -1}};  // a reflection
+  EXPECT_ERROR(Parse(j), "base.rotation: expected a rotation matrix", "determinant -1");
+  j["base"]["rotation"] = {{1, 0, 0}, {0, "a", 0}, {0, 0}};
+  const ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "base.rotation[1][1]: expected a finite number, got a string (\"a\")");
+  EXPECT_ERROR(r, "base.rotation[2]: expected a row of 3 numbers, got an array of 2 items");
+}
+
+TEST(ProblemIoErrors, ShearModulusAndPoissonRatioExclusive) {
+  json j = ValidProblem();
+  j["rod"]["material"]["poisson_ratio"] = 0.3;
+  EXPECT_ERROR(Parse(j), "rod.material: expected exactly one of \"shear_modulus\" and "
+                         "\"poisson_ratio\", got both");
+  j["rod"]["material"].erase("poisson_ratio");
+  j["rod"]["material"].erase("shear_modulus");
+  EXPECT_ERROR(Parse(j), "rod.material: expected exactly one of", "got neither");
+  j["rod"]["material"]["shear_modulus"] = 50e9;  // nu = 1
+  EXPECT_ERROR(Parse(j), "rod.material.shear_modulus: expected at least youngs_modulus / 3");
+}
+
+TEST(ProblemIoErrors, DuplicateKeys) {
+  const std::string text =
+      R"({"format": "cosserat-problem/1", "rod": {"length": 0.5, "length": 0.6, "nodes": 21,
+          "section": {"shape": "circle", "radius": 0.001},
+          "material": {"youngs_modulus": 2e11, "shear_modulus": 8e10, "density": 8000}}})";
+  EXPECT_ERROR(ParseProblem(text), "rod.length: expected each key once", "duplicate");
+}
+
+TEST(ProblemIoErrors, LaterAnalysisBlocksAreValidatedToo) {
+  json j = ValidProblem();
+  j["analysis"] = "buckling";
+  j["dynamics"] = {{"dt", 2.0}, {"duration", 1.0}, {"initial", "rest"}};
+  j["modes"] = {{"count", 0}};
+  const ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "buckling: expected an object", "required key is missing");
+  EXPECT_ERROR(r, "dynamics.dt: expected a time step no longer than duration", "got 2");
+  EXPECT_ERROR(r, "dynamics.initial: expected one of \"static\", got \"rest\"");
+  EXPECT_ERROR(r, "modes.count: expected an integer between 1 and", "got 0");
+  j["buckling"] = {{"direction", {0, 0, 0}}};
+  EXPECT_ERROR(Parse(j), "buckling.direction: expected a non-zero vector");
+  EXPECT_ERROR(Parse(j), "buckling.max: expected a positive number, got nothing");
+}
+
+TEST(ProblemIoErrors, EveryErrorIsReported) {
+  json j = ValidProblem();
+  j.erase("format");
+  j["rod"]["length"] = 0;
+  j["rod"]["nodes"] = "many";
+  j["rod"]["section"]["radius"] = -1;
+  j["rod"]["material"]["poisson_ratio"] = 0.3;
+  j["loads"] = {{"gravity", {0, "down", 0}}, {"tip_forse", {1, 0, 0}}};
+  j["solver"] = {{"tolerance", -1}};
+  j["extra"] = 1;
+  const ParseResult r = Parse(j);
+  EXPECT_FALSE(r.problem.has_value());
+  EXPECT_EQ(r.errors.size(), 9u) << AllErrors(r);
+  for (const char* path : {"format:", "rod.length:", "rod.nodes:", "rod.section.radius:",
+                           "rod.material:", "loads.gravity[1]:", "loads.tip_forse:",
+                           "solver.tolerance:", "extra:"})
+    EXPECT_ERROR(r, path);
+}
+
+// ----- result writer ------------------------------------------------------------------------
+
+RodState TwoNodeState() {
+  RodState state;
+  state.Resize(2);
+  state.s = {0.0, 0.5};
+  state.position_W = {Vec3::Zero(), Vec3(0.1, 0.0, 0.4)};
+  Mat3 tip;
+  tip << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+  state.rotation_WB = {Mat3::Identity(), tip};
+  Vec6 xi0, xi1;
+  xi0 << 1, 2, 3, 0, 0, 1;
+  xi1 << 4, 5, 6, 0, 0, 1;
+  state.strain = {xi0, xi1};
+  Vec6 w0;
+  w0 << 0.1, 0.2, 0.3, 1, 2, 3;
+  state.wrench_B = {w0, Vec6::Zero()};
+  return state;
+}
+
+TEST(ResultWriter, JsonHasTheContractKeys) {
+  StaticShootingSummary summary;
+  summary.status = SolveStatus::kConverged;
+  summary.iterations = 7;
+  summary.residual = 3e-13;
+  const RodState state = TwoNodeState();
+  const nlohmann::ordered_json out = StaticResultToJson(summary, state);
+  EXPECT_EQ(out["status"], "converged");
+  EXPECT_EQ(out["iterations"], 7);
+  EXPECT_DOUBLE_EQ(out["residual"].get<double>(), 3e-13);
+  EXPECT_TRUE(out.contains("wall_time_s"));
+  EXPECT_DOUBLE_EQ(out["tip"]["position"][2].get<double>(), 0.4);
+  EXPECT_DOUBLE_EQ(out["tip"]["rotation"][0][1].get<double>(), -1.0);  // row-major
+  EXPECT_DOUBLE_EQ(out["tip"]["rotation"][1][0].get<double>(), 1.0);
+  const Vec6 reaction = state.BaseReaction_W();
+  EXPECT_DOUBLE_EQ(out["base_wrench"]["moment"][2].get<double>(), reaction(2));
+  EXPECT_DOUBLE_EQ(out["base_wrench"]["force"][0].get<double>(), reaction(3));
+  EXPECT_EQ(out["nodes"]["s"].size(), 2u);
+  EXPECT_DOUBLE_EQ(out["nodes"]["curvature"][1][2].get<double>(), 6.0);
+  EXPECT_DOUBLE_EQ(out["nodes"]["position"][1][0].get<double>(), 0.1);
+}
+
+TEST(ResultWriter, CsvHasHeaderAndOneRowPerNode) {
+  std::ostringstream csv;
+  WriteNodesCsv(csv, TwoNodeState());
+  std::istringstream lines(csv.str());
+  std::string header, row0, row1, extra;
+  std::getline(lines, header);
+  std::getline(lines, row0);
+  std::getline(lines, row1);
+  EXPECT_EQ(header, "s,x,y,z,k1,k2,k3");
+  EXPECT_EQ(row0, "0,0,0,0,1,2,3");
+  EXPECT_EQ(row1, "0.5,0.10000000000000001,0,0.40000000000000002,4,5,6");
+  EXPECT_FALSE(std::getline(lines, extra));
+}
+
+}  // namespace
+}  // namespace cosserat::io
