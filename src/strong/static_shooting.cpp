@@ -42,15 +42,23 @@ namespace {
 
 constexpr double kIntermediateTolerance = 1e-6;
 
+#if defined(__GNUC__)
+#define COSSERAT_HOT inline __attribute__((always_inline))
+#else
+#define COSSERAT_HOT inline
+#endif
+
 using Sample = StaticShootingSolver::Sample;
 using Mat36 = Eigen::Matrix<double, 3, 6>;
 
-// State of the spatial integration: centreline, frame and the internal wrench in world frame.
+// State of the integration in s: centreline and frame in the world, internal wrench in the body
+// frame. Keeping W in the body frame keeps the chain of dependent operations per stage short,
+// which is what bounds the speed of a shot.
 struct ShotState {
   Vec3 p;  // p_W, m
   Mat3 R;  // R_WB
-  Vec3 n;  // n_W, N
-  Vec3 m;  // m_W about p(s), N·m
+  Vec3 m;  // m_B, N·m
+  Vec3 n;  // n_B, N
 };
 
 // Derivative of ShotState with respect to the 6 unknowns (one column each), in the same
@@ -58,27 +66,36 @@ struct ShotState {
 struct ShotTangent {
   Mat36 p;
   std::array<Mat36, 3> R;  // d(R e_j)
-  Mat36 n;
   Mat36 m;
+  Mat36 n;
 };
 
-ShotState Axpy(const ShotState& y, double a, const ShotState& d) {
-  return {y.p + a * d.p, y.R + a * d.R, y.n + a * d.n, y.m + a * d.m};
+// ShotState is 18 contiguous doubles; the hot loops below treat it as a flat array.
+static_assert(sizeof(ShotState) == 18 * sizeof(double), "ShotState must be 18 packed doubles");
+inline double* Flat(ShotState& y) { return y.p.data(); }
+inline const double* Flat(const ShotState& y) { return y.p.data(); }
+
+COSSERAT_HOT ShotState Axpy(const ShotState& y, double a, const ShotState& d) {
+  ShotState out;
+  double* o = Flat(out);
+  const double* py = Flat(y);
+  const double* pd = Flat(d);
+  for (int i = 0; i < 18; ++i) o[i] = py[i] + a * pd[i];
+  return out;
 }
 
 ShotTangent Axpy(const ShotTangent& y, double a, const ShotTangent& d) {
   return {y.p + a * d.p, {y.R[0] + a * d.R[0], y.R[1] + a * d.R[1], y.R[2] + a * d.R[2]},
-          y.n + a * d.n, y.m + a * d.m};
+          y.m + a * d.m, y.n + a * d.n};
 }
 
 // RK4 combination y += h/6 (k1 + 2 k2 + 2 k3 + k4), for states and tangents.
-void Rk4Update(double h, const ShotState& k1, const ShotState& k2, const ShotState& k3,
-               const ShotState& k4, ShotState* y) {
+COSSERAT_HOT void Rk4Update(double h, const ShotState& k1, const ShotState& k2,
+                            const ShotState& k3, const ShotState& k4, ShotState* y) {
   const double a = h / 6, b = h / 3;
-  y->p += a * (k1.p + k4.p) + b * (k2.p + k3.p);
-  y->R += a * (k1.R + k4.R) + b * (k2.R + k3.R);
-  y->n += a * (k1.n + k4.n) + b * (k2.n + k3.n);
-  y->m += a * (k1.m + k4.m) + b * (k2.m + k3.m);
+  double* o = Flat(*y);
+  const double *p1 = Flat(k1), *p2 = Flat(k2), *p3 = Flat(k3), *p4 = Flat(k4);
+  for (int i = 0; i < 18; ++i) o[i] += a * (p1[i] + p4[i]) + b * (p2[i] + p3[i]);
 }
 
 void Rk4Update(double h, const ShotTangent& k1, const ShotTangent& k2, const ShotTangent& k3,
@@ -86,56 +103,90 @@ void Rk4Update(double h, const ShotTangent& k1, const ShotTangent& k2, const Sho
   const double a = h / 6, b = h / 3;
   y->p += a * (k1.p + k4.p) + b * (k2.p + k3.p);
   for (int j = 0; j < 3; ++j) y->R[j] += a * (k1.R[j] + k4.R[j]) + b * (k2.R[j] + k3.R[j]);
-  y->n += a * (k1.n + k4.n) + b * (k2.n + k3.n);
   y->m += a * (k1.m + k4.m) + b * (k2.m + k3.m);
+  y->n += a * (k1.n + k4.n) + b * (k2.n + k3.n);
 }
 
 // ξ = ξ* + C W (C = K⁻¹; diagonal for principal-axes sections, which gets the cheap path).
-Vec6 Compliance(const Sample& smp, const Vec6& W) {
-  if (smp.diagonal) return smp.rest_strain + smp.compliance.diagonal().cwiseProduct(W);
+COSSERAT_HOT Vec6 Compliance(const Sample& smp, const Vec6& W) {
+  if (smp.diagonal) return smp.rest_strain + smp.compliance_diagonal.cwiseProduct(W);
   return smp.rest_strain + smp.compliance * W;
 }
 
-// Body-frame wrench W = [Rᵀ m_W; Rᵀ n_W].
-Vec6 BodyWrench(const ShotState& y) {
+COSSERAT_HOT Vec6 BodyWrench(const ShotState& y) {
   Vec6 W;
-  W << y.R.transpose() * y.m, y.R.transpose() * y.n;
+  W.head<3>() = y.m;
+  W.tail<3>() = y.n;
   return W;
 }
 
-// d/ds of the state (seed 002 eqs. 14 and 16 with V = 0, written with world-frame wrenches):
-//   p' = R Γ,  R' = R K̂,  n_W' = −f_W,  m_W' = n_W × p'.
-// Returns the body wrench and strain it computed, for recording.
-ShotState Derivative(const Sample& smp, const Vec3& f_W, const ShotState& y, Vec6* W, Vec6* xi) {
-  *W = BodyWrench(y);
-  *xi = Compliance(smp, *W);
-  const Vec3 K = xi->head<3>();
+// d/ds of the state (seed 002 eqs. 14 and 16 with V = 0, for W = [m; n] = −Λ):
+//   p' = R Γ,  R' = R K̂,  m' = −K × m − Γ × n,  n' = −K × n − Rᵀ f_W.
+// Returns the strain it computed, for recording.
+COSSERAT_HOT ShotState Derivative(const Sample& smp, const Vec3& f_W, const ShotState& y,
+                                  Vec6* xi) {
+  if (smp.diagonal) {  // written out: this is the innermost loop of every solve
+    const double* c = smp.compliance_diagonal.data();
+    const double* r = smp.rest_strain.data();
+    (*xi)(0) = r[0] + c[0] * y.m(0);
+    (*xi)(1) = r[1] + c[1] * y.m(1);
+    (*xi)(2) = r[2] + c[2] * y.m(2);
+    (*xi)(3) = r[3] + c[3] * y.n(0);
+    (*xi)(4) = r[4] + c[4] * y.n(1);
+    (*xi)(5) = r[5] + c[5] * y.n(2);
+  } else {
+    *xi = Compliance(smp, BodyWrench(y));
+  }
+  const double k0 = (*xi)(0), k1 = (*xi)(1), k2 = (*xi)(2);
+  const double g0 = (*xi)(3), g1 = (*xi)(4), g2 = (*xi)(5);
+  const double m0 = y.m(0), m1 = y.m(1), m2 = y.m(2);
+  const double n0 = y.n(0), n1 = y.n(1), n2 = y.n(2);
+  const Mat3& R = y.R;
   ShotState d;
-  d.p = y.R * xi->tail<3>();
-  for (int i = 0; i < 3; ++i) d.R.row(i) = y.R.row(i).cross(K.transpose());  // (R K̂) row i
-  d.n = -f_W;
-  d.m = y.n.cross(d.p);
+  for (int i = 0; i < 3; ++i) {
+    d.p(i) = R(i, 0) * g0 + R(i, 1) * g1 + R(i, 2) * g2;
+    // (R K̂) row i = (row i of R) × K
+    d.R(i, 0) = R(i, 1) * k2 - R(i, 2) * k1;
+    d.R(i, 1) = R(i, 2) * k0 - R(i, 0) * k2;
+    d.R(i, 2) = R(i, 0) * k1 - R(i, 1) * k0;
+  }
+  // m' = m × K + n × Γ,  n' = n × K − Rᵀ f
+  d.m(0) = m1 * k2 - m2 * k1 + n1 * g2 - n2 * g1;
+  d.m(1) = m2 * k0 - m0 * k2 + n2 * g0 - n0 * g2;
+  d.m(2) = m0 * k1 - m1 * k0 + n0 * g1 - n1 * g0;
+  const double f0 = f_W(0), f1 = f_W(1), f2 = f_W(2);
+  d.n(0) = n1 * k2 - n2 * k1 - (R(0, 0) * f0 + R(1, 0) * f1 + R(2, 0) * f2);
+  d.n(1) = n2 * k0 - n0 * k2 - (R(0, 1) * f0 + R(1, 1) * f1 + R(2, 1) * f2);
+  d.n(2) = n0 * k1 - n1 * k0 - (R(0, 2) * f0 + R(1, 2) * f1 + R(2, 2) * f2);
   return d;
 }
 
-// The linearisation of Derivative along the tangent dy, given the primal results.
-ShotTangent TangentDerivative(const Sample& smp, const ShotState& y, const ShotTangent& dy,
-                              const Vec6& W, const Vec6& xi, const ShotState& d) {
+// Rows (dR e_j) · v for j = 0..2: the derivative of Rᵀ v (v fixed) along the tangent.
+Mat36 TransposeTimesFixed(const ShotTangent& dy, const Vec3& v) {
+  Mat36 out;
+  for (int j = 0; j < 3; ++j) out.row(j) = v.transpose() * dy.R[j];
+  return out;
+}
+
+// Columnwise a × B for a 3-vector a and a 3 × 6 matrix B.
+Mat36 CrossColumns(const Vec3& a, const Mat36& B) {
+  Mat36 out;
+  for (int k = 0; k < 6; ++k) out.col(k) = a.cross(B.col(k));
+  return out;
+}
+
+// The linearisation of Derivative along the tangent dy, given the primal strain.
+ShotTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const ShotState& y,
+                              const ShotTangent& dy, const Vec6& xi) {
   Mat6 dW;
-  dW.topRows<3>() = y.R.transpose() * dy.m;
-  dW.bottomRows<3>() = y.R.transpose() * dy.n;
-  for (int j = 0; j < 3; ++j) {
-    dW.row(j) += y.m.transpose() * dy.R[j];      // (dR e_j) · m_W
-    dW.row(3 + j) += y.n.transpose() * dy.R[j];  // (dR e_j) · n_W
-  }
-  const Mat6 dxi = smp.diagonal ? Mat6(smp.compliance.diagonal().asDiagonal() * dW)
+  dW << dy.m, dy.n;
+  const Mat6 dxi = smp.diagonal ? Mat6(smp.compliance_diagonal.asDiagonal() * dW)
                                 : Mat6(smp.compliance * dW);
-  const auto dK = dxi.topRows<3>();
+  const Mat36 dK = dxi.topRows<3>(), dG = dxi.bottomRows<3>();
   const Vec3 K = xi.head<3>(), G = xi.tail<3>();
-  (void)W;
   ShotTangent dd;
   // d(R Γ) = dR Γ + R dΓ
-  dd.p = y.R * dxi.bottomRows<3>() + G(0) * dy.R[0] + G(1) * dy.R[1] + G(2) * dy.R[2];
+  dd.p = y.R * dG + G(0) * dy.R[0] + G(1) * dy.R[1] + G(2) * dy.R[2];
   // d(R K̂ e_j) = dR (K × e_j) + R (dK × e_j)
   for (int j = 0; j < 3; ++j) {
     const Vec3 c = K.cross(Vec3::Unit(j));
@@ -146,17 +197,11 @@ ShotTangent TangentDerivative(const Sample& smp, const ShotState& y, const ShotT
     dK_x_ej.row(b) = -dK.row(a);
     dd.R[j] = c(0) * dy.R[0] + c(1) * dy.R[1] + c(2) * dy.R[2] + y.R * dK_x_ej;
   }
-  dd.n.setZero();
-  // d(n × p') = dn × p' + n × dp'
-  for (int k = 0; k < 6; ++k) dd.m.col(k) = dy.n.col(k).cross(d.p) + y.n.cross(dd.p.col(k));
+  // d(m × K + n × Γ) and d(n × K − Rᵀ f)
+  dd.m = CrossColumns(y.m, dK) - CrossColumns(K, dy.m) + CrossColumns(y.n, dG) -
+         CrossColumns(G, dy.n);
+  dd.n = CrossColumns(y.n, dK) - CrossColumns(K, dy.n) - TransposeTimesFixed(dy, f_W);
   return dd;
-}
-
-// Rows (dR e_j) · v for j = 0..2: the derivative of Rᵀ v (v fixed) along the tangent.
-Mat36 TransposeTimesFixed(const ShotTangent& dy, const Vec3& v) {
-  Mat36 out;
-  for (int j = 0; j < 3; ++j) out.row(j) = v.transpose() * dy.R[j];
-  return out;
 }
 
 // Tip condition W(L) = W_tip in the tip body frame, made dimensionless by scale.
@@ -177,63 +222,59 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples,
            RodState* record, Mat6* J) {
   const int n = static_cast<int>(grid.size());
   const Vec6 W0 = scale.cwiseProduct(x);
-  ShotState y{base.p, base.R, base.R * W0.tail<3>(), base.R * W0.head<3>()};
+  ShotState y{base.p, base.R, W0.head<3>(), W0.tail<3>()};
   ShotTangent dy;
   if (J) {
     dy.p.setZero();
     for (auto& c : dy.R) c.setZero();
     dy.m.setZero();
     dy.n.setZero();
-    dy.m.leftCols<3>() = base.R * scale.head<3>().asDiagonal();
-    dy.n.rightCols<3>() = base.R * scale.tail<3>().asDiagonal();
+    dy.m.leftCols<3>() = scale.head<3>().asDiagonal();
+    dy.n.rightCols<3>() = scale.tail<3>().asDiagonal();
   }
   auto f_at = [&](const Sample& smp) -> Vec3 {
     return smp.mass_per_length * loads.gravity_W + loads.distributed_force_W;
   };
-  auto record_node = [&](int i, const Vec6& W, const Vec6& xi) {
+  auto record_node = [&](int i, const Vec6& xi) {
     record->position_W[i] = y.p;
     record->rotation_WB[i] = y.R;
-    record->wrench_B[i] = W;
+    record->wrench_B[i] = BodyWrench(y);
     record->strain[i] = xi;
   };
 
-  Vec6 W1, xi1, W2, xi2, W3, xi3, W4, xi4;
+  Vec6 xi1, xi2, xi3, xi4;
   for (int i = 0; i + 1 < n; ++i) {
     const double h = grid[i + 1] - grid[i];
     const Sample& s0 = samples[3 * i];
     const Sample& sm = samples[3 * i + 1];
     const Sample& s1 = samples[3 * i + 2];
     const Vec3 f0 = f_at(s0), fm = f_at(sm), f1 = f_at(s1);
-    const ShotState k1 = Derivative(s0, f0, y, &W1, &xi1);
-    if (record) record_node(i, W1, xi1);
+    const ShotState k1 = Derivative(s0, f0, y, &xi1);
+    if (record) record_node(i, xi1);
     const ShotState y2 = Axpy(y, 0.5 * h, k1);
-    const ShotState k2 = Derivative(sm, fm, y2, &W2, &xi2);
+    const ShotState k2 = Derivative(sm, fm, y2, &xi2);
     const ShotState y3 = Axpy(y, 0.5 * h, k2);
-    const ShotState k3 = Derivative(sm, fm, y3, &W3, &xi3);
+    const ShotState k3 = Derivative(sm, fm, y3, &xi3);
     const ShotState y4 = Axpy(y, h, k3);
-    const ShotState k4 = Derivative(s1, f1, y4, &W4, &xi4);
+    const ShotState k4 = Derivative(s1, f1, y4, &xi4);
     if (J) {
-      const ShotTangent t1 = TangentDerivative(s0, y, dy, W1, xi1, k1);
-      const ShotTangent t2 = TangentDerivative(sm, y2, Axpy(dy, 0.5 * h, t1), W2, xi2, k2);
-      const ShotTangent t3 = TangentDerivative(sm, y3, Axpy(dy, 0.5 * h, t2), W3, xi3, k3);
-      const ShotTangent t4 = TangentDerivative(s1, y4, Axpy(dy, h, t3), W4, xi4, k4);
+      const ShotTangent t1 = TangentDerivative(s0, f0, y, dy, xi1);
+      const ShotTangent t2 = TangentDerivative(sm, fm, y2, Axpy(dy, 0.5 * h, t1), xi2);
+      const ShotTangent t3 = TangentDerivative(sm, fm, y3, Axpy(dy, 0.5 * h, t2), xi3);
+      const ShotTangent t4 = TangentDerivative(s1, f1, y4, Axpy(dy, h, t3), xi4);
       Rk4Update(h, t1, t2, t3, t4, &dy);
     }
     Rk4Update(h, k1, k2, k3, k4, &y);
   }
-  if (record) {
-    const Vec6 W = BodyWrench(y);
-    record_node(n - 1, W, Compliance(samples[3 * (n - 2) + 2], W));
-  }
+  if (record) record_node(n - 1, Compliance(samples[3 * (n - 2) + 2], BodyWrench(y)));
 
-  const Mat3 Rt = y.R.transpose();
   if (J) {
-    const bool force_W = loads.tip_force_frame == LoadFrame::kWorld;
-    const bool moment_W = loads.tip_moment_frame == LoadFrame::kWorld;
-    J->topRows<3>() = Rt * dy.m + TransposeTimesFixed(dy, y.m);
-    J->bottomRows<3>() = Rt * dy.n + TransposeTimesFixed(dy, y.n);
-    if (moment_W) J->topRows<3>() -= TransposeTimesFixed(dy, loads.tip_moment);
-    if (force_W) J->bottomRows<3>() -= TransposeTimesFixed(dy, loads.tip_force);
+    J->topRows<3>() = dy.m;
+    J->bottomRows<3>() = dy.n;
+    if (loads.tip_moment_frame == LoadFrame::kWorld)
+      J->topRows<3>() -= TransposeTimesFixed(dy, loads.tip_moment);
+    if (loads.tip_force_frame == LoadFrame::kWorld)
+      J->bottomRows<3>() -= TransposeTimesFixed(dy, loads.tip_force);
     *J = scale.cwiseInverse().asDiagonal() * *J;
   }
   return TipResidual(y.R, BodyWrench(y), loads, scale);
@@ -263,6 +304,7 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j)
         if (i != j && smp.compliance(i, j) != 0.0) smp.diagonal = false;
+    smp.compliance_diagonal = smp.compliance.diagonal();
     smp.rest_strain = model_.RestStrainAt(s);
     smp.mass_per_length = p.mass(5, 5);
     return smp;

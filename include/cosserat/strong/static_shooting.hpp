@@ -3,9 +3,10 @@
 /// Static cantilever by shooting on the SE(3) strong form (seed 002 eqs. 14 and 16 with V = 0).
 ///
 /// Unknowns: the internal wrench at the base, W(0) = [m; n] in the base body frame (6).
-/// Integrate in s from 0 to L with fixed-step RK4 on the grid nodes (4th order):
-///   p' = R Γ,  R' = R K̂,  n_W' = −f_W,  m_W' = −p' × n_W,
-///   ξ = [K; Γ] = ξ* + K(s)⁻¹ [Rᵀ m_W; Rᵀ n_W],
+/// Integrate in s from 0 to L with fixed-step RK4 on the grid nodes (4th order), with the
+/// rotation R as 9 numbers (orthogonal to O(h⁴)):
+///   p' = R Γ,  R' = R K̂,  m' = −K × m − Γ × n,  n' = −K × n − Rᵀ f_W,
+///   ξ = [K; Γ] = ξ* + K(s)⁻¹ [m; n]  (body-frame wrench W = [m; n] = −Λ of seed 002),
 /// where f_W = ρ A g + the distributed force (N/m). The residual is the tip condition
 /// W(L) − W_tip in the tip body frame; Levenberg–Marquardt (ceres::TinySolver) with an exact
 /// Jacobian (forward-mode ceres::Jet through the integrator) drives it to zero.
@@ -84,6 +85,7 @@ class StaticShootingSolver {
   // (even index 2i) and per segment midpoint (odd index 2i+1).
   struct Sample {
     Mat6 compliance;  ///< K(s)⁻¹
+    Vec6 compliance_diagonal;
     Vec6 rest_strain;
     double mass_per_length;  ///< ρ A, kg/m
     bool diagonal = true;    ///< compliance has no off-diagonal entries
