@@ -1,0 +1,176 @@
+#include "cosserat/io/json_document.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <map>
+#include <utility>
+
+#include "cosserat/io/json_path.hpp"
+
+namespace cosserat::io::detail {
+namespace {
+
+using json = nlohmann::json;
+
+/// Overflowing numbers recovered from (each costs a re-parse); beyond this the parse stops.
+constexpr std::size_t kMaxOverflowRetries = 64;
+
+/// A SAX handler that builds the document while tracking the JSON path, so that duplicate keys
+/// and the number that overflowed can be reported where they are.
+class DocumentBuilder final : public json::json_sax_t {
+ public:
+  struct Failure {
+    int id = 0;                ///< nlohmann exception id: 101.. syntax, 406 number overflow
+    std::size_t position = 0;  ///< bytes read when it failed
+    std::string token;         ///< the offending token
+    std::string path;          ///< where the value being read would have gone
+    std::string message;       ///< the parser's own message
+  };
+
+  /// `overflowed`: paths whose number overflowed in an earlier pass (the token was blanked to 0);
+  /// they get ±infinity so that validation reports them.
+  explicit DocumentBuilder(const std::map<std::string, double>* overflowed)
+      : overflowed_(overflowed) {}
+
+  json TakeDocument() { return std::move(document_); }
+  const std::optional<Failure>& failure() const { return failure_; }
+  const std::vector<std::string>& duplicate_keys() const { return duplicate_keys_; }
+
+  bool null() override { return Add(nullptr); }
+  bool boolean(bool value) override { return Add(value); }
+  bool number_integer(number_integer_t value) override { return Add(value); }
+  bool number_unsigned(number_unsigned_t value) override { return Add(value); }
+  bool number_float(number_float_t value, const string_t&) override { return Add(value); }
+  bool string(string_t& value) override { return Add(std::move(value)); }
+  bool binary(binary_t& value) override { return Add(json::binary(std::move(value))); }
+  bool start_object(std::size_t) override { return Open(json::object()); }
+  bool start_array(std::size_t) override { return Open(json::array()); }
+  bool end_object() override { return Close(); }
+  bool end_array() override { return Close(); }
+
+  bool key(string_t& key) override {
+    Frame& top = stack_.back();
+    if (top.container->contains(key)) duplicate_keys_.push_back(ChildPath(top.path, key));
+    top.key = key;
+    return true;
+  }
+
+  bool parse_error(std::size_t position, const std::string& last_token,
+                   const nlohmann::detail::exception& ex) override {
+    failure_ = Failure{ex.id, position, last_token, NextPath(), ex.what()};
+    return false;
+  }
+
+ private:
+  struct Frame {
+    json* container;
+    std::string path;
+    std::string key;  ///< the key being filled, for objects
+  };
+
+  std::string NextPath() const {
+    if (stack_.empty()) return "";
+    const Frame& top = stack_.back();
+    return top.container->is_array() ? ElementPath(top.path, top.container->size())
+                                     : ChildPath(top.path, top.key);
+  }
+
+  json* Place(json value, const std::string& path) {
+    const auto it = overflowed_->find(path);
+    if (it != overflowed_->end()) value = it->second;
+    if (stack_.empty()) {
+      document_ = std::move(value);
+      return &document_;
+    }
+    json& container = *stack_.back().container;
+    if (container.is_array()) {
+      container.push_back(std::move(value));
+      return &container.back();
+    }
+    json& slot = container[stack_.back().key];
+    slot = std::move(value);
+    return &slot;
+  }
+
+  bool Add(json value) {
+    Place(std::move(value), NextPath());
+    return true;
+  }
+
+  bool Open(json empty_container) {
+    const std::string path = NextPath();
+    json* placed = Place(std::move(empty_container), path);
+    stack_.push_back({placed, path, ""});
+    return true;
+  }
+
+  bool Close() {
+    stack_.pop_back();
+    return true;
+  }
+
+  const std::map<std::string, double>* overflowed_;
+  json document_;
+  std::vector<Frame> stack_;
+  std::vector<std::string> duplicate_keys_;
+  std::optional<Failure> failure_;
+};
+
+/// Replaces the overflowing number token that ends at `end` by "0" and blanks, keeping every
+/// later byte (and so every later line and column) in place.
+bool BlankToken(std::string* text, std::size_t end, const std::string& token) {
+  if (token.empty() || end < token.size()) return false;
+  const std::size_t start = end - token.size();
+  if (text->compare(start, token.size(), token) != 0) return false;
+  text->replace(start, token.size(), "0" + std::string(token.size() - 1, ' '));
+  return true;
+}
+
+/// "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ..." ->
+/// "at line 3, column 5: syntax error ...".
+std::string SyntaxErrorText(const DocumentBuilder::Failure& failure, const std::string& text) {
+  const std::size_t at = failure.message.find("at line ");
+  if (at != std::string::npos) return failure.message.substr(at);
+  // Fall back to counting lines ourselves.
+  const std::size_t end = std::min(failure.position, text.size());
+  std::size_t line = 1, column = 1;
+  for (std::size_t i = 0; i < end; ++i) {
+    if (text[i] == '\n')
+      ++line, column = 1;
+    else
+      ++column;
+  }
+  const std::size_t bracket = failure.message.find("] ");
+  const std::string what =
+      bracket == std::string::npos ? failure.message : failure.message.substr(bracket + 2);
+  return "at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " + what;
+}
+
+}  // namespace
+
+JsonDocument ParseJsonDocument(const std::string& text, const std::string& source_name) {
+  std::string work = text;
+  std::map<std::string, double> overflowed;
+  // Each pass either succeeds, fails for good, or blanks one overflowing number and retries.
+  for (;;) {
+    DocumentBuilder builder(&overflowed);
+    if (json::sax_parse(work, &builder)) {
+      JsonDocument doc{builder.TakeDocument(), {}};
+      for (const std::string& path : builder.duplicate_keys())
+        doc.errors.push_back(ShownPath(path) +
+                             ": expected each key once in an object, got a duplicate key");
+      return doc;
+    }
+    const DocumentBuilder::Failure failure = builder.failure().value_or(DocumentBuilder::Failure{});
+    const bool overflow = failure.id == 406 && overflowed.size() < kMaxOverflowRetries;
+    if (overflow && !overflowed.count(failure.path) &&
+        BlankToken(&work, failure.position, failure.token)) {
+      const double inf = std::numeric_limits<double>::infinity();
+      overflowed[failure.path] = failure.token[0] == '-' ? -inf : inf;
+      continue;
+    }
+    return {std::nullopt, {source_name + ": invalid JSON " + SyntaxErrorText(failure, text)}};
+  }
+}
+
+}  // namespace cosserat::io::detail

@@ -1,0 +1,257 @@
+#include "problem_rod.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cosserat/rod/section_profile.hpp"
+
+namespace cosserat::io::detail {
+namespace {
+
+using json = nlohmann::json;
+
+constexpr int kMaxNodes = 1000000;
+
+// --- rod.section -------------------------------------------------------------------------------
+
+struct ShapeKeys {
+  std::string shape;
+  std::vector<std::string> keys;  ///< besides "shape"
+};
+
+const std::vector<ShapeKeys>& SectionShapes() {
+  static const std::vector<ShapeKeys> shapes = {
+      {"circle", {"radius"}},
+      {"annulus", {"outer_radius", "inner_radius"}},
+      {"rectangle", {"width", "height"}},
+      {"explicit", {"area", "I1", "I2", "J", "shear_coefficient"}},
+  };
+  return shapes;
+}
+
+/// The keys allowed for `shape`; for every shape when it is unknown.
+std::vector<std::string> SectionKeys(const std::optional<std::string>& shape) {
+  std::vector<std::string> keys{"shape"};
+  for (const ShapeKeys& s : SectionShapes())
+    if (!shape || s.shape == *shape) keys.insert(keys.end(), s.keys.begin(), s.keys.end());
+  return keys;
+}
+
+std::vector<std::string> SectionShapeNames() {
+  std::vector<std::string> names;
+  for (const ShapeKeys& s : SectionShapes()) names.push_back(s.shape);
+  return names;
+}
+
+/// "shape" if given; a section without one is explicit when it names any explicit property.
+std::optional<std::string> SectionShape(const ObjectReader& s) {
+  if (s.Has("shape")) return ReadChoice(s, "shape", SectionShapeNames(), Presence::kRequired);
+  for (const char* key : {"area", "I1", "I2", "J"})
+    if (s.Has(key)) return std::string("explicit");
+  s.report().Missing(s.PathOf("shape"),
+                     "one of " + QuotedList(SectionShapeNames()) +
+                         " (or the explicit properties \"area\", \"I1\", \"I2\", \"J\")");
+  return std::nullopt;
+}
+
+std::optional<CrossSection> ParseAnnulus(const ObjectReader& s) {
+  const auto outer = ReadNumber(s, "outer_radius", PositiveNumber(), Presence::kRequired);
+  const auto inner = ReadNumber(s, "inner_radius", NonNegativeNumber(), Presence::kRequired);
+  if (!outer || !inner) return std::nullopt;
+  if (*inner >= *outer) {
+    s.Reject("inner_radius", "a number smaller than outer_radius (" + FormatNumber(*outer) + ")");
+    return std::nullopt;
+  }
+  return CrossSection::Annulus(*outer, *inner);
+}
+
+std::optional<CrossSection> ParseExplicitSection(const ObjectReader& s) {
+  const auto area = ReadNumber(s, "area", PositiveNumber(), Presence::kRequired);
+  const auto I1 = ReadNumber(s, "I1", PositiveNumber(), Presence::kRequired);
+  const auto I2 = ReadNumber(s, "I2", PositiveNumber(), Presence::kRequired);
+  const auto J = ReadNumber(s, "J", PositiveNumber(), Presence::kRequired);
+  const auto kappa = ReadNumber(s, "shear_coefficient", PositiveNumber(), Presence::kOptional);
+  if (!area || !I1 || !I2 || !J || (s.Has("shear_coefficient") && !kappa)) return std::nullopt;
+  return CrossSection::Explicit(*area, *I1, *I2, *J, kappa.value_or(1.0));
+}
+
+std::optional<CrossSection> ParseSection(const ObjectReader& s) {
+  const std::optional<std::string> shape = SectionShape(s);
+  if (!shape) {
+    s.AllowOnly(SectionKeys(std::nullopt));
+    return std::nullopt;
+  }
+  s.AllowOnly(SectionKeys(shape), "for a " + Quote(*shape) + " section");
+  if (*shape == "circle") {
+    const auto r = ReadNumber(s, "radius", PositiveNumber(), Presence::kRequired);
+    if (!r) return std::nullopt;
+    return CrossSection::Circle(*r);
+  }
+  if (*shape == "annulus") return ParseAnnulus(s);
+  if (*shape == "rectangle") {
+    const auto w = ReadNumber(s, "width", PositiveNumber(), Presence::kRequired);
+    const auto h = ReadNumber(s, "height", PositiveNumber(), Presence::kRequired);
+    if (!w || !h) return std::nullopt;
+    return CrossSection::Rectangle(*w, *h);
+  }
+  return ParseExplicitSection(s);
+}
+
+// --- rod.material ------------------------------------------------------------------------------
+
+std::optional<KelvinVoigtDamping> ParseDamping(const ObjectReader& d) {
+  d.AllowOnly({"bending", "torsion", "shear", "extension"});
+  KelvinVoigtDamping out;
+  bool ok = true;
+  auto read = [&](const char* key, double* target) {
+    const auto x = ReadNumber(d, key, NonNegativeNumber(), Presence::kOptional);
+    if (x) *target = *x;
+    ok = ok && (x || !d.Has(key));
+  };
+  read("bending", &out.bending);
+  read("torsion", &out.torsion);
+  read("shear", &out.shear);
+  read("extension", &out.extension);
+  if (!ok) return std::nullopt;
+  return out;
+}
+
+/// The shear modulus, from "shear_modulus" or "poisson_ratio" (exactly one must be given).
+std::optional<double> ParseShearModulus(const ObjectReader& m, std::optional<double> E) {
+  const bool has_G = m.Has("shear_modulus"), has_nu = m.Has("poisson_ratio");
+  if (has_G == has_nu) {
+    m.report().Expected(m.path(), R"(exactly one of "shear_modulus" and "poisson_ratio")",
+                        has_G ? "both" : "neither");
+  }
+  const NumberRule poisson{"a number in (-1, 0.5]", [](double nu) { return nu > -1 && nu <= 0.5; }};
+  const auto G =
+      has_G ? ReadNumber(m, "shear_modulus", PositiveNumber(), Presence::kOptional) : std::nullopt;
+  const auto nu =
+      has_nu ? ReadNumber(m, "poisson_ratio", poisson, Presence::kOptional) : std::nullopt;
+  if (has_G == has_nu || !E) return std::nullopt;
+  if (has_nu) {
+    if (!nu) return std::nullopt;
+    return *E / (2.0 * (1.0 + *nu));
+  }
+  if (!G) return std::nullopt;
+  const double implied_nu = *E / (2.0 * *G) - 1.0;
+  if (implied_nu > 0.5 + 1e-12) {
+    m.report().Expected(
+        m.PathOf("shear_modulus"),
+        "at least youngs_modulus / 3 = " + FormatNumber(*E / 3.0) + " (a Poisson ratio <= 0.5)",
+        Describe(*m.Find("shear_modulus")) + " (Poisson ratio " + FormatNumber(implied_nu) + ")");
+    return std::nullopt;
+  }
+  return *G;
+}
+
+std::optional<Material> ParseMaterial(const ObjectReader& m) {
+  m.AllowOnly({"youngs_modulus", "shear_modulus", "poisson_ratio", "density", "damping"});
+  const auto E = ReadNumber(m, "youngs_modulus", PositiveNumber(), Presence::kRequired);
+  const auto G = ParseShearModulus(m, E);
+  const auto rho = ReadNumber(m, "density", NonNegativeNumber(), Presence::kRequired);
+  std::optional<KelvinVoigtDamping> damping = KelvinVoigtDamping{};
+  if (m.Has("damping")) {
+    const auto d = ReadObject(m, "damping", Presence::kOptional);
+    damping = d ? ParseDamping(*d) : std::nullopt;
+  }
+  if (!E || !G || !rho || !damping) return std::nullopt;
+  Material out = Material::FromShearModulus(*E, *G, *rho);
+  out.damping = *damping;
+  return out;
+}
+
+// --- rod.stiffness_profile ---------------------------------------------------------------------
+
+using Band = BandedSection::Band;
+
+std::optional<Band> ParseBand(const ObjectReader& b, std::optional<double> length) {
+  b.AllowOnly({"start", "end", "factor"});
+  const auto start = ReadNumber(b, "start", NonNegativeNumber(), Presence::kRequired);
+  const auto end = ReadNumber(b, "end", PositiveNumber(), Presence::kRequired);
+  const auto factor = ReadNumber(b, "factor", PositiveNumber(), Presence::kRequired);
+  if (!start || !end || !factor) return std::nullopt;
+  if (*end <= *start) {
+    b.Reject("end", "a number greater than start (" + FormatNumber(*start) + ")");
+    return std::nullopt;
+  }
+  if (length && *end > *length) {
+    b.Reject("end", "a number <= rod.length (" + FormatNumber(*length) + ")");
+    return std::nullopt;
+  }
+  return Band{*start, *end, *factor};
+}
+
+/// Bands of scaled bending and torsion stiffness; nullopt if any is invalid.
+std::optional<std::vector<Band>> ParseStiffnessProfile(const ObjectReader& rod,
+                                                       std::optional<double> length) {
+  const json* v = rod.Find("stiffness_profile");
+  if (!v) return std::vector<Band>{};
+  const std::string path = rod.PathOf("stiffness_profile");
+  if (!v->is_array()) {
+    rod.report().Expected(path, R"(an array of bands {"start", "end", "factor"})", Describe(*v));
+    return std::nullopt;
+  }
+  std::vector<Band> bands;
+  bool ok = true;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const std::string at = ElementPath(path, i);
+    if (!(*v)[i].is_object()) {
+      rod.report().Expected(at, R"(a band {"start", "end", "factor"})", Describe((*v)[i]));
+      ok = false;
+      continue;
+    }
+    const auto band = ParseBand(ObjectReader((*v)[i], at, &rod.report()), length);
+    ok = ok && band.has_value();
+    if (band) bands.push_back(*band);
+  }
+  if (!ok) return std::nullopt;
+  return bands;
+}
+
+/// Band ends strictly inside (0, L), counted the way MakeGrid places nodes on them.
+int InteriorBreakpoints(const std::vector<Band>& bands, double length) {
+  std::vector<double> cuts;
+  for (const Band& b : bands) cuts.insert(cuts.end(), {b.start, b.end});
+  std::sort(cuts.begin(), cuts.end());
+  const double eps = 1e-12 * length;
+  double last = 0.0;
+  int count = 0;
+  for (double c : cuts)
+    if (c > eps && c < length - eps && c - last > eps) last = c, ++count;
+  return count;
+}
+
+}  // namespace
+
+void ParseRod(const ObjectReader& rod, Problem* problem) {
+  rod.AllowOnly({"length", "nodes", "section", "material", "rest_curvature", "stiffness_profile"});
+  const auto length = ReadNumber(rod, "length", PositiveNumber(), Presence::kRequired);
+  const auto nodes = ReadInteger(rod, "nodes", 3, kMaxNodes, Presence::kRequired);
+  const auto section_object = ReadObject(rod, "section", Presence::kRequired);
+  const auto section = section_object ? ParseSection(*section_object) : std::nullopt;
+  const auto material_object = ReadObject(rod, "material", Presence::kRequired);
+  const auto material = material_object ? ParseMaterial(*material_object) : std::nullopt;
+  const auto rest_curvature = ReadVec3(rod, "rest_curvature", Presence::kOptional);
+  const auto bands = ParseStiffnessProfile(rod, length);
+
+  if (nodes && length && bands) {
+    const int needed = 2 + InteriorBreakpoints(*bands, *length);
+    if (*nodes < needed)
+      rod.Reject("nodes", "at least " + std::to_string(needed) +
+                              " (a node at each end and at every stiffness_profile band end "
+                              "inside the rod)");
+  }
+  if (length && section && material && bands) {
+    problem->rod = RodModel::Uniform(*length, *section, *material);
+    if (!bands->empty())
+      problem->rod.section = std::make_shared<BandedSection>(problem->rod.section, *bands);
+  }
+  if (rest_curvature) problem->rod.rest_strain = ConstantRestCurvature(*rest_curvature);
+  problem->nodes = nodes.value_or(problem->nodes);
+}
+
+}  // namespace cosserat::io::detail
