@@ -8,6 +8,7 @@ void RodState::Resize(int n) {
   rotation_WB.resize(n);
   strain.resize(n);
   wrench_B.resize(n);
+  twist_B.assign(n, Vec6::Zero());
 }
 
 Vec6 RodState::BaseReaction_W() const {

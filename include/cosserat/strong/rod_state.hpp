@@ -17,6 +17,7 @@ struct RodState {
   std::vector<Mat3> rotation_WB;   ///< R(s): body (section) frame to world
   std::vector<Vec6> strain;        ///< ξ = [K; Γ], body frame, (1/m; –)
   std::vector<Vec6> wrench_B;      ///< W = [m; n], body frame, (N·m; N)
+  std::vector<Vec6> twist_B;       ///< V = [ω; v], body frame, (rad/s; m/s); zero in statics
 
   void Resize(int num_nodes);
   int size() const { return static_cast<int>(s.size()); }

@@ -1,0 +1,152 @@
+#pragma once
+/// \file
+/// Dynamics of a cantilevered rod on the SE(3) strong form: BDF2 in time, shooting in s
+/// (seed 002 eqs. 19–28). Built once, then Step() advances one time step without allocating,
+/// for use inside a controller.
+///
+/// Per step, with c0, c1, c2 the BDF2 weights (eq. 23, variable-step form) and the history terms
+/// ξʰ = c1 ξ(t−h₁) + c2 ξ(t−h₁−h₂), Vʰ likewise (eqs. 21–22), integrate from s = 0 to L with RK4:
+///   p' = R Γ,  R' = R K̂,
+///   V' = ξ_t + ad_V ξ                  (eq. 25; ω' = K_t + ω × K, v' = Γ_t + ω × Γ + v × K)
+///   m' = m × K + n × Γ + J ω_t + ω × J ω,
+///   n' = n × K − Rᵀ f_W + ρA (v_t + ω × v)           (eq. 26 for W = [m; n] = −Λ)
+///   ξ = (K + c0 D)⁻¹ (W + K ξ* − D ξʰ),  ξ_t = c0 ξ + ξʰ,  V_t = c0 V + Vʰ   (eq. 27)
+/// with g(0), V(0) prescribed and the unknown W(0) chosen so that W(L) is the tip wrench (eq. 28).
+/// History is kept at the RK4 stage points, so a rod at rest in equilibrium stays there exactly.
+
+#include <vector>
+
+#include "cosserat/lie/se3.hpp"
+#include "cosserat/loads/static_loads.hpp"
+#include "cosserat/rod/rod_model.hpp"
+#include "cosserat/strong/rod_state.hpp"
+#include "cosserat/strong/solver_status.hpp"
+
+namespace cosserat {
+
+struct Bdf2Options {
+  double dt = 2e-3;  ///< time step, s
+  /// Convergence of each step: ‖r‖₂ < tolerance for the tip residual made dimensionless by
+  /// EI/L (moments) and EI/L² (forces), as in statics.
+  double tolerance = 1e-10;
+  /// Newton-type iterations per attempt (a hard cap: Step() is deterministic).
+  int max_iterations = 20;
+  /// When an attempt fails, retry as two steps of half the size, up to this depth.
+  int max_halvings = 3;
+
+  bool IsValid(std::string* why) const;
+};
+
+/// What drives the rod during one step; values at the end of the step.
+struct StepInput {
+  lie::SE3 base_pose;              ///< g(0, t): base pose in the world
+  Vec6 base_twist_B = Vec6::Zero();  ///< V(0, t) = [ω; v] of the base, body frame (rad/s; m/s)
+  StaticLoads loads;               ///< gravity, distributed force, tip force and moment
+};
+
+struct StepSummary {
+  SolveStatus status = SolveStatus::kNotRun;
+  int iterations = 0;  ///< Newton-type iterations, all attempts
+  int shots = 0;       ///< integrations from 0 to L
+  int halvings = 0;    ///< deepest step halving used (0: the step went through whole)
+  double residual = 0.0;
+  double wall_time_s = 0.0;
+  bool converged() const { return status == SolveStatus::kConverged; }
+};
+
+/// Kinetic, elastic and gravitational potential energy of the rod (J), integrated with the RK4
+/// stage weights of the grid.
+struct RodEnergy {
+  double kinetic = 0.0;
+  double elastic = 0.0;
+  double gravity = 0.0;
+  double total() const { return kinetic + elastic + gravity; }
+};
+
+class Bdf2ShootingStepper {
+ public:
+  Bdf2ShootingStepper(const RodModel& model, int num_nodes, const Bdf2Options& options = {});
+
+  /// Puts the rod at rest in static equilibrium under `input` (its base twist is ignored) at
+  /// time t = 0, with a history that says it has been at rest. Allocates nothing.
+  StepSummary InitializeAtRest(const StepInput& input);
+
+  /// Advances by options().dt to the state under `input`. No heap allocation. When a step
+  /// fails even after halving, the status says why and time() and state() are those of the last
+  /// (sub-)step that converged.
+  StepSummary Step(const StepInput& input);
+
+  double time() const { return time_; }
+  const RodState& state() const { return state_; }
+  const Bdf2Options& options() const { return options_; }
+  const std::vector<double>& grid() const { return grid_; }
+  /// Energy of the current state under the gravity of `loads`.
+  RodEnergy Energy(const StaticLoads& loads) const;
+
+  /// Everything Step() needs to continue a run. Save() allocates; Restore() into a stepper of the
+  /// same model and grid does not.
+  struct Snapshot {
+    double time = 0, last_dt = 0;
+    Vec6 x = Vec6::Zero(), x_prev = Vec6::Zero(), x_prev2 = Vec6::Zero();
+    Mat6 jacobian = Mat6::Identity();
+    double jacobian_c0 = -1.0;
+    int steps_taken = 0;
+    std::vector<Vec6> strain1, strain2, twist1, twist2;
+    std::vector<Vec3> position1;
+    RodState state;
+  };
+  Snapshot Save() const;
+  void Restore(const Snapshot& snapshot);
+
+  // Per-stage section data; public for the implementation's helpers.
+  struct Sample {
+    Vec6 stiffness;        ///< diag K
+    Vec6 damping;          ///< diag D
+    Vec6 compliance;       ///< diag K⁻¹ (statics)
+    Vec6 rest_strain;      ///< ξ*
+    Vec6 mass;             ///< diag M = [ρI1, ρI2, ρ(I1+I2), ρA, ρA, ρA]
+    Vec6 implicit_compliance;  ///< diag (K + c0 D)⁻¹ for the current c0
+  };
+  struct Coefficients {
+    double c0 = 0, c1 = 0, c2 = 0;
+  };
+  /// One shot: the dimensionless tip residual for the dimensionless unknown x (W(0) = scale ⊙ x),
+  /// with BDF2 weights c, or the static equations when statics is true. Writes the trial state
+  /// and the stage values. With J, also d r / d x: the exact derivative of the discrete shot
+  /// (tangent propagation through RK4), at about ten times the cost. Used by the solver and its
+  /// tests.
+  Vec6 Residual(const StepInput& input, const Coefficients& c, bool statics, const Vec6& x,
+                Mat6* J = nullptr);
+
+ private:
+  bool Attempt(const StepInput& input, double h, StepSummary* summary);
+  bool SolveStep(const StepInput& input, const Coefficients& c, bool statics,
+                 StepSummary* summary);
+  void SetImplicitCompliance(double c0);
+  void Commit(double h);
+
+  RodModel model_;
+  Bdf2Options options_;
+  std::vector<double> grid_;
+  std::vector<Sample> samples_;  ///< 3 per segment: start, midpoint, end
+  Vec6 scale_;                   ///< W(0) = scale ⊙ x
+
+  // Values at the 4 RK4 stages of each segment (index 4 i + j): the shot being tried, and the
+  // accepted ones one and two steps back.
+  std::vector<Vec6> strain_now_, strain1_, strain2_;
+  std::vector<Vec6> twist_now_, twist1_, twist2_;
+  std::vector<Vec3> position_now_, position1_;
+
+  RodState state_;  ///< the last accepted step
+  RodState trial_;  ///< written by every shot; swapped into state_ on acceptance
+  double time_ = 0.0;
+  double last_dt_ = 0.0;  ///< size of the last accepted step (0 before the first)
+  double current_c0_ = -1.0;
+  int steps_taken_ = 0;
+  Vec6 x_ = Vec6::Zero(), x_prev_ = Vec6::Zero(), x_prev2_ = Vec6::Zero();  ///< unknowns, last 3
+  Mat6 jacobian_ = Mat6::Identity();
+  double jacobian_c0_ = -1.0;  ///< the c0 the Jacobian was computed for; −1: none
+  bool initialized_ = false;
+};
+
+}  // namespace cosserat

@@ -1,0 +1,650 @@
+#include "cosserat/strong/bdf2_stepper.hpp"
+
+#include <ceres/tiny_solver.h>
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "cosserat/rod/grid.hpp"
+
+namespace cosserat {
+
+bool Bdf2Options::IsValid(std::string* why) const {
+  auto fail = [&](const char* msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  if (!(std::isfinite(dt) && dt > 0)) return fail("dt must be a finite positive number");
+  if (!(std::isfinite(tolerance) && tolerance > 0)) return fail("tolerance must be positive");
+  if (max_iterations < 1) return fail("max_iterations must be at least 1");
+  if (max_halvings < 0) return fail("max_halvings must be >= 0");
+  return true;
+}
+
+namespace {
+
+using Sample = Bdf2ShootingStepper::Sample;
+using Coefficients = Bdf2ShootingStepper::Coefficients;
+
+
+#if defined(__GNUC__)
+#define COSSERAT_HOT inline __attribute__((always_inline))
+#else
+#define COSSERAT_HOT inline
+#endif
+
+// Integration state in s: pose in the world, wrench and twist in the body frame.
+struct DynState {
+  Vec3 p;  // p_W, m
+  Mat3 R;  // R_WB
+  Vec3 m;  // N·m
+  Vec3 n;  // N
+  Vec3 w;  // ω, rad/s
+  Vec3 v;  // m/s
+};
+static_assert(sizeof(DynState) == 24 * sizeof(double), "DynState must be 24 packed doubles");
+
+COSSERAT_HOT DynState Axpy(const DynState& y, double a, const DynState& d) {
+  DynState out;
+  const double* py = y.p.data();
+  const double* pd = d.p.data();
+  double* o = out.p.data();
+  for (int i = 0; i < 24; ++i) o[i] = py[i] + a * pd[i];
+  return out;
+}
+
+COSSERAT_HOT void Rk4Update(double h, const DynState& k1, const DynState& k2, const DynState& k3,
+                            const DynState& k4, DynState* y) {
+  const double a = h / 6, b = h / 3;
+  const double *p1 = k1.p.data(), *p2 = k2.p.data(), *p3 = k3.p.data(), *p4 = k4.p.data();
+  double* o = y->p.data();
+  for (int i = 0; i < 24; ++i) o[i] += a * (p1[i] + p4[i]) + b * (p2[i] + p3[i]);
+}
+
+// d/ds of the state at one stage point (see the header for the equations), written out: this is
+// the innermost loop of every step. Writes the strain and twist of the stage for the history.
+COSSERAT_HOT DynState Derivative(const Sample& smp, const Vec3& f_W, const DynState& y,
+                                 const Vec6& xi_h, const Vec6& V_h, double c0, bool statics,
+                                 Vec6* strain, Vec6* twist) {
+  const double m0 = y.m(0), m1 = y.m(1), m2 = y.m(2);
+  const double n0 = y.n(0), n1 = y.n(1), n2 = y.n(2);
+  const double w0 = y.w(0), w1 = y.w(1), w2 = y.w(2);
+  const double v0 = y.v(0), v1 = y.v(1), v2 = y.v(2);
+  double xi[6], xt[6], Vt[6];
+  const double W[6] = {m0, m1, m2, n0, n1, n2};
+  if (statics) {
+    for (int i = 0; i < 6; ++i) {
+      xi[i] = smp.rest_strain(i) + smp.compliance(i) * W[i];
+      xt[i] = 0.0;
+      Vt[i] = 0.0;
+    }
+  } else {
+    // W = K (ξ − ξ*) + D (c0 ξ + ξʰ)  ⇒  ξ = ξ* + (K + c0 D)⁻¹ (W − D (c0 ξ* + ξʰ)), which is
+    // the static law, operation for operation, when D = 0.
+    for (int i = 0; i < 6; ++i) {
+      xi[i] = smp.rest_strain(i) +
+              smp.implicit_compliance(i) *
+                  (W[i] - smp.damping(i) * (c0 * smp.rest_strain(i) + xi_h(i)));
+      xt[i] = c0 * xi[i] + xi_h(i);
+    }
+    Vt[0] = c0 * w0 + V_h(0);
+    Vt[1] = c0 * w1 + V_h(1);
+    Vt[2] = c0 * w2 + V_h(2);
+    Vt[3] = c0 * v0 + V_h(3);
+    Vt[4] = c0 * v1 + V_h(4);
+    Vt[5] = c0 * v2 + V_h(5);
+  }
+  for (int i = 0; i < 6; ++i) (*strain)(i) = xi[i];
+  (*twist) << w0, w1, w2, v0, v1, v2;
+  const double k0 = xi[0], k1 = xi[1], k2 = xi[2], g0 = xi[3], g1 = xi[4], g2 = xi[5];
+  const double J0 = smp.mass(0), J1 = smp.mass(1), J2 = smp.mass(2), rhoA = smp.mass(5);
+  const Mat3& R = y.R;
+  DynState d;
+  for (int i = 0; i < 3; ++i) {
+    d.p(i) = R(i, 0) * g0 + R(i, 1) * g1 + R(i, 2) * g2;
+    d.R(i, 0) = R(i, 1) * k2 - R(i, 2) * k1;  // (R K̂) row i = (row i of R) × K
+    d.R(i, 1) = R(i, 2) * k0 - R(i, 0) * k2;
+    d.R(i, 2) = R(i, 0) * k1 - R(i, 1) * k0;
+  }
+  // ω' = K_t + ω × K,  v' = Γ_t + ω × Γ + v × K
+  d.w(0) = xt[0] + w1 * k2 - w2 * k1;
+  d.w(1) = xt[1] + w2 * k0 - w0 * k2;
+  d.w(2) = xt[2] + w0 * k1 - w1 * k0;
+  d.v(0) = xt[3] + w1 * g2 - w2 * g1 + v1 * k2 - v2 * k1;
+  d.v(1) = xt[4] + w2 * g0 - w0 * g2 + v2 * k0 - v0 * k2;
+  d.v(2) = xt[5] + w0 * g1 - w1 * g0 + v0 * k1 - v1 * k0;
+  // m' = m × K + n × Γ + J ω_t + ω × J ω
+  const double Jw0 = J0 * w0, Jw1 = J1 * w1, Jw2 = J2 * w2;
+  d.m(0) = m1 * k2 - m2 * k1 + n1 * g2 - n2 * g1 + J0 * Vt[0] + w1 * Jw2 - w2 * Jw1;
+  d.m(1) = m2 * k0 - m0 * k2 + n2 * g0 - n0 * g2 + J1 * Vt[1] + w2 * Jw0 - w0 * Jw2;
+  d.m(2) = m0 * k1 - m1 * k0 + n0 * g1 - n1 * g0 + J2 * Vt[2] + w0 * Jw1 - w1 * Jw0;
+  // n' = n × K − Rᵀ f + ρA (v_t + ω × v)
+  const double f0 = f_W(0), f1 = f_W(1), f2 = f_W(2);
+  d.n(0) = n1 * k2 - n2 * k1 - (R(0, 0) * f0 + R(1, 0) * f1 + R(2, 0) * f2) +
+           rhoA * (Vt[3] + w1 * v2 - w2 * v1);
+  d.n(1) = n2 * k0 - n0 * k2 - (R(0, 1) * f0 + R(1, 1) * f1 + R(2, 1) * f2) +
+           rhoA * (Vt[4] + w2 * v0 - w0 * v2);
+  d.n(2) = n0 * k1 - n1 * k0 - (R(0, 2) * f0 + R(1, 2) * f1 + R(2, 2) * f2) +
+           rhoA * (Vt[5] + w0 * v1 - w1 * v0);
+  return d;
+}
+
+// Tip condition W(L) = W_tip in the tip body frame, made dimensionless by scale.
+Vec6 TipResidual(const DynState& y, const StaticLoads& loads, const Vec6& scale) {
+  const Mat3 Rt = y.R.transpose();
+  const Vec3 M = loads.tip_moment_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_moment)
+                                                               : loads.tip_moment;
+  const Vec3 F = loads.tip_force_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_force)
+                                                              : loads.tip_force;
+  Vec6 r;
+  r << y.m - M, y.n - F;
+  return r.cwiseQuotient(scale);
+}
+
+using Mat36 = Eigen::Matrix<double, 3, 6>;
+
+// Derivative of DynState with respect to the 6 unknowns (one column each), in the same
+// coordinates, so RK4 on (state, tangent) is the exact derivative of the discrete shot.
+struct DynTangent {
+  Mat36 p;
+  std::array<Mat36, 3> R;  // d(R e_j)
+  Mat36 m, n, w, v;
+};
+
+DynTangent Axpy(const DynTangent& y, double a, const DynTangent& d) {
+  return {y.p + a * d.p, {y.R[0] + a * d.R[0], y.R[1] + a * d.R[1], y.R[2] + a * d.R[2]},
+          y.m + a * d.m, y.n + a * d.n, y.w + a * d.w, y.v + a * d.v};
+}
+
+void Rk4Update(double h, const DynTangent& k1, const DynTangent& k2, const DynTangent& k3,
+               const DynTangent& k4, DynTangent* y) {
+  const double a = h / 6, b = h / 3;
+  y->p += a * (k1.p + k4.p) + b * (k2.p + k3.p);
+  for (int j = 0; j < 3; ++j) y->R[j] += a * (k1.R[j] + k4.R[j]) + b * (k2.R[j] + k3.R[j]);
+  y->m += a * (k1.m + k4.m) + b * (k2.m + k3.m);
+  y->n += a * (k1.n + k4.n) + b * (k2.n + k3.n);
+  y->w += a * (k1.w + k4.w) + b * (k2.w + k3.w);
+  y->v += a * (k1.v + k4.v) + b * (k2.v + k3.v);
+}
+
+// a × B and A × b, column by column.
+Mat36 Cross(const Vec3& a, const Mat36& B) {
+  Mat36 out;
+  for (int k = 0; k < 6; ++k) out.col(k) = a.cross(B.col(k));
+  return out;
+}
+Mat36 Cross(const Mat36& A, const Vec3& b) { return -Cross(b, A); }
+
+// Rows (dR e_j) · f: the derivative of Rᵀ f for a fixed vector f.
+Mat36 TransposeTimesFixed(const DynTangent& dy, const Vec3& f) {
+  Mat36 out;
+  for (int j = 0; j < 3; ++j) out.row(j) = f.transpose() * dy.R[j];
+  return out;
+}
+
+// The linearisation of Derivative along dy, given the primal state and the stage strain.
+DynTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const DynState& y,
+                             const DynTangent& dy, const Vec6& xi, double c0, bool statics) {
+  const Vec6& C = statics ? smp.compliance : smp.implicit_compliance;
+  const Mat36 dK = C.head<3>().asDiagonal() * dy.m;
+  const Mat36 dG = C.tail<3>().asDiagonal() * dy.n;
+  const double rate = statics ? 0.0 : c0;  // d ξ_t = c0 dξ, d V_t = c0 dV
+  const Vec3 K = xi.head<3>(), G = xi.tail<3>();
+  const Vec3 J = smp.mass.head<3>();
+  const double rhoA = smp.mass(5);
+  DynTangent dd;
+  dd.p = y.R * dG + G(0) * dy.R[0] + G(1) * dy.R[1] + G(2) * dy.R[2];
+  for (int j = 0; j < 3; ++j) {
+    const Vec3 c = K.cross(Vec3::Unit(j));
+    Mat36 dK_x_ej;
+    const int a = (j + 1) % 3, b = (j + 2) % 3;  // v × e_j has v_b at a and −v_a at b
+    dK_x_ej.row(j).setZero();
+    dK_x_ej.row(a) = dK.row(b);
+    dK_x_ej.row(b) = -dK.row(a);
+    dd.R[j] = c(0) * dy.R[0] + c(1) * dy.R[1] + c(2) * dy.R[2] + y.R * dK_x_ej;
+  }
+  dd.w = rate * dK + Cross(dy.w, K) + Cross(y.w, dK);
+  dd.v = rate * dG + Cross(dy.w, G) + Cross(y.w, dG) + Cross(dy.v, K) + Cross(y.v, dK);
+  const Vec3 Jw = J.cwiseProduct(y.w);
+  const Mat36 J_dw = J.asDiagonal() * dy.w;
+  dd.m = Cross(dy.m, K) + Cross(y.m, dK) + Cross(dy.n, G) + Cross(y.n, dG) + rate * J_dw +
+         Cross(dy.w, Jw) + Cross(y.w, J_dw);
+  dd.n = Cross(dy.n, K) + Cross(y.n, dK) - TransposeTimesFixed(dy, f_W) +
+         rhoA * (rate * dy.v + Cross(dy.w, y.v) + Cross(y.w, dy.v));
+  return dd;
+}
+
+// Weights (c0, c1, c2) of the variable-step BDF2 derivative for a step h after a step h_prev:
+// y' ≈ c0 y_n + c1 y_{n−1} + c2 y_{n−2}. Equal steps give eq. 23: 3/(2h), −2/h, 1/(2h).
+Coefficients Bdf2Weights(double h, double h_prev) {
+  const double w = h_prev > 0 ? h / h_prev : 1.0;
+  return {(1 + 2 * w) / ((1 + w) * h), -(1 + w) / h, w * w / ((1 + w) * h)};
+}
+
+}  // namespace
+
+Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
+                                         const Bdf2Options& options)
+    : model_(model), options_(options) {
+  std::string why;
+  if (!model_.IsValid(&why)) throw std::invalid_argument("RodModel: " + why);
+  if (!options_.IsValid(&why)) throw std::invalid_argument("Bdf2Options: " + why);
+  if (num_nodes < 2) throw std::invalid_argument("num_nodes must be at least 2");
+  grid_ = MakeGrid(model_.length, num_nodes, model_.section->Breakpoints());
+  const int n = static_cast<int>(grid_.size());
+
+  // As in statics: the sample ending a step is taken just inside it, so a stiffness jump at a
+  // node belongs to the segment on each side correctly.
+  samples_.resize(3 * (n - 1));
+  auto make = [&](double s) {
+    const SectionProperties p = model_.section->At(s, Actuation{});
+    auto diagonal = [](const Mat6& A) { return (A - Mat6(A.diagonal().asDiagonal())).norm() == 0; };
+    if (!diagonal(p.stiffness) || !diagonal(p.damping) || !diagonal(p.mass))
+      throw std::invalid_argument("Bdf2ShootingStepper: sections must be principal-axes "
+                                  "(diagonal stiffness, damping and mass)");
+    Sample smp;
+    smp.stiffness = p.stiffness.diagonal();
+    smp.damping = p.damping.diagonal();
+    smp.compliance = smp.stiffness.cwiseInverse();
+    smp.rest_strain = model_.RestStrainAt(s);
+    smp.mass = p.mass.diagonal();
+    smp.implicit_compliance = smp.compliance;
+    return smp;
+  };
+  for (int i = 0; i + 1 < n; ++i) {
+    const double a = grid_[i], b = grid_[i + 1], h = b - a;
+    samples_[3 * i + 0] = make(a);
+    samples_[3 * i + 1] = make(a + 0.5 * h);
+    samples_[3 * i + 2] = make(b - 1e-9 * h);
+  }
+  const double EI = std::max(samples_[0].stiffness(0), samples_[0].stiffness(1));
+  const double L = model_.length;
+  scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
+
+  const int stages = 4 * (n - 1);
+  for (auto* v : {&strain_now_, &strain1_, &strain2_, &twist_now_, &twist1_, &twist2_})
+    v->assign(stages, Vec6::Zero());
+  position_now_.assign(stages, Vec3::Zero());
+  position1_.assign(stages, Vec3::Zero());
+  state_.Resize(n);
+  for (int i = 0; i < n; ++i) state_.s[i] = grid_[i];
+  trial_ = state_;
+}
+
+void Bdf2ShootingStepper::SetImplicitCompliance(double c0) {
+  if (c0 == current_c0_) return;
+  for (Sample& smp : samples_)
+    smp.implicit_compliance = (smp.stiffness + c0 * smp.damping).cwiseInverse();
+  current_c0_ = c0;
+}
+
+Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, bool statics,
+                                   const Vec6& x, Mat6* J) {
+  const int n = static_cast<int>(grid_.size());
+  const Vec6 W0 = scale_.cwiseProduct(x);
+  DynState y;
+  y.p = in.base_pose.p;
+  y.R = in.base_pose.R;
+  y.m = W0.head<3>();
+  y.n = W0.tail<3>();
+  y.w = statics ? Vec3::Zero() : Vec3(in.base_twist_B.head<3>());
+  y.v = statics ? Vec3::Zero() : Vec3(in.base_twist_B.tail<3>());
+  DynTangent dy;
+  if (J) {
+    for (Mat36* t : {&dy.p, &dy.R[0], &dy.R[1], &dy.R[2], &dy.m, &dy.n, &dy.w, &dy.v})
+      t->setZero();
+    dy.m.leftCols<3>() = scale_.head<3>().asDiagonal();
+    dy.n.rightCols<3>() = scale_.tail<3>().asDiagonal();
+  }
+  const StaticLoads& loads = in.loads;
+  auto f_at = [&](const Sample& smp) -> Vec3 {
+    return smp.mass(5) * loads.gravity_W + loads.distributed_force_W;
+  };
+  // History terms written so that a constant history gives exactly zero rates:
+  // ξ_t = c0 ξ + ξʰ with ξʰ = c2 (ξ₂ − ξ₁) − c0 ξ₁ (c1 = −c0 − c2), likewise for V.
+  auto history = [&](int q, Vec6* xi_h, Vec6* V_h) {
+    if (statics) return;
+    const double* a = strain1_[q].data();
+    const double* b = strain2_[q].data();
+    const double* u = twist1_[q].data();
+    const double* z = twist2_[q].data();
+    for (int k = 0; k < 6; ++k) {
+      (*xi_h)(k) = c.c2 * (b[k] - a[k]) - c.c0 * a[k];
+      (*V_h)(k) = c.c2 * (z[k] - u[k]) - c.c0 * u[k];
+    }
+  };
+  auto record_node = [&](int i, const Vec6& xi) {
+    trial_.position_W[i] = y.p;
+    trial_.rotation_WB[i] = y.R;
+    trial_.wrench_B[i].head<3>() = y.m;
+    trial_.wrench_B[i].tail<3>() = y.n;
+    trial_.twist_B[i].head<3>() = y.w;
+    trial_.twist_B[i].tail<3>() = y.v;
+    trial_.strain[i] = xi;
+  };
+
+  Vec6 xh = Vec6::Zero(), Vh = Vec6::Zero();
+  for (int i = 0; i + 1 < n; ++i) {
+    const double h = grid_[i + 1] - grid_[i];
+    const Sample& s0 = samples_[3 * i];
+    const Sample& sm = samples_[3 * i + 1];
+    const Sample& s1 = samples_[3 * i + 2];
+    const int q = 4 * i;
+    history(q, &xh, &Vh);
+    position_now_[q] = y.p;
+    const DynState k1 =
+        Derivative(s0, f_at(s0), y, xh, Vh, c.c0, statics, &strain_now_[q], &twist_now_[q]);
+    record_node(i, strain_now_[q]);
+    const DynState y2 = Axpy(y, 0.5 * h, k1);
+    history(q + 1, &xh, &Vh);
+    position_now_[q + 1] = y2.p;
+    const DynState k2 = Derivative(sm, f_at(sm), y2, xh, Vh, c.c0, statics, &strain_now_[q + 1],
+                                   &twist_now_[q + 1]);
+    const DynState y3 = Axpy(y, 0.5 * h, k2);
+    history(q + 2, &xh, &Vh);
+    position_now_[q + 2] = y3.p;
+    const DynState k3 = Derivative(sm, f_at(sm), y3, xh, Vh, c.c0, statics, &strain_now_[q + 2],
+                                   &twist_now_[q + 2]);
+    const DynState y4 = Axpy(y, h, k3);
+    history(q + 3, &xh, &Vh);
+    position_now_[q + 3] = y4.p;
+    const DynState k4 = Derivative(s1, f_at(s1), y4, xh, Vh, c.c0, statics, &strain_now_[q + 3],
+                                   &twist_now_[q + 3]);
+    if (J) {
+      const DynTangent t1 = TangentDerivative(s0, f_at(s0), y, dy, strain_now_[q], c.c0, statics);
+      const DynTangent t2 = TangentDerivative(sm, f_at(sm), y2, Axpy(dy, 0.5 * h, t1),
+                                              strain_now_[q + 1], c.c0, statics);
+      const DynTangent t3 = TangentDerivative(sm, f_at(sm), y3, Axpy(dy, 0.5 * h, t2),
+                                              strain_now_[q + 2], c.c0, statics);
+      const DynTangent t4 = TangentDerivative(s1, f_at(s1), y4, Axpy(dy, h, t3),
+                                              strain_now_[q + 3], c.c0, statics);
+      Rk4Update(h, t1, t2, t3, t4, &dy);
+    }
+    Rk4Update(h, k1, k2, k3, k4, &y);
+  }
+  // The tip node: its strain from the last stage's section with the final wrench.
+  const int q_last = 4 * (n - 2) + 3;
+  Vec6 W_tip;
+  W_tip << y.m, y.n;
+  const Sample& s_tip = samples_[3 * (n - 2) + 2];
+  Vec6 xi_h_tip = Vec6::Zero(), V_h_tip = Vec6::Zero();
+  history(q_last, &xi_h_tip, &V_h_tip);
+  const Vec6 xi_tip =
+      statics ? Vec6(s_tip.rest_strain + s_tip.compliance.cwiseProduct(W_tip))
+              : Vec6(s_tip.rest_strain +
+                     s_tip.implicit_compliance.cwiseProduct(
+                         W_tip - s_tip.damping.cwiseProduct(c.c0 * s_tip.rest_strain + xi_h_tip)));
+  record_node(n - 1, xi_tip);
+  if (J) {
+    J->topRows<3>() = dy.m;
+    J->bottomRows<3>() = dy.n;
+    if (loads.tip_moment_frame == LoadFrame::kWorld)
+      J->topRows<3>() -= TransposeTimesFixed(dy, loads.tip_moment);
+    if (loads.tip_force_frame == LoadFrame::kWorld)
+      J->bottomRows<3>() -= TransposeTimesFixed(dy, loads.tip_force);
+    *J = scale_.cwiseInverse().asDiagonal() * *J;
+  }
+  return TipResidual(y, loads, scale_);
+}
+
+namespace {
+
+// The shooting problem in the form ceres::TinySolver expects, with the exact Jacobian.
+struct StepCost {
+  using Scalar = double;
+  enum { NUM_RESIDUALS = 6, NUM_PARAMETERS = 6 };
+  Bdf2ShootingStepper* stepper;
+  const StepInput* input;
+  const Coefficients* c;
+  bool statics;
+  int* shots;
+  Mat6* last_jacobian;
+
+  bool operator()(const double* x_ptr, double* r_ptr, double* J_ptr) const {
+    const Eigen::Map<const Vec6> x(x_ptr);
+    Eigen::Map<Vec6> r(r_ptr);
+    ++*shots;
+    if (J_ptr) {
+      Mat6 J;
+      r = stepper->Residual(*input, *c, statics, x, &J);
+      Eigen::Map<Mat6> J_out(J_ptr);
+      J_out = J;
+      *last_jacobian = J;
+    } else {
+      r = stepper->Residual(*input, *c, statics, x);
+    }
+    return r.allFinite();
+  }
+};
+
+}  // namespace
+
+bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& c, bool statics,
+                                    StepSummary* summary) {
+  // 1. Newton with the last Jacobian, kept current by Broyden's update, from an extrapolation
+  //    of the last steps' unknowns. A Jacobian from another c0 (statics, another step size) is
+  //    replaced by the exact one first.
+  Vec6 x = x_;
+  if (!statics && steps_taken_ >= 3)
+    x = 3 * x_ - 3 * x_prev_ + x_prev2_;  // quadratic: fewest shots on the peer problem
+  else if (!statics && steps_taken_ >= 2)
+    x = 2 * x_ - x_prev_;
+  Vec6 r;
+  if (jacobian_c0_ != c.c0) {
+    r = Residual(input, c, statics, x, &jacobian_);
+    ++summary->shots;
+    jacobian_c0_ = c.c0;
+  } else {
+    r = Residual(input, c, statics, x);
+    ++summary->shots;
+  }
+  Mat6 J = jacobian_;
+  Eigen::PartialPivLU<Mat6> lu(J);
+  bool ok = false;
+  for (int it = 0; it < options_.max_iterations; ++it) {
+    const double norm = r.norm();
+    if (!std::isfinite(norm)) break;
+    if (norm < options_.tolerance) {
+      ok = true;
+      break;
+    }
+    const Vec6 dx = -lu.solve(r);
+    const Vec6 r_new = Residual(input, c, statics, x + dx);
+    ++summary->shots;
+    ++summary->iterations;
+    if (!(r_new.allFinite() && r_new.norm() < 0.5 * norm)) break;
+    J += (r_new - r - J * dx) * dx.transpose() / dx.squaredNorm();
+    lu.compute(J);
+    x += dx;
+    r = r_new;
+  }
+  if (ok) {
+    summary->residual = r.norm();
+    jacobian_ = J;
+    x_prev2_ = x_prev_;
+    x_prev_ = x_;
+    x_ = x;
+    return true;
+  }
+
+  // 2. Levenberg–Marquardt with the exact Jacobian, from the last good unknowns.
+  Mat6 J_lm = jacobian_;
+  const StepCost cost{this, &input, &c, statics, &summary->shots, &J_lm};
+  ceres::TinySolver<StepCost> lm;
+  lm.options.max_num_iterations = options_.max_iterations;
+  lm.options.cost_threshold = 0.5 * options_.tolerance * options_.tolerance;
+  lm.options.gradient_tolerance = 0.0;
+  lm.options.parameter_tolerance = 1e-15;
+  lm.options.function_tolerance = 0.0;
+  Vec6 x_lm = x_;
+  const auto& s = lm.Solve(cost, &x_lm);
+  summary->iterations += s.iterations;
+  const Vec6 r_final = Residual(input, c, statics, x_lm);  // leaves the trial state at x_lm
+  ++summary->shots;
+  summary->residual = r_final.norm();
+  if (!(r_final.allFinite() && summary->residual < options_.tolerance)) {
+    summary->status = r_final.allFinite() ? SolveStatus::kMaxIterations : SolveStatus::kNonFinite;
+    return false;
+  }
+  jacobian_ = J_lm;
+  jacobian_c0_ = c.c0;
+  x_prev2_ = x_prev_;
+  x_prev_ = x_;
+  x_ = x_lm;
+  return true;
+}
+
+void Bdf2ShootingStepper::Commit(double h) {
+  std::swap(strain2_, strain1_);
+  std::swap(strain1_, strain_now_);
+  std::swap(twist2_, twist1_);
+  std::swap(twist1_, twist_now_);
+  std::swap(position1_, position_now_);
+  std::swap(state_, trial_);
+  time_ += h;
+  last_dt_ = h;
+  ++steps_taken_;
+}
+
+StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
+  const auto t0 = std::chrono::steady_clock::now();
+  StepSummary summary;
+  // A rigid-body guess is good enough for moderate preloads; the statics solver's continuation
+  // is the tool for large ones (its solution can seed x through this same call).
+  Vec6 W;
+  {
+    const Vec3 total = model_.length * (samples_[1].mass(5) * input.loads.gravity_W +
+                                        input.loads.distributed_force_W) +
+                       input.loads.tip_force;
+    W << Vec3::Zero(), input.base_pose.R.transpose() * total;
+  }
+  x_ = W.cwiseQuotient(scale_);
+  jacobian_.setIdentity();
+  steps_taken_ = 0;
+  const Coefficients c{};
+  bool ok = false;
+  jacobian_c0_ = -1.0;  // force a finite-difference Jacobian
+  ok = SolveStep(input, c, true, &summary);
+  if (!ok) {
+    summary.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return summary;
+  }
+  x_prev_ = x_;
+  x_prev2_ = x_;
+  // At rest: both history levels equal the equilibrium, twists zero.
+  std::copy(strain_now_.begin(), strain_now_.end(), strain1_.begin());
+  std::copy(strain_now_.begin(), strain_now_.end(), strain2_.begin());
+  std::copy(position_now_.begin(), position_now_.end(), position1_.begin());
+  std::swap(state_, trial_);
+  for (auto* v : {&twist1_, &twist2_}) std::fill(v->begin(), v->end(), Vec6::Zero());
+  time_ = 0.0;
+  last_dt_ = 0.0;
+  steps_taken_ = 0;
+  initialized_ = true;
+  summary.status = SolveStatus::kConverged;
+  summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return summary;
+}
+
+bool Bdf2ShootingStepper::Attempt(const StepInput& input, double h, StepSummary* summary) {
+  const Coefficients c = Bdf2Weights(h, last_dt_);
+  SetImplicitCompliance(c.c0);
+  if (SolveStep(input, c, false, summary)) {
+    Commit(h);
+    return true;
+  }
+  return false;
+}
+
+StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
+  const auto t0 = std::chrono::steady_clock::now();
+  StepSummary summary;
+  if (!initialized_) {
+    summary.status = SolveStatus::kNotRun;
+    return summary;
+  }
+  // Try the whole step; on failure, 2^k equal sub-steps for k = 1 … max_halvings. Sub-steps
+  // commit as they go, so a failure part-way leaves the last converged sub-step.
+  bool ok = Attempt(input, options_.dt, &summary);
+  for (int k = 1; !ok && k <= options_.max_halvings; ++k) {
+    summary.halvings = k;
+    const int parts = 1 << k;
+    const double h = options_.dt / parts;
+    ok = true;
+    for (int p = 0; p < parts && ok; ++p) ok = Attempt(input, h, &summary);
+    if (!ok) break;
+  }
+  if (ok) summary.status = SolveStatus::kConverged;
+  summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return summary;
+}
+
+RodEnergy Bdf2ShootingStepper::Energy(const StaticLoads& loads) const {
+  RodEnergy e;
+  const int n = static_cast<int>(grid_.size());
+  static constexpr double kWeights[4] = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
+  static constexpr int kSample[4] = {0, 1, 1, 2};
+  for (int i = 0; i + 1 < n; ++i) {
+    const double h = grid_[i + 1] - grid_[i];
+    for (int j = 0; j < 4; ++j) {
+      const int q = 4 * i + j;
+      const Sample& smp = samples_[3 * i + kSample[j]];
+      const double w = h * kWeights[j];
+      const Vec6 dxi = strain1_[q] - smp.rest_strain;
+      e.kinetic += w * 0.5 * twist1_[q].dot(smp.mass.cwiseProduct(twist1_[q]));
+      e.elastic += w * 0.5 * dxi.dot(smp.stiffness.cwiseProduct(dxi));
+      e.gravity -= w * smp.mass(5) * loads.gravity_W.dot(position1_[q]);
+    }
+  }
+  return e;
+}
+
+Bdf2ShootingStepper::Snapshot Bdf2ShootingStepper::Save() const {
+  Snapshot s;
+  s.time = time_;
+  s.last_dt = last_dt_;
+  s.x = x_;
+  s.x_prev = x_prev_;
+  s.x_prev2 = x_prev2_;
+  s.jacobian_c0 = jacobian_c0_;
+  s.jacobian = jacobian_;
+  s.steps_taken = steps_taken_;
+  s.strain1 = strain1_;
+  s.strain2 = strain2_;
+  s.twist1 = twist1_;
+  s.twist2 = twist2_;
+  s.position1 = position1_;
+  s.state = state_;
+  return s;
+}
+
+void Bdf2ShootingStepper::Restore(const Snapshot& s) {
+  if (s.strain1.size() != strain1_.size())
+    throw std::invalid_argument("Snapshot is from a stepper with another grid");
+  time_ = s.time;
+  last_dt_ = s.last_dt;
+  x_ = s.x;
+  x_prev_ = s.x_prev;
+  x_prev2_ = s.x_prev2;
+  jacobian_c0_ = s.jacobian_c0;
+  jacobian_ = s.jacobian;
+  steps_taken_ = s.steps_taken;
+  std::copy(s.strain1.begin(), s.strain1.end(), strain1_.begin());
+  std::copy(s.strain2.begin(), s.strain2.end(), strain2_.begin());
+  std::copy(s.twist1.begin(), s.twist1.end(), twist1_.begin());
+  std::copy(s.twist2.begin(), s.twist2.end(), twist2_.begin());
+  std::copy(s.position1.begin(), s.position1.end(), position1_.begin());
+  if (s.state.size() != state_.size())
+    throw std::invalid_argument("Snapshot is from a stepper with another grid");
+  state_ = s.state;
+  initialized_ = true;
+}
+
+}  // namespace cosserat

@@ -1,0 +1,359 @@
+// The BDF2 shooting stepper against the truth: rest, Euler–Bernoulli, torsion and axial
+// frequencies, second-order convergence in dt, energy, the quasi-static limit, restart.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <vector>
+
+#include "cosserat/strong/bdf2_stepper.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+
+namespace cosserat {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+RodModel Steel(double L, double r) {
+  return RodModel::Uniform(L, CrossSection::Circle(r), Material::FromShearModulus(200e9, 80e9, 8000));
+}
+
+// Frequency (Hz) of the largest spectral peak of x in [f_lo, f_hi]: Hann-windowed discrete-time
+// Fourier transform, scanned then refined by golden section. Fails the test if the peak sits on
+// the edge of the bracket (then the bracket, not the signal, decided the answer).
+double PeakFrequency(const std::vector<double>& x, double dt, double f_lo, double f_hi) {
+  const int n = static_cast<int>(x.size());
+  double mean = 0;
+  for (double v : x) mean += v / n;
+  auto power = [&](double f) {
+    std::complex<double> sum = 0;
+    for (int k = 0; k < n; ++k) {
+      const double w = 0.5 - 0.5 * std::cos(2 * kPi * k / (n - 1));
+      sum += w * (x[k] - mean) * std::polar(1.0, -2 * kPi * f * k * dt);
+    }
+    return std::norm(sum);
+  };
+  const int scan = 400;
+  int best = 0;
+  double best_p = -1;
+  for (int i = 0; i <= scan; ++i) {
+    const double p = power(f_lo + (f_hi - f_lo) * i / scan);
+    if (p > best_p) best_p = p, best = i;
+  }
+  EXPECT_GT(best, 0) << "peak at the lower edge of the bracket";
+  EXPECT_LT(best, scan) << "peak at the upper edge of the bracket";
+  double a = f_lo + (f_hi - f_lo) * std::max(best - 1, 0) / scan;
+  double b = f_lo + (f_hi - f_lo) * std::min(best + 1, scan) / scan;
+  const double g = 0.5 * (std::sqrt(5.0) - 1);
+  for (int it = 0; it < 60; ++it) {
+    const double c = b - g * (b - a), d = a + g * (b - a);
+    (power(c) > power(d) ? b : a) = (power(c) > power(d) ? d : c);
+  }
+  return 0.5 * (a + b);
+}
+
+TEST(Bdf2Dynamics, RodAtRestInEquilibriumStaysThere) {
+  const RodModel model = Steel(0.5, 0.001);
+  Bdf2ShootingStepper stepper(model, 40);
+  StepInput in;
+  in.loads.gravity_W = Vec3(-9.81, 0, 0);
+  in.loads.tip_force = Vec3(-0.02 * 9.81, 0, 0);
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  const Vec3 tip0 = stepper.state().tip_position_W();
+  // The equilibrium is the same discrete equations with zero rates, and BDF2 of a constant
+  // history is exactly zero: only round-off can move the tip.
+  for (int i = 0; i < 1000; ++i) ASSERT_TRUE(stepper.Step(in).converged()) << i;
+  EXPECT_LT((stepper.state().tip_position_W() - tip0).norm(), 1e-10 * model.length);
+  EXPECT_NEAR(stepper.time(), 1000 * stepper.options().dt, 1e-12);
+}
+
+TEST(Bdf2Dynamics, EquilibriumMatchesStaticSolver) {
+  const RodModel model = Steel(0.5, 0.001);
+  Bdf2ShootingStepper stepper(model, 40);
+  StaticShootingSolver statics(model, 40);
+  StepInput in;
+  in.loads.gravity_W = Vec3(-9.81, 0, 0);
+  in.loads.tip_force = Vec3(-0.3, 0.1, 0);
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  ASSERT_TRUE(statics.Solve(in.base_pose, in.loads).converged());
+  // Same RK4 on the same grid and the same equations: agreement to the solve tolerances.
+  EXPECT_LT((stepper.state().tip_position_W() - statics.state().tip_position_W()).norm(), 1e-9);
+}
+
+// Released small tip load on a slender cantilever (r/L = 1/100): the first two bending
+// frequencies against Euler–Bernoulli, ω_n = (β_n L)² sqrt(EI/(ρA L⁴)).
+TEST(Bdf2Dynamics, FirstTwoBendingFrequencies) {
+  const double L = 1.0, r = 0.01;
+  const RodModel model = Steel(L, r);
+  const double EI = 200e9 * kPi * std::pow(r, 4) / 4, rhoA = 8000 * kPi * r * r;
+  const double f1 = 1.8751040687 * 1.8751040687 * std::sqrt(EI / (rhoA * std::pow(L, 4))) / (2 * kPi);
+  const double f2 = 4.6940911330 * 4.6940911330 * std::sqrt(EI / (rhoA * std::pow(L, 4))) / (2 * kPi);
+  Bdf2Options opt;
+  // BDF2 shifts a frequency by −(ω dt)²/3: at ω2 dt = 0.12 that is −0.48 % for mode 2 and
+  // −0.01 % for mode 1. Smaller dt is not better for shooting: the bending exponent
+  // λL = sqrt(5.3/(ω1 dt)) ≈ 17 already amplifies round-off by e^17 ≈ 2e7, so the residual
+  // tolerance is 1e-8 (round-off 1e-16 × 2e7 ≈ 2e-9 sits below it).
+  opt.dt = 0.12 / (2 * kPi * f2);
+  opt.tolerance = 1e-8;
+  Bdf2ShootingStepper stepper(model, 41, opt);
+  StepInput in;
+  in.loads.tip_force = Vec3(1e-3 * 3 * EI / (L * L), 0, 0);  // tip deflection 1e-3 L: linear
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads.tip_force.setZero();
+  std::vector<double> tip_x;
+  const int steps = static_cast<int>(6.0 / f1 / opt.dt);
+  for (int i = 0; i < steps; ++i) {
+    ASSERT_TRUE(stepper.Step(in).converged()) << "step " << i;
+    tip_x.push_back(stepper.state().tip_position_W().x());
+  }
+  // Shear and rotary inertia lower mode 2 by ~(β2 r/L)² ≈ 0.2 %; RK4 in s is far below that.
+  EXPECT_NEAR(PeakFrequency(tip_x, opt.dt, 0.7 * f1, 1.3 * f1) / f1, 1.0, 0.01);
+  EXPECT_NEAR(PeakFrequency(tip_x, opt.dt, 0.7 * f2, 1.3 * f2) / f2, 1.0, 0.01);
+}
+
+// Torsion (1/4L) sqrt(G/ρ) and axial (1/4L) sqrt(E/ρ) fundamentals of a clamped–free rod.
+//
+// Shooting and fine time steps do not mix: at BDF2 weight c0 = 1.5/dt a wave of speed c grows
+// along s like e^{c0 s / c}, so round-off at the base is amplified by e^{c0 L / c} at the tip.
+// Resolving a quarter-wave fundamental to ω dt = 0.12 gives c0 L / c_wave = 19.6 for the wave
+// itself (tolerable: torsion and stretch stay linear and decoupled) but 19.6 c_wave / c for every
+// slower wave. Short, thick rods keep bending slow enough; for the axial test the shear waves
+// (c_s = 0.6 c_a for steel) would give e^33, so that rod is given a shear stiffness of 4 EA
+// (c_s = 2 c_a). The axial frequency does not depend on the shear stiffness.
+void ExpectFundamental(const RodModel& model, double L, double wave_speed, bool torsion,
+                       double static_load, double omega_dt, double tolerance) {
+  const double f = wave_speed / (4 * L);
+  Bdf2Options opt;
+  opt.dt = omega_dt / (2 * kPi * f);  // BDF2 shifts the frequency by −(ω dt)²/3
+  opt.tolerance = tolerance;
+  Bdf2ShootingStepper stepper(model, 41, opt);
+  StepInput in;
+  (torsion ? in.loads.tip_moment : in.loads.tip_force) = Vec3(0, 0, static_load);
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads = StaticLoads{};
+  std::vector<double> signal;
+  const int steps = static_cast<int>(8.0 / f / opt.dt);
+  for (int i = 0; i < steps; ++i) {
+    ASSERT_TRUE(stepper.Step(in).converged()) << "step " << i;
+    const Mat3& R = stepper.state().tip_rotation_WB();
+    signal.push_back(torsion ? std::atan2(R(1, 0), R(0, 0)) : stepper.state().tip_position_W().z());
+  }
+  const double measured = PeakFrequency(signal, opt.dt, 0.7 * f, 1.3 * f) / f;
+  EXPECT_NEAR(measured, 1.0, 0.01);
+}
+
+TEST(Bdf2Dynamics, TorsionalFundamental) {
+  const double L = 0.05, r = 0.005, GJ = 80e9 * kPi * std::pow(r, 4) / 2;
+  // ω dt = 0.12: BDF2 shift −0.48 % (measured −0.47 %). Round-off floor of the residual:
+  // eps · e^19.6 in the torsion direction, below 1e-8.
+  ExpectFundamental(Steel(L, r), L, std::sqrt(80e9 / 8000), true, 1e-4 * GJ / L, 0.12, 1e-8);
+}
+
+TEST(Bdf2Dynamics, AxialFundamental) {
+  const double L = 0.025, r = 0.005, A = kPi * r * r, I = kPi * std::pow(r, 4) / 4;
+  const double kappa = 4 * 200e9 / 80e9;  // κ G A = 4 E A
+  const RodModel model = RodModel::Uniform(L, CrossSection::Explicit(A, I, I, 2 * I, kappa),
+                                           Material::FromShearModulus(200e9, 80e9, 8000));
+  // ω dt = 0.15: BDF2 shift −0.75 %, and the axial wave's own exponent c0 L / c_a = 15.7. At
+  // ω dt = 0.12 (exponent 19.6) the residual's round-off floor was 4e-7; here it is about 50
+  // times lower, so 1e-7 (1e-5 of the released load) is reachable at every step.
+  ExpectFundamental(model, L, std::sqrt(200e9 / 8000), false, 1e-4 * 200e9 * A, 0.15, 1e-7);
+}
+
+// A tip load ramped in very smoothly from rest; the tip trajectory sampled at common times for four
+// step sizes. The largest difference between successive runs shrinks by 2² for a second-order
+// method.
+TEST(Bdf2Dynamics, SecondOrderInTime) {
+  const double L = 0.5, r = 0.001;
+  const RodModel model = Steel(L, r);
+  const double EI = 200e9 * kPi * std::pow(r, 4) / 4, rhoA = 8000 * kPi * r * r;
+  const double w1 = 1.8751040687 * 1.8751040687 * std::sqrt(EI / (rhoA * std::pow(L, 4)));
+  const double period = 2 * kPi / w1, T_ramp = period;
+  const double P = 1e-2 * 3 * EI / (L * L);
+  const int samples = 32;  // over two periods
+  auto trajectory = [&](int steps_per_sample) {
+    Bdf2Options opt;
+    opt.dt = 2 * period / (samples * steps_per_sample);
+    // The finest step has ω1 dt = 0.025, bending exponent λL = sqrt(5.3/0.025) ≈ 15: round-off
+    // grows by e^15 ≈ 3e6, so the residual tolerance is 1e-9 (the trajectory differences
+    // measured below are 1e-6 and up).
+    opt.tolerance = 1e-9;
+    // The spatial exponent λ grows like 1/sqrt(dt) and RK4 in s errs like (λh)⁵ per segment, so
+    // the grid must keep λh small at the finest dt (λh = 0.18 with 81 nodes) or the spatial
+    // error, growing as dt shrinks, hides the temporal order.
+    Bdf2ShootingStepper stepper(model, 81, opt);
+    StepInput in;
+    EXPECT_TRUE(stepper.InitializeAtRest(in).converged());
+    std::vector<Vec3> out;
+    for (int i = 1; i <= samples * steps_per_sample; ++i) {
+      const double t = i * opt.dt;
+      // A ramp with three continuous derivatives (s⁴(35 − 84s + 70s² − 20s³)), so it excites no
+      // mode that the coarse steps cannot resolve.
+      const double u = std::min(1.0, t / T_ramp);
+      const double ramp = u * u * u * u * (35 - 84 * u + 70 * u * u - 20 * u * u * u);
+      in.loads.tip_force = Vec3(-P * ramp, 0, 0);
+      EXPECT_TRUE(stepper.Step(in).converged()) << steps_per_sample << " step " << i;
+      if (i % steps_per_sample == 0) out.push_back(stepper.state().tip_position_W());
+    }
+    return out;
+  };
+  auto max_difference = [&](const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    double m = 0;
+    for (int k = 0; k < samples; ++k) m = std::max(m, (a[k] - b[k]).norm());
+    return m;
+  };
+  const auto a = trajectory(2), b = trajectory(4), c = trajectory(8), d = trajectory(16);
+  const double e1 = max_difference(a, b), e2 = max_difference(b, c), e3 = max_difference(c, d);
+  // Order 2: ratios of 4. The coarsest run has ω1 dt = 0.2, where higher-order terms still
+  // show, so the bound on the first ratio is looser.
+  EXPECT_NEAR(std::log2(e1 / e2), 2.0, 0.3) << e1 << " " << e2 << " " << e3;
+  EXPECT_NEAR(std::log2(e2 / e3), 2.0, 0.15) << e1 << " " << e2 << " " << e3;
+}
+
+TEST(Bdf2Dynamics, DampedEnergyDecreasesEveryStep) {
+  RodModel model = Steel(0.5, 0.001);
+  Material mat = Material::FromShearModulus(200e9, 80e9, 8000);
+  const CrossSection sec = CrossSection::Circle(0.001);
+  mat.damping.bending = 1e-4 * 200e9 * sec.I1;  // relaxation time 0.1 ms on bending
+  mat.damping.torsion = 1e-4 * 80e9 * sec.torsion_constant;
+  mat.damping.shear = 1e-4 * 80e9 * sec.area;
+  mat.damping.extension = 1e-4 * 200e9 * sec.area;
+  model = RodModel::Uniform(0.5, sec, mat);
+  Bdf2ShootingStepper stepper(model, 40);
+  StepInput in;
+  in.loads.tip_force = Vec3(-0.1, 0, 0);
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads.tip_force.setZero();
+  double previous = stepper.Energy(in.loads).total();
+  for (int i = 0; i < 500; ++i) {
+    ASSERT_TRUE(stepper.Step(in).converged());
+    const double e = stepper.Energy(in.loads).total();
+    EXPECT_LT(e, previous) << "step " << i;
+    previous = e;
+  }
+}
+
+// Undamped: the energy lost per step should be BDF2's own numerical dissipation, which for a
+// mode with ω dt = θ scales the amplitude by about 1 − θ⁴/4 per step.
+TEST(Bdf2Dynamics, UndampedEnergyLossIsBdf2Dissipation) {
+  const double L = 0.5, r = 0.001;
+  const RodModel model = Steel(L, r);
+  const double EI = 200e9 * kPi * std::pow(r, 4) / 4, rhoA = 8000 * kPi * r * r;
+  const double w1 = 1.8751040687 * 1.8751040687 * std::sqrt(EI / (rhoA * std::pow(L, 4)));
+  Bdf2Options opt;
+  opt.dt = 0.05 / w1;
+  Bdf2ShootingStepper stepper(model, 40, opt);
+  StepInput in;
+  in.loads.tip_force = Vec3(-1e-3 * 3 * EI / (L * L), 0, 0);
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads.tip_force.setZero();
+  // Let the higher modes die out first: mode 2 (ω dt = 0.31) loses 2.4e-3 of its amplitude per
+  // step, so after 25 periods of mode 1 (3100 steps) its energy is below 1e-6 of the start,
+  // while mode 1 has lost 1 %. Then measure over whole periods of mode 1.
+  const int period = static_cast<int>(std::lround(2 * kPi / w1 / opt.dt));
+  for (int i = 0; i < 25 * period; ++i) ASSERT_TRUE(stepper.Step(in).converged());
+  const double e0 = stepper.Energy(in.loads).total();
+  const int steps = 10 * period;
+  for (int i = 0; i < steps; ++i) ASSERT_TRUE(stepper.Step(in).converged());
+  const double e1 = stepper.Energy(in.loads).total();
+  const double theta = w1 * opt.dt;
+  const double predicted = std::pow(1 - std::pow(theta, 4) / 4, 2 * steps);  // energy ∝ amp²
+  EXPECT_LT(e1, e0);
+  // 20 % of the predicted loss: the θ⁴/4 law is the leading term at θ = 0.05.
+  EXPECT_NEAR(e1 / e0, predicted, 0.2 * (1 - predicted)) << "measured " << e1 / e0;
+}
+
+// A very slow ramp of the tip load with damping ends at the static solution.
+TEST(Bdf2Dynamics, QuasiStaticLimitMatchesStatics) {
+  Material mat = Material::FromShearModulus(200e9, 80e9, 8000);
+  const CrossSection sec = CrossSection::Circle(0.001);
+  mat.damping.bending = 2e-3 * 200e9 * sec.I1;
+  mat.damping.torsion = 2e-3 * 80e9 * sec.torsion_constant;
+  mat.damping.shear = 2e-3 * 80e9 * sec.area;
+  mat.damping.extension = 2e-3 * 200e9 * sec.area;
+  const RodModel model = RodModel::Uniform(0.5, sec, mat);
+  Bdf2Options opt;
+  opt.dt = 5e-3;
+  Bdf2ShootingStepper stepper(model, 40, opt);
+  StepInput in;
+  in.loads.gravity_W = Vec3(-9.81, 0, 0);
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  const Vec3 P(-0.3, 0.2, 0);
+  const double T = 4.0;  // s, about 20 periods of the first mode
+  const int steps = static_cast<int>(T / opt.dt);
+  for (int i = 1; i <= steps + 200; ++i) {
+    const double s = std::min(1.0, i * opt.dt / T);
+    in.loads.tip_force = P * (s * s * (3 - 2 * s));  // smooth start and stop
+    ASSERT_TRUE(stepper.Step(in).converged()) << i;
+  }
+  StaticShootingSolver statics(model, 40);
+  ASSERT_TRUE(statics.Solve(in.base_pose, in.loads).converged());
+  EXPECT_LT((stepper.state().tip_position_W() - statics.state().tip_position_W()).norm(),
+            1e-4 * model.length);
+}
+
+TEST(Bdf2Dynamics, SnapshotRestartsTheSameRun) {
+  Bdf2ShootingStepper stepper(Steel(0.5, 0.001), 20);
+  StepInput in;
+  in.loads.tip_force = Vec3(-0.1, 0, 0);
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads.tip_force.setZero();
+  in.loads.gravity_W = Vec3(0, -9.81, 0);
+  for (int i = 0; i < 10; ++i) stepper.Step(in);
+  const Bdf2ShootingStepper::Snapshot saved = stepper.Save();
+  for (int i = 0; i < 10; ++i) stepper.Step(in);
+  const Vec3 first = stepper.state().tip_position_W();
+  const double t_first = stepper.time();
+  stepper.Restore(saved);
+  for (int i = 0; i < 10; ++i) stepper.Step(in);
+  EXPECT_EQ(stepper.time(), t_first);
+  EXPECT_EQ((stepper.state().tip_position_W() - first).norm(), 0.0);  // deterministic
+}
+
+TEST(Bdf2Dynamics, StepBeforeInitializeIsAStatusNotACrash) {
+  Bdf2ShootingStepper stepper(Steel(0.5, 0.001), 20);
+  const StepSummary s = stepper.Step(StepInput{});
+  EXPECT_EQ(s.status, SolveStatus::kNotRun);
+  EXPECT_EQ(stepper.time(), 0.0);
+}
+
+}  // namespace
+}  // namespace cosserat
+
+namespace cosserat {
+namespace {
+
+TEST(Bdf2Dynamics, ShootingJacobianMatchesFiniteDifferences) {
+  Material mat = Material::FromShearModulus(200e9, 80e9, 8000);
+  const CrossSection sec = CrossSection::Circle(0.001);
+  mat.damping.bending = 1e-4 * 200e9 * sec.I1;
+  mat.damping.extension = 1e-4 * 200e9 * sec.area;
+  Bdf2ShootingStepper stepper(RodModel::Uniform(0.5, sec, mat), 21);
+  StepInput in;
+  in.loads.tip_force = Vec3(-0.2, 0.1, 0);
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads.tip_force = Vec3(0.05, 0, 0.1);
+  in.loads.tip_moment = Vec3(0, 0.01, 0.02);
+  in.loads.gravity_W = Vec3(0, -9.81, 0);
+  in.base_twist_B << 0.1, -0.2, 0.3, 0.01, 0.02, -0.01;
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(stepper.Step(in).converged());  // a moving state
+  const double dt = stepper.options().dt;
+  const Bdf2ShootingStepper::Coefficients c{1.5 / dt, -2 / dt, 0.5 / dt};
+  const Vec6 x = (Vec6() << 0.01, -0.3, 0.02, 0.1, -0.05, 0.2).finished();
+  Mat6 J;
+  stepper.Residual(in, c, false, x, &J);
+  // Central differences at h = 1e-6 on dimensionless unknowns: truncation h² times the third
+  // derivative (amplified by the shooting's e^{λL} ≈ 6e3 at this dt) and round-off 1e-16/h.
+  const double h = 1e-6;
+  for (int k = 0; k < 6; ++k) {
+    Vec6 xp = x, xm = x;
+    xp(k) += h;
+    xm(k) -= h;
+    const Vec6 fd = (stepper.Residual(in, c, false, xp) - stepper.Residual(in, c, false, xm)) / (2 * h);
+    EXPECT_LT((fd - J.col(k)).norm(), 1e-6 * std::max(1.0, J.col(k).norm())) << "column " << k;
+  }
+}
+
+}  // namespace
+}  // namespace cosserat
