@@ -434,14 +434,15 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
   else if (!statics && steps_taken_ >= 2)
     x = 2 * x_ - x_prev_;
   Vec6 r;
+  bool fresh = false;  // J is the exact Jacobian at x, not yet Broyden-updated
   if (jacobian_c0_ != c.c0) {
     r = Residual(input, c, statics, x, &jacobian_);
-    ++summary->shots;
     jacobian_c0_ = c.c0;
+    fresh = true;
   } else {
     r = Residual(input, c, statics, x);
-    ++summary->shots;
   }
+  ++summary->shots;
   Mat6 J = jacobian_;
   Eigen::PartialPivLU<Mat6> lu(J);
   bool ok = false;
@@ -456,11 +457,20 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
     const Vec6 r_new = Residual(input, c, statics, x + dx);
     ++summary->shots;
     ++summary->iterations;
-    if (!(r_new.allFinite() && r_new.norm() < 0.5 * norm)) break;
-    J += (r_new - r - J * dx) * dx.transpose() / dx.squaredNorm();
+    if (r_new.allFinite() && r_new.norm() < 0.5 * norm) {
+      J += (r_new - r - J * dx) * dx.transpose() / dx.squaredNorm();
+      fresh = false;
+      x += dx;
+      r = r_new;
+    } else if (!fresh) {
+      // The Broyden Jacobian has drifted: replace it by the exact one at x and retry.
+      r = Residual(input, c, statics, x, &J);
+      ++summary->shots;
+      fresh = true;
+    } else {
+      break;  // a full Newton step failed: leave it to Levenberg–Marquardt
+    }
     lu.compute(J);
-    x += dx;
-    r = r_new;
   }
   if (ok) {
     summary->residual = r.norm();
