@@ -270,6 +270,9 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
     v->assign(stages, Vec6::Zero());
   position_now_.assign(stages, Vec3::Zero());
   position1_.assign(stages, Vec3::Zero());
+  rotation_now_.assign(stages, Mat3::Identity());
+  rotation1_.assign(stages, Mat3::Identity());
+  twist_scale_ << 1, 1, 1, L, L, L;
   state_.Resize(n);
   for (int i = 0; i < n; ++i) state_.s[i] = grid_[i];
   trial_ = state_;
@@ -285,21 +288,58 @@ void Bdf2ShootingStepper::SetImplicitCompliance(double c0) {
 Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, bool statics,
                                    const Vec6& x, Mat6* J) {
   const int n = static_cast<int>(grid_.size());
-  const Vec6 W0 = scale_.cwiseProduct(x);
+  const bool free_free = options_.ends == EndConditions::kFreeFree;
   DynState y;
-  y.p = in.base_pose.p;
-  y.R = in.base_pose.R;
-  y.m = W0.head<3>();
-  y.n = W0.tail<3>();
-  y.w = statics ? Vec3::Zero() : Vec3(in.base_twist_B.head<3>());
-  y.v = statics ? Vec3::Zero() : Vec3(in.base_twist_B.tail<3>());
   DynTangent dy;
   if (J) {
     for (Mat36* t : {&dy.p, &dy.R[0], &dy.R[1], &dy.R[2], &dy.m, &dy.n, &dy.w, &dy.v})
       t->setZero();
-    dy.m.leftCols<3>() = scale_.head<3>().asDiagonal();
-    dy.n.rightCols<3>() = scale_.tail<3>().asDiagonal();
   }
+  if (!free_free) {
+    // Cantilever (eq. 28): pose and twist of the base given, the unknown is W(0).
+    const Vec6 W0 = scale_.cwiseProduct(x);
+    base_now_ = in.base_pose;
+    y.m = W0.head<3>();
+    y.n = W0.tail<3>();
+    y.w = statics ? Vec3::Zero() : Vec3(in.base_twist_B.head<3>());
+    y.v = statics ? Vec3::Zero() : Vec3(in.base_twist_B.tail<3>());
+    if (J) {
+      dy.m.leftCols<3>() = scale_.head<3>().asDiagonal();
+      dy.n.rightCols<3>() = scale_.tail<3>().asDiagonal();
+    }
+  } else {
+    // Free-free (eq. 29): W(0) = −applied wrench, the unknown is V(0). The base pose follows
+    // from BDF2 on the group in coordinates at g₁: g = g₁ Exp(ξ) with ξ̇ = J_r(ξ)⁻¹ V, so
+    // c0 ξ + c2 ξ_back = J_r(ξ)⁻¹ V(0), solved by fixed point (ξ = O(dt), contraction O(dt)).
+    const Vec6 V0 = statics ? Vec6::Zero() : Vec6(twist_scale_.cwiseProduct(x));
+    Vec6 xi = Vec6::Zero();
+    if (!statics) {
+      for (int k = 0; k < 4; ++k) xi = (lie::SE3RightJacobianInverse(xi) * V0 - c.c2 * xi_back_) / c.c0;
+    }
+    base_now_ = lie::Compose(base1_, lie::SE3Exp(xi));
+    y.m = -in.base_wrench_B.head<3>();
+    y.n = -in.base_wrench_B.tail<3>();
+    y.w = V0.head<3>();
+    y.v = V0.tail<3>();
+    if (J && !statics) {
+      // d g(0) = g(0) Exp(τ) with τ = J_r(ξ) dξ ≈ dV(0) / c0 (dropping the O(dt) change of J_r).
+      const Mat6 tau = twist_scale_.asDiagonal() * (1.0 / c.c0);
+      const Mat36 tau_w = tau.topRows<3>(), tau_v = tau.bottomRows<3>();
+      dy.w.leftCols<3>() = twist_scale_.head<3>().asDiagonal();
+      dy.v.rightCols<3>() = twist_scale_.tail<3>().asDiagonal();
+      dy.p = base_now_.R * tau_v;
+      for (int j = 0; j < 3; ++j) {
+        Mat36 tau_x_ej;  // τ_ω × e_j, column by column
+        const int a = (j + 1) % 3, b = (j + 2) % 3;
+        tau_x_ej.row(j).setZero();
+        tau_x_ej.row(a) = tau_w.row(b);
+        tau_x_ej.row(b) = -tau_w.row(a);
+        dy.R[j] = base_now_.R * tau_x_ej;
+      }
+    }
+  }
+  y.p = base_now_.p;
+  y.R = base_now_.R;
   const StaticLoads& loads = in.loads;
   auto f_at = [&](const Sample& smp) -> Vec3 {
     return smp.mass(5) * loads.gravity_W + loads.distributed_force_W;
@@ -336,22 +376,26 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     const int q = 4 * i;
     history(q, &xh, &Vh);
     position_now_[q] = y.p;
+    rotation_now_[q] = y.R;
     const DynState k1 =
         Derivative(s0, f_at(s0), y, xh, Vh, c.c0, statics, &strain_now_[q], &twist_now_[q]);
     record_node(i, strain_now_[q]);
     const DynState y2 = Axpy(y, 0.5 * h, k1);
     history(q + 1, &xh, &Vh);
     position_now_[q + 1] = y2.p;
+    rotation_now_[q + 1] = y2.R;
     const DynState k2 = Derivative(sm, f_at(sm), y2, xh, Vh, c.c0, statics, &strain_now_[q + 1],
                                    &twist_now_[q + 1]);
     const DynState y3 = Axpy(y, 0.5 * h, k2);
     history(q + 2, &xh, &Vh);
     position_now_[q + 2] = y3.p;
+    rotation_now_[q + 2] = y3.R;
     const DynState k3 = Derivative(sm, f_at(sm), y3, xh, Vh, c.c0, statics, &strain_now_[q + 2],
                                    &twist_now_[q + 2]);
     const DynState y4 = Axpy(y, h, k3);
     history(q + 3, &xh, &Vh);
     position_now_[q + 3] = y4.p;
+    rotation_now_[q + 3] = y4.R;
     const DynState k4 = Derivative(s1, f_at(s1), y4, xh, Vh, c.c0, statics, &strain_now_[q + 3],
                                    &twist_now_[q + 3]);
     if (J) {
@@ -514,7 +558,10 @@ void Bdf2ShootingStepper::Commit(double h) {
   std::swap(twist2_, twist1_);
   std::swap(twist1_, twist_now_);
   std::swap(position1_, position_now_);
+  std::swap(rotation1_, rotation_now_);
   std::swap(state_, trial_);
+  base2_ = base1_;
+  base1_ = base_now_;
   time_ += h;
   last_dt_ = h;
   ++steps_taken_;
@@ -523,22 +570,30 @@ void Bdf2ShootingStepper::Commit(double h) {
 StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
   const auto t0 = std::chrono::steady_clock::now();
   StepSummary summary;
-  // A rigid-body guess is good enough for moderate preloads; the statics solver's continuation
-  // is the tool for large ones (its solution can seed x through this same call).
-  Vec6 W;
-  {
+  base1_ = base2_ = input.base_pose;
+  steps_taken_ = 0;
+  jacobian_c0_ = -1.0;  // the first solve computes the exact Jacobian
+  const Coefficients c{};
+  bool ok = false;
+  if (options_.ends == EndConditions::kFreeFree) {
+    // Nothing to solve: W(0) is given, V = 0. The rod is at rest only if the loads balance.
+    x_.setZero();
+    const Vec6 r = Residual(input, c, true, x_);
+    ++summary.shots;
+    summary.residual = r.norm();
+    ok = summary.residual < options_.tolerance;
+    if (!ok) summary.status = SolveStatus::kMaxIterations;  // not an equilibrium
+  } else {
+    // A rigid-body guess is good enough for moderate preloads; large ones are the statics
+    // solver's job (continuation).
     const Vec3 total = model_.length * (samples_[1].mass(5) * input.loads.gravity_W +
                                         input.loads.distributed_force_W) +
                        input.loads.tip_force;
+    Vec6 W;
     W << Vec3::Zero(), input.base_pose.R.transpose() * total;
+    x_ = W.cwiseQuotient(scale_);
+    ok = SolveStep(input, c, true, &summary);
   }
-  x_ = W.cwiseQuotient(scale_);
-  jacobian_.setIdentity();
-  steps_taken_ = 0;
-  const Coefficients c{};
-  bool ok = false;
-  jacobian_c0_ = -1.0;  // force a finite-difference Jacobian
-  ok = SolveStep(input, c, true, &summary);
   if (!ok) {
     summary.wall_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -550,6 +605,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
   std::copy(strain_now_.begin(), strain_now_.end(), strain1_.begin());
   std::copy(strain_now_.begin(), strain_now_.end(), strain2_.begin());
   std::copy(position_now_.begin(), position_now_.end(), position1_.begin());
+  std::copy(rotation_now_.begin(), rotation_now_.end(), rotation1_.begin());
   std::swap(state_, trial_);
   for (auto* v : {&twist1_, &twist2_}) std::fill(v->begin(), v->end(), Vec6::Zero());
   time_ = 0.0;
@@ -565,6 +621,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
 bool Bdf2ShootingStepper::Attempt(const StepInput& input, double h, StepSummary* summary) {
   const Coefficients c = Bdf2Weights(h, last_dt_);
   SetImplicitCompliance(c.c0);
+  xi_back_ = lie::SE3Log(lie::Compose(lie::Inverse(base1_), base2_));
   if (SolveStep(input, c, false, summary)) {
     Commit(h);
     return true;
@@ -616,6 +673,50 @@ RodEnergy Bdf2ShootingStepper::Energy(const StaticLoads& loads) const {
   return e;
 }
 
+RodMomentum Bdf2ShootingStepper::Momentum() const {
+  RodMomentum out;
+  const int n = static_cast<int>(grid_.size());
+  static constexpr double kWeights[4] = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
+  static constexpr int kSample[4] = {0, 1, 1, 2};
+  for (int i = 0; i + 1 < n; ++i) {
+    const double h = grid_[i + 1] - grid_[i];
+    for (int j = 0; j < 4; ++j) {
+      const int q = 4 * i + j;
+      const Sample& smp = samples_[3 * i + kSample[j]];
+      const double w = h * kWeights[j];
+      const Vec3 linear = smp.mass(5) * (rotation1_[q] * twist1_[q].tail<3>());
+      const Vec3 spin = rotation1_[q] * smp.mass.head<3>().cwiseProduct(twist1_[q].head<3>());
+      out.linear_W += w * linear;
+      out.angular_W += w * (position1_[q].cross(linear) + spin);
+    }
+  }
+  return out;
+}
+
+double Bdf2ShootingStepper::Mass() const {
+  double mass = 0;
+  const int n = static_cast<int>(grid_.size());
+  for (int i = 0; i + 1 < n; ++i) {
+    const double h = grid_[i + 1] - grid_[i];
+    mass += h / 6 * (samples_[3 * i].mass(5) + 4 * samples_[3 * i + 1].mass(5) +
+                     samples_[3 * i + 2].mass(5));
+  }
+  return mass;
+}
+
+Vec3 Bdf2ShootingStepper::CentreOfMass_W() const {
+  Vec3 first = Vec3::Zero();
+  const int n = static_cast<int>(grid_.size());
+  static constexpr double kWeights[4] = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
+  static constexpr int kSample[4] = {0, 1, 1, 2};
+  for (int i = 0; i + 1 < n; ++i) {
+    const double h = grid_[i + 1] - grid_[i];
+    for (int j = 0; j < 4; ++j)
+      first += h * kWeights[j] * samples_[3 * i + kSample[j]].mass(5) * position1_[4 * i + j];
+  }
+  return first / Mass();
+}
+
 Bdf2ShootingStepper::Snapshot Bdf2ShootingStepper::Save() const {
   Snapshot s;
   s.time = time_;
@@ -631,6 +732,9 @@ Bdf2ShootingStepper::Snapshot Bdf2ShootingStepper::Save() const {
   s.twist1 = twist1_;
   s.twist2 = twist2_;
   s.position1 = position1_;
+  s.rotation1 = rotation1_;
+  s.base1 = base1_;
+  s.base2 = base2_;
   s.state = state_;
   return s;
 }
@@ -651,6 +755,9 @@ void Bdf2ShootingStepper::Restore(const Snapshot& s) {
   std::copy(s.twist1.begin(), s.twist1.end(), twist1_.begin());
   std::copy(s.twist2.begin(), s.twist2.end(), twist2_.begin());
   std::copy(s.position1.begin(), s.position1.end(), position1_.begin());
+  std::copy(s.rotation1.begin(), s.rotation1.end(), rotation1_.begin());
+  base1_ = s.base1;
+  base2_ = s.base2;
   if (s.state.size() != state_.size())
     throw std::invalid_argument("Snapshot is from a stepper with another grid");
   state_ = s.state;

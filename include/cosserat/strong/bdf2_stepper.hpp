@@ -24,8 +24,15 @@
 
 namespace cosserat {
 
+/// End conditions (seed 002 eqs. 28 and 29).
+enum class EndConditions {
+  kCantilever,  ///< g(0), V(0) prescribed; unknown W(0); W(L) = tip wrench
+  kFreeFree,    ///< W(0) = −base wrench, W(L) = tip wrench; unknown V(0), g(0) follows from it
+};
+
 struct Bdf2Options {
   double dt = 2e-3;  ///< time step, s
+  EndConditions ends = EndConditions::kCantilever;
   /// Convergence of each step: ‖r‖₂ < tolerance for the tip residual made dimensionless by
   /// EI/L (moments) and EI/L² (forces), as in statics.
   double tolerance = 1e-10;
@@ -39,9 +46,12 @@ struct Bdf2Options {
 
 /// What drives the rod during one step; values at the end of the step.
 struct StepInput {
-  lie::SE3 base_pose;              ///< g(0, t): base pose in the world
-  Vec6 base_twist_B = Vec6::Zero();  ///< V(0, t) = [ω; v] of the base, body frame (rad/s; m/s)
-  StaticLoads loads;               ///< gravity, distributed force, tip force and moment
+  /// Cantilever: g(0, t), the base pose in the world. Free-free: used only by InitializeAtRest
+  /// (the pose of the s = 0 end at t = 0); afterwards the pose is part of the state.
+  lie::SE3 base_pose;
+  Vec6 base_twist_B = Vec6::Zero();  ///< cantilever: V(0, t) = [ω; v], body frame (rad/s; m/s)
+  Vec6 base_wrench_B = Vec6::Zero();  ///< free-free: wrench applied to the s = 0 end, body frame
+  StaticLoads loads;                  ///< gravity, distributed force, tip force and moment
 };
 
 struct StepSummary {
@@ -63,6 +73,13 @@ struct RodEnergy {
   double total() const { return kinetic + elastic + gravity; }
 };
 
+/// Linear momentum (kg·m/s) and angular momentum about the world origin (kg·m²/s), world frame,
+/// integrated like RodEnergy.
+struct RodMomentum {
+  Vec3 linear_W = Vec3::Zero();
+  Vec3 angular_W = Vec3::Zero();
+};
+
 class Bdf2ShootingStepper {
  public:
   Bdf2ShootingStepper(const RodModel& model, int num_nodes, const Bdf2Options& options = {});
@@ -82,6 +99,11 @@ class Bdf2ShootingStepper {
   const std::vector<double>& grid() const { return grid_; }
   /// Energy of the current state under the gravity of `loads`.
   RodEnergy Energy(const StaticLoads& loads) const;
+  /// Momentum of the current state.
+  RodMomentum Momentum() const;
+  /// Total mass (kg) and centre of mass (world, m) of the current state.
+  double Mass() const;
+  Vec3 CentreOfMass_W() const;
 
   /// Everything Step() needs to continue a run. Save() allocates; Restore() into a stepper of the
   /// same model and grid does not.
@@ -93,6 +115,8 @@ class Bdf2ShootingStepper {
     int steps_taken = 0;
     std::vector<Vec6> strain1, strain2, twist1, twist2;
     std::vector<Vec3> position1;
+    std::vector<Mat3> rotation1;
+    lie::SE3 base1, base2;
     RodState state;
   };
   Snapshot Save() const;
@@ -136,6 +160,11 @@ class Bdf2ShootingStepper {
   std::vector<Vec6> strain_now_, strain1_, strain2_;
   std::vector<Vec6> twist_now_, twist1_, twist2_;
   std::vector<Vec3> position_now_, position1_;
+  std::vector<Mat3> rotation_now_, rotation1_;
+  // Pose of the s = 0 end: the shot being tried, and one and two steps back (free-free state).
+  lie::SE3 base_now_, base1_, base2_;
+  Vec6 xi_back_ = Vec6::Zero();  ///< log(g₁⁻¹ g₂) at s = 0, for the group BDF2 of free-free
+  Vec6 twist_scale_;             ///< V(0) = twist_scale ⊙ x for free-free: [1/s ×3, L/s ×3]
 
   RodState state_;  ///< the last accepted step
   RodState trial_;  ///< written by every shot; swapped into state_ on acceptance
