@@ -5,7 +5,7 @@
 //
 //   BM_PeerRelease: the whole run through Step(), one Step() timed at a time. Counters: the
 //     real-time ratio (simulated / wall), per-step median, p99 and max (µs), shots per step.
-//   BM_PeerAccuracy: the tip trajectory against a reference run with a finer step and grid;
+//   BM_PeerAccuracy*: the tip trajectory against a reference run with a finer grid or step;
 //     counters: the largest tip distance over the run, in mm and as a fraction of L.
 //
 // Run: build/bench/bench_dynamics --benchmark_filter=Peer
@@ -82,13 +82,30 @@ void BM_PeerRelease(benchmark::State& state) {
   }
 }
 
-void BM_PeerAccuracy(benchmark::State& state) {
-  const int refine = static_cast<int>(state.range(0));  // reference dt = 2 ms / refine
+// The tip trajectory against a reference with 4× the grid points (same dt) or a smaller step
+// (same grid). The issue asks for dt/8; single shooting cannot go there on this problem: the
+// shot's bending exponent λL ≈ sqrt(5.3/(ω1 dt)) reaches 12 at dt = 1 ms and the Newton iteration
+// diverges in the first few steps after release (dt = 1.5 ms still runs).
+void CompareTo(benchmark::State& state, int ref_nodes, double ref_dt) {
   for (auto _ : state) {
     const Run run = Simulate(40, 2e-3, 1, 1e-10);
-    // Finer steps make single shooting ill-conditioned (the bending exponent of the shot grows
-    // like dt^(-1/2)); the reference relaxes the residual tolerance to its round-off floor.
-    const Run ref = Simulate(4 * 40, 2e-3 / refine, refine, 1e-8);
+    const Run ref = Simulate(ref_nodes, ref_dt, 1, 1e-10);
+    if (!run.ok || !ref.ok) state.SkipWithError("a step failed");
+    double worst = 0;
+    const size_t n = std::min(run.tip.size(), ref.tip.size());
+    for (size_t k = 0; k < n; ++k) worst = std::max(worst, (run.tip[k] - ref.tip[k]).norm());
+    state.counters["max_tip_diff_mm"] = worst * 1e3;
+    state.counters["max_tip_diff_over_L"] = worst / kLength;
+  }
+}
+
+void BM_PeerAccuracyGrid4x(benchmark::State& state) { CompareTo(state, 160, 2e-3); }
+
+// dt = 1.5 ms: every 4th reference frame is every 3rd frame of the 2 ms run (t = 6 ms, 12 ms …).
+void BM_PeerAccuracyDt075(benchmark::State& state) {
+  for (auto _ : state) {
+    const Run run = Simulate(40, 2e-3, 3, 1e-10);
+    const Run ref = Simulate(40, 1.5e-3, 4, 1e-10);
     if (!run.ok || !ref.ok) state.SkipWithError("a step failed");
     double worst = 0;
     const size_t n = std::min(run.tip.size(), ref.tip.size());
@@ -101,4 +118,5 @@ void BM_PeerAccuracy(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_PeerRelease)->Iterations(1)->Unit(benchmark::kSecond);
-BENCHMARK(BM_PeerAccuracy)->Arg(2)->Arg(4)->Arg(8)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_PeerAccuracyGrid4x)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_PeerAccuracyDt075)->Iterations(1)->Unit(benchmark::kSecond);

@@ -497,22 +497,32 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
       ok = true;
       break;
     }
-    const Vec6 dx = -lu.solve(r);
-    const Vec6 r_new = Residual(input, c, statics, x + dx);
+    Vec6 dx = -lu.solve(r);
+    Vec6 r_new = Residual(input, c, statics, x + dx);
     ++summary->shots;
     ++summary->iterations;
-    if (r_new.allFinite() && r_new.norm() < 0.5 * norm) {
+    bool accepted = r_new.allFinite() && r_new.norm() < 0.5 * norm;
+    if (!accepted && fresh) {
+      // An exact Newton step overshot (the shot is strongly nonlinear when its exponent λL is
+      // large): backtrack along it, accepting a sufficient decrease.
+      for (double alpha = 0.5; alpha >= 1.0 / 16 && !accepted; alpha *= 0.5) {
+        dx *= 0.5;
+        r_new = Residual(input, c, statics, x + dx);
+        ++summary->shots;
+        accepted = r_new.allFinite() && r_new.norm() < (1 - 0.5 * alpha) * norm;
+      }
+      if (!accepted) break;  // leave it to Levenberg–Marquardt
+    }
+    if (accepted) {
       J += (r_new - r - J * dx) * dx.transpose() / dx.squaredNorm();
       fresh = false;
       x += dx;
       r = r_new;
-    } else if (!fresh) {
+    } else {
       // The Broyden Jacobian has drifted: replace it by the exact one at x and retry.
       r = Residual(input, c, statics, x, &J);
       ++summary->shots;
       fresh = true;
-    } else {
-      break;  // a full Newton step failed: leave it to Levenberg–Marquardt
     }
     lu.compute(J);
   }
@@ -629,6 +639,15 @@ bool Bdf2ShootingStepper::Attempt(const StepInput& input, double h, StepSummary*
   return false;
 }
 
+bool Bdf2ShootingStepper::AttemptInterval(const StepInput& input, double h, int depth,
+                                          StepSummary* summary) {
+  if (Attempt(input, h, summary)) return true;
+  if (depth >= options_.max_halvings) return false;
+  summary->halvings = std::max(summary->halvings, depth + 1);
+  return AttemptInterval(input, 0.5 * h, depth + 1, summary) &&
+         AttemptInterval(input, 0.5 * h, depth + 1, summary);
+}
+
 StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
   const auto t0 = std::chrono::steady_clock::now();
   StepSummary summary;
@@ -636,17 +655,10 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
     summary.status = SolveStatus::kNotRun;
     return summary;
   }
-  // Try the whole step; on failure, 2^k equal sub-steps for k = 1 … max_halvings. Sub-steps
-  // commit as they go, so a failure part-way leaves the last converged sub-step.
-  bool ok = Attempt(input, options_.dt, &summary);
-  for (int k = 1; !ok && k <= options_.max_halvings; ++k) {
-    summary.halvings = k;
-    const int parts = 1 << k;
-    const double h = options_.dt / parts;
-    ok = true;
-    for (int p = 0; p < parts && ok; ++p) ok = Attempt(input, h, &summary);
-    if (!ok) break;
-  }
+  // Try the whole step; on failure, two half steps, recursively up to max_halvings deep. Sub-steps
+  // commit as they go, so a failure part-way leaves the last converged sub-step. (With shooting,
+  // smaller steps raise the shot's exponent λL ∝ dt^(-1/2), so halving helps less than usual.)
+  const bool ok = AttemptInterval(input, options_.dt, 0, &summary);
   if (ok) summary.status = SolveStatus::kConverged;
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -144,6 +144,7 @@ class Bdf2ShootingStepper {
 
  private:
   bool Attempt(const StepInput& input, double h, StepSummary* summary);
+  bool AttemptInterval(const StepInput& input, double h, int depth, StepSummary* summary);
   bool SolveStep(const StepInput& input, const Coefficients& c, bool statics,
                  StepSummary* summary);
   void SetImplicitCompliance(double c0);
