@@ -42,4 +42,16 @@ std::vector<double> MakeGrid(double length, int num_nodes, std::vector<double> b
   return s;
 }
 
+std::vector<double> SegmentSamplePoints(const std::vector<double>& grid) {
+  std::vector<double> at;
+  at.reserve(3 * grid.size());
+  for (size_t i = 0; i + 1 < grid.size(); ++i) {
+    const double a = grid[i], b = grid[i + 1], h = b - a;
+    at.push_back(a);
+    at.push_back(a + 0.5 * h);
+    at.push_back(b - 1e-9 * h);
+  }
+  return at;
+}
+
 }  // namespace cosserat

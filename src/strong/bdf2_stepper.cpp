@@ -237,9 +237,6 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   grid_ = MakeGrid(model_.length, num_nodes, model_.section->Breakpoints());
   const int n = static_cast<int>(grid_.size());
 
-  // As in statics: the sample ending a step is taken just inside it, so a stiffness jump at a
-  // node belongs to the segment on each side correctly.
-  samples_.resize(3 * (n - 1));
   auto make = [&](double s) {
     const SectionProperties p = model_.section->At(s, Actuation{});
     auto diagonal = [](const Mat6& A) { return (A - Mat6(A.diagonal().asDiagonal())).norm() == 0; };
@@ -255,12 +252,7 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
     smp.implicit_compliance = smp.compliance;
     return smp;
   };
-  for (int i = 0; i + 1 < n; ++i) {
-    const double a = grid_[i], b = grid_[i + 1], h = b - a;
-    samples_[3 * i + 0] = make(a);
-    samples_[3 * i + 1] = make(a + 0.5 * h);
-    samples_[3 * i + 2] = make(b - 1e-9 * h);
-  }
+  for (double s : SegmentSamplePoints(grid_)) samples_.push_back(make(s));
   const double EI = std::max(samples_[0].stiffness(0), samples_[0].stiffness(1));
   const double L = model_.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
@@ -665,67 +657,49 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
   return summary;
 }
 
-RodEnergy Bdf2ShootingStepper::Energy(const StaticLoads& loads) const {
-  RodEnergy e;
-  const int n = static_cast<int>(grid_.size());
+template <typename Visit>
+void Bdf2ShootingStepper::ForEachStage(Visit&& visit) const {
+  // RK4 quadrature on each segment: weights h/6, h/3, h/3, h/6 on its four stages.
   static constexpr double kWeights[4] = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
   static constexpr int kSample[4] = {0, 1, 1, 2};
-  for (int i = 0; i + 1 < n; ++i) {
+  for (size_t i = 0; i + 1 < grid_.size(); ++i) {
     const double h = grid_[i + 1] - grid_[i];
-    for (int j = 0; j < 4; ++j) {
-      const int q = 4 * i + j;
-      const Sample& smp = samples_[3 * i + kSample[j]];
-      const double w = h * kWeights[j];
-      const Vec6 dxi = strain1_[q] - smp.rest_strain;
-      e.kinetic += w * 0.5 * twist1_[q].dot(smp.mass.cwiseProduct(twist1_[q]));
-      e.elastic += w * 0.5 * dxi.dot(smp.stiffness.cwiseProduct(dxi));
-      e.gravity -= w * smp.mass(5) * loads.gravity_W.dot(position1_[q]);
-    }
+    for (int j = 0; j < 4; ++j)
+      visit(static_cast<int>(4 * i + j), samples_[3 * i + kSample[j]], h * kWeights[j]);
   }
+}
+
+RodEnergy Bdf2ShootingStepper::Energy(const StaticLoads& loads) const {
+  RodEnergy e;
+  ForEachStage([&](int q, const Sample& smp, double w) {
+    const Vec6 dxi = strain1_[q] - smp.rest_strain;
+    e.kinetic += w * 0.5 * twist1_[q].dot(smp.mass.cwiseProduct(twist1_[q]));
+    e.elastic += w * 0.5 * dxi.dot(smp.stiffness.cwiseProduct(dxi));
+    e.gravity -= w * smp.mass(5) * loads.gravity_W.dot(position1_[q]);
+  });
   return e;
 }
 
 RodMomentum Bdf2ShootingStepper::Momentum() const {
   RodMomentum out;
-  const int n = static_cast<int>(grid_.size());
-  static constexpr double kWeights[4] = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
-  static constexpr int kSample[4] = {0, 1, 1, 2};
-  for (int i = 0; i + 1 < n; ++i) {
-    const double h = grid_[i + 1] - grid_[i];
-    for (int j = 0; j < 4; ++j) {
-      const int q = 4 * i + j;
-      const Sample& smp = samples_[3 * i + kSample[j]];
-      const double w = h * kWeights[j];
-      const Vec3 linear = smp.mass(5) * (rotation1_[q] * twist1_[q].tail<3>());
-      const Vec3 spin = rotation1_[q] * smp.mass.head<3>().cwiseProduct(twist1_[q].head<3>());
-      out.linear_W += w * linear;
-      out.angular_W += w * (position1_[q].cross(linear) + spin);
-    }
-  }
+  ForEachStage([&](int q, const Sample& smp, double w) {
+    const Vec3 linear = smp.mass(5) * (rotation1_[q] * twist1_[q].tail<3>());
+    const Vec3 spin = rotation1_[q] * smp.mass.head<3>().cwiseProduct(twist1_[q].head<3>());
+    out.linear_W += w * linear;
+    out.angular_W += w * (position1_[q].cross(linear) + spin);
+  });
   return out;
 }
 
 double Bdf2ShootingStepper::Mass() const {
   double mass = 0;
-  const int n = static_cast<int>(grid_.size());
-  for (int i = 0; i + 1 < n; ++i) {
-    const double h = grid_[i + 1] - grid_[i];
-    mass += h / 6 * (samples_[3 * i].mass(5) + 4 * samples_[3 * i + 1].mass(5) +
-                     samples_[3 * i + 2].mass(5));
-  }
+  ForEachStage([&](int, const Sample& smp, double w) { mass += w * smp.mass(5); });
   return mass;
 }
 
 Vec3 Bdf2ShootingStepper::CentreOfMass_W() const {
   Vec3 first = Vec3::Zero();
-  const int n = static_cast<int>(grid_.size());
-  static constexpr double kWeights[4] = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
-  static constexpr int kSample[4] = {0, 1, 1, 2};
-  for (int i = 0; i + 1 < n; ++i) {
-    const double h = grid_[i + 1] - grid_[i];
-    for (int j = 0; j < 4; ++j)
-      first += h * kWeights[j] * samples_[3 * i + kSample[j]].mass(5) * position1_[4 * i + j];
-  }
+  ForEachStage([&](int q, const Sample& smp, double w) { first += w * smp.mass(5) * position1_[q]; });
   return first / Mass();
 }
 

@@ -293,10 +293,6 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
   grid_ = MakeGrid(model_.length, num_nodes, model_.section->Breakpoints());
   const int n = static_cast<int>(grid_.size());
 
-  // Properties at nodes and midpoints. A node on a breakpoint belongs to the piece on its right
-  // for the step leaving it; the step arriving at it must use the left piece, so the sample for
-  // the step end is taken a hair inside the step (the profile is smooth within a step).
-  samples_.resize(3 * (n - 1));
   auto make = [&](double s) {
     const SectionProperties p = model_.section->At(s, actuation);
     Sample smp;
@@ -309,12 +305,7 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
     smp.mass_per_length = p.mass(5, 5);
     return smp;
   };
-  for (int i = 0; i + 1 < n; ++i) {
-    const double a = grid_[i], b = grid_[i + 1], h = b - a;
-    samples_[3 * i + 0] = make(a);
-    samples_[3 * i + 1] = make(a + 0.5 * h);
-    samples_[3 * i + 2] = make(b - 1e-9 * h);
-  }
+  for (double s : SegmentSamplePoints(grid_)) samples_.push_back(make(s));
 
   const double EI = std::max(1.0 / samples_[0].compliance(0, 0), 1.0 / samples_[0].compliance(1, 1));
   const double L = model_.length;

@@ -14,4 +14,9 @@ namespace cosserat {
 /// Requires num_nodes >= 2 + (number of distinct interior breakpoints).
 std::vector<double> MakeGrid(double length, int num_nodes, std::vector<double> breakpoints);
 
+/// Where an RK4 step over each segment [s_i, s_{i+1}] of the grid reads the section: its start,
+/// its midpoint, and its end moved 1e-9 h inside, so that a step never reads the far side of a
+/// breakpoint at a node. Three values per segment, in order (m).
+std::vector<double> SegmentSamplePoints(const std::vector<double>& grid);
+
 }  // namespace cosserat

@@ -145,6 +145,9 @@ class Bdf2ShootingStepper {
  private:
   bool Attempt(const StepInput& input, double h, StepSummary* summary);
   bool AttemptInterval(const StepInput& input, double h, int depth, StepSummary* summary);
+  /// Calls visit(stage index, section sample, quadrature weight in m) for every RK4 stage.
+  template <typename Visit>
+  void ForEachStage(Visit&& visit) const;
   bool SolveStep(const StepInput& input, const Coefficients& c, bool statics,
                  StepSummary* summary);
   void SetImplicitCompliance(double c0);
