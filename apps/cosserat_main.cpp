@@ -19,6 +19,7 @@
 #include "cosserat/io/problem.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "run_dynamics.hpp"
 
 namespace {
 
@@ -34,7 +35,8 @@ const char* const kUsage =
     "  cosserat --help\n"
     "\n"
     "solve     solve the problem; the result JSON goes to stdout or to --out, the node table\n"
-    "          (s,x,y,z,k1,k2,k3) to --csv. A one-line summary is printed on stderr.\n"
+    "          to --csv (statics: s,x,y,z,k1,k2,k3; dynamics: t,node,s,x,y,z for every\n"
+    "          recorded frame). A one-line summary is printed on stderr.\n"
     "validate  check the problem file and print every error found.\n"
     "\n"
     "exit status: 0 converged (or valid), 1 ran but did not converge (the result is still\n"
@@ -122,7 +124,8 @@ std::ofstream OpenOutput(const std::string& path) {
   return out;
 }
 
-std::string Summary(const cosserat::StaticShootingSummary& s, const cosserat::RodState& state) {
+std::string StaticSummary(const cosserat::StaticShootingSummary& s,
+                          const cosserat::RodState& state) {
   std::ostringstream line;
   line << "cosserat: " << cosserat::ToString(s.status) << ", " << s.iterations << " iterations, "
        << "residual " << std::setprecision(3) << s.residual;
@@ -135,25 +138,33 @@ std::string Summary(const cosserat::StaticShootingSummary& s, const cosserat::Ro
   return line.str();
 }
 
+/// Solves a statics problem; the result to `out`, the node table to `csv` when given, the
+/// summary line to `log`. Returns true when the solve converged.
+bool RunStatics(const cosserat::io::Problem& problem, std::ostream& out, std::ostream* csv,
+                std::ostream& log) {
+  cosserat::StaticShootingSolver solver(problem.rod, problem.nodes, problem.solver);
+  const cosserat::StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
+  out << cosserat::io::StaticResultToJson(summary, solver.state()).dump(2) << '\n';
+  if (csv) cosserat::io::WriteNodesCsv(*csv, solver.state());
+  log << StaticSummary(summary, solver.state()) << '\n';
+  return summary.converged();
+}
+
 int RunSolve(const Command& cmd) {
   const std::optional<cosserat::io::Problem> problem = LoadRunnableProblem(cmd.problem_path);
   if (!problem) return kExitBadInput;
   std::optional<std::ofstream> out_file, csv_file;
   if (cmd.out_path) out_file = OpenOutput(*cmd.out_path);
   if (cmd.csv_path) csv_file = OpenOutput(*cmd.csv_path);
-
-  cosserat::StaticShootingSolver solver(problem->rod, problem->nodes, problem->solver);
-  const cosserat::StaticShootingSummary summary = solver.Solve(problem->base, problem->loads);
-
   std::ostream& out = out_file ? static_cast<std::ostream&>(*out_file) : std::cout;
-  out << cosserat::io::StaticResultToJson(summary, solver.state()).dump(2) << '\n';
-  if (csv_file) cosserat::io::WriteNodesCsv(*csv_file, solver.state());
-  out.flush();
-  if (!out || (csv_file && !csv_file->flush()))
-    throw std::runtime_error("writing the result failed");
+  std::ostream* csv = csv_file ? &*csv_file : nullptr;
 
-  std::cerr << Summary(summary, solver.state()) << '\n';
-  return summary.converged() ? kExitConverged : kExitNotConverged;
+  const bool converged = problem->analysis == "dynamics"
+                             ? cosserat::cli::RunDynamics(*problem, out, csv, std::cerr)
+                             : RunStatics(*problem, out, csv, std::cerr);
+  out.flush();
+  if (!out || (csv && !csv->flush())) throw std::runtime_error("writing the result failed");
+  return converged ? kExitConverged : kExitNotConverged;
 }
 
 int Run(const std::vector<std::string>& args) {

@@ -202,10 +202,48 @@ TEST(ProblemIo, LaterAnalysesParseButAreGated) {
 
   const std::vector<std::string> gated = UnsupportedFeatures(p);
   ASSERT_EQ(gated.size(), 3u);
-  EXPECT_EQ(gated[0],
-            R"(analysis: "buckling" is not implemented in this version (supported: "statics"))");
+  EXPECT_EQ(gated[0], R"(analysis: "buckling" is not implemented in this version (supported: )"
+                      R"("statics", "dynamics"))");
   EXPECT_NE(gated[1].find("formulation"), std::string::npos);
   EXPECT_NE(gated[2].find("boundary"), std::string::npos);
+}
+
+TEST(ProblemIo, DynamicsParsesAndRuns) {
+  json j = ValidProblem();
+  j["analysis"] = "dynamics";
+  j["dynamics"] = {{"dt", 0.001},
+                   {"duration", 0.5},
+                   {"output_interval", 0.01},
+                   {"initial_loads", {{"tip_force", {-0.1, 0, 0}}}}};
+  ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  EXPECT_TRUE(r.problem->has_dynamics);
+  EXPECT_DOUBLE_EQ(r.problem->dynamics.output_interval, 0.01);
+  EXPECT_DOUBLE_EQ(r.problem->dynamics.initial_loads->tip_force.x(), -0.1);
+  EXPECT_TRUE(UnsupportedFeatures(*r.problem).empty());
+
+  j["dynamics"].erase("output_interval");  // defaults to dt
+  r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  EXPECT_DOUBLE_EQ(r.problem->dynamics.output_interval, 0.001);
+
+  j.erase("dynamics");  // the defaults of the whole block
+  r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  EXPECT_DOUBLE_EQ(r.problem->dynamics.output_interval, r.problem->dynamics.dt);
+  EXPECT_TRUE(UnsupportedFeatures(*r.problem).empty());
+}
+
+TEST(ProblemIo, DynamicsRunsOnlyForCantilevers) {
+  json j = ValidProblem();
+  j["analysis"] = "dynamics";
+  j["boundary"] = "free-free";
+  const ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const std::vector<std::string> gated = UnsupportedFeatures(*r.problem);
+  ASSERT_EQ(gated.size(), 1u);
+  EXPECT_EQ(gated[0], R"(boundary: "free-free" is not implemented in this version (supported: )"
+                      R"("cantilever"))");
 }
 
 // ----- bad input: one test per class --------------------------------------------------------
@@ -406,6 +444,35 @@ TEST(ProblemIoErrors, LaterAnalysisBlocksAreValidatedToo) {
   EXPECT_ERROR(Parse(j), "buckling.max: expected a positive number, got nothing");
 }
 
+TEST(ProblemIoErrors, DynamicsTimes) {
+  json j = ValidProblem();
+  j["analysis"] = "dynamics";
+  j["dynamics"] = {{"dt", 0}, {"duration", -1.0}, {"output_interval", -0.5}};
+  ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "dynamics.dt: expected a positive number, got 0");
+  EXPECT_ERROR(r, "dynamics.duration: expected a positive number, got -1");
+  EXPECT_ERROR(r, "dynamics.output_interval: expected a positive number, got -0.5");
+  EXPECT_EQ(r.errors.size(), 3u) << AllErrors(r);
+
+  r = ParseProblem(R"({"format": "cosserat-problem/1", "analysis": "dynamics",
+      "rod": {"length": 0.5, "nodes": 21, "section": {"shape": "circle", "radius": 0.001},
+              "material": {"youngs_modulus": 2e11, "shear_modulus": 8e10, "density": 8000}},
+      "dynamics": {"output_interval": "10 ms", "dt": null, "duration": 1e999}})");
+  EXPECT_ERROR(r, "dynamics.output_interval: expected a positive number, got a string");
+  EXPECT_ERROR(r, "dynamics.dt: expected a positive number, got null");
+  EXPECT_ERROR(r, "dynamics.duration: expected a positive number", "overflow");
+
+  j["dynamics"] = {{"duration", 0.001}};  // shorter than the default dt
+  EXPECT_ERROR(Parse(j), "dynamics.dt: expected a time step no longer than duration (0.001 s)",
+               "got 0.002 (the default)");
+  j["dynamics"] = {{"dt", 1e-9}, {"duration", 100.0}};
+  EXPECT_ERROR(Parse(j), "dynamics.dt: expected a time step giving at most 10000000 steps",
+               "got 1e-09");
+  j["dynamics"] = {{"dt", 0.01}, {"duration", 0.1}, {"output_intervall", 0.02}};
+  EXPECT_ERROR(Parse(j),
+               "dynamics.output_intervall: unknown key (did you mean \"output_interval\"?)");
+}
+
 TEST(ProblemIoErrors, EveryErrorIsReported) {
   json j = ValidProblem();
   j.erase("format");
@@ -465,6 +532,65 @@ TEST(ResultWriter, JsonHasTheContractKeys) {
   EXPECT_EQ(out["nodes"]["s"].size(), 2u);
   EXPECT_DOUBLE_EQ(out["nodes"]["curvature"][1][2].get<double>(), 6.0);
   EXPECT_DOUBLE_EQ(out["nodes"]["position"][1][0].get<double>(), 0.1);
+}
+
+DynamicRun TwoFrameRun() {
+  DynamicRun run;
+  run.status = SolveStatus::kConverged;
+  run.initial_state_ok = true;
+  run.steps = 4;
+  run.iterations = 9;
+  run.shots = 13;
+  run.wall_time_s = 0.5;
+  run.stepping_wall_time_s = 0.4;
+  run.simulated_time_s = 0.008;
+  run.step_time_s = {4e-6, 1e-6, 3e-6, 2e-6};
+  run.energy.kinetic = 1.5;
+  run.frame_t = {0.0, 0.008};
+  run.frame_tip = {Vec3(0, 0, 0.5), Vec3(0.1, 0, 0.4)};
+  run.frame_positions = {Vec3::Zero(), Vec3(0, 0, 0.5), Vec3::Zero(), Vec3(0.1, 0, 0.4)};
+  return run;
+}
+
+TEST(ResultWriter, DynamicJsonHasTheContractKeys) {
+  const RodState state = TwoNodeState();
+  DynamicRun run = TwoFrameRun();
+  nlohmann::ordered_json out = DynamicResultToJson(run, state);
+  EXPECT_EQ(out.begin().key(), "status");
+  EXPECT_EQ(out["status"], "converged");
+  EXPECT_FALSE(out.contains("failed_at_t"));
+  EXPECT_EQ(out["steps"], 4);
+  EXPECT_EQ(out["iterations"], 9);
+  EXPECT_EQ(out["shots"], 13);
+  EXPECT_DOUBLE_EQ(out["real_time_ratio"].get<double>(), 0.008 / 0.4);
+  EXPECT_DOUBLE_EQ(out["step_time_us"]["median"].get<double>(), 2.0);
+  EXPECT_DOUBLE_EQ(out["step_time_us"]["p99"].get<double>(), 4.0);
+  EXPECT_DOUBLE_EQ(out["step_time_us"]["max"].get<double>(), 4.0);
+  EXPECT_DOUBLE_EQ(out["tip"]["position"][0].get<double>(), 0.1);
+  EXPECT_TRUE(out.contains("base_wrench"));
+  EXPECT_TRUE(out.contains("nodes"));
+  EXPECT_DOUBLE_EQ(out["energy"]["kinetic"].get<double>(), 1.5);
+  EXPECT_EQ(out["trajectory"]["t"].size(), 2u);
+  EXPECT_DOUBLE_EQ(out["trajectory"]["tip_position"][1][2].get<double>(), 0.4);
+
+  run.status = SolveStatus::kMaxIterations;  // failed before any state: no state keys
+  run.initial_state_ok = false;
+  run.failed_at_t = 0.0;
+  out = DynamicResultToJson(run, state);
+  EXPECT_EQ(out["status"], "max_iterations");
+  EXPECT_DOUBLE_EQ(out["failed_at_t"].get<double>(), 0.0);
+  EXPECT_FALSE(out.contains("tip") || out.contains("trajectory") || out.contains("nodes"));
+}
+
+TEST(ResultWriter, TrajectoryCsvIsLongFormat) {
+  std::ostringstream csv;
+  WriteTrajectoryCsv(csv, TwoFrameRun(), {0.0, 0.5});
+  EXPECT_EQ(csv.str(),
+            "t,node,s,x,y,z\n"
+            "0,0,0,0,0,0\n"
+            "0,1,0.5,0,0,0.5\n"
+            "0.0080000000000000002,0,0,0,0,0\n"
+            "0.0080000000000000002,1,0.5,0.10000000000000001,0,0.40000000000000002\n");
 }
 
 TEST(ResultWriter, CsvHasHeaderAndOneRowPerNode) {

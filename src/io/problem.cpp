@@ -1,7 +1,9 @@
 #include "cosserat/io/problem.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -82,19 +84,27 @@ void ParseSolver(const ObjectReader& o, StaticShootingOptions* options) {
                                 .value_or(options->max_iterations);
 }
 
-// --- dynamics, buckling, modes (validated now, run by later versions) ---------------------------
+// --- dynamics, buckling, modes ------------------------------------------------------------------
 
 void ParseDynamics(const ObjectReader& o, Problem::Dynamics* d) {
-  o.AllowOnly({"dt", "duration", "initial", "initial_loads"});
+  o.AllowOnly({"dt", "duration", "output_interval", "initial", "initial_loads"});
   const auto dt = ReadNumber(o, "dt", PositiveNumber(), Presence::kOptional);
   const auto duration = ReadNumber(o, "duration", PositiveNumber(), Presence::kOptional);
+  const auto interval = ReadNumber(o, "output_interval", PositiveNumber(), Presence::kOptional);
   d->dt = dt.value_or(d->dt);
   d->duration = duration.value_or(d->duration);
+  d->output_interval = interval.value_or(d->dt);
   const bool both_usable = (dt || !o.Has("dt")) && (duration || !o.Has("duration"));
+  const std::string got_dt = dt ? Describe(*o.Find("dt")) : FormatNumber(d->dt) + " (the default)";
   if (both_usable && d->dt > d->duration) {
     o.report().Expected(o.PathOf("dt"),
                         "a time step no longer than duration (" + FormatNumber(d->duration) + " s)",
-                        dt ? Describe(*o.Find("dt")) : FormatNumber(d->dt) + " (the default)");
+                        got_dt);
+  } else if (both_usable && std::round(d->duration / d->dt) > kMaxDynamicsSteps) {
+    o.report().Expected(o.PathOf("dt"),
+                        "a time step giving at most " + std::to_string(kMaxDynamicsSteps) +
+                            " steps over duration (" + FormatNumber(d->duration) + " s)",
+                        got_dt + ", " + FormatNumber(std::round(d->duration / d->dt)) + " steps");
   }
   d->initial = ReadChoice(o, "initial", {"static"}, Presence::kOptional).value_or(d->initial);
   if (const auto loads = ReadObject(o, "initial_loads", Presence::kOptional))
@@ -214,15 +224,16 @@ ParseResult LoadProblemFile(const std::string& path) {
 
 std::vector<std::string> UnsupportedFeatures(const Problem& p) {
   std::vector<std::string> out;
-  auto check = [&](const char* key, const std::string& value, const char* supported) {
-    if (value != supported)
+  auto check = [&](const char* key, const std::string& value,
+                   const std::vector<std::string>& supported) {
+    if (std::find(supported.begin(), supported.end(), value) == supported.end())
       out.push_back(std::string(key) + ": " + detail::Quote(value) +
-                    " is not implemented in this version (supported: " + detail::Quote(supported) +
-                    ")");
+                    " is not implemented in this version (supported: " +
+                    detail::QuotedList(supported) + ")");
   };
-  check("analysis", p.analysis, "statics");
-  check("formulation", p.formulation, "se3-shooting");
-  check("boundary", p.boundary, "cantilever");
+  check("analysis", p.analysis, {"statics", "dynamics"});
+  check("formulation", p.formulation, {"se3-shooting"});
+  check("boundary", p.boundary, {"cantilever"});
   return out;
 }
 

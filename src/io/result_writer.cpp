@@ -1,5 +1,7 @@
 #include "cosserat/io/result_writer.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <limits>
 
@@ -39,6 +41,31 @@ json NodesToJson(const RodState& state) {
           {"force_body", force}};
 }
 
+/// tip {position, rotation} and base_wrench {moment, force} of a state.
+void AddTipAndBaseWrench(const RodState& state, json* out) {
+  (*out)["tip"] = {{"position", ToArray(state.tip_position_W())},
+                   {"rotation", ToRows(state.tip_rotation_WB())}};
+  const Vec6 reaction = state.BaseReaction_W();
+  (*out)["base_wrench"] = {{"moment", ToArray(Vec3(reaction.head<3>()))},
+                           {"force", ToArray(Vec3(reaction.tail<3>()))}};
+}
+
+/// The value below which a fraction q of `sorted` lies (nearest rank); NaN when empty.
+double Percentile(const std::vector<double>& sorted, double q) {
+  if (sorted.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size())));
+  return sorted[std::min(sorted.size(), std::max<std::size_t>(rank, 1)) - 1];
+}
+
+/// {median, p99, max} in microseconds.
+json StepTimeStats(std::vector<double> times_s) {
+  std::sort(times_s.begin(), times_s.end());
+  const double max = times_s.empty() ? std::numeric_limits<double>::quiet_NaN() : times_s.back();
+  return {{"median", 1e6 * Percentile(times_s, 0.5)},
+          {"p99", 1e6 * Percentile(times_s, 0.99)},
+          {"max", 1e6 * max}};
+}
+
 }  // namespace
 
 json StaticResultToJson(const StaticShootingSummary& summary, const RodState& state) {
@@ -49,14 +76,32 @@ json StaticResultToJson(const StaticShootingSummary& summary, const RodState& st
   out["load_steps"] = summary.load_steps;
   out["residual"] = summary.residual;
   out["wall_time_s"] = summary.wall_time_s;
-  if (state.size() > 0) {
-    out["tip"] = {{"position", ToArray(state.tip_position_W())},
-                  {"rotation", ToRows(state.tip_rotation_WB())}};
-    const Vec6 reaction = state.BaseReaction_W();
-    out["base_wrench"] = {{"moment", ToArray(Vec3(reaction.head<3>()))},
-                          {"force", ToArray(Vec3(reaction.tail<3>()))}};
-  }
+  if (state.size() > 0) AddTipAndBaseWrench(state, &out);
   out["nodes"] = NodesToJson(state);
+  return out;
+}
+
+json DynamicResultToJson(const DynamicRun& run, const RodState& final_state) {
+  json out;
+  out["status"] = ToString(run.status);
+  if (run.status != SolveStatus::kConverged) out["failed_at_t"] = run.failed_at_t;
+  out["steps"] = run.steps;
+  out["halved_steps"] = run.halved_steps;
+  out["iterations"] = run.iterations;
+  out["shots"] = run.shots;
+  out["wall_time_s"] = run.wall_time_s;
+  out["simulated_time_s"] = run.simulated_time_s;
+  out["real_time_ratio"] = run.simulated_time_s / run.stepping_wall_time_s;
+  out["step_time_us"] = StepTimeStats(run.step_time_s);
+  if (!run.initial_state_ok || final_state.size() == 0) return out;
+  AddTipAndBaseWrench(final_state, &out);
+  out["energy"] = {{"kinetic", run.energy.kinetic},
+                   {"elastic", run.energy.elastic},
+                   {"gravity", run.energy.gravity}};
+  json tip = json::array();
+  for (const Vec3& p : run.frame_tip) tip.push_back(ToArray(p));
+  out["trajectory"] = {{"t", run.frame_t}, {"tip_position", std::move(tip)}};
+  out["nodes"] = NodesToJson(final_state);
   return out;
 }
 
@@ -68,6 +113,22 @@ void WriteNodesCsv(std::ostream& out, const RodState& state) {
     const Vec6& xi = state.strain[i];
     out << state.s[i] << ',' << p.x() << ',' << p.y() << ',' << p.z() << ',' << xi(0) << ','
         << xi(1) << ',' << xi(2) << '\n';
+  }
+  out.precision(old_precision);
+}
+
+void WriteTrajectoryCsv(std::ostream& out, const DynamicRun& run, const std::vector<double>& grid) {
+  const auto old_precision = out.precision(std::numeric_limits<double>::max_digits10);
+  out << "t,node,s,x,y,z\n";
+  const std::size_t n = grid.size();
+  const std::size_t frames =
+      n == 0 ? 0 : std::min(run.frame_t.size(), run.frame_positions.size() / n);
+  for (std::size_t f = 0; f < frames; ++f) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3& p = run.frame_positions[f * n + i];
+      out << run.frame_t[f] << ',' << i << ',' << grid[i] << ',' << p.x() << ',' << p.y() << ','
+          << p.z() << '\n';
+    }
   }
   out.precision(old_precision);
 }

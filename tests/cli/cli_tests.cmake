@@ -39,6 +39,11 @@ cosserat_cli_test(NAME solve_example_files
                   CODE 0 STDERR "converged"
                   FILES "${_cli_out}/result.json" "${_cli_out}/nodes.csv")
 
+cosserat_cli_test(NAME solve_dynamics
+                  ARGS solve "${_cli_dir}/dynamics.json" --csv "${_cli_out}/frames.csv"
+                  CODE 0 STDOUT "\"trajectory\": {" STDERR "converged, 100 steps"
+                  FILES "${_cli_out}/frames.csv")
+
 # Bad usage.
 cosserat_cli_test(NAME no_command CODE 2 STDERR "usage:")
 cosserat_cli_test(NAME unknown_command ARGS frobnicate CODE 2 STDERR "unknown command")
@@ -63,5 +68,7 @@ cosserat_cli_test(NAME bad_rotation ARGS validate "${_cli_dir}/bad_rotation.json
                   STDERR "base.rotation: expected a rotation matrix")
 cosserat_cli_test(NAME many_errors ARGS validate "${_cli_dir}/many_errors.json" CODE 2
                   STDERR "format: .*rod.nodes: .*rod.material: .*loads.tip_force\\[2\\]: ")
-cosserat_cli_test(NAME not_implemented ARGS solve "${_cli_dir}/dynamics.json" CODE 2
-                  STDERR "analysis: \"dynamics\" is not implemented in this version")
+cosserat_cli_test(NAME bad_dynamics ARGS solve "${_cli_dir}/bad_dynamics.json" CODE 2
+                  STDERR "dynamics.dt: expected a positive number, got -0.002.*dynamics.output_interval: ")
+cosserat_cli_test(NAME not_implemented ARGS solve "${_cli_dir}/modes.json" CODE 2
+                  STDERR "analysis: \"modes\" is not implemented in this version")

@@ -29,15 +29,19 @@ struct Problem {
   StaticLoads loads;
   StaticShootingOptions solver;  ///< "solver": {"tolerance", "max_iterations"}
 
-  // Parsed and validated now, run by later versions.
+  /// "dynamics": run by the `cosserat` command (BDF2 shooting, cantilever only).
   struct Dynamics {
     double dt = 0.002;       ///< s
     double duration = 1.0;   ///< s
+    /// s; how often the trajectory is recorded (a whole number of steps, at least 1). The
+    /// parser sets it to dt when the file leaves it out.
+    double output_interval = 0.002;
     std::string initial = "static";
     std::optional<StaticLoads> initial_loads;  ///< empty: start from equilibrium under `loads`
   } dynamics;
   bool has_dynamics = false;
 
+  // Parsed and validated now, run by later versions.
   struct Buckling {
     std::string load = "tip_force";
     Vec3 direction{0, 0, -1};  ///< unit vector (normalised on input)
@@ -64,8 +68,12 @@ ParseResult ParseProblem(const std::string& json_text, const std::string& source
 /// Reads a file and parses it; an unreadable file gives one error naming the path.
 ParseResult LoadProblemFile(const std::string& path);
 
-/// Things the contract names but this version cannot run yet: an analysis other than "statics",
-/// a formulation other than "se3-shooting", a boundary other than "cantilever". One line each.
+/// The most time steps (round(duration / dt)) a dynamics problem may ask for.
+inline constexpr int kMaxDynamicsSteps = 10000000;
+
+/// Things the contract names but this version cannot run yet: an analysis other than "statics"
+/// or "dynamics", a formulation other than "se3-shooting", a boundary other than "cantilever".
+/// One line each.
 std::vector<std::string> UnsupportedFeatures(const Problem& problem);
 
 }  // namespace cosserat::io

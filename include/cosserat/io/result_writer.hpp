@@ -2,9 +2,13 @@
 /// \file
 /// Results of a solve as JSON (the "Result" of docs/problem-format.md) and as a CSV of the nodes.
 
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <string>
+#include <vector>
 
+#include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/rod_state.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
@@ -23,5 +27,37 @@ nlohmann::ordered_json StaticResultToJson(const StaticShootingSummary& summary, 
 
 /// One row per node, header `s,x,y,z,k1,k2,k3` (m; 1/m), full double precision.
 void WriteNodesCsv(std::ostream& out, const RodState& state);
+
+/// A dynamics run as the `cosserat` command records it, for DynamicResultToJson and
+/// WriteTrajectoryCsv.
+struct DynamicRun {
+  SolveStatus status = SolveStatus::kNotRun;  ///< converged: the initial state and every step
+  bool initial_state_ok = false;  ///< false: the initial equilibrium failed, there is no state
+  double failed_at_t = std::numeric_limits<double>::quiet_NaN();  ///< end time of the failed step
+  int steps = 0;                  ///< steps that converged
+  int halved_steps = 0;           ///< of those, steps that needed step halving
+  int iterations = 0;             ///< all solves, the initial one included
+  int shots = 0;
+  double wall_time_s = 0;           ///< initial state and stepping loop
+  double stepping_wall_time_s = 0;  ///< the stepping loop alone
+  double simulated_time_s = 0;      ///< time of the final state
+  std::vector<double> step_time_s;  ///< wall time of each Step() call, the failed one included
+  RodEnergy energy;                 ///< of the final state, under the loads for t > 0
+  // Recorded frames: t = 0, every output interval, and the final state.
+  std::vector<double> frame_t;
+  std::vector<Vec3> frame_tip;        ///< tip position of each frame
+  std::vector<Vec3> frame_positions;  ///< all node positions, frame after frame (may be empty)
+};
+
+/// The dynamics result: status, failed_at_t (only on failure), steps, halved_steps, iterations,
+/// shots, wall_time_s, simulated_time_s, real_time_ratio (simulated time / stepping loop wall
+/// time), step_time_us {median, p99, max}, then for the final state (when the initial one
+/// converged) tip, base_wrench, energy {kinetic, elastic, gravity}, trajectory {t, tip_position}
+/// and nodes as in StaticResultToJson. Non-finite numbers are written as null.
+nlohmann::ordered_json DynamicResultToJson(const DynamicRun& run, const RodState& final_state);
+
+/// The recorded frames in long format: header `t,node,s,x,y,z`, one row per node per frame
+/// (node counts from 0; s from `grid`), full double precision. Needs run.frame_positions.
+void WriteTrajectoryCsv(std::ostream& out, const DynamicRun& run, const std::vector<double>& grid);
 
 }  // namespace cosserat::io

@@ -1,0 +1,144 @@
+#include "run_dynamics.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <string>
+
+#include "cosserat/io/result_writer.hpp"
+#include "cosserat/strong/bdf2_stepper.hpp"
+
+namespace cosserat::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// The clamp held still at the problem's base pose, under `loads`.
+StepInput ClampedInput(const io::Problem& problem, const StaticLoads& loads) {
+  StepInput input;
+  input.base_pose = problem.base;
+  input.base_twist_B = Vec6::Zero();
+  input.loads = loads;
+  return input;
+}
+
+/// Adds the stepper's current state as the frame at time t; node positions only when
+/// `all_nodes`.
+void Record(const Bdf2ShootingStepper& stepper, double t, bool all_nodes, io::DynamicRun* run) {
+  const RodState& state = stepper.state();
+  run->frame_t.push_back(t);
+  run->frame_tip.push_back(state.tip_position_W());
+  if (all_nodes)
+    run->frame_positions.insert(run->frame_positions.end(), state.position_W.begin(),
+                                state.position_W.end());
+}
+
+void AddCounts(const StepSummary& s, io::DynamicRun* run) {
+  run->iterations += s.iterations;
+  run->shots += s.shots;
+}
+
+/// Steps from the initial state to the end (or the first failed step), timing each Step().
+/// Times are reported as k dt (the stepper's own clock sums the steps, with rounding), except
+/// after a failed step, which may have committed some halved sub-steps.
+void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_nodes,
+                  Bdf2ShootingStepper* stepper, io::DynamicRun* run) {
+  const StepInput input = ClampedInput(problem, problem.loads);
+  const double dt = problem.dynamics.dt;
+  const auto loop_start = Clock::now();
+  for (int k = 1; k <= steps; ++k) {
+    const auto t0 = Clock::now();
+    const StepSummary s = stepper->Step(input);
+    run->step_time_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    AddCounts(s, run);
+    if (!s.converged()) {
+      run->status = s.status;
+      run->failed_at_t = k * dt;
+      break;
+    }
+    ++run->steps;
+    if (s.halvings > 0) ++run->halved_steps;
+    if (k % stride == 0) Record(*stepper, k * dt, all_nodes, run);
+  }
+  run->stepping_wall_time_s = SecondsSince(loop_start);
+  // A failed step may have committed halved sub-steps (at least dt / 2^max_halvings each).
+  const double nominal = run->steps * dt;
+  const bool past_nominal = std::abs(stepper->time() - nominal) > 1e-3 * dt;
+  run->simulated_time_s = past_nominal ? stepper->time() : nominal;
+  // The final state ends the trajectory even when it falls between two output intervals.
+  if (run->frame_t.back() != run->simulated_time_s)
+    Record(*stepper, run->simulated_time_s, all_nodes, run);
+}
+
+/// The whole simulation: initial equilibrium, then round(duration / dt) steps.
+io::DynamicRun Simulate(const io::Problem& problem, bool all_nodes, Bdf2ShootingStepper* stepper) {
+  const io::Problem::Dynamics& d = problem.dynamics;
+  const int steps = static_cast<int>(std::lround(d.duration / d.dt));
+  const int stride = std::max(1, static_cast<int>(std::lround(d.output_interval / d.dt)));
+  io::DynamicRun run;
+  run.step_time_s.reserve(steps);
+  const std::size_t frames = steps / stride + 2;
+  run.frame_t.reserve(frames);
+  run.frame_tip.reserve(frames);
+  if (all_nodes) run.frame_positions.reserve(frames * problem.nodes);
+
+  const auto start = Clock::now();
+  const StepSummary init =
+      stepper->InitializeAtRest(ClampedInput(problem, d.initial_loads.value_or(problem.loads)));
+  AddCounts(init, &run);
+  run.initial_state_ok = init.converged();
+  run.status = init.status;
+  if (!run.initial_state_ok) {
+    run.failed_at_t = 0.0;
+  } else {
+    Record(*stepper, 0.0, all_nodes, &run);
+    StepToTheEnd(problem, steps, stride, all_nodes, stepper, &run);
+    run.energy = stepper->Energy(problem.loads);
+  }
+  run.wall_time_s = SecondsSince(start);
+  return run;
+}
+
+std::string SummaryLine(const io::DynamicRun& run, const RodState& state) {
+  std::ostringstream line;
+  line << "cosserat: " << ToString(run.status);
+  if (!run.initial_state_ok) {
+    line << ", the initial equilibrium did not converge, " << std::setprecision(3)
+         << run.wall_time_s * 1e3 << " ms";
+    return line.str();
+  }
+  if (run.status != SolveStatus::kConverged)
+    line << " in the step to t = " << std::setprecision(6) << run.failed_at_t << " s";
+  line << ", " << run.steps << " steps, " << std::setprecision(6) << run.simulated_time_s
+       << " s simulated in " << std::setprecision(3) << run.wall_time_s << " s ("
+       << run.simulated_time_s / run.stepping_wall_time_s << "x real time)";
+  const Vec3& tip = state.tip_position_W();
+  line << ", tip at [" << std::setprecision(6) << tip.x() << ", " << tip.y() << ", " << tip.z()
+       << "] m";
+  return line.str();
+}
+
+}  // namespace
+
+bool RunDynamics(const io::Problem& problem, std::ostream& out, std::ostream* csv,
+                 std::ostream& log) {
+  Bdf2Options options;
+  options.dt = problem.dynamics.dt;
+  options.ends = EndConditions::kCantilever;
+  options.tolerance = problem.solver.tolerance;
+  options.max_iterations = problem.solver.max_iterations;
+  Bdf2ShootingStepper stepper(problem.rod, problem.nodes, options);
+  const io::DynamicRun run = Simulate(problem, csv != nullptr, &stepper);
+  out << io::DynamicResultToJson(run, stepper.state()).dump(2) << '\n';
+  if (csv) io::WriteTrajectoryCsv(*csv, run, stepper.state().s);
+  log << SummaryLine(run, stepper.state()) << '\n';
+  return run.status == SolveStatus::kConverged;
+}
+
+}  // namespace cosserat::cli
