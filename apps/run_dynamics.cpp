@@ -130,7 +130,8 @@ bool RunDynamics(const io::Problem& problem, std::ostream& out, std::ostream* cs
                  std::ostream& log) {
   Bdf2Options options;
   options.dt = problem.dynamics.dt;
-  options.ends = EndConditions::kCantilever;
+  options.ends = problem.boundary == "free-free" ? EndConditions::kFreeFree
+                                                 : EndConditions::kCantilever;
   options.tolerance = problem.solver.tolerance;
   options.max_iterations = problem.solver.max_iterations;
   Bdf2ShootingStepper stepper(problem.rod, problem.nodes, options);

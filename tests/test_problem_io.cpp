@@ -234,16 +234,26 @@ TEST(ProblemIo, DynamicsParsesAndRuns) {
   EXPECT_TRUE(UnsupportedFeatures(*r.problem).empty());
 }
 
-TEST(ProblemIo, DynamicsRunsOnlyForCantilevers) {
+TEST(ProblemIo, DynamicsRunsForCantileverAndFreeFree) {
   json j = ValidProblem();
   j["analysis"] = "dynamics";
   j["boundary"] = "free-free";
-  const ParseResult r = Parse(j);
+  ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  EXPECT_TRUE(UnsupportedFeatures(*r.problem).empty());
+  j["boundary"] = "pinned-pinned";
+  r = Parse(j);
   ASSERT_TRUE(r.ok()) << AllErrors(r);
   const std::vector<std::string> gated = UnsupportedFeatures(*r.problem);
   ASSERT_EQ(gated.size(), 1u);
-  EXPECT_EQ(gated[0], R"(boundary: "free-free" is not implemented in this version (supported: )"
-                      R"("cantilever"))");
+  EXPECT_EQ(gated[0], R"(boundary: "pinned-pinned" is not implemented in this version )"
+                      R"((supported: "cantilever", "free-free"))");
+  // Statics is still cantilever only.
+  j["analysis"] = "statics";
+  j["boundary"] = "free-free";
+  r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  EXPECT_EQ(UnsupportedFeatures(*r.problem).size(), 1u);
 }
 
 // ----- bad input: one test per class --------------------------------------------------------

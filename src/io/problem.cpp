@@ -233,7 +233,10 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
   };
   check("analysis", p.analysis, {"statics", "dynamics"});
   check("formulation", p.formulation, {"se3-shooting"});
-  check("boundary", p.boundary, {"cantilever"});
+  if (p.analysis == "dynamics")
+    check("boundary", p.boundary, {"cantilever", "free-free"});
+  else
+    check("boundary", p.boundary, {"cantilever"});
   return out;
 }
 

@@ -44,6 +44,11 @@ cosserat_cli_test(NAME solve_dynamics
                   CODE 0 STDOUT "\"trajectory\": {" STDERR "converged, 100 steps"
                   FILES "${_cli_out}/frames.csv")
 
+# A free rod at rest in free space stays put: the final tip is exactly where it started.
+cosserat_cli_test(NAME solve_free_free
+                  ARGS solve "${_cli_dir}/free_free.json"
+                  CODE 0 STDERR "converged, 50 steps.*tip at \\[0, 0, 0.5\\] m")
+
 # Bad usage.
 cosserat_cli_test(NAME no_command CODE 2 STDERR "usage:")
 cosserat_cli_test(NAME unknown_command ARGS frobnicate CODE 2 STDERR "unknown command")
