@@ -83,14 +83,12 @@ COSSERAT_HOT DynState Derivative(const Sample& smp, const Vec3& f_W, const DynSt
       Vt[i] = 0.0;
     }
   } else {
-    // W = K (ξ − ξ*) + D (c0 ξ + ξʰ)  ⇒  ξ = ξ* + (K + c0 D)⁻¹ (W − D (c0 ξ* + ξʰ)), which is
-    // the static law, operation for operation, when D = 0.
-    for (int i = 0; i < 6; ++i) {
-      xi[i] = smp.rest_strain(i) +
-              smp.implicit_compliance(i) *
-                  (W[i] - smp.damping(i) * (c0 * smp.rest_strain(i) + xi_h(i)));
-      xt[i] = c0 * xi[i] + xi_h(i);
-    }
+    // W = K (ξ − ξ*) + D (c0 ξ + ξʰ)  ⇒  ξ = [ξ* − c0 A D ξ*] + A W − A D ξʰ, A = (K + c0 D)⁻¹;
+    // with D = 0 this is the static law, operation for operation.
+    for (int i = 0; i < 6; ++i) xi[i] = smp.implicit_offset(i) + smp.implicit_compliance(i) * W[i];
+    if (smp.damped)
+      for (int i = 0; i < 6; ++i) xi[i] -= smp.implicit_damping(i) * xi_h(i);
+    for (int i = 0; i < 6; ++i) xt[i] = c0 * xi[i] + xi_h(i);
     Vt[0] = c0 * w0 + V_h(0);
     Vt[1] = c0 * w1 + V_h(1);
     Vt[2] = c0 * w2 + V_h(2);
@@ -250,6 +248,8 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
     smp.rest_strain = model_.RestStrainAt(s);
     smp.mass = p.mass.diagonal();
     smp.implicit_compliance = smp.compliance;
+    smp.implicit_damping.setZero();
+    smp.implicit_offset = smp.rest_strain;
     return smp;
   };
   for (double s : SegmentSamplePoints(grid_)) samples_.push_back(make(s));
@@ -258,7 +258,8 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
 
   const int stages = 4 * (n - 1);
-  for (auto* v : {&strain_now_, &strain1_, &strain2_, &twist_now_, &twist1_, &twist2_})
+  for (auto* v : {&strain_now_, &strain1_, &strain2_, &twist_now_, &twist1_, &twist2_,
+                  &strain_h_, &twist_h_})
     v->assign(stages, Vec6::Zero());
   position_now_.assign(stages, Vec3::Zero());
   position1_.assign(stages, Vec3::Zero());
@@ -272,9 +273,27 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
 
 void Bdf2ShootingStepper::SetImplicitCompliance(double c0) {
   if (c0 == current_c0_) return;
-  for (Sample& smp : samples_)
+  for (Sample& smp : samples_) {
     smp.implicit_compliance = (smp.stiffness + c0 * smp.damping).cwiseInverse();
+    smp.implicit_damping = smp.implicit_compliance.cwiseProduct(smp.damping);
+    smp.implicit_offset = smp.rest_strain - c0 * smp.implicit_damping.cwiseProduct(smp.rest_strain);
+    smp.damped = (smp.damping.array() != 0.0).any();
+  }
   current_c0_ = c0;
+}
+
+void Bdf2ShootingStepper::PrepareHistory(const Coefficients& c) {
+  if (history_ready_ && c.c0 == history_c_.c0 && c.c2 == history_c_.c2) return;
+  // Written so that a constant history gives exactly zero rates:
+  // ξ_t = c0 ξ + ξʰ with ξʰ = c2 (ξ₂ − ξ₁) − c0 ξ₁ (c1 = −c0 − c2), likewise for V.
+  for (size_t q = 0; q < strain_h_.size(); ++q) {
+    for (int k = 0; k < 6; ++k) {
+      strain_h_[q](k) = c.c2 * (strain2_[q](k) - strain1_[q](k)) - c.c0 * strain1_[q](k);
+      twist_h_[q](k) = c.c2 * (twist2_[q](k) - twist1_[q](k)) - c.c0 * twist1_[q](k);
+    }
+  }
+  history_c_ = c;
+  history_ready_ = true;
 }
 
 Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, bool statics,
@@ -336,18 +355,11 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
   auto f_at = [&](const Sample& smp) -> Vec3 {
     return smp.mass(5) * loads.gravity_W + loads.distributed_force_W;
   };
-  // History terms written so that a constant history gives exactly zero rates:
-  // ξ_t = c0 ξ + ξʰ with ξʰ = c2 (ξ₂ − ξ₁) − c0 ξ₁ (c1 = −c0 − c2), likewise for V.
+  if (!statics) PrepareHistory(c);
   auto history = [&](int q, Vec6* xi_h, Vec6* V_h) {
     if (statics) return;
-    const double* a = strain1_[q].data();
-    const double* b = strain2_[q].data();
-    const double* u = twist1_[q].data();
-    const double* z = twist2_[q].data();
-    for (int k = 0; k < 6; ++k) {
-      (*xi_h)(k) = c.c2 * (b[k] - a[k]) - c.c0 * a[k];
-      (*V_h)(k) = c.c2 * (z[k] - u[k]) - c.c0 * u[k];
-    }
+    *xi_h = strain_h_[q];
+    *V_h = twist_h_[q];
   };
   auto record_node = [&](int i, const Vec6& xi) {
     trial_.position_W[i] = y.p;
@@ -411,9 +423,8 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
   history(q_last, &xi_h_tip, &V_h_tip);
   const Vec6 xi_tip =
       statics ? Vec6(s_tip.rest_strain + s_tip.compliance.cwiseProduct(W_tip))
-              : Vec6(s_tip.rest_strain +
-                     s_tip.implicit_compliance.cwiseProduct(
-                         W_tip - s_tip.damping.cwiseProduct(c.c0 * s_tip.rest_strain + xi_h_tip)));
+              : Vec6(s_tip.implicit_offset + s_tip.implicit_compliance.cwiseProduct(W_tip) -
+                     s_tip.implicit_damping.cwiseProduct(xi_h_tip));
   record_node(n - 1, xi_tip);
   if (J) {
     J->topRows<3>() = dy.m;
@@ -562,6 +573,7 @@ void Bdf2ShootingStepper::Commit(double h) {
   std::swap(position1_, position_now_);
   std::swap(rotation1_, rotation_now_);
   std::swap(state_, trial_);
+  history_ready_ = false;
   base2_ = base1_;
   base1_ = base_now_;
   time_ += h;
@@ -610,6 +622,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
   std::copy(rotation_now_.begin(), rotation_now_.end(), rotation1_.begin());
   std::swap(state_, trial_);
   for (auto* v : {&twist1_, &twist2_}) std::fill(v->begin(), v->end(), Vec6::Zero());
+  history_ready_ = false;
   time_ = 0.0;
   last_dt_ = 0.0;
   steps_taken_ = 0;
@@ -744,6 +757,7 @@ void Bdf2ShootingStepper::Restore(const Snapshot& s) {
   std::copy(s.rotation1.begin(), s.rotation1.end(), rotation1_.begin());
   base1_ = s.base1;
   base2_ = s.base2;
+  history_ready_ = false;
   if (s.state.size() != state_.size())
     throw std::invalid_argument("Snapshot is from a stepper with another grid");
   state_ = s.state;

@@ -129,7 +129,10 @@ class Bdf2ShootingStepper {
     Vec6 compliance;       ///< diag K⁻¹ (statics)
     Vec6 rest_strain;      ///< ξ*
     Vec6 mass;             ///< diag M = [ρI1, ρI2, ρ(I1+I2), ρA, ρA, ρA]
-    Vec6 implicit_compliance;  ///< diag (K + c0 D)⁻¹ for the current c0
+    Vec6 implicit_compliance;  ///< A = diag (K + c0 D)⁻¹ for the current c0
+    Vec6 implicit_damping;     ///< A D
+    Vec6 implicit_offset;      ///< ξ* − c0 A D ξ*
+    bool damped = false;       ///< D ≠ 0
   };
   struct Coefficients {
     double c0 = 0, c1 = 0, c2 = 0;
@@ -151,6 +154,8 @@ class Bdf2ShootingStepper {
   bool SolveStep(const StepInput& input, const Coefficients& c, bool statics,
                  StepSummary* summary);
   void SetImplicitCompliance(double c0);
+  /// Fills the history terms ξʰ, Vʰ at every stage for the weights c (once per step).
+  void PrepareHistory(const Coefficients& c);
   void Commit(double h);
 
   RodModel model_;
@@ -163,6 +168,9 @@ class Bdf2ShootingStepper {
   // accepted ones one and two steps back.
   std::vector<Vec6> strain_now_, strain1_, strain2_;
   std::vector<Vec6> twist_now_, twist1_, twist2_;
+  std::vector<Vec6> strain_h_, twist_h_;  ///< history terms ξʰ, Vʰ for history_c_
+  Coefficients history_c_;
+  bool history_ready_ = false;
   std::vector<Vec3> position_now_, position1_;
   std::vector<Mat3> rotation_now_, rotation1_;
   // Pose of the s = 0 end: the shot being tried, and one and two steps back (free-free state).
