@@ -330,7 +330,10 @@ TEST(Bdf2Dynamics, ShootingJacobianMatchesFiniteDifferences) {
   const CrossSection sec = CrossSection::Circle(0.001);
   mat.damping.bending = 1e-4 * 200e9 * sec.I1;
   mat.damping.extension = 1e-4 * 200e9 * sec.area;
-  Bdf2ShootingStepper stepper(RodModel::Uniform(0.5, sec, mat), 21);
+  Bdf2Options opt;
+  opt.tip_mass = 0.01;  // with a tip body, so its terms are checked too
+  opt.tip_inertia_B = Vec3(1e-6, 2e-6, 3e-7);
+  Bdf2ShootingStepper stepper(RodModel::Uniform(0.5, sec, mat), 21, opt);
   StepInput in;
   in.loads.tip_force = Vec3(-0.2, 0.1, 0);
   ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
@@ -478,6 +481,48 @@ TEST(Bdf2Dynamics, AcceleratingBaseActsLikeGravity) {
   // Order 2 in dt: ratios near 4 (the first pair at ω1 dt = 0.14 carries higher terms).
   EXPECT_NEAR(std::log2(d1 / d2), 2.0, 0.4) << d1 << " " << d2 << " " << d3;
   EXPECT_NEAR(std::log2(d2 / d3), 2.0, 0.25) << d1 << " " << d2 << " " << d3;
+}
+
+}  // namespace
+}  // namespace cosserat
+
+namespace cosserat {
+namespace {
+
+// First bending frequency of a cantilever carrying a tip mass M (no rotary inertia): the first
+// root λ of 1 + cos λ cosh λ + (M / m_rod) λ (cos λ sinh λ − sin λ cosh λ) = 0 gives
+// ω = λ² sqrt(EI / (ρA L⁴)) (e.g. Blevins, Formulas for Natural Frequency, table 8-1).
+TEST(Bdf2Dynamics, TipMassLowersTheFundamentalAsTheory) {
+  const double L = 1.0, r = 0.01;
+  const double EI = 200e9 * kPi * std::pow(r, 4) / 4, rhoA = 8000 * kPi * r * r;
+  const double ratio = 1.0;  // tip mass = rod mass
+  auto g = [&](double l) {
+    return 1 + std::cos(l) * std::cosh(l) +
+           ratio * l * (std::cos(l) * std::sinh(l) - std::sin(l) * std::cosh(l));
+  };
+  double lo = 0.5, hi = 1.8751;  // g(lo) > 0 > g(hi): the root below the no-mass λ1
+  ASSERT_GT(g(lo), 0);
+  ASSERT_LT(g(hi), 0);
+  for (int it = 0; it < 100; ++it) (g(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+  const double lambda = 0.5 * (lo + hi);
+  const double f = lambda * lambda * std::sqrt(EI / (rhoA * std::pow(L, 4))) / (2 * kPi);
+
+  Bdf2Options opt;
+  opt.dt = 0.05 / (2 * kPi * f);  // BDF2 shift −(ω dt)²/3 = −0.08 %
+  opt.tip_mass = ratio * rhoA * L;
+  Bdf2ShootingStepper stepper(Steel(L, r), 41, opt);
+  StepInput in;
+  in.loads.tip_force = Vec3(1e-3 * 3 * EI / (L * L), 0, 0);
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads.tip_force.setZero();
+  std::vector<double> tip_x;
+  const int steps = static_cast<int>(6.0 / f / opt.dt);
+  for (int i = 0; i < steps; ++i) {
+    ASSERT_TRUE(stepper.Step(in).converged()) << "step " << i;
+    tip_x.push_back(stepper.state().tip_position_W().x());
+  }
+  // The tip-mass root (λ ≈ 1.25 here) is far from the bare rod's 1.875, so 1 % tells them apart.
+  EXPECT_NEAR(PeakFrequency(tip_x, opt.dt, 0.7 * f, 1.3 * f) / f, 1.0, 0.01);
 }
 
 }  // namespace

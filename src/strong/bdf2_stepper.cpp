@@ -22,6 +22,9 @@ bool Bdf2Options::IsValid(std::string* why) const {
   if (!(std::isfinite(tolerance) && tolerance > 0)) return fail("tolerance must be positive");
   if (max_iterations < 1) return fail("max_iterations must be at least 1");
   if (max_halvings < 0) return fail("max_halvings must be >= 0");
+  if (!(std::isfinite(tip_mass) && tip_mass >= 0)) return fail("tip_mass must be finite and >= 0");
+  if (!(tip_inertia_B.allFinite() && (tip_inertia_B.array() >= 0).all()))
+    return fail("tip_inertia must be finite and >= 0");
   return true;
 }
 
@@ -131,13 +134,21 @@ COSSERAT_HOT DynState Derivative(const Sample& smp, const Vec3& f_W, const DynSt
   return d;
 }
 
-// Tip condition W(L) = W_tip in the tip body frame, made dimensionless by scale.
-Vec6 TipResidual(const DynState& y, const StaticLoads& loads, const Vec6& scale) {
+// Tip condition (eq. 28, with a rigid tip body of mass m_t and inertia J_t at the tip):
+//   W(L) = [M_B − J_t ω_t − ω × J_t ω;  F_B + m_t Rᵀ g − m_t (v_t + ω × v)]   (body frame),
+// made dimensionless by scale. V_t is the BDF2 rate of the tip twist (zero in statics).
+Vec6 TipResidual(const DynState& y, const StaticLoads& loads, const Bdf2Options& opt,
+                 const Vec6& V_t, const Vec6& scale) {
   const Mat3 Rt = y.R.transpose();
-  const Vec3 M = loads.tip_moment_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_moment)
-                                                               : loads.tip_moment;
-  const Vec3 F = loads.tip_force_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_force)
-                                                              : loads.tip_force;
+  Vec3 M = loads.tip_moment_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_moment)
+                                                         : loads.tip_moment;
+  Vec3 F = loads.tip_force_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_force)
+                                                        : loads.tip_force;
+  if (opt.tip_mass > 0 || opt.tip_inertia_B.any()) {
+    const Vec3 Jw = opt.tip_inertia_B.cwiseProduct(y.w);
+    M -= opt.tip_inertia_B.cwiseProduct(V_t.head<3>()) + y.w.cross(Jw);
+    F += opt.tip_mass * (Rt * loads.gravity_W - V_t.tail<3>() - y.w.cross(y.v));
+  }
   Vec6 r;
   r << y.m - M, y.n - F;
   return r.cwiseQuotient(scale);
@@ -426,6 +437,11 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
               : Vec6(s_tip.implicit_offset + s_tip.implicit_compliance.cwiseProduct(W_tip) -
                      s_tip.implicit_damping.cwiseProduct(xi_h_tip));
   record_node(n - 1, xi_tip);
+  Vec6 V_t_tip = Vec6::Zero();  // BDF2 rate of the tip twist
+  if (!statics) {
+    V_t_tip << c.c0 * y.w, c.c0 * y.v;
+    V_t_tip += V_h_tip;
+  }
   if (J) {
     J->topRows<3>() = dy.m;
     J->bottomRows<3>() = dy.n;
@@ -433,9 +449,18 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
       J->topRows<3>() -= TransposeTimesFixed(dy, loads.tip_moment);
     if (loads.tip_force_frame == LoadFrame::kWorld)
       J->bottomRows<3>() -= TransposeTimesFixed(dy, loads.tip_force);
+    const double rate = statics ? 0.0 : c.c0;
+    const Vec3& Jt = options_.tip_inertia_B;
+    const double mt = options_.tip_mass;
+    if (mt > 0 || Jt.any()) {
+      const Mat36 Jt_dw = Jt.asDiagonal() * dy.w;
+      J->topRows<3>() += rate * Jt_dw + Cross(dy.w, Vec3(Jt.cwiseProduct(y.w))) + Cross(y.w, Jt_dw);
+      J->bottomRows<3>() -= mt * TransposeTimesFixed(dy, loads.gravity_W);
+      J->bottomRows<3>() += mt * (rate * dy.v + Cross(dy.w, y.v) + Cross(y.w, dy.v));
+    }
     *J = scale_.cwiseInverse().asDiagonal() * *J;
   }
-  return TipResidual(y, loads, scale_);
+  return TipResidual(y, loads, options_, V_t_tip, scale_);
 }
 
 namespace {

@@ -40,6 +40,10 @@ struct Bdf2Options {
   int max_iterations = 20;
   /// When an attempt fails, retry as two steps of half the size, up to this depth.
   int max_halvings = 3;
+  /// A rigid body fixed at the tip, centred on the tip node: mass (kg) and principal moments of
+  /// inertia in the tip body frame (kg·m²). It feels gravity. Zero: no tip body.
+  double tip_mass = 0.0;
+  Vec3 tip_inertia_B = Vec3::Zero();
 
   bool IsValid(std::string* why) const;
 };
