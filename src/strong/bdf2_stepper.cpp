@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "cosserat/rod/grid.hpp"
+#include "frame_tangent.hpp"
 
 namespace cosserat {
 
@@ -154,13 +155,13 @@ Vec6 TipResidual(const DynState& y, const StaticLoads& loads, const Bdf2Options&
   return r.cwiseQuotient(scale);
 }
 
-using Mat36 = Eigen::Matrix<double, 3, 6>;
+using namespace internal;
 
 // Derivative of DynState with respect to the 6 unknowns (one column each), in the same
 // coordinates, so RK4 on (state, tangent) is the exact derivative of the discrete shot.
 struct DynTangent {
   Mat36 p;
-  std::array<Mat36, 3> R;  // d(R e_j)
+  RotationTangent R;  // d(R e_j)
   Mat36 m, n, w, v;
 };
 
@@ -180,21 +181,6 @@ void Rk4Update(double h, const DynTangent& k1, const DynTangent& k2, const DynTa
   y->v += a * (k1.v + k4.v) + b * (k2.v + k3.v);
 }
 
-// a × B and A × b, column by column.
-Mat36 Cross(const Vec3& a, const Mat36& B) {
-  Mat36 out;
-  for (int k = 0; k < 6; ++k) out.col(k) = a.cross(B.col(k));
-  return out;
-}
-Mat36 Cross(const Mat36& A, const Vec3& b) { return -Cross(b, A); }
-
-// Rows (dR e_j) · f: the derivative of Rᵀ f for a fixed vector f.
-Mat36 TransposeTimesFixed(const DynTangent& dy, const Vec3& f) {
-  Mat36 out;
-  for (int j = 0; j < 3; ++j) out.row(j) = f.transpose() * dy.R[j];
-  return out;
-}
-
 // The linearisation of Derivative along dy, given the primal state and the stage strain.
 DynTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const DynState& y,
                              const DynTangent& dy, const Vec6& xi, double c0, bool statics) {
@@ -206,23 +192,15 @@ DynTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const DynState&
   const Vec3 J = smp.mass.head<3>();
   const double rhoA = smp.mass(5);
   DynTangent dd;
-  dd.p = y.R * dG + G(0) * dy.R[0] + G(1) * dy.R[1] + G(2) * dy.R[2];
-  for (int j = 0; j < 3; ++j) {
-    const Vec3 c = K.cross(Vec3::Unit(j));
-    Mat36 dK_x_ej;
-    const int a = (j + 1) % 3, b = (j + 2) % 3;  // v × e_j has v_b at a and −v_a at b
-    dK_x_ej.row(j).setZero();
-    dK_x_ej.row(a) = dK.row(b);
-    dK_x_ej.row(b) = -dK.row(a);
-    dd.R[j] = c(0) * dy.R[0] + c(1) * dy.R[1] + c(2) * dy.R[2] + y.R * dK_x_ej;
-  }
+  dd.p = RotateTangent(y.R, dy.R, G, dG);
+  dd.R = RotationRateTangent(y.R, dy.R, K, dK);
   dd.w = rate * dK + Cross(dy.w, K) + Cross(y.w, dK);
   dd.v = rate * dG + Cross(dy.w, G) + Cross(y.w, dG) + Cross(dy.v, K) + Cross(y.v, dK);
   const Vec3 Jw = J.cwiseProduct(y.w);
   const Mat36 J_dw = J.asDiagonal() * dy.w;
   dd.m = Cross(dy.m, K) + Cross(y.m, dK) + Cross(dy.n, G) + Cross(y.n, dG) + rate * J_dw +
          Cross(dy.w, Jw) + Cross(y.w, J_dw);
-  dd.n = Cross(dy.n, K) + Cross(y.n, dK) - TransposeTimesFixed(dy, f_W) +
+  dd.n = Cross(dy.n, K) + Cross(y.n, dK) - TransposeTimesFixed(dy.R, f_W) +
          rhoA * (rate * dy.v + Cross(dy.w, y.v) + Cross(y.w, dy.v));
   return dd;
 }
@@ -240,10 +218,8 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
                                          const Bdf2Options& options)
     : model_(model), options_(options) {
   std::string why;
-  if (!model_.IsValid(&why)) throw std::invalid_argument("RodModel: " + why);
   if (!options_.IsValid(&why)) throw std::invalid_argument("Bdf2Options: " + why);
-  if (num_nodes < 2) throw std::invalid_argument("num_nodes must be at least 2");
-  grid_ = MakeGrid(model_.length, num_nodes, model_.section->Breakpoints());
+  grid_ = ModelGrid(model_, num_nodes);
   const int n = static_cast<int>(grid_.size());
 
   auto make = [&](double s) {
@@ -350,14 +326,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
       dy.w.leftCols<3>() = twist_scale_.head<3>().asDiagonal();
       dy.v.rightCols<3>() = twist_scale_.tail<3>().asDiagonal();
       dy.p = base_now_.R * tau_v;
-      for (int j = 0; j < 3; ++j) {
-        Mat36 tau_x_ej;  // τ_ω × e_j, column by column
-        const int a = (j + 1) % 3, b = (j + 2) % 3;
-        tau_x_ej.row(j).setZero();
-        tau_x_ej.row(a) = tau_w.row(b);
-        tau_x_ej.row(b) = -tau_w.row(a);
-        dy.R[j] = base_now_.R * tau_x_ej;
-      }
+      for (int j = 0; j < 3; ++j) dy.R[j] = base_now_.R * CrossUnit(tau_w, j);  // R (τ_ω × e_j)
     }
   }
   y.p = base_now_.p;
@@ -446,16 +415,16 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     J->topRows<3>() = dy.m;
     J->bottomRows<3>() = dy.n;
     if (loads.tip_moment_frame == LoadFrame::kWorld)
-      J->topRows<3>() -= TransposeTimesFixed(dy, loads.tip_moment);
+      J->topRows<3>() -= TransposeTimesFixed(dy.R, loads.tip_moment);
     if (loads.tip_force_frame == LoadFrame::kWorld)
-      J->bottomRows<3>() -= TransposeTimesFixed(dy, loads.tip_force);
+      J->bottomRows<3>() -= TransposeTimesFixed(dy.R, loads.tip_force);
     const double rate = statics ? 0.0 : c.c0;
     const Vec3& Jt = options_.tip_inertia_B;
     const double mt = options_.tip_mass;
     if (mt > 0 || Jt.any()) {
       const Mat36 Jt_dw = Jt.asDiagonal() * dy.w;
       J->topRows<3>() += rate * Jt_dw + Cross(dy.w, Vec3(Jt.cwiseProduct(y.w))) + Cross(y.w, Jt_dw);
-      J->bottomRows<3>() -= mt * TransposeTimesFixed(dy, loads.gravity_W);
+      J->bottomRows<3>() -= mt * TransposeTimesFixed(dy.R, loads.gravity_W);
       J->bottomRows<3>() += mt * (rate * dy.v + Cross(dy.w, y.v) + Cross(y.w, dy.v));
     }
     *J = scale_.cwiseInverse().asDiagonal() * *J;

@@ -10,6 +10,7 @@
 
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/rod/grid.hpp"
+#include "frame_tangent.hpp"
 
 namespace cosserat {
 
@@ -49,7 +50,7 @@ constexpr double kIntermediateTolerance = 1e-6;
 #endif
 
 using Sample = StaticShootingSolver::Sample;
-using Mat36 = Eigen::Matrix<double, 3, 6>;
+using namespace internal;
 
 // State of the integration in s: centreline and frame in the world, internal wrench in the body
 // frame. Keeping W in the body frame keeps the chain of dependent operations per stage short,
@@ -65,7 +66,7 @@ struct ShotState {
 // coordinates, so RK4 applied to (state, tangent) gives the exact derivative of the discrete map.
 struct ShotTangent {
   Mat36 p;
-  std::array<Mat36, 3> R;  // d(R e_j)
+  RotationTangent R;  // d(R e_j)
   Mat36 m;
   Mat36 n;
 };
@@ -161,20 +162,6 @@ COSSERAT_HOT ShotState Derivative(const Sample& smp, const Vec3& f_W, const Shot
   return d;
 }
 
-// Rows (dR e_j) · v for j = 0..2: the derivative of Rᵀ v (v fixed) along the tangent.
-Mat36 TransposeTimesFixed(const ShotTangent& dy, const Vec3& v) {
-  Mat36 out;
-  for (int j = 0; j < 3; ++j) out.row(j) = v.transpose() * dy.R[j];
-  return out;
-}
-
-// Columnwise a × B for a 3-vector a and a 3 × 6 matrix B.
-Mat36 CrossColumns(const Vec3& a, const Mat36& B) {
-  Mat36 out;
-  for (int k = 0; k < 6; ++k) out.col(k) = a.cross(B.col(k));
-  return out;
-}
-
 // The linearisation of Derivative along the tangent dy, given the primal strain.
 ShotTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const ShotState& y,
                               const ShotTangent& dy, const Vec6& xi) {
@@ -185,22 +172,11 @@ ShotTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const ShotStat
   const Mat36 dK = dxi.topRows<3>(), dG = dxi.bottomRows<3>();
   const Vec3 K = xi.head<3>(), G = xi.tail<3>();
   ShotTangent dd;
-  // d(R Γ) = dR Γ + R dΓ
-  dd.p = y.R * dG + G(0) * dy.R[0] + G(1) * dy.R[1] + G(2) * dy.R[2];
-  // d(R K̂ e_j) = dR (K × e_j) + R (dK × e_j)
-  for (int j = 0; j < 3; ++j) {
-    const Vec3 c = K.cross(Vec3::Unit(j));
-    Mat36 dK_x_ej;
-    const int a = (j + 1) % 3, b = (j + 2) % 3;  // v × e_j has v_b at a and −v_a at b
-    dK_x_ej.row(j).setZero();
-    dK_x_ej.row(a) = dK.row(b);
-    dK_x_ej.row(b) = -dK.row(a);
-    dd.R[j] = c(0) * dy.R[0] + c(1) * dy.R[1] + c(2) * dy.R[2] + y.R * dK_x_ej;
-  }
+  dd.p = RotateTangent(y.R, dy.R, G, dG);
+  dd.R = RotationRateTangent(y.R, dy.R, K, dK);
   // d(m × K + n × Γ) and d(n × K − Rᵀ f)
-  dd.m = CrossColumns(y.m, dK) - CrossColumns(K, dy.m) + CrossColumns(y.n, dG) -
-         CrossColumns(G, dy.n);
-  dd.n = CrossColumns(y.n, dK) - CrossColumns(K, dy.n) - TransposeTimesFixed(dy, f_W);
+  dd.m = Cross(y.m, dK) + Cross(dy.m, K) + Cross(y.n, dG) + Cross(dy.n, G);
+  dd.n = Cross(y.n, dK) + Cross(dy.n, K) - TransposeTimesFixed(dy.R, f_W);
   return dd;
 }
 
@@ -272,9 +248,9 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples,
     J->topRows<3>() = dy.m;
     J->bottomRows<3>() = dy.n;
     if (loads.tip_moment_frame == LoadFrame::kWorld)
-      J->topRows<3>() -= TransposeTimesFixed(dy, loads.tip_moment);
+      J->topRows<3>() -= TransposeTimesFixed(dy.R, loads.tip_moment);
     if (loads.tip_force_frame == LoadFrame::kWorld)
-      J->bottomRows<3>() -= TransposeTimesFixed(dy, loads.tip_force);
+      J->bottomRows<3>() -= TransposeTimesFixed(dy.R, loads.tip_force);
     *J = scale.cwiseInverse().asDiagonal() * *J;
   }
   return TipResidual(y.R, BodyWrench(y), loads, scale);
@@ -287,10 +263,8 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
                                            const Actuation& actuation)
     : model_(model), options_(options) {
   std::string why;
-  if (!model_.IsValid(&why)) throw std::invalid_argument("RodModel: " + why);
   if (!options_.IsValid(&why)) throw std::invalid_argument("StaticShootingOptions: " + why);
-  if (num_nodes < 2) throw std::invalid_argument("num_nodes must be at least 2");
-  grid_ = MakeGrid(model_.length, num_nodes, model_.section->Breakpoints());
+  grid_ = ModelGrid(model_, num_nodes);
   const int n = static_cast<int>(grid_.size());
 
   auto make = [&](double s) {

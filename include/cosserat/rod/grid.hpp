@@ -5,6 +5,8 @@
 
 #include <vector>
 
+#include "cosserat/rod/rod_model.hpp"
+
 namespace cosserat {
 
 /// Returns num_nodes arc lengths 0 = s_0 < … < s_{N−1} = length (m). The interior breakpoints
@@ -13,6 +15,10 @@ namespace cosserat {
 /// Breakpoints outside (0, L) or closer than 1e-12 L to another are ignored.
 /// Requires num_nodes >= 2 + (number of distinct interior breakpoints).
 std::vector<double> MakeGrid(double length, int num_nodes, std::vector<double> breakpoints);
+
+/// The grid of a model with num_nodes nodes (its profile's breakpoints among them). Throws
+/// std::invalid_argument saying what is wrong when the model is invalid or num_nodes < 2.
+std::vector<double> ModelGrid(const RodModel& model, int num_nodes);
 
 /// Where an RK4 step over each segment [s_i, s_{i+1}] of the grid reads the section: its start,
 /// its midpoint, and its end moved 1e-9 h inside, so that a step never reads the far side of a
