@@ -371,9 +371,10 @@ struct FreeRodAfterImpulse {
   Bdf2Options opt;
   std::unique_ptr<Bdf2ShootingStepper> stepper;
   Vec3 impulse;
-  FreeRodAfterImpulse() {
+  explicit FreeRodAfterImpulse(double tolerance = 1e-10) {
     opt.ends = EndConditions::kFreeFree;
     opt.dt = 1e-3;
+    opt.tolerance = tolerance;
     stepper = std::make_unique<Bdf2ShootingStepper>(Steel(0.5, 0.001), 41, opt);
     StepInput in;
     EXPECT_TRUE(stepper->InitializeAtRest(in).converged());
@@ -390,30 +391,38 @@ struct FreeRodAfterImpulse {
 
 TEST(Bdf2FreeFree, ImpulseTranslatesCentreOfMassAtImpulseOverMass) {
   FreeRodAfterImpulse rod;
-  // BDF2 spreads an impulse over the first steps (2/3 of it in the first); wait for it to settle.
+  // BDF2 spreads an impulse over the first steps (2/3 of it in the first, the rest decaying like
+  // 3^-k); after 20 steps less than 1e-9 of it is still to come.
   ASSERT_TRUE(rod.Run(20));
   const Vec3 c0 = rod.stepper->CentreOfMass_W();
   const double t0 = rod.stepper->time();
   ASSERT_TRUE(rod.Run(500));
   const Vec3 velocity = (rod.stepper->CentreOfMass_W() - c0) / (rod.stepper->time() - t0);
   const Vec3 expected = rod.impulse / rod.stepper->Mass();
-  // Measured 1.7e-4: the axial part of the impulse sets off axial waves (ω dt ≈ 15) that BDF2
-  // damps within a few steps but not without a trace in the axial momentum.
-  EXPECT_LT((velocity - expected).norm(), 1e-3 * expected.norm());
-  EXPECT_LT((rod.stepper->Momentum().linear_W - rod.impulse).norm(), 1e-3 * rod.impulse.norm());
+  // Measured 3e-7: the centre of mass is the position quadrature, which BDF2 moves consistently
+  // with the momentum only to O(dt²) (the momentum itself is exact, see below).
+  EXPECT_LT((velocity - expected).norm(), 1e-5 * expected.norm());
+  EXPECT_LT((rod.stepper->Momentum().linear_W - rod.impulse).norm(), 1e-7 * rod.impulse.norm());
 }
 
-TEST(Bdf2FreeFree, MomentumDriftOver1000Steps) {
-  FreeRodAfterImpulse rod;
-  ASSERT_TRUE(rod.Run(20));
-  const RodMomentum a = rod.stepper->Momentum();
-  ASSERT_TRUE(rod.Run(1000));
-  const RodMomentum b = rod.stepper->Momentum();
-  // Not conserved to round-off: BDF2 acts on body-frame twists, so the discrete balance law
-  // conserves the world momentum only to O(dt²) per rotation of the frames. Measured: linear
-  // 1.5e-6, angular 7.5e-9 (relative, 1000 steps); the bounds leave a factor of ~10.
-  EXPECT_LT((b.linear_W - a.linear_W).norm(), 2e-5 * a.linear_W.norm());
-  EXPECT_LT((b.angular_W - a.angular_W).norm(), 1e-7 * a.angular_W.norm());
+// The force is integrated in the world frame with the BDF2 rate of the world velocity, so with no
+// load the stage quadrature of momentum obeys c0 P_n + c1 P_n−1 + c2 P_n−2 = (end forces left by
+// the solver): it is conserved up to the residual tolerance, down to the round-off of the shot.
+TEST(Bdf2FreeFree, LinearMomentumConservedToSolverTolerance) {
+  for (double tolerance : {1e-10, 1e-13}) {
+    FreeRodAfterImpulse rod(tolerance);
+    ASSERT_TRUE(rod.Run(20));
+    const RodMomentum a = rod.stepper->Momentum();
+    ASSERT_TRUE(rod.Run(1000));
+    const RodMomentum b = rod.stepper->Momentum();
+    // Measured relative drift over 1000 steps: 1.9e-8 at 1e-10, 9e-11 at 1e-13 (the floor: the
+    // shot amplifies round-off by ~1e3 here).
+    const double bound = tolerance > 1e-12 ? 1e-7 : 1e-9;
+    EXPECT_LT((b.linear_W - a.linear_W).norm(), bound * a.linear_W.norm()) << tolerance;
+    // Angular momentum is carried in body-frame twists, so only O(dt²) per step: measured 1.6e-8
+    // (1e-10) and 1.8e-9 (1e-13) over 1000 steps.
+    EXPECT_LT((b.angular_W - a.angular_W).norm(), 1e-7 * a.angular_W.norm()) << tolerance;
+  }
 }
 
 TEST(Bdf2FreeFree, UnbalancedLoadsAreNotARestState) {

@@ -46,7 +46,7 @@ struct DynState {
   Vec3 p;  // p_W, m
   Mat3 R;  // R_WB
   Vec3 m;  // N·m
-  Vec3 n;  // N
+  Vec3 n;  // n_W, N: world frame, so that RK4 sums the balance of linear momentum exactly
   Vec3 w;  // ω, rad/s
   Vec3 v;  // m/s
 };
@@ -72,10 +72,12 @@ COSSERAT_HOT void Rk4Update(double h, const DynState& k1, const DynState& k2, co
 // d/ds of the state at one stage point (see the header for the equations), written out: this is
 // the innermost loop of every step. Writes the strain and twist of the stage for the history.
 COSSERAT_HOT DynState Derivative(const Sample& smp, const Vec3& f_W, const DynState& y,
-                                 const Vec6& xi_h, const Vec6& V_h, double c0, bool statics,
-                                 Vec6* strain, Vec6* twist) {
+                                 const Vec6& xi_h, const Vec6& V_h, const Vec3& v_W_h, double c0,
+                                 bool statics, Vec6* strain, Vec6* twist, Vec3* velocity_W) {
+  const Mat3& R = y.R;
   const double m0 = y.m(0), m1 = y.m(1), m2 = y.m(2);
-  const double n0 = y.n(0), n1 = y.n(1), n2 = y.n(2);
+  const Vec3 n_B = R.transpose() * y.n;
+  const double n0 = n_B(0), n1 = n_B(1), n2 = n_B(2);
   const double w0 = y.w(0), w1 = y.w(1), w2 = y.w(2);
   const double v0 = y.v(0), v1 = y.v(1), v2 = y.v(2);
   double xi[6], xt[6], Vt[6];
@@ -104,7 +106,6 @@ COSSERAT_HOT DynState Derivative(const Sample& smp, const Vec3& f_W, const DynSt
   (*twist) << w0, w1, w2, v0, v1, v2;
   const double k0 = xi[0], k1 = xi[1], k2 = xi[2], g0 = xi[3], g1 = xi[4], g2 = xi[5];
   const double J0 = smp.mass(0), J1 = smp.mass(1), J2 = smp.mass(2), rhoA = smp.mass(5);
-  const Mat3& R = y.R;
   DynState d;
   for (int i = 0; i < 3; ++i) {
     d.p(i) = R(i, 0) * g0 + R(i, 1) * g1 + R(i, 2) * g2;
@@ -124,14 +125,12 @@ COSSERAT_HOT DynState Derivative(const Sample& smp, const Vec3& f_W, const DynSt
   d.m(0) = m1 * k2 - m2 * k1 + n1 * g2 - n2 * g1 + J0 * Vt[0] + w1 * Jw2 - w2 * Jw1;
   d.m(1) = m2 * k0 - m0 * k2 + n2 * g0 - n0 * g2 + J1 * Vt[1] + w2 * Jw0 - w0 * Jw2;
   d.m(2) = m0 * k1 - m1 * k0 + n0 * g1 - n1 * g0 + J2 * Vt[2] + w0 * Jw1 - w1 * Jw0;
-  // n' = n × K − Rᵀ f + ρA (v_t + ω × v)
-  const double f0 = f_W(0), f1 = f_W(1), f2 = f_W(2);
-  d.n(0) = n1 * k2 - n2 * k1 - (R(0, 0) * f0 + R(1, 0) * f1 + R(2, 0) * f2) +
-           rhoA * (Vt[3] + w1 * v2 - w2 * v1);
-  d.n(1) = n2 * k0 - n0 * k2 - (R(0, 1) * f0 + R(1, 1) * f1 + R(2, 1) * f2) +
-           rhoA * (Vt[4] + w2 * v0 - w0 * v2);
-  d.n(2) = n0 * k1 - n1 * k0 - (R(0, 2) * f0 + R(1, 2) * f1 + R(2, 2) * f2) +
-           rhoA * (Vt[5] + w0 * v1 - w1 * v0);
+  // n_W' = −f + ρA a_W, with the centreline acceleration a_W the BDF2 rate of the world
+  // velocity R v (continuous limit: R (v_t + ω × v)). Linear momentum then obeys the BDF2
+  // recurrence exactly, to round-off, when no force acts.
+  *velocity_W = R * y.v;
+  d.n = -f_W;
+  if (!statics) d.n += rhoA * (c0 * *velocity_W + v_W_h);
   return d;
 }
 
@@ -151,7 +150,7 @@ Vec6 TipResidual(const DynState& y, const StaticLoads& loads, const Bdf2Options&
     F += opt.tip_mass * (Rt * loads.gravity_W - V_t.tail<3>() - y.w.cross(y.v));
   }
   Vec6 r;
-  r << y.m - M, y.n - F;
+  r << y.m - M, Rt * y.n - F;
   return r.cwiseQuotient(scale);
 }
 
@@ -182,11 +181,13 @@ void Rk4Update(double h, const DynTangent& k1, const DynTangent& k2, const DynTa
 }
 
 // The linearisation of Derivative along dy, given the primal state and the stage strain.
-DynTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const DynState& y,
-                             const DynTangent& dy, const Vec6& xi, double c0, bool statics) {
+DynTangent TangentDerivative(const Sample& smp, const DynState& y, const DynTangent& dy,
+                             const Vec6& xi, double c0, bool statics) {
   const Vec6& C = statics ? smp.compliance : smp.implicit_compliance;
+  const Vec3 n_B = y.R.transpose() * y.n;
+  const Mat36 dn_B = y.R.transpose() * dy.n + TransposeTimesFixed(dy.R, y.n);
   const Mat36 dK = C.head<3>().asDiagonal() * dy.m;
-  const Mat36 dG = C.tail<3>().asDiagonal() * dy.n;
+  const Mat36 dG = C.tail<3>().asDiagonal() * dn_B;
   const double rate = statics ? 0.0 : c0;  // d ξ_t = c0 dξ, d V_t = c0 dV
   const Vec3 K = xi.head<3>(), G = xi.tail<3>();
   const Vec3 J = smp.mass.head<3>();
@@ -198,10 +199,9 @@ DynTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const DynState&
   dd.v = rate * dG + Cross(dy.w, G) + Cross(y.w, dG) + Cross(dy.v, K) + Cross(y.v, dK);
   const Vec3 Jw = J.cwiseProduct(y.w);
   const Mat36 J_dw = J.asDiagonal() * dy.w;
-  dd.m = Cross(dy.m, K) + Cross(y.m, dK) + Cross(dy.n, G) + Cross(y.n, dG) + rate * J_dw +
+  dd.m = Cross(dy.m, K) + Cross(y.m, dK) + Cross(dn_B, G) + Cross(n_B, dG) + rate * J_dw +
          Cross(dy.w, Jw) + Cross(y.w, J_dw);
-  dd.n = Cross(dy.n, K) + Cross(y.n, dK) - TransposeTimesFixed(dy.R, f_W) +
-         rhoA * (rate * dy.v + Cross(dy.w, y.v) + Cross(y.w, dy.v));
+  dd.n = rhoA * rate * RotateTangent(y.R, dy.R, y.v, dy.v);  // d(ρA c0 R v)
   return dd;
 }
 
@@ -251,6 +251,8 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   position_now_.assign(stages, Vec3::Zero());
   position1_.assign(stages, Vec3::Zero());
   rotation_now_.assign(stages, Mat3::Identity());
+  for (auto* v : {&velocity_W_now_, &velocity_W1_, &velocity_W2_, &velocity_W_h_})
+    v->assign(stages, Vec3::Zero());
   rotation1_.assign(stages, Mat3::Identity());
   twist_scale_ << 1, 1, 1, L, L, L;
   state_.Resize(n);
@@ -278,6 +280,7 @@ void Bdf2ShootingStepper::PrepareHistory(const Coefficients& c) {
       strain_h_[q](k) = c.c2 * (strain2_[q](k) - strain1_[q](k)) - c.c0 * strain1_[q](k);
       twist_h_[q](k) = c.c2 * (twist2_[q](k) - twist1_[q](k)) - c.c0 * twist1_[q](k);
     }
+    velocity_W_h_[q] = c.c2 * (velocity_W2_[q] - velocity_W1_[q]) - c.c0 * velocity_W1_[q];
   }
   history_c_ = c;
   history_ready_ = true;
@@ -298,12 +301,12 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     const Vec6 W0 = scale_.cwiseProduct(x);
     base_now_ = in.base_pose;
     y.m = W0.head<3>();
-    y.n = W0.tail<3>();
+    y.n = base_now_.R * W0.tail<3>();
     y.w = statics ? Vec3::Zero() : Vec3(in.base_twist_B.head<3>());
     y.v = statics ? Vec3::Zero() : Vec3(in.base_twist_B.tail<3>());
     if (J) {
       dy.m.leftCols<3>() = scale_.head<3>().asDiagonal();
-      dy.n.rightCols<3>() = scale_.tail<3>().asDiagonal();
+      dy.n.rightCols<3>() = base_now_.R * scale_.tail<3>().asDiagonal();
     }
   } else {
     // Free-free (eq. 29): W(0) = −applied wrench, the unknown is V(0). The base pose follows
@@ -316,7 +319,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     }
     base_now_ = lie::Compose(base1_, lie::SE3Exp(xi));
     y.m = -in.base_wrench_B.head<3>();
-    y.n = -in.base_wrench_B.tail<3>();
+    y.n = base_now_.R * -in.base_wrench_B.tail<3>();
     y.w = V0.head<3>();
     y.v = V0.tail<3>();
     if (J && !statics) {
@@ -327,6 +330,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
       dy.v.rightCols<3>() = twist_scale_.tail<3>().asDiagonal();
       dy.p = base_now_.R * tau_v;
       for (int j = 0; j < 3; ++j) dy.R[j] = base_now_.R * CrossUnit(tau_w, j);  // R (τ_ω × e_j)
+      dy.n = RotateTangent(base_now_.R, dy.R, -in.base_wrench_B.tail<3>(), Mat36::Zero());
     }
   }
   y.p = base_now_.p;
@@ -345,51 +349,44 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     trial_.position_W[i] = y.p;
     trial_.rotation_WB[i] = y.R;
     trial_.wrench_B[i].head<3>() = y.m;
-    trial_.wrench_B[i].tail<3>() = y.n;
+    trial_.wrench_B[i].tail<3>() = y.R.transpose() * y.n;
     trial_.twist_B[i].head<3>() = y.w;
     trial_.twist_B[i].tail<3>() = y.v;
     trial_.strain[i] = xi;
   };
 
   Vec6 xh = Vec6::Zero(), Vh = Vec6::Zero();
+  const Vec3 zero3 = Vec3::Zero();
+  // One RK4 stage q at state ys: record it and return its derivative.
+  auto stage = [&](int q, const Sample& smp, const DynState& ys) {
+    history(q, &xh, &Vh);
+    position_now_[q] = ys.p;
+    rotation_now_[q] = ys.R;
+    return Derivative(smp, f_at(smp), ys, xh, Vh, statics ? zero3 : velocity_W_h_[q], c.c0,
+                      statics, &strain_now_[q], &twist_now_[q], &velocity_W_now_[q]);
+  };
   for (int i = 0; i + 1 < n; ++i) {
     const double h = grid_[i + 1] - grid_[i];
     const Sample& s0 = samples_[3 * i];
     const Sample& sm = samples_[3 * i + 1];
     const Sample& s1 = samples_[3 * i + 2];
     const int q = 4 * i;
-    history(q, &xh, &Vh);
-    position_now_[q] = y.p;
-    rotation_now_[q] = y.R;
-    const DynState k1 =
-        Derivative(s0, f_at(s0), y, xh, Vh, c.c0, statics, &strain_now_[q], &twist_now_[q]);
+    const DynState k1 = stage(q, s0, y);
     record_node(i, strain_now_[q]);
     const DynState y2 = Axpy(y, 0.5 * h, k1);
-    history(q + 1, &xh, &Vh);
-    position_now_[q + 1] = y2.p;
-    rotation_now_[q + 1] = y2.R;
-    const DynState k2 = Derivative(sm, f_at(sm), y2, xh, Vh, c.c0, statics, &strain_now_[q + 1],
-                                   &twist_now_[q + 1]);
+    const DynState k2 = stage(q + 1, sm, y2);
     const DynState y3 = Axpy(y, 0.5 * h, k2);
-    history(q + 2, &xh, &Vh);
-    position_now_[q + 2] = y3.p;
-    rotation_now_[q + 2] = y3.R;
-    const DynState k3 = Derivative(sm, f_at(sm), y3, xh, Vh, c.c0, statics, &strain_now_[q + 2],
-                                   &twist_now_[q + 2]);
+    const DynState k3 = stage(q + 2, sm, y3);
     const DynState y4 = Axpy(y, h, k3);
-    history(q + 3, &xh, &Vh);
-    position_now_[q + 3] = y4.p;
-    rotation_now_[q + 3] = y4.R;
-    const DynState k4 = Derivative(s1, f_at(s1), y4, xh, Vh, c.c0, statics, &strain_now_[q + 3],
-                                   &twist_now_[q + 3]);
+    const DynState k4 = stage(q + 3, s1, y4);
     if (J) {
-      const DynTangent t1 = TangentDerivative(s0, f_at(s0), y, dy, strain_now_[q], c.c0, statics);
-      const DynTangent t2 = TangentDerivative(sm, f_at(sm), y2, Axpy(dy, 0.5 * h, t1),
-                                              strain_now_[q + 1], c.c0, statics);
-      const DynTangent t3 = TangentDerivative(sm, f_at(sm), y3, Axpy(dy, 0.5 * h, t2),
-                                              strain_now_[q + 2], c.c0, statics);
-      const DynTangent t4 = TangentDerivative(s1, f_at(s1), y4, Axpy(dy, h, t3),
-                                              strain_now_[q + 3], c.c0, statics);
+      const DynTangent t1 = TangentDerivative(s0, y, dy, strain_now_[q], c.c0, statics);
+      const DynTangent t2 = TangentDerivative(sm, y2, Axpy(dy, 0.5 * h, t1), strain_now_[q + 1],
+                                              c.c0, statics);
+      const DynTangent t3 = TangentDerivative(sm, y3, Axpy(dy, 0.5 * h, t2), strain_now_[q + 2],
+                                              c.c0, statics);
+      const DynTangent t4 =
+          TangentDerivative(s1, y4, Axpy(dy, h, t3), strain_now_[q + 3], c.c0, statics);
       Rk4Update(h, t1, t2, t3, t4, &dy);
     }
     Rk4Update(h, k1, k2, k3, k4, &y);
@@ -397,7 +394,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
   // The tip node: its strain from the last stage's section with the final wrench.
   const int q_last = 4 * (n - 2) + 3;
   Vec6 W_tip;
-  W_tip << y.m, y.n;
+  W_tip << y.m, y.R.transpose() * y.n;
   const Sample& s_tip = samples_[3 * (n - 2) + 2];
   Vec6 xi_h_tip = Vec6::Zero(), V_h_tip = Vec6::Zero();
   history(q_last, &xi_h_tip, &V_h_tip);
@@ -413,7 +410,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
   }
   if (J) {
     J->topRows<3>() = dy.m;
-    J->bottomRows<3>() = dy.n;
+    J->bottomRows<3>() = y.R.transpose() * dy.n + TransposeTimesFixed(dy.R, y.n);
     if (loads.tip_moment_frame == LoadFrame::kWorld)
       J->topRows<3>() -= TransposeTimesFixed(dy.R, loads.tip_moment);
     if (loads.tip_force_frame == LoadFrame::kWorld)
@@ -566,6 +563,8 @@ void Bdf2ShootingStepper::Commit(double h) {
   std::swap(twist1_, twist_now_);
   std::swap(position1_, position_now_);
   std::swap(rotation1_, rotation_now_);
+  std::swap(velocity_W2_, velocity_W1_);
+  std::swap(velocity_W1_, velocity_W_now_);
   std::swap(state_, trial_);
   history_ready_ = false;
   base2_ = base1_;
@@ -616,6 +615,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
   std::copy(rotation_now_.begin(), rotation_now_.end(), rotation1_.begin());
   std::swap(state_, trial_);
   for (auto* v : {&twist1_, &twist2_}) std::fill(v->begin(), v->end(), Vec6::Zero());
+  for (auto* v : {&velocity_W1_, &velocity_W2_}) std::fill(v->begin(), v->end(), Vec3::Zero());
   history_ready_ = false;
   time_ = 0.0;
   last_dt_ = 0.0;
@@ -726,6 +726,8 @@ Bdf2ShootingStepper::Snapshot Bdf2ShootingStepper::Save() const {
   s.twist2 = twist2_;
   s.position1 = position1_;
   s.rotation1 = rotation1_;
+  s.velocity_W1 = velocity_W1_;
+  s.velocity_W2 = velocity_W2_;
   s.base1 = base1_;
   s.base2 = base2_;
   s.state = state_;
@@ -749,6 +751,8 @@ void Bdf2ShootingStepper::Restore(const Snapshot& s) {
   std::copy(s.twist2.begin(), s.twist2.end(), twist2_.begin());
   std::copy(s.position1.begin(), s.position1.end(), position1_.begin());
   std::copy(s.rotation1.begin(), s.rotation1.end(), rotation1_.begin());
+  std::copy(s.velocity_W1.begin(), s.velocity_W1.end(), velocity_W1_.begin());
+  std::copy(s.velocity_W2.begin(), s.velocity_W2.end(), velocity_W2_.begin());
   base1_ = s.base1;
   base2_ = s.base2;
   history_ready_ = false;

@@ -9,7 +9,9 @@
 ///   p' = R Γ,  R' = R K̂,
 ///   V' = ξ_t + ad_V ξ                  (eq. 25; ω' = K_t + ω × K, v' = Γ_t + ω × Γ + v × K)
 ///   m' = m × K + n × Γ + J ω_t + ω × J ω,
-///   n' = n × K − Rᵀ f_W + ρA (v_t + ω × v)           (eq. 26 for W = [m; n] = −Λ)
+///   n_W' = −f_W + ρA a_W,  n = Rᵀ n_W                 (eq. 26 for W = [m; n] = −Λ)
+/// where a_W is the BDF2 rate of the world velocity R v (continuous limit R (v_t + ω × v)); the
+/// force is carried in the world frame so that linear momentum is conserved to round-off.
 ///   ξ = (K + c0 D)⁻¹ (W + K ξ* − D ξʰ),  ξ_t = c0 ξ + ξʰ,  V_t = c0 V + Vʰ   (eq. 27)
 /// with g(0), V(0) prescribed and the unknown W(0) chosen so that W(L) is the tip wrench (eq. 28).
 /// History is kept at the RK4 stage points, so a rod at rest in equilibrium stays there exactly.
@@ -120,6 +122,7 @@ class Bdf2ShootingStepper {
     std::vector<Vec6> strain1, strain2, twist1, twist2;
     std::vector<Vec3> position1;
     std::vector<Mat3> rotation1;
+    std::vector<Vec3> velocity_W1, velocity_W2;
     lie::SE3 base1, base2;
     RodState state;
   };
@@ -177,6 +180,7 @@ class Bdf2ShootingStepper {
   bool history_ready_ = false;
   std::vector<Vec3> position_now_, position1_;
   std::vector<Mat3> rotation_now_, rotation1_;
+  std::vector<Vec3> velocity_W_now_, velocity_W1_, velocity_W2_, velocity_W_h_;  ///< R v at stages
   // Pose of the s = 0 end: the shot being tried, and one and two steps back (free-free state).
   lie::SE3 base_now_, base1_, base2_;
   Vec6 xi_back_ = Vec6::Zero();  ///< log(g₁⁻¹ g₂) at s = 0, for the group BDF2 of free-free
