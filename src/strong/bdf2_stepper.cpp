@@ -440,6 +440,7 @@ struct StepCost {
   const Coefficients* c;
   bool statics;
   int* shots;
+  int* jacobians;
   Mat6* last_jacobian;
 
   bool operator()(const double* x_ptr, double* r_ptr, double* J_ptr) const {
@@ -448,6 +449,7 @@ struct StepCost {
     ++*shots;
     if (J_ptr) {
       Mat6 J;
+      ++*jacobians;
       r = stepper->Residual(*input, *c, statics, x, &J);
       Eigen::Map<Mat6> J_out(J_ptr);
       J_out = J;
@@ -475,6 +477,7 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
   bool fresh = false;  // J is the exact Jacobian at x, not yet Broyden-updated
   if (jacobian_c0_ != c.c0) {
     r = Residual(input, c, statics, x, &jacobian_);
+    ++summary->jacobians;
     jacobian_c0_ = c.c0;
     fresh = true;
   } else {
@@ -515,6 +518,7 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
     } else {
       // The Broyden Jacobian has drifted: replace it by the exact one at x and retry.
       r = Residual(input, c, statics, x, &J);
+      ++summary->jacobians;
       ++summary->shots;
       fresh = true;
     }
@@ -531,7 +535,7 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
 
   // 2. Levenberg–Marquardt with the exact Jacobian, from the last good unknowns.
   Mat6 J_lm = jacobian_;
-  const StepCost cost{this, &input, &c, statics, &summary->shots, &J_lm};
+  const StepCost cost{this, &input, &c, statics, &summary->shots, &summary->jacobians, &J_lm};
   ceres::TinySolver<StepCost> lm;
   lm.options.max_num_iterations = options_.max_iterations;
   lm.options.cost_threshold = 0.5 * options_.tolerance * options_.tolerance;

@@ -64,6 +64,7 @@ struct StepSummary {
   SolveStatus status = SolveStatus::kNotRun;
   int iterations = 0;  ///< Newton-type iterations, all attempts
   int shots = 0;       ///< integrations from 0 to L
+  int jacobians = 0;   ///< of which with the exact Jacobian (each costs about ten plain shots)
   int halvings = 0;    ///< deepest step halving used (0: the step went through whole)
   double residual = 0.0;
   double wall_time_s = 0.0;
