@@ -133,6 +133,8 @@ bool RunDynamics(const io::Problem& problem, std::ostream& out, std::ostream* cs
   options.ends = problem.boundary == "free-free" ? EndConditions::kFreeFree
                                                  : EndConditions::kCantilever;
   options.tolerance = problem.solver.tolerance;
+  options.tip_mass = problem.dynamics.tip_mass;
+  options.tip_inertia_B = problem.dynamics.tip_inertia;
   options.max_iterations = problem.solver.max_iterations;
   Bdf2ShootingStepper stepper(problem.rod, problem.nodes, options);
   const io::DynamicRun run = Simulate(problem, csv != nullptr, &stepper);

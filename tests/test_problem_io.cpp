@@ -234,6 +234,22 @@ TEST(ProblemIo, DynamicsParsesAndRuns) {
   EXPECT_TRUE(UnsupportedFeatures(*r.problem).empty());
 }
 
+TEST(ProblemIo, DynamicsTipBody) {
+  json j = ValidProblem();
+  j["analysis"] = "dynamics";
+  j["dynamics"] = {{"dt", 0.002}, {"duration", 0.1}, {"tip_mass", 0.02},
+                   {"tip_inertia", {1e-6, 1e-6, 2e-7}}};
+  ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  EXPECT_DOUBLE_EQ(r.problem->dynamics.tip_mass, 0.02);
+  EXPECT_DOUBLE_EQ(r.problem->dynamics.tip_inertia.z(), 2e-7);
+  j["dynamics"]["tip_mass"] = -1;
+  j["dynamics"]["tip_inertia"] = {1e-6, -1e-6, 0};
+  r = Parse(j);
+  EXPECT_ERROR(r, "dynamics.tip_mass: expected", "got -1");
+  EXPECT_ERROR(r, "dynamics.tip_inertia: expected three moments of inertia >= 0", "");
+}
+
 TEST(ProblemIo, DynamicsRunsForCantileverAndFreeFree) {
   json j = ValidProblem();
   j["analysis"] = "dynamics";

@@ -87,7 +87,8 @@ void ParseSolver(const ObjectReader& o, StaticShootingOptions* options) {
 // --- dynamics, buckling, modes ------------------------------------------------------------------
 
 void ParseDynamics(const ObjectReader& o, Problem::Dynamics* d) {
-  o.AllowOnly({"dt", "duration", "output_interval", "initial", "initial_loads"});
+  o.AllowOnly({"dt", "duration", "output_interval", "initial", "initial_loads", "tip_mass",
+               "tip_inertia"});
   const auto dt = ReadNumber(o, "dt", PositiveNumber(), Presence::kOptional);
   const auto duration = ReadNumber(o, "duration", PositiveNumber(), Presence::kOptional);
   const auto interval = ReadNumber(o, "output_interval", PositiveNumber(), Presence::kOptional);
@@ -105,6 +106,14 @@ void ParseDynamics(const ObjectReader& o, Problem::Dynamics* d) {
                         "a time step giving at most " + std::to_string(kMaxDynamicsSteps) +
                             " steps over duration (" + FormatNumber(d->duration) + " s)",
                         got_dt + ", " + FormatNumber(std::round(d->duration / d->dt)) + " steps");
+  }
+  d->tip_mass = ReadNumber(o, "tip_mass", NonNegativeNumber(), Presence::kOptional)
+                    .value_or(d->tip_mass);
+  if (const auto inertia = ReadVec3(o, "tip_inertia", Presence::kOptional)) {
+    if ((inertia->array() >= 0).all())
+      d->tip_inertia = *inertia;
+    else
+      o.Reject("tip_inertia", "three moments of inertia >= 0 (kg·m²)");
   }
   d->initial = ReadChoice(o, "initial", {"static"}, Presence::kOptional).value_or(d->initial);
   if (const auto loads = ReadObject(o, "initial_loads", Presence::kOptional))

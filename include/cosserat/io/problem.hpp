@@ -38,6 +38,8 @@ struct Problem {
     double output_interval = 0.002;
     std::string initial = "static";
     std::optional<StaticLoads> initial_loads;  ///< empty: start from equilibrium under `loads`
+    double tip_mass = 0.0;                     ///< kg, a rigid body at the tip (dynamics only)
+    Vec3 tip_inertia = Vec3::Zero();           ///< kg·m², its principal moments, tip body frame
   } dynamics;
   bool has_dynamics = false;
 
