@@ -7,27 +7,19 @@
 #include <random>
 #include <vector>
 
+#include "lie_test_support.hpp"
+
 #include "cosserat/lie/quaternion.hpp"
 
 namespace cosserat::lie {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kEps = 2.220446049250313e-16;
-constexpr int kCases = 200;
+using namespace testing;
+
 
 // Round-off budget for a few dozen flops on O(1) numbers (observed ≲ 1e-15): 1e-13. A wrong sign
 // or index in a conversion is an O(1) error.
 constexpr double kTight = 1e-13;
-
-Vec3 RandomAxis(std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Vec3(n(rng), n(rng), n(rng)).normalized();
-}
-
-Vec3 RandomRotVec(std::mt19937& rng, double max_angle) {
-  return std::uniform_real_distribution<double>(0.0, max_angle)(rng) * RandomAxis(rng);
-}
 
 Vec4 RandomQuat(std::mt19937& rng) {
   std::normal_distribution<double> n(0.0, 1.0);

@@ -9,13 +9,15 @@
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
+#include "lie_test_support.hpp"
+
 #include "cosserat/lie/se3.hpp"
 
 namespace cosserat::lie {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr int kCases = 200;
+using namespace testing;
+
 
 // Round-off budget for a chain of a few dozen flops on O(1)–O(10) numbers: observed ≤ 2e-15,
 // so 1e-13 leaves a factor 50.
@@ -27,11 +29,6 @@ constexpr double kTight = 1e-13;
 // margin; a wrong term is O(θ |v|) for our random inputs, far above it.
 constexpr double kFdStep = 1e-6;
 constexpr double kFdTol = 1e-6;
-
-Vec3 RandomAxis(std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Vec3(n(rng), n(rng), n(rng)).normalized();
-}
 
 // Twist with rotation angle uniform in [0, max_angle) and translation part in [-2, 2]³ (m).
 Vec6 RandomTwist(std::mt19937& rng, double max_angle) {

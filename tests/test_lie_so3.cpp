@@ -9,14 +9,15 @@
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
+#include "lie_test_support.hpp"
+
 #include "cosserat/lie/so3.hpp"
 
 namespace cosserat::lie {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kEps = 2.220446049250313e-16;
-constexpr int kCases = 200;
+using namespace testing;
+
 
 // Round-off budget for a chain of a few dozen O(1) flops (exp, log, products): observed ≲ 1e-15,
 // so 1e-13 (≈ 450 eps) leaves a factor 100. A genuine error in a formula (wrong coefficient, sign
@@ -29,16 +30,6 @@ constexpr double kTight = 1e-13;
 // for our random inputs, far above it.
 constexpr double kFdStep = 1e-6;
 constexpr double kFdTol = 1e-6;
-
-Vec3 RandomAxis(std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Vec3(n(rng), n(rng), n(rng)).normalized();
-}
-
-// Rotation vector with angle uniform in [0, max_angle).
-Vec3 RandomRotVec(std::mt19937& rng, double max_angle) {
-  return std::uniform_real_distribution<double>(0.0, max_angle)(rng) * RandomAxis(rng);
-}
 
 // Angles that exercise the Taylor branches and the neighbourhood of π.
 const std::vector<double> kSpecialAngles = {0.0, 1e-12, 1e-8, 1e-4, kPi - 1e-6, kPi - 1e-10};
