@@ -68,21 +68,31 @@ Command ParseCommandLine(const std::vector<std::string>& args) {
   if (args.empty()) throw UsageError{"no command given"};
   Command cmd;
   const std::string& first = args[0];
-  if (first == "--version" || first == "-V") cmd.name = "version";
-  else if (first == "--help" || first == "-h" || first == "help") cmd.name = "help";
-  else if (first == "solve" || first == "validate") cmd.name = first;
-  else throw UsageError{"unknown command '" + first + "'"};
+  if (first == "--version" || first == "-V")
+    cmd.name = "version";
+  else if (first == "--help" || first == "-h" || first == "help")
+    cmd.name = "help";
+  else if (first == "solve" || first == "validate")
+    cmd.name = first;
+  else
+    throw UsageError{"unknown command '" + first + "'"};
 
   for (std::size_t i = 1; i < args.size(); ++i) {
     const std::string& arg = args[i];
     const bool is_out = arg == "--out" || arg.rfind("--out=", 0) == 0;
     const bool is_csv = arg == "--csv" || arg.rfind("--csv=", 0) == 0;
-    if (arg == "--help" || arg == "-h") cmd.name = "help";
-    else if (cmd.name == "solve" && is_out) cmd.out_path = OptionValue(args, &i, "--out");
-    else if (cmd.name == "solve" && is_csv) cmd.csv_path = OptionValue(args, &i, "--csv");
-    else if (arg.size() > 1 && arg[0] == '-') throw UsageError{"unknown option '" + arg + "'"};
-    else if (cmd.problem_path.empty()) cmd.problem_path = arg;
-    else throw UsageError{"unexpected argument '" + arg + "'"};
+    if (arg == "--help" || arg == "-h")
+      cmd.name = "help";
+    else if (cmd.name == "solve" && is_out)
+      cmd.out_path = OptionValue(args, &i, "--out");
+    else if (cmd.name == "solve" && is_csv)
+      cmd.csv_path = OptionValue(args, &i, "--csv");
+    else if (arg.size() > 1 && arg[0] == '-')
+      throw UsageError{"unknown option '" + arg + "'"};
+    else if (cmd.problem_path.empty())
+      cmd.problem_path = arg;
+    else
+      throw UsageError{"unexpected argument '" + arg + "'"};
   }
   if (cmd.name == "help") return cmd;
   if (cmd.name == "version" && !cmd.problem_path.empty())

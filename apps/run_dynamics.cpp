@@ -130,8 +130,8 @@ bool RunDynamics(const io::Problem& problem, std::ostream& out, std::ostream* cs
                  std::ostream& log) {
   Bdf2Options options;
   options.dt = problem.dynamics.dt;
-  options.ends = problem.boundary == "free-free" ? EndConditions::kFreeFree
-                                                 : EndConditions::kCantilever;
+  options.ends =
+      problem.boundary == "free-free" ? EndConditions::kFreeFree : EndConditions::kCantilever;
   options.tolerance = problem.solver.tolerance;
   options.tip_mass = problem.dynamics.tip_mass;
   options.tip_inertia_B = problem.dynamics.tip_inertia;

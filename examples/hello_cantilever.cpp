@@ -1,5 +1,6 @@
 // The smallest useful program: a steel cantilever bent by its own weight and a tip load.
-// Build and run:  cmake --build build --target hello_cantilever && ./build/examples/hello_cantilever
+// Build and run:  cmake --build build --target hello_cantilever &&
+// ./build/examples/hello_cantilever
 #include <cstdio>
 
 #include "cosserat/strong/static_shooting.hpp"
@@ -13,8 +14,8 @@ int main() {
   StaticShootingSolver solver(rod, /*num_nodes=*/41);
 
   StaticLoads loads;
-  loads.gravity_W = Vec3(-9.81, 0, 0);    // gravity sideways, m/s²
-  loads.tip_force = Vec3(-0.2, 0, 0);     // N, world frame (a dead load)
+  loads.gravity_W = Vec3(-9.81, 0, 0);  // gravity sideways, m/s²
+  loads.tip_force = Vec3(-0.2, 0, 0);   // N, world frame (a dead load)
 
   const lie::SE3 base;  // identity: base at the origin, rod tangent = world z
   const StaticShootingSummary summary = solver.Solve(base, loads);
@@ -24,8 +25,8 @@ int main() {
   }
 
   const Vec3 tip = solver.state().tip_position_W();
-  std::printf("converged in %d iterations (%d shots), residual %.1e, %.0f us\n",
-              summary.iterations, summary.shots, summary.residual, summary.wall_time_s * 1e6);
+  std::printf("converged in %d iterations (%d shots), residual %.1e, %.0f us\n", summary.iterations,
+              summary.shots, summary.residual, summary.wall_time_s * 1e6);
   std::printf("tip position [m]: %.6f %.6f %.6f\n", tip.x(), tip.y(), tip.z());
 
   // A controller would now change the load and re-solve; the solver warm-starts.

@@ -4,8 +4,8 @@
 
 #include <cmath>
 #include <complex>
-#include <memory>
 #include <cstdio>
+#include <memory>
 #include <vector>
 
 #include "cosserat/strong/bdf2_stepper.hpp"
@@ -17,7 +17,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 RodModel Steel(double L, double r) {
-  return RodModel::Uniform(L, CrossSection::Circle(r), Material::FromShearModulus(200e9, 80e9, 8000));
+  return RodModel::Uniform(L, CrossSection::Circle(r),
+                           Material::FromShearModulus(200e9, 80e9, 8000));
 }
 
 // Frequency (Hz) of the largest spectral peak of x in [f_lo, f_hi]: Hann-windowed discrete-time
@@ -88,8 +89,10 @@ TEST(Bdf2Dynamics, FirstTwoBendingFrequencies) {
   const double L = 1.0, r = 0.01;
   const RodModel model = Steel(L, r);
   const double EI = 200e9 * kPi * std::pow(r, 4) / 4, rhoA = 8000 * kPi * r * r;
-  const double f1 = 1.8751040687 * 1.8751040687 * std::sqrt(EI / (rhoA * std::pow(L, 4))) / (2 * kPi);
-  const double f2 = 4.6940911330 * 4.6940911330 * std::sqrt(EI / (rhoA * std::pow(L, 4))) / (2 * kPi);
+  const double f1 =
+      1.8751040687 * 1.8751040687 * std::sqrt(EI / (rhoA * std::pow(L, 4))) / (2 * kPi);
+  const double f2 =
+      4.6940911330 * 4.6940911330 * std::sqrt(EI / (rhoA * std::pow(L, 4))) / (2 * kPi);
   Bdf2Options opt;
   // BDF2 shifts a frequency by −(ω dt)²/3: at ω2 dt = 0.12 that is −0.48 % for mode 2 and
   // −0.01 % for mode 1. Smaller dt is not better for shooting: the bending exponent
@@ -354,7 +357,8 @@ TEST(Bdf2Dynamics, ShootingJacobianMatchesFiniteDifferences) {
     Vec6 xp = x, xm = x;
     xp(k) += h;
     xm(k) -= h;
-    const Vec6 fd = (stepper.Residual(in, c, false, xp) - stepper.Residual(in, c, false, xm)) / (2 * h);
+    const Vec6 fd =
+        (stepper.Residual(in, c, false, xp) - stepper.Residual(in, c, false, xm)) / (2 * h);
     EXPECT_LT((fd - J.col(k)).norm(), 1e-6 * std::max(1.0, J.col(k).norm())) << "column " << k;
   }
 }
@@ -450,7 +454,9 @@ TEST(Bdf2Dynamics, AcceleratingBaseActsLikeGravity) {
   const Vec3 a(2.0, 0, 0);  // m/s²
   const double t_end = 0.4, T = 0.2;
   // S(u) = u⁴(35 − 84u + 70u² − 20u³) on [0, 1], then 1; its first and second integrals in t.
-  auto S = [](double u) { return u >= 1 ? 1.0 : u * u * u * u * (35 - 84 * u + 70 * u * u - 20 * u * u * u); };
+  auto S = [](double u) {
+    return u >= 1 ? 1.0 : u * u * u * u * (35 - 84 * u + 70 * u * u - 20 * u * u * u);
+  };
   auto I1 = [&](double u) {  // ∫₀ᵗ S dt / T
     if (u >= 1) return 0.5 + (u - 1);
     return std::pow(u, 5) * (7 - 14 * u + 10 * u * u - 2.5 * u * u * u);

@@ -7,15 +7,13 @@
 #include <random>
 #include <vector>
 
-#include "lie_test_support.hpp"
-
 #include "cosserat/lie/quaternion.hpp"
+#include "lie_test_support.hpp"
 
 namespace cosserat::lie {
 namespace {
 
 using namespace testing;
-
 
 // Round-off budget for a few dozen flops on O(1) numbers (observed ≲ 1e-15): 1e-13. A wrong sign
 // or index in a conversion is an O(1) error.

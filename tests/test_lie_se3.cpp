@@ -9,15 +9,13 @@
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
-#include "lie_test_support.hpp"
-
 #include "cosserat/lie/se3.hpp"
+#include "lie_test_support.hpp"
 
 namespace cosserat::lie {
 namespace {
 
 using namespace testing;
-
 
 // Round-off budget for a chain of a few dozen flops on O(1)–O(10) numbers: observed ≤ 2e-15,
 // so 1e-13 leaves a factor 50.

@@ -9,15 +9,13 @@
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
-#include "lie_test_support.hpp"
-
 #include "cosserat/lie/so3.hpp"
+#include "lie_test_support.hpp"
 
 namespace cosserat::lie {
 namespace {
 
 using namespace testing;
-
 
 // Round-off budget for a chain of a few dozen O(1) flops (exp, log, products): observed ≲ 1e-15,
 // so 1e-13 (≈ 450 eps) leaves a factor 100. A genuine error in a formula (wrong coefficient, sign

@@ -85,7 +85,7 @@ TEST(ProblemIo, DefaultExampleParsesAndMapsValues) {
   EXPECT_DOUBLE_EQ(uniform->material().shear_modulus, 80e9);
   EXPECT_DOUBLE_EQ(uniform->material().density, 8000);
   const SectionProperties props = p.rod.section->At(0.25, Actuation{});
-  EXPECT_NEAR(props.stiffness(0, 0), 200e9 * I, 1e-9 * 200e9 * I);  // EI
+  EXPECT_NEAR(props.stiffness(0, 0), 200e9 * I, 1e-9 * 200e9 * I);    // EI
   EXPECT_NEAR(props.stiffness(2, 2), 80e9 * 2 * I, 1e-9 * 80e9 * I);  // GJ
 
   EXPECT_TRUE(p.loads.gravity_W.isApprox(Vec3(-9.81, 0, 0)));
@@ -187,7 +187,8 @@ TEST(ProblemIo, LaterAnalysesParseButAreGated) {
   j["formulation"] = "quaternion-fd";
   j["boundary"] = "pinned-pinned";
   j["buckling"] = {{"load", "tip_force"}, {"direction", {0, 0, -2}}, {"max", 10.0}};
-  j["dynamics"] = {{"dt", 0.001}, {"duration", 0.5}, {"initial_loads", {{"gravity", {0, 0, -9.81}}}}};
+  j["dynamics"] = {
+      {"dt", 0.001}, {"duration", 0.5}, {"initial_loads", {{"gravity", {0, 0, -9.81}}}}};
   j["modes"] = {{"count", 6}};
   const ParseResult r = Parse(j);
   ASSERT_TRUE(r.ok()) << AllErrors(r);
@@ -237,8 +238,8 @@ TEST(ProblemIo, DynamicsParsesAndRuns) {
 TEST(ProblemIo, DynamicsTipBody) {
   json j = ValidProblem();
   j["analysis"] = "dynamics";
-  j["dynamics"] = {{"dt", 0.002}, {"duration", 0.1}, {"tip_mass", 0.02},
-                   {"tip_inertia", {1e-6, 1e-6, 2e-7}}};
+  j["dynamics"] = {
+      {"dt", 0.002}, {"duration", 0.1}, {"tip_mass", 0.02}, {"tip_inertia", {1e-6, 1e-6, 2e-7}}};
   ParseResult r = Parse(j);
   ASSERT_TRUE(r.ok()) << AllErrors(r);
   EXPECT_DOUBLE_EQ(r.problem->dynamics.tip_mass, 0.02);
@@ -275,8 +276,8 @@ TEST(ProblemIo, DynamicsRunsForCantileverAndFreeFree) {
 // ----- bad input: one test per class --------------------------------------------------------
 
 TEST(ProblemIoErrors, MalformedJsonGivesOneLineWithPosition) {
-  const ParseResult r = ParseProblem("{\n  \"format\": \"cosserat-problem/1\",\n  rod: {}\n}",
-                                     "bad.json");
+  const ParseResult r =
+      ParseProblem("{\n  \"format\": \"cosserat-problem/1\",\n  rod: {}\n}", "bad.json");
   ASSERT_EQ(r.errors.size(), 1u) << AllErrors(r);
   EXPECT_FALSE(r.problem.has_value());
   EXPECT_ERROR(r, "bad.json: invalid JSON at line 3, column");
@@ -406,7 +407,8 @@ TEST(ProblemIoErrors, MissingRequiredKeys) {
 TEST(ProblemIoErrors, WrongFormatVersion) {
   json j = ValidProblem();
   j["format"] = "cosserat-problem/2";
-  EXPECT_ERROR(Parse(j), "format: expected \"cosserat-problem/1\", got a string (\"cosserat-problem/2\")");
+  EXPECT_ERROR(Parse(j),
+               "format: expected \"cosserat-problem/1\", got a string (\"cosserat-problem/2\")");
 }
 
 TEST(ProblemIoErrors, BadEnumerationsListTheChoices) {
@@ -426,7 +428,8 @@ TEST(ProblemIoErrors, BadEnumerationsListTheChoices) {
 TEST(ProblemIoErrors, RotationMustBeOrthonormalWithPositiveDeterminant) {
   json j = ValidProblem();
   j["base"]["rotation"] = {{1, 0, 0}, {0, 2, 0}, {0, 0, 1}};
-  EXPECT_ERROR(Parse(j), "base.rotation: expected a rotation matrix", "1e-6", "got max |R^T R - I| = 3");
+  EXPECT_ERROR(Parse(j), "base.rotation: expected a rotation matrix", "1e-6",
+               "got max |R^T R - I| = 3");
   j["base"]["rotation"] = {{1, 0, 0}, {0, 1, 0}, {0, 0, -1}};  // a reflection
   EXPECT_ERROR(Parse(j), "base.rotation: expected a rotation matrix", "determinant -1");
   j["base"]["rotation"] = {{1, 0, 0}, {0, "a", 0}, {0, 0}};
@@ -438,8 +441,9 @@ TEST(ProblemIoErrors, RotationMustBeOrthonormalWithPositiveDeterminant) {
 TEST(ProblemIoErrors, ShearModulusAndPoissonRatioExclusive) {
   json j = ValidProblem();
   j["rod"]["material"]["poisson_ratio"] = 0.3;
-  EXPECT_ERROR(Parse(j), "rod.material: expected exactly one of \"shear_modulus\" and "
-                         "\"poisson_ratio\", got both");
+  EXPECT_ERROR(Parse(j),
+               "rod.material: expected exactly one of \"shear_modulus\" and "
+               "\"poisson_ratio\", got both");
   j["rod"]["material"].erase("poisson_ratio");
   j["rod"]["material"].erase("shear_modulus");
   EXPECT_ERROR(Parse(j), "rod.material: expected exactly one of", "got neither");
@@ -512,9 +516,9 @@ TEST(ProblemIoErrors, EveryErrorIsReported) {
   const ParseResult r = Parse(j);
   EXPECT_FALSE(r.problem.has_value());
   EXPECT_EQ(r.errors.size(), 9u) << AllErrors(r);
-  for (const char* path : {"format:", "rod.length:", "rod.nodes:", "rod.section.radius:",
-                           "rod.material:", "loads.gravity[1]:", "loads.tip_forse:",
-                           "solver.tolerance:", "extra:"})
+  for (const char* path :
+       {"format:", "rod.length:", "rod.nodes:", "rod.section.radius:", "rod.material:",
+        "loads.gravity[1]:", "loads.tip_forse:", "solver.tolerance:", "extra:"})
     EXPECT_ERROR(r, path);
 }
 

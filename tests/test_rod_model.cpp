@@ -98,7 +98,8 @@ TEST(BandedSection, PureMomentBendsBandByOneOverAlpha) {
                                                Material::FromShearModulus(200e9, 80e9, 8000));
   RodModel model;
   model.length = L;
-  model.section = std::make_shared<BandedSection>(base, std::vector<BandedSection::Band>{{a, b, alpha}});
+  model.section =
+      std::make_shared<BandedSection>(base, std::vector<BandedSection::Band>{{a, b, alpha}});
   StaticShootingSolver solver(model, 41);
   const double EI = base->At(0, {}).stiffness(0, 0);
   const double M = 0.5 * EI / L;

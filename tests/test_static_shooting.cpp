@@ -13,7 +13,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 RodModel SteelRod(double L = 0.5, double r = 0.001) {
-  return RodModel::Uniform(L, CrossSection::Circle(r), Material::FromShearModulus(200e9, 80e9, 8000));
+  return RodModel::Uniform(L, CrossSection::Circle(r),
+                           Material::FromShearModulus(200e9, 80e9, 8000));
 }
 double EIof(const RodModel& m) { return m.section->At(0, {}).stiffness(0, 0); }
 
@@ -94,7 +95,7 @@ TEST(StaticShooting, LoadSteppingRescuesAStarvedSolve) {
   const RodModel model = RodModel::Uniform(1.0, CrossSection::Circle(0.005),
                                            Material::FromShearModulus(200e9, 80e9, 8000));
   StaticShootingOptions opt;
-  opt.max_iterations = 4;  // TinySolver counts the first evaluation: 3 steps
+  opt.max_iterations = 4;        // TinySolver counts the first evaluation: 3 steps
   opt.max_load_increment = 100;  // let the direct attempt happen (and fail)
   StaticShootingSolver solver(model, 41, opt);
   StaticLoads loads;

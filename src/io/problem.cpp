@@ -87,8 +87,8 @@ void ParseSolver(const ObjectReader& o, StaticShootingOptions* options) {
 // --- dynamics, buckling, modes ------------------------------------------------------------------
 
 void ParseDynamics(const ObjectReader& o, Problem::Dynamics* d) {
-  o.AllowOnly({"dt", "duration", "output_interval", "initial", "initial_loads", "tip_mass",
-               "tip_inertia"});
+  o.AllowOnly(
+      {"dt", "duration", "output_interval", "initial", "initial_loads", "tip_mass", "tip_inertia"});
   const auto dt = ReadNumber(o, "dt", PositiveNumber(), Presence::kOptional);
   const auto duration = ReadNumber(o, "duration", PositiveNumber(), Presence::kOptional);
   const auto interval = ReadNumber(o, "output_interval", PositiveNumber(), Presence::kOptional);
@@ -107,8 +107,8 @@ void ParseDynamics(const ObjectReader& o, Problem::Dynamics* d) {
                             " steps over duration (" + FormatNumber(d->duration) + " s)",
                         got_dt + ", " + FormatNumber(std::round(d->duration / d->dt)) + " steps");
   }
-  d->tip_mass = ReadNumber(o, "tip_mass", NonNegativeNumber(), Presence::kOptional)
-                    .value_or(d->tip_mass);
+  d->tip_mass =
+      ReadNumber(o, "tip_mass", NonNegativeNumber(), Presence::kOptional).value_or(d->tip_mass);
   if (const auto inertia = ReadVec3(o, "tip_inertia", Presence::kOptional)) {
     if ((inertia->array() >= 0).all())
       d->tip_inertia = *inertia;
@@ -236,9 +236,9 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
   auto check = [&](const char* key, const std::string& value,
                    const std::vector<std::string>& supported) {
     if (std::find(supported.begin(), supported.end(), value) == supported.end())
-      out.push_back(std::string(key) + ": " + detail::Quote(value) +
-                    " is not implemented in this version (supported: " +
-                    detail::QuotedList(supported) + ")");
+      out.push_back(
+          std::string(key) + ": " + detail::Quote(value) +
+          " is not implemented in this version (supported: " + detail::QuotedList(supported) + ")");
   };
   check("analysis", p.analysis, {"statics", "dynamics"});
   check("formulation", p.formulation, {"se3-shooting"});

@@ -17,9 +17,8 @@ std::vector<double> MakeGrid(double length, int num_nodes, std::vector<double> b
   const int pieces = static_cast<int>(cuts.size()) - 1;
   const int segments = num_nodes - 1;
   if (segments < pieces)
-    throw std::invalid_argument("MakeGrid: " + std::to_string(num_nodes) +
-                                " nodes cannot hold " + std::to_string(pieces - 1) +
-                                " breakpoints");
+    throw std::invalid_argument("MakeGrid: " + std::to_string(num_nodes) + " nodes cannot hold " +
+                                std::to_string(pieces - 1) + " breakpoints");
 
   // One segment per piece, then hand out the rest by largest remaining length per segment.
   std::vector<int> count(pieces, 1);

@@ -12,17 +12,17 @@ SectionProperties UniformSectionProperties(const CrossSection& c, const Material
   p.stiffness = Vec6(E * c.I1, E * c.I2, G * c.torsion_constant, kappa * G * c.area,
                      kappa * G * c.area, E * c.area)
                     .asDiagonal();
-  p.mass = Vec6(rho * c.I1, rho * c.I2, rho * c.PolarMoment(), rho * c.area, rho * c.area,
-                rho * c.area)
-               .asDiagonal();
+  p.mass =
+      Vec6(rho * c.I1, rho * c.I2, rho * c.PolarMoment(), rho * c.area, rho * c.area, rho * c.area)
+          .asDiagonal();
   const KelvinVoigtDamping& d = m.damping;
-  p.damping =
-      Vec6(d.bending, d.bending, d.torsion, d.shear, d.shear, d.extension).asDiagonal();
+  p.damping = Vec6(d.bending, d.bending, d.torsion, d.shear, d.shear, d.extension).asDiagonal();
   return p;
 }
 
 UniformSection::UniformSection(CrossSection section, Material material)
-    : section_(section), material_(material),
+    : section_(section),
+      material_(material),
       properties_(UniformSectionProperties(section, material)) {}
 
 SectionProperties UniformSection::At(double /*s*/, const Actuation& /*actuation*/) const {

@@ -34,7 +34,6 @@ namespace {
 using Sample = Bdf2ShootingStepper::Sample;
 using Coefficients = Bdf2ShootingStepper::Coefficients;
 
-
 #if defined(__GNUC__)
 #define COSSERAT_HOT inline __attribute__((always_inline))
 #else
@@ -140,10 +139,10 @@ COSSERAT_HOT DynState Derivative(const Sample& smp, const Vec3& f_W, const DynSt
 Vec6 TipResidual(const DynState& y, const StaticLoads& loads, const Bdf2Options& opt,
                  const Vec6& V_t, const Vec6& scale) {
   const Mat3 Rt = y.R.transpose();
-  Vec3 M = loads.tip_moment_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_moment)
-                                                         : loads.tip_moment;
-  Vec3 F = loads.tip_force_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_force)
-                                                        : loads.tip_force;
+  Vec3 M =
+      loads.tip_moment_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_moment) : loads.tip_moment;
+  Vec3 F =
+      loads.tip_force_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_force) : loads.tip_force;
   if (opt.tip_mass > 0 || opt.tip_inertia_B.any()) {
     const Vec3 Jw = opt.tip_inertia_B.cwiseProduct(y.w);
     M -= opt.tip_inertia_B.cwiseProduct(V_t.head<3>()) + y.w.cross(Jw);
@@ -166,7 +165,8 @@ struct DynTangent {
 
 DynTangent Axpy(const DynTangent& y, double a, const DynTangent& d) {
   return {y.p + a * d.p, {y.R[0] + a * d.R[0], y.R[1] + a * d.R[1], y.R[2] + a * d.R[2]},
-          y.m + a * d.m, y.n + a * d.n, y.w + a * d.w, y.v + a * d.v};
+          y.m + a * d.m, y.n + a * d.n,
+          y.w + a * d.w, y.v + a * d.v};
 }
 
 void Rk4Update(double h, const DynTangent& k1, const DynTangent& k2, const DynTangent& k3,
@@ -226,8 +226,9 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
     const SectionProperties p = model_.section->At(s, Actuation{});
     auto diagonal = [](const Mat6& A) { return (A - Mat6(A.diagonal().asDiagonal())).norm() == 0; };
     if (!diagonal(p.stiffness) || !diagonal(p.damping) || !diagonal(p.mass))
-      throw std::invalid_argument("Bdf2ShootingStepper: sections must be principal-axes "
-                                  "(diagonal stiffness, damping and mass)");
+      throw std::invalid_argument(
+          "Bdf2ShootingStepper: sections must be principal-axes "
+          "(diagonal stiffness, damping and mass)");
     Sample smp;
     smp.stiffness = p.stiffness.diagonal();
     smp.damping = p.damping.diagonal();
@@ -245,8 +246,8 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
 
   const int stages = 4 * (n - 1);
-  for (auto* v : {&strain_now_, &strain1_, &strain2_, &twist_now_, &twist1_, &twist2_,
-                  &strain_h_, &twist_h_})
+  for (auto* v :
+       {&strain_now_, &strain1_, &strain2_, &twist_now_, &twist1_, &twist2_, &strain_h_, &twist_h_})
     v->assign(stages, Vec6::Zero());
   position_now_.assign(stages, Vec3::Zero());
   position1_.assign(stages, Vec3::Zero());
@@ -293,8 +294,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
   DynState y;
   DynTangent dy;
   if (J) {
-    for (Mat36* t : {&dy.p, &dy.R[0], &dy.R[1], &dy.R[2], &dy.m, &dy.n, &dy.w, &dy.v})
-      t->setZero();
+    for (Mat36* t : {&dy.p, &dy.R[0], &dy.R[1], &dy.R[2], &dy.m, &dy.n, &dy.w, &dy.v}) t->setZero();
   }
   if (!free_free) {
     // Cantilever (eq. 28): pose and twist of the base given, the unknown is W(0).
@@ -315,7 +315,8 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     const Vec6 V0 = statics ? Vec6::Zero() : Vec6(twist_scale_.cwiseProduct(x));
     Vec6 xi = Vec6::Zero();
     if (!statics) {
-      for (int k = 0; k < 4; ++k) xi = (lie::SE3RightJacobianInverse(xi) * V0 - c.c2 * xi_back_) / c.c0;
+      for (int k = 0; k < 4; ++k)
+        xi = (lie::SE3RightJacobianInverse(xi) * V0 - c.c2 * xi_back_) / c.c0;
     }
     base_now_ = lie::Compose(base1_, lie::SE3Exp(xi));
     y.m = -in.base_wrench_B.head<3>();
@@ -362,8 +363,8 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     history(q, &xh, &Vh);
     position_now_[q] = ys.p;
     rotation_now_[q] = ys.R;
-    return Derivative(smp, f_at(smp), ys, xh, Vh, statics ? zero3 : velocity_W_h_[q], c.c0,
-                      statics, &strain_now_[q], &twist_now_[q], &velocity_W_now_[q]);
+    return Derivative(smp, f_at(smp), ys, xh, Vh, statics ? zero3 : velocity_W_h_[q], c.c0, statics,
+                      &strain_now_[q], &twist_now_[q], &velocity_W_now_[q]);
   };
   for (int i = 0; i + 1 < n; ++i) {
     const double h = grid_[i + 1] - grid_[i];
@@ -381,10 +382,10 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     const DynState k4 = stage(q + 3, s1, y4);
     if (J) {
       const DynTangent t1 = TangentDerivative(s0, y, dy, strain_now_[q], c.c0, statics);
-      const DynTangent t2 = TangentDerivative(sm, y2, Axpy(dy, 0.5 * h, t1), strain_now_[q + 1],
-                                              c.c0, statics);
-      const DynTangent t3 = TangentDerivative(sm, y3, Axpy(dy, 0.5 * h, t2), strain_now_[q + 2],
-                                              c.c0, statics);
+      const DynTangent t2 =
+          TangentDerivative(sm, y2, Axpy(dy, 0.5 * h, t1), strain_now_[q + 1], c.c0, statics);
+      const DynTangent t3 =
+          TangentDerivative(sm, y3, Axpy(dy, 0.5 * h, t2), strain_now_[q + 2], c.c0, statics);
       const DynTangent t4 =
           TangentDerivative(s1, y4, Axpy(dy, h, t3), strain_now_[q + 3], c.c0, statics);
       Rk4Update(h, t1, t2, t3, t4, &dy);
@@ -710,7 +711,8 @@ double Bdf2ShootingStepper::Mass() const {
 
 Vec3 Bdf2ShootingStepper::CentreOfMass_W() const {
   Vec3 first = Vec3::Zero();
-  ForEachStage([&](int q, const Sample& smp, double w) { first += w * smp.mass(5) * position1_[q]; });
+  ForEachStage(
+      [&](int q, const Sample& smp, double w) { first += w * smp.mass(5) * position1_[q]; });
   return first / Mass();
 }
 

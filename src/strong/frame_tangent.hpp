@@ -44,8 +44,8 @@ inline Mat36 RotateTangent(const Mat3& R, const RotationTangent& dR, const Vec3&
 }
 
 // d(R K̂) column j = d(R (K × e_j)) = dR (K × e_j) + R (dK × e_j).
-inline RotationTangent RotationRateTangent(const Mat3& R, const RotationTangent& dR,
-                                           const Vec3& K, const Mat36& dK) {
+inline RotationTangent RotationRateTangent(const Mat3& R, const RotationTangent& dR, const Vec3& K,
+                                           const Mat36& dK) {
   RotationTangent out;
   for (int j = 0; j < 3; ++j)
     out[j] = RotateTangent(R, dR, K.cross(Vec3::Unit(j)), CrossUnit(dK, j));

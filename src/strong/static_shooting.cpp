@@ -16,11 +16,16 @@ namespace cosserat {
 
 const char* ToString(SolveStatus status) {
   switch (status) {
-    case SolveStatus::kNotRun: return "not_run";
-    case SolveStatus::kConverged: return "converged";
-    case SolveStatus::kMaxIterations: return "max_iterations";
-    case SolveStatus::kLoadSteppingFailed: return "load_stepping_failed";
-    case SolveStatus::kNonFinite: return "non_finite";
+    case SolveStatus::kNotRun:
+      return "not_run";
+    case SolveStatus::kConverged:
+      return "converged";
+    case SolveStatus::kMaxIterations:
+      return "max_iterations";
+    case SolveStatus::kLoadSteppingFailed:
+      return "load_stepping_failed";
+    case SolveStatus::kNonFinite:
+      return "non_finite";
   }
   return "unknown";
 }
@@ -86,13 +91,15 @@ COSSERAT_HOT ShotState Axpy(const ShotState& y, double a, const ShotState& d) {
 }
 
 ShotTangent Axpy(const ShotTangent& y, double a, const ShotTangent& d) {
-  return {y.p + a * d.p, {y.R[0] + a * d.R[0], y.R[1] + a * d.R[1], y.R[2] + a * d.R[2]},
-          y.m + a * d.m, y.n + a * d.n};
+  return {y.p + a * d.p,
+          {y.R[0] + a * d.R[0], y.R[1] + a * d.R[1], y.R[2] + a * d.R[2]},
+          y.m + a * d.m,
+          y.n + a * d.n};
 }
 
 // RK4 combination y += h/6 (k1 + 2 k2 + 2 k3 + k4), for states and tangents.
-COSSERAT_HOT void Rk4Update(double h, const ShotState& k1, const ShotState& k2,
-                            const ShotState& k3, const ShotState& k4, ShotState* y) {
+COSSERAT_HOT void Rk4Update(double h, const ShotState& k1, const ShotState& k2, const ShotState& k3,
+                            const ShotState& k4, ShotState* y) {
   const double a = h / 6, b = h / 3;
   double* o = Flat(*y);
   const double *p1 = Flat(k1), *p2 = Flat(k2), *p3 = Flat(k3), *p4 = Flat(k4);
@@ -167,8 +174,8 @@ ShotTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const ShotStat
                               const ShotTangent& dy, const Vec6& xi) {
   Mat6 dW;
   dW << dy.m, dy.n;
-  const Mat6 dxi = smp.diagonal ? Mat6(smp.compliance_diagonal.asDiagonal() * dW)
-                                : Mat6(smp.compliance * dW);
+  const Mat6 dxi =
+      smp.diagonal ? Mat6(smp.compliance_diagonal.asDiagonal() * dW) : Mat6(smp.compliance * dW);
   const Mat36 dK = dxi.topRows<3>(), dG = dxi.bottomRows<3>();
   const Vec3 K = xi.head<3>(), G = xi.tail<3>();
   ShotTangent dd;
@@ -186,16 +193,16 @@ Vec6 TipResidual(const Mat3& R_tip, const Vec6& W_tip_B, const StaticLoads& load
   const Mat3 Rt = R_tip.transpose();
   Vec6 target;
   target << (loads.tip_moment_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_moment)
-                                                          : loads.tip_moment),
+                                                         : loads.tip_moment),
       (loads.tip_force_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_force) : loads.tip_force);
   return (W_tip_B - target).cwiseQuotient(scale);
 }
 
 // Integrates from s = 0 to L with RK4 on the grid and returns the dimensionless tip residual.
 // With record, writes the node values; with J, propagates the tangent and writes d r / d x.
-Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples,
-           const Vec6& scale, const lie::SE3& base, const StaticLoads& loads, const Vec6& x,
-           RodState* record, Mat6* J) {
+Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, const Vec6& scale,
+           const lie::SE3& base, const StaticLoads& loads, const Vec6& x, RodState* record,
+           Mat6* J) {
   const int n = static_cast<int>(grid.size());
   const Vec6 W0 = scale.cwiseProduct(x);
   ShotState y{base.p, base.R, W0.head<3>(), W0.tail<3>()};
@@ -281,7 +288,8 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
   };
   for (double s : SegmentSamplePoints(grid_)) samples_.push_back(make(s));
 
-  const double EI = std::max(1.0 / samples_[0].compliance(0, 0), 1.0 / samples_[0].compliance(1, 1));
+  const double EI =
+      std::max(1.0 / samples_[0].compliance(0, 0), 1.0 / samples_[0].compliance(1, 1));
   const double L = model_.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
   state_.Resize(n);
@@ -295,8 +303,7 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
   rest_rotation_B_ = rest.rotation_WB;
 }
 
-Vec6 StaticShootingSolver::Residual(const lie::SE3& base, const StaticLoads& loads,
-                                    const Vec6& x) {
+Vec6 StaticShootingSolver::Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& x) {
   state_is_solution_ = false;
   return Shoot(grid_, samples_, scale_, base, loads, x, &state_, nullptr);
 }
@@ -509,8 +516,8 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
     summary.load_steps = steps;
     x = x_a;
     if (!ok && summary.status != SolveStatus::kNonFinite)
-      summary.status = options_.load_stepping ? SolveStatus::kLoadSteppingFailed
-                                              : SolveStatus::kMaxIterations;
+      summary.status =
+          options_.load_stepping ? SolveStatus::kLoadSteppingFailed : SolveStatus::kMaxIterations;
   }
 
   if (!state_current) {

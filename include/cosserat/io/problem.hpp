@@ -31,8 +31,8 @@ struct Problem {
 
   /// "dynamics": run by the `cosserat` command (BDF2 shooting, cantilever only).
   struct Dynamics {
-    double dt = 0.002;       ///< s
-    double duration = 1.0;   ///< s
+    double dt = 0.002;      ///< s
+    double duration = 1.0;  ///< s
     /// s; how often the trajectory is recorded (a whole number of steps, at least 1). The
     /// parser sets it to dt when the file leaves it out.
     double output_interval = 0.002;

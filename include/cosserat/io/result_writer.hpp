@@ -23,7 +23,8 @@ namespace cosserat::io {
 ///          moment_body, force_body (internal wrench W = [m; n] in the section frame)}.
 /// Keys keep this order (status first). Non-finite numbers (only possible when the solve failed)
 /// are written as null.
-nlohmann::ordered_json StaticResultToJson(const StaticShootingSummary& summary, const RodState& state);
+nlohmann::ordered_json StaticResultToJson(const StaticShootingSummary& summary,
+                                          const RodState& state);
 
 /// One row per node, header `s,x,y,z,k1,k2,k3` (m; 1/m), full double precision.
 void WriteNodesCsv(std::ostream& out, const RodState& state);
@@ -34,9 +35,9 @@ struct DynamicRun {
   SolveStatus status = SolveStatus::kNotRun;  ///< converged: the initial state and every step
   bool initial_state_ok = false;  ///< false: the initial equilibrium failed, there is no state
   double failed_at_t = std::numeric_limits<double>::quiet_NaN();  ///< end time of the failed step
-  int steps = 0;                  ///< steps that converged
-  int halved_steps = 0;           ///< of those, steps that needed step halving
-  int iterations = 0;             ///< all solves, the initial one included
+  int steps = 0;                                                  ///< steps that converged
+  int halved_steps = 0;  ///< of those, steps that needed step halving
+  int iterations = 0;    ///< all solves, the initial one included
   int shots = 0;
   double wall_time_s = 0;           ///< initial state and stepping loop
   double stepping_wall_time_s = 0;  ///< the stepping loop alone

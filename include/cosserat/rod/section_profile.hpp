@@ -3,8 +3,8 @@
 /// Sectional stiffness K(s), mass M(s) and damping D(s) along the rod, as functions of the arc
 /// length s (m) and of the actuation state.
 ///
-/// Strain ordering (seed 002 eq. 7): ξ = [K; Γ] = [κ1, κ2, κ3, Γ1, Γ2, Γ3]: bending about body x and
-/// y, torsion, shear along x and y, stretch. K = diag(E I1, E I2, G J, κ G A, κ G A, E A) for a
+/// Strain ordering (seed 002 eq. 7): ξ = [K; Γ] = [κ1, κ2, κ3, Γ1, Γ2, Γ3]: bending about body x
+/// and y, torsion, shear along x and y, stretch. K = diag(E I1, E I2, G J, κ G A, κ G A, E A) for a
 /// principal-axes section (N·m², N·m², N·m², N, N, N).
 
 #include <memory>
@@ -20,8 +20,8 @@ namespace cosserat {
 
 struct SectionProperties {
   Mat6 stiffness = Mat6::Identity();  ///< K(s), body frame, see file comment for units
-  Mat6 mass = Mat6::Identity();       ///< M(s) per unit length: diag(ρI1, ρI2, ρ(I1+I2), ρA, ρA, ρA)
-  Mat6 damping = Mat6::Zero();        ///< D(s), Kelvin–Voigt, units of K times s
+  Mat6 mass = Mat6::Identity();  ///< M(s) per unit length: diag(ρI1, ρI2, ρ(I1+I2), ρA, ρA, ρA)
+  Mat6 damping = Mat6::Zero();  ///< D(s), Kelvin–Voigt, units of K times s
 };
 
 /// Sectional properties of the (unactuated) uniform section.

@@ -55,7 +55,7 @@ struct StepInput {
   /// Cantilever: g(0, t), the base pose in the world. Free-free: used only by InitializeAtRest
   /// (the pose of the s = 0 end at t = 0); afterwards the pose is part of the state.
   lie::SE3 base_pose;
-  Vec6 base_twist_B = Vec6::Zero();  ///< cantilever: V(0, t) = [ω; v], body frame (rad/s; m/s)
+  Vec6 base_twist_B = Vec6::Zero();   ///< cantilever: V(0, t) = [ω; v], body frame (rad/s; m/s)
   Vec6 base_wrench_B = Vec6::Zero();  ///< free-free: wrench applied to the s = 0 end, body frame
   StaticLoads loads;                  ///< gravity, distributed force, tip force and moment
 };
@@ -132,11 +132,11 @@ class Bdf2ShootingStepper {
 
   // Per-stage section data; public for the implementation's helpers.
   struct Sample {
-    Vec6 stiffness;        ///< diag K
-    Vec6 damping;          ///< diag D
-    Vec6 compliance;       ///< diag K⁻¹ (statics)
-    Vec6 rest_strain;      ///< ξ*
-    Vec6 mass;             ///< diag M = [ρI1, ρI2, ρ(I1+I2), ρA, ρA, ρA]
+    Vec6 stiffness;            ///< diag K
+    Vec6 damping;              ///< diag D
+    Vec6 compliance;           ///< diag K⁻¹ (statics)
+    Vec6 rest_strain;          ///< ξ*
+    Vec6 mass;                 ///< diag M = [ρI1, ρI2, ρ(I1+I2), ρA, ρA, ρA]
     Vec6 implicit_compliance;  ///< A = diag (K + c0 D)⁻¹ for the current c0
     Vec6 implicit_damping;     ///< A D
     Vec6 implicit_offset;      ///< ξ* − c0 A D ξ*
@@ -159,8 +159,7 @@ class Bdf2ShootingStepper {
   /// Calls visit(stage index, section sample, quadrature weight in m) for every RK4 stage.
   template <typename Visit>
   void ForEachStage(Visit&& visit) const;
-  bool SolveStep(const StepInput& input, const Coefficients& c, bool statics,
-                 StepSummary* summary);
+  bool SolveStep(const StepInput& input, const Coefficients& c, bool statics, StepSummary* summary);
   void SetImplicitCompliance(double c0);
   /// Fills the history terms ξʰ, Vʰ at every stage for the weights c (once per step).
   void PrepareHistory(const Coefficients& c);

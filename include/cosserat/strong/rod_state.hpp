@@ -12,12 +12,12 @@ namespace cosserat {
 /// (s, L] of the rod exerts on the part [0, s]; for a linear elastic rod W = K (ξ − ξ*), which is
 /// −Λ in seed 002's sign convention (eq. 16).
 struct RodState {
-  std::vector<double> s;           ///< arc length, m
-  std::vector<Vec3> position_W;    ///< centreline p(s), world frame, m
-  std::vector<Mat3> rotation_WB;   ///< R(s): body (section) frame to world
-  std::vector<Vec6> strain;        ///< ξ = [K; Γ], body frame, (1/m; –)
-  std::vector<Vec6> wrench_B;      ///< W = [m; n], body frame, (N·m; N)
-  std::vector<Vec6> twist_B;       ///< V = [ω; v], body frame, (rad/s; m/s); zero in statics
+  std::vector<double> s;          ///< arc length, m
+  std::vector<Vec3> position_W;   ///< centreline p(s), world frame, m
+  std::vector<Mat3> rotation_WB;  ///< R(s): body (section) frame to world
+  std::vector<Vec6> strain;       ///< ξ = [K; Γ], body frame, (1/m; –)
+  std::vector<Vec6> wrench_B;     ///< W = [m; n], body frame, (N·m; N)
+  std::vector<Vec6> twist_B;      ///< V = [ω; v], body frame, (rad/s; m/s); zero in statics
 
   void Resize(int num_nodes);
   int size() const { return static_cast<int>(s.size()); }

@@ -5,12 +5,12 @@
 namespace cosserat {
 
 enum class SolveStatus {
-  kNotRun,             ///< Solve() has not been called.
-  kConverged,          ///< the dimensionless residual norm fell below Options::tolerance.
-  kMaxIterations,      ///< Options::max_iterations reached without convergence, no stepping.
-  kLoadSteppingFailed, ///< continuation could not reach the full load: the load increment fell
-                       ///< below Options::min_load_step or Options::max_load_steps was hit.
-  kNonFinite,          ///< the integration produced NaN or Inf at every attempt.
+  kNotRun,              ///< Solve() has not been called.
+  kConverged,           ///< the dimensionless residual norm fell below Options::tolerance.
+  kMaxIterations,       ///< Options::max_iterations reached without convergence, no stepping.
+  kLoadSteppingFailed,  ///< continuation could not reach the full load: the load increment fell
+                        ///< below Options::min_load_step or Options::max_load_steps was hit.
+  kNonFinite,           ///< the integration produced NaN or Inf at every attempt.
 };
 
 /// "converged", "max_iterations", "load_stepping_failed", "non_finite", "not_run".

@@ -64,8 +64,7 @@ struct StaticShootingSummary {
 class StaticShootingSolver {
  public:
   StaticShootingSolver(const RodModel& model, int num_nodes,
-                       const StaticShootingOptions& options = {},
-                       const Actuation& actuation = {});
+                       const StaticShootingOptions& options = {}, const Actuation& actuation = {});
 
   /// Solve with the base pose (R_WB of the clamp, p_W of s = 0) and the loads. Warm-starts from
   /// the previous converged solution, if any. The state is valid when the status is converged,
@@ -73,7 +72,10 @@ class StaticShootingSolver {
   StaticShootingSummary Solve(const lie::SE3& base, const StaticLoads& loads);
 
   /// Forget the previous solution: the next Solve starts cold.
-  void ResetWarmStart() { has_solution_ = false; has_jacobian_ = false; }
+  void ResetWarmStart() {
+    has_solution_ = false;
+    has_jacobian_ = false;
+  }
 
   const RodState& state() const { return state_; }
   const std::vector<double>& grid() const { return grid_; }
