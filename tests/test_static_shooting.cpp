@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/strong/static_shooting.hpp"
@@ -149,6 +150,26 @@ TEST(StaticShooting, FollowerForceDiffersFromDeadForce) {
     return std::atan2(-t.x(), t.z());
   };
   EXPECT_GT(tip_angle(follower), tip_angle(dead) + 0.01);
+}
+
+TEST(StaticShooting, NonFiniteInputIsAStatusNotAConvergedAnswer) {
+  StaticShootingSolver solver(SteelRod(), 41);
+  StaticLoads loads;
+  loads.tip_force = Vec3(0, std::nan(""), 0);
+  auto summary = solver.Solve(lie::SE3{}, loads);  // cold
+  EXPECT_EQ(summary.status, SolveStatus::kNonFinite);
+  loads.tip_force = Vec3(-0.1, 0, 0);
+  ASSERT_TRUE(solver.Solve(lie::SE3{}, loads).converged());
+  loads.tip_moment = Vec3(0, std::numeric_limits<double>::infinity(), 0);
+  summary = solver.Solve(lie::SE3{}, loads);  // warm
+  EXPECT_EQ(summary.status, SolveStatus::kNonFinite);
+  EXPECT_FALSE(summary.converged());
+  // The solver still warm-starts from the last good solution afterwards.
+  loads.tip_moment.setZero();
+  loads.tip_force = Vec3(-0.101, 0, 0);
+  summary = solver.Solve(lie::SE3{}, loads);
+  EXPECT_TRUE(summary.converged());
+  EXPECT_TRUE(summary.warm_started);
 }
 
 TEST(StaticShooting, RejectsBadModelAndOptions) {

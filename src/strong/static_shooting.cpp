@@ -288,8 +288,8 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
   };
   for (double s : SegmentSamplePoints(grid_)) samples_.push_back(make(s));
 
-  const double EI =
-      std::max(1.0 / samples_[0].compliance(0, 0), 1.0 / samples_[0].compliance(1, 1));
+  const SectionProperties base_section = model_.section->At(0.0, actuation);
+  const double EI = std::max(base_section.stiffness(0, 0), base_section.stiffness(1, 1));
   const double L = model_.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
   state_.Resize(n);
@@ -381,7 +381,7 @@ bool StaticShootingSolver::TryLevenbergMarquardt(const lie::SE3& base, const Sta
   Mat6 J = Mat6::Identity();
   ShootingCost cost{this, &base, &loads, &summary->shots, &J};
   ceres::TinySolver<ShootingCost> lm;
-  lm.options.max_num_iterations = options_.max_iterations;
+  lm.options.max_num_iterations = options_.max_iterations + 1;  // TinySolver runs n − 1 steps
   lm.options.cost_threshold = 0.5 * tolerance * tolerance;
   lm.options.gradient_tolerance = 0.0;  // stop on the residual only
   lm.options.parameter_tolerance = 1e-15;
@@ -389,8 +389,11 @@ bool StaticShootingSolver::TryLevenbergMarquardt(const lie::SE3& base, const Sta
   Vec6 xt = *x;
   const auto& s = lm.Solve(cost, &xt);
   summary->iterations += s.iterations;
-  const double res = std::sqrt(2.0 * std::max(0.0, s.final_cost));
-  if (!(std::isfinite(res) && xt.allFinite())) {
+  // Decide on a residual evaluated here: TinySolver's final cost is not set when the first
+  // evaluation is not finite.
+  const double res = xt.allFinite() ? Residual(base, loads, xt).norm() : NAN;
+  ++summary->shots;
+  if (!std::isfinite(res)) {
     summary->status = SolveStatus::kNonFinite;
     return false;
   }
@@ -449,11 +452,19 @@ bool StaticShootingSolver::TryQuasiNewton(const lie::SE3& base, const StaticLoad
 StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const StaticLoads& loads) {
   const auto t0 = std::chrono::steady_clock::now();
   StaticShootingSummary summary;
+  if (!loads.IsValid(nullptr) || !base.R.allFinite() || !base.p.allFinite()) {
+    summary.status = SolveStatus::kNonFinite;  // NaN or Inf in the input: nothing to solve
+    summary.residual = NAN;
+    return summary;
+  }
 
   // Start from a known solution: the previous one at the same base, else the unloaded rod
   // (W ≡ 0 is exact at zero load, whatever the rest shape).
+  // (Continuation blends loads, so their tip-load frames must match too.)
   const bool from_previous = has_solution_ && (solved_base_.R - base.R).norm() == 0.0 &&
-                             (solved_base_.p - base.p).norm() == 0.0;
+                             (solved_base_.p - base.p).norm() == 0.0 &&
+                             solved_loads_.tip_force_frame == loads.tip_force_frame &&
+                             solved_loads_.tip_moment_frame == loads.tip_moment_frame;
   summary.warm_started = from_previous;
   const StaticLoads start = from_previous ? solved_loads_ : loads.Scaled(0.0);
   const Vec6 x_start = from_previous ? x_ : Vec6::Zero();
@@ -524,8 +535,8 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
     const Vec6 r = Residual(base, loads, x);
     ++summary.shots;
     summary.residual = r.norm();
-    if (!r.allFinite() && summary.status != SolveStatus::kConverged)
-      summary.status = SolveStatus::kNonFinite;
+    if (!r.allFinite()) ok = false;
+    if (!r.allFinite()) summary.status = SolveStatus::kNonFinite;
   }
   if (ok) {
     state_is_solution_ = true;

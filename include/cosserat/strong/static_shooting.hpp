@@ -9,7 +9,7 @@
 ///   ξ = [K; Γ] = ξ* + K(s)⁻¹ [m; n]  (body-frame wrench W = [m; n] = −Λ of seed 002),
 /// where f_W = ρ A g + the distributed force (N/m). The residual is the tip condition
 /// W(L) − W_tip in the tip body frame; Levenberg–Marquardt (ceres::TinySolver) with an exact
-/// Jacobian (forward-mode ceres::Jet through the integrator) drives it to zero.
+/// Jacobian (tangent propagation through the integrator) drives it to zero.
 
 #include <chrono>
 #include <string>
@@ -67,7 +67,7 @@ class StaticShootingSolver {
                        const StaticShootingOptions& options = {}, const Actuation& actuation = {});
 
   /// Solve with the base pose (R_WB of the clamp, p_W of s = 0) and the loads. Warm-starts from
-  /// the previous converged solution, if any. The state is valid when the status is converged,
+  /// the previous converged solution, if any. Non-finite loads or base give kNonFinite at once. The state is valid when the status is converged,
   /// and holds the last iterate otherwise.
   StaticShootingSummary Solve(const lie::SE3& base, const StaticLoads& loads);
 
@@ -94,8 +94,8 @@ class StaticShootingSolver {
   };
   /// The dimensionless residual at a dimensionless unknown x (W(0) scaled); fills the state.
   Vec6 Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& x);
-  /// Its Jacobian d residual / d x (6 × 6), the exact derivative of the discrete map (forward-mode
-  /// automatic differentiation). Optionally also the residual.
+  /// Its Jacobian d residual / d x (6 × 6), the exact derivative of the discrete map (tangents
+  /// propagated through RK4 alongside the state). Optionally also the residual.
   Mat6 ResidualJacobian(const lie::SE3& base, const StaticLoads& loads, const Vec6& x,
                         Vec6* residual = nullptr) const;
 
