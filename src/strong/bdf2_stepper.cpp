@@ -212,6 +212,18 @@ Coefficients Bdf2Weights(double h, double h_prev) {
   return {(1 + 2 * w) / ((1 + w) * h), -(1 + w) / h, w * w / ((1 + w) * h)};
 }
 
+// a + t (b − a) for every input; the base rotation along the geodesic R_a Exp(t Log(R_aᵀ R_b)).
+StepInput BlendInputs(const StepInput& a, const StepInput& b, double t) {
+  StepInput out = b;
+  out.base_pose.p = a.base_pose.p + t * (b.base_pose.p - a.base_pose.p);
+  out.base_pose.R =
+      a.base_pose.R * lie::SO3Exp(t * lie::SO3Log(a.base_pose.R.transpose() * b.base_pose.R));
+  out.base_twist_B = a.base_twist_B + t * (b.base_twist_B - a.base_twist_B);
+  out.base_wrench_B = a.base_wrench_B + t * (b.base_wrench_B - a.base_wrench_B);
+  out.loads = StaticLoads::Blend(a.loads, b.loads, t);
+  return out;
+}
+
 }  // namespace
 
 Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
@@ -393,17 +405,22 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     Rk4Update(h, k1, k2, k3, k4, &y);
   }
   // The tip node: its strain from the last stage's section with the final wrench.
-  const int q_last = 4 * (n - 2) + 3;
   Vec6 W_tip;
   W_tip << y.m, y.R.transpose() * y.n;
   const Sample& s_tip = samples_[3 * (n - 2) + 2];
+  // The tip node has a history of its own (the last RK4 stage sits at y + h k3, not at the tip).
   Vec6 xi_h_tip = Vec6::Zero(), V_h_tip = Vec6::Zero();
-  history(q_last, &xi_h_tip, &V_h_tip);
+  if (!statics) {
+    xi_h_tip = c.c2 * (tip_strain2_ - tip_strain1_) - c.c0 * tip_strain1_;
+    V_h_tip = c.c2 * (tip_twist2_ - tip_twist1_) - c.c0 * tip_twist1_;
+  }
   const Vec6 xi_tip =
       statics ? Vec6(s_tip.rest_strain + s_tip.compliance.cwiseProduct(W_tip))
               : Vec6(s_tip.implicit_offset + s_tip.implicit_compliance.cwiseProduct(W_tip) -
                      s_tip.implicit_damping.cwiseProduct(xi_h_tip));
   record_node(n - 1, xi_tip);
+  tip_strain_now_ = xi_tip;
+  tip_twist_now_ << y.w, y.v;
   Vec6 V_t_tip = Vec6::Zero();  // BDF2 rate of the tip twist
   if (!statics) {
     V_t_tip << c.c0 * y.w, c.c0 * y.v;
@@ -538,7 +555,7 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
   Mat6 J_lm = jacobian_;
   const StepCost cost{this, &input, &c, statics, &summary->shots, &summary->jacobians, &J_lm};
   ceres::TinySolver<StepCost> lm;
-  lm.options.max_num_iterations = options_.max_iterations;
+  lm.options.max_num_iterations = options_.max_iterations + 1;  // TinySolver runs n − 1 steps
   lm.options.cost_threshold = 0.5 * options_.tolerance * options_.tolerance;
   lm.options.gradient_tolerance = 0.0;
   lm.options.parameter_tolerance = 1e-15;
@@ -570,6 +587,10 @@ void Bdf2ShootingStepper::Commit(double h) {
   std::swap(rotation1_, rotation_now_);
   std::swap(velocity_W2_, velocity_W1_);
   std::swap(velocity_W1_, velocity_W_now_);
+  tip_strain2_ = tip_strain1_;
+  tip_strain1_ = tip_strain_now_;
+  tip_twist2_ = tip_twist1_;
+  tip_twist1_ = tip_twist_now_;
   std::swap(state_, trial_);
   history_ready_ = false;
   base2_ = base1_;
@@ -582,6 +603,7 @@ void Bdf2ShootingStepper::Commit(double h) {
 StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
   const auto t0 = std::chrono::steady_clock::now();
   StepSummary summary;
+  initialized_ = false;  // until this succeeds, Step() refuses to run
   base1_ = base2_ = input.base_pose;
   steps_taken_ = 0;
   jacobian_c0_ = -1.0;  // the first solve computes the exact Jacobian
@@ -621,6 +643,10 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
   std::swap(state_, trial_);
   for (auto* v : {&twist1_, &twist2_}) std::fill(v->begin(), v->end(), Vec6::Zero());
   for (auto* v : {&velocity_W1_, &velocity_W2_}) std::fill(v->begin(), v->end(), Vec3::Zero());
+  tip_strain1_ = tip_strain2_ = tip_strain_now_;
+  tip_twist1_ = tip_twist2_ = Vec6::Zero();
+  last_input_ = input;
+  last_input_.base_twist_B.setZero();
   history_ready_ = false;
   time_ = 0.0;
   last_dt_ = 0.0;
@@ -638,18 +664,21 @@ bool Bdf2ShootingStepper::Attempt(const StepInput& input, double h, StepSummary*
   xi_back_ = lie::SE3Log(lie::Compose(lie::Inverse(base1_), base2_));
   if (SolveStep(input, c, false, summary)) {
     Commit(h);
+    last_input_ = input;
     return true;
   }
   return false;
 }
 
-bool Bdf2ShootingStepper::AttemptInterval(const StepInput& input, double h, int depth,
-                                          StepSummary* summary) {
-  if (Attempt(input, h, summary)) return true;
+bool Bdf2ShootingStepper::AttemptInterval(const StepInput& from, const StepInput& to, double h,
+                                          int depth, StepSummary* summary) {
+  if (Attempt(to, h, summary)) return true;
   if (depth >= options_.max_halvings) return false;
   summary->halvings = std::max(summary->halvings, depth + 1);
-  return AttemptInterval(input, 0.5 * h, depth + 1, summary) &&
-         AttemptInterval(input, 0.5 * h, depth + 1, summary);
+  // Sub-steps see the input interpolated between the start and the end of the interval.
+  const StepInput mid = BlendInputs(from, to, 0.5);
+  return AttemptInterval(from, mid, 0.5 * h, depth + 1, summary) &&
+         AttemptInterval(mid, to, 0.5 * h, depth + 1, summary);
 }
 
 StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
@@ -662,7 +691,14 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
   // Try the whole step; on failure, two half steps, recursively up to max_halvings deep. Sub-steps
   // commit as they go, so a failure part-way leaves the last converged sub-step. (With shooting,
   // smaller steps raise the shot's exponent λL ∝ dt^(-1/2), so halving helps less than usual.)
-  const bool ok = AttemptInterval(input, options_.dt, 0, &summary);
+  if (!input.loads.IsValid(nullptr) || !input.base_twist_B.allFinite() ||
+      !input.base_wrench_B.allFinite() || !input.base_pose.R.allFinite() ||
+      !input.base_pose.p.allFinite()) {
+    summary.status = SolveStatus::kNonFinite;  // NaN or Inf in the input: the state stays put
+    return summary;
+  }
+  const StepInput start = last_input_;
+  const bool ok = AttemptInterval(start, input, options_.dt, 0, &summary);
   if (ok) summary.status = SolveStatus::kConverged;
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -733,6 +769,11 @@ Bdf2ShootingStepper::Snapshot Bdf2ShootingStepper::Save() const {
   s.position1 = position1_;
   s.rotation1 = rotation1_;
   s.velocity_W1 = velocity_W1_;
+  s.tip_strain1 = tip_strain1_;
+  s.tip_strain2 = tip_strain2_;
+  s.tip_twist1 = tip_twist1_;
+  s.tip_twist2 = tip_twist2_;
+  s.last_input = last_input_;
   s.velocity_W2 = velocity_W2_;
   s.base1 = base1_;
   s.base2 = base2_;
@@ -758,6 +799,11 @@ void Bdf2ShootingStepper::Restore(const Snapshot& s) {
   std::copy(s.position1.begin(), s.position1.end(), position1_.begin());
   std::copy(s.rotation1.begin(), s.rotation1.end(), rotation1_.begin());
   std::copy(s.velocity_W1.begin(), s.velocity_W1.end(), velocity_W1_.begin());
+  tip_strain1_ = s.tip_strain1;
+  tip_strain2_ = s.tip_strain2;
+  tip_twist1_ = s.tip_twist1;
+  tip_twist2_ = s.tip_twist2;
+  last_input_ = s.last_input;
   std::copy(s.velocity_W2.begin(), s.velocity_W2.end(), velocity_W2_.begin());
   base1_ = s.base1;
   base2_ = s.base2;

@@ -104,9 +104,10 @@ class Bdf2ShootingStepper {
   const RodState& state() const { return state_; }
   const Bdf2Options& options() const { return options_; }
   const std::vector<double>& grid() const { return grid_; }
-  /// Energy of the current state under the gravity of `loads`.
+  /// Energy of the current state under the gravity of `loads` (the rod only: a tip body's energy
+  /// and momentum are not included).
   RodEnergy Energy(const StaticLoads& loads) const;
-  /// Momentum of the current state.
+  /// Momentum of the current state (the rod only).
   RodMomentum Momentum() const;
   /// Total mass (kg) and centre of mass (world, m) of the current state.
   double Mass() const;
@@ -125,6 +126,8 @@ class Bdf2ShootingStepper {
     std::vector<Mat3> rotation1;
     std::vector<Vec3> velocity_W1, velocity_W2;
     lie::SE3 base1, base2;
+    Vec6 tip_strain1, tip_strain2, tip_twist1, tip_twist2;
+    StepInput last_input;
     RodState state;
   };
   Snapshot Save() const;
@@ -148,14 +151,16 @@ class Bdf2ShootingStepper {
   /// One shot: the dimensionless tip residual for the dimensionless unknown x (W(0) = scale ⊙ x),
   /// with BDF2 weights c, or the static equations when statics is true. Writes the trial state
   /// and the stage values. With J, also d r / d x: the exact derivative of the discrete shot
-  /// (tangent propagation through RK4), at about ten times the cost. Used by the solver and its
-  /// tests.
+  /// (tangent propagation through RK4), at about ten times the cost; for free-free it drops the
+  /// O(dt) change of J_r in the base pose, so it is close but not exact. Used by the solver and
+  /// its tests.
   Vec6 Residual(const StepInput& input, const Coefficients& c, bool statics, const Vec6& x,
                 Mat6* J = nullptr);
 
  private:
   bool Attempt(const StepInput& input, double h, StepSummary* summary);
-  bool AttemptInterval(const StepInput& input, double h, int depth, StepSummary* summary);
+  bool AttemptInterval(const StepInput& from, const StepInput& to, double h, int depth,
+                       StepSummary* summary);
   /// Calls visit(stage index, section sample, quadrature weight in m) for every RK4 stage.
   template <typename Visit>
   void ForEachStage(Visit&& visit) const;
@@ -183,6 +188,9 @@ class Bdf2ShootingStepper {
   std::vector<Vec3> velocity_W_now_, velocity_W1_, velocity_W2_, velocity_W_h_;  ///< R v at stages
   // Pose of the s = 0 end: the shot being tried, and one and two steps back (free-free state).
   lie::SE3 base_now_, base1_, base2_;
+  Vec6 tip_strain_now_ = Vec6::Zero(), tip_strain1_ = Vec6::Zero(), tip_strain2_ = Vec6::Zero();
+  Vec6 tip_twist_now_ = Vec6::Zero(), tip_twist1_ = Vec6::Zero(), tip_twist2_ = Vec6::Zero();
+  StepInput last_input_;  ///< the input of the last accepted (sub-)step, for sub-step blending
   Vec6 xi_back_ = Vec6::Zero();  ///< log(g₁⁻¹ g₂) at s = 0, for the group BDF2 of free-free
   Vec6 twist_scale_;             ///< V(0) = twist_scale ⊙ x for free-free: [1/s ×3, L/s ×3]
 

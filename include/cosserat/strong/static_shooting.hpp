@@ -67,8 +67,8 @@ class StaticShootingSolver {
                        const StaticShootingOptions& options = {}, const Actuation& actuation = {});
 
   /// Solve with the base pose (R_WB of the clamp, p_W of s = 0) and the loads. Warm-starts from
-  /// the previous converged solution, if any. Non-finite loads or base give kNonFinite at once. The state is valid when the status is converged,
-  /// and holds the last iterate otherwise.
+  /// the previous converged solution, if any. Non-finite loads or base give kNonFinite at once. The
+  /// state is valid when the status is converged, and holds the last iterate otherwise.
   StaticShootingSummary Solve(const lie::SE3& base, const StaticLoads& loads);
 
   /// Forget the previous solution: the next Solve starts cold.
