@@ -2,6 +2,7 @@
 // frequencies, second-order convergence in dt, energy, the quasi-static limit, restart.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -538,6 +539,42 @@ TEST(Bdf2Dynamics, TipMassLowersTheFundamentalAsTheory) {
   }
   // The tip-mass root (λ ≈ 1.25 here) is far from the bare rod's 1.875, so 1 % tells them apart.
   EXPECT_NEAR(PeakFrequency(tip_x, opt.dt, 0.7 * f, 1.3 * f) / f, 1.0, 0.01);
+}
+
+}  // namespace
+}  // namespace cosserat
+
+namespace cosserat {
+namespace {
+
+// The tip condition with a tip body is Newton's law for that body with the BDF2 rate of the tip
+// node's own twist: check it on the recorded states of three consecutive steps.
+TEST(Bdf2Dynamics, TipBodyObeysNewtonWithTheTipTwistRate) {
+  Bdf2Options opt;
+  opt.dt = 1e-3;
+  opt.tip_mass = 0.0126;  // about the rod's mass
+  Bdf2ShootingStepper stepper(Steel(0.5, 0.001), 41, opt);
+  StepInput in;
+  in.loads.tip_force = Vec3(-0.2, 0.05, 0);
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads.tip_force.setZero();
+  std::vector<Vec6> twist;
+  double worst = 0, scale = 0;
+  for (int i = 0; i < 60; ++i) {
+    ASSERT_TRUE(stepper.Step(in).converged());
+    twist.push_back(stepper.state().twist_B.back());
+    if (twist.size() < 3) continue;
+    const size_t k = twist.size() - 1;
+    const Vec6 rate = (1.5 * twist[k] - 2 * twist[k - 1] + 0.5 * twist[k - 2]) / opt.dt;
+    const Vec3 w = twist[k].head<3>(), v = twist[k].tail<3>();
+    const Vec3 expected = -opt.tip_mass * (rate.tail<3>() + w.cross(v));  // no gravity, no load
+    const Vec3 n_tip = stepper.state().wrench_B.back().tail<3>();
+    worst = std::max(worst, (n_tip - expected).norm());
+    scale = std::max(scale, expected.norm());
+  }
+  // Equal up to the solver tolerance (1e-10 of EI/L² ≈ 6e-11 N) and round-off in the rate.
+  EXPECT_GT(scale, 1e-3);
+  EXPECT_LT(worst, 1e-6 * scale) << worst << " of " << scale;
 }
 
 }  // namespace
