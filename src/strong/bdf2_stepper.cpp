@@ -258,19 +258,19 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
 
   const int stages = 4 * (n - 1);
-  for (auto* v :
-       {&strain_now_, &strain1_, &strain2_, &twist_now_, &twist1_, &twist2_, &strain_h_, &twist_h_})
+  for (auto* v : {&strain_now_, &run_.strain1, &run_.strain2, &twist_now_, &run_.twist1,
+                  &run_.twist2, &strain_h_, &twist_h_})
     v->assign(stages, Vec6::Zero());
   position_now_.assign(stages, Vec3::Zero());
-  position1_.assign(stages, Vec3::Zero());
+  run_.position1.assign(stages, Vec3::Zero());
   rotation_now_.assign(stages, Mat3::Identity());
-  for (auto* v : {&velocity_W_now_, &velocity_W1_, &velocity_W2_, &velocity_W_h_})
+  for (auto* v : {&velocity_W_now_, &run_.velocity_W1, &run_.velocity_W2, &velocity_W_h_})
     v->assign(stages, Vec3::Zero());
-  rotation1_.assign(stages, Mat3::Identity());
+  run_.rotation1.assign(stages, Mat3::Identity());
   twist_scale_ << 1, 1, 1, L, L, L;
-  state_.Resize(n);
-  for (int i = 0; i < n; ++i) state_.s[i] = grid_[i];
-  trial_ = state_;
+  run_.state.Resize(n);
+  for (int i = 0; i < n; ++i) run_.state.s[i] = grid_[i];
+  trial_ = run_.state;
 }
 
 void Bdf2ShootingStepper::SetImplicitCompliance(double c0) {
@@ -290,10 +290,12 @@ void Bdf2ShootingStepper::PrepareHistory(const Coefficients& c) {
   // ξ_t = c0 ξ + ξʰ with ξʰ = c2 (ξ₂ − ξ₁) − c0 ξ₁ (c1 = −c0 − c2), likewise for V.
   for (size_t q = 0; q < strain_h_.size(); ++q) {
     for (int k = 0; k < 6; ++k) {
-      strain_h_[q](k) = c.c2 * (strain2_[q](k) - strain1_[q](k)) - c.c0 * strain1_[q](k);
-      twist_h_[q](k) = c.c2 * (twist2_[q](k) - twist1_[q](k)) - c.c0 * twist1_[q](k);
+      strain_h_[q](k) =
+          c.c2 * (run_.strain2[q](k) - run_.strain1[q](k)) - c.c0 * run_.strain1[q](k);
+      twist_h_[q](k) = c.c2 * (run_.twist2[q](k) - run_.twist1[q](k)) - c.c0 * run_.twist1[q](k);
     }
-    velocity_W_h_[q] = c.c2 * (velocity_W2_[q] - velocity_W1_[q]) - c.c0 * velocity_W1_[q];
+    velocity_W_h_[q] =
+        c.c2 * (run_.velocity_W2[q] - run_.velocity_W1[q]) - c.c0 * run_.velocity_W1[q];
   }
   history_c_ = c;
   history_ready_ = true;
@@ -330,7 +332,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
       for (int k = 0; k < 4; ++k)
         xi = (lie::SE3RightJacobianInverse(xi) * V0 - c.c2 * xi_back_) / c.c0;
     }
-    base_now_ = lie::Compose(base1_, lie::SE3Exp(xi));
+    base_now_ = lie::Compose(run_.base1, lie::SE3Exp(xi));
     y.m = -in.base_wrench_B.head<3>();
     y.n = base_now_.R * -in.base_wrench_B.tail<3>();
     y.w = V0.head<3>();
@@ -411,8 +413,8 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
   // The tip node has a history of its own (the last RK4 stage sits at y + h k3, not at the tip).
   Vec6 xi_h_tip = Vec6::Zero(), V_h_tip = Vec6::Zero();
   if (!statics) {
-    xi_h_tip = c.c2 * (tip_strain2_ - tip_strain1_) - c.c0 * tip_strain1_;
-    V_h_tip = c.c2 * (tip_twist2_ - tip_twist1_) - c.c0 * tip_twist1_;
+    xi_h_tip = c.c2 * (run_.tip_strain2 - run_.tip_strain1) - c.c0 * run_.tip_strain1;
+    V_h_tip = c.c2 * (run_.tip_twist2 - run_.tip_twist1) - c.c0 * run_.tip_twist1;
   }
   const Vec6 xi_tip =
       statics ? Vec6(s_tip.rest_strain + s_tip.compliance.cwiseProduct(W_tip))
@@ -486,23 +488,23 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
   // 1. Newton with the last Jacobian, kept current by Broyden's update, from an extrapolation
   //    of the last steps' unknowns. A Jacobian from another c0 (statics, another step size) is
   //    replaced by the exact one first.
-  Vec6 x = x_;
-  if (!statics && steps_taken_ >= 3)
-    x = 3 * x_ - 3 * x_prev_ + x_prev2_;  // quadratic: fewest shots on the peer problem
-  else if (!statics && steps_taken_ >= 2)
-    x = 2 * x_ - x_prev_;
+  Vec6 x = run_.x;
+  if (!statics && run_.steps_taken >= 3)
+    x = 3 * run_.x - 3 * run_.x_prev + run_.x_prev2;  // quadratic: fewest shots on the peer problem
+  else if (!statics && run_.steps_taken >= 2)
+    x = 2 * run_.x - run_.x_prev;
   Vec6 r;
   bool fresh = false;  // J is the exact Jacobian at x, not yet Broyden-updated
-  if (jacobian_c0_ != c.c0) {
-    r = Residual(input, c, statics, x, &jacobian_);
+  if (run_.jacobian_c0 != c.c0) {
+    r = Residual(input, c, statics, x, &run_.jacobian);
     ++summary->jacobians;
-    jacobian_c0_ = c.c0;
+    run_.jacobian_c0 = c.c0;
     fresh = true;
   } else {
     r = Residual(input, c, statics, x);
   }
   ++summary->shots;
-  Mat6 J = jacobian_;
+  Mat6 J = run_.jacobian;
   Eigen::PartialPivLU<Mat6> lu(J);
   bool ok = false;
   for (int it = 0; it < options_.max_iterations; ++it) {
@@ -544,15 +546,15 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
   }
   if (ok) {
     summary->residual = r.norm();
-    jacobian_ = J;
-    x_prev2_ = x_prev_;
-    x_prev_ = x_;
-    x_ = x;
+    run_.jacobian = J;
+    run_.x_prev2 = run_.x_prev;
+    run_.x_prev = run_.x;
+    run_.x = x;
     return true;
   }
 
   // 2. Levenberg–Marquardt with the exact Jacobian, from the last good unknowns.
-  Mat6 J_lm = jacobian_;
+  Mat6 J_lm = run_.jacobian;
   const StepCost cost{this, &input, &c, statics, &summary->shots, &summary->jacobians, &J_lm};
   ceres::TinySolver<StepCost> lm;
   lm.options.max_num_iterations = options_.max_iterations + 1;  // TinySolver runs n − 1 steps
@@ -560,7 +562,7 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
   lm.options.gradient_tolerance = 0.0;
   lm.options.parameter_tolerance = 1e-15;
   lm.options.function_tolerance = 0.0;
-  Vec6 x_lm = x_;
+  Vec6 x_lm = run_.x;
   const auto& s = lm.Solve(cost, &x_lm);
   summary->iterations += s.iterations;
   const Vec6 r_final = Residual(input, c, statics, x_lm);  // leaves the trial state at x_lm
@@ -570,49 +572,49 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
     summary->status = r_final.allFinite() ? SolveStatus::kMaxIterations : SolveStatus::kNonFinite;
     return false;
   }
-  jacobian_ = J_lm;
-  jacobian_c0_ = c.c0;
-  x_prev2_ = x_prev_;
-  x_prev_ = x_;
-  x_ = x_lm;
+  run_.jacobian = J_lm;
+  run_.jacobian_c0 = c.c0;
+  run_.x_prev2 = run_.x_prev;
+  run_.x_prev = run_.x;
+  run_.x = x_lm;
   return true;
 }
 
 void Bdf2ShootingStepper::Commit(double h) {
-  std::swap(strain2_, strain1_);
-  std::swap(strain1_, strain_now_);
-  std::swap(twist2_, twist1_);
-  std::swap(twist1_, twist_now_);
-  std::swap(position1_, position_now_);
-  std::swap(rotation1_, rotation_now_);
-  std::swap(velocity_W2_, velocity_W1_);
-  std::swap(velocity_W1_, velocity_W_now_);
-  tip_strain2_ = tip_strain1_;
-  tip_strain1_ = tip_strain_now_;
-  tip_twist2_ = tip_twist1_;
-  tip_twist1_ = tip_twist_now_;
-  std::swap(state_, trial_);
+  std::swap(run_.strain2, run_.strain1);
+  std::swap(run_.strain1, strain_now_);
+  std::swap(run_.twist2, run_.twist1);
+  std::swap(run_.twist1, twist_now_);
+  std::swap(run_.position1, position_now_);
+  std::swap(run_.rotation1, rotation_now_);
+  std::swap(run_.velocity_W2, run_.velocity_W1);
+  std::swap(run_.velocity_W1, velocity_W_now_);
+  run_.tip_strain2 = run_.tip_strain1;
+  run_.tip_strain1 = tip_strain_now_;
+  run_.tip_twist2 = run_.tip_twist1;
+  run_.tip_twist1 = tip_twist_now_;
+  std::swap(run_.state, trial_);
   history_ready_ = false;
-  base2_ = base1_;
-  base1_ = base_now_;
-  time_ += h;
-  last_dt_ = h;
-  ++steps_taken_;
+  run_.base2 = run_.base1;
+  run_.base1 = base_now_;
+  run_.time += h;
+  run_.last_dt = h;
+  ++run_.steps_taken;
 }
 
 StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
   const auto t0 = std::chrono::steady_clock::now();
   StepSummary summary;
   initialized_ = false;  // until this succeeds, Step() refuses to run
-  base1_ = base2_ = input.base_pose;
-  steps_taken_ = 0;
-  jacobian_c0_ = -1.0;  // the first solve computes the exact Jacobian
+  run_.base1 = run_.base2 = input.base_pose;
+  run_.steps_taken = 0;
+  run_.jacobian_c0 = -1.0;  // the first solve computes the exact Jacobian
   const Coefficients c{};
   bool ok = false;
   if (options_.ends == EndConditions::kFreeFree) {
     // Nothing to solve: W(0) is given, V = 0. The rod is at rest only if the loads balance.
-    x_.setZero();
-    const Vec6 r = Residual(input, c, true, x_);
+    run_.x.setZero();
+    const Vec6 r = Residual(input, c, true, run_.x);
     ++summary.shots;
     summary.residual = r.norm();
     ok = summary.residual < options_.tolerance;
@@ -625,7 +627,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
                        input.loads.tip_force;
     Vec6 W;
     W << Vec3::Zero(), input.base_pose.R.transpose() * total;
-    x_ = W.cwiseQuotient(scale_);
+    run_.x = W.cwiseQuotient(scale_);
     ok = SolveStep(input, c, true, &summary);
   }
   if (!ok) {
@@ -633,24 +635,25 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return summary;
   }
-  x_prev_ = x_;
-  x_prev2_ = x_;
+  run_.x_prev = run_.x;
+  run_.x_prev2 = run_.x;
   // At rest: both history levels equal the equilibrium, twists zero.
-  std::copy(strain_now_.begin(), strain_now_.end(), strain1_.begin());
-  std::copy(strain_now_.begin(), strain_now_.end(), strain2_.begin());
-  std::copy(position_now_.begin(), position_now_.end(), position1_.begin());
-  std::copy(rotation_now_.begin(), rotation_now_.end(), rotation1_.begin());
-  std::swap(state_, trial_);
-  for (auto* v : {&twist1_, &twist2_}) std::fill(v->begin(), v->end(), Vec6::Zero());
-  for (auto* v : {&velocity_W1_, &velocity_W2_}) std::fill(v->begin(), v->end(), Vec3::Zero());
-  tip_strain1_ = tip_strain2_ = tip_strain_now_;
-  tip_twist1_ = tip_twist2_ = Vec6::Zero();
-  last_input_ = input;
-  last_input_.base_twist_B.setZero();
+  std::copy(strain_now_.begin(), strain_now_.end(), run_.strain1.begin());
+  std::copy(strain_now_.begin(), strain_now_.end(), run_.strain2.begin());
+  std::copy(position_now_.begin(), position_now_.end(), run_.position1.begin());
+  std::copy(rotation_now_.begin(), rotation_now_.end(), run_.rotation1.begin());
+  std::swap(run_.state, trial_);
+  for (auto* v : {&run_.twist1, &run_.twist2}) std::fill(v->begin(), v->end(), Vec6::Zero());
+  for (auto* v : {&run_.velocity_W1, &run_.velocity_W2})
+    std::fill(v->begin(), v->end(), Vec3::Zero());
+  run_.tip_strain1 = run_.tip_strain2 = tip_strain_now_;
+  run_.tip_twist1 = run_.tip_twist2 = Vec6::Zero();
+  run_.last_input = input;
+  run_.last_input.base_twist_B.setZero();
   history_ready_ = false;
-  time_ = 0.0;
-  last_dt_ = 0.0;
-  steps_taken_ = 0;
+  run_.time = 0.0;
+  run_.last_dt = 0.0;
+  run_.steps_taken = 0;
   initialized_ = true;
   summary.status = SolveStatus::kConverged;
   summary.wall_time_s =
@@ -659,12 +662,12 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
 }
 
 bool Bdf2ShootingStepper::Attempt(const StepInput& input, double h, StepSummary* summary) {
-  const Coefficients c = Bdf2Weights(h, last_dt_);
+  const Coefficients c = Bdf2Weights(h, run_.last_dt);
   SetImplicitCompliance(c.c0);
-  xi_back_ = lie::SE3Log(lie::Compose(lie::Inverse(base1_), base2_));
+  xi_back_ = lie::SE3Log(lie::Compose(lie::Inverse(run_.base1), run_.base2));
   if (SolveStep(input, c, false, summary)) {
     Commit(h);
-    last_input_ = input;
+    run_.last_input = input;
     return true;
   }
   return false;
@@ -697,7 +700,7 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
     summary.status = SolveStatus::kNonFinite;  // NaN or Inf in the input: the state stays put
     return summary;
   }
-  const StepInput start = last_input_;
+  const StepInput start = run_.last_input;
   const bool ok = AttemptInterval(start, input, options_.dt, 0, &summary);
   if (ok) summary.status = SolveStatus::kConverged;
   summary.wall_time_s =
@@ -720,10 +723,10 @@ void Bdf2ShootingStepper::ForEachStage(Visit&& visit) const {
 RodEnergy Bdf2ShootingStepper::Energy(const StaticLoads& loads) const {
   RodEnergy e;
   ForEachStage([&](int q, const Sample& smp, double w) {
-    const Vec6 dxi = strain1_[q] - smp.rest_strain;
-    e.kinetic += w * 0.5 * twist1_[q].dot(smp.mass.cwiseProduct(twist1_[q]));
+    const Vec6 dxi = run_.strain1[q] - smp.rest_strain;
+    e.kinetic += w * 0.5 * run_.twist1[q].dot(smp.mass.cwiseProduct(run_.twist1[q]));
     e.elastic += w * 0.5 * dxi.dot(smp.stiffness.cwiseProduct(dxi));
-    e.gravity -= w * smp.mass(5) * loads.gravity_W.dot(position1_[q]);
+    e.gravity -= w * smp.mass(5) * loads.gravity_W.dot(run_.position1[q]);
   });
   return e;
 }
@@ -731,10 +734,10 @@ RodEnergy Bdf2ShootingStepper::Energy(const StaticLoads& loads) const {
 RodMomentum Bdf2ShootingStepper::Momentum() const {
   RodMomentum out;
   ForEachStage([&](int q, const Sample& smp, double w) {
-    const Vec3 linear = smp.mass(5) * (rotation1_[q] * twist1_[q].tail<3>());
-    const Vec3 spin = rotation1_[q] * smp.mass.head<3>().cwiseProduct(twist1_[q].head<3>());
+    const Vec3 linear = smp.mass(5) * (run_.rotation1[q] * run_.twist1[q].tail<3>());
+    const Vec3 spin = run_.rotation1[q] * smp.mass.head<3>().cwiseProduct(run_.twist1[q].head<3>());
     out.linear_W += w * linear;
-    out.angular_W += w * (position1_[q].cross(linear) + spin);
+    out.angular_W += w * (run_.position1[q].cross(linear) + spin);
   });
   return out;
 }
@@ -748,69 +751,15 @@ double Bdf2ShootingStepper::Mass() const {
 Vec3 Bdf2ShootingStepper::CentreOfMass_W() const {
   Vec3 first = Vec3::Zero();
   ForEachStage(
-      [&](int q, const Sample& smp, double w) { first += w * smp.mass(5) * position1_[q]; });
+      [&](int q, const Sample& smp, double w) { first += w * smp.mass(5) * run_.position1[q]; });
   return first / Mass();
 }
 
-Bdf2ShootingStepper::Snapshot Bdf2ShootingStepper::Save() const {
-  Snapshot s;
-  s.time = time_;
-  s.last_dt = last_dt_;
-  s.x = x_;
-  s.x_prev = x_prev_;
-  s.x_prev2 = x_prev2_;
-  s.jacobian_c0 = jacobian_c0_;
-  s.jacobian = jacobian_;
-  s.steps_taken = steps_taken_;
-  s.strain1 = strain1_;
-  s.strain2 = strain2_;
-  s.twist1 = twist1_;
-  s.twist2 = twist2_;
-  s.position1 = position1_;
-  s.rotation1 = rotation1_;
-  s.velocity_W1 = velocity_W1_;
-  s.tip_strain1 = tip_strain1_;
-  s.tip_strain2 = tip_strain2_;
-  s.tip_twist1 = tip_twist1_;
-  s.tip_twist2 = tip_twist2_;
-  s.last_input = last_input_;
-  s.velocity_W2 = velocity_W2_;
-  s.base1 = base1_;
-  s.base2 = base2_;
-  s.state = state_;
-  return s;
-}
-
 void Bdf2ShootingStepper::Restore(const Snapshot& s) {
-  if (s.strain1.size() != strain1_.size())
+  if (s.strain1.size() != run_.strain1.size() || s.state.size() != run_.state.size())
     throw std::invalid_argument("Snapshot is from a stepper with another grid");
-  time_ = s.time;
-  last_dt_ = s.last_dt;
-  x_ = s.x;
-  x_prev_ = s.x_prev;
-  x_prev2_ = s.x_prev2;
-  jacobian_c0_ = s.jacobian_c0;
-  jacobian_ = s.jacobian;
-  steps_taken_ = s.steps_taken;
-  std::copy(s.strain1.begin(), s.strain1.end(), strain1_.begin());
-  std::copy(s.strain2.begin(), s.strain2.end(), strain2_.begin());
-  std::copy(s.twist1.begin(), s.twist1.end(), twist1_.begin());
-  std::copy(s.twist2.begin(), s.twist2.end(), twist2_.begin());
-  std::copy(s.position1.begin(), s.position1.end(), position1_.begin());
-  std::copy(s.rotation1.begin(), s.rotation1.end(), rotation1_.begin());
-  std::copy(s.velocity_W1.begin(), s.velocity_W1.end(), velocity_W1_.begin());
-  tip_strain1_ = s.tip_strain1;
-  tip_strain2_ = s.tip_strain2;
-  tip_twist1_ = s.tip_twist1;
-  tip_twist2_ = s.tip_twist2;
-  last_input_ = s.last_input;
-  std::copy(s.velocity_W2.begin(), s.velocity_W2.end(), velocity_W2_.begin());
-  base1_ = s.base1;
-  base2_ = s.base2;
+  run_ = s;  // equal sizes: vectors copy into their existing storage
   history_ready_ = false;
-  if (s.state.size() != state_.size())
-    throw std::invalid_argument("Snapshot is from a stepper with another grid");
-  state_ = s.state;
   initialized_ = true;
 }
 

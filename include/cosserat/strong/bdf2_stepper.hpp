@@ -100,8 +100,8 @@ class Bdf2ShootingStepper {
   /// (sub-)step that converged.
   StepSummary Step(const StepInput& input);
 
-  double time() const { return time_; }
-  const RodState& state() const { return state_; }
+  double time() const { return run_.time; }
+  const RodState& state() const { return run_.state; }
   const Bdf2Options& options() const { return options_; }
   const std::vector<double>& grid() const { return grid_; }
   /// Energy of the current state under the gravity of `loads` (the rod only: a tip body's energy
@@ -116,21 +116,25 @@ class Bdf2ShootingStepper {
   /// Everything Step() needs to continue a run. Save() allocates; Restore() into a stepper of the
   /// same model and grid does not.
   struct Snapshot {
-    double time = 0, last_dt = 0;
-    Vec6 x = Vec6::Zero(), x_prev = Vec6::Zero(), x_prev2 = Vec6::Zero();
+    double time = 0;
+    double last_dt = 0;  ///< size of the last accepted step (0 before the first)
+    Vec6 x = Vec6::Zero(), x_prev = Vec6::Zero(), x_prev2 = Vec6::Zero();  ///< unknowns, last 3
     Mat6 jacobian = Mat6::Identity();
-    double jacobian_c0 = -1.0;
+    double jacobian_c0 = -1.0;  ///< the c0 the Jacobian was computed for; −1: none
     int steps_taken = 0;
+    // Accepted values at the 4 RK4 stages of each segment (index 4 i + j), one and two steps
+    // back, and at the tip node.
     std::vector<Vec6> strain1, strain2, twist1, twist2;
     std::vector<Vec3> position1;
     std::vector<Mat3> rotation1;
-    std::vector<Vec3> velocity_W1, velocity_W2;
-    lie::SE3 base1, base2;
-    Vec6 tip_strain1, tip_strain2, tip_twist1, tip_twist2;
-    StepInput last_input;
-    RodState state;
+    std::vector<Vec3> velocity_W1, velocity_W2;  ///< R v
+    Vec6 tip_strain1 = Vec6::Zero(), tip_strain2 = Vec6::Zero();
+    Vec6 tip_twist1 = Vec6::Zero(), tip_twist2 = Vec6::Zero();
+    lie::SE3 base1, base2;  ///< pose of the s = 0 end one and two steps back
+    StepInput last_input;   ///< input of the last accepted (sub-)step, for sub-step blending
+    RodState state;         ///< the last accepted step
   };
-  Snapshot Save() const;
+  Snapshot Save() const { return run_; }
   void Restore(const Snapshot& snapshot);
 
   // Per-stage section data; public for the implementation's helpers.
@@ -176,33 +180,25 @@ class Bdf2ShootingStepper {
   std::vector<Sample> samples_;  ///< 3 per segment: start, midpoint, end
   Vec6 scale_;                   ///< W(0) = scale ⊙ x
 
-  // Values at the 4 RK4 stages of each segment (index 4 i + j): the shot being tried, and the
-  // accepted ones one and two steps back.
-  std::vector<Vec6> strain_now_, strain1_, strain2_;
-  std::vector<Vec6> twist_now_, twist1_, twist2_;
+  Snapshot run_;  ///< the accepted run: all Save() and Restore() copy
+
+  // The shot being tried, at the same stage points (swapped into run_ on acceptance).
+  std::vector<Vec6> strain_now_, twist_now_;
+  std::vector<Vec3> position_now_, velocity_W_now_;
+  std::vector<Mat3> rotation_now_;
+  Vec6 tip_strain_now_ = Vec6::Zero(), tip_twist_now_ = Vec6::Zero();
+  lie::SE3 base_now_;
+  RodState trial_;
+
+  // Per-step caches.
   std::vector<Vec6> strain_h_, twist_h_;  ///< history terms ξʰ, Vʰ for history_c_
+  std::vector<Vec3> velocity_W_h_;
   Coefficients history_c_;
   bool history_ready_ = false;
-  std::vector<Vec3> position_now_, position1_;
-  std::vector<Mat3> rotation_now_, rotation1_;
-  std::vector<Vec3> velocity_W_now_, velocity_W1_, velocity_W2_, velocity_W_h_;  ///< R v at stages
-  // Pose of the s = 0 end: the shot being tried, and one and two steps back (free-free state).
-  lie::SE3 base_now_, base1_, base2_;
-  Vec6 tip_strain_now_ = Vec6::Zero(), tip_strain1_ = Vec6::Zero(), tip_strain2_ = Vec6::Zero();
-  Vec6 tip_twist_now_ = Vec6::Zero(), tip_twist1_ = Vec6::Zero(), tip_twist2_ = Vec6::Zero();
-  StepInput last_input_;  ///< the input of the last accepted (sub-)step, for sub-step blending
   Vec6 xi_back_ = Vec6::Zero();  ///< log(g₁⁻¹ g₂) at s = 0, for the group BDF2 of free-free
-  Vec6 twist_scale_;             ///< V(0) = twist_scale ⊙ x for free-free: [1/s ×3, L/s ×3]
-
-  RodState state_;  ///< the last accepted step
-  RodState trial_;  ///< written by every shot; swapped into state_ on acceptance
-  double time_ = 0.0;
-  double last_dt_ = 0.0;  ///< size of the last accepted step (0 before the first)
   double current_c0_ = -1.0;
-  int steps_taken_ = 0;
-  Vec6 x_ = Vec6::Zero(), x_prev_ = Vec6::Zero(), x_prev2_ = Vec6::Zero();  ///< unknowns, last 3
-  Mat6 jacobian_ = Mat6::Identity();
-  double jacobian_c0_ = -1.0;  ///< the c0 the Jacobian was computed for; −1: none
+
+  Vec6 twist_scale_;  ///< V(0) = twist_scale ⊙ x for free-free: [1/s ×3, L/s ×3]
   bool initialized_ = false;
 };
 
