@@ -22,6 +22,7 @@
 #include "cosserat/loads/static_loads.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/strong/rod_state.hpp"
+#include "cosserat/strong/sequence_predictor.hpp"
 #include "cosserat/strong/solver_status.hpp"
 
 namespace cosserat {
@@ -117,8 +118,8 @@ class Bdf2ShootingStepper {
   /// same model and grid does not.
   struct Snapshot {
     double time = 0;
-    double last_dt = 0;  ///< size of the last accepted step (0 before the first)
-    Vec6 x = Vec6::Zero(), x_prev = Vec6::Zero(), x_prev2 = Vec6::Zero();  ///< unknowns, last 3
+    double last_dt = 0;             ///< size of the last accepted step (0 before the first)
+    SequencePredictor unknowns{2};  ///< the converged unknowns of the last steps
     Mat6 jacobian = Mat6::Identity();
     double jacobian_c0 = -1.0;  ///< the c0 the Jacobian was computed for; −1: none
     int steps_taken = 0;
@@ -168,7 +169,10 @@ class Bdf2ShootingStepper {
   /// Calls visit(stage index, section sample, quadrature weight in m) for every RK4 stage.
   template <typename Visit>
   void ForEachStage(Visit&& visit) const;
-  bool SolveStep(const StepInput& input, const Coefficients& c, bool statics, StepSummary* summary);
+  /// Solves one step of size h (statics: h unused) for the unknowns; on success they are in
+  /// solved_unknowns_ and the trial state holds the shot.
+  bool SolveStep(const StepInput& input, const Coefficients& c, double h, bool statics,
+                 StepSummary* summary);
   void SetImplicitCompliance(double c0);
   /// Fills the history terms ξʰ, Vʰ at every stage for the weights c (once per step).
   void PrepareHistory(const Coefficients& c);
@@ -197,6 +201,7 @@ class Bdf2ShootingStepper {
   bool history_ready_ = false;
   Vec6 xi_back_ = Vec6::Zero();  ///< log(g₁⁻¹ g₂) at s = 0, for the group BDF2 of free-free
   double current_c0_ = -1.0;
+  Vec6 solved_unknowns_ = Vec6::Zero();
 
   Vec6 twist_scale_;  ///< V(0) = twist_scale ⊙ x for free-free: [1/s ×3, L/s ×3]
   bool initialized_ = false;

@@ -1,0 +1,75 @@
+// SequencePredictor: polynomial extrapolation of the shooting unknowns from step to step.
+// Truths: the degree-p formula is exact on polynomials of degree ≤ p; on a sampled sinusoid
+// x_k = sin(θ k) its error is exactly the amplitude times |e^{iθ} − 1|^{p+1} = (2 sin(θ/2))^{p+1}
+// (the (p+1)-th forward difference), so the best degree is known in closed form.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cosserat/strong/sequence_predictor.hpp"
+
+namespace cosserat {
+namespace {
+
+Vec6 Term(double t) {
+  Vec6 x;
+  x << 1 + 2 * t - t * t + 0.5 * t * t * t, std::sin(t), std::cos(t), 3.0, -t, t * t;
+  return x;
+}
+
+TEST(SequencePredictor, ExactOnCubicsOnceFiveTermsAreKnown) {
+  // Cubic components: degrees ≥ 3 predict them to round-off; the sin/cos components are not
+  // cubic, so compare only the polynomial ones (0, 3, 4, 5).
+  const double h = 0.1;
+  SequencePredictor p;
+  p.Reset(Term(0));
+  for (int k = 1; k <= 7; ++k) p.Push(Term(k * h), h);
+  const Vec6 predicted = p.Predict(h), truth = Term(8 * h);
+  for (int i : {0, 3, 4, 5}) EXPECT_NEAR(predicted(i), truth(i), 1e-12) << i;
+  EXPECT_GE(p.degree(), 3);
+}
+
+TEST(SequencePredictor, SinusoidErrorMatchesTheForwardDifferenceFormula) {
+  const double theta = 0.07;  // ω dt of the peer problem's first bending mode
+  SequencePredictor p;
+  auto term = [](double phase) { return Vec6::Constant(std::sin(phase)); };
+  p.Reset(term(0));
+  for (int k = 1; k < 40; ++k) p.Push(term(k * theta), 2e-3);
+  // All degrees up to 6 are exact to (2 sin(θ/2))^{p+1} ≈ θ^{p+1}; the highest wins here.
+  EXPECT_EQ(p.degree(), SequencePredictor::kMaxDegree);
+  const double bound = std::pow(2 * std::sin(theta / 2), SequencePredictor::kMaxDegree + 1);
+  const double error = (p.Predict(2e-3) - term(40 * theta)).cwiseAbs().maxCoeff();
+  EXPECT_LE(error, bound * (1 + 1e-6) + 1e-15);  // round-off of the sum: ~64 × 1e-16
+  EXPECT_GT(error, 0.1 * bound);                 // it is the formula's error, not luck
+}
+
+TEST(SequencePredictor, AlternatingSequencePicksTheLowestDegreeAllowed) {
+  // x_k = (−1)^k: degree p errs by 2^{p+1}, so the lowest degree allowed is best.
+  for (int min_degree : {0, 2}) {
+    SequencePredictor p(min_degree);
+    p.Reset(Vec6::Ones());
+    for (int k = 1; k < 12; ++k) p.Push(Vec6::Constant(k % 2 ? -1.0 : 1.0), 1.0);
+    EXPECT_EQ(p.degree(), min_degree);
+    // 11 is odd, so the latest term is −1 and the truth +1: the error is 2^{p+1}.
+    EXPECT_DOUBLE_EQ((p.Predict(1.0) - Vec6::Ones()).cwiseAbs().maxCoeff(),
+                     std::pow(2.0, min_degree + 1));
+  }
+}
+
+TEST(SequencePredictor, AnotherSpacingKeepsOnlyTheLatestTwoTerms) {
+  SequencePredictor p;
+  p.Reset(Vec6::Zero());
+  for (int k = 1; k <= 6; ++k) p.Push(Vec6::Constant(k), 1.0);  // linear, spacing 1
+  EXPECT_EQ(p.size(), 7);
+  EXPECT_NEAR(p.Predict(1.0)(0), 7.0, 1e-12);
+  // At another spacing the prediction is the latest term; after a push at spacing 0.5 only the
+  // two terms 0.5 apart remain, and a linear extrapolation from them needs one more.
+  EXPECT_EQ(p.Predict(0.5), p.latest());
+  p.Push(Vec6::Constant(6.5), 0.5);
+  EXPECT_EQ(p.size(), 2);
+  p.Push(Vec6::Constant(7.0), 0.5);
+  EXPECT_NEAR(p.Predict(0.5)(0), 7.5, 1e-12);
+}
+
+}  // namespace
+}  // namespace cosserat
