@@ -138,6 +138,12 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   if (options.base_end != EndCondition::kFree)
     for (int k = 0; k < 3; ++k) fixed_[L::X(0) + k] = 1;
 
+  {
+    const SectionProperties e = rod.section->At(length() * (1 - 1e-9), actuation);
+    tip_compliance_ = Block(e.stiffness, 0, 0).inverse();
+    tip_rest_ = rod.RestStrainAt(length()).head<3>();
+    tip_h_ = s_[N] - s_[N - 1];
+  }
   const SectionProperties s0 = rod.section->At(0.0, actuation);
   const double EI = std::max(s0.stiffness(0, 0), s0.stiffness(1, 1));
   moment_scale_ = EI / length();
@@ -171,11 +177,41 @@ void QuatFdModel::RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::Vec
   q.segment<3>(L::X(N)) = x;
 }
 
+template <typename T>
+kernels::V4<T> QuatFdModel::TipQuaternion(const kernels::V4<T>& p_last) const {
+  // The free end's moment condition gives K(L) = K*(L) + C_K⁻¹ m_B; the frame at s = L is that of
+  // p_{N−1/2} turned by K(L) Δs/2 (second order), with [1, θ/2] for the rotation θ (R(p) only
+  // needs the direction of p). A world moment is taken to the body with R(p_{N−1/2}).
+  V3<T> m = loads_.tip_moment.cast<T>();
+  if (loads_.tip_moment_frame == LoadFrame::kWorld) m = kernels::ToBody<T>(p_last, m);
+  const V3<T> k = tip_rest_.cast<T>() + tip_compliance_.cast<T>() * m;
+  const V3<T> half = T(0.5 * tip_h_) * k * T(0.5);
+  return kernels::QMul<T>(p_last, kernels::V4<T>(T(1), half[0], half[1], half[2]));
+}
+
+template <typename T>
+void QuatFdModel::TipLoads(const kernels::V4<T>& p_last, kernels::V3<T>* force_W,
+                           kernels::V3<T>* torque_B) const {
+  const bool body_force = loads_.tip_force_frame == LoadFrame::kBody;
+  const bool body_moment = loads_.tip_moment_frame == LoadFrame::kBody;
+  *force_W = loads_.tip_force.cast<T>();
+  *torque_B = loads_.tip_moment.cast<T>();
+  if (body_force) *force_W = kernels::ToWorld<T>(TipQuaternion<T>(p_last), *force_W);
+  // Body torque on the last segment: a world moment rotated into its frame, a body (tip-frame)
+  // moment rotated from the tip frame into it.
+  if (!body_moment) {
+    *torque_B = kernels::ToBody<T>(p_last, *torque_B);
+  } else {
+    const kernels::V4<T> pt = TipQuaternion<T>(p_last);
+    *torque_B = kernels::ToBody<T>(p_last, kernels::ToWorld<T>(pt, *torque_B));
+  }
+}
+
 template <bool kWithJacobian>
 void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
                            const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
-                           Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
-                           BandedMatrix* dfdv) const {
+                           Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq, BandedMatrix* dfdv,
+                           bool forces_only) const {
   const int N = layout_.segments;
   // Phase 1: generalised forces. x rows of `a` collect the vertex forces (N, world); rows
   // P(ν)+1..+3 collect the body torques of segment ν (N·m). With the Jacobian, the same rows of
@@ -188,29 +224,43 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
   for (int i = 0; i < N; ++i) {
     const int xa = L::X(i), xb = L::X(i + 1), pp = L::P(i);
     if (!kWithJacobian) {
-      V3<double> fa, fb, tau;
-      kernels::SegmentForces<double>(segment_[i], Value<3>(q, xa), Value<3>(q, xb), Value<4>(q, pp),
-                                     Value<3>(v, xa), Value<3>(v, xb), Value<4>(v, pp), &fa, &fb,
-                                     &tau);
+      V3<double> fa, tau;
+      kernels::SegmentForces<double>(segment_[i], Value<3>(q, xb) - Value<3>(q, xa),
+                                     Value<4>(q, pp), Value<3>(v, xb) - Value<3>(v, xa),
+                                     Value<4>(v, pp), &fa, &tau);
       a.segment<3>(xa) += fa;
-      a.segment<3>(xb) += fb;
+      a.segment<3>(xb) -= fa;
       a.segment<3>(pp + 1) += tau;
     } else {
-      using J = Jet<20>;
-      V3<J> fa, fb, tau;
-      kernels::SegmentForces<J>(segment_[i], Seed<20, 3>(q, xa, 0), Seed<20, 3>(q, xb, 3),
-                                Seed<20, 4>(q, pp, 6), Seed<20, 3>(v, xa, 10),
-                                Seed<20, 3>(v, xb, 13), Seed<20, 4>(v, pp, 16), &fa, &fb, &tau);
-      const V3<J>* outs[3] = {&fa, &fb, &tau};
-      const int rows[3] = {xa, xb, pp + 1};
+      // Slots: dx 0..2, p 3..6, dv 7..9, ṗ 10..13; ∂/∂x_b = ∂/∂dx = −∂/∂x_a.
+      using J = Jet<14>;
+      V3<J> dx, dv;
+      for (int k = 0; k < 3; ++k) {
+        dx[k] = J(q[xb + k] - q[xa + k], k);
+        dv[k] = J(v[xb + k] - v[xa + k], 7 + k);
+      }
+      V3<J> fa, tau;
+      kernels::SegmentForces<J>(segment_[i], dx, Seed<14, 4>(q, pp, 3), dv, Seed<14, 4>(v, pp, 10),
+                                &fa, &tau);
+      const V3<J>* outs[2] = {&fa, &tau};
+      const int rows[2] = {xa, pp + 1};
       for (int o = 0; o < 3; ++o) {
-        a.segment<3>(rows[o]) += V3<double>((*outs[o])[0].a, (*outs[o])[1].a, (*outs[o])[2].a);
-        AddBlock<20>(*outs[o], 0, 3, rows[o], xa, dfdq);
-        AddBlock<20>(*outs[o], 3, 3, rows[o], xb, dfdq);
-        AddBlock<20>(*outs[o], 6, 4, rows[o], pp, dfdq);
-        AddBlock<20>(*outs[o], 10, 3, rows[o], xa, dfdv);
-        AddBlock<20>(*outs[o], 13, 3, rows[o], xb, dfdv);
-        AddBlock<20>(*outs[o], 16, 4, rows[o], pp, dfdv);
+        const V3<J>& out = *outs[o == 2 ? 0 : o];
+        const int row = o == 2 ? xb : rows[o];
+        const double sign = o == 2 ? -1.0 : 1.0;
+        for (int r = 0; r < 3; ++r) {
+          a[row + r] += sign * out[r].a;
+          for (int k = 0; k < 3; ++k) {
+            (*dfdq)(row + r, xb + k) += sign * out[r].v[k];
+            (*dfdq)(row + r, xa + k) -= sign * out[r].v[k];
+            (*dfdv)(row + r, xb + k) += sign * out[r].v[7 + k];
+            (*dfdv)(row + r, xa + k) -= sign * out[r].v[7 + k];
+          }
+          for (int k = 0; k < 4; ++k) {
+            (*dfdq)(row + r, pp + k) += sign * out[r].v[3 + k];
+            (*dfdv)(row + r, pp + k) += sign * out[r].v[10 + k];
+          }
+        }
       }
     }
   }
@@ -264,32 +314,27 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
         mass_[n] * loads_.gravity_W + vertex_weight_[n] * loads_.distributed_force_W;
   {
     const int xt = L::X(N), pl = L::P(N - 1);
-    const bool body_force = loads_.tip_force_frame == LoadFrame::kBody;
-    const bool world_moment = loads_.tip_moment_frame == LoadFrame::kWorld;
-    if (!body_force) a.segment<3>(xt) += loads_.tip_force;
-    if (world_moment == false) a.segment<3>(pl + 1) += loads_.tip_moment;
-    if (body_force || world_moment) {
-      if (!kWithJacobian) {
-        const Vec4 p = q.segment<4>(pl);
-        if (body_force) a.segment<3>(xt) += kernels::ToWorld<double>(p, loads_.tip_force);
-        if (world_moment) a.segment<3>(pl + 1) += kernels::ToBody<double>(p, loads_.tip_moment);
-      } else {
-        using J = Jet<4>;
-        const V4<J> p = Seed<4, 4>(q, pl, 0);
-        if (body_force) {
-          const V3<J> f = kernels::ToWorld<J>(p, loads_.tip_force.cast<J>());
-          a.segment<3>(xt) += V3<double>(f[0].a, f[1].a, f[2].a);
-          AddBlock<4>(f, 0, 4, xt, pl, dfdq);
-        }
-        if (world_moment) {
-          const V3<J> m = kernels::ToBody<J>(p, loads_.tip_moment.cast<J>());
-          a.segment<3>(pl + 1) += V3<double>(m[0].a, m[1].a, m[2].a);
-          AddBlock<4>(m, 0, 4, pl + 1, pl, dfdq);
-        }
-      }
+    if (!kWithJacobian) {
+      V3<double> f, m;
+      TipLoads<double>(Value<4>(q, pl), &f, &m);
+      a.segment<3>(xt) += f;
+      a.segment<3>(pl + 1) += m;
+    } else {
+      using J = Jet<4>;
+      V3<J> f, m;
+      TipLoads<J>(Seed<4, 4>(q, pl, 0), &f, &m);
+      a.segment<3>(xt) += V3<double>(f[0].a, f[1].a, f[2].a);
+      a.segment<3>(pl + 1) += V3<double>(m[0].a, m[1].a, m[2].a);
+      AddBlock<4>(f, 0, 4, xt, pl, dfdq);
+      AddBlock<4>(m, 0, 4, pl + 1, pl, dfdq);
     }
   }
 
+  if (forces_only) {
+    for (int r = 0; r < size(); ++r)
+      if (fixed_[r]) a[r] = 0.0;
+    return;
+  }
   // Phase 2: accelerations. Vertices: ẍ = Q / m (prescribed: 0). Segments: p̈ from the torque.
   for (int n = 0; n <= N; ++n) {
     const int r = L::X(n);
@@ -346,13 +391,14 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
 void QuatFdModel::Acceleration(const Eigen::Ref<const Eigen::VectorXd>& q,
                                const Eigen::Ref<const Eigen::VectorXd>& v,
                                Eigen::Ref<Eigen::VectorXd> a) const {
-  Evaluate<false>(q, v, options_.baumgarte_alpha, options_.baumgarte_beta, a, nullptr, nullptr);
+  Evaluate<false>(q, v, options_.baumgarte_alpha, options_.baumgarte_beta, a, nullptr, nullptr,
+                  false);
 }
 
 void QuatFdModel::Acceleration(const Eigen::Ref<const Eigen::VectorXd>& q,
                                const Eigen::Ref<const Eigen::VectorXd>& v, double alpha,
                                double beta, Eigen::Ref<Eigen::VectorXd> a) const {
-  Evaluate<false>(q, v, alpha, beta, a, nullptr, nullptr);
+  Evaluate<false>(q, v, alpha, beta, a, nullptr, nullptr, false);
 }
 
 void QuatFdModel::Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
@@ -371,11 +417,17 @@ void QuatFdModel::Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
     dfdv->Resize(n, L::kBandwidth, L::kBandwidth);
   if (a) {
     a->resize(n);
-    Evaluate<true>(q, v, alpha, beta, *a, dfdq, dfdv);
+    Evaluate<true>(q, v, alpha, beta, *a, dfdq, dfdv, false);
   } else {
     Eigen::VectorXd tmp(n);
-    Evaluate<true>(q, v, alpha, beta, tmp, dfdq, dfdv);
+    Evaluate<true>(q, v, alpha, beta, tmp, dfdq, dfdv, false);
   }
+}
+
+void QuatFdModel::Forces(const Eigen::Ref<const Eigen::VectorXd>& q,
+                         const Eigen::Ref<const Eigen::VectorXd>& v,
+                         Eigen::Ref<Eigen::VectorXd> forces) const {
+  Evaluate<false>(q, v, 0.0, 0.0, forces, nullptr, nullptr, true);
 }
 
 double QuatFdModel::Project(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const {
@@ -411,11 +463,11 @@ void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
   // Per segment: strain Γ, force F (body), ω.
   std::vector<Vec3> gamma(N), force(N), omega(N);
   for (int i = 0; i < N; ++i) {
-    Vec3 fa, fb, tau;
-    kernels::SegmentForces<double>(segment_[i], q.segment<3>(L::X(i)), q.segment<3>(L::X(i + 1)),
-                                   q.segment<4>(L::P(i)), v.segment<3>(L::X(i)),
-                                   v.segment<3>(L::X(i + 1)), v.segment<4>(L::P(i)), &fa, &fb, &tau,
-                                   &gamma[i], &force[i]);
+    Vec3 fa, tau;
+    kernels::SegmentForces<double>(segment_[i], q.segment<3>(L::X(i + 1)) - q.segment<3>(L::X(i)),
+                                   q.segment<4>(L::P(i)),
+                                   v.segment<3>(L::X(i + 1)) - v.segment<3>(L::X(i)),
+                                   v.segment<4>(L::P(i)), &fa, &tau, &gamma[i], &force[i]);
     omega[i] = kernels::AngularVelocity<double>(q.segment<4>(L::P(i)), v.segment<4>(L::P(i)));
   }
   for (int n = 0; n <= N; ++n) {
@@ -425,7 +477,7 @@ void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
     if (n == 0) {
       p = options_.base_end == EndCondition::kClamped ? base_quat_ : Vec4(q.segment<4>(L::P(0)));
     } else if (n == N) {
-      p = q.segment<4>(L::P(N - 1));
+      p = TipQuaternion<double>(q.segment<4>(L::P(N - 1)));
     } else {
       const Vec4 pa = q.segment<4>(L::P(n - 1));
       Vec4 pb = q.segment<4>(L::P(n));
@@ -464,6 +516,12 @@ void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
            mass_[0] * loads_.gravity_W + vertex_weight_[0] * loads_.distributed_force_W;
     } else if (n == N) {
       Fw = lie::QuatToRotation(q.segment<4>(L::P(N - 1)).normalized()) * force[N - 1];
+    }
+    if (n == N) {  // the free end: K(L) = K* + C⁻¹ m, M(L) = the tip moment in the tip frame
+      Vec3 f, m;
+      TipLoads<double>(q.segment<4>(L::P(N - 1)), &f, &m);
+      M = R.transpose() * lie::QuatToRotation(q.segment<4>(L::P(N - 1)).normalized()) * m;
+      K = tip_rest_ + tip_compliance_ * M;
     }
     state->strain[n] << K, G;
     state->wrench_B[n] << M, R.transpose() * Fw;

@@ -1,12 +1,12 @@
 #pragma once
 /// \file
 /// Element kernels of the quaternion finite-difference rod (seed 000), templated on the scalar so
-// the same code gives f (T = double) and the exact element Jacobians (T = ceres::Jet).
-//
-// Quaternions are [w, x, y, z], Hamilton product. Every kernel depends on a quaternion p only
-// through the rotation it represents (R(p) = H(p) / |p|², body angular velocity
-// ω = 2 Im(p̄ ṗ) / |p|²) or, for the curvature, through r = p̄_a p_b; body torques are the
-// generalised forces of the rotations (work-conjugate to ω).
+/// the same code gives f (T = double) and the exact element Jacobians (T = ceres::Jet).
+///
+//// Quaternions are [w, x, y, z], Hamilton product. Every kernel depends on a quaternion p only
+/// through the rotation it represents (R(p) = H(p) / |p|², body angular velocity
+/// ω = 2 Im(p̄ ṗ) / |p|²) or, for the curvature, through r = p̄_a p_b; body torques are the
+/// generalised forces of the rotations (work-conjugate to ω).
 
 #include <Eigen/Core>
 
@@ -71,25 +71,23 @@ struct SegmentConstants {
   Eigen::Vector3d rest = {0, 0, 1};  ///< Γ* = rest value of Rᵀ ∂s x (dimensionless)
 };
 
-/// One segment between vertices a = n and b = n + 1 with quaternion p (seed 000 eq. 1 for Γ):
+/// One segment between vertices a = n and b = n + 1 with quaternion p (seed 000 eq. 1 for Γ),
+/// given dx = x_b − x_a and dv = ẋ_b − ẋ_a:
 ///   Γ = R(p)ᵀ (x_b − x_a) / Δs,  Γ̇ = R(p)ᵀ (ẋ_b − ẋ_a) / Δs + Γ × ω,
 ///   F = C_Γ (Γ − Γ*) + C̃_Γ Γ̇  (body frame, N; Antman/Kelvin–Voigt),
-/// and its generalised forces: on x_a +R F, on x_b −R F (N, world), and the body torque
+/// and its generalised forces: on x_a +R F (force_a), on x_b −R F (N, world), and the body torque
 /// Δs Γ × F on p (N·m), i.e. −∂/∂(q) of Δs ½ (Γ−Γ*)ᵀC_Γ(Γ−Γ*) plus the Rayleigh damping force.
 template <typename T>
-inline void SegmentForces(const SegmentConstants& c, const V3<T>& xa, const V3<T>& xb,
-                          const V4<T>& p, const V3<T>& va, const V3<T>& vb, const V4<T>& pd,
-                          V3<T>* force_a, V3<T>* force_b, V3<T>* torque, V3<T>* strain = nullptr,
-                          V3<T>* stress = nullptr) {
+inline void SegmentForces(const SegmentConstants& c, const V3<T>& dx, const V4<T>& p,
+                          const V3<T>& dv, const V4<T>& pd, V3<T>* force_a, V3<T>* torque,
+                          V3<T>* strain = nullptr, V3<T>* stress = nullptr) {
   const T inv = T(1.0 / c.ds);
-  const V3<T> gamma = ToBody<T>(p, V3<T>((xb - xa) * inv));
+  const V3<T> gamma = ToBody<T>(p, V3<T>(dx * inv));
   const V3<T> omega = AngularVelocity<T>(p, pd);
-  const V3<T> gamma_dot = ToBody<T>(p, V3<T>((vb - va) * inv)) + Cross<T>(gamma, omega);
+  const V3<T> gamma_dot = ToBody<T>(p, V3<T>(dv * inv)) + Cross<T>(gamma, omega);
   const V3<T> e = gamma - c.rest.cast<T>();
   const V3<T> F = c.stiffness.cast<T>() * e + c.damping.cast<T>() * gamma_dot;
-  const V3<T> Fw = ToWorld<T>(p, F);
-  *force_a = Fw;
-  *force_b = -Fw;
+  *force_a = ToWorld<T>(p, F);
   *torque = T(c.ds) * Cross<T>(gamma, F);
   if (strain) *strain = gamma;
   if (stress) *stress = F;
@@ -129,23 +127,22 @@ inline void BendTorques(const BendConstants& c, const V4<T>& pa, const V4<T>& pb
                   : T(1);
   const T inv_hs = T(1.0 / c.h) / s;
   const V3<T> K = T(2) * inv_hs * rv;
-  Eigen::Matrix<T, 3, 3> hat;
-  hat << T(0), -rv[2], rv[1], rv[2], T(0), -rv[0], -rv[1], rv[0], T(0);
-  // p_b: δr = r ⊗ [0, δθ/2] → δr⃗ = (r0 I + [r⃗]×) δθ/2, δr0 = −r⃗·δθ/2.
-  // p_a: δr = −[0, δθ/2] ⊗ r → δr⃗ = −(r0 I − [r⃗]×) δθ/2, δr0 = +r⃗·δθ/2.
-  // K = 2 r⃗/(h s) and, for variant 1, δs = δr0/2.
-  Eigen::Matrix<T, 3, 3> dK_db = inv_hs * (r0 * Eigen::Matrix<T, 3, 3>::Identity() + hat);
-  Eigen::Matrix<T, 3, 3> dK_da = -inv_hs * (r0 * Eigen::Matrix<T, 3, 3>::Identity() - hat);
-  if (c.kind == CurvatureKind::kVariant1) {
-    const Eigen::Matrix<T, 3, 3> rr = (T(0.25) / s) * K * rv.transpose();
-    dK_db += rr;
-    dK_da -= rr;
-  }
+  // p_b: δr = r ⊗ [0, δθ/2] → δr⃗ = (r0 δθ + r⃗ × δθ)/2, δr0 = −r⃗·δθ/2.
+  // p_a: δr = −[0, δθ/2] ⊗ r → δr⃗ = −(r0 δθ − r⃗ × δθ)/2, δr0 = +r⃗·δθ/2.
+  // K = 2 r⃗/(h s) and, for variant 1, δs = δr0/2, so
+  //   ∂K/∂θ_b =  (r0 I + [r⃗]×)/(h s) + c K r⃗ᵀ,  ∂K/∂θ_a = −(r0 I − [r⃗]×)/(h s) − c K r⃗ᵀ,
+  // with c = 1/(4 s) for variant 1 and 0 for the basic choice.
+  const T cr = c.kind == CurvatureKind::kVariant1 ? T(0.25) / s : T(0);
   const V3<T> wa = AngularVelocity<T>(pa, pda), wb = AngularVelocity<T>(pb, pdb);
-  const V3<T> K_dot = dK_da * wa + dK_db * wb;
+  const V3<T> wd = wb - wa, ws = wb + wa;
+  const V3<T> K_dot = inv_hs * (r0 * wd + Cross<T>(rv, ws)) + (cr * rv.dot(wd)) * K;
   const V3<T> M = c.stiffness.cast<T>() * (K - c.rest.cast<T>()) + c.damping.cast<T>() * K_dot;
-  *torque_a = -T(c.weight) * (dK_da.transpose() * M);
-  *torque_b = -T(c.weight) * (dK_db.transpose() * M);
+  // (∂K/∂θ_b)ᵀ M = (r0 M − r⃗ × M)/(h s) + c r⃗ (K·M); (∂K/∂θ_a)ᵀ M = −(r0 M + r⃗ × M)/(h s) − c r⃗
+  // (K·M).
+  const V3<T> rxM = Cross<T>(rv, M);
+  const V3<T> km = (cr * K.dot(M)) * rv;
+  *torque_a = T(c.weight) * (inv_hs * (r0 * M + rxM) + km);
+  *torque_b = -T(c.weight) * (inv_hs * (r0 * M - rxM) + km);
   if (curvature) *curvature = K;
   if (moment) *moment = M;
 }

@@ -132,6 +132,11 @@ class QuatFdModel {
                 const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
                 BandedMatrix* dfdq, BandedMatrix* dfdv, Eigen::VectorXd* a) const;
 
+  /// The generalised forces behind f: rows X(n) get the total force on vertex n (N, world; zero
+  /// at prescribed vertices), rows P(ν)+1..+3 the body torque on segment ν (N·m), rows P(ν) zero.
+  void Forces(const Eigen::Ref<const Eigen::VectorXd>& q,
+              const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Ref<Eigen::VectorXd> forces) const;
+
   /// Projection onto the constraint manifold: p ← p/|p|, ṗ ← ṗ − (p·ṗ) p. Returns the largest
   /// | |p| − 1 | found before projecting.
   double Project(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const;
@@ -165,10 +170,22 @@ class QuatFdModel {
   template <bool kWithJacobian>
   void Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
-                Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq, BandedMatrix* dfdv) const;
+                Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq, BandedMatrix* dfdv,
+                bool forces_only) const;
+
+  /// Quaternion of the frame at s = L from p_{N−1/2} (free end).
+  template <typename T>
+  kernels::V4<T> TipQuaternion(const kernels::V4<T>& p_last) const;
+  /// Tip force on x_N (N, world) and tip moment as a body torque on p_{N−1/2} (N·m).
+  template <typename T>
+  void TipLoads(const kernels::V4<T>& p_last, kernels::V3<T>* force_W,
+                kernels::V3<T>* torque_B) const;
 
   QuatFdOptions options_;
   QuatFdLayout layout_;
+  Mat3 tip_compliance_ = Mat3::Identity();  ///< C_K⁻¹ at s = L
+  Vec3 tip_rest_ = Vec3::Zero();            ///< K*(L)
+  double tip_h_ = 0;                        ///< Δs_{N−1/2}
   lie::SE3 base_;
   Vec4 base_quat_;
   StaticLoads loads_;
