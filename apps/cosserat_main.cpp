@@ -20,6 +20,7 @@
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "run_dynamics.hpp"
+#include "run_quatfd.hpp"
 
 namespace {
 
@@ -169,9 +170,14 @@ int RunSolve(const Command& cmd) {
   std::ostream& out = out_file ? static_cast<std::ostream&>(*out_file) : std::cout;
   std::ostream* csv = csv_file ? &*csv_file : nullptr;
 
-  const bool converged = problem->analysis == "dynamics"
-                             ? cosserat::cli::RunDynamics(*problem, out, csv, std::cerr)
-                             : RunStatics(*problem, out, csv, std::cerr);
+  const bool dynamics = problem->analysis == "dynamics";
+  bool converged;
+  if (problem->formulation == "quaternion-fd")
+    converged = dynamics ? cosserat::cli::RunQuatFdDynamics(*problem, out, csv, std::cerr)
+                         : cosserat::cli::RunQuatFdStatics(*problem, out, csv, std::cerr);
+  else
+    converged = dynamics ? cosserat::cli::RunDynamics(*problem, out, csv, std::cerr)
+                         : RunStatics(*problem, out, csv, std::cerr);
   out.flush();
   if (!out || (csv && !csv->flush())) throw std::runtime_error("writing the result failed");
   return converged ? kExitConverged : kExitNotConverged;

@@ -241,8 +241,10 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
           " is not implemented in this version (supported: " + detail::QuotedList(supported) + ")");
   };
   check("analysis", p.analysis, {"statics", "dynamics"});
-  check("formulation", p.formulation, {"se3-shooting"});
-  if (p.analysis == "dynamics")
+  check("formulation", p.formulation, {"se3-shooting", "quaternion-fd"});
+  if (p.formulation == "quaternion-fd")  // rod.nodes >= 3 (2 segments) is checked by the parser
+    check("boundary", p.boundary, {"cantilever"});
+  else if (p.analysis == "dynamics")
     check("boundary", p.boundary, {"cantilever", "free-free"});
   else
     check("boundary", p.boundary, {"cantilever"});

@@ -74,7 +74,8 @@ ParseResult LoadProblemFile(const std::string& path);
 inline constexpr int kMaxDynamicsSteps = 10000000;
 
 /// Things the contract names but this version cannot run yet: an analysis other than "statics"
-/// or "dynamics", a formulation other than "se3-shooting", a boundary other than "cantilever".
+/// or "dynamics", a boundary other than "cantilever" (se3-shooting dynamics also runs
+/// "free-free"; quaternion-fd runs only "cantilever").
 /// One line each.
 std::vector<std::string> UnsupportedFeatures(const Problem& problem);
 

@@ -1,0 +1,146 @@
+#include "run_quatfd.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "cosserat/io/result_writer.hpp"
+#include "cosserat/quatfd/quatfd_model.hpp"
+#include "cosserat/quatfd/quatfd_statics.hpp"
+#include "cosserat/quatfd/rosenbrock.hpp"
+
+namespace cosserat::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+quatfd::QuatFdModel MakeModel(const io::Problem& problem) {
+  quatfd::QuatFdOptions options;
+  options.segments = problem.nodes - 1;
+  options.base_end = quatfd::EndCondition::kClamped;
+  return quatfd::QuatFdModel(problem.rod, problem.base, options);
+}
+
+quatfd::QuatFdStaticsOptions StaticsOptions(const io::Problem& problem) {
+  quatfd::QuatFdStaticsOptions o;
+  o.tolerance = problem.solver.tolerance;
+  o.floor_tolerance = std::max(o.floor_tolerance, o.tolerance);
+  o.max_iterations = problem.solver.max_iterations;
+  return o;
+}
+
+StaticShootingSummary AsSummary(const quatfd::QuatFdStaticsSummary& s) {
+  StaticShootingSummary out;
+  out.status = s.status;
+  out.iterations = s.iterations;
+  out.load_steps = s.load_steps;
+  out.residual = s.residual;
+  out.wall_time_s = s.wall_time_s;
+  return out;
+}
+
+std::string TipText(const RodState& state) {
+  std::ostringstream line;
+  const Vec3& tip = state.tip_position_W();
+  line << "tip at [" << std::setprecision(6) << tip.x() << ", " << tip.y() << ", " << tip.z()
+       << "] m";
+  return line.str();
+}
+
+}  // namespace
+
+bool RunQuatFdStatics(const io::Problem& problem, std::ostream& out, std::ostream* csv,
+                      std::ostream& log) {
+  quatfd::QuatFdModel model = MakeModel(problem);
+  Eigen::VectorXd q(model.size()), v(model.size());
+  model.RestState(q, v);
+  const quatfd::QuatFdStaticsSummary s =
+      quatfd::SolveStatics(&model, problem.loads, q, StaticsOptions(problem));
+  RodState state;
+  model.ToRodState(q, v, &state);
+  out << io::StaticResultToJson(AsSummary(s), state).dump(2) << '\n';
+  if (csv) io::WriteNodesCsv(*csv, state);
+  log << "cosserat: " << ToString(s.status) << " (quaternion-fd), " << s.iterations
+      << " iterations, residual " << std::setprecision(3) << s.residual << ", " << TipText(state)
+      << ", " << s.wall_time_s * 1e3 << " ms\n";
+  return s.converged();
+}
+
+bool RunQuatFdDynamics(const io::Problem& problem, std::ostream& out, std::ostream* csv,
+                       std::ostream& log) {
+  const io::Problem::Dynamics& d = problem.dynamics;
+  const auto start = Clock::now();
+  quatfd::QuatFdModel model = MakeModel(problem);
+  const int n = model.size();
+  Eigen::VectorXd q(n), v(n);
+  model.RestState(q, v);
+  io::DynamicRun run;
+  const quatfd::QuatFdStaticsSummary init = quatfd::SolveStatics(
+      &model, d.initial_loads.value_or(problem.loads), q, StaticsOptions(problem));
+  run.iterations = init.iterations;
+  run.initial_state_ok = init.converged();
+  run.status = init.status;
+  RodState state;
+  model.ToRodState(q, v, &state);
+  auto record = [&](double t) {
+    model.ToRodState(q, v, &state);
+    run.frame_t.push_back(t);
+    run.frame_tip.push_back(state.tip_position_W());
+    if (csv)
+      run.frame_positions.insert(run.frame_positions.end(), state.position_W.begin(),
+                                 state.position_W.end());
+  };
+  quatfd::IntegratorStatus istatus = quatfd::IntegratorStatus::kNotRun;
+  if (!run.initial_state_ok) {
+    run.failed_at_t = 0.0;
+  } else {
+    record(0.0);
+    model.set_loads(problem.loads);
+    quatfd::IntegratorOptions io_opt;
+    io_opt.initial_dt = d.dt;
+    quatfd::RosenbrockIntegrator integrator(model, io_opt);
+    const int intervals =
+        std::max(1, static_cast<int>(std::lround(d.duration / d.output_interval)));
+    const auto loop_start = Clock::now();
+    double t = 0.0;
+    for (int k = 1; k <= intervals; ++k) {
+      const double t_end = k == intervals ? d.duration : k * d.output_interval;
+      const long steps_before = integrator.stats().steps;
+      const auto t0 = Clock::now();
+      istatus = integrator.Advance(t_end, &t, q, v);
+      const long steps = integrator.stats().steps - steps_before;
+      if (steps > 0)
+        run.step_time_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count() / steps);
+      if (istatus != quatfd::IntegratorStatus::kOk) {
+        // Divergence (step-size underflow) or the step cap: reported as a failed run.
+        run.status = istatus == quatfd::IntegratorStatus::kMaxSteps ? SolveStatus::kMaxIterations
+                                                                    : SolveStatus::kNonFinite;
+        run.failed_at_t = t;
+        break;
+      }
+      record(t);
+    }
+    run.stepping_wall_time_s = std::chrono::duration<double>(Clock::now() - loop_start).count();
+    run.steps = static_cast<int>(integrator.stats().steps);
+    run.halved_steps = static_cast<int>(integrator.stats().rejected);  // rejected steps
+    run.simulated_time_s = t;
+    if (run.frame_t.back() != t) record(t);
+    const quatfd::QuatFdEnergy e = model.Energy(q, v);
+    run.energy.kinetic = e.kinetic;
+    run.energy.elastic = e.elastic;
+    run.energy.gravity = e.gravity;
+  }
+  run.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
+  model.ToRodState(q, v, &state);
+  out << io::DynamicResultToJson(run, state).dump(2) << '\n';
+  if (csv) io::WriteTrajectoryCsv(*csv, run, state.s);
+  log << "cosserat: " << ToString(run.status) << " (quaternion-fd";
+  if (run.initial_state_ok) log << ", rosenbrock: " << quatfd::ToString(istatus);
+  log << "), " << run.steps << " steps, " << run.halved_steps << " rejected, "
+      << std::setprecision(6) << run.simulated_time_s << " s simulated in " << std::setprecision(3)
+      << run.wall_time_s << " s, " << TipText(state) << '\n';
+  return run.status == SolveStatus::kConverged;
+}
+
+}  // namespace cosserat::cli

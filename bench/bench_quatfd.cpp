@@ -1,0 +1,140 @@
+// Quaternion finite-difference rod (issue 4, seed 000): the two benchmark problems of the seed
+// (rubber rod, steel string; gravity, T = 10 s, relative tolerance 1e-6) with both integrators,
+// and the cost of f, of the Jacobian and of one Rosenbrock step against the number of segments.
+//
+//   build/bench/bench_quatfd --benchmark_repetitions=3
+//
+// Tolerances: rel_tol 1e-6; abs_tol 1e-6 on q (m, –), 1e-3 on v (m/s, 1/s) (IntegratorOptions).
+
+#include <benchmark/benchmark.h>
+
+#include "cosserat/quatfd/quatfd_integrate.hpp"
+#include "cosserat/quatfd/quatfd_model.hpp"
+#include "cosserat/quatfd/rosenbrock.hpp"
+
+namespace {
+
+using namespace cosserat;
+using namespace cosserat::quatfd;
+
+/// (a) Rubber rod: L = 0.5 m, r = 5 mm, E = 5 MPa, ν = 0.5, ρ = 1100 kg/m³, clamped horizontally.
+/// Light Antman damping: bending and torsion Kelvin–Voigt D = τ K with τ = 0.01 s (first mode
+/// damping ratio ω1 τ / 2 ≈ 1.2 %); none on shear and extension.
+RodModel RubberRod() {
+  Material m = Material::FromPoissonRatio(5e6, 0.5, 1100);
+  const CrossSection c = CrossSection::Circle(0.005);
+  const double tau = 0.01;
+  m.damping.bending = tau * m.youngs_modulus * c.I1;
+  m.damping.torsion = tau * m.shear_modulus * c.torsion_constant;
+  return RodModel::Uniform(0.5, c, m);
+}
+
+/// (b) Steel string: L = 1 m, r = 0.5 mm, E = 200 GPa, G = 80 GPa, ρ = 7850 kg/m³, no damping.
+RodModel SteelString() {
+  return RodModel::Uniform(1.0, CrossSection::Circle(0.0005),
+                           Material::FromShearModulus(200e9, 80e9, 7850));
+}
+
+lie::SE3 Horizontal() {
+  lie::SE3 base;  // rod tangent (body z) along world +x
+  base.R << 0, 0, 1, 0, 1, 0, -1, 0, 0;
+  return base;
+}
+
+void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int segments,
+         IntegratorKind kind) {
+  QuatFdOptions opt;
+  opt.segments = segments;
+  opt.base_end = end;
+  QuatFdModel model(rod, Horizontal(), opt);
+  StaticLoads loads;
+  loads.gravity_W = Vec3(0, 0, -9.81);
+  model.set_loads(loads);
+  Eigen::VectorXd q0(model.size()), v0(model.size()), q, v;
+  model.RestState(q0, v0);
+  IntegratorStats stats;
+  IntegratorStatus status = IntegratorStatus::kNotRun;
+  for (auto _ : state) {
+    q = q0;
+    v = v0;
+    auto integ = MakeIntegrator(kind, model);
+    double t = 0;
+    status = integ->Advance(10.0, &t, q, v);
+    stats = integ->stats();
+    benchmark::DoNotOptimize(q.data());
+  }
+  if (status != IntegratorStatus::kOk) state.SkipWithError(ToString(status));
+  state.counters["steps"] = stats.steps;
+  state.counters["rejected"] = stats.rejected;
+  state.counters["f_evals"] = stats.f_evaluations;
+  state.counters["jacobians"] = stats.jacobian_evaluations;
+  state.counters["tip_z"] = q[QuatFdLayout::X(segments) + 2];
+}
+
+void BM_RubberRod_Rosenbrock(benchmark::State& s) {
+  Run(s, RubberRod(), EndCondition::kClamped, s.range(0), IntegratorKind::kRosenbrock);
+}
+void BM_RubberRod_Dopri5(benchmark::State& s) {
+  Run(s, RubberRod(), EndCondition::kClamped, s.range(0), IntegratorKind::kDopri5);
+}
+void BM_SteelString_Rosenbrock(benchmark::State& s) {
+  Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRosenbrock);
+}
+BENCHMARK(BM_RubberRod_Rosenbrock)->Arg(10)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
+// dopri5 is stability-bound by the rotary-inertia/shear modes (~1.6e4 rad/s for r = 5 mm): only
+// N = 10 is run (N = 40 would take minutes).
+BENCHMARK(BM_RubberRod_Dopri5)->Arg(10)->Unit(benchmark::kMillisecond)->Iterations(1);
+// The steel string's fastest modes (~1e7 rad/s) put dopri5 out of reach (~1e8 steps); stiff only.
+BENCHMARK(BM_SteelString_Rosenbrock)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+/// Per-call cost of f, of the Jacobian and of one Rosenbrock step (6 f + 1 Jacobian + banded LU +
+/// 6 banded solves) on a deformed, moving rubber rod.
+struct Costs {
+  QuatFdModel model;
+  Eigen::VectorXd q, v, a;
+  explicit Costs(int N)
+      : model(RubberRod(), Horizontal(), [N] {
+          QuatFdOptions o;
+          o.segments = N;
+          return o;
+        }()) {
+    q.resize(model.size());
+    v.resize(model.size());
+    a.resize(model.size());
+    model.RestState(q, v);
+    for (int i = 0; i < model.size(); ++i) v[i] = 0.01 * ((i * 37) % 11 - 5);
+    model.Project(q, v);
+  }
+};
+
+void BM_F(benchmark::State& s) {
+  Costs c(s.range(0));
+  for (auto _ : s) {
+    c.model.Acceleration(c.q, c.v, c.a);
+    benchmark::DoNotOptimize(c.a.data());
+  }
+}
+void BM_Jacobian(benchmark::State& s) {
+  Costs c(s.range(0));
+  BandedMatrix A, B;
+  for (auto _ : s) {
+    c.model.Jacobian(c.q, c.v, &A, &B);
+    benchmark::DoNotOptimize(&A);
+  }
+}
+void BM_RosenbrockStep(benchmark::State& s) {
+  Costs c(s.range(0));
+  RosenbrockIntegrator integ(c.model);
+  const int n = c.model.size();
+  Eigen::VectorXd y(2 * n), y_new(2 * n), err(2 * n);
+  y << c.q, c.v;
+  for (auto _ : s) {
+    integ.Step(y, 1e-4, y_new, err);
+    benchmark::DoNotOptimize(y_new.data());
+  }
+}
+BENCHMARK(BM_F)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
+BENCHMARK(BM_Jacobian)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
+BENCHMARK(BM_RosenbrockStep)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
+
+}  // namespace

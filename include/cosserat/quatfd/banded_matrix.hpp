@@ -1,0 +1,47 @@
+#pragma once
+/// \file
+/// A square banded matrix and its LU factorisation with partial pivoting (the LAPACK dgbtf2
+/// algorithm, written out so no LAPACK is needed). Storage is column-major band storage with
+/// kl extra rows on top for the fill-in of row interchanges, so a matrix can be factorised in
+/// place. Cost: factorisation O(n kl (kl + ku)), solve O(n (2 kl + ku)).
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace cosserat::quatfd {
+
+class BandedMatrix {
+ public:
+  BandedMatrix() = default;
+  /// n × n with kl sub- and ku super-diagonals, zero.
+  BandedMatrix(int n, int kl, int ku) { Resize(n, kl, ku); }
+  void Resize(int n, int kl, int ku);
+  void SetZero();
+
+  int rows() const { return n_; }
+  int lower() const { return kl_; }
+  int upper() const { return ku_; }
+  /// True when (i, j) lies in the band kl, ku (the only entries that may be non-zero).
+  bool InBand(int i, int j) const { return i - j <= kl_ && j - i <= ku_ && i >= 0 && j >= 0; }
+  /// Entry (i, j); only valid InBand(i, j).
+  double& operator()(int i, int j) { return data_[(kv_ + i - j) + j * ld_]; }
+  double operator()(int i, int j) const { return data_[(kv_ + i - j) + j * ld_]; }
+
+  /// y = A x.
+  void Multiply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const;
+  /// The dense copy (for tests and small checks).
+  Eigen::MatrixXd ToDense() const;
+
+  /// Factorises in place into P A = L U. Returns false when a pivot is exactly zero (the matrix is
+  /// singular); Solve must not be called then.
+  bool Factorize();
+  /// Solves A x = b in place with the factors of Factorize().
+  void Solve(Eigen::Ref<Eigen::VectorXd> b) const;
+
+ private:
+  int n_ = 0, kl_ = 0, ku_ = 0, kv_ = 0, ld_ = 1;
+  std::vector<double> data_;
+  std::vector<int> pivot_;
+};
+
+}  // namespace cosserat::quatfd

@@ -1,0 +1,203 @@
+#pragma once
+/// \file
+/// The semi-discrete quaternion finite-difference Cosserat rod of Lang & Linn (seed 000), as an
+/// index-1 second-order ODE q̈ = f(q, q̇) (seed 000 eq. 4 with the multipliers eliminated).
+///
+/// Staggered grid: vertices 0 = s_0 < … < s_N = L carry the centroids x_n (world, m); the
+/// segment midpoints s_{n+1/2} carry quaternions p_{n+1/2} = [w, x, y, z] whose rotation R(p)
+/// maps the section (body) frame to the world (body z = rod tangent at rest).
+///   Γ_{n+1/2} = R(p)ᵀ (x_{n+1} − x_n)/Δs      (strain [shear1, shear2, stretch], seed 000 eq. 1)
+///   K_n = K(p_{n−1/2}, p_{n+1/2})            (curvature [bend1, bend2, twist] at vertex n)
+///   F = C_Γ (Γ − Γ*) + C̃_Γ Γ̇,  M = C_K (K − K*) + C̃_K K̇  (Antman viscoelastic laws)
+/// The forces are the negative gradients of the discrete strain energy (plus the Rayleigh damping
+/// forces), so the discrete model conserves energy without damping.
+///
+/// Unknown ordering (one block of 7 per vertex + segment): q = [x_0, p_{1/2}, x_1, p_{3/2}, …,
+/// p_{N−1/2}, x_N], size 7N + 3; v = q̇ in the same order. With this ordering ∂f/∂q and ∂f/∂v
+/// have lower and upper bandwidth 10 (seed 000: "bandwidths equal to ten").
+///
+/// Ends: s = 0 is clamped (x_0 and the orientation fixed: the curvature at vertex 0 is taken
+/// between the clamp's quaternion and p_{1/2} over Δs/2, which is the ghost-point scheme with
+/// p_{−1/2} mirrored through the clamp), pinned (x_0 fixed, zero moment) or free (zero force and
+/// moment). s = L is free: zero moment (no bending element at vertex N) and the tip loads.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "cosserat/lie/se3.hpp"
+#include "cosserat/lie/types.hpp"
+#include "cosserat/loads/static_loads.hpp"
+#include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/quatfd/quatfd_kernels.hpp"
+#include "cosserat/rod/actuation.hpp"
+#include "cosserat/rod/rod_model.hpp"
+#include "cosserat/strong/rod_state.hpp"
+
+namespace cosserat::quatfd {
+
+/// The discrete curvature K_n at an interior vertex from p_a = p_{n−1/2}, p_b = p_{n+1/2}, with
+/// r = p̄_a p_b = [cos(θ/2), sin(θ/2) u] for a relative rotation by θ about u, h = s_b − s_a.
+enum class Curvature {
+  /// K = 2 Im(r)/h = (2/h) sin(θ/2) u (the vertex quaternion is the mean of its neighbours).
+  /// Cheapest; second order. The moment stops growing at θ = π and falls beyond, and K scales
+  /// with |p_a| |p_b|, so constraint drift changes the stiffness.
+  kBasic,
+  /// Variant 1 (default): K = 2 Im(p̄_n p'_n)/|p_n|² for p_n = (p_a+p_b)/2, p'_n = (p_b−p_a)/h,
+  /// the exact curvature of the linearly interpolated quaternion field, = (4/h) tan(θ/4) u for
+  /// unit quaternions. Unchanged when both quaternions are scaled alike (drift does not change the
+  /// stiffness), monotone in θ up to 2π, no roots or trigonometric functions; second order.
+  kVariant1,
+};
+
+enum class EndCondition {
+  kClamped,  ///< position and orientation prescribed (s = 0 only)
+  kPinned,   ///< position prescribed, rotation free, zero moment (s = 0 only)
+  kFree,     ///< zero force and moment (tip loads act at s = L)
+};
+
+struct QuatFdOptions {
+  int segments = 20;  ///< N ≥ 2
+  /// Optional explicit vertices 0 = s_0 < … < s_N = L (m), for non-equidistant grids; when set,
+  /// it must have segments + 1 strictly increasing entries from 0 to the rod length. Empty: the
+  /// uniform grid of MakeGrid (profile breakpoints become vertices).
+  std::vector<double> grid;
+  Curvature curvature = Curvature::kVariant1;
+  EndCondition base_end = EndCondition::kClamped;  ///< the end at s = 0
+  EndCondition tip_end = EndCondition::kFree;      ///< the end at s = L: only kFree
+  /// Baumgarte stabilisation of g = (|p|² − 1)/2: g̈ + 2α ġ + β² g = 0 (1/s). Zero: g̈ = 0 and
+  /// the integrators project onto |p| = 1 after each step instead.
+  double baumgarte_alpha = 0.0;
+  double baumgarte_beta = 0.0;
+
+  /// Checks the fields; on failure writes "<field>: <why>".
+  bool IsValid(std::string* why) const;
+};
+
+/// Layout of the unknowns (see the file comment).
+struct QuatFdLayout {
+  int segments = 0;
+  int size() const { return 7 * segments + 3; }
+  static int X(int n) { return 7 * n; }        ///< first index of x_n
+  static int P(int nu) { return 7 * nu + 3; }  ///< first index of p_{ν+1/2}, ν = 0..N−1
+  static constexpr int kBandwidth = 10;
+};
+
+/// Energies of a state (J).
+struct QuatFdEnergy {
+  double kinetic = 0, elastic = 0, gravity = 0, loads = 0;  ///< loads: −work of dead tip force
+  double total() const { return kinetic + elastic + gravity + loads; }
+};
+
+class QuatFdModel {
+ public:
+  /// Samples the rod on MakeGrid's grid with options.segments segments (profile breakpoints
+  /// become vertices). `base` is the clamp pose (R_WB, p_W of s = 0): for kClamped both are used,
+  /// for kPinned the position, for kFree only the initial state. Throws std::invalid_argument
+  /// naming the field when the rod or the options are invalid.
+  QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFdOptions& options,
+              const Actuation& actuation = {});
+
+  const QuatFdOptions& options() const { return options_; }
+  const QuatFdLayout& layout() const { return layout_; }
+  int size() const { return layout_.size(); }
+  const std::vector<double>& grid() const { return s_; }
+  double length() const { return s_.back(); }
+
+  /// Loads are an input, not part of the constant model: set before evaluating.
+  void set_loads(const StaticLoads& loads) { loads_ = loads; }
+  const StaticLoads& loads() const { return loads_; }
+
+  /// The rest shape (the discrete configuration with Γ = Γ*, K = K*) from the base pose, at rest.
+  void RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const;
+
+  /// a = f(q, v) = q̈ (seed 000 eq. 4). Prescribed vertices get a = 0.
+  void Acceleration(const Eigen::Ref<const Eigen::VectorXd>& q,
+                    const Eigen::Ref<const Eigen::VectorXd>& v,
+                    Eigen::Ref<Eigen::VectorXd> a) const;
+
+  /// ∂f/∂q and ∂f/∂v, exact, banded (kl = ku = 10; the matrices are resized and overwritten).
+  /// Built from element Jacobians by forward-mode differentiation (ceres::Jet) of the same
+  /// kernels that give f, assembled band-wise. Optionally also f.
+  void Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
+                const Eigen::Ref<const Eigen::VectorXd>& v, BandedMatrix* dfdq, BandedMatrix* dfdv,
+                Eigen::VectorXd* a = nullptr) const;
+
+  /// Same, with the Baumgarte parameters given instead of the options' (statics uses β > 0 to
+  /// make the equilibrium equations regular in the normal direction of each quaternion).
+  void Acceleration(const Eigen::Ref<const Eigen::VectorXd>& q,
+                    const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
+                    Eigen::Ref<Eigen::VectorXd> a) const;
+  void Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
+                const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
+                BandedMatrix* dfdq, BandedMatrix* dfdv, Eigen::VectorXd* a) const;
+
+  /// The generalised forces behind f: rows X(n) get the total force on vertex n (N, world; zero
+  /// at prescribed vertices), rows P(ν)+1..+3 the body torque on segment ν (N·m), rows P(ν) zero.
+  void Forces(const Eigen::Ref<const Eigen::VectorXd>& q,
+              const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Ref<Eigen::VectorXd> forces) const;
+
+  /// Projection onto the constraint manifold: p ← p/|p|, ṗ ← ṗ − (p·ṗ) p. Returns the largest
+  /// | |p| − 1 | found before projecting.
+  double Project(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const;
+  /// max over segments of | |p| − 1 |.
+  double ConstraintViolation(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+
+  /// Whether unknown i is prescribed (the position of a clamped or pinned base vertex).
+  bool IsFixed(int i) const { return fixed_[i]; }
+
+  /// Node values for the writers: positions x_n; rotations at interior vertices from the
+  /// normalised mean of the neighbouring quaternions, the clamp's at s = 0, p_{N−1/2} at a free
+  /// tip; curvature K_n (zero at free/pinned ends); strain Γ and force averaged from the
+  /// neighbouring segments; wrench W = [M; F] in the vertex's body frame (W(0) holds the support
+  /// reaction's negative, so RodState::BaseReaction_W is the reaction); twist [ω; Rᵀ ẋ].
+  void ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
+                  const Eigen::Ref<const Eigen::VectorXd>& v, RodState* state) const;
+
+  QuatFdEnergy Energy(const Eigen::Ref<const Eigen::VectorXd>& q,
+                      const Eigen::Ref<const Eigen::VectorXd>& v) const;
+
+  /// Total mass (kg), and the lumped vertex masses.
+  double Mass() const;
+  const std::vector<double>& vertex_mass() const { return mass_; }
+
+  /// Scales that make residuals dimensionless: EI/L (N·m) and EI/L² (N), EI the largest bending
+  /// stiffness at s = 0.
+  double moment_scale() const { return moment_scale_; }
+  double force_scale() const { return force_scale_; }
+
+ private:
+  template <bool kWithJacobian>
+  void Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
+                const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
+                Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq, BandedMatrix* dfdv,
+                bool forces_only) const;
+
+  /// Quaternion of the frame at s = L from p_{N−1/2} (free end).
+  template <typename T>
+  kernels::V4<T> TipQuaternion(const kernels::V4<T>& p_last) const;
+  /// Tip force on x_N (N, world) and tip moment as a body torque on p_{N−1/2} (N·m).
+  template <typename T>
+  void TipLoads(const kernels::V4<T>& p_last, kernels::V3<T>* force_W,
+                kernels::V3<T>* torque_B) const;
+
+  QuatFdOptions options_;
+  QuatFdLayout layout_;
+  Mat3 tip_compliance_ = Mat3::Identity();  ///< C_K⁻¹ at s = L
+  Vec3 tip_rest_ = Vec3::Zero();            ///< K*(L)
+  double tip_h_ = 0;                        ///< Δs_{N−1/2}
+  lie::SE3 base_;
+  Vec4 base_quat_;
+  StaticLoads loads_;
+  std::vector<double> s_;                             ///< vertices s_n, m
+  std::vector<double> mass_;                          ///< lumped vertex masses m_n, kg
+  std::vector<double> vertex_weight_;                 ///< dual lengths w_n, m
+  std::vector<unsigned char> fixed_;                  ///< per unknown
+  std::vector<kernels::SegmentConstants> segment_;    ///< per segment
+  std::vector<kernels::RotationConstants> rotation_;  ///< per segment (inertia)
+  std::vector<kernels::BendConstants> bend_;          ///< per vertex; bend_active_ says which
+  std::vector<unsigned char> bend_active_;
+  double moment_scale_ = 1, force_scale_ = 1;
+};
+
+}  // namespace cosserat::quatfd

@@ -1,0 +1,89 @@
+#include "cosserat/quatfd/banded_matrix.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace cosserat::quatfd {
+
+void BandedMatrix::Resize(int n, int kl, int ku) {
+  n_ = n;
+  kl_ = kl;
+  ku_ = ku;
+  kv_ = kl + ku;          // row of the diagonal in the band storage
+  ld_ = 2 * kl + ku + 1;  // kl rows of fill-in above the ku + kl + 1 band rows
+  data_.assign(static_cast<size_t>(ld_) * std::max(n, 0), 0.0);
+  pivot_.assign(std::max(n, 0), 0);
+}
+
+void BandedMatrix::SetZero() { std::fill(data_.begin(), data_.end(), 0.0); }
+
+void BandedMatrix::Multiply(const Eigen::Ref<const Eigen::VectorXd>& x,
+                            Eigen::Ref<Eigen::VectorXd> y) const {
+  y.setZero();
+  for (int j = 0; j < n_; ++j) {
+    const double xj = x[j];
+    const int i0 = std::max(0, j - ku_), i1 = std::min(n_ - 1, j + kl_);
+    const double* col = &data_[kv_ - j + j * ld_];
+    for (int i = i0; i <= i1; ++i) y[i] += col[i] * xj;
+  }
+}
+
+Eigen::MatrixXd BandedMatrix::ToDense() const {
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n_, n_);
+  for (int j = 0; j < n_; ++j)
+    for (int i = std::max(0, j - ku_); i <= std::min(n_ - 1, j + kl_); ++i) A(i, j) = (*this)(i, j);
+  return A;
+}
+
+bool BandedMatrix::Factorize() {
+  // dgbtf2: column j of L below the diagonal is stored in place; U gets up to kl + ku
+  // super-diagonals because of the row interchanges. The fill-in rows must start at zero.
+  for (int j = 0; j < n_; ++j)
+    for (int r = 0; r < kl_; ++r) data_[r + j * ld_] = 0.0;
+  int ju = 0;  // last column touched by the interchanges so far
+  for (int j = 0; j < n_; ++j) {
+    const int km = std::min(kl_, n_ - 1 - j);
+    double* colj = &data_[kv_ + j * ld_];  // colj[i] = A(j + i, j)
+    int jp = 0;
+    double best = std::abs(colj[0]);
+    for (int i = 1; i <= km; ++i)
+      if (std::abs(colj[i]) > best) best = std::abs(colj[i]), jp = i;
+    pivot_[j] = j + jp;
+    if (colj[jp] == 0.0) return false;
+    ju = std::max(ju, std::min(j + ku_ + jp, n_ - 1));
+    if (jp != 0)
+      for (int c = j; c <= ju; ++c) std::swap((*this)(j, c), (*this)(j + jp, c));
+    if (km > 0) {
+      const double inv = 1.0 / colj[0];
+      for (int i = 1; i <= km; ++i) colj[i] *= inv;
+      for (int c = j + 1; c <= ju; ++c) {
+        const double ajc = (*this)(j, c);
+        if (ajc == 0.0) continue;
+        double* colc = &data_[kv_ + j - c + c * ld_];  // colc[i] = A(j + i, c)
+        for (int i = 1; i <= km; ++i) colc[i] -= colj[i] * ajc;
+      }
+    }
+  }
+  return true;
+}
+
+void BandedMatrix::Solve(Eigen::Ref<Eigen::VectorXd> b) const {
+  // L y = P b.
+  for (int j = 0; j < n_; ++j) {
+    if (pivot_[j] != j) std::swap(b[j], b[pivot_[j]]);
+    const int km = std::min(kl_, n_ - 1 - j);
+    const double* colj = &data_[kv_ + j * ld_];
+    const double bj = b[j];
+    for (int i = 1; i <= km; ++i) b[j + i] -= colj[i] * bj;
+  }
+  // U x = y; U has kl + ku super-diagonals.
+  for (int j = n_ - 1; j >= 0; --j) {
+    b[j] /= (*this)(j, j);
+    const double bj = b[j];
+    const int i0 = std::max(0, j - kv_);
+    for (int i = i0; i < j; ++i) b[i] -= (*this)(i, j) * bj;
+  }
+}
+
+}  // namespace cosserat::quatfd

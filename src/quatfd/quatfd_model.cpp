@@ -1,0 +1,568 @@
+#include "cosserat/quatfd/quatfd_model.hpp"
+
+#include <ceres/jet.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "cosserat/lie/quaternion.hpp"
+#include "cosserat/rod/grid.hpp"
+
+namespace cosserat::quatfd {
+namespace {
+
+using kernels::V3;
+using kernels::V4;
+using L = QuatFdLayout;
+
+template <int N>
+using Jet = ceres::Jet<double, N>;
+
+/// Seeds a Jet vector from doubles, derivative slots offset .. offset + size − 1.
+template <int N, int M>
+Eigen::Matrix<Jet<N>, M, 1> Seed(const Eigen::Ref<const Eigen::VectorXd>& x, int at, int offset) {
+  Eigen::Matrix<Jet<N>, M, 1> out;
+  for (int i = 0; i < M; ++i) out[i] = Jet<N>(x[at + i], offset + i);
+  return out;
+}
+
+template <int M>
+Eigen::Matrix<double, M, 1> Value(const Eigen::Ref<const Eigen::VectorXd>& x, int at) {
+  return x.segment<M>(at);
+}
+
+/// Adds d out / d(slots [slot, slot + width)) of a 3-vector Jet output into rows row..row+2 of
+/// the band matrix, columns col..col+width−1.
+template <int N>
+void AddBlock(const V3<Jet<N>>& out, int slot, int width, int row, int col, BandedMatrix* A) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < width; ++j) (*A)(row + i, col + j) += out[i].v[slot + j];
+}
+
+Mat3 Block(const Mat6& M, int r, int c) { return M.block<3, 3>(r, c); }
+
+}  // namespace
+
+bool QuatFdOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  if (segments < 2) return fail("segments: the quaternion-fd model needs at least 2 segments");
+  if (tip_end != EndCondition::kFree)
+    return fail("tip_end: only a free end at s = L is implemented for quaternion-fd");
+  if (!(std::isfinite(baumgarte_alpha) && baumgarte_alpha >= 0))
+    return fail("baumgarte_alpha: expected a finite number >= 0");
+  if (!(std::isfinite(baumgarte_beta) && baumgarte_beta >= 0))
+    return fail("baumgarte_beta: expected a finite number >= 0");
+  return true;
+}
+
+QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFdOptions& options,
+                         const Actuation& actuation)
+    : options_(options), base_(base) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("QuatFdOptions: " + why);
+  s_ = ModelGrid(rod, options.segments + 1);  // throws for an invalid rod
+  if (!options.grid.empty()) {
+    const std::vector<double>& g = options.grid;
+    bool ok = static_cast<int>(g.size()) == options.segments + 1 && g.front() == 0.0 &&
+              std::abs(g.back() - rod.length) <= 1e-12 * rod.length;
+    for (size_t i = 1; ok && i < g.size(); ++i) ok = g[i] > g[i - 1];
+    if (!ok)
+      throw std::invalid_argument(
+          "QuatFdOptions: grid: expected segments + 1 increasing values from 0 to the rod length");
+    s_ = g;
+    s_.back() = rod.length;
+  }
+  const int N = options.segments;
+  layout_.segments = N;
+  base_quat_ = lie::RotationToQuat(base.R);
+
+  segment_.resize(N);
+  rotation_.resize(N);
+  mass_.assign(N + 1, 0.0);
+  vertex_weight_.assign(N + 1, 0.0);
+  for (int i = 0; i < N; ++i) {
+    const double ds = s_[i + 1] - s_[i], mid = 0.5 * (s_[i] + s_[i + 1]);
+    const SectionProperties sp = rod.section->At(mid, actuation);
+    kernels::SegmentConstants& c = segment_[i];
+    c.ds = ds;
+    c.stiffness = Block(sp.stiffness, 3, 3);
+    c.damping = Block(sp.damping, 3, 3);
+    c.rest = rod.RestStrainAt(mid).tail<3>();
+    rotation_[i].inertia = sp.mass.diagonal().head<3>() * ds;
+    const double half_mass = 0.5 * sp.mass(3, 3) * ds;
+    mass_[i] += half_mass;
+    mass_[i + 1] += half_mass;
+    vertex_weight_[i] += 0.5 * ds;
+    vertex_weight_[i + 1] += 0.5 * ds;
+  }
+
+  // Bending/torsion elements. Interior vertex n spans [s_{n−1/2}, s_{n+1/2}]: its two half cells
+  // act in series, so C_K = w (h1 C1⁻¹ + h2 C2⁻¹)⁻¹ with each half sampled at its own midpoint
+  // (a stiffness jump at a vertex is then resolved to second order).
+  const auto kind = options.curvature == Curvature::kBasic ? kernels::CurvatureKind::kBasic
+                                                           : kernels::CurvatureKind::kVariant1;
+  bend_.resize(N + 1);
+  bend_active_.assign(N + 1, 0);
+  for (int n = 1; n < N; ++n) {
+    const double h1 = 0.5 * (s_[n] - s_[n - 1]), h2 = 0.5 * (s_[n + 1] - s_[n]);
+    const SectionProperties a = rod.section->At(s_[n] - 0.5 * h1, actuation);
+    const SectionProperties b = rod.section->At(s_[n] + 0.5 * h2, actuation);
+    kernels::BendConstants& c = bend_[n];
+    c.h = c.weight = h1 + h2;
+    const Mat3 Ca = Block(a.stiffness, 0, 0), Cb = Block(b.stiffness, 0, 0);
+    c.stiffness = c.weight * (h1 * Ca.inverse() + h2 * Cb.inverse()).inverse();
+    c.damping = (h1 * Block(a.damping, 0, 0) + h2 * Block(b.damping, 0, 0)) / c.weight;
+    c.rest = rod.RestStrainAt(s_[n]).head<3>();
+    c.kind = kind;
+    bend_active_[n] = 1;
+  }
+  if (options.base_end == EndCondition::kClamped) {
+    // One-sided element between the clamp and p_{1/2}: length Δs/2 (ghost point p_{−1/2}).
+    const double h = 0.5 * (s_[1] - s_[0]);
+    const SectionProperties a = rod.section->At(0.5 * h, actuation);
+    kernels::BendConstants& c = bend_[0];
+    c.h = c.weight = h;
+    c.stiffness = Block(a.stiffness, 0, 0);
+    c.damping = Block(a.damping, 0, 0);
+    c.rest = rod.RestStrainAt(0.0).head<3>();
+    c.kind = kind;
+    bend_active_[0] = 1;
+  }
+
+  fixed_.assign(size(), 0);
+  if (options.base_end != EndCondition::kFree)
+    for (int k = 0; k < 3; ++k) fixed_[L::X(0) + k] = 1;
+
+  {
+    const SectionProperties e = rod.section->At(length() * (1 - 1e-9), actuation);
+    tip_compliance_ = Block(e.stiffness, 0, 0).inverse();
+    tip_rest_ = rod.RestStrainAt(length()).head<3>();
+    tip_h_ = s_[N] - s_[N - 1];
+  }
+  const SectionProperties s0 = rod.section->At(0.0, actuation);
+  const double EI = std::max(s0.stiffness(0, 0), s0.stiffness(1, 1));
+  moment_scale_ = EI / length();
+  force_scale_ = EI / (length() * length());
+}
+
+void QuatFdModel::RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const {
+  const int N = layout_.segments;
+  v.setZero();
+  // The relative rotation (rotation vector) whose discrete curvature over h is exactly k:
+  // basic |K| = (2/h) sin(θ/2), variant 1 |K| = (4/h) tan(θ/4).
+  const auto rotation_for = [&](const Vec3& k, double h) -> Vec3 {
+    const double kn = k.norm();
+    if (kn == 0.0) return Vec3::Zero();
+    const double theta = options_.curvature == Curvature::kBasic
+                             ? 2.0 * std::asin(std::min(1.0, 0.5 * kn * h))
+                             : 4.0 * std::atan(0.25 * kn * h);
+    return theta / kn * k;
+  };
+  Vec4 p = base_quat_;
+  if (bend_active_[0])
+    p = lie::QuatMultiply(p, lie::QuatFromAxisAngle(rotation_for(bend_[0].rest, bend_[0].h)));
+  Vec3 x = base_.p;
+  for (int i = 0; i < N; ++i) {
+    if (i > 0 && bend_active_[i])
+      p = lie::QuatMultiply(p, lie::QuatFromAxisAngle(rotation_for(bend_[i].rest, bend_[i].h)));
+    q.segment<3>(L::X(i)) = x;
+    q.segment<4>(L::P(i)) = p;
+    x += lie::QuatRotate(p, segment_[i].rest) * segment_[i].ds;
+  }
+  q.segment<3>(L::X(N)) = x;
+}
+
+template <typename T>
+kernels::V4<T> QuatFdModel::TipQuaternion(const kernels::V4<T>& p_last) const {
+  // The free end's moment condition gives K(L) = K*(L) + C_K⁻¹ m_B; the frame at s = L is that of
+  // p_{N−1/2} turned by K(L) Δs/2 (second order), with [1, θ/2] for the rotation θ (R(p) only
+  // needs the direction of p). A world moment is taken to the body with R(p_{N−1/2}).
+  V3<T> m = loads_.tip_moment.cast<T>();
+  if (loads_.tip_moment_frame == LoadFrame::kWorld) m = kernels::ToBody<T>(p_last, m);
+  const V3<T> k = tip_rest_.cast<T>() + tip_compliance_.cast<T>() * m;
+  const V3<T> half = T(0.5 * tip_h_) * k * T(0.5);
+  return kernels::QMul<T>(p_last, kernels::V4<T>(T(1), half[0], half[1], half[2]));
+}
+
+template <typename T>
+void QuatFdModel::TipLoads(const kernels::V4<T>& p_last, kernels::V3<T>* force_W,
+                           kernels::V3<T>* torque_B) const {
+  const bool body_force = loads_.tip_force_frame == LoadFrame::kBody;
+  const bool body_moment = loads_.tip_moment_frame == LoadFrame::kBody;
+  *force_W = loads_.tip_force.cast<T>();
+  *torque_B = loads_.tip_moment.cast<T>();
+  if (body_force) *force_W = kernels::ToWorld<T>(TipQuaternion<T>(p_last), *force_W);
+  // Body torque on the last segment: a world moment rotated into its frame, a body (tip-frame)
+  // moment rotated from the tip frame into it.
+  if (!body_moment) {
+    *torque_B = kernels::ToBody<T>(p_last, *torque_B);
+  } else {
+    const kernels::V4<T> pt = TipQuaternion<T>(p_last);
+    *torque_B = kernels::ToBody<T>(p_last, kernels::ToWorld<T>(pt, *torque_B));
+  }
+}
+
+template <bool kWithJacobian>
+void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
+                           const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
+                           Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq, BandedMatrix* dfdv,
+                           bool forces_only) const {
+  const int N = layout_.segments;
+  // Phase 1: generalised forces. x rows of `a` collect the vertex forces (N, world); rows
+  // P(ν)+1..+3 collect the body torques of segment ν (N·m). With the Jacobian, the same rows of
+  // dfdq/dfdv collect their derivatives.
+  a.setZero();
+  if (kWithJacobian) {
+    dfdq->SetZero();
+    dfdv->SetZero();
+  }
+  for (int i = 0; i < N; ++i) {
+    const int xa = L::X(i), xb = L::X(i + 1), pp = L::P(i);
+    if (!kWithJacobian) {
+      V3<double> fa, tau;
+      kernels::SegmentForces<double>(segment_[i], Value<3>(q, xb) - Value<3>(q, xa),
+                                     Value<4>(q, pp), Value<3>(v, xb) - Value<3>(v, xa),
+                                     Value<4>(v, pp), &fa, &tau);
+      a.segment<3>(xa) += fa;
+      a.segment<3>(xb) -= fa;
+      a.segment<3>(pp + 1) += tau;
+    } else {
+      // Slots: dx 0..2, p 3..6, dv 7..9, ṗ 10..13; ∂/∂x_b = ∂/∂dx = −∂/∂x_a.
+      using J = Jet<14>;
+      V3<J> dx, dv;
+      for (int k = 0; k < 3; ++k) {
+        dx[k] = J(q[xb + k] - q[xa + k], k);
+        dv[k] = J(v[xb + k] - v[xa + k], 7 + k);
+      }
+      V3<J> fa, tau;
+      kernels::SegmentForces<J>(segment_[i], dx, Seed<14, 4>(q, pp, 3), dv, Seed<14, 4>(v, pp, 10),
+                                &fa, &tau);
+      const V3<J>* outs[2] = {&fa, &tau};
+      const int rows[2] = {xa, pp + 1};
+      for (int o = 0; o < 3; ++o) {
+        const V3<J>& out = *outs[o == 2 ? 0 : o];
+        const int row = o == 2 ? xb : rows[o];
+        const double sign = o == 2 ? -1.0 : 1.0;
+        for (int r = 0; r < 3; ++r) {
+          a[row + r] += sign * out[r].a;
+          for (int k = 0; k < 3; ++k) {
+            (*dfdq)(row + r, xb + k) += sign * out[r].v[k];
+            (*dfdq)(row + r, xa + k) -= sign * out[r].v[k];
+            (*dfdv)(row + r, xb + k) += sign * out[r].v[7 + k];
+            (*dfdv)(row + r, xa + k) -= sign * out[r].v[7 + k];
+          }
+          for (int k = 0; k < 4; ++k) {
+            (*dfdq)(row + r, pp + k) += sign * out[r].v[3 + k];
+            (*dfdv)(row + r, pp + k) += sign * out[r].v[10 + k];
+          }
+        }
+      }
+    }
+  }
+  for (int n = 1; n < N; ++n) {
+    if (!bend_active_[n]) continue;
+    const int pa = L::P(n - 1), pb = L::P(n);
+    if (!kWithJacobian) {
+      V3<double> ta, tb;
+      kernels::BendTorques<double>(bend_[n], Value<4>(q, pa), Value<4>(q, pb), Value<4>(v, pa),
+                                   Value<4>(v, pb), &ta, &tb);
+      a.segment<3>(pa + 1) += ta;
+      a.segment<3>(pb + 1) += tb;
+    } else {
+      using J = Jet<16>;
+      V3<J> ta, tb;
+      kernels::BendTorques<J>(bend_[n], Seed<16, 4>(q, pa, 0), Seed<16, 4>(q, pb, 4),
+                              Seed<16, 4>(v, pa, 8), Seed<16, 4>(v, pb, 12), &ta, &tb);
+      const V3<J>* outs[2] = {&ta, &tb};
+      const int rows[2] = {pa + 1, pb + 1};
+      for (int o = 0; o < 2; ++o) {
+        a.segment<3>(rows[o]) += V3<double>((*outs[o])[0].a, (*outs[o])[1].a, (*outs[o])[2].a);
+        AddBlock<16>(*outs[o], 0, 4, rows[o], pa, dfdq);
+        AddBlock<16>(*outs[o], 4, 4, rows[o], pb, dfdq);
+        AddBlock<16>(*outs[o], 8, 4, rows[o], pa, dfdv);
+        AddBlock<16>(*outs[o], 12, 4, rows[o], pb, dfdv);
+      }
+    }
+  }
+  if (bend_active_[0]) {  // clamped base: the clamp's quaternion is a constant
+    const int pb = L::P(0);
+    if (!kWithJacobian) {
+      V3<double> ta, tb;
+      kernels::BendTorques<double>(bend_[0], base_quat_, Value<4>(q, pb), Vec4::Zero(),
+                                   Value<4>(v, pb), &ta, &tb);
+      a.segment<3>(pb + 1) += tb;
+    } else {
+      using J = Jet<8>;
+      V3<J> ta, tb;
+      const V4<J> pc = base_quat_.cast<J>(), zero = V4<J>::Zero();
+      kernels::BendTorques<J>(bend_[0], pc, Seed<8, 4>(q, pb, 0), zero, Seed<8, 4>(v, pb, 4), &ta,
+                              &tb);
+      a.segment<3>(pb + 1) += V3<double>(tb[0].a, tb[1].a, tb[2].a);
+      AddBlock<8>(tb, 0, 4, pb + 1, pb, dfdq);
+      AddBlock<8>(tb, 4, 4, pb + 1, pb, dfdv);
+    }
+  }
+  // External loads: gravity and the distributed force lumped on the vertices; tip force on x_N,
+  // tip moment on the last segment (body torque).
+  for (int n = 0; n <= N; ++n)
+    a.segment<3>(L::X(n)) +=
+        mass_[n] * loads_.gravity_W + vertex_weight_[n] * loads_.distributed_force_W;
+  {
+    const int xt = L::X(N), pl = L::P(N - 1);
+    if (!kWithJacobian) {
+      V3<double> f, m;
+      TipLoads<double>(Value<4>(q, pl), &f, &m);
+      a.segment<3>(xt) += f;
+      a.segment<3>(pl + 1) += m;
+    } else {
+      using J = Jet<4>;
+      V3<J> f, m;
+      TipLoads<J>(Seed<4, 4>(q, pl, 0), &f, &m);
+      a.segment<3>(xt) += V3<double>(f[0].a, f[1].a, f[2].a);
+      a.segment<3>(pl + 1) += V3<double>(m[0].a, m[1].a, m[2].a);
+      AddBlock<4>(f, 0, 4, xt, pl, dfdq);
+      AddBlock<4>(m, 0, 4, pl + 1, pl, dfdq);
+    }
+  }
+
+  if (forces_only) {
+    for (int r = 0; r < size(); ++r)
+      if (fixed_[r]) a[r] = 0.0;
+    return;
+  }
+  // Phase 2: accelerations. Vertices: ẍ = Q / m (prescribed: 0). Segments: p̈ from the torque.
+  for (int n = 0; n <= N; ++n) {
+    const int r = L::X(n);
+    const double inv_m = fixed_[r] ? 0.0 : 1.0 / mass_[n];
+    a.segment<3>(r) *= inv_m;
+    if (kWithJacobian) {
+      for (int i = r; i < r + 3; ++i) {
+        const int c0 = std::max(0, i - L::kBandwidth), c1 = std::min(size() - 1, i + L::kBandwidth);
+        for (int c = c0; c <= c1; ++c) {
+          (*dfdq)(i, c) *= inv_m;
+          (*dfdv)(i, c) *= inv_m;
+        }
+      }
+    }
+  }
+  kernels::RotationConstants rc;
+  rc.alpha = alpha;
+  rc.beta = beta;
+  for (int i = 0; i < N; ++i) {
+    const int pp = L::P(i);
+    rc.inertia = rotation_[i].inertia;
+    const Vec3 tau = a.segment<3>(pp + 1);
+    if (!kWithJacobian) {
+      a.segment<4>(pp) =
+          kernels::QuaternionAcceleration<double>(rc, Value<4>(q, pp), Value<4>(v, pp), tau);
+    } else {
+      using J = Jet<11>;
+      Eigen::Matrix<J, 3, 1> tj;
+      for (int k = 0; k < 3; ++k) tj[k] = J(tau[k], 8 + k);
+      const V4<J> acc =
+          kernels::QuaternionAcceleration<J>(rc, Seed<11, 4>(q, pp, 0), Seed<11, 4>(v, pp, 4), tj);
+      // Rows pp+1..pp+3 of dfdq/dfdv hold dτ/d(q, v) over the window of columns c0..c0+17
+      // (p_{ν−1}, x_ν, p_ν, x_{ν+1}, p_{ν+1}); replace rows pp..pp+3 by ∂p̈/∂τ · dτ + own terms.
+      const int c0 = std::max(0, pp - 7), c1 = std::min(size() - 1, pp + 10);
+      for (BandedMatrix* D : {dfdq, dfdv}) {
+        const bool is_q = D == dfdq;
+        double window[3][18];
+        for (int k = 0; k < 3; ++k)
+          for (int c = c0; c <= c1; ++c) window[k][c - c0] = (*D)(pp + 1 + k, c);
+        for (int r = 0; r < 4; ++r) {
+          for (int c = c0; c <= c1; ++c) {
+            double sum = 0.0;
+            for (int k = 0; k < 3; ++k) sum += acc[r].v[8 + k] * window[k][c - c0];
+            (*D)(pp + r, c) = sum;
+          }
+          for (int k = 0; k < 4; ++k) (*D)(pp + r, pp + k) += acc[r].v[(is_q ? 0 : 4) + k];
+        }
+      }
+      for (int r = 0; r < 4; ++r) a[pp + r] = acc[r].a;
+    }
+  }
+}
+
+void QuatFdModel::Acceleration(const Eigen::Ref<const Eigen::VectorXd>& q,
+                               const Eigen::Ref<const Eigen::VectorXd>& v,
+                               Eigen::Ref<Eigen::VectorXd> a) const {
+  Evaluate<false>(q, v, options_.baumgarte_alpha, options_.baumgarte_beta, a, nullptr, nullptr,
+                  false);
+}
+
+void QuatFdModel::Acceleration(const Eigen::Ref<const Eigen::VectorXd>& q,
+                               const Eigen::Ref<const Eigen::VectorXd>& v, double alpha,
+                               double beta, Eigen::Ref<Eigen::VectorXd> a) const {
+  Evaluate<false>(q, v, alpha, beta, a, nullptr, nullptr, false);
+}
+
+void QuatFdModel::Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
+                           const Eigen::Ref<const Eigen::VectorXd>& v, BandedMatrix* dfdq,
+                           BandedMatrix* dfdv, Eigen::VectorXd* a) const {
+  Jacobian(q, v, options_.baumgarte_alpha, options_.baumgarte_beta, dfdq, dfdv, a);
+}
+
+void QuatFdModel::Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
+                           const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
+                           BandedMatrix* dfdq, BandedMatrix* dfdv, Eigen::VectorXd* a) const {
+  const int n = size();
+  if (dfdq->rows() != n || dfdq->lower() != L::kBandwidth || dfdq->upper() != L::kBandwidth)
+    dfdq->Resize(n, L::kBandwidth, L::kBandwidth);
+  if (dfdv->rows() != n || dfdv->lower() != L::kBandwidth || dfdv->upper() != L::kBandwidth)
+    dfdv->Resize(n, L::kBandwidth, L::kBandwidth);
+  if (a) {
+    a->resize(n);
+    Evaluate<true>(q, v, alpha, beta, *a, dfdq, dfdv, false);
+  } else {
+    Eigen::VectorXd tmp(n);
+    Evaluate<true>(q, v, alpha, beta, tmp, dfdq, dfdv, false);
+  }
+}
+
+void QuatFdModel::Forces(const Eigen::Ref<const Eigen::VectorXd>& q,
+                         const Eigen::Ref<const Eigen::VectorXd>& v,
+                         Eigen::Ref<Eigen::VectorXd> forces) const {
+  Evaluate<false>(q, v, 0.0, 0.0, forces, nullptr, nullptr, true);
+}
+
+double QuatFdModel::Project(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const {
+  double worst = 0.0;
+  for (int i = 0; i < layout_.segments; ++i) {
+    auto p = q.segment<4>(L::P(i));
+    auto pd = v.segment<4>(L::P(i));
+    const double norm = p.norm();
+    worst = std::max(worst, std::abs(norm - 1.0));
+    p /= norm;
+    pd -= p.dot(pd) * p;
+  }
+  return worst;
+}
+
+double QuatFdModel::ConstraintViolation(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  double worst = 0.0;
+  for (int i = 0; i < layout_.segments; ++i)
+    worst = std::max(worst, std::abs(q.segment<4>(L::P(i)).norm() - 1.0));
+  return worst;
+}
+
+double QuatFdModel::Mass() const {
+  double m = 0;
+  for (double mn : mass_) m += mn;
+  return m;
+}
+
+void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
+                             const Eigen::Ref<const Eigen::VectorXd>& v, RodState* state) const {
+  const int N = layout_.segments;
+  state->Resize(N + 1);
+  // Per segment: strain Γ, force F (body), ω.
+  std::vector<Vec3> gamma(N), force(N), omega(N);
+  for (int i = 0; i < N; ++i) {
+    Vec3 fa, tau;
+    kernels::SegmentForces<double>(segment_[i], q.segment<3>(L::X(i + 1)) - q.segment<3>(L::X(i)),
+                                   q.segment<4>(L::P(i)),
+                                   v.segment<3>(L::X(i + 1)) - v.segment<3>(L::X(i)),
+                                   v.segment<4>(L::P(i)), &fa, &tau, &gamma[i], &force[i]);
+    omega[i] = kernels::AngularVelocity<double>(q.segment<4>(L::P(i)), v.segment<4>(L::P(i)));
+  }
+  for (int n = 0; n <= N; ++n) {
+    state->s[n] = s_[n];
+    state->position_W[n] = q.segment<3>(L::X(n));
+    Vec4 p;
+    if (n == 0) {
+      p = options_.base_end == EndCondition::kClamped ? base_quat_ : Vec4(q.segment<4>(L::P(0)));
+    } else if (n == N) {
+      p = TipQuaternion<double>(q.segment<4>(L::P(N - 1)));
+    } else {
+      const Vec4 pa = q.segment<4>(L::P(n - 1));
+      Vec4 pb = q.segment<4>(L::P(n));
+      if (pa.dot(pb) < 0) pb = -pb;
+      p = pa + pb;
+    }
+    p.normalize();
+    const Mat3 R = lie::QuatToRotation(p);
+    state->rotation_WB[n] = R;
+    Vec3 K = Vec3::Zero(), M = Vec3::Zero();
+    if (bend_active_[n]) {
+      Vec3 ta, tb;
+      const Vec4 pa = n == 0 ? base_quat_ : Vec4(q.segment<4>(L::P(n - 1)));
+      const Vec4 pda = n == 0 ? Vec4::Zero() : Vec4(v.segment<4>(L::P(n - 1)));
+      kernels::BendTorques<double>(bend_[n], pa, q.segment<4>(L::P(n)), pda, v.segment<4>(L::P(n)),
+                                   &ta, &tb, &K, &M);
+    }
+    // Strain and force: mean of the neighbouring segments, rotated into this vertex's frame.
+    Vec3 G = Vec3::Zero(), Fw = Vec3::Zero(), W = Vec3::Zero();
+    int count = 0;
+    for (int i : {n - 1, n}) {
+      if (i < 0 || i >= N) continue;
+      const Mat3 Ri = lie::QuatToRotation(q.segment<4>(L::P(i)).normalized());
+      G += R.transpose() * Ri * gamma[i];
+      Fw += Ri * force[i];
+      W += Ri * omega[i];
+      ++count;
+    }
+    G /= count;
+    Fw /= count;
+    W /= count;
+    if (n == 0) {
+      // The support reaction balances the first segment's pull and the load lumped at x_0:
+      // W(0) = R_{1/2} F_{1/2} + m_0 g + w_0 f (world), the wrench the rod beyond s = 0 exerts.
+      Fw = lie::QuatToRotation(q.segment<4>(L::P(0)).normalized()) * force[0] +
+           mass_[0] * loads_.gravity_W + vertex_weight_[0] * loads_.distributed_force_W;
+    } else if (n == N) {
+      Fw = lie::QuatToRotation(q.segment<4>(L::P(N - 1)).normalized()) * force[N - 1];
+    }
+    if (n == N) {  // the free end: K(L) = K* + C⁻¹ m, M(L) = the tip moment in the tip frame
+      Vec3 f, m;
+      TipLoads<double>(q.segment<4>(L::P(N - 1)), &f, &m);
+      M = R.transpose() * lie::QuatToRotation(q.segment<4>(L::P(N - 1)).normalized()) * m;
+      K = tip_rest_ + tip_compliance_ * M;
+    }
+    state->strain[n] << K, G;
+    state->wrench_B[n] << M, R.transpose() * Fw;
+    state->twist_B[n] << R.transpose() * W, R.transpose() * Vec3(v.segment<3>(L::X(n)));
+  }
+}
+
+QuatFdEnergy QuatFdModel::Energy(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                 const Eigen::Ref<const Eigen::VectorXd>& v) const {
+  const int N = layout_.segments;
+  QuatFdEnergy e;
+  for (int n = 0; n <= N; ++n) {
+    const Vec3 x = q.segment<3>(L::X(n)), xd = v.segment<3>(L::X(n));
+    e.kinetic += 0.5 * mass_[n] * xd.squaredNorm();
+    e.gravity -=
+        mass_[n] * loads_.gravity_W.dot(x) + vertex_weight_[n] * loads_.distributed_force_W.dot(x);
+  }
+  for (int i = 0; i < N; ++i) {
+    const Vec4 p = q.segment<4>(L::P(i)), pd = v.segment<4>(L::P(i));
+    const Vec3 w = kernels::AngularVelocity<double>(p, pd);
+    e.kinetic += 0.5 * w.dot(rotation_[i].inertia.cwiseProduct(w));
+    const Vec3 gamma = kernels::ToBody<double>(
+        p, Vec3((q.segment<3>(L::X(i + 1)) - q.segment<3>(L::X(i))) / segment_[i].ds));
+    const Vec3 eg = gamma - segment_[i].rest;
+    e.elastic += 0.5 * segment_[i].ds * eg.dot(segment_[i].stiffness * eg);
+  }
+  for (int n = 0; n <= N; ++n) {
+    if (!bend_active_[n]) continue;
+    const Vec4 pa = n == 0 ? base_quat_ : Vec4(q.segment<4>(L::P(n - 1)));
+    kernels::BendConstants c = bend_[n];
+    c.damping.setZero();
+    Vec3 ta, tb, K;
+    kernels::BendTorques<double>(c, pa, q.segment<4>(L::P(n)), Vec4::Zero(), Vec4::Zero(), &ta, &tb,
+                                 &K);
+    const Vec3 ek = K - c.rest;
+    e.elastic += 0.5 * c.weight * ek.dot(c.stiffness * ek);
+  }
+  // Dead tip loads (world frame) have the potential −f·x_N; follower loads have none.
+  if (loads_.tip_force_frame == LoadFrame::kWorld)
+    e.loads -= loads_.tip_force.dot(q.segment<3>(L::X(N)));
+  return e;
+}
+
+}  // namespace cosserat::quatfd

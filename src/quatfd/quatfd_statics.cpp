@@ -1,0 +1,166 @@
+#include "cosserat/quatfd/quatfd_statics.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/quatfd/quatfd_kernels.hpp"
+
+namespace cosserat::quatfd {
+namespace {
+
+using L = QuatFdLayout;
+
+/// β² for the solve: of the order of the tangential rows (torque scale over the smallest
+/// rotational inertia), so the rows of the Newton matrix have comparable size for pivoting.
+struct Workspace {
+  BandedMatrix A, B;
+  Eigen::VectorXd a, dq, zero;
+  double residual = 0;
+};
+
+double StaticBeta(const QuatFdModel& model) {
+  // J_ν ≈ ρ I Δs; the ratio moment scale / J only sets a row scale, any positive value works.
+  const double m = model.Mass() / model.length();  // ρA, kg/m
+  const double h = model.length() / model.layout().segments;
+  return std::sqrt(model.moment_scale() / (m * 1e-6 * h));
+}
+
+/// Newton at fixed loads from q. Returns true on convergence; counts iterations.
+bool Newton(const QuatFdModel& model, const QuatFdStaticsOptions& opt, double beta,
+            Eigen::Ref<Eigen::VectorXd> q, Workspace* w, QuatFdStaticsSummary* summary) {
+  const int n = model.size();
+  const double L = model.length();
+  for (int it = 0; it < opt.max_iterations; ++it) {
+    w->residual = StaticResidual(model, q);
+    summary->residual = w->residual;
+    if (!std::isfinite(w->residual)) return false;
+    if (w->residual < opt.tolerance) return true;
+    model.Jacobian(q, w->zero, 0.0, beta, &w->A, &w->B, &w->a);
+    ++summary->iterations;
+    for (int i = 0; i < n; ++i) {
+      if (!model.IsFixed(i)) continue;
+      for (int j = std::max(0, i - L::kBandwidth); j <= std::min(n - 1, i + L::kBandwidth); ++j)
+        w->A(i, j) = 0.0;
+      w->A(i, i) = 1.0;
+      w->a[i] = 0.0;
+    }
+    if (!w->A.Factorize()) return false;
+    w->dq = -w->a;
+    w->A.Solve(w->dq);
+    if (!w->dq.allFinite()) return false;
+    // Limit a step to a rotation increment of about 0.5 rad per quaternion and a displacement of
+    // L/2 (full Newton steps far from the solution can flip quaternions).
+    double scale = 1.0;
+    for (int s = 0; s < model.layout().segments; ++s)
+      scale = std::min(scale, 0.25 / std::max(1e-300, w->dq.segment<4>(L::P(s)).norm()));
+    for (int v = 0; v <= model.layout().segments; ++v)
+      scale = std::min(scale, 0.5 * L / std::max(1e-300, w->dq.segment<3>(L::X(v)).norm()));
+    q += scale * w->dq;
+    for (int s = 0; s < model.layout().segments; ++s) q.segment<4>(L::P(s)).normalize();
+    double step_x = 0.0, step_p = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const bool is_x = (i % 7) < 3;
+      (is_x ? step_x : step_p) = std::max(is_x ? step_x : step_p, std::abs(scale * w->dq[i]));
+    }
+    if (scale == 1.0 && step_x < 1e-13 * L && step_p < 1e-13) {
+      w->residual = StaticResidual(model, q);
+      summary->residual = w->residual;
+      return w->residual < opt.floor_tolerance;
+    }
+  }
+  w->residual = StaticResidual(model, q);
+  summary->residual = w->residual;
+  return w->residual < opt.tolerance;
+}
+
+}  // namespace
+
+bool QuatFdStaticsOptions::IsValid(std::string* why) const {
+  auto fail = [&](const char* msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  if (!(tolerance > 0 && std::isfinite(tolerance))) return fail("tolerance: expected > 0");
+  if (!(floor_tolerance >= tolerance && std::isfinite(floor_tolerance)))
+    return fail("floor_tolerance: expected >= tolerance");
+  if (max_iterations < 1) return fail("max_iterations: expected at least 1");
+  if (!(min_load_step > 0 && min_load_step <= 1)) return fail("min_load_step: expected in (0, 1]");
+  if (max_load_steps < 1) return fail("max_load_steps: expected at least 1");
+  return true;
+}
+
+double StaticResidual(const QuatFdModel& model, const Eigen::Ref<const Eigen::VectorXd>& q) {
+  const int N = model.layout().segments, n = model.size();
+  Eigen::VectorXd forces(n);
+  model.Forces(q, Eigen::VectorXd::Zero(n), forces);
+  double r = 0.0;
+  for (int v = 0; v <= N; ++v)
+    r = std::max(r, forces.segment<3>(L::X(v)).norm() / model.force_scale());
+  for (int s = 0; s < N; ++s) {
+    r = std::max(r, forces.segment<3>(L::P(s) + 1).norm() / model.moment_scale());
+    r = std::max(r, std::abs(q.segment<4>(L::P(s)).squaredNorm() - 1.0));
+  }
+  return r;
+}
+
+QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
+                                  Eigen::Ref<Eigen::VectorXd> q,
+                                  const QuatFdStaticsOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("QuatFdStaticsOptions: " + why);
+  QuatFdStaticsSummary summary;
+  const int n = model->size();
+  Workspace w;
+  w.A.Resize(n, L::kBandwidth, L::kBandwidth);
+  w.B.Resize(n, L::kBandwidth, L::kBandwidth);
+  w.a.resize(n);
+  w.dq.resize(n);
+  w.zero = Eigen::VectorXd::Zero(n);
+  const double beta = StaticBeta(*model);
+  auto finish = [&](SolveStatus status) {
+    model->set_loads(loads);
+    summary.status = status;
+    summary.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return summary;
+  };
+  std::string load_why;
+  if (!loads.IsValid(&load_why) || !q.allFinite()) return finish(SolveStatus::kNonFinite);
+
+  model->set_loads(loads);
+  const Eigen::VectorXd guess = q;
+  if (Newton(*model, options, beta, q, &w, &summary)) return finish(SolveStatus::kConverged);
+  if (!options.load_stepping) return finish(SolveStatus::kMaxIterations);
+
+  // Continuation in λ from the unloaded rest state: grow the increment after a success, halve it
+  // after a failure.
+  Eigen::VectorXd q_ok(n), v(n);
+  model->RestState(q_ok, v);
+  double lambda = 0.0, step = 0.25;
+  while (lambda < 1.0) {
+    if (summary.load_steps >= options.max_load_steps || step < options.min_load_step)
+      return finish(SolveStatus::kLoadSteppingFailed);
+    ++summary.load_steps;
+    const double target = std::min(1.0, lambda + step);
+    model->set_loads(loads.Scaled(target));
+    q = q_ok;
+    if (Newton(*model, options, beta, q, &w, &summary)) {
+      lambda = target;
+      q_ok = q;
+      step *= 2.0;
+    } else {
+      step *= 0.5;
+    }
+  }
+  q = q_ok;
+  model->set_loads(loads);
+  summary.residual = StaticResidual(*model, q);
+  (void)guess;
+  return finish(SolveStatus::kConverged);
+}
+
+}  // namespace cosserat::quatfd

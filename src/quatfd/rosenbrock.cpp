@@ -1,0 +1,200 @@
+#include "cosserat/quatfd/rosenbrock.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cosserat::quatfd {
+namespace {
+
+// Coefficients of the 4th-order L-stable Rosenbrock method with 3rd-order embedded estimate, as
+// in boost/numeric/odeint/stepper/rosenbrock4.hpp (autonomous system: the d_i ∂f/∂t terms vanish).
+constexpr double kGamma = 0.25;
+constexpr double c21 = -0.5668800000000000e+01, a21 = 0.1544000000000000e+01;
+constexpr double c31 = -0.2430093356833875e+01, c32 = -0.2063599157091915e+00;
+constexpr double a31 = 0.9466785280815826e+00, a32 = 0.2557011698983284e+00;
+constexpr double c41 = -0.1073529058151375e+00, c42 = -0.9594562251023355e+01,
+                 c43 = -0.2047028614809616e+02;
+constexpr double a41 = 0.3314825187068521e+01, a42 = 0.2896124015972201e+01,
+                 a43 = 0.9986419139977817e+00;
+constexpr double c51 = 0.7496443313967647e+01, c52 = -0.1024680431464352e+02,
+                 c53 = -0.3399990352819905e+02, c54 = 0.1170890893206160e+02;
+constexpr double a51 = 0.1221224509226641e+01, a52 = 0.6019134481288629e+01,
+                 a53 = 0.1253708332932087e+02, a54 = -0.6878860361058950e+00;
+constexpr double c61 = 0.8083246795921522e+01, c62 = -0.7981132988064893e+01,
+                 c63 = -0.3152159432874371e+02, c64 = 0.1631930543123136e+02,
+                 c65 = -0.6058818238834054e+01;
+
+}  // namespace
+
+double ErrorNorm(const IntegratorOptions& o, int n, const Eigen::Ref<const Eigen::VectorXd>& y,
+                 const Eigen::Ref<const Eigen::VectorXd>& y_new,
+                 const Eigen::Ref<const Eigen::VectorXd>& err) {
+  double e = 0.0;
+  for (int i = 0; i < 2 * n; ++i) {
+    const double atol = i < n ? o.abs_tol : o.velocity_abs_tol;
+    const double sc = atol + o.rel_tol * std::max(std::abs(y[i]), std::abs(y_new[i]));
+    e = std::max(e, std::abs(err[i]) / sc);
+  }
+  return e;
+}
+
+bool IntegratorOptions::IsValid(std::string* why) const {
+  auto fail = [&](const char* msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  if (!(rel_tol > 0 && std::isfinite(rel_tol))) return fail("rel_tol: expected a positive number");
+  if (!(abs_tol > 0 && std::isfinite(abs_tol))) return fail("abs_tol: expected a positive number");
+  if (!(velocity_abs_tol > 0 && std::isfinite(velocity_abs_tol)))
+    return fail("velocity_abs_tol: expected a positive number");
+  if (!(initial_dt > 0 && std::isfinite(initial_dt)))
+    return fail("initial_dt: expected a positive number");
+  if (!(max_dt >= 0 && std::isfinite(max_dt))) return fail("max_dt: expected a number >= 0");
+  if (!(min_dt > 0 && std::isfinite(min_dt))) return fail("min_dt: expected a positive number");
+  if (max_steps < 1) return fail("max_steps: expected at least 1");
+  return true;
+}
+
+const char* ToString(IntegratorStatus status) {
+  switch (status) {
+    case IntegratorStatus::kOk:
+      return "ok";
+    case IntegratorStatus::kStepSizeUnderflow:
+      return "step_size_underflow";
+    case IntegratorStatus::kMaxSteps:
+      return "max_steps";
+    case IntegratorStatus::kNotRun:
+      break;
+  }
+  return "not_run";
+}
+
+RosenbrockIntegrator::RosenbrockIntegrator(const QuatFdModel& model,
+                                           const IntegratorOptions& options)
+    : model_(model), options_(options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("IntegratorOptions: " + why);
+  n_ = model.size();
+  const int bw = QuatFdLayout::kBandwidth;
+  A_.Resize(n_, bw, bw);
+  B_.Resize(n_, bw, bw);
+  M_.Resize(n_, bw, bw);
+  for (Eigen::VectorXd* v : {&y_, &y_new_, &err_, &f_, &tmp_}) v->resize(2 * n_);
+  for (Eigen::VectorXd& g : g_) g.resize(2 * n_);
+  acc_.resize(n_);
+  dt_ = options.initial_dt;
+}
+
+void RosenbrockIntegrator::F(const Eigen::Ref<const Eigen::VectorXd>& y,
+                             Eigen::Ref<Eigen::VectorXd> out) {
+  out.head(n_) = y.tail(n_);
+  model_.Acceleration(y.head(n_), y.tail(n_), out.tail(n_));
+  ++stats_.f_evaluations;
+}
+
+void RosenbrockIntegrator::SolveStage(Eigen::Ref<Eigen::VectorXd> r) {
+  // w = M⁻¹ (a r_v + A r_q), u = (r_q + w)/a.
+  auto rq = r.head(n_);
+  auto rv = r.tail(n_);
+  A_.Multiply(rq, acc_);
+  rv = a_ * rv + acc_;
+  M_.Solve(rv);
+  rq = (rq + rv) / a_;
+}
+
+bool RosenbrockIntegrator::Step(const Eigen::Ref<const Eigen::VectorXd>& y, double h,
+                                Eigen::Ref<Eigen::VectorXd> y_new,
+                                Eigen::Ref<Eigen::VectorXd> error) {
+  const int n = n_;
+  // Jacobian (and f) at y; the iteration matrix M = a² I − a B − A.
+  model_.Jacobian(y.head(n), y.tail(n), &A_, &B_, &acc_);
+  ++stats_.jacobian_evaluations;
+  a_ = 1.0 / (kGamma * h);
+  const int bw = QuatFdLayout::kBandwidth;
+  for (int j = 0; j < n; ++j)
+    for (int i = std::max(0, j - bw); i <= std::min(n - 1, j + bw); ++i)
+      M_(i, j) = -a_ * B_(i, j) - A_(i, j) + (i == j ? a_ * a_ : 0.0);
+  ++stats_.factorizations;
+  if (!M_.Factorize()) return false;
+
+  Eigen::VectorXd &g1 = g_[0], &g2 = g_[1], &g3 = g_[2], &g4 = g_[3], &g5 = g_[4];
+  g1.head(n) = y.tail(n);
+  g1.tail(n) = acc_;
+  SolveStage(g1);
+
+  tmp_ = y + a21 * g1;
+  F(tmp_, g2);
+  g2 += (c21 / h) * g1;
+  SolveStage(g2);
+
+  tmp_ = y + a31 * g1 + a32 * g2;
+  F(tmp_, g3);
+  g3 += (c31 * g1 + c32 * g2) / h;
+  SolveStage(g3);
+
+  tmp_ = y + a41 * g1 + a42 * g2 + a43 * g3;
+  F(tmp_, g4);
+  g4 += (c41 * g1 + c42 * g2 + c43 * g3) / h;
+  SolveStage(g4);
+
+  tmp_ = y + a51 * g1 + a52 * g2 + a53 * g3 + a54 * g4;
+  F(tmp_, g5);
+  g5 += (c51 * g1 + c52 * g2 + c53 * g3 + c54 * g4) / h;
+  SolveStage(g5);
+
+  tmp_ += g5;
+  F(tmp_, error);
+  error += (c61 * g1 + c62 * g2 + c63 * g3 + c64 * g4 + c65 * g5) / h;
+  SolveStage(error);
+  y_new = tmp_ + error;
+  return true;
+}
+
+IntegratorStatus RosenbrockIntegrator::Advance(double t_end, double* t,
+                                               Eigen::Ref<Eigen::VectorXd> q,
+                                               Eigen::Ref<Eigen::VectorXd> v) {
+  const int n = n_;
+  y_.head(n) = q;
+  y_.tail(n) = v;
+  long attempts = 0;
+  while (*t < t_end) {
+    if (++attempts > options_.max_steps) return IntegratorStatus::kMaxSteps;
+    if (options_.max_dt > 0) dt_ = std::min(dt_, options_.max_dt);
+    // Land exactly on t_end; a last step within 1e-12 of it is stretched to it.
+    const bool last = *t + dt_ * (1 + 1e-12) >= t_end;
+    const double h = last ? t_end - *t : dt_;
+    const bool ok = Step(y_, h, y_new_, err_);
+    double err = ok ? ErrorNorm(options_, n, y_, y_new_, err_) : 0.0;
+    if (!ok || !std::isfinite(err) || !y_new_.allFinite()) err = 1e10;  // reject, shrink 6×
+    // Step-size factor of odeint's rosenbrock4_controller: h_new = h / clamp(err^¼/0.9, 1/6, 5).
+    const double fac = std::clamp(std::pow(err, 0.25) / 0.9, 1.0 / 6.0, 5.0);
+    if (err > 1.0) {
+      ++stats_.rejected;
+      dt_ = h / fac;
+      last_rejected_ = true;
+      if (dt_ < options_.min_dt) {
+        q = y_.head(n);
+        v = y_.tail(n);
+        return IntegratorStatus::kStepSizeUnderflow;
+      }
+      continue;
+    }
+    ++stats_.steps;
+    stats_.last_dt = h;
+    *t = last ? t_end : *t + h;
+    y_.swap(y_new_);
+    if (options_.project) {
+      stats_.max_drift_before_projection =
+          std::max(stats_.max_drift_before_projection, model_.Project(y_.head(n), y_.tail(n)));
+    }
+    // After a rejection, do not grow at once; a clipped last step keeps the running size.
+    const double next = last_rejected_ ? std::min(h, h / fac) : h / fac;
+    if (!last || next < dt_) dt_ = next;
+    last_rejected_ = false;
+  }
+  q = y_.head(n);
+  v = y_.tail(n);
+  return IntegratorStatus::kOk;
+}
+
+}  // namespace cosserat::quatfd
