@@ -2,14 +2,26 @@
 /// \file
 /// The actuation state handed to a rod model each control tick.
 
+#include <array>
+
 namespace cosserat {
 
 /// What the robot's actuators do right now. The plain rod ignores it; robot models (tendons,
-/// pressure, jamming, eversion) read the fields they own. Kept a plain aggregate so a controller
-/// can fill it without allocating.
+/// pressure, jamming, eversion) read the fields they own. A plain fixed-size aggregate, so a
+/// controller can fill it every tick without allocating.
 struct Actuation {
+  static constexpr int kMaxTendons = 8;
+  static constexpr int kMaxSegments = 16;
+
   /// Scales every stiffness profile's actuation-dependent factor; 1 for the plain rod.
   double stiffness_scale = 1.0;
+  /// Internal (inflation) gauge pressure of an inflated body, Pa. Read by pressure-dependent
+  /// profiles (E_eff(p)) and by eversion robots (follower tip force p·A).
+  double pressure = 0.0;
+  /// Tendon tensions, N (≥ 0), in the order of the robot's tendon list.
+  std::array<double, kMaxTendons> tendon_tension{};
+  /// Layer-jamming pressure difference ΔP of each switchable segment, Pa; 0: compliant.
+  std::array<double, kMaxSegments> jamming_pressure{};
 };
 
 }  // namespace cosserat
