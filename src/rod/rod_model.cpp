@@ -101,6 +101,17 @@ bool RodModel::IsValid(std::string* why) const {
     if (why) *why = "section profile is missing";
     return false;
   }
+  if (tendons.size() > static_cast<size_t>(Actuation::kMaxTendons)) {
+    if (why) *why = "at most " + std::to_string(Actuation::kMaxTendons) + " tendons";
+    return false;
+  }
+  for (size_t i = 0; i < tendons.size(); ++i) {
+    std::string reason;
+    if (!tendons[i].route.IsValid(&reason)) {
+      if (why) *why = "tendon " + std::to_string(i) + ": " + reason;
+      return false;
+    }
+  }
   return section->IsValid(length, why);
 }
 

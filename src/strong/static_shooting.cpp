@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "cosserat/lie/so3.hpp"
+#include "cosserat/loads/tendons.hpp"
 #include "cosserat/rod/grid.hpp"
 #include "frame_tangent.hpp"
 
@@ -128,25 +129,11 @@ COSSERAT_HOT Vec6 BodyWrench(const ShotState& y) {
   return W;
 }
 
-// d/ds of the state (seed 002 eqs. 14 and 16 with V = 0, for W = [m; n] = −Λ):
+// d/ds of the state (seed 002 eqs. 14 and 16 with V = 0, for W = [m; n] = −Λ) given the strain:
 //   p' = R Γ,  R' = R K̂,  m' = −K × m − Γ × n,  n' = −K × n − Rᵀ f_W.
-// Returns the strain it computed, for recording.
-COSSERAT_HOT ShotState Derivative(const Sample& smp, const Vec3& f_W, const ShotState& y,
-                                  Vec6* xi) {
-  if (smp.diagonal) {  // written out: this is the innermost loop of every solve
-    const double* c = smp.compliance_diagonal.data();
-    const double* r = smp.rest_strain.data();
-    (*xi)(0) = r[0] + c[0] * y.m(0);
-    (*xi)(1) = r[1] + c[1] * y.m(1);
-    (*xi)(2) = r[2] + c[2] * y.m(2);
-    (*xi)(3) = r[3] + c[3] * y.n(0);
-    (*xi)(4) = r[4] + c[4] * y.n(1);
-    (*xi)(5) = r[5] + c[5] * y.n(2);
-  } else {
-    *xi = Compliance(smp, BodyWrench(y));
-  }
-  const double k0 = (*xi)(0), k1 = (*xi)(1), k2 = (*xi)(2);
-  const double g0 = (*xi)(3), g1 = (*xi)(4), g2 = (*xi)(5);
+COSSERAT_HOT ShotState Rates(const Vec6& xi, const Vec3& f_W, const ShotState& y) {
+  const double k0 = xi(0), k1 = xi(1), k2 = xi(2);
+  const double g0 = xi(3), g1 = xi(4), g2 = xi(5);
   const double m0 = y.m(0), m1 = y.m(1), m2 = y.m(2);
   const double n0 = y.n(0), n1 = y.n(1), n2 = y.n(2);
   const Mat3& R = y.R;
@@ -169,13 +156,43 @@ COSSERAT_HOT ShotState Derivative(const Sample& smp, const Vec3& f_W, const Shot
   return d;
 }
 
+// The plain rod's derivative: strain from the linear law, then the rates. Writes the strain.
+COSSERAT_HOT ShotState Derivative(const Sample& smp, const Vec3& f_W, const ShotState& y,
+                                  Vec6* xi) {
+  if (smp.diagonal) {  // written out: this is the innermost loop of every solve
+    const double* c = smp.compliance_diagonal.data();
+    const double* r = smp.rest_strain.data();
+    (*xi)(0) = r[0] + c[0] * y.m(0);
+    (*xi)(1) = r[1] + c[1] * y.m(1);
+    (*xi)(2) = r[2] + c[2] * y.m(2);
+    (*xi)(3) = r[3] + c[3] * y.n(0);
+    (*xi)(4) = r[4] + c[4] * y.n(1);
+    (*xi)(5) = r[5] + c[5] * y.n(2);
+  } else {
+    *xi = Compliance(smp, BodyWrench(y));
+  }
+  return Rates(*xi, f_W, y);
+}
+
+// With tendons, the strain solves K (ξ − ξ*) + Σ τ a(ξ) = W (tendons.hpp), starting from the
+// guess in *xi; H = K + ∂(Σ τ a)/∂ξ is written for the tangent. A failed solve gives NaN rates.
+ShotState TendonDerivative(const Sample& smp, const StaticShootingSolver::TendonStage& ts,
+                           const double* tension, const Vec3& f_W, const ShotState& y, Vec6* xi,
+                           Mat6* H) {
+  if (!SolveTendonStrain(ts.stiffness, smp.rest_strain, ts.tendons, tension, BodyWrench(y), xi, H))
+    xi->setConstant(NAN);
+  return Rates(*xi, f_W, y);
+}
+
 // The linearisation of Derivative along the tangent dy, given the primal strain.
+// With tendons (H given), dξ = H⁻¹ dW.
 ShotTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const ShotState& y,
-                              const ShotTangent& dy, const Vec6& xi) {
+                              const ShotTangent& dy, const Vec6& xi, const Mat6* H = nullptr) {
   Mat6 dW;
   dW << dy.m, dy.n;
-  const Mat6 dxi =
-      smp.diagonal ? Mat6(smp.compliance_diagonal.asDiagonal() * dW) : Mat6(smp.compliance * dW);
+  const Mat6 dxi = H              ? Mat6(H->partialPivLu().solve(dW))
+                   : smp.diagonal ? Mat6(smp.compliance_diagonal.asDiagonal() * dW)
+                                  : Mat6(smp.compliance * dW);
   const Mat36 dK = dxi.topRows<3>(), dG = dxi.bottomRows<3>();
   const Vec3 K = xi.head<3>(), G = xi.tail<3>();
   ShotTangent dd;
@@ -200,9 +217,17 @@ Vec6 TipResidual(const Mat3& R_tip, const Vec6& W_tip_B, const StaticLoads& load
 
 // Integrates from s = 0 to L with RK4 on the grid and returns the dimensionless tip residual.
 // With record, writes the node values; with J, propagates the tangent and writes d r / d x.
+// With tendons (tc not null): the tendon strain law at every stage, and the tendon path lengths
+// by the same RK4 quadrature.
+struct TendonContext {
+  const std::vector<StaticShootingSolver::TendonStage>* stages;  // parallel to the samples
+  const double* tension;
+  double* length;  // out: Σ over stages of the quadrature weight × |q_i|
+};
+
 Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, const Vec6& scale,
-           const lie::SE3& base, const StaticLoads& loads, const Vec6& x, RodState* record,
-           Mat6* J) {
+           const lie::SE3& base, const StaticLoads& loads, const Vec6& x, RodState* record, Mat6* J,
+           const TendonContext* tc = nullptr) {
   const int n = static_cast<int>(grid.size());
   const Vec6 W0 = scale.cwiseProduct(x);
   ShotState y{base.p, base.R, W0.head<3>(), W0.tail<3>()};
@@ -226,30 +251,68 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
   };
 
   Vec6 xi1, xi2, xi3, xi4;
+  Mat6 H1, H2, H3, H4;
+  Vec6 guess = samples.front().rest_strain;  // tendon strain solves start from the last stage
+  int count = 0;
+  if (tc) {
+    count = (*tc->stages)[0].tendons.count;
+    for (int k = 0; k < count; ++k) tc->length[k] = 0.0;
+  }
+  // One stage: the plain law, or the tendon law from the running guess.
+  auto derivative = [&](int q, const Vec3& f, const ShotState& ys, Vec6* xi, Mat6* H) {
+    if (!tc) return Derivative(samples[q], f, ys, xi);
+    *xi = guess;
+    const ShotState d = TendonDerivative(samples[q], (*tc->stages)[q], tc->tension, f, ys, xi, H);
+    guess = *xi;
+    return d;
+  };
   for (int i = 0; i + 1 < n; ++i) {
     const double h = grid[i + 1] - grid[i];
-    const Sample& s0 = samples[3 * i];
-    const Sample& sm = samples[3 * i + 1];
-    const Sample& s1 = samples[3 * i + 2];
+    const int q0 = 3 * i, qm = 3 * i + 1, q1 = 3 * i + 2;
+    const Sample& s0 = samples[q0];
+    const Sample& sm = samples[qm];
+    const Sample& s1 = samples[q1];
     const Vec3 f0 = f_at(s0), fm = f_at(sm), f1 = f_at(s1);
-    const ShotState k1 = Derivative(s0, f0, y, &xi1);
+    const ShotState k1 = derivative(q0, f0, y, &xi1, &H1);
     if (record) record_node(i, xi1);
     const ShotState y2 = Axpy(y, 0.5 * h, k1);
-    const ShotState k2 = Derivative(sm, fm, y2, &xi2);
+    const ShotState k2 = derivative(qm, fm, y2, &xi2, &H2);
     const ShotState y3 = Axpy(y, 0.5 * h, k2);
-    const ShotState k3 = Derivative(sm, fm, y3, &xi3);
+    const ShotState k3 = derivative(qm, fm, y3, &xi3, &H3);
     const ShotState y4 = Axpy(y, h, k3);
-    const ShotState k4 = Derivative(s1, f1, y4, &xi4);
+    const ShotState k4 = derivative(q1, f1, y4, &xi4, &H4);
     if (J) {
-      const ShotTangent t1 = TangentDerivative(s0, f0, y, dy, xi1);
-      const ShotTangent t2 = TangentDerivative(sm, fm, y2, Axpy(dy, 0.5 * h, t1), xi2);
-      const ShotTangent t3 = TangentDerivative(sm, fm, y3, Axpy(dy, 0.5 * h, t2), xi3);
-      const ShotTangent t4 = TangentDerivative(s1, f1, y4, Axpy(dy, h, t3), xi4);
+      const Mat6* h1 = tc ? &H1 : nullptr;
+      const Mat6* h2 = tc ? &H2 : nullptr;
+      const Mat6* h3 = tc ? &H3 : nullptr;
+      const Mat6* h4 = tc ? &H4 : nullptr;
+      const ShotTangent t1 = TangentDerivative(s0, f0, y, dy, xi1, h1);
+      const ShotTangent t2 = TangentDerivative(sm, fm, y2, Axpy(dy, 0.5 * h, t1), xi2, h2);
+      const ShotTangent t3 = TangentDerivative(sm, fm, y3, Axpy(dy, 0.5 * h, t2), xi3, h3);
+      const ShotTangent t4 = TangentDerivative(s1, f1, y4, Axpy(dy, h, t3), xi4, h4);
       Rk4Update(h, t1, t2, t3, t4, &dy);
+    }
+    for (int k = 0; k < count; ++k) {
+      const auto& ts = *tc->stages;
+      tc->length[k] +=
+          h / 6 *
+          (TendonPathRate(ts[q0].tendons, k, xi1) + 2 * TendonPathRate(ts[qm].tendons, k, xi2) +
+           2 * TendonPathRate(ts[qm].tendons, k, xi3) + TendonPathRate(ts[q1].tendons, k, xi4));
     }
     Rk4Update(h, k1, k2, k3, k4, &y);
   }
-  if (record) record_node(n - 1, Compliance(samples[3 * (n - 2) + 2], BodyWrench(y)));
+  if (record) {
+    const int q_tip = 3 * (n - 2) + 2;
+    Vec6 xi_tip = Compliance(samples[q_tip], BodyWrench(y));
+    if (tc) {
+      xi_tip = guess;
+      Mat6 H;
+      if (!SolveTendonStrain((*tc->stages)[q_tip].stiffness, samples[q_tip].rest_strain,
+                             (*tc->stages)[q_tip].tendons, tc->tension, BodyWrench(y), &xi_tip, &H))
+        xi_tip.setConstant(NAN);
+    }
+    record_node(n - 1, xi_tip);
+  }
 
   if (J) {
     J->topRows<3>() = dy.m;
@@ -268,25 +331,20 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
 StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
                                            const StaticShootingOptions& options,
                                            const Actuation& actuation)
-    : model_(model), options_(options) {
+    : model_(model), options_(options), actuation_(actuation) {
   std::string why;
   if (!options_.IsValid(&why)) throw std::invalid_argument("StaticShootingOptions: " + why);
+  if (!model_.IsValid(&why)) throw std::invalid_argument("RodModel: " + why);
   grid_ = ModelGrid(model_, num_nodes);
   const int n = static_cast<int>(grid_.size());
-
-  auto make = [&](double s) {
-    const SectionProperties p = model_.section->At(s, actuation);
-    Sample smp;
-    smp.compliance = p.stiffness.inverse();
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j)
-        if (i != j && smp.compliance(i, j) != 0.0) smp.diagonal = false;
-    smp.compliance_diagonal = smp.compliance.diagonal();
-    smp.rest_strain = model_.RestStrainAt(s);
-    smp.mass_per_length = p.mass(5, 5);
-    return smp;
-  };
-  for (double s : SegmentSamplePoints(grid_)) samples_.push_back(make(s));
+  const std::vector<double> points = SegmentSamplePoints(grid_);
+  samples_.resize(points.size());
+  if (!model_.tendons.empty()) {
+    tendon_stages_.resize(points.size());
+    for (size_t q = 0; q < points.size(); ++q)
+      tendon_stages_[q].tendons = SampleTendons(model_.tendons, points[q], model_.length);
+  }
+  SampleSections();
 
   const SectionProperties base_section = model_.section->At(0.0, actuation);
   const double EI = std::max(base_section.stiffness(0, 0), base_section.stiffness(1, 1));
@@ -295,7 +353,8 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
   state_.Resize(n);
   for (int i = 0; i < n; ++i) state_.s[i] = grid_[i];
 
-  // Rest shape in the base body frame (zero wrench), for the rigid-body initial guess.
+  // Rest shape in the base body frame (zero wrench, no tendon tension), for the rigid-body
+  // initial guess.
   RodState rest;
   rest.Resize(n);
   Shoot(grid_, samples_, scale_, lie::SE3{}, StaticLoads{}, Vec6::Zero(), &rest, nullptr);
@@ -303,15 +362,45 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
   rest_rotation_B_ = rest.rotation_WB;
 }
 
+void StaticShootingSolver::SampleSections() {
+  const std::vector<double> points = SegmentSamplePoints(grid_);
+  for (size_t q = 0; q < points.size(); ++q) {
+    const double s = points[q];
+    const SectionProperties p = model_.section->At(s, actuation_);
+    Sample& smp = samples_[q];
+    smp.compliance = p.stiffness.inverse();
+    smp.diagonal = true;
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j)
+        if (i != j && smp.compliance(i, j) != 0.0) smp.diagonal = false;
+    smp.compliance_diagonal = smp.compliance.diagonal();
+    smp.rest_strain = model_.RestStrainAt(s);
+    smp.mass_per_length = p.mass(5, 5);
+    if (!tendon_stages_.empty()) tendon_stages_[q].stiffness = p.stiffness;
+  }
+}
+
+void StaticShootingSolver::SetActuation(const Actuation& actuation) {
+  actuation_ = actuation;
+  SampleSections();
+  state_is_solution_ = false;  // the stored shot belongs to the old actuation
+}
+
 Vec6 StaticShootingSolver::Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& x) {
   state_is_solution_ = false;
-  return Shoot(grid_, samples_, scale_, base, loads, x, &state_, nullptr);
+  if (tendon_stages_.empty())
+    return Shoot(grid_, samples_, scale_, base, loads, x, &state_, nullptr);
+  const TendonContext tc{&tendon_stages_, actuation_.tendon_tension.data(), tendon_length_.data()};
+  return Shoot(grid_, samples_, scale_, base, loads, x, &state_, nullptr, &tc);
 }
 
 Mat6 StaticShootingSolver::ResidualJacobian(const lie::SE3& base, const StaticLoads& loads,
                                             const Vec6& x, Vec6* residual) const {
   Mat6 J;
-  const Vec6 r = Shoot(grid_, samples_, scale_, base, loads, x, nullptr, &J);
+  std::array<double, Actuation::kMaxTendons> lengths{};
+  const TendonContext tc{&tendon_stages_, actuation_.tendon_tension.data(), lengths.data()};
+  const Vec6 r = Shoot(grid_, samples_, scale_, base, loads, x, nullptr, &J,
+                       tendon_stages_.empty() ? nullptr : &tc);
   if (residual) *residual = r;
   return J;
 }

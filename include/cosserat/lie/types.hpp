@@ -22,6 +22,7 @@ using Matrix6 = Eigen::Matrix<T, 6, 6>;
 
 using Vec3 = Vector3<double>;
 using Mat3 = Matrix3<double>;
+using Vec2 = Eigen::Matrix<double, 2, 1>;
 using Vec4 = Eigen::Matrix<double, 4, 1>;
 using Vec6 = Vector6<double>;
 using Mat6 = Matrix6<double>;

@@ -6,8 +6,10 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cosserat/lie/types.hpp"
+#include "cosserat/loads/tendons.hpp"
 #include "cosserat/rod/section_profile.hpp"
 
 namespace cosserat {
@@ -25,6 +27,9 @@ struct RodModel {
   double length = 0.0;                            ///< L, m
   std::shared_ptr<const SectionProfile> section;  ///< K(s), M(s), D(s)
   RestStrainFunction rest_strain;                 ///< ξ*(s); empty means straight
+  /// Tendons routed through the rod (at most Actuation::kMaxTendons); their tensions are part of
+  /// the Actuation. Empty for a plain rod.
+  std::vector<Tendon> tendons;
 
   /// A uniform straight rod.
   static RodModel Uniform(double length, const CrossSection& section, const Material& material);

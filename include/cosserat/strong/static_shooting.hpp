@@ -11,12 +11,14 @@
 /// W(L) − W_tip in the tip body frame; Levenberg–Marquardt (ceres::TinySolver) with an exact
 /// Jacobian (tangent propagation through the integrator) drives it to zero.
 
+#include <array>
 #include <chrono>
 #include <string>
 #include <vector>
 
 #include "cosserat/lie/se3.hpp"
 #include "cosserat/loads/static_loads.hpp"
+#include "cosserat/loads/tendons.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/strong/rod_state.hpp"
@@ -71,6 +73,19 @@ class StaticShootingSolver {
   /// state is valid when the status is converged, and holds the last iterate otherwise.
   StaticShootingSummary Solve(const lie::SE3& base, const StaticLoads& loads);
 
+  /// New actuation (tendon tensions, pressures, jamming states): re-samples the section
+  /// properties and the tendon tensions without allocating. The next Solve warm-starts from the
+  /// previous solution, which is still the best guess for a small change.
+  void SetActuation(const Actuation& actuation);
+  const Actuation& actuation() const { return actuation_; }
+
+  /// Path length of each tendon (m) in the last shot, by the RK4 quadrature of |Γ + K × r + r'|
+  /// over the grid: after a converged Solve, the tendon lengths of the equilibrium. Zero for
+  /// tendons the model does not have.
+  const std::array<double, Actuation::kMaxTendons>& tendon_lengths() const {
+    return tendon_length_;
+  }
+
   /// Forget the previous solution: the next Solve starts cold.
   void ResetWarmStart() {
     has_solution_ = false;
@@ -92,6 +107,11 @@ class StaticShootingSolver {
     double mass_per_length;  ///< ρ A, kg/m
     bool diagonal = true;    ///< compliance has no off-diagonal entries
   };
+  /// What the tendon strain law needs at a sample point (only for rods with tendons).
+  struct TendonStage {
+    TendonSample tendons;
+    Mat6 stiffness = Mat6::Identity();  ///< K(s)
+  };
   /// The dimensionless residual at a dimensionless unknown x (W(0) scaled); fills the state.
   Vec6 Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& x);
   /// Its Jacobian d residual / d x (6 × 6), the exact derivative of the discrete map (tangents
@@ -105,11 +125,15 @@ class StaticShootingSolver {
   bool TryLevenbergMarquardt(const lie::SE3& base, const StaticLoads& loads, double tolerance,
                              Vec6* x, StaticShootingSummary* summary);
   Vec6 RigidGuess(const lie::SE3& base, const StaticLoads& loads) const;
+  void SampleSections();
 
   RodModel model_;
   StaticShootingOptions options_;
+  Actuation actuation_;
   std::vector<double> grid_;
   std::vector<Sample> samples_;
+  std::vector<TendonStage> tendon_stages_;  ///< parallel to samples_; empty without tendons
+  std::array<double, Actuation::kMaxTendons> tendon_length_{};
   Vec6 scale_;  ///< W = scale ⊙ x: [EI/L ×3, EI/L² ×3]
   RodState state_;
   std::vector<Vec3> rest_position_B_;  ///< rest shape in the base body frame, for guesses
