@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "cosserat/lie/so3.hpp"
+#include "cosserat/robots/tendon_control.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat {
@@ -118,6 +120,76 @@ TEST(Tendons, BaseReactionBalancesTheExternalLoadsWhateverTheTension) {
     // the solver tolerance (1e-10 of EI/L²) and the RK4 error of the body-frame force balance.
     EXPECT_LT((reaction.tail<3>() + external).norm(), 1e-9 * external.norm()) << tau;
   }
+}
+
+TEST(Tendons, TipJacobianInTheTensionsMatchesFiniteDifferences) {
+  TendonRod rod;
+  const RodModel model = rod.Model({{"a", TendonRoute::Parallel(Vec2(0.004, 0))},
+                                    {"b", TendonRoute::Converging(Vec2(0, 0.004), Vec2(0, 0.002))},
+                                    {"c", TendonRoute::Helical(0.003, 0.2, 0.3)}});
+  StaticLoads loads;
+  loads.gravity_W = Vec3(0, -9.81, 0);
+  loads.tip_force = Vec3(0.1, 0, -0.05);
+  StaticShootingOptions tight;
+  tight.tolerance = 1e-13;  // so the differences below are not solver noise
+  StaticShootingSolver solver(model, 41, tight);
+  const Actuation at = Tensions({2.0, 1.0, 0.5});
+  solver.SetActuation(at);
+  ASSERT_TRUE(solver.Solve(lie::SE3{}, loads).converged());
+  StaticShootingSolver::TensionJacobian J;
+  ASSERT_TRUE(solver.TipJacobianWrtTensions(lie::SE3{}, loads, &J));
+  const Vec3 p0 = solver.state().tip_position_W();
+  const Mat3 R0 = solver.state().tip_rotation_WB();
+
+  // Central differences with δ = 1e-4 N: truncation ~δ² ≈ 1e-8 relative, solver noise at
+  // 1e-13 ~1e-9 relative; the Jacobian is exact for the discrete model, so 1e-6 is safe.
+  const double delta = 1e-4;
+  StaticShootingSolver::TensionJacobian fd = StaticShootingSolver::TensionJacobian::Zero();
+  for (int i = 0; i < 3; ++i) {
+    Vec3 p[2];
+    Vec3 theta[2];
+    for (int k = 0; k < 2; ++k) {
+      Actuation a = at;
+      a.tendon_tension[i] += (k == 0 ? delta : -delta);
+      solver.SetActuation(a);
+      ASSERT_TRUE(solver.Solve(lie::SE3{}, loads).converged());
+      p[k] = solver.state().tip_position_W();
+      theta[k] = lie::SO3Log(R0.transpose() * solver.state().tip_rotation_WB());
+    }
+    fd.col(i) << (p[0] - p[1]) / (2 * delta), (theta[0] - theta[1]) / (2 * delta);
+  }
+  EXPECT_LT((J - fd).norm(), 1e-6 * fd.norm()) << "analytic\n" << J << "\nfd\n" << fd;
+  EXPECT_GT(fd.norm(), 1e-3);              // the tensions do move the tip
+  EXPECT_TRUE(J.rightCols<5>().isZero());  // no tendons there
+  (void)p0;
+}
+
+TEST(Tendons, LengthCommandReachesTheTensionThatProducesItAndASlackTendonCarriesNothing) {
+  TendonRod rod;
+  const RodModel model = rod.Model({{"a", TendonRoute::Parallel(Vec2(0.004, 0))},
+                                    {"b", TendonRoute::Parallel(Vec2(-0.004, 0))}});
+  StaticLoads loads;
+  loads.gravity_W = Vec3(0, -9.81, 0);
+  StaticShootingSolver solver(model, 41);
+  // The truth: the lengths that tensions (3 N, 0) produce.
+  solver.SetActuation(Tensions({3.0, 0.0}));
+  ASSERT_TRUE(solver.Solve(lie::SE3{}, loads).converged());
+  std::array<double, Actuation::kMaxTendons> command{};
+  command[0] = solver.tendon_lengths()[0];
+  // Tendon b, opposite, is stretched by the bend; command it 1 mm longer still: it must go slack
+  // rather than push.
+  command[1] = solver.tendon_lengths()[1] + 1e-3;
+  Actuation a = Tensions({0.5, 2.0});  // start elsewhere
+  const TendonLengthSummary s = SolveTendonLengths(solver, lie::SE3{}, loads, command, &a);
+  ASSERT_TRUE(s.converged()) << ToString(s.status);
+  // Length tolerance 1e-10 L; the length-tension slope here is ~1e-4 m/N, so the tension is
+  // recovered to ~1e-7 relative.
+  EXPECT_NEAR(a.tendon_tension[0], 3.0, 1e-6);
+  EXPECT_EQ(a.tendon_tension[1], 0.0);
+  EXPECT_TRUE(s.slack[1]);
+  EXPECT_FALSE(s.slack[0]);
+  EXPECT_NEAR(solver.tendon_lengths()[0], command[0], 1e-10 * rod.L);
+  EXPECT_GT(command[1], solver.tendon_lengths()[1]);  // slack: the path is shorter than the cable
 }
 
 }  // namespace

@@ -185,11 +185,13 @@ ShotState TendonDerivative(const Sample& smp, const StaticShootingSolver::Tendon
 }
 
 // The linearisation of Derivative along the tangent dy, given the primal strain.
-// With tendons (H given), dξ = H⁻¹ dW.
+// With tendons (H given), dξ = H⁻¹ (dW − source), the source being ∂(Σ τ a)/∂(direction).
 ShotTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const ShotState& y,
-                              const ShotTangent& dy, const Vec6& xi, const Mat6* H = nullptr) {
+                              const ShotTangent& dy, const Vec6& xi, const Mat6* H = nullptr,
+                              const Mat6* source = nullptr) {
   Mat6 dW;
   dW << dy.m, dy.n;
+  if (source) dW -= *source;
   const Mat6 dxi = H              ? Mat6(H->partialPivLu().solve(dW))
                    : smp.diagonal ? Mat6(smp.compliance_diagonal.asDiagonal() * dW)
                                   : Mat6(smp.compliance * dW);
@@ -223,7 +225,22 @@ struct TendonContext {
   const std::vector<StaticShootingSolver::TendonStage>* stages;  // parallel to the samples
   const double* tension;
   double* length;  // out: Σ over stages of the quadrature weight × |q_i|
+  // The tangent's 6 directions: the unknowns x (−1), or the tensions of tendons k0 … k0 + 5.
+  int tension_block = -1;
+  Mat36* tip_dp = nullptr;            // out if set: d p(L) along the directions
+  RotationTangent* tip_dR = nullptr;  // out if set: d R(L) e_j along the directions
 };
+
+// ∂(Σ τ a)/∂τ_k for k = k0 … k0 + 5 (zero columns past the last tendon): the source of the
+// tension tangent, dξ = H⁻¹ (dW − this).
+Mat6 TensionSource(const StaticShootingSolver::TendonStage& ts, const double* tension,
+                   const Vec6& xi, int k0) {
+  std::array<Vec6, Actuation::kMaxTendons> a;
+  TendonWrench(ts.tendons, tension, xi, nullptr, &a);
+  Mat6 out = Mat6::Zero();
+  for (int j = 0; j < 6 && k0 + j < ts.tendons.count; ++j) out.col(j) = a[k0 + j];
+  return out;
+}
 
 Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, const Vec6& scale,
            const lie::SE3& base, const StaticLoads& loads, const Vec6& x, RodState* record, Mat6* J,
@@ -237,8 +254,10 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
     for (auto& c : dy.R) c.setZero();
     dy.m.setZero();
     dy.n.setZero();
-    dy.m.leftCols<3>() = scale.head<3>().asDiagonal();
-    dy.n.rightCols<3>() = scale.tail<3>().asDiagonal();
+    if (!(tc && tc->tension_block >= 0)) {  // directions: the unknowns, W(0) = scale ⊙ x
+      dy.m.leftCols<3>() = scale.head<3>().asDiagonal();
+      dy.n.rightCols<3>() = scale.tail<3>().asDiagonal();
+    }
   }
   auto f_at = [&](const Sample& smp) -> Vec3 {
     return smp.mass_per_length * loads.gravity_W + loads.distributed_force_W;
@@ -286,10 +305,23 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
       const Mat6* h2 = tc ? &H2 : nullptr;
       const Mat6* h3 = tc ? &H3 : nullptr;
       const Mat6* h4 = tc ? &H4 : nullptr;
-      const ShotTangent t1 = TangentDerivative(s0, f0, y, dy, xi1, h1);
-      const ShotTangent t2 = TangentDerivative(sm, fm, y2, Axpy(dy, 0.5 * h, t1), xi2, h2);
-      const ShotTangent t3 = TangentDerivative(sm, fm, y3, Axpy(dy, 0.5 * h, t2), xi3, h3);
-      const ShotTangent t4 = TangentDerivative(s1, f1, y4, Axpy(dy, h, t3), xi4, h4);
+      Mat6 src[4];
+      const bool tension = tc && tc->tension_block >= 0;
+      if (tension) {
+        const auto& ts = *tc->stages;
+        const int k0 = tc->tension_block;
+        src[0] = TensionSource(ts[q0], tc->tension, xi1, k0);
+        src[1] = TensionSource(ts[qm], tc->tension, xi2, k0);
+        src[2] = TensionSource(ts[qm], tc->tension, xi3, k0);
+        src[3] = TensionSource(ts[q1], tc->tension, xi4, k0);
+      }
+      auto source = [&](int j) { return tension ? &src[j] : nullptr; };
+      const ShotTangent t1 = TangentDerivative(s0, f0, y, dy, xi1, h1, source(0));
+      const ShotTangent t2 =
+          TangentDerivative(sm, fm, y2, Axpy(dy, 0.5 * h, t1), xi2, h2, source(1));
+      const ShotTangent t3 =
+          TangentDerivative(sm, fm, y3, Axpy(dy, 0.5 * h, t2), xi3, h3, source(2));
+      const ShotTangent t4 = TangentDerivative(s1, f1, y4, Axpy(dy, h, t3), xi4, h4, source(3));
       Rk4Update(h, t1, t2, t3, t4, &dy);
     }
     for (int k = 0; k < count; ++k) {
@@ -322,6 +354,8 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
     if (loads.tip_force_frame == LoadFrame::kWorld)
       J->bottomRows<3>() -= TransposeTimesFixed(dy.R, loads.tip_force);
     *J = scale.cwiseInverse().asDiagonal() * *J;
+    if (tc && tc->tip_dp) *tc->tip_dp = dy.p;
+    if (tc && tc->tip_dR) *tc->tip_dR = dy.R;
   }
   return TipResidual(y.R, BodyWrench(y), loads, scale);
 }
@@ -403,6 +437,47 @@ Mat6 StaticShootingSolver::ResidualJacobian(const lie::SE3& base, const StaticLo
                        tendon_stages_.empty() ? nullptr : &tc);
   if (residual) *residual = r;
   return J;
+}
+
+bool StaticShootingSolver::TipJacobianWrtTensions(const lie::SE3& base, const StaticLoads& loads,
+                                                  TensionJacobian* J) const {
+  const int count = static_cast<int>(model_.tendons.size());
+  J->setZero();
+  if (!state_is_solution_ || count == 0) return false;
+  std::array<double, Actuation::kMaxTendons> lengths{};
+  Mat36 dp_x, dp_t;
+  RotationTangent dR_x, dR_t;
+  // d r/d x and the tip pose along x …
+  TendonContext tc{
+      &tendon_stages_, actuation_.tendon_tension.data(), lengths.data(), -1, &dp_x, &dR_x};
+  Mat6 Jx, Jt;
+  Shoot(grid_, samples_, scale_, base, loads, x_, nullptr, &Jx, &tc);
+  const Eigen::PartialPivLU<Mat6> lu(Jx);
+  const Mat3& R = state_.rotation_WB.back();
+  // Body-frame rotation: R⁻¹ dR = (δθ)^, δθ read off the skew part.
+  auto angle = [&](const RotationTangent& dR, int k) {
+    Mat3 M;
+    for (int j = 0; j < 3; ++j) M.col(j) = R.transpose() * dR[j].col(k);
+    return Vec3(0.5 * (M(2, 1) - M(1, 2)), 0.5 * (M(0, 2) - M(2, 0)), 0.5 * (M(1, 0) - M(0, 1)));
+  };
+  // … then, six tendons at a time, d r/d τ and the tip pose along τ at fixed x; implicit
+  // function theorem: dx/dτ = −Jx⁻¹ Jτ, d tip/dτ = T_x dx/dτ + T_τ.
+  for (int k0 = 0; k0 < count; k0 += 6) {
+    tc.tension_block = k0;
+    tc.tip_dp = &dp_t;
+    tc.tip_dR = &dR_t;
+    Shoot(grid_, samples_, scale_, base, loads, x_, nullptr, &Jt, &tc);
+    const Mat6 dx = -lu.solve(Jt);
+    for (int j = 0; j < 6 && k0 + j < count; ++j) {
+      Vec3 dp = dp_t.col(j), dth = angle(dR_t, j);
+      for (int k = 0; k < 6; ++k) {
+        dp += dp_x.col(k) * dx(k, j);
+        dth += angle(dR_x, k) * dx(k, j);
+      }
+      J->col(k0 + j) << dp, dth;
+    }
+  }
+  return J->allFinite();
 }
 
 Vec6 StaticShootingSolver::base_wrench_B() const { return scale_.cwiseProduct(x_); }

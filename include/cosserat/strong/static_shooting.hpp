@@ -86,6 +86,16 @@ class StaticShootingSolver {
     return tendon_length_;
   }
 
+  /// d(tip pose)/d(tendon tensions) at the last converged solution (for controllers): column i is
+  /// [d p(L)/dτ_i (world, m/N); d θ/dτ_i (rad/N)] with R(L)(τ + dτ) ≈ R(L) Exp(Σ dθ_i dτ_i), the
+  /// rotation in the tip body frame. Exact for the discrete model: tangents of the shot in the
+  /// tensions and in the unknowns, combined by the implicit function theorem (not finite
+  /// differences). Columns past the model's tendons are zero. Allocates nothing. False if there
+  /// is no converged solution (or no tendons); pass the base and loads of that solve.
+  using TensionJacobian = Eigen::Matrix<double, 6, Actuation::kMaxTendons>;
+  bool TipJacobianWrtTensions(const lie::SE3& base, const StaticLoads& loads,
+                              TensionJacobian* J) const;
+
   /// Forget the previous solution: the next Solve starts cold.
   void ResetWarmStart() {
     has_solution_ = false;
@@ -93,6 +103,8 @@ class StaticShootingSolver {
   }
 
   const RodState& state() const { return state_; }
+  int tendon_count() const { return static_cast<int>(model_.tendons.size()); }
+  double length() const { return model_.length; }
   const std::vector<double>& grid() const { return grid_; }
   const StaticShootingOptions& options() const { return options_; }
   /// The unknown of the last solve: W(0) = [m; n] in the base body frame (N·m; N).

@@ -1,0 +1,41 @@
+#pragma once
+/// \file
+/// Displacement (tendon-length) control of a tendon-driven rod in statics: find the tensions
+/// that make each tendon's path as long as commanded. A tendon pulls but never pushes: one whose
+/// commanded length exceeds its path at zero tension goes slack and carries exactly zero.
+
+#include <array>
+
+#include "cosserat/lie/se3.hpp"
+#include "cosserat/loads/static_loads.hpp"
+#include "cosserat/rod/actuation.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+
+namespace cosserat {
+
+struct TendonLengthOptions {
+  /// Converged when every taut tendon's length is within tolerance × L of its command.
+  double tolerance = 1e-10;
+  int max_iterations = 50;
+};
+
+struct TendonLengthSummary {
+  SolveStatus status = SolveStatus::kNotRun;
+  int iterations = 0;         ///< Newton iterations on the tensions
+  int solves = 0;             ///< static solves (each warm-started)
+  double length_error = 0.0;  ///< largest |ℓ − ℓ_cmd| over the taut tendons, m
+  std::array<bool, Actuation::kMaxTendons> slack{};
+  bool converged() const { return status == SolveStatus::kConverged; }
+};
+
+/// Solves for the tensions (written into *actuation, whose other fields are kept and used) so
+/// that the tendon path lengths (StaticShootingSolver::tendon_lengths) equal `lengths` (m) for
+/// the model's tendons. Projected Newton on the tensions with τ ≥ 0; the length sensitivities
+/// come from warm-started re-solves. On return the solver holds the equilibrium.
+TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::SE3& base,
+                                       const StaticLoads& loads,
+                                       const std::array<double, Actuation::kMaxTendons>& lengths,
+                                       Actuation* actuation,
+                                       const TendonLengthOptions& options = {});
+
+}  // namespace cosserat

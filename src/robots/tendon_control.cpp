@@ -1,0 +1,94 @@
+#include "cosserat/robots/tendon_control.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+namespace cosserat {
+
+TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::SE3& base,
+                                       const StaticLoads& loads,
+                                       const std::array<double, Actuation::kMaxTendons>& lengths,
+                                       Actuation* actuation, const TendonLengthOptions& options) {
+  using VecT = Eigen::Matrix<double, Actuation::kMaxTendons, 1>;
+  using MatT = Eigen::Matrix<double, Actuation::kMaxTendons, Actuation::kMaxTendons>;
+  TendonLengthSummary summary;
+  const int count = solver.tendon_count();
+  const double tol = options.tolerance * solver.length();
+
+  // Lengths minus commands at tensions tau; false if the static solve fails.
+  auto mismatch = [&](const VecT& tau, VecT* g) {
+    Actuation a = *actuation;
+    for (int i = 0; i < count; ++i) a.tendon_tension[i] = tau(i);
+    solver.SetActuation(a);
+    ++summary.solves;
+    const auto s = solver.Solve(base, loads);
+    if (!s.converged()) {
+      summary.status = s.status;
+      return false;
+    }
+    g->setZero();
+    for (int i = 0; i < count; ++i) (*g)(i) = solver.tendon_lengths()[i] - lengths[i];
+    return true;
+  };
+
+  VecT tau = VecT::Zero(), g;
+  for (int i = 0; i < count; ++i) tau(i) = std::max(0.0, actuation->tendon_tension[i]);
+  if (!mismatch(tau, &g)) return summary;
+  for (int it = 0; it < options.max_iterations; ++it) {
+    // Active set: taut tendons, and slack ones whose path is longer than commanded (g > 0:
+    // pulling shortens the path).
+    std::array<bool, Actuation::kMaxTendons> active{};
+    double worst = 0.0;
+    for (int i = 0; i < count; ++i) {
+      active[i] = tau(i) > 0 || g(i) > 0;
+      if (active[i]) worst = std::max(worst, std::abs(g(i)));
+    }
+    if (worst < tol) {
+      summary.status = SolveStatus::kConverged;
+      summary.length_error = worst;
+      for (int i = 0; i < count; ++i) {
+        summary.slack[i] = !active[i];
+        actuation->tendon_tension[i] = tau(i);
+      }
+      return summary;
+    }
+    // Sensitivities dℓ/dτ by forward differences (step ~1e-6 of the tension scale).
+    MatT D = MatT::Identity();
+    const double scale = std::max(1e-3, tau.head(count).cwiseAbs().maxCoeff());
+    for (int j = 0; j < count; ++j) {
+      if (!active[j]) continue;
+      VecT t2 = tau, g2;
+      const double h = 1e-6 * scale;
+      t2(j) += h;
+      if (!mismatch(t2, &g2)) return summary;
+      for (int i = 0; i < count; ++i) D(i, j) = active[i] ? (g2(i) - g(i)) / h : (i == j);
+    }
+    VecT rhs = VecT::Zero();
+    for (int i = 0; i < count; ++i) rhs(i) = active[i] ? -g(i) : 0.0;
+    const VecT step = D.partialPivLu().solve(rhs);
+    // Project onto τ ≥ 0; halve the step until the mismatch of the active set decreases.
+    double alpha = 1.0;
+    bool moved = false;
+    for (int k = 0; k < 30 && !moved; ++k, alpha *= 0.5) {
+      VecT trial = (tau + alpha * step).cwiseMax(0.0);
+      VecT g_trial;
+      if (!mismatch(trial, &g_trial)) return summary;
+      double worst_trial = 0.0;
+      for (int i = 0; i < count; ++i)
+        if (trial(i) > 0 || g_trial(i) > 0)
+          worst_trial = std::max(worst_trial, std::abs(g_trial(i)));
+      if (worst_trial < worst) {
+        tau = trial;
+        g = g_trial;
+        moved = true;
+      }
+    }
+    ++summary.iterations;
+    if (!moved) break;
+  }
+  summary.status = SolveStatus::kMaxIterations;
+  return summary;
+}
+
+}  // namespace cosserat
