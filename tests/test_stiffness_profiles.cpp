@@ -10,6 +10,7 @@
 #include <memory>
 #include <new>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cosserat/rod/grid.hpp"
@@ -394,6 +395,28 @@ TEST(StiffnessProfiles, FixedActuationIgnoresTheGivenOne) {
   fixed.pressure = 40e3;
   const FixedActuationSection profile(inner, fixed);
   EXPECT_EQ(profile.At(0.2, Actuation{}).stiffness(0, 0), inner->At(0.2, fixed).stiffness(0, 0));
+}
+
+// Two threads share one profile with different actuations (as two solvers would) and get exactly
+// what a single thread gets: At() keeps no state.
+TEST(StiffnessProfiles, SharedBetweenThreads) {
+  const JammedRod rod;
+  auto sample = [&](int jammed, std::vector<double>* out) {
+    Actuation a;
+    a.pressure = 10e3 * jammed;
+    a.jamming_pressure[jammed] = 50e3;
+    for (int rep = 0; rep < 200; ++rep)
+      for (int i = 0; i < 60; ++i) (*out)[i] = rod.profile->At(0.01 * i, a).stiffness(0, 0);
+  };
+  std::vector<double> serial0(60), serial2(60), threaded0(60), threaded2(60);
+  sample(0, &serial0);
+  sample(2, &serial2);
+  std::thread t0(sample, 0, &threaded0), t2(sample, 2, &threaded2);
+  t0.join();
+  t2.join();
+  EXPECT_EQ(serial0, threaded0);
+  EXPECT_EQ(serial2, threaded2);
+  EXPECT_NE(serial0, serial2);
 }
 
 TEST(StiffnessProfiles, AtAllocatesNothing) {
