@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
@@ -12,7 +13,9 @@
 
 #include "cosserat/io/problem.hpp"
 #include "cosserat/io/result_writer.hpp"
+#include "cosserat/rod/grid.hpp"
 #include "cosserat/rod/section_profile.hpp"
+#include "cosserat/rod/stiffness_profiles.hpp"
 
 namespace cosserat::io {
 namespace {
@@ -170,6 +173,132 @@ TEST(ProblemIo, StiffnessProfileBuildsBands) {
   const double ei_out = section->At(0.05, Actuation{}).stiffness(0, 0);
   const double ei_in = section->At(0.15, Actuation{}).stiffness(0, 0);
   EXPECT_NEAR(ei_in / ei_out, 0.36, 1e-12);
+}
+
+// ----- rod.stiffness_profile, object form ----------------------------------------------------
+
+/// The profile inside the FixedActuationSection the parser wraps actuation-dependent kinds in.
+template <typename T>
+std::shared_ptr<const T> Inner(const ParseResult& r, Actuation* state = nullptr) {
+  const auto fixed = std::dynamic_pointer_cast<const FixedActuationSection>(r.problem->rod.section);
+  if (!fixed) return nullptr;
+  if (state) *state = fixed->actuation();
+  return std::dynamic_pointer_cast<const T>(fixed->inner());
+}
+
+TEST(ProblemIo, StiffnessProfileObjectBands) {
+  json j = ValidProblem();
+  j["rod"]["stiffness_profile"] =
+      json::parse(R"({"kind": "bands", "bands": [{"start": 0.1, "end": 0.2, "factor": 0.36}]})");
+  const ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const auto& section = r.problem->rod.section;
+  ASSERT_TRUE(std::dynamic_pointer_cast<const BandedSection>(section));
+  EXPECT_NEAR(section->At(0.15, {}).stiffness(0, 0) / section->At(0.05, {}).stiffness(0, 0), 0.36,
+              1e-12);
+}
+
+TEST(ProblemIo, StiffnessProfileTaperTipAndTable) {
+  json j = ValidProblem();
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "taper", "tip": {"radius": 0.0005}})");
+  ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  auto taper = std::dynamic_pointer_cast<const TaperedSection>(r.problem->rod.section);
+  ASSERT_TRUE(taper);
+  EXPECT_DOUBLE_EQ(taper->SectionAt(0.25).outer_radius, 0.00075);
+
+  j["rod"]["section"] = {{"shape", "annulus"}, {"outer_radius", 0.002}, {"inner_radius", 0.001}};
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "taper", "table": [
+      {"s": 0.2, "outer_radius": 0.0015, "inner_radius": 0.001},
+      {"s": 0.5, "outer_radius": 0.001, "inner_radius": 0.0005}],
+      "bands": [{"start": 0.3, "end": 0.35, "factor": 0.5}]})");
+  r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const auto banded = std::dynamic_pointer_cast<const BandedSection>(r.problem->rod.section);
+  ASSERT_TRUE(banded);
+  EXPECT_EQ(r.problem->rod.section->Breakpoints().size(), 3u + 3u + 2u);  // 2 × knots, band
+  const auto grid = ModelGrid(r.problem->rod, r.problem->nodes);
+  EXPECT_NE(std::find(grid.begin(), grid.end(), 0.2), grid.end());
+  const double ro = 0.00175, ri = 0.001;  // at s = 0.1, halfway to the first row
+  EXPECT_NEAR(r.problem->rod.section->At(0.1, {}).stiffness(0, 0),
+              200e9 * kPi * (std::pow(ro, 4) - std::pow(ri, 4)) / 4, 1e-9);
+}
+
+TEST(ProblemIo, StiffnessProfilePressureModulusAtTheFilesPressure) {
+  json j = ValidProblem();
+  j["rod"]["material"] = {{"youngs_modulus", 1e6}, {"poisson_ratio", 0.45}, {"density", 1100}};
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "pressure_modulus", "pressure": 15e3,
+      "modulus": {"table": [[0, 1e6], [10e3, 2e6], [20e3, 2.5e6]]}})");
+  ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  Actuation state;
+  const auto inner = Inner<PressureModulusSection>(r, &state);
+  ASSERT_TRUE(inner);
+  EXPECT_EQ(state.pressure, 15e3);
+  EXPECT_DOUBLE_EQ(inner->ModulusAt(15e3), 2.25e6);
+  const double I = kPi * std::pow(0.001, 4) / 4;
+  EXPECT_DOUBLE_EQ(r.problem->rod.section->At(0.1, {}).stiffness(0, 0), 2.25e6 * I);
+
+  j["rod"]["stiffness_profile"] =
+      json::parse(R"({"kind": "pressure_modulus", "pressure": 1e4, "modulus": {"slope": 30}})");
+  r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  EXPECT_DOUBLE_EQ(Inner<PressureModulusSection>(r)->ModulusAt(1e4), 1e6 + 3e5);  // E0: material
+}
+
+TEST(ProblemIo, StiffnessProfileJammingSegmentsAndStates) {
+  json j = ValidProblem();
+  j["rod"]["nodes"] = 31;
+  j["rod"]["section"] = {{"shape", "annulus"}, {"outer_radius", 0.01}, {"inner_radius", 0.009}};
+  j["rod"]["material"] = {{"youngs_modulus", 1e6}, {"poisson_ratio", 0.45}, {"density", 1100}};
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "jamming", "pressure": 30e3,
+      "tube_modulus": {"slope": 20}, "layer_I": 2e-9, "layer_modulus": {"slope": 1000},
+      "segments": [{"start": 0, "end": 0.2}, {"start": 0.2, "end": 0.4, "pressure": 80e3}]})");
+  const ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  Actuation state;
+  const auto jam = Inner<JammingSection>(r, &state);
+  ASSERT_TRUE(jam);
+  EXPECT_EQ(state.pressure, 30e3);
+  EXPECT_EQ(state.jamming_pressure[0], 0.0);
+  EXPECT_EQ(state.jamming_pressure[1], 80e3);
+  const double EI_tube = 1.6e6 * kPi * (1e-8 - std::pow(0.009, 4)) / 4;
+  EXPECT_NEAR(jam->StiffnessRatio(1, 0, state), (EI_tube + 0.16) / EI_tube, 1e-9);
+}
+
+TEST(ProblemIo, StiffnessProfileInflatedWithConstrictions) {
+  json j = ValidProblem();
+  j["rod"]["section"] = {{"shape", "circle"}, {"radius", 0.025}};
+  j["rod"]["material"] = {{"youngs_modulus", 0.2e9}, {"poisson_ratio", 0.4}, {"density", 950}};
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "inflated", "wall_thickness": 1e-4,
+      "pressure": 20e3, "modulus": {"slope": 5000},
+      "constrictions": [{"start": 0.3, "end": 0.32, "diameter_ratio": 0.5, "factor": 0.36}]})");
+  const ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  Actuation state;
+  const auto tube = Inner<InflatedTubeSection>(r, &state);
+  ASSERT_TRUE(tube);
+  EXPECT_EQ(tube->radius(), 0.025);
+  EXPECT_DOUBLE_EQ(tube->WrinklingMomentAt(0.1, state), kPi * 20e3 * std::pow(0.025, 3) / 2);
+  EXPECT_NEAR(tube->BendingStiffnessAt(0.1, state),
+              (0.2e9 + 5000 * 20e3) * kPi * std::pow(0.025, 3) * 1e-4, 1e-9);
+}
+
+TEST(ProblemIo, StiffnessProfileDrivesTheSolver) {
+  // A band of α = 0.36 softens the whole cantilever: the tip deflects more than without.
+  json j = ValidProblem();
+  j["loads"] = {{"tip_force", {1e-3, 0, 0}}};
+  ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  StaticShootingSolver plain(r.problem->rod, r.problem->nodes);
+  ASSERT_TRUE(plain.Solve(r.problem->base, r.problem->loads).converged());
+  j["rod"]["stiffness_profile"] =
+      json::parse(R"({"kind": "bands", "bands": [{"start": 0, "end": 0.25, "factor": 0.36}]})");
+  r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  StaticShootingSolver banded(r.problem->rod, r.problem->nodes);
+  ASSERT_TRUE(banded.Solve(r.problem->base, r.problem->loads).converged());
+  EXPECT_GT(banded.state().tip_position_W().x(), 1.5 * plain.state().tip_position_W().x());
 }
 
 TEST(ProblemIo, NearlyOrthonormalRotationIsAcceptedAndCleaned) {
@@ -351,6 +480,115 @@ TEST(ProblemIoErrors, BandEndBeyondLengthAndTooFewNodes) {
   j["rod"]["stiffness_profile"][1]["end"] = 0.4;
   r = Parse(j);
   EXPECT_ERROR(r, "rod.nodes: expected at least 6", "got 3");
+}
+
+TEST(ProblemIoErrors, OverlappingBandsNameTheLaterBand) {
+  json j = ValidProblem();
+  j["rod"]["stiffness_profile"] = json::parse(R"([{"start": 0.3, "end": 0.4, "factor": 0.5},
+                                                  {"start": 0.1, "end": 0.35, "factor": 0.5}])");
+  ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile[0].start: expected a number >= 0.35",
+               "the end of rod.stiffness_profile[1]; bands must not overlap", "got 0.3");
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "bands", "bands":
+      [{"start": 0.1, "end": 0.2, "factor": 0.5}, {"start": 0.15, "end": 0.3, "factor": 0.5}]})");
+  r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile.bands[1].start: expected a number >= 0.2", "got 0.15");
+}
+
+TEST(ProblemIoErrors, StiffnessProfileObjectKeysAndKinds) {
+  json j = ValidProblem();
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "tapper", "tip": {"radius": 1e-4}})");
+  ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile.kind: expected one of", "did you mean \"taper\"?");
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "jamming", "layer_i": 1e-9,
+      "layer_modulus": {"slope": 10}, "presure": 5, "segments": [{"start": 0, "end": 0.1}]})");
+  r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile.layer_i: unknown key for a \"jamming\" profile",
+               "did you mean \"layer_I\"?");
+  EXPECT_ERROR(r, "rod.stiffness_profile.presure: unknown key", "did you mean \"pressure\"?");
+  EXPECT_ERROR(r, "rod.stiffness_profile.layer_I: expected a positive number, got nothing");
+  j["rod"]["stiffness_profile"] = 5;
+  r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile: expected an array of bands", "or a profile", "got 5");
+}
+
+TEST(ProblemIoErrors, StiffnessProfileBadPressuresAndTables) {
+  json j = ValidProblem();
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "pressure_modulus", "pressure": -5,
+      "modulus": {"table": [[0, 1e6], [2e4, 2e6], [1e4, 3e6], [3e4, 1e6], [-1, 1e6], [4e4]]}})");
+  ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile.pressure: expected a number >= 0, got -5");
+  EXPECT_ERROR(r, "rod.stiffness_profile.modulus.table[2][0]: expected a pressure greater than",
+               "got 10000");
+  EXPECT_ERROR(r, "rod.stiffness_profile.modulus.table[3][1]: expected a modulus >= the previous",
+               "may not fall with pressure", "got 1000000");
+  EXPECT_ERROR(r, "rod.stiffness_profile.modulus.table[4][0]: expected a number >= 0, got -1");
+  EXPECT_ERROR(r, "rod.stiffness_profile.modulus.table[5]: expected a [pressure (Pa), modulus");
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "pressure_modulus",
+      "modulus": {"E0": 1e6, "slope": -3, "table": [[0, 1]]}})");
+  r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile.modulus: expected either \"table\" or \"E0\"/\"slope\"",
+               "got both");
+  j["rod"]["stiffness_profile"] =
+      json::parse(R"({"kind": "pressure_modulus", "modulus": {"E0": 0, "slope": -3}})");
+  r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile.modulus.E0: expected a positive number, got 0");
+  EXPECT_ERROR(r, "rod.stiffness_profile.modulus.slope: expected a number >= 0, got -3");
+}
+
+TEST(ProblemIoErrors, StiffnessProfileBadRadiiSegmentsAndShapes) {
+  json j = ValidProblem();
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "taper", "tip": {"radius": 0}})");
+  ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile.tip.radius: expected a positive number, got 0");
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "taper", "table": [
+      {"s": 0.3, "radius": 1e-3}, {"s": 0.2, "radius": 1e-3}, {"s": 0.6, "radius": -1}]})");
+  r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile.table[1].s: expected a number greater than the previous",
+               "got 0.2");
+  EXPECT_ERROR(r, "rod.stiffness_profile.table[2].s: expected a number <= rod.length (0.5)");
+  EXPECT_ERROR(r, "rod.stiffness_profile.table[2].radius: expected a positive number, got -1");
+  j["rod"]["section"] = {{"shape", "rectangle"}, {"width", 0.01}, {"height", 0.002}};
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "taper", "tip": {"radius": 1e-4}})");
+  r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile.kind: expected a \"circle\" or \"annulus\" rod.section",
+               "got \"rectangle\"");
+  j = ValidProblem();
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "jamming", "layer_I": 1e-9,
+      "layer_modulus": {"slope": 10}, "segments": [{"start": 0, "end": 0.2},
+      {"start": 0.1, "end": 0.3, "pressure": -2}]})");
+  r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile.segments[1].pressure: expected a number >= 0, got -2");
+  j["rod"]["stiffness_profile"]["segments"][1]["pressure"] = 1e4;
+  r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile.segments[1].start: expected a number >= 0.2",
+               "listed in order along the rod", "got 0.1");
+  j["rod"]["stiffness_profile"]["segments"] = json::array();
+  for (int k = 0; k < 17; ++k)
+    j["rod"]["stiffness_profile"]["segments"].push_back(
+        {{"start", 0.01 * k}, {"end", 0.01 * (k + 1)}});
+  r = Parse(j);
+  EXPECT_ERROR(r, "rod.stiffness_profile.segments: expected 1 to 16 segments",
+               "got an array of 17");
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "inflated", "wall_thickness": 0.002,
+      "constrictions": [{"start": 0.1, "end": 0.2, "diameter_ratio": 1.5, "factor": 0.36}]})");
+  r = Parse(j);
+  EXPECT_ERROR(r,
+               "rod.stiffness_profile.wall_thickness: expected a number smaller than "
+               "rod.section.radius (0.001), got 0.002");
+  EXPECT_ERROR(r,
+               "rod.stiffness_profile.constrictions[0].diameter_ratio: expected a number in "
+               "(0, 1], got 1.5");
+}
+
+TEST(ProblemIoErrors, TooFewNodesForProfileBreakpoints) {
+  json j = ValidProblem();
+  j["rod"]["nodes"] = 4;
+  j["rod"]["stiffness_profile"] = json::parse(R"({"kind": "jamming", "layer_I": 1e-9,
+      "layer_modulus": {"slope": 10}, "segments": [{"start": 0, "end": 0.1},
+      {"start": 0.1, "end": 0.2}, {"start": 0.2, "end": 0.3}]})");
+  const ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "rod.nodes: expected at least 5", "breakpoint", "got 4");
 }
 
 TEST(ProblemIoErrors, NonFiniteNumbersFromOverflow) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cosserat/rod/stiffness_profiles.hpp"
+
 namespace cosserat {
 
 SectionProperties UniformSectionProperties(const CrossSection& c, const Material& m) {
@@ -59,14 +61,15 @@ std::vector<double> BandedSection::Breakpoints() const {
 
 bool BandedSection::IsValid(double length, std::string* why) const {
   if (!base_ || !base_->IsValid(length, why)) return false;
+  std::vector<double> starts, ends;
   for (const Band& b : bands_) {
-    if (!(std::isfinite(b.start) && std::isfinite(b.end) && b.start >= 0 && b.end <= length &&
-          b.start < b.end)) {
-      if (why) *why = "band must satisfy 0 <= start < end <= length";
-      return false;
-    }
-    if (!(std::isfinite(b.factor) && b.factor > 0)) {
-      if (why) *why = "band factor must be a finite positive number";
+    starts.push_back(b.start);
+    ends.push_back(b.end);
+  }
+  if (!IntervalsAreValid(starts, ends, length, false, "band", why)) return false;
+  for (std::size_t i = 0; i < bands_.size(); ++i) {
+    if (!(std::isfinite(bands_[i].factor) && bands_[i].factor > 0)) {
+      if (why) *why = "band " + std::to_string(i) + " factor must be a finite positive number";
       return false;
     }
   }

@@ -91,3 +91,12 @@ cosserat_cli_test(NAME solve_quatfd_dynamics
                   FILES "${_cli_out}/quatfd_frames.csv")
 cosserat_cli_test(NAME quatfd_free_free ARGS solve "${_cli_dir}/quatfd_free_free.json" CODE 2
                   STDERR "boundary: \"free-free\" is not implemented in this version \\(supported: \"cantilever\"\\)")
+
+# Stiffness profiles (issue 5). A jammed-compliant-jammed rod under a pure tip moment: every
+# error in a bad profile is reported with its path; the good one solves (the curvature ratio is
+# checked against the stiffness ratio in test_stiffness_profiles).
+cosserat_cli_test(NAME bad_stiffness_profile
+                  ARGS validate "${_cli_dir}/bad_stiffness_profile.json" CODE 2
+                  STDERR "rod.stiffness_profile.layer_modlus: unknown key for a \"jamming\" profile \\(did you mean \"layer_modulus\"\\?\\).*rod.stiffness_profile.pressure: expected a number >= 0, got -3000.*rod.stiffness_profile.tube_modulus.table\\[2\\]\\[0\\]: expected a pressure greater than.*rod.stiffness_profile.segments\\[1\\].start: expected a number >= 0.2 .*must not overlap")
+cosserat_cli_test(NAME solve_jamming_profile ARGS solve "${_cli_dir}/jamming_profile.json"
+                  CODE 0 STDOUT "\"status\": \"converged\"" STDERR "converged")

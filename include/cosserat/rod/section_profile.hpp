@@ -56,7 +56,8 @@ class UniformSection final : public SectionProfile {
 
 /// Bands [start, end) in which the bending and torsion stiffness are multiplied by a factor α
 /// (seed 003: EI(s) = α(s) E I; α ≈ 0.36 for a band that halves the diameter). Outside the bands,
-/// the base profile. Band ends become grid nodes.
+/// the base profile. Band ends become grid nodes. Bands must lie within [0, L] and must not overlap
+/// (IsValid); more profiles are in stiffness_profiles.hpp.
 class BandedSection final : public SectionProfile {
  public:
   struct Band {
