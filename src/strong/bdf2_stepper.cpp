@@ -9,6 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cosserat/loads/tendons.hpp"
 #include "cosserat/rod/grid.hpp"
 #include "frame_tangent.hpp"
 
@@ -70,9 +71,11 @@ COSSERAT_HOT void Rk4Update(double h, const DynState& k1, const DynState& k2, co
 
 // d/ds of the state at one stage point (see the header for the equations), written out: this is
 // the innermost loop of every step. Writes the strain and twist of the stage for the history.
+// With tendons, `given` is the strain of the tendon-augmented law (solved by the caller).
 COSSERAT_HOT DynState Derivative(const Sample& smp, const Vec3& f_W, const DynState& y,
                                  const Vec6& xi_h, const Vec6& V_h, const Vec3& v_W_h, double c0,
-                                 bool statics, Vec6* strain, Vec6* twist, Vec3* velocity_W) {
+                                 bool statics, Vec6* strain, Vec6* twist, Vec3* velocity_W,
+                                 const Vec6* given = nullptr) {
   const Mat3& R = y.R;
   const double m0 = y.m(0), m1 = y.m(1), m2 = y.m(2);
   const Vec3 n_B = R.transpose() * y.n;
@@ -81,7 +84,13 @@ COSSERAT_HOT DynState Derivative(const Sample& smp, const Vec3& f_W, const DynSt
   const double v0 = y.v(0), v1 = y.v(1), v2 = y.v(2);
   double xi[6], xt[6], Vt[6];
   const double W[6] = {m0, m1, m2, n0, n1, n2};
-  if (statics) {
+  if (given && statics) {
+    for (int i = 0; i < 6; ++i) {
+      xi[i] = (*given)(i);
+      xt[i] = 0.0;
+      Vt[i] = 0.0;
+    }
+  } else if (statics) {
     for (int i = 0; i < 6; ++i) {
       xi[i] = smp.rest_strain(i) + smp.compliance(i) * W[i];
       xt[i] = 0.0;
@@ -90,9 +99,14 @@ COSSERAT_HOT DynState Derivative(const Sample& smp, const Vec3& f_W, const DynSt
   } else {
     // W = K (ξ − ξ*) + D (c0 ξ + ξʰ)  ⇒  ξ = [ξ* − c0 A D ξ*] + A W − A D ξʰ, A = (K + c0 D)⁻¹;
     // with D = 0 this is the static law, operation for operation.
-    for (int i = 0; i < 6; ++i) xi[i] = smp.implicit_offset(i) + smp.implicit_compliance(i) * W[i];
-    if (smp.damped)
-      for (int i = 0; i < 6; ++i) xi[i] -= smp.implicit_damping(i) * xi_h(i);
+    if (given) {
+      for (int i = 0; i < 6; ++i) xi[i] = (*given)(i);
+    } else {
+      for (int i = 0; i < 6; ++i)
+        xi[i] = smp.implicit_offset(i) + smp.implicit_compliance(i) * W[i];
+      if (smp.damped)
+        for (int i = 0; i < 6; ++i) xi[i] -= smp.implicit_damping(i) * xi_h(i);
+    }
     for (int i = 0; i < 6; ++i) xt[i] = c0 * xi[i] + xi_h(i);
     Vt[0] = c0 * w0 + V_h(0);
     Vt[1] = c0 * w1 + V_h(1);
@@ -181,13 +195,23 @@ void Rk4Update(double h, const DynTangent& k1, const DynTangent& k2, const DynTa
 }
 
 // The linearisation of Derivative along dy, given the primal state and the stage strain.
+// With tendons (H given: the derivative of the tendon-augmented law in ξ), dξ = H⁻¹ dW.
 DynTangent TangentDerivative(const Sample& smp, const DynState& y, const DynTangent& dy,
-                             const Vec6& xi, double c0, bool statics) {
+                             const Vec6& xi, double c0, bool statics, const Mat6* H = nullptr) {
   const Vec6& C = statics ? smp.compliance : smp.implicit_compliance;
   const Vec3 n_B = y.R.transpose() * y.n;
   const Mat36 dn_B = y.R.transpose() * dy.n + TransposeTimesFixed(dy.R, y.n);
-  const Mat36 dK = C.head<3>().asDiagonal() * dy.m;
-  const Mat36 dG = C.tail<3>().asDiagonal() * dn_B;
+  Mat36 dK, dG;
+  if (H) {
+    Mat6 dW;
+    dW << dy.m, dn_B;
+    const Mat6 dxi = H->partialPivLu().solve(dW);
+    dK = dxi.topRows<3>();
+    dG = dxi.bottomRows<3>();
+  } else {
+    dK = C.head<3>().asDiagonal() * dy.m;
+    dG = C.tail<3>().asDiagonal() * dn_B;
+  }
   const double rate = statics ? 0.0 : c0;  // d ξ_t = c0 dξ, d V_t = c0 dV
   const Vec3 K = xi.head<3>(), G = xi.tail<3>();
   const Vec3 J = smp.mass.head<3>();
@@ -221,6 +245,15 @@ StepInput BlendInputs(const StepInput& a, const StepInput& b, double t) {
   out.base_twist_B = a.base_twist_B + t * (b.base_twist_B - a.base_twist_B);
   out.base_wrench_B = a.base_wrench_B + t * (b.base_wrench_B - a.base_wrench_B);
   out.loads = StaticLoads::Blend(a.loads, b.loads, t);
+  out.actuation.pressure = a.actuation.pressure + t * (b.actuation.pressure - a.actuation.pressure);
+  for (int i = 0; i < Actuation::kMaxTendons; ++i)
+    out.actuation.tendon_tension[i] =
+        a.actuation.tendon_tension[i] +
+        t * (b.actuation.tendon_tension[i] - a.actuation.tendon_tension[i]);
+  for (int i = 0; i < Actuation::kMaxSegments; ++i)
+    out.actuation.jamming_pressure[i] =
+        a.actuation.jamming_pressure[i] +
+        t * (b.actuation.jamming_pressure[i] - a.actuation.jamming_pressure[i]);
   return out;
 }
 
@@ -234,25 +267,15 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   grid_ = ModelGrid(model_, num_nodes);
   const int n = static_cast<int>(grid_.size());
 
-  auto make = [&](double s) {
-    const SectionProperties p = model_.section->At(s, Actuation{});
-    auto diagonal = [](const Mat6& A) { return (A - Mat6(A.diagonal().asDiagonal())).norm() == 0; };
-    if (!diagonal(p.stiffness) || !diagonal(p.damping) || !diagonal(p.mass))
-      throw std::invalid_argument(
-          "Bdf2ShootingStepper: sections must be principal-axes "
-          "(diagonal stiffness, damping and mass)");
-    Sample smp;
-    smp.stiffness = p.stiffness.diagonal();
-    smp.damping = p.damping.diagonal();
-    smp.compliance = smp.stiffness.cwiseInverse();
-    smp.rest_strain = model_.RestStrainAt(s);
-    smp.mass = p.mass.diagonal();
-    smp.implicit_compliance = smp.compliance;
-    smp.implicit_damping.setZero();
-    smp.implicit_offset = smp.rest_strain;
-    return smp;
-  };
-  for (double s : SegmentSamplePoints(grid_)) samples_.push_back(make(s));
+  if (!model_.IsValid(&why)) throw std::invalid_argument("RodModel: " + why);
+  sample_points_ = SegmentSamplePoints(grid_);
+  samples_.resize(sample_points_.size());
+  if (!model_.tendons.empty()) {
+    tendons_.resize(sample_points_.size());
+    for (size_t q = 0; q < sample_points_.size(); ++q)
+      tendons_[q] = SampleTendons(model_.tendons, sample_points_[q], model_.length);
+  }
+  SampleSections();
   const double EI = std::max(samples_[0].stiffness(0), samples_[0].stiffness(1));
   const double L = model_.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
@@ -271,6 +294,38 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   run_.state.Resize(n);
   for (int i = 0; i < n; ++i) run_.state.s[i] = grid_[i];
   trial_ = run_.state;
+}
+
+void Bdf2ShootingStepper::SampleSections() {
+  for (size_t q = 0; q < sample_points_.size(); ++q) {
+    const double s = sample_points_[q];
+    const SectionProperties p = model_.section->At(s, actuation_);
+    auto diagonal = [](const Mat6& A) { return (A - Mat6(A.diagonal().asDiagonal())).norm() == 0; };
+    if (!diagonal(p.stiffness) || !diagonal(p.damping) || !diagonal(p.mass))
+      throw std::invalid_argument(
+          "Bdf2ShootingStepper: sections must be principal-axes "
+          "(diagonal stiffness, damping and mass)");
+    Sample& smp = samples_[q];
+    smp.stiffness = p.stiffness.diagonal();
+    smp.damping = p.damping.diagonal();
+    smp.compliance = smp.stiffness.cwiseInverse();
+    smp.rest_strain = model_.RestStrainAt(s);
+    smp.mass = p.mass.diagonal();
+    smp.implicit_compliance = smp.compliance;
+    smp.implicit_damping.setZero();
+    smp.implicit_offset = smp.rest_strain;
+  }
+  current_c0_ = -1.0;  // the implicit compliance must be recomputed
+}
+
+void Bdf2ShootingStepper::ApplyActuation(const Actuation& a) {
+  // Tensions enter the strain law directly; the section only depends on the other fields, so
+  // only their change costs a re-sampling (no allocation either way).
+  const bool section_changed = a.stiffness_scale != actuation_.stiffness_scale ||
+                               a.pressure != actuation_.pressure ||
+                               a.jamming_pressure != actuation_.jamming_pressure;
+  actuation_ = a;
+  if (section_changed) SampleSections();
 }
 
 void Bdf2ShootingStepper::SetImplicitCompliance(double c0) {
@@ -373,12 +428,42 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
   Vec6 xh = Vec6::Zero(), Vh = Vec6::Zero();
   const Vec3 zero3 = Vec3::Zero();
   // One RK4 stage q at state ys: record it and return its derivative.
-  auto stage = [&](int q, const Sample& smp, const DynState& ys) {
+  // With tendons: the strain of K (ξ − ξ*) + D ξ_t + Σ τ a(ξ) = W (tendons.hpp) at a sample,
+  // written as K' (ξ − ξ') + Σ τ a(ξ) = W with K' = K + c0 D, ξ' = its offset; from `guess`.
+  Vec6 guess = samples_.front().rest_strain;
+  Mat6 H_stage[4];
+  auto tendon_strain = [&](int sample_index, const Vec6& xi_h, const Vec6& W, Mat6* H) {
+    const Sample& smp = samples_[sample_index];
+    Mat6 K = Mat6::Zero();
+    Vec6 offset;
+    if (statics) {
+      K.diagonal() = smp.stiffness;
+      offset = smp.rest_strain;
+    } else {
+      K.diagonal() = smp.implicit_compliance.cwiseInverse();
+      offset = smp.implicit_offset - smp.implicit_damping.cwiseProduct(xi_h);
+    }
+    Vec6 xi = guess;
+    if (!SolveTendonStrain(K, offset, tendons_[sample_index], actuation_.tendon_tension.data(), W,
+                           &xi, H))
+      xi.setConstant(NAN);
+    guess = xi;
+    return xi;
+  };
+  auto stage = [&](int q, int sample_index, const DynState& ys) {
+    const Sample& smp = samples_[sample_index];
     history(q, &xh, &Vh);
     position_now_[q] = ys.p;
     rotation_now_[q] = ys.R;
+    Vec6 given;
+    if (!tendons_.empty()) {
+      Vec6 W;
+      W << ys.m, ys.R.transpose() * ys.n;
+      given = tendon_strain(sample_index, xh, W, &H_stage[q % 4]);
+    }
     return Derivative(smp, f_at(smp), ys, xh, Vh, statics ? zero3 : velocity_W_h_[q], c.c0, statics,
-                      &strain_now_[q], &twist_now_[q], &velocity_W_now_[q]);
+                      &strain_now_[q], &twist_now_[q], &velocity_W_now_[q],
+                      tendons_.empty() ? nullptr : &given);
   };
   for (int i = 0; i + 1 < n; ++i) {
     const double h = grid_[i + 1] - grid_[i];
@@ -386,22 +471,24 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     const Sample& sm = samples_[3 * i + 1];
     const Sample& s1 = samples_[3 * i + 2];
     const int q = 4 * i;
-    const DynState k1 = stage(q, s0, y);
+    const DynState k1 = stage(q, 3 * i, y);
     record_node(i, strain_now_[q]);
     const DynState y2 = Axpy(y, 0.5 * h, k1);
-    const DynState k2 = stage(q + 1, sm, y2);
+    const DynState k2 = stage(q + 1, 3 * i + 1, y2);
     const DynState y3 = Axpy(y, 0.5 * h, k2);
-    const DynState k3 = stage(q + 2, sm, y3);
+    const DynState k3 = stage(q + 2, 3 * i + 1, y3);
     const DynState y4 = Axpy(y, h, k3);
-    const DynState k4 = stage(q + 3, s1, y4);
+    const DynState k4 = stage(q + 3, 3 * i + 2, y4);
     if (J) {
-      const DynTangent t1 = TangentDerivative(s0, y, dy, strain_now_[q], c.c0, statics);
-      const DynTangent t2 =
-          TangentDerivative(sm, y2, Axpy(dy, 0.5 * h, t1), strain_now_[q + 1], c.c0, statics);
-      const DynTangent t3 =
-          TangentDerivative(sm, y3, Axpy(dy, 0.5 * h, t2), strain_now_[q + 2], c.c0, statics);
-      const DynTangent t4 =
-          TangentDerivative(s1, y4, Axpy(dy, h, t3), strain_now_[q + 3], c.c0, statics);
+      const bool t = !tendons_.empty();
+      const DynTangent t1 =
+          TangentDerivative(s0, y, dy, strain_now_[q], c.c0, statics, t ? &H_stage[0] : nullptr);
+      const DynTangent t2 = TangentDerivative(sm, y2, Axpy(dy, 0.5 * h, t1), strain_now_[q + 1],
+                                              c.c0, statics, t ? &H_stage[1] : nullptr);
+      const DynTangent t3 = TangentDerivative(sm, y3, Axpy(dy, 0.5 * h, t2), strain_now_[q + 2],
+                                              c.c0, statics, t ? &H_stage[2] : nullptr);
+      const DynTangent t4 = TangentDerivative(s1, y4, Axpy(dy, h, t3), strain_now_[q + 3], c.c0,
+                                              statics, t ? &H_stage[3] : nullptr);
       Rk4Update(h, t1, t2, t3, t4, &dy);
     }
     Rk4Update(h, k1, k2, k3, k4, &y);
@@ -416,10 +503,14 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     xi_h_tip = c.c2 * (run_.tip_strain2 - run_.tip_strain1) - c.c0 * run_.tip_strain1;
     V_h_tip = c.c2 * (run_.tip_twist2 - run_.tip_twist1) - c.c0 * run_.tip_twist1;
   }
-  const Vec6 xi_tip =
-      statics ? Vec6(s_tip.rest_strain + s_tip.compliance.cwiseProduct(W_tip))
-              : Vec6(s_tip.implicit_offset + s_tip.implicit_compliance.cwiseProduct(W_tip) -
-                     s_tip.implicit_damping.cwiseProduct(xi_h_tip));
+  Vec6 xi_tip = statics
+                    ? Vec6(s_tip.rest_strain + s_tip.compliance.cwiseProduct(W_tip))
+                    : Vec6(s_tip.implicit_offset + s_tip.implicit_compliance.cwiseProduct(W_tip) -
+                           s_tip.implicit_damping.cwiseProduct(xi_h_tip));
+  if (!tendons_.empty()) {
+    Mat6 H;
+    xi_tip = tendon_strain(3 * (n - 2) + 2, xi_h_tip, W_tip, &H);
+  }
   record_node(n - 1, xi_tip);
   tip_strain_now_ = xi_tip;
   tip_twist_now_ << y.w, y.v;
@@ -614,6 +705,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
   run_.base1 = run_.base2 = input.base_pose;
   run_.steps_taken = 0;
   run_.jacobian_c0 = -1.0;  // the first solve computes the exact Jacobian
+  ApplyActuation(input.actuation);
   const Coefficients c{};
   bool ok = false;
   if (options_.ends == EndConditions::kFreeFree) {
@@ -666,6 +758,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
 }
 
 bool Bdf2ShootingStepper::Attempt(const StepInput& input, double h, StepSummary* summary) {
+  ApplyActuation(input.actuation);
   const Coefficients c = Bdf2Weights(h, run_.last_dt);
   SetImplicitCompliance(c.c0);
   xi_back_ = lie::SE3Log(lie::Compose(lie::Inverse(run_.base1), run_.base2));

@@ -20,6 +20,8 @@
 
 #include "cosserat/lie/se3.hpp"
 #include "cosserat/loads/static_loads.hpp"
+#include "cosserat/loads/tendons.hpp"
+#include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/strong/rod_state.hpp"
 #include "cosserat/strong/sequence_predictor.hpp"
@@ -59,6 +61,11 @@ struct StepInput {
   Vec6 base_twist_B = Vec6::Zero();   ///< cantilever: V(0, t) = [ω; v], body frame (rad/s; m/s)
   Vec6 base_wrench_B = Vec6::Zero();  ///< free-free: wrench applied to the s = 0 end, body frame
   StaticLoads loads;                  ///< gravity, distributed force, tip force and moment
+  /// Tendon tensions (used when the model has tendons), pressure and jamming states (read by the
+  /// section profile). A change of the section-related fields re-samples the sections at the
+  /// start of the step (no allocation); the history strains carry over, so the shape is
+  /// continuous across a switch.
+  Actuation actuation;
 };
 
 struct StepSummary {
@@ -174,6 +181,9 @@ class Bdf2ShootingStepper {
   bool SolveStep(const StepInput& input, const Coefficients& c, double h, bool statics,
                  StepSummary* summary);
   void SetImplicitCompliance(double c0);
+  /// Samples every section for actuation_ (constructor and when the actuation changes).
+  void SampleSections();
+  void ApplyActuation(const Actuation& actuation);
   /// Fills the history terms ξʰ, Vʰ at every stage for the weights c (once per step).
   void PrepareHistory(const Coefficients& c);
   void Commit(double h);
@@ -181,8 +191,11 @@ class Bdf2ShootingStepper {
   RodModel model_;
   Bdf2Options options_;
   std::vector<double> grid_;
-  std::vector<Sample> samples_;  ///< 3 per segment: start, midpoint, end
-  Vec6 scale_;                   ///< W(0) = scale ⊙ x
+  std::vector<double> sample_points_;  ///< s of every sample, m
+  std::vector<Sample> samples_;        ///< 3 per segment: start, midpoint, end
+  std::vector<TendonSample> tendons_;  ///< parallel to samples_; empty without tendons
+  Actuation actuation_;                ///< the actuation the samples are for
+  Vec6 scale_;                         ///< W(0) = scale ⊙ x
 
   Snapshot run_;  ///< the accepted run: all Save() and Restore() copy
 
