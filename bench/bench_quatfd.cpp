@@ -122,6 +122,14 @@ void BM_Jacobian(benchmark::State& s) {
     benchmark::DoNotOptimize(&A);
   }
 }
+void BM_JacobianAutoDiff(benchmark::State& s) {  // the ceres::Jet test oracle, for comparison
+  Costs c(s.range(0));
+  BandedMatrix A, B;
+  for (auto _ : s) {
+    c.model.JacobianAutoDiff(c.q, c.v, 0.0, 0.0, &A, &B, nullptr);
+    benchmark::DoNotOptimize(&A);
+  }
+}
 void BM_RosenbrockStep(benchmark::State& s) {
   Costs c(s.range(0));
   RosenbrockIntegrator integ(c.model);
@@ -135,6 +143,7 @@ void BM_RosenbrockStep(benchmark::State& s) {
 }
 BENCHMARK(BM_F)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 BENCHMARK(BM_Jacobian)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
+BENCHMARK(BM_JacobianAutoDiff)->Arg(10)->Arg(640);
 BENCHMARK(BM_RosenbrockStep)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 
 }  // namespace
