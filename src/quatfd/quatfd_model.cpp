@@ -544,8 +544,9 @@ double QuatFdModel::Project(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::Vec
     auto pd = v.segment<4>(L::P(i));
     const double norm = p.norm();
     worst = std::max(worst, std::abs(norm - 1.0));
+    // p ← p/|p| and ṗ ← (ṗ − (p̂·ṗ) p̂)/|p| keep the rotation and ω = 2 Im(p̄ ṗ)/|p|² exactly.
     p /= norm;
-    pd -= p.dot(pd) * p;
+    pd = (pd - p.dot(pd) * p) / norm;
   }
   return worst;
 }

@@ -142,7 +142,8 @@ class QuatFdModel {
   void Forces(const Eigen::Ref<const Eigen::VectorXd>& q,
               const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Ref<Eigen::VectorXd> forces) const;
 
-  /// Projection onto the constraint manifold: p ← p/|p|, ṗ ← ṗ − (p·ṗ) p. Returns the largest
+  /// Projection onto the constraint manifold: p ← p/|p|, ṗ ← (ṗ − (p̂·ṗ) p̂)/|p|, which keeps the
+  /// rotation and ω (only the gauge |p|, p·ṗ is reset). Returns the largest
   /// | |p| − 1 | found before projecting.
   double Project(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const;
   /// max over segments of | |p| − 1 |.
