@@ -558,6 +558,12 @@ double QuatFdModel::ConstraintViolation(const Eigen::Ref<const Eigen::VectorXd>&
   return worst;
 }
 
+double QuatFdModel::min_rotational_inertia() const {
+  double j = rotation_[0].inertia.minCoeff();
+  for (const kernels::RotationConstants& r : rotation_) j = std::min(j, r.inertia.minCoeff());
+  return j;
+}
+
 double QuatFdModel::Mass() const {
   double m = 0;
   for (double mn : mass_) m += mn;

@@ -167,6 +167,9 @@ class QuatFdModel {
   double Mass() const;
   const std::vector<double>& vertex_mass() const { return mass_; }
 
+  /// Smallest principal rotational inertia of a segment, ρ I Δs (kg·m²).
+  double min_rotational_inertia() const;
+
   /// Scales that make residuals dimensionless: EI/L (N·m) and EI/L² (N), EI the largest bending
   /// stiffness at s = 0.
   double moment_scale() const { return moment_scale_; }
