@@ -92,9 +92,12 @@ void BM_SteelString_Rosenbrock(benchmark::State& s) {
   Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRosenbrock);
 }
 BENCHMARK(BM_RubberRod_Rosenbrock)->Arg(10)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
-// dopri5 is stability-bound by the rotary-inertia/shear modes (~1.6e4 rad/s for r = 5 mm): only
-// N = 10 is run (N = 40 would take minutes).
-BENCHMARK(BM_RubberRod_Dopri5)->Arg(10)->Unit(benchmark::kMillisecond)->Iterations(1);
+// dopri5 is stability-bound: with shear damped, the over-damped shear/rotary-inertia modes have
+// real eigenvalues near −2.5e6 1/s, and N = 10 took 7.6 million steps, 133 s (measured once;
+// 212 k steps, 3.4 s with shear undamped). Registered but disabled by default: run with
+// --benchmark_filter=Dopri5 --benchmark_enable_random_interleaving=false to reproduce.
+BENCHMARK(BM_RubberRod_Dopri5)->Arg(10)->Unit(benchmark::kMillisecond)->Iterations(1)->Name(
+    "DISABLED_BM_RubberRod_Dopri5");
 // The steel string's fastest modes (~1e7 rad/s) put dopri5 out of reach (~1e8 steps); stiff only.
 BENCHMARK(BM_SteelString_Rosenbrock)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
 
