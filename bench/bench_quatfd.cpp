@@ -96,8 +96,11 @@ BENCHMARK(BM_RubberRod_Rosenbrock)->Arg(10)->Arg(40)->Unit(benchmark::kMilliseco
 // real eigenvalues near −2.5e6 1/s, and N = 10 took 7.6 million steps, 133 s (measured once;
 // 212 k steps, 3.4 s with shear undamped). Registered but disabled by default: run with
 // --benchmark_filter=Dopri5 --benchmark_enable_random_interleaving=false to reproduce.
-BENCHMARK(BM_RubberRod_Dopri5)->Arg(10)->Unit(benchmark::kMillisecond)->Iterations(1)->Name(
-    "DISABLED_BM_RubberRod_Dopri5");
+BENCHMARK(BM_RubberRod_Dopri5)
+    ->Arg(10)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->Name("DISABLED_BM_RubberRod_Dopri5");
 // The steel string's fastest modes (~1e7 rad/s) put dopri5 out of reach (~1e8 steps); stiff only.
 BENCHMARK(BM_SteelString_Rosenbrock)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
 
