@@ -18,21 +18,32 @@ using namespace cosserat;
 using namespace cosserat::quatfd;
 
 /// (a) Rubber rod: L = 0.5 m, r = 5 mm, E = 5 MPa, ν = 0.5, ρ = 1100 kg/m³, clamped horizontally.
-/// Light Antman damping: bending and torsion Kelvin–Voigt D = τ K with τ = 0.01 s (first mode
-/// damping ratio ω1 τ / 2 ≈ 1.2 %); none on shear and extension.
+/// Antman (Kelvin–Voigt) damping on all four strain rates with one retardation time, C̃ = τ C,
+/// τ = 0.01 s: light on the first bending mode (ζ1 = ω1 τ/2 ≈ 1.2 %, ω1 = 2.35 rad/s), strong on
+/// extension and shear (ζ ≥ 1 from the axial fundamental, 212 rad/s, up), as in seed 000's
+/// benchmarks ("strong damping on the extensional and shearing dof").
 RodModel RubberRod() {
   Material m = Material::FromPoissonRatio(5e6, 0.5, 1100);
   const CrossSection c = CrossSection::Circle(0.005);
   const double tau = 0.01;
   m.damping.bending = tau * m.youngs_modulus * c.I1;
   m.damping.torsion = tau * m.shear_modulus * c.torsion_constant;
+  m.damping.shear = tau * m.shear_modulus * c.area;
+  m.damping.extension = tau * m.youngs_modulus * c.area;
   return RodModel::Uniform(0.5, c, m);
 }
 
-/// (b) Steel string: L = 1 m, r = 0.5 mm, E = 200 GPa, G = 80 GPa, ρ = 7850 kg/m³, no damping.
+/// (b) Steel string: L = 1 m, r = 0.5 mm, E = 200 GPa, G = 80 GPa, ρ = 7850 kg/m³. Damping on
+/// shear and extension only (seed 000), C̃ = τ C with τ = 10 µs: critical for the highest axial
+/// mode of the 20-segment grid (2c/Δs = 2.0e5 rad/s), over-damped for the shear/rotary-inertia
+/// modes (~1e7 rad/s); a pendulum swinging at ~3 rad/s is not affected (ζ ~ 1e-5).
 RodModel SteelString() {
-  return RodModel::Uniform(1.0, CrossSection::Circle(0.0005),
-                           Material::FromShearModulus(200e9, 80e9, 7850));
+  Material m = Material::FromShearModulus(200e9, 80e9, 7850);
+  const CrossSection c = CrossSection::Circle(0.0005);
+  const double tau = 1e-5;
+  m.damping.shear = tau * m.shear_modulus * c.area;
+  m.damping.extension = tau * m.youngs_modulus * c.area;
+  return RodModel::Uniform(1.0, c, m);
 }
 
 lie::SE3 Horizontal() {
@@ -81,9 +92,15 @@ void BM_SteelString_Rosenbrock(benchmark::State& s) {
   Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRosenbrock);
 }
 BENCHMARK(BM_RubberRod_Rosenbrock)->Arg(10)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
-// dopri5 is stability-bound by the rotary-inertia/shear modes (~1.6e4 rad/s for r = 5 mm): only
-// N = 10 is run (N = 40 would take minutes).
-BENCHMARK(BM_RubberRod_Dopri5)->Arg(10)->Unit(benchmark::kMillisecond)->Iterations(1);
+// dopri5 is stability-bound: with shear damped, the over-damped shear/rotary-inertia modes have
+// real eigenvalues near −2.5e6 1/s, and N = 10 took 7.6 million steps, 133 s (measured once;
+// 212 k steps, 3.4 s with shear undamped). Registered but disabled by default: run with
+// --benchmark_filter=Dopri5 --benchmark_enable_random_interleaving=false to reproduce.
+BENCHMARK(BM_RubberRod_Dopri5)
+    ->Arg(10)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->Name("DISABLED_BM_RubberRod_Dopri5");
 // The steel string's fastest modes (~1e7 rad/s) put dopri5 out of reach (~1e8 steps); stiff only.
 BENCHMARK(BM_SteelString_Rosenbrock)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
 
@@ -122,6 +139,14 @@ void BM_Jacobian(benchmark::State& s) {
     benchmark::DoNotOptimize(&A);
   }
 }
+void BM_JacobianAutoDiff(benchmark::State& s) {  // the ceres::Jet test oracle, for comparison
+  Costs c(s.range(0));
+  BandedMatrix A, B;
+  for (auto _ : s) {
+    c.model.JacobianAutoDiff(c.q, c.v, 0.0, 0.0, &A, &B, nullptr);
+    benchmark::DoNotOptimize(&A);
+  }
+}
 void BM_RosenbrockStep(benchmark::State& s) {
   Costs c(s.range(0));
   RosenbrockIntegrator integ(c.model);
@@ -135,6 +160,7 @@ void BM_RosenbrockStep(benchmark::State& s) {
 }
 BENCHMARK(BM_F)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 BENCHMARK(BM_Jacobian)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
+BENCHMARK(BM_JacobianAutoDiff)->Arg(10)->Arg(640);
 BENCHMARK(BM_RosenbrockStep)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 
 }  // namespace

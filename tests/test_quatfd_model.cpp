@@ -119,6 +119,20 @@ TEST_P(QuatFdJacobian, MatchesCentralDifferences) {
   model.Acceleration(q, v, a_plain);
   EXPECT_LT((a - a_plain).norm(), 1e-12 * a_plain.norm());
 
+  // The automatic-differentiation oracle: same derivatives, evaluated in a different order, so
+  // they agree to round-off (1e-10 of each row's largest entry; the rows span ~1e8 in scale).
+  {
+    BandedMatrix Aad, Bad;
+    model.JacobianAutoDiff(q, v, opt.baumgarte_alpha, opt.baumgarte_beta, &Aad, &Bad, nullptr);
+    const Eigen::MatrixXd Ad = A.ToDense(), Bd = B.ToDense();
+    const Eigen::MatrixXd Aj = Aad.ToDense(), Bj = Bad.ToDense();
+    for (int i = 0; i < n; ++i) {
+      const double sa = std::max(Aj.row(i).cwiseAbs().maxCoeff(), 1e-300);
+      const double sb = std::max(Bj.row(i).cwiseAbs().maxCoeff(), 1e-300);
+      EXPECT_LT((Ad.row(i) - Aj.row(i)).cwiseAbs().maxCoeff() / sa, 1e-10) << "AD df/dq row " << i;
+      EXPECT_LT((Bd.row(i) - Bj.row(i)).cwiseAbs().maxCoeff() / sb, 1e-10) << "AD df/dv row " << i;
+    }
+  }
   // Central differences, step ~ eps^(1/3) scaled per unknown: truncation and round-off errors are
   // both ~1e-10 relative, far below the 1e-6 asked.
   Eigen::MatrixXd Afd(n, n), Bfd(n, n);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cosserat/lie/quaternion.hpp"
+#include "cosserat/quatfd/quatfd_kernel_jacobians.hpp"
 #include "cosserat/rod/grid.hpp"
 
 namespace cosserat::quatfd {
@@ -207,23 +208,60 @@ void QuatFdModel::TipLoads(const kernels::V4<T>& p_last, kernels::V3<T>* force_W
   }
 }
 
-template <bool kWithJacobian>
+void QuatFdModel::TipLoadsJacobian(const Vec4& p_last, Vec3* force_W, Vec3* torque_B,
+                                   Eigen::Matrix<double, 3, 4>* force_p,
+                                   Eigen::Matrix<double, 3, 4>* torque_p) const {
+  // With e = [1, h k/4] the tip turn (TipQuaternion: p_t = p ⊗ e), R(p_t) = R(p) R(e):
+  //   world force: constant;  body force f = R(p) R(e) F:
+  //     ∂f/∂p = −R(p) [R(e) F]× G(p) − R(p) R(e) [F]× G(e) ∂e/∂p;
+  //   world moment τ = R(p)ᵀ m: ∂τ/∂p = [τ]× G(p), and it turns the tip (k depends on m_B):
+  //     ∂e⃗/∂p = (h/4) C_K⁻¹ [m_B]× G(p);
+  //   body moment τ = R(e) m with e constant: ∂τ/∂p = 0.
+  TipLoads<double>(p_last, force_W, torque_B);
+  force_p->setZero();
+  torque_p->setZero();
+  const bool body_force = loads_.tip_force_frame == LoadFrame::kBody;
+  const bool world_moment = loads_.tip_moment_frame == LoadFrame::kWorld;
+  const kernels::M34 Gp = (2.0 / p_last.squaredNorm()) * kernels::ImConjMulMatrix(p_last);
+  if (world_moment) *torque_p = kernels::Skew(*torque_B) * Gp;
+  if (!body_force) return;
+  Vec3 m = loads_.tip_moment;
+  if (world_moment) m = kernels::ToBody<double>(p_last, m);
+  const Vec3 half = 0.25 * tip_h_ * (tip_rest_ + tip_compliance_ * m);
+  const Vec4 e(1.0, half[0], half[1], half[2]);
+  const Mat3 Rp = kernels::RotationMatrix(p_last), Re = kernels::RotationMatrix(e);
+  const Vec3 F = loads_.tip_force;
+  *force_p = -Rp * kernels::Skew(Re * F) * Gp;
+  if (world_moment) {
+    const kernels::M34 Ge = (2.0 / e.squaredNorm()) * kernels::ImConjMulMatrix(e);
+    const kernels::M34 half_p = 0.25 * tip_h_ * tip_compliance_ * kernels::Skew(m) * Gp;
+    *force_p -= Rp * Re * kernels::Skew(F) * Ge.rightCols<3>() * half_p;
+  }
+}
+
+template <int kMode>
 void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
                            const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
                            Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq, BandedMatrix* dfdv,
                            bool forces_only) const {
+  constexpr bool kJac = kMode != kValue;
   const int N = layout_.segments;
   // Phase 1: generalised forces. x rows of `a` collect the vertex forces (N, world); rows
   // P(ν)+1..+3 collect the body torques of segment ν (N·m). With the Jacobian, the same rows of
   // dfdq/dfdv collect their derivatives.
   a.setZero();
-  if (kWithJacobian) {
+  if (kJac) {
     dfdq->SetZero();
     dfdv->SetZero();
   }
+  // Adds a (3 × w) block into rows row.., columns col.. of D.
+  auto add = [](BandedMatrix* D, int row, int col, const auto& block) {
+    for (int j = 0; j < block.cols(); ++j)
+      for (int i = 0; i < 3; ++i) (*D)(row + i, col + j) += block(i, j);
+  };
   for (int i = 0; i < N; ++i) {
     const int xa = L::X(i), xb = L::X(i + 1), pp = L::P(i);
-    if (!kWithJacobian) {
+    if (kMode == kValue) {
       V3<double> fa, tau;
       kernels::SegmentForces<double>(segment_[i], Value<3>(q, xb) - Value<3>(q, xa),
                                      Value<4>(q, pp), Value<3>(v, xb) - Value<3>(v, xa),
@@ -231,103 +269,141 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
       a.segment<3>(xa) += fa;
       a.segment<3>(xb) -= fa;
       a.segment<3>(pp + 1) += tau;
+      continue;
+    }
+    kernels::SegmentJacobian J;
+    Vec3 fa, tau;
+    if (kMode == kAnalytic) {
+      kernels::SegmentForcesJacobian(segment_[i], Value<3>(q, xb) - Value<3>(q, xa),
+                                     Value<4>(q, pp), Value<3>(v, xb) - Value<3>(v, xa),
+                                     Value<4>(v, pp), &fa, &tau, &J);
     } else {
-      // Slots: dx 0..2, p 3..6, dv 7..9, ṗ 10..13; ∂/∂x_b = ∂/∂dx = −∂/∂x_a.
-      using J = Jet<14>;
-      V3<J> dx, dv;
+      // Slots: dx 0..2, p 3..6, dv 7..9, ṗ 10..13.
+      using Jt = Jet<14>;
+      V3<Jt> dx, dv, fj, tj;
       for (int k = 0; k < 3; ++k) {
-        dx[k] = J(q[xb + k] - q[xa + k], k);
-        dv[k] = J(v[xb + k] - v[xa + k], 7 + k);
+        dx[k] = Jt(q[xb + k] - q[xa + k], k);
+        dv[k] = Jt(v[xb + k] - v[xa + k], 7 + k);
       }
-      V3<J> fa, tau;
-      kernels::SegmentForces<J>(segment_[i], dx, Seed<14, 4>(q, pp, 3), dv, Seed<14, 4>(v, pp, 10),
-                                &fa, &tau);
-      const V3<J>* outs[2] = {&fa, &tau};
-      const int rows[2] = {xa, pp + 1};
-      for (int o = 0; o < 3; ++o) {
-        const V3<J>& out = *outs[o == 2 ? 0 : o];
-        const int row = o == 2 ? xb : rows[o];
-        const double sign = o == 2 ? -1.0 : 1.0;
-        for (int r = 0; r < 3; ++r) {
-          a[row + r] += sign * out[r].a;
-          for (int k = 0; k < 3; ++k) {
-            (*dfdq)(row + r, xb + k) += sign * out[r].v[k];
-            (*dfdq)(row + r, xa + k) -= sign * out[r].v[k];
-            (*dfdv)(row + r, xb + k) += sign * out[r].v[7 + k];
-            (*dfdv)(row + r, xa + k) -= sign * out[r].v[7 + k];
-          }
-          for (int k = 0; k < 4; ++k) {
-            (*dfdq)(row + r, pp + k) += sign * out[r].v[3 + k];
-            (*dfdv)(row + r, pp + k) += sign * out[r].v[10 + k];
-          }
+      kernels::SegmentForces<Jt>(segment_[i], dx, Seed<14, 4>(q, pp, 3), dv, Seed<14, 4>(v, pp, 10),
+                                 &fj, &tj);
+      for (int r = 0; r < 3; ++r) {
+        fa[r] = fj[r].a;
+        tau[r] = tj[r].a;
+        for (int k = 0; k < 3; ++k) {
+          J.fa_dx(r, k) = fj[r].v[k];
+          J.fa_dv(r, k) = fj[r].v[7 + k];
+          J.tau_dx(r, k) = tj[r].v[k];
+          J.tau_dv(r, k) = tj[r].v[7 + k];
+        }
+        for (int k = 0; k < 4; ++k) {
+          J.fa_p(r, k) = fj[r].v[3 + k];
+          J.fa_pd(r, k) = fj[r].v[10 + k];
+          J.tau_p(r, k) = tj[r].v[3 + k];
+          J.tau_pd(r, k) = tj[r].v[10 + k];
         }
       }
     }
+    a.segment<3>(xa) += fa;
+    a.segment<3>(xb) -= fa;
+    a.segment<3>(pp + 1) += tau;
+    // ∂/∂x_b = ∂/∂dx = −∂/∂x_a; the force on x_b is −force_a.
+    add(dfdq, xa, xb, J.fa_dx);
+    add(dfdq, xa, xa, -J.fa_dx);
+    add(dfdq, xa, pp, J.fa_p);
+    add(dfdv, xa, xb, J.fa_dv);
+    add(dfdv, xa, xa, -J.fa_dv);
+    add(dfdv, xa, pp, J.fa_pd);
+    add(dfdq, xb, xb, -J.fa_dx);
+    add(dfdq, xb, xa, J.fa_dx);
+    add(dfdq, xb, pp, -J.fa_p);
+    add(dfdv, xb, xb, -J.fa_dv);
+    add(dfdv, xb, xa, J.fa_dv);
+    add(dfdv, xb, pp, -J.fa_pd);
+    add(dfdq, pp + 1, xb, J.tau_dx);
+    add(dfdq, pp + 1, xa, -J.tau_dx);
+    add(dfdq, pp + 1, pp, J.tau_p);
+    add(dfdv, pp + 1, xb, J.tau_dv);
+    add(dfdv, pp + 1, xa, -J.tau_dv);
+    add(dfdv, pp + 1, pp, J.tau_pd);
   }
-  for (int n = 1; n < N; ++n) {
+  // Bending elements; n = 0 is the clamp's (its p_a is the constant clamp quaternion).
+  for (int n = 0; n < N; ++n) {
     if (!bend_active_[n]) continue;
-    const int pa = L::P(n - 1), pb = L::P(n);
-    if (!kWithJacobian) {
+    const bool clamp = n == 0;
+    const int pa = clamp ? -1 : L::P(n - 1), pb = L::P(n);
+    const Vec4 qa = clamp ? base_quat_ : Value<4>(q, pa);
+    const Vec4 va = clamp ? Vec4::Zero() : Value<4>(v, pa);
+    if (kMode == kValue) {
       V3<double> ta, tb;
-      kernels::BendTorques<double>(bend_[n], Value<4>(q, pa), Value<4>(q, pb), Value<4>(v, pa),
-                                   Value<4>(v, pb), &ta, &tb);
-      a.segment<3>(pa + 1) += ta;
+      kernels::BendTorques<double>(bend_[n], qa, Value<4>(q, pb), va, Value<4>(v, pb), &ta, &tb);
+      if (!clamp) a.segment<3>(pa + 1) += ta;
       a.segment<3>(pb + 1) += tb;
+      continue;
+    }
+    kernels::BendJacobian J;
+    Vec3 ta, tb;
+    if (kMode == kAnalytic) {
+      kernels::BendTorquesJacobian(bend_[n], qa, Value<4>(q, pb), va, Value<4>(v, pb), &ta, &tb,
+                                   &J);
     } else {
-      using J = Jet<16>;
-      V3<J> ta, tb;
-      kernels::BendTorques<J>(bend_[n], Seed<16, 4>(q, pa, 0), Seed<16, 4>(q, pb, 4),
-                              Seed<16, 4>(v, pa, 8), Seed<16, 4>(v, pb, 12), &ta, &tb);
-      const V3<J>* outs[2] = {&ta, &tb};
-      const int rows[2] = {pa + 1, pb + 1};
-      for (int o = 0; o < 2; ++o) {
-        a.segment<3>(rows[o]) += V3<double>((*outs[o])[0].a, (*outs[o])[1].a, (*outs[o])[2].a);
-        AddBlock<16>(*outs[o], 0, 4, rows[o], pa, dfdq);
-        AddBlock<16>(*outs[o], 4, 4, rows[o], pb, dfdq);
-        AddBlock<16>(*outs[o], 8, 4, rows[o], pa, dfdv);
-        AddBlock<16>(*outs[o], 12, 4, rows[o], pb, dfdv);
+      using Jt = Jet<16>;
+      V3<Jt> tja, tjb;
+      kernels::BendTorques<Jt>(bend_[n], Seed<16, 4>(qa, 0, 0), Seed<16, 4>(q, pb, 4),
+                               Seed<16, 4>(va, 0, 8), Seed<16, 4>(v, pb, 12), &tja, &tjb);
+      for (int r = 0; r < 3; ++r) {
+        ta[r] = tja[r].a;
+        tb[r] = tjb[r].a;
+        for (int k = 0; k < 4; ++k) {
+          J.ta_pa(r, k) = tja[r].v[k];
+          J.ta_pb(r, k) = tja[r].v[4 + k];
+          J.ta_pda(r, k) = tja[r].v[8 + k];
+          J.ta_pdb(r, k) = tja[r].v[12 + k];
+          J.tb_pa(r, k) = tjb[r].v[k];
+          J.tb_pb(r, k) = tjb[r].v[4 + k];
+          J.tb_pda(r, k) = tjb[r].v[8 + k];
+          J.tb_pdb(r, k) = tjb[r].v[12 + k];
+        }
       }
     }
+    a.segment<3>(pb + 1) += tb;
+    add(dfdq, pb + 1, pb, J.tb_pb);
+    add(dfdv, pb + 1, pb, J.tb_pdb);
+    if (clamp) continue;
+    a.segment<3>(pa + 1) += ta;
+    add(dfdq, pa + 1, pa, J.ta_pa);
+    add(dfdq, pa + 1, pb, J.ta_pb);
+    add(dfdv, pa + 1, pa, J.ta_pda);
+    add(dfdv, pa + 1, pb, J.ta_pdb);
+    add(dfdq, pb + 1, pa, J.tb_pa);
+    add(dfdv, pb + 1, pa, J.tb_pda);
   }
-  if (bend_active_[0]) {  // clamped base: the clamp's quaternion is a constant
-    const int pb = L::P(0);
-    if (!kWithJacobian) {
-      V3<double> ta, tb;
-      kernels::BendTorques<double>(bend_[0], base_quat_, Value<4>(q, pb), Vec4::Zero(),
-                                   Value<4>(v, pb), &ta, &tb);
-      a.segment<3>(pb + 1) += tb;
-    } else {
-      using J = Jet<8>;
-      V3<J> ta, tb;
-      const V4<J> pc = base_quat_.cast<J>(), zero = V4<J>::Zero();
-      kernels::BendTorques<J>(bend_[0], pc, Seed<8, 4>(q, pb, 0), zero, Seed<8, 4>(v, pb, 4), &ta,
-                              &tb);
-      a.segment<3>(pb + 1) += V3<double>(tb[0].a, tb[1].a, tb[2].a);
-      AddBlock<8>(tb, 0, 4, pb + 1, pb, dfdq);
-      AddBlock<8>(tb, 4, 4, pb + 1, pb, dfdv);
-    }
-  }
-  // External loads: gravity and the distributed force lumped on the vertices; tip force on x_N,
-  // tip moment on the last segment (body torque).
+  // External loads: gravity and the distributed force lumped on the vertices (constant); tip
+  // force on x_N, tip moment on the last segment (body torque).
   for (int n = 0; n <= N; ++n)
     a.segment<3>(L::X(n)) +=
         mass_[n] * loads_.gravity_W + vertex_weight_[n] * loads_.distributed_force_W;
   {
     const int xt = L::X(N), pl = L::P(N - 1);
-    if (!kWithJacobian) {
-      V3<double> f, m;
+    Vec3 f, m;
+    if (kMode == kValue) {
       TipLoads<double>(Value<4>(q, pl), &f, &m);
-      a.segment<3>(xt) += f;
-      a.segment<3>(pl + 1) += m;
+    } else if (kMode == kAnalytic) {
+      Eigen::Matrix<double, 3, 4> f_p, m_p;
+      TipLoadsJacobian(Value<4>(q, pl), &f, &m, &f_p, &m_p);
+      add(dfdq, xt, pl, f_p);
+      add(dfdq, pl + 1, pl, m_p);
     } else {
-      using J = Jet<4>;
-      V3<J> f, m;
-      TipLoads<J>(Seed<4, 4>(q, pl, 0), &f, &m);
-      a.segment<3>(xt) += V3<double>(f[0].a, f[1].a, f[2].a);
-      a.segment<3>(pl + 1) += V3<double>(m[0].a, m[1].a, m[2].a);
-      AddBlock<4>(f, 0, 4, xt, pl, dfdq);
-      AddBlock<4>(m, 0, 4, pl + 1, pl, dfdq);
+      using Jt = Jet<4>;
+      V3<Jt> fj, mj;
+      TipLoads<Jt>(Seed<4, 4>(q, pl, 0), &fj, &mj);
+      f = V3<double>(fj[0].a, fj[1].a, fj[2].a);
+      m = V3<double>(mj[0].a, mj[1].a, mj[2].a);
+      AddBlock<4>(fj, 0, 4, xt, pl, dfdq);
+      AddBlock<4>(mj, 0, 4, pl + 1, pl, dfdq);
     }
+    a.segment<3>(xt) += f;
+    a.segment<3>(pl + 1) += m;
   }
 
   if (forces_only) {
@@ -340,7 +416,7 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     const int r = L::X(n);
     const double inv_m = fixed_[r] ? 0.0 : 1.0 / mass_[n];
     a.segment<3>(r) *= inv_m;
-    if (kWithJacobian) {
+    if (kJac) {
       for (int i = r; i < r + 3; ++i) {
         const int c0 = std::max(0, i - L::kBandwidth), c1 = std::min(size() - 1, i + L::kBandwidth);
         for (int c = c0; c <= c1; ++c) {
@@ -357,48 +433,64 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     const int pp = L::P(i);
     rc.inertia = rotation_[i].inertia;
     const Vec3 tau = a.segment<3>(pp + 1);
-    if (!kWithJacobian) {
+    if (kMode == kValue) {
       a.segment<4>(pp) =
           kernels::QuaternionAcceleration<double>(rc, Value<4>(q, pp), Value<4>(v, pp), tau);
-    } else {
-      using J = Jet<11>;
-      Eigen::Matrix<J, 3, 1> tj;
-      for (int k = 0; k < 3; ++k) tj[k] = J(tau[k], 8 + k);
-      const V4<J> acc =
-          kernels::QuaternionAcceleration<J>(rc, Seed<11, 4>(q, pp, 0), Seed<11, 4>(v, pp, 4), tj);
-      // Rows pp+1..pp+3 of dfdq/dfdv hold dτ/d(q, v) over the window of columns c0..c0+17
-      // (p_{ν−1}, x_ν, p_ν, x_{ν+1}, p_{ν+1}); replace rows pp..pp+3 by ∂p̈/∂τ · dτ + own terms.
-      const int c0 = std::max(0, pp - 7), c1 = std::min(size() - 1, pp + 10);
-      for (BandedMatrix* D : {dfdq, dfdv}) {
-        const bool is_q = D == dfdq;
-        double window[3][18];
-        for (int k = 0; k < 3; ++k)
-          for (int c = c0; c <= c1; ++c) window[k][c - c0] = (*D)(pp + 1 + k, c);
-        for (int r = 0; r < 4; ++r) {
-          for (int c = c0; c <= c1; ++c) {
-            double sum = 0.0;
-            for (int k = 0; k < 3; ++k) sum += acc[r].v[8 + k] * window[k][c - c0];
-            (*D)(pp + r, c) = sum;
-          }
-          for (int k = 0; k < 4; ++k) (*D)(pp + r, pp + k) += acc[r].v[(is_q ? 0 : 4) + k];
-        }
-      }
-      for (int r = 0; r < 4; ++r) a[pp + r] = acc[r].a;
+      continue;
     }
+    Vec4 acc;
+    kernels::M44 acc_p, acc_pd;
+    kernels::M43 acc_tau;
+    if (kMode == kAnalytic) {
+      kernels::QuaternionAccelerationJacobian(rc, Value<4>(q, pp), Value<4>(v, pp), tau, &acc,
+                                              &acc_p, &acc_pd, &acc_tau);
+    } else {
+      using Jt = Jet<11>;
+      Eigen::Matrix<Jt, 3, 1> tj;
+      for (int k = 0; k < 3; ++k) tj[k] = Jt(tau[k], 8 + k);
+      const V4<Jt> accj =
+          kernels::QuaternionAcceleration<Jt>(rc, Seed<11, 4>(q, pp, 0), Seed<11, 4>(v, pp, 4), tj);
+      for (int r = 0; r < 4; ++r) {
+        acc[r] = accj[r].a;
+        for (int k = 0; k < 4; ++k) {
+          acc_p(r, k) = accj[r].v[k];
+          acc_pd(r, k) = accj[r].v[4 + k];
+        }
+        for (int k = 0; k < 3; ++k) acc_tau(r, k) = accj[r].v[8 + k];
+      }
+    }
+    // Rows pp+1..pp+3 of dfdq/dfdv hold dτ/d(q, v) over the window of columns c0..c0+17
+    // (p_{ν−1}, x_ν, p_ν, x_{ν+1}, p_{ν+1}); replace rows pp..pp+3 by ∂p̈/∂τ · dτ + own terms.
+    const int c0 = std::max(0, pp - 7), c1 = std::min(size() - 1, pp + 10);
+    for (BandedMatrix* D : {dfdq, dfdv}) {
+      const kernels::M44& own = D == dfdq ? acc_p : acc_pd;
+      double window[3][18];
+      for (int k = 0; k < 3; ++k)
+        for (int c = c0; c <= c1; ++c) window[k][c - c0] = (*D)(pp + 1 + k, c);
+      for (int r = 0; r < 4; ++r) {
+        for (int c = c0; c <= c1; ++c) {
+          double sum = 0.0;
+          for (int k = 0; k < 3; ++k) sum += acc_tau(r, k) * window[k][c - c0];
+          (*D)(pp + r, c) = sum;
+        }
+        for (int k = 0; k < 4; ++k) (*D)(pp + r, pp + k) += own(r, k);
+      }
+    }
+    a.segment<4>(pp) = acc;
   }
 }
 
 void QuatFdModel::Acceleration(const Eigen::Ref<const Eigen::VectorXd>& q,
                                const Eigen::Ref<const Eigen::VectorXd>& v,
                                Eigen::Ref<Eigen::VectorXd> a) const {
-  Evaluate<false>(q, v, options_.baumgarte_alpha, options_.baumgarte_beta, a, nullptr, nullptr,
-                  false);
+  Evaluate<kValue>(q, v, options_.baumgarte_alpha, options_.baumgarte_beta, a, nullptr, nullptr,
+                   false);
 }
 
 void QuatFdModel::Acceleration(const Eigen::Ref<const Eigen::VectorXd>& q,
                                const Eigen::Ref<const Eigen::VectorXd>& v, double alpha,
                                double beta, Eigen::Ref<Eigen::VectorXd> a) const {
-  Evaluate<false>(q, v, alpha, beta, a, nullptr, nullptr, false);
+  Evaluate<kValue>(q, v, alpha, beta, a, nullptr, nullptr, false);
 }
 
 void QuatFdModel::Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
@@ -407,9 +499,11 @@ void QuatFdModel::Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
   Jacobian(q, v, options_.baumgarte_alpha, options_.baumgarte_beta, dfdq, dfdv, a);
 }
 
-void QuatFdModel::Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
-                           const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
-                           BandedMatrix* dfdq, BandedMatrix* dfdv, Eigen::VectorXd* a) const {
+template <int kMode>
+void QuatFdModel::JacobianImpl(const Eigen::Ref<const Eigen::VectorXd>& q,
+                               const Eigen::Ref<const Eigen::VectorXd>& v, double alpha,
+                               double beta, BandedMatrix* dfdq, BandedMatrix* dfdv,
+                               Eigen::VectorXd* a) const {
   const int n = size();
   if (dfdq->rows() != n || dfdq->lower() != L::kBandwidth || dfdq->upper() != L::kBandwidth)
     dfdq->Resize(n, L::kBandwidth, L::kBandwidth);
@@ -417,17 +511,30 @@ void QuatFdModel::Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
     dfdv->Resize(n, L::kBandwidth, L::kBandwidth);
   if (a) {
     a->resize(n);
-    Evaluate<true>(q, v, alpha, beta, *a, dfdq, dfdv, false);
+    Evaluate<kMode>(q, v, alpha, beta, *a, dfdq, dfdv, false);
   } else {
     Eigen::VectorXd tmp(n);
-    Evaluate<true>(q, v, alpha, beta, tmp, dfdq, dfdv, false);
+    Evaluate<kMode>(q, v, alpha, beta, tmp, dfdq, dfdv, false);
   }
+}
+
+void QuatFdModel::Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
+                           const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
+                           BandedMatrix* dfdq, BandedMatrix* dfdv, Eigen::VectorXd* a) const {
+  JacobianImpl<kAnalytic>(q, v, alpha, beta, dfdq, dfdv, a);
+}
+
+void QuatFdModel::JacobianAutoDiff(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                   const Eigen::Ref<const Eigen::VectorXd>& v, double alpha,
+                                   double beta, BandedMatrix* dfdq, BandedMatrix* dfdv,
+                                   Eigen::VectorXd* a) const {
+  JacobianImpl<kAutoDiff>(q, v, alpha, beta, dfdq, dfdv, a);
 }
 
 void QuatFdModel::Forces(const Eigen::Ref<const Eigen::VectorXd>& q,
                          const Eigen::Ref<const Eigen::VectorXd>& v,
                          Eigen::Ref<Eigen::VectorXd> forces) const {
-  Evaluate<false>(q, v, 0.0, 0.0, forces, nullptr, nullptr, true);
+  Evaluate<kValue>(q, v, 0.0, 0.0, forces, nullptr, nullptr, true);
 }
 
 double QuatFdModel::Project(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const {
@@ -437,8 +544,9 @@ double QuatFdModel::Project(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::Vec
     auto pd = v.segment<4>(L::P(i));
     const double norm = p.norm();
     worst = std::max(worst, std::abs(norm - 1.0));
+    // p ← p/|p| and ṗ ← (ṗ − (p̂·ṗ) p̂)/|p| keep the rotation and ω = 2 Im(p̄ ṗ)/|p|² exactly.
     p /= norm;
-    pd -= p.dot(pd) * p;
+    pd = (pd - p.dot(pd) * p) / norm;
   }
   return worst;
 }
@@ -448,6 +556,12 @@ double QuatFdModel::ConstraintViolation(const Eigen::Ref<const Eigen::VectorXd>&
   for (int i = 0; i < layout_.segments; ++i)
     worst = std::max(worst, std::abs(q.segment<4>(L::P(i)).norm() - 1.0));
   return worst;
+}
+
+double QuatFdModel::min_rotational_inertia() const {
+  double j = rotation_[0].inertia.minCoeff();
+  for (const kernels::RotationConstants& r : rotation_) j = std::min(j, r.inertia.minCoeff());
+  return j;
 }
 
 double QuatFdModel::Mass() const {

@@ -13,19 +13,17 @@ namespace {
 
 using L = QuatFdLayout;
 
-/// β² for the solve: of the order of the tangential rows (torque scale over the smallest
-/// rotational inertia), so the rows of the Newton matrix have comparable size for pivoting.
 struct Workspace {
   BandedMatrix A, B;
   Eigen::VectorXd a, dq, zero;
   double residual = 0;
 };
 
+/// β for the solve: β² J_min = EI/L, so the constraint rows (β² (|p|² − 1)/2) and the tangential
+/// rows (torque / J, torques of the order EI/L) have comparable size for pivoting. Only a row
+/// scale: any β > 0 gives the same equilibrium.
 double StaticBeta(const QuatFdModel& model) {
-  // J_ν ≈ ρ I Δs; the ratio moment scale / J only sets a row scale, any positive value works.
-  const double m = model.Mass() / model.length();  // ρA, kg/m
-  const double h = model.length() / model.layout().segments;
-  return std::sqrt(model.moment_scale() / (m * 1e-6 * h));
+  return std::sqrt(model.moment_scale() / model.min_rotational_inertia());
 }
 
 /// Newton at fixed loads from q. Returns true on convergence; counts iterations.
@@ -132,7 +130,6 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   if (!loads.IsValid(&load_why) || !q.allFinite()) return finish(SolveStatus::kNonFinite);
 
   model->set_loads(loads);
-  const Eigen::VectorXd guess = q;
   if (Newton(*model, options, beta, q, &w, &summary)) return finish(SolveStatus::kConverged);
   if (!options.load_stepping) return finish(SolveStatus::kMaxIterations);
 
@@ -159,7 +156,6 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   q = q_ok;
   model->set_loads(loads);
   summary.residual = StaticResidual(*model, q);
-  (void)guess;
   return finish(SolveStatus::kConverged);
 }
 

@@ -117,8 +117,8 @@ class QuatFdModel {
                     Eigen::Ref<Eigen::VectorXd> a) const;
 
   /// ∂f/∂q and ∂f/∂v, exact, banded (kl = ku = 10; the matrices are resized and overwritten).
-  /// Built from element Jacobians by forward-mode differentiation (ceres::Jet) of the same
-  /// kernels that give f, assembled band-wise. Optionally also f.
+  /// Hand-derived element Jacobians (quatfd_kernel_jacobians.hpp) assembled band-wise and chained
+  /// through the quaternion mass-matrix inverse. Optionally also f.
   void Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& v, BandedMatrix* dfdq, BandedMatrix* dfdv,
                 Eigen::VectorXd* a = nullptr) const;
@@ -131,13 +131,19 @@ class QuatFdModel {
   void Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
                 BandedMatrix* dfdq, BandedMatrix* dfdv, Eigen::VectorXd* a) const;
+  /// The same Jacobian by forward-mode automatic differentiation (ceres::Jet) of the element
+  /// kernels that give f: the test oracle for the analytic one.
+  void JacobianAutoDiff(const Eigen::Ref<const Eigen::VectorXd>& q,
+                        const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
+                        BandedMatrix* dfdq, BandedMatrix* dfdv, Eigen::VectorXd* a) const;
 
   /// The generalised forces behind f: rows X(n) get the total force on vertex n (N, world; zero
   /// at prescribed vertices), rows P(ν)+1..+3 the body torque on segment ν (N·m), rows P(ν) zero.
   void Forces(const Eigen::Ref<const Eigen::VectorXd>& q,
               const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Ref<Eigen::VectorXd> forces) const;
 
-  /// Projection onto the constraint manifold: p ← p/|p|, ṗ ← ṗ − (p·ṗ) p. Returns the largest
+  /// Projection onto the constraint manifold: p ← p/|p|, ṗ ← (ṗ − (p̂·ṗ) p̂)/|p|, which keeps the
+  /// rotation and ω (only the gauge |p|, p·ṗ is reset). Returns the largest
   /// | |p| − 1 | found before projecting.
   double Project(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const;
   /// max over segments of | |p| − 1 |.
@@ -161,13 +167,21 @@ class QuatFdModel {
   double Mass() const;
   const std::vector<double>& vertex_mass() const { return mass_; }
 
+  /// Smallest principal rotational inertia of a segment, ρ I Δs (kg·m²).
+  double min_rotational_inertia() const;
+
   /// Scales that make residuals dimensionless: EI/L (N·m) and EI/L² (N), EI the largest bending
   /// stiffness at s = 0.
   double moment_scale() const { return moment_scale_; }
   double force_scale() const { return force_scale_; }
 
  private:
-  template <bool kWithJacobian>
+  enum : int { kValue, kAutoDiff, kAnalytic };  ///< Evaluate's mode: f, f + J by Jet, by hand
+  template <int kMode>
+  void JacobianImpl(const Eigen::Ref<const Eigen::VectorXd>& q,
+                    const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
+                    BandedMatrix* dfdq, BandedMatrix* dfdv, Eigen::VectorXd* a) const;
+  template <int kMode>
   void Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
                 Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq, BandedMatrix* dfdv,
@@ -180,6 +194,10 @@ class QuatFdModel {
   template <typename T>
   void TipLoads(const kernels::V4<T>& p_last, kernels::V3<T>* force_W,
                 kernels::V3<T>* torque_B) const;
+  /// TipLoads and its derivatives with respect to p_{N−1/2}.
+  void TipLoadsJacobian(const Vec4& p_last, Vec3* force_W, Vec3* torque_B,
+                        Eigen::Matrix<double, 3, 4>* force_p,
+                        Eigen::Matrix<double, 3, 4>* torque_p) const;
 
   QuatFdOptions options_;
   QuatFdLayout layout_;
