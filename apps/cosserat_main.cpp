@@ -4,6 +4,7 @@
 //   cosserat --version | --help
 // Exit codes: 0 converged (or valid), 1 solved but not converged, 2 bad input or usage.
 
+#include <array>
 #include <cerrno>
 #include <cstring>
 #include <exception>
@@ -18,6 +19,7 @@
 
 #include "cosserat/io/problem.hpp"
 #include "cosserat/io/result_writer.hpp"
+#include "cosserat/robots/tendon_control.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "run_dynamics.hpp"
 #include "run_quatfd.hpp"
@@ -153,9 +155,33 @@ std::string StaticSummary(const cosserat::StaticShootingSummary& s,
 /// summary line to `log`. Returns true when the solve converged.
 bool RunStatics(const cosserat::io::Problem& problem, std::ostream& out, std::ostream* csv,
                 std::ostream& log) {
-  cosserat::StaticShootingSolver solver(problem.rod, problem.nodes, problem.solver);
-  const cosserat::StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
-  out << cosserat::io::StaticResultToJson(summary, solver.state()).dump(2) << '\n';
+  cosserat::Actuation actuation = problem.robot.actuation;
+  cosserat::StaticShootingSolver solver(problem.rod, problem.nodes, problem.solver, actuation);
+  cosserat::StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
+  std::array<bool, cosserat::Actuation::kMaxTendons> slack{};
+  for (int i = 0; i < cosserat::Actuation::kMaxTendons; ++i)
+    slack[i] = actuation.tendon_tension[i] == 0.0;  // force control: slack means no tension
+  if (problem.robot.tendon_lengths && summary.converged()) {
+    // Displacement control: the tensions that give the commanded tendon lengths.
+    const cosserat::TendonLengthSummary t = cosserat::SolveTendonLengths(
+        solver, problem.base, problem.loads, *problem.robot.tendon_lengths, &actuation);
+    summary.status = t.status;
+    summary.iterations += t.iterations;
+    slack = t.slack;
+  }
+  nlohmann::ordered_json result = cosserat::io::StaticResultToJson(summary, solver.state());
+  if (problem.has_robot) {
+    const int count = solver.tendon_count();
+    nlohmann::ordered_json robot;
+    robot["kind"] = problem.robot.kind;
+    robot["tendon_tension"] = std::vector<double>(actuation.tendon_tension.begin(),
+                                                  actuation.tendon_tension.begin() + count);
+    robot["tendon_length"] = std::vector<double>(solver.tendon_lengths().begin(),
+                                                 solver.tendon_lengths().begin() + count);
+    robot["tendon_slack"] = std::vector<bool>(slack.begin(), slack.begin() + count);
+    result["robot"] = robot;
+  }
+  out << result.dump(2) << '\n';
   if (csv) cosserat::io::WriteNodesCsv(*csv, solver.state());
   log << StaticSummary(summary, solver.state()) << '\n';
   return summary.converged();

@@ -20,8 +20,10 @@ double SecondsSince(Clock::time_point start) {
 }
 
 /// The clamp held still at the problem's base pose, under `loads`.
-StepInput ClampedInput(const io::Problem& problem, const StaticLoads& loads) {
+StepInput ClampedInput(const io::Problem& problem, const StaticLoads& loads,
+                       const Actuation& actuation) {
   StepInput input;
+  input.actuation = actuation;
   input.base_pose = problem.base;
   input.base_twist_B = Vec6::Zero();
   input.loads = loads;
@@ -49,7 +51,7 @@ void AddCounts(const StepSummary& s, io::DynamicRun* run) {
 /// after a failed step, which may have committed some halved sub-steps.
 void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_nodes,
                   Bdf2ShootingStepper* stepper, io::DynamicRun* run) {
-  const StepInput input = ClampedInput(problem, problem.loads);
+  const StepInput input = ClampedInput(problem, problem.loads, problem.robot.actuation);
   const double dt = problem.dynamics.dt;
   const auto loop_start = Clock::now();
   for (int k = 1; k <= steps; ++k) {
@@ -89,8 +91,8 @@ io::DynamicRun Simulate(const io::Problem& problem, bool all_nodes, Bdf2Shooting
   if (all_nodes) run.frame_positions.reserve(frames * problem.nodes);
 
   const auto start = Clock::now();
-  const StepSummary init =
-      stepper->InitializeAtRest(ClampedInput(problem, d.initial_loads.value_or(problem.loads)));
+  const StepSummary init = stepper->InitializeAtRest(ClampedInput(
+      problem, d.initial_loads.value_or(problem.loads), problem.robot.initial_actuation));
   AddCounts(init, &run);
   run.initial_state_ok = init.converged();
   run.status = init.status;

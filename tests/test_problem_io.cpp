@@ -876,5 +876,52 @@ TEST(ResultWriter, CsvHasHeaderAndOneRowPerNode) {
   EXPECT_FALSE(std::getline(lines, extra));
 }
 
+// ----- robot section (issue 5) -----------------------------------------------------------------
+
+TEST(ProblemIoRobot, TendonRoutesAndTensionsMapToTheModel) {
+  json j = ValidProblem();
+  j["robot"] = json::parse(R"({
+    "kind": "tendon", "disk_radius": 0.01,
+    "tendons": [ { "name": "a", "route": "parallel", "offset": [0.008, 0] },
+                 { "route": "converging", "offset_base": [0, 0.008], "offset_tip": [0, 0.004] },
+                 { "route": "helical", "radius": 0.005, "pitch": -0.25, "phase": 0.5 } ],
+    "actuation": { "tension": [1.5, 0, 2] },
+    "initial_actuation": { "tension": [0.5, 0, 0] } })");
+  const ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const Problem& p = *r.problem;
+  ASSERT_EQ(p.rod.tendons.size(), 3u);
+  EXPECT_EQ(p.rod.tendons[0].name, "a");
+  EXPECT_EQ(p.rod.tendons[0].route.OffsetAt(0.3, 0.5), Vec3(0.008, 0, 0));
+  EXPECT_EQ(p.rod.tendons[1].route.OffsetAt(0.5, 0.5), Vec3(0, 0.004, 0));  // at the tip
+  EXPECT_EQ(p.rod.tendons[2].route.kind, TendonRoute::Kind::kHelical);
+  EXPECT_EQ(p.rod.tendons[2].route.pitch, -0.25);
+  EXPECT_EQ(p.robot.actuation.tendon_tension[2], 2.0);
+  EXPECT_EQ(p.robot.initial_actuation.tendon_tension[0], 0.5);
+  EXPECT_FALSE(p.robot.tendon_lengths.has_value());
+}
+
+TEST(ProblemIoRobot, LengthControlAndItsErrors) {
+  json j = ValidProblem();
+  j["robot"] = json::parse(R"({ "kind": "tendon",
+    "tendons": [ { "route": "parallel", "offset": [0.0005, 0] } ],
+    "actuation": { "length": [0.499] } })");
+  ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  EXPECT_EQ((*r.problem->robot.tendon_lengths)[0], 0.499);
+
+  j["robot"]["actuation"] = json::parse(R"({ "length": [0.499, 0.4], "tension": [1] })");
+  r = Parse(j);
+  EXPECT_ERROR(r, "robot.actuation", "either \"tension\"");
+  EXPECT_ERROR(r, "robot.actuation.length", "one value per tendon (1 in robot.tendons)");
+  j["robot"]["actuation"] = json::parse(R"({ "tension": [1] })");
+  j["robot"]["tendons"][0]["offset"] = json::array({0.002, 0});  // outside the 1 mm rod
+  r = Parse(j);
+  EXPECT_ERROR(r, "robot.tendons[0].offset", "within the section", "0.002");
+  j["robot"].erase("tendons");
+  r = Parse(j);
+  EXPECT_ERROR(r, "robot.tendons", "required key is missing");
+}
+
 }  // namespace
 }  // namespace cosserat::io

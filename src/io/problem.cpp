@@ -12,6 +12,7 @@
 
 #include "cosserat/io/json_document.hpp"
 #include "cosserat/io/json_reader.hpp"
+#include "problem_robot.hpp"
 #include "problem_rod.hpp"
 
 namespace cosserat::io {
@@ -157,7 +158,7 @@ void CheckFormat(const ObjectReader& top) {
 
 void ParseTopLevel(const ObjectReader& top, Problem* p) {
   top.AllowOnly({"format", "description", "analysis", "formulation", "rod", "base", "boundary",
-                 "loads", "dynamics", "buckling", "modes", "solver"});
+                 "loads", "dynamics", "buckling", "modes", "solver", "robot"});
   CheckFormat(top);
   ReadString(top, "description", Presence::kOptional);
   p->analysis = ReadChoice(top, "analysis", kAnalyses, Presence::kOptional).value_or(p->analysis);
@@ -184,6 +185,7 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
     ParseModes(*o, &p->modes);
   }
   if (const auto o = ReadObject(top, "solver", Presence::kOptional)) ParseSolver(*o, &p->solver);
+  if (const auto o = ReadObject(top, "robot", Presence::kOptional)) ParseRobot(*o, top.value(), p);
 }
 
 /// The library's own checks; they should never fire after the ones above.
@@ -248,6 +250,15 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
     check("boundary", p.boundary, {"cantilever", "free-free"});
   else
     check("boundary", p.boundary, {"cantilever"});
+  if (p.has_robot) {
+    check("robot.kind", p.robot.kind, {"tendon", "jamming"});
+    if (p.formulation == "quaternion-fd")
+      out.push_back("robot: robots run on the \"se3-shooting\" formulation only in this version");
+    if (p.robot.tendon_lengths && p.analysis != "statics")
+      out.push_back(
+          "robot.actuation.length: displacement control runs in statics only in this "
+          "version (use \"tension\" in dynamics)");
+  }
   return out;
 }
 

@@ -100,3 +100,13 @@ cosserat_cli_test(NAME bad_stiffness_profile
                   STDERR "rod.stiffness_profile.layer_modlus: unknown key for a \"jamming\" profile \\(did you mean \"layer_modulus\"\\?\\).*rod.stiffness_profile.pressure: expected a number >= 0, got -3000.*rod.stiffness_profile.tube_modulus.table\\[2\\]\\[0\\]: expected a pressure greater than.*rod.stiffness_profile.segments\\[1\\].start: expected a number >= 0.2 .*must not overlap")
 cosserat_cli_test(NAME solve_jamming_profile ARGS solve "${_cli_dir}/jamming_profile.json"
                   CODE 0 STDOUT "\"status\": \"converged\"" STDERR "converged")
+
+# Robots (issue 5): every description file in robots/ solves; bad robot input names the field.
+file(GLOB _robot_files "${CMAKE_CURRENT_LIST_DIR}/../../robots/*.json")
+foreach(_robot IN LISTS _robot_files)
+  get_filename_component(_robot_name "${_robot}" NAME_WE)
+  cosserat_cli_test(NAME robot_${_robot_name} ARGS solve "${_robot}" CODE 0
+                    STDOUT "\"robot\": {.*\"tendon_tension\"" STDERR "converged")
+endforeach()
+cosserat_cli_test(NAME bad_robot ARGS validate "${_cli_dir}/bad_robot.json" CODE 2
+                  STDERR "robot.colour: unknown key.*robot.tendons\\[0\\].offset: expected an offset within the section.*robot.tendons\\[1\\].pich: unknown key.*did you mean \"pitch\".*robot.tendons\\[1\\].pitch: expected .*missing.*robot.actuation.tension\\[1\\]: expected a tension >= 0.*robot.actuation.pressure: expected a number >= 0, got -5")

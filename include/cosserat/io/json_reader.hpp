@@ -72,6 +72,7 @@ class ObjectReader {
   void Reject(const std::string& key, const std::string& expected) const;
 
   const std::string& path() const { return path_; }
+  const nlohmann::json& value() const { return *object_; }
   ErrorReport& report() const { return *report_; }
 
  private:

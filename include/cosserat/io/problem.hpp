@@ -3,6 +3,7 @@
 /// Problem files ("cosserat-problem/1", see docs/problem-format.md): parsing into the library's
 /// types, with every input error reported as one line `<json.path>: expected <what>, got <found>`.
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,6 +56,16 @@ struct Problem {
     int count = 4;
   } modes;
   bool has_modes = false;
+
+  /// "robot": the robot kind and its actuation; its tendons are in rod.tendons.
+  struct Robot {
+    std::string kind;             ///< "tendon" | "jamming" | "eversion"
+    Actuation actuation;          ///< statics; dynamics for t > 0
+    Actuation initial_actuation;  ///< dynamics: the equilibrium the run starts from
+    /// Displacement control: commanded tendon path lengths (m) instead of tensions.
+    std::optional<std::array<double, Actuation::kMaxTendons>> tendon_lengths;
+  } robot;
+  bool has_robot = false;
 };
 
 struct ParseResult {

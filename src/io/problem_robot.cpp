@@ -1,0 +1,205 @@
+#include "problem_robot.hpp"
+
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cosserat/rod/stiffness_profiles.hpp"
+
+namespace cosserat::io::detail {
+namespace {
+
+using json = nlohmann::json;
+
+const std::vector<std::string> kRobotKinds = {"tendon", "jamming", "eversion"};
+const std::vector<std::string> kRoutes = {"parallel", "converging", "helical"};
+
+/// An array of exactly 2 numbers (an offset in the section: body x, y), or nullopt (reported).
+std::optional<Vec2> ReadOffset(const ObjectReader& o, const std::string& key) {
+  const json* v = o.Find(key);
+  if (!v) {
+    o.report().Missing(o.PathOf(key), "an array [x, y] of 2 numbers (m, body frame)");
+    return std::nullopt;
+  }
+  if (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number() ||
+      !std::isfinite((*v)[0].get<double>()) || !std::isfinite((*v)[1].get<double>())) {
+    o.report().Expected(o.PathOf(key), "an array [x, y] of 2 finite numbers (m, body frame)",
+                        Describe(*v));
+    return std::nullopt;
+  }
+  return Vec2((*v)[0].get<double>(), (*v)[1].get<double>());
+}
+
+/// The radius within which tendon guides may sit: "disk_radius" if given, else the outer radius
+/// of a circle, annulus or rectangle section; nullopt when neither says (no check).
+std::optional<double> GuideRadius(const ObjectReader& robot, const json& top) {
+  if (robot.Has("disk_radius"))
+    return ReadNumber(robot, "disk_radius", PositiveNumber(), Presence::kOptional);
+  const json* rod = top.contains("rod") ? &top["rod"] : nullptr;
+  if (!rod || !rod->is_object() || !rod->contains("section")) return std::nullopt;
+  const json& s = (*rod)["section"];
+  if (!s.is_object()) return std::nullopt;
+  auto number = [&](const char* key) -> std::optional<double> {
+    if (s.contains(key) && s[key].is_number()) return s[key].get<double>();
+    return std::nullopt;
+  };
+  if (auto r = number("radius")) return r;
+  if (auto r = number("outer_radius")) return r;
+  if (auto w = number("width"), h = number("height"); w && h) return 0.5 * std::hypot(*w, *h);
+  return std::nullopt;
+}
+
+std::optional<Tendon> ParseTendon(const ObjectReader& t, std::optional<double> guide_radius) {
+  const std::optional<std::string> route = ReadChoice(t, "route", kRoutes, Presence::kRequired);
+  std::vector<std::string> keys = {"name", "route"};
+  if (route == "parallel") keys.push_back("offset");
+  if (route == "converging") keys.insert(keys.end(), {"offset_base", "offset_tip"});
+  if (route == "helical") keys.insert(keys.end(), {"radius", "pitch", "phase"});
+  t.AllowOnly(keys, route ? "for a \"" + *route + "\" tendon" : "");
+  Tendon out;
+  out.name = ReadString(t, "name", Presence::kOptional).value_or("");
+  if (!route) return std::nullopt;
+  // Each offset must lie within the guides' radius.
+  bool ok = true;
+  auto inside = [&](const std::string& key, double r) {
+    if (guide_radius && r > *guide_radius) {
+      t.report().Expected(t.PathOf(key),
+                          "an offset within the section (|r| <= " + FormatNumber(*guide_radius) +
+                              " m; set robot.disk_radius for guide disks wider than the rod)",
+                          FormatNumber(r) + " m from the axis");
+      ok = false;
+    }
+  };
+  if (*route == "parallel") {
+    const auto r = ReadOffset(t, "offset");
+    if (!r) return std::nullopt;
+    inside("offset", r->norm());
+    out.route = TendonRoute::Parallel(*r);
+  } else if (*route == "converging") {
+    const auto a = ReadOffset(t, "offset_base"), b = ReadOffset(t, "offset_tip");
+    if (!a || !b) return std::nullopt;
+    inside("offset_base", a->norm());
+    inside("offset_tip", b->norm());
+    out.route = TendonRoute::Converging(*a, *b);
+  } else {
+    const auto radius = ReadNumber(t, "radius", PositiveNumber(), Presence::kRequired);
+    const NumberRule nonzero{"a non-zero number (m per turn; > 0 turns anticlockwise about z)",
+                             [](double x) { return x != 0.0; }};
+    const auto pitch = ReadNumber(t, "pitch", nonzero, Presence::kRequired);
+    const auto phase = ReadNumber(t, "phase", AnyFiniteNumber(), Presence::kOptional);
+    if (!radius || !pitch) return std::nullopt;
+    inside("radius", *radius);
+    out.route = TendonRoute::Helical(*radius, *pitch, phase.value_or(0.0));
+  }
+  if (!ok) return std::nullopt;
+  return out;
+}
+
+/// A list of at most `max` non-negative numbers into `out`; nullopt-like false when reported.
+bool ReadList(const ObjectReader& o, const std::string& key, int max, const NumberRule& rule,
+              double* out, int* count) {
+  const json* v = o.Find(key);
+  if (!v) return false;
+  if (!v->is_array() || v->size() > static_cast<size_t>(max)) {
+    o.report().Expected(o.PathOf(key), "an array of at most " + std::to_string(max) + " numbers",
+                        Describe(*v));
+    return false;
+  }
+  bool ok = true;
+  for (size_t i = 0; i < v->size(); ++i) {
+    const auto x = CheckNumber((*v)[i], ElementPath(o.PathOf(key), i), rule, o.report());
+    if (x)
+      out[i] = *x;
+    else
+      ok = false;
+  }
+  *count = static_cast<int>(v->size());
+  return ok;
+}
+
+/// "actuation" / "initial_actuation": tensions or lengths, pressure, jamming pressures.
+void ParseActuation(const ObjectReader& a, int tendons, Actuation* act,
+                    std::optional<std::array<double, Actuation::kMaxTendons>>* lengths) {
+  a.AllowOnly(lengths
+                  ? std::vector<std::string>{"tension", "length", "pressure", "jamming_pressure"}
+                  : std::vector<std::string>{"tension", "pressure", "jamming_pressure"});
+  if (a.Has("tension") && lengths && a.Has("length"))
+    a.report().Add(a.path(),
+                   "give either \"tension\" (force control) or \"length\" "
+                   "(displacement control), not both");
+  auto check_count = [&](const std::string& key, int count) {
+    if (count != tendons)
+      a.Reject(key, "one value per tendon (" + std::to_string(tendons) + " in robot.tendons)");
+  };
+  int count = 0;
+  if (a.Has("tension")) {
+    const NumberRule pull{"a tension >= 0 (N; a tendon cannot push)",
+                          [](double x) { return x >= 0; }};
+    if (ReadList(a, "tension", Actuation::kMaxTendons, pull, act->tendon_tension.data(), &count))
+      check_count("tension", count);
+  }
+  if (lengths && a.Has("length")) {
+    std::array<double, Actuation::kMaxTendons> l{};
+    if (ReadList(a, "length", Actuation::kMaxTendons, PositiveNumber(), l.data(), &count)) {
+      check_count("length", count);
+      *lengths = l;
+    }
+  }
+  if (const auto p = ReadNumber(a, "pressure", NonNegativeNumber(), Presence::kOptional))
+    act->pressure = *p;
+  if (a.Has("jamming_pressure"))
+    ReadList(a, "jamming_pressure", Actuation::kMaxSegments, NonNegativeNumber(),
+             act->jamming_pressure.data(), &count);
+}
+
+}  // namespace
+
+void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
+  robot.AllowOnly({"kind", "description", "source", "disk_radius", "tendons", "actuation",
+                   "initial_actuation"});
+  p->has_robot = true;
+  p->robot.kind = ReadChoice(robot, "kind", kRobotKinds, Presence::kRequired).value_or("");
+  ReadString(robot, "description", Presence::kOptional);
+  ReadString(robot, "source", Presence::kOptional);
+  const std::optional<double> guide = GuideRadius(robot, top);
+
+  // A profile solved at fixed pressures (rod.stiffness_profile) hands them to the robot, whose
+  // actuation may then change them.
+  if (const auto* fixed = dynamic_cast<const FixedActuationSection*>(p->rod.section.get())) {
+    p->robot.actuation.pressure = fixed->actuation().pressure;
+    p->robot.actuation.jamming_pressure = fixed->actuation().jamming_pressure;
+    p->robot.initial_actuation = p->robot.actuation;
+    p->rod.section = fixed->inner();
+  }
+
+  p->rod.tendons.clear();
+  if (const json* t = robot.Find("tendons")) {
+    const std::string path = robot.PathOf("tendons");
+    if (!t->is_array() || t->size() > static_cast<size_t>(Actuation::kMaxTendons)) {
+      robot.report().Expected(
+          path, "an array of at most " + std::to_string(Actuation::kMaxTendons) + " tendons",
+          Describe(*t));
+    } else {
+      for (size_t i = 0; i < t->size(); ++i) {
+        const std::string tp = ElementPath(path, i);
+        if (!(*t)[i].is_object()) {
+          robot.report().Expected(tp, "a tendon object {\"route\", ...}", Describe((*t)[i]));
+          continue;
+        }
+        if (auto tendon = ParseTendon(ObjectReader((*t)[i], tp, &robot.report()), guide))
+          p->rod.tendons.push_back(*tendon);
+      }
+    }
+  } else if (p->robot.kind == "tendon") {
+    robot.report().Missing(robot.PathOf("tendons"), "an array of tendons");
+  }
+  const int tendons = static_cast<int>(p->rod.tendons.size());
+  if (const auto a = ReadObject(robot, "actuation", Presence::kOptional))
+    ParseActuation(*a, tendons, &p->robot.actuation, &p->robot.tendon_lengths);
+  if (const auto a = ReadObject(robot, "initial_actuation", Presence::kOptional))
+    ParseActuation(*a, tendons, &p->robot.initial_actuation, nullptr);
+}
+
+}  // namespace cosserat::io::detail
