@@ -86,5 +86,33 @@ TEST(TendonDynamics, SwitchingAJammingSegmentMidRunMovesNothingDiscontinuously) 
   EXPECT_LT(coarse, 1e-3 * 0.25);  // and it is small in absolute terms
 }
 
+TEST(TendonStatics, JammedAndCompliantCurvaturesFollowTheirStiffnessRatio) {
+  // One straight tendon and no external load: the moment is τ r along the whole body (tension
+  // is internal), so each segment bends with κ = τ r / EI_eff: the curvature ratio of a
+  // compliant and a jammed segment is their stiffness ratio (acceptance: 0.5 %).
+  const CrossSection sec = CrossSection::Annulus(0.01, 0.009);
+  const Material tube_material = Material::FromPoissonRatio(1e6, 0.45, 1100);
+  auto tube = std::make_shared<UniformSection>(sec, tube_material);
+  const std::vector<JammingSegment> segments = {{0.0, 0.2, 2e-9, ModulusLaw::Affine(0, 1000)},
+                                                {0.2, 0.4, 2e-9, ModulusLaw::Affine(0, 1000)},
+                                                {0.4, 0.6, 2e-9, ModulusLaw::Affine(0, 1000)}};
+  auto jamming = std::make_shared<JammingSection>(tube, segments);
+  RodModel model;
+  model.length = 0.6;
+  model.section = jamming;
+  model.tendons = {{"bend", TendonRoute::Parallel(Vec2(0.008, 0))}};
+  Actuation a;
+  a.tendon_tension[0] = 1.0;
+  a.jamming_pressure = {80000, 0, 80000};
+  StaticShootingSolver solver(model, 31, {}, a);
+  ASSERT_TRUE(solver.Solve(lie::SE3{}, StaticLoads{}).converged());
+  const RodState& st = solver.state();
+  const double compliant = st.strain[15].head<2>().norm();  // s = 0.3, middle segment
+  const double jammed = st.strain[5].head<2>().norm();      // s = 0.1
+  const double ratio = jamming->StiffnessRatio(0, 1, a);    // EI(jammed) / EI(compliant)
+  EXPECT_GT(ratio, 10.0);
+  EXPECT_NEAR(compliant / jammed / ratio, 1.0, 5e-3);
+}
+
 }  // namespace
 }  // namespace cosserat
