@@ -115,8 +115,8 @@ TEST(Eversion, SmallTipLoadMatchesLinearInflatedBeamTheory) {
 
   // The literal tip-follower model adds the tension p π r² along the tip tangent without the
   // pressure on the curved side wall. On a bent cantilever the tip tangent's line of action passes
-  // above the body, so the follower tension bends it further (p A L²/EI ≈ 8 here): it deflects
-  // far more than the inflated-beam theory. This is why kClosedVessel is the default.
+  // above the body, so the follower tension bends it further (p A L²/EI ≈ 4.4 here): it deflects
+  // ≈ 1.5 times the inflated-beam theory. This is why kClosedVessel is the default.
   EversionRobot follower(VineDesign({}, PressureLoadModel::kTipFollowerOnly), L, p);
   StaticLoads body_loads;
   body_loads.tip_force_frame = LoadFrame::kBody;
@@ -381,6 +381,10 @@ TEST(Eversion, BadInputNamesTheField) {
   ExpectInvalid([&] { robot.SetPressure(NAN); }, "pressure");
   ExpectInvalid([&] { robot.Solve(1.6, StaticLoads{}); }, "length");
   ExpectInvalid([&] { robot.Grow(1.0, 0, StaticLoads{}); }, "steps");
+  EversionRobot follower(VineDesign({}, PressureLoadModel::kTipFollowerOnly), 0.5, 1e3);
+  StaticLoads world_tip;
+  world_tip.tip_force = Vec3(0, 0, -0.01);  // one tip-force field cannot be world and body frame
+  ExpectInvalid([&] { follower.Solve(world_tip); }, "loads.tip_force");
   EXPECT_EQ(robot.pressure(), 1e3);  // a rejected value changes nothing
   EXPECT_THROW(robot.state(), std::logic_error);
 

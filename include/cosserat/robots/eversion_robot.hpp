@@ -17,7 +17,8 @@
 ///     W + [0; 0; 0; 0; 0; p A(s)] (body frame), i.e. the tip follower force p A_tip on the wall.
 ///   - kTipFollowerOnly: the follower tip force p A_tip alone (a body-frame tip force on the rod),
 ///     without the pressure on the curved side wall. This is the literal "follower tip force"
-///     model; it adds a tension stiffening the real tube does not have (docs/eversion.md).
+///     model; on a bent body it adds a moment that amplifies the bending, which the real tube
+///     does not have (docs/eversion.md).
 ///
 /// Growth. Material keeps its arc length s from the base: growing from L to L' adds the
 /// material (L, L'] at the tip and leaves [0, L] where it is (the base is fixed). Each growth
@@ -52,7 +53,7 @@ namespace cosserat {
 /// How the inflation pressure loads the rod (see the file comment).
 enum class PressureLoadModel {
   kClosedVessel,     ///< tip and side-wall pressure: wall tension p A(s), no bending effect
-  kTipFollowerOnly,  ///< follower tip force p A_tip only (tension-stiffens the bending)
+  kTipFollowerOnly,  ///< follower tip force p A_tip only (amplifies bending; for comparison)
 };
 
 /// A constrictive band: an inextensible ring that narrows the tube over [start, end) of material
