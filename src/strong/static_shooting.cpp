@@ -420,6 +420,16 @@ void StaticShootingSolver::SetActuation(const Actuation& actuation) {
   state_is_solution_ = false;  // the stored shot belongs to the old actuation
 }
 
+void StaticShootingSolver::WarmStartFrom(const lie::SE3& base, const StaticLoads& loads,
+                                         const Vec6& base_wrench_B) {
+  x_ = base_wrench_B.cwiseQuotient(scale_);
+  solved_base_ = base;
+  solved_loads_ = loads;
+  has_solution_ = true;
+  has_jacobian_ = false;       // the Jacobian of another model is no use here
+  state_is_solution_ = false;  // the state is not the shot of this guess
+}
+
 Vec6 StaticShootingSolver::Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& x) {
   state_is_solution_ = false;
   if (tendon_stages_.empty())

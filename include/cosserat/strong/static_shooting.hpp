@@ -96,6 +96,13 @@ class StaticShootingSolver {
   bool TipJacobianWrtTensions(const lie::SE3& base, const StaticLoads& loads,
                               TensionJacobian* J) const;
 
+  /// Seed the next Solve with a guess W(0) = [m; n] for the base wrench (base body frame, N·m; N),
+  /// taken as if it were the equilibrium under (base, loads): typically the solution of a nearby
+  /// model, e.g. the previous length of a growing rod. A Solve at this base then starts from the
+  /// guess instead of from the unloaded rod (no Jacobian is reused). If the guess is poor the
+  /// solve can fail where a cold one would not: call ResetWarmStart and solve again.
+  void WarmStartFrom(const lie::SE3& base, const StaticLoads& loads, const Vec6& base_wrench_B);
+
   /// Forget the previous solution: the next Solve starts cold.
   void ResetWarmStart() {
     has_solution_ = false;

@@ -1,0 +1,352 @@
+#include "cosserat/robots/eversion_robot.hpp"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+
+namespace cosserat {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+bool Finite(double x) { return std::isfinite(x); }
+
+[[noreturn]] void Throw(const std::string& field, const std::string& what) {
+  throw std::invalid_argument(field + ": " + what);
+}
+
+std::string Interval(const EversionBand& b) {
+  std::ostringstream out;
+  out << "[" << b.start << ", " << b.end << ")";
+  return out.str();
+}
+
+}  // namespace
+
+const char* ToString(KinkStatus status) {
+  switch (status) {
+    case KinkStatus::kNone:
+      return "none";
+    case KinkStatus::kWrinkled:
+      return "wrinkled";
+    case KinkStatus::kCollapsed:
+      return "collapsed";
+  }
+  return "unknown";
+}
+
+void EversionRobotDesign::Validate() const {
+  if (!(Finite(radius) && radius > 0)) Throw("radius", "must be finite and > 0 (m)");
+  if (!(Finite(wall_thickness) && wall_thickness > 0))
+    Throw("wall_thickness", "must be finite and > 0 (m)");
+  if (!(wall_thickness < radius))
+    Throw("wall_thickness", "must be smaller than the radius (thin-walled tube)");
+  std::string why;
+  if (!wall_modulus.IsValid(&why)) Throw("wall_modulus", why);
+  if (!(wall_modulus.MinValue() > 0))
+    Throw("wall_modulus", "E_eff(p) must be > 0 for every p >= 0");
+  if (!(poisson_ratio > -1 && poisson_ratio <= 0.5))
+    Throw("poisson_ratio", "must lie in (-1, 0.5]");
+  if (!(Finite(wall_density) && wall_density >= 0))
+    Throw("wall_density", "must be finite and >= 0 (kg/m^3)");
+  for (double d : {damping.bending, damping.torsion, damping.shear, damping.extension})
+    if (!(Finite(d) && d >= 0)) Throw("damping", "coefficients must be finite and >= 0");
+  if (!(Finite(max_length) && max_length > 0)) Throw("max_length", "must be finite and > 0 (m)");
+  if (!(base.R.allFinite() && base.p.allFinite() &&
+        (base.R.transpose() * base.R - Mat3::Identity()).norm() < 1e-9 && base.R.determinant() > 0))
+    Throw("base", "must be a finite pose with a proper rotation matrix");
+  for (std::size_t k = 0; k < bands.size(); ++k) {
+    const EversionBand& b = bands[k];
+    const std::string field = "bands[" + std::to_string(k) + "]";
+    if (!(Finite(b.start) && Finite(b.end) && b.start >= 0 && b.start < b.end &&
+          b.end <= max_length))
+      Throw(field, "must lie within [0, max_length] = [0, " + std::to_string(max_length) +
+                       "] m with start < end, got " + Interval(b));
+    if (!(b.diameter_ratio > 0 && b.diameter_ratio <= 1))
+      Throw(field, "diameter_ratio must lie in (0, 1]");
+    if (!(Finite(b.factor) && b.factor > 0)) Throw(field, "factor (alpha) must be > 0");
+  }
+  std::vector<std::size_t> order(bands.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return bands[a].start < bands[b].start; });
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    const EversionBand& a = bands[order[i - 1]];
+    const EversionBand& b = bands[order[i]];
+    if (b.start < a.end)
+      Throw("bands[" + std::to_string(order[i]) + "]",
+            "overlaps bands[" + std::to_string(order[i - 1]) + "] (" + Interval(b) + " and " +
+                Interval(a) + ")");
+  }
+  const InflatedTubeSection profile(radius, wall_thickness, wall_modulus, poisson_ratio,
+                                    wall_density, bands, damping);
+  if (!profile.IsValid(max_length, &why)) Throw("design", why);  // anything missed above
+}
+
+EversionRobot::EversionRobot(EversionRobotDesign design, double initial_length, double pressure,
+                             EversionOptions options)
+    : design_(std::move(design)), options_(std::move(options)) {
+  design_.Validate();
+  std::string why;
+  if (!options_.solver.IsValid(&why)) Throw("options.solver", why);
+  if (!(Finite(options_.nodes_per_metre) && options_.nodes_per_metre > 0))
+    Throw("options.nodes_per_metre", "must be finite and > 0");
+  if (options_.min_nodes < 3) Throw("options.min_nodes", "must be >= 3");
+  if (!(Finite(initial_length) && initial_length > 0 && initial_length <= design_.max_length))
+    Throw("length", "initial length must lie in (0, max_length]");
+  full_profile_ = std::make_shared<InflatedTubeSection>(
+      design_.radius, design_.wall_thickness, design_.wall_modulus, design_.poisson_ratio,
+      design_.wall_density, design_.bands, design_.damping);
+  length_ = initial_length;
+  SetPressure(pressure);
+}
+
+void EversionRobot::SetPressure(double pressure) {
+  if (!(Finite(pressure) && pressure >= 0))
+    Throw("pressure", "must be finite and >= 0 (gauge, Pa)");
+  if (pressure != pressure_) solver_stale_ = true;
+  pressure_ = pressure;
+}
+
+Actuation EversionRobot::actuation() const {
+  Actuation a;
+  a.pressure = pressure_;
+  return a;
+}
+
+int EversionRobot::NodesAt(double length) const {
+  int bands = 0;
+  for (const EversionBand& b : design_.bands)
+    if (b.start < length * (1.0 - 1e-12)) ++bands;
+  const int base = std::max(options_.min_nodes,
+                            static_cast<int>(std::ceil(length * options_.nodes_per_metre)) + 1);
+  return base + 2 * bands;
+}
+
+RodModel EversionRobot::ModelAt(double length) const {
+  if (!(Finite(length) && length > 0 && length <= design_.max_length))
+    Throw("length",
+          "must lie in (0, max_length] = (0, " + std::to_string(design_.max_length) + "] m");
+  std::vector<EversionBand> everted;
+  for (const EversionBand& b : design_.bands) {
+    if (!(b.start < length * (1.0 - 1e-12))) continue;  // not everted yet
+    EversionBand c = b;
+    c.end = std::min(b.end, length);
+    everted.push_back(c);
+  }
+  auto profile = std::make_shared<InflatedTubeSection>(
+      design_.radius, design_.wall_thickness, design_.wall_modulus, design_.poisson_ratio,
+      design_.wall_density, std::move(everted), design_.damping);
+  RodModel model;
+  model.length = length;
+  model.section = profile;
+  if (design_.pressure_load == PressureLoadModel::kClosedVessel && pressure_ > 0) {
+    // The wall carries the tension p A(s) of the closed vessel: rest stretch p A / EA on top of
+    // the straight rest strain, so the solver's wrench is the net wrench of wall and air.
+    const Actuation act = actuation();
+    const double p = pressure_;
+    model.rest_strain = [profile, act, p](double s) {
+      Vec6 xi = StraightRestStrain();
+      const double r = profile->RadiusAt(s);
+      xi(5) += p * kPi * r * r / profile->At(s, act).stiffness(5, 5);
+      return xi;
+    };
+  }
+  return model;
+}
+
+StaticLoads EversionRobot::SolverLoads(const StaticLoads& external, double length) const {
+  StaticLoads loads = external;
+  if (design_.pressure_load != PressureLoadModel::kTipFollowerOnly) return loads;
+  if (loads.tip_force_frame == LoadFrame::kWorld) {
+    if (loads.tip_force.squaredNorm() != 0.0)
+      Throw("loads.tip_force",
+            "the kTipFollowerOnly pressure model adds a body-frame follower force; give the "
+            "external tip force in the body frame too");
+    loads.tip_force_frame = LoadFrame::kBody;
+  }
+  const double r = full_profile_->RadiusAt(std::max(0.0, length * (1.0 - 1e-12)));
+  loads.tip_force.z() += pressure_ * kPi * r * r;
+  return loads;
+}
+
+Vec6 EversionRobot::PredictBaseWrench(double length, const StaticLoads& loads) const {
+  // W(0) in the world frame is the resultant of the loads on the body, moment about p(0).
+  const RodState& st = solver_->state();
+  const Vec3& p0 = st.position_W.front();
+  const Mat3& R0 = st.rotation_WB.front();
+  const Vec3& tip = st.tip_position_W();
+  const Mat3& R_tip = st.tip_rotation_WB();
+  const double dL = length - solver_length_;
+  const Vec3 step = R_tip.col(2) * dL;  // the new (or removed) material along the tip tangent
+  const double s_mid = std::min(std::max(0.0, solver_length_ + 0.5 * dL), design_.max_length);
+  const double rho_A = full_profile_->At(s_mid, actuation()).mass(5, 5);
+  const Vec3 dF = (rho_A * loads.gravity_W + loads.distributed_force_W) * dL;
+  const Vec3 tip_force_W =
+      loads.tip_force_frame == LoadFrame::kWorld ? loads.tip_force : Vec3(R_tip * loads.tip_force);
+  Vec6 W;
+  W.head<3>() = R0 * last_base_wrench_.head<3>() + (tip + 0.5 * step - p0).cross(dF) +
+                step.cross(tip_force_W);
+  W.tail<3>() = R0 * last_base_wrench_.tail<3>() + dF;
+  Vec6 W_B;
+  W_B.head<3>() = R0.transpose() * W.head<3>();
+  W_B.tail<3>() = R0.transpose() * W.tail<3>();
+  return W_B;
+}
+
+void EversionRobot::RebuildSolver(double length) {
+  solver_ = std::make_unique<StaticShootingSolver>(ModelAt(length), NodesAt(length),
+                                                   options_.solver, actuation());
+  solver_length_ = length;
+  solver_stale_ = false;
+}
+
+EversionSolveSummary EversionRobot::Solve(double length, const StaticLoads& loads) {
+  if (!(Finite(length) && length > 0 && length <= design_.max_length))
+    Throw("length",
+          "must lie in (0, max_length] = (0, " + std::to_string(design_.max_length) + "] m");
+  std::string why;
+  if (!loads.IsValid(&why)) Throw("loads", why);
+  const StaticLoads solver_loads = SolverLoads(loads, length);
+
+  bool seeded = false;
+  if (solver_stale_ || length != solver_length_) {
+    // Guess: the previous equilibrium (another length or pressure), plus, for a new length, the
+    // base wrench of the material added (or removed) at the tip, laid along the old tip tangent.
+    Vec6 seed = last_base_wrench_;
+    if (have_solution_ && solver_ && length != solver_length_)
+      seed = PredictBaseWrench(length, solver_loads);
+    RebuildSolver(length);
+    if (have_solution_) {
+      solver_->WarmStartFrom(design_.base, solver_loads, seed);
+      seeded = true;
+    }
+  }
+  length_ = length;
+  solved_pressure_ = pressure_;
+
+  EversionSolveSummary out;
+  out.length = length;
+  out.solve = solver_->Solve(design_.base, solver_loads);
+  if (!out.solve.converged() && (seeded || out.solve.warm_started)) {
+    const StaticShootingSummary warm = out.solve;
+    solver_->ResetWarmStart();
+    out.solve = solver_->Solve(design_.base, solver_loads);
+    out.solve.iterations += warm.iterations;
+    out.solve.shots += warm.shots;
+    out.solve.wall_time_s += warm.wall_time_s;
+  }
+  out.solve.warm_started = out.solve.warm_started || seeded;
+  if (out.solve.converged()) {
+    have_solution_ = true;
+    last_base_wrench_ = solver_->base_wrench_B();
+    out.kink = CheckKink();
+  }
+  return out;
+}
+
+GrowthSummary EversionRobot::Grow(double target_length, int steps, const StaticLoads& loads,
+                                  const StepCallback& on_step) {
+  if (!(Finite(target_length) && target_length > 0 && target_length <= design_.max_length))
+    Throw("target_length", "must lie in (0, max_length]");
+  if (steps < 1) Throw("steps", "must be >= 1");
+  GrowthSummary out;
+  const double L0 = length_;
+  for (int k = 1; k <= steps; ++k) {
+    const double L = k == steps ? target_length : L0 + (target_length - L0) * k / steps;
+    const EversionSolveSummary step = Solve(L, loads);
+    if (!step.solve.converged()) {
+      out.status = step.solve.status;
+      return out;
+    }
+    out.steps = k;
+    out.length = L;
+    if (step.kink.kinked() && out.first_kink_step < 0) {
+      out.first_kink_step = k;
+      out.first_kink_length = L;
+    }
+    if (step.kink.max_ratio > out.worst_kink.max_ratio) out.worst_kink = step.kink;
+    if (on_step) on_step(k, step, *this);
+  }
+  out.status = SolveStatus::kConverged;
+  return out;
+}
+
+const RodState& EversionRobot::state() const {
+  if (!solver_) throw std::logic_error("EversionRobot::state(): no solve has been run");
+  return solver_->state();
+}
+
+KinkReport EversionRobot::CheckKink() const {
+  const RodState& st = state();
+  KinkReport rep;
+  const double L = solver_length_;
+  const double delta = 1e-9 * L;
+  for (int i = 0; i < st.size(); ++i) {
+    const double s = st.s[i];
+    // At a band end the radius jumps: the smaller wrinkling moment of the two sides governs.
+    double mw = std::numeric_limits<double>::infinity();
+    if (s > 0)
+      mw = std::min(mw,
+                    InflatedWrinklingMoment(solved_pressure_, RadiusAt(std::max(0.0, s - delta))));
+    if (s < L) mw = std::min(mw, InflatedWrinklingMoment(solved_pressure_, RadiusAt(s + delta)));
+    const double m = st.wrench_B[i].head<2>().norm();
+    double ratio = 0.0;
+    if (mw > 0)
+      ratio = m / mw;
+    else if (m > 0)
+      ratio = std::numeric_limits<double>::infinity();
+    if (ratio >= 1.0 && rep.first_kink_s < 0) rep.first_kink_s = s;
+    if (ratio > rep.max_ratio || i == 0) {
+      rep.max_ratio = ratio;
+      rep.s_max = s;
+      rep.moment = m;
+      rep.wrinkling_moment = mw;
+    }
+  }
+  // M_c = 2 M_w at the same radius (Comer & Levy), so the ratio classifies both limits.
+  rep.status = rep.max_ratio >= 2.0   ? KinkStatus::kCollapsed
+               : rep.max_ratio >= 1.0 ? KinkStatus::kWrinkled
+                                      : KinkStatus::kNone;
+  return rep;
+}
+
+double EversionRobot::BendingStiffnessAt(double s) const {
+  return full_profile_->BendingStiffnessAt(s, actuation());
+}
+
+double EversionRobot::AxialStiffness() const {
+  return design_.wall_modulus(pressure_) * 2.0 * kPi * design_.radius * design_.wall_thickness;
+}
+
+double EversionRobot::WrinklingMomentAt(double s) const {
+  return InflatedWrinklingMoment(pressure_, RadiusAt(s));
+}
+
+double EversionRobot::TipForce() const {
+  const double r = RadiusAt(std::max(0.0, length_ * (1.0 - 1e-12)));
+  return pressure_ * kPi * r * r;
+}
+
+double EversionRobot::FreeAxialStrain() const {
+  return pressure_ * kPi * design_.radius * design_.radius / AxialStiffness();
+}
+
+double EversionRobot::WallTension(int node) const {
+  const RodState& st = state();
+  if (node < 0 || node >= st.size()) throw std::out_of_range("WallTension: node out of range");
+  double n3 = st.wrench_B[node](5);
+  if (design_.pressure_load == PressureLoadModel::kClosedVessel) {
+    const double s = st.s[node];
+    const double r = RadiusAt(s < solver_length_ ? s : std::max(0.0, s * (1.0 - 1e-12)));
+    n3 += solved_pressure_ * kPi * r * r;
+  }
+  return n3;
+}
+
+}  // namespace cosserat
