@@ -22,6 +22,7 @@
 #include "cosserat/robots/tendon_control.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "run_dynamics.hpp"
+#include "run_eversion.hpp"
 #include "run_quatfd.hpp"
 
 namespace {
@@ -201,6 +202,8 @@ int RunSolve(const Command& cmd) {
   if (problem->formulation == "quaternion-fd")
     converged = dynamics ? cosserat::cli::RunQuatFdDynamics(*problem, out, csv, std::cerr)
                          : cosserat::cli::RunQuatFdStatics(*problem, out, csv, std::cerr);
+  else if (problem->has_robot && problem->robot.kind == "eversion")
+    converged = cosserat::cli::RunEversion(*problem, out, csv, std::cerr);
   else
     converged = dynamics ? cosserat::cli::RunDynamics(*problem, out, csv, std::cerr)
                          : RunStatics(*problem, out, csv, std::cerr);

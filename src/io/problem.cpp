@@ -251,7 +251,11 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
   else
     check("boundary", p.boundary, {"cantilever"});
   if (p.has_robot) {
-    check("robot.kind", p.robot.kind, {"tendon", "jamming"});
+    check("robot.kind", p.robot.kind, {"tendon", "jamming", "eversion"});
+    if (p.robot.kind == "eversion" && p.analysis != "statics")
+      out.push_back(
+          "robot.kind: an \"eversion\" robot runs in statics (quasi-static growth) only "
+          "in this version");
     if (p.formulation == "quaternion-fd")
       out.push_back("robot: robots run on the \"se3-shooting\" formulation only in this version");
     if (p.robot.tendon_lengths && p.analysis != "statics")

@@ -158,7 +158,7 @@ void ParseActuation(const ObjectReader& a, int tendons, Actuation* act,
 
 void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
   robot.AllowOnly({"kind", "description", "source", "disk_radius", "tendons", "actuation",
-                   "initial_actuation"});
+                   "initial_actuation", "growth"});
   p->has_robot = true;
   p->robot.kind = ReadChoice(robot, "kind", kRobotKinds, Presence::kRequired).value_or("");
   ReadString(robot, "description", Presence::kOptional);
@@ -194,6 +194,25 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
     }
   } else if (p->robot.kind == "tendon") {
     robot.report().Missing(robot.PathOf("tendons"), "an array of tendons");
+  }
+  if (p->robot.kind == "eversion") {
+    if (!dynamic_cast<const InflatedTubeSection*>(p->rod.section.get()))
+      robot.Reject("kind",
+                   "a robot whose rod.stiffness_profile is of kind \"inflated\" (the "
+                   "tube an eversion robot is made of)");
+    if (!p->rod.tendons.empty())
+      robot.report().Add(robot.PathOf("tendons"), "an eversion robot has no tendons here");
+  }
+  if (const auto g = ReadObject(robot, "growth", Presence::kOptional)) {
+    g->AllowOnly({"initial_length", "steps"});
+    const NumberRule shorter{
+        "a length > 0 and <= rod.length (" + FormatNumber(p->rod.length) + " m)",
+        [&](double x) { return x > 0 && x <= p->rod.length; }};
+    p->robot.growth_initial_length = ReadNumber(*g, "initial_length", shorter, Presence::kRequired);
+    p->robot.growth_steps =
+        ReadInteger(*g, "steps", 1, 100000, Presence::kOptional).value_or(p->robot.growth_steps);
+    if (p->robot.kind != "eversion")
+      robot.report().Add(robot.PathOf("growth"), "only an \"eversion\" robot grows");
   }
   const int tendons = static_cast<int>(p->rod.tendons.size());
   if (const auto a = ReadObject(robot, "actuation", Presence::kOptional))

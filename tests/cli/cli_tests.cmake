@@ -106,7 +106,7 @@ file(GLOB _robot_files "${CMAKE_CURRENT_LIST_DIR}/../../robots/*.json")
 foreach(_robot IN LISTS _robot_files)
   get_filename_component(_robot_name "${_robot}" NAME_WE)
   cosserat_cli_test(NAME robot_${_robot_name} ARGS solve "${_robot}" CODE 0
-                    STDOUT "\"robot\": {.*\"tendon_tension\"" STDERR "converged")
+                    STDOUT "\"robot\": {" STDERR "converged")
 endforeach()
 cosserat_cli_test(NAME bad_robot ARGS validate "${_cli_dir}/bad_robot.json" CODE 2
                   STDERR "robot.colour: unknown key.*robot.tendons\\[0\\].offset: expected an offset within the section.*robot.tendons\\[1\\].pich: unknown key.*did you mean \"pitch\".*robot.tendons\\[1\\].pitch: expected .*missing.*robot.actuation.tension\\[1\\]: expected a tension >= 0.*robot.actuation.pressure: expected a number >= 0, got -5")

@@ -64,6 +64,9 @@ struct Problem {
     Actuation initial_actuation;  ///< dynamics: the equilibrium the run starts from
     /// Displacement control: commanded tendon path lengths (m) instead of tensions.
     std::optional<std::array<double, Actuation::kMaxTendons>> tendon_lengths;
+    /// Eversion: grow from this length to rod.length in `growth_steps` quasi-static steps.
+    std::optional<double> growth_initial_length;
+    int growth_steps = 20;
   } robot;
   bool has_robot = false;
 };

@@ -236,6 +236,9 @@ class InflatedTubeSection final : public SectionProfile {
   double wall_thickness() const { return wall_thickness_; }
   const ModulusLaw& wall_modulus() const { return modulus_; }
   const std::vector<Constriction>& constrictions() const { return constrictions_; }
+  double poisson_ratio() const { return poisson_ratio_; }
+  double density() const { return density_; }
+  const KelvinVoigtDamping& damping() const { return damping_; }
 
  private:
   const Constriction* ConstrictionAt(double s) const;

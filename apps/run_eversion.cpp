@@ -1,0 +1,79 @@
+#include "run_eversion.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "cosserat/io/result_writer.hpp"
+#include "cosserat/robots/eversion_robot.hpp"
+#include "cosserat/rod/stiffness_profiles.hpp"
+
+namespace cosserat::cli {
+
+bool RunEversion(const io::Problem& problem, std::ostream& out, std::ostream* csv,
+                 std::ostream& log) {
+  // The parser guarantees an inflated-tube profile for this kind.
+  const auto& tube = dynamic_cast<const InflatedTubeSection&>(*problem.rod.section);
+  EversionRobotDesign design;
+  design.radius = tube.radius();
+  design.wall_thickness = tube.wall_thickness();
+  design.wall_modulus = tube.wall_modulus();
+  design.poisson_ratio = tube.poisson_ratio();
+  design.wall_density = tube.density();
+  design.damping = tube.damping();
+  design.bands = tube.constrictions();
+  design.max_length = problem.rod.length;
+  design.base = problem.base;
+  EversionOptions options;
+  options.solver = problem.solver;
+  const double pressure = problem.robot.actuation.pressure;
+  const double start = problem.robot.growth_initial_length.value_or(problem.rod.length);
+  EversionRobot robot(design, start, pressure, options);
+
+  StaticShootingSummary solve;
+  KinkReport kink;
+  std::ostringstream growth_note;
+  bool converged;
+  if (problem.robot.growth_initial_length) {
+    const GrowthSummary g =
+        robot.Grow(problem.rod.length, problem.robot.growth_steps, problem.loads);
+    converged = g.converged();
+    solve.status = g.status;
+    kink = g.worst_kink;
+    growth_note << ", grown in " << g.steps << " steps";
+    if (g.first_kink_step >= 0)
+      growth_note << ", first kink at L = " << g.first_kink_length << " m";
+  } else {
+    const EversionSolveSummary s = robot.Solve(problem.loads);
+    converged = s.ok();
+    solve = s.solve;
+    kink = s.kink;
+  }
+  nlohmann::ordered_json result = io::StaticResultToJson(solve, robot.state());
+  nlohmann::ordered_json r;
+  r["kind"] = "eversion";
+  r["pressure"] = pressure;
+  r["length"] = robot.length();
+  r["tip_force"] = robot.TipForce();
+  nlohmann::ordered_json k;
+  k["status"] = ToString(kink.status);
+  k["max_moment_ratio"] = std::isfinite(kink.max_ratio) ? nlohmann::ordered_json(kink.max_ratio)
+                                                        : nlohmann::ordered_json(nullptr);
+  k["s_max"] = kink.s_max;
+  k["first_kink_s"] = kink.first_kink_s;
+  r["kink"] = k;
+  result["robot"] = r;
+  out << result.dump(2) << '\n';
+  if (csv) io::WriteNodesCsv(*csv, robot.state());
+  const Vec3 tip = robot.state().tip_position_W();
+  log << "cosserat: eversion " << ToString(solve.status) << growth_note.str()
+      << ", L = " << robot.length() << " m, tip at [" << std::setprecision(6) << tip.x() << ", "
+      << tip.y() << ", " << tip.z() << "] m, kink: " << ToString(kink.status);
+  if (kink.kinked())
+    log << " (|m|/M_w = " << kink.max_ratio << " at s = " << kink.s_max << " m: the tube folds "
+        << "there; the shape beyond is not modelled)";
+  log << '\n';
+  return converged;
+}
+
+}  // namespace cosserat::cli
