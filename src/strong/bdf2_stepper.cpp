@@ -852,6 +852,75 @@ Vec3 Bdf2ShootingStepper::CentreOfMass_W() const {
   return first / Mass();
 }
 
+void Bdf2ShootingStepper::Grow(const RodModel& longer, int new_segments) {
+  std::string why;
+  if (!longer.IsValid(&why)) throw std::invalid_argument("Grow: " + why);
+  const double L_old = model_.length, L_new = longer.length;
+  if (!(L_new > L_old)) throw std::invalid_argument("Grow: the new length must exceed the old");
+  if (new_segments < 1) throw std::invalid_argument("Grow: new_segments must be at least 1");
+  if (longer.tendons.size() != model_.tendons.size())
+    throw std::invalid_argument("Grow: the tendons must stay the same");
+  // New nodes: evenly spaced on (L_old, L_new], plus the new model's breakpoints there.
+  std::vector<double> added;
+  for (int k = 1; k <= new_segments; ++k)
+    added.push_back(L_old + (L_new - L_old) * k / new_segments);
+  for (double b : longer.section->Breakpoints())
+    if (b > L_old && b < L_new) added.push_back(b);
+  std::sort(added.begin(), added.end());
+  const int n_old = static_cast<int>(grid_.size());
+  for (double s : added)
+    if (s - grid_.back() > 1e-12 * L_new) grid_.push_back(s);
+  grid_.back() = L_new;
+  model_ = longer;
+  const int n = static_cast<int>(grid_.size());
+  sample_points_ = SegmentSamplePoints(grid_);
+  samples_.resize(sample_points_.size());
+  if (!model_.tendons.empty()) {
+    tendons_.resize(sample_points_.size());
+    for (size_t q = 0; q < sample_points_.size(); ++q)
+      tendons_[q] = SampleTendons(model_.tendons, sample_points_[q], model_.length);
+  }
+  SampleSections();
+
+  // New stages and nodes start with the old tip's history, placed along its tangent.
+  const int stages_old = 4 * (n_old - 1), stages = 4 * (n - 1);
+  const Mat3 R_tip = run_.state.rotation_WB.back();
+  const Vec3 p_tip = run_.state.position_W.back();
+  auto along = [&](double s) { return Vec3(p_tip + R_tip.col(2) * (s - L_old)); };
+  const Vec3 v1 = R_tip * run_.tip_twist1.tail<3>(), v2 = R_tip * run_.tip_twist2.tail<3>();
+  for (auto* v : {&strain_now_, &twist_now_, &strain_h_, &twist_h_}) v->resize(stages);
+  for (auto* v : {&position_now_, &velocity_W_now_, &velocity_W_h_}) v->resize(stages);
+  rotation_now_.resize(stages, R_tip);
+  run_.strain1.resize(stages, run_.tip_strain1);
+  run_.strain2.resize(stages, run_.tip_strain2);
+  run_.twist1.resize(stages, run_.tip_twist1);
+  run_.twist2.resize(stages, run_.tip_twist2);
+  run_.rotation1.resize(stages, R_tip);
+  run_.velocity_W1.resize(stages, v1);
+  run_.velocity_W2.resize(stages, v2);
+  run_.position1.resize(stages);
+  for (int q = stages_old; q < stages; ++q) {
+    const int i = q / 4;
+    static constexpr double kStageOffset[4] = {0.0, 0.5, 0.5, 1.0};
+    run_.position1[q] = along(grid_[i] + kStageOffset[q % 4] * (grid_[i + 1] - grid_[i]));
+  }
+  RodState& st = run_.state;
+  const RodState old = st;
+  st.Resize(n);
+  for (int i = 0; i < n; ++i) {
+    st.s[i] = grid_[i];
+    const int j = std::min(i, n_old - 1);
+    st.position_W[i] = i < n_old ? old.position_W[i] : along(grid_[i]);
+    st.rotation_WB[i] = old.rotation_WB[j];
+    st.strain[i] = old.strain[j];
+    st.wrench_B[i] = old.wrench_B[j];
+    st.twist_B[i] = old.twist_B[j];
+  }
+  trial_ = st;
+  history_ready_ = false;
+  run_.jacobian_c0 = -1.0;  // another shot: start from its exact Jacobian
+}
+
 void Bdf2ShootingStepper::Restore(const Snapshot& s) {
   if (s.strain1.size() != run_.strain1.size() || s.state.size() != run_.state.size())
     throw std::invalid_argument("Snapshot is from a stepper with another grid");

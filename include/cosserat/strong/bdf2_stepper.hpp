@@ -142,6 +142,13 @@ class Bdf2ShootingStepper {
     StepInput last_input;   ///< input of the last accepted (sub-)step, for sub-step blending
     RodState state;         ///< the last accepted step
   };
+  /// Growth at the tip (eversion): continues the run on `longer`, a model of the same rod whose
+  /// length is larger and whose sections agree on [0, L_old]. The old grid nodes keep their
+  /// place in s and their history (material behind the tip stays where it is); `new_segments`
+  /// segments (plus any breakpoints of `longer` there) are appended, with the history of the old
+  /// tip (new material leaves the tip moving with it). Allocates: not for the real-time path.
+  void Grow(const RodModel& longer, int new_segments);
+
   Snapshot Save() const { return run_; }
   void Restore(const Snapshot& snapshot);
 
