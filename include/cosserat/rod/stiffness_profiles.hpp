@@ -201,16 +201,17 @@ double InflatedCollapseMoment(double pressure, double radius);
 /// monotonically with p because the law is non-decreasing. Mass: the wall, ρ_wall per unit volume.
 ///
 /// A constriction [start, end) narrows the tube to diameter_ratio · r there (which lowers the
-/// wrinkling moment and the pressure term) and multiplies bending and torsion stiffness by the
-/// empirical factor α (seed 003: α ≈ 0.36 for a band that halves the diameter — much stiffer than
-/// the thin-wall ratio³ = 0.125, so α is given, not derived). Constriction ends are breakpoints.
+/// wrinkling moment and the pressure term); bending and torsion stiffness are those of seed 003,
+/// EI_eff(s) = {α(s) E_eff(p)} I(s): the empirical modulus factor α (≈ 0.36 for a band that
+/// halves the diameter) times the second moment at the local radius, I(s) = π r(s)³ t. Area and
+/// mass stay those of the full wall. Constriction ends are breakpoints.
 class InflatedTubeSection final : public SectionProfile {
  public:
   struct Constriction {
     double start = 0.0;           ///< m
     double end = 0.0;             ///< m
     double diameter_ratio = 1.0;  ///< local diameter / nominal, in (0, 1]
-    double factor = 1.0;          ///< α, bending and torsion stiffness factor, > 0
+    double factor = 1.0;          ///< α, the modulus factor of bending and torsion there, > 0
   };
   /// radius r and wall_thickness t in m (t < r); wall_modulus E_eff(p); poisson_ratio ν of the
   /// wall; wall_density in kg/m³.
