@@ -14,16 +14,7 @@ bool RunEversion(const io::Problem& problem, std::ostream& out, std::ostream* cs
                  std::ostream& log) {
   // The parser guarantees an inflated-tube profile for this kind.
   const auto& tube = dynamic_cast<const InflatedTubeSection&>(*problem.rod.section);
-  EversionRobotDesign design;
-  design.radius = tube.radius();
-  design.wall_thickness = tube.wall_thickness();
-  design.wall_modulus = tube.wall_modulus();
-  design.poisson_ratio = tube.poisson_ratio();
-  design.wall_density = tube.density();
-  design.damping = tube.damping();
-  design.bands = tube.constrictions();
-  design.max_length = problem.rod.length;
-  design.base = problem.base;
+  const EversionRobotDesign design = DesignFromTube(tube, problem.rod.length, problem.base);
   EversionOptions options;
   options.solver = problem.solver;
   const double pressure = problem.robot.actuation.pressure;

@@ -128,6 +128,21 @@ int EversionRobot::NodesAt(double length) const {
   return base + 2 * bands;
 }
 
+EversionRobotDesign DesignFromTube(const InflatedTubeSection& tube, double max_length,
+                                   const lie::SE3& base) {
+  EversionRobotDesign design;
+  design.radius = tube.radius();
+  design.wall_thickness = tube.wall_thickness();
+  design.wall_modulus = tube.wall_modulus();
+  design.poisson_ratio = tube.poisson_ratio();
+  design.wall_density = tube.density();
+  design.damping = tube.damping();
+  design.bands = tube.constrictions();
+  design.max_length = max_length;
+  design.base = base;
+  return design;
+}
+
 RodModel EversionRobot::ModelAt(double length) const {
   if (!(Finite(length) && length > 0 && length <= design_.max_length))
     Throw("length",

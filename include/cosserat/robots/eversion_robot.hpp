@@ -79,6 +79,12 @@ struct EversionRobotDesign {
   void Validate() const;
 };
 
+/// The design of a robot made of `tube` (radius, wall, modulus law, ν, density, damping and its
+/// constrictions as bands), able to evert up to max_length from `base`: what a problem file's
+/// "inflated" stiffness profile describes.
+EversionRobotDesign DesignFromTube(const InflatedTubeSection& tube, double max_length,
+                                   const lie::SE3& base);
+
 struct EversionOptions {
   /// Grid density of the body: max(min_nodes, ceil(L · nodes_per_metre) + 1) nodes, plus two
   /// per everted band (its ends are nodes).

@@ -1,0 +1,35 @@
+#pragma once
+/// \file
+/// Minimum bend radius (issue 6, seed 003): the smallest radius of curvature an eversion robot's
+/// body reaches as an actuation load grows, before the first of three limits: the actuation
+/// limit (the whole load applied), a kink (the bending moment reaches the wrinkling moment
+/// π p r(s)³/2 somewhere; beyond it the tube folds and the elastic model no longer describes the
+/// shape), or a solve that fails (loss of stability).
+///
+/// The kink limit is found by bisection in the load factor to a relative 1e-6, so the radius there
+/// is R(s) = EI(s)/M_w(s) for the section that kinks: with seed 003's bands (α E_eff I(s), and
+/// M_w ∝ r(s)³) a band reaches α times the plain tube's radius.
+
+#include <string>
+
+#include "cosserat/loads/static_loads.hpp"
+#include "cosserat/robots/eversion_robot.hpp"
+
+namespace cosserat {
+
+struct BendRadiusResult {
+  double min_radius = 0.0;   ///< smallest radius of curvature 1/|κ⊥| on the body at the limit, m
+  double s = 0.0;            ///< where it occurs (material arc length from the base), m
+  double load_factor = 0.0;  ///< λ at the limit (1: the whole actuation load)
+  std::string limit;         ///< "actuation", "kink" or "no_convergence"
+  int solves = 0;
+  bool ok() const { return limit == "actuation" || limit == "kink"; }
+};
+
+/// Grows `actuation` (a load pattern: tip force or moment, any frame, or a distributed force) from
+/// 0 to 1 in `steps` increments on top of `fixed` (gravity, …) at the robot's current length and
+/// pressure, then refines the kink onset if one occurs. The robot ends at the limit state.
+BendRadiusResult MinimumBendRadius(EversionRobot& robot, const StaticLoads& fixed,
+                                   const StaticLoads& actuation, int steps = 20);
+
+}  // namespace cosserat
