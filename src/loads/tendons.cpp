@@ -117,17 +117,18 @@ Vec6 TendonWrench(const TendonSample& sample, const double* tension, const Vec6&
 bool SolveTendonStrain(const Mat6& stiffness, const Vec6& rest_strain, const TendonSample& sample,
                        const double* tension, const Vec6& W, Vec6* xi, Mat6* H) {
   // Newton on g(ξ) = K (ξ − ξ*) + T(ξ) − W. T is a small, smooth perturbation of the elastic
-  // law (τ ≪ EA), so a few iterations reach round-off from the previous stage's strain.
-  Mat6 dT;
+  // law (τ ≪ EA), so from the previous stage's strain the iteration is quadratic at once: a step
+  // below 1e-12 (relative) leaves an error of order its square, so it is the last one, and the
+  // H of that iteration (at most 1e-12 away from the solution) serves the tangent.
+  Mat6 dT, H_k;
   for (int it = 0; it < 8; ++it) {
     const Vec6 g = stiffness * (*xi - rest_strain) + TendonWrench(sample, tension, *xi, &dT) - W;
-    *H = stiffness + dT;
-    const Vec6 step = H->partialPivLu().solve(g);
+    H_k = stiffness + dT;
+    const Vec6 step = H_k.partialPivLu().solve(g);
     *xi -= step;
     if (!xi->allFinite()) return false;
-    if (step.norm() <= 1e-15 * (1.0 + xi->norm())) {
-      TendonWrench(sample, tension, *xi, &dT);
-      *H = stiffness + dT;
+    if (step.norm() <= 1e-12 * (1.0 + xi->norm())) {
+      if (H) *H = H_k;
       return true;
     }
   }

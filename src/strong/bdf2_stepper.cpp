@@ -459,7 +459,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     if (!tendons_.empty()) {
       Vec6 W;
       W << ys.m, ys.R.transpose() * ys.n;
-      given = tendon_strain(sample_index, xh, W, &H_stage[q % 4]);
+      given = tendon_strain(sample_index, xh, W, J ? &H_stage[q % 4] : nullptr);
     }
     return Derivative(smp, f_at(smp), ys, xh, Vh, statics ? zero3 : velocity_W_h_[q], c.c0, statics,
                       &strain_now_[q], &twist_now_[q], &velocity_W_now_[q],
@@ -508,8 +508,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
                     : Vec6(s_tip.implicit_offset + s_tip.implicit_compliance.cwiseProduct(W_tip) -
                            s_tip.implicit_damping.cwiseProduct(xi_h_tip));
   if (!tendons_.empty()) {
-    Mat6 H;
-    xi_tip = tendon_strain(3 * (n - 2) + 2, xi_h_tip, W_tip, &H);
+    xi_tip = tendon_strain(3 * (n - 2) + 2, xi_h_tip, W_tip, nullptr);
   }
   record_node(n - 1, xi_tip);
   tip_strain_now_ = xi_tip;

@@ -281,7 +281,8 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
   auto derivative = [&](int q, const Vec3& f, const ShotState& ys, Vec6* xi, Mat6* H) {
     if (!tc) return Derivative(samples[q], f, ys, xi);
     *xi = guess;
-    const ShotState d = TendonDerivative(samples[q], (*tc->stages)[q], tc->tension, f, ys, xi, H);
+    const ShotState d =
+        TendonDerivative(samples[q], (*tc->stages)[q], tc->tension, f, ys, xi, J ? H : nullptr);
     guess = *xi;
     return d;
   };
@@ -338,9 +339,9 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
     Vec6 xi_tip = Compliance(samples[q_tip], BodyWrench(y));
     if (tc) {
       xi_tip = guess;
-      Mat6 H;
       if (!SolveTendonStrain((*tc->stages)[q_tip].stiffness, samples[q_tip].rest_strain,
-                             (*tc->stages)[q_tip].tendons, tc->tension, BodyWrench(y), &xi_tip, &H))
+                             (*tc->stages)[q_tip].tendons, tc->tension, BodyWrench(y), &xi_tip,
+                             nullptr))
         xi_tip.setConstant(NAN);
     }
     record_node(n - 1, xi_tip);

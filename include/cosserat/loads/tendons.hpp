@@ -65,7 +65,8 @@ Vec6 TendonWrench(const TendonSample& sample, const double* tension, const Vec6&
                   Mat6* d_xi = nullptr, std::array<Vec6, Actuation::kMaxTendons>* a = nullptr);
 
 /// Solves K (ξ − ξ*) + Σ τ_i a_i(ξ) = W for the strain ξ by Newton's method from `xi` (in: a
-/// guess, out: the strain). Writes H = K + ∂(Σ τ a)/∂ξ at the solution, so dξ = H⁻¹ dW. Returns
+/// guess, out: the strain). If H is given, writes H = K + ∂(Σ τ a)/∂ξ at the last iterate (within
+/// 1e-12 relative of the solution), so dξ = H⁻¹ dW. Returns
 /// false if it did not converge to round-off in a few iterations (a tendon path folded back,
 /// |q| → 0).
 bool SolveTendonStrain(const Mat6& stiffness, const Vec6& rest_strain, const TendonSample& sample,
