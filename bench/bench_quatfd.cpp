@@ -52,11 +52,15 @@ lie::SE3 Horizontal() {
   return base;
 }
 
+/// baumgarte > 0: α = β = baumgarte (1/s) and no projection (a diagnostic variant, BENCHMARKS.md).
 void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int segments,
-         IntegratorKind kind) {
+         IntegratorKind kind, double baumgarte = 0.0) {
   QuatFdOptions opt;
   opt.segments = segments;
   opt.base_end = end;
+  opt.baumgarte_alpha = opt.baumgarte_beta = baumgarte;
+  IntegratorOptions io;
+  io.project = baumgarte == 0.0;
   QuatFdModel model(rod, Horizontal(), opt);
   StaticLoads loads;
   loads.gravity_W = Vec3(0, 0, -9.81);
@@ -68,7 +72,7 @@ void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int seg
   for (auto _ : state) {
     q = q0;
     v = v0;
-    auto integ = MakeIntegrator(kind, model);
+    auto integ = MakeIntegrator(kind, model, io);
     double t = 0;
     status = integ->Advance(10.0, &t, q, v);
     stats = integ->stats();
@@ -91,7 +95,21 @@ void BM_RubberRod_Dopri5(benchmark::State& s) {
 void BM_SteelString_Rosenbrock(benchmark::State& s) {
   Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRosenbrock);
 }
+void BM_RubberRod_Rosenbrock_Baumgarte(benchmark::State& s) {
+  Run(s, RubberRod(), EndCondition::kClamped, s.range(0), IntegratorKind::kRosenbrock, 1e3);
+}
+void BM_SteelString_Rosenbrock_Baumgarte(benchmark::State& s) {
+  Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRosenbrock, 1e4);
+}
 BENCHMARK(BM_RubberRod_Rosenbrock)->Arg(10)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
+// Stiff Baumgarte instead of the projection (α = β = 1e3 1/s for (a), 1e4 for (b)): makes the
+// |p| direction stiff, which removes one of the Rosenbrock step-map instabilities
+// (bench/quatfd_stability.cpp) but not the others; kept to document the effect.
+BENCHMARK(BM_RubberRod_Rosenbrock_Baumgarte)
+    ->Arg(10)
+    ->Arg(40)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 // dopri5 is stability-bound: with shear damped, the over-damped shear/rotary-inertia modes have
 // real eigenvalues near −2.5e6 1/s, and N = 10 took 7.6 million steps, 133 s (measured once;
 // 212 k steps, 3.4 s with shear undamped). Registered but disabled by default: run with
@@ -103,6 +121,10 @@ BENCHMARK(BM_RubberRod_Dopri5)
     ->Name("DISABLED_BM_RubberRod_Dopri5");
 // The steel string's fastest modes (~1e7 rad/s) put dopri5 out of reach (~1e8 steps); stiff only.
 BENCHMARK(BM_SteelString_Rosenbrock)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_SteelString_Rosenbrock_Baumgarte)
+    ->Arg(20)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 /// Per-call cost of f, of the Jacobian and of one Rosenbrock step (6 f + 1 Jacobian + banded LU +
 /// 6 banded solves) on a deformed, moving rubber rod.

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
@@ -339,6 +340,97 @@ TEST(QuatFdDynamics, ConstraintStaysOnTheSphereOverTenSeconds) {
   EXPECT_LT(worst, 1e-10);                                     // acceptance
   EXPECT_LT(integ.stats().max_drift_before_projection, 1e-4);  // the projection had work to do
   EXPECT_GT(integ.stats().max_drift_before_projection, 0.0);
+}
+
+TEST(QuatFdDynamics, StepLimitIsTheRosenbrockStepMapNotTheOde) {
+  // Issue 4's step counts (BENCHMARKS.md, "What limits the step"). Benchmark (a) exactly (all four
+  // strain rates damped, τ = 0.01 s), at t = 1 s of the swing:
+  //  - the ODE is stable: the frozen Jacobian's only eigenvalues with Re λ > 0 are the ±|ṗ|
+  //    pairs of the |p| gauge (freezing the quadratic invariant p·ṗ makes them ±|ṗ| instead of
+  //    0); nothing grows faster than the slowest segment rotation;
+  //  - one Rosenbrock step (with the projection) is a contraction for h = 1 ms, and the step
+  //    map's spectral radius ρ passes 1 between 2 and 5 ms (ρ ≈ 20 at 5 ms, printed): the frozen
+  //    Jacobian misses how the stiff directions in (p, ṗ, x) rotate with the segments over the
+  //    step, and that part is integrated explicitly.
+  Material mat = Material::FromPoissonRatio(5e6, 0.5, 1100);
+  const CrossSection c = CrossSection::Circle(0.005);
+  const double tau = 0.01;
+  mat.damping.bending = tau * mat.youngs_modulus * c.I1;
+  mat.damping.torsion = tau * mat.shear_modulus * c.torsion_constant;
+  mat.damping.shear = tau * mat.shear_modulus * c.area;
+  mat.damping.extension = tau * mat.youngs_modulus * c.area;
+  QuatFdOptions opt;
+  opt.segments = 10;
+  QuatFdModel model(RodModel::Uniform(0.5, c, mat), Horizontal(), opt);
+  StaticLoads loads;
+  loads.gravity_W = Vec3(0, 0, -9.81);
+  model.set_loads(loads);
+  const int n = model.size(), N = opt.segments;
+  Eigen::VectorXd q(n), v(n);
+  model.RestState(q, v);
+  {
+    RosenbrockIntegrator integ(model);
+    double t = 0;
+    ASSERT_EQ(integ.Advance(1.0, &t, q, v), IntegratorStatus::kOk);
+  }
+  std::vector<int> keep;  // free unknowns of y = [q; v]
+  for (int k = 0; k < 2; ++k)
+    for (int i = 0; i < n; ++i)
+      if (!model.IsFixed(i)) keep.push_back(k * n + i);
+  const int m = static_cast<int>(keep.size());
+
+  BandedMatrix A, B;
+  model.Jacobian(q, v, &A, &B);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, m);
+  for (int a = 0; a < m; ++a)
+    for (int b = 0; b < m; ++b) {
+      const int i = keep[a], j = keep[b];
+      if (i < n) {
+        J(a, b) = j == i + n ? 1.0 : 0.0;
+      } else {
+        const int r = i - n, col = j < n ? j : j - n;
+        if (std::abs(r - col) <= QuatFdLayout::kBandwidth) J(a, b) = j < n ? A(r, col) : B(r, col);
+      }
+    }
+  double max_pdot = 0;
+  for (int nu = 0; nu < N; ++nu)
+    max_pdot = std::max(max_pdot, v.segment<4>(QuatFdLayout::P(nu)).norm());
+  ASSERT_GT(max_pdot, 1.0);  // the rod is swinging
+  const Eigen::VectorXcd ev = Eigen::EigenSolver<Eigen::MatrixXd>(J, false).eigenvalues();
+  double max_re = -1e300, stiffest = 0;
+  for (int k = 0; k < m; ++k) {
+    max_re = std::max(max_re, ev[k].real());
+    stiffest = std::min(stiffest, ev[k].real());
+  }
+  EXPECT_LE(max_re, max_pdot * (1 + 1e-6));
+  EXPECT_LT(stiffest, -1e6);  // over-damped shear/rotary modes: h λ ~ 1e3–1e4 at the steps taken
+
+  RosenbrockIntegrator integ(model);
+  Eigen::VectorXd y(2 * n), out(2 * n), err(2 * n);
+  y << q, v;
+  const auto spectral_radius = [&](double h) {
+    Eigen::MatrixXd D(m, m);
+    for (int b = 0; b < m; ++b) {
+      const double eps = 1e-7;
+      Eigen::VectorXd d(2 * n);
+      for (int sign : {1, -1}) {
+        Eigen::VectorXd yy = y;
+        yy[keep[b]] += sign * eps;
+        integ.Step(yy, h, out, err);
+        model.Project(out.head(n), out.tail(n));
+        if (sign == 1)
+          d = out;
+        else
+          d = (d - out) / (2 * eps);
+      }
+      for (int a = 0; a < m; ++a) D(a, b) = d[keep[a]];
+    }
+    return Eigen::EigenSolver<Eigen::MatrixXd>(D, false).eigenvalues().cwiseAbs().maxCoeff();
+  };
+  const double rho_1ms = spectral_radius(1e-3), rho_5ms = spectral_radius(5e-3);
+  std::printf("step-map spectral radius: %.6f at h = 1 ms, %.3g at h = 5 ms\n", rho_1ms, rho_5ms);
+  EXPECT_LT(rho_1ms, 1.0 + 1e-3);
+  EXPECT_GT(rho_5ms, 2.0);  // the documented limit; a fix of the integrator should move this
 }
 
 TEST(QuatFdDynamics, BandedRosenbrockStepEqualsOdeintRosenbrock4) {
