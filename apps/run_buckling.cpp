@@ -55,8 +55,8 @@ bool RunBuckling(const io::Problem& problem, std::ostream& out, std::ostream* cs
   nlohmann::ordered_json result = io::StaticResultToJson(statics, analysis.state());
   nlohmann::ordered_json block;
   block["critical_load"] = NumberOrNull(b.critical_load);
-  block["mode_s_max"] = b.found() ? nlohmann::ordered_json(b.mode.s_max_curvature)
-                                  : nlohmann::ordered_json(nullptr);
+  block["mode_s_max"] =
+      b.found() ? nlohmann::ordered_json(b.mode.s_max_curvature) : nlohmann::ordered_json(nullptr);
   block["status"] = ToString(b.status);
   block["load"] = problem.buckling.load;
   block["direction"] = {problem.buckling.direction.x(), problem.buckling.direction.y(),
@@ -84,8 +84,8 @@ bool RunBuckling(const io::Problem& problem, std::ostream& out, std::ostream* cs
   std::ostringstream line;
   line << "cosserat: buckling " << ToString(b.status) << " (" << ToString(ends) << ")";
   if (b.found())
-    line << ", critical " << problem.buckling.load << " " << std::setprecision(6)
-         << b.critical_load << ", mode bends most at s = " << b.mode.s_max_curvature << " m";
+    line << ", critical " << problem.buckling.load << " " << std::setprecision(6) << b.critical_load
+         << ", mode bends most at s = " << b.mode.s_max_curvature << " m";
   else
     line << ", load reached " << std::setprecision(6) << b.lambda_reached;
   line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3

@@ -211,10 +211,11 @@ TEST(Buckling, CantileverPostBuckledBranchIsTheElastica) {
     const Vec3 t = analysis.state().tip_rotation_WB().col(2);
     const double angle = std::acos(std::clamp(t.z(), -1.0, 1.0));
     const Elastica e = CantileverElasticaAtLoad(ratio);
-    std::printf("P/P_cr = %.4f  deflection %.5f L (elastica %.5f)  angle %.3f deg (%.3f)  "
-                "axial %.5f L (%.5f)  deflection/sqrt(P/P_cr-1) = %.4f\n",
-                ratio, deflection, e.deflection, angle * 180 / kPi, e.angle * 180 / kPi,
-                tip.z() / rod.L, e.axial, deflection / std::sqrt(ratio - 1));
+    std::printf(
+        "P/P_cr = %.4f  deflection %.5f L (elastica %.5f)  angle %.3f deg (%.3f)  "
+        "axial %.5f L (%.5f)  deflection/sqrt(P/P_cr-1) = %.4f\n",
+        ratio, deflection, e.deflection, angle * 180 / kPi, e.angle * 180 / kPi, tip.z() / rod.L,
+        e.axial, deflection / std::sqrt(ratio - 1));
     EXPECT_GT(deflection, previous);
     previous = deflection;
     EXPECT_NEAR(deflection, e.deflection, 1e-3) << ratio;
@@ -250,9 +251,10 @@ TEST(Buckling, StaticSolveWithImperfectionLandsOnTheBuckledBranch) {
   const Vec3 tip = solver.state().tip_position_W();
   const Vec3 t = solver.state().tip_rotation_WB().col(2);
   const double angle = std::atan2(t.x(), t.z()) * 180 / kPi;
-  std::printf("imperfect static solve: deflection %.5f L (%d load steps); released: angle %.3f "
-              "deg, deflection %.5f L, axial %.5f L\n",
-              imperfect_x / rod.L, s.load_steps, angle, tip.x() / rod.L, tip.z() / rod.L);
+  std::printf(
+      "imperfect static solve: deflection %.5f L (%d load steps); released: angle %.3f "
+      "deg, deflection %.5f L, axial %.5f L\n",
+      imperfect_x / rod.L, s.load_steps, angle, tip.x() / rod.L, tip.z() / rod.L);
   EXPECT_GT(imperfect_x / rod.L, 0.55);  // on the buckled branch already, before the release
   EXPECT_NEAR(angle, 60.0, 0.06);        // 1e-3 rad
   EXPECT_NEAR(tip.x() / rod.L, e.deflection, 1e-3);
@@ -265,9 +267,9 @@ TEST(Buckling, SoftBandLocalisesTheMode) {
   SlenderRod rod;
   const double P = EulerLoad(ColumnEnds::kPinnedPinned, rod.EI(), rod.L);
   RodModel model = rod.model();
-  model.section = std::make_shared<BandedSection>(
-      std::make_shared<UniformSection>(rod.section, rod.material),
-      std::vector<BandedSection::Band>{{0.6, 0.7, 0.1}});
+  model.section =
+      std::make_shared<BandedSection>(std::make_shared<UniformSection>(rod.section, rod.material),
+                                      std::vector<BandedSection::Band>{{0.6, 0.7, 0.1}});
   for (ColumnEnds ends : {ColumnEnds::kPinnedPinned, ColumnEnds::kClampedFree}) {
     const BucklingSummary b = Critical(model, 41, ends, 1.5 * P);
     ASSERT_TRUE(b.found()) << ToString(ends);

@@ -366,8 +366,8 @@ ColumnSummary BucklingAnalysis::SolvePostBuckled(double lambda_target) {
       if (it == options_.solver.max_iterations) return false;
       const double h = 1e-6 * lc;
       const Vec6 r_lambda =
-          (ResidualAt(*lambda + h, *u, nullptr) - ResidualAt(*lambda - h, *u, nullptr)) /
-          (2 * h) * lc;
+          (ResidualAt(*lambda + h, *u, nullptr) - ResidualAt(*lambda - h, *u, nullptr)) / (2 * h) *
+          lc;
       Eigen::Matrix<double, 7, 7> A = Eigen::Matrix<double, 7, 7>::Zero();
       A.topLeftCorner<6, 6>() = J;
       A.topRightCorner<6, 1>() = r_lambda;

@@ -139,8 +139,8 @@ Vec6 ColumnSolver::Residual(const lie::SE3& base, const StaticLoads& loads, cons
       for (int k = 0; k < 6; ++k) {
         Mat3 dQ;
         for (int j = 0; j < 3; ++j) dQ.col(j) = base.R.transpose() * RotationColumn(T, j).col(k);
-        dr.col(k).head<3>() = 0.5 * Vec3(dQ(2, 1) - dQ(1, 2), dQ(0, 2) - dQ(2, 0),
-                                         dQ(1, 0) - dQ(0, 1));
+        dr.col(k).head<3>() =
+            0.5 * Vec3(dQ(2, 1) - dQ(1, 2), dQ(0, 2) - dQ(2, 0), dQ(1, 0) - dQ(0, 1));
       }
     } else {
       moment_rows();

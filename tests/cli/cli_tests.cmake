@@ -121,5 +121,5 @@ cosserat_cli_test(NAME solve_buckling_column ARGS solve "${_cli_buckling}" CODE 
                   STDOUT "\"critical_load\": 6\\.201[0-9]*,[^}]*\"mode_s_max\": 0\\.25,"
                   STDERR "buckling found \\(pinned-pinned\\), critical tip_force 6\\.201")
 cosserat_cli_test(NAME solve_buckling_banded ARGS solve "${_cli_dir}/buckling_cantilever_banded.json"
-                  CODE 0 STDOUT "\"mode_s_max\": 0\\.3[0-4]"
+                  CODE 0 STDOUT "\"mode_s_max\": 0\\.3[0-4,]"
                   STDERR "buckling found \\(cantilever\\)")

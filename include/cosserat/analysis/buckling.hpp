@@ -23,7 +23,7 @@ namespace cosserat {
 /// λ carries the unit of the load: N for a tip force of unit direction, N/m for a distributed
 /// force, m/s² for gravity, N for tendon tension.
 struct LoadPath {
-  StaticLoads fixed;    ///< applied whatever λ; its tip-load frames must match per_unit's
+  StaticLoads fixed;     ///< applied whatever λ; its tip-load frames must match per_unit's
   StaticLoads per_unit;  ///< the load per unit λ
   Actuation fixed_actuation;
   std::array<double, Actuation::kMaxTendons> tension_per_unit{};  ///< N per unit λ
@@ -55,14 +55,14 @@ struct BucklingOptions {
 /// The buckling mode along s, scaled so that max_s |δp(s)| = 1 m (its sign: the largest
 /// displacement component positive). δθ is the rotation in the body frame, R⁻¹ δR = δθ^.
 struct BucklingMode {
-  std::vector<double> s;               ///< node arc lengths, m
-  std::vector<Vec3> displacement_W;    ///< δp(s), world frame, m
-  std::vector<Vec3> rotation_B;        ///< δθ(s), body frame, rad per m of displacement
-  std::vector<Vec3> curvature_B;       ///< δK(s), body frame, 1/m per m (the larger side at a
-                                       ///< stiffness jump)
-  double s_max_curvature = 0;          ///< where |δK₁,₂| is largest (the first such node), m
-  Vec6 unknowns = Vec6::Zero();        ///< the null vector of J in the unknowns (unit norm)
-  bool double_root = false;            ///< J has a 2-D null space (any plane buckles alike)
+  std::vector<double> s;             ///< node arc lengths, m
+  std::vector<Vec3> displacement_W;  ///< δp(s), world frame, m
+  std::vector<Vec3> rotation_B;      ///< δθ(s), body frame, rad per m of displacement
+  std::vector<Vec3> curvature_B;     ///< δK(s), body frame, 1/m per m (the larger side at a
+                                     ///< stiffness jump)
+  double s_max_curvature = 0;        ///< where |δK₁,₂| is largest (the first such node), m
+  Vec6 unknowns = Vec6::Zero();      ///< the null vector of J in the unknowns (unit norm)
+  bool double_root = false;          ///< J has a 2-D null space (any plane buckles alike)
 };
 
 enum class BucklingStatus {
@@ -78,10 +78,10 @@ const char* ToString(BucklingStatus status);
 
 struct BucklingSummary {
   BucklingStatus status = BucklingStatus::kNotRun;
-  double critical_load = NAN;    ///< λ_cr (load units); NaN unless found
-  double lambda_reached = 0;     ///< the last λ of the path where statics converged
-  double sigma_min_ratio = NAN;  ///< σ_min(J(λ_cr)) / σ_min(J(0))
-  BucklingMode mode;             ///< valid when found
+  double critical_load = NAN;          ///< λ_cr (load units); NaN unless found
+  double lambda_reached = 0;           ///< the last λ of the path where statics converged
+  double sigma_min_ratio = NAN;        ///< σ_min(J(λ_cr)) / σ_min(J(0))
+  BucklingMode mode;                   ///< valid when found
   std::vector<double> scan_lambda;     ///< the scan: λ …
   std::vector<double> scan_sigma_min;  ///< … and σ_min(J) there
   int solves = 0;                      ///< static solves

@@ -6,12 +6,13 @@
 /// The base pose `base` (R_WB, p_W of s = 0) defines the column axis e = R_WB e₃ and the lateral
 /// directions R_WB e₁, R_WB e₂. Six unknowns u (dimensionless) and six residuals r:
 ///
-/// | ends            | unknowns u                                   | tip residuals r                 |
+/// | ends            | unknowns u                                   | tip residuals r |
 /// |-----------------|----------------------------------------------|---------------------------------|
-/// | clamped–free    | W(0) = [m; n] ⊘ scale                        | W(L) − W_tip (the cantilever)   |
-/// | pinned–pinned   | θ₁, θ₂ (rad), m₃(0), n(0) ⊘ scale             | lateral δ, axial force, m(L)    |
-/// | clamped–clamped | W(0) ⊘ scale                                 | lateral δ, axial force, R(L)    |
-/// | clamped–pinned  | W(0) ⊘ scale                                 | lateral δ, axial force, m(L)    |
+/// | clamped–free    | W(0) = [m; n] ⊘ scale                        | W(L) − W_tip (the cantilever)
+/// | | pinned–pinned   | θ₁, θ₂ (rad), m₃(0), n(0) ⊘ scale             | lateral δ, axial force,
+/// m(L)    | | clamped–clamped | W(0) ⊘ scale                                 | lateral δ, axial
+/// force, R(L)    | | clamped–pinned  | W(0) ⊘ scale                                 | lateral δ,
+/// axial force, m(L)    |
 ///
 /// - A pinned base: R(0) = R_WB Exp([θ₁, θ₂, 0]) turns freely about the two lateral axes, with
 ///   no bending moment, m₁(0) = m₂(0) = 0; its twist is held (θ₃ = 0, the torque m₃(0) is the
@@ -76,7 +77,8 @@ class ColumnSolver {
                 RodState* record = nullptr) const;
 
   /// The first-order change of the configuration along s for a change du of the unknowns at u:
-  /// element i is the shot's StateTangent at node i times du (rows as in StateTangent). Used for buckling modes (du: the null vector of the Jacobian).
+  /// element i is the shot's StateTangent at node i times du (rows as in StateTangent). Used for
+  /// buckling modes (du: the null vector of the Jacobian).
   std::vector<Eigen::Matrix<double, 18, 1>> Perturbation(const lie::SE3& base,
                                                          const StaticLoads& loads, const Vec6& u,
                                                          const Vec6& du) const;
