@@ -21,6 +21,7 @@
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/robots/tendon_control.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "run_buckling.hpp"
 #include "run_dynamics.hpp"
 #include "run_eversion.hpp"
 #include "run_quatfd.hpp"
@@ -202,6 +203,8 @@ int RunSolve(const Command& cmd) {
   if (problem->formulation == "quaternion-fd")
     converged = dynamics ? cosserat::cli::RunQuatFdDynamics(*problem, out, csv, std::cerr)
                          : cosserat::cli::RunQuatFdStatics(*problem, out, csv, std::cerr);
+  else if (problem->analysis == "buckling")
+    converged = cosserat::cli::RunBuckling(*problem, out, csv, std::cerr);
   else if (problem->has_robot && problem->robot.kind == "eversion")
     converged = cosserat::cli::RunEversion(*problem, out, csv, std::cerr);
   else

@@ -331,12 +331,19 @@ TEST(ProblemIo, LaterAnalysesParseButAreGated) {
   EXPECT_EQ(p.modes.count, 6);
 
   const std::vector<std::string> gated = UnsupportedFeatures(p);
-  // quaternion-fd runs (issue 4); the analysis and, for it, any boundary but cantilever do not.
+  // quaternion-fd runs (issue 4) but not buckling, nor any boundary but cantilever.
   ASSERT_EQ(gated.size(), 2u);
-  EXPECT_EQ(gated[0], R"(analysis: "buckling" is not implemented in this version (supported: )"
-                      R"("statics", "dynamics"))");
-  EXPECT_EQ(gated[1], R"(boundary: "pinned-pinned" is not implemented in this version )"
+  EXPECT_EQ(gated[0], R"(boundary: "pinned-pinned" is not implemented in this version )"
                       R"((supported: "cantilever"))");
+  EXPECT_EQ(gated[1], R"(analysis: "buckling" runs on the "se3-shooting" formulation only)");
+  // Buckling runs on se3-shooting, with the column end conditions (issue 6).
+  j["formulation"] = "se3-shooting";
+  EXPECT_TRUE(UnsupportedFeatures(*Parse(j).problem).empty());
+  j["boundary"] = "free-free";
+  const std::vector<std::string> free = UnsupportedFeatures(*Parse(j).problem);
+  ASSERT_EQ(free.size(), 1u);
+  EXPECT_EQ(free[0], R"(boundary: "free-free" is not implemented in this version (supported: )"
+                     R"("cantilever", "pinned-pinned", "clamped-clamped", "clamped-pinned"))");
 }
 
 TEST(ProblemIo, DynamicsParsesAndRuns) {

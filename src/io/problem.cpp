@@ -242,14 +242,19 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
           std::string(key) + ": " + detail::Quote(value) +
           " is not implemented in this version (supported: " + detail::QuotedList(supported) + ")");
   };
-  check("analysis", p.analysis, {"statics", "dynamics"});
+  check("analysis", p.analysis, {"statics", "dynamics", "buckling"});
   check("formulation", p.formulation, {"se3-shooting", "quaternion-fd"});
   if (p.formulation == "quaternion-fd")  // rod.nodes >= 3 (2 segments) is checked by the parser
     check("boundary", p.boundary, {"cantilever"});
   else if (p.analysis == "dynamics")
     check("boundary", p.boundary, {"cantilever", "free-free"});
+  else if (p.analysis == "buckling")
+    check("boundary", p.boundary,
+          {"cantilever", "pinned-pinned", "clamped-clamped", "clamped-pinned"});
   else
     check("boundary", p.boundary, {"cantilever"});
+  if (p.analysis == "buckling" && p.formulation == "quaternion-fd")
+    out.push_back("analysis: \"buckling\" runs on the \"se3-shooting\" formulation only");
   if (p.has_robot) {
     check("robot.kind", p.robot.kind, {"tendon", "jamming", "eversion"});
     if (p.robot.kind == "eversion" && p.analysis != "statics")

@@ -242,9 +242,17 @@ Mat6 TensionSource(const StaticShootingSolver::TendonStage& ts, const double* te
   return out;
 }
 
+// For other boundary conditions (ShootTangent): the tangent's start value instead of the
+// unknowns' directions, and where to write it at every node and at the tip.
+struct TangentSeed {
+  const ShotTangent* start = nullptr;
+  std::vector<ShotTangent>* nodes = nullptr;  // sized to the grid
+  ShotTangent* tip = nullptr;
+};
+
 Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, const Vec6& scale,
            const lie::SE3& base, const StaticLoads& loads, const Vec6& x, RodState* record, Mat6* J,
-           const TendonContext* tc = nullptr) {
+           const TendonContext* tc = nullptr, const TangentSeed* seed = nullptr) {
   const int n = static_cast<int>(grid.size());
   const Vec6 W0 = scale.cwiseProduct(x);
   ShotState y{base.p, base.R, W0.head<3>(), W0.tail<3>()};
@@ -258,6 +266,7 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
       dy.m.leftCols<3>() = scale.head<3>().asDiagonal();
       dy.n.rightCols<3>() = scale.tail<3>().asDiagonal();
     }
+    if (seed && seed->start) dy = *seed->start;
   }
   auto f_at = [&](const Sample& smp) -> Vec3 {
     return smp.mass_per_length * loads.gravity_W + loads.distributed_force_W;
@@ -302,6 +311,7 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
     const ShotState y4 = Axpy(y, h, k3);
     const ShotState k4 = derivative(q1, f1, y4, &xi4, &H4);
     if (J) {
+      if (seed && seed->nodes) (*seed->nodes)[i] = dy;
       const Mat6* h1 = tc ? &H1 : nullptr;
       const Mat6* h2 = tc ? &H2 : nullptr;
       const Mat6* h3 = tc ? &H3 : nullptr;
@@ -347,6 +357,10 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
     record_node(n - 1, xi_tip);
   }
 
+  if (J && seed) {
+    if (seed->nodes) seed->nodes->back() = dy;
+    if (seed->tip) *seed->tip = dy;
+  }
   if (J) {
     J->topRows<3>() = dy.m;
     J->bottomRows<3>() = dy.n;
@@ -489,6 +503,53 @@ bool StaticShootingSolver::TipJacobianWrtTensions(const lie::SE3& base, const St
     }
   }
   return J->allFinite();
+}
+
+namespace {
+
+// Rows of StateTangent: p (0–2), R e₀ (3–5), R e₁ (6–8), R e₂ (9–11), m (12–14), n (15–17).
+ShotTangent FromRows(const StaticShootingSolver::StateTangent& T) {
+  ShotTangent t;
+  t.p = T.middleRows<3>(0);
+  for (int j = 0; j < 3; ++j) t.R[j] = T.middleRows<3>(3 + 3 * j);
+  t.m = T.middleRows<3>(12);
+  t.n = T.middleRows<3>(15);
+  return t;
+}
+
+StaticShootingSolver::StateTangent ToRows(const ShotTangent& t) {
+  StaticShootingSolver::StateTangent T;
+  T.middleRows<3>(0) = t.p;
+  for (int j = 0; j < 3; ++j) T.middleRows<3>(3 + 3 * j) = t.R[j];
+  T.middleRows<3>(12) = t.m;
+  T.middleRows<3>(15) = t.n;
+  return T;
+}
+
+}  // namespace
+
+StaticShootingSolver::StateTangent StaticShootingSolver::ShootTangent(
+    const lie::SE3& base, const StaticLoads& loads, const Vec6& base_wrench_B,
+    const StateTangent& start, RodState* record, std::vector<StateTangent>* node_tangents) const {
+  const ShotTangent start_t = FromRows(start);
+  ShotTangent tip_t;
+  std::vector<ShotTangent> nodes;
+  if (node_tangents) nodes.resize(grid_.size());
+  const TangentSeed seed{&start_t, node_tangents ? &nodes : nullptr, &tip_t};
+  if (record && record->size() != static_cast<int>(grid_.size())) {
+    record->Resize(static_cast<int>(grid_.size()));
+    for (size_t i = 0; i < grid_.size(); ++i) record->s[i] = grid_[i];
+  }
+  Mat6 J;
+  std::array<double, Actuation::kMaxTendons> lengths{};
+  const TendonContext tc{&tendon_stages_, actuation_.tendon_tension.data(), lengths.data()};
+  Shoot(grid_, samples_, scale_, base, loads, base_wrench_B.cwiseQuotient(scale_), record, &J,
+        tendon_stages_.empty() ? nullptr : &tc, &seed);
+  if (node_tangents) {
+    node_tangents->resize(nodes.size());
+    for (size_t i = 0; i < nodes.size(); ++i) (*node_tangents)[i] = ToRows(nodes[i]);
+  }
+  return ToRows(tip_t);
 }
 
 Vec6 StaticShootingSolver::base_wrench_B() const { return scale_.cwiseProduct(x_); }

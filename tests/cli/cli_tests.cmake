@@ -112,3 +112,14 @@ cosserat_cli_test(NAME bad_robot ARGS validate "${_cli_dir}/bad_robot.json" CODE
                   STDERR "robot.colour: unknown key.*robot.tendons\\[0\\].offset: expected an offset within the section.*robot.tendons\\[1\\].pich: unknown key.*did you mean \"pitch\".*robot.tendons\\[1\\].pitch: expected .*missing.*robot.actuation.tension\\[1\\]: expected a tension >= 0.*robot.actuation.pressure: expected a number >= 0, got -5")
 cosserat_cli_test(NAME tendon_dynamics ARGS solve "${_cli_dir}/tendon_dynamics.json" CODE 0
                   STDOUT "\"trajectory\"" STDERR "converged, 20 steps")
+
+# Buckling: Euler's pinned-pinned column (pi^2 EI / L^2 = 6.2013 N; shear and shortening add
+# 3e-5), and a banded cantilever under its weight that buckles at the band [0.3, 0.35] m.
+get_filename_component(_cli_buckling "${CMAKE_CURRENT_LIST_DIR}/../../examples/buckling_column.json"
+                       ABSOLUTE)
+cosserat_cli_test(NAME solve_buckling_column ARGS solve "${_cli_buckling}" CODE 0
+                  STDOUT "\"critical_load\": 6\\.201[0-9]*,[^}]*\"mode_s_max\": 0\\.25,"
+                  STDERR "buckling found \\(pinned-pinned\\), critical tip_force 6\\.201")
+cosserat_cli_test(NAME solve_buckling_banded ARGS solve "${_cli_dir}/buckling_cantilever_banded.json"
+                  CODE 0 STDOUT "\"mode_s_max\": 0\\.3[0-4,]"
+                  STDERR "buckling found \\(cantilever\\)")

@@ -87,9 +87,10 @@ ParseResult LoadProblemFile(const std::string& path);
 /// The most time steps (round(duration / dt)) a dynamics problem may ask for.
 inline constexpr int kMaxDynamicsSteps = 10000000;
 
-/// Things the contract names but this version cannot run yet: an analysis other than "statics"
-/// or "dynamics", a boundary other than "cantilever" (se3-shooting dynamics also runs
-/// "free-free"; quaternion-fd runs only "cantilever").
+/// Things the contract names but this version cannot run yet: an analysis other than "statics",
+/// "dynamics" or "buckling", a boundary other than "cantilever" (se3-shooting dynamics also runs
+/// "free-free", buckling the column ends "pinned-pinned", "clamped-clamped", "clamped-pinned";
+/// quaternion-fd runs only "cantilever", and no buckling).
 /// One line each.
 std::vector<std::string> UnsupportedFeatures(const Problem& problem);
 

@@ -109,6 +109,20 @@ class StaticShootingSolver {
     has_jacobian_ = false;
   }
 
+  /// Derivative of a shot's state along up to 6 directions (one column each). Rows: d p_W (0–2,
+  /// m), d(R_WB e₀), d(R_WB e₁), d(R_WB e₂) (3–11: the columns of R), d m_B (12–14, N·m), d n_B
+  /// (15–17, N), all per unit of the direction's parameter.
+  using StateTangent = Eigen::Matrix<double, 18, 6>;
+  /// One shot for other boundary conditions (columns, buckling modes): integrate from the start
+  /// state (base pose, base wrench W(0) = [m; n] in the base body frame, N·m; N) to s = L with
+  /// the tangent started at `start`, propagated exactly through RK4 as in ResidualJacobian.
+  /// Writes the node states to *record (resized to the grid) and the tangent at every node to
+  /// *node_tangents, when not null, and returns the tangent at the tip. Leaves the solver's own
+  /// state and warm start alone. Allocates (it is not for hot loops).
+  StateTangent ShootTangent(const lie::SE3& base, const StaticLoads& loads,
+                            const Vec6& base_wrench_B, const StateTangent& start, RodState* record,
+                            std::vector<StateTangent>* node_tangents = nullptr) const;
+
   const RodState& state() const { return state_; }
   int tendon_count() const { return static_cast<int>(model_.tendons.size()); }
   double length() const { return model_.length; }

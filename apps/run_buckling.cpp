@@ -1,0 +1,97 @@
+#include "run_buckling.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "cosserat/analysis/buckling.hpp"
+#include "cosserat/io/result_writer.hpp"
+
+namespace cosserat::cli {
+
+namespace {
+
+// loads(λ) = problem loads + λ · direction, for the load kind the "buckling" block names.
+LoadPath MakePath(const io::Problem& problem) {
+  LoadPath path;
+  path.fixed = problem.loads;
+  path.fixed_actuation = problem.robot.actuation;
+  path.per_unit.tip_force_frame = problem.loads.tip_force_frame;
+  path.per_unit.tip_moment_frame = problem.loads.tip_moment_frame;
+  const Vec3& d = problem.buckling.direction;
+  const std::string& load = problem.buckling.load;
+  if (load == "tip_force")
+    path.per_unit.tip_force = d;
+  else if (load == "tip_moment")
+    path.per_unit.tip_moment = d;
+  else if (load == "gravity")
+    path.per_unit.gravity_W = d;
+  else
+    path.per_unit.distributed_force_W = d;
+  return path;
+}
+
+nlohmann::ordered_json NumberOrNull(double x) {
+  return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
+}
+
+}  // namespace
+
+bool RunBuckling(const io::Problem& problem, std::ostream& out, std::ostream* csv,
+                 std::ostream& log) {
+  ColumnEnds ends = ColumnEnds::kClampedFree;
+  ParseColumnEnds(problem.boundary, &ends);  // UnsupportedFeatures let only these through
+  BucklingOptions options;
+  options.lambda_max = problem.buckling.max;
+  options.solver = problem.solver;
+  BucklingAnalysis analysis(problem.rod, problem.nodes, ends, problem.base, MakePath(problem),
+                            options);
+  const BucklingSummary b = analysis.FindCriticalLoad();
+  const bool ok = b.status != BucklingStatus::kPathFailed;
+
+  StaticShootingSummary statics;
+  statics.status = ok ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
+  statics.wall_time_s = b.wall_time_s;
+  nlohmann::ordered_json result = io::StaticResultToJson(statics, analysis.state());
+  nlohmann::ordered_json block;
+  block["critical_load"] = NumberOrNull(b.critical_load);
+  block["mode_s_max"] =
+      b.found() ? nlohmann::ordered_json(b.mode.s_max_curvature) : nlohmann::ordered_json(nullptr);
+  block["status"] = ToString(b.status);
+  block["load"] = problem.buckling.load;
+  block["direction"] = {problem.buckling.direction.x(), problem.buckling.direction.y(),
+                        problem.buckling.direction.z()};
+  block["boundary"] = ToString(ends);
+  block["load_reached"] = b.lambda_reached;
+  block["static_solves"] = b.solves;
+  if (b.found()) {
+    nlohmann::ordered_json mode;
+    mode["double"] = b.mode.double_root;
+    mode["s"] = b.mode.s;
+    auto rows = [](const std::vector<Vec3>& v) {
+      nlohmann::ordered_json a = nlohmann::ordered_json::array();
+      for (const Vec3& x : v) a.push_back({x.x(), x.y(), x.z()});
+      return a;
+    };
+    mode["displacement"] = rows(b.mode.displacement_W);
+    mode["curvature"] = rows(b.mode.curvature_B);
+    block["mode"] = mode;
+  }
+  result["buckling"] = block;
+  out << result.dump(2) << '\n';
+  if (csv) io::WriteNodesCsv(*csv, analysis.state());
+
+  std::ostringstream line;
+  line << "cosserat: buckling " << ToString(b.status) << " (" << ToString(ends) << ")";
+  if (b.found())
+    line << ", critical " << problem.buckling.load << " " << std::setprecision(6) << b.critical_load
+         << ", mode bends most at s = " << b.mode.s_max_curvature << " m";
+  else
+    line << ", load reached " << std::setprecision(6) << b.lambda_reached;
+  line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3
+       << " ms";
+  log << line.str() << '\n';
+  return ok;
+}
+
+}  // namespace cosserat::cli

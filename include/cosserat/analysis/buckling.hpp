@@ -1,0 +1,133 @@
+#pragma once
+/// \file
+/// Buckling of rods and columns: the critical load along a load path, the buckling mode, and the
+/// post-buckled branch (docs/buckling.md).
+///
+/// Statics is followed along loads(λ) = fixed + λ · per_unit with warm starts (ColumnSolver).
+/// An equilibrium stops being stable where the linearised boundary-value problem gets a
+/// non-trivial solution: exactly where the 6 × 6 shooting Jacobian J = d r / d u is singular (a
+/// conjugate point). The scan watches σ_min(J) and the sign of det J; the critical λ is refined
+/// by bisection on det J (a simple crossing) or by golden-section search on σ_min (a double one,
+/// as for a rod symmetric about its axis, where det J touches zero without changing sign). The
+/// mode is the null vector of J propagated along s by the shot's tangent.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "cosserat/analysis/column.hpp"
+
+namespace cosserat {
+
+/// loads(λ) = fixed + λ · per_unit, tendon tensions(λ) = fixed_actuation + λ · tension_per_unit.
+/// λ carries the unit of the load: N for a tip force of unit direction, N/m for a distributed
+/// force, m/s² for gravity, N for tendon tension.
+struct LoadPath {
+  StaticLoads fixed;     ///< applied whatever λ; its tip-load frames must match per_unit's
+  StaticLoads per_unit;  ///< the load per unit λ
+  Actuation fixed_actuation;
+  std::array<double, Actuation::kMaxTendons> tension_per_unit{};  ///< N per unit λ
+
+  /// A tip force λ · direction (normalised): dead (kWorld) or a follower (kBody).
+  static LoadPath TipForce(const Vec3& direction, LoadFrame frame = LoadFrame::kWorld);
+  StaticLoads LoadsAt(double lambda) const;
+  Actuation ActuationAt(double lambda) const;
+  bool has_tension() const;
+};
+
+struct BucklingOptions {
+  /// The largest λ searched (load units, see LoadPath).
+  double lambda_max = 1.0;
+  /// The scan takes this many equal steps from 0 to lambda_max (a step that fails to converge is
+  /// halved, at most 10 times). Two critical loads closer than a step apart may be seen as one.
+  int scan_steps = 40;
+  /// Refinement stops when the bracket is narrower than this fraction of λ_cr.
+  double lambda_tolerance = 1e-11;
+  /// A minimum of σ_min(J) counts as a singular point when σ_min there is below this fraction of
+  /// σ_min at λ = 0 (otherwise the scan goes on).
+  double singular_threshold = 1e-6;
+  /// The static solves: tolerance and Newton iterations per solve.
+  StaticShootingOptions solver;
+
+  bool IsValid(std::string* why) const;
+};
+
+/// The buckling mode along s, scaled so that max_s |δp(s)| = 1 m (its sign: the largest
+/// displacement component positive). δθ is the rotation in the body frame, R⁻¹ δR = δθ^.
+struct BucklingMode {
+  std::vector<double> s;             ///< node arc lengths, m
+  std::vector<Vec3> displacement_W;  ///< δp(s), world frame, m
+  std::vector<Vec3> rotation_B;      ///< δθ(s), body frame, rad per m of displacement
+  std::vector<Vec3> curvature_B;     ///< δK(s), body frame, 1/m per m (the larger side at a
+                                     ///< stiffness jump)
+  double s_max_curvature = 0;        ///< where |δK₁,₂| is largest (the first such node), m
+  Vec6 unknowns = Vec6::Zero();      ///< the null vector of J in the unknowns (unit norm)
+  bool double_root = false;          ///< J has a 2-D null space (any plane buckles alike)
+};
+
+enum class BucklingStatus {
+  kNotRun,
+  kFound,       ///< a singular point of J on [0, lambda_max], refined to lambda_tolerance.
+  kNotFound,    ///< the path reached lambda_max with J regular all along.
+  kPathFailed,  ///< a static solve failed even after 10 step halvings (a fold of the path, or a
+                ///< solver failure); critical_load is NaN, lambda_reached says how far it got.
+};
+
+/// "found", "not_found", "path_failed", "not_run".
+const char* ToString(BucklingStatus status);
+
+struct BucklingSummary {
+  BucklingStatus status = BucklingStatus::kNotRun;
+  double critical_load = NAN;          ///< λ_cr (load units); NaN unless found
+  double lambda_reached = 0;           ///< the last λ of the path where statics converged
+  double sigma_min_ratio = NAN;        ///< σ_min(J(λ_cr)) / σ_min(J(0))
+  BucklingMode mode;                   ///< valid when found
+  std::vector<double> scan_lambda;     ///< the scan: λ …
+  std::vector<double> scan_sigma_min;  ///< … and σ_min(J) there
+  int solves = 0;                      ///< static solves
+  double wall_time_s = 0;
+  bool found() const { return status == BucklingStatus::kFound; }
+};
+
+/// Buckling of one rod under one load path. Construction allocates the column solver.
+class BucklingAnalysis {
+ public:
+  BucklingAnalysis(const RodModel& model, int num_nodes, ColumnEnds ends, const lie::SE3& base,
+                   const LoadPath& path, const BucklingOptions& options = {});
+
+  /// Scan, detect, refine, and extract the mode. Leaves state() at the pre-buckled equilibrium
+  /// at λ_cr (or at the last λ reached).
+  BucklingSummary FindCriticalLoad();
+
+  /// The equilibrium on the post-buckled branch at λ > λ_cr (after a found FindCriticalLoad):
+  /// branch switching at λ_cr along the mode, continuation in the mode amplitude
+  /// η = v · (u − u_cr) with λ free (a bordered Newton system, regular through the
+  /// bifurcation), then Newton at λ. The branch is the one with η > 0 (the mode's sign).
+  /// state() holds the solution.
+  ColumnSummary SolvePostBuckled(double lambda);
+
+  const RodState& state() const { return column_.state(); }
+  const ColumnSolver& column() const { return column_; }
+  const LoadPath& path() const { return path_; }
+
+ private:
+  ColumnSummary SolveAt(double lambda);
+  Vec6 ResidualAt(double lambda, const Vec6& u, Mat6* J);
+  /// σ_min(J) and sign(det J) at the equilibrium last solved.
+  void Singularity(double lambda, double* sigma_min, double* det_sign, Vec6* null_vector,
+                   double* sigma_second);
+  BucklingMode ExtractMode(double lambda, const Vec6& v, bool double_root) const;
+
+  ColumnSolver column_;
+  RodModel model_;
+  lie::SE3 base_;
+  LoadPath path_;
+  BucklingOptions options_;
+  double applied_lambda_ = 0;  ///< λ of the actuation currently set in column_
+  bool found_ = false;
+  double lambda_cr_ = NAN;
+  Vec6 u_cr_ = Vec6::Zero();
+  Vec6 v_cr_ = Vec6::Zero();
+};
+
+}  // namespace cosserat

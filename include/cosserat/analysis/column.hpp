@@ -1,0 +1,110 @@
+#pragma once
+/// \file
+/// Statics of a straight column with the end conditions of Euler buckling, by shooting on the
+/// SE(3) strong form (the integrator and its exact tangent are StaticShootingSolver's).
+///
+/// The base pose `base` (R_WB, p_W of s = 0) defines the column axis e = R_WB e₃ and the lateral
+/// directions R_WB e₁, R_WB e₂. Six unknowns u (dimensionless) and six residuals r:
+///
+/// | ends            | unknowns u                                   | tip residuals r |
+/// |-----------------|----------------------------------------------|---------------------------------|
+/// | clamped–free    | W(0) = [m; n] ⊘ scale                        | W(L) − W_tip (the cantilever)
+/// | | pinned–pinned   | θ₁, θ₂ (rad), m₃(0), n(0) ⊘ scale             | lateral δ, axial force,
+/// m(L)    | | clamped–clamped | W(0) ⊘ scale                                 | lateral δ, axial
+/// force, R(L)    | | clamped–pinned  | W(0) ⊘ scale                                 | lateral δ,
+/// axial force, m(L)    |
+///
+/// - A pinned base: R(0) = R_WB Exp([θ₁, θ₂, 0]) turns freely about the two lateral axes, with
+///   no bending moment, m₁(0) = m₂(0) = 0; its twist is held (θ₃ = 0, the torque m₃(0) is the
+///   unknown reaction), otherwise a rigid spin about the axis would make the problem singular.
+/// - The guided tip (all but clamped–free) may only slide along the axis: the lateral residuals
+///   are (R_WB e₁,₂) · (p(L) − p(0)) / L, and the axial one is the force balance
+///   e · (R(L) n(L) − F_tip,W) / (EI/L²), F_tip from `loads` (dead, or a follower turned with the
+///   tip). The lateral parts of F_tip go into the guide, as reactions.
+/// - A pinned tip has m(L) = M_tip (body frame, ÷ EI/L); a clamped tip keeps the base's
+///   orientation: ½ vee(Q − Qᵀ) = 0 with Q = R_WBᵀ R(L) (rad), which fixes its twist too.
+///
+/// scale = [EI/L ×3, EI/L² ×3] as in StaticShootingSolver. Gravity and distributed forces act
+/// along the whole rod as usual.
+
+#include <string>
+#include <vector>
+
+#include "cosserat/strong/static_shooting.hpp"
+
+namespace cosserat {
+
+/// End conditions of a column (base at s = 0, tip at s = L).
+enum class ColumnEnds {
+  kClampedFree,     ///< the cantilever: clamped base, free tip
+  kPinnedPinned,    ///< pinned base, pinned guided tip
+  kClampedClamped,  ///< clamped base, clamped guided tip
+  kClampedPinned,   ///< clamped base, pinned guided tip
+};
+
+/// "cantilever", "pinned-pinned", "clamped-clamped", "clamped-pinned" (the problem-format names).
+const char* ToString(ColumnEnds ends);
+/// The inverse of ToString; false (and *ends untouched) for any other name.
+bool ParseColumnEnds(const std::string& name, ColumnEnds* ends);
+
+struct ColumnSummary {
+  SolveStatus status = SolveStatus::kNotRun;
+  int iterations = 0;   ///< Newton iterations
+  double residual = 0;  ///< final dimensionless residual norm
+  bool converged() const { return status == SolveStatus::kConverged; }
+};
+
+/// Column statics for one model, grid and pair of end conditions. Solve() is a damped Newton
+/// iteration from the current unknowns (a warm start: the previous solution, or what
+/// set_unknowns gave), with minimum-norm steps so that an exactly singular direction (a rod
+/// symmetric about its axis buckles in any plane) is left alone. It takes no load steps: the
+/// caller follows the load path (BucklingAnalysis does).
+class ColumnSolver {
+ public:
+  using StateTangent = StaticShootingSolver::StateTangent;
+
+  ColumnSolver(const RodModel& model, int num_nodes, ColumnEnds ends,
+               const StaticShootingOptions& options = {}, const Actuation& actuation = {});
+
+  /// Equilibrium under `loads` from the current unknowns. Uses options.tolerance and
+  /// options.max_iterations (Newton iterations). On success the unknowns and state() hold the
+  /// solution; otherwise the unknowns are left as they were before the call.
+  ColumnSummary Solve(const lie::SE3& base, const StaticLoads& loads);
+
+  /// The dimensionless residual at the unknowns u; with J, its exact Jacobian d r / d u (tangent
+  /// propagation); with record, the node states of the shot.
+  Vec6 Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& u, Mat6* J = nullptr,
+                RodState* record = nullptr) const;
+
+  /// The first-order change of the configuration along s for a change du of the unknowns at u:
+  /// element i is the shot's StateTangent at node i times du (rows as in StateTangent). Used for
+  /// buckling modes (du: the null vector of the Jacobian).
+  std::vector<Eigen::Matrix<double, 18, 1>> Perturbation(const lie::SE3& base,
+                                                         const StaticLoads& loads, const Vec6& u,
+                                                         const Vec6& du) const;
+
+  void SetActuation(const Actuation& actuation) { shooter_.SetActuation(actuation); }
+  const Vec6& unknowns() const { return u_; }
+  void set_unknowns(const Vec6& u) { u_ = u; }
+  /// The state of the last converged Solve.
+  const RodState& state() const { return state_; }
+  ColumnEnds ends() const { return ends_; }
+  double length() const { return shooter_.length(); }
+  const std::vector<double>& grid() const { return shooter_.grid(); }
+  const Vec6& scale() const { return scale_; }
+  const StaticShootingOptions& options() const { return options_; }
+
+ private:
+  /// Start state of the shot (R(0), W(0)) and its tangent along u.
+  void Start(const lie::SE3& base, const Vec6& u, lie::SE3* start, Vec6* W0,
+             StateTangent* dstart) const;
+
+  StaticShootingSolver shooter_;
+  ColumnEnds ends_;
+  StaticShootingOptions options_;
+  Vec6 scale_;
+  Vec6 u_ = Vec6::Zero();
+  RodState state_;
+};
+
+}  // namespace cosserat

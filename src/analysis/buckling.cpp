@@ -1,0 +1,453 @@
+#include "cosserat/analysis/buckling.hpp"
+
+#include <Eigen/LU>
+#include <Eigen/QR>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace cosserat {
+
+LoadPath LoadPath::TipForce(const Vec3& direction, LoadFrame frame) {
+  LoadPath path;
+  path.per_unit.tip_force = direction.normalized();
+  path.per_unit.tip_force_frame = frame;
+  path.fixed.tip_force_frame = frame;
+  return path;
+}
+
+StaticLoads LoadPath::LoadsAt(double lambda) const {
+  StaticLoads out = fixed;
+  out.gravity_W += lambda * per_unit.gravity_W;
+  out.distributed_force_W += lambda * per_unit.distributed_force_W;
+  out.tip_force += lambda * per_unit.tip_force;
+  out.tip_moment += lambda * per_unit.tip_moment;
+  out.tip_force_frame = per_unit.tip_force_frame;
+  out.tip_moment_frame = per_unit.tip_moment_frame;
+  return out;
+}
+
+Actuation LoadPath::ActuationAt(double lambda) const {
+  Actuation out = fixed_actuation;
+  for (int i = 0; i < Actuation::kMaxTendons; ++i)
+    out.tendon_tension[i] += lambda * tension_per_unit[i];
+  return out;
+}
+
+bool LoadPath::has_tension() const {
+  for (double t : tension_per_unit)
+    if (t != 0.0) return true;
+  return false;
+}
+
+bool BucklingOptions::IsValid(std::string* why) const {
+  auto fail = [&](const char* msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  if (!(std::isfinite(lambda_max) && lambda_max > 0)) return fail("lambda_max must be positive");
+  if (scan_steps < 2) return fail("scan_steps must be at least 2");
+  if (!(lambda_tolerance > 0 && lambda_tolerance < 0.1))
+    return fail("lambda_tolerance must be in (0, 0.1)");
+  if (!(singular_threshold > 0 && singular_threshold < 1))
+    return fail("singular_threshold must be in (0, 1)");
+  return solver.IsValid(why);
+}
+
+const char* ToString(BucklingStatus status) {
+  switch (status) {
+    case BucklingStatus::kNotRun:
+      return "not_run";
+    case BucklingStatus::kFound:
+      return "found";
+    case BucklingStatus::kNotFound:
+      return "not_found";
+    case BucklingStatus::kPathFailed:
+      return "path_failed";
+  }
+  return "unknown";
+}
+
+BucklingAnalysis::BucklingAnalysis(const RodModel& model, int num_nodes, ColumnEnds ends,
+                                   const lie::SE3& base, const LoadPath& path,
+                                   const BucklingOptions& options)
+    : column_(model, num_nodes, ends, options.solver, path.ActuationAt(0.0)),
+      model_(model),
+      base_(base),
+      path_(path),
+      options_(options) {
+  std::string why;
+  if (!options_.IsValid(&why)) throw std::invalid_argument("BucklingOptions: " + why);
+}
+
+Vec6 BucklingAnalysis::ResidualAt(double lambda, const Vec6& u, Mat6* J) {
+  if (path_.has_tension() && lambda != applied_lambda_) {
+    column_.SetActuation(path_.ActuationAt(lambda));
+    applied_lambda_ = lambda;
+  }
+  return column_.Residual(base_, path_.LoadsAt(lambda), u, J);
+}
+
+ColumnSummary BucklingAnalysis::SolveAt(double lambda) {
+  if (path_.has_tension() && lambda != applied_lambda_) {
+    column_.SetActuation(path_.ActuationAt(lambda));
+    applied_lambda_ = lambda;
+  }
+  return column_.Solve(base_, path_.LoadsAt(lambda));
+}
+
+namespace {
+
+struct PathPoint {
+  double lambda;
+  Vec6 u;
+  double sigma;
+  double det_sign;
+};
+
+// Linear inter- or extrapolation of the unknowns to lambda.
+Vec6 Interpolate(const PathPoint& a, const PathPoint& b, double lambda) {
+  if (b.lambda == a.lambda) return b.u;
+  return a.u + (b.u - a.u) * ((lambda - a.lambda) / (b.lambda - a.lambda));
+}
+
+}  // namespace
+
+void BucklingAnalysis::Singularity(double lambda, double* sigma_min, double* det_sign,
+                                   Vec6* null_vector, double* sigma_second) {
+  Mat6 J;
+  ResidualAt(lambda, column_.unknowns(), &J);
+  const Eigen::JacobiSVD<Mat6> svd(J, Eigen::ComputeFullV);
+  *sigma_min = svd.singularValues()(5);
+  if (sigma_second) *sigma_second = svd.singularValues()(4);
+  if (null_vector) *null_vector = svd.matrixV().col(5);
+  const double det = Eigen::PartialPivLU<Mat6>(J).determinant();
+  *det_sign = det > 0 ? 1.0 : (det < 0 ? -1.0 : 0.0);
+}
+
+BucklingSummary BucklingAnalysis::FindCriticalLoad() {
+  const auto t0 = std::chrono::steady_clock::now();
+  BucklingSummary out;
+  found_ = false;
+  auto finish = [&](BucklingStatus status) {
+    out.status = status;
+    out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+  };
+
+  // λ = 0: from the unloaded rod, with the fixed loads applied in steps if need be.
+  column_.set_unknowns(Vec6::Zero());
+  bool ok = false;
+  {
+    const LoadPath saved = path_;
+    for (int pieces = 1; pieces <= 64 && !ok; pieces *= 4) {
+      column_.set_unknowns(Vec6::Zero());
+      ok = true;
+      for (int k = 1; k <= pieces && ok; ++k) {
+        path_.fixed = saved.fixed.Scaled(static_cast<double>(k) / pieces);
+        path_.fixed.tip_force_frame = saved.fixed.tip_force_frame;
+        path_.fixed.tip_moment_frame = saved.fixed.tip_moment_frame;
+        ++out.solves;
+        ok = SolveAt(0.0).converged();
+      }
+    }
+    path_ = saved;
+  }
+  if (!ok) return finish(BucklingStatus::kPathFailed);
+
+  PathPoint cur{0.0, column_.unknowns(), 0, 0};
+  Singularity(0.0, &cur.sigma, &cur.det_sign, nullptr, nullptr);
+  const double sigma0 = cur.sigma;
+  out.scan_lambda.push_back(0.0);
+  out.scan_sigma_min.push_back(cur.sigma);
+  std::vector<PathPoint> pts{cur};
+
+  // Evaluates the path at lambda from a guess: solve, then σ_min and det sign.
+  auto evaluate = [&](double lambda, const Vec6& guess, PathPoint* p) {
+    column_.set_unknowns(guess);
+    ++out.solves;
+    if (!SolveAt(lambda).converged()) return false;
+    p->lambda = lambda;
+    p->u = column_.unknowns();
+    Singularity(lambda, &p->sigma, &p->det_sign, nullptr, nullptr);
+    return true;
+  };
+
+  const double h_nominal = options_.lambda_max / options_.scan_steps;
+  double h = h_nominal;
+  int halvings = 0;
+  bool bracketed = false;
+  bool by_sign = false;
+  PathPoint lo{}, hi{}, mid{};
+  while (!bracketed && pts.back().lambda < options_.lambda_max) {
+    const PathPoint& last = pts.back();
+    const double lambda = std::min(options_.lambda_max, last.lambda + h);
+    const Vec6 guess =
+        pts.size() >= 2 ? Interpolate(pts[pts.size() - 2], last, lambda) : Vec6(last.u);
+    PathPoint p;
+    if (!evaluate(lambda, guess, &p)) {
+      if (++halvings > 10) {
+        out.lambda_reached = last.lambda;
+        return finish(BucklingStatus::kPathFailed);
+      }
+      h *= 0.5;
+      continue;
+    }
+    halvings = 0;
+    h = h_nominal;
+    out.scan_lambda.push_back(p.lambda);
+    out.scan_sigma_min.push_back(p.sigma);
+    pts.push_back(p);
+    const size_t k = pts.size() - 1;
+    if (pts[k].det_sign * pts[k - 1].det_sign < 0) {
+      bracketed = by_sign = true;
+      lo = pts[k - 1];
+      hi = pts[k];
+    } else if (k >= 2 && pts[k - 1].sigma < pts[k - 2].sigma && pts[k - 1].sigma < pts[k].sigma) {
+      // A dip of σ_min: refine it by golden section and keep it if J is singular there.
+      PathPoint a = pts[k - 2], b = pts[k];
+      const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+      PathPoint c, d;
+      bool fine = evaluate(b.lambda - g * (b.lambda - a.lambda),
+                           Interpolate(a, b, b.lambda - g * (b.lambda - a.lambda)), &c) &&
+                  evaluate(a.lambda + g * (b.lambda - a.lambda),
+                           Interpolate(a, b, a.lambda + g * (b.lambda - a.lambda)), &d);
+      while (fine && b.lambda - a.lambda > options_.lambda_tolerance * b.lambda) {
+        if (c.sigma < d.sigma) {
+          b = d;
+          d = c;
+          const double l = b.lambda - g * (b.lambda - a.lambda);
+          fine = evaluate(l, Interpolate(a, b, l), &c);
+        } else {
+          a = c;
+          c = d;
+          const double l = a.lambda + g * (b.lambda - a.lambda);
+          fine = evaluate(l, Interpolate(a, b, l), &d);
+        }
+      }
+      if (!fine) {
+        out.lambda_reached = pts.back().lambda;
+        return finish(BucklingStatus::kPathFailed);
+      }
+      mid = c.sigma < d.sigma ? c : d;
+      if (mid.sigma < options_.singular_threshold * sigma0) {
+        bracketed = true;
+        lo = a;
+        hi = b;
+      }
+    }
+  }
+  if (!bracketed) {
+    out.lambda_reached = pts.back().lambda;
+    return finish(BucklingStatus::kNotFound);
+  }
+  if (by_sign) {
+    // Bisection on the sign of det J.
+    while (hi.lambda - lo.lambda > options_.lambda_tolerance * hi.lambda) {
+      const double l = 0.5 * (lo.lambda + hi.lambda);
+      PathPoint p;
+      if (!evaluate(l, Interpolate(lo, hi, l), &p)) {
+        out.lambda_reached = lo.lambda;
+        return finish(BucklingStatus::kPathFailed);
+      }
+      (p.det_sign * lo.det_sign > 0 ? lo : hi) = p;
+    }
+    mid = std::abs(lo.sigma) < std::abs(hi.sigma) ? lo : hi;
+  }
+
+  // The pre-buckled equilibrium at λ_cr, its null vector and the mode.
+  lambda_cr_ = mid.lambda;
+  column_.set_unknowns(mid.u);
+  ++out.solves;
+  SolveAt(lambda_cr_);
+  u_cr_ = column_.unknowns();
+  Mat6 J;
+  ResidualAt(lambda_cr_, u_cr_, &J);
+  const Eigen::JacobiSVD<Mat6> svd(J, Eigen::ComputeFullV);
+  const Vec6 sv = svd.singularValues();
+  const bool double_root = sv(4) < std::sqrt(options_.singular_threshold) * sigma0;
+  Vec6 v = svd.matrixV().col(5);
+  if (double_root) {
+    // Any vector of the 2-D null space is a mode; take the one nearest a coordinate axis of the
+    // unknowns so the answer does not depend on rounding.
+    const Eigen::Matrix<double, 6, 2> N = svd.matrixV().rightCols<2>();
+    int best = 0;
+    for (int k = 1; k < 6; ++k)
+      if (N.row(k).norm() > N.row(best).norm()) best = k;
+    v = N * N.row(best).transpose();
+    v.normalize();
+  }
+  out.mode = ExtractMode(lambda_cr_, v, double_root);
+  v_cr_ = out.mode.unknowns;
+  out.critical_load = lambda_cr_;
+  out.lambda_reached = lambda_cr_;
+  out.sigma_min_ratio = sv(5) / sigma0;
+  found_ = true;
+  return finish(BucklingStatus::kFound);
+}
+
+BucklingMode BucklingAnalysis::ExtractMode(double lambda, const Vec6& v, bool double_root) const {
+  BucklingMode mode;
+  mode.double_root = double_root;
+  const StaticLoads loads = path_.LoadsAt(lambda);
+  const Actuation act = path_.ActuationAt(lambda);
+  const auto t = column_.Perturbation(base_, loads, u_cr_, v);
+  const RodState& st = column_.state();
+  const int n = static_cast<int>(t.size());
+  mode.s = column_.grid();
+  mode.displacement_W.resize(n);
+  mode.rotation_B.resize(n);
+  mode.curvature_B.resize(n);
+  const double L = model_.length;
+  for (int i = 0; i < n; ++i) {
+    const auto& ti = t[i];
+    mode.displacement_W[i] = ti.segment<3>(0);
+    Mat3 dR;
+    for (int j = 0; j < 3; ++j) dR.col(j) = ti.segment<3>(3 + 3 * j);
+    const Mat3 M = st.rotation_WB[i].transpose() * dR;  // (δθ)^ up to rounding
+    mode.rotation_B[i] = 0.5 * Vec3(M(2, 1) - M(1, 2), M(0, 2) - M(2, 0), M(1, 0) - M(0, 1));
+    Vec6 dW;
+    dW << ti.segment<3>(12), ti.segment<3>(15);
+    // Curvature from the compliance on either side of the node (a stiffness jump at a node
+    // gives two values; the larger is kept).
+    Vec3 best = Vec3::Zero();
+    for (double side : {-1.0, 1.0}) {
+      const double s = std::clamp(mode.s[i] + side * 1e-9 * L, 0.0, L);
+      const Mat6 K = model_.section->At(s, act).stiffness;
+      const Vec3 dK = K.partialPivLu().solve(dW).head<3>();
+      if (dK.head<2>().norm() >= best.head<2>().norm()) best = dK;
+    }
+    mode.curvature_B[i] = best;
+  }
+  // Scale: max |δp| = 1, the largest displacement component positive.
+  double max_norm = 0, max_comp = 0;
+  for (const Vec3& d : mode.displacement_W) {
+    max_norm = std::max(max_norm, d.norm());
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(d(k)) > std::abs(max_comp)) max_comp = d(k);
+  }
+  const double f = (max_comp < 0 ? -1.0 : 1.0) / (max_norm > 0 ? max_norm : 1.0);
+  for (int i = 0; i < n; ++i) {
+    mode.displacement_W[i] *= f;
+    mode.rotation_B[i] *= f;
+    mode.curvature_B[i] *= f;
+  }
+  mode.unknowns = (max_comp < 0 ? -1.0 : 1.0) * v;
+  double kmax = 0;
+  for (int i = 0; i < n; ++i) kmax = std::max(kmax, mode.curvature_B[i].head<2>().norm());
+  for (int i = 0; i < n; ++i) {
+    if (mode.curvature_B[i].head<2>().norm() >= (1 - 1e-6) * kmax) {
+      mode.s_max_curvature = mode.s[i];
+      break;
+    }
+  }
+  return mode;
+}
+
+ColumnSummary BucklingAnalysis::SolvePostBuckled(double lambda_target) {
+  ColumnSummary fail;
+  fail.status = SolveStatus::kMaxIterations;
+  if (!found_ || !(lambda_target > lambda_cr_)) return fail;
+  const double lc = lambda_cr_;
+  const double tol = options_.solver.tolerance;
+  const Vec6& v = v_cr_;
+
+  // Bordered Newton on z = (u, λ/λ_cr): r(u, λ) = 0, v · (u − u_cr) = η. Minimum-norm steps.
+  auto bordered = [&](double eta, Vec6* u, double* lambda) {
+    for (int it = 0; it <= options_.solver.max_iterations; ++it) {
+      Mat6 J;
+      const Vec6 r = ResidualAt(*lambda, *u, &J);
+      Eigen::Matrix<double, 7, 1> F;
+      F << r, v.dot(*u - u_cr_) - eta;
+      if (!F.allFinite()) return false;
+      if (F.norm() < tol) return true;
+      if (it == options_.solver.max_iterations) return false;
+      const double h = 1e-6 * lc;
+      const Vec6 r_lambda =
+          (ResidualAt(*lambda + h, *u, nullptr) - ResidualAt(*lambda - h, *u, nullptr)) / (2 * h) *
+          lc;
+      Eigen::Matrix<double, 7, 7> A = Eigen::Matrix<double, 7, 7>::Zero();
+      A.topLeftCorner<6, 6>() = J;
+      A.topRightCorner<6, 1>() = r_lambda;
+      A.bottomLeftCorner<1, 6>() = v.transpose();
+      Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, 7, 7>> cod;
+      cod.setThreshold(1e-10);
+      cod.compute(A);
+      const Eigen::Matrix<double, 7, 1> dz = -cod.solve(F);
+      double t = 1.0;
+      bool accepted = false;
+      for (int k = 0; k < 12 && !accepted; ++k, t *= 0.5) {
+        const Vec6 u_try = *u + t * dz.head<6>();
+        const double l_try = *lambda + t * dz(6) * lc;
+        Eigen::Matrix<double, 7, 1> F_try;
+        F_try << ResidualAt(l_try, u_try, nullptr), v.dot(u_try - u_cr_) - eta;
+        if (F_try.allFinite() && F_try.norm() < (1 - 1e-4 * t) * F.norm()) {
+          *u = u_try;
+          *lambda = l_try;
+          accepted = true;
+        }
+      }
+      if (!accepted) return false;
+    }
+    return false;
+  };
+
+  struct BranchPoint {
+    double eta, lambda;
+    Vec6 u;
+  };
+  std::vector<BranchPoint> branch{{0.0, lc, u_cr_}};
+  double d_eta = 0.02;
+  while (branch.back().lambda < lambda_target) {
+    if (branch.size() > 2000 || d_eta < 1e-6) return fail;
+    const BranchPoint& b = branch.back();
+    const double eta = b.eta + d_eta;
+    Vec6 u;
+    double lambda;
+    if (branch.size() >= 2) {  // secant predictor in η
+      const BranchPoint& a = branch[branch.size() - 2];
+      const double w = (eta - b.eta) / (b.eta - a.eta);
+      u = b.u + w * (b.u - a.u);
+      lambda = b.lambda + w * (b.lambda - a.lambda);
+    } else {
+      u = b.u + d_eta * v;
+      lambda = b.lambda;
+    }
+    if (!bordered(eta, &u, &lambda)) {
+      d_eta *= 0.5;
+      continue;
+    }
+    // Next step: about a quarter of the remaining way in λ, within [d_eta / 2, 2 d_eta] ∩ (0, 0.1].
+    const double slope = std::abs(lambda - b.lambda) / d_eta;
+    const double want = slope > 0 ? 0.25 * (lambda_target - lc) / slope : 2 * d_eta;
+    branch.push_back({eta, lambda, u});
+    d_eta = std::clamp(want, 0.5 * d_eta, std::min(2 * d_eta, 0.1));
+  }
+  // Regula falsi (Illinois) on η for λ(η) = λ_target between the last two branch points.
+  BranchPoint a = branch[branch.size() - 2], b = branch.back();
+  double fa = a.lambda - lambda_target, fb = b.lambda - lambda_target;
+  BranchPoint c = b;
+  for (int it = 0; it < 60 && std::abs(c.lambda - lambda_target) > 1e-13 * lc; ++it) {
+    const double eta = b.eta - fb * (b.eta - a.eta) / (fb - fa);
+    const double w = (eta - a.eta) / (b.eta - a.eta);
+    Vec6 u = a.u + w * (b.u - a.u);
+    double lambda = a.lambda + w * (b.lambda - a.lambda);
+    if (!bordered(eta, &u, &lambda)) return fail;
+    c = {eta, lambda, u};
+    const double fc = lambda - lambda_target;
+    if (fc * fb < 0) {
+      a = b;
+      fa = fb;
+    } else {
+      fa *= 0.5;
+    }
+    b = c;
+    fb = fc;
+  }
+  column_.set_unknowns(c.u);
+  return SolveAt(lambda_target);
+}
+
+}  // namespace cosserat

@@ -1,0 +1,234 @@
+#include "cosserat/analysis/column.hpp"
+
+#include <Eigen/Geometry>
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "cosserat/lie/so3.hpp"
+
+namespace cosserat {
+
+const char* ToString(ColumnEnds ends) {
+  switch (ends) {
+    case ColumnEnds::kClampedFree:
+      return "cantilever";
+    case ColumnEnds::kPinnedPinned:
+      return "pinned-pinned";
+    case ColumnEnds::kClampedClamped:
+      return "clamped-clamped";
+    case ColumnEnds::kClampedPinned:
+      return "clamped-pinned";
+  }
+  return "unknown";
+}
+
+bool ParseColumnEnds(const std::string& name, ColumnEnds* ends) {
+  for (ColumnEnds e : {ColumnEnds::kClampedFree, ColumnEnds::kPinnedPinned,
+                       ColumnEnds::kClampedClamped, ColumnEnds::kClampedPinned}) {
+    if (name == ToString(e)) {
+      *ends = e;
+      return true;
+    }
+  }
+  return false;
+}
+
+namespace {
+
+// Rows of a StateTangent.
+constexpr int kP = 0, kR = 3, kM = 12, kN = 15;
+
+Eigen::Matrix<double, 3, 6> RotationColumn(const ColumnSolver::StateTangent& T, int j) {
+  return T.middleRows<3>(kR + 3 * j);
+}
+
+}  // namespace
+
+ColumnSolver::ColumnSolver(const RodModel& model, int num_nodes, ColumnEnds ends,
+                           const StaticShootingOptions& options, const Actuation& actuation)
+    : shooter_(model, num_nodes, options, actuation), ends_(ends), options_(options) {
+  const SectionProperties p = model.section->At(0.0, actuation);
+  const double EI = std::max(p.stiffness(0, 0), p.stiffness(1, 1));
+  const double L = model.length;
+  scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
+  state_.Resize(static_cast<int>(shooter_.grid().size()));
+  for (int i = 0; i < state_.size(); ++i) state_.s[i] = shooter_.grid()[i];
+}
+
+void ColumnSolver::Start(const lie::SE3& base, const Vec6& u, lie::SE3* start, Vec6* W0,
+                         StateTangent* dstart) const {
+  dstart->setZero();
+  start->p = base.p;
+  if (ends_ == ColumnEnds::kPinnedPinned) {
+    // R(0) = R_WB Exp(θ), θ = [u₀, u₁, 0]; d R(0) = R(0) (J_r(θ) dθ)^.
+    const Vec3 theta(u(0), u(1), 0.0);
+    start->R = base.R * lie::SO3Exp(theta);
+    const Mat3 Jr = lie::SO3RightJacobian(theta);
+    for (int k = 0; k < 2; ++k) {
+      const Vec3 w = Jr.col(k);
+      for (int j = 0; j < 3; ++j)
+        dstart->block<3, 1>(kR + 3 * j, k) = start->R * w.cross(Vec3::Unit(j));
+    }
+    *W0 << 0.0, 0.0, scale_(2) * u(2), scale_.tail<3>().cwiseProduct(u.tail<3>());
+    (*dstart)(kM + 2, 2) = scale_(2);
+  } else {
+    start->R = base.R;
+    *W0 = scale_.cwiseProduct(u);
+    for (int k = 0; k < 3; ++k) (*dstart)(kM + k, k) = scale_(k);
+  }
+  for (int k = 3; k < 6; ++k) (*dstart)(kN + k - 3, k) = scale_(k);
+}
+
+Vec6 ColumnSolver::Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& u, Mat6* J,
+                            RodState* record) const {
+  lie::SE3 start;
+  Vec6 W0;
+  StateTangent dstart;
+  Start(base, u, &start, &W0, &dstart);
+  RodState local;
+  RodState* rec = record ? record : &local;
+  const StateTangent T = shooter_.ShootTangent(start, loads, W0, dstart, rec);
+  const Mat3& R = rec->rotation_WB.back();
+  const Vec3& p = rec->position_W.back();
+  const Vec3 m = rec->wrench_B.back().head<3>();
+  const Vec3 n = rec->wrench_B.back().tail<3>();
+  const double L = length();
+  const Eigen::Matrix<double, 3, 6> dp = T.middleRows<3>(kP), dm = T.middleRows<3>(kM),
+                                    dn = T.middleRows<3>(kN);
+  const bool force_world = loads.tip_force_frame == LoadFrame::kWorld;
+  const bool moment_world = loads.tip_moment_frame == LoadFrame::kWorld;
+  // d(Rᵀ v) for a fixed world vector v: row j is v · d(R e_j).
+  auto transpose_times = [&](const Vec3& v) {
+    Eigen::Matrix<double, 3, 6> out;
+    for (int j = 0; j < 3; ++j) out.row(j) = v.transpose() * RotationColumn(T, j);
+    return out;
+  };
+  // d(R v) for a fixed body vector v.
+  auto times = [&](const Vec3& v) {
+    Eigen::Matrix<double, 3, 6> out = Eigen::Matrix<double, 3, 6>::Zero();
+    for (int j = 0; j < 3; ++j) out += v(j) * RotationColumn(T, j);
+    return out;
+  };
+
+  Vec6 r;
+  Mat6 dr;
+  // Moment balance at a free or pinned tip: m(L) = M_tip in the tip body frame.
+  auto moment_rows = [&]() {
+    r.head<3>() = (m - (moment_world ? Vec3(R.transpose() * loads.tip_moment) : loads.tip_moment))
+                      .cwiseQuotient(scale_.head<3>());
+    dr.topRows<3>() = dm;
+    if (moment_world) dr.topRows<3>() -= transpose_times(loads.tip_moment);
+    dr.topRows<3>() = scale_.head<3>().cwiseInverse().asDiagonal() * dr.topRows<3>();
+  };
+
+  if (ends_ == ColumnEnds::kClampedFree) {
+    moment_rows();
+    r.tail<3>() = (n - (force_world ? Vec3(R.transpose() * loads.tip_force) : loads.tip_force))
+                      .cwiseQuotient(scale_.tail<3>());
+    dr.bottomRows<3>() = dn;
+    if (force_world) dr.bottomRows<3>() -= transpose_times(loads.tip_force);
+    dr.bottomRows<3>() = scale_.tail<3>().cwiseInverse().asDiagonal() * dr.bottomRows<3>();
+  } else {
+    // Rows 0–2: the tip end condition on the rotation; rows 3–5: lateral x, lateral y, axial.
+    if (ends_ == ColumnEnds::kClampedClamped) {
+      const Mat3 Q = base.R.transpose() * R;
+      r.head<3>() = 0.5 * Vec3(Q(2, 1) - Q(1, 2), Q(0, 2) - Q(2, 0), Q(1, 0) - Q(0, 1));
+      // dQ column j = R_WBᵀ d(R e_j): entry (i, j) is row i of that.
+      for (int k = 0; k < 6; ++k) {
+        Mat3 dQ;
+        for (int j = 0; j < 3; ++j) dQ.col(j) = base.R.transpose() * RotationColumn(T, j).col(k);
+        dr.col(k).head<3>() =
+            0.5 * Vec3(dQ(2, 1) - dQ(1, 2), dQ(0, 2) - dQ(2, 0), dQ(1, 0) - dQ(0, 1));
+      }
+    } else {
+      moment_rows();
+    }
+    const Vec3 d = base.R.transpose() * (p - base.p);
+    const Eigen::Matrix<double, 3, 6> dd = base.R.transpose() * dp;
+    r(3) = d(0) / L;
+    r(4) = d(1) / L;
+    dr.row(3) = dd.row(0) / L;
+    dr.row(4) = dd.row(1) / L;
+    const Vec3 e = base.R.col(2);
+    const Vec3 F_W = force_world ? loads.tip_force : Vec3(R * loads.tip_force);
+    r(5) = e.dot(R * n - F_W) / scale_(5);
+    Eigen::Matrix<double, 3, 6> dforce = times(n) + R * dn;
+    if (!force_world) dforce -= times(loads.tip_force);
+    dr.row(5) = e.transpose() * dforce / scale_(5);
+  }
+  if (J) *J = dr;
+  return r;
+}
+
+ColumnSummary ColumnSolver::Solve(const lie::SE3& base, const StaticLoads& loads) {
+  ColumnSummary summary;
+  Vec6 u = u_;
+  Mat6 J;
+  RodState record;
+  Vec6 r = Residual(base, loads, u, &J, &record);
+  for (int it = 0;; ++it) {
+    const double norm = r.norm();
+    summary.residual = norm;
+    if (!std::isfinite(norm)) {
+      summary.status = SolveStatus::kNonFinite;
+      return summary;
+    }
+    if (norm < options_.tolerance) break;
+    if (it == options_.max_iterations) {
+      summary.status = SolveStatus::kMaxIterations;
+      return summary;
+    }
+    ++summary.iterations;
+    // Minimum-norm Newton step: directions with σ < 1e-10 σ_max are not moved along.
+    Eigen::CompleteOrthogonalDecomposition<Mat6> cod;
+    cod.setThreshold(1e-10);
+    cod.compute(J);
+    const Vec6 step = -cod.solve(r);
+    // Backtracking on ‖r‖; the shape of the rod can change a lot in one full step.
+    double t = 1.0;
+    Vec6 u_try, r_try;
+    Mat6 J_try;
+    RodState rec_try;
+    bool accepted = false;
+    for (int k = 0; k < 12; ++k, t *= 0.5) {
+      u_try = u + t * step;
+      r_try = Residual(base, loads, u_try, &J_try, &rec_try);
+      if (r_try.allFinite() && r_try.norm() < (1.0 - 1e-4 * t) * norm) {
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) {
+      summary.status = SolveStatus::kMaxIterations;
+      return summary;
+    }
+    u = u_try;
+    r = r_try;
+    J = J_try;
+    record = std::move(rec_try);
+  }
+  u_ = u;
+  state_ = std::move(record);
+  summary.status = SolveStatus::kConverged;
+  return summary;
+}
+
+std::vector<Eigen::Matrix<double, 18, 1>> ColumnSolver::Perturbation(const lie::SE3& base,
+                                                                     const StaticLoads& loads,
+                                                                     const Vec6& u,
+                                                                     const Vec6& du) const {
+  lie::SE3 start;
+  Vec6 W0;
+  StateTangent dstart;
+  Start(base, u, &start, &W0, &dstart);
+  std::vector<StateTangent> tangents;
+  RodState record;
+  shooter_.ShootTangent(start, loads, W0, dstart, &record, &tangents);
+  std::vector<Eigen::Matrix<double, 18, 1>> out(tangents.size());
+  for (size_t i = 0; i < tangents.size(); ++i) out[i] = tangents[i] * du;
+  return out;
+}
+
+}  // namespace cosserat
