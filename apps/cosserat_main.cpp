@@ -23,6 +23,7 @@
 #include "cosserat/strong/static_shooting.hpp"
 #include "run_dynamics.hpp"
 #include "run_eversion.hpp"
+#include "run_modes.hpp"
 #include "run_quatfd.hpp"
 
 namespace {
@@ -199,7 +200,9 @@ int RunSolve(const Command& cmd) {
 
   const bool dynamics = problem->analysis == "dynamics";
   bool converged;
-  if (problem->formulation == "quaternion-fd")
+  if (problem->analysis == "modes")
+    converged = cosserat::cli::RunModes(*problem, out, csv, std::cerr);
+  else if (problem->formulation == "quaternion-fd")
     converged = dynamics ? cosserat::cli::RunQuatFdDynamics(*problem, out, csv, std::cerr)
                          : cosserat::cli::RunQuatFdStatics(*problem, out, csv, std::cerr);
   else if (problem->has_robot && problem->robot.kind == "eversion")

@@ -334,7 +334,7 @@ TEST(ProblemIo, LaterAnalysesParseButAreGated) {
   // quaternion-fd runs (issue 4); the analysis and, for it, any boundary but cantilever do not.
   ASSERT_EQ(gated.size(), 2u);
   EXPECT_EQ(gated[0], R"(analysis: "buckling" is not implemented in this version (supported: )"
-                      R"("statics", "dynamics"))");
+                      R"("statics", "dynamics", "modes"))");
   EXPECT_EQ(gated[1], R"(boundary: "pinned-pinned" is not implemented in this version )"
                       R"((supported: "cantilever"))");
 }

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <Eigen/SVD>
 #include <Eigen/SparseCore>
 #include <algorithm>
@@ -221,6 +222,7 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   result.statics_status = st.status;
   if (q_equilibrium) *q_equilibrium = q;
   result.s = model->grid();
+  model->ToRodState(q, Eigen::VectorXd::Zero(n_full), &result.equilibrium);
   auto finish = [&](ModalStatus status) {
     result.status = status;
     result.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
@@ -368,18 +370,34 @@ Vec6 Sigma(const FrequencyShooting& fs, double omega) {
   return svd.singularValues().reverse();
 }
 
-/// Recursive refinement of the local minima of σ_min(B) in [lo, hi]: each sampled local minimum
-/// is bracketed by its neighbours and refined again, until the bracket is below 1e-10 ω. Two
-/// roots in one bracket are both found once the sampling separates them.
+/// Candidates for the roots of det B(ω) in [lo, hi], sampled at 17 points: a sign change of det B
+/// between neighbours (a simple root) is bisected to 1e-13 ω; a local minimum of σ_min(B) (also
+/// a root of even multiplicity, which does not change the sign) is bracketed by its neighbours
+/// and refined again, down to a bracket of 1e-10 ω. Roots closer than the sampling are
+/// separated at a deeper level. A root may be reported more than once.
 void RefineMinima(const FrequencyShooting& fs, double lo, double hi, int* budget,
                   std::vector<double>* found) {
   constexpr int k = 16;
   double w[k + 1], s[k + 1];
+  bool d[k + 1];
   for (int j = 0; j <= k; ++j) {
     w[j] = lo + (hi - lo) * j / k;
-    s[j] = Sigma(fs, w[j])(0);
+    const Mat6 B = fs.BoundaryMatrix(w[j]);
+    s[j] = Eigen::JacobiSVD<Mat6>(B).singularValues()(5);
+    d[j] = B.determinant() > 0;
   }
   *budget -= k + 1;
+  for (int j = 0; j < k; ++j) {
+    if (d[j] == d[j + 1]) continue;
+    double a = w[j], b = w[j + 1];
+    const bool da = d[j];
+    while (b - a > 1e-13 * b && *budget > 0) {
+      const double mid = 0.5 * (a + b);
+      ((fs.BoundaryMatrix(mid).determinant() > 0) == da ? a : b) = mid;
+      --*budget;
+    }
+    found->push_back(0.5 * (a + b));
+  }
   for (int j = 1; j < k; ++j) {
     if (!(s[j] <= s[j - 1] && s[j] < s[j + 1])) continue;
     if (w[j + 1] - w[j - 1] < 1e-10 * w[j] || *budget <= 0)
@@ -409,6 +427,7 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
   const StaticShootingSummary st = solver.Solve(base, loads);
   result.statics_status = st.status;
   result.s = solver.grid();
+  result.equilibrium = solver.state();
   if (!st.converged()) return finish(ModalStatus::kStaticsFailed);
   const FrequencyShooting fs(rod, solver.grid(), base, loads, solver.base_wrench_B(), actuation);
 

@@ -24,6 +24,7 @@
 #include "cosserat/quatfd/quatfd_statics.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
+#include "cosserat/strong/rod_state.hpp"
 #include "cosserat/strong/solver_status.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
@@ -81,8 +82,9 @@ struct ModalOptions {
 struct ModalResult {
   ModalStatus status = ModalStatus::kNotRun;
   SolveStatus statics_status = SolveStatus::kNotRun;
-  std::vector<double> s;           ///< node arc lengths of the shapes, m
-  std::vector<Mode> modes;         ///< the lowest `count`, by frequency
+  std::vector<double> s;    ///< node arc lengths of the shapes, m
+  RodState equilibrium;     ///< the static equilibrium linearised about (last iterate if failed)
+  std::vector<Mode> modes;  ///< the lowest `count`, by frequency
   std::vector<DampedMode> damped;  ///< the lowest `count` underdamped pairs by |λ| (quatfd only)
   /// quatfd: whether the stiffness was symmetric (conservative loads) and the symmetric solver
   /// was used. Shooting: always false.

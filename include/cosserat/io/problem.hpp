@@ -87,8 +87,8 @@ ParseResult LoadProblemFile(const std::string& path);
 /// The most time steps (round(duration / dt)) a dynamics problem may ask for.
 inline constexpr int kMaxDynamicsSteps = 10000000;
 
-/// Things the contract names but this version cannot run yet: an analysis other than "statics"
-/// or "dynamics", a boundary other than "cantilever" (se3-shooting dynamics also runs
+/// Things the contract names but this version cannot run yet: an analysis other than "statics",
+/// "dynamics" or "modes", a boundary other than "cantilever" (se3-shooting dynamics also runs
 /// "free-free"; quaternion-fd runs only "cantilever").
 /// One line each.
 std::vector<std::string> UnsupportedFeatures(const Problem& problem);
