@@ -59,9 +59,10 @@ ModalResult ShootingModes(const RodModel& rod, const lie::SE3& base, const Stati
 
 TEST(Modes, StraightCantileverMatchesEulerBernoulliBothFormulations) {
   // Budget for 0.5 %: at r/L = 1/500, shear and rotary inertia lower mode n by ~(β_n r)² ≈
-  // 5e-4 % for mode 4; the quatfd second-order grid error is ≈ (β_n h)²/3 (measured at N = 40
-  // in test_quatfd_verification: 0.08 % / 0.4 % for modes 1 / 2), 0.40 % for mode 4 at N = 100;
-  // the shooting is RK4 in s (error ~(β h)⁴, < 1e-4 %). Each frequency appears twice (circle).
+  // 5e-4 (0.05 %) for mode 4 (measured 0.027 %); the quatfd second-order grid error is ≈ (β_n h)²/3
+  // (measured at N = 40 in test_quatfd_verification: 0.08 % / 0.4 % for modes 1 / 2), 0.40 % for
+  // mode 4 at N = 100; the shooting is RK4 in s (error ~(β h)⁴, < 1e-4 %). Each frequency appears
+  // twice (circle).
   SteelRod rod;
   const ModalResult fd = QuatFdModes(rod.model(), lie::SE3(), {}, 100, 8);
   const ModalResult sh = ShootingModes(rod.model(), lie::SE3(), {}, 101, 8);
