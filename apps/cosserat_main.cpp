@@ -24,6 +24,7 @@
 #include "run_buckling.hpp"
 #include "run_dynamics.hpp"
 #include "run_eversion.hpp"
+#include "run_modes.hpp"
 #include "run_quatfd.hpp"
 
 namespace {
@@ -200,7 +201,9 @@ int RunSolve(const Command& cmd) {
 
   const bool dynamics = problem->analysis == "dynamics";
   bool converged;
-  if (problem->formulation == "quaternion-fd")
+  if (problem->analysis == "modes")
+    converged = cosserat::cli::RunModes(*problem, out, csv, std::cerr);
+  else if (problem->formulation == "quaternion-fd")
     converged = dynamics ? cosserat::cli::RunQuatFdDynamics(*problem, out, csv, std::cerr)
                          : cosserat::cli::RunQuatFdStatics(*problem, out, csv, std::cerr);
   else if (problem->analysis == "buckling")

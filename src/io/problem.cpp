@@ -242,7 +242,7 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
           std::string(key) + ": " + detail::Quote(value) +
           " is not implemented in this version (supported: " + detail::QuotedList(supported) + ")");
   };
-  check("analysis", p.analysis, {"statics", "dynamics", "buckling"});
+  check("analysis", p.analysis, {"statics", "dynamics", "buckling", "modes"});
   check("formulation", p.formulation, {"se3-shooting", "quaternion-fd"});
   if (p.formulation == "quaternion-fd")  // rod.nodes >= 3 (2 segments) is checked by the parser
     check("boundary", p.boundary, {"cantilever"});
@@ -263,6 +263,8 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
           "in this version");
     if (p.formulation == "quaternion-fd")
       out.push_back("robot: robots run on the \"se3-shooting\" formulation only in this version");
+    if (p.analysis == "modes" && !p.rod.tendons.empty())
+      out.push_back("robot: modes of a robot with tendons are not implemented in this version");
     if (p.robot.tendon_lengths && p.analysis != "statics")
       out.push_back(
           "robot.actuation.length: displacement control runs in statics only in this "

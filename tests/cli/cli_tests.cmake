@@ -75,8 +75,24 @@ cosserat_cli_test(NAME many_errors ARGS validate "${_cli_dir}/many_errors.json" 
                   STDERR "format: .*rod.nodes: .*rod.material: .*loads.tip_force\\[2\\]: ")
 cosserat_cli_test(NAME bad_dynamics ARGS solve "${_cli_dir}/bad_dynamics.json" CODE 2
                   STDERR "dynamics.dt: expected a positive number, got -0.002.*dynamics.output_interval: ")
-cosserat_cli_test(NAME not_implemented ARGS solve "${_cli_dir}/modes.json" CODE 2
-                  STDERR "analysis: \"modes\" is not implemented in this version")
+cosserat_cli_test(NAME not_implemented ARGS solve "${_cli_dir}/modes_free_free.json" CODE 2
+                  STDERR "boundary: \"free-free\" is not implemented in this version")
+
+# Natural frequencies (issue 6). The straight steel wire of modes.json: Euler-Bernoulli gives
+# 5.5959 Hz twice (two planes); shear and rotary inertia lower it by ~1e-5. The sagging example:
+# both formulations find the pairs split by the sag (5.597/5.598 Hz, 35.06/35.07 Hz); quatfd's
+# second-order grid error at 100 segments is ~1e-4 for mode 1 and ~5e-4 for mode 2.
+cosserat_cli_test(NAME solve_modes ARGS solve "${_cli_dir}/modes.json" CODE 0
+                  STDOUT "\"frequencies_hz\": .[^0-9]*5\\.5958"
+                  STDERR "converged \\(modes, se3-shooting\\), 4 modes: 5\\.5958")
+cosserat_cli_test(NAME solve_modes_example
+                  ARGS solve "${CMAKE_CURRENT_LIST_DIR}/../../examples/modes_cantilever.json"
+                       --csv "${_cli_out}/modes_nodes.csv"
+                  CODE 0 STDOUT "\"shapes\": .[^0-9]*.displacement"
+                  STDERR "4 modes: 5\\.597[0-9]* 5\\.597[0-9]* 35\\.064[0-9]* 35\\.067"
+                  FILES "${_cli_out}/modes_nodes.csv")
+cosserat_cli_test(NAME solve_modes_quatfd ARGS solve "${_cli_dir}/modes_quatfd.json" CODE 0
+                  STDERR "converged \\(modes, quaternion-fd\\), 4 modes: 5\\.59[67][0-9]* 5\\.597[0-9]* 35\\.0[45]")
 
 # The quaternion finite-difference formulation (issue 4). The static tip x must read -0.1508… or
 # -0.1509…: the SE(3) shooting result for the same file at 201 nodes is -0.150858 m, and the

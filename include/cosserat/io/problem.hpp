@@ -88,9 +88,9 @@ ParseResult LoadProblemFile(const std::string& path);
 inline constexpr int kMaxDynamicsSteps = 10000000;
 
 /// Things the contract names but this version cannot run yet: an analysis other than "statics",
-/// "dynamics" or "buckling", a boundary other than "cantilever" (se3-shooting dynamics also runs
-/// "free-free", buckling the column ends "pinned-pinned", "clamped-clamped", "clamped-pinned";
-/// quaternion-fd runs only "cantilever", and no buckling).
+/// "dynamics", "buckling" or "modes", a boundary other than "cantilever" (se3-shooting dynamics
+/// also runs "free-free", buckling the column ends "pinned-pinned", "clamped-clamped",
+/// "clamped-pinned"; quaternion-fd runs only "cantilever", and no buckling).
 /// One line each.
 std::vector<std::string> UnsupportedFeatures(const Problem& problem);
 

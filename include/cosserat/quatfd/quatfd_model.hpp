@@ -169,6 +169,8 @@ class QuatFdModel {
 
   /// Smallest principal rotational inertia of a segment, ρ I Δs (kg·m²).
   double min_rotational_inertia() const;
+  /// Principal rotational inertia of segment ν, diag(ρI1, ρI2, ρ(I1+I2)) Δs (kg·m², body frame).
+  const Vec3& segment_inertia(int nu) const { return rotation_[nu].inertia; }
 
   /// Scales that make residuals dimensionless: EI/L (N·m) and EI/L² (N), EI the largest bending
   /// stiffness at s = 0.

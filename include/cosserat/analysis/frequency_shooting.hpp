@@ -1,0 +1,75 @@
+#pragma once
+/// \file
+/// The SE(3) strong form (seed 002 eqs. 14, 16, 19–20) linearised about a static equilibrium of
+/// the cantilever, in the frequency domain.
+///
+/// A perturbation g = g₀ Exp(η̂) with η = [θ; u] (body frame, rad; m) and W = W₀ + δW, harmonic
+/// in time with circular frequency ω (V₀ = 0, so δV = η_t and δV_t = −ω² η), obeys the linear
+/// ODE in s (ξ₀ = [K; Γ], W₀ = [m; n], f_W the distributed force per length):
+///   θ'  = δK − K × θ,            u'  = δΓ − K × u − Γ × θ          (δξ = η' + ad_ξ₀ η)
+///   δm' = δm × K + m × δK + δn × Γ + n × δΓ − ω² J θ
+///   δn' = δn × K + n × δK + θ × (R₀ᵀ f_W) − ω² ρA u,   δξ = K(s)⁻¹ δW
+/// with θ(0) = u(0) = 0 at the clamp and δW(0) the 6 unknowns. The tip condition
+/// W(L) = [R(L)ᵀ M_W; R(L)ᵀ F_W] (world loads; body loads are constant) linearises to
+///   B(ω) δW(0) = [δm − (R₀ᵀ M_W) × θ;  δn − (R₀ᵀ F_W) × θ](L) = 0,
+/// so det B(ω) = 0 exactly at a natural frequency, and the null vectors give the mode shapes.
+/// RK4 on the grid, with the equilibrium re-integrated on the same stages as the statics solver.
+/// At ω = 0, B is the statics Jacobian (in rotation-vector instead of matrix coordinates).
+
+#include <vector>
+
+#include "cosserat/lie/se3.hpp"
+#include "cosserat/lie/types.hpp"
+#include "cosserat/loads/static_loads.hpp"
+#include "cosserat/rod/actuation.hpp"
+#include "cosserat/rod/rod_model.hpp"
+
+namespace cosserat {
+
+class FrequencyShooting {
+ public:
+  using Mat12 = Eigen::Matrix<double, 12, 12>;
+
+  /// Linearises about the equilibrium whose base wrench W(0) = [m; n] (base body frame, N·m; N)
+  /// is `base_wrench_B` (StaticShootingSolver::base_wrench_B() of a converged solve on the same
+  /// grid). Throws std::invalid_argument for rods with tendons.
+  FrequencyShooting(const RodModel& rod, const std::vector<double>& grid, const lie::SE3& base,
+                    const StaticLoads& loads, const Vec6& base_wrench_B,
+                    const Actuation& actuation = {});
+
+  /// The dimensionless boundary matrix: S_r⁻¹ B(ω) S_u with S = diag(EI/L ×3, EI/L² ×3), so the
+  /// unknowns and the residual are scaled as in the statics solver.
+  Mat6 BoundaryMatrix(double omega) const;
+
+  /// The node values of the perturbation started from the dimensionless unknown x (δW(0) =
+  /// S_u x): displacement R₀ u (world, m) and rotation R₀ θ (world, rad).
+  void Shape(double omega, const Vec6& x, std::vector<Vec3>* displacement_W,
+             std::vector<Vec3>* rotation_W) const;
+
+  const std::vector<double>& grid() const { return grid_; }
+  /// Equilibrium rotation R_WB at the nodes.
+  const std::vector<Mat3>& rotation_WB() const { return node_R_; }
+  /// EI of the section at s = 0 (N·m²), the larger principal value.
+  double bending_stiffness() const { return EI_; }
+  double mass_per_length_at_base() const { return rhoA0_; }
+
+ private:
+  // A(s) = A0 − ω² A1 at one RK4 stage; A1 has only the J θ and ρA u entries.
+  struct Stage {
+    Mat12 a0;
+    Vec3 J;  // ρ I per length, kg·m
+    double rhoA = 0;
+  };
+  template <typename Visit>
+  Eigen::Matrix<double, 12, 6> Integrate(double omega, const Eigen::Matrix<double, 12, 6>& z0,
+                                         Visit&& visit) const;
+
+  std::vector<double> grid_;
+  std::vector<Stage> stages_;  // 4 per segment: start, mid, mid, end
+  std::vector<Mat3> node_R_;
+  Mat3 tip_moment_cross_ = Mat3::Zero(), tip_force_cross_ = Mat3::Zero();  // (R₀ᵀ M_W)^, ...
+  Vec6 scale_;
+  double EI_ = 0, rhoA0_ = 0;
+};
+
+}  // namespace cosserat

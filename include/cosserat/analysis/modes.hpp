@@ -1,0 +1,129 @@
+#pragma once
+/// \file
+/// Natural frequencies and mode shapes of a rod linearised about a static equilibrium (the
+/// straight rest state, or a rod sagging under gravity, bent by tip loads, or stiffened by an
+/// actuated section profile). Two independent formulations (docs/modes.md):
+///
+/// - Quaternion FD (ComputeModes): solve the statics of the seed-000 model, linearise
+///   v̇ = f(q, v) there with the analytic banded Jacobian, restrict to the tangent space of the
+///   constraints (free vertices δx_n; per segment a body rotation θ_ν with δp = ½ p ⊗ [0; θ]), and
+///   solve  K φ = ω² M φ  (symmetric when the loads are conservative) or, for follower loads,
+///   the non-symmetric eigenproblem of M⁻¹K; with Kelvin–Voigt damping also the quadratic
+///   eigenproblem λ² M + λ C + K = 0 (damped frequencies and damping ratios).
+/// - SE(3) shooting (ComputeModesShooting, frequency_shooting.hpp): the strong form linearised
+///   about the equilibrium in the frequency domain; the 6×6 tip-boundary matrix B(ω) of the
+///   cantilever is singular exactly at a natural frequency.
+
+#include <string>
+#include <vector>
+
+#include "cosserat/lie/se3.hpp"
+#include "cosserat/lie/types.hpp"
+#include "cosserat/loads/static_loads.hpp"
+#include "cosserat/quatfd/quatfd_model.hpp"
+#include "cosserat/quatfd/quatfd_statics.hpp"
+#include "cosserat/rod/actuation.hpp"
+#include "cosserat/rod/rod_model.hpp"
+#include "cosserat/strong/rod_state.hpp"
+#include "cosserat/strong/solver_status.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+
+namespace cosserat {
+
+/// Which motion carries most of a mode's kinetic energy (translation along / across the local
+/// tangent, rotation about / across it).
+enum class ModeKind {
+  kBending,  ///< transverse translation + rotation about a section axis
+  kTorsion,  ///< rotation about the tangent
+  kAxial,    ///< translation along the tangent
+};
+const char* ToString(ModeKind kind);
+
+/// One undamped mode.
+struct Mode {
+  double omega = 0;         ///< natural circular frequency ω, rad/s
+  double frequency_hz = 0;  ///< ω / 2π, Hz
+  ModeKind kind = ModeKind::kBending;
+  /// Shares of the kinetic energy (sum 1): translation across / along the tangent, rotation
+  /// about the tangent, rotation across it.
+  double share_transverse = 0, share_axial = 0, share_twist = 0, share_tilt = 0;
+  /// Shape at the grid nodes: displacement (world, m) and small rotation vector (world, rad) per
+  /// unit amplitude, scaled so that max_n max(|δx_n| / L, |δθ_n|) = 1 and the entry of largest
+  /// magnitude is positive. Empty when shapes were not asked for.
+  std::vector<Vec3> displacement_W;
+  std::vector<Vec3> rotation_W;
+};
+
+/// One damped mode: λ = −ζ ω_n ± i ω_d (underdamped pairs only).
+struct DampedMode {
+  double omega_n = 0;              ///< |λ|, rad/s
+  double damped_frequency_hz = 0;  ///< ω_d / 2π, Hz
+  double damping_ratio = 0;        ///< ζ = −Re λ / |λ|
+};
+
+enum class ModalStatus {
+  kNotRun,
+  kConverged,      ///< the equilibrium converged and `count` modes were found
+  kStaticsFailed,  ///< the static equilibrium did not converge (no modes computed)
+  kUnstable,       ///< the equilibrium has an eigenvalue ω² < 0 or a complex one (flutter) below
+                   ///< the modes returned: it is not a stable equilibrium
+  kTooFewModes,    ///< fewer than `count` modes exist (quatfd) or were found in the scanned band
+                   ///< (shooting); the ones found are returned
+};
+const char* ToString(ModalStatus status);
+
+struct ModalOptions {
+  int count = 4;       ///< how many of the lowest modes to return (with multiplicity)
+  bool shapes = true;  ///< compute mode shapes
+  bool damped = true;  ///< quatfd: also the damped modes when the model has damping
+  bool IsValid(std::string* why) const;
+};
+
+struct ModalResult {
+  ModalStatus status = ModalStatus::kNotRun;
+  SolveStatus statics_status = SolveStatus::kNotRun;
+  std::vector<double> s;    ///< node arc lengths of the shapes, m
+  RodState equilibrium;     ///< the static equilibrium linearised about (last iterate if failed)
+  std::vector<Mode> modes;  ///< the lowest `count`, by frequency
+  std::vector<DampedMode> damped;  ///< the lowest `count` underdamped pairs by |λ| (quatfd only)
+  /// quatfd: whether the stiffness was symmetric (conservative loads) and the symmetric solver
+  /// was used. Shooting: always false.
+  bool symmetric = false;
+  double wall_time_s = 0;
+  bool converged() const { return status == ModalStatus::kConverged; }
+  std::vector<double> frequencies_hz() const;
+};
+
+/// Quaternion-FD modes about the equilibrium of `model` under `loads`: the statics are solved
+/// from q_guess (the rest state if null), then the linearisation is reduced to the 3 (free
+/// vertices) + 3 (segments) physical directions per node: the quaternion-norm directions and
+/// the prescribed base vertex carry only the zero eigenvalues of the constraints and are left
+/// out. If `q_equilibrium` is set it receives the equilibrium. Costs one dense eigenproblem of
+/// size 6N + 3 (12N + 6 with damping): about 0.1 s at N = 100 without damping.
+ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
+                         const ModalOptions& options = {}, const Eigen::VectorXd* q_guess = nullptr,
+                         Eigen::VectorXd* q_equilibrium = nullptr,
+                         const quatfd::QuatFdStaticsOptions& statics = {});
+
+/// Options of the frequency scan of the shooting formulation.
+struct ShootingModalOptions {
+  ModalOptions modal;
+  /// Scan band (rad/s). omega_min = 0 means 0.01 × the Euler–Bernoulli first cantilever
+  /// frequency of the section at s = 0; omega_max = 0 means 1e4 × that frequency.
+  double omega_min = 0, omega_max = 0;
+  /// Geometric step of the coarse scan of σ_min(B(ω)); roots closer than this are separated by
+  /// the recursive refinement down to 1e-10 ω (closer ones count as one multiple root).
+  double relative_step = 0.005;
+  StaticShootingOptions statics;
+  bool IsValid(std::string* why) const;
+};
+
+/// SE(3)-shooting modes of the cantilever (`rod` clamped at `base`) about its equilibrium under
+/// `loads`, on `num_nodes` grid points with RK4 in s. Undamped only (the section damping is
+/// ignored); no tendons (throws std::invalid_argument). Section actuation (pressure, jamming) is
+/// applied through the profile.
+ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::SE3& base,
+                                 const StaticLoads& loads, const ShootingModalOptions& options = {},
+                                 const Actuation& actuation = {});
+
+}  // namespace cosserat

@@ -1,0 +1,521 @@
+#include "cosserat/analysis/modes.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+
+#include "cosserat/analysis/frequency_shooting.hpp"
+#include "cosserat/lie/quaternion.hpp"
+
+namespace cosserat {
+
+const char* ToString(ModeKind kind) {
+  switch (kind) {
+    case ModeKind::kBending:
+      return "bending";
+    case ModeKind::kTorsion:
+      return "torsion";
+    case ModeKind::kAxial:
+      return "axial";
+  }
+  return "unknown";
+}
+
+const char* ToString(ModalStatus status) {
+  switch (status) {
+    case ModalStatus::kNotRun:
+      return "not_run";
+    case ModalStatus::kConverged:
+      return "converged";
+    case ModalStatus::kStaticsFailed:
+      return "statics_failed";
+    case ModalStatus::kUnstable:
+      return "unstable";
+    case ModalStatus::kTooFewModes:
+      return "too_few_modes";
+  }
+  return "unknown";
+}
+
+bool ModalOptions::IsValid(std::string* why) const {
+  if (count < 1) {
+    if (why) *why = "count: expected at least 1";
+    return false;
+  }
+  return true;
+}
+
+bool ShootingModalOptions::IsValid(std::string* why) const {
+  auto fail = [&](const char* msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  if (!modal.IsValid(why)) return false;
+  if (!(std::isfinite(omega_min) && omega_min >= 0)) return fail("omega_min: expected >= 0");
+  if (!(std::isfinite(omega_max) && omega_max >= 0)) return fail("omega_max: expected >= 0");
+  if (omega_max > 0 && omega_max <= omega_min) return fail("omega_max: expected > omega_min");
+  if (!(relative_step > 0 && relative_step <= 0.1))
+    return fail("relative_step: expected in (0, 0.1]");
+  return statics.IsValid(why);
+}
+
+std::vector<double> ModalResult::frequencies_hz() const {
+  std::vector<double> f;
+  for (const Mode& m : modes) f.push_back(m.frequency_hz);
+  return f;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kTwoPi = 6.283185307179586;
+
+/// Fills the kinetic-energy shares and the kind of a mode from its node shape, the tangent t_n
+/// (world, unit), the mass per node (kg) and the rotational inertia per node (kg·m², body
+/// principal, rotated with R_n), then scales the shape (see Mode::displacement_W).
+void Classify(const std::vector<Vec3>& tangent_W, const std::vector<double>& mass,
+              const std::vector<Mat3>& inertia_W, double length, Mode* mode) {
+  double tr = 0, ax = 0, tw = 0, ti = 0;
+  for (size_t n = 0; n < tangent_W.size(); ++n) {
+    const Vec3& t = tangent_W[n];
+    const Vec3& d = mode->displacement_W[n];
+    const Vec3& r = mode->rotation_W[n];
+    const double da = t.dot(d), ra = t.dot(r);
+    ax += mass[n] * da * da;
+    tr += mass[n] * (d - da * t).squaredNorm();
+    const Vec3 r_axial = ra * t, r_tilt = r - r_axial;
+    tw += r_axial.dot(inertia_W[n] * r_axial);
+    ti += r_tilt.dot(inertia_W[n] * r_tilt);
+  }
+  const double sum = std::max(tr + ax + tw + ti, 1e-300);
+  mode->share_transverse = tr / sum;
+  mode->share_axial = ax / sum;
+  mode->share_twist = tw / sum;
+  mode->share_tilt = ti / sum;
+  const double bending = mode->share_transverse + mode->share_tilt;
+  mode->kind = ModeKind::kBending;
+  if (mode->share_twist > bending && mode->share_twist > mode->share_axial)
+    mode->kind = ModeKind::kTorsion;
+  else if (mode->share_axial > bending)
+    mode->kind = ModeKind::kAxial;
+
+  double biggest = 0, signed_biggest = 0;
+  for (size_t n = 0; n < tangent_W.size(); ++n)
+    for (int k = 0; k < 3; ++k) {
+      const double a = mode->displacement_W[n](k) / length, b = mode->rotation_W[n](k);
+      if (std::abs(a) > biggest) biggest = std::abs(a), signed_biggest = a;
+      if (std::abs(b) > biggest) biggest = std::abs(b), signed_biggest = b;
+    }
+  if (biggest == 0) return;
+  const double scale = 1.0 / signed_biggest;
+  for (Vec3& d : mode->displacement_W) d *= scale;
+  for (Vec3& r : mode->rotation_W) r *= scale;
+}
+
+/// ω from ω² (a negative ω² gives −sqrt(−ω²), the growth rate of an unstable direction).
+double SignedSqrt(double w2) { return w2 >= 0 ? std::sqrt(w2) : -std::sqrt(-w2); }
+
+// ---- quaternion FD -------------------------------------------------------------------------
+
+/// The tangent-space reduction of the quatfd unknowns: columns of T (full ← reduced) and rows
+/// of P = T⁺ (reduced ← full), the reduced mass, and for the shapes which reduced index is what.
+struct Reduction {
+  Eigen::SparseMatrix<double> T, P;
+  Eigen::VectorXd mass;
+  std::vector<int> vertex_column;   // first reduced index of x_n, −1 when prescribed
+  std::vector<int> segment_column;  // first reduced index of θ_ν
+};
+
+Reduction Reduce(const quatfd::QuatFdModel& model, const Eigen::VectorXd& q) {
+  using L = quatfd::QuatFdLayout;
+  const int N = model.layout().segments, n_full = model.size();
+  Reduction red;
+  std::vector<Eigen::Triplet<double>> t, p;
+  std::vector<double> mass;
+  int m = 0;
+  for (int n = 0; n <= N; ++n) {
+    red.vertex_column.push_back(model.IsFixed(L::X(n)) ? -1 : m);
+    if (!model.IsFixed(L::X(n))) {
+      for (int k = 0; k < 3; ++k) {
+        t.emplace_back(L::X(n) + k, m + k, 1.0);
+        p.emplace_back(m + k, L::X(n) + k, 1.0);
+        mass.push_back(model.vertex_mass()[n]);
+      }
+      m += 3;
+    }
+    if (n == N) break;
+    red.segment_column.push_back(m);
+    const Vec4 pq = q.segment<4>(L::P(n));
+    const Vec4 pbar = lie::QuatConjugate(pq);
+    for (int k = 0; k < 3; ++k) {
+      // δp = ½ p ⊗ [0; e_k]  (a body-frame rotation by θ_k: R(p + δp) = R(p) Exp(θ))
+      Vec4 e = Vec4::Zero();
+      e(k + 1) = 1.0;
+      const Vec4 col = 0.5 * lie::QuatMultiply(pq, e);
+      for (int j = 0; j < 4; ++j) t.emplace_back(L::P(n) + j, m + k, col(j));
+      // θ = 2 Im(p̄ ⊗ δp) / |p|² (|p| = 1 after the projection)
+      Vec4 ej = Vec4::Zero();
+      for (int j = 0; j < 4; ++j) {
+        ej.setZero();
+        ej(j) = 1.0;
+        p.emplace_back(m + k, L::P(n) + j, 2.0 * lie::QuatMultiply(pbar, ej)(k + 1));
+      }
+      mass.push_back(model.segment_inertia(n)(k));
+    }
+    m += 3;
+  }
+  red.T.resize(n_full, m);
+  red.T.setFromTriplets(t.begin(), t.end());
+  red.P.resize(m, n_full);
+  red.P.setFromTriplets(p.begin(), p.end());
+  red.mass = Eigen::Map<const Eigen::VectorXd>(mass.data(), m);
+  return red;
+}
+
+/// Node shape of a reduced vector y: vertex displacements, and vertex rotations (world) from
+/// the neighbouring segments (the mean inside, the clamp's zero at a clamped base, the last
+/// segment's at the tip), as ToRodState places the node frames.
+void QuatFdShape(const quatfd::QuatFdModel& model, const Reduction& red, const Eigen::VectorXd& q,
+                 const Eigen::VectorXd& y, Mode* mode) {
+  using L = quatfd::QuatFdLayout;
+  const int N = model.layout().segments;
+  std::vector<Vec3> seg(N);
+  for (int nu = 0; nu < N; ++nu)
+    seg[nu] = lie::QuatToRotation(q.segment<4>(L::P(nu))) * y.segment<3>(red.segment_column[nu]);
+  mode->displacement_W.assign(N + 1, Vec3::Zero());
+  mode->rotation_W.assign(N + 1, Vec3::Zero());
+  for (int n = 0; n <= N; ++n) {
+    if (red.vertex_column[n] >= 0) mode->displacement_W[n] = y.segment<3>(red.vertex_column[n]);
+    if (n == 0)
+      mode->rotation_W[n] =
+          model.options().base_end == quatfd::EndCondition::kClamped ? Vec3::Zero() : seg[0];
+    else if (n == N)
+      mode->rotation_W[n] = seg[N - 1];
+    else
+      mode->rotation_W[n] = 0.5 * (seg[n - 1] + seg[n]);
+  }
+}
+
+}  // namespace
+
+ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
+                         const ModalOptions& options, const Eigen::VectorXd* q_guess,
+                         Eigen::VectorXd* q_equilibrium,
+                         const quatfd::QuatFdStaticsOptions& statics) {
+  using L = quatfd::QuatFdLayout;
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("ModalOptions: " + why);
+  const auto start = Clock::now();
+  ModalResult result;
+  const int n_full = model->size(), N = model->layout().segments;
+  Eigen::VectorXd q(n_full), v(n_full);
+  model->RestState(q, v);
+  if (q_guess) q = *q_guess;
+  const quatfd::QuatFdStaticsSummary st = quatfd::SolveStatics(model, loads, q, statics);
+  result.statics_status = st.status;
+  if (q_equilibrium) *q_equilibrium = q;
+  result.s = model->grid();
+  model->ToRodState(q, Eigen::VectorXd::Zero(n_full), &result.equilibrium);
+  auto finish = [&](ModalStatus status) {
+    result.status = status;
+    result.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
+    return result;
+  };
+  if (!st.converged()) return finish(ModalStatus::kStaticsFailed);
+  v.setZero();
+  model->Project(q, v);
+
+  quatfd::BandedMatrix A, B;
+  model->Jacobian(q, v, &A, &B);
+  const Reduction red = Reduce(*model, q);
+  const int m = static_cast<int>(red.mass.size());
+  const Eigen::MatrixXd Ar = red.P * (A.ToDense() * red.T);
+  const Eigen::MatrixXd Br = red.P * (B.ToDense() * red.T);
+
+  // Stiffness S = −M Ar: symmetric (to round-off) for conservative loads about an equilibrium.
+  const Eigen::MatrixXd S = -(red.mass.asDiagonal() * Ar);
+  const double s_max = S.cwiseAbs().maxCoeff();
+  bool symmetric = true;
+  for (int i = 0; i < m && symmetric; ++i)
+    for (int j = 0; j < i; ++j)
+      if (std::abs(S(i, j) - S(j, i)) >
+          1e-8 * std::max(std::abs(S(i, j)), std::abs(S(j, i))) + 1e-13 * s_max) {
+        symmetric = false;
+        break;
+      }
+  result.symmetric = symmetric;
+
+  // ω² and reduced eigenvectors, ascending.
+  std::vector<std::pair<double, Eigen::VectorXd>> eig;
+  bool complex_pair = false;
+  const Eigen::VectorXd inv_sqrt_m = red.mass.cwiseSqrt().cwiseInverse();
+  const bool damped = options.damped && Br.cwiseAbs().maxCoeff() > 0;
+  Eigen::MatrixXd companion;  // first-order form of λ² M + λ C + K = 0 when damped
+  if (symmetric) {
+    // K φ = ω² M φ with diagonal M: the symmetric problem of M^−½ K M^−½.
+    const Eigen::MatrixXd Ssym = 0.5 * (S + S.transpose());
+    const Eigen::MatrixXd H = inv_sqrt_m.asDiagonal() * Ssym * inv_sqrt_m.asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(
+        H, options.shapes || damped ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+    if (damped) {
+      // In the undamped modal coordinates (Ψ orthonormal, Ω² = eigenvalues) with z = [Ω η; η̇]:
+      // ż = [[0, Ω], [−Ω, −Ψᵀ M^−½ C M^−½ Ψ]] z. Its norm is ω_max and it is nearly normal, so
+      // the damping ratios of the low modes keep their digits (the plain companion matrix of
+      // M⁻¹K, of norm ω_max², loses them).
+      const Eigen::VectorXd sqrt_m = red.mass.cwiseSqrt();
+      const Eigen::MatrixXd Cm = -(sqrt_m.asDiagonal() * Br * inv_sqrt_m.asDiagonal());
+      const Eigen::MatrixXd& Psi = es.eigenvectors();
+      const Eigen::VectorXd Om = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+      companion = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+      companion.topRightCorner(m, m) = Om.asDiagonal();
+      companion.bottomLeftCorner(m, m) = -Eigen::MatrixXd(Om.asDiagonal());
+      companion.bottomRightCorner(m, m) = -(Psi.transpose() * Cm * Psi);
+    }
+    for (int i = 0; i < m; ++i)
+      eig.emplace_back(es.eigenvalues()(i),
+                       options.shapes
+                           ? Eigen::VectorXd(inv_sqrt_m.asDiagonal() * es.eigenvectors().col(i))
+                           : Eigen::VectorXd());
+  } else {
+    const Eigen::EigenSolver<Eigen::MatrixXd> es(Ar, options.shapes);
+    for (int i = 0; i < m; ++i) {
+      const std::complex<double> l = es.eigenvalues()(i);
+      if (std::abs(l.imag()) > 1e-6 * std::abs(l)) {
+        complex_pair = true;  // flutter: no real mode
+        continue;
+      }
+      eig.emplace_back(-l.real(), options.shapes ? Eigen::VectorXd(es.eigenvectors().col(i).real())
+                                                 : Eigen::VectorXd());
+    }
+    std::sort(eig.begin(), eig.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+  }
+  const double w2_max = eig.empty() ? 0.0 : std::abs(eig.back().first);
+  bool unstable = complex_pair;
+  std::vector<Vec3> tangent(N + 1, Vec3::Zero());
+  std::vector<double> node_mass(N + 1);
+  std::vector<Mat3> node_inertia(N + 1, Mat3::Zero());
+  for (int n = 0; n <= N; ++n) node_mass[n] = model->vertex_mass()[n];
+  for (int nu = 0; nu < N; ++nu) {
+    const Mat3 R = lie::QuatToRotation(q.segment<4>(L::P(nu)));
+    const Mat3 J = R * model->segment_inertia(nu).asDiagonal() * R.transpose();
+    // Half of each segment's inertia to each end vertex (for the shares only).
+    node_inertia[nu] += 0.5 * J;
+    node_inertia[nu + 1] += 0.5 * J;
+    tangent[nu] += R.col(2);
+    tangent[nu + 1] += R.col(2);
+  }
+  for (Vec3& t : tangent) t.normalize();
+  for (int i = 0;
+       i < static_cast<int>(eig.size()) && static_cast<int>(result.modes.size()) < options.count;
+       ++i) {
+    Mode mode;
+    const double w2 = eig[i].first;
+    if (w2 < -1e3 * 2.2e-16 * w2_max) unstable = true;
+    mode.omega = SignedSqrt(w2);
+    mode.frequency_hz = mode.omega / kTwoPi;
+    if (options.shapes) {
+      QuatFdShape(*model, red, q, eig[i].second, &mode);
+      Classify(tangent, node_mass, node_inertia, model->length(), &mode);
+    }
+    result.modes.push_back(std::move(mode));
+  }
+
+  // Damped: λ² M + λ C + K = 0 through a first-order form (the plain companion matrix
+  // [[0, I], [Ar, Br]] when the stiffness is not symmetric).
+  if (damped) {
+    if (!symmetric) {
+      companion = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+      companion.topRightCorner(m, m).setIdentity();
+      companion.bottomLeftCorner(m, m) = Ar;
+      companion.bottomRightCorner(m, m) = Br;
+    }
+    const Eigen::EigenSolver<Eigen::MatrixXd> es(companion, false);
+    std::vector<std::complex<double>> pairs;
+    for (int i = 0; i < 2 * m; ++i) {
+      const std::complex<double> l = es.eigenvalues()(i);
+      if (l.imag() > 1e-9 * std::abs(l)) pairs.push_back(l);
+    }
+    std::sort(pairs.begin(), pairs.end(),
+              [](const auto& a, const auto& b) { return std::abs(a) < std::abs(b); });
+    for (size_t i = 0; i < pairs.size() && static_cast<int>(i) < options.count; ++i) {
+      DampedMode d;
+      d.omega_n = std::abs(pairs[i]);
+      d.damped_frequency_hz = pairs[i].imag() / kTwoPi;
+      d.damping_ratio = -pairs[i].real() / d.omega_n;
+      if (pairs[i].real() > 1e-9 * d.omega_n) unstable = true;
+      result.damped.push_back(d);
+    }
+  }
+  if (unstable) return finish(ModalStatus::kUnstable);
+  if (static_cast<int>(result.modes.size()) < options.count)
+    return finish(ModalStatus::kTooFewModes);
+  return finish(ModalStatus::kConverged);
+}
+
+// ---- SE(3) shooting --------------------------------------------------------------------------
+
+namespace {
+
+/// Singular values of B(ω), ascending.
+Vec6 Sigma(const FrequencyShooting& fs, double omega) {
+  const Eigen::JacobiSVD<Mat6> svd(fs.BoundaryMatrix(omega));
+  return svd.singularValues().reverse();
+}
+
+/// Candidates for the roots of det B(ω) in [lo, hi], sampled at 17 points: a sign change of det B
+/// between neighbours (a simple root) is bisected to 1e-13 ω; a local minimum of σ_min(B) (also
+/// a root of even multiplicity, which does not change the sign) is bracketed by its neighbours
+/// and refined again, down to a bracket of 1e-10 ω. Roots closer than the sampling are
+/// separated at a deeper level. A root may be reported more than once.
+void RefineMinima(const FrequencyShooting& fs, double lo, double hi, int* budget,
+                  std::vector<double>* found) {
+  constexpr int k = 16;
+  double w[k + 1], s[k + 1];
+  bool d[k + 1];
+  for (int j = 0; j <= k; ++j) {
+    w[j] = lo + (hi - lo) * j / k;
+    const Mat6 B = fs.BoundaryMatrix(w[j]);
+    s[j] = Eigen::JacobiSVD<Mat6>(B).singularValues()(5);
+    d[j] = B.determinant() > 0;
+  }
+  *budget -= k + 1;
+  for (int j = 0; j < k; ++j) {
+    if (d[j] == d[j + 1]) continue;
+    double a = w[j], b = w[j + 1];
+    const bool da = d[j];
+    while (b - a > 1e-13 * b && *budget > 0) {
+      const double mid = 0.5 * (a + b);
+      ((fs.BoundaryMatrix(mid).determinant() > 0) == da ? a : b) = mid;
+      --*budget;
+    }
+    found->push_back(0.5 * (a + b));
+  }
+  for (int j = 1; j < k; ++j) {
+    if (!(s[j] <= s[j - 1] && s[j] < s[j + 1])) continue;
+    if (w[j + 1] - w[j - 1] < 1e-10 * w[j] || *budget <= 0)
+      found->push_back(w[j]);
+    else
+      RefineMinima(fs, w[j - 1], w[j + 1], budget, found);
+  }
+}
+
+}  // namespace
+
+ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::SE3& base,
+                                 const StaticLoads& loads, const ShootingModalOptions& options,
+                                 const Actuation& actuation) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("ShootingModalOptions: " + why);
+  if (!rod.tendons.empty())
+    throw std::invalid_argument("ComputeModesShooting: rods with tendons are not supported");
+  const auto start = Clock::now();
+  ModalResult result;
+  auto finish = [&](ModalStatus status) {
+    result.status = status;
+    result.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
+    return result;
+  };
+  StaticShootingSolver solver(rod, num_nodes, options.statics, actuation);
+  const StaticShootingSummary st = solver.Solve(base, loads);
+  result.statics_status = st.status;
+  result.s = solver.grid();
+  result.equilibrium = solver.state();
+  if (!st.converged()) return finish(ModalStatus::kStaticsFailed);
+  const FrequencyShooting fs(rod, solver.grid(), base, loads, solver.base_wrench_B(), actuation);
+
+  const double L = rod.length;
+  const double w_eb =
+      1.8751 * 1.8751 / (L * L) * std::sqrt(fs.bending_stiffness() / fs.mass_per_length_at_base());
+  const double w_lo = options.omega_min > 0 ? options.omega_min : 0.01 * w_eb;
+  const double w_hi = options.omega_max > 0 ? options.omega_max : 1e4 * w_eb;
+  const double step = 1.0 + options.relative_step;
+  const int count = options.modal.count;
+
+  // Coarse scan of σ_min(B) and of the sign of det B. A sampled local minimum of σ_min, or a
+  // sign change of det B (a simple root hidden in the flank of a neighbour's dip), brackets
+  // candidates; they are refined, clustered and tested.
+  struct Root {
+    double omega;
+    Vec6 x;  // dimensionless null vector
+  };
+  std::vector<Root> roots;
+  int budget = 200000;
+  auto process = [&](double lo, double hi) {
+    std::vector<double> found;
+    RefineMinima(fs, lo, hi, &budget, &found);
+    std::sort(found.begin(), found.end());
+    // Clusters of candidates within 1e-5 ω; multiplicity = how many singular values are small
+    // at the cluster (below 5 % of their value 1e-3 ω away on the farther-rising side).
+    for (size_t a = 0; a < found.size();) {
+      size_t b = a + 1;
+      while (b < found.size() && found[b] - found[a] < 1e-5 * found[a]) ++b;
+      const double wc = found[a];
+      bool known = false;
+      for (const Root& r : roots) known = known || std::abs(r.omega - wc) < 1e-5 * wc;
+      const Vec6 sc = Sigma(fs, wc), sm = Sigma(fs, wc * (1 - 1e-3)),
+                 sp = Sigma(fs, wc * (1 + 1e-3));
+      int mult = 0;
+      for (int k = 0; k < 6 && !known; ++k)
+        if (sc(k) < 0.05 * std::max(sm(k), sp(k))) ++mult;
+      const int members = static_cast<int>(b - a);
+      for (int r = 0; r < mult; ++r) {
+        const double w = r < members ? found[a + r] : found[a];
+        const int vec = r < members ? 0 : r - members + 1;
+        const Eigen::JacobiSVD<Mat6> svd(fs.BoundaryMatrix(w), Eigen::ComputeFullV);
+        roots.push_back({w, svd.matrixV().col(5 - vec)});
+      }
+      a = b;
+    }
+  };
+  auto det_sign = [&](double w) { return fs.BoundaryMatrix(w).determinant() > 0; };
+  double w0 = w_lo, w1 = w_lo * step;
+  double s0 = Sigma(fs, w0)(0), s1 = Sigma(fs, w1)(0);
+  bool d1 = det_sign(w1);
+  while (static_cast<int>(roots.size()) < count && w1 < w_hi && budget > 0) {
+    const double w2 = w1 * step, s2 = Sigma(fs, w2)(0);
+    const bool d2 = det_sign(w2);
+    budget -= 2;
+    if (s1 <= s0 && s1 < s2) process(w0, w2);
+    if (d1 != d2) process(w0, w2 * step);
+    w0 = w1, s0 = s1, w1 = w2, s1 = s2, d1 = d2;
+  }
+  std::sort(roots.begin(), roots.end(),
+            [](const Root& a, const Root& b) { return a.omega < b.omega; });
+
+  // Node masses and inertias (trapezoid weights) and tangents for the energy shares.
+  const std::vector<double>& s = solver.grid();
+  const int n = static_cast<int>(s.size());
+  std::vector<double> node_mass(n);
+  std::vector<Mat3> node_inertia(n);
+  std::vector<Vec3> tangent(n);
+  for (int i = 0; i < n; ++i) {
+    const double w = 0.5 * ((i > 0 ? s[i] - s[i - 1] : 0.0) + (i + 1 < n ? s[i + 1] - s[i] : 0.0));
+    const SectionProperties sp = rod.section->At(s[i], actuation);
+    const Mat3& R = fs.rotation_WB()[i];
+    node_mass[i] = sp.mass(5, 5) * w;
+    node_inertia[i] = R * (sp.mass.diagonal().head<3>() * w).asDiagonal() * R.transpose();
+    tangent[i] = R.col(2);
+  }
+  for (size_t i = 0; i < roots.size() && static_cast<int>(i) < count; ++i) {
+    Mode mode;
+    mode.omega = roots[i].omega;
+    mode.frequency_hz = mode.omega / kTwoPi;
+    if (options.modal.shapes) {
+      fs.Shape(mode.omega, roots[i].x, &mode.displacement_W, &mode.rotation_W);
+      Classify(tangent, node_mass, node_inertia, L, &mode);
+    }
+    result.modes.push_back(std::move(mode));
+  }
+  if (static_cast<int>(result.modes.size()) < count) return finish(ModalStatus::kTooFewModes);
+  return finish(ModalStatus::kConverged);
+}
+
+}  // namespace cosserat

@@ -1,0 +1,280 @@
+// Natural frequencies and modes against the truth: Euler–Bernoulli cantilever frequencies
+// (../shared/reference/natural_frequencies.json), the exact Euler–Bernoulli frequency of a
+// cantilever under an axial compressive dead load, torsional and axial fundamentals, exact modal
+// damping ratios for stiffness-proportional damping, and the two formulations (quaternion FD
+// and SE(3) frequency-domain shooting) against each other about a sagging cantilever.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "cosserat/analysis/frequency_shooting.hpp"
+#include "cosserat/analysis/modes.hpp"
+#include "cosserat/quatfd/quatfd_model.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+
+namespace cosserat {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// β_n L of the clamped-free beam (reference/natural_frequencies.json).
+constexpr double kBetaL[4] = {1.8751040687119611, 4.694091132974175, 7.854757438237613,
+                              10.995540734875467};
+
+struct SteelRod {
+  double length = 0.5, r = 0.001;  // r/L = 1/500
+  Material material = Material::FromShearModulus(200e9, 80e9, 8000);
+  CrossSection section() const { return CrossSection::Circle(r); }
+  double EI() const { return material.youngs_modulus * section().I1; }
+  double rhoA() const { return material.density * section().area; }
+  RodModel model() const { return RodModel::Uniform(length, section(), material); }
+  /// Euler–Bernoulli cantilever frequency n (0-based), Hz.
+  double EulerBernoulliHz(int n) const {
+    return kBetaL[n] * kBetaL[n] / (2 * kPi * length * length) * std::sqrt(EI() / rhoA());
+  }
+};
+
+ModalResult QuatFdModes(const RodModel& rod, const lie::SE3& base, const StaticLoads& loads,
+                        int segments, int count, bool shapes = true) {
+  quatfd::QuatFdOptions opt;
+  opt.segments = segments;
+  quatfd::QuatFdModel model(rod, base, opt);
+  ModalOptions mo;
+  mo.count = count;
+  mo.shapes = shapes;
+  return ComputeModes(&model, loads, mo);
+}
+
+ModalResult ShootingModes(const RodModel& rod, const lie::SE3& base, const StaticLoads& loads,
+                          int nodes, int count, double omega_min = 0, double omega_max = 0) {
+  ShootingModalOptions so;
+  so.modal.count = count;
+  so.omega_min = omega_min;
+  so.omega_max = omega_max;
+  return ComputeModesShooting(rod, nodes, base, loads, so);
+}
+
+TEST(Modes, StraightCantileverMatchesEulerBernoulliBothFormulations) {
+  // Budget for 0.5 %: at r/L = 1/500, shear and rotary inertia lower mode n by ~(β_n r)² ≈
+  // 5e-4 (0.05 %) for mode 4 (measured 0.027 %); the quatfd second-order grid error is ≈ (β_n h)²/3
+  // (measured at N = 40 in test_quatfd_verification: 0.08 % / 0.4 % for modes 1 / 2), 0.40 % for
+  // mode 4 at N = 100; the shooting is RK4 in s (error ~(β h)⁴, < 1e-4 %). Each frequency appears
+  // twice (circle).
+  SteelRod rod;
+  const ModalResult fd = QuatFdModes(rod.model(), lie::SE3(), {}, 100, 8);
+  const ModalResult sh = ShootingModes(rod.model(), lie::SE3(), {}, 101, 8);
+  ASSERT_TRUE(fd.converged()) << ToString(fd.status);
+  ASSERT_TRUE(sh.converged()) << ToString(sh.status);
+  EXPECT_TRUE(fd.symmetric);
+  ASSERT_EQ(fd.modes.size(), 8u);
+  ASSERT_EQ(sh.modes.size(), 8u);
+  for (int k = 0; k < 8; ++k) {
+    const double eb = rod.EulerBernoulliHz(k / 2);
+    std::printf("  mode %d: EB %.4f Hz, quatfd %.5f, shooting %.7f (ratios)\n", k, eb,
+                fd.modes[k].frequency_hz / eb, sh.modes[k].frequency_hz / eb);
+    EXPECT_NEAR(fd.modes[k].frequency_hz / eb, 1.0, 0.005) << "quatfd mode " << k;
+    EXPECT_NEAR(sh.modes[k].frequency_hz / eb, 1.0, 0.005) << "shooting mode " << k;
+    // The shooting has no grid error to speak of (RK4, < 1e-7): what is left is the physics
+    // Euler–Bernoulli leaves out. Shear and rotary inertia lower mode n by c (β_n r)² with
+    // c = (1 + E/κG)/4 ≈ 0.9 for a simply supported beam; assert 0 < 1 − f/f_EB < (β_n r)².
+    const double br = kBetaL[k / 2] * rod.r / rod.length;
+    EXPECT_GT(1 - sh.modes[k].frequency_hz / eb, 0.0) << "shooting mode " << k;
+    EXPECT_LT(1 - sh.modes[k].frequency_hz / eb, br * br) << "shooting mode " << k;
+    EXPECT_NEAR(fd.modes[k].frequency_hz / sh.modes[k].frequency_hz, 1.0, 0.005);
+    EXPECT_EQ(fd.modes[k].kind, ModeKind::kBending);
+    EXPECT_EQ(sh.modes[k].kind, ModeKind::kBending);
+  }
+  // The shapes: first bending mode, tip displacement normalised to +L (largest entry), zero at
+  // the clamp, and the Euler–Bernoulli shape at midspan: φ(L/2)/φ(L) = 0.3393.
+  for (const ModalResult* r : {&fd, &sh}) {
+    const Mode& m = r->modes[0];
+    ASSERT_EQ(m.displacement_W.size(), 101u);
+    EXPECT_LT(m.displacement_W.front().norm(), 1e-12);
+    const double tip = m.displacement_W.back().norm(), mid = m.displacement_W[50].norm();
+    EXPECT_NEAR(mid / tip, 0.33934, 2e-3);
+  }
+}
+
+TEST(Modes, SecondOrderConvergenceOfQuatFdFrequencies) {
+  // The quatfd error in the 4th bending frequency against the (RK4-exact) shooting value, at N
+  // and 2N segments: the observed order lies within ±0.3 of 2.
+  SteelRod rod;
+  const double ref = ShootingModes(rod.model(), lie::SE3(), {}, 101, 8).modes[6].frequency_hz;
+  const double e25 = QuatFdModes(rod.model(), lie::SE3(), {}, 25, 8, false).modes[6].frequency_hz;
+  const double e50 = QuatFdModes(rod.model(), lie::SE3(), {}, 50, 8, false).modes[6].frequency_hz;
+  const double order = std::log2(std::abs(e25 - ref) / std::abs(e50 - ref));
+  std::printf("  mode 4 rel. error: N=25 %.3g, N=50 %.3g, order %.3f\n", (e25 - ref) / ref,
+              (e50 - ref) / ref, order);
+  EXPECT_NEAR(order, 2.0, 0.3);
+}
+
+// Exact Euler–Bernoulli frequency (rad/s) of a cantilever under an axial compressive dead tip
+// load P: EI w'''' + P w'' − ρA ω² w = 0, w(0) = w'(0) = 0, w''(L) = 0, EI w'''(L) + P w'(L) = 0;
+// w = a cosh αs + b sinh αs + c cos βs + d sin βs with α², −β² the roots of EI r⁴ + P r² = ρAω².
+double DetCompressedCantilever(double EI, double rhoA, double P, double L, double w) {
+  const double disc = std::sqrt(P * P + 4 * EI * rhoA * w * w);
+  const double a = std::sqrt((-P + disc) / (2 * EI)), b = std::sqrt((P + disc) / (2 * EI));
+  const double ch = std::cosh(a * L), sh = std::sinh(a * L), c = std::cos(b * L),
+               s = std::sin(b * L);
+  Eigen::Matrix4d M;
+  M << 1, 0, 1, 0,  //
+      0, a, 0, b,   //
+      a * a * ch, a * a * sh, -b * b * c, -b * b * s, EI * a * a * a * sh + P * a * sh,
+      EI * a * a * a * ch + P * a * ch, EI * b * b * b * s - P * b * s,
+      -EI * b * b * b * c + P * b * c;
+  return M.determinant();
+}
+
+double FirstCompressedFrequency(double EI, double rhoA, double P, double L, double w_hi) {
+  double lo = 1e-3 * w_hi, hi = lo;
+  const double d0 = DetCompressedCantilever(EI, rhoA, P, L, lo);
+  while (DetCompressedCantilever(EI, rhoA, P, L, hi) * d0 > 0) hi *= 1.01;
+  lo = hi / 1.01;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (DetCompressedCantilever(EI, rhoA, P, L, mid) * d0 > 0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+TEST(Modes, CompressedCantileverMatchesExactEulerBernoulli) {
+  // Axial dead load P = Pcr/2 (Pcr = π² EI / 4L²) along −z at the tip of the straight rod. The
+  // truth is the root of the exact Euler–Bernoulli frequency equation (≈ 0.5 % above Galef's
+  // ω² = ω₀² (1 − P/Pcr)). Budget: shooting 1e-4 (r/L = 1/500 shear/rotary shifts ~1e-5);
+  // quatfd 0.1 % (its grid error for mode 1 at N = 100 is ≈ (β₁ h)²/3 ≈ 0.01 %).
+  SteelRod rod;
+  const double Pcr = kPi * kPi * rod.EI() / (4 * rod.length * rod.length);
+  StaticLoads loads;
+  loads.tip_force = Vec3(0, 0, -0.5 * Pcr);
+  const double w0 =
+      kBetaL[0] * kBetaL[0] / (rod.length * rod.length) * std::sqrt(rod.EI() / rod.rhoA());
+  const double exact = FirstCompressedFrequency(rod.EI(), rod.rhoA(), 0.5 * Pcr, rod.length, w0);
+  const ModalResult fd = QuatFdModes(rod.model(), lie::SE3(), loads, 100, 2, false);
+  const ModalResult sh = ShootingModes(rod.model(), lie::SE3(), loads, 101, 2);
+  ASSERT_TRUE(fd.converged()) << ToString(fd.status);
+  ASSERT_TRUE(sh.converged()) << ToString(sh.status);
+  std::printf("  P = Pcr/2: exact/ω0 %.5f (Galef %.5f), quatfd %.6f, shooting %.6f (ratios)\n",
+              exact / w0, std::sqrt(0.5), fd.modes[0].omega / exact, sh.modes[0].omega / exact);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_NEAR(sh.modes[k].omega / exact, 1.0, 1e-4) << k;
+    EXPECT_NEAR(fd.modes[k].omega / exact, 1.0, 1e-3) << k;
+  }
+}
+
+TEST(Modes, FormulationsAgreeOnSaggingCantilever) {
+  // A horizontal cantilever (tangent along world +x) bent by its weight to a tip drop of about
+  // a quarter of its length (w L³ / EI = 2), plus a small out-of-plane tip force so nothing is
+  // symmetric: the in-plane and out-of-plane modes split and couple with torsion. The two
+  // formulations, each with its own statics, agree on the first six frequencies within 0.5 %
+  // (quatfd grid error ≤ 0.4 % as in the straight test, shooting ≪), and on the shapes (MAC
+  // > 0.99, limited by the quatfd grid error in the shape).
+  SteelRod rod;
+  rod.r = 0.005;  // r/L = 1/100
+  lie::SE3 base;
+  base.R << 0, 0, 1, 0, 1, 0, -1, 0, 0;  // body z → world +x
+  StaticLoads loads;
+  loads.gravity_W = Vec3(0, 0, -2.0 * rod.EI() / (rod.rhoA() * std::pow(rod.length, 3)));
+  loads.tip_force = Vec3(0, 0.1 * rod.EI() / (rod.length * rod.length), 0);
+  const ModalResult fd = QuatFdModes(rod.model(), base, loads, 100, 6);
+  const ModalResult sh = ShootingModes(rod.model(), base, loads, 101, 6);
+  ASSERT_TRUE(fd.converged()) << ToString(fd.status);
+  ASSERT_TRUE(sh.converged()) << ToString(sh.status);
+  ASSERT_EQ(sh.modes.size(), 6u);
+  for (int k = 0; k < 6; ++k) {
+    const Mode &a = fd.modes[k], &b = sh.modes[k];
+    double ab = 0, aa = 0, bb = 0;
+    for (size_t n = 0; n < a.displacement_W.size(); ++n) {
+      ab += a.displacement_W[n].dot(b.displacement_W[n]);
+      aa += a.displacement_W[n].squaredNorm();
+      bb += b.displacement_W[n].squaredNorm();
+    }
+    const double mac = ab * ab / (aa * bb);
+    std::printf("  sagging mode %d (%s): quatfd %.5f Hz, shooting %.5f Hz, ratio %.5f, MAC %.6f\n",
+                k, ToString(b.kind), a.frequency_hz, b.frequency_hz,
+                a.frequency_hz / b.frequency_hz, mac);
+    EXPECT_NEAR(a.frequency_hz / b.frequency_hz, 1.0, 0.005) << k;
+    EXPECT_GT(mac, 0.99) << k;
+  }
+  // The sag really splits the pairs of the straight rod.
+  EXPECT_GT(sh.modes[1].frequency_hz / sh.modes[0].frequency_hz, 1.01);
+}
+
+TEST(Modes, TorsionalAndAxialFundamentals) {
+  // L = 1 m, r = 1 cm steel: the first torsional and axial modes are ω = (π / 2L) sqrt(G/ρ) and
+  // (π / 2L) sqrt(E/ρ) (a circle has J = I_p). Both are second-order accurate in quatfd, error
+  // ≈ (π/2N)²/24 ≈ 6e-5 at N = 40; tolerance 1e-3. The shooting scans ±3 % around each.
+  SteelRod rod;
+  rod.length = 1.0;
+  rod.r = 0.01;
+  const double rho = rod.material.density;
+  const double wt = kPi / (2 * rod.length) * std::sqrt(rod.material.shear_modulus / rho);
+  const double wa = kPi / (2 * rod.length) * std::sqrt(rod.material.youngs_modulus / rho);
+  const ModalResult fd = QuatFdModes(rod.model(), lie::SE3(), {}, 40, 6 * 40);
+  ASSERT_TRUE(fd.converged()) << ToString(fd.status);
+  auto first = [](const ModalResult& r, ModeKind kind) {
+    for (const Mode& m : r.modes)
+      if (m.kind == kind) return m.omega;
+    return 0.0;
+  };
+  std::printf("  quatfd: torsion %.6f, axial %.6f (ratios)\n", first(fd, ModeKind::kTorsion) / wt,
+              first(fd, ModeKind::kAxial) / wa);
+  EXPECT_NEAR(first(fd, ModeKind::kTorsion) / wt, 1.0, 1e-3);
+  EXPECT_NEAR(first(fd, ModeKind::kAxial) / wa, 1.0, 1e-3);
+  for (const auto& [w, kind] : {std::pair{wt, ModeKind::kTorsion}, {wa, ModeKind::kAxial}}) {
+    // A pair of high bending modes lies 0.5 % below the torsional one: ask for three.
+    const ModalResult sh = ShootingModes(rod.model(), lie::SE3(), {}, 41, 3, 0.97 * w, 1.03 * w);
+    std::printf("  shooting: %s %.7f (ratio)\n", ToString(kind), first(sh, kind) / w);
+    EXPECT_NEAR(first(sh, kind) / w, 1.0, 1e-5);
+  }
+}
+
+TEST(Modes, StiffnessProportionalDampingGivesExactModalDamping) {
+  // D = τ K in every strain (bending, torsion, shear, stretch): about the unloaded straight rest
+  // state C = τ K exactly, so each mode has ζ = τ ω / 2 and ω_n = ω (to round-off).
+  const double tau = 2e-4;
+  Material m = Material::FromPoissonRatio(5e6, 0.5, 1100);
+  const CrossSection c = CrossSection::Circle(0.005);
+  const double kappa = c.ShearCoefficient(m.PoissonRatio());
+  m.damping.bending = tau * m.youngs_modulus * c.I1;
+  m.damping.torsion = tau * m.shear_modulus * c.torsion_constant;
+  m.damping.shear = tau * kappa * m.shear_modulus * c.area;
+  m.damping.extension = tau * m.youngs_modulus * c.area;
+  const RodModel rod = RodModel::Uniform(0.5, c, m);
+  const ModalResult r = QuatFdModes(rod, lie::SE3(), {}, 20, 4, false);
+  ASSERT_TRUE(r.converged()) << ToString(r.status);
+  ASSERT_EQ(r.damped.size(), 4u);
+  for (int k = 0; k < 4; ++k) {
+    std::printf("  mode %d: ω %.4f, ω_n %.4f, ζ %.6f (τω/2 %.6f)\n", k, r.modes[k].omega,
+                r.damped[k].omega_n, r.damped[k].damping_ratio, tau * r.modes[k].omega / 2);
+    EXPECT_NEAR(r.damped[k].omega_n / r.modes[k].omega, 1.0, 1e-8);
+    EXPECT_NEAR(r.damped[k].damping_ratio / (tau * r.modes[k].omega / 2), 1.0, 1e-6);
+  }
+}
+
+TEST(FrequencyShooting, BoundaryMatrixAtZeroIsTheStaticsJacobian) {
+  // At ω = 0 the frequency-domain linearisation is the tangent of the statics shot: compare
+  // with StaticShootingSolver::ResidualJacobian (matrix coordinates for R instead of rotation
+  // vectors: the two discretisations agree to the RK4 error, ~1e-8 here).
+  SteelRod rod;
+  rod.r = 0.005;
+  StaticLoads loads;
+  loads.gravity_W = Vec3(-9.81e3, 0, 0);
+  loads.tip_force = Vec3(0, 0.5 * rod.EI() / (rod.length * rod.length), 0);
+  loads.tip_moment = Vec3(0, 0, 0.3 * rod.EI() / rod.length);
+  StaticShootingSolver solver(rod.model(), 41);
+  ASSERT_TRUE(solver.Solve(lie::SE3(), loads).converged());
+  const FrequencyShooting fs(rod.model(), solver.grid(), lie::SE3(), loads, solver.base_wrench_B());
+  const double L = rod.length, EI = rod.EI();
+  Vec6 scale;
+  scale << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
+  const Vec6 x = solver.base_wrench_B().cwiseQuotient(scale);
+  const Mat6 J = solver.ResidualJacobian(lie::SE3(), loads, x);
+  const Mat6 B = fs.BoundaryMatrix(0.0);
+  EXPECT_LT((B - J).norm(), 1e-6 * J.norm()) << "B\n" << B << "\nJ\n" << J;
+}
+
+}  // namespace
+}  // namespace cosserat
