@@ -24,6 +24,7 @@
 
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/rosenbrock.hpp"
+#include "quatfd_rods.hpp"
 
 namespace {
 
@@ -31,32 +32,9 @@ using namespace cosserat;
 using namespace cosserat::quatfd;
 using L = QuatFdLayout;
 
-// The two rods of bench_quatfd.cpp (same damping).
-RodModel RubberRod() {
-  Material m = Material::FromPoissonRatio(5e6, 0.5, 1100);
-  const CrossSection c = CrossSection::Circle(0.005);
-  const double tau = 0.01;
-  m.damping.bending = tau * m.youngs_modulus * c.I1;
-  m.damping.torsion = tau * m.shear_modulus * c.torsion_constant;
-  m.damping.shear = tau * m.shear_modulus * c.area;
-  m.damping.extension = tau * m.youngs_modulus * c.area;
-  return RodModel::Uniform(0.5, c, m);
-}
-
-RodModel SteelString() {
-  Material m = Material::FromShearModulus(200e9, 80e9, 7850);
-  const CrossSection c = CrossSection::Circle(0.0005);
-  const double tau = 1e-5;
-  m.damping.shear = tau * m.shear_modulus * c.area;
-  m.damping.extension = tau * m.youngs_modulus * c.area;
-  return RodModel::Uniform(1.0, c, m);
-}
-
-lie::SE3 Horizontal() {
-  lie::SE3 base;
-  base.R << 0, 0, 1, 0, 1, 0, -1, 0, 0;
-  return base;
-}
+using bench::Horizontal;  // the two rods of bench_quatfd.cpp: quatfd_rods.hpp
+using bench::RubberRod;
+using bench::SteelString;
 
 std::vector<int> FreeUnknowns(const QuatFdModel& model) {
   std::vector<int> keep;

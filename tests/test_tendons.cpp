@@ -138,7 +138,6 @@ TEST(Tendons, TipJacobianInTheTensionsMatchesFiniteDifferences) {
   ASSERT_TRUE(solver.Solve(lie::SE3{}, loads).converged());
   StaticShootingSolver::TensionJacobian J;
   ASSERT_TRUE(solver.TipJacobianWrtTensions(lie::SE3{}, loads, &J));
-  const Vec3 p0 = solver.state().tip_position_W();
   const Mat3 R0 = solver.state().tip_rotation_WB();
 
   // Central differences with δ = 1e-4 N: truncation ~δ² ≈ 1e-8 relative, solver noise at
@@ -161,7 +160,6 @@ TEST(Tendons, TipJacobianInTheTensionsMatchesFiniteDifferences) {
   EXPECT_LT((J - fd).norm(), 1e-6 * fd.norm()) << "analytic\n" << J << "\nfd\n" << fd;
   EXPECT_GT(fd.norm(), 1e-3);              // the tensions do move the tip
   EXPECT_TRUE(J.rightCols<5>().isZero());  // no tendons there
-  (void)p0;
 }
 
 TEST(Tendons, LengthCommandReachesTheTensionThatProducesItAndASlackTendonCarriesNothing) {

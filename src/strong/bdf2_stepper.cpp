@@ -268,14 +268,7 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   const int n = static_cast<int>(grid_.size());
 
   if (!model_.IsValid(&why)) throw std::invalid_argument("RodModel: " + why);
-  sample_points_ = SegmentSamplePoints(grid_);
-  samples_.resize(sample_points_.size());
-  if (!model_.tendons.empty()) {
-    tendons_.resize(sample_points_.size());
-    for (size_t q = 0; q < sample_points_.size(); ++q)
-      tendons_[q] = SampleTendons(model_.tendons, sample_points_[q], model_.length);
-  }
-  SampleSections();
+  SampleGrid();
   const double EI = std::max(samples_[0].stiffness(0), samples_[0].stiffness(1));
   const double L = model_.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
@@ -294,6 +287,17 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   run_.state.Resize(n);
   for (int i = 0; i < n; ++i) run_.state.s[i] = grid_[i];
   trial_ = run_.state;
+}
+
+void Bdf2ShootingStepper::SampleGrid() {
+  sample_points_ = SegmentSamplePoints(grid_);
+  samples_.resize(sample_points_.size());
+  if (!model_.tendons.empty()) {
+    tendons_.resize(sample_points_.size());
+    for (size_t q = 0; q < sample_points_.size(); ++q)
+      tendons_[q] = SampleTendons(model_.tendons, sample_points_[q], model_.length);
+  }
+  SampleSections();
 }
 
 void Bdf2ShootingStepper::SampleSections() {
@@ -440,7 +444,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
       K.diagonal() = smp.stiffness;
       offset = smp.rest_strain;
     } else {
-      K.diagonal() = smp.implicit_compliance.cwiseInverse();
+      K.diagonal() = smp.stiffness + c.c0 * smp.damping;  // the implicit stiffness K + c0 D
       offset = smp.implicit_offset - smp.implicit_damping.cwiseProduct(xi_h);
     }
     Vec6 xi = guess;
@@ -872,14 +876,7 @@ void Bdf2ShootingStepper::Grow(const RodModel& longer, int new_segments) {
   grid_.back() = L_new;
   model_ = longer;
   const int n = static_cast<int>(grid_.size());
-  sample_points_ = SegmentSamplePoints(grid_);
-  samples_.resize(sample_points_.size());
-  if (!model_.tendons.empty()) {
-    tendons_.resize(sample_points_.size());
-    for (size_t q = 0; q < sample_points_.size(); ++q)
-      tendons_[q] = SampleTendons(model_.tendons, sample_points_[q], model_.length);
-  }
-  SampleSections();
+  SampleGrid();
 
   // New stages and nodes start with the old tip's history, placed along its tangent.
   const int stages_old = 4 * (n_old - 1), stages = 4 * (n - 1);

@@ -188,7 +188,9 @@ class Bdf2ShootingStepper {
   bool SolveStep(const StepInput& input, const Coefficients& c, double h, bool statics,
                  StepSummary* summary);
   void SetImplicitCompliance(double c0);
-  /// Samples every section for actuation_ (constructor and when the actuation changes).
+  /// The sample points of grid_ with their tendon offsets and sections (constructor, Grow()).
+  void SampleGrid();
+  /// Samples every section for actuation_ (SampleGrid() and when the actuation changes).
   void SampleSections();
   void ApplyActuation(const Actuation& actuation);
   /// Fills the history terms ξʰ, Vʰ at every stage for the weights c (once per step).
