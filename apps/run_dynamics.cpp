@@ -138,6 +138,7 @@ bool RunDynamics(const io::Problem& problem, std::ostream& out, std::ostream* cs
   options.tip_mass = problem.dynamics.tip_mass;
   options.tip_inertia_B = problem.dynamics.tip_inertia;
   options.max_iterations = problem.solver.max_iterations;
+  options.shooting_segments = problem.dynamics.shooting_segments;
   Bdf2ShootingStepper stepper(problem.rod, problem.nodes, options);
   const io::DynamicRun run = Simulate(problem, csv != nullptr, &stepper);
   out << io::DynamicResultToJson(run, stepper.state()).dump(2) << '\n';

@@ -87,9 +87,9 @@ void ParseSolver(const ObjectReader& o, StaticShootingOptions* options) {
 
 // --- dynamics, buckling, modes ------------------------------------------------------------------
 
-void ParseDynamics(const ObjectReader& o, Problem::Dynamics* d) {
-  o.AllowOnly(
-      {"dt", "duration", "output_interval", "initial", "initial_loads", "tip_mass", "tip_inertia"});
+void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
+  o.AllowOnly({"dt", "duration", "output_interval", "initial", "initial_loads", "tip_mass",
+               "tip_inertia", "shooting_segments"});
   const auto dt = ReadNumber(o, "dt", PositiveNumber(), Presence::kOptional);
   const auto duration = ReadNumber(o, "duration", PositiveNumber(), Presence::kOptional);
   const auto interval = ReadNumber(o, "output_interval", PositiveNumber(), Presence::kOptional);
@@ -117,6 +117,10 @@ void ParseDynamics(const ObjectReader& o, Problem::Dynamics* d) {
       o.Reject("tip_inertia", "three moments of inertia >= 0 (kg·m²)");
   }
   d->initial = ReadChoice(o, "initial", {"static"}, Presence::kOptional).value_or(d->initial);
+  // One piece per grid segment at most (rod.nodes − 1).
+  d->shooting_segments = ReadInteger(o, "shooting_segments", 1, std::max(1, nodes - 1),
+                                     Presence::kOptional)
+                             .value_or(d->shooting_segments);
   if (const auto loads = ReadObject(o, "initial_loads", Presence::kOptional))
     d->initial_loads = ParseLoads(*loads);
 }
@@ -171,7 +175,7 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
     p->loads = ParseLoads(*loads);
   if (const auto o = ReadObject(top, "dynamics", Presence::kOptional)) {
     p->has_dynamics = true;
-    ParseDynamics(*o, &p->dynamics);
+    ParseDynamics(*o, p->nodes, &p->dynamics);
   }
   const auto buckling = ReadObject(
       top, "buckling", p->analysis == "buckling" ? Presence::kRequired : Presence::kOptional,

@@ -27,6 +27,7 @@ bool Bdf2Options::IsValid(std::string* why) const {
   if (!(std::isfinite(tip_mass) && tip_mass >= 0)) return fail("tip_mass must be finite and >= 0");
   if (!(tip_inertia_B.allFinite() && (tip_inertia_B.array() >= 0).all()))
     return fail("tip_inertia must be finite and >= 0");
+  if (shooting_segments < 1) return fail("shooting_segments must be at least 1");
   return true;
 }
 
@@ -287,6 +288,56 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   run_.state.Resize(n);
   for (int i = 0; i < n; ++i) run_.state.s[i] = grid_[i];
   trial_ = run_.state;
+
+  const int pieces = options_.shooting_segments;
+  if (pieces > n - 1)
+    throw std::invalid_argument("Bdf2Options: shooting_segments (" + std::to_string(pieces) +
+                                ") exceeds the number of grid segments (" +
+                                std::to_string(n - 1) + ")");
+  if (pieces > 1) {
+    const int unknowns = 6 + 18 * (pieces - 1);
+    junction_nodes_.resize(pieces - 1);
+    PlaceJunctions();
+    junction_z_.setZero(18 * (pieces - 1));
+    junction_mismatch_.setZero(18 * (pieces - 1));
+    run_.junction_unknowns.setZero(18 * (pieces - 1));
+    for (auto* v : {&ms_x_, &ms_x_new_, &ms_r_, &ms_r_new_, &ms_dx_, &ms_r_base_, &ms_u_, &ms_w_}) v->setZero(unknowns);
+    ms_jacobian_.setZero(unknowns, unknowns);
+    ms_inverse_.setZero(unknowns, unknowns);
+    ms_lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(unknowns);
+  }
+}
+
+void Bdf2ShootingStepper::PlaceJunctions() {
+  // Pieces of about equal node count (junction k at node round(k (n − 1) / pieces)).
+  const int segments = static_cast<int>(grid_.size()) - 1;
+  const int pieces = static_cast<int>(junction_nodes_.size()) + 1;
+  for (int k = 1; k < pieces; ++k)
+    junction_nodes_[k - 1] = static_cast<int>(std::lround(double(k) * segments / pieces));
+}
+
+template <typename State>
+void Bdf2ShootingStepper::ApplyJunction(int k, State* y) {
+  const int i = junction_nodes_[k];
+  const RodState& ref = run_.state;  // the last accepted state at the junction node
+  const auto z = junction_z_.segment<18>(18 * k);
+  const double L = model_.length;
+  State restart;
+  restart.p = ref.position_W[i] + L * z.segment<3>(0);
+  restart.R = ref.rotation_WB[i] * lie::SO3Exp(z.segment<3>(3));
+  restart.m = ref.wrench_B[i].head<3>() + scale_.head<3>().cwiseProduct(z.segment<3>(6));
+  restart.n = ref.rotation_WB[i] * ref.wrench_B[i].tail<3>() +
+              scale_.tail<3>().cwiseProduct(z.segment<3>(9));
+  restart.w = ref.twist_B[i].head<3>() + twist_scale_.head<3>().cwiseProduct(z.segment<3>(12));
+  restart.v = ref.twist_B[i].tail<3>() + twist_scale_.tail<3>().cwiseProduct(z.segment<3>(15));
+  auto d = junction_mismatch_.segment<18>(18 * k);
+  d.segment<3>(0) = (y->p - restart.p) / L;
+  d.segment<3>(3) = lie::SO3Log(restart.R.transpose() * y->R);
+  d.segment<3>(6) = (y->m - restart.m).cwiseQuotient(scale_.head<3>());
+  d.segment<3>(9) = (y->n - restart.n).cwiseQuotient(scale_.tail<3>());
+  d.segment<3>(12) = (y->w - restart.w).cwiseQuotient(twist_scale_.head<3>());
+  d.segment<3>(15) = (y->v - restart.v).cwiseQuotient(twist_scale_.tail<3>());
+  *y = restart;
 }
 
 void Bdf2ShootingStepper::SampleGrid() {
@@ -469,7 +520,11 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
                       &strain_now_[q], &twist_now_[q], &velocity_W_now_[q],
                       tendons_.empty() ? nullptr : &given);
   };
+  size_t next_junction = 0;
   for (int i = 0; i + 1 < n; ++i) {
+    if (junctions_active_ && next_junction < junction_nodes_.size() &&
+        i == junction_nodes_[next_junction])
+      ApplyJunction(static_cast<int>(next_junction++), &y);
     const double h = grid_[i + 1] - grid_[i];
     const Sample& s0 = samples_[3 * i];
     const Sample& sm = samples_[3 * i + 1];
@@ -579,6 +634,7 @@ struct StepCost {
 
 bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& c, double h,
                                     bool statics, StepSummary* summary) {
+  if (!statics && !junction_nodes_.empty()) return SolveStepMultiple(input, c, h, summary);
   // 1. Newton with the last Jacobian, kept current by Broyden's update, from an extrapolation
   //    of the last steps' unknowns. A Jacobian from another c0 (statics, another step size) is
   //    replaced by the exact one first.
@@ -877,6 +933,7 @@ void Bdf2ShootingStepper::Grow(const RodModel& longer, int new_segments) {
   model_ = longer;
   const int n = static_cast<int>(grid_.size());
   SampleGrid();
+  if (!junction_nodes_.empty()) PlaceJunctions();
 
   // New stages and nodes start with the old tip's history, placed along its tangent.
   const int stages_old = 4 * (n_old - 1), stages = 4 * (n - 1);
@@ -918,7 +975,8 @@ void Bdf2ShootingStepper::Grow(const RodModel& longer, int new_segments) {
 }
 
 void Bdf2ShootingStepper::Restore(const Snapshot& s) {
-  if (s.strain1.size() != run_.strain1.size() || s.state.size() != run_.state.size())
+  if (s.strain1.size() != run_.strain1.size() || s.state.size() != run_.state.size() ||
+      s.junction_unknowns.size() != run_.junction_unknowns.size())
     throw std::invalid_argument("Snapshot is from a stepper with another grid");
   run_ = s;  // equal sizes: vectors copy into their existing storage
   history_ready_ = false;

@@ -18,6 +18,8 @@
 
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "cosserat/lie/se3.hpp"
 #include "cosserat/loads/static_loads.hpp"
 #include "cosserat/loads/tendons.hpp"
@@ -49,6 +51,17 @@ struct Bdf2Options {
   /// inertia in the tip body frame (kg·m²). It feels gravity. Zero: no tip body.
   double tip_mass = 0.0;
   Vec3 tip_inertia_B = Vec3::Zero();
+  /// Multiple shooting: the rod is shot in this many pieces of about equal node count, with
+  /// the 18 state components (pose, wrench, twist) at each interior junction as extra unknowns
+  /// and their continuity as extra residuals (bdf2_multiple_shooting.cpp). The discrete
+  /// equations, and so the solution, are those of single shooting (1, the default); what
+  /// changes is the conditioning. One shot amplifies an error in W(0) by about e^{λL} with
+  /// λ ∝ dt^(-1/2) (the BDF2 inertia c0² ρA against EI), so small dt (or stiff, long rods) need
+  /// pieces: for the steel peer rod, dt = 0.5 ms gives e^17 and single shooting fails, while 8
+  /// pieces see e^2 each. Costs a finite-difference Jacobian of size 6 + 18 (pieces − 1),
+  /// reused across steps: for reference runs, not for the real-time path. Steps are solved by
+  /// Newton only (no Levenberg–Marquardt fallback; a failure halves the step as usual).
+  int shooting_segments = 1;
 
   bool IsValid(std::string* why) const;
 };
@@ -139,6 +152,9 @@ class Bdf2ShootingStepper {
     Vec6 tip_strain1 = Vec6::Zero(), tip_strain2 = Vec6::Zero();
     Vec6 tip_twist1 = Vec6::Zero(), tip_twist2 = Vec6::Zero();
     lie::SE3 base1, base2;  ///< pose of the s = 0 end one and two steps back
+    /// Multiple shooting: the junction unknowns of the last step (its change of the junction
+    /// states, the next step's first guess); empty for single shooting.
+    Eigen::VectorXd junction_unknowns;
     StepInput last_input;   ///< input of the last accepted (sub-)step, for sub-step blending
     RodState state;         ///< the last accepted step
   };
@@ -187,6 +203,16 @@ class Bdf2ShootingStepper {
   /// solved_unknowns_ and the trial state holds the shot.
   bool SolveStep(const StepInput& input, const Coefficients& c, double h, bool statics,
                  StepSummary* summary);
+  /// SolveStep for shooting_segments > 1 (bdf2_multiple_shooting.cpp), dynamics only.
+  bool SolveStepMultiple(const StepInput& input, const Coefficients& c, double h,
+                         StepSummary* summary);
+  /// With junctions_active_: restart the shot at junction k (node junction_nodes_[k]) from the
+  /// state given by the junction unknowns, after recording the mismatch of the arriving state.
+  /// Templated on the integration state, which is private to bdf2_stepper.cpp.
+  template <typename State>
+  void ApplyJunction(int k, State* y);
+  /// junction_nodes_ for the current grid (constructor, Grow()).
+  void PlaceJunctions();
   void SetImplicitCompliance(double c0);
   /// The sample points of grid_ with their tendon offsets and sections (constructor, Grow()).
   void SampleGrid();
@@ -226,6 +252,19 @@ class Bdf2ShootingStepper {
   Vec6 solved_unknowns_ = Vec6::Zero();
 
   Vec6 twist_scale_;  ///< V(0) = twist_scale ⊙ x for free-free: [1/s ×3, L/s ×3]
+
+  // Multiple shooting (shooting_segments > 1). Junction k restarts at node junction_nodes_[k]
+  // from the last accepted state there, displaced by 18 unknowns z: [δp/L, δθ (rad, body),
+  // δm/(EI/L), δn_W/(EI/L²), δω·(1 s), δv·(1 s)/L].
+  std::vector<int> junction_nodes_;
+  bool junctions_active_ = false;
+  Eigen::VectorXd junction_z_;         ///< the unknowns of the shot being tried
+  Eigen::VectorXd junction_mismatch_;  ///< arriving − restart state, same units, per junction
+  Eigen::VectorXd ms_x_, ms_x_new_, ms_r_, ms_r_new_, ms_dx_, ms_r_base_, ms_u_, ms_w_;
+  Eigen::MatrixXd ms_jacobian_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> ms_lu_;
+  Eigen::MatrixXd ms_inverse_;    ///< the Jacobian's inverse, Broyden-updated between renewals
+  double ms_jacobian_c0_ = -1.0;  ///< c0 the stored inverse is for; −1: none
   bool initialized_ = false;
 };
 
