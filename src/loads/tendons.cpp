@@ -116,21 +116,28 @@ Vec6 TendonWrench(const TendonSample& sample, const double* tension, const Vec6&
 
 bool SolveTendonStrain(const Mat6& stiffness, const Vec6& rest_strain, const TendonSample& sample,
                        const double* tension, const Vec6& W, Vec6* xi, Mat6* H) {
-  // Newton on g(ξ) = K (ξ − ξ*) + T(ξ) − W. T is a small, smooth perturbation of the elastic
-  // law (τ ≪ EA), so from the previous stage's strain the iteration is quadratic at once: a step
-  // below 1e-12 (relative) leaves an error of order its square, so it is the last one, and the
-  // H of that iteration (at most 1e-12 away from the solution) serves the tangent.
-  Mat6 dT, H_k;
-  for (int it = 0; it < 8; ++it) {
-    const Vec6 g = stiffness * (*xi - rest_strain) + TendonWrench(sample, tension, *xi, &dT) - W;
-    H_k = stiffness + dT;
-    const Vec6 step = H_k.partialPivLu().solve(g);
+  // Simplified Newton on g(ξ) = K (ξ − ξ*) + T(ξ) − W, with the matrix K + ∂T/∂ξ of the first
+  // iterate factorised once. T is a small perturbation of the elastic law (∂T/∂ξ relative to K
+  // is of order τ r²/EI and τ/EA, a few % at most), and it changes little between the guess (the
+  // neighbouring stage's strain) and the solution, so each iteration contracts the error by
+  // far more than the 1e-12 tolerance needs: a step below 1e-12 (relative) is the last one. Each
+  // further iteration costs one evaluation of T, without its derivative or a factorisation.
+  Mat6 dT;
+  Vec6 g = stiffness * (*xi - rest_strain) + TendonWrench(sample, tension, *xi, &dT) - W;
+  const Eigen::PartialPivLU<Mat6> lu(Mat6(stiffness + dT));
+  for (int it = 0; it < 12; ++it) {
+    const Vec6 step = lu.solve(g);
     *xi -= step;
     if (!xi->allFinite()) return false;
     if (step.norm() <= 1e-12 * (1.0 + xi->norm())) {
-      if (H) *H = H_k;
+      // The tangent dξ = H⁻¹ dW needs the derivative at the solution, not at the first iterate.
+      if (H) {
+        TendonWrench(sample, tension, *xi, &dT);
+        *H = stiffness + dT;
+      }
       return true;
     }
+    g = stiffness * (*xi - rest_strain) + TendonWrench(sample, tension, *xi) - W;
   }
   return false;
 }

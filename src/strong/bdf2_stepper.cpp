@@ -487,7 +487,17 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
   // written as K' (ξ − ξ') + Σ τ a(ξ) = W with K' = K + c0 D, ξ' = its offset; from `guess`.
   Vec6 guess = samples_.front().rest_strain;
   Mat6 H_stage[4];
-  auto tendon_strain = [&](int sample_index, const Vec6& xi_h, const Vec6& W, Mat6* H) {
+  // In dynamics a stage's strain moves little between shots and steps: the best first guess is
+  // its value in the last shot of this step, or at the last step (about 3 simplified-Newton
+  // iterations per stage from the neighbouring stage's strain, 2 from these).
+  const bool shot_this_step = stage_strains_current_;
+  auto stage_guess = [&](int q) -> const Vec6& {
+    if (statics) return guess;
+    const Vec6& last = shot_this_step ? strain_now_[q] : run_.strain1[q];
+    return last.allFinite() ? last : guess;
+  };
+  auto tendon_strain = [&](int sample_index, const Vec6& start, const Vec6& xi_h, const Vec6& W,
+                           Mat6* H) {
     const Sample& smp = samples_[sample_index];
     Mat6 K = Mat6::Zero();
     Vec6 offset;
@@ -498,7 +508,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
       K.diagonal() = smp.stiffness + c.c0 * smp.damping;  // the implicit stiffness K + c0 D
       offset = smp.implicit_offset - smp.implicit_damping.cwiseProduct(xi_h);
     }
-    Vec6 xi = guess;
+    Vec6 xi = start;
     if (!SolveTendonStrain(K, offset, tendons_[sample_index], actuation_.tendon_tension.data(), W,
                            &xi, H))
       xi.setConstant(NAN);
@@ -514,7 +524,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     if (!tendons_.empty()) {
       Vec6 W;
       W << ys.m, ys.R.transpose() * ys.n;
-      given = tendon_strain(sample_index, xh, W, J ? &H_stage[q % 4] : nullptr);
+      given = tendon_strain(sample_index, stage_guess(q), xh, W, J ? &H_stage[q % 4] : nullptr);
     }
     return Derivative(smp, f_at(smp), ys, xh, Vh, statics ? zero3 : velocity_W_h_[q], c.c0, statics,
                       &strain_now_[q], &twist_now_[q], &velocity_W_now_[q],
@@ -567,9 +577,10 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
                     : Vec6(s_tip.implicit_offset + s_tip.implicit_compliance.cwiseProduct(W_tip) -
                            s_tip.implicit_damping.cwiseProduct(xi_h_tip));
   if (!tendons_.empty()) {
-    xi_tip = tendon_strain(3 * (n - 2) + 2, xi_h_tip, W_tip, nullptr);
+    xi_tip = tendon_strain(3 * (n - 2) + 2, guess, xi_h_tip, W_tip, nullptr);
   }
   record_node(n - 1, xi_tip);
+  stage_strains_current_ = !statics;
   tip_strain_now_ = xi_tip;
   tip_twist_now_ << y.w, y.v;
   Vec6 V_t_tip = Vec6::Zero();  // BDF2 rate of the tip twist
@@ -750,6 +761,7 @@ void Bdf2ShootingStepper::Commit(double h) {
   run_.tip_twist1 = tip_twist_now_;
   std::swap(run_.state, trial_);
   history_ready_ = false;
+  stage_strains_current_ = false;
   run_.base2 = run_.base1;
   run_.base1 = base_now_;
   run_.time += h;
@@ -971,6 +983,7 @@ void Bdf2ShootingStepper::Grow(const RodModel& longer, int new_segments) {
   }
   trial_ = st;
   history_ready_ = false;
+  stage_strains_current_ = false;
   run_.jacobian_c0 = -1.0;  // another shot: start from its exact Jacobian
 }
 
@@ -980,6 +993,7 @@ void Bdf2ShootingStepper::Restore(const Snapshot& s) {
     throw std::invalid_argument("Snapshot is from a stepper with another grid");
   run_ = s;  // equal sizes: vectors copy into their existing storage
   history_ready_ = false;
+  stage_strains_current_ = false;
   initialized_ = true;
 }
 

@@ -64,10 +64,10 @@ TendonSample SampleTendons(const std::vector<Tendon>& tendons, double s, double 
 Vec6 TendonWrench(const TendonSample& sample, const double* tension, const Vec6& xi,
                   Mat6* d_xi = nullptr, std::array<Vec6, Actuation::kMaxTendons>* a = nullptr);
 
-/// Solves K (ξ − ξ*) + Σ τ_i a_i(ξ) = W for the strain ξ by Newton's method from `xi` (in: a
-/// guess, out: the strain). If H is given, writes H = K + ∂(Σ τ a)/∂ξ at the last iterate (within
-/// 1e-12 relative of the solution), so dξ = H⁻¹ dW. Returns
-/// false if it did not converge to round-off in a few iterations (a tendon path folded back,
+/// Solves K (ξ − ξ*) + Σ τ_i a_i(ξ) = W for the strain ξ by simplified Newton from `xi` (in: a
+/// guess, out: the strain, to 1e-12 relative). If H is given, writes H = K + ∂(Σ τ a)/∂ξ at the
+/// solution, so dξ = H⁻¹ dW. Returns
+/// false if it did not converge to round-off within 12 iterations (a tendon path folded back,
 /// |q| → 0).
 bool SolveTendonStrain(const Mat6& stiffness, const Vec6& rest_strain, const TendonSample& sample,
                        const double* tension, const Vec6& W, Vec6* xi, Mat6* H);

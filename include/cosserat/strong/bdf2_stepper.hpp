@@ -241,6 +241,9 @@ class Bdf2ShootingStepper {
   Vec6 tip_strain_now_ = Vec6::Zero(), tip_twist_now_ = Vec6::Zero();
   lie::SE3 base_now_;
   RodState trial_;
+  /// strain_now_ holds the stage strains of a dynamic shot of the current step (a first guess
+  /// for the tendon strain law); false after Commit, Restore, Grow and statics.
+  bool stage_strains_current_ = false;
 
   // Per-step caches.
   std::vector<Vec6> strain_h_, twist_h_;  ///< history terms ξʰ, Vʰ for history_c_
