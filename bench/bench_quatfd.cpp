@@ -11,6 +11,7 @@
 #include "cosserat/quatfd/quatfd_integrate.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/rosenbrock.hpp"
+#include "cosserat/quatfd/sdirk.hpp"
 #include "quatfd_rods.hpp"
 
 namespace {
@@ -38,6 +39,7 @@ void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int seg
   Eigen::VectorXd q0(model.size()), v0(model.size()), q, v;
   model.RestState(q0, v0);
   IntegratorStats stats;
+  SdirkStats newton;
   IntegratorStatus status = IntegratorStatus::kNotRun;
   for (auto _ : state) {
     q = q0;
@@ -46,6 +48,7 @@ void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int seg
     double t = 0;
     status = integ->Advance(10.0, &t, q, v);
     stats = integ->stats();
+    if (auto* s = dynamic_cast<SdirkIntegrator*>(integ.get())) newton = s->newton_stats();
     benchmark::DoNotOptimize(q.data());
   }
   if (status != IntegratorStatus::kOk) state.SkipWithError(ToString(status));
@@ -53,6 +56,11 @@ void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int seg
   state.counters["rejected"] = stats.rejected;
   state.counters["f_evals"] = stats.f_evaluations;
   state.counters["jacobians"] = stats.jacobian_evaluations;
+  state.counters["LUs"] = stats.factorizations;
+  if (kind == IntegratorKind::kSdirk) {
+    state.counters["newton_its"] = newton.newton_iterations;
+    state.counters["newton_fails"] = newton.newton_failures;
+  }
   state.counters["tip_z"] = q[QuatFdLayout::X(segments) + 2];
 }
 
@@ -65,6 +73,12 @@ void BM_RubberRod_Dopri5(benchmark::State& s) {
 void BM_SteelString_Rosenbrock(benchmark::State& s) {
   Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRosenbrock);
 }
+void BM_RubberRod_Sdirk(benchmark::State& s) {
+  Run(s, RubberRod(), EndCondition::kClamped, s.range(0), IntegratorKind::kSdirk);
+}
+void BM_SteelString_Sdirk(benchmark::State& s) {
+  Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kSdirk);
+}
 void BM_RubberRod_Rosenbrock_Baumgarte(benchmark::State& s) {
   Run(s, RubberRod(), EndCondition::kClamped, s.range(0), IntegratorKind::kRosenbrock, 1e3);
 }
@@ -72,6 +86,8 @@ void BM_SteelString_Rosenbrock_Baumgarte(benchmark::State& s) {
   Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRosenbrock, 1e4);
 }
 BENCHMARK(BM_RubberRod_Rosenbrock)->Arg(10)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_RubberRod_Sdirk)->Arg(10)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_SteelString_Sdirk)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
 // Stiff Baumgarte instead of the projection (α = β = 1e3 1/s for (a), 1e4 for (b)): makes the
 // |p| direction stiff, which removes one of the Rosenbrock step-map instabilities
 // (bench/quatfd_stability.cpp) but not the others; kept to document the effect.
