@@ -73,8 +73,13 @@ class SdirkIntegrator final : public QuatFdIntegrator {
   /// The co-rotation from the state of the last Jacobian to y: per segment the world rotation
   /// w_ν = p_ν p̄_ν,J (4 × 4 left multiplication), per vertex the mean of its segments' (3 × 3).
   void UpdateRotations(const Eigen::Ref<const Eigen::VectorXd>& y);
-  /// r ← P r or Pᵀ r, blockwise on the q and v halves.
+  /// r ← P r or Pᵀ r, blockwise on the q and v halves; RotateHalf on one half (n entries).
   void Rotate(Eigen::Ref<Eigen::VectorXd> r, bool transpose) const;
+  void RotateHalf(Eigen::Ref<Eigen::VectorXd> r, bool transpose) const;
+  /// The velocity half of the Newton correction: rv ← (turned) a M⁻¹ rv.
+  void SolveVelocity(Eigen::Ref<Eigen::VectorXd> rv);
+  /// Predictor of stage i's derivative (into guess_): the known one nearest in time.
+  void Predict(int i);
   /// Newton iterations for stage i: z_ starts at the predictor; on kConverged z_ is the stage
   /// increment and k_[i] its derivative F(y_n + Z_i).
   StageResult SolveStage(int i, const Eigen::Ref<const Eigen::VectorXd>& y, double h);
@@ -93,12 +98,14 @@ class SdirkIntegrator final : public QuatFdIntegrator {
   bool jacobian_fresh_ = false;  ///< J evaluated during the current step attempt
   bool refresh_next_step_ = false;
   bool have_k_guess_ = false;    ///< k_[4] holds F at the start of the next step (predictor)
+  double max_theta_ = 0.0;       ///< largest contraction factor seen in the current step
   double eta_ = 1.0;             ///< Newton convergence-rate memory (Hairer–Wanner's η)
   bool last_rejected_ = false;
   BandedMatrix A_, B_, M_;
   Eigen::VectorXd y_, y_new_, err_, z_, dz_, s_, tmp_, acc_, f_at_jac_;
-  Eigen::VectorXd k_[5];
+  Eigen::VectorXd k_[5], k0_, guess_;
   bool corotate_ = true;
+  double newton_velocity_atol_ = 0;  ///< absolute tolerance on v in the Newton norm
   Eigen::VectorXd q_jac_;  ///< q where J was evaluated
   std::vector<Eigen::Vector4d> segment_w_;
   std::vector<Eigen::Matrix4d> segment_rot_;
