@@ -31,6 +31,8 @@ constexpr double kE[kStages] = {25.0 / 24 - 59.0 / 48, -49.0 / 48 + 17.0 / 96,
 // below 1 keeps the iteration error a small part of the tolerance the step is controlled to.
 constexpr int kMaxIterations = 7;
 constexpr double kKappa = 0.05;
+// Jacobian updates within one stage before the step is given up (and h halved).
+constexpr int kMaxRefreshes = 2;
 // A step whose iterations contracted by less than this (θ above it) refreshes J for the next
 // step: on the rubber rod a J + LU (~20 µs at N = 10) costs less than the extra iterations.
 constexpr double kThetaRefresh = 0.1;
@@ -262,23 +264,20 @@ bool SdirkIntegrator::Step(const Eigen::Ref<const Eigen::VectorXd>& y, double h,
     for (int j = 0; j < i; ++j) s_ += (h * kA[i][j]) * k_[j];
     Predict(i);
     z_ = s_ + hg * guess_;
-    StageResult r = SolveStage(i, y, h);
-    if (r != StageResult::kConverged) {
+    for (int refreshes = 0;; ++refreshes) {
+      const StageResult r = SolveStage(i, y, h);
+      if (r == StageResult::kConverged) break;
       ++newton_.newton_failures;
-      if (jacobian_fresh_) return false;
-      // The stiff directions have turned away from the stale J: evaluate it at the predicted
-      // stage value and restart the stage.
-      z_ = s_ + hg * guess_;
+      if (refreshes == kMaxRefreshes) return false;
+      // The iteration matrix is too far from J at the stage (the stiff directions have turned,
+      // or the step is long for the nonlinearity): evaluate J at the current iterate, or at
+      // the predictor after a divergence, and go on from there (a Newton method with a few
+      // Jacobian updates rather than a simplified one).
+      if (r == StageResult::kDiverged || !z_.allFinite()) z_ = s_ + hg * guess_;
       tmp_ = y + z_;
       RefreshJacobian(tmp_);
       if (!Factorize(h)) return false;
-      z_ = s_ + hg * guess_;
       eta_ = 1.0;
-      r = SolveStage(i, y, h);
-      if (r != StageResult::kConverged) {
-        ++newton_.newton_failures;
-        return false;
-      }
     }
   }
   y_new = y + z_;  // stiffly accurate: y_{n+1} = Y_5
