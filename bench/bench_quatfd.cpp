@@ -86,7 +86,15 @@ void BM_SteelString_Rosenbrock_Baumgarte(benchmark::State& s) {
   Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRosenbrock, 1e4);
 }
 BENCHMARK(BM_RubberRod_Rosenbrock)->Arg(10)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK(BM_RubberRod_Sdirk)->Arg(10)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
+// N = 160 and 640 give the cost per step against N (CPU time / steps: every Newton iteration,
+// Jacobian and LU of a real run is in it; BENCHMARKS.md).
+BENCHMARK(BM_RubberRod_Sdirk)
+    ->Arg(10)
+    ->Arg(40)
+    ->Arg(160)
+    ->Arg(640)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 BENCHMARK(BM_SteelString_Sdirk)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
 // Stiff Baumgarte instead of the projection (α = β = 1e3 1/s for (a), 1e4 for (b)): makes the
 // |p| direction stiff, which removes one of the Rosenbrock step-map instabilities
@@ -166,9 +174,21 @@ void BM_RosenbrockStep(benchmark::State& s) {
     benchmark::DoNotOptimize(y_new.data());
   }
 }
+/// The banded LU of the iteration matrix a² I − a B − A (kl = ku = 10).
+void BM_BandedLU(benchmark::State& s) {
+  Costs c(s.range(0));
+  BandedMatrix A, B, M;
+  c.model.Jacobian(c.q, c.v, &A, &B);
+  for (auto _ : s) {
+    M = A;
+    for (int i = 0; i < M.rows(); ++i) M(i, i) += 1e6;
+    benchmark::DoNotOptimize(M.Factorize());
+  }
+}
 BENCHMARK(BM_F)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 BENCHMARK(BM_Jacobian)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 BENCHMARK(BM_JacobianAutoDiff)->Arg(10)->Arg(640);
 BENCHMARK(BM_RosenbrockStep)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
+BENCHMARK(BM_BandedLU)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 
 }  // namespace
