@@ -8,6 +8,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+
 #include "cosserat/quatfd/quatfd_integrate.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/rosenbrock.hpp"
@@ -25,13 +27,14 @@ using bench::SteelString;
 
 /// baumgarte > 0: α = β = baumgarte (1/s) and no projection (a diagnostic variant, BENCHMARKS.md).
 void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int segments,
-         IntegratorKind kind, double baumgarte = 0.0) {
+         IntegratorKind kind, double baumgarte = 0.0, double tolerance = 1e-6) {
   QuatFdOptions opt;
   opt.segments = segments;
   opt.base_end = end;
   opt.baumgarte_alpha = opt.baumgarte_beta = baumgarte;
   IntegratorOptions io;
   io.project = baumgarte == 0.0;
+  io.rel_tol = io.abs_tol = tolerance;  // velocity_abs_tol stays at its default, 1e-3
   QuatFdModel model(rod, Horizontal(), opt);
   StaticLoads loads;
   loads.gravity_W = Vec3(0, 0, -9.81);
@@ -86,6 +89,18 @@ void BM_SteelString_Rosenbrock_Baumgarte(benchmark::State& s) {
   Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRosenbrock, 1e4);
 }
 BENCHMARK(BM_RubberRod_Rosenbrock)->Arg(10)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
+// (a) at N = 10 against the tolerance rel_tol = abs_tol = 10^-k (k = range(1)), both stiff
+// integrators (range(0): 0 Rosenbrock, 1 SDIRK): the Rosenbrock step count hardly moves (a
+// stability limit), the SDIRK one follows the tolerance.
+void BM_RubberRod_Tolerance(benchmark::State& s) {
+  Run(s, RubberRod(), EndCondition::kClamped, 10,
+      s.range(0) == 0 ? IntegratorKind::kRosenbrock : IntegratorKind::kSdirk, 0.0,
+      std::pow(10.0, -static_cast<double>(s.range(1))));
+}
+BENCHMARK(BM_RubberRod_Tolerance)
+    ->ArgsProduct({{0, 1}, {3, 4, 5, 6, 7}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 // N = 160 and 640 give the cost per step against N (CPU time / steps: every Newton iteration,
 // Jacobian and LU of a real run is in it; BENCHMARKS.md).
 BENCHMARK(BM_RubberRod_Sdirk)
