@@ -13,14 +13,27 @@
 ///   Z_i = h Σ_{j<i} a_ij F(y_n + Z_j) + h γ F(y_n + Z_i)
 /// is solved by Newton iterations with the residual evaluated at the iterate, so the stage is the
 /// implicit method's, whatever Jacobian the iteration matrix uses; the Jacobian only has to make
-/// the iteration contract. It is re-evaluated (at the current stage iterate, so its stiff
-/// directions are the turned ones) only when the contraction fails, and the iteration matrix is
-/// refactorised only when the Jacobian or the step size changes (the step size is kept when the
+/// the iteration contract.
+///
+/// Co-rotation: J(y_J) is kept from where it was evaluated and turned to the stage iterate,
+/// Δ = P (I − γhJ(y_J))⁻¹ Pᵀ r with P block-diagonal: per segment the left multiplication by the
+/// world rotation w_ν = p_ν p̄_ν,J (on p and ṗ; it keeps body directions and the radial one), per
+/// vertex the rotation by the mean of its segments' w (on x and ẋ). The model is equivariant under
+/// rigid rotations (up to gravity and the clamp), so this is the Jacobian at the stage up to the
+/// change of the relative rotations and strains: the turning of the stiff directions that breaks
+/// the Rosenbrock step is followed. Without it (corotate = false) the Newton iteration fails where
+/// the Rosenbrock step map is unstable.
+///
+/// J is re-evaluated when a step's contraction factor exceeds 0.1 (for the next step) and when a
+/// stage fails to converge (at the current stage iterate, at most twice per stage, then the step
+/// is rejected). The iteration matrix is refactorised only when J or h changes (h is kept when the
 /// controller asks for a growth below 20 %).
 ///
-/// Linear algebra: (I/(γh) − J) Δ = r with J = [[0, I], [A, B]] reduces, as in the Rosenbrock
-/// integrator, to one banded n × n system (a² I − a B − A) w = a r_v + A r_q (a = 1/(γh),
-/// bandwidth 10), so a Newton iteration costs one f and one banded solve: O(N).
+/// Linear algebra: the q-half of the stage equation is linear, z_q = s_q + γh (v_n + z_v), and is
+/// kept exact, so the Newton correction is Δ_v = (a² I − a B − A)⁻¹ a r_v, Δ_q = γh Δ_v
+/// (a = 1/(γh), bandwidth 10; the Rosenbrock integrator's second-order reduction): a Newton
+/// iteration costs one f and one banded solve, O(N). Its stopping norm is the error norm with
+/// abs_tol also on v (a velocity iteration error integrates into the positions).
 ///
 /// Error estimate: h Σ (b_i − b̂_i) K_i, filtered by (I − γhJ)⁻¹ (Hairer–Wanner IV.8, Shampine),
 /// which keeps the order-3 estimate of the non-stiff components and damps the stiff ones (the raw
