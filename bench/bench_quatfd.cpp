@@ -8,9 +8,12 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+
 #include "cosserat/quatfd/quatfd_integrate.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/rosenbrock.hpp"
+#include "cosserat/quatfd/sdirk.hpp"
 #include "quatfd_rods.hpp"
 
 namespace {
@@ -24,13 +27,14 @@ using bench::SteelString;
 
 /// baumgarte > 0: α = β = baumgarte (1/s) and no projection (a diagnostic variant, BENCHMARKS.md).
 void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int segments,
-         IntegratorKind kind, double baumgarte = 0.0) {
+         IntegratorKind kind, double baumgarte = 0.0, double tolerance = 1e-6) {
   QuatFdOptions opt;
   opt.segments = segments;
   opt.base_end = end;
   opt.baumgarte_alpha = opt.baumgarte_beta = baumgarte;
   IntegratorOptions io;
   io.project = baumgarte == 0.0;
+  io.rel_tol = io.abs_tol = tolerance;  // velocity_abs_tol stays at its default, 1e-3
   QuatFdModel model(rod, Horizontal(), opt);
   StaticLoads loads;
   loads.gravity_W = Vec3(0, 0, -9.81);
@@ -38,6 +42,7 @@ void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int seg
   Eigen::VectorXd q0(model.size()), v0(model.size()), q, v;
   model.RestState(q0, v0);
   IntegratorStats stats;
+  SdirkStats newton;
   IntegratorStatus status = IntegratorStatus::kNotRun;
   for (auto _ : state) {
     q = q0;
@@ -46,6 +51,7 @@ void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int seg
     double t = 0;
     status = integ->Advance(10.0, &t, q, v);
     stats = integ->stats();
+    if (auto* s = dynamic_cast<SdirkIntegrator*>(integ.get())) newton = s->newton_stats();
     benchmark::DoNotOptimize(q.data());
   }
   if (status != IntegratorStatus::kOk) state.SkipWithError(ToString(status));
@@ -53,6 +59,11 @@ void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int seg
   state.counters["rejected"] = stats.rejected;
   state.counters["f_evals"] = stats.f_evaluations;
   state.counters["jacobians"] = stats.jacobian_evaluations;
+  state.counters["LUs"] = stats.factorizations;
+  if (kind == IntegratorKind::kSdirk) {
+    state.counters["newton_its"] = newton.newton_iterations;
+    state.counters["newton_fails"] = newton.newton_failures;
+  }
   state.counters["tip_z"] = q[QuatFdLayout::X(segments) + 2];
 }
 
@@ -65,6 +76,12 @@ void BM_RubberRod_Dopri5(benchmark::State& s) {
 void BM_SteelString_Rosenbrock(benchmark::State& s) {
   Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRosenbrock);
 }
+void BM_RubberRod_Sdirk(benchmark::State& s) {
+  Run(s, RubberRod(), EndCondition::kClamped, s.range(0), IntegratorKind::kSdirk);
+}
+void BM_SteelString_Sdirk(benchmark::State& s) {
+  Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kSdirk);
+}
 void BM_RubberRod_Rosenbrock_Baumgarte(benchmark::State& s) {
   Run(s, RubberRod(), EndCondition::kClamped, s.range(0), IntegratorKind::kRosenbrock, 1e3);
 }
@@ -72,6 +89,28 @@ void BM_SteelString_Rosenbrock_Baumgarte(benchmark::State& s) {
   Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRosenbrock, 1e4);
 }
 BENCHMARK(BM_RubberRod_Rosenbrock)->Arg(10)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
+// (a) at N = 10 against the tolerance rel_tol = abs_tol = 10^-k (k = range(1)), both stiff
+// integrators (range(0): 0 Rosenbrock, 1 SDIRK): the Rosenbrock step count hardly moves (a
+// stability limit), the SDIRK one follows the tolerance.
+void BM_RubberRod_Tolerance(benchmark::State& s) {
+  Run(s, RubberRod(), EndCondition::kClamped, 10,
+      s.range(0) == 0 ? IntegratorKind::kRosenbrock : IntegratorKind::kSdirk, 0.0,
+      std::pow(10.0, -static_cast<double>(s.range(1))));
+}
+BENCHMARK(BM_RubberRod_Tolerance)
+    ->ArgsProduct({{0, 1}, {3, 4, 5, 6, 7}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+// N = 160 and 640 give the cost per step against N (CPU time / steps: every Newton iteration,
+// Jacobian and LU of a real run is in it; BENCHMARKS.md).
+BENCHMARK(BM_RubberRod_Sdirk)
+    ->Arg(10)
+    ->Arg(40)
+    ->Arg(160)
+    ->Arg(640)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK(BM_SteelString_Sdirk)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
 // Stiff Baumgarte instead of the projection (α = β = 1e3 1/s for (a), 1e4 for (b)): makes the
 // |p| direction stiff, which removes one of the Rosenbrock step-map instabilities
 // (bench/quatfd_stability.cpp) but not the others; kept to document the effect.
@@ -150,9 +189,21 @@ void BM_RosenbrockStep(benchmark::State& s) {
     benchmark::DoNotOptimize(y_new.data());
   }
 }
+/// The banded LU of the iteration matrix a² I − a B − A (kl = ku = 10).
+void BM_BandedLU(benchmark::State& s) {
+  Costs c(s.range(0));
+  BandedMatrix A, B, M;
+  c.model.Jacobian(c.q, c.v, &A, &B);
+  for (auto _ : s) {
+    M = A;
+    for (int i = 0; i < M.rows(); ++i) M(i, i) += 1e6;
+    benchmark::DoNotOptimize(M.Factorize());
+  }
+}
 BENCHMARK(BM_F)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 BENCHMARK(BM_Jacobian)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 BENCHMARK(BM_JacobianAutoDiff)->Arg(10)->Arg(640);
 BENCHMARK(BM_RosenbrockStep)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
+BENCHMARK(BM_BandedLU)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 
 }  // namespace

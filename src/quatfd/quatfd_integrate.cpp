@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "cosserat/quatfd/rosenbrock.hpp"
+#include "cosserat/quatfd/sdirk.hpp"
 
 namespace cosserat::quatfd {
 
@@ -13,7 +14,15 @@ namespace odeint = boost::numeric::odeint;
 using State = std::vector<double>;
 
 const char* ToString(IntegratorKind kind) {
-  return kind == IntegratorKind::kDopri5 ? "dopri5" : "rosenbrock";
+  switch (kind) {
+    case IntegratorKind::kDopri5:
+      return "dopri5";
+    case IntegratorKind::kRosenbrock:
+      return "rosenbrock";
+    case IntegratorKind::kSdirk:
+      break;
+  }
+  return "sdirk";
 }
 
 namespace {
@@ -108,6 +117,7 @@ IntegratorStatus Dopri5Integrator::Advance(double t_end, double* t, Eigen::Ref<E
 std::unique_ptr<QuatFdIntegrator> MakeIntegrator(IntegratorKind kind, const QuatFdModel& model,
                                                  const IntegratorOptions& options) {
   if (kind == IntegratorKind::kDopri5) return std::make_unique<Dopri5Integrator>(model, options);
+  if (kind == IntegratorKind::kSdirk) return std::make_unique<SdirkIntegrator>(model, options);
   return std::make_unique<RosenbrockIntegrator>(model, options);
 }
 

@@ -7,7 +7,10 @@
 ///   same error norm as the Rosenbrock integrator. Non-stiff only: its step is bounded by the
 ///   fastest mode (axial, shear and rotary-inertia waves), so stiff rods need many steps.
 /// - kRosenbrock: the banded linearly implicit RosenbrockIntegrator (rosenbrock.hpp), O(N) per
-///   step with the exact Jacobian; for stiff rods.
+///   step with the exact Jacobian; its step is limited by the stability of its step map
+///   (BENCHMARKS.md), a few ms for the rubber rod, 0.2 ms for the steel string.
+/// - kSdirk: the banded implicit SdirkIntegrator (sdirk.hpp, SDIRK4 with Newton iterations and a
+///   reused Jacobian), O(N) per Newton iteration; the stiff integrator to use.
 
 #include <memory>
 #include <string>
@@ -17,9 +20,9 @@
 
 namespace cosserat::quatfd {
 
-enum class IntegratorKind { kDopri5, kRosenbrock };
+enum class IntegratorKind { kDopri5, kRosenbrock, kSdirk };
 
-/// "dopri5", "rosenbrock".
+/// "dopri5", "rosenbrock", "sdirk".
 const char* ToString(IntegratorKind kind);
 
 class Dopri5Integrator final : public QuatFdIntegrator {

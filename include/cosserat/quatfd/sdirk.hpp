@@ -1,0 +1,128 @@
+#pragma once
+/// \file
+/// A stiff, fully implicit integrator for q̇ = v, v̇ = f(q, v) of the quaternion-FD rod: the
+/// L-stable, stiffly accurate 5-stage SDIRK method of order 4 with an embedded order-3 estimate
+/// (Hairer & Wanner, Solving ODEs II, Table IV.6.5 "SDIRK4", γ = 1/4), with simplified Newton
+/// iterations on every stage.
+///
+/// Why not the Rosenbrock method (rosenbrock.hpp, BENCHMARKS.md "What limits the step"): a
+/// Rosenbrock step is exact for the Jacobian frozen at y_n and explicit for the rest. The stiff
+/// directions of this model (shear, extension, rotary inertia) turn with the segments in the
+/// coordinates (x, p, ẋ, ṗ), so the part of the stiff response that has turned over the step is
+/// integrated explicitly, and the step map is unstable beyond a few ms. Here every stage equation
+///   Z_i = h Σ_{j<i} a_ij F(y_n + Z_j) + h γ F(y_n + Z_i)
+/// is solved by Newton iterations with the residual evaluated at the iterate, so the stage is the
+/// implicit method's, whatever Jacobian the iteration matrix uses; the Jacobian only has to make
+/// the iteration contract.
+///
+/// Co-rotation: J(y_J) is kept from where it was evaluated and turned to the stage iterate,
+/// Δ = P (I − γhJ(y_J))⁻¹ Pᵀ r with P block-diagonal: per segment the left multiplication by the
+/// world rotation w_ν = p_ν p̄_ν,J (on p and ṗ; it keeps body directions and the radial one), per
+/// vertex the rotation by the mean of its segments' w (on x and ẋ). The model is equivariant under
+/// rigid rotations (up to gravity and the clamp), so this is the Jacobian at the stage up to the
+/// change of the relative rotations and strains: the turning of the stiff directions that breaks
+/// the Rosenbrock step is followed. Without it (corotate = false) the Newton iteration fails where
+/// the Rosenbrock step map is unstable.
+///
+/// J is re-evaluated when a step's contraction factor exceeds 0.1 (for the next step) and when a
+/// stage fails to converge (at the current stage iterate, at most twice per stage, then the step
+/// is rejected). The iteration matrix is refactorised only when J or h changes (h is kept when the
+/// controller asks for a growth below 20 %).
+///
+/// Linear algebra: the q-half of the stage equation is linear, z_q = s_q + γh (v_n + z_v), and is
+/// kept exact, so the Newton correction is Δ_v = (a² I − a B − A)⁻¹ a r_v, Δ_q = γh Δ_v
+/// (a = 1/(γh), bandwidth 10; the Rosenbrock integrator's second-order reduction): a Newton
+/// iteration costs one f and one banded solve, O(N). Its stopping norm is the error norm with
+/// abs_tol also on v (a velocity iteration error integrates into the positions).
+///
+/// Error estimate: h Σ (b_i − b̂_i) K_i, filtered by (I − γhJ)⁻¹ (Hairer–Wanner IV.8, Shampine),
+/// which keeps the order-3 estimate of the non-stiff components and damps the stiff ones (the raw
+/// estimate of an L-stable method is not small on very stiff components).
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/quatfd/integrator.hpp"
+
+namespace cosserat::quatfd {
+
+/// Newton statistics in addition to IntegratorStats.
+struct SdirkStats {
+  long newton_iterations = 0;  ///< over all stages and attempts
+  long newton_failures = 0;    ///< stage iterations that did not contract (J refreshed or h cut)
+};
+
+class SdirkIntegrator final : public QuatFdIntegrator {
+ public:
+  /// Allocates every buffer; Advance() does not allocate.
+  /// corotate: turn the iteration matrix with the segments (see the file comment); false only
+  /// for the comparison in the benchmarks and tests.
+  SdirkIntegrator(const QuatFdModel& model, const IntegratorOptions& options = {},
+                  bool corotate = true);
+
+  IntegratorStatus Advance(double t_end, double* t, Eigen::Ref<Eigen::VectorXd> q,
+                           Eigen::Ref<Eigen::VectorXd> v) override;
+  const IntegratorStats& stats() const override { return stats_; }
+  const SdirkStats& newton_stats() const { return newton_; }
+  const char* name() const override { return "sdirk4-banded"; }
+
+  /// One step of size h from y = [q; v] (Newton to convergence, the Jacobian refreshed when the
+  /// iteration does not contract), without step-size control: writes y_new and the filtered error
+  /// estimate. Returns false when the stage iterations did not converge even with a fresh
+  /// Jacobian. Public for the tests (fixed-step order and step-map stability).
+  bool Step(const Eigen::Ref<const Eigen::VectorXd>& y, double h, Eigen::Ref<Eigen::VectorXd> y_new,
+            Eigen::Ref<Eigen::VectorXd> error);
+
+ private:
+  enum class StageResult { kConverged, kSlow, kDiverged };
+  void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out);
+  /// Evaluates J at y (also f there, into f_at_jac_) and marks the iteration matrix stale.
+  void RefreshJacobian(const Eigen::Ref<const Eigen::VectorXd>& y);
+  /// Assembles and factorises a² I − a B − A for the step h if it is not current.
+  bool Factorize(double h);
+  /// (I/(γh) − J) x = r in place, J turned by the current co-rotation.
+  void Solve(Eigen::Ref<Eigen::VectorXd> r);
+  /// The co-rotation from the state of the last Jacobian to y: per segment the world rotation
+  /// w_ν = p_ν p̄_ν,J (4 × 4 left multiplication), per vertex the mean of its segments' (3 × 3).
+  void UpdateRotations(const Eigen::Ref<const Eigen::VectorXd>& y);
+  /// r ← P r or Pᵀ r, blockwise on the q and v halves; RotateHalf on one half (n entries).
+  void Rotate(Eigen::Ref<Eigen::VectorXd> r, bool transpose) const;
+  void RotateHalf(Eigen::Ref<Eigen::VectorXd> r, bool transpose) const;
+  /// The velocity half of the Newton correction: rv ← (turned) a M⁻¹ rv.
+  void SolveVelocity(Eigen::Ref<Eigen::VectorXd> rv);
+  /// Predictor of stage i's derivative (into guess_): the known one nearest in time.
+  void Predict(int i);
+  /// Newton iterations for stage i: z_ starts at the predictor; on kConverged z_ is the stage
+  /// increment and k_[i] its derivative F(y_n + Z_i).
+  StageResult SolveStage(int i, const Eigen::Ref<const Eigen::VectorXd>& y, double h);
+  /// Scaled max-norm of a correction (the error tolerances at y).
+  double Norm(const Eigen::Ref<const Eigen::VectorXd>& y,
+              const Eigen::Ref<const Eigen::VectorXd>& d) const;
+
+  const QuatFdModel& model_;
+  IntegratorOptions options_;
+  IntegratorStats stats_;
+  SdirkStats newton_;
+  int n_ = 0;
+  double dt_ = 0;
+  double factor_h_ = 0;       ///< the h of the current factorisation; 0: none
+  bool have_jacobian_ = false;
+  bool jacobian_fresh_ = false;  ///< J evaluated during the current step attempt
+  bool refresh_next_step_ = false;
+  bool have_k_guess_ = false;    ///< k_[4] holds F at the start of the next step (predictor)
+  double max_theta_ = 0.0;       ///< largest contraction factor seen in the current step
+  double eta_ = 1.0;             ///< Newton convergence-rate memory (Hairer–Wanner's η)
+  bool last_rejected_ = false;
+  BandedMatrix A_, B_, M_;
+  Eigen::VectorXd y_, y_new_, err_, z_, dz_, s_, tmp_, acc_, f_at_jac_;
+  Eigen::VectorXd k_[5], k0_, guess_;
+  bool corotate_ = true;
+  double newton_velocity_atol_ = 0;  ///< absolute tolerance on v in the Newton norm
+  Eigen::VectorXd q_jac_;  ///< q where J was evaluated
+  std::vector<Eigen::Vector4d> segment_w_;
+  std::vector<Eigen::Matrix4d> segment_rot_;
+  std::vector<Eigen::Matrix3d> vertex_rot_;
+};
+
+}  // namespace cosserat::quatfd

@@ -1,0 +1,351 @@
+#include "cosserat/quatfd/sdirk.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "cosserat/quatfd/quatfd_kernels.hpp"
+
+namespace cosserat::quatfd {
+namespace {
+
+// Hairer & Wanner, Solving ODEs II, Table IV.6.5 (SDIRK4): L-stable, stiffly accurate (b = the
+// last row of A), order 4, embedded b̂ of order 3.
+constexpr double kGamma = 0.25;
+constexpr int kStages = 5;
+constexpr double kA[kStages][kStages] = {
+    {0.25, 0, 0, 0, 0},
+    {0.5, 0.25, 0, 0, 0},
+    {17.0 / 50, -1.0 / 25, 0.25, 0, 0},
+    {371.0 / 1360, -137.0 / 2720, 15.0 / 544, 0.25, 0},
+    {25.0 / 24, -49.0 / 48, 125.0 / 16, -85.0 / 12, 0.25},
+};
+constexpr double kC[kStages] = {0.25, 0.75, 0.55, 0.5, 1.0};
+// b − b̂ with b̂ = [59/48, −17/96, 225/32, −85/12, 0].
+constexpr double kE[kStages] = {25.0 / 24 - 59.0 / 48, -49.0 / 48 + 17.0 / 96,
+                                125.0 / 16 - 225.0 / 32, 0.0, 0.25};
+
+// Newton: at most kMaxIterations per stage; converged when η ‖Δ‖ ≤ kKappa in the error norm
+// (Hairer–Wanner's stopping rule with η = θ/(1 − θ), θ the observed contraction). kKappa well
+// below 1 keeps the iteration error a small part of the tolerance the step is controlled to.
+constexpr int kMaxIterations = 7;
+constexpr double kKappa = 0.05;
+// Jacobian updates within one stage before the step is given up (and h halved).
+constexpr int kMaxRefreshes = 2;
+// A step whose iterations contracted by less than this (θ above it) refreshes J for the next
+// step: on the rubber rod a J + LU (~20 µs at N = 10) costs less than the extra iterations.
+constexpr double kThetaRefresh = 0.1;
+
+}  // namespace
+
+SdirkIntegrator::SdirkIntegrator(const QuatFdModel& model, const IntegratorOptions& options,
+                                 bool corotate)
+    : model_(model), options_(options), corotate_(corotate) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("IntegratorOptions: " + why);
+  n_ = model.size();
+  const int bw = QuatFdLayout::kBandwidth;
+  A_.Resize(n_, bw, bw);
+  B_.Resize(n_, bw, bw);
+  M_.Resize(n_, bw, bw);
+  for (Eigen::VectorXd* v : {&y_, &y_new_, &err_, &z_, &dz_, &s_, &tmp_, &k0_, &guess_})
+    v->resize(2 * n_);
+  for (Eigen::VectorXd& k : k_) k.resize(2 * n_);
+  acc_.resize(n_);
+  f_at_jac_.resize(n_);
+  q_jac_.resize(n_);
+  newton_velocity_atol_ = std::min(options.abs_tol, options.velocity_abs_tol);
+  const int N = model.layout().segments;
+  segment_w_.resize(N);
+  segment_rot_.resize(N);
+  vertex_rot_.resize(N + 1);
+  dt_ = options.initial_dt;
+}
+
+void SdirkIntegrator::F(const Eigen::Ref<const Eigen::VectorXd>& y,
+                        Eigen::Ref<Eigen::VectorXd> out) {
+  out.head(n_) = y.tail(n_);
+  model_.Acceleration(y.head(n_), y.tail(n_), out.tail(n_));
+  ++stats_.f_evaluations;
+}
+
+void SdirkIntegrator::RefreshJacobian(const Eigen::Ref<const Eigen::VectorXd>& y) {
+  model_.Jacobian(y.head(n_), y.tail(n_), &A_, &B_, &f_at_jac_);
+  q_jac_ = y.head(n_);
+  ++stats_.jacobian_evaluations;
+  have_jacobian_ = true;
+  jacobian_fresh_ = true;
+  factor_h_ = 0.0;
+}
+
+bool SdirkIntegrator::Factorize(double h) {
+  if (factor_h_ == h) return true;
+  const double a = 1.0 / (kGamma * h);
+  const int n = n_, bw = QuatFdLayout::kBandwidth;
+  for (int j = 0; j < n; ++j)
+    for (int i = std::max(0, j - bw); i <= std::min(n - 1, j + bw); ++i)
+      M_(i, j) = -a * B_(i, j) - A_(i, j) + (i == j ? a * a : 0.0);
+  ++stats_.factorizations;
+  if (!M_.Factorize()) {
+    factor_h_ = 0.0;
+    return false;
+  }
+  factor_h_ = h;
+  return true;
+}
+
+void SdirkIntegrator::UpdateRotations(const Eigen::Ref<const Eigen::VectorXd>& y) {
+  const int N = model_.layout().segments;
+  if (!corotate_) return;
+  for (int nu = 0; nu < N; ++nu) {
+    const Eigen::Vector4d p = y.segment<4>(QuatFdLayout::P(nu));
+    const Eigen::Vector4d pj = q_jac_.segment<4>(QuatFdLayout::P(nu));
+    // w = p ⊗ p̄_J / (|p| |p_J|): the world rotation that takes segment ν from where J was
+    // evaluated to y; left-multiplying by it keeps body directions (and the radial one).
+    Eigen::Vector4d w = kernels::QMul<double>(p, Eigen::Vector4d(pj[0], -pj[1], -pj[2], -pj[3]));
+    w.normalize();
+    segment_w_[nu] = w;
+    Eigen::Matrix4d& L = segment_rot_[nu];
+    L << w[0], -w[1], -w[2], -w[3],  //
+        w[1], w[0], -w[3], w[2],     //
+        w[2], w[3], w[0], -w[1],     //
+        w[3], -w[2], w[1], w[0];
+  }
+  for (int k = 0; k <= N; ++k) {
+    // A vertex turns with the mean of its segments' rotations (same hemisphere).
+    Eigen::Vector4d w = k < N ? segment_w_[k] : segment_w_[N - 1];
+    if (k > 0 && k < N) {
+      const Eigen::Vector4d& o = segment_w_[k - 1];
+      w += w.dot(o) >= 0 ? o : Eigen::Vector4d(-o);
+    }
+    w.normalize();
+    const Eigen::Vector3d u(w[1], w[2], w[3]);
+    Eigen::Matrix3d cross;
+    cross << 0, -u[2], u[1], u[2], 0, -u[0], -u[1], u[0], 0;
+    vertex_rot_[k] = Eigen::Matrix3d::Identity() + 2 * w[0] * cross + 2 * cross * cross;
+  }
+}
+
+void SdirkIntegrator::RotateHalf(Eigen::Ref<Eigen::VectorXd> r, bool transpose) const {
+  const int N = model_.layout().segments;
+  for (int k = 0; k <= N; ++k) {
+    auto x = r.segment<3>(QuatFdLayout::X(k));
+    const Eigen::Vector3d x0 = x;
+    if (transpose)
+      x.noalias() = vertex_rot_[k].transpose() * x0;
+    else
+      x.noalias() = vertex_rot_[k] * x0;
+  }
+  for (int nu = 0; nu < N; ++nu) {
+    auto x = r.segment<4>(QuatFdLayout::P(nu));
+    const Eigen::Vector4d x0 = x;
+    if (transpose)
+      x.noalias() = segment_rot_[nu].transpose() * x0;
+    else
+      x.noalias() = segment_rot_[nu] * x0;
+  }
+}
+
+void SdirkIntegrator::Rotate(Eigen::Ref<Eigen::VectorXd> r, bool transpose) const {
+  RotateHalf(r.head(n_), transpose);
+  RotateHalf(r.tail(n_), transpose);
+}
+
+void SdirkIntegrator::Solve(Eigen::Ref<Eigen::VectorXd> r) {
+  // With the co-rotation P (UpdateRotations): x = P (aI − J)⁻¹ Pᵀ r, i.e. the iteration matrix
+  // of J(y_J) turned to the iterate's segment orientations.
+  if (corotate_) Rotate(r, true);
+  // w = M⁻¹ (a r_v + A r_q), x_q = (r_q + w)/a, x_v = w (the Rosenbrock integrator's reduction).
+  const double a = 1.0 / (kGamma * factor_h_);
+  auto rq = r.head(n_);
+  auto rv = r.tail(n_);
+  A_.Multiply(rq, acc_);
+  rv = a * rv + acc_;
+  M_.Solve(rv);
+  rq = (rq + rv) / a;
+  if (corotate_) Rotate(r, false);
+}
+
+void SdirkIntegrator::SolveVelocity(Eigen::Ref<Eigen::VectorXd> rv) {
+  // rv ← P_v M⁻¹ a P_vᵀ rv, M = a² I − a B − A (zero q-half of the right-hand side).
+  const double a = 1.0 / (kGamma * factor_h_);
+  if (corotate_) RotateHalf(rv, true);
+  rv *= a;
+  M_.Solve(rv);
+  if (corotate_) RotateHalf(rv, false);
+}
+
+double SdirkIntegrator::Norm(const Eigen::Ref<const Eigen::VectorXd>& y,
+                             const Eigen::Ref<const Eigen::VectorXd>& d) const {
+  double e = 0.0;
+  for (int i = 0; i < 2 * n_; ++i) {
+    const double atol = i < n_ ? options_.abs_tol : newton_velocity_atol_;
+    e = std::max(e, std::abs(d[i]) / (atol + options_.rel_tol * std::abs(y[i])));
+  }
+  return e;
+}
+
+SdirkIntegrator::StageResult SdirkIntegrator::SolveStage(int i,
+                                                         const Eigen::Ref<const Eigen::VectorXd>& y,
+                                                         double h) {
+  const int n = n_;
+  const double hg = kGamma * h, a = 1.0 / hg;
+  // The q-half of the stage equation is linear, z_q = s_q + hγ (v_n + z_v): kept exact, so the
+  // Newton iteration runs on z_v alone. With J = [[0, I], [A, B]] the correction is
+  //   Δ_v = (a² I − a B − A)⁻¹ a r_v,  Δ_q = hγ Δ_v,  r_v = a (s_v − z_v) + f(y + z),
+  // turned by the co-rotation P (which acts alike on both halves, so Δ_q = hγ Δ_v still holds).
+  z_.head(n) = s_.head(n) + hg * (y.tail(n) + z_.tail(n));
+  tmp_ = y + z_;
+  UpdateRotations(tmp_);  // once per stage, at the predictor
+  double eta = std::pow(std::max(eta_, 1e-16), 0.8);
+  double previous = 0.0;
+  for (int it = 0; it < kMaxIterations; ++it) {
+    if (it > 0) tmp_ = y + z_;
+    k_[i].head(n) = tmp_.tail(n);
+    model_.Acceleration(tmp_.head(n), tmp_.tail(n), k_[i].tail(n));
+    ++stats_.f_evaluations;
+    ++newton_.newton_iterations;
+    auto dv = dz_.tail(n);
+    dv = a * (s_.tail(n) - z_.tail(n)) + k_[i].tail(n);
+    SolveVelocity(dv);
+    dz_.head(n) = hg * dv;
+    z_ += dz_;
+    const double d = Norm(y, dz_);
+    if (!std::isfinite(d)) return StageResult::kDiverged;
+    if (it > 0) {
+      const double theta = d / previous;
+      if (theta >= 0.99) return StageResult::kDiverged;
+      eta = theta / (1.0 - theta);
+      max_theta_ = std::max(max_theta_, theta);
+      // Would the iteration still need too many iterations at this rate?
+      if (std::pow(theta, kMaxIterations - 1 - it) / (1.0 - theta) * d > kKappa)
+        return StageResult::kSlow;
+    }
+    if (eta * d <= kKappa || d == 0.0) {
+      eta_ = eta;
+      k_[i] = (z_ - s_) * a;  // F(y + Z_i) consistent with the converged stage
+      return StageResult::kConverged;
+    }
+    previous = d;
+  }
+  return StageResult::kSlow;
+}
+
+void SdirkIntegrator::Predict(int i) {
+  // The known stage derivative nearest in time: F(y_n) at c = 0 or a converged stage j < i.
+  // (Polynomial extrapolation through two to four of them was tried: it did not save Newton
+  // iterations on the rubber rod and added rejections.)
+  int best = -1;
+  for (int j = 0; j < i; ++j)
+    if (std::abs(kC[j] - kC[i]) < std::abs((best < 0 ? 0.0 : kC[best]) - kC[i])) best = j;
+  guess_ = best < 0 ? k0_ : k_[best];
+}
+
+bool SdirkIntegrator::Step(const Eigen::Ref<const Eigen::VectorXd>& y, double h,
+                           Eigen::Ref<Eigen::VectorXd> y_new, Eigen::Ref<Eigen::VectorXd> error) {
+  jacobian_fresh_ = false;
+  if (!have_jacobian_ || refresh_next_step_) RefreshJacobian(y);
+  max_theta_ = 0.0;
+  refresh_next_step_ = false;
+  if (!Factorize(h)) {
+    if (jacobian_fresh_) return false;
+    RefreshJacobian(y);
+    if (!Factorize(h)) return false;
+  }
+  const double hg = kGamma * h;
+  if (!have_k_guess_) {
+    F(y, k_[kStages - 1]);
+    have_k_guess_ = true;
+  }
+  k0_ = k_[kStages - 1];  // F(y_n), up to the projection
+  for (int i = 0; i < kStages; ++i) {
+    s_.setZero();
+    for (int j = 0; j < i; ++j) s_ += (h * kA[i][j]) * k_[j];
+    Predict(i);
+    z_ = s_ + hg * guess_;
+    for (int refreshes = 0;; ++refreshes) {
+      const StageResult r = SolveStage(i, y, h);
+      if (r == StageResult::kConverged) break;
+      ++newton_.newton_failures;
+      if (refreshes == kMaxRefreshes) return false;
+      // The iteration matrix is too far from J at the stage (the stiff directions have turned,
+      // or the step is long for the nonlinearity): evaluate J at the current iterate, or at
+      // the predictor after a divergence, and go on from there (a Newton method with a few
+      // Jacobian updates rather than a simplified one).
+      if (r == StageResult::kDiverged || !z_.allFinite()) z_ = s_ + hg * guess_;
+      tmp_ = y + z_;
+      RefreshJacobian(tmp_);
+      if (!Factorize(h)) return false;
+      eta_ = 1.0;
+    }
+  }
+  y_new = y + z_;  // stiffly accurate: y_{n+1} = Y_5
+  // Slow contraction: a fresh Jacobian at the next step costs less than the extra iterations.
+  if (max_theta_ > kThetaRefresh) refresh_next_step_ = true;
+  error.setZero();
+  for (int i = 0; i < kStages; ++i)
+    if (kE[i] != 0.0) error += (h * kE[i]) * k_[i];
+  // Filter: (I − γhJ)⁻¹ err = (aI − J)⁻¹ (a err).
+  error *= 1.0 / hg;
+  UpdateRotations(y_new);
+  Solve(error);
+  return true;
+}
+
+IntegratorStatus SdirkIntegrator::Advance(double t_end, double* t, Eigen::Ref<Eigen::VectorXd> q,
+                                          Eigen::Ref<Eigen::VectorXd> v) {
+  const int n = n_;
+  y_.head(n) = q;
+  y_.tail(n) = v;
+  have_k_guess_ = false;  // the state may have been changed by the caller
+  long attempts = 0;
+  while (*t < t_end) {
+    if (++attempts > options_.max_steps) {
+      q = y_.head(n);
+      v = y_.tail(n);
+      return IntegratorStatus::kMaxSteps;
+    }
+    if (options_.max_dt > 0) dt_ = std::min(dt_, options_.max_dt);
+    const bool last = *t + dt_ * (1 + 1e-12) >= t_end;
+    const double h = last ? t_end - *t : dt_;
+    const bool ok = Step(y_, h, y_new_, err_);
+    double err = ok ? ErrorNorm(options_, n, y_, y_new_, err_) : 0.0;
+    if (ok && (!std::isfinite(err) || !y_new_.allFinite())) err = 1e10;
+    if (!ok || err > 1.0) {
+      ++stats_.rejected;
+      // Newton failure even with a fresh Jacobian: halve; error too large: the controller.
+      dt_ = ok ? h * std::clamp(0.9 * std::pow(err, -0.25), 0.2, 0.9) : 0.5 * h;
+      last_rejected_ = true;
+      have_k_guess_ = true;  // k_[4] may be from the failed attempt: recompute
+      F(y_, k_[kStages - 1]);
+      if (dt_ < options_.min_dt) {
+        q = y_.head(n);
+        v = y_.tail(n);
+        return IntegratorStatus::kStepSizeUnderflow;
+      }
+      continue;
+    }
+    ++stats_.steps;
+    stats_.last_dt = h;
+    *t = last ? t_end : *t + h;
+    y_.swap(y_new_);
+    if (options_.project) {
+      stats_.max_drift_before_projection =
+          std::max(stats_.max_drift_before_projection, model_.Project(y_.head(n), y_.tail(n)));
+    }
+    // k_[4] = F(Y_5) = F(y_{n+1}) before the projection: the next step's first predictor.
+    double fac = std::clamp(0.9 * std::pow(std::max(err, 1e-10), -0.25), 0.2, 5.0);
+    if (last_rejected_) fac = std::min(fac, 1.0);
+    // Keep h (and the factorisation) for growth below 20 %.
+    if (fac >= 1.0 && fac <= 1.2) fac = 1.0;
+    const double next = h * fac;
+    if (!last || next < dt_) dt_ = next;
+    last_rejected_ = false;
+  }
+  q = y_.head(n);
+  v = y_.tail(n);
+  return IntegratorStatus::kOk;
+}
+
+}  // namespace cosserat::quatfd
