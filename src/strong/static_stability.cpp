@@ -26,6 +26,7 @@
 // wherever the rod carries a bending moment: that part is antisymmetric, and the count uses the
 // symmetric part ½(H + Hᵀ). Follower tip loads are not conservative at all (Beck's column loses
 // stability by flutter, which statics cannot see): the index is not defined, −1.
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
@@ -38,11 +39,12 @@ namespace {
 // Negative eigenvalues (below −zero, N·m) of the symmetric part of H = V U⁻¹, in units where
 // rotations (rad) and displacements (m) are comparable through the length scale `ell`
 // (congruence keeps the count): H' = D⁻¹ H D⁻¹ maps [δθ; δp/ell] to [δm; ell δn], in N·m.
+// Used at the tip, where the threshold matters (see StabilityIndex).
 int NegativeEigenvalues(const Mat6& U, const Mat6& V, double ell, double zero) {
   Vec6 d;
   d << Vec3::Constant(1.0), Vec3::Constant(1.0 / ell);
   const Eigen::PartialPivLU<Mat6> lu(d.asDiagonal() * U);
-  // H' = D⁻¹ H D⁻¹ = (D⁻¹ V)(D U)⁻¹, solved as a transpose: (D U)ᵀ H'ᵀ = (D⁻¹ V)ᵀ.
+  // H' = (D⁻¹ V)(D U)⁻¹, solved as a transpose: (D U)ᵀ H'ᵀ = (D⁻¹ V)ᵀ.
   const Mat6 Vs = d.cwiseInverse().asDiagonal() * V;
   const Mat6 Ht = lu.transpose().solve(Vs.transpose());
   const Mat6 Hs = 0.5 * (Ht + Ht.transpose());
@@ -50,6 +52,28 @@ int NegativeEigenvalues(const Mat6& U, const Mat6& V, double ell, double zero) {
   const Eigen::SelfAdjointEigenSolver<Mat6> eig(Hs, Eigen::EigenvaluesOnly);
   int negative = 0;
   for (int k = 0; k < 6; ++k) negative += eig.eigenvalues()(k) < -zero;
+  return negative;
+}
+
+// The same count without the threshold, cheaply, for the interior nodes: Uᵀ H U = Uᵀ V, so the
+// symmetric part of Uᵀ V is congruent to that of H (symmetrising commutes with congruence) and
+// has its inertia (Sylvester), read off the pivots of an LDLᵀ factorisation (6 × 6, no inverse).
+// Falls back to the eigenvalues if the diagonal pivoting breaks down (a zero pivot).
+int NegativeEigenvaluesFast(const Mat6& U, const Mat6& V) {
+  const Mat6 S0 = U.transpose() * V;
+  const Mat6 S = 0.5 * (S0 + S0.transpose());
+  if (!S.allFinite()) return -1;
+  const Eigen::LDLT<Mat6> ldlt(S);
+  const Vec6 D = ldlt.vectorD();
+  const double tiny = 1e-13 * S.cwiseAbs().maxCoeff();
+  if (ldlt.info() == Eigen::Success && D.allFinite() && D.cwiseAbs().minCoeff() > tiny) {
+    int negative = 0;
+    for (int k = 0; k < 6; ++k) negative += D(k) < 0;
+    return negative;
+  }
+  const Eigen::SelfAdjointEigenSolver<Mat6> eig(S, Eigen::EigenvaluesOnly);
+  int negative = 0;
+  for (int k = 0; k < 6; ++k) negative += eig.eigenvalues()(k) < 0;
   return negative;
 }
 
@@ -87,7 +111,8 @@ int StaticShootingSolver::StabilityIndex(const lie::SE3& base, const StaticLoads
       U.col(c) << dtheta, R.transpose() * T.block<3, 1>(0, c);
       V.col(c) << T.block<3, 1>(12, c) - m.cross(dtheta), T.block<3, 1>(15, c) - f.cross(dtheta);
     }
-    negative = NegativeEigenvalues(U, V, model_.length, zero);
+    negative = i + 1 < n ? NegativeEigenvaluesFast(U, V)
+                         : NegativeEigenvalues(U, V, model_.length, zero);
     if (negative < 0) return -1;  // U singular to rounding at a node: no count
     if (negative < previous) conjugate += previous - negative;
     previous = negative;
