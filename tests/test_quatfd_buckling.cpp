@@ -53,6 +53,7 @@ TEST(QuatFdBuckling, CantileverEulerLoadAt40Segments) {
   EXPECT_NEAR(q.critical_load / s.critical_load, 1.0, 1e-3);
   // A circle buckles in two planes at once: two eigenvalues cross zero together.
   EXPECT_EQ(q.multiplicity, 2);
+  EXPECT_EQ(q.mode_s_max, 0.0);  // Euler's cantilever mode bends most at the clamp
 }
 
 // The error against the SE(3) load falls as Δs²: order fitted over 10, 20, 40 segments.

@@ -70,7 +70,8 @@ bool QuatFdBuckling::SolveAt(double lambda, const Eigen::VectorXd& start, Eigen:
   return quatfd::SolveStatics(&model_, path_.LoadsAt(lambda), *q, options_.statics).converged();
 }
 
-Eigen::VectorXd QuatFdBuckling::StiffnessEigenvalues(double lambda, const Eigen::VectorXd& q) {
+Eigen::VectorXd QuatFdBuckling::StiffnessEigenvalues(double lambda, const Eigen::VectorXd& q,
+                                                     Eigen::MatrixXd* vectors) {
   model_.set_loads(path_.LoadsAt(lambda));
   const int N = model_.layout().segments;
   const int nv = static_cast<int>(free_vertices_.size());
@@ -109,7 +110,9 @@ Eigen::VectorXd QuatFdBuckling::StiffnessEigenvalues(double lambda, const Eigen:
   const double size = H.cwiseAbs().maxCoeff();
   asymmetry_ = size > 0 ? (H - H.transpose()).cwiseAbs().maxCoeff() / size : 0.0;
   const Eigen::MatrixXd Hs = 0.5 * (H + H.transpose());
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Hs, Eigen::EigenvaluesOnly);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(
+      Hs, vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+  if (vectors) *vectors = eig.eigenvectors();
   return eig.eigenvalues();
 }
 
@@ -195,6 +198,26 @@ QuatFdBucklingSummary QuatFdBuckling::FindCriticalLoad() {
     }
   }
   q_ = q_lo;
+  {
+    // The mode: where its curvature change is largest.
+    Eigen::MatrixXd V;
+    StiffnessEigenvalues(lo, q_lo, &V);
+    const int N = model_.layout().segments;
+    const int nv = static_cast<int>(free_vertices_.size());
+    const std::vector<double>& s = model_.grid();
+    auto theta = [&](int seg) { return Vec3(V.col(0).segment<3>(3 * nv + 3 * seg)); };
+    double best = -1;
+    for (int n = 0; n < N; ++n) {  // the free tip carries no bending element
+      const double mid_b = 0.5 * (s[n] + s[n + 1]);
+      const double mid_a = n == 0 ? 0.0 : 0.5 * (s[n - 1] + s[n]);
+      const Vec3 dK = (theta(n) - (n == 0 ? Vec3::Zero() : theta(n - 1))) / (mid_b - mid_a);
+      const double k = dK.head<2>().norm();
+      if (k > best * (1 + 1e-9)) {
+        best = k;
+        out.mode_s_max = s[n];
+      }
+    }
+  }
   out.critical_load = mu_lo == mu_hi ? lo : (lo * mu_hi - hi * mu_lo) / (mu_hi - mu_lo);
   out.critical_load = std::clamp(out.critical_load, lo, hi);
   out.lambda_reached = lo;

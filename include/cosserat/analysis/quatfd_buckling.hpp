@@ -53,6 +53,10 @@ struct QuatFdBucklingSummary {
   /// error (≈ 1e-6 EI/L) and far below the next mode's eigenvalue (the second cantilever Euler load
   /// is 9 times the first).
   int multiplicity = 0;
+  /// Where the mode (the eigenvector of the smallest eigenvalue at λ_cr) bends most: the first
+  /// vertex of largest |δK⊥|, δK_n ≈ (δθ_{n+1/2} − δθ_{n−1/2})/(s_{n+1/2} − s_{n−1/2}) (the clamp's
+  /// δθ is zero), m. NaN unless found.
+  double mode_s_max = NAN;
   std::vector<double> scan_lambda;       ///< the scan: λ …
   std::vector<double> scan_min_eigenvalue;  ///< … and μ(λ) (dimensionless, units EI/L)
   int solves = 0;                        ///< static solves
@@ -75,7 +79,10 @@ class QuatFdBuckling {
   /// symmetric part of the static stiffness at q under the loads of λ. One column pair of
   /// Forces evaluations per tangent coordinate, then a dense symmetric eigenvalue problem
   /// (6N unknowns for N segments).
-  Eigen::VectorXd StiffnessEigenvalues(double lambda, const Eigen::VectorXd& q);
+  /// With `vectors`, also the eigenvectors (columns, in the tangent coordinates [δx/L of the free
+  /// vertices; δθ of the segments]).
+  Eigen::VectorXd StiffnessEigenvalues(double lambda, const Eigen::VectorXd& q,
+                                       Eigen::MatrixXd* vectors = nullptr);
   /// The largest |H − Hᵀ| / |H| of the last stiffness computed (a check: conservative loads
   /// give a symmetric Hessian up to the difference error).
   double last_asymmetry() const { return asymmetry_; }
