@@ -262,6 +262,28 @@ TEST(Buckling, StaticSolveWithImperfectionLandsOnTheBuckledBranch) {
   EXPECT_NEAR(tip.z() / rod.L, e.axial, 1e-3);
 }
 
+// Without an imperfection no stable path leads from zero past P_cr (the straight path bifurcates
+// and stays straight): the solver returns the straight equilibrium, converged, and says it is
+// unstable (two planes), after a bounded search (steps halve down to min_load_step).
+TEST(Buckling, PerfectColumnPastCriticalIsReportedUnstable) {
+  SlenderRod rod;
+  const double P = EulerLoad(ColumnEnds::kClampedFree, rod.EI(), rod.L);
+  StaticShootingSolver solver(rod.model(), 41);
+  StaticLoads loads;
+  loads.tip_force = Vec3(0, 0, -1.15 * P);
+  const StaticShootingSummary s = solver.Solve(lie::SE3{}, loads);
+  ASSERT_TRUE(s.converged()) << ToString(s.status);
+  EXPECT_EQ(s.stability_index, 2);
+  EXPECT_LT(solver.state().tip_position_W().head<2>().norm(), 1e-9 * rod.L);
+  EXPECT_LE(s.stable_path_steps, solver.options().max_load_steps);
+  std::printf("perfect column at 1.15 P_cr: index %d after %d stable-path steps, %.1f ms\n",
+              s.stability_index, s.stable_path_steps, 1e3 * s.wall_time_s);
+  // Below P_cr it is stable.
+  loads.tip_force.z() = -0.9 * P;
+  solver.ResetWarmStart();
+  EXPECT_EQ(solver.Solve(lie::SE3{}, loads).stability_index, 0);
+}
+
 // The stability index of the straight cantilever under a dead axial load P counts the Euler
 // loads below P, (2k − 1)² π² EI/(4L²), k = 1, 2, …, twice (a circle buckles in two planes).
 // Loads are taken 10 % away from each Euler load, far outside the model difference (3e-5 k²).
