@@ -242,12 +242,32 @@ Mat6 TensionSource(const StaticShootingSolver::TendonStage& ts, const double* te
   return out;
 }
 
+ShotTangent FromRows(const StaticShootingSolver::StateTangent& T) {
+  ShotTangent t;
+  t.p = T.middleRows<3>(0);
+  for (int j = 0; j < 3; ++j) t.R[j] = T.middleRows<3>(3 + 3 * j);
+  t.m = T.middleRows<3>(12);
+  t.n = T.middleRows<3>(15);
+  return t;
+}
+
+StaticShootingSolver::StateTangent ToRows(const ShotTangent& t) {
+  StaticShootingSolver::StateTangent T;
+  T.middleRows<3>(0) = t.p;
+  for (int j = 0; j < 3; ++j) T.middleRows<3>(3 + 3 * j) = t.R[j];
+  T.middleRows<3>(12) = t.m;
+  T.middleRows<3>(15) = t.n;
+  return T;
+}
+
 // For other boundary conditions (ShootTangent): the tangent's start value instead of the
-// unknowns' directions, and where to write it at every node and at the tip.
+// unknowns' directions, and where to write it at every node and at the tip. node_rows: the same
+// node tangents in the public row layout (an array sized to the grid), for the stability check.
 struct TangentSeed {
   const ShotTangent* start = nullptr;
   std::vector<ShotTangent>* nodes = nullptr;  // sized to the grid
   ShotTangent* tip = nullptr;
+  StaticShootingSolver::StateTangent* node_rows = nullptr;
 };
 
 Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, const Vec6& scale,
@@ -312,6 +332,7 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
     const ShotState k4 = derivative(q1, f1, y4, &xi4, &H4);
     if (J) {
       if (seed && seed->nodes) (*seed->nodes)[i] = dy;
+      if (seed && seed->node_rows) seed->node_rows[i] = ToRows(dy);
       const Mat6* h1 = tc ? &H1 : nullptr;
       const Mat6* h2 = tc ? &H2 : nullptr;
       const Mat6* h3 = tc ? &H3 : nullptr;
@@ -359,6 +380,7 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
 
   if (J && seed) {
     if (seed->nodes) seed->nodes->back() = dy;
+    if (seed->node_rows) seed->node_rows[n - 1] = ToRows(dy);
     if (seed->tip) *seed->tip = dy;
   }
   if (J) {
@@ -401,6 +423,9 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
   state_.Resize(n);
   for (int i = 0; i < n; ++i) state_.s[i] = grid_[i];
+  kept_record_.Resize(n);
+  for (int i = 0; i < n; ++i) kept_record_.s[i] = grid_[i];
+  kept_tangents_.assign(n, StateTangent::Zero());
 
   // Rest shape in the base body frame (zero wrench, no tendon tension), for the rigid-body
   // initial guess.
@@ -464,6 +489,24 @@ Mat6 StaticShootingSolver::ResidualJacobian(const lie::SE3& base, const StaticLo
   return J;
 }
 
+Mat6 StaticShootingSolver::ResidualJacobianKeepingTangents(const lie::SE3& base,
+                                                           const StaticLoads& loads,
+                                                           const Vec6& x, Vec6* residual) {
+  Mat6 J;
+  std::array<double, Actuation::kMaxTendons> lengths{};
+  const TendonContext tc{&tendon_stages_, actuation_.tendon_tension.data(), lengths.data()};
+  TangentSeed seed;
+  seed.node_rows = kept_tangents_.data();
+  const Vec6 r = Shoot(grid_, samples_, scale_, base, loads, x, &kept_record_, &J,
+                       tendon_stages_.empty() ? nullptr : &tc, &seed);
+  kept_x_ = x;
+  kept_base_ = base;
+  kept_loads_ = loads;
+  has_kept_ = true;
+  if (residual) *residual = r;
+  return J;
+}
+
 bool StaticShootingSolver::TipJacobianWrtTensions(const lie::SE3& base, const StaticLoads& loads,
                                                   TensionJacobian* J) const {
   const int count = static_cast<int>(model_.tendons.size());
@@ -508,24 +551,6 @@ bool StaticShootingSolver::TipJacobianWrtTensions(const lie::SE3& base, const St
 namespace {
 
 // Rows of StateTangent: p (0–2), R e₀ (3–5), R e₁ (6–8), R e₂ (9–11), m (12–14), n (15–17).
-ShotTangent FromRows(const StaticShootingSolver::StateTangent& T) {
-  ShotTangent t;
-  t.p = T.middleRows<3>(0);
-  for (int j = 0; j < 3; ++j) t.R[j] = T.middleRows<3>(3 + 3 * j);
-  t.m = T.middleRows<3>(12);
-  t.n = T.middleRows<3>(15);
-  return t;
-}
-
-StaticShootingSolver::StateTangent ToRows(const ShotTangent& t) {
-  StaticShootingSolver::StateTangent T;
-  T.middleRows<3>(0) = t.p;
-  for (int j = 0; j < 3; ++j) T.middleRows<3>(3 + 3 * j) = t.R[j];
-  T.middleRows<3>(12) = t.m;
-  T.middleRows<3>(15) = t.n;
-  return T;
-}
-
 }  // namespace
 
 StaticShootingSolver::StateTangent StaticShootingSolver::ShootTangent(
@@ -552,6 +577,24 @@ StaticShootingSolver::StateTangent StaticShootingSolver::ShootTangent(
   return ToRows(tip_t);
 }
 
+namespace {
+bool SameLoads(const StaticLoads& a, const StaticLoads& b) {
+  return a.gravity_W == b.gravity_W && a.distributed_force_W == b.distributed_force_W &&
+         a.tip_force == b.tip_force && a.tip_moment == b.tip_moment &&
+         a.tip_force_frame == b.tip_force_frame && a.tip_moment_frame == b.tip_moment_frame;
+}
+}  // namespace
+
+int StaticShootingSolver::IndexAfterSolve(const lie::SE3& base, const StaticLoads& loads,
+                                          const Vec6& x) const {
+  // Levenberg–Marquardt's last Jacobian shot is at its solution: its node states and tangents
+  // are the Jacobi fields the count needs, with no shot of its own.
+  if (has_kept_ && kept_x_ == x && kept_base_.R == base.R && kept_base_.p == base.p &&
+      SameLoads(kept_loads_, loads))
+    return StabilityIndexFromShot(loads, kept_record_, kept_tangents_);
+  return StabilityIndex(base, loads, scale_.cwiseProduct(x));
+}
+
 bool StaticShootingSolver::FollowStablePath(const lie::SE3& base, const StaticLoads& loads,
                                             double max_fraction, Vec6* x_out,
                                             StaticShootingSummary* summary) {
@@ -573,7 +616,7 @@ bool StaticShootingSolver::FollowStablePath(const lie::SE3& base, const StaticLo
     const double tol =
         mu_try == 1.0 ? options_.tolerance : std::max(options_.tolerance, kIntermediateTolerance);
     if (TryLevenbergMarquardt(base, target, tol, &guess, summary) &&
-        StabilityIndex(base, target, scale_.cwiseProduct(guess)) == 0) {
+        IndexAfterSolve(base, target, guess) == 0) {
       x_prev = x_a;
       mu_prev = mu;
       x_a = guess;
@@ -640,7 +683,7 @@ struct ShootingCost {
     if (J_ptr) {
       Eigen::Map<Mat6> J(J_ptr);
       Vec6 r_value;
-      J = solver->ResidualJacobian(*base, *loads, x, &r_value);
+      J = solver->ResidualJacobianKeepingTangents(*base, *loads, x, &r_value);
       r = r_value;
       *last_jacobian = J;
     } else {
@@ -818,7 +861,7 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
   // instead. A quasi-Newton warm re-solve is not checked: it continues the previous solution by
   // a step that halves the residual at every iteration (17 µs; a check costs a tangent shot).
   if (ok && options_.stable_branch && !via_quasi_newton) {
-    summary.stability_index = StabilityIndex(base, loads, scale_.cwiseProduct(x));
+    summary.stability_index = IndexAfterSolve(base, loads, x);
     if (summary.stability_index > 0) {
       Vec6 x_stable = x;
       if (FollowStablePath(base, loads, max_fraction, &x_stable, &summary)) {

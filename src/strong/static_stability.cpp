@@ -81,14 +81,23 @@ int NegativeEigenvaluesFast(const Mat6& U, const Mat6& V) {
 
 int StaticShootingSolver::StabilityIndex(const lie::SE3& base, const StaticLoads& loads,
                                          const Vec6& base_wrench_B) const {
-  const bool follower = (loads.tip_force_frame == LoadFrame::kBody && loads.tip_force != Vec3::Zero()) ||
-                        (loads.tip_moment_frame == LoadFrame::kBody && loads.tip_moment != Vec3::Zero());
-  if (follower) return -1;
   StateTangent start = StateTangent::Zero();
   start.bottomRows<6>() = Mat6::Identity();  // δW(0) along each unit direction; pose clamped
   RodState record;
   std::vector<StateTangent> nodes;
   ShootTangent(base, loads, base_wrench_B, start, &record, &nodes);
+  return StabilityIndexFromShot(loads, record, nodes);
+}
+
+// Any 6 independent directions of W(0) will do: H = V U⁻¹ does not depend on the basis
+// ((V A)(U A)⁻¹ = V U⁻¹), and sym(UᵀV) changes by a congruence. So the tangent of the solver's own
+// Jacobian shot (directions: the scaled unknowns) serves as well as the unit directions.
+int StaticShootingSolver::StabilityIndexFromShot(const StaticLoads& loads, const RodState& record,
+                                                 const std::vector<StateTangent>& nodes) const {
+  const bool follower =
+      (loads.tip_force_frame == LoadFrame::kBody && loads.tip_force != Vec3::Zero()) ||
+      (loads.tip_moment_frame == LoadFrame::kBody && loads.tip_moment != Vec3::Zero());
+  if (follower) return -1;
   // An eigenvalue counts as negative below −1e-8 EI/L. A rod symmetric about its axis has, past
   // buckling, a whole circle of equilibria (the shape turned about the load axis, with the section
   // turned back at the clamp): H(L) is exactly singular along it, and the solve tolerance (1e-10

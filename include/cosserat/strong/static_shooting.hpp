@@ -172,6 +172,10 @@ class StaticShootingSolver {
   /// propagated through RK4 alongside the state). Optionally also the residual.
   Mat6 ResidualJacobian(const lie::SE3& base, const StaticLoads& loads, const Vec6& x,
                         Vec6* residual = nullptr) const;
+  /// The same, keeping the shot's node states and tangents: the Levenberg–Marquardt iterations
+  /// use it, so the stability check at their solution needs no shot of its own.
+  Mat6 ResidualJacobianKeepingTangents(const lie::SE3& base, const StaticLoads& loads,
+                                       const Vec6& x, Vec6* residual = nullptr);
 
  private:
   bool TryQuasiNewton(const lie::SE3& base, const StaticLoads& loads, Vec6* x,
@@ -181,6 +185,11 @@ class StaticShootingSolver {
   Vec6 RigidGuess(const lie::SE3& base, const StaticLoads& loads) const;
   bool FollowStablePath(const lie::SE3& base, const StaticLoads& loads, double max_fraction,
                         Vec6* x, StaticShootingSummary* summary);
+  /// StabilityIndex at the unknown x just solved for: from the kept Jacobian shot when it was
+  /// taken at x under (base, loads), else with a shot of its own.
+  int IndexAfterSolve(const lie::SE3& base, const StaticLoads& loads, const Vec6& x) const;
+  int StabilityIndexFromShot(const StaticLoads& loads, const RodState& record,
+                             const std::vector<StateTangent>& nodes) const;
   void SampleSections();
 
   RodModel model_;
@@ -202,6 +211,13 @@ class StaticShootingSolver {
   StaticLoads solved_loads_;
   Mat6 jacobian_ = Mat6::Identity();  ///< d r / d x at the last solution
   bool has_jacobian_ = false;
+  // The last ResidualJacobianKeepingTangents shot: at kept_x_ under kept_base_, kept_loads_.
+  RodState kept_record_;
+  std::vector<StateTangent> kept_tangents_;
+  Vec6 kept_x_ = Vec6::Zero();
+  lie::SE3 kept_base_;
+  StaticLoads kept_loads_;
+  bool has_kept_ = false;
 };
 
 }  // namespace cosserat
