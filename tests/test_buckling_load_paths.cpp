@@ -55,6 +55,14 @@ TEST(BucklingLoadPaths, TendonTensionNeverBucklesTheRod) {
                 route.offset_base.x(), ToString(b.status), b.lambda_reached,
                 b.lambda_reached / P_euler, b.solves);
 
+    // The plain static solve under that tension is stable (its stability check: index 0).
+    Actuation act;
+    act.tendon_tension[0] = options.lambda_max;
+    StaticShootingSolver statics(model, 41, {}, act);
+    const StaticShootingSummary st = statics.Solve(lie::SE3{}, StaticLoads{});
+    ASSERT_TRUE(st.converged());
+    EXPECT_EQ(st.stability_index, 0);
+
     // The same force, dead at the tip of the same rod (tendon slack): Euler's load, to the model
     // difference of test_buckling.cpp (−2.8e-5) well inside 0.5 %.
     LoadPath dead = LoadPath::TipForce(Vec3(0, 0, -1));

@@ -864,9 +864,12 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
     summary.stability_index = IndexAfterSolve(base, loads, x);
     if (summary.stability_index > 0) {
       Vec6 x_stable = x;
+      const Mat6 J_first = jacobian_;  // d r/d x at x, for the next warm start if we keep x
       if (FollowStablePath(base, loads, max_fraction, &x_stable, &summary)) {
         x = x_stable;
         summary.stability_index = 0;
+      } else {
+        jacobian_ = J_first;
       }
       state_current = false;
     }
