@@ -70,9 +70,7 @@ bool QuatFdBuckling::SolveAt(double lambda, const Eigen::VectorXd& start, Eigen:
   return quatfd::SolveStatics(&model_, path_.LoadsAt(lambda), *q, options_.statics).converged();
 }
 
-Eigen::VectorXd QuatFdBuckling::StiffnessEigenvalues(double lambda, const Eigen::VectorXd& q,
-                                                     Eigen::MatrixXd* vectors) {
-  model_.set_loads(path_.LoadsAt(lambda));
+Eigen::MatrixXd QuatFdBuckling::StiffnessFiniteDifference(const Eigen::VectorXd& q) {
   const int N = model_.layout().segments;
   const int nv = static_cast<int>(free_vertices_.size());
   const int m = 3 * nv + 3 * N;
@@ -107,6 +105,55 @@ Eigen::VectorXd QuatFdBuckling::StiffnessEigenvalues(double lambda, const Eigen:
     gather(forces_minus_, gm);
     H.col(j) = -(gp - gm) / (2 * h * model_.moment_scale());
   }
+  return H;
+}
+
+Eigen::MatrixXd QuatFdBuckling::StiffnessAnalytic(const Eigen::VectorXd& q) {
+  const int N = model_.layout().segments;
+  const int nv = static_cast<int>(free_vertices_.size());
+  const int m = 3 * nv + 3 * N;
+  const double L = model_.length();
+  model_.Jacobian(q, zero_v_, 0.0, 0.0, &dfdq_, &dfdv_, nullptr);
+  const Eigen::MatrixXd A = dfdq_.ToDense();
+  // Columns: ∂f/∂q along each tangent direction (δx = L e_k; δp = ½ p ⊗ [0, e_k]).
+  Eigen::MatrixXd AT(model_.size(), m);
+  for (int a = 0; a < nv; ++a)
+    for (int k = 0; k < 3; ++k) AT.col(3 * a + k) = L * A.col(Layout::X(free_vertices_[a]) + k);
+  for (int s = 0; s < N; ++s) {
+    const Vec4 p = q.segment<4>(Layout::P(s));
+    for (int k = 0; k < 3; ++k) {
+      Vec4 e = Vec4::Zero();
+      e[1 + k] = 1.0;
+      const Vec4 dp = 0.5 * quatfd::kernels::QMul<double>(p, e);
+      AT.col(3 * nv + 3 * s + k) = A.middleCols<4>(Layout::P(s)) * dp;
+    }
+  }
+  // Rows: forces = m ∂f_x (times L for the δx/L pairing), torques = 2 J Im(p̄ ⊗ ∂f_p).
+  Eigen::MatrixXd H(m, m);
+  const std::vector<double>& mass = model_.vertex_mass();
+  for (int a = 0; a < nv; ++a)
+    H.middleRows<3>(3 * a) = L * mass[free_vertices_[a]] * AT.middleRows<3>(Layout::X(free_vertices_[a]));
+  for (int s = 0; s < N; ++s) {
+    const Vec4 p = q.segment<4>(Layout::P(s)) / q.segment<4>(Layout::P(s)).squaredNorm();
+    const Vec3& J = model_.segment_inertia(s);
+    for (int j = 0; j < m; ++j) {
+      const Vec4 dfp = AT.col(j).segment<4>(Layout::P(s));
+      const Vec3 w = 2.0 * quatfd::kernels::ImConjMul<double>(p, dfp);
+      H.block<3, 1>(3 * nv + 3 * s, j) = J.cwiseProduct(w);
+    }
+  }
+  return -H / model_.moment_scale();
+}
+
+Eigen::MatrixXd QuatFdBuckling::Stiffness(double lambda, const Eigen::VectorXd& q,
+                                          bool finite_difference) {
+  model_.set_loads(path_.LoadsAt(lambda));
+  return finite_difference ? StiffnessFiniteDifference(q) : StiffnessAnalytic(q);
+}
+
+Eigen::VectorXd QuatFdBuckling::StiffnessEigenvalues(double lambda, const Eigen::VectorXd& q,
+                                                     Eigen::MatrixXd* vectors) {
+  const Eigen::MatrixXd H = Stiffness(lambda, q, options_.finite_difference_stiffness);
   const double size = H.cwiseAbs().maxCoeff();
   asymmetry_ = size > 0 ? (H - H.transpose()).cwiseAbs().maxCoeff() / size : 0.0;
   const Eigen::MatrixXd Hs = 0.5 * (H + H.transpose());

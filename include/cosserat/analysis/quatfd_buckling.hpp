@@ -10,7 +10,11 @@
 /// tangent coordinates (vertex displacements δx, world, m; segment rotations δθ with
 /// p ← p ⊗ [cos(|δθ|/2), sin(|δθ|/2) δθ/|δθ|], body frame, rad), by central differences of
 /// QuatFdModel::Forces along exact retractions. Scaled by ξ = δx/L and divided by EI/L it is
-/// dimensionless. Its smallest eigenvalue μ(λ) changes sign where the equilibrium loses
+/// dimensionless. By default it comes from the model's exact banded Jacobian ∂f/∂q at v = 0
+/// (no Baumgarte terms): f = M⁻¹ × forces, so the vertex rows are the forces over the lumped masses
+/// and the quaternion rows p ⊗ [0, ½ J⁻¹τ]; at an equilibrium (f = 0) the forces' derivative is
+/// m ∂f_x/∂q and 2 J Im(p̄ ⊗ ∂f_p/∂q), taken along the tangent directions ∂q/∂δx and
+/// ∂p/∂δθ = ½ p ⊗ [0, e_k]. Its smallest eigenvalue μ(λ) changes sign where the equilibrium loses
 /// stability, whether the root is simple or double (a rod symmetric about its axis buckles in two
 /// planes at once; det would touch zero without changing sign, an eigenvalue does not).
 /// The scan brackets the sign change of μ and the Illinois variant of regula falsi refines it.
@@ -38,6 +42,9 @@ struct QuatFdBucklingOptions {
   /// The truncation error is O(h²) ≈ 1e-10 relative; round-off in the axial forces (EA up to
   /// 1e5 EI/L² for a slender rod) over 2h gives ≈ 1e-6 EI/L in an entry.
   double fd_step = 1e-5;
+  /// The stiffness from the model's exact banded ∂f/∂q (default), or by central differences of
+  /// the forces (fd_step; the cross-check).
+  bool finite_difference_stiffness = false;
   quatfd::QuatFdStaticsOptions statics;
 
   /// On failure writes "<field>: <why>".
@@ -86,6 +93,8 @@ class QuatFdBuckling {
   /// The largest |H − Hᵀ| / |H| of the last stiffness computed (a check: conservative loads
   /// give a symmetric Hessian up to the difference error).
   double last_asymmetry() const { return asymmetry_; }
+  /// The stiffness matrix itself (for the cross-check of the two ways of computing it).
+  Eigen::MatrixXd Stiffness(double lambda, const Eigen::VectorXd& q, bool finite_difference);
 
   const Eigen::VectorXd& q() const { return q_; }
   const quatfd::QuatFdModel& model() const { return model_; }
@@ -96,8 +105,13 @@ class QuatFdBuckling {
   quatfd::QuatFdModel model_;
   LoadPath path_;
   QuatFdBucklingOptions options_;
+  /// The stiffness matrix H' (dimensionless, tangent coordinates) at q under the loads of λ.
+  Eigen::MatrixXd StiffnessFiniteDifference(const Eigen::VectorXd& q);
+  Eigen::MatrixXd StiffnessAnalytic(const Eigen::VectorXd& q);
+
   std::vector<int> free_vertices_;  ///< vertices whose position is not prescribed
   Eigen::VectorXd q_, zero_v_, forces_plus_, forces_minus_;
+  quatfd::BandedMatrix dfdq_, dfdv_;
   double asymmetry_ = 0;
   int solves_ = 0;
 };
