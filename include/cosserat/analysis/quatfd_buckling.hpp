@@ -8,13 +8,14 @@
 /// Hessian of the discrete potential energy on the constraint manifold |p| = 1: the derivative of
 /// the generalised forces (vertex forces, N, world; segment body torques, N·m) with respect to the
 /// tangent coordinates (vertex displacements δx, world, m; segment rotations δθ with
-/// p ← p ⊗ [cos(|δθ|/2), sin(|δθ|/2) δθ/|δθ|], body frame, rad), by central differences of
-/// QuatFdModel::Forces along exact retractions. Scaled by ξ = δx/L and divided by EI/L it is
-/// dimensionless. By default it comes from the model's exact banded Jacobian ∂f/∂q at v = 0
+/// p ← p ⊗ [cos(|δθ|/2), sin(|δθ|/2) δθ/|δθ|], body frame, rad). Scaled by ξ = δx/L and divided
+/// by EI/L it is dimensionless. By default it comes from the model's exact banded Jacobian ∂f/∂q
+/// at v = 0
 /// (no Baumgarte terms): f = M⁻¹ × forces, so the vertex rows are the forces over the lumped masses
 /// and the quaternion rows p ⊗ [0, ½ J⁻¹τ]; at an equilibrium (f = 0) the forces' derivative is
 /// m ∂f_x/∂q and 2 J Im(p̄ ⊗ ∂f_p/∂q), taken along the tangent directions ∂q/∂δx and
-/// ∂p/∂δθ = ½ p ⊗ [0, e_k]. Its smallest eigenvalue μ(λ) changes sign where the equilibrium loses
+/// ∂p/∂δθ = ½ p ⊗ [0, e_k]; central differences of QuatFdModel::Forces along exact retractions
+/// are the cross-check (finite_difference_stiffness). Its smallest eigenvalue μ(λ) changes sign where the equilibrium loses
 /// stability, whether the root is simple or double (a rod symmetric about its axis buckles in two
 /// planes at once; det would touch zero without changing sign, an eigenvalue does not).
 /// The scan brackets the sign change of μ and the Illinois variant of regula falsi refines it.
@@ -83,8 +84,8 @@ class QuatFdBuckling {
   QuatFdBucklingSummary FindCriticalLoad();
 
   /// The eigenvalues (ascending, dimensionless: units EI/L with δx in units of L) of the
-  /// symmetric part of the static stiffness at q under the loads of λ. One column pair of
-  /// Forces evaluations per tangent coordinate, then a dense symmetric eigenvalue problem
+  /// symmetric part of the static stiffness at q under the loads of λ: one banded Jacobian (or
+  /// two Forces evaluations per tangent coordinate), then a dense symmetric eigenvalue problem
   /// (6N unknowns for N segments).
   /// With `vectors`, also the eigenvectors (columns, in the tangent coordinates [δx/L of the free
   /// vertices; δθ of the segments]).
