@@ -111,6 +111,21 @@ TEST(BendRadius, JammingConcentratesAGivenTurnInTheCompliantSegments) {
   EXPECT_THROW(BendRadiusAtTipAngle(plain, StaticLoads{}, moment, 4.0), std::invalid_argument);
   EXPECT_THROW(jammed.SetJammingPressure(1, 1e4), std::invalid_argument);
   EXPECT_THROW(jammed.SetJammingPressure(0, -1), std::invalid_argument);
+  // A jamming segment past the stored tube, or over a band, is refused naming the field.
+  auto message = [&](const EversionRobotDesign& d) -> std::string {
+    try {
+      EversionRobot robot(d, L, p);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EversionRobotDesign bad = jammed_design;
+  bad.jamming[0].end = 2 * L;
+  EXPECT_EQ(message(bad).rfind("jamming", 0), 0u) << message(bad);
+  bad = jammed_design;
+  bad.bands = {{0.4, 0.45, 0.5, 0.36}};
+  EXPECT_EQ(message(bad).rfind("jamming[0]", 0), 0u) << message(bad);
 }
 
 }  // namespace
