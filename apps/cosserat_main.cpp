@@ -203,6 +203,8 @@ int RunSolve(const Command& cmd) {
   bool converged;
   if (problem->analysis == "modes")
     converged = cosserat::cli::RunModes(*problem, out, csv, std::cerr);
+  else if (problem->formulation == "quaternion-fd" && problem->analysis == "buckling")
+    converged = cosserat::cli::RunQuatFdBuckling(*problem, out, csv, std::cerr);
   else if (problem->formulation == "quaternion-fd")
     converged = dynamics ? cosserat::cli::RunQuatFdDynamics(*problem, out, csv, std::cerr)
                          : cosserat::cli::RunQuatFdStatics(*problem, out, csv, std::cerr);

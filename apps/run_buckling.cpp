@@ -1,10 +1,12 @@
 #include "run_buckling.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 
 #include "cosserat/analysis/buckling.hpp"
+#include "cosserat/analysis/quatfd_buckling.hpp"
 #include "cosserat/io/result_writer.hpp"
 
 namespace cosserat::cli {
@@ -86,6 +88,55 @@ bool RunBuckling(const io::Problem& problem, std::ostream& out, std::ostream* cs
   if (b.found())
     line << ", critical " << problem.buckling.load << " " << std::setprecision(6) << b.critical_load
          << ", mode bends most at s = " << b.mode.s_max_curvature << " m";
+  else
+    line << ", load reached " << std::setprecision(6) << b.lambda_reached;
+  line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3
+       << " ms";
+  log << line.str() << '\n';
+  return ok;
+}
+
+bool RunQuatFdBuckling(const io::Problem& problem, std::ostream& out, std::ostream* csv,
+                       std::ostream& log) {
+  quatfd::QuatFdOptions model_options;
+  model_options.segments = problem.nodes - 1;
+  model_options.base_end = quatfd::EndCondition::kClamped;
+  QuatFdBucklingOptions options;
+  options.lambda_max = problem.buckling.max;
+  options.statics.tolerance = problem.solver.tolerance;
+  options.statics.floor_tolerance = std::max(options.statics.floor_tolerance, problem.solver.tolerance);
+  options.statics.max_iterations = problem.solver.max_iterations;
+  QuatFdBuckling analysis(problem.rod, problem.base, MakePath(problem), model_options, options);
+  const QuatFdBucklingSummary b = analysis.FindCriticalLoad();
+  const bool ok = b.status != BucklingStatus::kPathFailed;
+
+  RodState state;
+  analysis.model().ToRodState(analysis.q(), Eigen::VectorXd::Zero(analysis.model().size()), &state);
+  StaticShootingSummary statics;
+  statics.status = ok ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
+  statics.wall_time_s = b.wall_time_s;
+  nlohmann::ordered_json result = io::StaticResultToJson(statics, state);
+  nlohmann::ordered_json block;
+  block["critical_load"] = NumberOrNull(b.critical_load);
+  block["mode_s_max"] = NumberOrNull(b.mode_s_max);
+  block["status"] = ToString(b.status);
+  block["load"] = problem.buckling.load;
+  block["direction"] = {problem.buckling.direction.x(), problem.buckling.direction.y(),
+                        problem.buckling.direction.z()};
+  block["boundary"] = "cantilever";
+  block["formulation"] = "quaternion-fd";
+  block["load_reached"] = b.lambda_reached;
+  block["static_solves"] = b.solves;
+  block["multiplicity"] = b.multiplicity;
+  result["buckling"] = block;
+  out << result.dump(2) << '\n';
+  if (csv) io::WriteNodesCsv(*csv, state);
+
+  std::ostringstream line;
+  line << "cosserat: buckling " << ToString(b.status) << " (cantilever, quaternion-fd)";
+  if (b.found())
+    line << ", critical " << problem.buckling.load << " " << std::setprecision(6) << b.critical_load
+         << ", mode bends most at s = " << b.mode_s_max << " m";
   else
     line << ", load reached " << std::setprecision(6) << b.lambda_reached;
   line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3

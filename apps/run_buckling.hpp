@@ -17,4 +17,11 @@ namespace cosserat::cli {
 bool RunBuckling(const io::Problem& problem, std::ostream& out, std::ostream* csv,
                  std::ostream& log);
 
+/// The same on the "quaternion-fd" formulation (QuatFdBuckling: the smallest eigenvalue of the
+/// static stiffness; cantilever only, rod.nodes − 1 segments). The "buckling" block has the same
+/// keys except the mode's shape: critical_load, mode_s_max, status, load, direction, boundary,
+/// load_reached, static_solves, and "multiplicity" (2: a double root).
+bool RunQuatFdBuckling(const io::Problem& problem, std::ostream& out, std::ostream* csv,
+                       std::ostream& log);
+
 }  // namespace cosserat::cli

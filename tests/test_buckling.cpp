@@ -226,25 +226,25 @@ TEST(Buckling, CantileverPostBuckledBranchIsTheElastica) {
   }
 }
 
-// A plain static solve (StaticShootingSolver, load stepping from zero) at 1.15 P_cr with a small
+// A plain static solve (StaticShootingSolver, default options) at 1.15 P_cr with a small
 // lateral imperfection lands on the buckled branch: tip angle 60°, deflection 0.593 L, not the
 // straight (unstable) state nor a folded one. At exactly P/P_cr = (2K(1/2)/π)² = 1.1517 the
 // elastica's angle is 60°. The imperfection, 1e-3 P sideways, is then released (a warm-started
 // solve under the perfect load), which leaves the model difference, O((r/L)²) ≈ 1e-4.
-// The load increments must be small near P_cr (max_load_increment 0.02 EI/L²): the imperfect
-// path turns sharply there, and a large step lands on the unstable near-straight equilibrium
-// that exists beside it (with the default 3.0 it does, deflected against the imperfection).
+// The direct solve converges on the unstable near-straight equilibrium beside its start
+// (deflected against the imperfection, −0.0006 L); the solver sees its unstable directions
+// (StabilityIndex: 2, the two bending planes) and follows the load path from zero with steps
+// that must land on stable equilibria (stable_branch, on by default).
 TEST(Buckling, StaticSolveWithImperfectionLandsOnTheBuckledBranch) {
   SlenderRod rod;
   const double P = EulerLoad(ColumnEnds::kClampedFree, rod.EI(), rod.L);
   const Elastica e = CantileverElastica(0.5);
-  StaticShootingOptions options;
-  options.max_load_increment = 0.02;
-  StaticShootingSolver solver(rod.model(), 41, options);
+  StaticShootingSolver solver(rod.model(), 41);
   StaticLoads loads;
   loads.tip_force = Vec3(1e-3, 0, -1) * e.load_ratio * P;
   const StaticShootingSummary s = solver.Solve(lie::SE3{}, loads);
   ASSERT_TRUE(s.converged()) << ToString(s.status);
+  EXPECT_EQ(s.stability_index, 0);
   const double imperfect_x = solver.state().tip_position_W().x();
   loads.tip_force.x() = 0;
   ASSERT_TRUE(solver.Solve(lie::SE3{}, loads).converged());
@@ -252,13 +252,83 @@ TEST(Buckling, StaticSolveWithImperfectionLandsOnTheBuckledBranch) {
   const Vec3 t = solver.state().tip_rotation_WB().col(2);
   const double angle = std::atan2(t.x(), t.z()) * 180 / kPi;
   std::printf(
-      "imperfect static solve: deflection %.5f L (%d load steps); released: angle %.3f "
-      "deg, deflection %.5f L, axial %.5f L\n",
-      imperfect_x / rod.L, s.load_steps, angle, tip.x() / rod.L, tip.z() / rod.L);
+      "imperfect static solve: deflection %.5f L (%d load steps, %d on the stable path, %d shots, "
+      "%.1f ms); released: angle %.3f deg, deflection %.5f L, axial %.5f L\n",
+      imperfect_x / rod.L, s.load_steps, s.stable_path_steps, s.shots, 1e3 * s.wall_time_s, angle,
+      tip.x() / rod.L, tip.z() / rod.L);
   EXPECT_GT(imperfect_x / rod.L, 0.55);  // on the buckled branch already, before the release
   EXPECT_NEAR(angle, 60.0, 0.06);        // 1e-3 rad
   EXPECT_NEAR(tip.x() / rod.L, e.deflection, 1e-3);
   EXPECT_NEAR(tip.z() / rod.L, e.axial, 1e-3);
+}
+
+// Without an imperfection no stable path leads from zero past P_cr (the straight path bifurcates
+// and stays straight): the solver returns the straight equilibrium, converged, and says it is
+// unstable (two planes), after a bounded search (steps halve down to min_load_step).
+TEST(Buckling, PerfectColumnPastCriticalIsReportedUnstable) {
+  SlenderRod rod;
+  const double P = EulerLoad(ColumnEnds::kClampedFree, rod.EI(), rod.L);
+  StaticShootingSolver solver(rod.model(), 41);
+  StaticLoads loads;
+  loads.tip_force = Vec3(0, 0, -1.15 * P);
+  const StaticShootingSummary s = solver.Solve(lie::SE3{}, loads);
+  ASSERT_TRUE(s.converged()) << ToString(s.status);
+  EXPECT_EQ(s.stability_index, 2);
+  EXPECT_LT(solver.state().tip_position_W().head<2>().norm(), 1e-9 * rod.L);
+  EXPECT_LE(s.stable_path_steps, solver.options().max_load_steps);
+  std::printf("perfect column at 1.15 P_cr: index %d after %d stable-path steps, %.1f ms\n",
+              s.stability_index, s.stable_path_steps, 1e3 * s.wall_time_s);
+  // Below P_cr it is stable.
+  loads.tip_force.z() = -0.9 * P;
+  solver.ResetWarmStart();
+  EXPECT_EQ(solver.Solve(lie::SE3{}, loads).stability_index, 0);
+}
+
+// The stability index of the straight cantilever under a dead axial load P counts the Euler
+// loads below P, (2k − 1)² π² EI/(4L²), k = 1, 2, …, twice (a circle buckles in two planes).
+// Loads are taken 10 % away from each Euler load, far outside the model difference (3e-5 k²).
+// At 30 P_1 (above the third, 25 P_1) the clamped–clamped rod [0, σ] has conjugate points inside
+// (0, L) (σ = 4L/√30 = 0.73 L): the count goes through the wraps of the Sturm count, not only
+// through the tip stiffness.
+TEST(Buckling, StabilityIndexCountsEulerLoadsBelowTheLoad) {
+  SlenderRod rod;
+  const double P1 = EulerLoad(ColumnEnds::kClampedFree, rod.EI(), rod.L);
+  StaticShootingSolver solver(rod.model(), 41);
+  for (double ratio : {0.5, 0.9, 1.1, 8.1, 9.9, 24.0, 30.0}) {
+    StaticLoads loads;
+    loads.tip_force = Vec3(0, 0, -ratio * P1);
+    Vec6 W0;
+    W0 << 0, 0, 0, 0, 0, -ratio * P1;  // the straight state: n(0) = the tip force
+    int below = 0;
+    for (int k = 1; k < 10; ++k) below += (2 * k - 1) * (2 * k - 1) < ratio;
+    EXPECT_EQ(solver.StabilityIndex(lie::SE3{}, loads, W0), 2 * below) << ratio;
+  }
+  // A follower load is not conservative: no index.
+  StaticLoads follower;
+  follower.tip_force = Vec3(0, 0, -0.5 * P1);
+  follower.tip_force_frame = LoadFrame::kBody;
+  Vec6 W0;
+  W0 << 0, 0, 0, 0, 0, -0.5 * P1;
+  EXPECT_EQ(solver.StabilityIndex(lie::SE3{}, follower, W0), -1);
+}
+
+// The post-buckled elastica (SolvePostBuckled) is stable; the straight state beside it is not.
+TEST(Buckling, PostBuckledBranchIsStable) {
+  SlenderRod rod;
+  const double P = EulerLoad(ColumnEnds::kClampedFree, rod.EI(), rod.L);
+  BucklingOptions options;
+  options.lambda_max = 1.5 * P;
+  BucklingAnalysis analysis(rod.model(), 41, ColumnEnds::kClampedFree, lie::SE3{},
+                            LoadPath::TipForce(Vec3(0, 0, -1)), options);
+  ASSERT_TRUE(analysis.FindCriticalLoad().found());
+  const double lambda = 1.2 * P;
+  ASSERT_TRUE(analysis.SolvePostBuckled(lambda).converged());
+  StaticShootingSolver solver(rod.model(), 41);
+  const StaticLoads loads = analysis.path().LoadsAt(lambda);
+  EXPECT_EQ(solver.StabilityIndex(lie::SE3{}, loads, analysis.state().wrench_B.front()), 0);
+  Vec6 straight;
+  straight << 0, 0, 0, 0, 0, -lambda;
+  EXPECT_EQ(solver.StabilityIndex(lie::SE3{}, loads, straight), 2);
 }
 
 // A soft band (α = 0.1, the seed's constrictive band) localises the buckle: the mode's curvature

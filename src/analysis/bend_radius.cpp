@@ -1,11 +1,15 @@
 #include "cosserat/analysis/bend_radius.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace cosserat {
 
 namespace {
+
+constexpr double kPiValue = 3.14159265358979323846;
 
 StaticLoads Combined(const StaticLoads& fixed, const StaticLoads& actuation, double lambda) {
   StaticLoads out = fixed;
@@ -41,19 +45,19 @@ BendRadiusResult MinimumBendRadius(EversionRobot& robot, const StaticLoads& fixe
     *kink_ratio = s.kink.max_ratio;
     return s.solve.converged();
   };
+  double ratio = 0, good = 0;
   auto finish = [&](double lambda, const char* limit) {
     out.load_factor = lambda;
     out.limit = limit;
+    out.kink_ratio = ratio;
     SmallestRadius(robot.state(), &out.min_radius, &out.s);
     return out;
   };
-  double ratio = 0, good = 0;
   for (int k = 1; k <= steps; ++k) {
     const double lambda = static_cast<double>(k) / steps;
     if (!solve(lambda, &ratio)) {
       // Back to the last converged state: the radius reached before the solve failed.
-      double r0;
-      solve(good, &r0);
+      solve(good, &ratio);
       return finish(good, "no_convergence");
     }
     if (ratio >= 1.0) {
@@ -73,6 +77,65 @@ BendRadiusResult MinimumBendRadius(EversionRobot& robot, const StaticLoads& fixe
     good = lambda;
   }
   return finish(1.0, "actuation");
+}
+
+BendRadiusResult BendRadiusAtTipAngle(EversionRobot& robot, const StaticLoads& fixed,
+                                      const StaticLoads& actuation, double angle) {
+  if (!(std::isfinite(angle) && angle > 0 && angle < kPiValue))
+    throw std::invalid_argument("angle: must lie in (0, pi) rad");
+  BendRadiusResult out;
+  double kink = 0;
+  // g(λ) = (tip angle at λ) − angle; NaN if the solve fails.
+  auto g = [&](double lambda) -> double {
+    ++out.solves;
+    const EversionSolveSummary s = robot.Solve(Combined(fixed, actuation, lambda));
+    if (!s.solve.converged()) return NAN;
+    kink = s.kink.max_ratio;
+    const RodState& st = robot.state();
+    const double c = st.rotation_WB.front().col(2).dot(st.tip_rotation_WB().col(2));
+    return std::acos(std::clamp(c, -1.0, 1.0)) - angle;
+  };
+  auto finish = [&](double lambda, const char* limit) {
+    out.load_factor = lambda;
+    out.limit = limit;
+    out.kink_ratio = kink;
+    SmallestRadius(robot.state(), &out.min_radius, &out.s);
+    return out;
+  };
+  double lo = 0, g_lo = -angle, hi = 1, g_hi = g(hi);
+  for (int k = 0; k < 40 && g_hi < 0; ++k) {  // bracket by doubling
+    lo = hi;
+    g_lo = g_hi;
+    hi *= 2;
+    g_hi = g(hi);
+  }
+  if (!(g_hi >= 0)) {
+    g(lo);
+    return finish(lo, "no_convergence");
+  }
+  int side = 0;
+  double x = hi, gx = g_hi;
+  for (int it = 0; it < 100 && std::abs(gx) > 1e-10; ++it) {
+    x = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    gx = g(x);
+    if (std::isnan(gx)) {
+      g(lo);
+      return finish(lo, "no_convergence");
+    }
+    if (gx < 0) {
+      lo = x;
+      g_lo = gx;
+      if (side == -1) g_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = x;
+      g_hi = gx;
+      if (side == 1) g_lo *= 0.5;
+      side = 1;
+    }
+  }
+  return finish(x, "angle");  // the last solve was at x: the robot holds that state
 }
 
 }  // namespace cosserat

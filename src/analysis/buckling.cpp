@@ -29,14 +29,26 @@ StaticLoads LoadPath::LoadsAt(double lambda) const {
   return out;
 }
 
+LoadPath LoadPath::PressureDrop(double initial_pressure, const StaticLoads& loads) {
+  LoadPath path;
+  path.fixed = loads;
+  path.per_unit.tip_force_frame = loads.tip_force_frame;
+  path.per_unit.tip_moment_frame = loads.tip_moment_frame;
+  path.fixed_actuation.pressure = initial_pressure;
+  path.pressure_per_unit = -1.0;
+  return path;
+}
+
 Actuation LoadPath::ActuationAt(double lambda) const {
   Actuation out = fixed_actuation;
   for (int i = 0; i < Actuation::kMaxTendons; ++i)
     out.tendon_tension[i] += lambda * tension_per_unit[i];
+  out.pressure += lambda * pressure_per_unit;
   return out;
 }
 
-bool LoadPath::has_tension() const {
+bool LoadPath::has_actuation() const {
+  if (pressure_per_unit != 0.0) return true;
   for (double t : tension_per_unit)
     if (t != 0.0) return true;
   return false;
@@ -80,10 +92,16 @@ BucklingAnalysis::BucklingAnalysis(const RodModel& model, int num_nodes, ColumnE
       options_(options) {
   std::string why;
   if (!options_.IsValid(&why)) throw std::invalid_argument("BucklingOptions: " + why);
+  // A falling pressure must stay >= 0 (the modulus laws are defined for p >= 0).
+  const double p_end = path_.fixed_actuation.pressure + options_.lambda_max * path_.pressure_per_unit;
+  if (!std::isfinite(path_.pressure_per_unit) || p_end < 0)
+    throw std::invalid_argument(
+        "BucklingOptions: lambda_max must keep the pressure >= 0 along the path (it reaches " +
+        std::to_string(p_end) + " Pa)");
 }
 
 Vec6 BucklingAnalysis::ResidualAt(double lambda, const Vec6& u, Mat6* J) {
-  if (path_.has_tension() && lambda != applied_lambda_) {
+  if (path_.has_actuation() && lambda != applied_lambda_) {
     column_.SetActuation(path_.ActuationAt(lambda));
     applied_lambda_ = lambda;
   }
@@ -91,7 +109,7 @@ Vec6 BucklingAnalysis::ResidualAt(double lambda, const Vec6& u, Mat6* J) {
 }
 
 ColumnSummary BucklingAnalysis::SolveAt(double lambda) {
-  if (path_.has_tension() && lambda != applied_lambda_) {
+  if (path_.has_actuation() && lambda != applied_lambda_) {
     column_.SetActuation(path_.ActuationAt(lambda));
     applied_lambda_ = lambda;
   }

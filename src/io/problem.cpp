@@ -257,8 +257,17 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
           {"cantilever", "pinned-pinned", "clamped-clamped", "clamped-pinned"});
   else
     check("boundary", p.boundary, {"cantilever"});
-  if (p.analysis == "buckling" && p.formulation == "quaternion-fd")
-    out.push_back("analysis: \"buckling\" runs on the \"se3-shooting\" formulation only");
+  if (p.analysis == "buckling" && p.formulation == "quaternion-fd") {
+    // The quaternion-FD stiffness is the Hessian of a potential: conservative tip loads only.
+    if (p.loads.tip_force_frame == LoadFrame::kBody)
+      out.push_back(
+          "loads.tip_force_frame: \"body\" (a follower force) is not conservative; buckling on "
+          "the \"quaternion-fd\" formulation needs \"world\"");
+    if (p.loads.tip_moment_frame == LoadFrame::kBody)
+      out.push_back(
+          "loads.tip_moment_frame: \"body\" (a follower moment) is not conservative; buckling "
+          "on the \"quaternion-fd\" formulation needs \"world\"");
+  }
   if (p.has_robot) {
     check("robot.kind", p.robot.kind, {"tendon", "jamming", "eversion"});
     if (p.robot.kind == "eversion" && p.analysis != "statics")

@@ -57,6 +57,17 @@ void EversionRobotDesign::Validate() const {
   for (double d : {damping.bending, damping.torsion, damping.shear, damping.extension})
     if (!(Finite(d) && d >= 0)) Throw("damping", "coefficients must be finite and >= 0");
   if (!(Finite(max_length) && max_length > 0)) Throw("max_length", "must be finite and > 0 (m)");
+  if (!jamming.empty()) {
+    const JammingSection probe(
+        std::make_shared<InflatedTubeSection>(radius, wall_thickness, wall_modulus, poisson_ratio,
+                                              wall_density),
+        jamming);
+    if (!probe.IsValid(max_length, &why)) Throw("jamming", why);
+    for (std::size_t k = 0; k < jamming.size(); ++k)
+      for (const EversionBand& b : bands)
+        if (b.start < jamming[k].end && jamming[k].start < b.end)
+          Throw("jamming[" + std::to_string(k) + "]", "overlaps a band");
+  }
   if (!(base.R.allFinite() && base.p.allFinite() &&
         (base.R.transpose() * base.R - Mat3::Identity()).norm() < 1e-9 && base.R.determinant() > 0))
     Throw("base", "must be a finite pose with a proper rotation matrix");
@@ -116,13 +127,26 @@ void EversionRobot::SetPressure(double pressure) {
 Actuation EversionRobot::actuation() const {
   Actuation a;
   a.pressure = pressure_;
+  a.jamming_pressure = jamming_pressure_;
   return a;
+}
+
+void EversionRobot::SetJammingPressure(int k, double pressure) {
+  const std::string field = "jamming_pressure[" + std::to_string(k) + "]";
+  if (k < 0 || k >= static_cast<int>(design_.jamming.size()))
+    Throw(field, "no such jamming segment (the design has " +
+                     std::to_string(design_.jamming.size()) + ")");
+  if (!(Finite(pressure) && pressure >= 0)) Throw(field, "must be finite and >= 0 (Pa)");
+  if (pressure != jamming_pressure_[k]) solver_stale_ = true;
+  jamming_pressure_[k] = pressure;
 }
 
 int EversionRobot::NodesAt(double length) const {
   int bands = 0;
   for (const EversionBand& b : design_.bands)
     if (b.start < length * (1.0 - 1e-12)) ++bands;
+  for (const JammingSegment& j : design_.jamming)
+    if (j.start < length * (1.0 - 1e-12)) ++bands;  // its ends are nodes too
   const int base = std::max(options_.min_nodes,
                             static_cast<int>(std::ceil(length * options_.nodes_per_metre)) + 1);
   return base + 2 * bands;
@@ -160,6 +184,14 @@ RodModel EversionRobot::ModelAt(double length) const {
   RodModel model;
   model.length = length;
   model.section = profile;
+  std::vector<JammingSegment> jammed;  // the everted prefix of the (sorted) list keeps its indices
+  for (const JammingSegment& j : design_.jamming) {
+    if (!(j.start < length * (1.0 - 1e-12))) break;
+    JammingSegment c = j;
+    c.end = std::min(j.end, length);
+    jammed.push_back(c);
+  }
+  if (!jammed.empty()) model.section = std::make_shared<JammingSection>(profile, std::move(jammed));
   if (design_.pressure_load == PressureLoadModel::kClosedVessel && pressure_ > 0) {
     // The wall carries the tension p A(s) of the closed vessel: rest stretch p A / EA on top of
     // the straight rest strain, so the solver's wrench is the net wrench of wall and air.
@@ -332,7 +364,12 @@ KinkReport EversionRobot::CheckKink() const {
 }
 
 double EversionRobot::BendingStiffnessAt(double s) const {
-  return full_profile_->BendingStiffnessAt(s, actuation());
+  double EI = full_profile_->BendingStiffnessAt(s, actuation());
+  for (std::size_t k = 0; k < design_.jamming.size(); ++k) {
+    const JammingSegment& j = design_.jamming[k];
+    if (s >= j.start && s < j.end) EI += j.layer_modulus(jamming_pressure_[k]) * j.layer_I;
+  }
+  return EI;
 }
 
 double EversionRobot::AxialStiffness() const {

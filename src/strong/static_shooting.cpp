@@ -242,12 +242,33 @@ Mat6 TensionSource(const StaticShootingSolver::TendonStage& ts, const double* te
   return out;
 }
 
+// Rows of StateTangent: p (0–2), R e₀ (3–5), R e₁ (6–8), R e₂ (9–11), m (12–14), n (15–17).
+ShotTangent FromRows(const StaticShootingSolver::StateTangent& T) {
+  ShotTangent t;
+  t.p = T.middleRows<3>(0);
+  for (int j = 0; j < 3; ++j) t.R[j] = T.middleRows<3>(3 + 3 * j);
+  t.m = T.middleRows<3>(12);
+  t.n = T.middleRows<3>(15);
+  return t;
+}
+
+StaticShootingSolver::StateTangent ToRows(const ShotTangent& t) {
+  StaticShootingSolver::StateTangent T;
+  T.middleRows<3>(0) = t.p;
+  for (int j = 0; j < 3; ++j) T.middleRows<3>(3 + 3 * j) = t.R[j];
+  T.middleRows<3>(12) = t.m;
+  T.middleRows<3>(15) = t.n;
+  return T;
+}
+
 // For other boundary conditions (ShootTangent): the tangent's start value instead of the
-// unknowns' directions, and where to write it at every node and at the tip.
+// unknowns' directions, and where to write it at every node and at the tip. node_rows: the same
+// node tangents in the public row layout (an array sized to the grid), for the stability check.
 struct TangentSeed {
   const ShotTangent* start = nullptr;
   std::vector<ShotTangent>* nodes = nullptr;  // sized to the grid
   ShotTangent* tip = nullptr;
+  StaticShootingSolver::StateTangent* node_rows = nullptr;
 };
 
 Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, const Vec6& scale,
@@ -312,6 +333,7 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
     const ShotState k4 = derivative(q1, f1, y4, &xi4, &H4);
     if (J) {
       if (seed && seed->nodes) (*seed->nodes)[i] = dy;
+      if (seed && seed->node_rows) seed->node_rows[i] = ToRows(dy);
       const Mat6* h1 = tc ? &H1 : nullptr;
       const Mat6* h2 = tc ? &H2 : nullptr;
       const Mat6* h3 = tc ? &H3 : nullptr;
@@ -359,6 +381,7 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
 
   if (J && seed) {
     if (seed->nodes) seed->nodes->back() = dy;
+    if (seed->node_rows) seed->node_rows[n - 1] = ToRows(dy);
     if (seed->tip) *seed->tip = dy;
   }
   if (J) {
@@ -401,6 +424,9 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
   state_.Resize(n);
   for (int i = 0; i < n; ++i) state_.s[i] = grid_[i];
+  kept_record_.Resize(n);
+  for (int i = 0; i < n; ++i) kept_record_.s[i] = grid_[i];
+  kept_tangents_.assign(n, StateTangent::Zero());
 
   // Rest shape in the base body frame (zero wrench, no tendon tension), for the rigid-body
   // initial guess.
@@ -464,6 +490,24 @@ Mat6 StaticShootingSolver::ResidualJacobian(const lie::SE3& base, const StaticLo
   return J;
 }
 
+Mat6 StaticShootingSolver::ResidualJacobianKeepingTangents(const lie::SE3& base,
+                                                           const StaticLoads& loads,
+                                                           const Vec6& x, Vec6* residual) {
+  Mat6 J;
+  std::array<double, Actuation::kMaxTendons> lengths{};
+  const TendonContext tc{&tendon_stages_, actuation_.tendon_tension.data(), lengths.data()};
+  TangentSeed seed;
+  seed.node_rows = kept_tangents_.data();
+  const Vec6 r = Shoot(grid_, samples_, scale_, base, loads, x, &kept_record_, &J,
+                       tendon_stages_.empty() ? nullptr : &tc, &seed);
+  kept_x_ = x;
+  kept_base_ = base;
+  kept_loads_ = loads;
+  has_kept_ = true;
+  if (residual) *residual = r;
+  return J;
+}
+
 bool StaticShootingSolver::TipJacobianWrtTensions(const lie::SE3& base, const StaticLoads& loads,
                                                   TensionJacobian* J) const {
   const int count = static_cast<int>(model_.tendons.size());
@@ -505,29 +549,6 @@ bool StaticShootingSolver::TipJacobianWrtTensions(const lie::SE3& base, const St
   return J->allFinite();
 }
 
-namespace {
-
-// Rows of StateTangent: p (0–2), R e₀ (3–5), R e₁ (6–8), R e₂ (9–11), m (12–14), n (15–17).
-ShotTangent FromRows(const StaticShootingSolver::StateTangent& T) {
-  ShotTangent t;
-  t.p = T.middleRows<3>(0);
-  for (int j = 0; j < 3; ++j) t.R[j] = T.middleRows<3>(3 + 3 * j);
-  t.m = T.middleRows<3>(12);
-  t.n = T.middleRows<3>(15);
-  return t;
-}
-
-StaticShootingSolver::StateTangent ToRows(const ShotTangent& t) {
-  StaticShootingSolver::StateTangent T;
-  T.middleRows<3>(0) = t.p;
-  for (int j = 0; j < 3; ++j) T.middleRows<3>(3 + 3 * j) = t.R[j];
-  T.middleRows<3>(12) = t.m;
-  T.middleRows<3>(15) = t.n;
-  return T;
-}
-
-}  // namespace
-
 StaticShootingSolver::StateTangent StaticShootingSolver::ShootTangent(
     const lie::SE3& base, const StaticLoads& loads, const Vec6& base_wrench_B,
     const StateTangent& start, RodState* record, std::vector<StateTangent>* node_tangents) const {
@@ -550,6 +571,65 @@ StaticShootingSolver::StateTangent StaticShootingSolver::ShootTangent(
     for (size_t i = 0; i < nodes.size(); ++i) (*node_tangents)[i] = ToRows(nodes[i]);
   }
   return ToRows(tip_t);
+}
+
+namespace {
+bool SameLoads(const StaticLoads& a, const StaticLoads& b) {
+  return a.gravity_W == b.gravity_W && a.distributed_force_W == b.distributed_force_W &&
+         a.tip_force == b.tip_force && a.tip_moment == b.tip_moment &&
+         a.tip_force_frame == b.tip_force_frame && a.tip_moment_frame == b.tip_moment_frame;
+}
+}  // namespace
+
+int StaticShootingSolver::IndexAfterSolve(const lie::SE3& base, const StaticLoads& loads,
+                                          const Vec6& x) const {
+  // Levenberg–Marquardt's last Jacobian shot is at its solution: its node states and tangents
+  // are the Jacobi fields the count needs, with no shot of its own.
+  if (has_kept_ && kept_x_ == x && kept_base_.R == base.R && kept_base_.p == base.p &&
+      SameLoads(kept_loads_, loads))
+    return StabilityIndexFromShot(loads, kept_record_, kept_tangents_);
+  return StabilityIndex(base, loads, scale_.cwiseProduct(x));
+}
+
+bool StaticShootingSolver::FollowStablePath(const lie::SE3& base, const StaticLoads& loads,
+                                            double max_fraction, Vec6* x_out,
+                                            StaticShootingSummary* summary) {
+  // Natural-parameter continuation from the unloaded rod (W ≡ 0: stable, the energy is a
+  // positive definite quadratic about the rest shape) along loads(μ) = μ · loads, with a secant
+  // predictor; a step is accepted only if it converges on an equilibrium without unstable
+  // directions, otherwise halved. Along an imperfect path (no bifurcation) the stable branch is
+  // connected to μ = 0, and small enough steps follow it through its sharp turn near P_cr.
+  const StaticLoads zero = loads.Scaled(0.0);
+  Vec6 x_a = Vec6::Zero(), x_prev = Vec6::Zero();
+  double mu = 0.0, mu_prev = 0.0, dmu = max_fraction;
+  int steps = 0;
+  while (summary->load_steps + steps < options_.max_load_steps) {
+    const double mu_try = std::min(1.0, mu + dmu);
+    const StaticLoads target = mu_try == 1.0 ? loads : StaticLoads::Blend(zero, loads, mu_try);
+    Vec6 guess = x_a;
+    if (mu > mu_prev) guess += (x_a - x_prev) * ((mu_try - mu) / (mu - mu_prev));
+    ++steps;
+    const double tol =
+        mu_try == 1.0 ? options_.tolerance : std::max(options_.tolerance, kIntermediateTolerance);
+    if (TryLevenbergMarquardt(base, target, tol, &guess, summary) &&
+        IndexAfterSolve(base, target, guess) == 0) {
+      x_prev = x_a;
+      mu_prev = mu;
+      x_a = guess;
+      mu = mu_try;
+      if (mu == 1.0) {
+        *x_out = x_a;
+        summary->stable_path_steps = steps;
+        return true;
+      }
+      dmu = std::min({2.0 * dmu, max_fraction, 1.0 - mu});
+    } else {
+      dmu *= 0.5;
+      if (dmu < options_.min_load_step) break;
+    }
+  }
+  summary->stable_path_steps = steps;
+  return false;
 }
 
 Vec6 StaticShootingSolver::base_wrench_B() const { return scale_.cwiseProduct(x_); }
@@ -599,7 +679,7 @@ struct ShootingCost {
     if (J_ptr) {
       Eigen::Map<Mat6> J(J_ptr);
       Vec6 r_value;
-      J = solver->ResidualJacobian(*base, *loads, x, &r_value);
+      J = solver->ResidualJacobianKeepingTangents(*base, *loads, x, &r_value);
       r = r_value;
       *last_jacobian = J;
     } else {
@@ -717,10 +797,12 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
   Vec6 x = x_start;
   bool ok = false;
   bool state_current = false;
+  bool via_quasi_newton = false;
   if (max_fraction == 1.0) {
     if (from_previous && has_jacobian_ && options_.reuse_jacobian) {
       ok = TryQuasiNewton(base, loads, &x, &summary);
       state_current = ok;
+      via_quasi_newton = ok;
     }
     if (!ok) {
       x = from_previous ? x_ : RigidGuess(base, loads);
@@ -765,6 +847,29 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
     if (!ok && summary.status != SolveStatus::kNonFinite)
       summary.status =
           options_.load_stepping ? SolveStatus::kLoadSteppingFailed : SolveStatus::kMaxIterations;
+  }
+
+  // Stability (options_.stable_branch): a Newton-type solve converges to whichever equilibrium
+  // is nearest its start, and past a critical load the nearest one can be unstable (a column at
+  // 1.15 P_cr with a small imperfection: the near-straight state beside the start, deflected
+  // against the imperfection). Step control on the size of the correction does not see this —
+  // the unstable root is the one near the predictor — so the converged equilibrium is checked
+  // instead, from Levenberg–Marquardt's last Jacobian shot (taken at the solution). A
+  // quasi-Newton warm re-solve is not checked: it continues the previous solution by steps that
+  // halve the residual, and takes no tangent shot (17 µs; a check would add one, ≈ 53 µs).
+  if (ok && options_.stable_branch && !via_quasi_newton) {
+    summary.stability_index = IndexAfterSolve(base, loads, x);
+    if (summary.stability_index > 0) {
+      Vec6 x_stable = x;
+      const Mat6 J_first = jacobian_;  // d r/d x at x, for the next warm start if we keep x
+      if (FollowStablePath(base, loads, max_fraction, &x_stable, &summary)) {
+        x = x_stable;
+        summary.stability_index = 0;
+      } else {
+        jacobian_ = J_first;
+      }
+      state_current = false;
+    }
   }
 
   if (!state_current) {

@@ -142,6 +142,11 @@ get_filename_component(_cli_buckling "${CMAKE_CURRENT_LIST_DIR}/../../examples/b
 cosserat_cli_test(NAME solve_buckling_column ARGS solve "${_cli_buckling}" CODE 0
                   STDOUT "\"critical_load\": 6\\.201[0-9]*,[^}]*\"mode_s_max\": 0\\.25,"
                   STDERR "buckling found \\(pinned-pinned\\), critical tip_force 6\\.201")
+# The same analysis on the quaternion-FD formulation: Euler's cantilever, pi^2 EI/(4 L^2) =
+# 1.5503 N, 1.6e-4 lower at 40 segments (second order, test_quatfd_buckling.cpp).
+cosserat_cli_test(NAME solve_buckling_quatfd ARGS solve "${_cli_dir}/buckling_quatfd.json" CODE 0
+                  STDOUT "\"critical_load\": 1\\.550[0-9]*,"
+                  STDERR "buckling found \\(cantilever, quaternion-fd\\), critical tip_force 1\\.550")
 cosserat_cli_test(NAME solve_buckling_banded ARGS solve "${_cli_dir}/buckling_cantilever_banded.json"
                   CODE 0 STDOUT "\"mode_s_max\": 0\\.3[0-4,]"
                   STDERR "buckling found \\(cantilever\\)")

@@ -21,9 +21,10 @@ struct BendRadiusResult {
   double min_radius = 0.0;   ///< smallest radius of curvature 1/|κ⊥| on the body at the limit, m
   double s = 0.0;            ///< where it occurs (material arc length from the base), m
   double load_factor = 0.0;  ///< λ at the limit (1: the whole actuation load)
-  std::string limit;         ///< "actuation", "kink" or "no_convergence"
+  std::string limit;         ///< "actuation", "kink", "angle" or "no_convergence"
+  double kink_ratio = 0.0;   ///< max over s of |m⊥|/M_w(s) at the limit (>= 1: kinked)
   int solves = 0;
-  bool ok() const { return limit == "actuation" || limit == "kink"; }
+  bool ok() const { return limit == "actuation" || limit == "kink" || limit == "angle"; }
 };
 
 /// Grows `actuation` (a load pattern: tip force or moment, any frame, or a distributed force) from
@@ -31,5 +32,18 @@ struct BendRadiusResult {
 /// pressure, then refines the kink onset if one occurs. The robot ends at the limit state.
 BendRadiusResult MinimumBendRadius(EversionRobot& robot, const StaticLoads& fixed,
                                    const StaticLoads& actuation, int steps = 20);
+
+/// The minimum bend radius when the actuation turns the tip by `angle` (rad, in (0, π)) from the
+/// base direction: λ is found by regula falsi (Illinois) on the angle between the tip and base
+/// tangents to 1e-10 rad, on top of `fixed`. limit "angle" (kink_ratio says whether the tube has
+/// kinked on the way: a design comparison, not a limit here) or "no_convergence". This is the
+/// comparison where layer jamming matters (seed 003, Do et al. 2023): at a given moment a section's
+/// radius is EI/M whatever the rest of the body does, but a given turn made with stiff (jammed)
+/// segments concentrates in the compliant ones. Under a pure tip moment the turn is
+/// θ = M ∫ ds/EI, so with a fraction f of the length jammed to α times the tube's EI the compliant
+/// radius is (1 − f + f/α) L/θ: between (1 − f) L/θ (rigid jamming) and L/θ (none), reached with
+/// 1/(1 − f + f/α) times the moment. Throws invalid_argument "angle: ..." outside (0, π).
+BendRadiusResult BendRadiusAtTipAngle(EversionRobot& robot, const StaticLoads& fixed,
+                                      const StaticLoads& actuation, double angle);
 
 }  // namespace cosserat

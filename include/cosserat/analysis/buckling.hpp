@@ -19,20 +19,31 @@
 
 namespace cosserat {
 
-/// loads(λ) = fixed + λ · per_unit, tendon tensions(λ) = fixed_actuation + λ · tension_per_unit.
+/// loads(λ) = fixed + λ · per_unit, tendon tensions(λ) = fixed_actuation + λ · tension_per_unit,
+/// inflation pressure(λ) = fixed_actuation.pressure + λ · pressure_per_unit.
 /// λ carries the unit of the load: N for a tip force of unit direction, N/m for a distributed
-/// force, m/s² for gravity, N for tendon tension.
+/// force, m/s² for gravity, N for tendon tension, Pa for pressure.
 struct LoadPath {
   StaticLoads fixed;     ///< applied whatever λ; its tip-load frames must match per_unit's
   StaticLoads per_unit;  ///< the load per unit λ
   Actuation fixed_actuation;
   std::array<double, Actuation::kMaxTendons> tension_per_unit{};  ///< N per unit λ
+  /// Pa per unit λ. Pressure acts through the section (PressureModulusSection, InflatedTube-
+  /// Section: EI = E_eff(p) I), not as a load: raising it stiffens. A negative value follows a
+  /// pressure drop (PressureDrop), along which a column under a fixed load loses stability.
+  double pressure_per_unit = 0.0;
 
   /// A tip force λ · direction (normalised): dead (kWorld) or a follower (kBody).
   static LoadPath TipForce(const Vec3& direction, LoadFrame frame = LoadFrame::kWorld);
+  /// The inflation pressure falls from `initial_pressure` (Pa) as p(λ) = initial_pressure − λ
+  /// (λ in Pa) under the fixed `loads` (e.g. a dead axial tip force). The critical λ gives the
+  /// lowest pressure at which the column still stands: p_cr = initial_pressure − λ_cr. Search up
+  /// to lambda_max ≤ initial_pressure (pressure ≥ 0).
+  static LoadPath PressureDrop(double initial_pressure, const StaticLoads& loads);
   StaticLoads LoadsAt(double lambda) const;
   Actuation ActuationAt(double lambda) const;
-  bool has_tension() const;
+  /// True if λ changes the actuation (tendon tensions or pressure), not only the loads.
+  bool has_actuation() const;
 };
 
 struct BucklingOptions {

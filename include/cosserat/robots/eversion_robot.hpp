@@ -35,6 +35,7 @@
 /// Units SI; pressures gauge, Pa. Errors in the design or arguments throw std::invalid_argument
 /// whose message starts with the name of the offending field.
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -71,6 +72,12 @@ struct EversionRobotDesign {
   double wall_density = 920.0;  ///< kg/m³ (LDPE ≈ 920); the air inside is taken as buoyancy-neutral
   KelvinVoigtDamping damping;       ///< for dynamics; unused in statics
   std::vector<EversionBand> bands;  ///< material coordinates, within [0, max_length], no overlap
+  /// Layer-jamming segments (Do et al. 2023, seed 003): EI = EI_tube + E_ℓ(ΔP_k) I_ℓ in segment k,
+  /// ΔP_k set by EversionRobot::SetJammingPressure (0: compliant). Material coordinates, sorted by
+  /// start, within [0, max_length], no overlap, at most Actuation::kMaxSegments; not combined
+  /// with a band on the same stretch of tube. The wrinkling (kink) moment stays the tube's: the
+  /// stack's own resistance to wrinkling is not modelled (conservative).
+  std::vector<JammingSegment> jamming;
   double max_length = 0.0;          ///< stored tube: the body can evert up to this length, m
   lie::SE3 base;                    ///< pose of the base clamp (s = 0) in the world
   PressureLoadModel pressure_load = PressureLoadModel::kClosedVessel;
@@ -172,13 +179,17 @@ class EversionRobot {
   /// adds nothing (the pressure is in the rest strain). Throws "loads.tip_force: ..." for a
   /// world-frame external tip force with kTipFollowerOnly.
   StaticLoads SolverLoads(const StaticLoads& external, double length) const;
-  /// Actuation with the current pressure (what the profile reads).
+  /// Actuation with the current pressure and jamming pressures (what the profile reads).
   Actuation actuation() const;
+  /// Jamming pressure difference ΔP (Pa, >= 0) of design().jamming[k]. Throws invalid_argument
+  /// "jamming_pressure[k]: ..." for a k outside the list or a negative or non-finite ΔP. The
+  /// next Solve rebuilds the solver and warm-starts from the last solution.
+  void SetJammingPressure(int k, double pressure);
   /// The profile of the whole stored tube [0, max_length] (all bands), at any pressure.
   const InflatedTubeSection& full_profile() const { return *full_profile_; }
 
   double RadiusAt(double s) const { return full_profile_->RadiusAt(s); }  ///< m
-  /// E_eff(p) I α at s, N·m².
+  /// E_eff(p) I α at s, plus E_ℓ(ΔP) I_ℓ in a jamming segment, N·m².
   double BendingStiffnessAt(double s) const;
   /// Axial stiffness E_eff(p) · 2π r t, N.
   double AxialStiffness() const;
@@ -213,6 +224,7 @@ class EversionRobot {
   std::shared_ptr<const InflatedTubeSection> full_profile_;
   double length_ = 0.0;
   double pressure_ = 0.0;
+  std::array<double, Actuation::kMaxSegments> jamming_pressure_{};  ///< ΔP of each segment, Pa
   std::unique_ptr<StaticShootingSolver> solver_;
   double solver_length_ = -1.0;
   bool solver_stale_ = true;

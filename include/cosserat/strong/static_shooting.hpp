@@ -46,6 +46,12 @@ struct StaticShootingOptions {
   double min_load_step = 1.0 / 4096.0;
   /// Hard cap on load steps (successful and failed) in one Solve.
   int max_load_steps = 400;
+  /// Land on a stable equilibrium. When a solve that did not come from a quasi-Newton warm
+  /// re-solve converges, count its unstable directions (StabilityIndex); if there are any, follow
+  /// the load path again from the unloaded rod, rejecting (and halving) every load step that lands
+  /// on an unstable equilibrium. If no stable path is found, the first (unstable) equilibrium is
+  /// returned, converged, with its stability_index > 0. Costs one tangent shot per checked solve.
+  bool stable_branch = true;
 
   bool IsValid(std::string* why) const;
 };
@@ -58,6 +64,11 @@ struct StaticShootingSummary {
   double residual = 0;  ///< final dimensionless residual norm
   double wall_time_s = 0;
   bool warm_started = false;
+  /// Unstable directions of the returned equilibrium (StabilityIndex): 0 stable, > 0 unstable,
+  /// −1 not checked (a quasi-Newton warm re-solve, stable_branch off, follower loads, no
+  /// convergence).
+  int stability_index = -1;
+  int stable_path_steps = 0;  ///< load steps of the stable path search (0: not needed)
   bool converged() const { return status == SolveStatus::kConverged; }
 };
 
@@ -123,6 +134,16 @@ class StaticShootingSolver {
                             const Vec6& base_wrench_B, const StateTangent& start, RodState* record,
                             std::vector<StateTangent>* node_tangents = nullptr) const;
 
+  /// The number of unstable directions of the equilibrium with base wrench W(0) = base_wrench_B
+  /// (base body frame, N·m; N) under (base, loads): the Morse index of the second variation of
+  /// the potential energy, by a Sturm count of the Jacobi fields along s (conjugate points in
+  /// (0, L) plus the negative eigenvalues of the tip stiffness; src/strong/static_stability.cpp).
+  /// 0: stable. Counts double roots (a circular rod buckling in two planes) twice. −1 where it is
+  /// not defined: follower (body-frame) tip loads, which are not conservative. One tangent shot
+  /// plus a 6 × 6 symmetric eigenvalue problem per node; allocates.
+  int StabilityIndex(const lie::SE3& base, const StaticLoads& loads,
+                     const Vec6& base_wrench_B) const;
+
   const RodState& state() const { return state_; }
   int tendon_count() const { return static_cast<int>(model_.tendons.size()); }
   double length() const { return model_.length; }
@@ -151,6 +172,10 @@ class StaticShootingSolver {
   /// propagated through RK4 alongside the state). Optionally also the residual.
   Mat6 ResidualJacobian(const lie::SE3& base, const StaticLoads& loads, const Vec6& x,
                         Vec6* residual = nullptr) const;
+  /// The same, keeping the shot's node states and tangents: the Levenberg–Marquardt iterations
+  /// use it, so the stability check at their solution needs no shot of its own.
+  Mat6 ResidualJacobianKeepingTangents(const lie::SE3& base, const StaticLoads& loads,
+                                       const Vec6& x, Vec6* residual = nullptr);
 
  private:
   bool TryQuasiNewton(const lie::SE3& base, const StaticLoads& loads, Vec6* x,
@@ -158,6 +183,13 @@ class StaticShootingSolver {
   bool TryLevenbergMarquardt(const lie::SE3& base, const StaticLoads& loads, double tolerance,
                              Vec6* x, StaticShootingSummary* summary);
   Vec6 RigidGuess(const lie::SE3& base, const StaticLoads& loads) const;
+  bool FollowStablePath(const lie::SE3& base, const StaticLoads& loads, double max_fraction,
+                        Vec6* x, StaticShootingSummary* summary);
+  /// StabilityIndex at the unknown x just solved for: from the kept Jacobian shot when it was
+  /// taken at x under (base, loads), else with a shot of its own.
+  int IndexAfterSolve(const lie::SE3& base, const StaticLoads& loads, const Vec6& x) const;
+  int StabilityIndexFromShot(const StaticLoads& loads, const RodState& record,
+                             const std::vector<StateTangent>& nodes) const;
   void SampleSections();
 
   RodModel model_;
@@ -179,6 +211,13 @@ class StaticShootingSolver {
   StaticLoads solved_loads_;
   Mat6 jacobian_ = Mat6::Identity();  ///< d r / d x at the last solution
   bool has_jacobian_ = false;
+  // The last ResidualJacobianKeepingTangents shot: at kept_x_ under kept_base_, kept_loads_.
+  RodState kept_record_;
+  std::vector<StateTangent> kept_tangents_;
+  Vec6 kept_x_ = Vec6::Zero();
+  lie::SE3 kept_base_;
+  StaticLoads kept_loads_;
+  bool has_kept_ = false;
 };
 
 }  // namespace cosserat

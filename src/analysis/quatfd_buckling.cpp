@@ -1,0 +1,275 @@
+#include "cosserat/analysis/quatfd_buckling.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace cosserat {
+
+namespace {
+
+using Layout = quatfd::QuatFdLayout;
+
+bool IsFollower(const StaticLoads& loads) {
+  return (loads.tip_force_frame == LoadFrame::kBody && loads.tip_force.any()) ||
+         (loads.tip_moment_frame == LoadFrame::kBody && loads.tip_moment.any());
+}
+
+}  // namespace
+
+bool QuatFdBucklingOptions::IsValid(std::string* why) const {
+  auto fail = [&](const char* msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  if (!(std::isfinite(lambda_max) && lambda_max > 0)) return fail("lambda_max: expected > 0");
+  if (scan_steps < 2) return fail("scan_steps: expected at least 2");
+  if (!(lambda_tolerance > 0 && lambda_tolerance < 0.1))
+    return fail("lambda_tolerance: expected in (0, 0.1)");
+  if (!(fd_step > 0 && fd_step <= 1e-2)) return fail("fd_step: expected in (0, 1e-2]");
+  return statics.IsValid(why);
+}
+
+QuatFdBuckling::QuatFdBuckling(const RodModel& rod, const lie::SE3& base, const LoadPath& path,
+                               const quatfd::QuatFdOptions& model_options,
+                               const QuatFdBucklingOptions& options)
+    : model_(rod, base, model_options, path.fixed_actuation), path_(path), options_(options) {
+  std::string why;
+  if (!options_.IsValid(&why)) throw std::invalid_argument("QuatFdBucklingOptions: " + why);
+  if (model_options.base_end != quatfd::EndCondition::kClamped)
+    throw std::invalid_argument(
+        "base_end: quaternion-FD buckling needs a clamped base (the model's tip is free, and a "
+        "pinned-free rod is a mechanism)");
+  const StaticLoads probe = path_.LoadsAt(1.0);
+  if (IsFollower(probe) || IsFollower(path_.fixed))
+    throw std::invalid_argument(
+        std::string(probe.tip_force_frame == LoadFrame::kBody ? "tip_force_frame"
+                                                              : "tip_moment_frame") +
+        ": follower (body-frame) tip loads are not conservative; the static stiffness says "
+        "nothing about their stability (flutter)");
+  if (path_.has_actuation())
+    throw std::invalid_argument(
+        "load path: tendon tension and pressure paths are not supported on the quaternion-FD "
+        "model (use the SE(3) shooting analysis)");
+  const int N = model_.layout().segments;
+  for (int n = 0; n <= N; ++n)
+    if (!model_.IsFixed(Layout::X(n))) free_vertices_.push_back(n);
+  zero_v_ = Eigen::VectorXd::Zero(model_.size());
+  forces_plus_.resize(model_.size());
+  forces_minus_.resize(model_.size());
+  q_.resize(model_.size());
+  Eigen::VectorXd v(model_.size());
+  model_.RestState(q_, v);
+}
+
+bool QuatFdBuckling::SolveAt(double lambda, const Eigen::VectorXd& start, Eigen::VectorXd* q) {
+  *q = start;
+  ++solves_;
+  return quatfd::SolveStatics(&model_, path_.LoadsAt(lambda), *q, options_.statics).converged();
+}
+
+Eigen::MatrixXd QuatFdBuckling::StiffnessFiniteDifference(const Eigen::VectorXd& q) {
+  const int N = model_.layout().segments;
+  const int nv = static_cast<int>(free_vertices_.size());
+  const int m = 3 * nv + 3 * N;
+  const double L = model_.length(), h = options_.fd_step;
+  // G' = [L F(free vertices); τ(segments)], paired with [δx/L; δθ].
+  auto gather = [&](const Eigen::VectorXd& f, Eigen::Ref<Eigen::VectorXd> g) {
+    for (int a = 0; a < nv; ++a) g.segment<3>(3 * a) = L * f.segment<3>(Layout::X(free_vertices_[a]));
+    for (int s = 0; s < N; ++s) g.segment<3>(3 * nv + 3 * s) = f.segment<3>(Layout::P(s) + 1);
+  };
+  // The retraction of q along tangent coordinate j by t.
+  Eigen::VectorXd qt(q.size());
+  auto retract = [&](int j, double t) {
+    qt = q;
+    if (j < 3 * nv) {
+      qt[Layout::X(free_vertices_[j / 3]) + j % 3] += t * L;
+    } else {
+      const int s = (j - 3 * nv) / 3, k = (j - 3 * nv) % 3;
+      Vec4 d(std::cos(0.5 * t), 0, 0, 0);
+      d[1 + k] = std::sin(0.5 * t);
+      const Vec4 p = q.segment<4>(Layout::P(s));
+      qt.segment<4>(Layout::P(s)) = quatfd::kernels::QMul<double>(p, d);
+    }
+  };
+  Eigen::MatrixXd H(m, m);
+  Eigen::VectorXd gp(m), gm(m);
+  for (int j = 0; j < m; ++j) {
+    retract(j, h);
+    model_.Forces(qt, zero_v_, forces_plus_);
+    retract(j, -h);
+    model_.Forces(qt, zero_v_, forces_minus_);
+    gather(forces_plus_, gp);
+    gather(forces_minus_, gm);
+    H.col(j) = -(gp - gm) / (2 * h * model_.moment_scale());
+  }
+  return H;
+}
+
+Eigen::MatrixXd QuatFdBuckling::StiffnessAnalytic(const Eigen::VectorXd& q) {
+  const int N = model_.layout().segments;
+  const int nv = static_cast<int>(free_vertices_.size());
+  const int m = 3 * nv + 3 * N;
+  const double L = model_.length();
+  model_.Jacobian(q, zero_v_, 0.0, 0.0, &dfdq_, &dfdv_, nullptr);
+  const Eigen::MatrixXd A = dfdq_.ToDense();
+  // Columns: ∂f/∂q along each tangent direction (δx = L e_k; δp = ½ p ⊗ [0, e_k]).
+  Eigen::MatrixXd AT(model_.size(), m);
+  for (int a = 0; a < nv; ++a)
+    for (int k = 0; k < 3; ++k) AT.col(3 * a + k) = L * A.col(Layout::X(free_vertices_[a]) + k);
+  for (int s = 0; s < N; ++s) {
+    const Vec4 p = q.segment<4>(Layout::P(s));
+    for (int k = 0; k < 3; ++k) {
+      Vec4 e = Vec4::Zero();
+      e[1 + k] = 1.0;
+      const Vec4 dp = 0.5 * quatfd::kernels::QMul<double>(p, e);
+      AT.col(3 * nv + 3 * s + k) = A.middleCols<4>(Layout::P(s)) * dp;
+    }
+  }
+  // Rows: forces = m ∂f_x (times L for the δx/L pairing), torques = 2 J Im(p̄ ⊗ ∂f_p).
+  Eigen::MatrixXd H(m, m);
+  const std::vector<double>& mass = model_.vertex_mass();
+  for (int a = 0; a < nv; ++a)
+    H.middleRows<3>(3 * a) = L * mass[free_vertices_[a]] * AT.middleRows<3>(Layout::X(free_vertices_[a]));
+  for (int s = 0; s < N; ++s) {
+    const Vec4 p = q.segment<4>(Layout::P(s)) / q.segment<4>(Layout::P(s)).squaredNorm();
+    const Vec3& J = model_.segment_inertia(s);
+    for (int j = 0; j < m; ++j) {
+      const Vec4 dfp = AT.col(j).segment<4>(Layout::P(s));
+      const Vec3 w = 2.0 * quatfd::kernels::ImConjMul<double>(p, dfp);
+      H.block<3, 1>(3 * nv + 3 * s, j) = J.cwiseProduct(w);
+    }
+  }
+  return -H / model_.moment_scale();
+}
+
+Eigen::MatrixXd QuatFdBuckling::Stiffness(double lambda, const Eigen::VectorXd& q,
+                                          bool finite_difference) {
+  model_.set_loads(path_.LoadsAt(lambda));
+  return finite_difference ? StiffnessFiniteDifference(q) : StiffnessAnalytic(q);
+}
+
+Eigen::VectorXd QuatFdBuckling::StiffnessEigenvalues(double lambda, const Eigen::VectorXd& q,
+                                                     Eigen::MatrixXd* vectors) {
+  const Eigen::MatrixXd H = Stiffness(lambda, q, options_.finite_difference_stiffness);
+  const double size = H.cwiseAbs().maxCoeff();
+  asymmetry_ = size > 0 ? (H - H.transpose()).cwiseAbs().maxCoeff() / size : 0.0;
+  const Eigen::MatrixXd Hs = 0.5 * (H + H.transpose());
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(
+      Hs, vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+  if (vectors) *vectors = eig.eigenvectors();
+  return eig.eigenvalues();
+}
+
+QuatFdBucklingSummary QuatFdBuckling::FindCriticalLoad() {
+  const auto t0 = std::chrono::steady_clock::now();
+  QuatFdBucklingSummary out;
+  solves_ = 0;
+  auto finish = [&](BucklingStatus status) {
+    out.status = status;
+    out.solves = solves_;
+    out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+  };
+  Eigen::VectorXd v(model_.size()), q_lo(model_.size()), q_try(model_.size());
+  model_.RestState(q_lo, v);
+  if (!SolveAt(0.0, q_lo, &q_lo)) {
+    q_ = q_lo;
+    return finish(BucklingStatus::kPathFailed);
+  }
+  double lo = 0.0, mu_lo = StiffnessEigenvalues(0.0, q_lo)(0);
+  out.scan_lambda.push_back(lo);
+  out.scan_min_eigenvalue.push_back(mu_lo);
+  const double h_nominal = options_.lambda_max / options_.scan_steps;
+  double h = h_nominal, hi = NAN, mu_hi = NAN;
+  int halvings = 0, multiplicity = 0;
+  const double mu0 = mu_lo;
+  auto near_zero = [&](const Eigen::VectorXd& e) {
+    return static_cast<int>((e.array().abs() < 1e-4 * std::abs(mu0)).count());
+  };
+  while (lo < options_.lambda_max) {
+    const double lambda = std::min(options_.lambda_max, lo + h);
+    if (!SolveAt(lambda, q_lo, &q_try)) {
+      if (++halvings > 10) {
+        q_ = q_lo;
+        out.lambda_reached = lo;
+        return finish(BucklingStatus::kPathFailed);
+      }
+      h *= 0.5;
+      continue;
+    }
+    const Eigen::VectorXd e = StiffnessEigenvalues(lambda, q_try);
+    out.scan_lambda.push_back(lambda);
+    out.scan_min_eigenvalue.push_back(e(0));
+    if (e(0) <= 0) {
+      hi = lambda;
+      mu_hi = e(0);
+      multiplicity = near_zero(e);
+      break;
+    }
+    lo = lambda;
+    mu_lo = e(0);
+    q_lo = q_try;
+    h = std::min(h_nominal, 2 * h);
+  }
+  out.lambda_reached = lo;
+  if (std::isnan(hi)) {
+    q_ = q_lo;
+    return finish(BucklingStatus::kNotFound);
+  }
+  // Illinois regula falsi on μ(λ), from the stable side (every solve starts at the last stable
+  // equilibrium, so it stays on the pre-buckled branch).
+  int side = 0;
+  for (int it = 0; it < 100 && hi - lo > options_.lambda_tolerance * hi; ++it) {
+    double c = (lo * mu_hi - hi * mu_lo) / (mu_hi - mu_lo);
+    if (!(c > lo && c < hi)) c = 0.5 * (lo + hi);
+    if (!SolveAt(c, q_lo, &q_try)) {
+      c = 0.5 * (lo + hi);
+      if (!SolveAt(c, q_lo, &q_try)) break;
+    }
+    const Eigen::VectorXd e = StiffnessEigenvalues(c, q_try);
+    if (e(0) > 0) {
+      lo = c;
+      mu_lo = e(0);
+      q_lo = q_try;
+      if (side == 1) mu_hi *= 0.5;
+      side = 1;
+    } else {
+      hi = c;
+      mu_hi = e(0);
+      multiplicity = near_zero(e);
+      if (side == -1) mu_lo *= 0.5;
+      side = -1;
+    }
+  }
+  q_ = q_lo;
+  {
+    // The mode: where its curvature change is largest.
+    Eigen::MatrixXd V;
+    StiffnessEigenvalues(lo, q_lo, &V);
+    const int N = model_.layout().segments;
+    const int nv = static_cast<int>(free_vertices_.size());
+    const std::vector<double>& s = model_.grid();
+    auto theta = [&](int seg) { return Vec3(V.col(0).segment<3>(3 * nv + 3 * seg)); };
+    double best = -1;
+    for (int n = 0; n < N; ++n) {  // the free tip carries no bending element
+      const double mid_b = 0.5 * (s[n] + s[n + 1]);
+      const double mid_a = n == 0 ? 0.0 : 0.5 * (s[n - 1] + s[n]);
+      const Vec3 dK = (theta(n) - (n == 0 ? Vec3::Zero() : theta(n - 1))) / (mid_b - mid_a);
+      const double k = dK.head<2>().norm();
+      if (k > best * (1 + 1e-9)) {
+        best = k;
+        out.mode_s_max = s[n];
+      }
+    }
+  }
+  out.critical_load = mu_lo == mu_hi ? lo : (lo * mu_hi - hi * mu_lo) / (mu_hi - mu_lo);
+  out.critical_load = std::clamp(out.critical_load, lo, hi);
+  out.lambda_reached = lo;
+  out.multiplicity = multiplicity;
+  return finish(BucklingStatus::kFound);
+}
+
+}  // namespace cosserat
