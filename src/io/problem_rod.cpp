@@ -554,8 +554,9 @@ std::optional<ProfilePtr> ParseInflated(const ObjectReader& p, const ProfileBase
                                  });
   }
   if (!ok || !t || !law || !shape_ok || !base.complete()) return std::nullopt;
+  const double wall = t.value();  // a plain copy: g++ 12 cannot see that t is set here
   return ProfilePtr(std::make_shared<InflatedTubeSection>(
-      base.section->outer_radius, *t, *law, base.material->PoissonRatio(), base.material->density,
+      base.section->outer_radius, wall, *law, base.material->PoissonRatio(), base.material->density,
       std::move(constrictions), base.material->damping));
 }
 
