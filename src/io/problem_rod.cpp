@@ -525,11 +525,13 @@ std::optional<ProfilePtr> ParseJamming(const ObjectReader& p, const ProfileBase&
 
 std::optional<ProfilePtr> ParseInflated(const ObjectReader& p, const ProfileBase& base) {
   const bool shape_ok = RequireShape(p, base, "inflated", false);
-  auto t = ReadNumber(p, "wall_thickness", PositiveNumber(), Presence::kRequired);
-  if (t && shape_ok && base.section && *t >= base.section->outer_radius) {
+  const auto t = ReadNumber(p, "wall_thickness", PositiveNumber(), Presence::kRequired);
+  const double wall = t.value_or(0.0);
+  bool wall_ok = t.has_value();
+  if (wall_ok && shape_ok && base.section && wall >= base.section->outer_radius) {
     p.Reject("wall_thickness", "a number smaller than rod.section.radius (" +
                                    FormatNumber(base.section->outer_radius) + ")");
-    t.reset();
+    wall_ok = false;
   }
   const auto law = ParseModulusLaw(
       p, "modulus", base.material ? base.material->youngs_modulus : 1.0, true, Presence::kOptional);
@@ -553,8 +555,7 @@ std::optional<ProfilePtr> ParseInflated(const ObjectReader& p, const ProfileBase
                                    return true;
                                  });
   }
-  if (!ok || !t || !law || !shape_ok || !base.complete()) return std::nullopt;
-  const double wall = t.value();  // a plain copy: g++ 12 cannot see that t is set here
+  if (!ok || !wall_ok || !law || !shape_ok || !base.complete()) return std::nullopt;
   return ProfilePtr(std::make_shared<InflatedTubeSection>(
       base.section->outer_radius, wall, *law, base.material->PoissonRatio(), base.material->density,
       std::move(constrictions), base.material->damping));
