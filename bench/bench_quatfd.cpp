@@ -12,6 +12,7 @@
 
 #include "cosserat/quatfd/quatfd_integrate.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
+#include "cosserat/quatfd/radau.hpp"
 #include "cosserat/quatfd/rosenbrock.hpp"
 #include "cosserat/quatfd/sdirk.hpp"
 #include "quatfd_rods.hpp"
@@ -52,6 +53,7 @@ void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int seg
     status = integ->Advance(10.0, &t, q, v);
     stats = integ->stats();
     if (auto* s = dynamic_cast<SdirkIntegrator*>(integ.get())) newton = s->newton_stats();
+    if (auto* s = dynamic_cast<RadauIntegrator*>(integ.get())) newton = s->newton_stats();
     benchmark::DoNotOptimize(q.data());
   }
   if (status != IntegratorStatus::kOk) state.SkipWithError(ToString(status));
@@ -60,7 +62,7 @@ void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int seg
   state.counters["f_evals"] = stats.f_evaluations;
   state.counters["jacobians"] = stats.jacobian_evaluations;
   state.counters["LUs"] = stats.factorizations;
-  if (kind == IntegratorKind::kSdirk) {
+  if (kind == IntegratorKind::kSdirk || kind == IntegratorKind::kRadau) {
     state.counters["newton_its"] = newton.newton_iterations;
     state.counters["newton_fails"] = newton.newton_failures;
   }
@@ -81,6 +83,12 @@ void BM_RubberRod_Sdirk(benchmark::State& s) {
 }
 void BM_SteelString_Sdirk(benchmark::State& s) {
   Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kSdirk);
+}
+void BM_RubberRod_Radau(benchmark::State& s) {
+  Run(s, RubberRod(), EndCondition::kClamped, s.range(0), IntegratorKind::kRadau);
+}
+void BM_SteelString_Radau(benchmark::State& s) {
+  Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRadau);
 }
 void BM_RubberRod_Rosenbrock_Baumgarte(benchmark::State& s) {
   Run(s, RubberRod(), EndCondition::kClamped, s.range(0), IntegratorKind::kRosenbrock, 1e3);
@@ -111,6 +119,14 @@ BENCHMARK(BM_RubberRod_Sdirk)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 BENCHMARK(BM_SteelString_Sdirk)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_RubberRod_Radau)
+    ->Arg(10)
+    ->Arg(40)
+    ->Arg(160)
+    ->Arg(640)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK(BM_SteelString_Radau)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
 // Stiff Baumgarte instead of the projection (α = β = 1e3 1/s for (a), 1e4 for (b)): makes the
 // |p| direction stiff, which removes one of the Rosenbrock step-map instabilities
 // (bench/quatfd_stability.cpp) but not the others; kept to document the effect.
