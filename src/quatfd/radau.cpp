@@ -295,7 +295,10 @@ RadauIntegrator::NewtonResult RadauIntegrator::Newton(const Eigen::Ref<const Eig
     // (a² I − a B − A) ΔW_v = a r_v per block, a = γ/h and (α + iβ)/h.
     dW_[0] *= ar;
     Mr_.Solve(dW_[0]);
-    for (int e = 0; e < n; ++e) cv_[e] = ac * std::complex<double>(dW_[1][e], dW_[2][e]);
+    for (int e = 0; e < n; ++e) {  // a (r1 + i r2), written out (no Annex G checks)
+      const double x = dW_[1][e], z = dW_[2][e];
+      cv_[e] = std::complex<double>(ac.real() * x - ac.imag() * z, ac.real() * z + ac.imag() * x);
+    }
     Mc_.Solve(cv_);
     dW_[1] = cv_.real();
     dW_[2] = cv_.imag();

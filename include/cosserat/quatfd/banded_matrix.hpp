@@ -73,6 +73,7 @@ class ComplexBandedMatrix {
   int n_ = 0, kl_ = 0, ku_ = 0, kv_ = 0, ld_ = 1;
   std::vector<Scalar> data_;
   std::vector<int> pivot_;
+  std::vector<Scalar> inv_diag_;  ///< 1/U(j, j), so the solve multiplies
 };
 
 }  // namespace cosserat::quatfd
