@@ -267,7 +267,10 @@ RadauIntegrator::NewtonResult RadauIntegrator::Newton(const Eigen::Ref<const Eig
   const std::complex<double> ac(k.alpha / h, k.beta / h);
   const double ih = 1.0 / h;
   FillPositions(y, h);
-  for (int i = 0; i < 3; ++i) {  // once per attempt, at each stage's starting value
+  // The co-rotation of each stage, to its current iterate: at the starting value here, then at
+  // every iteration below (cheap: N quaternion products). Once per attempt only: (b) 6 426
+  // steps, 1 007 rejected, 1.21 s; every iteration: 5 345, 689, 1.04 s; (a) unchanged.
+  for (int i = 0; i < 3; ++i) {
     tmp_ = y + Z_[i];
     UpdateRotations(i, tmp_);
   }
@@ -276,6 +279,7 @@ RadauIntegrator::NewtonResult RadauIntegrator::Newton(const Eigen::Ref<const Eig
   for (int it = 0; it < kMaxIterations; ++it) {
     for (int i = 0; i < 3; ++i) {
       tmp_ = y + Z_[i];
+      if (it > 0) UpdateRotations(i, tmp_);
       model_.Acceleration(tmp_.head(n), tmp_.tail(n), K_[i]);
     }
     stats_.f_evaluations += 3;

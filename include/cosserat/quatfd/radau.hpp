@@ -17,8 +17,11 @@
 /// a = γ/h (real banded LU) or (α + iβ)/h (complex banded LU, ComplexBandedMatrix).
 /// A Newton iteration costs 3 f, one real and one complex banded solve, O(N).
 ///
-/// Co-rotation: as in SdirkIntegrator, J(y_J) is kept and turned with the segments to the
-/// predicted state of the step (one rotation per step attempt for all three stages).
+/// Co-rotation: as in SdirkIntegrator, J(y_J) is kept and turned with the segments — per stage,
+/// to the stage's current iterate: the residual of stage i is turned back by P_iᵀ, the Kronecker
+/// system solved, the correction of stage i turned by P_i (an approximate Newton matrix whose
+/// mass part is off by the stages' relative rotation, ~h|ω|). One rotation for all three
+/// stages made Newton fail beyond ~4–8 ms on the rubber rod (BENCHMARKS.md).
 ///
 /// Starting values: the collocation polynomial of the last accepted step, extrapolated.
 /// Error estimate: Hairer's (I − hγ₀J)⁻¹ [γ₀ h f(y_n) + Σ e_i Z_i] (order 3 in the non-stiff
