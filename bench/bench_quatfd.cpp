@@ -8,10 +8,13 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
+#include <complex>
 
 #include "cosserat/quatfd/quatfd_integrate.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
+#include "cosserat/quatfd/radau.hpp"
 #include "cosserat/quatfd/rosenbrock.hpp"
 #include "cosserat/quatfd/sdirk.hpp"
 #include "quatfd_rods.hpp"
@@ -52,6 +55,7 @@ void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int seg
     status = integ->Advance(10.0, &t, q, v);
     stats = integ->stats();
     if (auto* s = dynamic_cast<SdirkIntegrator*>(integ.get())) newton = s->newton_stats();
+    if (auto* s = dynamic_cast<RadauIntegrator*>(integ.get())) newton = s->newton_stats();
     benchmark::DoNotOptimize(q.data());
   }
   if (status != IntegratorStatus::kOk) state.SkipWithError(ToString(status));
@@ -60,7 +64,7 @@ void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int seg
   state.counters["f_evals"] = stats.f_evaluations;
   state.counters["jacobians"] = stats.jacobian_evaluations;
   state.counters["LUs"] = stats.factorizations;
-  if (kind == IntegratorKind::kSdirk) {
+  if (kind == IntegratorKind::kSdirk || kind == IntegratorKind::kRadau) {
     state.counters["newton_its"] = newton.newton_iterations;
     state.counters["newton_fails"] = newton.newton_failures;
   }
@@ -82,6 +86,12 @@ void BM_RubberRod_Sdirk(benchmark::State& s) {
 void BM_SteelString_Sdirk(benchmark::State& s) {
   Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kSdirk);
 }
+void BM_RubberRod_Radau(benchmark::State& s) {
+  Run(s, RubberRod(), EndCondition::kClamped, s.range(0), IntegratorKind::kRadau);
+}
+void BM_SteelString_Radau(benchmark::State& s) {
+  Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRadau);
+}
 void BM_RubberRod_Rosenbrock_Baumgarte(benchmark::State& s) {
   Run(s, RubberRod(), EndCondition::kClamped, s.range(0), IntegratorKind::kRosenbrock, 1e3);
 }
@@ -89,16 +99,17 @@ void BM_SteelString_Rosenbrock_Baumgarte(benchmark::State& s) {
   Run(s, SteelString(), EndCondition::kPinned, s.range(0), IntegratorKind::kRosenbrock, 1e4);
 }
 BENCHMARK(BM_RubberRod_Rosenbrock)->Arg(10)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
-// (a) at N = 10 against the tolerance rel_tol = abs_tol = 10^-k (k = range(1)), both stiff
-// integrators (range(0): 0 Rosenbrock, 1 SDIRK): the Rosenbrock step count hardly moves (a
-// stability limit), the SDIRK one follows the tolerance.
+// (a) at N = 10 against the tolerance rel_tol = abs_tol = 10^-k (k = range(1)), the stiff
+// integrators (range(0): 0 Rosenbrock, 1 SDIRK, 2 Radau): the Rosenbrock step count hardly moves
+// (a stability limit), the SDIRK and Radau ones follow the tolerance.
 void BM_RubberRod_Tolerance(benchmark::State& s) {
-  Run(s, RubberRod(), EndCondition::kClamped, 10,
-      s.range(0) == 0 ? IntegratorKind::kRosenbrock : IntegratorKind::kSdirk, 0.0,
+  const IntegratorKind kinds[3] = {IntegratorKind::kRosenbrock, IntegratorKind::kSdirk,
+                                   IntegratorKind::kRadau};
+  Run(s, RubberRod(), EndCondition::kClamped, 10, kinds[s.range(0)], 0.0,
       std::pow(10.0, -static_cast<double>(s.range(1))));
 }
 BENCHMARK(BM_RubberRod_Tolerance)
-    ->ArgsProduct({{0, 1}, {3, 4, 5, 6, 7}})
+    ->ArgsProduct({{0, 1, 2}, {3, 4, 5, 6, 7}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 // N = 160 and 640 give the cost per step against N (CPU time / steps: every Newton iteration,
@@ -111,6 +122,14 @@ BENCHMARK(BM_RubberRod_Sdirk)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 BENCHMARK(BM_SteelString_Sdirk)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_RubberRod_Radau)
+    ->Arg(10)
+    ->Arg(40)
+    ->Arg(160)
+    ->Arg(640)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK(BM_SteelString_Radau)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
 // Stiff Baumgarte instead of the projection (α = β = 1e3 1/s for (a), 1e4 for (b)): makes the
 // |p| direction stiff, which removes one of the Rosenbrock step-map instabilities
 // (bench/quatfd_stability.cpp) but not the others; kept to document the effect.
@@ -200,10 +219,25 @@ void BM_BandedLU(benchmark::State& s) {
     benchmark::DoNotOptimize(M.Factorize());
   }
 }
+/// The complex banded LU of Radau's second iteration matrix, (α + iβ)/h shifted (kl = ku = 10).
+void BM_ComplexBandedLU(benchmark::State& s) {
+  Costs c(s.range(0));
+  BandedMatrix A, B;
+  c.model.Jacobian(c.q, c.v, &A, &B);
+  const int n = A.rows(), bw = A.lower();
+  ComplexBandedMatrix M(n, bw, bw);
+  for (auto _ : s) {
+    for (int j = 0; j < n; ++j)
+      for (int i = std::max(0, j - bw); i <= std::min(n - 1, j + bw); ++i)
+        M(i, j) = -A(i, j) + (i == j ? std::complex<double>(1e6, 5e5) : 0.0);
+    benchmark::DoNotOptimize(M.Factorize());
+  }
+}
 BENCHMARK(BM_F)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 BENCHMARK(BM_Jacobian)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 BENCHMARK(BM_JacobianAutoDiff)->Arg(10)->Arg(640);
 BENCHMARK(BM_RosenbrockStep)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 BENCHMARK(BM_BandedLU)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
+BENCHMARK(BM_ComplexBandedLU)->Arg(10)->Arg(40)->Arg(160)->Arg(640);
 
 }  // namespace

@@ -86,4 +86,86 @@ void BandedMatrix::Solve(Eigen::Ref<Eigen::VectorXd> b) const {
   }
 }
 
+void ComplexBandedMatrix::Resize(int n, int kl, int ku) {
+  n_ = n;
+  kl_ = kl;
+  ku_ = ku;
+  kv_ = kl + ku;
+  ld_ = 2 * kl + ku + 1;
+  data_.assign(static_cast<size_t>(ld_) * std::max(n, 0), Scalar(0.0));
+  pivot_.assign(std::max(n, 0), 0);
+  inv_diag_.assign(std::max(n, 0), Scalar(0.0));
+}
+
+Eigen::MatrixXcd ComplexBandedMatrix::ToDense() const {
+  Eigen::MatrixXcd A = Eigen::MatrixXcd::Zero(n_, n_);
+  for (int j = 0; j < n_; ++j)
+    for (int i = std::max(0, j - ku_); i <= std::min(n_ - 1, j + kl_); ++i) A(i, j) = (*this)(i, j);
+  return A;
+}
+
+namespace {
+using C = std::complex<double>;
+double Abs1(C z) { return std::abs(z.real()) + std::abs(z.imag()); }
+// Plain complex arithmetic: std::complex's operators carry the C99 Annex G inf/NaN recovery
+// (a branch per product, a library call per division), which made the complex LU and solve
+// ~30 % of a Radau step; the iteration matrices here are finite, and a NaN still propagates.
+inline C Mul(C a, C b) {
+  return C(a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real());
+}
+inline C Inv(C a) {
+  const double d = 1.0 / (a.real() * a.real() + a.imag() * a.imag());
+  return C(a.real() * d, -a.imag() * d);
+}
+}  // namespace
+
+bool ComplexBandedMatrix::Factorize() {
+  // BandedMatrix::Factorize with complex entries.
+  for (int j = 0; j < n_; ++j)
+    for (int r = 0; r < kl_; ++r) data_[r + j * ld_] = 0.0;
+  int ju = 0;
+  for (int j = 0; j < n_; ++j) {
+    const int km = std::min(kl_, n_ - 1 - j);
+    Scalar* colj = &data_[kv_ + j * ld_];
+    int jp = 0;
+    double best = Abs1(colj[0]);
+    for (int i = 1; i <= km; ++i)
+      if (Abs1(colj[i]) > best) best = Abs1(colj[i]), jp = i;
+    pivot_[j] = j + jp;
+    if (colj[jp] == Scalar(0.0)) return false;
+    ju = std::max(ju, std::min(j + ku_ + jp, n_ - 1));
+    if (jp != 0)
+      for (int c = j; c <= ju; ++c) std::swap((*this)(j, c), (*this)(j + jp, c));
+    const Scalar inv = Inv(colj[0]);
+    inv_diag_[j] = inv;
+    if (km > 0) {
+      for (int i = 1; i <= km; ++i) colj[i] = Mul(colj[i], inv);
+      for (int c = j + 1; c <= ju; ++c) {
+        const Scalar ajc = (*this)(j, c);
+        if (ajc == Scalar(0.0)) continue;
+        Scalar* colc = &data_[kv_ + j - c + c * ld_];
+        for (int i = 1; i <= km; ++i) colc[i] -= Mul(colj[i], ajc);
+      }
+    }
+  }
+  return true;
+}
+
+void ComplexBandedMatrix::Solve(Eigen::Ref<Eigen::VectorXcd> b) const {
+  for (int j = 0; j < n_; ++j) {
+    if (pivot_[j] != j) std::swap(b[j], b[pivot_[j]]);
+    const int km = std::min(kl_, n_ - 1 - j);
+    const Scalar* colj = &data_[kv_ + j * ld_];
+    const Scalar bj = b[j];
+    for (int i = 1; i <= km; ++i) b[j + i] -= Mul(colj[i], bj);
+  }
+  for (int j = n_ - 1; j >= 0; --j) {
+    b[j] = Mul(b[j], inv_diag_[j]);
+    const Scalar bj = b[j];
+    const int i0 = std::max(0, j - kv_);
+    const Scalar* colj = &data_[kv_ - j + j * ld_];  // colj[i] = U(i, j)
+    for (int i = i0; i < j; ++i) b[i] -= Mul(colj[i], bj);
+  }
+}
+
 }  // namespace cosserat::quatfd

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cosserat/quatfd/radau.hpp"
 #include "cosserat/quatfd/rosenbrock.hpp"
 #include "cosserat/quatfd/sdirk.hpp"
 
@@ -19,6 +20,8 @@ const char* ToString(IntegratorKind kind) {
       return "dopri5";
     case IntegratorKind::kRosenbrock:
       return "rosenbrock";
+    case IntegratorKind::kRadau:
+      return "radau";
     case IntegratorKind::kSdirk:
       break;
   }
@@ -118,6 +121,7 @@ std::unique_ptr<QuatFdIntegrator> MakeIntegrator(IntegratorKind kind, const Quat
                                                  const IntegratorOptions& options) {
   if (kind == IntegratorKind::kDopri5) return std::make_unique<Dopri5Integrator>(model, options);
   if (kind == IntegratorKind::kSdirk) return std::make_unique<SdirkIntegrator>(model, options);
+  if (kind == IntegratorKind::kRadau) return std::make_unique<RadauIntegrator>(model, options);
   return std::make_unique<RosenbrockIntegrator>(model, options);
 }
 

@@ -109,7 +109,7 @@ cosserat_cli_test(NAME solve_quatfd_statics ARGS solve "${_cli_dir}/quatfd_stati
 cosserat_cli_test(NAME solve_quatfd_dynamics
                   ARGS solve "${_cli_dir}/quatfd_dynamics.json" --csv "${_cli_out}/quatfd_frames.csv"
                   CODE 0 STDOUT "\"trajectory\": {"
-                  STDERR "converged \\(quaternion-fd, sdirk: ok\\)"
+                  STDERR "converged \\(quaternion-fd, radau: ok\\)"
                   FILES "${_cli_out}/quatfd_frames.csv")
 cosserat_cli_test(NAME quatfd_free_free ARGS solve "${_cli_dir}/quatfd_free_free.json" CODE 2
                   STDERR "boundary: \"free-free\" is not implemented in this version \\(supported: \"cantilever\"\\)")

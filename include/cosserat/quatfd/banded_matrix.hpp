@@ -6,6 +6,7 @@
 /// place. Cost: factorisation O(n kl (kl + ku)), solve O(n (2 kl + ku)).
 
 #include <Eigen/Core>
+#include <complex>
 #include <vector>
 
 namespace cosserat::quatfd {
@@ -42,6 +43,37 @@ class BandedMatrix {
   int n_ = 0, kl_ = 0, ku_ = 0, kv_ = 0, ld_ = 1;
   std::vector<double> data_;
   std::vector<int> pivot_;
+};
+
+/// The complex counterpart of BandedMatrix's storage, factorisation and solve (same dgbtf2
+/// algorithm, pivoting on |Re| + |Im| as LAPACK's zgbtf2 does): for the complex iteration matrix
+/// of the Radau IIA integrator (radau.hpp). Only what that needs: fill, factorise, solve.
+class ComplexBandedMatrix {
+ public:
+  using Scalar = std::complex<double>;
+  ComplexBandedMatrix() = default;
+  ComplexBandedMatrix(int n, int kl, int ku) { Resize(n, kl, ku); }
+  void Resize(int n, int kl, int ku);
+
+  int rows() const { return n_; }
+  int lower() const { return kl_; }
+  int upper() const { return ku_; }
+  /// Entry (i, j); only valid in the band (|i − j| within kl, ku).
+  Scalar& operator()(int i, int j) { return data_[(kv_ + i - j) + j * ld_]; }
+  Scalar operator()(int i, int j) const { return data_[(kv_ + i - j) + j * ld_]; }
+  /// The dense copy (for tests).
+  Eigen::MatrixXcd ToDense() const;
+
+  /// P A = L U in place; false when a pivot is exactly zero.
+  bool Factorize();
+  /// A x = b in place with the factors of Factorize().
+  void Solve(Eigen::Ref<Eigen::VectorXcd> b) const;
+
+ private:
+  int n_ = 0, kl_ = 0, ku_ = 0, kv_ = 0, ld_ = 1;
+  std::vector<Scalar> data_;
+  std::vector<int> pivot_;
+  std::vector<Scalar> inv_diag_;  ///< 1/U(j, j), so the solve multiplies
 };
 
 }  // namespace cosserat::quatfd

@@ -10,7 +10,9 @@
 ///   step with the exact Jacobian; its step is limited by the stability of its step map
 ///   (BENCHMARKS.md), a few ms for the rubber rod, 0.2 ms for the steel string.
 /// - kSdirk: the banded implicit SdirkIntegrator (sdirk.hpp, SDIRK4 with Newton iterations and a
-///   reused Jacobian), O(N) per Newton iteration; the stiff integrator to use.
+///   reused Jacobian), O(N) per Newton iteration.
+/// - kRadau: the banded implicit RadauIntegrator (radau.hpp, Radau IIA order 5, stage order 3,
+///   simplified Newton with a real and a complex banded LU), O(N) per Newton iteration.
 
 #include <memory>
 #include <string>
@@ -20,9 +22,9 @@
 
 namespace cosserat::quatfd {
 
-enum class IntegratorKind { kDopri5, kRosenbrock, kSdirk };
+enum class IntegratorKind { kDopri5, kRosenbrock, kSdirk, kRadau };
 
-/// "dopri5", "rosenbrock", "sdirk".
+/// "dopri5", "rosenbrock", "sdirk", "radau".
 const char* ToString(IntegratorKind kind);
 
 class Dopri5Integrator final : public QuatFdIntegrator {

@@ -1,0 +1,115 @@
+#pragma once
+/// \file
+/// Radau IIA of order 5 (3 stages, stage order 3, stiffly accurate, L-stable; Hairer & Wanner,
+/// Solving ODEs II, Sections IV.5 and IV.8, their RADAU5) for q̇ = v, v̇ = f(q, v) of the
+/// quaternion-FD rod, with simplified Newton iterations on the collocation system
+///   Z = h (A ⊗ I) F(y_n + Z),  y_{n+1} = y_n + Z_3.
+///
+/// Why next to SDIRK4 (sdirk.hpp): SDIRK4 has stage order 1, and the over-damped stiff
+/// shear/rotary modes of the damped rods behave like a singular perturbation, where the accuracy
+/// of the stiff components follows the stage order (order reduction, Hairer–Wanner IV.15).
+///
+/// Linear algebra: with W = (T⁻¹ ⊗ I) Z, T⁻¹ A⁻¹ T = diag(γ, [[α, −β], [β, α]]) (computed from
+/// the coefficients at start-up), a Newton iteration needs one real system (γ/h I − J) and one
+/// complex one ((α + iβ)/h I − J). Both use the second-order reduction of the SDIRK and
+/// Rosenbrock integrators: the q-half of the collocation system, Z_q = h (A ⊗ I)(v_n + Z_v), is
+/// linear and kept exact, so a correction needs (a² I − a B − A)⁻¹ on the velocity half only,
+/// a = γ/h (real banded LU) or (α + iβ)/h (complex banded LU, ComplexBandedMatrix).
+/// A Newton iteration costs 3 f, one real and one complex banded solve, O(N).
+///
+/// Co-rotation: as in SdirkIntegrator, J(y_J) is kept and turned with the segments — per stage,
+/// to the stage's current iterate: the residual of stage i is turned back by P_iᵀ, the Kronecker
+/// system solved, the correction of stage i turned by P_i (an approximate Newton matrix whose
+/// mass part is off by the stages' relative rotation, ~h|ω|). One rotation for all three
+/// stages made Newton fail beyond ~4–8 ms on the rubber rod (BENCHMARKS.md).
+///
+/// Starting values: the collocation polynomial of the last accepted step, extrapolated.
+/// Error estimate: Hairer's (I − hγ₀J)⁻¹ [γ₀ h f(y_n) + Σ e_i Z_i] (order 3 in the non-stiff
+/// components), re-filtered once through f(y_n + err) after a rejection.
+/// Step control: Gustafsson's predictive controller with the Newton-count safety factor of
+/// RADAU5. J is refreshed when the Newton contraction of a step exceeds a threshold; the LUs are
+/// redone when J or h changes (h is held for growth below 20 %). A Newton failure with a stale J
+/// refreshes J at y_n and retries; with a fresh J the step is rejected, h halved, and the
+/// following steps capped at 0.8 of the failed h (the cap growing 5 % per accepted step).
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/quatfd/integrator.hpp"
+#include "cosserat/quatfd/sdirk.hpp"
+
+namespace cosserat::quatfd {
+
+class RadauIntegrator final : public QuatFdIntegrator {
+ public:
+  /// Allocates every buffer; Advance() does not allocate.
+  RadauIntegrator(const QuatFdModel& model, const IntegratorOptions& options = {},
+                  bool corotate = true);
+
+  IntegratorStatus Advance(double t_end, double* t, Eigen::Ref<Eigen::VectorXd> q,
+                           Eigen::Ref<Eigen::VectorXd> v) override;
+  const IntegratorStats& stats() const override { return stats_; }
+  /// newton_iterations counts iterations of the 3-stage system (3 f each).
+  const SdirkStats& newton_stats() const { return newton_; }
+  const char* name() const override { return "radau5-banded"; }
+
+  /// One step of size h from y = [q; v] without step-size control (Newton from zero starting
+  /// values unless a polynomial of an earlier step is kept): writes y_new and the filtered error
+  /// estimate. Returns false when Newton did not converge even with a fresh Jacobian. Public for
+  /// the tests.
+  bool Step(const Eigen::Ref<const Eigen::VectorXd>& y, double h, Eigen::Ref<Eigen::VectorXd> y_new,
+            Eigen::Ref<Eigen::VectorXd> error);
+  /// Newton stopping threshold κ (η‖ΔZ‖ ≤ κ in the error norm); for the fixed-step tests.
+  void set_newton_kappa(double kappa) { kappa_ = kappa; }
+  /// Forget the extrapolation polynomial (the next Step starts Newton from Z = 0).
+  void ForgetHistory() { have_poly_ = false; }
+
+ private:
+  enum class NewtonResult { kConverged, kSlow, kDiverged };
+  void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out);
+  void RefreshJacobian(const Eigen::Ref<const Eigen::VectorXd>& y);
+  bool Factorize(double h);
+  /// The co-rotation from the state of J to y into slot 0–2 (stages) or 3 (the error filter).
+  void UpdateRotations(int slot, const Eigen::Ref<const Eigen::VectorXd>& y);
+  void RotateHalf(int slot, Eigen::Ref<Eigen::VectorXd> r, bool transpose) const;
+  /// Starting values Z_i for a step of size h (the last polynomial, or zero).
+  void StartingValues(double h);
+  /// Z_q = h (A ⊗ I)(v_n + Z_v): the exact q-half.
+  void FillPositions(const Eigen::Ref<const Eigen::VectorXd>& y, double h);
+  NewtonResult Newton(const Eigen::Ref<const Eigen::VectorXd>& y, double h);
+  /// (γ/h I − J) x = r in place on a full vector (the error filter), co-rotated.
+  void SolveReal(Eigen::Ref<Eigen::VectorXd> r);
+  double Norm(const Eigen::Ref<const Eigen::VectorXd>& y,
+              const Eigen::Ref<const Eigen::VectorXd>& d) const;
+
+  const QuatFdModel& model_;
+  IntegratorOptions options_;
+  IntegratorStats stats_;
+  SdirkStats newton_;
+  int n_ = 0;
+  double dt_ = 0;
+  double factor_h_ = 0;
+  double kappa_ = 0.05;
+  double newton_cap_ = 0.0;  ///< largest next step after a Newton failure (0: none)
+  bool have_jacobian_ = false;
+  bool jacobian_fresh_ = false;
+  bool refresh_next_step_ = false;
+  bool have_poly_ = false;
+  bool corotate_ = true;
+  double theta_ = 0.0;      ///< largest contraction of the current step
+  double eta_ = 1.0;        ///< Newton convergence-rate memory
+  int last_iterations_ = 0;  ///< Newton iterations of the last converged step
+  double h_poly_ = 0;        ///< step of the polynomial in cont_
+  double newton_velocity_atol_ = 0;
+  BandedMatrix A_, B_, Mr_;
+  ComplexBandedMatrix Mc_;
+  Eigen::VectorXd y_, y_new_, err_, f0_, tmp_, f_at_jac_, q_jac_, acc_;
+  Eigen::VectorXd Z_[3], K_[3], dW_[3], cont_[3], dZ_;
+  Eigen::VectorXcd cv_;
+  std::vector<Eigen::Vector4d> segment_w_[4];
+  std::vector<Eigen::Matrix4d> segment_rot_[4];
+  std::vector<Eigen::Matrix3d> vertex_rot_[4];
+};
+
+}  // namespace cosserat::quatfd
