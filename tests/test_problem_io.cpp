@@ -771,6 +771,9 @@ TEST(ProblemIoErrors, BucklingActuationLoads) {
   j["robot"] = {{"kind", "jamming"}};
   EXPECT_ERROR(Parse(j), "buckling.load:", "got \"tendon_tension\" with robot.kind \"jamming\"");
 
+  j["robot"] = {{"kind", "tendon"}, {"tendons", json::array()}};
+  EXPECT_ERROR(Parse(j), "buckling.load:", "with an empty robot.tendons");
+
   j["robot"] = json::parse(R"({"kind": "tendon", "tendons": [
       {"route": "parallel", "offset": [0.0005, 0]}, {"route": "parallel", "offset": [0, 0.0005]}]})");
   j["buckling"]["tendons"] = {1, 1, 1};

@@ -125,8 +125,8 @@ void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
     d->initial_loads = ParseLoads(*loads);
 }
 
-const std::vector<std::string> kBucklingLoads = {"tip_force", "tip_moment",     "gravity",
-                                                 "distributed_force", "tendon_tension", "pressure"};
+const std::vector<std::string> kBucklingLoads = {
+    "tip_force", "tip_moment", "gravity", "distributed_force", "tendon_tension", "pressure"};
 
 void ParseBuckling(const ObjectReader& o, Problem::Buckling* b) {
   o.AllowOnly({"load", "direction", "max", "tendons"});
@@ -185,11 +185,19 @@ void CheckBucklingActuation(const ObjectReader& top, const Problem& p) {
       return;
     }
     const size_t n = p.rod.tendons.size();
+    const json& v = top.value();
+    if (n == 0 && v["robot"].contains("tendons") && v["robot"]["tendons"].is_array() &&
+        v["robot"]["tendons"].empty()) {
+      top.report().Expected(load_path, "a load this problem has (\"tendon_tension\" needs tendons)",
+                            "\"tendon_tension\" with an empty robot.tendons");
+      return;
+    }
     if (!p.buckling.tendon_weights.empty() && p.buckling.tendon_weights.size() != n &&
         n > 0)  // n == 0: robot.tendons has its own error
       top.report().Expected("buckling.tendons",
                             "one weight per tendon (" + std::to_string(n) + " in robot.tendons)",
-                            std::to_string(p.buckling.tendon_weights.size()) + " weights");
+                            std::to_string(p.buckling.tendon_weights.size()) +
+                                (p.buckling.tendon_weights.size() == 1 ? " weight" : " weights"));
   } else if (p.buckling.load == "pressure") {
     // The section must read the inflation pressure: a "pressure_modulus" or "inflated" profile.
     std::string kind;

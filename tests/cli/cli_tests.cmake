@@ -173,6 +173,6 @@ cosserat_cli_test(NAME bad_buckling_weights ARGS validate "${_cli_dir}/bad_buckl
                   CODE 2 STDERR "buckling.tendons\\[1\\]: expected a weight >= 0, got -1")
 cosserat_cli_test(NAME bad_buckling_weight_count
                   ARGS validate "${_cli_dir}/bad_buckling_weight_count.json"
-                  CODE 2 STDERR "buckling.tendons: expected one weight per tendon \\(2 in robot.tendons\\), got 1 weights")
+                  CODE 2 STDERR "buckling.tendons: expected one weight per tendon \\(2 in robot.tendons\\), got 1 weight[^s]")
 cosserat_cli_test(NAME bad_buckling_pressure ARGS validate "${_cli_dir}/bad_buckling_pressure.json"
                   CODE 2 STDERR "buckling.direction: not used by a \"pressure\" load.*buckling.load: expected a load this problem has \\(\"pressure\" needs a pressure-dependent section")
