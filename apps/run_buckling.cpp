@@ -8,12 +8,14 @@
 #include "cosserat/analysis/buckling.hpp"
 #include "cosserat/analysis/quatfd_buckling.hpp"
 #include "cosserat/io/result_writer.hpp"
+#include "cosserat/rod/stiffness_profiles.hpp"
 
 namespace cosserat::cli {
 
 namespace {
 
-// loads(λ) = problem loads + λ · direction, for the load kind the "buckling" block names.
+// loads(λ) = problem loads + λ · direction, for the load kind the "buckling" block names; or the
+// tendon tensions + λ · weights ("tendon_tension"), or the pressure max − λ ("pressure").
 LoadPath MakePath(const io::Problem& problem) {
   LoadPath path;
   path.fixed = problem.loads;
@@ -22,15 +24,47 @@ LoadPath MakePath(const io::Problem& problem) {
   path.per_unit.tip_moment_frame = problem.loads.tip_moment_frame;
   const Vec3& d = problem.buckling.direction;
   const std::string& load = problem.buckling.load;
-  if (load == "tip_force")
+  if (load == "tip_force") {
     path.per_unit.tip_force = d;
-  else if (load == "tip_moment")
+  } else if (load == "tip_moment") {
     path.per_unit.tip_moment = d;
-  else if (load == "gravity")
+  } else if (load == "gravity") {
     path.per_unit.gravity_W = d;
-  else
+  } else if (load == "distributed_force") {
     path.per_unit.distributed_force_W = d;
+  } else if (load == "tendon_tension") {
+    // λ is the tension added to the most-weighted tendon (the parser checked one weight per
+    // tendon, >= 0, not all zero; none given: all alike).
+    const std::vector<double>& w = problem.buckling.tendon_weights;
+    const size_t n = problem.rod.tendons.size();
+    const double w_max = w.empty() ? 1.0 : *std::max_element(w.begin(), w.end());
+    for (size_t i = 0; i < n && i < static_cast<size_t>(Actuation::kMaxTendons); ++i)
+      path.tension_per_unit[i] = w.empty() ? 1.0 : w[i] / w_max;
+  } else {  // "pressure": p(λ) = max − λ, from the problem's other actuation
+    const StaticLoads loads = problem.loads;
+    const Actuation held = path.fixed_actuation;
+    path = LoadPath::PressureDrop(problem.buckling.max, loads);
+    path.fixed_actuation.tendon_tension = held.tendon_tension;
+    path.fixed_actuation.jamming_pressure = held.jamming_pressure;
+  }
   return path;
+}
+
+// The rod the analysis runs on. A pressure path drives the pressure itself: a profile the parser
+// wrapped at the file's fixed pressures (no robot) is unwrapped, its other pressures kept.
+RodModel MakeModel(const io::Problem& problem, LoadPath* path) {
+  RodModel model = problem.rod;
+  if (problem.buckling.load != "pressure") return model;
+  if (const auto* fixed = dynamic_cast<const FixedActuationSection*>(model.section.get())) {
+    path->fixed_actuation.jamming_pressure = fixed->actuation().jamming_pressure;
+    model.section = fixed->inner();
+  }
+  return model;
+}
+
+// The load reported for λ: λ itself, or the pressure max − λ for a pressure drop.
+double ReportedLoad(const io::Problem& problem, double lambda) {
+  return problem.buckling.load == "pressure" ? problem.buckling.max - lambda : lambda;
 }
 
 nlohmann::ordered_json NumberOrNull(double x) {
@@ -46,9 +80,13 @@ bool RunBuckling(const io::Problem& problem, std::ostream& out, std::ostream* cs
   BucklingOptions options;
   options.lambda_max = problem.buckling.max;
   options.solver = problem.solver;
-  BucklingAnalysis analysis(problem.rod, problem.nodes, ends, problem.base, MakePath(problem),
-                            options);
+  LoadPath path = MakePath(problem);
+  const RodModel model = MakeModel(problem, &path);
+  BucklingAnalysis analysis(model, problem.nodes, ends, problem.base, path, options);
   const BucklingSummary b = analysis.FindCriticalLoad();
+  const double critical = ReportedLoad(problem, b.critical_load);
+  const double reached = ReportedLoad(problem, b.lambda_reached);
+  const bool actuation_load = path.has_actuation();
   const bool ok = b.status != BucklingStatus::kPathFailed;
 
   StaticShootingSummary statics;
@@ -56,15 +94,23 @@ bool RunBuckling(const io::Problem& problem, std::ostream& out, std::ostream* cs
   statics.wall_time_s = b.wall_time_s;
   nlohmann::ordered_json result = io::StaticResultToJson(statics, analysis.state());
   nlohmann::ordered_json block;
-  block["critical_load"] = NumberOrNull(b.critical_load);
+  block["critical_load"] = NumberOrNull(critical);
   block["mode_s_max"] =
       b.found() ? nlohmann::ordered_json(b.mode.s_max_curvature) : nlohmann::ordered_json(nullptr);
   block["status"] = ToString(b.status);
   block["load"] = problem.buckling.load;
-  block["direction"] = {problem.buckling.direction.x(), problem.buckling.direction.y(),
-                        problem.buckling.direction.z()};
+  if (actuation_load)
+    block["direction"] = nullptr;
+  else
+    block["direction"] = {problem.buckling.direction.x(), problem.buckling.direction.y(),
+                          problem.buckling.direction.z()};
+  if (problem.buckling.load == "tendon_tension") {
+    nlohmann::ordered_json w = nlohmann::ordered_json::array();
+    for (size_t i = 0; i < problem.rod.tendons.size(); ++i) w.push_back(path.tension_per_unit[i]);
+    block["tension_per_unit"] = w;
+  }
   block["boundary"] = ToString(ends);
-  block["load_reached"] = b.lambda_reached;
+  block["load_reached"] = reached;
   block["static_solves"] = b.solves;
   if (b.found()) {
     nlohmann::ordered_json mode;
@@ -86,10 +132,11 @@ bool RunBuckling(const io::Problem& problem, std::ostream& out, std::ostream* cs
   std::ostringstream line;
   line << "cosserat: buckling " << ToString(b.status) << " (" << ToString(ends) << ")";
   if (b.found())
-    line << ", critical " << problem.buckling.load << " " << std::setprecision(6) << b.critical_load
+    line << ", critical " << problem.buckling.load << " " << std::setprecision(6) << critical
          << ", mode bends most at s = " << b.mode.s_max_curvature << " m";
   else
-    line << ", load reached " << std::setprecision(6) << b.lambda_reached;
+    line << ", " << (problem.buckling.load == "pressure" ? "pressure" : "load") << " reached "
+         << std::setprecision(6) << reached;
   line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3
        << " ms";
   log << line.str() << '\n';

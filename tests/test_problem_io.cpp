@@ -725,6 +725,81 @@ TEST(ProblemIoErrors, LaterAnalysisBlocksAreValidatedToo) {
   EXPECT_ERROR(Parse(j), "buckling.max: expected a positive number, got nothing");
 }
 
+// Buckling along actuation paths: "tendon_tension" needs a tendon robot (optional weights, one per
+// tendon), "pressure" a pressure-dependent section; neither takes a direction.
+TEST(ProblemIo, BucklingActuationLoadsParse) {
+  json j = ValidProblem();
+  j["analysis"] = "buckling";
+  j["robot"] = json::parse(R"({"kind": "tendon", "tendons": [
+      {"route": "parallel", "offset": [0.0005, 0]}, {"route": "parallel", "offset": [0, 0.0005]}]})");
+  j["buckling"] = {{"load", "tendon_tension"}, {"tendons", {2, 0}}, {"max", 50.0}};
+  ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  EXPECT_EQ(r.problem->buckling.load, "tendon_tension");
+  EXPECT_EQ(r.problem->buckling.tendon_weights, (std::vector<double>{2, 0}));
+  j["buckling"].erase("tendons");  // default: every tendon alike
+  r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  EXPECT_TRUE(r.problem->buckling.tendon_weights.empty());
+
+  json q = ValidProblem();
+  q["analysis"] = "buckling";
+  q["rod"]["stiffness_profile"] = json::parse(
+      R"({"kind": "pressure_modulus", "pressure": 5000, "modulus": {"E0": 1e6, "slope": 100}})");
+  q["buckling"] = {{"load", "pressure"}, {"max", 30000.0}};
+  r = Parse(q);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  EXPECT_EQ(r.problem->buckling.load, "pressure");
+  EXPECT_DOUBLE_EQ(r.problem->buckling.max, 30000.0);
+  EXPECT_TRUE(UnsupportedFeatures(*r.problem).empty());
+  q["formulation"] = "quaternion-fd";
+  r = Parse(q);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const auto unsupported = UnsupportedFeatures(*r.problem);
+  ASSERT_EQ(unsupported.size(), 1u);
+  EXPECT_NE(unsupported[0].find("buckling.load: \"pressure\" runs on the \"se3-shooting\""),
+            std::string::npos)
+      << unsupported[0];
+}
+
+TEST(ProblemIoErrors, BucklingActuationLoads) {
+  json j = ValidProblem();
+  j["analysis"] = "buckling";
+  j["buckling"] = {{"load", "tendon_tension"}, {"max", 10.0}};
+  EXPECT_ERROR(Parse(j), "buckling.load: expected a load this problem has",
+               "needs a robot of robot.kind \"tendon\"", "got \"tendon_tension\" with no robot");
+  j["robot"] = {{"kind", "jamming"}};
+  EXPECT_ERROR(Parse(j), "buckling.load:", "got \"tendon_tension\" with robot.kind \"jamming\"");
+
+  j["robot"] = {{"kind", "tendon"}, {"tendons", json::array()}};
+  EXPECT_ERROR(Parse(j), "buckling.load:", "with an empty robot.tendons");
+
+  j["robot"] = json::parse(R"({"kind": "tendon", "tendons": [
+      {"route": "parallel", "offset": [0.0005, 0]}, {"route": "parallel", "offset": [0, 0.0005]}]})");
+  j["buckling"]["tendons"] = {1, 1, 1};
+  EXPECT_ERROR(Parse(j), "buckling.tendons: expected one weight per tendon (2 in robot.tendons)",
+               "got 3 weights");
+  j["buckling"]["tendons"] = {0, 0};
+  EXPECT_ERROR(Parse(j), "buckling.tendons: expected at least one weight > 0, got all zero");
+  j["buckling"]["tendons"] = {1, -0.5};
+  EXPECT_ERROR(Parse(j), "buckling.tendons[1]: expected a weight >= 0, got -0.5");
+  j["buckling"]["tendons"] = "all";
+  EXPECT_ERROR(Parse(j), "buckling.tendons: expected an array of 1 to 8 weights >= 0");
+  j["buckling"]["tendons"] = {1, 1};
+  j["buckling"]["direction"] = {0, 0, -1};
+  EXPECT_ERROR(Parse(j), "buckling.direction: not used by a \"tendon_tension\" load");
+  j["buckling"] = {{"load", "tip_force"}, {"tendons", {1, 1}}, {"max", 10.0}};
+  EXPECT_ERROR(Parse(j), "buckling.tendons: only a \"tendon_tension\" load has tendon weights");
+
+  json q = ValidProblem();
+  q["analysis"] = "buckling";
+  q["buckling"] = {{"load", "pressure"}, {"max", 1e4}};
+  EXPECT_ERROR(Parse(q), "buckling.load: expected a load this problem has",
+               "needs a pressure-dependent section", "got \"pressure\" with no such profile");
+  q["rod"]["stiffness_profile"] = {{"kind", "bands"}, {"bands", json::array()}};
+  EXPECT_ERROR(Parse(q), "buckling.load:", "got \"pressure\" with a \"bands\" profile");
+}
+
 TEST(ProblemIoErrors, DynamicsTimes) {
   json j = ValidProblem();
   j["analysis"] = "dynamics";

@@ -125,18 +125,96 @@ void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
     d->initial_loads = ParseLoads(*loads);
 }
 
+const std::vector<std::string> kBucklingLoads = {
+    "tip_force", "tip_moment", "gravity", "distributed_force", "tendon_tension", "pressure"};
+
 void ParseBuckling(const ObjectReader& o, Problem::Buckling* b) {
-  o.AllowOnly({"load", "direction", "max"});
-  b->load = ReadChoice(o, "load", {"tip_force", "tip_moment", "gravity", "distributed_force"},
-                       Presence::kOptional)
-                .value_or(b->load);
-  if (const auto direction = ReadVec3(o, "direction", Presence::kOptional)) {
+  o.AllowOnly({"load", "direction", "max", "tendons"});
+  const auto load = ReadChoice(o, "load", kBucklingLoads, Presence::kOptional);
+  const bool load_ok = load || !o.Has("load");  // a bad load is reported; no follow-up errors
+  b->load = load.value_or(b->load);
+  const bool actuation_path = b->load == "tendon_tension" || b->load == "pressure";
+  if (actuation_path && o.Has("direction"))
+    o.report().Add(o.PathOf("direction"),
+                   "not used by a " + Quote(b->load) + " load (leave it out)");
+  else if (const auto direction = ReadVec3(o, "direction", Presence::kOptional)) {
     if (direction->norm() > 0)
       b->direction = direction->normalized();
     else
       o.report().Expected(o.PathOf("direction"), "a non-zero vector", "[0, 0, 0]");
   }
   b->max = ReadNumber(o, "max", PositiveNumber(), Presence::kRequired).value_or(b->max);
+  if (const json* w = o.Find("tendons")) {
+    const std::string path = o.PathOf("tendons");
+    if (!load_ok) {  // nothing to check the weights against
+    } else if (b->load != "tendon_tension") {
+      o.report().Add(path, "only a \"tendon_tension\" load has tendon weights");
+    } else if (!w->is_array() || w->empty() ||
+               w->size() > static_cast<size_t>(Actuation::kMaxTendons)) {
+      o.report().Expected(path,
+                          "an array of 1 to " + std::to_string(Actuation::kMaxTendons) +
+                              " weights >= 0, one per tendon in robot.tendons",
+                          Describe(*w));
+    } else {
+      const NumberRule weight{"a weight >= 0", [](double x) { return x >= 0; }};
+      bool ok = true;
+      std::vector<double> weights;
+      for (size_t i = 0; i < w->size(); ++i) {
+        const auto x = CheckNumber((*w)[i], ElementPath(path, i), weight, o.report());
+        ok = ok && x.has_value();
+        weights.push_back(x.value_or(0.0));
+      }
+      if (ok && *std::max_element(weights.begin(), weights.end()) <= 0)
+        o.report().Expected(path, "at least one weight > 0", "all zero");
+      else if (ok)
+        b->tendon_weights = std::move(weights);
+    }
+  }
+}
+
+/// The checks of a "tendon_tension" or "pressure" load that need the robot and the rod.
+void CheckBucklingActuation(const ObjectReader& top, const Problem& p) {
+  const std::string load_path = "buckling.load";
+  if (p.buckling.load == "tendon_tension") {
+    if (!p.has_robot || p.robot.kind != "tendon") {
+      top.report().Expected(load_path,
+                            "a load this problem has (\"tendon_tension\" needs a robot of "
+                            "robot.kind \"tendon\")",
+                            std::string("\"tendon_tension\" with ") +
+                                (p.has_robot ? "robot.kind " + Quote(p.robot.kind) : "no robot"));
+      return;
+    }
+    const size_t n = p.rod.tendons.size();
+    const json& v = top.value();
+    if (n == 0 && v["robot"].contains("tendons") && v["robot"]["tendons"].is_array() &&
+        v["robot"]["tendons"].empty()) {
+      top.report().Expected(load_path, "a load this problem has (\"tendon_tension\" needs tendons)",
+                            "\"tendon_tension\" with an empty robot.tendons");
+      return;
+    }
+    if (!p.buckling.tendon_weights.empty() && p.buckling.tendon_weights.size() != n &&
+        n > 0)  // n == 0: robot.tendons has its own error
+      top.report().Expected("buckling.tendons",
+                            "one weight per tendon (" + std::to_string(n) + " in robot.tendons)",
+                            std::to_string(p.buckling.tendon_weights.size()) +
+                                (p.buckling.tendon_weights.size() == 1 ? " weight" : " weights"));
+  } else if (p.buckling.load == "pressure") {
+    // The section must read the inflation pressure: a "pressure_modulus" or "inflated" profile.
+    std::string kind;
+    const json& v = top.value();
+    if (v.contains("rod") && v["rod"].is_object() && v["rod"].contains("stiffness_profile")) {
+      const json& sp = v["rod"]["stiffness_profile"];
+      if (sp.is_object() && sp.contains("kind") && sp["kind"].is_string())
+        kind = sp["kind"].get<std::string>();
+    }
+    if (kind != "pressure_modulus" && kind != "inflated")
+      top.report().Expected(load_path,
+                            "a load this problem has (\"pressure\" needs a pressure-dependent "
+                            "section: rod.stiffness_profile of kind \"pressure_modulus\" or "
+                            "\"inflated\")",
+                            std::string("\"pressure\" with ") +
+                                (kind.empty() ? "no such profile" : "a " + Quote(kind) + " profile"));
+  }
 }
 
 void ParseModes(const ObjectReader& o, Problem::Modes* m) {
@@ -190,6 +268,7 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   }
   if (const auto o = ReadObject(top, "solver", Presence::kOptional)) ParseSolver(*o, &p->solver);
   if (const auto o = ReadObject(top, "robot", Presence::kOptional)) ParseRobot(*o, top.value(), p);
+  if (buckling) CheckBucklingActuation(top, *p);
 }
 
 /// The library's own checks; they should never fire after the ones above.
@@ -268,6 +347,10 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
           "loads.tip_moment_frame: \"body\" (a follower moment) is not conservative; buckling "
           "on the \"quaternion-fd\" formulation needs \"world\"");
   }
+  if (p.analysis == "buckling" && p.formulation == "quaternion-fd" &&
+      (p.buckling.load == "tendon_tension" || p.buckling.load == "pressure"))
+    out.push_back("buckling.load: " + detail::Quote(p.buckling.load) +
+                  " runs on the \"se3-shooting\" formulation only in this version");
   if (p.has_robot) {
     check("robot.kind", p.robot.kind, {"tendon", "jamming", "eversion"});
     if (p.robot.kind == "eversion" && p.analysis != "statics")

@@ -150,3 +150,29 @@ cosserat_cli_test(NAME solve_buckling_quatfd ARGS solve "${_cli_dir}/buckling_qu
 cosserat_cli_test(NAME solve_buckling_banded ARGS solve "${_cli_dir}/buckling_cantilever_banded.json"
                   CODE 0 STDOUT "\"mode_s_max\": 0\\.3[0-4,]"
                   STDERR "buckling found \\(cantilever\\)")
+
+# Buckling along actuation paths (tests/test_buckling_load_paths.cpp has the analysis).
+# Tendon tension alone is self-equilibrated and never buckles the rod: two offset tendons pulled
+# 2:1 up to 2 400 N (10 cantilever Euler loads) find nothing: "not_found", critical_load null,
+# exit 0 (the convention of every not-found search).
+cosserat_cli_test(NAME solve_buckling_tendon ARGS solve "${_cli_dir}/buckling_tendon.json" CODE 0
+                  STDOUT "\"critical_load\": null,.*\"status\": \"not_found\".*\"tension_per_unit\": \\[.*1\\.0,.*0\\.5.*\\].*\"load_reached\": 2400\\.0"
+                  STDERR "buckling not_found \\(cantilever\\), load reached 2400")
+# Pressure: a cantilever tube, E_eff(p) = E0 + k p (E0 = 10 MPa, k = 1e4), I = pi/4 (r_o^4 - r_i^4)
+# = 4.5607e-10 m^4, L = 1.25 m, carries the dead tip force P = pi^2 E_eff(20 kPa) I / (4 L^2)
+# = 0.151241 N. Euler: it stands while pi^2 E_eff(p) I / (4 L^2) > P, so the lowest pressure is
+# p_cr = (4 P L^2 / (pi^2 I) - E0) / k = 20 000 Pa. Shear and extension lower the rod's critical
+# load by eps = P/(kappa G A) - P/(E A) = 5.5e-4, which asks E_eff higher by that factor: p_cr about
+# 20 011.6 Pa (+5.8e-4). Checked: 20 000 <= p_cr < 20 020 (1e-3).
+cosserat_cli_test(NAME solve_buckling_pressure ARGS solve "${_cli_dir}/buckling_pressure.json" CODE 0
+                  STDOUT "\"critical_load\": 200[01][0-9]\\.[0-9]*,.*\"status\": \"found\",[^}]*\"load\": \"pressure\""
+                  STDERR "buckling found \\(cantilever\\), critical pressure 200[01][0-9]\\.")
+cosserat_cli_test(NAME bad_buckling_tendon ARGS validate "${_cli_dir}/bad_buckling_tendon.json"
+                  CODE 2 STDERR "buckling.load: expected a load this problem has \\(\"tendon_tension\" needs a robot of robot.kind \"tendon\"\\), got \"tendon_tension\" with no robot")
+cosserat_cli_test(NAME bad_buckling_weights ARGS validate "${_cli_dir}/bad_buckling_weights.json"
+                  CODE 2 STDERR "buckling.tendons\\[1\\]: expected a weight >= 0, got -1")
+cosserat_cli_test(NAME bad_buckling_weight_count
+                  ARGS validate "${_cli_dir}/bad_buckling_weight_count.json"
+                  CODE 2 STDERR "buckling.tendons: expected one weight per tendon \\(2 in robot.tendons\\), got 1 weight[^s]")
+cosserat_cli_test(NAME bad_buckling_pressure ARGS validate "${_cli_dir}/bad_buckling_pressure.json"
+                  CODE 2 STDERR "buckling.direction: not used by a \"pressure\" load.*buckling.load: expected a load this problem has \\(\"pressure\" needs a pressure-dependent section")

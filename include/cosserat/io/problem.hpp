@@ -46,11 +46,18 @@ struct Problem {
   } dynamics;
   bool has_dynamics = false;
 
-  // Parsed and validated now, run by later versions.
+  /// "buckling": the load path searched (docs/problem-format.md, section "buckling").
   struct Buckling {
+    /// "tip_force" | "tip_moment" | "gravity" | "distributed_force" | "tendon_tension" |
+    /// "pressure".
     std::string load = "tip_force";
-    Vec3 direction{0, 0, -1};  ///< unit vector (normalised on input)
-    double max = 0;            ///< largest load magnitude searched
+    Vec3 direction{0, 0, -1};  ///< unit vector (normalised on input); unused by the last two
+    /// Largest load magnitude searched. "tendon_tension": the largest added tension, N (the
+    /// most-weighted tendon's); "pressure": the pressure the drop starts from, Pa.
+    double max = 0;
+    /// "tendon_tension": one weight >= 0 per tendon of robot.tendons (not all zero), as given;
+    /// empty = every tendon alike. Tension added to tendon i is λ · w_i / max_j w_j.
+    std::vector<double> tendon_weights;
   } buckling;
   bool has_buckling = false;
 
