@@ -96,6 +96,9 @@ class SdirkIntegrator final : public QuatFdIntegrator {
   /// Newton iterations for stage i: z_ starts at the predictor; on kConverged z_ is the stage
   /// increment and k_[i] its derivative F(y_n + Z_i).
   StageResult SolveStage(int i, const Eigen::Ref<const Eigen::VectorXd>& y, double h);
+  /// max_i h |err_v,i| / (abs_tol + rel_tol max(|q_i|, |q_new,i|)) for the current step (y_,
+  /// y_new_, err_): the position error the step's velocity error makes over one step of size h.
+  double IntegratedVelocityError(double h) const;
   /// Scaled max-norm of a correction (the error tolerances at y).
   double Norm(const Eigen::Ref<const Eigen::VectorXd>& y,
               const Eigen::Ref<const Eigen::VectorXd>& d) const;
