@@ -37,7 +37,10 @@
 ///
 /// Error estimate: h Σ (b_i − b̂_i) K_i, filtered by (I − γhJ)⁻¹ (Hairer–Wanner IV.8, Shampine),
 /// which keeps the order-3 estimate of the non-stiff components and damps the stiff ones (the raw
-/// estimate of an L-stable method is not small on very stiff components).
+/// estimate of an L-stable method is not small on very stiff components). A step is accepted when
+/// that estimate passes ErrorNorm and also h |err_v,i| ≤ abs_tol + rel_tol |q_i| for every i:
+/// the velocity error turns into a position error over the next step, and velocity_abs_tol alone
+/// does not move with the tolerance (docs/quatfd.md, "SDIRK4 and the velocity tolerance").
 
 #include <Eigen/Core>
 #include <vector>
