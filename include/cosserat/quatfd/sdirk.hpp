@@ -37,7 +37,10 @@
 ///
 /// Error estimate: h Σ (b_i − b̂_i) K_i, filtered by (I − γhJ)⁻¹ (Hairer–Wanner IV.8, Shampine),
 /// which keeps the order-3 estimate of the non-stiff components and damps the stiff ones (the raw
-/// estimate of an L-stable method is not small on very stiff components).
+/// estimate of an L-stable method is not small on very stiff components). A step is accepted when
+/// that estimate passes ErrorNorm and also h |err_v,i| ≤ abs_tol + rel_tol |q_i| for every i:
+/// the velocity error turns into a position error over the next step, and velocity_abs_tol alone
+/// does not move with the tolerance (docs/quatfd.md, "SDIRK4 and the velocity tolerance").
 
 #include <Eigen/Core>
 #include <vector>
@@ -96,6 +99,9 @@ class SdirkIntegrator final : public QuatFdIntegrator {
   /// Newton iterations for stage i: z_ starts at the predictor; on kConverged z_ is the stage
   /// increment and k_[i] its derivative F(y_n + Z_i).
   StageResult SolveStage(int i, const Eigen::Ref<const Eigen::VectorXd>& y, double h);
+  /// max_i h |err_v,i| / (abs_tol + rel_tol max(|q_i|, |q_new,i|)) for the current step (y_,
+  /// y_new_, err_): the position error the step's velocity error makes over one step of size h.
+  double IntegratedVelocityError(double h) const;
   /// Scaled max-norm of a correction (the error tolerances at y).
   double Norm(const Eigen::Ref<const Eigen::VectorXd>& y,
               const Eigen::Ref<const Eigen::VectorXd>& d) const;
