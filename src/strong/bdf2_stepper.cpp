@@ -301,7 +301,8 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
     junction_z_.setZero(18 * (pieces - 1));
     junction_mismatch_.setZero(18 * (pieces - 1));
     run_.junction_unknowns.setZero(18 * (pieces - 1));
-    for (auto* v : {&ms_x_, &ms_x_new_, &ms_r_, &ms_r_new_, &ms_dx_, &ms_r_base_, &ms_u_, &ms_w_}) v->setZero(unknowns);
+    for (auto* v : {&ms_x_, &ms_x_new_, &ms_r_, &ms_r_new_, &ms_dx_, &ms_r_base_, &ms_u_, &ms_w_})
+      v->setZero(unknowns);
     ms_jacobian_.setZero(unknowns, unknowns);
     ms_inverse_.setZero(unknowns, unknowns);
     ms_lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(unknowns);
