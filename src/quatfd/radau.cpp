@@ -109,12 +109,7 @@ RadauIntegrator::RadauIntegrator(const QuatFdModel& model, const IntegratorOptio
   f_at_jac_.resize(n_);
   q_jac_.resize(n_);
   newton_velocity_atol_ = std::min(options.abs_tol, options.velocity_abs_tol);
-  const int N = model.layout().segments;
-  for (int slot = 0; slot < 4; ++slot) {
-    segment_w_[slot].resize(N);
-    segment_rot_[slot].resize(N);
-    vertex_rot_[slot].resize(N + 1);
-  }
+  for (CoRotation& c : corotation_) c.Resize(model.layout().segments);
   dt_ = options.initial_dt;
   kappa_ = kKappaDefault;
 }
@@ -155,58 +150,6 @@ bool RadauIntegrator::Factorize(double h) {
   return true;
 }
 
-void RadauIntegrator::UpdateRotations(int slot, const Eigen::Ref<const Eigen::VectorXd>& y) {
-  // The co-rotation of SdirkIntegrator::UpdateRotations (sdirk.hpp): per segment the world
-  // rotation w = p p̄_J, per vertex the mean of its segments'.
-  if (!corotate_) return;
-  const int N = model_.layout().segments;
-  for (int nu = 0; nu < N; ++nu) {
-    const Eigen::Vector4d p = y.segment<4>(QuatFdLayout::P(nu));
-    const Eigen::Vector4d pj = q_jac_.segment<4>(QuatFdLayout::P(nu));
-    Eigen::Vector4d w = kernels::QMul<double>(p, Eigen::Vector4d(pj[0], -pj[1], -pj[2], -pj[3]));
-    w.normalize();
-    segment_w_[slot][nu] = w;
-    Eigen::Matrix4d& L = segment_rot_[slot][nu];
-    L << w[0], -w[1], -w[2], -w[3],  //
-        w[1], w[0], -w[3], w[2],     //
-        w[2], w[3], w[0], -w[1],     //
-        w[3], -w[2], w[1], w[0];
-  }
-  for (int k = 0; k <= N; ++k) {
-    Eigen::Vector4d w = k < N ? segment_w_[slot][k] : segment_w_[slot][N - 1];
-    if (k > 0 && k < N) {
-      const Eigen::Vector4d& o = segment_w_[slot][k - 1];
-      w += w.dot(o) >= 0 ? o : Eigen::Vector4d(-o);
-    }
-    w.normalize();
-    const Eigen::Vector3d u(w[1], w[2], w[3]);
-    Eigen::Matrix3d cross;
-    cross << 0, -u[2], u[1], u[2], 0, -u[0], -u[1], u[0], 0;
-    vertex_rot_[slot][k] = Eigen::Matrix3d::Identity() + 2 * w[0] * cross + 2 * cross * cross;
-  }
-}
-
-void RadauIntegrator::RotateHalf(int slot, Eigen::Ref<Eigen::VectorXd> r, bool transpose) const {
-  if (!corotate_) return;
-  const int N = model_.layout().segments;
-  for (int k = 0; k <= N; ++k) {
-    auto x = r.segment<3>(QuatFdLayout::X(k));
-    const Eigen::Vector3d x0 = x;
-    if (transpose)
-      x.noalias() = vertex_rot_[slot][k].transpose() * x0;
-    else
-      x.noalias() = vertex_rot_[slot][k] * x0;
-  }
-  for (int nu = 0; nu < N; ++nu) {
-    auto x = r.segment<4>(QuatFdLayout::P(nu));
-    const Eigen::Vector4d x0 = x;
-    if (transpose)
-      x.noalias() = segment_rot_[slot][nu].transpose() * x0;
-    else
-      x.noalias() = segment_rot_[slot][nu] * x0;
-  }
-}
-
 void RadauIntegrator::SolveReal(Eigen::Ref<Eigen::VectorXd> r) {
   // (aI − J) x = r with J = [[0, I], [A, B]], a = γ/h: x_v = M⁻¹ (a r_v + A r_q),
   // x_q = (r_q + x_v)/a; turned by the co-rotation.
@@ -221,16 +164,6 @@ void RadauIntegrator::SolveReal(Eigen::Ref<Eigen::VectorXd> r) {
   rq = (rq + rv) / a;
   RotateHalf(3, rq, false);
   RotateHalf(3, rv, false);
-}
-
-double RadauIntegrator::Norm(const Eigen::Ref<const Eigen::VectorXd>& y,
-                             const Eigen::Ref<const Eigen::VectorXd>& d) const {
-  double e = 0.0;
-  for (int i = 0; i < 2 * n_; ++i) {
-    const double atol = i < n_ ? options_.abs_tol : newton_velocity_atol_;
-    e = std::max(e, std::abs(d[i]) / (atol + options_.rel_tol * std::abs(y[i])));
-  }
-  return e;
 }
 
 void RadauIntegrator::StartingValues(double h) {

@@ -55,11 +55,9 @@ SdirkIntegrator::SdirkIntegrator(const QuatFdModel& model, const IntegratorOptio
   acc_.resize(n_);
   f_at_jac_.resize(n_);
   q_jac_.resize(n_);
-  newton_velocity_atol_ = std::min(options.abs_tol, options.velocity_abs_tol);
-  const int N = model.layout().segments;
-  segment_w_.resize(N);
-  segment_rot_.resize(N);
-  vertex_rot_.resize(N + 1);
+  newton_norm_ = options;
+  newton_norm_.velocity_abs_tol = std::min(options.abs_tol, options.velocity_abs_tol);
+  corotation_.Resize(model.layout().segments);
   dt_ = options.initial_dt;
 }
 
@@ -95,65 +93,13 @@ bool SdirkIntegrator::Factorize(double h) {
   return true;
 }
 
-void SdirkIntegrator::UpdateRotations(const Eigen::Ref<const Eigen::VectorXd>& y) {
-  const int N = model_.layout().segments;
-  if (!corotate_) return;
-  for (int nu = 0; nu < N; ++nu) {
-    const Eigen::Vector4d p = y.segment<4>(QuatFdLayout::P(nu));
-    const Eigen::Vector4d pj = q_jac_.segment<4>(QuatFdLayout::P(nu));
-    // w = p ⊗ p̄_J / (|p| |p_J|): the world rotation that takes segment ν from where J was
-    // evaluated to y; left-multiplying by it keeps body directions (and the radial one).
-    Eigen::Vector4d w = kernels::QMul<double>(p, Eigen::Vector4d(pj[0], -pj[1], -pj[2], -pj[3]));
-    w.normalize();
-    segment_w_[nu] = w;
-    Eigen::Matrix4d& L = segment_rot_[nu];
-    L << w[0], -w[1], -w[2], -w[3],  //
-        w[1], w[0], -w[3], w[2],     //
-        w[2], w[3], w[0], -w[1],     //
-        w[3], -w[2], w[1], w[0];
-  }
-  for (int k = 0; k <= N; ++k) {
-    // A vertex turns with the mean of its segments' rotations (same hemisphere).
-    Eigen::Vector4d w = k < N ? segment_w_[k] : segment_w_[N - 1];
-    if (k > 0 && k < N) {
-      const Eigen::Vector4d& o = segment_w_[k - 1];
-      w += w.dot(o) >= 0 ? o : Eigen::Vector4d(-o);
-    }
-    w.normalize();
-    const Eigen::Vector3d u(w[1], w[2], w[3]);
-    Eigen::Matrix3d cross;
-    cross << 0, -u[2], u[1], u[2], 0, -u[0], -u[1], u[0], 0;
-    vertex_rot_[k] = Eigen::Matrix3d::Identity() + 2 * w[0] * cross + 2 * cross * cross;
-  }
-}
-
-void SdirkIntegrator::RotateHalf(Eigen::Ref<Eigen::VectorXd> r, bool transpose) const {
-  const int N = model_.layout().segments;
-  for (int k = 0; k <= N; ++k) {
-    auto x = r.segment<3>(QuatFdLayout::X(k));
-    const Eigen::Vector3d x0 = x;
-    if (transpose)
-      x.noalias() = vertex_rot_[k].transpose() * x0;
-    else
-      x.noalias() = vertex_rot_[k] * x0;
-  }
-  for (int nu = 0; nu < N; ++nu) {
-    auto x = r.segment<4>(QuatFdLayout::P(nu));
-    const Eigen::Vector4d x0 = x;
-    if (transpose)
-      x.noalias() = segment_rot_[nu].transpose() * x0;
-    else
-      x.noalias() = segment_rot_[nu] * x0;
-  }
-}
-
 void SdirkIntegrator::Rotate(Eigen::Ref<Eigen::VectorXd> r, bool transpose) const {
-  RotateHalf(r.head(n_), transpose);
-  RotateHalf(r.tail(n_), transpose);
+  corotation_.Apply(r.head(n_), transpose);
+  corotation_.Apply(r.tail(n_), transpose);
 }
 
 void SdirkIntegrator::Solve(Eigen::Ref<Eigen::VectorXd> r) {
-  // With the co-rotation P (UpdateRotations): x = P (aI − J)⁻¹ Pᵀ r, i.e. the iteration matrix
+  // With the co-rotation P (corotation.hpp): x = P (aI − J)⁻¹ Pᵀ r, i.e. the iteration matrix
   // of J(y_J) turned to the iterate's segment orientations.
   if (corotate_) Rotate(r, true);
   // w = M⁻¹ (a r_v + A r_q), x_q = (r_q + w)/a, x_v = w (the Rosenbrock integrator's reduction).
@@ -170,20 +116,10 @@ void SdirkIntegrator::Solve(Eigen::Ref<Eigen::VectorXd> r) {
 void SdirkIntegrator::SolveVelocity(Eigen::Ref<Eigen::VectorXd> rv) {
   // rv ← P_v M⁻¹ a P_vᵀ rv, M = a² I − a B − A (zero q-half of the right-hand side).
   const double a = 1.0 / (kGamma * factor_h_);
-  if (corotate_) RotateHalf(rv, true);
+  if (corotate_) corotation_.Apply(rv, true);
   rv *= a;
   M_.Solve(rv);
-  if (corotate_) RotateHalf(rv, false);
-}
-
-double SdirkIntegrator::Norm(const Eigen::Ref<const Eigen::VectorXd>& y,
-                             const Eigen::Ref<const Eigen::VectorXd>& d) const {
-  double e = 0.0;
-  for (int i = 0; i < 2 * n_; ++i) {
-    const double atol = i < n_ ? options_.abs_tol : newton_velocity_atol_;
-    e = std::max(e, std::abs(d[i]) / (atol + options_.rel_tol * std::abs(y[i])));
-  }
-  return e;
+  if (corotate_) corotation_.Apply(rv, false);
 }
 
 double SdirkIntegrator::IntegratedVelocityError(double h) const {
@@ -226,7 +162,7 @@ SdirkIntegrator::StageResult SdirkIntegrator::SolveStage(int i,
     SolveVelocity(dv);
     dz_.head(n) = hg * dv;
     z_ += dz_;
-    const double d = Norm(y, dz_);
+    const double d = ErrorNorm(newton_norm_, n_, y, y, dz_);
     if (!std::isfinite(d)) return StageResult::kDiverged;
     if (it > 0) {
       const double theta = d / previous;

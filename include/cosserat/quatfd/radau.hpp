@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/quatfd/corotation.hpp"
 #include "cosserat/quatfd/integrator.hpp"
 #include "cosserat/quatfd/sdirk.hpp"
 
@@ -70,9 +71,14 @@ class RadauIntegrator final : public QuatFdIntegrator {
   void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out);
   void RefreshJacobian(const Eigen::Ref<const Eigen::VectorXd>& y);
   bool Factorize(double h);
-  /// The co-rotation from the state of J to y into slot 0–2 (stages) or 3 (the error filter).
-  void UpdateRotations(int slot, const Eigen::Ref<const Eigen::VectorXd>& y);
-  void RotateHalf(int slot, Eigen::Ref<Eigen::VectorXd> r, bool transpose) const;
+  /// The co-rotation (corotation.hpp) from the state of J to y into slot 0–2 (stages) or 3 (the
+  /// error filter); RotateHalf applies a slot's P or Pᵀ to one half. No-ops without corotate_.
+  void UpdateRotations(int slot, const Eigen::Ref<const Eigen::VectorXd>& y) {
+    if (corotate_) corotation_[slot].Update(q_jac_, y.head(n_));
+  }
+  void RotateHalf(int slot, Eigen::Ref<Eigen::VectorXd> r, bool transpose) const {
+    if (corotate_) corotation_[slot].Apply(r, transpose);
+  }
   /// Starting values Z_i for a step of size h (the last polynomial, or zero).
   void StartingValues(double h);
   /// Z_q = h (A ⊗ I)(v_n + Z_v): the exact q-half.
@@ -80,8 +86,6 @@ class RadauIntegrator final : public QuatFdIntegrator {
   NewtonResult Newton(const Eigen::Ref<const Eigen::VectorXd>& y, double h);
   /// (γ/h I − J) x = r in place on a full vector (the error filter), co-rotated.
   void SolveReal(Eigen::Ref<Eigen::VectorXd> r);
-  double Norm(const Eigen::Ref<const Eigen::VectorXd>& y,
-              const Eigen::Ref<const Eigen::VectorXd>& d) const;
 
   const QuatFdModel& model_;
   IntegratorOptions options_;
@@ -107,9 +111,7 @@ class RadauIntegrator final : public QuatFdIntegrator {
   Eigen::VectorXd y_, y_new_, err_, f0_, tmp_, f_at_jac_, q_jac_, acc_;
   Eigen::VectorXd Z_[3], K_[3], dW_[3], cont_[3], dZ_;
   Eigen::VectorXcd cv_;
-  std::vector<Eigen::Vector4d> segment_w_[4];
-  std::vector<Eigen::Matrix4d> segment_rot_[4];
-  std::vector<Eigen::Matrix3d> vertex_rot_[4];
+  CoRotation corotation_[4];
 };
 
 }  // namespace cosserat::quatfd

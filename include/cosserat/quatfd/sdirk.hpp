@@ -46,6 +46,7 @@
 #include <vector>
 
 #include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/quatfd/corotation.hpp"
 #include "cosserat/quatfd/integrator.hpp"
 
 namespace cosserat::quatfd {
@@ -86,12 +87,12 @@ class SdirkIntegrator final : public QuatFdIntegrator {
   bool Factorize(double h);
   /// (I/(γh) − J) x = r in place, J turned by the current co-rotation.
   void Solve(Eigen::Ref<Eigen::VectorXd> r);
-  /// The co-rotation from the state of the last Jacobian to y: per segment the world rotation
-  /// w_ν = p_ν p̄_ν,J (4 × 4 left multiplication), per vertex the mean of its segments' (3 × 3).
-  void UpdateRotations(const Eigen::Ref<const Eigen::VectorXd>& y);
-  /// r ← P r or Pᵀ r, blockwise on the q and v halves; RotateHalf on one half (n entries).
+  /// The co-rotation from the state of the last Jacobian to y (a no-op without corotate_).
+  void UpdateRotations(const Eigen::Ref<const Eigen::VectorXd>& y) {
+    if (corotate_) corotation_.Update(q_jac_, y.head(n_));
+  }
+  /// r ← P r or Pᵀ r, blockwise on the q and v halves.
   void Rotate(Eigen::Ref<Eigen::VectorXd> r, bool transpose) const;
-  void RotateHalf(Eigen::Ref<Eigen::VectorXd> r, bool transpose) const;
   /// The velocity half of the Newton correction: rv ← (turned) a M⁻¹ rv.
   void SolveVelocity(Eigen::Ref<Eigen::VectorXd> rv);
   /// Predictor of stage i's derivative (into guess_): the known one nearest in time.
@@ -102,9 +103,6 @@ class SdirkIntegrator final : public QuatFdIntegrator {
   /// max_i h |err_v,i| / (abs_tol + rel_tol max(|q_i|, |q_new,i|)) for the current step (y_,
   /// y_new_, err_): the position error the step's velocity error makes over one step of size h.
   double IntegratedVelocityError(double h) const;
-  /// Scaled max-norm of a correction (the error tolerances at y).
-  double Norm(const Eigen::Ref<const Eigen::VectorXd>& y,
-              const Eigen::Ref<const Eigen::VectorXd>& d) const;
 
   const QuatFdModel& model_;
   IntegratorOptions options_;
@@ -124,11 +122,10 @@ class SdirkIntegrator final : public QuatFdIntegrator {
   Eigen::VectorXd y_, y_new_, err_, z_, dz_, s_, tmp_, acc_, f_at_jac_;
   Eigen::VectorXd k_[5], k0_, guess_;
   bool corotate_ = true;
-  double newton_velocity_atol_ = 0;  ///< absolute tolerance on v in the Newton norm
+  /// The tolerances of the Newton norm (ErrorNorm): options_ with abs_tol also on v.
+  IntegratorOptions newton_norm_;
   Eigen::VectorXd q_jac_;  ///< q where J was evaluated
-  std::vector<Eigen::Vector4d> segment_w_;
-  std::vector<Eigen::Matrix4d> segment_rot_;
-  std::vector<Eigen::Matrix3d> vertex_rot_;
+  CoRotation corotation_;
 };
 
 }  // namespace cosserat::quatfd
