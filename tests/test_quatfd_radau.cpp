@@ -15,53 +15,16 @@
 #include "cosserat/quatfd/quatfd_integrate.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/radau.hpp"
+#include "quatfd_falling_rod.hpp"
 
 namespace cosserat::quatfd {
 namespace {
 
 using L = QuatFdLayout;
 
-// Benchmark (a) of issue 4 exactly (bench/quatfd_rods.hpp), as in test_quatfd_sdirk.cpp.
-RodModel BenchmarkRubberRod() {
-  Material m = Material::FromPoissonRatio(5e6, 0.5, 1100);
-  const CrossSection c = CrossSection::Circle(0.005);
-  const double tau = 0.01;
-  m.damping.bending = tau * m.youngs_modulus * c.I1;
-  m.damping.torsion = tau * m.shear_modulus * c.torsion_constant;
-  m.damping.shear = tau * m.shear_modulus * c.area;
-  m.damping.extension = tau * m.youngs_modulus * c.area;
-  return RodModel::Uniform(0.5, c, m);
-}
-
-lie::SE3 Horizontal() {
-  lie::SE3 base;  // body z (rod tangent) along world +x
-  base.R << 0, 0, 1, 0, 1, 0, -1, 0, 0;
-  return base;
-}
-
-struct FallingRod {
-  QuatFdModel model;
-  Eigen::VectorXd q, v;
-  FallingRod(int segments, const RodModel& rod = BenchmarkRubberRod())
-      : model(rod, Horizontal(), [segments] {
-          QuatFdOptions o;
-          o.segments = segments;
-          return o;
-        }()) {
-    StaticLoads loads;
-    loads.gravity_W = Vec3(0, 0, -9.81);
-    model.set_loads(loads);
-    q.resize(model.size());
-    v.resize(model.size());
-    model.RestState(q, v);
-  }
-};
-
-IntegratorOptions Tight(double tol) {
-  IntegratorOptions io;
-  io.rel_tol = io.abs_tol = io.velocity_abs_tol = tol;
-  return io;
-}
+using testing::FallingRod;
+using testing::Tight;
+using bench::Horizontal;
 
 TEST(QuatFdRadau, ComplexBandedLuSolves) {
   // A random diagonally weighted complex band matrix (n = 30, kl = 3, ku = 2) against Eigen's
@@ -174,29 +137,7 @@ TEST(QuatFdRadau, ConstraintStaysOnTheSphere) {
 }
 
 TEST(QuatFdRadau, FailureIsAStatus) {
-  // A state f cannot be evaluated at (NaN velocity): every Newton iteration fails, the step
-  // shrinks to min_dt and the run reports kStepSizeUnderflow, not a number. A step cap: kMaxSteps.
-  FallingRod s(4);
-  {
-    Eigen::VectorXd q = s.q, v = s.v;
-    v[L::X(2)] = std::numeric_limits<double>::quiet_NaN();
-    IntegratorOptions io;
-    io.min_dt = 1e-8;
-    RadauIntegrator integ(s.model, io);
-    double t = 0;
-    EXPECT_EQ(integ.Advance(0.1, &t, q, v), IntegratorStatus::kStepSizeUnderflow);
-    EXPECT_EQ(t, 0.0);
-  }
-  {
-    Eigen::VectorXd q = s.q, v = s.v;
-    IntegratorOptions io;
-    io.max_steps = 3;
-    RadauIntegrator integ(s.model, io);
-    double t = 0;
-    EXPECT_EQ(integ.Advance(1.0, &t, q, v), IntegratorStatus::kMaxSteps);
-    EXPECT_GT(t, 0.0);
-    EXPECT_LT(t, 1.0);
-  }
+  testing::ExpectFailuresAreStatuses<RadauIntegrator>();
 }
 
 }  // namespace

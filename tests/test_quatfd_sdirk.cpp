@@ -16,54 +16,16 @@
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/rosenbrock.hpp"
 #include "cosserat/quatfd/sdirk.hpp"
+#include "quatfd_falling_rod.hpp"
 
 namespace cosserat::quatfd {
 namespace {
 
 using L = QuatFdLayout;
 
-// Benchmark (a) of issue 4 exactly (bench/quatfd_rods.hpp): rubber rod, Kelvin–Voigt damping on
-// all four strain rates with τ = 0.01 s, clamped horizontally, gravity.
-RodModel BenchmarkRubberRod() {
-  Material m = Material::FromPoissonRatio(5e6, 0.5, 1100);
-  const CrossSection c = CrossSection::Circle(0.005);
-  const double tau = 0.01;
-  m.damping.bending = tau * m.youngs_modulus * c.I1;
-  m.damping.torsion = tau * m.shear_modulus * c.torsion_constant;
-  m.damping.shear = tau * m.shear_modulus * c.area;
-  m.damping.extension = tau * m.youngs_modulus * c.area;
-  return RodModel::Uniform(0.5, c, m);
-}
-
-lie::SE3 Horizontal() {
-  lie::SE3 base;  // body z (rod tangent) along world +x
-  base.R << 0, 0, 1, 0, 1, 0, -1, 0, 0;
-  return base;
-}
-
-struct FallingRod {
-  QuatFdModel model;
-  Eigen::VectorXd q, v;
-  explicit FallingRod(int segments)
-      : model(BenchmarkRubberRod(), Horizontal(), [segments] {
-          QuatFdOptions o;
-          o.segments = segments;
-          return o;
-        }()) {
-    StaticLoads loads;
-    loads.gravity_W = Vec3(0, 0, -9.81);
-    model.set_loads(loads);
-    q.resize(model.size());
-    v.resize(model.size());
-    model.RestState(q, v);
-  }
-};
-
-IntegratorOptions Tight(double tol) {
-  IntegratorOptions io;
-  io.rel_tol = io.abs_tol = io.velocity_abs_tol = tol;
-  return io;
-}
+using testing::FallingRod;
+using testing::Tight;
+using bench::Horizontal;
 
 TEST(QuatFdSdirk, FixedStepErrorIsFourthOrder) {
   // Fixed steps of Step() (Newton converged to 1e-12 · tolerance scale, projection after each
@@ -272,29 +234,7 @@ TEST(QuatFdSdirk, StepMapIsStableWhereRosenbrocksIsNot) {
 }
 
 TEST(QuatFdSdirk, FailureIsAStatus) {
-  // A state f cannot be evaluated at (NaN velocity): every Newton iteration fails, the step
-  // shrinks to min_dt and the run reports kStepSizeUnderflow, not a number. A step cap: kMaxSteps.
-  FallingRod s(4);
-  {
-    Eigen::VectorXd q = s.q, v = s.v;
-    v[L::X(2)] = std::numeric_limits<double>::quiet_NaN();
-    IntegratorOptions io;
-    io.min_dt = 1e-8;
-    SdirkIntegrator integ(s.model, io);
-    double t = 0;
-    EXPECT_EQ(integ.Advance(0.1, &t, q, v), IntegratorStatus::kStepSizeUnderflow);
-    EXPECT_EQ(t, 0.0);
-  }
-  {
-    Eigen::VectorXd q = s.q, v = s.v;
-    IntegratorOptions io;
-    io.max_steps = 3;
-    SdirkIntegrator integ(s.model, io);
-    double t = 0;
-    EXPECT_EQ(integ.Advance(1.0, &t, q, v), IntegratorStatus::kMaxSteps);
-    EXPECT_GT(t, 0.0);
-    EXPECT_LT(t, 1.0);
-  }
+  testing::ExpectFailuresAreStatuses<SdirkIntegrator>();
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "cosserat/quatfd/rosenbrock.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "../bench/quatfd_rods.hpp"
 #include "spectral_peak.hpp"
 
 namespace cosserat::quatfd {
@@ -321,16 +322,9 @@ TEST(QuatFdDynamics, StepLimitIsTheRosenbrockStepMapNotTheOde) {
   //    map's spectral radius ρ passes 1 between 2 and 5 ms (ρ ≈ 20 at 5 ms, printed): the frozen
   //    Jacobian misses how the stiff directions in (p, ṗ, x) rotate with the segments over the
   //    step, and that part is integrated explicitly.
-  Material mat = Material::FromPoissonRatio(5e6, 0.5, 1100);
-  const CrossSection c = CrossSection::Circle(0.005);
-  const double tau = 0.01;
-  mat.damping.bending = tau * mat.youngs_modulus * c.I1;
-  mat.damping.torsion = tau * mat.shear_modulus * c.torsion_constant;
-  mat.damping.shear = tau * mat.shear_modulus * c.area;
-  mat.damping.extension = tau * mat.youngs_modulus * c.area;
   QuatFdOptions opt;
   opt.segments = 10;
-  QuatFdModel model(RodModel::Uniform(0.5, c, mat), Horizontal(), opt);
+  QuatFdModel model(bench::RubberRod(), Horizontal(), opt);  // benchmark (a) exactly
   StaticLoads loads;
   loads.gravity_W = Vec3(0, 0, -9.81);
   model.set_loads(loads);
