@@ -34,6 +34,16 @@ void SmallestRadius(const RodState& st, double* radius, double* s) {
   }
 }
 
+// The result at the robot's current state (the last solve, at load factor lambda).
+BendRadiusResult Finish(const EversionRobot& robot, BendRadiusResult out, double lambda,
+                        const char* limit, double kink_ratio) {
+  out.load_factor = lambda;
+  out.limit = limit;
+  out.kink_ratio = kink_ratio;
+  SmallestRadius(robot.state(), &out.min_radius, &out.s);
+  return out;
+}
+
 }  // namespace
 
 BendRadiusResult MinimumBendRadius(EversionRobot& robot, const StaticLoads& fixed,
@@ -47,11 +57,7 @@ BendRadiusResult MinimumBendRadius(EversionRobot& robot, const StaticLoads& fixe
   };
   double ratio = 0, good = 0;
   auto finish = [&](double lambda, const char* limit) {
-    out.load_factor = lambda;
-    out.limit = limit;
-    out.kink_ratio = ratio;
-    SmallestRadius(robot.state(), &out.min_radius, &out.s);
-    return out;
+    return Finish(robot, out, lambda, limit, ratio);
   };
   for (int k = 1; k <= steps; ++k) {
     const double lambda = static_cast<double>(k) / steps;
@@ -96,11 +102,7 @@ BendRadiusResult BendRadiusAtTipAngle(EversionRobot& robot, const StaticLoads& f
     return std::acos(std::clamp(c, -1.0, 1.0)) - angle;
   };
   auto finish = [&](double lambda, const char* limit) {
-    out.load_factor = lambda;
-    out.limit = limit;
-    out.kink_ratio = kink;
-    SmallestRadius(robot.state(), &out.min_radius, &out.s);
-    return out;
+    return Finish(robot, out, lambda, limit, kink);
   };
   double lo = 0, g_lo = -angle, hi = 1, g_hi = g(hi);
   for (int k = 0; k < 40 && g_hi < 0; ++k) {  // bracket by doubling
