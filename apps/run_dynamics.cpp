@@ -139,6 +139,8 @@ bool RunDynamics(const io::Problem& problem, std::ostream& out, std::ostream* cs
   options.tip_inertia_B = problem.dynamics.tip_inertia;
   options.max_iterations = problem.solver.max_iterations;
   options.shooting_segments = problem.dynamics.shooting_segments;
+  options.spatial_scheme =
+      problem.dynamics.spatial_scheme == "heun" ? SpatialScheme::kHeun : SpatialScheme::kRk4;
   Bdf2ShootingStepper stepper(problem.rod, problem.nodes, options);
   const io::DynamicRun run = Simulate(problem, csv != nullptr, &stepper);
   out << io::DynamicResultToJson(run, stepper.state()).dump(2) << '\n';

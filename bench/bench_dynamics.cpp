@@ -42,9 +42,11 @@ struct Run {
   bool ok = true;
 };
 
-Run Simulate(int nodes, double dt, int record_every, double tolerance, int pieces = 1) {
+Run Simulate(int nodes, double dt, int record_every, double tolerance, int pieces = 1,
+             SpatialScheme scheme = SpatialScheme::kRk4) {
   Bdf2Options opt;
   opt.dt = dt;
+  opt.spatial_scheme = scheme;
   opt.shooting_segments = pieces;
   opt.tolerance = tolerance;
   Bdf2ShootingStepper stepper(PeerRod(), nodes, opt);
@@ -67,9 +69,9 @@ Run Simulate(int nodes, double dt, int record_every, double tolerance, int piece
   return run;
 }
 
-void BM_PeerRelease(benchmark::State& state) {
+void PeerRelease(benchmark::State& state, SpatialScheme scheme) {
   for (auto _ : state) {
-    const Run run = Simulate(40, 2e-3, 1, 1e-10);
+    const Run run = Simulate(40, 2e-3, 1, 1e-10, 1, scheme);
     if (!run.ok) state.SkipWithError("a step failed");
     std::vector<double> t = run.step_us;
     std::sort(t.begin(), t.end());
@@ -94,9 +96,9 @@ void BM_PeerRelease(benchmark::State& state) {
 // Counters: the largest tip distance over the 25 s, and over the first 1 s and 5 s (BDF2's
 // phase error grows with time).
 void CompareTo(benchmark::State& state, int ref_nodes, double ref_dt, int every_run,
-               int every_ref, int ref_pieces = 1) {
+               int every_ref, int ref_pieces = 1, SpatialScheme scheme = SpatialScheme::kRk4) {
   for (auto _ : state) {
-    const Run run = Simulate(40, 2e-3, every_run, 1e-10);
+    const Run run = Simulate(40, 2e-3, every_run, 1e-10, 1, scheme);
     const Run ref = Simulate(ref_nodes, ref_dt, every_ref, 1e-10, ref_pieces);
     if (!run.ok || !ref.ok) state.SkipWithError("a step failed");
     double worst = 0, worst_1s = 0, worst_5s = 0;
@@ -115,17 +117,30 @@ void CompareTo(benchmark::State& state, int ref_nodes, double ref_dt, int every_
   }
 }
 
+void BM_PeerRelease(benchmark::State& state) { PeerRelease(state, SpatialScheme::kRk4); }
+void BM_PeerReleaseHeun(benchmark::State& state) { PeerRelease(state, SpatialScheme::kHeun); }
+
 void BM_PeerAccuracyGrid4x(benchmark::State& state) { CompareTo(state, 160, 2e-3, 1, 1); }
+// Heun at 40 nodes against RK4 at 160 (same dt): the spatial error of the order-2 scheme.
+void BM_PeerAccuracyHeunGrid4x(benchmark::State& state) {
+  CompareTo(state, 160, 2e-3, 1, 1, 1, SpatialScheme::kHeun);
+}
 
 // dt/2 and 4× the grid at once: every 2nd reference frame is every frame of the 2 ms run.
 void BM_PeerAccuracyDtHalfGrid4x(benchmark::State& state) { CompareTo(state, 160, 1e-3, 1, 2); }
 
 // The reference: dt/8 and 4× the grid, 8 shooting pieces (about a minute).
 void BM_PeerAccuracyDt8Grid4x(benchmark::State& state) { CompareTo(state, 160, 2.5e-4, 1, 8, 8); }
+void BM_PeerAccuracyHeunDt8Grid4x(benchmark::State& state) {
+  CompareTo(state, 160, 2.5e-4, 1, 8, 8, SpatialScheme::kHeun);
+}
 
 }  // namespace
 
 BENCHMARK(BM_PeerRelease)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_PeerReleaseHeun)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_PeerAccuracyGrid4x)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_PeerAccuracyHeunGrid4x)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_PeerAccuracyDtHalfGrid4x)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_PeerAccuracyDt8Grid4x)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_PeerAccuracyHeunDt8Grid4x)->Iterations(1)->Unit(benchmark::kSecond);

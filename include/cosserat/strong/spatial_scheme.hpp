@@ -1,0 +1,44 @@
+#pragma once
+/// \file
+/// The explicit Runge–Kutta schemes the dynamic shot integrates with in s (bdf2_stepper.hpp).
+///
+/// Both are of the form where stage j sits at y + a_j h k_{j−1} (a_0 = 0) and
+/// y_{i+1} = y_i + h Σ_j b_j k_j, so one loop serves both. BDF2 keeps its history at every stage
+/// point, and the rod's integrals (mass, momentum, energy) use the weights b_j at the stage
+/// points: the linear-momentum balance n_W' = −f + ρA a_W is then summed by exactly the
+/// quadrature the shot uses, and momentum stays conserved to round-off with either scheme.
+///
+/// Choosing: RK4 is order 4 in s; Heun (explicit trapezoid) is order 2 for half the stage
+/// evaluations, the same order as BDF2 in time. On the issue-3 peer rod at 40 nodes the spatial
+/// error of either is far below BDF2's time error at dt = 2 ms (BENCHMARKS.md), so the real-time
+/// path can use Heun; statics (static_shooting.hpp) always uses RK4.
+
+namespace cosserat {
+
+enum class SpatialScheme {
+  kRk4,   ///< classic RK4: 4 stage evaluations per segment, order 4 (the default)
+  kHeun,  ///< Heun / explicit trapezoid: 2 stage evaluations per segment, order 2
+};
+
+namespace internal {
+
+/// Stage j of segment i: state y_i + step[j] h k_{j−1}; section sample `sample[j]` of the
+/// segment (0: its start, 1: its middle, 2: its end, as SegmentSamplePoints lays them out);
+/// quadrature weight weight[j] (times h). Offset in s of stage j: step[j] h for both schemes.
+struct SchemeTable {
+  int stages;
+  double step[4];
+  int sample[4];
+  double weight[4];
+};
+
+inline constexpr SchemeTable kRk4Table{
+    4, {0.0, 0.5, 0.5, 1.0}, {0, 1, 1, 2}, {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}};
+inline constexpr SchemeTable kHeunTable{2, {0.0, 1.0, 0, 0}, {0, 2, 0, 0}, {0.5, 0.5, 0, 0}};
+
+constexpr const SchemeTable& Table(SpatialScheme s) {
+  return s == SpatialScheme::kHeun ? kHeunTable : kRk4Table;
+}
+
+}  // namespace internal
+}  // namespace cosserat
