@@ -41,8 +41,10 @@ using Coefficients = Bdf2ShootingStepper::Coefficients;
 
 #if defined(__GNUC__)
 #define COSSERAT_HOT inline __attribute__((always_inline))
+#define COSSERAT_HOT_LAMBDA __attribute__((always_inline))
 #else
 #define COSSERAT_HOT inline
+#define COSSERAT_HOT_LAMBDA
 #endif
 
 // Integration state in s: pose in the world, wrench and twist in the body frame.
@@ -480,11 +482,6 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     return smp.mass(5) * loads.gravity_W + loads.distributed_force_W;
   };
   if (!statics) PrepareHistory(c);
-  auto history = [&](int q, Vec6* xi_h, Vec6* V_h) {
-    if (statics) return;
-    *xi_h = strain_h_[q];
-    *V_h = twist_h_[q];
-  };
   auto record_node = [&](int i, const Vec6& xi) {
     trial_.position_W[i] = y.p;
     trial_.rotation_WB[i] = y.R;
@@ -495,7 +492,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     trial_.strain[i] = xi;
   };
 
-  Vec6 xh = Vec6::Zero(), Vh = Vec6::Zero();
+  const Vec6 zero6 = Vec6::Zero();
   const Vec3 zero3 = Vec3::Zero();
   // One stage q at state ys: record it and return its derivative.
   // With tendons: the strain of K (ξ − ξ*) + D ξ_t + Σ τ a(ξ) = W (tendons.hpp) at a sample,
@@ -530,11 +527,12 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     guess = xi;
     return xi;
   };
-  auto stage = [&](int q, int sample_index, const DynState& ys) {
+  auto stage = [&](int q, int sample_index, const DynState& ys) COSSERAT_HOT_LAMBDA {
     const Sample& smp = samples_[sample_index];
-    history(q, &xh, &Vh);
+    const Vec6& xh = statics ? zero6 : strain_h_[q];  // history terms ξʰ, Vʰ
+    const Vec6& Vh = statics ? zero6 : twist_h_[q];
     position_now_[q] = ys.p;
-    rotation_now_[q] = ys.R;
+    std::copy_n(ys.R.data(), 9, rotation_now_[q].data());
     Vec6 given;
     if (!tendons_.empty()) {
       Vec6 W;

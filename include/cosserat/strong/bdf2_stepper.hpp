@@ -192,9 +192,9 @@ class Bdf2ShootingStepper {
   /// One shot: the dimensionless tip residual for the dimensionless unknown x (W(0) = scale ⊙ x),
   /// with BDF2 weights c, or the static equations when statics is true. Writes the trial state
   /// and the stage values. With J, also d r / d x: the exact derivative of the discrete shot
-  /// (tangent propagation through the spatial scheme), at about ten times the cost; for free-free it drops the
-  /// O(dt) change of J_r in the base pose, so it is close but not exact. Used by the solver and
-  /// its tests.
+  /// (tangent propagation through the spatial scheme), at about ten times the cost; for
+  /// free-free it drops the O(dt) change of J_r in the base pose, so it is close but not exact.
+  /// Used by the solver and its tests.
   Vec6 Residual(const StepInput& input, const Coefficients& c, bool statics, const Vec6& x,
                 Mat6* J = nullptr);
 
