@@ -7,6 +7,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <type_traits>
 
@@ -532,7 +533,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     const Vec6& xh = statics ? zero6 : strain_h_[q];  // history terms ξʰ, Vʰ
     const Vec6& Vh = statics ? zero6 : twist_h_[q];
     position_now_[q] = ys.p;
-    std::copy_n(ys.R.data(), 9, rotation_now_[q].data());
+    std::memcpy(rotation_now_[q].data(), ys.R.data(), sizeof(Mat3));  // inlined: 72 bytes
     Vec6 given;
     if (!tendons_.empty()) {
       Vec6 W;
