@@ -16,24 +16,15 @@
 #include <vector>
 
 #include "cosserat/strong/bdf2_stepper.hpp"
+#include "peer_rod.hpp"
 
 namespace {
 
 using namespace cosserat;
+using bench::PeerPreload;
+using bench::PeerRod;
 
 constexpr double kLength = 0.5, kDuration = 25.0;
-
-RodModel PeerRod() {
-  return RodModel::Uniform(kLength, CrossSection::Circle(0.001),
-                           Material::FromShearModulus(200e9, 80e9, 8000));
-}
-
-StepInput Preload() {
-  StepInput in;
-  in.loads.gravity_W = Vec3(-9.81, 0, 0);
-  in.loads.tip_force = Vec3(-0.02 * 9.81, 0, 0);
-  return in;
-}
 
 struct Run {
   std::vector<Vec3> tip;  // every `record_every` steps
@@ -50,7 +41,7 @@ Run Simulate(int nodes, double dt, int record_every, double tolerance, int piece
   opt.shooting_segments = pieces;
   opt.tolerance = tolerance;
   Bdf2ShootingStepper stepper(PeerRod(), nodes, opt);
-  StepInput in = Preload();
+  StepInput in = PeerPreload();
   Run run;
   run.ok = stepper.InitializeAtRest(in).converged();
   in.loads.tip_force.setZero();  // released

@@ -298,12 +298,13 @@ TEST(Bdf2Dynamics, StepBeforeInitializeIsAStatusNotACrash) {
 namespace cosserat {
 namespace {
 
-TEST(Bdf2Dynamics, ShootingJacobianMatchesFiniteDifferences) {
+void ExpectShootingJacobianMatchesFiniteDifferences(SpatialScheme scheme) {
   Material mat = Material::FromShearModulus(200e9, 80e9, 8000);
   const CrossSection sec = CrossSection::Circle(0.001);
   mat.damping.bending = 1e-4 * 200e9 * sec.I1;
   mat.damping.extension = 1e-4 * 200e9 * sec.area;
   Bdf2Options opt;
+  opt.spatial_scheme = scheme;
   opt.tip_mass = 0.01;  // with a tip body, so its terms are checked too
   opt.tip_inertia_B = Vec3(1e-6, 2e-6, 3e-7);
   Bdf2ShootingStepper stepper(RodModel::Uniform(0.5, sec, mat), 21, opt);
@@ -330,6 +331,14 @@ TEST(Bdf2Dynamics, ShootingJacobianMatchesFiniteDifferences) {
     const Vec6 fd =
         (stepper.Residual(in, c, false, xp) - stepper.Residual(in, c, false, xm)) / (2 * h);
     EXPECT_LT((fd - J.col(k)).norm(), 1e-6 * std::max(1.0, J.col(k).norm())) << "column " << k;
+  }
+}
+
+// For both spatial schemes (the tangent is propagated through each scheme's own stages).
+TEST(Bdf2Dynamics, ShootingJacobianMatchesFiniteDifferences) {
+  for (SpatialScheme scheme : {SpatialScheme::kRk4, SpatialScheme::kHeun}) {
+    SCOPED_TRACE(scheme == SpatialScheme::kRk4 ? "rk4" : "heun");
+    ExpectShootingJacobianMatchesFiniteDifferences(scheme);
   }
 }
 

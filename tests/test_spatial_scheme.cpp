@@ -1,27 +1,19 @@
 // The Heun (order-2) spatial scheme of the BDF2 shooting stepper against the truth: rest stays
-// rest, the order in s against an RK4 run on a fine grid, linear momentum of a free rod, and the
-// exact Jacobian of the Heun shot against finite differences.
+// rest, the order in s against an RK4 run on a fine grid, linear momentum of a free rod. (Its
+// exact Jacobian: Bdf2Dynamics.ShootingJacobianMatchesFiniteDifferences, for both schemes.)
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
+#include "../bench/peer_rod.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 
 namespace cosserat {
 namespace {
 
-RodModel PeerRod() {  // the issue-3 peer rod: steel, r = 1 mm, L = 0.5 m
-  return RodModel::Uniform(0.5, CrossSection::Circle(0.001),
-                           Material::FromShearModulus(200e9, 80e9, 8000));
-}
-
-StepInput Preload() {
-  StepInput in;
-  in.loads.gravity_W = Vec3(-9.81, 0, 0);
-  in.loads.tip_force = Vec3(-0.02 * 9.81, 0, 0);
-  return in;
-}
+using bench::PeerRod;
+using bench::PeerPreload;
 
 Bdf2Options Options(SpatialScheme scheme) {
   Bdf2Options opt;
@@ -31,7 +23,7 @@ Bdf2Options Options(SpatialScheme scheme) {
 
 TEST(SpatialScheme, HeunRodAtRestStaysThere) {
   Bdf2ShootingStepper stepper(PeerRod(), 40, Options(SpatialScheme::kHeun));
-  const StepInput in = Preload();
+  const StepInput in = PeerPreload();
   ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
   const Vec3 tip0 = stepper.state().tip_position_W();
   // The equilibrium solves the same Heun equations with zero rates, and BDF2 of a constant
@@ -43,7 +35,7 @@ TEST(SpatialScheme, HeunRodAtRestStaysThere) {
 // Tip positions every step over the first 0.2 s after the release of the peer problem.
 std::vector<Vec3> ReleaseTrajectory(int nodes, SpatialScheme scheme) {
   Bdf2ShootingStepper stepper(PeerRod(), nodes, Options(scheme));
-  StepInput in = Preload();
+  StepInput in = PeerPreload();
   EXPECT_TRUE(stepper.InitializeAtRest(in).converged());
   in.loads.tip_force.setZero();
   std::vector<Vec3> tip;
@@ -97,43 +89,6 @@ TEST(SpatialScheme, HeunConservesTheLinearMomentumOfAFreeRod) {
   for (int i = 0; i < 1000; ++i) ASSERT_TRUE(stepper.Step(StepInput{}).converged());
   // RK4's measured drift over 1000 steps at tolerance 1e-10 is 1.9e-8; the same bound.
   EXPECT_LT((stepper.Momentum().linear_W - a).norm(), 1e-7 * a.norm());
-}
-
-// The exact Jacobian (tangent propagation through the Heun stages) against central
-// differences, on a moving, damped rod with a tip body, as the RK4 test does.
-TEST(SpatialScheme, HeunShootingJacobianMatchesFiniteDifferences) {
-  Material mat = Material::FromShearModulus(200e9, 80e9, 8000);
-  const CrossSection sec = CrossSection::Circle(0.001);
-  mat.damping.bending = 1e-4 * 200e9 * sec.I1;
-  mat.damping.extension = 1e-4 * 200e9 * sec.area;
-  Bdf2Options opt = Options(SpatialScheme::kHeun);
-  opt.tip_mass = 0.01;
-  opt.tip_inertia_B = Vec3(1e-6, 2e-6, 3e-7);
-  Bdf2ShootingStepper stepper(RodModel::Uniform(0.5, sec, mat), 21, opt);
-  StepInput in;
-  in.loads.tip_force = Vec3(-0.2, 0.1, 0);
-  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
-  in.loads.tip_force = Vec3(0.05, 0, 0.1);
-  in.loads.tip_moment = Vec3(0, 0.01, 0.02);
-  in.loads.gravity_W = Vec3(0, -9.81, 0);
-  in.base_twist_B << 0.1, -0.2, 0.3, 0.01, 0.02, -0.01;
-  for (int i = 0; i < 5; ++i) ASSERT_TRUE(stepper.Step(in).converged());
-  const double dt = stepper.options().dt;
-  const Bdf2ShootingStepper::Coefficients c{1.5 / dt, -2 / dt, 0.5 / dt};
-  const Vec6 x = (Vec6() << 0.01, -0.3, 0.02, 0.1, -0.05, 0.2).finished();
-  Mat6 J;
-  stepper.Residual(in, c, false, x, &J);
-  // Central differences at h = 1e-6: truncation h² times the third derivative (amplified by the
-  // shot's e^{λL}) and round-off 1e-16/h, as in the RK4 test.
-  const double h = 1e-6;
-  for (int k = 0; k < 6; ++k) {
-    Vec6 xp = x, xm = x;
-    xp(k) += h;
-    xm(k) -= h;
-    const Vec6 fd =
-        (stepper.Residual(in, c, false, xp) - stepper.Residual(in, c, false, xm)) / (2 * h);
-    EXPECT_LT((fd - J.col(k)).norm(), 1e-6 * std::max(1.0, J.col(k).norm())) << "column " << k;
-  }
 }
 
 }  // namespace

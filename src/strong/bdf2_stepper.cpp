@@ -545,11 +545,21 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
                       &strain_now_[q], &twist_now_[q], &velocity_W_now_[q],
                       tendons_.empty() ? nullptr : &given);
   };
+  // The tangent dy through the stages ys of segment i (the exact derivative of the shot).
+  auto propagate = [&](const auto& ys, int q, int smp, double h) {
+    constexpr int S = static_cast<int>(std::tuple_size<std::decay_t<decltype(ys)>>::value);
+    constexpr const SchemeTable& T = S == 4 ? kRk4Table : kHeunTable;
+    DynTangent dk[S];
+    for (int j = 0; j < S; ++j)
+      dk[j] = TangentDerivative(samples_[smp + T.sample[j]], *ys[j],
+                                j == 0 ? dy : Axpy(dy, T.step[j] * h, dk[j - 1]), strain_now_[q + j],
+                                c.c0, statics, tendons_.empty() ? nullptr : &H_stage[j]);
+    RkUpdate<S>(h, T.weight, dk, &dy);
+  };
   // Segment by segment with the explicit scheme's S stages (spatial_scheme.hpp), written out
   // per scheme: a loop over stage arrays made the RK4 shot ~25 % slower.
   auto shoot = [&](auto stages) {
     constexpr int S = decltype(stages)::value;
-    constexpr const SchemeTable& T = S == 4 ? kRk4Table : kHeunTable;
     size_t next_junction = 0;
     for (int i = 0; i + 1 < n; ++i) {
       if (junctions_active_ && next_junction < junction_nodes_.size() &&
@@ -558,7 +568,6 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
       const double h = grid_[i + 1] - grid_[i];
       const int q = S * i;
       const int smp = 3 * i;
-      const bool t = J && !tendons_.empty();
       const DynState k1 = stage(q, smp, y);
       record_node(i, strain_now_[q]);
       if constexpr (S == 4) {
@@ -568,30 +577,12 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
         const DynState k3 = stage(q + 2, smp + 1, y3);
         const DynState y4 = Axpy(y, h, k3);
         const DynState k4 = stage(q + 3, smp + 2, y4);
-        if (J) {
-          DynTangent dk[4];
-          dk[0] = TangentDerivative(samples_[smp], y, dy, strain_now_[q], c.c0, statics,
-                                    t ? &H_stage[0] : nullptr);
-          dk[1] = TangentDerivative(samples_[smp + 1], y2, Axpy(dy, 0.5 * h, dk[0]),
-                                    strain_now_[q + 1], c.c0, statics, t ? &H_stage[1] : nullptr);
-          dk[2] = TangentDerivative(samples_[smp + 1], y3, Axpy(dy, 0.5 * h, dk[1]),
-                                    strain_now_[q + 2], c.c0, statics, t ? &H_stage[2] : nullptr);
-          dk[3] = TangentDerivative(samples_[smp + 2], y4, Axpy(dy, h, dk[2]), strain_now_[q + 3],
-                                    c.c0, statics, t ? &H_stage[3] : nullptr);
-          RkUpdate<4>(h, T.weight, dk, &dy);
-        }
+        if (J) propagate(std::array<const DynState*, 4>{&y, &y2, &y3, &y4}, q, smp, h);
         Rk4Update(h, k1, k2, k3, k4, &y);
       } else {
         const DynState y2 = Axpy(y, h, k1);
         const DynState k2 = stage(q + 1, smp + 2, y2);
-        if (J) {
-          DynTangent dk[2];
-          dk[0] = TangentDerivative(samples_[smp], y, dy, strain_now_[q], c.c0, statics,
-                                    t ? &H_stage[0] : nullptr);
-          dk[1] = TangentDerivative(samples_[smp + 2], y2, Axpy(dy, h, dk[0]), strain_now_[q + 1],
-                                    c.c0, statics, t ? &H_stage[1] : nullptr);
-          RkUpdate<2>(h, T.weight, dk, &dy);
-        }
+        if (J) propagate(std::array<const DynState*, 2>{&y, &y2}, q, smp, h);
         HeunUpdate(h, k1, k2, &y);
       }
     }
