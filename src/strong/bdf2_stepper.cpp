@@ -747,7 +747,9 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
 }
 
 void Bdf2ShootingStepper::Commit(double h) {
-  run_.unknowns.Push(solved_unknowns_, h);
+  // Degrees scored in residual units with the Jacobian the next step starts from (single
+  // shooting; multiple shooting keeps its own).
+  run_.unknowns.Push(solved_unknowns_, h, junction_nodes_.empty() ? &run_.jacobian : nullptr);
   std::swap(run_.strain2, run_.strain1);
   std::swap(run_.strain1, strain_now_);
   std::swap(run_.twist2, run_.twist1);
