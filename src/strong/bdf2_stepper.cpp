@@ -717,6 +717,9 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
     summary->residual = r.norm();
     run_.jacobian = J;
     solved_unknowns_ = x;
+    // The root estimate one more (shot-free) Newton step gives: x's residual, up to the
+    // tolerance, would otherwise enter the extrapolation of the next steps as noise.
+    predictor_term_ = x - lu.solve(r);
     return true;
   }
 
@@ -743,13 +746,14 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
   run_.jacobian = J_lm;
   run_.jacobian_c0 = c.c0;
   solved_unknowns_ = x_lm;
+  predictor_term_ = x_lm;
   return true;
 }
 
 void Bdf2ShootingStepper::Commit(double h) {
   // Degrees scored in residual units with the Jacobian the next step starts from (single
   // shooting; multiple shooting keeps its own).
-  run_.unknowns.Push(solved_unknowns_, h, junction_nodes_.empty() ? &run_.jacobian : nullptr);
+  run_.unknowns.Push(predictor_term_, h, junction_nodes_.empty() ? &run_.jacobian : nullptr);
   std::swap(run_.strain2, run_.strain1);
   std::swap(run_.strain1, strain_now_);
   std::swap(run_.twist2, run_.twist1);

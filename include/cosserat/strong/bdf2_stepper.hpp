@@ -253,6 +253,10 @@ class Bdf2ShootingStepper {
   Vec6 xi_back_ = Vec6::Zero();  ///< log(g₁⁻¹ g₂) at s = 0, for the group BDF2 of free-free
   double current_c0_ = -1.0;
   Vec6 solved_unknowns_ = Vec6::Zero();
+  /// What Commit() appends to the predictor's history: the solved unknowns plus the Newton
+  /// correction of their remaining residual (no shot), so the history carries less of the
+  /// solver's own error; the predictor's high degrees amplify that error by up to 2047.
+  Vec6 predictor_term_ = Vec6::Zero();
 
   Vec6 twist_scale_;  ///< V(0) = twist_scale ⊙ x for free-free: [1/s ×3, L/s ×3]
 
