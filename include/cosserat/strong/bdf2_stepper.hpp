@@ -141,6 +141,10 @@ class Bdf2ShootingStepper {
     double last_dt = 0;             ///< size of the last accepted step (0 before the first)
     SequencePredictor unknowns{2};  ///< the converged unknowns of the last steps
     Mat6 jacobian = Mat6::Identity();
+    /// The secant filter of SolveStep (see there): the Jacobian's change per step, and the
+    /// covariance of (row of the Jacobian, row of its change), shared by the six rows.
+    Mat6 jacobian_rate = Mat6::Zero();
+    Eigen::Matrix<double, 12, 12> jacobian_cov = Eigen::Matrix<double, 12, 12>::Identity();
     double jacobian_c0 = -1.0;  ///< the c0 the Jacobian was computed for; −1: none
     int steps_taken = 0;
     // Accepted values at the 4 RK4 stages of each segment (index 4 i + j), one and two steps
