@@ -30,16 +30,19 @@ TEST(SequencePredictor, ExactOnCubicsOnceFiveTermsAreKnown) {
 }
 
 TEST(SequencePredictor, SinusoidErrorMatchesTheForwardDifferenceFormula) {
-  const double theta = 0.07;  // ω dt of the peer problem's first bending mode
+  // θ = 0.3 (between ω dt of the peer problem's first and second bending modes, 0.07 and 0.44):
+  // the degree-10 error θ^11 ≈ 2e-6 stays far above the round-off of its weighted sum (weights
+  // summing to 2047 in magnitude: ~5e-13), so the formula is what is measured.
+  const double theta = 0.3;
   SequencePredictor p;
   auto term = [](double phase) { return Vec6::Constant(std::sin(phase)); };
   p.Reset(term(0));
   for (int k = 1; k < 40; ++k) p.Push(term(k * theta), 2e-3);
-  // All degrees up to 6 are exact to (2 sin(θ/2))^{p+1} ≈ θ^{p+1}; the highest wins here.
+  // All degrees up to kMaxDegree are exact to (2 sin(θ/2))^{p+1} ≈ θ^{p+1}; the highest wins here.
   EXPECT_EQ(p.degree(), SequencePredictor::kMaxDegree);
   const double bound = std::pow(2 * std::sin(theta / 2), SequencePredictor::kMaxDegree + 1);
   const double error = (p.Predict(2e-3) - term(40 * theta)).cwiseAbs().maxCoeff();
-  EXPECT_LE(error, bound * (1 + 1e-6) + 1e-15);  // round-off of the sum: ~64 × 1e-16
+  EXPECT_LE(error, bound * (1 + 1e-6) + 1e-12);  // round-off of the sum: ~2047 × 1e-16 × 2
   EXPECT_GT(error, 0.1 * bound);                 // it is the formula's error, not luck
 }
 
@@ -69,6 +72,31 @@ TEST(SequencePredictor, AnotherSpacingKeepsOnlyTheLatestTwoTerms) {
   EXPECT_EQ(p.size(), 2);
   p.Push(Vec6::Constant(7.0), 0.5);
   EXPECT_NEAR(p.Predict(0.5)(0), 7.5, 1e-12);
+}
+
+TEST(SequencePredictor, WeightedScoresPickTheDegreeForTheComponentsThatCount) {
+  // Component 0 alternates, (−1)^k: degree p errs by 2^{p+1} there, so the lowest degree wins.
+  // Component 1 is a slow sinusoid: the highest degree wins there. Unweighted, the alternating
+  // component dominates the score; weighted by diag(0, 1, 0, …) (the stepper passes its
+  // Jacobian: what counts is the residual an error gives), only the sinusoid counts.
+  const double theta = 0.3;
+  auto term = [&](int k) {
+    Vec6 x = Vec6::Zero();
+    x(0) = k % 2 ? -1.0 : 1.0;
+    x(1) = std::sin(theta * k);
+    return x;
+  };
+  Mat6 weight = Mat6::Zero();
+  weight(1, 1) = 1.0;
+  SequencePredictor plain(2), weighted(2);
+  plain.Reset(term(0));
+  weighted.Reset(term(0));
+  for (int k = 1; k < 40; ++k) {
+    plain.Push(term(k), 1.0);
+    weighted.Push(term(k), 1.0, &weight);
+  }
+  EXPECT_EQ(plain.degree(), 2);
+  EXPECT_EQ(weighted.degree(), SequencePredictor::kMaxDegree);
 }
 
 }  // namespace

@@ -110,6 +110,7 @@ bool Bdf2ShootingStepper::SolveStepMultiple(const StepInput& input, const Coeffi
     return false;
   }
   solved_unknowns_ = ms_x_.head<6>();
+  predictor_term_ = solved_unknowns_;
   run_.junction_unknowns = ms_x_.tail(nz);
   return true;
 }

@@ -37,7 +37,7 @@ Vec6 SequencePredictor::Extrapolate(int p, int first) const {
   return out;
 }
 
-void SequencePredictor::Push(const Vec6& x, double spacing) {
+void SequencePredictor::Push(const Vec6& x, double spacing, const Mat6* weight) {
   if (count_ == 0) {
     Reset(x);
     return;
@@ -62,7 +62,8 @@ void SequencePredictor::Push(const Vec6& x, double spacing) {
       score_[p] = -1.0;  // not yet scored
       continue;
     }
-    const double error = (Extrapolate(p, 1) - x).squaredNorm();
+    const Vec6 miss = Extrapolate(p, 1) - x;
+    const double error = weight ? (*weight * miss).squaredNorm() : miss.squaredNorm();
     score_[p] = score_[p] < 0 ? error : 0.5 * (score_[p] + error);
     if (p >= lowest && score_[p] < best) {
       best = score_[p];

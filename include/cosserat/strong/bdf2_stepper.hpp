@@ -147,6 +147,10 @@ class Bdf2ShootingStepper {
     double last_dt = 0;             ///< size of the last accepted step (0 before the first)
     SequencePredictor unknowns{2};  ///< the converged unknowns of the last steps
     Mat6 jacobian = Mat6::Identity();
+    /// The secant filter of SolveStep (see there): the Jacobian's change per step, and the
+    /// covariance of (row of the Jacobian, row of its change), shared by the six rows.
+    Mat6 jacobian_rate = Mat6::Zero();
+    Eigen::Matrix<double, 12, 12> jacobian_cov = Eigen::Matrix<double, 12, 12>::Identity();
     double jacobian_c0 = -1.0;  ///< the c0 the Jacobian was computed for; −1: none
     int steps_taken = 0;
     // Accepted values at the S stages of each segment (index S i + j; S = 4 for RK4, 2 for
@@ -260,6 +264,10 @@ class Bdf2ShootingStepper {
   Vec6 xi_back_ = Vec6::Zero();  ///< log(g₁⁻¹ g₂) at s = 0, for the group BDF2 of free-free
   double current_c0_ = -1.0;
   Vec6 solved_unknowns_ = Vec6::Zero();
+  /// What Commit() appends to the predictor's history: the solved unknowns plus the Newton
+  /// correction of their remaining residual (no shot), so the history carries less of the
+  /// solver's own error; the predictor's high degrees amplify that error by up to 2047.
+  Vec6 predictor_term_ = Vec6::Zero();
 
   Vec6 twist_scale_;  ///< V(0) = twist_scale ⊙ x for free-free: [1/s ×3, L/s ×3]
 

@@ -14,7 +14,10 @@ namespace cosserat {
 
 class SequencePredictor {
  public:
-  static constexpr int kMaxDegree = 6;
+  // Degree 10 on the peer problem (issue 3): the first residual of a step falls from 3e-6
+  // (degree ≤ 6) to ~3e-8, near the floor set by the converged terms' own errors (the weights
+  // of degree p sum to 2^{p+1} − 1 in magnitude, 2047 here); degrees 11–12 gained nothing.
+  static constexpr int kMaxDegree = 10;
 
   /// Degrees below min_degree are never chosen once enough terms are known for it. The stepper
   /// uses 2: in the fast transient right after a release, the running scores are too noisy to
@@ -26,8 +29,10 @@ class SequencePredictor {
   void Reset(const Vec6& x);
   /// Appends the term that follows the latest one at distance `spacing` (a time step, s). A
   /// spacing other than the previous one drops all but the latest two terms, since the
-  /// extrapolation weights assume even spacing.
-  void Push(const Vec6& x, double spacing);
+  /// extrapolation weights assume even spacing. With `weight`, the degrees are scored by the
+  /// norm of weight × (prediction − x) instead of the plain norm: the stepper passes its
+  /// Jacobian, so that the score is the first residual each degree would have given.
+  void Push(const Vec6& x, double spacing, const Mat6* weight = nullptr);
   /// The next term at distance `spacing` after the latest one: the extrapolation of the current
   /// degree, or the latest term itself when the spacing differs or too few terms are known.
   Vec6 Predict(double spacing) const;
