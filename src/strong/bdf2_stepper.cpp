@@ -686,9 +686,9 @@ struct StepCost {
 bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& c, double h,
                                     bool statics, StepSummary* summary) {
   if (!statics && !junction_nodes_.empty()) return SolveStepMultiple(input, c, h, summary);
-  // 1. Newton with the last Jacobian, kept current by Broyden's update, from an extrapolation
-  //    of the last steps' unknowns. A Jacobian from another c0 (statics, another step size) is
-  //    replaced by the exact one first.
+  // 1. Newton with the last steps' Jacobian, tracked by the secant filter below, from an
+  //    extrapolation of the last steps' unknowns. A Jacobian from another c0 (statics, another
+  //    step size) is replaced by the exact one first.
   Vec6 x = statics ? run_.unknowns.latest() : run_.unknowns.Predict(h);
   Vec6 r;
   bool fresh = false;  // J is the exact Jacobian at x, not yet Broyden-updated
