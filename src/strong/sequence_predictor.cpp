@@ -7,12 +7,24 @@ namespace cosserat {
 
 namespace {
 
-// C(n, k) for n ≤ kMaxDegree + 1.
-constexpr double Binomial(int n, int k) {
-  double c = 1.0;
-  for (int i = 1; i <= k; ++i) c = c * (n - k + i) / i;
-  return c;
-}
+constexpr int kMaxDegree = SequencePredictor::kMaxDegree;
+
+// kWeights[p][j] = (−1)^j C(p+1, j+1): the extrapolation of degree p one step ahead from the
+// p + 1 latest terms, newest first. A table: Push() scores every degree every step, and
+// computing the binomials there took as many instructions as the rest of the predictor.
+struct WeightTable {
+  double w[kMaxDegree + 1][kMaxDegree + 1] = {};
+  constexpr WeightTable() {
+    for (int p = 0; p <= kMaxDegree; ++p) {
+      double c = 1.0;  // C(p+1, j+1), built up in j
+      for (int j = 0; j <= p; ++j) {
+        c = j == 0 ? p + 1 : c * (p + 1 - j) / (j + 1);
+        w[p][j] = (j % 2 == 0 ? 1.0 : -1.0) * c;
+      }
+    }
+  }
+};
+constexpr WeightTable kWeights;
 
 }  // namespace
 
@@ -31,9 +43,7 @@ void SequencePredictor::Reset(const Vec6& x) {
 
 Vec6 SequencePredictor::Extrapolate(int p, int first) const {
   Vec6 out = Vec6::Zero();
-  double sign = 1.0;
-  for (int j = 0; j <= p; ++j, sign = -sign)
-    out += sign * Binomial(p + 1, j + 1) * terms_[first + j];
+  for (int j = 0; j <= p; ++j) out += kWeights.w[p][j] * terms_[first + j];
   return out;
 }
 
