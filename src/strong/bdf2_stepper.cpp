@@ -426,16 +426,20 @@ void Bdf2ShootingStepper::SetImplicitCompliance(double c0) {
 void Bdf2ShootingStepper::PrepareHistory(const Coefficients& c) {
   if (history_ready_ && c.c0 == history_c_.c0 && c.c2 == history_c_.c2) return;
   // Written so that a constant history gives exactly zero rates:
-  // ξ_t = c0 ξ + ξʰ with ξʰ = c2 (ξ₂ − ξ₁) − c0 ξ₁ (c1 = −c0 − c2), likewise for V.
-  for (size_t q = 0; q < strain_h_.size(); ++q) {
-    for (int k = 0; k < 6; ++k) {
-      strain_h_[q](k) =
-          c.c2 * (run_.strain2[q](k) - run_.strain1[q](k)) - c.c0 * run_.strain1[q](k);
-      twist_h_[q](k) = c.c2 * (run_.twist2[q](k) - run_.twist1[q](k)) - c.c0 * run_.twist1[q](k);
-    }
-    velocity_W_h_[q] =
-        c.c2 * (run_.velocity_W2[q] - run_.velocity_W1[q]) - c.c0 * run_.velocity_W1[q];
-  }
+  // ξ_t = c0 ξ + ξʰ with ξʰ = c2 (ξ₂ − ξ₁) − c0 ξ₁ (c1 = −c0 − c2), likewise for V. Each
+  // std::vector of fixed-size vectors is one contiguous array of doubles: one vectorised
+  // expression per quantity (element-wise loops over Vec6 were ~8 % of a Heun step).
+  auto history = [&](auto& out, const auto& older, const auto& old) {
+    using V = typename std::decay_t<decltype(out)>::value_type;
+    const Eigen::Index size = static_cast<Eigen::Index>(out.size()) * V::SizeAtCompileTime;
+    using Array = Eigen::Map<Eigen::ArrayXd>;
+    using ConstArray = Eigen::Map<const Eigen::ArrayXd>;
+    const ConstArray a(older.front().data(), size), b(old.front().data(), size);
+    Array(out.front().data(), size) = c.c2 * (a - b) - c.c0 * b;
+  };
+  history(strain_h_, run_.strain2, run_.strain1);
+  history(twist_h_, run_.twist2, run_.twist1);
+  history(velocity_W_h_, run_.velocity_W2, run_.velocity_W1);
   history_c_ = c;
   history_ready_ = true;
 }
