@@ -797,11 +797,16 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
       x += dx;
       r = r_new;
     } else {
-      // The Broyden Jacobian has drifted: replace it by the exact one at x and retry.
+      // The filtered Jacobian has drifted: replace it by the exact one at x and retry. The
+      // exact J restarts the filter here too: its rate D and covariance P described the J that
+      // failed, and kept, the next step's J + D would fail the same way (an out-of-plane kick
+      // after a planar swing needed an exact J in every one of the next ~80 steps).
       r = Residual(input, c, statics, x, &J);
       ++summary->jacobians;
       ++summary->shots;
       fresh = true;
+      D.setZero();
+      P = StartCovariance();
     }
     lu.compute(J);
   }
