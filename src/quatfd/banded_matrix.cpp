@@ -14,6 +14,8 @@ void BandedMatrix::Resize(int n, int kl, int ku) {
   ld_ = 2 * kl + ku + 1;  // kl rows of fill-in above the ku + kl + 1 band rows
   data_.assign(static_cast<size_t>(ld_) * std::max(n, 0), 0.0);
   pivot_.assign(std::max(n, 0), 0);
+  row_end_.assign(std::max(n, 0), 0);
+  u_top_.assign(std::max(n, 0), 0);
 }
 
 void BandedMatrix::SetZero() { std::fill(data_.begin(), data_.end(), 0.0); }
@@ -36,6 +38,21 @@ Eigen::MatrixXd BandedMatrix::ToDense() const {
   return A;
 }
 
+namespace {
+// Row i of U can be non-zero only up to column row_end[i] (the last column the interchanges up to
+// step i have touched, non-decreasing in i); every other fill-in entry stays exactly zero. So
+// column j of U is non-zero only from row u_top[j] = min{i : row_end[i] ≥ j} down, which is
+// j − ku when no rows were interchanged instead of j − kl − ku: the back substitution skips the
+// zero entries (the same result, bit for bit, for finite values).
+void UpperTops(const std::vector<int>& row_end, std::vector<int>* u_top) {
+  int i = 0;
+  for (size_t j = 0; j < u_top->size(); ++j) {
+    while (row_end[i] < static_cast<int>(j)) ++i;
+    (*u_top)[j] = i;
+  }
+}
+}  // namespace
+
 bool BandedMatrix::Factorize() {
   // dgbtf2: column j of L below the diagonal is stored in place; U gets up to kl + ku
   // super-diagonals because of the row interchanges. The fill-in rows must start at zero.
@@ -52,6 +69,7 @@ bool BandedMatrix::Factorize() {
     pivot_[j] = j + jp;
     if (colj[jp] == 0.0) return false;
     ju = std::max(ju, std::min(j + ku_ + jp, n_ - 1));
+    row_end_[j] = ju;
     if (jp != 0)
       for (int c = j; c <= ju; ++c) std::swap((*this)(j, c), (*this)(j + jp, c));
     if (km > 0) {
@@ -65,24 +83,27 @@ bool BandedMatrix::Factorize() {
       }
     }
   }
+  UpperTops(row_end_, &u_top_);
   return true;
 }
 
-void BandedMatrix::Solve(Eigen::Ref<Eigen::VectorXd> b) const {
+void BandedMatrix::Solve(Eigen::Ref<Eigen::VectorXd> rhs) const {
+  double* __restrict b = rhs.data();
+  const double* __restrict d = data_.data();
   // L y = P b.
   for (int j = 0; j < n_; ++j) {
     if (pivot_[j] != j) std::swap(b[j], b[pivot_[j]]);
     const int km = std::min(kl_, n_ - 1 - j);
-    const double* colj = &data_[kv_ + j * ld_];
+    const double* colj = d + kv_ + j * ld_;  // colj[i] = L(j + i, j)
     const double bj = b[j];
     for (int i = 1; i <= km; ++i) b[j + i] -= colj[i] * bj;
   }
-  // U x = y; U has kl + ku super-diagonals.
+  // U x = y; column j of U is non-zero from row u_top_[j] (at most kl + ku above the diagonal).
   for (int j = n_ - 1; j >= 0; --j) {
-    b[j] /= (*this)(j, j);
+    const double* colj = d + kv_ - j + j * ld_;  // colj[i] = U(i, j)
+    b[j] /= colj[j];
     const double bj = b[j];
-    const int i0 = std::max(0, j - kv_);
-    for (int i = i0; i < j; ++i) b[i] -= (*this)(i, j) * bj;
+    for (int i = u_top_[j]; i < j; ++i) b[i] -= colj[i] * bj;
   }
 }
 
@@ -94,6 +115,8 @@ void ComplexBandedMatrix::Resize(int n, int kl, int ku) {
   ld_ = 2 * kl + ku + 1;
   data_.assign(static_cast<size_t>(ld_) * std::max(n, 0), Scalar(0.0));
   pivot_.assign(std::max(n, 0), 0);
+  row_end_.assign(std::max(n, 0), 0);
+  u_top_.assign(std::max(n, 0), 0);
   inv_diag_.assign(std::max(n, 0), Scalar(0.0));
 }
 
@@ -134,6 +157,7 @@ bool ComplexBandedMatrix::Factorize() {
     pivot_[j] = j + jp;
     if (colj[jp] == Scalar(0.0)) return false;
     ju = std::max(ju, std::min(j + ku_ + jp, n_ - 1));
+    row_end_[j] = ju;
     if (jp != 0)
       for (int c = j; c <= ju; ++c) std::swap((*this)(j, c), (*this)(j + jp, c));
     const Scalar inv = Inv(colj[0]);
@@ -148,23 +172,25 @@ bool ComplexBandedMatrix::Factorize() {
       }
     }
   }
+  UpperTops(row_end_, &u_top_);
   return true;
 }
 
-void ComplexBandedMatrix::Solve(Eigen::Ref<Eigen::VectorXcd> b) const {
+void ComplexBandedMatrix::Solve(Eigen::Ref<Eigen::VectorXcd> rhs) const {
+  Scalar* __restrict b = rhs.data();
+  const Scalar* __restrict d = data_.data();
   for (int j = 0; j < n_; ++j) {
     if (pivot_[j] != j) std::swap(b[j], b[pivot_[j]]);
     const int km = std::min(kl_, n_ - 1 - j);
-    const Scalar* colj = &data_[kv_ + j * ld_];
+    const Scalar* colj = d + kv_ + j * ld_;
     const Scalar bj = b[j];
     for (int i = 1; i <= km; ++i) b[j + i] -= Mul(colj[i], bj);
   }
   for (int j = n_ - 1; j >= 0; --j) {
     b[j] = Mul(b[j], inv_diag_[j]);
     const Scalar bj = b[j];
-    const int i0 = std::max(0, j - kv_);
-    const Scalar* colj = &data_[kv_ - j + j * ld_];  // colj[i] = U(i, j)
-    for (int i = i0; i < j; ++i) b[i] -= Mul(colj[i], bj);
+    const Scalar* colj = d + kv_ - j + j * ld_;  // colj[i] = U(i, j)
+    for (int i = u_top_[j]; i < j; ++i) b[i] -= Mul(colj[i], bj);
   }
 }
 

@@ -43,6 +43,8 @@ class BandedMatrix {
   int n_ = 0, kl_ = 0, ku_ = 0, kv_ = 0, ld_ = 1;
   std::vector<double> data_;
   std::vector<int> pivot_;
+  std::vector<int> row_end_;  ///< per row of U: its last possibly non-zero column
+  std::vector<int> u_top_;    ///< per column of U: its first possibly non-zero row
 };
 
 /// The complex counterpart of BandedMatrix's storage, factorisation and solve (same dgbtf2
@@ -73,6 +75,7 @@ class ComplexBandedMatrix {
   int n_ = 0, kl_ = 0, ku_ = 0, kv_ = 0, ld_ = 1;
   std::vector<Scalar> data_;
   std::vector<int> pivot_;
+  std::vector<int> row_end_, u_top_;  ///< as in BandedMatrix
   std::vector<Scalar> inv_diag_;  ///< 1/U(j, j), so the solve multiplies
 };
 
