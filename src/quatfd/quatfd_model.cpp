@@ -239,11 +239,89 @@ void QuatFdModel::TipLoadsJacobian(const Vec4& p_last, Vec3* force_W, Vec3* torq
   }
 }
 
+void QuatFdModel::EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                const Eigen::Ref<const Eigen::VectorXd>& v, double alpha,
+                                double beta, Eigen::Ref<Eigen::VectorXd> a,
+                                bool forces_only) const {
+  // Evaluate's two phases in one pass over the segments, with the same sums in the same order
+  // (so the same f bit for bit): segment ν's forces, then bending element ν (between segments
+  // ν − 1 and ν), after which segment ν − 1's torque is complete (its own, bending elements ν − 1
+  // and ν) and its quaternion acceleration follows. Each segment's body angular velocity ω is
+  // computed once and shared by its segment, both bending elements and the acceleration, where
+  // the element kernels computed it four times.
+  const int N = layout_.segments;
+  a.setZero();
+  kernels::RotationConstants rc;
+  rc.alpha = alpha;
+  rc.beta = beta;
+  const auto accelerate = [&](int i, const Vec4& p, const Vec4& pd, const Vec3& w) {
+    const int pp = L::P(i);
+    rc.inertia = rotation_[i].inertia;
+    const Vec3 tau = a.segment<3>(pp + 1);
+    a.segment<4>(pp) = kernels::QuaternionAccelerationOmega<double>(rc, p, pd, w, tau);
+  };
+  Vec4 p_prev = Vec4::Zero(), pd_prev = Vec4::Zero();
+  Vec3 w_prev = Vec3::Zero();
+  for (int i = 0; i < N; ++i) {
+    const int xa = L::X(i), xb = L::X(i + 1), pp = L::P(i);
+    const Vec4 p = Value<4>(q, pp), pd = Value<4>(v, pp);
+    const Vec3 w = kernels::AngularVelocity<double>(p, pd);
+    {
+      Vec3 fa, tau;
+      kernels::SegmentForcesOmega<double>(segment_[i], Value<3>(q, xb) - Value<3>(q, xa), p,
+                                          Value<3>(v, xb) - Value<3>(v, xa), w, &fa, &tau);
+      a.segment<3>(xa) += fa;
+      a.segment<3>(xb) -= fa;
+      a.segment<3>(pp + 1) += tau;
+    }
+    if (bend_active_[i]) {
+      const bool clamp = i == 0;
+      Vec3 ta, tb;
+      if (clamp) {
+        const Vec3 wa = kernels::AngularVelocity<double>(base_quat_, Vec4::Zero());
+        kernels::BendTorquesOmega<double>(bend_[i], base_quat_, p, wa, w, &ta, &tb);
+      } else {
+        kernels::BendTorquesOmega<double>(bend_[i], p_prev, p, w_prev, w, &ta, &tb);
+        a.segment<3>(L::P(i - 1) + 1) += ta;
+      }
+      a.segment<3>(pp + 1) += tb;
+    }
+    if (i > 0 && !forces_only) accelerate(i - 1, p_prev, pd_prev, w_prev);
+    p_prev = p;
+    pd_prev = pd;
+    w_prev = w;
+  }
+  for (int n = 0; n <= N; ++n)
+    a.segment<3>(L::X(n)) +=
+        mass_[n] * loads_.gravity_W + vertex_weight_[n] * loads_.distributed_force_W;
+  {
+    const int xt = L::X(N), pl = L::P(N - 1);
+    Vec3 f, m;
+    TipLoads<double>(p_prev, &f, &m);
+    a.segment<3>(xt) += f;
+    a.segment<3>(pl + 1) += m;
+  }
+  if (forces_only) {
+    for (int r = 0; r < size(); ++r)
+      if (fixed_[r]) a[r] = 0.0;
+    return;
+  }
+  for (int n = 0; n <= N; ++n) {
+    const int r = L::X(n);
+    a.segment<3>(r) *= fixed_[r] ? 0.0 : 1.0 / mass_[n];
+  }
+  accelerate(N - 1, p_prev, pd_prev, w_prev);
+}
+
 template <int kMode>
 void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
                            const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
                            Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq, BandedMatrix* dfdv,
                            bool forces_only) const {
+  if constexpr (kMode == kValue) {
+    EvaluateValue(q, v, alpha, beta, a, forces_only);
+    return;
+  }
   constexpr bool kJac = kMode != kValue;
   const int N = layout_.segments;
   // Phase 1: generalised forces. x rows of `a` collect the vertex forces (N, world); rows
@@ -261,16 +339,6 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
   };
   for (int i = 0; i < N; ++i) {
     const int xa = L::X(i), xb = L::X(i + 1), pp = L::P(i);
-    if (kMode == kValue) {
-      V3<double> fa, tau;
-      kernels::SegmentForces<double>(segment_[i], Value<3>(q, xb) - Value<3>(q, xa),
-                                     Value<4>(q, pp), Value<3>(v, xb) - Value<3>(v, xa),
-                                     Value<4>(v, pp), &fa, &tau);
-      a.segment<3>(xa) += fa;
-      a.segment<3>(xb) -= fa;
-      a.segment<3>(pp + 1) += tau;
-      continue;
-    }
     kernels::SegmentJacobian J;
     Vec3 fa, tau;
     if (kMode == kAnalytic) {
@@ -334,13 +402,6 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     const int pa = clamp ? -1 : L::P(n - 1), pb = L::P(n);
     const Vec4 qa = clamp ? base_quat_ : Value<4>(q, pa);
     const Vec4 va = clamp ? Vec4::Zero() : Value<4>(v, pa);
-    if (kMode == kValue) {
-      V3<double> ta, tb;
-      kernels::BendTorques<double>(bend_[n], qa, Value<4>(q, pb), va, Value<4>(v, pb), &ta, &tb);
-      if (!clamp) a.segment<3>(pa + 1) += ta;
-      a.segment<3>(pb + 1) += tb;
-      continue;
-    }
     kernels::BendJacobian J;
     Vec3 ta, tb;
     if (kMode == kAnalytic) {
@@ -386,9 +447,7 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
   {
     const int xt = L::X(N), pl = L::P(N - 1);
     Vec3 f, m;
-    if (kMode == kValue) {
-      TipLoads<double>(Value<4>(q, pl), &f, &m);
-    } else if (kMode == kAnalytic) {
+    if (kMode == kAnalytic) {
       Eigen::Matrix<double, 3, 4> f_p, m_p;
       TipLoadsJacobian(Value<4>(q, pl), &f, &m, &f_p, &m_p);
       add(dfdq, xt, pl, f_p);
@@ -433,11 +492,6 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     const int pp = L::P(i);
     rc.inertia = rotation_[i].inertia;
     const Vec3 tau = a.segment<3>(pp + 1);
-    if (kMode == kValue) {
-      a.segment<4>(pp) =
-          kernels::QuaternionAcceleration<double>(rc, Value<4>(q, pp), Value<4>(v, pp), tau);
-      continue;
-    }
     Vec4 acc;
     kernels::M44 acc_p, acc_pd;
     kernels::M43 acc_tau;

@@ -183,6 +183,10 @@ class QuatFdModel {
   void JacobianImpl(const Eigen::Ref<const Eigen::VectorXd>& q,
                     const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
                     BandedMatrix* dfdq, BandedMatrix* dfdv, Eigen::VectorXd* a) const;
+  /// Evaluate's f (kValue) in one pass: the same sums in the same order, ω once per segment.
+  void EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
+                     const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
+                     Eigen::Ref<Eigen::VectorXd> a, bool forces_only) const;
   template <int kMode>
   void Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
