@@ -44,6 +44,50 @@ void AddBlock(const V3<Jet<N>>& out, int slot, int width, int row, int col, Band
 
 Mat3 Block(const Mat6& M, int r, int c) { return M.block<3, 3>(r, c); }
 
+// The f path's per-segment kernels for doubles (EvaluateValue): the formulas of AngularVelocity,
+// SegmentForcesOmega and QuaternionAccelerationOmega (quatfd_kernels.hpp), with 1/|p|² formed
+// once per segment and R(p) = H(p)/|p|² as a matrix, so a segment costs one division where the
+// templated kernels (ToBody, ToWorld, ω, p̈ each dividing by |p|², ω̇ by J) took ~20. Equal to
+// them up to round-off; the templated kernels stay the Jet oracle's.
+struct SegmentFrame {
+  double inv_n2;  ///< 1/|p|²
+  Mat3 R;         ///< R(p), body → world
+  Vec3 omega;     ///< body angular velocity 2 Im(p̄ ṗ)/|p|²
+};
+
+inline SegmentFrame Frame(const Vec4& p, const Vec4& pd) {
+  SegmentFrame f;
+  const double w = p[0], x = p[1], y = p[2], z = p[3];
+  f.inv_n2 = 1.0 / p.squaredNorm();
+  const double s = f.inv_n2, s2 = 2.0 * s;
+  f.R << (w * w + x * x - y * y - z * z) * s, (x * y - w * z) * s2, (x * z + w * y) * s2,  //
+      (x * y + w * z) * s2, (w * w - x * x + y * y - z * z) * s, (y * z - w * x) * s2,     //
+      (x * z - w * y) * s2, (y * z + w * x) * s2, (w * w - x * x - y * y + z * z) * s;
+  f.omega = s2 * kernels::ImConjMul<double>(p, pd);
+  return f;
+}
+
+inline void SegmentForcesFrame(const kernels::SegmentConstants& c, const Vec3& dx, const Vec3& dv,
+                               const SegmentFrame& f, Vec3* force_a, Vec3* torque) {
+  const double inv = 1.0 / c.ds;
+  const Vec3 gamma = f.R.transpose() * (dx * inv);
+  const Vec3 gamma_dot = f.R.transpose() * (dv * inv) + gamma.cross(f.omega);
+  const Vec3 F = c.stiffness * (gamma - c.rest) + c.damping * gamma_dot;
+  *force_a = f.R * F;
+  *torque = c.ds * gamma.cross(F);
+}
+
+inline Vec4 QuaternionAccelerationFrame(const Vec3& inertia, const Vec3& inv_inertia, double alpha,
+                                        double beta, const Vec4& p, const Vec4& pd,
+                                        const SegmentFrame& f, const Vec3& torque) {
+  const double n2 = p.squaredNorm(), ppd = p.dot(pd);
+  const Vec3& w = f.omega;
+  const Vec3 wdot = (torque - w.cross(inertia.cwiseProduct(w))).cwiseProduct(inv_inertia);
+  const Vec3 cv = 0.5 * n2 * wdot + ppd * w;
+  const double c0 = -pd.squaredNorm() - 2.0 * alpha * ppd - 0.5 * beta * beta * (n2 - 1.0);
+  return kernels::QMul<double>(p, Vec4(c0, cv[0], cv[1], cv[2])) * f.inv_n2;
+}
+
 }  // namespace
 
 bool QuatFdOptions::IsValid(std::string* why) const {
@@ -84,6 +128,7 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
 
   segment_.resize(N);
   rotation_.resize(N);
+  inv_inertia_.resize(N);
   mass_.assign(N + 1, 0.0);
   vertex_weight_.assign(N + 1, 0.0);
   for (int i = 0; i < N; ++i) {
@@ -95,6 +140,7 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
     c.damping = Block(sp.damping, 3, 3);
     c.rest = rod.RestStrainAt(mid).tail<3>();
     rotation_[i].inertia = sp.mass.diagonal().head<3>() * ds;
+    inv_inertia_[i] = rotation_[i].inertia.cwiseInverse();
     const double half_mass = 0.5 * sp.mass(3, 3) * ds;
     mass_[i] += half_mass;
     mass_[i + 1] += half_mass;
@@ -243,33 +289,29 @@ void QuatFdModel::EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
                                 const Eigen::Ref<const Eigen::VectorXd>& v, double alpha,
                                 double beta, Eigen::Ref<Eigen::VectorXd> a,
                                 bool forces_only) const {
-  // Evaluate's two phases in one pass over the segments, with the same sums in the same order
-  // (so the same f bit for bit): segment ν's forces, then bending element ν (between segments
-  // ν − 1 and ν), after which segment ν − 1's torque is complete (its own, bending elements ν − 1
-  // and ν) and its quaternion acceleration follows. Each segment's body angular velocity ω is
-  // computed once and shared by its segment, both bending elements and the acceleration, where
-  // the element kernels computed it four times.
+  // Evaluate's two phases in one pass over the segments, the sums in the same order: segment ν's
+  // forces, then bending element ν (between segments ν − 1 and ν), after which segment ν − 1's
+  // torque is complete (its own, bending elements ν − 1 and ν) and its quaternion acceleration
+  // follows. Each segment's frame (1/|p|², R(p), ω; Frame above) is formed once and shared by
+  // its segment, both bending elements and the acceleration.
   const int N = layout_.segments;
   a.setZero();
-  kernels::RotationConstants rc;
-  rc.alpha = alpha;
-  rc.beta = beta;
-  const auto accelerate = [&](int i, const Vec4& p, const Vec4& pd, const Vec3& w) {
+  const auto accelerate = [&](int i, const Vec4& p, const Vec4& pd, const SegmentFrame& f) {
     const int pp = L::P(i);
-    rc.inertia = rotation_[i].inertia;
     const Vec3 tau = a.segment<3>(pp + 1);
-    a.segment<4>(pp) = kernels::QuaternionAccelerationOmega<double>(rc, p, pd, w, tau);
+    a.segment<4>(pp) = QuaternionAccelerationFrame(rotation_[i].inertia, inv_inertia_[i], alpha,
+                                                   beta, p, pd, f, tau);
   };
   Vec4 p_prev = Vec4::Zero(), pd_prev = Vec4::Zero();
-  Vec3 w_prev = Vec3::Zero();
+  SegmentFrame f_prev{};
   for (int i = 0; i < N; ++i) {
     const int xa = L::X(i), xb = L::X(i + 1), pp = L::P(i);
     const Vec4 p = Value<4>(q, pp), pd = Value<4>(v, pp);
-    const Vec3 w = kernels::AngularVelocity<double>(p, pd);
+    const SegmentFrame f = Frame(p, pd);
     {
       Vec3 fa, tau;
-      kernels::SegmentForcesOmega<double>(segment_[i], Value<3>(q, xb) - Value<3>(q, xa), p,
-                                          Value<3>(v, xb) - Value<3>(v, xa), w, &fa, &tau);
+      SegmentForcesFrame(segment_[i], Value<3>(q, xb) - Value<3>(q, xa),
+                         Value<3>(v, xb) - Value<3>(v, xa), f, &fa, &tau);
       a.segment<3>(xa) += fa;
       a.segment<3>(xb) -= fa;
       a.segment<3>(pp + 1) += tau;
@@ -278,18 +320,17 @@ void QuatFdModel::EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
       const bool clamp = i == 0;
       Vec3 ta, tb;
       if (clamp) {
-        const Vec3 wa = kernels::AngularVelocity<double>(base_quat_, Vec4::Zero());
-        kernels::BendTorquesOmega<double>(bend_[i], base_quat_, p, wa, w, &ta, &tb);
+        kernels::BendTorquesOmega<double>(bend_[i], base_quat_, p, Vec3::Zero(), f.omega, &ta, &tb);
       } else {
-        kernels::BendTorquesOmega<double>(bend_[i], p_prev, p, w_prev, w, &ta, &tb);
+        kernels::BendTorquesOmega<double>(bend_[i], p_prev, p, f_prev.omega, f.omega, &ta, &tb);
         a.segment<3>(L::P(i - 1) + 1) += ta;
       }
       a.segment<3>(pp + 1) += tb;
     }
-    if (i > 0 && !forces_only) accelerate(i - 1, p_prev, pd_prev, w_prev);
+    if (i > 0 && !forces_only) accelerate(i - 1, p_prev, pd_prev, f_prev);
     p_prev = p;
     pd_prev = pd;
-    w_prev = w;
+    f_prev = f;
   }
   for (int n = 0; n <= N; ++n)
     a.segment<3>(L::X(n)) +=
@@ -310,7 +351,7 @@ void QuatFdModel::EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
     const int r = L::X(n);
     a.segment<3>(r) *= fixed_[r] ? 0.0 : 1.0 / mass_[n];
   }
-  accelerate(N - 1, p_prev, pd_prev, w_prev);
+  accelerate(N - 1, p_prev, pd_prev, f_prev);
 }
 
 template <int kMode>
