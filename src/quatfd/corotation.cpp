@@ -1,5 +1,7 @@
 #include "cosserat/quatfd/corotation.hpp"
 
+#include <cmath>
+
 #include "cosserat/quatfd/quatfd_kernels.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 
@@ -16,6 +18,8 @@ void CoRotation::Resize(int segments) {
 
 void CoRotation::Update(const Eigen::Ref<const Eigen::VectorXd>& q_ref,
                         const Eigen::Ref<const Eigen::VectorXd>& q) {
+  // Written out (one reciprocal square root per rotation, the vertex matrix from its quaternion
+  // directly): called three times per Newton iteration of the Radau integrator.
   const int N = segments_;
   for (int nu = 0; nu < N; ++nu) {
     const Eigen::Vector4d p = q.segment<4>(QuatFdLayout::P(nu));
@@ -23,7 +27,7 @@ void CoRotation::Update(const Eigen::Ref<const Eigen::VectorXd>& q_ref,
     // w = p ⊗ p̄_J / (|p| |p_J|): the world rotation that takes segment ν from where J was
     // evaluated to q.
     Eigen::Vector4d w = kernels::QMul<double>(p, Eigen::Vector4d(pj[0], -pj[1], -pj[2], -pj[3]));
-    w.normalize();
+    w *= 1.0 / std::sqrt(w.squaredNorm());
     segment_w_[nu] = w;
     Eigen::Matrix4d& L = segment_rot_[nu];  // left multiplication by w
     L << w[0], -w[1], -w[2], -w[3],  //
@@ -37,12 +41,14 @@ void CoRotation::Update(const Eigen::Ref<const Eigen::VectorXd>& q_ref,
     if (k > 0 && k < N) {
       const Eigen::Vector4d& o = segment_w_[k - 1];
       w += w.dot(o) >= 0 ? o : Eigen::Vector4d(-o);
+      w *= 1.0 / std::sqrt(w.squaredNorm());
     }
-    w.normalize();
-    const Eigen::Vector3d u(w[1], w[2], w[3]);
-    Eigen::Matrix3d cross;
-    cross << 0, -u[2], u[1], u[2], 0, -u[0], -u[1], u[0], 0;
-    vertex_rot_[k] = Eigen::Matrix3d::Identity() + 2 * w[0] * cross + 2 * cross * cross;
+    // R(w) for the unit quaternion w = [c, u]: I + 2c[u]× + 2[u]×².
+    const double c = w[0], x = w[1], y = w[2], z = w[3];
+    Eigen::Matrix3d& R = vertex_rot_[k];
+    R << 1 - 2 * (y * y + z * z), 2 * (x * y - c * z), 2 * (x * z + c * y),  //
+        2 * (x * y + c * z), 1 - 2 * (x * x + z * z), 2 * (y * z - c * x),   //
+        2 * (x * z - c * y), 2 * (y * z + c * x), 1 - 2 * (x * x + y * y);
   }
 }
 

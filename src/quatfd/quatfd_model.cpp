@@ -44,6 +44,50 @@ void AddBlock(const V3<Jet<N>>& out, int slot, int width, int row, int col, Band
 
 Mat3 Block(const Mat6& M, int r, int c) { return M.block<3, 3>(r, c); }
 
+// The f path's per-segment kernels for doubles (EvaluateValue): the formulas of AngularVelocity,
+// SegmentForcesOmega and QuaternionAccelerationOmega (quatfd_kernels.hpp), with 1/|p|² formed
+// once per segment and R(p) = H(p)/|p|² as a matrix, so a segment costs one division where the
+// templated kernels (ToBody, ToWorld, ω, p̈ each dividing by |p|², ω̇ by J) took ~20. Equal to
+// them up to round-off; the templated kernels stay the Jet oracle's.
+struct SegmentFrame {
+  double inv_n2;  ///< 1/|p|²
+  Mat3 R;         ///< R(p), body → world
+  Vec3 omega;     ///< body angular velocity 2 Im(p̄ ṗ)/|p|²
+};
+
+inline SegmentFrame Frame(const Vec4& p, const Vec4& pd) {
+  SegmentFrame f;
+  const double w = p[0], x = p[1], y = p[2], z = p[3];
+  f.inv_n2 = 1.0 / p.squaredNorm();
+  const double s = f.inv_n2, s2 = 2.0 * s;
+  f.R << (w * w + x * x - y * y - z * z) * s, (x * y - w * z) * s2, (x * z + w * y) * s2,  //
+      (x * y + w * z) * s2, (w * w - x * x + y * y - z * z) * s, (y * z - w * x) * s2,     //
+      (x * z - w * y) * s2, (y * z + w * x) * s2, (w * w - x * x - y * y + z * z) * s;
+  f.omega = s2 * kernels::ImConjMul<double>(p, pd);
+  return f;
+}
+
+inline void SegmentForcesFrame(const kernels::SegmentConstants& c, const Vec3& dx, const Vec3& dv,
+                               const SegmentFrame& f, Vec3* force_a, Vec3* torque) {
+  const double inv = 1.0 / c.ds;
+  const Vec3 gamma = f.R.transpose() * (dx * inv);
+  const Vec3 gamma_dot = f.R.transpose() * (dv * inv) + gamma.cross(f.omega);
+  const Vec3 F = c.stiffness * (gamma - c.rest) + c.damping * gamma_dot;
+  *force_a = f.R * F;
+  *torque = c.ds * gamma.cross(F);
+}
+
+inline Vec4 QuaternionAccelerationFrame(const Vec3& inertia, const Vec3& inv_inertia, double alpha,
+                                        double beta, const Vec4& p, const Vec4& pd,
+                                        const SegmentFrame& f, const Vec3& torque) {
+  const double n2 = p.squaredNorm(), ppd = p.dot(pd);
+  const Vec3& w = f.omega;
+  const Vec3 wdot = (torque - w.cross(inertia.cwiseProduct(w))).cwiseProduct(inv_inertia);
+  const Vec3 cv = 0.5 * n2 * wdot + ppd * w;
+  const double c0 = -pd.squaredNorm() - 2.0 * alpha * ppd - 0.5 * beta * beta * (n2 - 1.0);
+  return kernels::QMul<double>(p, Vec4(c0, cv[0], cv[1], cv[2])) * f.inv_n2;
+}
+
 }  // namespace
 
 bool QuatFdOptions::IsValid(std::string* why) const {
@@ -84,6 +128,7 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
 
   segment_.resize(N);
   rotation_.resize(N);
+  inv_inertia_.resize(N);
   mass_.assign(N + 1, 0.0);
   vertex_weight_.assign(N + 1, 0.0);
   for (int i = 0; i < N; ++i) {
@@ -95,6 +140,7 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
     c.damping = Block(sp.damping, 3, 3);
     c.rest = rod.RestStrainAt(mid).tail<3>();
     rotation_[i].inertia = sp.mass.diagonal().head<3>() * ds;
+    inv_inertia_[i] = rotation_[i].inertia.cwiseInverse();
     const double half_mass = 0.5 * sp.mass(3, 3) * ds;
     mass_[i] += half_mass;
     mass_[i + 1] += half_mass;
@@ -239,11 +285,84 @@ void QuatFdModel::TipLoadsJacobian(const Vec4& p_last, Vec3* force_W, Vec3* torq
   }
 }
 
+void QuatFdModel::EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                const Eigen::Ref<const Eigen::VectorXd>& v, double alpha,
+                                double beta, Eigen::Ref<Eigen::VectorXd> a,
+                                bool forces_only) const {
+  // Evaluate's two phases in one pass over the segments, the sums in the same order: segment ν's
+  // forces, then bending element ν (between segments ν − 1 and ν), after which segment ν − 1's
+  // torque is complete (its own, bending elements ν − 1 and ν) and its quaternion acceleration
+  // follows. Each segment's frame (1/|p|², R(p), ω; Frame above) is formed once and shared by
+  // its segment, both bending elements and the acceleration.
+  const int N = layout_.segments;
+  a.setZero();
+  const auto accelerate = [&](int i, const Vec4& p, const Vec4& pd, const SegmentFrame& f) {
+    const int pp = L::P(i);
+    const Vec3 tau = a.segment<3>(pp + 1);
+    a.segment<4>(pp) = QuaternionAccelerationFrame(rotation_[i].inertia, inv_inertia_[i], alpha,
+                                                   beta, p, pd, f, tau);
+  };
+  Vec4 p_prev = Vec4::Zero(), pd_prev = Vec4::Zero();
+  SegmentFrame f_prev{};
+  for (int i = 0; i < N; ++i) {
+    const int xa = L::X(i), xb = L::X(i + 1), pp = L::P(i);
+    const Vec4 p = Value<4>(q, pp), pd = Value<4>(v, pp);
+    const SegmentFrame f = Frame(p, pd);
+    {
+      Vec3 fa, tau;
+      SegmentForcesFrame(segment_[i], Value<3>(q, xb) - Value<3>(q, xa),
+                         Value<3>(v, xb) - Value<3>(v, xa), f, &fa, &tau);
+      a.segment<3>(xa) += fa;
+      a.segment<3>(xb) -= fa;
+      a.segment<3>(pp + 1) += tau;
+    }
+    if (bend_active_[i]) {
+      const bool clamp = i == 0;
+      Vec3 ta, tb;
+      if (clamp) {
+        kernels::BendTorquesOmega<double>(bend_[i], base_quat_, p, Vec3::Zero(), f.omega, &ta, &tb);
+      } else {
+        kernels::BendTorquesOmega<double>(bend_[i], p_prev, p, f_prev.omega, f.omega, &ta, &tb);
+        a.segment<3>(L::P(i - 1) + 1) += ta;
+      }
+      a.segment<3>(pp + 1) += tb;
+    }
+    if (i > 0 && !forces_only) accelerate(i - 1, p_prev, pd_prev, f_prev);
+    p_prev = p;
+    pd_prev = pd;
+    f_prev = f;
+  }
+  for (int n = 0; n <= N; ++n)
+    a.segment<3>(L::X(n)) +=
+        mass_[n] * loads_.gravity_W + vertex_weight_[n] * loads_.distributed_force_W;
+  {
+    const int xt = L::X(N), pl = L::P(N - 1);
+    Vec3 f, m;
+    TipLoads<double>(p_prev, &f, &m);
+    a.segment<3>(xt) += f;
+    a.segment<3>(pl + 1) += m;
+  }
+  if (forces_only) {
+    for (int r = 0; r < size(); ++r)
+      if (fixed_[r]) a[r] = 0.0;
+    return;
+  }
+  for (int n = 0; n <= N; ++n) {
+    const int r = L::X(n);
+    a.segment<3>(r) *= fixed_[r] ? 0.0 : 1.0 / mass_[n];
+  }
+  accelerate(N - 1, p_prev, pd_prev, f_prev);
+}
+
 template <int kMode>
 void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
                            const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
                            Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq, BandedMatrix* dfdv,
                            bool forces_only) const {
+  if constexpr (kMode == kValue) {
+    EvaluateValue(q, v, alpha, beta, a, forces_only);
+    return;
+  }
   constexpr bool kJac = kMode != kValue;
   const int N = layout_.segments;
   // Phase 1: generalised forces. x rows of `a` collect the vertex forces (N, world); rows
@@ -261,16 +380,6 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
   };
   for (int i = 0; i < N; ++i) {
     const int xa = L::X(i), xb = L::X(i + 1), pp = L::P(i);
-    if (kMode == kValue) {
-      V3<double> fa, tau;
-      kernels::SegmentForces<double>(segment_[i], Value<3>(q, xb) - Value<3>(q, xa),
-                                     Value<4>(q, pp), Value<3>(v, xb) - Value<3>(v, xa),
-                                     Value<4>(v, pp), &fa, &tau);
-      a.segment<3>(xa) += fa;
-      a.segment<3>(xb) -= fa;
-      a.segment<3>(pp + 1) += tau;
-      continue;
-    }
     kernels::SegmentJacobian J;
     Vec3 fa, tau;
     if (kMode == kAnalytic) {
@@ -334,13 +443,6 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     const int pa = clamp ? -1 : L::P(n - 1), pb = L::P(n);
     const Vec4 qa = clamp ? base_quat_ : Value<4>(q, pa);
     const Vec4 va = clamp ? Vec4::Zero() : Value<4>(v, pa);
-    if (kMode == kValue) {
-      V3<double> ta, tb;
-      kernels::BendTorques<double>(bend_[n], qa, Value<4>(q, pb), va, Value<4>(v, pb), &ta, &tb);
-      if (!clamp) a.segment<3>(pa + 1) += ta;
-      a.segment<3>(pb + 1) += tb;
-      continue;
-    }
     kernels::BendJacobian J;
     Vec3 ta, tb;
     if (kMode == kAnalytic) {
@@ -386,9 +488,7 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
   {
     const int xt = L::X(N), pl = L::P(N - 1);
     Vec3 f, m;
-    if (kMode == kValue) {
-      TipLoads<double>(Value<4>(q, pl), &f, &m);
-    } else if (kMode == kAnalytic) {
+    if (kMode == kAnalytic) {
       Eigen::Matrix<double, 3, 4> f_p, m_p;
       TipLoadsJacobian(Value<4>(q, pl), &f, &m, &f_p, &m_p);
       add(dfdq, xt, pl, f_p);
@@ -433,11 +533,6 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     const int pp = L::P(i);
     rc.inertia = rotation_[i].inertia;
     const Vec3 tau = a.segment<3>(pp + 1);
-    if (kMode == kValue) {
-      a.segment<4>(pp) =
-          kernels::QuaternionAcceleration<double>(rc, Value<4>(q, pp), Value<4>(v, pp), tau);
-      continue;
-    }
     Vec4 acc;
     kernels::M44 acc_p, acc_pd;
     kernels::M43 acc_tau;

@@ -104,7 +104,6 @@ RadauIntegrator::RadauIntegrator(const QuatFdModel& model, const IntegratorOptio
     K_[i].resize(n_);
     dW_[i].resize(n_);
   }
-  cv_.resize(n_);
   acc_.resize(n_);
   f_at_jac_.resize(n_);
   q_jac_.resize(n_);
@@ -141,7 +140,8 @@ bool RadauIntegrator::Factorize(double h) {
     for (int i = std::max(0, j - bw); i <= std::min(n - 1, j + bw); ++i) {
       const double a = A_(i, j), b = B_(i, j);
       Mr_(i, j) = -ar * b - a + (i == j ? ar * ar : 0.0);
-      Mc_(i, j) = -ac * b - a + (i == j ? ac2 : std::complex<double>(0.0));
+      const std::complex<double> d = i == j ? ac2 : std::complex<double>(0.0);
+      Mc_.Set(i, j, -ac.real() * b - a + d.real(), -ac.imag() * b + d.imag());
     }
   stats_.factorizations += 2;
   factor_h_ = 0.0;
@@ -234,11 +234,10 @@ RadauIntegrator::NewtonResult RadauIntegrator::Newton(const Eigen::Ref<const Eig
     Mr_.Solve(dW_[0]);
     for (int e = 0; e < n; ++e) {  // a (r1 + i r2), written out (no Annex G checks)
       const double x = dW_[1][e], z = dW_[2][e];
-      cv_[e] = std::complex<double>(ac.real() * x - ac.imag() * z, ac.real() * z + ac.imag() * x);
+      dW_[1][e] = ac.real() * x - ac.imag() * z;
+      dW_[2][e] = ac.real() * z + ac.imag() * x;
     }
-    Mc_.Solve(cv_);
-    dW_[1] = cv_.real();
-    dW_[2] = cv_.imag();
+    Mc_.Solve(dW_[1], dW_[2]);  // real and imaginary parts in place
     // ΔZ_v,i = P_i (T ΔW_v)_i.
     for (int e = 0; e < n; ++e) {
       const double w0 = dW_[0][e], w1 = dW_[1][e], w2 = dW_[2][e];

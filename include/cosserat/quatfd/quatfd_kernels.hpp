@@ -77,13 +77,13 @@ struct SegmentConstants {
 ///   F = C_Γ (Γ − Γ*) + C̃_Γ Γ̇  (body frame, N; Antman/Kelvin–Voigt),
 /// and its generalised forces: on x_a +R F (force_a), on x_b −R F (N, world), and the body torque
 /// Δs Γ × F on p (N·m), i.e. −∂/∂(q) of Δs ½ (Γ−Γ*)ᵀC_Γ(Γ−Γ*) plus the Rayleigh damping force.
+/// Here with ω = AngularVelocity(p, ṗ) given; SegmentForces below computes it.
 template <typename T>
-inline void SegmentForces(const SegmentConstants& c, const V3<T>& dx, const V4<T>& p,
-                          const V3<T>& dv, const V4<T>& pd, V3<T>* force_a, V3<T>* torque,
-                          V3<T>* strain = nullptr, V3<T>* stress = nullptr) {
+inline void SegmentForcesOmega(const SegmentConstants& c, const V3<T>& dx, const V4<T>& p,
+                               const V3<T>& dv, const V3<T>& omega, V3<T>* force_a, V3<T>* torque,
+                               V3<T>* strain = nullptr, V3<T>* stress = nullptr) {
   const T inv = T(1.0 / c.ds);
   const V3<T> gamma = ToBody<T>(p, V3<T>(dx * inv));
-  const V3<T> omega = AngularVelocity<T>(p, pd);
   const V3<T> gamma_dot = ToBody<T>(p, V3<T>(dv * inv)) + Cross<T>(gamma, omega);
   const V3<T> e = gamma - c.rest.cast<T>();
   const V3<T> F = c.stiffness.cast<T>() * e + c.damping.cast<T>() * gamma_dot;
@@ -91,6 +91,15 @@ inline void SegmentForces(const SegmentConstants& c, const V3<T>& dx, const V4<T
   *torque = T(c.ds) * Cross<T>(gamma, F);
   if (strain) *strain = gamma;
   if (stress) *stress = F;
+}
+
+/// SegmentForcesOmega with ω = AngularVelocity(p, ṗ) (the f path computes ω once per segment
+/// and shares it with the bending elements and the quaternion acceleration).
+template <typename T>
+inline void SegmentForces(const SegmentConstants& c, const V3<T>& dx, const V4<T>& p,
+                          const V3<T>& dv, const V4<T>& pd, V3<T>* force_a, V3<T>* torque,
+                          V3<T>* strain = nullptr, V3<T>* stress = nullptr) {
+  SegmentForcesOmega<T>(c, dx, p, dv, AngularVelocity<T>(p, pd), force_a, torque, strain, stress);
 }
 
 /// Discrete curvature (seed 000: "several choices" for K_n from p_{n−1/2}, p_{n+1/2}).
@@ -112,11 +121,12 @@ struct BendConstants {
 /// The curvature at one vertex and the body torques of its bending/torsion element on the two
 /// rotations: K(r) with r = p̄_a p_b, M = C_K (K − K*) + C̃_K K̇ (N·m, body frame of the vertex),
 /// torque_x = −weight (∂K/∂θ_x)ᵀ M where θ_x is a body rotation of p_x. With h = weight = Δs and
-/// r ≈ 1 this is torque_a ≈ +M, torque_b ≈ −M: the discrete ∂s M.
+/// r ≈ 1 this is torque_a ≈ +M, torque_b ≈ −M: the discrete ∂s M. Here with the body angular
+/// velocities ω_a, ω_b of the two rotations given; BendTorques below computes them from ṗ_a, ṗ_b.
 template <typename T>
-inline void BendTorques(const BendConstants& c, const V4<T>& pa, const V4<T>& pb, const V4<T>& pda,
-                        const V4<T>& pdb, V3<T>* torque_a, V3<T>* torque_b,
-                        V3<T>* curvature = nullptr, V3<T>* moment = nullptr) {
+inline void BendTorquesOmega(const BendConstants& c, const V4<T>& pa, const V4<T>& pb,
+                             const V3<T>& wa, const V3<T>& wb, V3<T>* torque_a, V3<T>* torque_b,
+                             V3<T>* curvature = nullptr, V3<T>* moment = nullptr) {
   const V4<T> conj_a(pa[0], -pa[1], -pa[2], -pa[3]);
   const V4<T> r = QMul<T>(conj_a, pb);
   const V3<T> rv(r[1], r[2], r[3]);
@@ -133,7 +143,6 @@ inline void BendTorques(const BendConstants& c, const V4<T>& pa, const V4<T>& pb
   //   ∂K/∂θ_b =  (r0 I + [r⃗]×)/(h s) + c K r⃗ᵀ,  ∂K/∂θ_a = −(r0 I − [r⃗]×)/(h s) − c K r⃗ᵀ,
   // with c = 1/(4 s) for variant 1 and 0 for the basic choice.
   const T cr = c.kind == CurvatureKind::kVariant1 ? T(0.25) / s : T(0);
-  const V3<T> wa = AngularVelocity<T>(pa, pda), wb = AngularVelocity<T>(pb, pdb);
   const V3<T> wd = wb - wa, ws = wb + wa;
   const V3<T> K_dot = inv_hs * (r0 * wd + Cross<T>(rv, ws)) + (cr * rv.dot(wd)) * K;
   const V3<T> M = c.stiffness.cast<T>() * (K - c.rest.cast<T>()) + c.damping.cast<T>() * K_dot;
@@ -147,6 +156,14 @@ inline void BendTorques(const BendConstants& c, const V4<T>& pa, const V4<T>& pb
   if (moment) *moment = M;
 }
 
+template <typename T>
+inline void BendTorques(const BendConstants& c, const V4<T>& pa, const V4<T>& pb, const V4<T>& pda,
+                        const V4<T>& pdb, V3<T>* torque_a, V3<T>* torque_b,
+                        V3<T>* curvature = nullptr, V3<T>* moment = nullptr) {
+  BendTorquesOmega<T>(c, pa, pb, AngularVelocity<T>(pa, pda), AngularVelocity<T>(pb, pdb),
+                      torque_a, torque_b, curvature, moment);
+}
+
 struct RotationConstants {
   Eigen::Vector3d inertia = Eigen::Vector3d::Ones();  ///< J = diag(ρI1, ρI2, ρ(I1+I2)) Δs, kg·m²
   double alpha = 0;  ///< Baumgarte damping of g = (|p|² − 1)/2, 1/s
@@ -157,19 +174,26 @@ struct RotationConstants {
 /// of the quaternion mass matrix): with ω = 2 Im(p̄ ṗ)/|p|² and ω̇ = J⁻¹ (τ − ω × J ω),
 ///   p̈ = p ⊗ [c0, c] / |p|²,  c = |p|² ω̇ / 2 + (p·ṗ) ω,  c0 = −|ṗ|² − 2α p·ṗ − β²(|p|²−1)/2,
 /// so that the represented rotation has angular acceleration ω̇ exactly, and g = (|p|²−1)/2
-/// obeys g̈ + 2α ġ + β² g = 0 (g̈ = 0 without Baumgarte).
+/// obeys g̈ + 2α ġ + β² g = 0 (g̈ = 0 without Baumgarte). Here with ω given (QuaternionAcceleration
+/// below computes it).
 template <typename T>
-inline V4<T> QuaternionAcceleration(const RotationConstants& c, const V4<T>& p, const V4<T>& pd,
-                                    const V3<T>& torque) {
+inline V4<T> QuaternionAccelerationOmega(const RotationConstants& c, const V4<T>& p,
+                                         const V4<T>& pd, const V3<T>& w, const V3<T>& torque) {
   const T n2 = p.squaredNorm();
   const T ppd = p.dot(pd);
-  const V3<T> w = AngularVelocity<T>(p, pd);
   const V3<T> Jw(T(c.inertia[0]) * w[0], T(c.inertia[1]) * w[1], T(c.inertia[2]) * w[2]);
   const V3<T> rhs = torque - Cross<T>(w, Jw);
   const V3<T> wdot(rhs[0] / T(c.inertia[0]), rhs[1] / T(c.inertia[1]), rhs[2] / T(c.inertia[2]));
   const V3<T> cv = T(0.5) * n2 * wdot + ppd * w;
   const T c0 = -pd.squaredNorm() - T(2 * c.alpha) * ppd - T(0.5 * c.beta * c.beta) * (n2 - T(1));
   return QMul<T>(p, V4<T>(c0, cv[0], cv[1], cv[2])) / n2;
+}
+
+/// QuaternionAccelerationOmega with ω = AngularVelocity(p, ṗ).
+template <typename T>
+inline V4<T> QuaternionAcceleration(const RotationConstants& c, const V4<T>& p, const V4<T>& pd,
+                                    const V3<T>& torque) {
+  return QuaternionAccelerationOmega<T>(c, p, pd, AngularVelocity<T>(p, pd), torque);
 }
 
 }  // namespace cosserat::quatfd::kernels

@@ -183,6 +183,10 @@ class QuatFdModel {
   void JacobianImpl(const Eigen::Ref<const Eigen::VectorXd>& q,
                     const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
                     BandedMatrix* dfdq, BandedMatrix* dfdv, Eigen::VectorXd* a) const;
+  /// Evaluate's f (kValue) in one pass, each segment's R(p), ω and 1/|p|² formed once.
+  void EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
+                     const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
+                     Eigen::Ref<Eigen::VectorXd> a, bool forces_only) const;
   template <int kMode>
   void Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
@@ -215,6 +219,7 @@ class QuatFdModel {
   std::vector<unsigned char> fixed_;                  ///< per unknown
   std::vector<kernels::SegmentConstants> segment_;    ///< per segment
   std::vector<kernels::RotationConstants> rotation_;  ///< per segment (inertia)
+  std::vector<Vec3> inv_inertia_;                     ///< per segment, 1/inertia (f path)
   std::vector<kernels::BendConstants> bend_;          ///< per vertex; bend_active_ says which
   std::vector<unsigned char> bend_active_;
   double moment_scale_ = 1, force_scale_ = 1;

@@ -110,7 +110,6 @@ class RadauIntegrator final : public QuatFdIntegrator {
   ComplexBandedMatrix Mc_;
   Eigen::VectorXd y_, y_new_, err_, f0_, tmp_, f_at_jac_, q_jac_, acc_;
   Eigen::VectorXd Z_[3], K_[3], dW_[3], cont_[3], dZ_;
-  Eigen::VectorXcd cv_;
   CoRotation corotation_[4];
 };
 
