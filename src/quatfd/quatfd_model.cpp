@@ -343,8 +343,7 @@ void QuatFdModel::EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
     a.segment<3>(pl + 1) += m;
   }
   if (forces_only) {
-    for (int r = 0; r < size(); ++r)
-      if (fixed_[r]) a[r] = 0.0;
+    ZeroFixedRows(a);
     return;
   }
   for (int n = 0; n <= N; ++n) {
@@ -507,8 +506,7 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
   }
 
   if (forces_only) {
-    for (int r = 0; r < size(); ++r)
-      if (fixed_[r]) a[r] = 0.0;
+    ZeroFixedRows(a);
     return;
   }
   // Phase 2: accelerations. Vertices: ẍ = Q / m (prescribed: 0). Segments: p̈ from the torque.

@@ -187,6 +187,11 @@ class QuatFdModel {
   void EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
                      const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
                      Eigen::Ref<Eigen::VectorXd> a, bool forces_only) const;
+  /// The forces-only result: rows of prescribed coordinates set to zero.
+  void ZeroFixedRows(Eigen::Ref<Eigen::VectorXd> a) const {
+    for (int r = 0; r < size(); ++r)
+      if (fixed_[r]) a[r] = 0.0;
+  }
   template <int kMode>
   void Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
