@@ -13,6 +13,7 @@
 
 #include "cosserat/loads/tendons.hpp"
 #include "cosserat/rod/grid.hpp"
+#include "cosserat/strong/secant_filter.hpp"
 #include "frame_tangent.hpp"
 
 namespace cosserat {
@@ -39,17 +40,9 @@ namespace {
 
 using Sample = Bdf2ShootingStepper::Sample;
 using Coefficients = Bdf2ShootingStepper::Coefficients;
-using Mat12 = Eigen::Matrix<double, 12, 12>;
-using Vec12 = Eigen::Matrix<double, 12, 1>;
 
 // The secant filter's covariance for a Jacobian just computed exactly (SolveStep): unit
 // variance for J's rows, 1e-2 for their change per step, uncorrelated (only ratios matter).
-Mat12 StartCovariance() {
-  Mat12 P = Mat12::Zero();
-  P.topLeftCorner<6, 6>().diagonal().setOnes();
-  P.bottomRightCorner<6, 6>().diagonal().setConstant(1e-2);
-  return P;
-}
 
 #if defined(__GNUC__)
 #define COSSERAT_HOT inline __attribute__((always_inline))
@@ -695,66 +688,23 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
   //    step size) is replaced by the exact one first.
   Vec6 x = statics ? run_.unknowns.latest() : run_.unknowns.Predict(h);
   Vec6 r;
-  bool fresh = false;  // J is the exact Jacobian at x, not yet Broyden-updated
+  bool fresh = false;  // the filter's J is the exact Jacobian at x, not yet updated
+  // The Jacobian: the secant filter's estimate (secant_filter.hpp), carried from the last steps;
+  // this step's copy replaces it only if the step converges.
+  SecantFilter filter = run_.jacobian_filter;
   if (run_.jacobian_c0 != c.c0) {
-    r = Residual(input, c, statics, x, &run_.jacobian);
+    Mat6 exact;
+    r = Residual(input, c, statics, x, &exact);
+    filter.Restart(exact);
     ++summary->jacobians;
     run_.jacobian_c0 = c.c0;
     fresh = true;
   } else {
     r = Residual(input, c, statics, x);
+    if (!statics) filter.Advance();
   }
   ++summary->shots;
-  // The Jacobian is a secant filter's estimate: a Kalman filter on its rows, which change
-  // smoothly with the swing, with the model "J changes by D per step, D drifts": each step
-  // starts from J + D, and each measured secant (dx, dr), J dx = dr, corrects J and D by the
-  // gain of the shared 12 × 12 covariance P of (row of J, row of D). Unlike Broyden's update,
-  // which forgets J along every earlier dx as soon as a new dx differs, the filter keeps what
-  // earlier secants taught (P shrinks along them) and learns the drift from step to step. With
-  // P = identity and no drift it is Broyden's update. The secants are taken as exact (Newton's
-  // corrections here are ~1e-8, where the shot is linear), so only ratios of the noise levels
-  // matter: J is held to its last measurements (kDriftJ ≪ kDriftRate) and its rate follows the
-  // latest steps. The rate decays by kRateMemory per step (a memory of ~100 steps), so steps
-  // without secants (a rod at rest, converged at its first shot) cannot drift J without bound.
-  // Peer problem: 2.89 → 2.20 shots per step; the same to ±0.003 with kDriftRate 100× smaller,
-  // kDriftJ 100× larger or kRateMemory 1; 2.23 at kRateMemory 0.95, 2.46 at 0.8. An exact
-  // Jacobian restarts the filter.
-  constexpr double kDriftJ = 1e-8, kDriftRate = 1e-2, kRateMemory = 0.99;
-  Mat6 J = run_.jacobian;
-  Mat6 D = run_.jacobian_rate;
-  Mat12 P = run_.jacobian_cov;
-  if (fresh) {
-    D.setZero();
-    P = StartCovariance();
-  } else if (!statics) {
-    // (row of J, row of D) ← F (…) with F = [I I; 0 ρI], ρ = kRateMemory:
-    // P ← F P Fᵀ + diag(kDriftJ, kDriftRate).
-    J += D;
-    const Mat6 A = P.topLeftCorner<6, 6>(), B = P.topRightCorner<6, 6>(),
-               C = P.bottomRightCorner<6, 6>();
-    P.topLeftCorner<6, 6>() = A + B + B.transpose() + C;
-    P.topLeftCorner<6, 6>().diagonal().array() += kDriftJ;
-    D *= kRateMemory;
-    P.topRightCorner<6, 6>() = kRateMemory * (B + C);
-    P.bottomLeftCorner<6, 6>() = kRateMemory * (B + C).transpose();
-    P.bottomRightCorner<6, 6>() = kRateMemory * kRateMemory * C;
-    P.bottomRightCorner<6, 6>().diagonal().array() += kDriftRate;
-  }
-  auto secant = [&](const Vec6& dx, const Vec6& dr) {
-    const Vec6 miss = dr - J * dx;
-    const Vec12 Ph = P.leftCols<6>() * dx;  // P hᵀ for the measurement h = [dxᵀ 0]
-    const double S = dx.dot(Ph.head<6>());
-    if (S > 1e-3 * kDriftJ * dx.squaredNorm()) {
-      const Vec12 K = Ph / S;
-      J += miss * K.head<6>().transpose();
-      D += miss * K.tail<6>().transpose();
-      P -= K * Ph.transpose();
-    } else {
-      // dx along a direction this step already measured (P has no variance left there):
-      // Broyden's update.
-      J += miss * dx.transpose() / dx.squaredNorm();
-    }
-  };
+  const Mat6& J = filter.jacobian();
   Eigen::PartialPivLU<Mat6> lu(J);
   bool ok = false;
   bool retried = false;  // a rejected Broyden step has been retried with its secant
@@ -776,7 +726,7 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
       // (about ten shots; on the peer problem this retry avoids it in all but one of 12 500 steps,
       // which is what keeps the slowest steps near the median).
       retried = true;
-      secant(dx, r_new - r);
+      filter.Update(dx, r_new - r);
       lu.compute(J);
       continue;
     }
@@ -792,29 +742,27 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
       if (!accepted) break;  // leave it to Levenberg–Marquardt
     }
     if (accepted) {
-      secant(dx, r_new - r);
+      filter.Update(dx, r_new - r);
       fresh = false;
       x += dx;
       r = r_new;
     } else {
       // The filtered Jacobian has drifted: replace it by the exact one at x and retry. The
-      // exact J restarts the filter here too: its rate D and covariance P described the J that
-      // failed, and kept, the next step's J + D would fail the same way (an out-of-plane kick
-      // after a planar swing needed an exact J in every one of the next ~80 steps).
-      r = Residual(input, c, statics, x, &J);
+      // exact J restarts the filter here too: kept, the rate that had made J fail would be added
+      // again at the next step (an out-of-plane kick after a planar swing then needed an exact J
+      // in nearly every one of the next ~80 steps).
+      Mat6 exact;
+      r = Residual(input, c, statics, x, &exact);
+      filter.Restart(exact);
       ++summary->jacobians;
       ++summary->shots;
       fresh = true;
-      D.setZero();
-      P = StartCovariance();
     }
     lu.compute(J);
   }
   if (ok) {
     summary->residual = r.norm();
-    run_.jacobian = J;
-    run_.jacobian_rate = D;
-    run_.jacobian_cov = P;
+    run_.jacobian_filter = filter;
     solved_unknowns_ = x;
     // The root estimate one more (shot-free) Newton step gives: x's residual, up to the
     // tolerance, would otherwise enter the extrapolation of the next steps as noise.
@@ -824,7 +772,7 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
 
   // 2. Levenberg–Marquardt with the exact Jacobian, from the best point Newton reached (it only
   //    moves on a decrease of the residual), or the last step's unknowns if that is not finite.
-  Mat6 J_lm = run_.jacobian;
+  Mat6 J_lm = run_.jacobian_filter.jacobian();
   const StepCost cost{this, &input, &c, statics, &summary->shots, &summary->jacobians, &J_lm};
   ceres::TinySolver<StepCost> lm;
   lm.options.max_num_iterations = options_.max_iterations + 1;  // TinySolver runs n − 1 steps
@@ -842,9 +790,7 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
     summary->status = r_final.allFinite() ? SolveStatus::kMaxIterations : SolveStatus::kNonFinite;
     return false;
   }
-  run_.jacobian = J_lm;
-  run_.jacobian_rate.setZero();
-  run_.jacobian_cov = StartCovariance();
+  run_.jacobian_filter.Restart(J_lm);
   run_.jacobian_c0 = c.c0;
   solved_unknowns_ = x_lm;
   predictor_term_ = x_lm;
@@ -854,7 +800,7 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
 void Bdf2ShootingStepper::Commit(double h) {
   // Degrees scored in residual units with the Jacobian the next step starts from (single
   // shooting; multiple shooting keeps its own).
-  run_.unknowns.Push(predictor_term_, h, junction_nodes_.empty() ? &run_.jacobian : nullptr);
+  run_.unknowns.Push(predictor_term_, h, junction_nodes_.empty() ? &run_.jacobian_filter.jacobian() : nullptr);
   std::swap(run_.strain2, run_.strain1);
   std::swap(run_.strain1, strain_now_);
   std::swap(run_.twist2, run_.twist1);

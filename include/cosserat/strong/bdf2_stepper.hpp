@@ -27,6 +27,7 @@
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/strong/rod_state.hpp"
+#include "cosserat/strong/secant_filter.hpp"
 #include "cosserat/strong/sequence_predictor.hpp"
 #include "cosserat/strong/solver_status.hpp"
 #include "cosserat/strong/spatial_scheme.hpp"
@@ -146,11 +147,7 @@ class Bdf2ShootingStepper {
     double time = 0;
     double last_dt = 0;             ///< size of the last accepted step (0 before the first)
     SequencePredictor unknowns{2};  ///< the converged unknowns of the last steps
-    Mat6 jacobian = Mat6::Identity();
-    /// The secant filter of SolveStep (see there): the Jacobian's change per step, and the
-    /// covariance of (row of the Jacobian, row of its change), shared by the six rows.
-    Mat6 jacobian_rate = Mat6::Zero();
-    Eigen::Matrix<double, 12, 12> jacobian_cov = Eigen::Matrix<double, 12, 12>::Identity();
+    SecantFilter jacobian_filter;  ///< the shooting Jacobian, tracked across steps
     double jacobian_c0 = -1.0;  ///< the c0 the Jacobian was computed for; −1: none
     int steps_taken = 0;
     // Accepted values at the S stages of each segment (index S i + j; S = 4 for RK4, 2 for
