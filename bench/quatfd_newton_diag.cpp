@@ -64,6 +64,9 @@ struct Coef {
   }
 };
 static const Coef K;
+// COND=1 in the environment: the condition of the exact iteration matrix at the starting iterates
+// of the test steps (full, full-tan; not of the preparatory steps before them).
+static bool g_print_condition = false;
 
 enum Variant { kSimpCorot, kSimpPlain, kFull, kFullTan, kSimpOracle, kSimpStart, kSimpEndCorot, kSimpCorotTan, kSimpStartTan };
 static const char* kName[] = {"simp-corot", "simp-plain", "full", "full-tan", "simp-oracle", "simp-start", "simp-endrot", "simp-rot-tan", "simp-st-tan"};
@@ -249,7 +252,7 @@ static Result Solve(const Problem& P, const Eigen::VectorXd& y, double h, Varian
         Aq[i] = Dense(Ab), B[i] = Dense(Bb);
       }
       const Eigen::MatrixXd M = SystemMatrix(P, h, Aq, B);
-      if (it == 0 && std::getenv("COND")) {
+      if (it == 0 && g_print_condition) {
         Eigen::MatrixXd Ms = var == kFull ? M : Eigen::MatrixXd(U.transpose() * M * U);
         Eigen::BDCSVD<Eigen::MatrixXd> svd(Ms);
         const auto& sv = svd.singularValues();
@@ -423,7 +426,9 @@ int main(int argc, char** argv) {
         Variant var = order[vi];
         if (!((variants >> vi) & 1)) continue;
         if (var == kSimpOracle && !full.converged_eventually) continue;
+        g_print_condition = std::getenv("COND") != nullptr;
         Result r = Solve(P, y, h, var, &full.Zv, Z0v);
+        g_print_condition = false;
         if (var == kFull) full = r;
         std::printf("h %5.1f ms %-11s verdict %-4s @%d  to1e-5 %3d  d:", h * 1e3, kName[var],
                     r.verdict.c_str(), r.verdict_it, r.its_to_1e8);
