@@ -26,7 +26,8 @@
 //
 // Starting values "extrapolated": the step before, of the same h, solved tightly (full Newton, or
 // full-tan then full from it), its collocation polynomial extrapolated as in radau.cpp; "zero":
-// Z = 0 (RadauIntegrator::Step after ForgetHistory). Mask bits in the order listed above.
+// Z = 0 (RadauIntegrator::Step after ForgetHistory; with this start the integrator's own Step is
+// also run, as a check of the simp-corot emulation). Mask bits in the order listed above.
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
@@ -419,6 +420,15 @@ int main(int argc, char** argv) {
         }
         std::printf("h %5.1f ms  previous step by %s (%s)\n", h * 1e3, how,
                     pr.converged_eventually ? "converged" : "NOT converged");
+      }
+      if (!warm) {
+        // Cross-check of the emulation: the integrator's own Step (fresh J, Z = 0 start).
+        RadauIntegrator fresh(model, io);
+        fresh.ForgetHistory();
+        Eigen::VectorXd y_new(2 * n), error(2 * n);
+        const bool ok = fresh.Step(y, h, y_new, error);
+        std::printf("h %5.1f ms RadauIntegrator::Step %s after %ld iterations\n", h * 1e3,
+                    ok ? "converged" : "failed", fresh.newton_stats().newton_iterations);
       }
       Result full;
       const Variant order[] = {kSimpCorot, kSimpPlain, kFull, kFullTan, kSimpOracle, kSimpStart, kSimpEndCorot, kSimpCorotTan, kSimpStartTan};
