@@ -294,8 +294,7 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   const double L = model_.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
 
-  stages_per_segment_ = internal::Table(options_.spatial_scheme).stages;
-  const int stages = stages_per_segment_ * (n - 1);
+  const int stages = StagesPerSegment() * (n - 1);
   for (auto* v : {&strain_now_, &run_.strain1, &run_.strain2, &twist_now_, &run_.twist1,
                   &run_.twist2, &strain_h_, &twist_h_})
     v->assign(stages, Vec6::Zero());
@@ -547,16 +546,17 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
       Vec6 W;
       W << ys.m, ys.R.transpose() * ys.n;
       given = tendon_strain(sample_index, stage_guess(q), xh, W,
-                            J ? &H_stage[q % stages_per_segment_] : nullptr);
+                            J ? &H_stage[q % StagesPerSegment()] : nullptr);
     }
     return Derivative(smp, f_at(smp), ys, xh, Vh, statics ? zero3 : velocity_W_h_[q], c.c0, statics,
                       &strain_now_[q], &twist_now_[q], &velocity_W_now_[q],
                       tendons_.empty() ? nullptr : &given);
   };
   // The tangent dy through the stages ys of segment i (the exact derivative of the shot).
-  auto propagate = [&](const auto& ys, int q, int smp, double h) {
-    constexpr int S = static_cast<int>(std::tuple_size<std::decay_t<decltype(ys)>>::value);
-    constexpr const SchemeTable& T = S == 4 ? kRk4Table : kHeunTable;
+  auto propagate = [&](auto scheme, const auto& ys, int q, int smp, double h) {
+    constexpr const SchemeTable& T = Table(decltype(scheme)::value);
+    constexpr int S = T.stages;
+    static_assert(std::tuple_size<std::decay_t<decltype(ys)>>::value == S);
     DynTangent dk[S];
     for (int j = 0; j < S; ++j)
       dk[j] = TangentDerivative(samples_[smp + T.sample[j]], *ys[j],
@@ -566,8 +566,8 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
   };
   // Segment by segment with the explicit scheme's S stages (spatial_scheme.hpp), written out
   // per scheme: a loop over stage arrays made the RK4 shot ~25 % slower.
-  auto shoot = [&](auto stages) {
-    constexpr int S = decltype(stages)::value;
+  auto shoot = [&](auto scheme) {
+    constexpr int S = Table(decltype(scheme)::value).stages;
     size_t next_junction = 0;
     for (int i = 0; i + 1 < n; ++i) {
       if (junctions_active_ && next_junction < junction_nodes_.size() &&
@@ -585,20 +585,20 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
         const DynState k3 = stage(q + 2, smp + 1, y3);
         const DynState y4 = Axpy(y, h, k3);
         const DynState k4 = stage(q + 3, smp + 2, y4);
-        if (J) propagate(std::array<const DynState*, 4>{&y, &y2, &y3, &y4}, q, smp, h);
+        if (J) propagate(scheme, std::array<const DynState*, 4>{&y, &y2, &y3, &y4}, q, smp, h);
         Rk4Update(h, k1, k2, k3, k4, &y);
       } else {
         const DynState y2 = Axpy(y, h, k1);
         const DynState k2 = stage(q + 1, smp + 2, y2);
-        if (J) propagate(std::array<const DynState*, 2>{&y, &y2}, q, smp, h);
+        if (J) propagate(scheme, std::array<const DynState*, 2>{&y, &y2}, q, smp, h);
         HeunUpdate(h, k1, k2, &y);
       }
     }
   };
-  if (stages_per_segment_ == 4)
-    shoot(std::integral_constant<int, 4>());
+  if (options_.spatial_scheme == SpatialScheme::kHeun)
+    shoot(std::integral_constant<SpatialScheme, SpatialScheme::kHeun>());
   else
-    shoot(std::integral_constant<int, 2>());
+    shoot(std::integral_constant<SpatialScheme, SpatialScheme::kRk4>());
   // The tip node: its strain from the last stage's section with the final wrench.
   Vec6 W_tip;
   W_tip << y.m, y.R.transpose() * y.n;
@@ -1001,7 +1001,7 @@ void Bdf2ShootingStepper::Grow(const RodModel& longer, int new_segments) {
   if (!junction_nodes_.empty()) PlaceJunctions();
 
   // New stages and nodes start with the old tip's history, placed along its tangent.
-  const int S = stages_per_segment_;
+  const int S = StagesPerSegment();
   const int stages_old = S * (n_old - 1), stages = S * (n - 1);
   const Mat3 R_tip = run_.state.rotation_WB.back();
   const Vec3 p_tip = run_.state.position_W.back();

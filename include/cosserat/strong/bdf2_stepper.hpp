@@ -228,6 +228,8 @@ class Bdf2ShootingStepper {
   void ApplyActuation(const Actuation& actuation);
   /// Fills the history terms ξʰ, Vʰ at every stage for the weights c (once per step).
   void PrepareHistory(const Coefficients& c);
+  /// 4 for RK4, 2 for Heun (spatial_scheme.hpp).
+  int StagesPerSegment() const { return internal::Table(options_.spatial_scheme).stages; }
   void Commit(double h);
 
   RodModel model_;
@@ -238,7 +240,6 @@ class Bdf2ShootingStepper {
   std::vector<TendonSample> tendons_;  ///< parallel to samples_; empty without tendons
   Actuation actuation_;                ///< the actuation the samples are for
   Vec6 scale_;                         ///< W(0) = scale ⊙ x
-  int stages_per_segment_ = 4;         ///< of options_.spatial_scheme
 
   Snapshot run_;  ///< the accepted run: all Save() and Restore() copy
 
