@@ -98,8 +98,7 @@ RadauIntegrator::RadauIntegrator(const QuatFdModel& model, const IntegratorOptio
   (void)Coef();
   n_ = model.size();
   const int bw = QuatFdLayout::kBandwidth;
-  A_.Resize(n_, bw, bw);
-  B_.Resize(n_, bw, bw);
+  jac_.Resize(model);
   Mr_.Resize(n_, bw, bw);
   Mc_.Resize(n_, bw, bw);
   for (Eigen::VectorXd* v : {&y_, &y_new_, &err_, &f0_, &tmp_, &dZ_}) v->resize(2 * n_);
@@ -111,27 +110,14 @@ RadauIntegrator::RadauIntegrator(const QuatFdModel& model, const IntegratorOptio
     dW_[i].resize(n_);
   }
   acc_.resize(n_);
-  f_at_jac_.resize(n_);
-  q_jac_.resize(n_);
   newton_velocity_atol_ = std::min(options.abs_tol, options.velocity_abs_tol);
   for (CoRotation& c : corotation_) c.Resize(model.layout().segments);
   dt_ = options.initial_dt;
   kappa_ = kKappaDefault;
 }
 
-void RadauIntegrator::F(const Eigen::Ref<const Eigen::VectorXd>& y,
-                        Eigen::Ref<Eigen::VectorXd> out) {
-  out.head(n_) = y.tail(n_);
-  model_.Acceleration(y.head(n_), y.tail(n_), out.tail(n_));
-  ++stats_.f_evaluations;
-}
-
 void RadauIntegrator::RefreshJacobian(const Eigen::Ref<const Eigen::VectorXd>& y) {
-  model_.Jacobian(y.head(n_), y.tail(n_), &A_, &B_, &f_at_jac_);
-  q_jac_ = y.head(n_);
-  ++stats_.jacobian_evaluations;
-  have_jacobian_ = true;
-  jacobian_fresh_ = true;
+  jac_.Evaluate(model_, y, &stats_);
   factor_h_ = 0.0;
 }
 
@@ -144,7 +130,7 @@ bool RadauIntegrator::Factorize(double h) {
   const int n = n_, bw = QuatFdLayout::kBandwidth;
   for (int j = 0; j < n; ++j)
     for (int i = std::max(0, j - bw); i <= std::min(n - 1, j + bw); ++i) {
-      const double a = A_(i, j), b = B_(i, j);
+      const double a = jac_.dfdq(i, j), b = jac_.dfdv(i, j);
       Mr_(i, j) = -ar * b - a + (i == j ? ar * ar : 0.0);
       const std::complex<double> d = i == j ? ac2 : std::complex<double>(0.0);
       Mc_.Set(i, j, -ac.real() * b - a + d.real(), -ac.imag() * b + d.imag());
@@ -164,7 +150,7 @@ void RadauIntegrator::SolveReal(Eigen::Ref<Eigen::VectorXd> r) {
   auto rv = r.tail(n_);
   RotateHalf(3, rq, true);
   RotateHalf(3, rv, true);
-  A_.Multiply(rq, acc_);
+  jac_.dfdq.Multiply(rq, acc_);
   rv = a * rv + acc_;
   Mr_.Solve(rv);
   rq = (rq + rv) / a;
@@ -285,12 +271,12 @@ RadauIntegrator::NewtonResult RadauIntegrator::Newton(const Eigen::Ref<const Eig
 bool RadauIntegrator::Step(const Eigen::Ref<const Eigen::VectorXd>& y, double h,
                            Eigen::Ref<Eigen::VectorXd> y_new, Eigen::Ref<Eigen::VectorXd> error) {
   const Radau5& k = Coef();
-  jacobian_fresh_ = false;
-  if (!have_jacobian_ || refresh_next_step_) RefreshJacobian(y);
+  jac_.fresh = false;
+  if (!jac_.valid || refresh_next_step_) RefreshJacobian(y);
   refresh_next_step_ = false;
   theta_ = 0.0;
   if (!Factorize(h)) {
-    if (jacobian_fresh_) return false;
+    if (jac_.fresh) return false;
     RefreshJacobian(y);
     if (!Factorize(h)) return false;
   }
@@ -299,7 +285,7 @@ bool RadauIntegrator::Step(const Eigen::Ref<const Eigen::VectorXd>& y, double h,
     const NewtonResult r = Newton(y, h);
     if (r == NewtonResult::kConverged) break;
     ++newton_.newton_failures;
-    if (jacobian_fresh_) return false;
+    if (jac_.fresh) return false;
     // The kept (turned) J does not make the iteration contract: a fresh one at y_n.
     RefreshJacobian(y);
     eta_ = 1.0;

@@ -85,13 +85,6 @@ RosenbrockIntegrator::RosenbrockIntegrator(const QuatFdModel& model,
   dt_ = options.initial_dt;
 }
 
-void RosenbrockIntegrator::F(const Eigen::Ref<const Eigen::VectorXd>& y,
-                             Eigen::Ref<Eigen::VectorXd> out) {
-  out.head(n_) = y.tail(n_);
-  model_.Acceleration(y.head(n_), y.tail(n_), out.tail(n_));
-  ++stats_.f_evaluations;
-}
-
 void RosenbrockIntegrator::SolveStage(Eigen::Ref<Eigen::VectorXd> r) {
   // w = M⁻¹ (a r_v + A r_q), u = (r_q + w)/a.
   auto rq = r.head(n_);

@@ -46,34 +46,20 @@ SdirkIntegrator::SdirkIntegrator(const QuatFdModel& model, const IntegratorOptio
   if (!options.IsValid(&why)) throw std::invalid_argument("IntegratorOptions: " + why);
   n_ = model.size();
   const int bw = QuatFdLayout::kBandwidth;
-  A_.Resize(n_, bw, bw);
-  B_.Resize(n_, bw, bw);
+  jac_.Resize(model);
   M_.Resize(n_, bw, bw);
   for (Eigen::VectorXd* v : {&y_, &y_new_, &err_, &z_, &dz_, &s_, &tmp_, &k0_, &guess_})
     v->resize(2 * n_);
   for (Eigen::VectorXd& k : k_) k.resize(2 * n_);
   acc_.resize(n_);
-  f_at_jac_.resize(n_);
-  q_jac_.resize(n_);
   newton_norm_ = options;
   newton_norm_.velocity_abs_tol = std::min(options.abs_tol, options.velocity_abs_tol);
   corotation_.Resize(model.layout().segments);
   dt_ = options.initial_dt;
 }
 
-void SdirkIntegrator::F(const Eigen::Ref<const Eigen::VectorXd>& y,
-                        Eigen::Ref<Eigen::VectorXd> out) {
-  out.head(n_) = y.tail(n_);
-  model_.Acceleration(y.head(n_), y.tail(n_), out.tail(n_));
-  ++stats_.f_evaluations;
-}
-
 void SdirkIntegrator::RefreshJacobian(const Eigen::Ref<const Eigen::VectorXd>& y) {
-  model_.Jacobian(y.head(n_), y.tail(n_), &A_, &B_, &f_at_jac_);
-  q_jac_ = y.head(n_);
-  ++stats_.jacobian_evaluations;
-  have_jacobian_ = true;
-  jacobian_fresh_ = true;
+  jac_.Evaluate(model_, y, &stats_);
   factor_h_ = 0.0;
 }
 
@@ -83,7 +69,7 @@ bool SdirkIntegrator::Factorize(double h) {
   const int n = n_, bw = QuatFdLayout::kBandwidth;
   for (int j = 0; j < n; ++j)
     for (int i = std::max(0, j - bw); i <= std::min(n - 1, j + bw); ++i)
-      M_(i, j) = -a * B_(i, j) - A_(i, j) + (i == j ? a * a : 0.0);
+      M_(i, j) = -a * jac_.dfdv(i, j) - jac_.dfdq(i, j) + (i == j ? a * a : 0.0);
   ++stats_.factorizations;
   if (!M_.Factorize()) {
     factor_h_ = 0.0;
@@ -106,7 +92,7 @@ void SdirkIntegrator::Solve(Eigen::Ref<Eigen::VectorXd> r) {
   const double a = 1.0 / (kGamma * factor_h_);
   auto rq = r.head(n_);
   auto rv = r.tail(n_);
-  A_.Multiply(rq, acc_);
+  jac_.dfdq.Multiply(rq, acc_);
   rv = a * rv + acc_;
   M_.Solve(rv);
   rq = (rq + rv) / a;
@@ -195,12 +181,12 @@ void SdirkIntegrator::Predict(int i) {
 
 bool SdirkIntegrator::Step(const Eigen::Ref<const Eigen::VectorXd>& y, double h,
                            Eigen::Ref<Eigen::VectorXd> y_new, Eigen::Ref<Eigen::VectorXd> error) {
-  jacobian_fresh_ = false;
-  if (!have_jacobian_ || refresh_next_step_) RefreshJacobian(y);
+  jac_.fresh = false;
+  if (!jac_.valid || refresh_next_step_) RefreshJacobian(y);
   max_theta_ = 0.0;
   refresh_next_step_ = false;
   if (!Factorize(h)) {
-    if (jacobian_fresh_) return false;
+    if (jac_.fresh) return false;
     RefreshJacobian(y);
     if (!Factorize(h)) return false;
   }

@@ -58,6 +58,16 @@ double ErrorNorm(const IntegratorOptions& options, int n,
                  const Eigen::Ref<const Eigen::VectorXd>& y_new,
                  const Eigen::Ref<const Eigen::VectorXd>& err);
 
+/// y' = [v; f(q, v)] for y = [q; v] (the index-1 form, seed 000 eq. 4) into out, counted in
+/// stats: the right-hand side every integrator here evaluates.
+inline void FirstOrderRhs(const QuatFdModel& model, const Eigen::Ref<const Eigen::VectorXd>& y,
+                          Eigen::Ref<Eigen::VectorXd> out, IntegratorStats* stats) {
+  const Eigen::Index n = model.size();
+  out.head(n) = y.tail(n);
+  model.Acceleration(y.head(n), y.tail(n), out.tail(n));
+  ++stats->f_evaluations;
+}
+
 /// A time integrator bound to one model. Advance() continues from where the last call stopped
 /// (keeping its step size), so a run can be cut into output intervals.
 class QuatFdIntegrator {

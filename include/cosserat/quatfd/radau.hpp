@@ -37,6 +37,7 @@
 
 #include "cosserat/quatfd/banded_matrix.hpp"
 #include "cosserat/quatfd/corotation.hpp"
+#include "cosserat/quatfd/frozen_jacobian.hpp"
 #include "cosserat/quatfd/integrator.hpp"
 #include "cosserat/quatfd/sdirk.hpp"
 
@@ -68,13 +69,15 @@ class RadauIntegrator final : public QuatFdIntegrator {
 
  private:
   enum class NewtonResult { kConverged, kSlow, kDiverged };
-  void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out);
+  void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out) {
+    FirstOrderRhs(model_, y, out, &stats_);
+  }
   void RefreshJacobian(const Eigen::Ref<const Eigen::VectorXd>& y);
   bool Factorize(double h);
   /// The co-rotation (corotation.hpp) from the state of J to y into slot 0–2 (stages) or 3 (the
   /// error filter); RotateHalf applies a slot's P or Pᵀ to one half. No-ops without corotate_.
   void UpdateRotations(int slot, const Eigen::Ref<const Eigen::VectorXd>& y) {
-    if (corotate_) corotation_[slot].Update(q_jac_, y.head(n_));
+    if (corotate_) corotation_[slot].Update(jac_.q, y.head(n_));
   }
   void RotateHalf(int slot, Eigen::Ref<Eigen::VectorXd> r, bool transpose) const {
     if (corotate_) corotation_[slot].Apply(r, transpose);
@@ -96,8 +99,6 @@ class RadauIntegrator final : public QuatFdIntegrator {
   double factor_h_ = 0;
   double kappa_ = 0.05;
   double newton_cap_ = 0.0;  ///< largest next step after a Newton failure (0: none)
-  bool have_jacobian_ = false;
-  bool jacobian_fresh_ = false;
   bool refresh_next_step_ = false;
   bool have_poly_ = false;
   bool corotate_ = true;
@@ -106,9 +107,10 @@ class RadauIntegrator final : public QuatFdIntegrator {
   int last_iterations_ = 0;  ///< Newton iterations of the last converged step
   double h_poly_ = 0;        ///< step of the polynomial in cont_
   double newton_velocity_atol_ = 0;
-  BandedMatrix A_, B_, Mr_;
+  FrozenJacobian jac_;
+  BandedMatrix Mr_;
   ComplexBandedMatrix Mc_;
-  Eigen::VectorXd y_, y_new_, err_, f0_, tmp_, f_at_jac_, q_jac_, acc_;
+  Eigen::VectorXd y_, y_new_, err_, f0_, tmp_, acc_;
   Eigen::VectorXd Z_[3], K_[3], dW_[3], cont_[3], dZ_;
   CoRotation corotation_[4];
 };

@@ -35,7 +35,9 @@ class RosenbrockIntegrator final : public QuatFdIntegrator {
             Eigen::Ref<Eigen::VectorXd> error);
 
  private:
-  void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out);
+  void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out) {
+    FirstOrderRhs(model_, y, out, &stats_);
+  }
   /// (I/(γh) − J) g = r for r = rhs (in place).
   void SolveStage(Eigen::Ref<Eigen::VectorXd> rhs);
 

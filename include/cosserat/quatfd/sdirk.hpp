@@ -47,6 +47,7 @@
 
 #include "cosserat/quatfd/banded_matrix.hpp"
 #include "cosserat/quatfd/corotation.hpp"
+#include "cosserat/quatfd/frozen_jacobian.hpp"
 #include "cosserat/quatfd/integrator.hpp"
 
 namespace cosserat::quatfd {
@@ -80,8 +81,10 @@ class SdirkIntegrator final : public QuatFdIntegrator {
 
  private:
   enum class StageResult { kConverged, kSlow, kDiverged };
-  void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out);
-  /// Evaluates J at y (also f there, into f_at_jac_) and marks the iteration matrix stale.
+  void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out) {
+    FirstOrderRhs(model_, y, out, &stats_);
+  }
+  /// Evaluates J at y and marks the iteration matrix stale.
   void RefreshJacobian(const Eigen::Ref<const Eigen::VectorXd>& y);
   /// Assembles and factorises a² I − a B − A for the step h if it is not current.
   bool Factorize(double h);
@@ -89,7 +92,7 @@ class SdirkIntegrator final : public QuatFdIntegrator {
   void Solve(Eigen::Ref<Eigen::VectorXd> r);
   /// The co-rotation from the state of the last Jacobian to y (a no-op without corotate_).
   void UpdateRotations(const Eigen::Ref<const Eigen::VectorXd>& y) {
-    if (corotate_) corotation_.Update(q_jac_, y.head(n_));
+    if (corotate_) corotation_.Update(jac_.q, y.head(n_));
   }
   /// r ← P r or Pᵀ r, blockwise on the q and v halves.
   void Rotate(Eigen::Ref<Eigen::VectorXd> r, bool transpose) const;
@@ -111,20 +114,18 @@ class SdirkIntegrator final : public QuatFdIntegrator {
   int n_ = 0;
   double dt_ = 0;
   double factor_h_ = 0;       ///< the h of the current factorisation; 0: none
-  bool have_jacobian_ = false;
-  bool jacobian_fresh_ = false;  ///< J evaluated during the current step attempt
   bool refresh_next_step_ = false;
   bool have_k_guess_ = false;    ///< k_[4] holds F at the start of the next step (predictor)
   double max_theta_ = 0.0;       ///< largest contraction factor seen in the current step
   double eta_ = 1.0;             ///< Newton convergence-rate memory (Hairer–Wanner's η)
   bool last_rejected_ = false;
-  BandedMatrix A_, B_, M_;
-  Eigen::VectorXd y_, y_new_, err_, z_, dz_, s_, tmp_, acc_, f_at_jac_;
+  FrozenJacobian jac_;
+  BandedMatrix M_;
+  Eigen::VectorXd y_, y_new_, err_, z_, dz_, s_, tmp_, acc_;
   Eigen::VectorXd k_[5], k0_, guess_;
   bool corotate_ = true;
   /// The tolerances of the Newton norm (ErrorNorm): options_ with abs_tol also on v.
   IntegratorOptions newton_norm_;
-  Eigen::VectorXd q_jac_;  ///< q where J was evaluated
   CoRotation corotation_;
 };
 
