@@ -39,6 +39,15 @@ struct SlenderRod {
   }
 };
 
+// The rod as a cantilever at 41 nodes under a dead compressive tip force (−z), searched up to
+// lambda_max (N).
+BucklingAnalysis CompressedCantilever(const SlenderRod& rod, double lambda_max) {
+  BucklingOptions options;
+  options.lambda_max = lambda_max;
+  return BucklingAnalysis(rod.model(), 41, ColumnEnds::kClampedFree, lie::SE3{},
+                          LoadPath::TipForce(Vec3(0, 0, -1)), options);
+}
+
 BucklingSummary Critical(const RodModel& model, int nodes, ColumnEnds ends, double lambda_max) {
   BucklingOptions options;
   options.lambda_max = lambda_max;
@@ -196,10 +205,7 @@ TEST(Buckling, EllipticTableCheck) {  // the helper against Timoshenko & Gere's 
 TEST(Buckling, CantileverPostBuckledBranchIsTheElastica) {
   SlenderRod rod;
   const double P = EulerLoad(ColumnEnds::kClampedFree, rod.EI(), rod.L);
-  BucklingOptions options;
-  options.lambda_max = 1.5 * P;
-  BucklingAnalysis analysis(rod.model(), 41, ColumnEnds::kClampedFree, lie::SE3{},
-                            LoadPath::TipForce(Vec3(0, 0, -1)), options);
+  BucklingAnalysis analysis = CompressedCantilever(rod, 1.5 * P);
   const BucklingSummary b = analysis.FindCriticalLoad();
   ASSERT_TRUE(b.found());
   double previous = 0;
@@ -316,10 +322,7 @@ TEST(Buckling, StabilityIndexCountsEulerLoadsBelowTheLoad) {
 TEST(Buckling, PostBuckledBranchIsStable) {
   SlenderRod rod;
   const double P = EulerLoad(ColumnEnds::kClampedFree, rod.EI(), rod.L);
-  BucklingOptions options;
-  options.lambda_max = 1.5 * P;
-  BucklingAnalysis analysis(rod.model(), 41, ColumnEnds::kClampedFree, lie::SE3{},
-                            LoadPath::TipForce(Vec3(0, 0, -1)), options);
+  BucklingAnalysis analysis = CompressedCantilever(rod, 1.5 * P);
   ASSERT_TRUE(analysis.FindCriticalLoad().found());
   const double lambda = 1.2 * P;
   ASSERT_TRUE(analysis.SolvePostBuckled(lambda).converged());
