@@ -29,8 +29,10 @@ using bench::RubberRod;
 using bench::SteelString;
 
 /// baumgarte > 0: α = β = baumgarte (1/s) and no projection (a diagnostic variant, BENCHMARKS.md).
+/// measure: how Radau measures its error estimate (radau.hpp; ignored by the others).
 void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int segments,
-         IntegratorKind kind, double baumgarte = 0.0, double tolerance = 1e-6) {
+         IntegratorKind kind, double baumgarte = 0.0, double tolerance = 1e-6,
+         RadauErrorMeasure measure = RadauErrorMeasure::kComponents) {
   QuatFdOptions opt;
   opt.segments = segments;
   opt.base_end = end;
@@ -51,6 +53,7 @@ void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int seg
     q = q0;
     v = v0;
     auto integ = MakeIntegrator(kind, model, io);
+    if (auto* r = dynamic_cast<RadauIntegrator*>(integ.get())) r->set_error_measure(measure);
     double t = 0;
     status = integ->Advance(10.0, &t, q, v);
     stats = integ->stats();
@@ -123,6 +126,28 @@ BENCHMARK(BM_RubberRod_Sdirk)->Apply(SegmentSweep);
 BENCHMARK(BM_SteelString_Sdirk)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_RubberRod_Radau)->Apply(SegmentSweep);
 BENCHMARK(BM_SteelString_Radau)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
+// Radau with the error measured in the physical directions (RadauErrorMeasure::kPhysical:
+// rotation and ω errors in rad, rad/s, the |p| gauge not measured), against the tolerance
+// rel_tol = abs_tol = 10^-k (k = range(1)); range(0): 0 the component measure (the default),
+// 1 the physical one. BENCHMARKS.md, "What sets the Radau step size".
+void BM_RubberRod_RadauMeasure(benchmark::State& s) {
+  Run(s, RubberRod(), EndCondition::kClamped, 10, IntegratorKind::kRadau, 0.0,
+      std::pow(10.0, -static_cast<double>(s.range(1))),
+      s.range(0) ? RadauErrorMeasure::kPhysical : RadauErrorMeasure::kComponents);
+}
+void BM_SteelString_RadauMeasure(benchmark::State& s) {
+  Run(s, SteelString(), EndCondition::kPinned, 20, IntegratorKind::kRadau, 0.0,
+      std::pow(10.0, -static_cast<double>(s.range(1))),
+      s.range(0) ? RadauErrorMeasure::kPhysical : RadauErrorMeasure::kComponents);
+}
+BENCHMARK(BM_RubberRod_RadauMeasure)
+    ->ArgsProduct({{0, 1}, {5, 6, 7}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK(BM_SteelString_RadauMeasure)
+    ->ArgsProduct({{0, 1}, {5, 6, 7}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 // Stiff Baumgarte instead of the projection (α = β = 1e3 1/s for (a), 1e4 for (b)): makes the
 // |p| direction stiff, which removes one of the Rosenbrock step-map instabilities
 // (bench/quatfd_stability.cpp) but not the others; kept to document the effect.
