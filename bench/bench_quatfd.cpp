@@ -32,7 +32,7 @@ using bench::SteelString;
 /// measure: how Radau measures its error estimate (radau.hpp; ignored by the others).
 void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int segments,
          IntegratorKind kind, double baumgarte = 0.0, double tolerance = 1e-6,
-         RadauErrorMeasure measure = RadauErrorMeasure::kComponents) {
+         RadauErrorMeasure measure = RadauErrorMeasure::kPhysical) {
   QuatFdOptions opt;
   opt.segments = segments;
   opt.base_end = end;
@@ -128,8 +128,8 @@ BENCHMARK(BM_RubberRod_Radau)->Apply(SegmentSweep);
 BENCHMARK(BM_SteelString_Radau)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(1);
 // Radau with the error measured in the physical directions (RadauErrorMeasure::kPhysical:
 // rotation and ω errors in rad, rad/s, the |p| gauge not measured), against the tolerance
-// rel_tol = abs_tol = 10^-k (k = range(1)); range(0): 0 the component measure (the default),
-// 1 the physical one. BENCHMARKS.md, "What sets the Radau step size".
+// rel_tol = abs_tol = 10^-k (k = range(1)); range(0): 0 the component measure, 1 the physical one
+// (the default). BENCHMARKS.md, "What sets the Radau step size".
 void BM_RubberRod_RadauMeasure(benchmark::State& s) {
   Run(s, RubberRod(), EndCondition::kClamped, 10, IntegratorKind::kRadau, 0.0,
       std::pow(10.0, -static_cast<double>(s.range(1))),
