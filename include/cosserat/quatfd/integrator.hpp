@@ -15,7 +15,10 @@ struct IntegratorOptions {
   /// with atol_i = abs_tol for q (m, –) and velocity_abs_tol for v (m/s, 1/s). The velocity
   /// tolerance is looser by default: with a tight one the step follows the velocity of the stiff
   /// axial, shear and rotary-inertia vibrations (10³–10⁷ rad/s, micrometre amplitudes) instead
-  /// of the motion (about 5× more steps for the rubber rod at rel_tol 1e-6).
+  /// of the motion (about 5× more steps for the rubber rod at rel_tol 1e-6). RadauIntegrator
+  /// measures segments by their rotation (rad, against abs_tol + rel_tol) and ω (rad/s, against
+  /// velocity_abs_tol + rel_tol |ω|) instead of the quaternion components (radau.hpp,
+  /// RadauErrorMeasure).
   double rel_tol = 1e-6;
   double abs_tol = 1e-6;
   double velocity_abs_tol = 1e-3;
