@@ -89,7 +89,7 @@ void ParseSolver(const ObjectReader& o, StaticShootingOptions* options) {
 
 void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
   o.AllowOnly({"dt", "duration", "output_interval", "initial", "initial_loads", "tip_mass",
-               "tip_inertia", "shooting_segments", "spatial_scheme"});
+               "tip_inertia", "shooting_segments", "spatial_scheme", "integrator_tolerance"});
   const auto dt = ReadNumber(o, "dt", PositiveNumber(), Presence::kOptional);
   const auto duration = ReadNumber(o, "duration", PositiveNumber(), Presence::kOptional);
   const auto interval = ReadNumber(o, "output_interval", PositiveNumber(), Presence::kOptional);
@@ -123,6 +123,12 @@ void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
                              .value_or(d->shooting_segments);
   d->spatial_scheme = ReadChoice(o, "spatial_scheme", {"rk4", "heun"}, Presence::kOptional)
                           .value_or(d->spatial_scheme);
+  // Above 0.1 the error control no longer means anything (errors of 10 % of a metre or a
+  // radian are accepted).
+  const NumberRule tolerance_rule{"a number in (0, 0.1]", [](double x) { return x > 0 && x <= 0.1; }};
+  d->integrator_tolerance =
+      ReadNumber(o, "integrator_tolerance", tolerance_rule, Presence::kOptional)
+          .value_or(d->integrator_tolerance);
   if (const auto loads = ReadObject(o, "initial_loads", Presence::kOptional))
     d->initial_loads = ParseLoads(*loads);
 }

@@ -45,6 +45,9 @@ struct Problem {
     int shooting_segments = 1;
     /// Bdf2Options::spatial_scheme (SE(3) path): "rk4" | "heun".
     std::string spatial_scheme = "rk4";
+    /// Quaternion-FD path: the Radau integrator's rel_tol = abs_tol (IntegratorOptions; rotations
+    /// in rad), in (0, 0.1].
+    double integrator_tolerance = 1e-6;
   } dynamics;
   bool has_dynamics = false;
 
