@@ -30,7 +30,8 @@ struct Problem {
   StaticLoads loads;
   StaticShootingOptions solver;  ///< "solver": {"tolerance", "max_iterations"}
 
-  /// "dynamics": run by the `cosserat` command (BDF2 shooting, cantilever only).
+  /// "dynamics": run by the `cosserat` command (SE(3) path: BDF2 shooting, cantilever or
+  /// free-free; quaternion-FD path: the Radau integrator, cantilever).
   struct Dynamics {
     double dt = 0.002;      ///< s
     double duration = 1.0;  ///< s
