@@ -615,7 +615,7 @@ TEST(Bdf2Dynamics, FewStepsAfterAReleaseTakeFiveShotsOrMore) {
     shots += s.shots;
   }
   std::printf("steps with >= 5 shots in the first 0.2 s: %d, shots %d\n", slow, shots);
-  // Measured: 31 (482 shots); 56 (511) with polynomials alone. Variants of the recurrence that
+  // Measured: 27 (476 shots); 56 (511) with polynomials alone. Variants of the recurrence that
   // differ only in round-off (LDLT or LLT, the differences kept or recomputed) gave 27–32, so
   // 40 leaves room for such noise and still fails if the recurrence stops helping.
   EXPECT_LE(slow, 40);
