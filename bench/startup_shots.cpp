@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
   const int print = argc > 1 ? std::atoi(argv[1]) : 0;
   Bdf2Options opt;
   opt.dt = 2e-3;
-  opt.spatial_scheme = argc > 2 && std::string(argv[2]) == "rk4" ? SpatialScheme::kRk4 : SpatialScheme::kHeun;
+  opt.spatial_scheme =
+      argc > 2 && std::string(argv[2]) == "rk4" ? SpatialScheme::kRk4 : SpatialScheme::kHeun;
   opt.tolerance = 1e-10;
   Bdf2ShootingStepper stepper(bench::PeerRod(), 40, opt);
   StepInput in = bench::PeerPreload();

@@ -143,8 +143,7 @@ void SequencePredictor::PushRecurrence(const Vec6& x, const Mat6* weight, double
   // d_{k+1} from the same coefficients and the unweighted differences (terms_ holds the
   // kLags + 2 terms they need); x_{k+1} = d_{k+1} + 2 x_k − x_{k−1}.
   Vec6 next = 2 * terms_[0] - terms_[1];
-  for (int i = 0; i < kLags; ++i)
-    next += a(i) * (terms_[i] - 2 * terms_[i + 1] + terms_[i + 2]);
+  for (int i = 0; i < kLags; ++i) next += a(i) * (terms_[i] - 2 * terms_[i + 1] + terms_[i + 2]);
   recurrence_prediction_ = next;
   recurrence_ready_ = true;
 }

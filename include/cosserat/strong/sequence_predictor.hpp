@@ -6,9 +6,8 @@
 /// the tip residual amplifies an error in the base unknowns by the shot's gain e^{λL}, so the
 /// Newton iteration count depends on it directly. Fixed size: no heap allocation.
 
-#include <array>
-
 #include <Eigen/Core>
+#include <array>
 
 #include "cosserat/lie/types.hpp"
 
@@ -89,16 +88,16 @@ class SequencePredictor {
   using VecL = Eigen::Matrix<double, kLags, 1>;
   bool recurrence_ = false;
   bool use_recurrence_ = false;
-  int differences_ = 0;                       ///< second differences known (≤ kLags + 1)
-  std::array<Vec6, kLags + 1> weighted_{};    ///< fit_scale_ ⊙ d_k, newest first
+  int differences_ = 0;                     ///< second differences known (≤ kLags + 1)
+  std::array<Vec6, kLags + 1> weighted_{};  ///< fit_scale_ ⊙ d_k, newest first
   /// The fit's weights: the column norms of the weight at the fit's first term, then fixed (the
   /// normal equations are accumulated, so every equation must be weighted alike).
   Vec6 fit_scale_ = Vec6::Ones();
-  MatL gram_ = MatL::Zero();                  ///< normal equations of the fit, forgetting
-  MatL lags_gram_ = MatL::Zero();             ///< Gram matrix of the newest equation's lags
+  MatL gram_ = MatL::Zero();       ///< normal equations of the fit, forgetting
+  MatL lags_gram_ = MatL::Zero();  ///< Gram matrix of the newest equation's lags
   bool lags_gram_valid_ = false;
   VecL rhs_ = VecL::Zero();
-  bool recurrence_ready_ = false;             ///< recurrence_prediction_ is valid
+  bool recurrence_ready_ = false;              ///< recurrence_prediction_ is valid
   Vec6 recurrence_prediction_ = Vec6::Zero();  ///< of the next term, at spacing_
   double recurrence_score_ = -1.0;
 };
