@@ -1,5 +1,6 @@
 #include "cosserat/strong/sequence_predictor.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <limits>
 
@@ -28,9 +29,19 @@ constexpr WeightTable kWeights;
 
 }  // namespace
 
-SequencePredictor::SequencePredictor(int min_degree)
-    : min_degree_(std::clamp(min_degree, 0, kMaxDegree)) {
+SequencePredictor::SequencePredictor(int min_degree, bool recurrence)
+    : min_degree_(std::clamp(min_degree, 0, kMaxDegree)), recurrence_(recurrence) {
   score_.fill(-1.0);
+}
+
+void SequencePredictor::ResetRecurrence() {
+  use_recurrence_ = false;
+  differences_ = 0;
+  lags_gram_valid_ = false;
+  gram_.setZero();
+  rhs_.setZero();
+  recurrence_ready_ = false;
+  recurrence_score_ = -1.0;
 }
 
 void SequencePredictor::Reset(const Vec6& x) {
@@ -39,6 +50,7 @@ void SequencePredictor::Reset(const Vec6& x) {
   spacing_ = 0.0;
   degree_ = 0;
   score_.fill(-1.0);
+  ResetRecurrence();
 }
 
 Vec6 SequencePredictor::Extrapolate(int p, int first) const {
@@ -56,6 +68,7 @@ void SequencePredictor::Push(const Vec6& x, double spacing, const Mat6* weight) 
     count_ = 1;  // the older terms lie at another spacing: keep only the latest
     degree_ = 0;
     score_.fill(-1.0);
+    ResetRecurrence();
   }
   spacing_ = spacing;
   for (int j = static_cast<int>(terms_.size()) - 1; j > 0; --j) terms_[j] = terms_[j - 1];
@@ -80,11 +93,65 @@ void SequencePredictor::Push(const Vec6& x, double spacing, const Mat6* weight) 
       degree_ = p;
     }
   }
+  if (recurrence_) PushRecurrence(x, weight, best);
+}
+
+void SequencePredictor::PushRecurrence(const Vec6& x, const Mat6* weight, double best) {
+  // Score the prediction made for x, then add x's equation to the fit and predict the next.
+  if (recurrence_ready_) {
+    const Vec6 miss = recurrence_prediction_ - x;
+    const double error = weight ? (*weight * miss).squaredNorm() : miss.squaredNorm();
+    recurrence_score_ = recurrence_score_ < 0 ? error : 0.5 * (recurrence_score_ + error);
+  }
+  // Only while the degrees predict poorly is the recurrence's solve worth its cost
+  // (kRecurrenceFrom); its normal equations are kept up to date all the same.
+  const bool active = best > kRecurrenceFrom;
+  if (!active) recurrence_score_ = -1.0;  // scored afresh when it is next needed
+  use_recurrence_ = active && recurrence_score_ >= 0 && recurrence_score_ < best;
+  recurrence_ready_ = false;
+  if (count_ < 3) return;
+  const Vec6 d = x - 2 * terms_[1] + terms_[2];
+  if (differences_ == 0)
+    fit_scale_ = weight ? Vec6(weight->colwise().norm().transpose()) : Vec6::Ones();
+  for (int k = kLags; k > 0; --k) weighted_[k] = weighted_[k - 1];
+  weighted_[0] = fit_scale_.cwiseProduct(d);
+  if (differences_ < kLags + 1) ++differences_;
+  if (differences_ < kLags + 1) return;  // the fit needs the lags of its newest equation
+  // The newest equation: weighted_[0] ≈ Σ_i a_i weighted_[1 + i]. Its Gram matrix of the lags
+  // is the last one's shifted by one, with a new first row and column.
+  VecL dots;
+  for (int i = 0; i < kLags; ++i) dots(i) = weighted_[1 + i].dot(weighted_[0]);
+  if (lags_gram_valid_) {
+    lags_gram_.bottomRightCorner<kLags - 1, kLags - 1>() =
+        lags_gram_.topLeftCorner<kLags - 1, kLags - 1>().eval();
+    for (int l = 0; l < kLags; ++l)
+      lags_gram_(0, l) = lags_gram_(l, 0) = weighted_[1].dot(weighted_[1 + l]);
+  } else {
+    for (int i = 0; i < kLags; ++i)
+      for (int l = 0; l <= i; ++l)
+        lags_gram_(i, l) = lags_gram_(l, i) = weighted_[1 + i].dot(weighted_[1 + l]);
+    lags_gram_valid_ = true;
+  }
+  gram_ = kRecurrenceMemory * gram_ + lags_gram_;
+  rhs_ = kRecurrenceMemory * rhs_ + dots;
+  if (!active) return;
+  // A little ridge: the lags are nearly dependent once the slow modes dominate.
+  MatL A = gram_;
+  A.diagonal().array() += 1e-12 * gram_.trace() / kLags + 1e-300;
+  const VecL a = A.llt().solve(rhs_);
+  if (!a.allFinite()) return;
+  // d_{k+1} from the same coefficients and the unweighted differences (terms_ holds the
+  // kLags + 2 terms they need); x_{k+1} = d_{k+1} + 2 x_k − x_{k−1}.
+  Vec6 next = 2 * terms_[0] - terms_[1];
+  for (int i = 0; i < kLags; ++i) next += a(i) * (terms_[i] - 2 * terms_[i + 1] + terms_[i + 2]);
+  recurrence_prediction_ = next;
+  recurrence_ready_ = true;
 }
 
 Vec6 SequencePredictor::Predict(double spacing) const {
   if (count_ == 0) return Vec6::Zero();
   if (count_ < 2 || spacing != spacing_) return terms_[0];
+  if (use_recurrence_ && recurrence_ready_) return recurrence_prediction_;
   return Extrapolate(degree_, 0);
 }
 

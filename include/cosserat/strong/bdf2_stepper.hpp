@@ -146,7 +146,7 @@ class Bdf2ShootingStepper {
   struct Snapshot {
     double time = 0;
     double last_dt = 0;             ///< size of the last accepted step (0 before the first)
-    SequencePredictor unknowns{2};  ///< the converged unknowns of the last steps
+    SequencePredictor unknowns{2, true};  ///< the converged unknowns of the last steps
     SecantFilter jacobian_filter;  ///< the shooting Jacobian, tracked across steps
     double jacobian_c0 = -1.0;  ///< the c0 the Jacobian was computed for; −1: none
     int steps_taken = 0;
