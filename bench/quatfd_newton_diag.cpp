@@ -43,28 +43,14 @@
 #include "cosserat/quatfd/corotation.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/radau.hpp"
+#include "cosserat/quatfd/radau_tableau.hpp"
 
 using namespace cosserat;
 using namespace cosserat::quatfd;
 using L = QuatFdLayout;
 
-struct Coef {
-  double c[3], A[3][3], Ainv[3][3];
-  Coef() {
-    const double s6 = std::sqrt(6.0);
-    c[0] = (4 - s6) / 10, c[1] = (4 + s6) / 10, c[2] = 1;
-    const double a[3][3] = {{(88 - 7 * s6) / 360, (296 - 169 * s6) / 1800, (-2 + 3 * s6) / 225},
-                            {(296 + 169 * s6) / 1800, (88 + 7 * s6) / 360, (-2 - 3 * s6) / 225},
-                            {(16 - s6) / 36, (16 + s6) / 36, 1.0 / 9}};
-    Eigen::Matrix3d m;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) A[i][j] = m(i, j) = a[i][j];
-    Eigen::Matrix3d mi = m.inverse();
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) Ainv[i][j] = mi(i, j);
-  }
-};
-static const Coef K;
+// The Radau IIA tableau of the integrator (radau_tableau.hpp).
+static const RadauIIA3Tableau& K = RadauIIA3();
 // COND=1 in the environment: the condition of the exact iteration matrix at the starting iterates
 // of the test steps (full, full-tan; not of the preparatory steps before them).
 static bool g_print_condition = false;

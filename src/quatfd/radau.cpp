@@ -1,7 +1,6 @@
 #include "cosserat/quatfd/radau.hpp"
 
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -10,60 +9,10 @@
 #include <string>
 
 #include "cosserat/quatfd/quatfd_kernels.hpp"
+#include "cosserat/quatfd/radau_tableau.hpp"
 
 namespace cosserat::quatfd {
 namespace {
-
-// Radau IIA, 3 stages (Hairer & Wanner II, Table IV.5.6): nodes, coefficients, and the
-// transformation T that block-diagonalises A⁻¹ (computed once from A, so no hand-copied
-// 20-digit constants): T⁻¹ A⁻¹ T = [[γ, 0, 0], [0, α, −β], [0, β, α]].
-struct Radau5 {
-  double c[3];
-  double A[3][3];
-  double Ainv[3][3];
-  double T[3][3], Ti[3][3];
-  double gamma, alpha, beta;
-  // Error estimate (Hairer–Wanner IV.8.19–20): err = (γ/h I − J)⁻¹ [f(y_n) + Σ dd_i Z_i / h].
-  double dd[3];
-  Radau5() {
-    const double s6 = std::sqrt(6.0);
-    c[0] = (4 - s6) / 10;
-    c[1] = (4 + s6) / 10;
-    c[2] = 1;
-    const double a[3][3] = {{(88 - 7 * s6) / 360, (296 - 169 * s6) / 1800, (-2 + 3 * s6) / 225},
-                            {(296 + 169 * s6) / 1800, (88 + 7 * s6) / 360, (-2 - 3 * s6) / 225},
-                            {(16 - s6) / 36, (16 + s6) / 36, 1.0 / 9}};
-    Eigen::Matrix3d Am;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) A[i][j] = Am(i, j) = a[i][j];
-    const Eigen::Matrix3d Ai = Am.inverse();
-    Eigen::EigenSolver<Eigen::Matrix3d> es(Ai);
-    int real = 0, cplx = 0;
-    for (int k = 0; k < 3; ++k) {
-      if (std::abs(es.eigenvalues()[k].imag()) < 1e-12) real = k;
-      if (es.eigenvalues()[k].imag() < -1e-12) cplx = k;  // λ = α − iβ gives the [[α, −β], [β, α]] block
-    }
-    Eigen::Matrix3d Tm;
-    Tm.col(0) = es.eigenvectors().col(real).real();
-    Tm.col(1) = es.eigenvectors().col(cplx).real();
-    Tm.col(2) = es.eigenvectors().col(cplx).imag();
-    const Eigen::Matrix3d Tinv = Tm.inverse();
-    const Eigen::Matrix3d L = Tinv * Ai * Tm;
-    gamma = L(0, 0);
-    alpha = L(1, 1);
-    beta = L(2, 1);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) T[i][j] = Tm(i, j), Ti[i][j] = Tinv(i, j), Ainv[i][j] = Ai(i, j);
-    dd[0] = -(13 + 7 * s6) / 3;
-    dd[1] = (-13 + 7 * s6) / 3;
-    dd[2] = -1.0 / 3;
-  }
-};
-
-const Radau5& Coef() {
-  static const Radau5 k;
-  return k;
-}
 
 // Newton iterations per step before it counts as failed. RADAU5's NIT is 7; 15 converge steps
 // that 7 would reject (the slowly contracting quaternion rates of BENCHMARKS.md's "What limits
@@ -95,7 +44,7 @@ RadauIntegrator::RadauIntegrator(const QuatFdModel& model, const IntegratorOptio
     : model_(model), options_(options), corotate_(corotate) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("IntegratorOptions: " + why);
-  (void)Coef();
+  (void)RadauIIA3();  // built here, not in the first Advance
   n_ = model.size();
   const int bw = QuatFdLayout::kBandwidth;
   jac_.Resize(model);
@@ -123,7 +72,7 @@ void RadauIntegrator::RefreshJacobian(const Eigen::Ref<const Eigen::VectorXd>& y
 
 bool RadauIntegrator::Factorize(double h) {
   if (factor_h_ == h) return true;
-  const Radau5& k = Coef();
+  const RadauIIA3Tableau& k = RadauIIA3();
   const double ar = k.gamma / h;
   const std::complex<double> ac(k.alpha / h, k.beta / h);
   const std::complex<double> ac2 = ac * ac;
@@ -145,7 +94,7 @@ bool RadauIntegrator::Factorize(double h) {
 void RadauIntegrator::SolveReal(Eigen::Ref<Eigen::VectorXd> r) {
   // (aI − J) x = r with J = [[0, I], [A, B]], a = γ/h: x_v = M⁻¹ (a r_v + A r_q),
   // x_q = (r_q + x_v)/a; turned by the co-rotation.
-  const double a = Coef().gamma / factor_h_;
+  const double a = RadauIIA3().gamma / factor_h_;
   auto rq = r.head(n_);
   auto rv = r.tail(n_);
   RotateHalf(3, rq, true);
@@ -198,7 +147,7 @@ double RadauIntegrator::ErrorMeasure() const {
 }
 
 void RadauIntegrator::StartingValues(double h) {
-  const Radau5& k = Coef();
+  const RadauIIA3Tableau& k = RadauIIA3();
   if (!have_poly_) {
     for (auto& z : Z_) z.setZero();
     return;
@@ -214,7 +163,7 @@ void RadauIntegrator::StartingValues(double h) {
 }
 
 void RadauIntegrator::FillPositions(const Eigen::Ref<const Eigen::VectorXd>& y, double h) {
-  const Radau5& k = Coef();
+  const RadauIIA3Tableau& k = RadauIIA3();
   const int n = n_;
   for (int i = 0; i < 3; ++i) {
     auto zq = Z_[i].head(n);
@@ -225,7 +174,7 @@ void RadauIntegrator::FillPositions(const Eigen::Ref<const Eigen::VectorXd>& y, 
 
 RadauIntegrator::NewtonResult RadauIntegrator::Newton(const Eigen::Ref<const Eigen::VectorXd>& y,
                                                       double h) {
-  const Radau5& k = Coef();
+  const RadauIIA3Tableau& k = RadauIIA3();
   const int n = n_;
   const double ar = k.gamma / h;
   const std::complex<double> ac(k.alpha / h, k.beta / h);
@@ -309,7 +258,7 @@ RadauIntegrator::NewtonResult RadauIntegrator::Newton(const Eigen::Ref<const Eig
 
 bool RadauIntegrator::Step(const Eigen::Ref<const Eigen::VectorXd>& y, double h,
                            Eigen::Ref<Eigen::VectorXd> y_new, Eigen::Ref<Eigen::VectorXd> error) {
-  const Radau5& k = Coef();
+  const RadauIIA3Tableau& k = RadauIIA3();
   jac_.fresh = false;
   if (!jac_.valid || refresh_next_step_) RefreshJacobian(y);
   refresh_next_step_ = false;
@@ -343,7 +292,7 @@ bool RadauIntegrator::Step(const Eigen::Ref<const Eigen::VectorXd>& y, double h,
 IntegratorStatus RadauIntegrator::Advance(double t_end, double* t, Eigen::Ref<Eigen::VectorXd> q,
                                           Eigen::Ref<Eigen::VectorXd> v) {
   const int n = n_;
-  const Radau5& k = Coef();
+  const RadauIIA3Tableau& k = RadauIIA3();
   // Keep the extrapolation polynomial only when the caller continues from where we stopped.
   if (!(y_.head(n) == q && y_.tail(n) == v)) have_poly_ = false;
   y_.head(n) = q;
