@@ -108,42 +108,9 @@ void RadauIntegrator::SolveReal(Eigen::Ref<Eigen::VectorXd> r) {
 }
 
 double RadauIntegrator::ErrorMeasure() const {
-  if (error_measure_ == RadauErrorMeasure::kComponents)
-    return ErrorNorm(options_, n_, y_, y_new_, err_);
-  const int n = n_;
-  const IntegratorOptions& o = options_;
-  double e = 0.0;
-  for (int v = 0; v <= model_.layout().segments; ++v)
-    for (int i = QuatFdLayout::X(v); i < QuatFdLayout::X(v) + 3; ++i) {
-      e = std::max(e, std::abs(err_[i]) /
-                          (o.abs_tol + o.rel_tol * std::max(std::abs(y_[i]), std::abs(y_new_[i]))));
-      const int j = n + i;
-      e = std::max(
-          e, std::abs(err_[j]) /
-                 (o.velocity_abs_tol + o.rel_tol * std::max(std::abs(y_[j]), std::abs(y_new_[j]))));
-    }
-  // Im(ā b) for quaternions [w, x, y, z].
-  const auto im = [](const Eigen::Vector4d& a, const Eigen::Vector4d& b) -> Eigen::Vector3d {
-    const Eigen::Vector3d av = a.tail<3>(), bv = b.tail<3>();
-    return a[0] * bv - b[0] * av - av.cross(bv);
-  };
-  const double rotation_scale = o.abs_tol + o.rel_tol;
-  for (int s = 0; s < model_.layout().segments; ++s) {
-    const int i = QuatFdLayout::P(s);
-    const Eigen::Vector4d p = y_new_.segment<4>(i), pd = y_new_.segment<4>(n + i);
-    const Eigen::Vector4d dp = err_.segment<4>(i), dpd = err_.segment<4>(n + i);
-    const double ip2 = 1.0 / p.squaredNorm();
-    const Eigen::Vector3d omega = 2 * ip2 * im(p, pd);
-    // δθ = 2 Im(p̄ δp)/|p|²; δω = [2 Im(δp̄ ṗ + p̄ δṗ) − 2 (p·δp) ω]/|p|². A radial δp or δṗ
-    // (∥ p) gives δθ = 0 and δω = 0 (δp only −(p·δp) ω, as the projection's rescaling of ṗ).
-    const Eigen::Vector3d dtheta = 2 * ip2 * im(p, dp);
-    const Eigen::Vector3d domega = ip2 * (2 * (im(dp, pd) + im(p, dpd)) - 2 * p.dot(dp) * omega);
-    for (int k = 0; k < 3; ++k) {
-      e = std::max(e, std::abs(dtheta[k]) / rotation_scale);
-      e = std::max(e, std::abs(domega[k]) / (o.velocity_abs_tol + o.rel_tol * std::abs(omega[k])));
-    }
-  }
-  return e;
+  return error_measure_ == RadauErrorMeasure::kComponents
+             ? ErrorNorm(options_, n_, y_, y_new_, err_)
+             : RotationErrorNorm(options_, model_.layout(), y_, y_new_, err_);
 }
 
 void RadauIntegrator::StartingValues(double h) {

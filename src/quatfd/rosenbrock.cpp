@@ -26,18 +26,6 @@ constexpr double c61 = 0.8083246795921522e+01, c62 = -0.7981132988064893e+01,
 
 }  // namespace
 
-double ErrorNorm(const IntegratorOptions& o, int n, const Eigen::Ref<const Eigen::VectorXd>& y,
-                 const Eigen::Ref<const Eigen::VectorXd>& y_new,
-                 const Eigen::Ref<const Eigen::VectorXd>& err) {
-  double e = 0.0;
-  for (int i = 0; i < 2 * n; ++i) {
-    const double atol = i < n ? o.abs_tol : o.velocity_abs_tol;
-    const double sc = atol + o.rel_tol * std::max(std::abs(y[i]), std::abs(y_new[i]));
-    e = std::max(e, std::abs(err[i]) / sc);
-  }
-  return e;
-}
-
 bool IntegratorOptions::IsValid(std::string* why) const {
   auto fail = [&](const char* msg) {
     if (why) *why = msg;

@@ -61,6 +61,17 @@ double ErrorNorm(const IntegratorOptions& options, int n,
                  const Eigen::Ref<const Eigen::VectorXd>& y_new,
                  const Eigen::Ref<const Eigen::VectorXd>& err);
 
+/// The error of the state the projection keeps: vertex positions and velocities as ErrorNorm;
+/// per segment the rotation error δθ = 2 Im(p̄ δp)/|p|² (body frame, rad) against abs_tol +
+/// rel_tol, and the angular-velocity error δω (the first variation of ω = 2 Im(p̄ ṗ)/|p|², rad/s)
+/// against velocity_abs_tol + rel_tol |ω_k| (ω of y_new). The gauge — the radial parts p·δp and
+/// p·δṗ, which the projection discards and neither R(p) nor ω sees — is not measured
+/// (RadauErrorMeasure::kPhysical, radau.hpp; BENCHMARKS.md "What sets the Radau step size").
+double RotationErrorNorm(const IntegratorOptions& options, const QuatFdLayout& layout,
+                         const Eigen::Ref<const Eigen::VectorXd>& y,
+                         const Eigen::Ref<const Eigen::VectorXd>& y_new,
+                         const Eigen::Ref<const Eigen::VectorXd>& err);
+
 /// y' = [v; f(q, v)] for y = [q; v] (the index-1 form, seed 000 eq. 4) into out, counted in
 /// stats: the right-hand side every integrator here evaluates.
 inline void FirstOrderRhs(const QuatFdModel& model, const Eigen::Ref<const Eigen::VectorXd>& y,
