@@ -99,16 +99,10 @@ IntegratorStatus Dopri5Integrator::Advance(double t_end, double* t, Eigen::Ref<E
       }
       continue;
     }
-    ++stats_.steps;
-    stats_.last_dt = h;
-    *t = last ? t_end : *t + h;
     ym = ynm;  // copies keep the maps valid
     m.dydt = m.dydt_new;
-    if (options_.project) {
-      stats_.max_drift_before_projection =
-          std::max(stats_.max_drift_before_projection, model_.Project(ym.head(n), ym.tail(n)));
-      sys(m.y, m.dydt, *t);  // the FSAL derivative must belong to the projected state
-    }
+    AcceptStep(model_, options_, h, last, t_end, t, ym, &stats_);
+    if (options_.project) sys(m.y, m.dydt, *t);  // the FSAL derivative of the projected state
     const double next = h * fac;
     if (!last || next < dt_) dt_ = next;
   }

@@ -313,9 +313,6 @@ IntegratorStatus RadauIntegrator::Advance(double t_end, double* t, Eigen::Ref<Ei
     }
     h_acc = h;
     err_acc = std::max(1e-2, err);
-    ++stats_.steps;
-    stats_.last_dt = h;
-    *t = last ? t_end : *t + h;
     // The collocation polynomial for the next starting values (Newton form about 1, c2, c1).
     {
       const double c1 = k.c[0], c2 = k.c[1];
@@ -328,10 +325,7 @@ IntegratorStatus RadauIntegrator::Advance(double t_end, double* t, Eigen::Ref<Ei
       have_poly_ = true;
     }
     y_.swap(y_new_);
-    if (options_.project) {
-      stats_.max_drift_before_projection =
-          std::max(stats_.max_drift_before_projection, model_.Project(y_.head(n), y_.tail(n)));
-    }
+    AcceptStep(model_, options_, h, last, t_end, t, y_, &stats_);
     F(y_, f0_);
     double next = h / quot;
     if (last_rejected) next = std::min(next, h);

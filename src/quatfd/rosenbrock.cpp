@@ -26,37 +26,6 @@ constexpr double c61 = 0.8083246795921522e+01, c62 = -0.7981132988064893e+01,
 
 }  // namespace
 
-bool IntegratorOptions::IsValid(std::string* why) const {
-  auto fail = [&](const char* msg) {
-    if (why) *why = msg;
-    return false;
-  };
-  if (!(rel_tol > 0 && std::isfinite(rel_tol))) return fail("rel_tol: expected a positive number");
-  if (!(abs_tol > 0 && std::isfinite(abs_tol))) return fail("abs_tol: expected a positive number");
-  if (!(velocity_abs_tol > 0 && std::isfinite(velocity_abs_tol)))
-    return fail("velocity_abs_tol: expected a positive number");
-  if (!(initial_dt > 0 && std::isfinite(initial_dt)))
-    return fail("initial_dt: expected a positive number");
-  if (!(max_dt >= 0 && std::isfinite(max_dt))) return fail("max_dt: expected a number >= 0");
-  if (!(min_dt > 0 && std::isfinite(min_dt))) return fail("min_dt: expected a positive number");
-  if (max_steps < 1) return fail("max_steps: expected at least 1");
-  return true;
-}
-
-const char* ToString(IntegratorStatus status) {
-  switch (status) {
-    case IntegratorStatus::kOk:
-      return "ok";
-    case IntegratorStatus::kStepSizeUnderflow:
-      return "step_size_underflow";
-    case IntegratorStatus::kMaxSteps:
-      return "max_steps";
-    case IntegratorStatus::kNotRun:
-      break;
-  }
-  return "not_run";
-}
-
 RosenbrockIntegrator::RosenbrockIntegrator(const QuatFdModel& model,
                                            const IntegratorOptions& options)
     : model_(model), options_(options) {
@@ -160,14 +129,8 @@ IntegratorStatus RosenbrockIntegrator::Advance(double t_end, double* t,
       }
       continue;
     }
-    ++stats_.steps;
-    stats_.last_dt = h;
-    *t = last ? t_end : *t + h;
     y_.swap(y_new_);
-    if (options_.project) {
-      stats_.max_drift_before_projection =
-          std::max(stats_.max_drift_before_projection, model_.Project(y_.head(n), y_.tail(n)));
-    }
+    AcceptStep(model_, options_, h, last, t_end, t, y_, &stats_);
     // After a rejection, do not grow at once; a clipped last step keeps the running size.
     const double next = last_rejected_ ? std::min(h, h / fac) : h / fac;
     if (!last || next < dt_) dt_ = next;

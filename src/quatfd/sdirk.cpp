@@ -264,14 +264,8 @@ IntegratorStatus SdirkIntegrator::Advance(double t_end, double* t, Eigen::Ref<Ei
       }
       continue;
     }
-    ++stats_.steps;
-    stats_.last_dt = h;
-    *t = last ? t_end : *t + h;
     y_.swap(y_new_);
-    if (options_.project) {
-      stats_.max_drift_before_projection =
-          std::max(stats_.max_drift_before_projection, model_.Project(y_.head(n), y_.tail(n)));
-    }
+    AcceptStep(model_, options_, h, last, t_end, t, y_, &stats_);
     // k_[4] = F(Y_5) = F(y_{n+1}) before the projection: the next step's first predictor.
     double fac = std::clamp(0.9 * std::pow(std::max(err, 1e-10), -0.25), 0.2, 5.0);
     if (last_rejected_) fac = std::min(fac, 1.0);

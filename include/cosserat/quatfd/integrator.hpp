@@ -72,6 +72,12 @@ double RotationErrorNorm(const IntegratorOptions& options, const QuatFdLayout& l
                          const Eigen::Ref<const Eigen::VectorXd>& y_new,
                          const Eigen::Ref<const Eigen::VectorXd>& err);
 
+/// The bookkeeping of an accepted step of size h (the last one of an Advance call when `last`):
+/// counts it in stats, advances *t (to t_end exactly on the last step) and, with
+/// options.project, projects y = [q; v] onto |p| = 1, ṗ ⊥ p, recording the drift removed.
+void AcceptStep(const QuatFdModel& model, const IntegratorOptions& options, double h, bool last,
+                double t_end, double* t, Eigen::Ref<Eigen::VectorXd> y, IntegratorStats* stats);
+
 /// y' = [v; f(q, v)] for y = [q; v] (the index-1 form, seed 000 eq. 4) into out, counted in
 /// stats: the right-hand side every integrator here evaluates.
 inline void FirstOrderRhs(const QuatFdModel& model, const Eigen::Ref<const Eigen::VectorXd>& y,
