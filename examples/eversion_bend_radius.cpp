@@ -13,20 +13,17 @@
 
 #include "cosserat/analysis/bend_radius.hpp"
 #include "cosserat/io/problem.hpp"
+#include "example_input.hpp"
 
 int main(int argc, char** argv) {
   using namespace cosserat;
-  const std::string file = argc > 1 ? argv[1] : "robots/eversion_banded_vine.json";
-  const std::filesystem::path dir = argc > 2 ? argv[2] : "notebooks-data";
-  const io::ParseResult parsed = io::LoadProblemFile(file);
-  if (!parsed.ok()) {
-    for (const auto& e : parsed.errors) std::cerr << e << '\n';
-    return 2;
-  }
-  const io::Problem& p = *parsed.problem;
+  const ExampleInput in = LoadExampleInput(argc, argv, "robots/eversion_banded_vine.json");
+  if (!in.problem) return 2;
+  const io::Problem& p = *in.problem;
+  const std::filesystem::path& dir = in.dir;
   const auto* tube = dynamic_cast<const InflatedTubeSection*>(p.rod.section.get());
   if (!tube) {
-    std::cerr << file << ": not an eversion robot (needs an \"inflated\" stiffness profile)\n";
+    std::cerr << in.file << ": not an eversion robot (needs an \"inflated\" stiffness profile)\n";
     return 2;
   }
   const double pressure = p.robot.actuation.pressure;

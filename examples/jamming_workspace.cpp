@@ -10,17 +10,14 @@
 
 #include "cosserat/analysis/sweep.hpp"
 #include "cosserat/io/problem.hpp"
+#include "example_input.hpp"
 
 int main(int argc, char** argv) {
   using namespace cosserat;
-  const std::string file = argc > 1 ? argv[1] : "robots/jamming_virtual_joints.json";
-  const std::filesystem::path dir = argc > 2 ? argv[2] : "notebooks-data";
-  const io::ParseResult parsed = io::LoadProblemFile(file);
-  if (!parsed.ok()) {
-    for (const auto& e : parsed.errors) std::cerr << e << '\n';
-    return 2;
-  }
-  const io::Problem& p = *parsed.problem;
+  const ExampleInput in = LoadExampleInput(argc, argv, "robots/jamming_virtual_joints.json");
+  if (!in.problem) return 2;
+  const io::Problem& p = *in.problem;
+  const std::filesystem::path& dir = in.dir;
   const double jammed = 80000;  // Pa
   std::vector<Actuation> points;
   std::vector<int> pattern_of;

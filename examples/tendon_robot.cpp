@@ -8,18 +8,15 @@
 #include <iostream>
 
 #include "cosserat/io/problem.hpp"
+#include "example_input.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 int main(int argc, char** argv) {
   using namespace cosserat;
-  const std::string file = argc > 1 ? argv[1] : "robots/tendon_three_tendon.json";
-  const std::filesystem::path dir = argc > 2 ? argv[2] : "notebooks-data";
-  const io::ParseResult parsed = io::LoadProblemFile(file);
-  if (!parsed.ok()) {
-    for (const auto& e : parsed.errors) std::cerr << e << '\n';
-    return 2;
-  }
-  const io::Problem& p = *parsed.problem;
+  const ExampleInput in = LoadExampleInput(argc, argv, "robots/tendon_three_tendon.json");
+  if (!in.problem) return 2;
+  const io::Problem& p = *in.problem;
+  const std::filesystem::path& dir = in.dir;
   std::filesystem::create_directories(dir);
   std::ofstream shapes(dir / "tendon_shapes.csv"), jac(dir / "tendon_jacobian.csv");
   shapes << "tension_N,node,s,x,y,z\n";
