@@ -378,6 +378,13 @@ TEST(Eversion, BadInputNamesTheField) {
   ExpectInvalid(build(d), "bands[0]");  // diameter_ratio > 1
   d = VineDesign({EversionBand{0.2, 0.3, 0.5, 0.0}});
   ExpectInvalid(build(d), "bands[0]");  // α = 0
+  // A body longer than its grid cap (1e6 nodes at 40 per metre: 25 km) is refused before any
+  // grid is built (a 1e9 m robot once tried to grid 4e10 nodes, beyond an int).
+  d = VineDesign();
+  d.max_length = 1e9;
+  ExpectInvalid(build(d, 0.5), "max_length");
+  d.max_length = 25001.0;
+  ExpectInvalid(build(d, 0.5), "max_length");
 
   EversionRobot robot(VineDesign(), 0.5, 1e3);
   ExpectInvalid([&] { robot.SetPressure(-5.0); }, "pressure");

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cosserat/robots/eversion_robot.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
 
 namespace cosserat::io::detail {
@@ -202,6 +203,16 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
                    "tube an eversion robot is made of)");
     if (!p->rod.tendons.empty())
       robot.report().Add(robot.PathOf("tendons"), "an eversion robot has no tendons here");
+    // The robot grids its body by length (EversionOptions), not by rod.nodes.
+    const EversionOptions grid;
+    if (p->rod.length * grid.nodes_per_metre > EversionOptions::kMaxNodes)
+      robot.report().Add("rod.length",
+                         "expected at most " +
+                             FormatNumber(EversionOptions::kMaxNodes / grid.nodes_per_metre) +
+                             " m for an eversion robot (its body is gridded at " +
+                             FormatNumber(grid.nodes_per_metre) + " nodes per metre, at most " +
+                             FormatNumber(EversionOptions::kMaxNodes) + " nodes), got " +
+                             FormatNumber(p->rod.length));
   }
   if (const auto g = ReadObject(robot, "growth", Presence::kOptional)) {
     g->AllowOnly({"initial_length", "steps"});

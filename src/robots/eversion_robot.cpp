@@ -108,6 +108,13 @@ EversionRobot::EversionRobot(EversionRobotDesign design, double initial_length, 
   if (!(Finite(options_.nodes_per_metre) && options_.nodes_per_metre > 0))
     Throw("options.nodes_per_metre", "must be finite and > 0");
   if (options_.min_nodes < 3) Throw("options.min_nodes", "must be >= 3");
+  // Checked in double: the node count of a km-long robot does not fit an int.
+  if (design_.max_length * options_.nodes_per_metre > EversionOptions::kMaxNodes) {
+    std::ostringstream why_long;
+    why_long << "a grid of " << options_.nodes_per_metre << " nodes per metre over "
+             << design_.max_length << " m would exceed " << EversionOptions::kMaxNodes << " nodes";
+    Throw("max_length", why_long.str());
+  }
   if (!(Finite(initial_length) && initial_length > 0 && initial_length <= design_.max_length))
     Throw("length", "initial length must lie in (0, max_length]");
   full_profile_ = std::make_shared<InflatedTubeSection>(

@@ -142,6 +142,9 @@ foreach(_robot IN LISTS _robot_files)
 endforeach()
 cosserat_cli_test(NAME bad_robot ARGS validate "${_cli_dir}/bad_robot.json" CODE 2
                   STDERR "robot.colour: unknown key.*robot.tendons\\[0\\].offset: expected an offset within the section.*robot.tendons\\[1\\].pich: unknown key.*did you mean \"pitch\".*robot.tendons\\[1\\].pitch: expected .*missing.*robot.actuation.tension\\[1\\]: expected a tension >= 0.*robot.actuation.pressure: expected a number >= 0, got -5")
+# An eversion robot grids its body at 40 nodes per metre: a 1e9 m one is refused, not gridded.
+cosserat_cli_test(NAME eversion_too_long ARGS solve "${_cli_dir}/eversion_too_long.json" CODE 2
+                  STDERR "rod.length: expected at most 25000 m for an eversion robot.*got 1e\\+09")
 cosserat_cli_test(NAME tendon_dynamics ARGS solve "${_cli_dir}/tendon_dynamics.json" CODE 0
                   STDOUT "\"trajectory\"" STDERR "converged, 20 steps")
 

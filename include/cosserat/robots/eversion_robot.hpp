@@ -97,6 +97,9 @@ struct EversionOptions {
   /// per everted band (its ends are nodes).
   double nodes_per_metre = 40.0;
   int min_nodes = 11;
+  /// The most grid nodes the body may need at its full length (max_length · nodes_per_metre):
+  /// a longer robot is refused at construction, before any grid is built.
+  static constexpr double kMaxNodes = 1e6;
   StaticShootingOptions solver;
 };
 
