@@ -100,6 +100,7 @@ bool RunQuatFdDynamics(const io::Problem& problem, std::ostream& out, std::ostre
     quatfd::IntegratorOptions io_opt;
     io_opt.initial_dt = d.dt;
     io_opt.rel_tol = io_opt.abs_tol = d.integrator_tolerance;
+    io_opt.max_steps = d.integrator_max_steps;
     // The implicit Radau IIA integrator (docs/quatfd.md): like SDIRK4 its step map stays stable
     // at the steps the error control asks for, where the Rosenbrock integrator's does not, and
     // with stage order 3 it needs fewer steps than SDIRK4 on both benchmarks (BENCHMARKS.md).

@@ -89,7 +89,8 @@ void ParseSolver(const ObjectReader& o, StaticShootingOptions* options) {
 
 void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
   o.AllowOnly({"dt", "duration", "output_interval", "initial", "initial_loads", "tip_mass",
-               "tip_inertia", "shooting_segments", "spatial_scheme", "integrator_tolerance"});
+               "tip_inertia", "shooting_segments", "spatial_scheme", "integrator_tolerance",
+               "integrator_max_steps"});
   const auto dt = ReadNumber(o, "dt", PositiveNumber(), Presence::kOptional);
   const auto duration = ReadNumber(o, "duration", PositiveNumber(), Presence::kOptional);
   const auto interval = ReadNumber(o, "output_interval", PositiveNumber(), Presence::kOptional);
@@ -129,6 +130,9 @@ void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
   d->integrator_tolerance =
       ReadNumber(o, "integrator_tolerance", tolerance_rule, Presence::kOptional)
           .value_or(d->integrator_tolerance);
+  d->integrator_max_steps =
+      ReadInteger(o, "integrator_max_steps", 1, 1000000000, Presence::kOptional)
+          .value_or(d->integrator_max_steps);
   if (const auto loads = ReadObject(o, "initial_loads", Presence::kOptional))
     d->initial_loads = ParseLoads(*loads);
 }

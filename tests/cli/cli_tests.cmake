@@ -85,7 +85,7 @@ cosserat_cli_test(NAME bad_rotation ARGS validate "${_cli_dir}/bad_rotation.json
 cosserat_cli_test(NAME many_errors ARGS validate "${_cli_dir}/many_errors.json" CODE 2
                   STDERR "format: .*rod.nodes: .*rod.material: .*loads.tip_force\\[2\\]: ")
 cosserat_cli_test(NAME bad_dynamics ARGS solve "${_cli_dir}/bad_dynamics.json" CODE 2
-                  STDERR "dynamics.dt: expected a positive number, got -0.002.*dynamics.output_interval: .*dynamics.shooting_segments: .*dynamics.spatial_scheme: .*dynamics.integrator_tolerance: expected a number in \\(0, 0\\.1\\]")
+                  STDERR "dynamics.dt: expected a positive number, got -0.002.*dynamics.output_interval: .*dynamics.shooting_segments: .*dynamics.spatial_scheme: .*dynamics.integrator_tolerance: expected a number in \\(0, 0\\.1\\].*dynamics.integrator_max_steps: expected an integer")
 cosserat_cli_test(NAME not_implemented ARGS solve "${_cli_dir}/modes_free_free.json" CODE 2
                   STDERR "boundary: \"free-free\" is not implemented in this version")
 
@@ -121,6 +121,11 @@ cosserat_cli_test(NAME solve_quatfd_dynamics
 # -0.00297021).
 cosserat_cli_test(NAME solve_quatfd_dynamics_loose ARGS solve "${_cli_dir}/quatfd_dynamics_loose.json"
                   CODE 0 STDERR "radau: ok\\), 1[0-9][0-9] steps.*tip at .-0\\.002970[0-9]")
+# An exploding rod (gravity 1e9 m/s^2): Radau's step collapses to ~1e-9 s; the step cap per
+# output interval (2 000 here, 1e6 by default) ends the run with a status, inside the first frame,
+# instead of running for hours.
+cosserat_cli_test(NAME quatfd_step_cap ARGS solve "${_cli_dir}/quatfd_step_cap.json" CODE 1
+                  STDOUT "\"status\": \"max_iterations\"" STDERR "radau: max_steps\\), 1[0-9][0-9][0-9] steps, [0-9]+ rejected")
 cosserat_cli_test(NAME quatfd_free_free ARGS solve "${_cli_dir}/quatfd_free_free.json" CODE 2
                   STDERR "boundary: \"free-free\" is not implemented in this version \\(supported: \"cantilever\"\\)")
 
