@@ -9,6 +9,7 @@
 
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
+#include "cosserat/strong/shooting_exponent.hpp"
 
 namespace cosserat::cli {
 namespace {
@@ -146,6 +147,18 @@ bool RunDynamics(const io::Problem& problem, std::ostream& out, std::ostream* cs
   out << io::DynamicResultToJson(run, stepper.state()).dump(2) << '\n';
   if (csv) io::WriteTrajectoryCsv(*csv, run, stepper.state().s);
   log << SummaryLine(run, stepper.state()) << '\n';
+  if (run.initial_state_ok && run.status != SolveStatus::kConverged &&
+      options.shooting_segments == 1) {
+    // The usual cause of a failed step at small dt (docs/dynamics.md, "Where it stops").
+    const double exponent =
+        SingleShootingExponent(problem.rod, options.dt, problem.robot.actuation);
+    if (exponent > 10.0)
+      log << "cosserat: hint: at dt = " << options.dt << " s single shooting amplifies errors by"
+          << " e^" << std::setprecision(3) << exponent << " along the rod (docs/dynamics.md, \"Where"
+          << " it stops\"); \"dynamics\": {\"shooting_segments\": "
+          << std::min(SuggestedShootingSegments(exponent), problem.nodes - 1)
+          << "} shoots it in pieces\n";
+  }
   return run.status == SolveStatus::kConverged;
 }
 

@@ -55,6 +55,11 @@ cosserat_cli_test(NAME solve_dynamics_small_dt
                   ARGS solve "${_cli_dir}/dynamics_small_dt.json"
                   CODE 0 STDOUT "\"trajectory\": {" STDERR "converged, 100 steps")
 
+# The same in one piece fails, and the log explains why and what to set.
+cosserat_cli_test(NAME solve_dynamics_small_dt_single
+                  ARGS solve "${_cli_dir}/dynamics_small_dt_single.json"
+                  CODE 1 STDERR "hint: at dt = 0\\.0005 s single shooting amplifies errors by e\\^17\\.3 .*\"shooting_segments\": 4}")
+
 # A free rod at rest in free space stays put: the final tip is exactly where it started.
 cosserat_cli_test(NAME solve_free_free
                   ARGS solve "${_cli_dir}/free_free.json"

@@ -1,0 +1,21 @@
+#pragma once
+/// \file
+/// How ill-conditioned single shooting is for a BDF2 time step: along s the time-discretised rod
+/// bends like e^{λs} with λ(s) = (c0² ρA(s) / EI(s))^{1/4}, c0 = 1.5/dt (BDF2's first
+/// coefficient), and a shot amplifies errors in its base unknowns by about e^{λL}
+/// (docs/dynamics.md, "Where it stops": converges up to λL ≈ 10–15; multiple shooting in pieces
+/// of λL/pieces ≲ 5 beyond).
+#include "cosserat/rod/actuation.hpp"
+#include "cosserat/rod/rod_model.hpp"
+
+namespace cosserat {
+
+/// λL = ∫₀ᴸ (c0² ρA(s) / EI_min(s))^{1/4} ds for the step dt (s), with EI_min the smaller of the
+/// two bending stiffnesses (N·m²) and ρA the mass per length (kg/m), integrated by the midpoint
+/// rule on 200 pieces. Dimensionless.
+double SingleShootingExponent(const RodModel& rod, double dt, const Actuation& actuation = {});
+
+/// The multiple-shooting pieces that bring each piece's exponent to about 5, at least 1.
+int SuggestedShootingSegments(double exponent);
+
+}  // namespace cosserat
