@@ -92,6 +92,7 @@ bool RunQuatFdDynamics(const io::Problem& problem, std::ostream& out, std::ostre
                                  state.position_W.end());
   };
   quatfd::IntegratorStatus istatus = quatfd::IntegratorStatus::kNotRun;
+  double integrator_last_dt = 0.0;  // s, the last accepted Radau step
   if (!run.initial_state_ok) {
     run.failed_at_t = 0.0;
   } else {
@@ -130,6 +131,7 @@ bool RunQuatFdDynamics(const io::Problem& problem, std::ostream& out, std::ostre
     run.steps = static_cast<int>(integrator.stats().steps);
     run.halved_steps = static_cast<int>(integrator.stats().rejected);  // rejected steps
     run.simulated_time_s = t;
+    integrator_last_dt = integrator.stats().last_dt;
     if (run.frame_t.back() != t) record(t);
     const quatfd::QuatFdEnergy e = model.Energy(q, v);
     run.energy.kinetic = e.kinetic;
@@ -145,6 +147,11 @@ bool RunQuatFdDynamics(const io::Problem& problem, std::ostream& out, std::ostre
   log << "), " << run.steps << " steps, " << run.halved_steps << " rejected, "
       << std::setprecision(6) << run.simulated_time_s << " s simulated in " << std::setprecision(3)
       << run.wall_time_s << " s, " << TipText(state) << '\n';
+  if (istatus == quatfd::IntegratorStatus::kMaxSteps)
+    log << "cosserat: hint: Radau took dynamics.integrator_max_steps ("
+        << d.integrator_max_steps << ") steps within one output interval, the last of "
+        << std::setprecision(3) << integrator_last_dt << " s: a load the rod cannot carry, or a "
+        << "run that needs a larger integrator_max_steps or a shorter output_interval\n";
   return run.status == SolveStatus::kConverged;
 }
 
