@@ -205,10 +205,9 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
       robot.report().Add(robot.PathOf("tendons"), "an eversion robot has no tendons here");
     // The robot grids its body by length (EversionOptions), not by rod.nodes.
     const EversionOptions grid;
-    if (p->rod.length * grid.nodes_per_metre > EversionOptions::kMaxNodes)
+    if (p->rod.length > grid.MaxLength())
       robot.report().Add("rod.length",
-                         "expected at most " +
-                             FormatNumber(EversionOptions::kMaxNodes / grid.nodes_per_metre) +
+                         "expected at most " + FormatNumber(grid.MaxLength()) +
                              " m for an eversion robot (its body is gridded at " +
                              FormatNumber(grid.nodes_per_metre) + " nodes per metre, at most " +
                              FormatNumber(EversionOptions::kMaxNodes) + " nodes), got " +

@@ -108,8 +108,8 @@ EversionRobot::EversionRobot(EversionRobotDesign design, double initial_length, 
   if (!(Finite(options_.nodes_per_metre) && options_.nodes_per_metre > 0))
     Throw("options.nodes_per_metre", "must be finite and > 0");
   if (options_.min_nodes < 3) Throw("options.min_nodes", "must be >= 3");
-  // Checked in double: the node count of a km-long robot does not fit an int.
-  if (design_.max_length * options_.nodes_per_metre > EversionOptions::kMaxNodes) {
+  // Before any grid is built: the node count of a longer robot need not even fit an int.
+  if (design_.max_length > options_.MaxLength()) {
     std::ostringstream why_long;
     why_long << "a grid of " << options_.nodes_per_metre << " nodes per metre over "
              << design_.max_length << " m would exceed " << EversionOptions::kMaxNodes << " nodes";

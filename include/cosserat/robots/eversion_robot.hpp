@@ -100,6 +100,8 @@ struct EversionOptions {
   /// The most grid nodes the body may need at its full length (max_length · nodes_per_metre):
   /// a longer robot is refused at construction, before any grid is built.
   static constexpr double kMaxNodes = 1e6;
+  /// The longest body these options grid within kMaxNodes, m.
+  double MaxLength() const { return kMaxNodes / nodes_per_metre; }
   StaticShootingOptions solver;
 };
 
