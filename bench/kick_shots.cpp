@@ -8,6 +8,7 @@
 
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "peer_rod.hpp"
+#include "shot_histogram.hpp"
 
 int main() {
   using namespace cosserat;
@@ -20,7 +21,7 @@ int main() {
   if (!stepper.InitializeAtRest(in).converged()) return 1;
   in.loads.tip_force.setZero();
   const int swing = 2000, after = 1000;
-  long hist[2][6] = {}, shots[2] = {}, jac[2] = {};
+  bench::ShotHistogram whole, kicked;
   for (int i = 1; i <= swing + after; ++i) {
     StepInput now = in;
     if (i == swing + 1) now.loads.tip_force = Vec3(0, 0.02 * 9.81, 0);
@@ -29,19 +30,10 @@ int main() {
       std::printf("step %d failed\n", i);
       return 1;
     }
-    const int bin = s.shots >= 5 ? 5 : s.shots;
-    for (int w = 0; w < 2; ++w) {
-      if (w == 1 && i <= swing) continue;
-      ++hist[w][bin];
-      shots[w] += s.shots;
-      jac[w] += s.jacobians;
-    }
+    whole.Add(s);
+    if (i > swing) kicked.Add(s);
   }
-  const char* name[2] = {"whole run (3000)", "after kick (1000)"};
-  const int n[2] = {swing + after, after};
-  for (int w = 0; w < 2; ++w)
-    std::printf("%-18s 1: %ld  2: %ld  3: %ld  4: %ld  >=5: %ld  shots/step %.4f  exact J %ld\n",
-                name[w], hist[w][1], hist[w][2], hist[w][3], hist[w][4], hist[w][5],
-                double(shots[w]) / n[w], jac[w]);
+  whole.Print("whole run (3000)");
+  kicked.Print("after kick (1000)");
   return 0;
 }

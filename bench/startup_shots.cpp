@@ -10,6 +10,7 @@
 
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "peer_rod.hpp"
+#include "shot_histogram.hpp"
 
 int main(int argc, char** argv) {
   using namespace cosserat;
@@ -24,28 +25,20 @@ int main(int argc, char** argv) {
   if (!stepper.InitializeAtRest(in).converged()) return 1;
   in.loads.tip_force.setZero();
   const int steps = 12500, startup = 100;  // 0.2 s
-  long hist[2][6] = {}, shots[2] = {}, jac[2] = {};
+  bench::ShotHistogram whole, first;
   for (int i = 1; i <= steps; ++i) {
     const StepSummary s = stepper.Step(in);
     if (!s.converged()) {
       std::printf("step %d failed\n", i);
       return 1;
     }
-    const int bin = s.shots >= 5 ? 5 : s.shots;
-    for (int w = 0; w < 2; ++w) {
-      if (w == 1 && i > startup) continue;
-      ++hist[w][bin];
-      shots[w] += s.shots;
-      jac[w] += s.jacobians;
-    }
+    whole.Add(s);
+    if (i <= startup) first.Add(s);
     if (i <= print)
       std::printf("step %3d  shots %2d  jacobians %d  iterations %2d\n", i, s.shots, s.jacobians,
                   s.iterations);
   }
-  const char* name[2] = {"whole run (12500)", "first 0.2 s (100)"};
-  for (int w = 0; w < 2; ++w)
-    std::printf("%-18s 1: %ld  2: %ld  3: %ld  4: %ld  >=5: %ld  shots/step %.4f  exact J %ld\n",
-                name[w], hist[w][1], hist[w][2], hist[w][3], hist[w][4], hist[w][5],
-                double(shots[w]) / (w ? startup : steps), jac[w]);
+  whole.Print("whole run (12500)");
+  first.Print("first 0.2 s (100)");
   return 0;
 }
