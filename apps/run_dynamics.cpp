@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "cosserat/io/problem_options.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/shooting_exponent.hpp"
@@ -131,17 +132,7 @@ std::string SummaryLine(const io::DynamicRun& run, const RodState& state) {
 
 bool RunDynamics(const io::Problem& problem, std::ostream& out, std::ostream* csv,
                  std::ostream& log) {
-  Bdf2Options options;
-  options.dt = problem.dynamics.dt;
-  options.ends =
-      problem.boundary == "free-free" ? EndConditions::kFreeFree : EndConditions::kCantilever;
-  options.tolerance = problem.solver.tolerance;
-  options.tip_mass = problem.dynamics.tip_mass;
-  options.tip_inertia_B = problem.dynamics.tip_inertia;
-  options.max_iterations = problem.solver.max_iterations;
-  options.shooting_segments = problem.dynamics.shooting_segments;
-  options.spatial_scheme =
-      problem.dynamics.spatial_scheme == "heun" ? SpatialScheme::kHeun : SpatialScheme::kRk4;
+  const Bdf2Options options = io::DynamicsOptions(problem);
   Bdf2ShootingStepper stepper(problem.rod, problem.nodes, options);
   const io::DynamicRun run = Simulate(problem, csv != nullptr, &stepper);
   out << io::DynamicResultToJson(run, stepper.state()).dump(2) << '\n';
