@@ -7,7 +7,7 @@ packages=(
   libeigen3-dev libceres-dev libboost-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev
-  python3 python3-numpy python3-matplotlib
+  python3 python3-dev python3-numpy python3-matplotlib pybind11-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,345 @@
+// The `cosserat` Python module (pybind11): problem files, the static shooting solver and the BDF2
+// dynamics stepper, for notebooks and Python controllers. Arrays are NumPy, SI units, world frame
+// unless a name says _B (body frame). docs/python.md has the tour.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "cosserat/io/problem.hpp"
+#include "cosserat/io/problem_options.hpp"
+#include "cosserat/strong/bdf2_stepper.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+
+namespace py = pybind11;
+using namespace cosserat;
+
+namespace {
+
+/// Parse errors become one ValueError naming every field at fault, as the CLI prints them.
+io::Problem Checked(io::ParseResult parsed) {
+  if (parsed.ok()) return *parsed.problem;
+  std::string message;
+  for (const std::string& e : parsed.errors) message += (message.empty() ? "" : "\n") + e;
+  throw py::value_error(message);
+}
+
+LoadFrame FrameFromString(const std::string& name, const char* field) {
+  if (name == "world") return LoadFrame::kWorld;
+  if (name == "body") return LoadFrame::kBody;
+  throw py::value_error(std::string(field) + ": expected \"world\" or \"body\", got \"" + name +
+                        "\"");
+}
+const char* ToString(LoadFrame frame) { return frame == LoadFrame::kWorld ? "world" : "body"; }
+
+/// Loads checked before they reach a solver (NaN, Inf): a ValueError naming the field.
+const StaticLoads& Valid(const StaticLoads& loads) {
+  std::string why;
+  if (!loads.IsValid(&why)) throw py::value_error("loads: " + why);
+  return loads;
+}
+
+/// An actuation checked before it reaches a solver: finite values, tensions >= 0.
+const Actuation& Valid(const Actuation& a) {
+  auto finite = [](double x) { return std::isfinite(x); };
+  if (!finite(a.pressure)) throw py::value_error("actuation.pressure: expected a finite number");
+  if (!(finite(a.stiffness_scale) && a.stiffness_scale > 0))
+    throw py::value_error("actuation.stiffness_scale: expected a finite number > 0");
+  for (double t : a.tendon_tension)
+    if (!(finite(t) && t >= 0))
+      throw py::value_error("actuation.tendon_tension: expected finite tensions >= 0 (N)");
+  for (double p : a.jamming_pressure)
+    if (!finite(p)) throw py::value_error("actuation.jamming_pressure: expected finite numbers");
+  return a;
+}
+
+/// A fixed-size array field from a Python sequence of at most N numbers, zero-filled.
+template <size_t N>
+void Assign(std::array<double, N>* out, const std::vector<double>& values, const char* field) {
+  if (values.size() > N)
+    throw py::value_error(std::string(field) + ": expected at most " + std::to_string(N) +
+                          " values, got " + std::to_string(values.size()));
+  out->fill(0.0);
+  std::copy(values.begin(), values.end(), out->begin());
+}
+
+Eigen::MatrixXd Stack(const std::vector<Vec3>& v) {
+  Eigen::MatrixXd out(v.size(), 3);
+  for (size_t i = 0; i < v.size(); ++i) out.row(i) = v[i].transpose();
+  return out;
+}
+Eigen::MatrixXd Stack(const std::vector<Vec6>& v) {
+  Eigen::MatrixXd out(v.size(), 6);
+  for (size_t i = 0; i < v.size(); ++i) out.row(i) = v[i].transpose();
+  return out;
+}
+
+/// A RodState as a dict of arrays: s (N), position (N×3), rotation (N×3×3 as a list of 3×3),
+/// strain_B, wrench_B, twist_B (N×6).
+py::dict StateDict(const RodState& state) {
+  py::dict d;
+  d["s"] = Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(state.s.data(), state.s.size()));
+  d["position"] = Stack(state.position_W);
+  py::array_t<double> rotation({state.size(), 3, 3});
+  auto r = rotation.mutable_unchecked<3>();
+  for (int i = 0; i < state.size(); ++i)
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) r(i, a, b) = state.rotation_WB[i](a, b);
+  d["rotation"] = rotation;
+  d["strain_B"] = Stack(state.strain);
+  d["wrench_B"] = Stack(state.wrench_B);
+  d["twist_B"] = Stack(state.twist_B);
+  return d;
+}
+
+/// The module's solvers are the SE(3) shooting ones; a quaternion-FD problem is refused rather
+/// than run by the other formulation.
+const io::Problem& SeThreeShooting(const io::Problem& problem) {
+  if (problem.formulation != "se3-shooting")
+    throw py::value_error("formulation: the Python module runs \"se3-shooting\", got \"" +
+                          problem.formulation + "\" (run it with the cosserat command)");
+  return problem;
+}
+
+/// The dynamics stepper with the input it applies, so that a control loop only says what
+/// changed.
+class PyStepper {
+ public:
+  PyStepper(const io::Problem& problem, std::optional<double> dt,
+            std::optional<std::string> spatial_scheme)
+      : options_(io::DynamicsOptions(SeThreeShooting(problem))) {
+    if (problem.boundary != "cantilever" && problem.boundary != "free-free")
+      throw py::value_error("boundary: the Stepper runs \"cantilever\" or \"free-free\", got \"" +
+                            problem.boundary + "\"");
+    if (dt) options_.dt = *dt;
+    if (spatial_scheme) {
+      if (*spatial_scheme == "rk4") options_.spatial_scheme = SpatialScheme::kRk4;
+      else if (*spatial_scheme == "heun") options_.spatial_scheme = SpatialScheme::kHeun;
+      else throw py::value_error("spatial_scheme: expected \"rk4\" or \"heun\", got \"" +
+                                 *spatial_scheme + "\"");
+    }
+    std::string why;
+    if (!options_.IsValid(&why)) throw py::value_error(why);
+    stepper_.emplace(problem.rod, problem.nodes, options_);
+    input_.base_pose = problem.base;
+    input_.loads = problem.dynamics.initial_loads.value_or(problem.loads);
+    input_.actuation = problem.robot.initial_actuation;
+  }
+
+  StepSummary InitializeAtRest(std::optional<StaticLoads> loads,
+                               std::optional<Actuation> actuation) {
+    if (loads) input_.loads = Valid(*loads);
+    if (actuation) input_.actuation = Valid(*actuation);
+    return stepper_->InitializeAtRest(input_);
+  }
+
+  StepSummary Step(std::optional<StaticLoads> loads, std::optional<Vec3> base_position,
+                   std::optional<Mat3> base_rotation, std::optional<Vec6> base_twist_B,
+                   std::optional<Vec6> base_wrench_B, std::optional<Actuation> actuation) {
+    if (loads) input_.loads = Valid(*loads);
+    if (actuation) input_.actuation = Valid(*actuation);
+    if (base_position) input_.base_pose.p = *base_position;
+    if (base_rotation) input_.base_pose.R = *base_rotation;
+    if (base_twist_B) input_.base_twist_B = *base_twist_B;
+    if (base_wrench_B) input_.base_wrench_B = *base_wrench_B;
+    return stepper_->Step(input_);
+  }
+
+  Bdf2ShootingStepper& stepper() { return *stepper_; }
+  const StaticLoads& loads() const { return input_.loads; }
+  const Actuation& actuation() const { return input_.actuation; }
+  const Bdf2Options& options() const { return options_; }
+
+ private:
+  Bdf2Options options_;
+  std::optional<Bdf2ShootingStepper> stepper_;
+  StepInput input_;
+};
+
+}  // namespace
+
+PYBIND11_MODULE(cosserat, m) {
+  m.doc() = "Cosserat rods for soft and continuum robots: statics and BDF2 dynamics (SE(3) "
+            "shooting) from problem files.";
+  m.attr("__version__") = COSSERAT_VERSION_STRING;
+
+  py::class_<StaticLoads>(m, "Loads", "External loads: gravity (m/s²), a uniform distributed "
+                                      "force (N/m), a tip force (N) and moment (N·m).")
+      .def(py::init<>())
+      .def_readwrite("gravity", &StaticLoads::gravity_W)
+      .def_readwrite("distributed_force", &StaticLoads::distributed_force_W)
+      .def_readwrite("tip_force", &StaticLoads::tip_force)
+      .def_readwrite("tip_moment", &StaticLoads::tip_moment)
+      .def_property(
+          "tip_force_frame", [](const StaticLoads& l) { return ToString(l.tip_force_frame); },
+          [](StaticLoads& l, const std::string& f) {
+            l.tip_force_frame = FrameFromString(f, "tip_force_frame");
+          })
+      .def_property(
+          "tip_moment_frame", [](const StaticLoads& l) { return ToString(l.tip_moment_frame); },
+          [](StaticLoads& l, const std::string& f) {
+            l.tip_moment_frame = FrameFromString(f, "tip_moment_frame");
+          })
+      .def("__repr__", [](const StaticLoads& l) {
+        auto v = [](const Vec3& x) {
+          return "[" + std::to_string(x(0)) + ", " + std::to_string(x(1)) + ", " +
+                 std::to_string(x(2)) + "]";
+        };
+        return "Loads(gravity=" + v(l.gravity_W) + ", distributed_force=" +
+               v(l.distributed_force_W) + ", tip_force=" + v(l.tip_force) + " (" +
+               ToString(l.tip_force_frame) + "), tip_moment=" + v(l.tip_moment) + " (" +
+               ToString(l.tip_moment_frame) + "))";
+      });
+
+  py::class_<Actuation>(m, "Actuation",
+                        "What the actuators do: tendon tensions (N, in the robot's tendon order), "
+                        "inflation pressure (Pa), jamming pressure per segment (Pa), stiffness "
+                        "scale.")
+      .def(py::init<>())
+      .def_readwrite("pressure", &Actuation::pressure)
+      .def_readwrite("stiffness_scale", &Actuation::stiffness_scale)
+      .def_property(
+          "tendon_tension",
+          [](const Actuation& a) {
+            return std::vector<double>(a.tendon_tension.begin(), a.tendon_tension.end());
+          },
+          [](Actuation& a, const std::vector<double>& v) {
+            Assign(&a.tendon_tension, v, "tendon_tension");
+          })
+      .def_property(
+          "jamming_pressure",
+          [](const Actuation& a) {
+            return std::vector<double>(a.jamming_pressure.begin(), a.jamming_pressure.end());
+          },
+          [](Actuation& a, const std::vector<double>& v) {
+            Assign(&a.jamming_pressure, v, "jamming_pressure");
+          });
+
+  py::class_<io::Problem>(m, "Problem", "A validated problem file (docs/problem-format.md).")
+      .def_readonly("analysis", &io::Problem::analysis)
+      .def_readonly("formulation", &io::Problem::formulation)
+      .def_readonly("boundary", &io::Problem::boundary)
+      .def_readonly("nodes", &io::Problem::nodes)
+      .def_property_readonly("length", [](const io::Problem& p) { return p.rod.length; })
+      .def_property_readonly("base_position", [](const io::Problem& p) { return p.base.p; })
+      .def_property_readonly("base_rotation", [](const io::Problem& p) { return p.base.R; })
+      .def_readwrite("loads", &io::Problem::loads)
+      .def_property_readonly("actuation", [](const io::Problem& p) { return p.robot.actuation; })
+      .def_property_readonly("dt", [](const io::Problem& p) { return p.dynamics.dt; })
+      .def_property_readonly("duration", [](const io::Problem& p) { return p.dynamics.duration; })
+      .def_property_readonly("initial_loads", [](const io::Problem& p) {
+        return p.dynamics.initial_loads.value_or(p.loads);
+      });
+
+  m.def("load_problem", [](const std::string& path) { return Checked(io::LoadProblemFile(path)); },
+        py::arg("path"), "Reads and validates a problem file; ValueError names every bad field.");
+  m.def("parse_problem",
+        [](const std::string& text) { return Checked(io::ParseProblem(text, "<python>")); },
+        py::arg("json_text"), "Validates a problem given as JSON text.");
+
+  py::class_<StaticShootingSummary>(m, "StaticSummary")
+      .def_property_readonly("status", [](const StaticShootingSummary& s) { return ToString(s.status); })
+      .def_property_readonly("converged", &StaticShootingSummary::converged)
+      .def_readonly("iterations", &StaticShootingSummary::iterations)
+      .def_readonly("shots", &StaticShootingSummary::shots)
+      .def_readonly("load_steps", &StaticShootingSummary::load_steps)
+      .def_readonly("residual", &StaticShootingSummary::residual)
+      .def_readonly("stability_index", &StaticShootingSummary::stability_index)
+      .def_readonly("wall_time_s", &StaticShootingSummary::wall_time_s);
+
+  py::class_<StaticShootingSolver>(m, "StaticSolver",
+                                   "Static equilibrium of the problem's cantilever (SE(3) "
+                                   "shooting); re-solves warm-start from the last solution.")
+      .def(py::init([](const io::Problem& p) {
+             SeThreeShooting(p);
+             if (p.boundary != "cantilever")
+               throw py::value_error("boundary: StaticSolver solves a cantilever, got \"" +
+                                     p.boundary + "\"");
+             return new StaticShootingSolver(p.rod, p.nodes, p.solver, p.robot.actuation);
+           }),
+           py::arg("problem"))
+      .def(
+          "solve",
+          [](StaticShootingSolver& solver, const StaticLoads& loads, std::optional<Vec3> position,
+             std::optional<Mat3> rotation, std::optional<Actuation> actuation) {
+            if (actuation) solver.SetActuation(Valid(*actuation));
+            lie::SE3 base;
+            base.p = position.value_or(Vec3::Zero());
+            base.R = rotation.value_or(Mat3::Identity());
+            return solver.Solve(base, Valid(loads));
+          },
+          py::arg("loads"), py::arg("base_position") = py::none(),
+          py::arg("base_rotation") = py::none(), py::arg("actuation") = py::none(),
+          "Solves for `loads` with the clamp at base_position, base_rotation (default: origin, "
+          "identity: the rod along +z) and, when given, a new actuation (kept for later "
+          "solves).")
+      .def("state", [](const StaticShootingSolver& s) { return StateDict(s.state()); });
+
+  py::class_<StepSummary>(m, "StepSummary")
+      .def_property_readonly("status", [](const StepSummary& s) { return ToString(s.status); })
+      .def_property_readonly("converged", &StepSummary::converged)
+      .def_readonly("iterations", &StepSummary::iterations)
+      .def_readonly("shots", &StepSummary::shots)
+      .def_readonly("jacobians", &StepSummary::jacobians)
+      .def_readonly("halvings", &StepSummary::halvings)
+      .def_readonly("residual", &StepSummary::residual)
+      .def_readonly("wall_time_s", &StepSummary::wall_time_s);
+
+  py::class_<Bdf2ShootingStepper::Snapshot>(m, "Snapshot",
+                                            "Everything a Stepper needs to continue a run.");
+
+  py::class_<PyStepper>(m, "Stepper",
+                        "BDF2 dynamics of the problem's rod (cantilever or free-free). step() "
+                        "advances dt under the loads and base motion given, keeping what is not "
+                        "given from the last call.")
+      .def(py::init<const io::Problem&, std::optional<double>, std::optional<std::string>>(),
+           py::arg("problem"), py::arg("dt") = py::none(), py::arg("spatial_scheme") = py::none())
+      .def("initialize_at_rest", &PyStepper::InitializeAtRest, py::arg("loads") = py::none(),
+           py::arg("actuation") = py::none(),
+           "Static equilibrium at t = 0 under `loads` and `actuation` (default: the problem's "
+           "initial loads and initial actuation).")
+      .def("step", &PyStepper::Step, py::arg("loads") = py::none(),
+           py::arg("base_position") = py::none(), py::arg("base_rotation") = py::none(),
+           py::arg("base_twist_B") = py::none(), py::arg("base_wrench_B") = py::none(),
+           py::arg("actuation") = py::none(),
+           "Advances dt. Values not given keep those of the last call. Cantilever: the base "
+           "pose and twist [w; v] (body frame) at the end of the step; free-free: the wrench on "
+           "the s = 0 end (body frame).")
+      .def_property_readonly("actuation", &PyStepper::actuation)
+      .def_property_readonly("time", [](PyStepper& s) { return s.stepper().time(); })
+      .def_property_readonly("dt", [](PyStepper& s) { return s.options().dt; })
+      .def_property_readonly("loads", &PyStepper::loads)
+      .def("state", [](PyStepper& s) { return StateDict(s.stepper().state()); })
+      .def("tip_position", [](PyStepper& s) { return Vec3(s.stepper().state().tip_position_W()); })
+      .def("tip_rotation", [](PyStepper& s) { return Mat3(s.stepper().state().tip_rotation_WB()); })
+      .def("tip_twist_B", [](PyStepper& s) { return Vec6(s.stepper().state().twist_B.back()); })
+      .def("base_reaction", [](PyStepper& s) { return s.stepper().state().BaseReaction_W(); },
+           "The wrench [moment; force] the support applies at s = 0, world frame.")
+      .def("energy",
+           [](PyStepper& s) {
+             const RodEnergy e = s.stepper().Energy(s.loads());
+             py::dict d;
+             d["kinetic"] = e.kinetic;
+             d["elastic"] = e.elastic;
+             d["gravity"] = e.gravity;
+             d["total"] = e.total();
+             return d;
+           })
+      .def("momentum",
+           [](PyStepper& s) {
+             const RodMomentum p = s.stepper().Momentum();
+             return py::make_tuple(p.linear_W, p.angular_W);
+           },
+           "(linear, angular about the origin), world frame.")
+      .def("mass", [](PyStepper& s) { return s.stepper().Mass(); })
+      .def("save", [](PyStepper& s) { return s.stepper().Save(); })
+      .def("restore", [](PyStepper& s, const Bdf2ShootingStepper::Snapshot& snap) {
+        s.stepper().Restore(snap);
+      });
+}
