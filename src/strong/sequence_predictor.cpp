@@ -1,6 +1,6 @@
 #include "cosserat/strong/sequence_predictor.hpp"
 
-#include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <algorithm>
 #include <limits>
 
@@ -9,6 +9,48 @@ namespace cosserat {
 namespace {
 
 constexpr int kMaxDegree = SequencePredictor::kMaxDegree;
+
+/// Solves A x = b for a symmetric positive definite A of fixed size N (lower triangle read) by
+/// LDLᵀ without pivoting. Written out for the recurrence's 10 × 10 normal equations, which are
+/// solved in exactly the transient steps that set the stepper's p99: Eigen's LLT took ~540 ns
+/// there, this ~300 ns (the divisions' latency chain is most of it), which moved the peer
+/// problem's p99 / median by ~0.03 (BENCHMARKS.md, issue 3, session 7). A non-positive pivot
+/// gives a non-finite x, which the caller rejects.
+template <int N>
+Eigen::Matrix<double, N, 1> SolveSpd(const Eigen::Matrix<double, N, N>& A,
+                                     const Eigen::Matrix<double, N, 1>& b) {
+  double L[N][N];  // unit lower factor, strictly below the diagonal
+  double d[N], inv_d[N];
+  for (int j = 0; j < N; ++j) {
+    double v[N];  // L(j, k) d(k)
+    double dj = A(j, j);
+    for (int k = 0; k < j; ++k) {
+      v[k] = L[j][k] * d[k];
+      dj -= L[j][k] * v[k];
+    }
+    d[j] = dj;
+    inv_d[j] = 1.0 / dj;
+    if (!(dj > 0)) inv_d[j] = std::numeric_limits<double>::quiet_NaN();
+    for (int i = j + 1; i < N; ++i) {
+      double t = A(i, j);
+      for (int k = 0; k < j; ++k) t -= L[i][k] * v[k];
+      L[i][j] = t * inv_d[j];
+    }
+  }
+  double y[N];  // L y = b
+  for (int i = 0; i < N; ++i) {
+    double t = b(i);
+    for (int k = 0; k < i; ++k) t -= L[i][k] * y[k];
+    y[i] = t;
+  }
+  Eigen::Matrix<double, N, 1> x;  // D Lᵀ x = y
+  for (int i = N - 1; i >= 0; --i) {
+    double t = y[i] * inv_d[i];
+    for (int k = i + 1; k < N; ++k) t -= L[k][i] * x(k);
+    x(i) = t;
+  }
+  return x;
+}
 
 // kWeights[p][j] = (−1)^j C(p+1, j+1): the extrapolation of degree p one step ahead from the
 // p + 1 latest terms, newest first. A table: Push() scores every degree every step, and
@@ -138,7 +180,7 @@ void SequencePredictor::PushRecurrence(const Vec6& x, const Mat6* weight, double
   // A little ridge: the lags are nearly dependent once the slow modes dominate.
   MatL A = gram_;
   A.diagonal().array() += 1e-12 * gram_.trace() / kLags + 1e-300;
-  const VecL a = A.llt().solve(rhs_);
+  const VecL a = SolveSpd<kLags>(A, rhs_);
   if (!a.allFinite()) return;
   // d_{k+1} from the same coefficients and the unweighted differences (terms_ holds the
   // kLags + 2 terms they need); x_{k+1} = d_{k+1} + 2 x_k − x_{k−1}.
