@@ -4,28 +4,18 @@
 //   cosserat --version | --help
 // Exit codes: 0 converged (or valid), 1 solved but not converged, 2 bad input or usage.
 
-#include <array>
 #include <cerrno>
 #include <cstring>
 #include <exception>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "cosserat/io/problem.hpp"
-#include "cosserat/io/result_writer.hpp"
-#include "cosserat/robots/tendon_control.hpp"
-#include "cosserat/strong/static_shooting.hpp"
-#include "run_buckling.hpp"
-#include "run_dynamics.hpp"
-#include "run_eversion.hpp"
-#include "run_modes.hpp"
-#include "run_quatfd.hpp"
+#include "run_problem.hpp"
 
 namespace {
 
@@ -140,56 +130,6 @@ std::ofstream OpenOutput(const std::string& path) {
   return out;
 }
 
-std::string StaticSummary(const cosserat::StaticShootingSummary& s,
-                          const cosserat::RodState& state) {
-  std::ostringstream line;
-  line << "cosserat: " << cosserat::ToString(s.status) << ", " << s.iterations << " iterations, "
-       << "residual " << std::setprecision(3) << s.residual;
-  if (state.size() > 0) {
-    const cosserat::Vec3& tip = state.tip_position_W();
-    line << ", tip at [" << std::setprecision(6) << tip.x() << ", " << tip.y() << ", " << tip.z()
-         << "] m";
-  }
-  line << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms";
-  return line.str();
-}
-
-/// Solves a statics problem; the result to `out`, the node table to `csv` when given, the
-/// summary line to `log`. Returns true when the solve converged.
-bool RunStatics(const cosserat::io::Problem& problem, std::ostream& out, std::ostream* csv,
-                std::ostream& log) {
-  cosserat::Actuation actuation = problem.robot.actuation;
-  cosserat::StaticShootingSolver solver(problem.rod, problem.nodes, problem.solver, actuation);
-  cosserat::StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
-  std::array<bool, cosserat::Actuation::kMaxTendons> slack{};
-  for (int i = 0; i < cosserat::Actuation::kMaxTendons; ++i)
-    slack[i] = actuation.tendon_tension[i] == 0.0;  // force control: slack means no tension
-  if (problem.robot.tendon_lengths && summary.converged()) {
-    // Displacement control: the tensions that give the commanded tendon lengths.
-    const cosserat::TendonLengthSummary t = cosserat::SolveTendonLengths(
-        solver, problem.base, problem.loads, *problem.robot.tendon_lengths, &actuation);
-    summary.status = t.status;
-    summary.iterations += t.iterations;
-    slack = t.slack;
-  }
-  nlohmann::ordered_json result = cosserat::io::StaticResultToJson(summary, solver.state());
-  if (problem.has_robot) {
-    const int count = solver.tendon_count();
-    nlohmann::ordered_json robot;
-    robot["kind"] = problem.robot.kind;
-    robot["tendon_tension"] = std::vector<double>(actuation.tendon_tension.begin(),
-                                                  actuation.tendon_tension.begin() + count);
-    robot["tendon_length"] = std::vector<double>(solver.tendon_lengths().begin(),
-                                                 solver.tendon_lengths().begin() + count);
-    robot["tendon_slack"] = std::vector<bool>(slack.begin(), slack.begin() + count);
-    result["robot"] = robot;
-  }
-  out << result.dump(2) << '\n';
-  if (csv) cosserat::io::WriteNodesCsv(*csv, solver.state());
-  log << StaticSummary(summary, solver.state()) << '\n';
-  return summary.converged();
-}
-
 int RunSolve(const Command& cmd) {
   const std::optional<cosserat::io::Problem> problem = LoadRunnableProblem(cmd.problem_path);
   if (!problem) return kExitBadInput;
@@ -199,22 +139,7 @@ int RunSolve(const Command& cmd) {
   std::ostream& out = out_file ? static_cast<std::ostream&>(*out_file) : std::cout;
   std::ostream* csv = csv_file ? &*csv_file : nullptr;
 
-  const bool dynamics = problem->analysis == "dynamics";
-  bool converged;
-  if (problem->analysis == "modes")
-    converged = cosserat::cli::RunModes(*problem, out, csv, std::cerr);
-  else if (problem->formulation == "quaternion-fd" && problem->analysis == "buckling")
-    converged = cosserat::cli::RunQuatFdBuckling(*problem, out, csv, std::cerr);
-  else if (problem->formulation == "quaternion-fd")
-    converged = dynamics ? cosserat::cli::RunQuatFdDynamics(*problem, out, csv, std::cerr)
-                         : cosserat::cli::RunQuatFdStatics(*problem, out, csv, std::cerr);
-  else if (problem->analysis == "buckling")
-    converged = cosserat::cli::RunBuckling(*problem, out, csv, std::cerr);
-  else if (problem->has_robot && problem->robot.kind == "eversion")
-    converged = cosserat::cli::RunEversion(*problem, out, csv, std::cerr);
-  else
-    converged = dynamics ? cosserat::cli::RunDynamics(*problem, out, csv, std::cerr)
-                         : RunStatics(*problem, out, csv, std::cerr);
+  const bool converged = cosserat::cli::RunProblem(*problem, out, csv, std::cerr);
   out.flush();
   if (!out || (csv && !csv->flush())) throw std::runtime_error("writing the result failed");
   return converged ? kExitConverged : kExitNotConverged;

@@ -1,0 +1,65 @@
+#include "run_statics.hpp"
+
+#include <array>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cosserat/io/result_writer.hpp"
+#include "cosserat/robots/tendon_control.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+
+namespace cosserat::cli {
+namespace {
+
+std::string StaticSummary(const StaticShootingSummary& s, const RodState& state) {
+  std::ostringstream line;
+  line << "cosserat: " << ToString(s.status) << ", " << s.iterations << " iterations, "
+       << "residual " << std::setprecision(3) << s.residual;
+  if (state.size() > 0) {
+    const Vec3& tip = state.tip_position_W();
+    line << ", tip at [" << std::setprecision(6) << tip.x() << ", " << tip.y() << ", " << tip.z()
+         << "] m";
+  }
+  line << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms";
+  return line.str();
+}
+
+}  // namespace
+
+bool RunStatics(const io::Problem& problem, std::ostream& out, std::ostream* csv,
+                std::ostream& log) {
+  Actuation actuation = problem.robot.actuation;
+  StaticShootingSolver solver(problem.rod, problem.nodes, problem.solver, actuation);
+  StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
+  std::array<bool, Actuation::kMaxTendons> slack{};
+  for (int i = 0; i < Actuation::kMaxTendons; ++i)
+    slack[i] = actuation.tendon_tension[i] == 0.0;  // force control: slack means no tension
+  if (problem.robot.tendon_lengths && summary.converged()) {
+    // Displacement control: the tensions that give the commanded tendon lengths.
+    const TendonLengthSummary t = SolveTendonLengths(
+        solver, problem.base, problem.loads, *problem.robot.tendon_lengths, &actuation);
+    summary.status = t.status;
+    summary.iterations += t.iterations;
+    slack = t.slack;
+  }
+  nlohmann::ordered_json result = io::StaticResultToJson(summary, solver.state());
+  if (problem.has_robot) {
+    const int count = solver.tendon_count();
+    nlohmann::ordered_json robot;
+    robot["kind"] = problem.robot.kind;
+    robot["tendon_tension"] = std::vector<double>(actuation.tendon_tension.begin(),
+                                                  actuation.tendon_tension.begin() + count);
+    robot["tendon_length"] = std::vector<double>(solver.tendon_lengths().begin(),
+                                                 solver.tendon_lengths().begin() + count);
+    robot["tendon_slack"] = std::vector<bool>(slack.begin(), slack.begin() + count);
+    result["robot"] = robot;
+  }
+  out << result.dump(2) << '\n';
+  if (csv) io::WriteNodesCsv(*csv, solver.state());
+  log << StaticSummary(summary, solver.state()) << '\n';
+  return summary.converged();
+}
+
+}  // namespace cosserat::cli
