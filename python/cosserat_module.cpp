@@ -1,5 +1,6 @@
-// The `cosserat` Python module (pybind11): problem files, the static shooting solver and the BDF2
-// dynamics stepper, for notebooks and Python controllers. Arrays are NumPy, SI units, world frame
+// The `cosserat` Python module (pybind11): problem files, any problem run as `cosserat solve`
+// runs it, the static shooting solver and the BDF2 dynamics stepper, for notebooks and Python
+// controllers. Arrays are NumPy, SI units, world frame
 // unless a name says _B (body frame). docs/python.md has the tour.
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -16,6 +18,7 @@
 #include "cosserat/io/problem_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "run_problem.hpp"
 
 namespace py = pybind11;
 using namespace cosserat;
@@ -236,6 +239,33 @@ PYBIND11_MODULE(cosserat, m) {
       .def_property_readonly("initial_loads", [](const io::Problem& p) {
         return p.dynamics.initial_loads.value_or(p.loads);
       });
+
+  m.def(
+      "solve",
+      [](const io::Problem& problem, bool nodes) {
+        const std::vector<std::string> unsupported = io::UnsupportedFeatures(problem);
+        if (!unsupported.empty()) {
+          std::string message;
+          for (const std::string& e : unsupported) message += (message.empty() ? "" : "\n") + e;
+          throw py::value_error(message);
+        }
+        std::ostringstream out, csv, log;
+        bool converged;
+        {
+          py::gil_scoped_release release;  // a long run leaves other Python threads going
+          converged = cli::RunProblem(problem, out, nodes ? &csv : nullptr, log);
+        }
+        py::dict d;
+        d["converged"] = converged;
+        d["result"] = py::module_::import("json").attr("loads")(out.str());
+        d["log"] = log.str();
+        if (nodes) d["nodes_csv"] = csv.str();
+        return d;
+      },
+      py::arg("problem"), py::arg("nodes") = false,
+      "Runs the problem exactly as `cosserat solve` does (any analysis, either formulation, the "
+      "robots): a dict with converged, result (the result JSON as a dict), log (the summary "
+      "line and hints) and, with nodes=True, nodes_csv (the --csv table as text).");
 
   m.def("load_problem", [](const std::string& path) { return Checked(io::LoadProblemFile(path)); },
         py::arg("path"), "Reads and validates a problem file; ValueError names every bad field.");

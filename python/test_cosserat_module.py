@@ -160,5 +160,51 @@ class Dynamics(unittest.TestCase):
         self.assertGreater(np.linalg.norm(runs[0][-1] - rest), 1e-6)
 
 
+class SolveLikeTheCommand(unittest.TestCase):
+    """cosserat.solve runs any problem through the CLI's own runners."""
+
+    def test_pinned_column_buckles_at_euler_with_the_shear_correction(self):
+        # P_cr / (pi^2 EI / L^2) - 1 = (pi^2 r^2 / 4 L^2)(1 - E / kappa G) to first order in
+        # (r/L)^2 (Engesser and axial shortening; docs/buckling.md): -1.81e-5 for this wire
+        # (kappa = 0.882). 10 % of it: the estimate's own next order (the C++ test holds 5 % at
+        # r/L = 1/200); measured -1.75e-5.
+        p = wire("buckling", {"boundary": "pinned-pinned",
+                              "buckling": {"load": "tip_force", "direction": [0, 0, -1],
+                                           "max": 10.0}})
+        out = cosserat.solve(p)
+        self.assertTrue(out["converged"], out["log"])
+        ratio = out["result"]["buckling"]["critical_load"] / (math.pi**2 * EI / L**2)
+        estimate = math.pi**2 * R**2 / (4 * L**2) * (1 - E / (0.882 * G))
+        self.assertAlmostEqual(ratio - 1, estimate, delta=0.1 * abs(estimate))
+
+    def test_cantilever_modes_are_euler_bernoulli(self):
+        # The straight wire's bending pairs at beta L = 1.8751 and 4.6941. Rotary inertia and
+        # shear lower them by O((beta r / L)^2): 1e-5 and 9e-5 (measured -4.5e-6, -6.3e-5).
+        out = cosserat.solve(wire("modes", {"modes": {"count": 4}}))
+        self.assertTrue(out["converged"], out["log"])
+        measured = out["result"]["modes"]["frequencies_hz"]
+        for f, beta in zip(measured, [1.8751, 1.8751, 4.6941, 4.6941]):
+            expected = beta**2 / (2 * math.pi * L**2) * math.sqrt(EI / RHO_A)
+            self.assertAlmostEqual(f / expected, 1.0, delta=3e-4)
+
+    def test_quaternion_fd_statics_agrees_with_se3(self):
+        # The two formulations of one rod under a tip load (PL^2/EI = 0.5): the quaternion-FD
+        # grid is second order in the segment length, ~(1/40)^2 / 12 = 5e-5 L here (measured
+        # 4.9e-5 L); 2e-4 L.
+        loads = {"tip_force": [-0.5 * EI / L**2, 0, 0]}
+        fd = cosserat.solve(wire("statics", {"formulation": "quaternion-fd", "loads": loads}))
+        se3 = cosserat.solve(wire("statics", {"loads": loads}), nodes=True)
+        self.assertTrue(fd["converged"] and se3["converged"])
+        gap = np.subtract(fd["result"]["tip"]["position"], se3["result"]["tip"]["position"])
+        self.assertLess(np.linalg.norm(gap), 2e-4 * L)
+        self.assertIn("quaternion-fd", fd["log"])
+        self.assertEqual(len(se3["nodes_csv"].strip().splitlines()), 1 + 41)  # header + nodes
+
+    def test_unsupported_problems_are_refused(self):
+        with self.assertRaisesRegex(ValueError, "boundary"):
+            cosserat.solve(wire("dynamics", {"formulation": "quaternion-fd",
+                                             "boundary": "pinned-pinned"}))
+
+
 if __name__ == "__main__":
     unittest.main()
