@@ -2,7 +2,7 @@
 """The peer release (issue 3) stepped from Python, as a controller or a notebook would: load the
 problem file, settle at rest under the preload, release, step, read the tip.
 
-    PYTHONPATH=build/python python3 examples/release_from_python.py [seconds] [--heun] [--plot out.png]
+    PYTHONPATH=build/python /usr/bin/python3 examples/release_from_python.py [seconds] [--heun] [--plot out.png]
 
 Prints the real-time ratio of the stepping loop (Python call overhead included) and the tip's
 range of swing; with --plot writes the tip's x(t) (needs python3-matplotlib).
