@@ -72,6 +72,20 @@ void Assign(std::array<double, N>* out, const std::vector<double>& values, const
   std::copy(values.begin(), values.end(), out->begin());
 }
 
+/// Base motion from Python, checked: finite values, and a rotation matrix (orthonormal to 1e-9,
+/// det +1) for the base rotation.
+template <typename Matrix>
+const Matrix& Finite(const Matrix& m, const char* field) {
+  if (!m.allFinite()) throw py::value_error(std::string(field) + ": expected finite numbers");
+  return m;
+}
+const Mat3& Rotation(const Mat3& R, const char* field) {
+  Finite(R, field);
+  if ((R.transpose() * R - Mat3::Identity()).norm() > 1e-9 || R.determinant() < 0)
+    throw py::value_error(std::string(field) + ": expected a rotation matrix (orthonormal, det +1)");
+  return R;
+}
+
 Eigen::MatrixXd Stack(const std::vector<Vec3>& v) {
   Eigen::MatrixXd out(v.size(), 3);
   for (size_t i = 0; i < v.size(); ++i) out.row(i) = v[i].transpose();
@@ -147,10 +161,10 @@ class PyStepper {
                    std::optional<Vec6> base_wrench_B, std::optional<Actuation> actuation) {
     if (loads) input_.loads = Valid(*loads);
     if (actuation) input_.actuation = Valid(*actuation);
-    if (base_position) input_.base_pose.p = *base_position;
-    if (base_rotation) input_.base_pose.R = *base_rotation;
-    if (base_twist_B) input_.base_twist_B = *base_twist_B;
-    if (base_wrench_B) input_.base_wrench_B = *base_wrench_B;
+    if (base_position) input_.base_pose.p = Finite(*base_position, "base_position");
+    if (base_rotation) input_.base_pose.R = Rotation(*base_rotation, "base_rotation");
+    if (base_twist_B) input_.base_twist_B = Finite(*base_twist_B, "base_twist_B");
+    if (base_wrench_B) input_.base_wrench_B = Finite(*base_wrench_B, "base_wrench_B");
     return stepper_->Step(input_);
   }
 
@@ -300,8 +314,8 @@ PYBIND11_MODULE(cosserat, m) {
              std::optional<Mat3> rotation, std::optional<Actuation> actuation) {
             if (actuation) solver.SetActuation(Valid(*actuation));
             lie::SE3 base;
-            base.p = position.value_or(Vec3::Zero());
-            base.R = rotation.value_or(Mat3::Identity());
+            base.p = Finite(position.value_or(Vec3::Zero()), "base_position");
+            base.R = Rotation(rotation.value_or(Mat3::Identity()), "base_rotation");
             return solver.Solve(base, Valid(loads));
           },
           py::arg("loads"), py::arg("base_position") = py::none(),

@@ -53,6 +53,12 @@ class ProblemFiles(unittest.TestCase):
             cosserat.StaticSolver(wire()).solve(loads)
         with self.assertRaisesRegex(ValueError, "tip_force_frame"):
             loads.tip_force_frame = "sideways"
+        with self.assertRaisesRegex(ValueError, "base_rotation"):
+            cosserat.StaticSolver(wire()).solve(cosserat.Loads(), base_rotation=2 * np.eye(3))
+        stepper = cosserat.Stepper(wire("dynamics"))
+        stepper.initialize_at_rest()
+        with self.assertRaisesRegex(ValueError, "base_position"):
+            stepper.step(base_position=[0, math.inf, 0])
 
     def test_other_formulations_and_ends_are_refused(self):
         with self.assertRaisesRegex(ValueError, "formulation"):
