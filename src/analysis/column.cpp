@@ -53,6 +53,7 @@ ColumnSolver::ColumnSolver(const RodModel& model, int num_nodes, ColumnEnds ends
   const double EI = std::max(p.stiffness(0, 0), p.stiffness(1, 1));
   const double L = model.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
+  mass_per_length_ = p.mass(3, 3);
   state_.Resize(static_cast<int>(shooter_.grid().size()));
   for (int i = 0; i < state_.size(); ++i) state_.s[i] = shooter_.grid()[i];
 }
@@ -168,6 +169,7 @@ ColumnSummary ColumnSolver::Solve(const lie::SE3& base, const StaticLoads& loads
   Mat6 J;
   RodState record;
   Vec6 r = Residual(base, loads, u, &J, &record);
+  ++summary.shots;
   for (int it = 0;; ++it) {
     const double norm = r.norm();
     summary.residual = norm;
@@ -195,6 +197,7 @@ ColumnSummary ColumnSolver::Solve(const lie::SE3& base, const StaticLoads& loads
     for (int k = 0; k < 12; ++k, t *= 0.5) {
       u_try = u + t * step;
       r_try = Residual(base, loads, u_try, &J_try, &rec_try);
+      ++summary.shots;
       if (r_try.allFinite() && r_try.norm() < (1.0 - 1e-4 * t) * norm) {
         accepted = true;
         break;
@@ -213,6 +216,45 @@ ColumnSummary ColumnSolver::Solve(const lie::SE3& base, const StaticLoads& loads
   state_ = std::move(record);
   summary.status = SolveStatus::kConverged;
   return summary;
+}
+
+double ColumnSolver::LoadMeasure(const StaticLoads& loads) const {
+  const double L = length(), EI = scale_(0) * L;
+  const Vec3 distributed = loads.distributed_force_W + mass_per_length_ * loads.gravity_W;
+  return std::max({loads.tip_force.norm() * L * L / EI, loads.tip_moment.norm() * L / EI,
+                   distributed.norm() * L * L * L / EI});
+}
+
+ColumnSummary ColumnSolver::SolveFromUnloaded(const lie::SE3& base, const StaticLoads& loads) {
+  ColumnSummary total;
+  u_.setZero();  // the straight column without load: every residual is zero
+  const double measure = LoadMeasure(loads);
+  const double max_step =
+      measure > options_.max_load_increment ? options_.max_load_increment / measure : 1.0;
+  double lambda = 0.0, step = max_step;
+  int attempts = 0;
+  while (lambda < 1.0) {
+    step = std::min(step, 1.0 - lambda);
+    if (step < options_.min_load_step || attempts == options_.max_load_steps) {
+      total.status = SolveStatus::kLoadSteppingFailed;
+      return total;
+    }
+    ++attempts;
+    const double next = step == 1.0 - lambda ? 1.0 : lambda + step;
+    const ColumnSummary s = Solve(base, loads.Scaled(next));
+    total.iterations += s.iterations;
+    total.shots += s.shots;
+    total.residual = s.residual;
+    if (s.converged()) {
+      lambda = next;
+      ++total.load_steps;
+      step = std::min(2.0 * step, max_step);
+    } else {
+      step *= 0.5;
+    }
+  }
+  total.status = SolveStatus::kConverged;
+  return total;
 }
 
 std::vector<Eigen::Matrix<double, 18, 1>> ColumnSolver::Perturbation(const lie::SE3& base,

@@ -50,6 +50,8 @@ bool ParseColumnEnds(const std::string& name, ColumnEnds* ends);
 struct ColumnSummary {
   SolveStatus status = SolveStatus::kNotRun;
   int iterations = 0;   ///< Newton iterations
+  int shots = 0;        ///< integrations from 0 to L (each with its exact Jacobian)
+  int load_steps = 0;   ///< converged steps of SolveFromUnloaded (0 for Solve)
   double residual = 0;  ///< final dimensionless residual norm
   bool converged() const { return status == SolveStatus::kConverged; }
 };
@@ -70,6 +72,16 @@ class ColumnSolver {
   /// options.max_iterations (Newton iterations). On success the unknowns and state() hold the
   /// solution; otherwise the unknowns are left as they were before the call.
   ColumnSummary Solve(const lie::SE3& base, const StaticLoads& loads);
+  /// Equilibrium under `loads` followed from the straight, unloaded column: the loads scaled by
+  /// λ from 0 to 1, each step warm-started from the last, the step doubled after a success and
+  /// halved after a failure (options.min_load_step, options.max_load_steps, as the cantilever
+  /// solver's load stepping), and never larger than options.max_load_increment in the
+  /// dimensionless load (LoadMeasure): a full step from the straight column can land Newton on
+  /// another branch (a taut wire then converged to a looped shape). Status kLoadSteppingFailed when the step falls below the minimum;
+  /// state() then holds the last converged step. Past a critical load this follows the straight
+  /// branch wherever it is an equilibrium (a symmetric column), stable or not: BucklingAnalysis
+  /// is the tool for stability.
+  ColumnSummary SolveFromUnloaded(const lie::SE3& base, const StaticLoads& loads);
 
   /// The dimensionless residual at the unknowns u; with J, its exact Jacobian d r / d u (tangent
   /// propagation); with record, the node states of the shot.
@@ -102,7 +114,12 @@ class ColumnSolver {
   StaticShootingSolver shooter_;
   ColumnEnds ends_;
   StaticShootingOptions options_;
+  /// The size of `loads` as a load parameter: the largest of |F_tip| L²/EI, |M_tip| L/EI and
+  /// |f + ρA g| L³/EI (EI and ρA at s = 0).
+  double LoadMeasure(const StaticLoads& loads) const;
+
   Vec6 scale_;
+  double mass_per_length_ = 0.0;  ///< ρA at s = 0, kg/m
   Vec6 u_ = Vec6::Zero();
   RodState state_;
 };
