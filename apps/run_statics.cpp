@@ -1,11 +1,13 @@
 #include "run_statics.hpp"
 
 #include <array>
+#include <chrono>
 #include <iomanip>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cosserat/analysis/column.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/robots/tendon_control.hpp"
 #include "cosserat/strong/static_shooting.hpp"
@@ -26,10 +28,34 @@ std::string StaticSummary(const StaticShootingSummary& s, const RodState& state)
   return line.str();
 }
 
+/// A column (boundary "pinned-pinned", "clamped-clamped" or "clamped-pinned"): the loads
+/// followed from the straight, unloaded column (ColumnSolver::SolveFromUnloaded).
+bool RunColumnStatics(const io::Problem& problem, ColumnEnds ends, std::ostream& out,
+                      std::ostream* csv, std::ostream& log) {
+  const auto start = std::chrono::steady_clock::now();
+  ColumnSolver solver(problem.rod, problem.nodes, ends, problem.solver);
+  const ColumnSummary column = solver.SolveFromUnloaded(problem.base, problem.loads);
+  StaticShootingSummary summary;  // the result's fields, from the column solve
+  summary.status = column.status;
+  summary.iterations = column.iterations;
+  summary.shots = column.shots;
+  summary.load_steps = column.load_steps;
+  summary.residual = column.residual;
+  summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out << io::StaticResultToJson(summary, solver.state()).dump(2) << '\n';
+  if (csv) io::WriteNodesCsv(*csv, solver.state());
+  log << StaticSummary(summary, solver.state()) << " (" << ToString(ends) << ")\n";
+  return summary.converged();
+}
+
 }  // namespace
 
 bool RunStatics(const io::Problem& problem, std::ostream& out, std::ostream* csv,
                 std::ostream& log) {
+  ColumnEnds ends = ColumnEnds::kClampedFree;
+  if (problem.boundary != "cantilever" && ParseColumnEnds(problem.boundary, &ends))
+    return RunColumnStatics(problem, ends, out, csv, log);
   Actuation actuation = problem.robot.actuation;
   StaticShootingSolver solver(problem.rod, problem.nodes, problem.solver, actuation);
   StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);

@@ -1,7 +1,8 @@
 #pragma once
 // `cosserat solve` for "analysis": "statics" on the SE(3) path: the cantilever's equilibrium, with
 // a tendon robot's tensions (or, under displacement control, the tensions that give the commanded
-// tendon lengths).
+// tendon lengths), or a column's ("pinned-pinned", "clamped-clamped", "clamped-pinned"; plain rods,
+// loads followed from the unloaded column).
 
 #include <ostream>
 

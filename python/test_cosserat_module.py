@@ -206,6 +206,21 @@ class SolveLikeTheCommand(unittest.TestCase):
         self.assertIn("quaternion-fd", fd["log"])
         self.assertEqual(len(se3["nodes_csv"].strip().splitlines()), 1 + 41)  # header + nodes
 
+    def test_taut_wire_sags_as_the_tensioned_beam(self):
+        # examples/taut_wire.json: pinned-pinned, tension T = 50 N, own weight w = rho A g:
+        # EI y'''' - T y'' = w, mid-span sag w L^2/8T - (w EI/T^2)(1 - 1/cosh(kL/2)). The rod
+        # also stretches by T/EA = 8e-5, lengthening the loaded span (measured +8.7e-5); shear
+        # adds ~2e-5. 5e-4.
+        out = cosserat.solve(cosserat.load_problem("examples/taut_wire.json"), nodes=True)
+        self.assertTrue(out["converged"], out["log"])
+        rows = np.array([line.split(",") for line in out["nodes_csv"].splitlines()[1:]], float)
+        middle = rows[len(rows) // 2]
+        self.assertAlmostEqual(middle[0], L / 2, delta=1e-3 * L)  # s
+        w, T = RHO_A * 9.81, 50.0
+        k = math.sqrt(T / EI)
+        sag = w * L**2 / (8 * T) - w * EI / T**2 * (1 - 1 / math.cosh(k * L / 2))
+        self.assertAlmostEqual(-middle[3] / sag, 1.0, delta=5e-4)  # z: gravity along -z
+
     def test_unsupported_problems_are_refused(self):
         with self.assertRaisesRegex(ValueError, "boundary"):
             cosserat.solve(wire("dynamics", {"formulation": "quaternion-fd",

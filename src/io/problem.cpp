@@ -353,11 +353,15 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
     check("boundary", p.boundary, {"cantilever"});
   else if (p.analysis == "dynamics")
     check("boundary", p.boundary, {"cantilever", "free-free"});
-  else if (p.analysis == "buckling")
+  else if (p.analysis == "buckling" || p.analysis == "statics")
     check("boundary", p.boundary,
           {"cantilever", "pinned-pinned", "clamped-clamped", "clamped-pinned"});
   else
     check("boundary", p.boundary, {"cantilever"});
+  if (p.formulation == "se3-shooting" && p.analysis == "statics" && p.boundary != "cantilever" &&
+      p.boundary != "free-free" && p.has_robot)
+    out.push_back("robot: a robot runs with \"boundary\": \"cantilever\" in statics (got " +
+                  detail::Quote(p.boundary) + ")");
   if (p.analysis == "buckling" && p.formulation == "quaternion-fd") {
     // The quaternion-FD stiffness is the Hessian of a potential: conservative tip loads only.
     if (p.loads.tip_force_frame == LoadFrame::kBody)

@@ -201,3 +201,12 @@ cosserat_cli_test(NAME bad_buckling_weight_count
                   CODE 2 STDERR "buckling.tendons: expected one weight per tendon \\(2 in robot.tendons\\), got 1 weight[^s]")
 cosserat_cli_test(NAME bad_buckling_pressure ARGS validate "${_cli_dir}/bad_buckling_pressure.json"
                   CODE 2 STDERR "buckling.direction: not used by a \"pressure\" load.*buckling.load: expected a load this problem has \\(\"pressure\" needs a pressure-dependent section")
+
+# Statics of a column: a taut wire pinned at both ends sags under its weight (the value against
+# the tensioned-beam solution is checked by python.module and test_column_statics).
+get_filename_component(_cli_taut "${CMAKE_CURRENT_LIST_DIR}/../../examples/taut_wire.json" ABSOLUTE)
+cosserat_cli_test(NAME solve_taut_wire ARGS solve "${_cli_taut}" CODE 0
+                  STDOUT "\"status\": \"converged\"" STDERR "converged.*\\(pinned-pinned\\)")
+# A robot on a column is refused by name (its runner is the cantilever's).
+cosserat_cli_test(NAME column_robot_refused ARGS validate "${_cli_dir}/column_robot.json" CODE 2
+                  STDERR "robot: a robot runs with \"boundary\": \"cantilever\" in statics")
