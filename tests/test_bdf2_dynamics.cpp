@@ -285,6 +285,28 @@ TEST(Bdf2Dynamics, SnapshotRestartsTheSameRun) {
   EXPECT_EQ((stepper.state().tip_position_W() - first).norm(), 0.0);  // deterministic
 }
 
+TEST(Bdf2Dynamics, RestoreRefusesSnapshotsItCannotContinue) {
+  // A snapshot taken before InitializeAtRest holds no run; one from another rod on the same node
+  // count (or other end conditions) would continue with a foreign history. Both are refused, and
+  // a refused Restore leaves the stepper as it was.
+  Bdf2ShootingStepper stepper(Steel(0.5, 0.001), 20);
+  const Bdf2ShootingStepper::Snapshot empty = stepper.Save();
+  EXPECT_THROW(stepper.Restore(empty), std::invalid_argument);
+  StepInput in;
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  const Bdf2ShootingStepper::Snapshot own = stepper.Save();
+  Bdf2ShootingStepper longer(Steel(2.0, 0.001), 20), thicker(Steel(0.5, 0.002), 20);
+  Bdf2Options free_free;
+  free_free.ends = EndConditions::kFreeFree;
+  Bdf2ShootingStepper other_ends(Steel(0.5, 0.001), 20, free_free);
+  for (Bdf2ShootingStepper* other : {&longer, &thicker, &other_ends}) {
+    ASSERT_TRUE(other->InitializeAtRest(in).converged());
+    EXPECT_THROW(stepper.Restore(other->Save()), std::invalid_argument);
+  }
+  EXPECT_NO_THROW(stepper.Restore(own));
+  EXPECT_TRUE(stepper.Step(in).converged());
+}
+
 TEST(Bdf2Dynamics, StepBeforeInitializeIsAStatusNotACrash) {
   Bdf2ShootingStepper stepper(Steel(0.5, 0.001), 20);
   const StepSummary s = stepper.Step(StepInput{});

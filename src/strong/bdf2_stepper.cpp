@@ -290,6 +290,7 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
 
   if (!model_.IsValid(&why)) throw std::invalid_argument("RodModel: " + why);
   SampleGrid();
+  run_.model_fingerprint = ModelFingerprint();
   const double EI = std::max(samples_[0].stiffness(0), samples_[0].stiffness(1));
   const double L = model_.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
@@ -359,6 +360,26 @@ void Bdf2ShootingStepper::ApplyJunction(int k, State* y) {
   d.segment<3>(12) = (y->w - restart.w).cwiseQuotient(twist_scale_.head<3>());
   d.segment<3>(15) = (y->v - restart.v).cwiseQuotient(twist_scale_.tail<3>());
   *y = restart;
+}
+
+std::uint64_t Bdf2ShootingStepper::ModelFingerprint() const {
+  // FNV-1a over the bytes of what a run's state depends on.
+  std::uint64_t h = 1469598103934665603ull;
+  auto add = [&h](const void* data, std::size_t bytes) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  };
+  const int ends = static_cast<int>(options_.ends), scheme = static_cast<int>(options_.spatial_scheme);
+  add(&ends, sizeof ends);
+  add(&scheme, sizeof scheme);
+  for (const double s : grid_) {
+    const SectionProperties p = model_.section->At(s, Actuation{});
+    const Vec6 k = p.stiffness.diagonal(), m = p.mass.diagonal();
+    add(&s, sizeof s);
+    add(k.data(), sizeof(double) * 6);
+    add(m.data(), sizeof(double) * 6);
+  }
+  return h;
 }
 
 void Bdf2ShootingStepper::SampleGrid() {
@@ -875,6 +896,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
   run_.time = 0.0;
   run_.last_dt = 0.0;
   run_.steps_taken = 0;
+  run_.initialized = true;
   initialized_ = true;
   summary.status = SolveStatus::kConverged;
   summary.wall_time_s =
@@ -998,6 +1020,7 @@ void Bdf2ShootingStepper::Grow(const RodModel& longer, int new_segments) {
   model_ = longer;
   const int n = static_cast<int>(grid_.size());
   SampleGrid();
+  run_.model_fingerprint = ModelFingerprint();
   if (!junction_nodes_.empty()) PlaceJunctions();
 
   // New stages and nodes start with the old tip's history, placed along its tangent.
@@ -1045,6 +1068,11 @@ void Bdf2ShootingStepper::Restore(const Snapshot& s) {
   if (s.strain1.size() != run_.strain1.size() || s.state.size() != run_.state.size() ||
       s.junction_unknowns.size() != run_.junction_unknowns.size())
     throw std::invalid_argument("Snapshot is from a stepper with another grid");
+  if (!s.initialized)
+    throw std::invalid_argument("Snapshot was saved before InitializeAtRest: it holds no run");
+  if (s.model_fingerprint != run_.model_fingerprint)
+    throw std::invalid_argument(
+        "Snapshot is from a stepper of another rod, grid or end conditions");
   run_ = s;  // equal sizes: vectors copy into their existing storage
   history_ready_ = false;
   stage_strains_current_ = false;

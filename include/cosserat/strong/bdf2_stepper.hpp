@@ -17,6 +17,7 @@
 /// with g(0), V(0) prescribed and the unknown W(0) chosen so that W(L) is the tip wrench (eq. 28).
 /// History is kept at the scheme's stage points, so a rod at rest in equilibrium stays there exactly.
 
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -142,7 +143,8 @@ class Bdf2ShootingStepper {
   Vec3 CentreOfMass_W() const;
 
   /// Everything Step() needs to continue a run. Save() allocates; Restore() into a stepper of the
-  /// same model and grid does not.
+  /// same model and grid does not, and throws std::invalid_argument for a snapshot taken before
+  /// InitializeAtRest or from a stepper of another model, grid or end conditions.
   struct Snapshot {
     double time = 0;
     double last_dt = 0;             ///< size of the last accepted step (0 before the first)
@@ -164,6 +166,11 @@ class Bdf2ShootingStepper {
     Eigen::VectorXd junction_unknowns;
     StepInput last_input;   ///< input of the last accepted (sub-)step, for sub-step blending
     RodState state;         ///< the last accepted step
+    /// What Restore() checks: a run exists (InitializeAtRest was called), and the stepper it
+    /// came from had the same rod, grid and end conditions (a hash of the grid, the unactuated
+    /// sections at its nodes, the ends and the spatial scheme).
+    bool initialized = false;
+    std::uint64_t model_fingerprint = 0;
   };
   /// Growth at the tip (eversion): continues the run on `longer`, a model of the same rod whose
   /// length is larger and whose sections agree on [0, L_old]. The old grid nodes keep their
@@ -223,6 +230,8 @@ class Bdf2ShootingStepper {
   void SetImplicitCompliance(double c0);
   /// The sample points of grid_ with their tendon offsets and sections (constructor, Grow()).
   void SampleGrid();
+  /// Snapshot::model_fingerprint for the current grid (constructor, Grow()).
+  std::uint64_t ModelFingerprint() const;
   /// Samples every section for actuation_ (SampleGrid() and when the actuation changes).
   void SampleSections();
   void ApplyActuation(const Actuation& actuation);
