@@ -22,7 +22,7 @@ args = parser.parse_args()
 
 problem = cosserat.load_problem("examples/cantilever_release.json")
 stepper = cosserat.Stepper(problem, spatial_scheme="heun" if args.heun else None)
-summary = stepper.initialize_at_rest()  # under the problem's initial_loads (tip weight on)
+summary = stepper.initialize_at_rest()  # under the problem's initial_loads: tip weight on
 if not summary.converged:
     raise SystemExit(f"initial equilibrium: {summary.status}")
 
@@ -32,8 +32,7 @@ tip = np.empty((steps, 3))
 shots = 0
 start = time.perf_counter()
 for k in range(steps):
-    # The first step releases the tip weight (the problem's loads); later steps keep them.
-    summary = stepper.step(problem.loads) if k == 0 else stepper.step()
+    summary = stepper.step()  # under the problem's loads: the tip weight is gone
     if not summary.converged:
         raise SystemExit(f"step {k + 1}: {summary.status}")
     shots += summary.shots

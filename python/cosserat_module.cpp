@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -48,18 +49,40 @@ const StaticLoads& Valid(const StaticLoads& loads) {
   return loads;
 }
 
-/// An actuation checked before it reaches a solver: finite values, tensions >= 0.
-const Actuation& Valid(const Actuation& a) {
-  auto finite = [](double x) { return std::isfinite(x); };
-  if (!finite(a.pressure)) throw py::value_error("actuation.pressure: expected a finite number");
-  if (!(finite(a.stiffness_scale) && a.stiffness_scale > 0))
+/// An actuation checked before it reaches a solver, with the rules of the problem file: finite
+/// values, pressures and tensions >= 0, a stiffness scale > 0, no tension on a tendon the rod
+/// does not have.
+const Actuation& Valid(const Actuation& a, int tendons) {
+  auto usable = [](double x) { return std::isfinite(x) && x >= 0; };
+  if (!usable(a.pressure)) throw py::value_error("actuation.pressure: expected a number >= 0 (Pa)");
+  if (!(std::isfinite(a.stiffness_scale) && a.stiffness_scale > 0))
     throw py::value_error("actuation.stiffness_scale: expected a finite number > 0");
-  for (double t : a.tendon_tension)
-    if (!(finite(t) && t >= 0))
+  for (int i = 0; i < Actuation::kMaxTendons; ++i) {
+    if (!usable(a.tendon_tension[i]))
       throw py::value_error("actuation.tendon_tension: expected finite tensions >= 0 (N)");
+    if (i >= tendons && a.tendon_tension[i] != 0)
+      throw py::value_error("actuation.tendon_tension: a tension on tendon " + std::to_string(i) +
+                            ", but the rod has " + std::to_string(tendons) + " tendons");
+  }
   for (double p : a.jamming_pressure)
-    if (!finite(p)) throw py::value_error("actuation.jamming_pressure: expected finite numbers");
+    if (!usable(p)) throw py::value_error("actuation.jamming_pressure: expected numbers >= 0 (Pa)");
   return a;
+}
+
+/// What the module's objects cannot run, refused by the field that asks for it: the
+/// quaternion-FD formulation (solve() runs it), eversion growth and displacement control of
+/// tendons (solve() and the CLI run them).
+const io::Problem& Runnable(const io::Problem& problem, const char* what) {
+  if (problem.formulation != "se3-shooting")
+    throw py::value_error(std::string("formulation: ") + what + " runs \"se3-shooting\", got \"" +
+                          problem.formulation + "\" (cosserat.solve runs it)");
+  if (problem.has_robot && problem.robot.kind == "eversion")
+    throw py::value_error(std::string("robot.kind: ") + what +
+                          " does not grow an eversion robot (cosserat.solve does)");
+  if (problem.robot.tendon_lengths)
+    throw py::value_error(std::string("robot.actuation.length: ") + what +
+                          " takes tensions, not tendon lengths (cosserat.solve solves for them)");
+  return problem;
 }
 
 /// A fixed-size array field from a Python sequence of at most N numbers, zero-filled.
@@ -115,22 +138,15 @@ py::dict StateDict(const RodState& state) {
   return d;
 }
 
-/// The module's solvers are the SE(3) shooting ones; a quaternion-FD problem is refused rather
-/// than run by the other formulation.
-const io::Problem& SeThreeShooting(const io::Problem& problem) {
-  if (problem.formulation != "se3-shooting")
-    throw py::value_error("formulation: the Python module runs \"se3-shooting\", got \"" +
-                          problem.formulation + "\" (run it with the cosserat command)");
-  return problem;
-}
-
 /// The dynamics stepper with the input it applies, so that a control loop only says what
-/// changed.
+/// changed. As the CLI's run: the equilibrium at t = 0 under the problem's initial loads and
+/// actuation, the steps under its loads and actuation, unless told otherwise.
 class PyStepper {
  public:
   PyStepper(const io::Problem& problem, std::optional<double> dt,
             std::optional<std::string> spatial_scheme)
-      : options_(io::DynamicsOptions(SeThreeShooting(problem))) {
+      : options_(io::DynamicsOptions(Runnable(problem, "the Stepper"))),
+        tendons_(static_cast<int>(problem.rod.tendons.size())) {
     if (problem.boundary != "cantilever" && problem.boundary != "free-free")
       throw py::value_error("boundary: the Stepper runs \"cantilever\" or \"free-free\", got \"" +
                             problem.boundary + "\"");
@@ -144,23 +160,28 @@ class PyStepper {
     std::string why;
     if (!options_.IsValid(&why)) throw py::value_error(why);
     stepper_.emplace(problem.rod, problem.nodes, options_);
+    initial_loads_ = problem.dynamics.initial_loads.value_or(problem.loads);
+    initial_actuation_ = problem.robot.initial_actuation;
     input_.base_pose = problem.base;
-    input_.loads = problem.dynamics.initial_loads.value_or(problem.loads);
-    input_.actuation = problem.robot.initial_actuation;
+    input_.loads = problem.loads;
+    input_.actuation = problem.robot.actuation;
   }
 
   StepSummary InitializeAtRest(std::optional<StaticLoads> loads,
                                std::optional<Actuation> actuation) {
-    if (loads) input_.loads = Valid(*loads);
-    if (actuation) input_.actuation = Valid(*actuation);
-    return stepper_->InitializeAtRest(input_);
+    StepInput at_rest = input_;
+    at_rest.loads = loads ? Valid(*loads) : initial_loads_;
+    at_rest.actuation = actuation ? Valid(*actuation, tendons_) : initial_actuation_;
+    const StepSummary s = stepper_->InitializeAtRest(at_rest);
+    has_state_ = has_state_ || s.converged();
+    return s;
   }
 
   StepSummary Step(std::optional<StaticLoads> loads, std::optional<Vec3> base_position,
                    std::optional<Mat3> base_rotation, std::optional<Vec6> base_twist_B,
                    std::optional<Vec6> base_wrench_B, std::optional<Actuation> actuation) {
     if (loads) input_.loads = Valid(*loads);
-    if (actuation) input_.actuation = Valid(*actuation);
+    if (actuation) input_.actuation = Valid(*actuation, tendons_);
     if (base_position) input_.base_pose.p = Finite(*base_position, "base_position");
     if (base_rotation) input_.base_pose.R = Rotation(*base_rotation, "base_rotation");
     if (base_twist_B) input_.base_twist_B = Finite(*base_twist_B, "base_twist_B");
@@ -168,15 +189,67 @@ class PyStepper {
     return stepper_->Step(input_);
   }
 
-  Bdf2ShootingStepper& stepper() { return *stepper_; }
-  const StaticLoads& loads() const { return input_.loads; }
-  const Actuation& actuation() const { return input_.actuation; }
+  /// The stepper, once it has a state to show (a converged initialize_at_rest or a restore).
+  const Bdf2ShootingStepper& run() const {
+    if (!has_state_)
+      throw std::runtime_error("the Stepper has no state yet: call initialize_at_rest() first");
+    return *stepper_;
+  }
+  Bdf2ShootingStepper::Snapshot Save() const { return run().Save(); }
+  void Restore(const Bdf2ShootingStepper::Snapshot& snapshot) {
+    stepper_->Restore(snapshot);  // throws std::invalid_argument (ValueError) if it can't
+    input_ = snapshot.last_input;  // what the saved run was applying
+    has_state_ = true;
+  }
+  double time() const { return stepper_->time(); }
+  const StepInput& input() const { return input_; }
   const Bdf2Options& options() const { return options_; }
 
  private:
   Bdf2Options options_;
+  int tendons_;
   std::optional<Bdf2ShootingStepper> stepper_;
-  StepInput input_;
+  StaticLoads initial_loads_;
+  Actuation initial_actuation_;
+  StepInput input_;  ///< what step() applies
+  bool has_state_ = false;
+};
+
+/// The static solver with the problem's clamp pose and loads as defaults.
+class PyStaticSolver {
+ public:
+  explicit PyStaticSolver(const io::Problem& problem)
+      : solver_(Runnable(problem, "StaticSolver").rod, problem.nodes, problem.solver,
+                problem.robot.actuation),
+        base_(problem.base),
+        loads_(problem.loads),
+        tendons_(static_cast<int>(problem.rod.tendons.size())) {
+    if (problem.boundary != "cantilever")
+      throw py::value_error("boundary: StaticSolver solves a cantilever, got \"" +
+                            problem.boundary + "\" (cosserat.solve runs columns)");
+  }
+
+  StaticShootingSummary Solve(std::optional<StaticLoads> loads, std::optional<Vec3> position,
+                              std::optional<Mat3> rotation, std::optional<Actuation> actuation) {
+    if (loads) loads_ = Valid(*loads);
+    if (position) base_.p = Finite(*position, "base_position");
+    if (rotation) base_.R = Rotation(*rotation, "base_rotation");
+    if (actuation) solver_.SetActuation(Valid(*actuation, tendons_));
+    const StaticShootingSummary s = solver_.Solve(base_, loads_);
+    solved_ = solved_ || s.converged();
+    return s;
+  }
+  const RodState& state() const {
+    if (!solved_) throw std::runtime_error("StaticSolver has no solution yet: call solve() first");
+    return solver_.state();
+  }
+
+ private:
+  StaticShootingSolver solver_;
+  lie::SE3 base_;
+  StaticLoads loads_;
+  int tendons_;
+  bool solved_ = false;
 };
 
 }  // namespace
@@ -205,8 +278,9 @@ PYBIND11_MODULE(cosserat, m) {
           })
       .def("__repr__", [](const StaticLoads& l) {
         auto v = [](const Vec3& x) {
-          return "[" + std::to_string(x(0)) + ", " + std::to_string(x(1)) + ", " +
-                 std::to_string(x(2)) + "]";
+          std::ostringstream o;
+          o << std::setprecision(6) << "[" << x(0) << ", " << x(1) << ", " << x(2) << "]";
+          return o.str();
         };
         return "Loads(gravity=" + v(l.gravity_W) + ", distributed_force=" +
                v(l.distributed_force_W) + ", tip_force=" + v(l.tip_force) + " (" +
@@ -248,6 +322,8 @@ PYBIND11_MODULE(cosserat, m) {
       .def_property_readonly("base_rotation", [](const io::Problem& p) { return p.base.R; })
       .def_readwrite("loads", &io::Problem::loads)
       .def_property_readonly("actuation", [](const io::Problem& p) { return p.robot.actuation; })
+      .def_property_readonly("initial_actuation",
+                             [](const io::Problem& p) { return p.robot.initial_actuation; })
       .def_property_readonly("dt", [](const io::Problem& p) { return p.dynamics.dt; })
       .def_property_readonly("duration", [](const io::Problem& p) { return p.dynamics.duration; })
       .def_property_readonly("initial_loads", [](const io::Problem& p) {
@@ -257,6 +333,7 @@ PYBIND11_MODULE(cosserat, m) {
   m.def(
       "solve",
       [](const io::Problem& problem, bool nodes) {
+        Valid(problem.loads);  // Problem.loads is assignable from Python
         const std::vector<std::string> unsupported = io::UnsupportedFeatures(problem);
         if (!unsupported.empty()) {
           std::string message;
@@ -297,33 +374,16 @@ PYBIND11_MODULE(cosserat, m) {
       .def_readonly("stability_index", &StaticShootingSummary::stability_index)
       .def_readonly("wall_time_s", &StaticShootingSummary::wall_time_s);
 
-  py::class_<StaticShootingSolver>(m, "StaticSolver",
-                                   "Static equilibrium of the problem's cantilever (SE(3) "
-                                   "shooting); re-solves warm-start from the last solution.")
-      .def(py::init([](const io::Problem& p) {
-             SeThreeShooting(p);
-             if (p.boundary != "cantilever")
-               throw py::value_error("boundary: StaticSolver solves a cantilever, got \"" +
-                                     p.boundary + "\"");
-             return new StaticShootingSolver(p.rod, p.nodes, p.solver, p.robot.actuation);
-           }),
-           py::arg("problem"))
-      .def(
-          "solve",
-          [](StaticShootingSolver& solver, const StaticLoads& loads, std::optional<Vec3> position,
-             std::optional<Mat3> rotation, std::optional<Actuation> actuation) {
-            if (actuation) solver.SetActuation(Valid(*actuation));
-            lie::SE3 base;
-            base.p = Finite(position.value_or(Vec3::Zero()), "base_position");
-            base.R = Rotation(rotation.value_or(Mat3::Identity()), "base_rotation");
-            return solver.Solve(base, Valid(loads));
-          },
-          py::arg("loads"), py::arg("base_position") = py::none(),
-          py::arg("base_rotation") = py::none(), py::arg("actuation") = py::none(),
-          "Solves for `loads` with the clamp at base_position, base_rotation (default: origin, "
-          "identity: the rod along +z) and, when given, a new actuation (kept for later "
-          "solves).")
-      .def("state", [](const StaticShootingSolver& s) { return StateDict(s.state()); });
+  py::class_<PyStaticSolver>(m, "StaticSolver",
+                             "Static equilibrium of the problem's cantilever (SE(3) shooting); "
+                             "re-solves warm-start from the last solution.")
+      .def(py::init<const io::Problem&>(), py::arg("problem"))
+      .def("solve", &PyStaticSolver::Solve, py::arg("loads") = py::none(),
+           py::arg("base_position") = py::none(), py::arg("base_rotation") = py::none(),
+           py::arg("actuation") = py::none(),
+           "Solves for the loads, clamp pose and actuation given; what is not given keeps its "
+           "last value, at first the problem's loads, base and robot actuation.")
+      .def("state", [](const PyStaticSolver& s) { return StateDict(s.state()); });
 
   py::class_<StepSummary>(m, "StepSummary")
       .def_property_readonly("status", [](const StepSummary& s) { return ToString(s.status); })
@@ -339,51 +399,55 @@ PYBIND11_MODULE(cosserat, m) {
                                             "Everything a Stepper needs to continue a run.");
 
   py::class_<PyStepper>(m, "Stepper",
-                        "BDF2 dynamics of the problem's rod (cantilever or free-free). step() "
-                        "advances dt under the loads and base motion given, keeping what is not "
-                        "given from the last call.")
+                        "BDF2 dynamics of the problem's rod (cantilever or free-free), as the "
+                        "CLI runs it: initialize_at_rest() under the problem's initial loads and "
+                        "actuation, step() under its loads and actuation unless told otherwise.")
       .def(py::init<const io::Problem&, std::optional<double>, std::optional<std::string>>(),
            py::arg("problem"), py::arg("dt") = py::none(), py::arg("spatial_scheme") = py::none())
       .def("initialize_at_rest", &PyStepper::InitializeAtRest, py::arg("loads") = py::none(),
            py::arg("actuation") = py::none(),
            "Static equilibrium at t = 0 under `loads` and `actuation` (default: the problem's "
-           "initial loads and initial actuation).")
+           "initial loads and initial actuation). What step() applies is not changed.")
       .def("step", &PyStepper::Step, py::arg("loads") = py::none(),
            py::arg("base_position") = py::none(), py::arg("base_rotation") = py::none(),
            py::arg("base_twist_B") = py::none(), py::arg("base_wrench_B") = py::none(),
            py::arg("actuation") = py::none(),
-           "Advances dt. Values not given keep those of the last call. Cantilever: the base "
-           "pose and twist [w; v] (body frame) at the end of the step; free-free: the wrench on "
-           "the s = 0 end (body frame).")
-      .def_property_readonly("actuation", &PyStepper::actuation)
-      .def_property_readonly("time", [](PyStepper& s) { return s.stepper().time(); })
-      .def_property_readonly("dt", [](PyStepper& s) { return s.options().dt; })
-      .def_property_readonly("loads", &PyStepper::loads)
-      .def("state", [](PyStepper& s) { return StateDict(s.stepper().state()); })
-      .def("tip_position", [](PyStepper& s) { return Vec3(s.stepper().state().tip_position_W()); })
-      .def("tip_rotation", [](PyStepper& s) { return Mat3(s.stepper().state().tip_rotation_WB()); })
-      .def("tip_twist_B", [](PyStepper& s) { return Vec6(s.stepper().state().twist_B.back()); })
-      .def("base_reaction", [](PyStepper& s) { return s.stepper().state().BaseReaction_W(); },
+           "Advances dt. Values not given keep those of the last step (at first the problem's "
+           "loads, base pose and robot actuation). Cantilever: the base pose and twist [w; v] "
+           "(body frame) at the end of the step, which must agree (the twist is not derived "
+           "from the pose); free-free: the wrench on the s = 0 end (body frame).")
+      .def_property_readonly("time", &PyStepper::time)
+      .def_property_readonly("dt", [](const PyStepper& s) { return s.options().dt; })
+      .def_property_readonly("loads", [](const PyStepper& s) { return s.input().loads; },
+                             "A copy of the loads step() applies.")
+      .def_property_readonly("actuation", [](const PyStepper& s) { return s.input().actuation; },
+                             "A copy of the actuation step() applies.")
+      .def("state", [](const PyStepper& s) { return StateDict(s.run().state()); })
+      .def("tip_position", [](const PyStepper& s) { return Vec3(s.run().state().tip_position_W()); })
+      .def("tip_rotation", [](const PyStepper& s) { return Mat3(s.run().state().tip_rotation_WB()); })
+      .def("tip_twist_B", [](const PyStepper& s) { return Vec6(s.run().state().twist_B.back()); })
+      .def("base_reaction", [](const PyStepper& s) { return s.run().state().BaseReaction_W(); },
            "The wrench [moment; force] the support applies at s = 0, world frame.")
       .def("energy",
-           [](PyStepper& s) {
-             const RodEnergy e = s.stepper().Energy(s.loads());
+           [](const PyStepper& s) {
+             const RodEnergy e = s.run().Energy(s.input().loads);
              py::dict d;
              d["kinetic"] = e.kinetic;
              d["elastic"] = e.elastic;
              d["gravity"] = e.gravity;
              d["total"] = e.total();
              return d;
-           })
+           },
+           "Kinetic, elastic and gravitational energy (J) under the gravity step() applies.")
       .def("momentum",
-           [](PyStepper& s) {
-             const RodMomentum p = s.stepper().Momentum();
+           [](const PyStepper& s) {
+             const RodMomentum p = s.run().Momentum();
              return py::make_tuple(p.linear_W, p.angular_W);
            },
            "(linear, angular about the origin), world frame.")
-      .def("mass", [](PyStepper& s) { return s.stepper().Mass(); })
-      .def("save", [](PyStepper& s) { return s.stepper().Save(); })
-      .def("restore", [](PyStepper& s, const Bdf2ShootingStepper::Snapshot& snap) {
-        s.stepper().Restore(snap);
-      });
+      .def("mass", [](const PyStepper& s) { return s.run().Mass(); })
+      .def("save", &PyStepper::Save)
+      .def("restore", &PyStepper::Restore,
+           "Continues the saved run, with the inputs it was applying; a snapshot from another "
+           "rod, grid or end conditions, or taken before initialize_at_rest, is refused.");
 }

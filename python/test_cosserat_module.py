@@ -148,7 +148,7 @@ class Dynamics(unittest.TestCase):
         self.assertTrue(stepper.initialize_at_rest(loads).converged)
         rest = stepper.tip_position()
         for _ in range(50):
-            stepper.step(loads)
+            self.assertTrue(stepper.step(loads).converged)
         # A rod at rest in its equilibrium stays there (issue 3: drift below 1e-10 L).
         self.assertLess(np.linalg.norm(stepper.tip_position() - rest), 1e-10 * L)
         # Released from a save point, the same steps give the same state, bit for bit.
@@ -160,10 +160,75 @@ class Dynamics(unittest.TestCase):
         for _ in range(2):
             stepper.restore(saved)
             for _ in range(20):
-                stepper.step(kick)
+                self.assertTrue(stepper.step(kick).converged)
             runs.append(stepper.state()["position"].copy())
         np.testing.assert_array_equal(runs[0], runs[1])
         self.assertGreater(np.linalg.norm(runs[0][-1] - rest), 1e-6)
+
+    def test_stepper_runs_a_problem_as_the_command_does(self):
+        # A tendon robot released from zero tension (its initial actuation) to the robot's
+        # tensions: the Stepper, left to its defaults, applies the same inputs as `cosserat
+        # solve`, so the final tips are the same numbers (the JSON keeps 17 digits).
+        p = cosserat.load_problem("tests/cli/tendon_dynamics.json")
+        np.testing.assert_array_equal(p.initial_actuation.tendon_tension[:3], [0, 0, 0])
+        command = cosserat.solve(p)["result"]["tip"]["position"]
+        stepper = cosserat.Stepper(p)
+        self.assertTrue(stepper.initialize_at_rest().converged)
+        for _ in range(int(round(p.duration / p.dt))):
+            self.assertTrue(stepper.step().converged)
+        np.testing.assert_array_equal(stepper.tip_position(), command)
+        np.testing.assert_array_equal(stepper.actuation.tendon_tension, p.actuation.tendon_tension)
+
+    def test_base_twist_reaches_the_rod(self):
+        # The cantilever's base twist is imposed: the rod's s = 0 node moves with it.
+        stepper = cosserat.Stepper(wire("dynamics"))
+        self.assertTrue(stepper.initialize_at_rest().converged)
+        twist = np.array([0.0, 0.1, 0.0, 0.01, 0.0, 0.0])
+        self.assertTrue(stepper.step(base_twist_B=twist).converged)
+        np.testing.assert_array_equal(stepper.state()["twist_B"][0], twist)
+
+    def test_out_of_order_and_foreign_snapshots_are_refused(self):
+        stepper = cosserat.Stepper(wire("dynamics"))
+        with self.assertRaisesRegex(RuntimeError, "initialize_at_rest"):
+            stepper.tip_position()
+        with self.assertRaisesRegex(RuntimeError, "initialize_at_rest"):
+            stepper.save()
+        self.assertEqual(stepper.step().status, "not_run")
+        with self.assertRaisesRegex(RuntimeError, "solve"):
+            cosserat.StaticSolver(wire()).state()
+        # A snapshot of a thicker wire on the same grid does not continue this one.
+        other = cosserat.Stepper(cosserat.parse_problem(json.dumps({
+            "format": "cosserat-problem/1", "analysis": "dynamics",
+            "rod": {"length": L, "nodes": 41, "section": {"shape": "circle", "radius": 2 * R},
+                    "material": {"youngs_modulus": E, "shear_modulus": G, "density": RHO}}})))
+        self.assertTrue(other.initialize_at_rest().converged)
+        self.assertTrue(stepper.initialize_at_rest().converged)
+        with self.assertRaisesRegex(ValueError, "another rod"):
+            stepper.restore(other.save())
+
+    def test_actuation_follows_the_problem_file_rules(self):
+        p = cosserat.load_problem("robots/tendon_three_tendon.json")
+        solver = cosserat.StaticSolver(p)
+        for field, value in [("pressure", -1.0), ("tendon_tension", [0, 0, 0, 5.0]),
+                             ("jamming_pressure", [-1.0]), ("stiffness_scale", 0.0)]:
+            a = cosserat.Actuation()
+            setattr(a, field, value)
+            with self.assertRaisesRegex(ValueError, "actuation." + field):
+                solver.solve(actuation=a)
+        with self.assertRaisesRegex(ValueError, "robot.kind"):
+            cosserat.Stepper(cosserat.load_problem("robots/eversion_banded_vine.json"))
+        with self.assertRaisesRegex(ValueError, "robot.kind"):
+            cosserat.StaticSolver(cosserat.load_problem("robots/eversion_banded_vine.json"))
+
+    def test_static_solver_uses_the_problem_base_and_loads(self):
+        # Clamp moved and turned in the file: the solver's default is the file's, as the CLI's.
+        p = wire("statics", {"base": {"position": [1, 2, 3],
+                                      "rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]},
+                             "loads": {"gravity": [0, 0, -9.81]}})
+        solver = cosserat.StaticSolver(p)
+        self.assertTrue(solver.solve().converged)
+        np.testing.assert_allclose(solver.state()["position"][-1],
+                                   cosserat.solve(p)["result"]["tip"]["position"], atol=1e-12)
 
 
 class SolveLikeTheCommand(unittest.TestCase):
