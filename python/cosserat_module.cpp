@@ -138,6 +138,17 @@ py::dict StateDict(const RodState& state) {
   return d;
 }
 
+/// The fields the static and the step summaries share.
+template <typename Summary>
+py::class_<Summary>& BindSummary(py::class_<Summary>& c) {
+  return c.def_property_readonly("status", [](const Summary& s) { return ToString(s.status); })
+      .def_property_readonly("converged", &Summary::converged)
+      .def_readonly("iterations", &Summary::iterations)
+      .def_readonly("shots", &Summary::shots)
+      .def_readonly("residual", &Summary::residual)
+      .def_readonly("wall_time_s", &Summary::wall_time_s);
+}
+
 /// The dynamics stepper with the input it applies, so that a control loop only says what
 /// changed. As the CLI's run: the equilibrium at t = 0 under the problem's initial loads and
 /// actuation, the steps under its loads and actuation, unless told otherwise.
@@ -364,15 +375,10 @@ PYBIND11_MODULE(cosserat, m) {
         [](const std::string& text) { return Checked(io::ParseProblem(text, "<python>")); },
         py::arg("json_text"), "Validates a problem given as JSON text.");
 
-  py::class_<StaticShootingSummary>(m, "StaticSummary")
-      .def_property_readonly("status", [](const StaticShootingSummary& s) { return ToString(s.status); })
-      .def_property_readonly("converged", &StaticShootingSummary::converged)
-      .def_readonly("iterations", &StaticShootingSummary::iterations)
-      .def_readonly("shots", &StaticShootingSummary::shots)
+  py::class_<StaticShootingSummary> static_summary(m, "StaticSummary");
+  BindSummary(static_summary)
       .def_readonly("load_steps", &StaticShootingSummary::load_steps)
-      .def_readonly("residual", &StaticShootingSummary::residual)
-      .def_readonly("stability_index", &StaticShootingSummary::stability_index)
-      .def_readonly("wall_time_s", &StaticShootingSummary::wall_time_s);
+      .def_readonly("stability_index", &StaticShootingSummary::stability_index);
 
   py::class_<PyStaticSolver>(m, "StaticSolver",
                              "Static equilibrium of the problem's cantilever (SE(3) shooting); "
@@ -385,15 +391,10 @@ PYBIND11_MODULE(cosserat, m) {
            "last value, at first the problem's loads, base and robot actuation.")
       .def("state", [](const PyStaticSolver& s) { return StateDict(s.state()); });
 
-  py::class_<StepSummary>(m, "StepSummary")
-      .def_property_readonly("status", [](const StepSummary& s) { return ToString(s.status); })
-      .def_property_readonly("converged", &StepSummary::converged)
-      .def_readonly("iterations", &StepSummary::iterations)
-      .def_readonly("shots", &StepSummary::shots)
+  py::class_<StepSummary> step_summary(m, "StepSummary");
+  BindSummary(step_summary)
       .def_readonly("jacobians", &StepSummary::jacobians)
-      .def_readonly("halvings", &StepSummary::halvings)
-      .def_readonly("residual", &StepSummary::residual)
-      .def_readonly("wall_time_s", &StepSummary::wall_time_s);
+      .def_readonly("halvings", &StepSummary::halvings);
 
   py::class_<Bdf2ShootingStepper::Snapshot>(m, "Snapshot",
                                             "Everything a Stepper needs to continue a run.");
