@@ -96,6 +96,11 @@ TEST(ColumnStatics, LoadSteppingReportsWhereItStops) {
   loads.distributed_force_W = Vec3(30 * wire.EI() / std::pow(wire.L, 3), 0, 0);
   const ColumnSummary s = solver.SolveFromUnloaded(lie::SE3{}, loads);
   EXPECT_EQ(s.status, SolveStatus::kLoadSteppingFailed);
+  // What state() holds is an equilibrium the stepping reached: the guided tip still on the axis.
+  const Vec3 tip = solver.state().position_W.back();
+  ASSERT_TRUE(tip.allFinite());
+  EXPECT_NEAR(tip.x(), 0.0, 1e-9 * wire.L);
+  EXPECT_GT(tip.z(), 0.5 * wire.L);
   // Tight steps converge in one iteration, the full load does not: a few steps were taken.
   const ColumnSummary easy = ColumnSolver(wire.model(), 41, ColumnEnds::kPinnedPinned, options)
                                  .SolveFromUnloaded(lie::SE3{}, loads.Scaled(1e-6));

@@ -227,7 +227,10 @@ double ColumnSolver::LoadMeasure(const StaticLoads& loads) const {
 
 ColumnSummary ColumnSolver::SolveFromUnloaded(const lie::SE3& base, const StaticLoads& loads) {
   ColumnSummary total;
-  u_.setZero();  // the straight column without load: every residual is zero
+  u_.setZero();  // the straight column without load: every residual is zero, so this solve
+  const ColumnSummary unloaded = Solve(base, loads.Scaled(0.0));  // only records its state
+  total.shots = unloaded.shots;
+  if (!unloaded.converged()) return unloaded;  // a non-finite base pose, say
   const double measure = LoadMeasure(loads);
   const double max_step =
       measure > options_.max_load_increment ? options_.max_load_increment / measure : 1.0;

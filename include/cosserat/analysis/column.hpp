@@ -77,10 +77,11 @@ class ColumnSolver {
   /// halved after a failure (options.min_load_step, options.max_load_steps, as the cantilever
   /// solver's load stepping), and never larger than options.max_load_increment in the
   /// dimensionless load (LoadMeasure): a full step from the straight column can land Newton on
-  /// another branch (a taut wire then converged to a looped shape). Status kLoadSteppingFailed when the step falls below the minimum;
-  /// state() then holds the last converged step. Past a critical load this follows the straight
-  /// branch wherever it is an equilibrium (a symmetric column), stable or not: BucklingAnalysis
-  /// is the tool for stability.
+  /// another branch (a taut wire, PL²/EI = 80, converged to a looped shape). Status
+  /// kLoadSteppingFailed when the step falls below the minimum; state() then holds the last
+  /// converged step (at least the unloaded column). Past a critical load this follows the
+  /// straight branch wherever it is an equilibrium (a symmetric column), stable or not:
+  /// BucklingAnalysis is the tool for stability.
   ColumnSummary SolveFromUnloaded(const lie::SE3& base, const StaticLoads& loads);
 
   /// The dimensionless residual at the unknowns u; with J, its exact Jacobian d r / d u (tangent
