@@ -286,6 +286,14 @@ class SolveLikeTheCommand(unittest.TestCase):
         sag = w * L**2 / (8 * T) - w * EI / T**2 * (1 - 1 / math.cosh(k * L / 2))
         self.assertAlmostEqual(-middle[3] / sag, 1.0, delta=5e-4)  # z: gravity along -z
 
+    def test_assigned_loads_are_checked(self):
+        p = wire()
+        loads = cosserat.Loads()
+        loads.gravity = [0, math.nan, 0]
+        p.loads = loads  # Problem.loads is assignable: solve() checks it like a file
+        with self.assertRaisesRegex(ValueError, "loads"):
+            cosserat.solve(p)
+
     def test_unsupported_problems_are_refused(self):
         with self.assertRaisesRegex(ValueError, "boundary"):
             cosserat.solve(wire("dynamics", {"formulation": "quaternion-fd",
