@@ -85,14 +85,23 @@ const io::Problem& Runnable(const io::Problem& problem, const char* what) {
   return problem;
 }
 
-/// A fixed-size array field from a Python sequence of at most N numbers, zero-filled.
+/// A fixed-size array field of Actuation as a Python list, and back from a sequence of at most
+/// N numbers (zero-filled).
 template <size_t N>
-void Assign(std::array<double, N>* out, const std::vector<double>& values, const char* field) {
-  if (values.size() > N)
-    throw py::value_error(std::string(field) + ": expected at most " + std::to_string(N) +
-                          " values, got " + std::to_string(values.size()));
-  out->fill(0.0);
-  std::copy(values.begin(), values.end(), out->begin());
+auto ArrayGetter(std::array<double, N> Actuation::*field) {
+  return [field](const Actuation& a) {
+    return std::vector<double>((a.*field).begin(), (a.*field).end());
+  };
+}
+template <size_t N>
+auto ArraySetter(std::array<double, N> Actuation::*field, const char* name) {
+  return [field, name](Actuation& a, const std::vector<double>& values) {
+    if (values.size() > N)
+      throw py::value_error(std::string(name) + ": expected at most " + std::to_string(N) +
+                            " values, got " + std::to_string(values.size()));
+    (a.*field).fill(0.0);
+    std::copy(values.begin(), values.end(), (a.*field).begin());
+  };
 }
 
 /// Base motion from Python, checked: finite values, and a rotation matrix (orthonormal to 1e-9,
@@ -306,22 +315,10 @@ PYBIND11_MODULE(cosserat, m) {
       .def(py::init<>())
       .def_readwrite("pressure", &Actuation::pressure)
       .def_readwrite("stiffness_scale", &Actuation::stiffness_scale)
-      .def_property(
-          "tendon_tension",
-          [](const Actuation& a) {
-            return std::vector<double>(a.tendon_tension.begin(), a.tendon_tension.end());
-          },
-          [](Actuation& a, const std::vector<double>& v) {
-            Assign(&a.tendon_tension, v, "tendon_tension");
-          })
-      .def_property(
-          "jamming_pressure",
-          [](const Actuation& a) {
-            return std::vector<double>(a.jamming_pressure.begin(), a.jamming_pressure.end());
-          },
-          [](Actuation& a, const std::vector<double>& v) {
-            Assign(&a.jamming_pressure, v, "jamming_pressure");
-          });
+      .def_property("tendon_tension", ArrayGetter(&Actuation::tendon_tension),
+                    ArraySetter(&Actuation::tendon_tension, "tendon_tension"))
+      .def_property("jamming_pressure", ArrayGetter(&Actuation::jamming_pressure),
+                    ArraySetter(&Actuation::jamming_pressure, "jamming_pressure"));
 
   py::class_<io::Problem>(m, "Problem", "A validated problem file (docs/problem-format.md).")
       .def_readonly("analysis", &io::Problem::analysis)
