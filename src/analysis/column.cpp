@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cosserat/lie/so3.hpp"
+#include "cosserat/loads/total_load.hpp"
 
 namespace cosserat {
 
@@ -98,8 +99,11 @@ Vec6 ColumnSolver::Residual(const lie::SE3& base, const StaticLoads& loads, cons
   const double L = length();
   const Eigen::Matrix<double, 3, 6> dp = T.middleRows<3>(kP), dm = T.middleRows<3>(kM),
                                     dn = T.middleRows<3>(kN);
-  const bool force_world = loads.tip_force_frame == LoadFrame::kWorld;
-  const bool moment_world = loads.tip_moment_frame == LoadFrame::kWorld;
+  // The tip wrench: its dead part (world) turns relative to the tip section, its follower part
+  // (tip body frame) does not.
+  const SplitWrench tip = TotalTipWrench(loads);
+  const Vec3 moment_dead = tip.dead_W.head<3>(), moment_follower = tip.follower_B.head<3>();
+  const Vec3 force_dead = tip.dead_W.tail<3>(), force_follower = tip.follower_B.tail<3>();
   // d(Rᵀ v) for a fixed world vector v: row j is v · d(R e_j).
   auto transpose_times = [&](const Vec3& v) {
     Eigen::Matrix<double, 3, 6> out;
@@ -117,19 +121,15 @@ Vec6 ColumnSolver::Residual(const lie::SE3& base, const StaticLoads& loads, cons
   Mat6 dr;
   // Moment balance at a free or pinned tip: m(L) = M_tip in the tip body frame.
   auto moment_rows = [&]() {
-    r.head<3>() = (m - (moment_world ? Vec3(R.transpose() * loads.tip_moment) : loads.tip_moment))
-                      .cwiseQuotient(scale_.head<3>());
-    dr.topRows<3>() = dm;
-    if (moment_world) dr.topRows<3>() -= transpose_times(loads.tip_moment);
+    r.head<3>() = (m - (R.transpose() * moment_dead + moment_follower)).cwiseQuotient(scale_.head<3>());
+    dr.topRows<3>() = dm - transpose_times(moment_dead);
     dr.topRows<3>() = scale_.head<3>().cwiseInverse().asDiagonal() * dr.topRows<3>();
   };
 
   if (ends_ == ColumnEnds::kClampedFree) {
     moment_rows();
-    r.tail<3>() = (n - (force_world ? Vec3(R.transpose() * loads.tip_force) : loads.tip_force))
-                      .cwiseQuotient(scale_.tail<3>());
-    dr.bottomRows<3>() = dn;
-    if (force_world) dr.bottomRows<3>() -= transpose_times(loads.tip_force);
+    r.tail<3>() = (n - (R.transpose() * force_dead + force_follower)).cwiseQuotient(scale_.tail<3>());
+    dr.bottomRows<3>() = dn - transpose_times(force_dead);
     dr.bottomRows<3>() = scale_.tail<3>().cwiseInverse().asDiagonal() * dr.bottomRows<3>();
   } else {
     // Rows 0–2: the tip end condition on the rotation; rows 3–5: lateral x, lateral y, axial.
@@ -153,10 +153,9 @@ Vec6 ColumnSolver::Residual(const lie::SE3& base, const StaticLoads& loads, cons
     dr.row(3) = dd.row(0) / L;
     dr.row(4) = dd.row(1) / L;
     const Vec3 e = base.R.col(2);
-    const Vec3 F_W = force_world ? loads.tip_force : Vec3(R * loads.tip_force);
+    const Vec3 F_W = force_dead + R * force_follower;
     r(5) = e.dot(R * n - F_W) / scale_(5);
-    Eigen::Matrix<double, 3, 6> dforce = times(n) + R * dn;
-    if (!force_world) dforce -= times(loads.tip_force);
+    const Eigen::Matrix<double, 3, 6> dforce = times(n) + R * dn - times(force_follower);
     dr.row(5) = e.transpose() * dforce / scale_(5);
   }
   if (J) *J = dr;
@@ -220,8 +219,10 @@ ColumnSummary ColumnSolver::Solve(const lie::SE3& base, const StaticLoads& loads
 
 double ColumnSolver::LoadMeasure(const StaticLoads& loads) const {
   const double L = length(), EI = scale_(0) * L;
-  const Vec3 distributed = loads.distributed_force_W + mass_per_length_ * loads.gravity_W;
-  return std::max({loads.tip_force.norm() * L * L / EI, loads.tip_moment.norm() * L / EI,
+  const Vec3 distributed = TotalDistributedForce_W(loads, {0.0, mass_per_length_});
+  const SplitWrench tip = TotalTipWrench(loads);
+  const Vec6 tip_wrench = tip.dead_W + tip.follower_B;  // magnitudes only
+  return std::max({tip_wrench.tail<3>().norm() * L * L / EI, tip_wrench.head<3>().norm() * L / EI,
                    distributed.norm() * L * L * L / EI});
 }
 

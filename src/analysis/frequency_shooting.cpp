@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/lie/so3.hpp"
+#include "cosserat/loads/total_load.hpp"
 #include "cosserat/rod/grid.hpp"
 
 namespace cosserat {
@@ -29,6 +31,7 @@ struct Sample {
   Vec6 rest;
   Vec3 J;
   double rhoA;
+  double s;  // arc length, m
 };
 
 Primal Rates(const Sample& smp, const Vec3& f_W, const Primal& y, Vec6* xi_out) {
@@ -61,7 +64,7 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
         "linearised here)");
   const int n = static_cast<int>(grid_.size());
   if (n < 2) throw std::invalid_argument("FrequencyShooting: the grid needs at least 2 nodes");
-  const SectionProperties s0 = rod.section->At(0.0, actuation);
+  const SectionProperties s0 = PrincipalAxesSectionAt(rod, 0.0, actuation);
   EI_ = std::max(s0.stiffness(0, 0), s0.stiffness(1, 1));
   rhoA0_ = s0.mass(5, 5);
   const double L = rod.length;
@@ -70,12 +73,12 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
   const std::vector<double> points = SegmentSamplePoints(grid_);
   std::vector<Sample> samples(points.size());
   for (size_t q = 0; q < points.size(); ++q) {
-    const SectionProperties sp = rod.section->At(points[q], actuation);
+    const SectionProperties sp = PrincipalAxesSectionAt(rod, points[q], actuation);
     samples[q] = {sp.stiffness.inverse(), rod.RestStrainAt(points[q]), sp.mass.diagonal().head<3>(),
-                  sp.mass(5, 5)};
+                  sp.mass(5, 5), points[q]};
   }
   auto f_at = [&](const Sample& smp) -> Vec3 {
-    return smp.rhoA * loads.gravity_W + loads.distributed_force_W;
+    return TotalDistributedForce_W(loads, {smp.s, smp.rhoA});
   };
   // The stage matrix A0 at a primal state with strain xi (see the file comment).
   auto stage = [&](const Sample& smp, const Primal& y, const Vec6& xi) {
@@ -130,8 +133,10 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
   }
   node_R_[n - 1] = y.R;
   const Mat3 Rt = y.R.transpose();
-  if (loads.tip_moment_frame == LoadFrame::kWorld) tip_moment_cross_ = Hat(Rt * loads.tip_moment);
-  if (loads.tip_force_frame == LoadFrame::kWorld) tip_force_cross_ = Hat(Rt * loads.tip_force);
+  // Only the dead part of the tip wrench turns relative to the tip section.
+  const SplitWrench tip = TotalTipWrench(loads);
+  tip_moment_cross_ = Hat(Rt * tip.dead_W.head<3>());
+  tip_force_cross_ = Hat(Rt * tip.dead_W.tail<3>());
 }
 
 template <typename Visit>

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "cosserat/analysis/frequency_shooting.hpp"
+#include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/lie/quaternion.hpp"
 
 namespace cosserat {
@@ -498,7 +499,7 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
   std::vector<Vec3> tangent(n);
   for (int i = 0; i < n; ++i) {
     const double w = 0.5 * ((i > 0 ? s[i] - s[i - 1] : 0.0) + (i + 1 < n ? s[i + 1] - s[i] : 0.0));
-    const SectionProperties sp = rod.section->At(s[i], actuation);
+    const SectionProperties sp = PrincipalAxesSectionAt(rod, s[i], actuation);
     const Mat3& R = fs.rotation_WB()[i];
     node_mass[i] = sp.mass(5, 5) * w;
     node_inertia[i] = R * (sp.mass.diagonal().head<3>() * w).asDiagonal() * R.transpose();

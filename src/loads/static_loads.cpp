@@ -21,6 +21,12 @@ StaticLoads StaticLoads::Blend(const StaticLoads& a, const StaticLoads& b, doubl
   return out;
 }
 
+bool StaticLoads::operator==(const StaticLoads& other) const {
+  return gravity_W == other.gravity_W && distributed_force_W == other.distributed_force_W &&
+         tip_force == other.tip_force && tip_moment == other.tip_moment &&
+         SameFrames(*this, other);
+}
+
 bool StaticLoads::IsValid(std::string* why) const {
   auto fail = [&](const char* name) {
     if (why) *why = std::string(name) + " must be finite";

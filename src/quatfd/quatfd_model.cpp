@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/lie/quaternion.hpp"
 #include "cosserat/quatfd/quatfd_kernel_jacobians.hpp"
 #include "cosserat/rod/grid.hpp"
@@ -131,9 +132,10 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   inv_inertia_.resize(N);
   mass_.assign(N + 1, 0.0);
   vertex_weight_.assign(N + 1, 0.0);
+  segment_site_.reserve(N);
   for (int i = 0; i < N; ++i) {
     const double ds = s_[i + 1] - s_[i], mid = 0.5 * (s_[i] + s_[i + 1]);
-    const SectionProperties sp = rod.section->At(mid, actuation);
+    const SectionProperties sp = PrincipalAxesSectionAt(rod, mid, actuation);
     kernels::SegmentConstants& c = segment_[i];
     c.ds = ds;
     c.stiffness = Block(sp.stiffness, 3, 3);
@@ -141,6 +143,7 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
     c.rest = rod.RestStrainAt(mid).tail<3>();
     rotation_[i].inertia = sp.mass.diagonal().head<3>() * ds;
     inv_inertia_[i] = rotation_[i].inertia.cwiseInverse();
+    segment_site_.push_back({mid, sp.mass(3, 3)});
     const double half_mass = 0.5 * sp.mass(3, 3) * ds;
     mass_[i] += half_mass;
     mass_[i + 1] += half_mass;
@@ -157,8 +160,8 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   bend_active_.assign(N + 1, 0);
   for (int n = 1; n < N; ++n) {
     const double h1 = 0.5 * (s_[n] - s_[n - 1]), h2 = 0.5 * (s_[n + 1] - s_[n]);
-    const SectionProperties a = rod.section->At(s_[n] - 0.5 * h1, actuation);
-    const SectionProperties b = rod.section->At(s_[n] + 0.5 * h2, actuation);
+    const SectionProperties a = PrincipalAxesSectionAt(rod, s_[n] - 0.5 * h1, actuation);
+    const SectionProperties b = PrincipalAxesSectionAt(rod, s_[n] + 0.5 * h2, actuation);
     kernels::BendConstants& c = bend_[n];
     c.h = c.weight = h1 + h2;
     const Mat3 Ca = Block(a.stiffness, 0, 0), Cb = Block(b.stiffness, 0, 0);
@@ -171,7 +174,7 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   if (options.base_end == EndCondition::kClamped) {
     // One-sided element between the clamp and p_{1/2}: length Δs/2 (ghost point p_{−1/2}).
     const double h = 0.5 * (s_[1] - s_[0]);
-    const SectionProperties a = rod.section->At(0.5 * h, actuation);
+    const SectionProperties a = PrincipalAxesSectionAt(rod, 0.5 * h, actuation);
     kernels::BendConstants& c = bend_[0];
     c.h = c.weight = h;
     c.stiffness = Block(a.stiffness, 0, 0);
@@ -186,12 +189,12 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
     for (int k = 0; k < 3; ++k) fixed_[L::X(0) + k] = 1;
 
   {
-    const SectionProperties e = rod.section->At(length() * (1 - 1e-9), actuation);
+    const SectionProperties e = PrincipalAxesSectionAt(rod, length() * (1 - 1e-9), actuation);
     tip_compliance_ = Block(e.stiffness, 0, 0).inverse();
     tip_rest_ = rod.RestStrainAt(length()).head<3>();
     tip_h_ = s_[N] - s_[N - 1];
   }
-  const SectionProperties s0 = rod.section->At(0.0, actuation);
+  const SectionProperties s0 = PrincipalAxesSectionAt(rod, 0.0, actuation);
   const double EI = std::max(s0.stiffness(0, 0), s0.stiffness(1, 1));
   moment_scale_ = EI / length();
   force_scale_ = EI / (length() * length());
@@ -224,13 +227,27 @@ void QuatFdModel::RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::Vec
   q.segment<3>(L::X(N)) = x;
 }
 
+void QuatFdModel::set_loads(const StaticLoads& loads) {
+  loads_ = loads;
+  tip_wrench_ = TotalTipWrench(loads);
+  // Each segment's distributed load, sampled at its midpoint, goes half to each end vertex.
+  const int N = layout_.segments;
+  vertex_force_W_.assign(N + 1, Vec3::Zero());
+  for (int i = 0; i < N; ++i) {
+    const Vec3 half = 0.5 * segment_[i].ds * TotalDistributedForce_W(loads, segment_site_[i]);
+    vertex_force_W_[i] += half;
+    vertex_force_W_[i + 1] += half;
+  }
+}
+
 template <typename T>
 kernels::V4<T> QuatFdModel::TipQuaternion(const kernels::V4<T>& p_last) const {
   // The free end's moment condition gives K(L) = K*(L) + C_K⁻¹ m_B; the frame at s = L is that of
   // p_{N−1/2} turned by K(L) Δs/2 (second order), with [1, θ/2] for the rotation θ (R(p) only
   // needs the direction of p). A world moment is taken to the body with R(p_{N−1/2}).
-  V3<T> m = loads_.tip_moment.cast<T>();
-  if (loads_.tip_moment_frame == LoadFrame::kWorld) m = kernels::ToBody<T>(p_last, m);
+  V3<T> m = tip_wrench_.follower_B.head<3>().cast<T>();
+  if (!tip_wrench_.dead_W.head<3>().isZero(0.0))
+    m += kernels::ToBody<T>(p_last, V3<T>(tip_wrench_.dead_W.head<3>().cast<T>()));
   const V3<T> k = tip_rest_.cast<T>() + tip_compliance_.cast<T>() * m;
   const V3<T> half = T(0.5 * tip_h_) * k * T(0.5);
   return kernels::QMul<T>(p_last, kernels::V4<T>(T(1), half[0], half[1], half[2]));
@@ -239,18 +256,18 @@ kernels::V4<T> QuatFdModel::TipQuaternion(const kernels::V4<T>& p_last) const {
 template <typename T>
 void QuatFdModel::TipLoads(const kernels::V4<T>& p_last, kernels::V3<T>* force_W,
                            kernels::V3<T>* torque_B) const {
-  const bool body_force = loads_.tip_force_frame == LoadFrame::kBody;
-  const bool body_moment = loads_.tip_moment_frame == LoadFrame::kBody;
-  *force_W = loads_.tip_force.cast<T>();
-  *torque_B = loads_.tip_moment.cast<T>();
-  if (body_force) *force_W = kernels::ToWorld<T>(TipQuaternion<T>(p_last), *force_W);
-  // Body torque on the last segment: a world moment rotated into its frame, a body (tip-frame)
+  const Vec3 force_dead = tip_wrench_.dead_W.tail<3>(), force_follower = tip_wrench_.follower_B.tail<3>();
+  const Vec3 moment_dead = tip_wrench_.dead_W.head<3>(), moment_follower = tip_wrench_.follower_B.head<3>();
+  // Force on x_N: the dead part as given, the follower part turned by the tip frame.
+  *force_W = force_dead.cast<T>();
+  if (!force_follower.isZero(0.0))
+    *force_W += kernels::ToWorld<T>(TipQuaternion<T>(p_last), V3<T>(force_follower.cast<T>()));
+  // Body torque on the last segment: a dead moment rotated into its frame, a follower (tip-frame)
   // moment rotated from the tip frame into it.
-  if (!body_moment) {
-    *torque_B = kernels::ToBody<T>(p_last, *torque_B);
-  } else {
+  *torque_B = kernels::ToBody<T>(p_last, V3<T>(moment_dead.cast<T>()));
+  if (!moment_follower.isZero(0.0)) {
     const kernels::V4<T> pt = TipQuaternion<T>(p_last);
-    *torque_B = kernels::ToBody<T>(p_last, kernels::ToWorld<T>(pt, *torque_B));
+    *torque_B += kernels::ToBody<T>(p_last, kernels::ToWorld<T>(pt, V3<T>(moment_follower.cast<T>())));
   }
 }
 
@@ -266,21 +283,21 @@ void QuatFdModel::TipLoadsJacobian(const Vec4& p_last, Vec3* force_W, Vec3* torq
   TipLoads<double>(p_last, force_W, torque_B);
   force_p->setZero();
   torque_p->setZero();
-  const bool body_force = loads_.tip_force_frame == LoadFrame::kBody;
-  const bool world_moment = loads_.tip_moment_frame == LoadFrame::kWorld;
+  const Vec3 moment_dead = tip_wrench_.dead_W.head<3>();
+  const Vec3 F = tip_wrench_.follower_B.tail<3>();
+  const bool dead_moment = !moment_dead.isZero(0.0);
   const kernels::M34 Gp = (2.0 / p_last.squaredNorm()) * kernels::ImConjMulMatrix(p_last);
-  if (world_moment) *torque_p = kernels::Skew(*torque_B) * Gp;
-  if (!body_force) return;
-  Vec3 m = loads_.tip_moment;
-  if (world_moment) m = kernels::ToBody<double>(p_last, m);
+  const Vec3 moment_dead_B = kernels::ToBody<double>(p_last, moment_dead);
+  if (dead_moment) *torque_p = kernels::Skew(moment_dead_B) * Gp;
+  if (F.isZero(0.0)) return;
+  const Vec3 m = moment_dead_B + tip_wrench_.follower_B.head<3>();
   const Vec3 half = 0.25 * tip_h_ * (tip_rest_ + tip_compliance_ * m);
   const Vec4 e(1.0, half[0], half[1], half[2]);
   const Mat3 Rp = kernels::RotationMatrix(p_last), Re = kernels::RotationMatrix(e);
-  const Vec3 F = loads_.tip_force;
   *force_p = -Rp * kernels::Skew(Re * F) * Gp;
-  if (world_moment) {
+  if (dead_moment) {
     const kernels::M34 Ge = (2.0 / e.squaredNorm()) * kernels::ImConjMulMatrix(e);
-    const kernels::M34 half_p = 0.25 * tip_h_ * tip_compliance_ * kernels::Skew(m) * Gp;
+    const kernels::M34 half_p = 0.25 * tip_h_ * tip_compliance_ * kernels::Skew(moment_dead_B) * Gp;
     *force_p -= Rp * Re * kernels::Skew(F) * Ge.rightCols<3>() * half_p;
   }
 }
@@ -332,9 +349,7 @@ void QuatFdModel::EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
     pd_prev = pd;
     f_prev = f;
   }
-  for (int n = 0; n <= N; ++n)
-    a.segment<3>(L::X(n)) +=
-        mass_[n] * loads_.gravity_W + vertex_weight_[n] * loads_.distributed_force_W;
+  for (int n = 0; n <= N; ++n) a.segment<3>(L::X(n)) += vertex_force_W_[n];
   {
     const int xt = L::X(N), pl = L::P(N - 1);
     Vec3 f, m;
@@ -479,11 +494,9 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     add(dfdq, pb + 1, pa, J.tb_pa);
     add(dfdv, pb + 1, pa, J.tb_pda);
   }
-  // External loads: gravity and the distributed force lumped on the vertices (constant); tip
+  // External loads: the distributed loads lumped on the vertices (constant); tip
   // force on x_N, tip moment on the last segment (body torque).
-  for (int n = 0; n <= N; ++n)
-    a.segment<3>(L::X(n)) +=
-        mass_[n] * loads_.gravity_W + vertex_weight_[n] * loads_.distributed_force_W;
+  for (int n = 0; n <= N; ++n) a.segment<3>(L::X(n)) += vertex_force_W_[n];
   {
     const int xt = L::X(N), pl = L::P(N - 1);
     Vec3 f, m;
@@ -718,9 +731,9 @@ void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
     W /= count;
     if (n == 0) {
       // The support reaction balances the first segment's pull and the load lumped at x_0:
-      // W(0) = R_{1/2} F_{1/2} + m_0 g + w_0 f (world), the wrench the rod beyond s = 0 exerts.
-      Fw = lie::QuatToRotation(q.segment<4>(L::P(0)).normalized()) * force[0] +
-           mass_[0] * loads_.gravity_W + vertex_weight_[0] * loads_.distributed_force_W;
+      // W(0) = R_{1/2} F_{1/2} + f_0 (world), f_0 the distributed loads lumped on x_0: the wrench
+      // the rod beyond s = 0 exerts.
+      Fw = lie::QuatToRotation(q.segment<4>(L::P(0)).normalized()) * force[0] + vertex_force_W_[0];
     } else if (n == N) {
       Fw = lie::QuatToRotation(q.segment<4>(L::P(N - 1)).normalized()) * force[N - 1];
     }
@@ -743,8 +756,7 @@ QuatFdEnergy QuatFdModel::Energy(const Eigen::Ref<const Eigen::VectorXd>& q,
   for (int n = 0; n <= N; ++n) {
     const Vec3 x = q.segment<3>(L::X(n)), xd = v.segment<3>(L::X(n));
     e.kinetic += 0.5 * mass_[n] * xd.squaredNorm();
-    e.gravity -=
-        mass_[n] * loads_.gravity_W.dot(x) + vertex_weight_[n] * loads_.distributed_force_W.dot(x);
+    e.gravity -= vertex_force_W_[n].dot(x);
   }
   for (int i = 0; i < N; ++i) {
     const Vec4 p = q.segment<4>(L::P(i)), pd = v.segment<4>(L::P(i));
@@ -767,8 +779,7 @@ QuatFdEnergy QuatFdModel::Energy(const Eigen::Ref<const Eigen::VectorXd>& q,
     e.elastic += 0.5 * c.weight * ek.dot(c.stiffness * ek);
   }
   // Dead tip loads (world frame) have the potential −f·x_N; follower loads have none.
-  if (loads_.tip_force_frame == LoadFrame::kWorld)
-    e.loads -= loads_.tip_force.dot(q.segment<3>(L::X(N)));
+  e.loads -= tip_wrench_.dead_W.tail<3>().dot(q.segment<3>(L::X(N)));
   return e;
 }
 

@@ -1,53 +1,20 @@
 #include "cosserat/strong/static_shooting.hpp"
 
-#include <ceres/tiny_solver.h>
-
 #include <Eigen/LU>
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 
 #include "cosserat/lie/so3.hpp"
-#include "cosserat/loads/tendons.hpp"
+#include "cosserat/constitutive/section_law.hpp"
+#include "cosserat/constitutive/tendon_law.hpp"
+#include "cosserat/loads/total_load.hpp"
 #include "cosserat/rod/grid.hpp"
 #include "frame_tangent.hpp"
 
 namespace cosserat {
 
-const char* ToString(SolveStatus status) {
-  switch (status) {
-    case SolveStatus::kNotRun:
-      return "not_run";
-    case SolveStatus::kConverged:
-      return "converged";
-    case SolveStatus::kMaxIterations:
-      return "max_iterations";
-    case SolveStatus::kLoadSteppingFailed:
-      return "load_stepping_failed";
-    case SolveStatus::kNonFinite:
-      return "non_finite";
-  }
-  return "unknown";
-}
-
-bool StaticShootingOptions::IsValid(std::string* why) const {
-  auto fail = [&](const char* msg) {
-    if (why) *why = msg;
-    return false;
-  };
-  if (!(std::isfinite(tolerance) && tolerance > 0)) return fail("tolerance must be positive");
-  if (max_iterations < 1) return fail("max_iterations must be at least 1");
-  if (!(min_load_step > 0 && min_load_step <= 1)) return fail("min_load_step must be in (0, 1]");
-  if (max_load_steps < 1) return fail("max_load_steps must be at least 1");
-  if (!(std::isfinite(max_load_increment) && max_load_increment > 0))
-    return fail("max_load_increment must be positive");
-  return true;
-}
-
 namespace {
-
-constexpr double kIntermediateTolerance = 1e-6;
 
 #if defined(__GNUC__)
 #define COSSERAT_HOT inline __attribute__((always_inline))
@@ -116,10 +83,9 @@ void Rk4Update(double h, const ShotTangent& k1, const ShotTangent& k2, const Sho
   y->n += a * (k1.n + k4.n) + b * (k2.n + k3.n);
 }
 
-// ξ = ξ* + C W (C = K⁻¹; diagonal for principal-axes sections, which gets the cheap path).
+// ξ = ξ* + C W, C = K⁻¹ (diagonal: sections are principal-axes, constitutive/section_law.hpp).
 COSSERAT_HOT Vec6 Compliance(const Sample& smp, const Vec6& W) {
-  if (smp.diagonal) return smp.rest_strain + smp.compliance_diagonal.cwiseProduct(W);
-  return smp.rest_strain + smp.compliance * W;
+  return smp.rest_strain + smp.compliance_diagonal.cwiseProduct(W);
 }
 
 COSSERAT_HOT Vec6 BodyWrench(const ShotState& y) {
@@ -159,18 +125,15 @@ COSSERAT_HOT ShotState Rates(const Vec6& xi, const Vec3& f_W, const ShotState& y
 // The plain rod's derivative: strain from the linear law, then the rates. Writes the strain.
 COSSERAT_HOT ShotState Derivative(const Sample& smp, const Vec3& f_W, const ShotState& y,
                                   Vec6* xi) {
-  if (smp.diagonal) {  // written out: this is the innermost loop of every solve
-    const double* c = smp.compliance_diagonal.data();
-    const double* r = smp.rest_strain.data();
-    (*xi)(0) = r[0] + c[0] * y.m(0);
-    (*xi)(1) = r[1] + c[1] * y.m(1);
-    (*xi)(2) = r[2] + c[2] * y.m(2);
-    (*xi)(3) = r[3] + c[3] * y.n(0);
-    (*xi)(4) = r[4] + c[4] * y.n(1);
-    (*xi)(5) = r[5] + c[5] * y.n(2);
-  } else {
-    *xi = Compliance(smp, BodyWrench(y));
-  }
+  // Compliance written out: this is the innermost loop of every solve.
+  const double* c = smp.compliance_diagonal.data();
+  const double* r = smp.rest_strain.data();
+  (*xi)(0) = r[0] + c[0] * y.m(0);
+  (*xi)(1) = r[1] + c[1] * y.m(1);
+  (*xi)(2) = r[2] + c[2] * y.m(2);
+  (*xi)(3) = r[3] + c[3] * y.n(0);
+  (*xi)(4) = r[4] + c[4] * y.n(1);
+  (*xi)(5) = r[5] + c[5] * y.n(2);
   return Rates(*xi, f_W, y);
 }
 
@@ -192,9 +155,8 @@ ShotTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const ShotStat
   Mat6 dW;
   dW << dy.m, dy.n;
   if (source) dW -= *source;
-  const Mat6 dxi = H              ? Mat6(H->partialPivLu().solve(dW))
-                   : smp.diagonal ? Mat6(smp.compliance_diagonal.asDiagonal() * dW)
-                                  : Mat6(smp.compliance * dW);
+  const Mat6 dxi = H ? Mat6(H->partialPivLu().solve(dW))
+                     : Mat6(smp.compliance_diagonal.asDiagonal() * dW);
   const Mat36 dK = dxi.topRows<3>(), dG = dxi.bottomRows<3>();
   const Vec3 K = xi.head<3>(), G = xi.tail<3>();
   ShotTangent dd;
@@ -209,12 +171,7 @@ ShotTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const ShotStat
 // Tip condition W(L) = W_tip in the tip body frame, made dimensionless by scale.
 Vec6 TipResidual(const Mat3& R_tip, const Vec6& W_tip_B, const StaticLoads& loads,
                  const Vec6& scale) {
-  const Mat3 Rt = R_tip.transpose();
-  Vec6 target;
-  target << (loads.tip_moment_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_moment)
-                                                         : loads.tip_moment),
-      (loads.tip_force_frame == LoadFrame::kWorld ? Vec3(Rt * loads.tip_force) : loads.tip_force);
-  return (W_tip_B - target).cwiseQuotient(scale);
+  return (W_tip_B - TipWrenchInBody(TotalTipWrench(loads), R_tip)).cwiseQuotient(scale);
 }
 
 // Integrates from s = 0 to L with RK4 on the grid and returns the dimensionless tip residual.
@@ -290,7 +247,7 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
     if (seed && seed->start) dy = *seed->start;
   }
   auto f_at = [&](const Sample& smp) -> Vec3 {
-    return smp.mass_per_length * loads.gravity_W + loads.distributed_force_W;
+    return TotalDistributedForce_W(loads, {smp.s, smp.mass_per_length});
   };
   auto record_node = [&](int i, const Vec6& xi) {
     record->position_W[i] = y.p;
@@ -387,10 +344,10 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
   if (J) {
     J->topRows<3>() = dy.m;
     J->bottomRows<3>() = dy.n;
-    if (loads.tip_moment_frame == LoadFrame::kWorld)
-      J->topRows<3>() -= TransposeTimesFixed(dy.R, loads.tip_moment);
-    if (loads.tip_force_frame == LoadFrame::kWorld)
-      J->bottomRows<3>() -= TransposeTimesFixed(dy.R, loads.tip_force);
+    // d(Rᵀ w_dead) for the dead part of the tip wrench; the follower part does not turn.
+    const SplitWrench tip = TotalTipWrench(loads);
+    J->topRows<3>() -= TransposeTimesFixed(dy.R, Vec3(tip.dead_W.head<3>()));
+    J->bottomRows<3>() -= TransposeTimesFixed(dy.R, Vec3(tip.dead_W.tail<3>()));
     *J = scale.cwiseInverse().asDiagonal() * *J;
     if (tc && tc->tip_dp) *tc->tip_dp = dy.p;
     if (tc && tc->tip_dR) *tc->tip_dR = dy.R;
@@ -441,17 +398,13 @@ void StaticShootingSolver::SampleSections() {
   const std::vector<double> points = SegmentSamplePoints(grid_);
   for (size_t q = 0; q < points.size(); ++q) {
     const double s = points[q];
-    const SectionProperties p = model_.section->At(s, actuation_);
+    const SectionLaw law = SectionLaw::At(model_, s, actuation_);
     Sample& smp = samples_[q];
-    smp.compliance = p.stiffness.inverse();
-    smp.diagonal = true;
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j)
-        if (i != j && smp.compliance(i, j) != 0.0) smp.diagonal = false;
-    smp.compliance_diagonal = smp.compliance.diagonal();
-    smp.rest_strain = model_.RestStrainAt(s);
-    smp.mass_per_length = p.mass(5, 5);
-    if (!tendon_stages_.empty()) tendon_stages_[q].stiffness = p.stiffness;
+    smp.compliance_diagonal = law.stiffness.cwiseInverse();
+    smp.rest_strain = law.rest_strain;
+    smp.mass_per_length = law.mass_per_length();
+    smp.s = s;
+    if (!tendon_stages_.empty()) tendon_stages_[q].stiffness = law.stiffness.asDiagonal();
   }
 }
 
@@ -469,6 +422,10 @@ void StaticShootingSolver::WarmStartFrom(const lie::SE3& base, const StaticLoads
   has_solution_ = true;
   has_jacobian_ = false;       // the Jacobian of another model is no use here
   state_is_solution_ = false;  // the state is not the shot of this guess
+}
+
+Vec6 StaticShootingSolver::StoredShotResidual(const StaticLoads& loads) const {
+  return TipResidual(state_.rotation_WB.back(), state_.wrench_B.back(), loads, scale_);
 }
 
 Vec6 StaticShootingSolver::Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& x) {
@@ -571,325 +528,6 @@ StaticShootingSolver::StateTangent StaticShootingSolver::ShootTangent(
     for (size_t i = 0; i < nodes.size(); ++i) (*node_tangents)[i] = ToRows(nodes[i]);
   }
   return ToRows(tip_t);
-}
-
-namespace {
-bool SameLoads(const StaticLoads& a, const StaticLoads& b) {
-  return a.gravity_W == b.gravity_W && a.distributed_force_W == b.distributed_force_W &&
-         a.tip_force == b.tip_force && a.tip_moment == b.tip_moment &&
-         a.tip_force_frame == b.tip_force_frame && a.tip_moment_frame == b.tip_moment_frame;
-}
-}  // namespace
-
-int StaticShootingSolver::IndexAfterSolve(const lie::SE3& base, const StaticLoads& loads,
-                                          const Vec6& x) const {
-  // Levenberg–Marquardt's last Jacobian shot is at its solution: its node states and tangents
-  // are the Jacobi fields the count needs, with no shot of its own.
-  if (has_kept_ && kept_x_ == x && kept_base_.R == base.R && kept_base_.p == base.p &&
-      SameLoads(kept_loads_, loads))
-    return StabilityIndexFromShot(loads, kept_record_, kept_tangents_);
-  return StabilityIndex(base, loads, scale_.cwiseProduct(x));
-}
-
-bool StaticShootingSolver::FollowStablePath(const lie::SE3& base, const StaticLoads& loads,
-                                            double max_fraction, Vec6* x_out,
-                                            StaticShootingSummary* summary) {
-  // Natural-parameter continuation from the unloaded rod (W ≡ 0: stable, the energy is a
-  // positive definite quadratic about the rest shape) along loads(μ) = μ · loads, with a secant
-  // predictor; a step is accepted only if it converges on an equilibrium without unstable
-  // directions, otherwise halved. Along an imperfect path (no bifurcation) the stable branch is
-  // connected to μ = 0, and small enough steps follow it through its sharp turn near P_cr.
-  const StaticLoads zero = loads.Scaled(0.0);
-  Vec6 x_a = Vec6::Zero(), x_prev = Vec6::Zero();
-  double mu = 0.0, mu_prev = 0.0, dmu = max_fraction;
-  int steps = 0;
-  while (summary->load_steps + steps < options_.max_load_steps) {
-    const double mu_try = std::min(1.0, mu + dmu);
-    const StaticLoads target = mu_try == 1.0 ? loads : StaticLoads::Blend(zero, loads, mu_try);
-    Vec6 guess = x_a;
-    if (mu > mu_prev) guess += (x_a - x_prev) * ((mu_try - mu) / (mu - mu_prev));
-    ++steps;
-    const double tol =
-        mu_try == 1.0 ? options_.tolerance : std::max(options_.tolerance, kIntermediateTolerance);
-    if (TryLevenbergMarquardt(base, target, tol, &guess, summary) &&
-        IndexAfterSolve(base, target, guess) == 0) {
-      x_prev = x_a;
-      mu_prev = mu;
-      x_a = guess;
-      mu = mu_try;
-      if (mu == 1.0) {
-        *x_out = x_a;
-        summary->stable_path_steps = steps;
-        return true;
-      }
-      dmu = std::min({2.0 * dmu, max_fraction, 1.0 - mu});
-    } else {
-      dmu *= 0.5;
-      if (dmu < options_.min_load_step) break;
-    }
-  }
-  summary->stable_path_steps = steps;
-  return false;
-}
-
-Vec6 StaticShootingSolver::base_wrench_B() const { return scale_.cwiseProduct(x_); }
-
-Vec6 StaticShootingSolver::RigidGuess(const lie::SE3& base, const StaticLoads& loads) const {
-  // Base wrench that balances the loads on the undeformed (rest) shape: a good start for small
-  // loads and exact in the limit of zero load.
-  const int n = static_cast<int>(grid_.size());
-  Vec3 n_W = Vec3::Zero(), m_W = Vec3::Zero();
-  auto add_force = [&](const Vec3& r_B, const Vec3& F_W) {
-    n_W += F_W;
-    m_W += (base.R * r_B).cross(F_W);
-  };
-  for (int i = 0; i + 1 < n; ++i) {
-    const double h = grid_[i + 1] - grid_[i];
-    const Sample& sm = samples_[3 * i + 1];
-    const Vec3 f = sm.mass_per_length * loads.gravity_W + loads.distributed_force_W;
-    add_force(0.5 * (rest_position_B_[i] + rest_position_B_[i + 1]), h * f);
-  }
-  const Mat3 R_tip = base.R * rest_rotation_B_.back();
-  add_force(rest_position_B_.back(), loads.tip_force_frame == LoadFrame::kWorld
-                                         ? loads.tip_force
-                                         : Vec3(R_tip * loads.tip_force));
-  m_W += loads.tip_moment_frame == LoadFrame::kWorld ? loads.tip_moment
-                                                     : Vec3(R_tip * loads.tip_moment);
-  Vec6 W_B;
-  W_B << base.R.transpose() * m_W, base.R.transpose() * n_W;
-  return W_B.cwiseQuotient(scale_);
-}
-
-namespace {
-
-// The 6 × 6 shooting problem in the form ceres::TinySolver expects.
-struct ShootingCost {
-  using Scalar = double;
-  enum { NUM_RESIDUALS = 6, NUM_PARAMETERS = 6 };
-  StaticShootingSolver* solver;
-  const lie::SE3* base;
-  const StaticLoads* loads;
-  int* shots;
-  Mat6* last_jacobian;
-
-  bool operator()(const double* x_ptr, double* r_ptr, double* J_ptr) const {
-    const Eigen::Map<const Vec6> x(x_ptr);
-    Eigen::Map<Vec6> r(r_ptr);
-    ++*shots;
-    if (J_ptr) {
-      Eigen::Map<Mat6> J(J_ptr);
-      Vec6 r_value;
-      J = solver->ResidualJacobianKeepingTangents(*base, *loads, x, &r_value);
-      r = r_value;
-      *last_jacobian = J;
-    } else {
-      r = solver->Residual(*base, *loads, x);
-    }
-    return r.allFinite();
-  }
-};
-
-}  // namespace
-
-bool StaticShootingSolver::TryLevenbergMarquardt(const lie::SE3& base, const StaticLoads& loads,
-                                                 double tolerance, Vec6* x,
-                                                 StaticShootingSummary* summary) {
-  Mat6 J = Mat6::Identity();
-  ShootingCost cost{this, &base, &loads, &summary->shots, &J};
-  ceres::TinySolver<ShootingCost> lm;
-  lm.options.max_num_iterations = options_.max_iterations + 1;  // TinySolver runs n − 1 steps
-  lm.options.cost_threshold = 0.5 * tolerance * tolerance;
-  lm.options.gradient_tolerance = 0.0;  // stop on the residual only
-  lm.options.parameter_tolerance = 1e-15;
-  lm.options.function_tolerance = 0.0;
-  Vec6 xt = *x;
-  const auto& s = lm.Solve(cost, &xt);
-  summary->iterations += s.iterations;
-  // Decide on a residual evaluated here: TinySolver's final cost is not set when the first
-  // evaluation is not finite.
-  const double res = xt.allFinite() ? Residual(base, loads, xt).norm() : NAN;
-  ++summary->shots;
-  if (!std::isfinite(res)) {
-    summary->status = SolveStatus::kNonFinite;
-    return false;
-  }
-  summary->residual = res;
-  *x = xt;
-  if (res < tolerance) {
-    // TinySolver evaluated the Jacobian at the accepted x last; keep it for the next solve.
-    jacobian_ = J;
-    has_jacobian_ = true;
-    return true;
-  }
-  summary->status = SolveStatus::kMaxIterations;
-  return false;
-}
-
-bool StaticShootingSolver::TryQuasiNewton(const lie::SE3& base, const StaticLoads& loads,
-                                          Vec6* x_io, StaticShootingSummary* summary) {
-  // Newton with the last solution's Jacobian, kept current by Broyden's rank-one update. Gives
-  // up (and lets LM take over) as soon as a step fails to halve the residual.
-  Vec6 x = *x_io;
-  Vec6 r;
-  if (state_is_solution_ && loads.gravity_W == solved_loads_.gravity_W &&
-      loads.distributed_force_W == solved_loads_.distributed_force_W) {
-    // Only the tip load changed: the stored shot of the previous solution is the shot at x, and
-    // only its tip condition differs. No integration needed.
-    r = TipResidual(state_.rotation_WB.back(), state_.wrench_B.back(), loads, scale_);
-  } else {
-    r = Residual(base, loads, x);
-    ++summary->shots;
-  }
-  Mat6 J = jacobian_;
-  Eigen::PartialPivLU<Mat6> lu(J);
-  for (int it = 0; it <= options_.max_iterations; ++it) {
-    const double norm = r.norm();
-    if (!std::isfinite(norm)) return false;
-    if (norm < options_.tolerance) {
-      summary->residual = norm;
-      *x_io = x;
-      jacobian_ = J;
-      return true;
-    }
-    if (it == options_.max_iterations) return false;
-    const Vec6 dx = -lu.solve(r);
-    const Vec6 r_new = Residual(base, loads, x + dx);
-    ++summary->shots;
-    ++summary->iterations;
-    if (!(r_new.allFinite() && r_new.norm() < 0.5 * norm)) return false;
-    J += (r_new - r - J * dx) * dx.transpose() / dx.squaredNorm();
-    lu.compute(J);
-    x += dx;
-    r = r_new;
-  }
-  return false;
-}
-
-StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const StaticLoads& loads) {
-  const auto t0 = std::chrono::steady_clock::now();
-  StaticShootingSummary summary;
-  if (!loads.IsValid(nullptr) || !base.R.allFinite() || !base.p.allFinite()) {
-    summary.status = SolveStatus::kNonFinite;  // NaN or Inf in the input: nothing to solve
-    summary.residual = NAN;
-    return summary;
-  }
-
-  // Start from a known solution: the previous one at the same base, else the unloaded rod
-  // (W ≡ 0 is exact at zero load, whatever the rest shape).
-  // (Continuation blends loads, so their tip-load frames must match too.)
-  const bool from_previous = has_solution_ && (solved_base_.R - base.R).norm() == 0.0 &&
-                             (solved_base_.p - base.p).norm() == 0.0 &&
-                             solved_loads_.tip_force_frame == loads.tip_force_frame &&
-                             solved_loads_.tip_moment_frame == loads.tip_moment_frame;
-  summary.warm_started = from_previous;
-  const StaticLoads start = from_previous ? solved_loads_ : loads.Scaled(0.0);
-  const Vec6 x_start = from_previous ? x_ : Vec6::Zero();
-
-  // How far the load moves, as the change of the rigid-body base wrench in units of EI/L and
-  // EI/L² (≈ the load parameter PL²/EI, or the linear-theory rotation in rad). Newton-type
-  // iterations jump between equilibrium branches when this is large, so the load is applied in
-  // increments of at most options_.max_load_increment.
-  const double load_change =
-      (RigidGuess(base, loads) - RigidGuess(base, start)).lpNorm<Eigen::Infinity>();
-  const double max_fraction =
-      load_change > options_.max_load_increment ? options_.max_load_increment / load_change : 1.0;
-
-  Vec6 x = x_start;
-  bool ok = false;
-  bool state_current = false;
-  bool via_quasi_newton = false;
-  if (max_fraction == 1.0) {
-    if (from_previous && has_jacobian_ && options_.reuse_jacobian) {
-      ok = TryQuasiNewton(base, loads, &x, &summary);
-      state_current = ok;
-      via_quasi_newton = ok;
-    }
-    if (!ok) {
-      x = from_previous ? x_ : RigidGuess(base, loads);
-      ok = TryLevenbergMarquardt(base, loads, options_.tolerance, &x, &summary);
-    }
-  }
-
-  if (!ok && (options_.load_stepping || max_fraction < 1.0)) {
-    // Continuation along loads(μ) = start + μ (loads − start), μ: 0 → 1, with a secant predictor,
-    // step halving on failure and doubling on success, never above max_fraction.
-    Vec6 x_a = x_start, x_prev = x_start;
-    double mu = 0.0, mu_prev = 0.0, dmu = max_fraction;
-    int steps = 0;
-    state_current = false;
-    while (steps < options_.max_load_steps) {
-      const double mu_try = std::min(1.0, mu + dmu);
-      const StaticLoads target = mu_try == 1.0 ? loads : StaticLoads::Blend(start, loads, mu_try);
-      Vec6 guess = x_a;
-      if (mu > mu_prev) guess += (x_a - x_prev) * ((mu_try - mu) / (mu - mu_prev));
-      ++steps;
-      // Intermediate equilibria only seed the next step: a looser tolerance is enough.
-      const double tol =
-          mu_try == 1.0 ? options_.tolerance : std::max(options_.tolerance, kIntermediateTolerance);
-      if (TryLevenbergMarquardt(base, target, tol, &guess, &summary)) {
-        x_prev = x_a;
-        mu_prev = mu;
-        x_a = guess;
-        mu = mu_try;
-        if (mu == 1.0) {
-          ok = true;
-          break;
-        }
-        dmu = std::min({2.0 * dmu, max_fraction, 1.0 - mu});
-      } else {
-        if (!options_.load_stepping) break;
-        dmu *= 0.5;
-        if (dmu < options_.min_load_step) break;
-      }
-    }
-    summary.load_steps = steps;
-    x = x_a;
-    if (!ok && summary.status != SolveStatus::kNonFinite)
-      summary.status =
-          options_.load_stepping ? SolveStatus::kLoadSteppingFailed : SolveStatus::kMaxIterations;
-  }
-
-  // Stability (options_.stable_branch): a Newton-type solve converges to whichever equilibrium
-  // is nearest its start, and past a critical load the nearest one can be unstable (a column at
-  // 1.15 P_cr with a small imperfection: the near-straight state beside the start, deflected
-  // against the imperfection). Step control on the size of the correction does not see this —
-  // the unstable root is the one near the predictor — so the converged equilibrium is checked
-  // instead, from Levenberg–Marquardt's last Jacobian shot (taken at the solution). A
-  // quasi-Newton warm re-solve is not checked: it continues the previous solution by steps that
-  // halve the residual, and takes no tangent shot (17 µs; a check would add one, ≈ 53 µs).
-  if (ok && options_.stable_branch && !via_quasi_newton) {
-    summary.stability_index = IndexAfterSolve(base, loads, x);
-    if (summary.stability_index > 0) {
-      Vec6 x_stable = x;
-      const Mat6 J_first = jacobian_;  // d r/d x at x, for the next warm start if we keep x
-      if (FollowStablePath(base, loads, max_fraction, &x_stable, &summary)) {
-        x = x_stable;
-        summary.stability_index = 0;
-      } else {
-        jacobian_ = J_first;
-      }
-      state_current = false;
-    }
-  }
-
-  if (!state_current) {
-    const Vec6 r = Residual(base, loads, x);
-    ++summary.shots;
-    summary.residual = r.norm();
-    if (!r.allFinite()) ok = false;
-    if (!r.allFinite()) summary.status = SolveStatus::kNonFinite;
-  }
-  if (ok) {
-    state_is_solution_ = true;
-    summary.status = SolveStatus::kConverged;
-    x_ = x;
-    solved_base_ = base;
-    solved_loads_ = loads;
-    has_solution_ = true;
-  }
-  summary.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return summary;
 }
 
 }  // namespace cosserat

@@ -30,6 +30,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
+#include "cosserat/loads/total_load.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat {
@@ -94,10 +95,7 @@ int StaticShootingSolver::StabilityIndex(const lie::SE3& base, const StaticLoads
 // Jacobian shot (directions: the scaled unknowns) serves as well as the unit directions.
 int StaticShootingSolver::StabilityIndexFromShot(const StaticLoads& loads, const RodState& record,
                                                  const std::vector<StateTangent>& nodes) const {
-  const bool follower =
-      (loads.tip_force_frame == LoadFrame::kBody && loads.tip_force != Vec3::Zero()) ||
-      (loads.tip_moment_frame == LoadFrame::kBody && loads.tip_moment != Vec3::Zero());
-  if (follower) return -1;
+  if (!TotalTipWrench(loads).follower_B.isZero(0.0)) return -1;  // not conservative
   // An eigenvalue counts as negative below −1e-8 EI/L. A rod symmetric about its axis has, past
   // buckling, a whole circle of equilibria (the shape turned about the load axis, with the section
   // turned back at the clamp): H(L) is exactly singular along it, and the solve tolerance (1e-10

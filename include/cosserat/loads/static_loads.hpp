@@ -1,16 +1,16 @@
 #pragma once
 /// \file
-/// External loads on a rod in statics: gravity, a uniform distributed force and a tip wrench.
+/// The loads of a problem by value: gravity, a uniform distributed force and a tip wrench. A
+/// plain aggregate, so a controller sets it every step without allocating. Solvers evaluate it
+/// only through total_load.hpp, which applies each as its Load class (gravity.hpp,
+/// distributed_force.hpp, tip_loads.hpp).
 
 #include <string>
 
 #include "cosserat/lie/types.hpp"
+#include "cosserat/loads/load.hpp"
 
 namespace cosserat {
-
-/// Frame in which a tip load is given. kWorld: a dead load, fixed in space. kBody: a follower
-/// load, fixed in the tip's body frame and turning with it.
-enum class LoadFrame { kWorld, kBody };
 
 struct StaticLoads {
   Vec3 gravity_W = Vec3::Zero();            ///< acceleration of gravity, world frame, m/s²
@@ -24,6 +24,14 @@ struct StaticLoads {
   StaticLoads Scaled(double lambda) const;
   /// a + t (b − a), with the frames of b (a and b must use the same frames).
   static StaticLoads Blend(const StaticLoads& a, const StaticLoads& b, double t);
+
+  /// Same values and frames.
+  bool operator==(const StaticLoads& other) const;
+  bool operator!=(const StaticLoads& other) const { return !(*this == other); }
+  /// The tip loads of a and b are given in the same frames (so Blend(a, b, t) is defined).
+  static bool SameFrames(const StaticLoads& a, const StaticLoads& b) {
+    return a.tip_force_frame == b.tip_force_frame && a.tip_moment_frame == b.tip_moment_frame;
+  }
 
   bool IsValid(std::string* why) const;
 };

@@ -28,6 +28,7 @@
 #include "cosserat/lie/se3.hpp"
 #include "cosserat/lie/types.hpp"
 #include "cosserat/loads/static_loads.hpp"
+#include "cosserat/loads/total_load.hpp"
 #include "cosserat/quatfd/banded_matrix.hpp"
 #include "cosserat/quatfd/quatfd_kernels.hpp"
 #include "cosserat/rod/actuation.hpp"
@@ -85,7 +86,9 @@ struct QuatFdLayout {
 
 /// Energies of a state (J).
 struct QuatFdEnergy {
-  double kinetic = 0, elastic = 0, gravity = 0, loads = 0;  ///< loads: −work of dead tip force
+  /// gravity: potential of the distributed dead loads (gravity, distributed force);
+  /// loads: −work of the dead tip force
+  double kinetic = 0, elastic = 0, gravity = 0, loads = 0;
   double total() const { return kinetic + elastic + gravity + loads; }
 };
 
@@ -104,8 +107,9 @@ class QuatFdModel {
   const std::vector<double>& grid() const { return s_; }
   double length() const { return s_.back(); }
 
-  /// Loads are an input, not part of the constant model: set before evaluating.
-  void set_loads(const StaticLoads& loads) { loads_ = loads; }
+  /// Loads are an input, not part of the constant model: set before evaluating. Lumps the
+  /// distributed loads on the vertices (O(segments)).
+  void set_loads(const StaticLoads& loads);
   const StaticLoads& loads() const { return loads_; }
 
   /// The rest shape (the discrete configuration with Γ = Γ*, K = K*) from the base pose, at rest.
@@ -218,6 +222,9 @@ class QuatFdModel {
   lie::SE3 base_;
   Vec4 base_quat_;
   StaticLoads loads_;
+  SplitWrench tip_wrench_;           ///< loads_ on the tip (dead: world, follower: tip frame)
+  std::vector<Vec3> vertex_force_W_;  ///< distributed loads lumped on each vertex, world, N
+  std::vector<LoadSite> segment_site_;  ///< per segment: its midpoint and ρ A, for the loads
   std::vector<double> s_;                             ///< vertices s_n, m
   std::vector<double> mass_;                          ///< lumped vertex masses m_n, kg
   std::vector<double> vertex_weight_;                 ///< dual lengths w_n, m

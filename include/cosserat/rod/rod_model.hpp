@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cosserat/lie/types.hpp"
-#include "cosserat/loads/tendons.hpp"
+#include "cosserat/rod/tendon_route.hpp"
 #include "cosserat/rod/section_profile.hpp"
 
 namespace cosserat {

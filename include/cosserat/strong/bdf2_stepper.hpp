@@ -24,7 +24,7 @@
 
 #include "cosserat/lie/se3.hpp"
 #include "cosserat/loads/static_loads.hpp"
-#include "cosserat/loads/tendons.hpp"
+#include "cosserat/constitutive/tendon_law.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/strong/rod_state.hpp"
@@ -105,7 +105,7 @@ struct StepSummary {
 struct RodEnergy {
   double kinetic = 0.0;
   double elastic = 0.0;
-  double gravity = 0.0;
+  double gravity = 0.0;  ///< potential of the distributed dead loads (gravity, distributed force)
   double total() const { return kinetic + elastic + gravity; }
 };
 
@@ -193,6 +193,7 @@ class Bdf2ShootingStepper {
     Vec6 implicit_damping;     ///< A D
     Vec6 implicit_offset;      ///< ξ* − c0 A D ξ*
     bool damped = false;       ///< D ≠ 0
+    double s = 0.0;            ///< arc length of the sample point, m
   };
   struct Coefficients {
     double c0 = 0, c1 = 0, c2 = 0;

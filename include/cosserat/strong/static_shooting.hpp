@@ -18,7 +18,7 @@
 
 #include "cosserat/lie/se3.hpp"
 #include "cosserat/loads/static_loads.hpp"
-#include "cosserat/loads/tendons.hpp"
+#include "cosserat/constitutive/tendon_law.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/strong/rod_state.hpp"
@@ -155,11 +155,10 @@ class StaticShootingSolver {
   // Used internally by the solver and by the tests of its Jacobian. One sample per grid node
   // (even index 2i) and per segment midpoint (odd index 2i+1).
   struct Sample {
-    Mat6 compliance;  ///< K(s)⁻¹
-    Vec6 compliance_diagonal;
-    Vec6 rest_strain;
-    double mass_per_length;  ///< ρ A, kg/m
-    bool diagonal = true;    ///< compliance has no off-diagonal entries
+    Vec6 compliance_diagonal;  ///< diag K(s)⁻¹ (principal-axes sections)
+    Vec6 rest_strain;          ///< ξ*(s)
+    double mass_per_length;    ///< ρ A, kg/m
+    double s = 0.0;            ///< arc length of the sample point, m
   };
   /// What the tendon strain law needs at a sample point (only for rods with tendons).
   struct TendonStage {
@@ -183,6 +182,8 @@ class StaticShootingSolver {
   bool TryLevenbergMarquardt(const lie::SE3& base, const StaticLoads& loads, double tolerance,
                              Vec6* x, StaticShootingSummary* summary);
   Vec6 RigidGuess(const lie::SE3& base, const StaticLoads& loads) const;
+  /// The residual of the stored shot (state_) under other tip loads: only the tip condition.
+  Vec6 StoredShotResidual(const StaticLoads& loads) const;
   bool FollowStablePath(const lie::SE3& base, const StaticLoads& loads, double max_fraction,
                         Vec6* x, StaticShootingSummary* summary);
   /// StabilityIndex at the unknown x just solved for: from the kept Jacobian shot when it was

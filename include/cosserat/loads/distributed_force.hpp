@@ -1,0 +1,25 @@
+#pragma once
+/// \file
+/// A uniform dead force per unit length, fixed in the world frame (a steady wind or current
+/// treated as a given load, a magnetic body force, a test load).
+
+#include "cosserat/loads/load.hpp"
+
+namespace cosserat {
+
+class DistributedForce final : public Load {
+ public:
+  /// \param[in] force_W force per unit length, world frame, N/m
+  explicit DistributedForce(const Vec3& force_W) : f_W_(force_W) {}
+  Vec3 DistributedForce_W(const LoadSite& site) const override {
+    (void)site;
+    return f_W_;
+  }
+  /// Potential energy per unit length of a section at p_W (J/m): −f · p.
+  double PotentialPerLength(const Vec3& p_W) const { return -f_W_.dot(p_W); }
+
+ private:
+  Vec3 f_W_;
+};
+
+}  // namespace cosserat

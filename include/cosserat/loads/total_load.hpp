@@ -1,0 +1,51 @@
+#pragma once
+/// \file
+/// What the solvers ask of a problem's loads: the dead force per unit length at a section, the
+/// wrench on the tip, the potential of the conservative part. Each load of StaticLoads is applied
+/// as its own Load class; the classes are final, so these sums inline to the plain arithmetic.
+
+#include "cosserat/loads/distributed_force.hpp"
+#include "cosserat/loads/gravity.hpp"
+#include "cosserat/loads/static_loads.hpp"
+#include "cosserat/loads/tip_loads.hpp"
+
+namespace cosserat {
+
+/// Σ dead force per unit length of every load at the site, world frame, N/m.
+inline Vec3 TotalDistributedForce_W(const StaticLoads& loads, const LoadSite& site) {
+  return Gravity(loads.gravity_W).DistributedForce_W(site) +
+         DistributedForce(loads.distributed_force_W).DistributedForce_W(site);
+}
+
+/// Σ wrench of every load on the tip section and a tip body of mass tip_mass (kg), moment about
+/// the tip centroid: dead part in the world frame, follower part in the tip body frame.
+inline SplitWrench TotalTipWrench(const StaticLoads& loads, double tip_mass = 0.0) {
+  const SplitWrench f = TipForce(loads.tip_force, loads.tip_force_frame).TipWrench(tip_mass);
+  const SplitWrench m = TipMoment(loads.tip_moment, loads.tip_moment_frame).TipWrench(tip_mass);
+  SplitWrench out;
+  out.dead_W = f.dead_W + m.dead_W;
+  out.follower_B = f.follower_B + m.follower_B;
+  if (tip_mass != 0.0) out.dead_W += Gravity(loads.gravity_W).TipWrench(tip_mass).dead_W;
+  return out;
+}
+
+/// The tip wrench in the tip body frame R_WB (N·m; N): Rᵀ dead + follower.
+inline Vec6 TipWrenchInBody(const SplitWrench& w, const Mat3& R_WB) {
+  Vec6 out;
+  out << R_WB.transpose() * w.dead_W.head<3>() + w.follower_B.head<3>(),
+      R_WB.transpose() * w.dead_W.tail<3>() + w.follower_B.tail<3>();
+  return out;
+}
+
+/// Potential energy per unit length of the distributed dead loads at a section at p_W, J/m.
+inline double TotalDistributedPotential(const StaticLoads& loads, const LoadSite& site,
+                                        const Vec3& p_W) {
+  return -TotalDistributedForce_W(loads, site).dot(p_W);
+}
+
+/// True when the loads change only at the tip between a and b (the distributed loads are equal).
+inline bool SameDistributedLoads(const StaticLoads& a, const StaticLoads& b) {
+  return a.gravity_W == b.gravity_W && a.distributed_force_W == b.distributed_force_W;
+}
+
+}  // namespace cosserat

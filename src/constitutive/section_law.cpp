@@ -1,0 +1,47 @@
+#include "cosserat/constitutive/section_law.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace cosserat {
+
+namespace {
+
+bool Diagonal(const Mat6& A) { return (A - Mat6(A.diagonal().asDiagonal())).norm() == 0.0; }
+
+}  // namespace
+
+bool IsPrincipalAxes(const SectionProperties& p, std::string* why) {
+  const char* which = !Diagonal(p.stiffness) ? "stiffness"
+                      : !Diagonal(p.damping) ? "damping"
+                      : !Diagonal(p.mass)    ? "mass"
+                                             : nullptr;
+  if (which && why) *why = which;
+  return which == nullptr;
+}
+
+SectionProperties PrincipalAxesSectionAt(const RodModel& rod, double s,
+                                         const Actuation& actuation) {
+  const SectionProperties p = rod.section->At(s, actuation);
+  std::string which;
+  if (!IsPrincipalAxes(p, &which)) {
+    std::ostringstream msg;
+    msg << "section at s = " << s << " m: the " << which
+        << " matrix has off-diagonal entries; sections must be principal-axes (coupling between "
+           "bending, shear and stretch is not supported)";
+    throw std::invalid_argument(msg.str());
+  }
+  return p;
+}
+
+SectionLaw SectionLaw::At(const RodModel& rod, double s, const Actuation& actuation) {
+  const SectionProperties p = PrincipalAxesSectionAt(rod, s, actuation);
+  SectionLaw law;
+  law.stiffness = p.stiffness.diagonal();
+  law.damping = p.damping.diagonal();
+  law.mass = p.mass.diagonal();
+  law.rest_strain = rod.RestStrainAt(s);
+  return law;
+}
+
+}  // namespace cosserat

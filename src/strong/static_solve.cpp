@@ -1,0 +1,359 @@
+// The static solve around the shot of static_shooting.cpp: quasi-Newton warm re-solves,
+// Levenberg–Marquardt, continuation in the load and the search for a stable equilibrium.
+#include <ceres/tiny_solver.h>
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "cosserat/loads/total_load.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+
+namespace cosserat {
+
+const char* ToString(SolveStatus status) {
+  switch (status) {
+    case SolveStatus::kNotRun:
+      return "not_run";
+    case SolveStatus::kConverged:
+      return "converged";
+    case SolveStatus::kMaxIterations:
+      return "max_iterations";
+    case SolveStatus::kLoadSteppingFailed:
+      return "load_stepping_failed";
+    case SolveStatus::kNonFinite:
+      return "non_finite";
+  }
+  return "unknown";
+}
+
+bool StaticShootingOptions::IsValid(std::string* why) const {
+  auto fail = [&](const char* msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  if (!(std::isfinite(tolerance) && tolerance > 0)) return fail("tolerance must be positive");
+  if (max_iterations < 1) return fail("max_iterations must be at least 1");
+  if (!(min_load_step > 0 && min_load_step <= 1)) return fail("min_load_step must be in (0, 1]");
+  if (max_load_steps < 1) return fail("max_load_steps must be at least 1");
+  if (!(std::isfinite(max_load_increment) && max_load_increment > 0))
+    return fail("max_load_increment must be positive");
+  return true;
+}
+
+namespace {
+
+// Tolerance of the intermediate solves of a continuation (the last one uses the solver's own).
+constexpr double kIntermediateTolerance = 1e-6;
+
+}  // namespace
+
+int StaticShootingSolver::IndexAfterSolve(const lie::SE3& base, const StaticLoads& loads,
+                                          const Vec6& x) const {
+  // Levenberg–Marquardt's last Jacobian shot is at its solution: its node states and tangents
+  // are the Jacobi fields the count needs, with no shot of its own.
+  if (has_kept_ && kept_x_ == x && kept_base_.R == base.R && kept_base_.p == base.p &&
+      kept_loads_ == loads)
+    return StabilityIndexFromShot(loads, kept_record_, kept_tangents_);
+  return StabilityIndex(base, loads, scale_.cwiseProduct(x));
+}
+
+bool StaticShootingSolver::FollowStablePath(const lie::SE3& base, const StaticLoads& loads,
+                                            double max_fraction, Vec6* x_out,
+                                            StaticShootingSummary* summary) {
+  // Natural-parameter continuation from the unloaded rod (W ≡ 0: stable, the energy is a
+  // positive definite quadratic about the rest shape) along loads(μ) = μ · loads, with a secant
+  // predictor; a step is accepted only if it converges on an equilibrium without unstable
+  // directions, otherwise halved. Along an imperfect path (no bifurcation) the stable branch is
+  // connected to μ = 0, and small enough steps follow it through its sharp turn near P_cr.
+  const StaticLoads zero = loads.Scaled(0.0);
+  Vec6 x_a = Vec6::Zero(), x_prev = Vec6::Zero();
+  double mu = 0.0, mu_prev = 0.0, dmu = max_fraction;
+  int steps = 0;
+  while (summary->load_steps + steps < options_.max_load_steps) {
+    const double mu_try = std::min(1.0, mu + dmu);
+    const StaticLoads target = mu_try == 1.0 ? loads : StaticLoads::Blend(zero, loads, mu_try);
+    Vec6 guess = x_a;
+    if (mu > mu_prev) guess += (x_a - x_prev) * ((mu_try - mu) / (mu - mu_prev));
+    ++steps;
+    const double tol =
+        mu_try == 1.0 ? options_.tolerance : std::max(options_.tolerance, kIntermediateTolerance);
+    if (TryLevenbergMarquardt(base, target, tol, &guess, summary) &&
+        IndexAfterSolve(base, target, guess) == 0) {
+      x_prev = x_a;
+      mu_prev = mu;
+      x_a = guess;
+      mu = mu_try;
+      if (mu == 1.0) {
+        *x_out = x_a;
+        summary->stable_path_steps = steps;
+        return true;
+      }
+      dmu = std::min({2.0 * dmu, max_fraction, 1.0 - mu});
+    } else {
+      dmu *= 0.5;
+      if (dmu < options_.min_load_step) break;
+    }
+  }
+  summary->stable_path_steps = steps;
+  return false;
+}
+
+Vec6 StaticShootingSolver::base_wrench_B() const { return scale_.cwiseProduct(x_); }
+
+Vec6 StaticShootingSolver::RigidGuess(const lie::SE3& base, const StaticLoads& loads) const {
+  // Base wrench that balances the loads on the undeformed (rest) shape: a good start for small
+  // loads and exact in the limit of zero load.
+  const int n = static_cast<int>(grid_.size());
+  Vec3 n_W = Vec3::Zero(), m_W = Vec3::Zero();
+  auto add_force = [&](const Vec3& r_B, const Vec3& F_W) {
+    n_W += F_W;
+    m_W += (base.R * r_B).cross(F_W);
+  };
+  for (int i = 0; i + 1 < n; ++i) {
+    const double h = grid_[i + 1] - grid_[i];
+    const Sample& sm = samples_[3 * i + 1];
+    const Vec3 f = TotalDistributedForce_W(loads, {sm.s, sm.mass_per_length});
+    add_force(0.5 * (rest_position_B_[i] + rest_position_B_[i + 1]), h * f);
+  }
+  const Mat3 R_tip = base.R * rest_rotation_B_.back();
+  const SplitWrench tip = TotalTipWrench(loads);
+  add_force(rest_position_B_.back(), tip.dead_W.tail<3>() + R_tip * tip.follower_B.tail<3>());
+  m_W += tip.dead_W.head<3>() + R_tip * tip.follower_B.head<3>();
+  Vec6 W_B;
+  W_B << base.R.transpose() * m_W, base.R.transpose() * n_W;
+  return W_B.cwiseQuotient(scale_);
+}
+
+namespace {
+
+// The 6 × 6 shooting problem in the form ceres::TinySolver expects.
+struct ShootingCost {
+  using Scalar = double;
+  enum { NUM_RESIDUALS = 6, NUM_PARAMETERS = 6 };
+  StaticShootingSolver* solver;
+  const lie::SE3* base;
+  const StaticLoads* loads;
+  int* shots;
+  Mat6* last_jacobian;
+
+  bool operator()(const double* x_ptr, double* r_ptr, double* J_ptr) const {
+    const Eigen::Map<const Vec6> x(x_ptr);
+    Eigen::Map<Vec6> r(r_ptr);
+    ++*shots;
+    if (J_ptr) {
+      Eigen::Map<Mat6> J(J_ptr);
+      Vec6 r_value;
+      J = solver->ResidualJacobianKeepingTangents(*base, *loads, x, &r_value);
+      r = r_value;
+      *last_jacobian = J;
+    } else {
+      r = solver->Residual(*base, *loads, x);
+    }
+    return r.allFinite();
+  }
+};
+
+}  // namespace
+
+bool StaticShootingSolver::TryLevenbergMarquardt(const lie::SE3& base, const StaticLoads& loads,
+                                                 double tolerance, Vec6* x,
+                                                 StaticShootingSummary* summary) {
+  Mat6 J = Mat6::Identity();
+  ShootingCost cost{this, &base, &loads, &summary->shots, &J};
+  ceres::TinySolver<ShootingCost> lm;
+  lm.options.max_num_iterations = options_.max_iterations + 1;  // TinySolver runs n − 1 steps
+  lm.options.cost_threshold = 0.5 * tolerance * tolerance;
+  lm.options.gradient_tolerance = 0.0;  // stop on the residual only
+  lm.options.parameter_tolerance = 1e-15;
+  lm.options.function_tolerance = 0.0;
+  Vec6 xt = *x;
+  const auto& s = lm.Solve(cost, &xt);
+  summary->iterations += s.iterations;
+  // Decide on a residual evaluated here: TinySolver's final cost is not set when the first
+  // evaluation is not finite.
+  const double res = xt.allFinite() ? Residual(base, loads, xt).norm() : NAN;
+  ++summary->shots;
+  if (!std::isfinite(res)) {
+    summary->status = SolveStatus::kNonFinite;
+    return false;
+  }
+  summary->residual = res;
+  *x = xt;
+  if (res < tolerance) {
+    // TinySolver evaluated the Jacobian at the accepted x last; keep it for the next solve.
+    jacobian_ = J;
+    has_jacobian_ = true;
+    return true;
+  }
+  summary->status = SolveStatus::kMaxIterations;
+  return false;
+}
+
+bool StaticShootingSolver::TryQuasiNewton(const lie::SE3& base, const StaticLoads& loads,
+                                          Vec6* x_io, StaticShootingSummary* summary) {
+  // Newton with the last solution's Jacobian, kept current by Broyden's rank-one update. Gives
+  // up (and lets LM take over) as soon as a step fails to halve the residual.
+  Vec6 x = *x_io;
+  Vec6 r;
+  if (state_is_solution_ && SameDistributedLoads(loads, solved_loads_)) {
+    // Only the tip load changed: the stored shot of the previous solution is the shot at x, and
+    // only its tip condition differs. No integration needed.
+    r = StoredShotResidual(loads);
+  } else {
+    r = Residual(base, loads, x);
+    ++summary->shots;
+  }
+  Mat6 J = jacobian_;
+  Eigen::PartialPivLU<Mat6> lu(J);
+  for (int it = 0; it <= options_.max_iterations; ++it) {
+    const double norm = r.norm();
+    if (!std::isfinite(norm)) return false;
+    if (norm < options_.tolerance) {
+      summary->residual = norm;
+      *x_io = x;
+      jacobian_ = J;
+      return true;
+    }
+    if (it == options_.max_iterations) return false;
+    const Vec6 dx = -lu.solve(r);
+    const Vec6 r_new = Residual(base, loads, x + dx);
+    ++summary->shots;
+    ++summary->iterations;
+    if (!(r_new.allFinite() && r_new.norm() < 0.5 * norm)) return false;
+    J += (r_new - r - J * dx) * dx.transpose() / dx.squaredNorm();
+    lu.compute(J);
+    x += dx;
+    r = r_new;
+  }
+  return false;
+}
+
+StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const StaticLoads& loads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  StaticShootingSummary summary;
+  if (!loads.IsValid(nullptr) || !base.R.allFinite() || !base.p.allFinite()) {
+    summary.status = SolveStatus::kNonFinite;  // NaN or Inf in the input: nothing to solve
+    summary.residual = NAN;
+    return summary;
+  }
+
+  // Start from a known solution: the previous one at the same base, else the unloaded rod
+  // (W ≡ 0 is exact at zero load, whatever the rest shape).
+  // (Continuation blends loads, so their tip-load frames must match too.)
+  const bool from_previous = has_solution_ && (solved_base_.R - base.R).norm() == 0.0 &&
+                             (solved_base_.p - base.p).norm() == 0.0 &&
+                             StaticLoads::SameFrames(solved_loads_, loads);
+  summary.warm_started = from_previous;
+  const StaticLoads start = from_previous ? solved_loads_ : loads.Scaled(0.0);
+  const Vec6 x_start = from_previous ? x_ : Vec6::Zero();
+
+  // How far the load moves, as the change of the rigid-body base wrench in units of EI/L and
+  // EI/L² (≈ the load parameter PL²/EI, or the linear-theory rotation in rad). Newton-type
+  // iterations jump between equilibrium branches when this is large, so the load is applied in
+  // increments of at most options_.max_load_increment.
+  const double load_change =
+      (RigidGuess(base, loads) - RigidGuess(base, start)).lpNorm<Eigen::Infinity>();
+  const double max_fraction =
+      load_change > options_.max_load_increment ? options_.max_load_increment / load_change : 1.0;
+
+  Vec6 x = x_start;
+  bool ok = false;
+  bool state_current = false;
+  bool via_quasi_newton = false;
+  if (max_fraction == 1.0) {
+    if (from_previous && has_jacobian_ && options_.reuse_jacobian) {
+      ok = TryQuasiNewton(base, loads, &x, &summary);
+      state_current = ok;
+      via_quasi_newton = ok;
+    }
+    if (!ok) {
+      x = from_previous ? x_ : RigidGuess(base, loads);
+      ok = TryLevenbergMarquardt(base, loads, options_.tolerance, &x, &summary);
+    }
+  }
+
+  if (!ok && (options_.load_stepping || max_fraction < 1.0)) {
+    // Continuation along loads(μ) = start + μ (loads − start), μ: 0 → 1, with a secant predictor,
+    // step halving on failure and doubling on success, never above max_fraction.
+    Vec6 x_a = x_start, x_prev = x_start;
+    double mu = 0.0, mu_prev = 0.0, dmu = max_fraction;
+    int steps = 0;
+    state_current = false;
+    while (steps < options_.max_load_steps) {
+      const double mu_try = std::min(1.0, mu + dmu);
+      const StaticLoads target = mu_try == 1.0 ? loads : StaticLoads::Blend(start, loads, mu_try);
+      Vec6 guess = x_a;
+      if (mu > mu_prev) guess += (x_a - x_prev) * ((mu_try - mu) / (mu - mu_prev));
+      ++steps;
+      // Intermediate equilibria only seed the next step: a looser tolerance is enough.
+      const double tol =
+          mu_try == 1.0 ? options_.tolerance : std::max(options_.tolerance, kIntermediateTolerance);
+      if (TryLevenbergMarquardt(base, target, tol, &guess, &summary)) {
+        x_prev = x_a;
+        mu_prev = mu;
+        x_a = guess;
+        mu = mu_try;
+        if (mu == 1.0) {
+          ok = true;
+          break;
+        }
+        dmu = std::min({2.0 * dmu, max_fraction, 1.0 - mu});
+      } else {
+        if (!options_.load_stepping) break;
+        dmu *= 0.5;
+        if (dmu < options_.min_load_step) break;
+      }
+    }
+    summary.load_steps = steps;
+    x = x_a;
+    if (!ok && summary.status != SolveStatus::kNonFinite)
+      summary.status =
+          options_.load_stepping ? SolveStatus::kLoadSteppingFailed : SolveStatus::kMaxIterations;
+  }
+
+  // Stability (options_.stable_branch): a Newton-type solve converges to whichever equilibrium
+  // is nearest its start, and past a critical load the nearest one can be unstable (a column at
+  // 1.15 P_cr with a small imperfection: the near-straight state beside the start, deflected
+  // against the imperfection). Step control on the size of the correction does not see this —
+  // the unstable root is the one near the predictor — so the converged equilibrium is checked
+  // instead, from Levenberg–Marquardt's last Jacobian shot (taken at the solution). A
+  // quasi-Newton warm re-solve is not checked: it continues the previous solution by steps that
+  // halve the residual, and takes no tangent shot (17 µs; a check would add one, ≈ 53 µs).
+  if (ok && options_.stable_branch && !via_quasi_newton) {
+    summary.stability_index = IndexAfterSolve(base, loads, x);
+    if (summary.stability_index > 0) {
+      Vec6 x_stable = x;
+      const Mat6 J_first = jacobian_;  // d r/d x at x, for the next warm start if we keep x
+      if (FollowStablePath(base, loads, max_fraction, &x_stable, &summary)) {
+        x = x_stable;
+        summary.stability_index = 0;
+      } else {
+        jacobian_ = J_first;
+      }
+      state_current = false;
+    }
+  }
+
+  if (!state_current) {
+    const Vec6 r = Residual(base, loads, x);
+    ++summary.shots;
+    summary.residual = r.norm();
+    if (!r.allFinite()) ok = false;
+    if (!r.allFinite()) summary.status = SolveStatus::kNonFinite;
+  }
+  if (ok) {
+    state_is_solution_ = true;
+    summary.status = SolveStatus::kConverged;
+    x_ = x;
+    solved_base_ = base;
+    solved_loads_ = loads;
+    has_solution_ = true;
+  }
+  summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return summary;
+}
+
+}  // namespace cosserat
