@@ -78,7 +78,7 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
                   sp.mass(5, 5), points[q]};
   }
   auto f_at = [&](const Sample& smp) -> Vec3 {
-    return TotalDistributedForce_W(loads, {smp.s, smp.rhoA});
+    return TotalDistributedForce_W(loads, {smp.s, 1.0, smp.rhoA});
   };
   // The stage matrix A0 at a primal state with strain xi (see the file comment).
   auto stage = [&](const Sample& smp, const Primal& y, const Vec6& xi) {

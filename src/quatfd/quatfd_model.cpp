@@ -132,7 +132,6 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   inv_inertia_.resize(N);
   mass_.assign(N + 1, 0.0);
   vertex_weight_.assign(N + 1, 0.0);
-  segment_site_.reserve(N);
   for (int i = 0; i < N; ++i) {
     const double ds = s_[i + 1] - s_[i], mid = 0.5 * (s_[i] + s_[i + 1]);
     const SectionProperties sp = PrincipalAxesSectionAt(rod, mid, actuation);
@@ -143,7 +142,6 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
     c.rest = rod.RestStrainAt(mid).tail<3>();
     rotation_[i].inertia = sp.mass.diagonal().head<3>() * ds;
     inv_inertia_[i] = rotation_[i].inertia.cwiseInverse();
-    segment_site_.push_back({mid, sp.mass(3, 3)});
     const double half_mass = 0.5 * sp.mass(3, 3) * ds;
     mass_[i] += half_mass;
     mass_[i + 1] += half_mass;
@@ -198,6 +196,7 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   const double EI = std::max(s0.stiffness(0, 0), s0.stiffness(1, 1));
   moment_scale_ = EI / length();
   force_scale_ = EI / (length() * length());
+  set_loads(StaticLoads{});  // unloaded until the caller sets loads
 }
 
 void QuatFdModel::RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const {
@@ -230,14 +229,11 @@ void QuatFdModel::RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::Vec
 void QuatFdModel::set_loads(const StaticLoads& loads) {
   loads_ = loads;
   tip_wrench_ = TotalTipWrench(loads);
-  // Each segment's distributed load, sampled at its midpoint, goes half to each end vertex.
+  // The distributed loads lumped on each vertex: its dual length and lumped mass.
   const int N = layout_.segments;
-  vertex_force_W_.assign(N + 1, Vec3::Zero());
-  for (int i = 0; i < N; ++i) {
-    const Vec3 half = 0.5 * segment_[i].ds * TotalDistributedForce_W(loads, segment_site_[i]);
-    vertex_force_W_[i] += half;
-    vertex_force_W_[i + 1] += half;
-  }
+  vertex_force_W_.resize(N + 1);
+  for (int n = 0; n <= N; ++n)
+    vertex_force_W_[n] = TotalDistributedForce_W(loads, {s_[n], vertex_weight_[n], mass_[n]});
 }
 
 template <typename T>

@@ -242,7 +242,7 @@ Vec6 EversionRobot::PredictBaseWrench(double length, const StaticLoads& loads) c
   const Vec3 step = R_tip.col(2) * dL;  // the new (or removed) material along the tip tangent
   const double s_mid = std::min(std::max(0.0, solver_length_ + 0.5 * dL), design_.max_length);
   const double rho_A = full_profile_->At(s_mid, actuation()).mass(5, 5);
-  const Vec3 dF = TotalDistributedForce_W(loads, {s_mid, rho_A}) * dL;
+  const Vec3 dF = TotalDistributedForce_W(loads, {s_mid, 1.0, rho_A}) * dL;
   const SplitWrench tip_wrench = TotalTipWrench(loads);
   const Vec3 tip_force_W = tip_wrench.dead_W.tail<3>() + R_tip * tip_wrench.follower_B.tail<3>();
   Vec6 W;

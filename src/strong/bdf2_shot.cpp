@@ -2,6 +2,7 @@
 // strain and twist (Till, Aloi & Rucker 2019, eqs. 14-29), integrated by the explicit spatial
 // scheme (spatial_scheme.hpp) with the exact tangent of the discrete map. The solve that drives
 // its residual to zero is in bdf2_stepper.cpp.
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <array>
 #include <cmath>
@@ -323,7 +324,7 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
   y.R = base_now_.R;
   const StaticLoads& loads = in.loads;
   auto f_at = [&](const Sample& smp) -> Vec3 {
-    return TotalDistributedForce_W(loads, {smp.s, smp.mass(5)});
+    return TotalDistributedForce_W(loads, {smp.s, 1.0, smp.mass(5)});
   };
   if (!statics) PrepareHistory(c);
   auto record_node = [&](int i, const Vec6& xi) {
@@ -395,9 +396,9 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
     static_assert(std::tuple_size<std::decay_t<decltype(ys)>>::value == S);
     DynTangent dk[S];
     for (int j = 0; j < S; ++j)
-      dk[j] = TangentDerivative(samples_[smp + T.sample[j]], *ys[j],
-                                j == 0 ? dy : Axpy(dy, T.step[j] * h, dk[j - 1]), strain_now_[q + j],
-                                c.c0, statics, tendons_.empty() ? nullptr : &H_stage[j]);
+      dk[j] = TangentDerivative(
+          samples_[smp + T.sample[j]], *ys[j], j == 0 ? dy : Axpy(dy, T.step[j] * h, dk[j - 1]),
+          strain_now_[q + j], c.c0, statics, tendons_.empty() ? nullptr : &H_stage[j]);
     RkUpdate<S>(h, T.weight, dk, &dy);
   };
   // Segment by segment with the explicit scheme's S stages (spatial_scheme.hpp), written out

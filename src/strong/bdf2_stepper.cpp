@@ -402,7 +402,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
     // turns with it.
     const SplitWrench tip = TotalTipWrench(input.loads, options_.tip_mass);
     const Vec3 total =
-        model_.length * TotalDistributedForce_W(input.loads, {samples_[1].s, samples_[1].mass(5)}) +
+        model_.length * TotalDistributedForce_W(input.loads, {samples_[1].s, 1.0, samples_[1].mass(5)}) +
         tip.dead_W.tail<3>() + input.base_pose.R * tip.follower_B.tail<3>();
     Vec6 W;
     W << Vec3::Zero(), input.base_pose.R.transpose() * total;
@@ -505,7 +505,7 @@ RodEnergy Bdf2ShootingStepper::Energy(const StaticLoads& loads) const {
     const Vec6 dxi = run_.strain1[q] - smp.rest_strain;
     e.kinetic += w * 0.5 * run_.twist1[q].dot(smp.mass.cwiseProduct(run_.twist1[q]));
     e.elastic += w * 0.5 * dxi.dot(smp.stiffness.cwiseProduct(dxi));
-    e.gravity += w * TotalDistributedPotential(loads, {smp.s, smp.mass(5)}, run_.position1[q]);
+    e.gravity += w * TotalDistributedPotential(loads, {smp.s, 1.0, smp.mass(5)}, run_.position1[q]);
   });
   return e;
 }

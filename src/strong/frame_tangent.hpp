@@ -3,6 +3,7 @@
 // each) of the quantities a shot carries, with the rotation R stored as its three columns
 // d(R e_j). Used to propagate exact Jacobians through RK4.
 
+#include <Eigen/Geometry>
 #include <array>
 
 #include "cosserat/lie/types.hpp"

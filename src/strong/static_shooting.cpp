@@ -1,5 +1,6 @@
 #include "cosserat/strong/static_shooting.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
 #include <array>
@@ -247,7 +248,7 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
     if (seed && seed->start) dy = *seed->start;
   }
   auto f_at = [&](const Sample& smp) -> Vec3 {
-    return TotalDistributedForce_W(loads, {smp.s, smp.mass_per_length});
+    return TotalDistributedForce_W(loads, {smp.s, 1.0, smp.mass_per_length});
   };
   auto record_node = [&](int i, const Vec6& xi) {
     record->position_W[i] = y.p;

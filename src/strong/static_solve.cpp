@@ -114,7 +114,7 @@ Vec6 StaticShootingSolver::RigidGuess(const lie::SE3& base, const StaticLoads& l
   for (int i = 0; i + 1 < n; ++i) {
     const double h = grid_[i + 1] - grid_[i];
     const Sample& sm = samples_[3 * i + 1];
-    const Vec3 f = TotalDistributedForce_W(loads, {sm.s, sm.mass_per_length});
+    const Vec3 f = TotalDistributedForce_W(loads, {sm.s, 1.0, sm.mass_per_length});
     add_force(0.5 * (rest_position_B_[i] + rest_position_B_[i + 1]), h * f);
   }
   const Mat3 R_tip = base.R * rest_rotation_B_.back();

@@ -11,12 +11,7 @@ class DistributedForce final : public Load {
  public:
   /// \param[in] force_W force per unit length, world frame, N/m
   explicit DistributedForce(const Vec3& force_W) : f_W_(force_W) {}
-  Vec3 DistributedForce_W(const LoadSite& site) const override {
-    (void)site;
-    return f_W_;
-  }
-  /// Potential energy per unit length of a section at p_W (J/m): −f · p.
-  double PotentialPerLength(const Vec3& p_W) const { return -f_W_.dot(p_W); }
+  Vec3 DistributedForce_W(const LoadSite& site) const override { return site.length * f_W_; }
 
  private:
   Vec3 f_W_;

@@ -10,17 +10,11 @@ class Gravity final : public Load {
  public:
   /// \param[in] acceleration_W acceleration of gravity, world frame, m/s²
   explicit Gravity(const Vec3& acceleration_W) : g_W_(acceleration_W) {}
-  Vec3 DistributedForce_W(const LoadSite& site) const override {
-    return site.mass_per_length * g_W_;
-  }
+  Vec3 DistributedForce_W(const LoadSite& site) const override { return site.mass * g_W_; }
   SplitWrench TipWrench(double tip_mass) const override {
     SplitWrench w;
     w.dead_W.tail<3>() = tip_mass * g_W_;
     return w;
-  }
-  /// Potential energy per unit length of a section at p_W (J/m): −ρ A g · p.
-  double PotentialPerLength(const LoadSite& site, const Vec3& p_W) const {
-    return -site.mass_per_length * g_W_.dot(p_W);
   }
 
  private:

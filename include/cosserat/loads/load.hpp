@@ -13,10 +13,13 @@ namespace cosserat {
 /// fixed in the section's body frame and turning with it.
 enum class LoadFrame { kWorld, kBody };
 
-/// The section of the rod a distributed load acts on.
+/// The piece of rod a distributed load acts on: `length` metres around s with `mass` kilograms.
+/// A solver that wants the load per unit length asks for length 1 m with mass ρA; one that lumps
+/// the load on a vertex asks for the vertex's dual length and lumped mass.
 struct LoadSite {
-  double s = 0.0;                ///< arc length, m
-  double mass_per_length = 0.0;  ///< ρ A, kg/m
+  double s = 0.0;       ///< arc length, m
+  double length = 1.0;  ///< m
+  double mass = 0.0;    ///< kg on that length
 };
 
 /// A wrench [m; n] split by the frame it is fixed in: a dead part in the world frame and a
@@ -31,7 +34,7 @@ struct SplitWrench {
 class Load {
  public:
   virtual ~Load() = default;
-  /// Dead force per unit length at the site, world frame, N/m. Zero for point loads.
+  /// Dead force on the site, world frame, N (N/m for a site of unit length). Zero for point loads.
   virtual Vec3 DistributedForce_W(const LoadSite& site) const {
     (void)site;
     return Vec3::Zero();

@@ -11,7 +11,7 @@
 
 namespace cosserat {
 
-/// Σ dead force per unit length of every load at the site, world frame, N/m.
+/// Σ dead force of every load on the site, world frame, N (N/m for a site of unit length).
 inline Vec3 TotalDistributedForce_W(const StaticLoads& loads, const LoadSite& site) {
   return Gravity(loads.gravity_W).DistributedForce_W(site) +
          DistributedForce(loads.distributed_force_W).DistributedForce_W(site);
@@ -37,7 +37,7 @@ inline Vec6 TipWrenchInBody(const SplitWrench& w, const Mat3& R_WB) {
   return out;
 }
 
-/// Potential energy per unit length of the distributed dead loads at a section at p_W, J/m.
+/// Potential energy of the distributed dead loads on the site at p_W, J (J/m for unit length).
 inline double TotalDistributedPotential(const StaticLoads& loads, const LoadSite& site,
                                         const Vec3& p_W) {
   return -TotalDistributedForce_W(loads, site).dot(p_W);

@@ -224,7 +224,6 @@ class QuatFdModel {
   StaticLoads loads_;
   SplitWrench tip_wrench_;           ///< loads_ on the tip (dead: world, follower: tip frame)
   std::vector<Vec3> vertex_force_W_;  ///< distributed loads lumped on each vertex, world, N
-  std::vector<LoadSite> segment_site_;  ///< per segment: its midpoint and ρ A, for the loads
   std::vector<double> s_;                             ///< vertices s_n, m
   std::vector<double> mass_;                          ///< lumped vertex masses m_n, kg
   std::vector<double> vertex_weight_;                 ///< dual lengths w_n, m
