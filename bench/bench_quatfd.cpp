@@ -1,4 +1,4 @@
-// Quaternion finite-difference rod (issue 4, seed 000): the two benchmark problems of the seed
+// Quaternion finite-difference rod (Lang & Linn 2009): the two benchmark problems of that paper
 // (rubber rod, steel string; gravity, T = 10 s, relative tolerance 1e-6) with both integrators,
 // and the cost of f, of the Jacobian and of one Rosenbrock step against the number of segments.
 //

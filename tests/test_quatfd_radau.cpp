@@ -124,7 +124,7 @@ TEST(QuatFdRadau, AgreesWithSdirkAndRosenbrockAtTightTolerance) {
 TEST(QuatFdRadau, ConstraintStaysOnTheSphere) {
   // Benchmark (a) at the default tolerances over 2 s, in 0.1 s output intervals (Advance
   // continues with its polynomial and step): after each step's projection | |p| − 1 | is
-  // round-off (1e-10, the acceptance of issue 4); the drift the projection undoes is of the
+  // round-off (1e-10, the acceptance); the drift the projection undoes is of the
   // size of the local error, non-zero and far below 1e-4.
   FallingRod s(10);
   RadauIntegrator integ(s.model);

@@ -96,7 +96,7 @@ TEST(QuatFdSdirk, AgreesWithRosenbrockAtTightTolerance) {
   EXPECT_LT((tips[0] - tips[1]).norm(), 1e-7);
 }
 
-// Benchmark (b) of issue 4 (bench/quatfd_rods.hpp SteelString, bench_quatfd.cpp): steel
+// Benchmark (b) (bench/quatfd_rods.hpp SteelString, bench_quatfd.cpp): steel
 // string, 20 segments, top pinned, released horizontal, gravity, velocity_abs_tol at its default.
 QuatFdModel SteelStringModel() {
   Material m = Material::FromShearModulus(200e9, 80e9, 7850);
@@ -146,7 +146,7 @@ TEST(QuatFdSdirk, SteelStringTipConvergesWithTheTolerance) {
 
 TEST(QuatFdSdirk, ConstraintStaysOnTheSphere) {
   // Benchmark (a) at the default tolerances over 2 s: after each step's projection
-  // | |p| − 1 | is round-off (1e-10, the acceptance of issue 4); the drift the projection undoes
+  // | |p| − 1 | is round-off (1e-10, the acceptance); the drift the projection undoes
   // is of the size of the local error, non-zero.
   FallingRod s(10);
   SdirkIntegrator integ(s.model);

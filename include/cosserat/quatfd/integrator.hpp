@@ -78,8 +78,8 @@ double RotationErrorNorm(const IntegratorOptions& options, const QuatFdLayout& l
 void AcceptStep(const QuatFdModel& model, const IntegratorOptions& options, double h, bool last,
                 double t_end, double* t, Eigen::Ref<Eigen::VectorXd> y, IntegratorStats* stats);
 
-/// y' = [v; f(q, v)] for y = [q; v] (the index-1 form, seed 000 eq. 4) into out, counted in
-/// stats: the right-hand side every integrator here evaluates.
+/// y' = [v; f(q, v)] for y = [q; v] (the index-1 form, Lang & Linn 2009, eq. 4) into out, counted
+/// in stats: the right-hand side every integrator here evaluates.
 inline void FirstOrderRhs(const QuatFdModel& model, const Eigen::Ref<const Eigen::VectorXd>& y,
                           Eigen::Ref<Eigen::VectorXd> out, IntegratorStats* stats) {
   const Eigen::Index n = model.size();
