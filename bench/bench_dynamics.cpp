@@ -128,8 +128,8 @@ void CompareTo(benchmark::State& state, int ref_nodes, double ref_dt, int every_
 
 void BM_PeerRelease(benchmark::State& state) { PeerRelease(state, SpatialScheme::kRk4); }
 void BM_PeerReleaseHeun(benchmark::State& state) { PeerRelease(state, SpatialScheme::kHeun); }
-// Each step's fastest of 5 passes: the p99 / median of the work itself (BENCHMARKS.md, "Where
-// the targets stand").
+// Each step's fastest of 5 passes: the p99 / median of the work itself (docs/performance.md,
+// "The tail").
 void BM_PeerReleaseHeunFastestOf5(benchmark::State& state) {
   PeerRelease(state, SpatialScheme::kHeun, 5);
 }

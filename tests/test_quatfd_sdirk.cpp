@@ -1,7 +1,7 @@
 // The implicit SDIRK4 integrator of the quaternion-FD rod (sdirk.hpp) against the truth: its
 // fixed-step convergence order, the Rosenbrock integrator at tight tolerance, the unit-quaternion
 // constraint, and a stable step map at the step sizes where the Rosenbrock step map is not
-// (BENCHMARKS.md, "What limits the step"; QuatFdDynamics.StepLimitIsTheRosenbrockStepMapNotTheOde).
+// (docs/performance.md; QuatFdDynamics.StepLimitIsTheRosenbrockStepMapNotTheOde).
 
 #include <gtest/gtest.h>
 
@@ -220,7 +220,7 @@ TEST(QuatFdSdirk, StepMapIsStableWhereRosenbrocksIsNot) {
   EXPECT_LT(rho_s20, 1.0 + 1e-3);
 
   // And fixed 10 ms steps for 1 s stay bounded and dissipate (Rosenbrock diverges within 4 at
-  // 5 ms, BENCHMARKS.md).
+  // 5 ms, docs/performance.md).
   Eigen::VectorXd out(2 * n), err(2 * n);
   const double e0 = s.model.Energy(s.q, s.v).total();
   SdirkIntegrator fixed(s.model);

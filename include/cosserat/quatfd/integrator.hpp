@@ -66,7 +66,7 @@ double ErrorNorm(const IntegratorOptions& options, int n,
 /// rel_tol, and the angular-velocity error δω (the first variation of ω = 2 Im(p̄ ṗ)/|p|², rad/s)
 /// against velocity_abs_tol + rel_tol |ω_k| (ω of y_new). The gauge — the radial parts p·δp and
 /// p·δṗ, which the projection discards and neither R(p) nor ω sees — is not measured
-/// (RadauErrorMeasure::kPhysical, radau.hpp; BENCHMARKS.md "What sets the Radau step size").
+/// (RadauErrorMeasure::kPhysical, radau.hpp; docs/performance.md).
 double RotationErrorNorm(const IntegratorOptions& options, const QuatFdLayout& layout,
                          const Eigen::Ref<const Eigen::VectorXd>& y,
                          const Eigen::Ref<const Eigen::VectorXd>& y_new,
