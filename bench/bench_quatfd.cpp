@@ -152,7 +152,7 @@ BENCHMARK(BM_RubberRod_RadauMeasure)->Apply(MeasureSweep);
 BENCHMARK(BM_SteelString_RadauMeasure)->Apply(MeasureSweep);
 // Stiff Baumgarte instead of the projection (α = β = 1e3 1/s for (a), 1e4 for (b)): makes the
 // |p| direction stiff, which removes one of the Rosenbrock step-map instabilities
-// (bench/quatfd_stability.cpp) but not the others; kept to document the effect.
+// (bench/diagnostics/quatfd_stability.cpp) but not the others; kept to document the effect.
 BENCHMARK(BM_RubberRod_Rosenbrock_Baumgarte)
     ->Arg(10)
     ->Arg(40)
