@@ -1,5 +1,5 @@
 #pragma once
-// `cosserat solve` for "formulation": "quaternion-fd" (seed 000): statics by Newton on the
+// `cosserat solve` for "formulation": "quaternion-fd" (Lang & Linn 2009): statics by Newton on the
 // discrete equilibrium, dynamics with the banded Rosenbrock integrator. Same result JSON as the
 // SE(3) path.
 

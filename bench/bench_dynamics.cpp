@@ -1,4 +1,4 @@
-// Peer problem of issue 3 (also examples/cantilever_release.json): a steel cantilever
+// The peer problem (also examples/cantilever_release.json): a steel cantilever
 // (E 200 GPa, G 80 GPa, ρ 8000 kg/m³, r = 1 mm, L = 0.5 m, 40 grid points, no damping), clamped
 // along +z, gravity 9.81 m/s² along −x, held in equilibrium under an extra tip force equal to
 // the weight of 0.02 kg and released at t = 0; dt = 2 ms for 25 s.
@@ -95,7 +95,7 @@ void PeerRelease(benchmark::State& state, SpatialScheme scheme, int passes = 1) 
 }
 
 // The tip trajectory against a reference with 4× the grid points (same dt), with 4× the grid
-// and dt/2, and with 4× the grid and dt/8 (the issue's reference). Single shooting cannot take
+// and dt/2, and with 4× the grid and dt/8 (the fine reference). Single shooting cannot take
 // dt/8 on this problem: the shot's bending exponent λL ≈ sqrt(5.3/(ω1 dt)) reaches 17 at
 // dt = 0.5 ms and 24 at 0.25 ms, and Newton diverges in the first steps after release; the dt/8
 // reference therefore shoots in 8 pieces (Bdf2Options::shooting_segments, same discrete
@@ -128,8 +128,8 @@ void CompareTo(benchmark::State& state, int ref_nodes, double ref_dt, int every_
 
 void BM_PeerRelease(benchmark::State& state) { PeerRelease(state, SpatialScheme::kRk4); }
 void BM_PeerReleaseHeun(benchmark::State& state) { PeerRelease(state, SpatialScheme::kHeun); }
-// Each step's fastest of 5 passes: the p99 / median of the work itself (BENCHMARKS.md, "Where
-// the targets stand").
+// Each step's fastest of 5 passes: the p99 / median of the work itself (docs/performance.md,
+// "The tail").
 void BM_PeerReleaseHeunFastestOf5(benchmark::State& state) {
   PeerRelease(state, SpatialScheme::kHeun, 5);
 }
@@ -146,7 +146,7 @@ void BM_PeerAccuracyHeunGrid4x(benchmark::State& state) {
 // dt/2 and 4× the grid at once: every 2nd reference frame is every frame of the 2 ms run.
 void BM_PeerAccuracyDtHalfGrid4x(benchmark::State& state) { CompareTo(state, 160, 1e-3, 1, 2); }
 
-// The issue's reference: dt/8 and 4× the grid, 8 shooting pieces (about a minute).
+// The fine reference: dt/8 and 4× the grid, 8 shooting pieces (about a minute).
 void BM_PeerAccuracyDt8Grid4x(benchmark::State& state) { CompareTo(state, 160, 2.5e-4, 1, 8, 8); }
 void BM_PeerAccuracyHeunDt8Grid4x(benchmark::State& state) {
   CompareTo(state, 160, 2.5e-4, 1, 8, 8, SpatialScheme::kHeun);

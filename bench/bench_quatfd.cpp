@@ -1,4 +1,4 @@
-// Quaternion finite-difference rod (issue 4, seed 000): the two benchmark problems of the seed
+// Quaternion finite-difference rod (Lang & Linn 2009): the two benchmark problems of that paper
 // (rubber rod, steel string; gravity, T = 10 s, relative tolerance 1e-6) with both integrators,
 // and the cost of f, of the Jacobian and of one Rosenbrock step against the number of segments.
 //
@@ -28,7 +28,8 @@ using bench::Horizontal;
 using bench::RubberRod;
 using bench::SteelString;
 
-/// baumgarte > 0: α = β = baumgarte (1/s) and no projection (a diagnostic variant, BENCHMARKS.md).
+/// baumgarte > 0: α = β = baumgarte (1/s) and no projection (a diagnostic variant,
+/// docs/performance.md).
 /// measure: how Radau measures its error estimate (radau.hpp; ignored by the others).
 void Run(benchmark::State& state, const RodModel& rod, EndCondition end, int segments,
          IntegratorKind kind, double baumgarte = 0.0, double tolerance = 1e-6,
@@ -129,7 +130,7 @@ BENCHMARK(BM_SteelString_Radau)->Arg(20)->Unit(benchmark::kMillisecond)->Iterati
 // Radau with the error measured in the physical directions (RadauErrorMeasure::kPhysical:
 // rotation and ω errors in rad, rad/s, the |p| gauge not measured), against the tolerance
 // rel_tol = abs_tol = 10^-k (k = range(1)); range(0): 0 the component measure, 1 the physical one
-// (the default). BENCHMARKS.md, "What sets the Radau step size".
+// (the default). docs/performance.md, "Radau IIA: what sets the step size".
 void BM_RubberRod_RadauMeasure(benchmark::State& s) {
   Run(s, RubberRod(), EndCondition::kClamped, 10, IntegratorKind::kRadau, 0.0,
       std::pow(10.0, -static_cast<double>(s.range(1))),
@@ -141,7 +142,8 @@ void BM_SteelString_RadauMeasure(benchmark::State& s) {
       s.range(0) ? RadauErrorMeasure::kPhysical : RadauErrorMeasure::kComponents);
 }
 // Both measures at 1e-5 … 1e-7; the loose tolerances 1e-2 and 1e-3 (physical measure only) show
-// the floor that Newton's convergence sets on the step (BENCHMARKS.md, "Where the targets stand").
+// the floor that Newton's convergence sets on the step (docs/performance.md, "Why the speed
+// targets were out of reach").
 void MeasureSweep(benchmark::internal::Benchmark* b) {
   b->ArgsProduct({{0, 1}, {5, 6, 7}})->Args({1, 2})->Args({1, 3});
   b->Unit(benchmark::kMillisecond)->Iterations(1);
@@ -150,7 +152,7 @@ BENCHMARK(BM_RubberRod_RadauMeasure)->Apply(MeasureSweep);
 BENCHMARK(BM_SteelString_RadauMeasure)->Apply(MeasureSweep);
 // Stiff Baumgarte instead of the projection (α = β = 1e3 1/s for (a), 1e4 for (b)): makes the
 // |p| direction stiff, which removes one of the Rosenbrock step-map instabilities
-// (bench/quatfd_stability.cpp) but not the others; kept to document the effect.
+// (bench/diagnostics/quatfd_stability.cpp) but not the others; kept to document the effect.
 BENCHMARK(BM_RubberRod_Rosenbrock_Baumgarte)
     ->Arg(10)
     ->Arg(40)

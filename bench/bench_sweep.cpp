@@ -1,4 +1,4 @@
-// Workspace sweep of a tendon robot (issue 6): 1 000 static solves at 41 grid points over a
+// Workspace sweep of a tendon robot: 1 000 static solves at 41 grid points over a
 // 40 × 25 grid of two tendon tensions, on 1 and on 2 threads.
 //
 // Run: build/bench/bench_sweep

@@ -1,5 +1,5 @@
 #pragma once
-// The peer problem of issue 3 (bench_dynamics.cpp, examples/cantilever_release.json): a steel
+// The peer problem (bench_dynamics.cpp, examples/cantilever_release.json): a steel
 // cantilever, E = 200 GPa, G = 80 GPa, ρ = 8000 kg/m³, r = 1 mm, L = 0.5 m, clamped along +z,
 // gravity 9.81 m/s² along −x, held in equilibrium under an extra tip force equal to the weight
 // of 0.02 kg and released at t = 0.

@@ -1,5 +1,5 @@
 // Design chart for a soft joint: the critical axial load of a column with one soft band
-// (EI → α EI over 5 % of the length, seed 003's constrictive band), against the band's position
+// (EI → α EI over 5 % of the length, a constrictive band), against the band's position
 // and its factor α, for a cantilever and a pinned–pinned column. Also where the mode bends most.
 //
 //   build/examples/buckling_sweep [notebooks-data]

@@ -45,10 +45,10 @@ int main(int argc, char** argv) {
     csv << (bands ? "bands" : "plain") << ',' << r.min_radius << ',' << r.s << ',' << r.load_factor
         << ',' << r.limit << '\n';
   }
-  std::cout << "(kink onset: R = EI(s)/M_w(s); seed 003's experiments, which bend past the onset by"
-               " wrinkling, report 35 mm plain and 25 mm with bands)\n";
+  std::cout << "(kink onset: R = EI(s)/M_w(s); the experiments of Suulker et al. 2026, which bend"
+               " past the onset by wrinkling, report 35 mm plain and 25 mm with bands)\n";
 
-  // Layer jamming (seed 003, Do et al. 2023): the same tube without bands, its proximal 2/3
+  // Layer jamming (Do et al. 2023): the same tube without bands, its proximal 2/3
   // (0–0.4 m) jammed to 4 times the tube's EI (E_ℓ I_ℓ = 3 E_eff(p) I). At a given moment the
   // compliant part bends exactly as much as before, so the kink-limited radius does not change;
   // what jamming changes is where a given turn of the tip is made. Compared at the same turn: the

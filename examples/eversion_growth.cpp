@@ -12,7 +12,7 @@
 // growing at a few kPa): r = 25 mm, t = 75 µm, ρ = 920 kg/m³, ν = 0.45, p = 3 kPa. Effective
 // wall modulus E_eff(p) = 100 MPa + 10⁴ p (LDPE film E ≈ 0.1–0.3 GPa; the pressure slope is
 // illustrative, Suulker et al. 2026 fit such a law from tip-deflection tests). Bands: halve the
-// diameter with α = 0.36 (seed 003, Suulker et al. 2026), 20 mm wide every 0.3 m.
+// diameter with α = 0.36 (Suulker et al. 2026), 20 mm wide every 0.3 m.
 #include <sys/stat.h>
 
 #include <cerrno>

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""The peer release (issue 3) stepped from Python, as a controller or a notebook would: load the
-problem file, settle at rest under the preload, release, step, read the tip.
+"""The peer release (examples/cantilever_release.json) stepped from Python, as a controller or a
+notebook would: load the problem file, settle at rest under the preload, release, step, read
+the tip.
 
     PYTHONPATH=build/python /usr/bin/python3 examples/release_from_python.py [seconds] [--heun] [--plot out.png]
 

@@ -120,7 +120,7 @@ class Dynamics(unittest.TestCase):
         # A small tip load released, no gravity, no damping: the tip swings at the first
         # cantilever frequency (beta1 L = 1.8751). BDF2 at dt = 1 ms shifts it by O((w dt)^2)
         # ~ 1e-3 (w dt = 0.035), the wire's shear by ~(r/L)^2; measured -0.25 % over the three
-        # periods in 0.6 s. The issue's 1 %.
+        # periods in 0.6 s. The acceptance: 1 %.
         p = wire("dynamics", {"dynamics": {"dt": 1e-3, "duration": 1.0,
                                            "initial_loads": {"tip_force": [-1e-3, 0, 0]}}})
         stepper = cosserat.Stepper(p)
@@ -149,7 +149,7 @@ class Dynamics(unittest.TestCase):
         rest = stepper.tip_position()
         for _ in range(50):
             self.assertTrue(stepper.step(loads).converged)
-        # A rod at rest in its equilibrium stays there (issue 3: drift below 1e-10 L).
+        # A rod at rest in its equilibrium stays there (drift below 1e-10 L).
         self.assertLess(np.linalg.norm(stepper.tip_position() - rest), 1e-10 * L)
         # Released from a save point, the same steps give the same state, bit for bit.
         saved = stepper.save()

@@ -1,5 +1,5 @@
 #pragma once
-// Shared set-up of the quaternion-FD integrator tests: benchmark (a) of issue 4
+// Shared set-up of the quaternion-FD integrator tests: benchmark (a), the rubber rod
 // (bench/quatfd_rods.hpp) released from rest under gravity, tight tolerances, and the failure
 // statuses every error-controlled integrator must give.
 #include <gtest/gtest.h>

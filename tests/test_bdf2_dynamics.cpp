@@ -370,7 +370,7 @@ TEST(Bdf2Dynamics, ShootingJacobianMatchesFiniteDifferences) {
 namespace cosserat {
 namespace {
 
-// A free rod in free space (seed 002 eq. 29, which the seed leaves as future work) hit by an
+// A free rod in free space (FD notes 2025, eq. 29, left there as future work) hit by an
 // oblique tip impulse F·dt, then left alone.
 struct FreeRodAfterImpulse {
   Bdf2Options opt;
@@ -616,7 +616,7 @@ TEST(Bdf2Dynamics, ASidewaysKickAfterAPlanarSwingNeedsFewExactJacobians) {
 // which BDF2 at dt = 2 ms turns by 1–1.6 rad per step and damps by 0.9–0.5 per step. No
 // polynomial extrapolates them, so every one of the first ~60 steps started from first residuals
 // of 0.01–5 and took 5–11 shots; the predictor's recurrence candidate (sequence_predictor.hpp)
-// holds them from about the 25th step on. Peer problem of issue 3 (Heun in s, as its benchmark).
+// holds them from about the 25th step on. The peer problem (Heun in s, as its benchmark).
 TEST(Bdf2Dynamics, FewStepsAfterAReleaseTakeFiveShotsOrMore) {
   Bdf2Options opt;
   opt.spatial_scheme = SpatialScheme::kHeun;

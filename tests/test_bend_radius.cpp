@@ -1,6 +1,6 @@
 // Minimum bend radius of an eversion robot against the closed form: under a growing pure tip
 // moment the body first kinks where M reaches the wrinkling moment M_w(s) = π p r(s)³/2, and its
-// radius there is EI(s)/M_w(s). With seed 003's bands (EI = α E_eff I(s), I and M_w both ∝ r³)
+// radius there is EI(s)/M_w(s). With bands (EI = α E_eff I(s), I and M_w both ∝ r³)
 // that is α times the plain tube's: bands give the tighter bend, as in the experiments.
 #include <gtest/gtest.h>
 
@@ -59,7 +59,7 @@ TEST(BendRadius, ActuationLimitWhenTheLoadStaysBelowTheKink) {
   EXPECT_EQ(a.load_factor, 1.0);
 }
 
-// Layer jamming (seed 003, Do et al. 2023): a vine with its proximal half jammed to α = 4 times
+// Layer jamming (Do et al. 2023): a vine with its proximal half jammed to α = 4 times
 // the tube's EI (E_ℓ I_ℓ = 3 EI_tube). Under a pure tip moment M the curvature is M/EI(s) section
 // by section (the moment is uniform; the pressure only pre-stretches the wall): jamming does not
 // change the compliant half's radius at a given moment, so the kink-limited radius (at M = M_w,

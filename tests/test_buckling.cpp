@@ -334,7 +334,7 @@ TEST(Buckling, PostBuckledBranchIsStable) {
   EXPECT_EQ(solver.StabilityIndex(lie::SE3{}, loads, straight), 2);
 }
 
-// A soft band (α = 0.1, the seed's constrictive band) localises the buckle: the mode's curvature
+// A soft band (α = 0.1, a constrictive band) localises the buckle: the mode's curvature
 // peaks inside the band, and the column is weaker than the uniform one.
 TEST(Buckling, SoftBandLocalisesTheMode) {
   SlenderRod rod;

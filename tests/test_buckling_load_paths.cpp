@@ -74,8 +74,8 @@ TEST(BucklingLoadPaths, TendonTensionNeverBucklesTheRod) {
   }
 }
 
-// An inflated beam (seed 003: EI = E_eff(p) I, E_eff affine in p) carrying a dead axial load P
-// as a cantilever stands while π² E_eff(p) I/(4L²) > P: the lowest pressure is
+// An inflated beam (Suulker et al. 2026: EI = E_eff(p) I, E_eff affine in p) carrying a dead axial
+// load P as a cantilever stands while π² E_eff(p) I/(4L²) > P: the lowest pressure is
 // p_cr = (4 P L²/(π² I) − E0)/k. Found by following a pressure drop from 40 kPa.
 // Model difference: shear and extension lower the rod's critical load by
 // ε ≈ P/(κGA) − P/(EA) (test_buckling.cpp), so E_eff(p_cr) is higher by (1 + ε) and

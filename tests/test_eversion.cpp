@@ -1,4 +1,4 @@
-// Eversion (vine) robots (issue 5, item 4): pressure stiffening, band localisation, growth in free
+// Eversion (vine) robots: pressure stiffening, band localisation, growth in free
 // space and under gravity, the wrinkling (kink) check, and input validation. Each against a
 // closed form or an independent fresh static solve.
 #include <gtest/gtest.h>
@@ -56,7 +56,7 @@ EversionRobotDesign VineDesign(std::vector<EversionBand> bands = {},
   return d;
 }
 
-// A band halving the diameter with the seed's empirical α = 0.36 (Suulker et al. 2026).
+// A band halving the diameter with the empirical α = 0.36 (Suulker et al. 2026).
 EversionBand HalvingBand(double start, double end) { return EversionBand{start, end, 0.5, 0.36}; }
 
 StaticLoads Gravity() {
@@ -154,7 +154,7 @@ TEST(Eversion, BandLocalisesBendingUnderTipLoad) {
   EXPECT_LT(st.s[i], 0.4);
   const double ratio = Curvature(st, i) / Curvature(st, 0);
   RecordProperty("band_over_base_curvature", Sci(ratio));
-  // Moment 0.7 of the base's over EI 0.36 × 0.125 of it (seed 003's α E I(s)); small
+  // Moment 0.7 of the base's over EI 0.36 × 0.125 of it (Suulker et al.'s α E I(s)); small
   // deflection: within 5 %.
   const double expected = 0.7 / (0.36 * 0.125);
   EXPECT_NEAR(ratio, expected, 0.05 * expected);
@@ -163,7 +163,7 @@ TEST(Eversion, BandLocalisesBendingUnderTipLoad) {
 // Under gravity the moment falls as (L − s)²: a band at [0.2, 0.3] still carries
 // 0.64 m(0) / 0.045 ≈ 14 times the base curvature — and its wrinkling moment is 1/8 of the
 // nominal (half the radius), so the kink appears at the band while the base is safe: the
-// "soft joint" of seed 003.
+// "soft joint" of Suulker et al. 2026.
 TEST(Eversion, BandLocalisesBendingAndKinkUnderGravity) {
   const double L = 1.0, p = 3e3;
   EversionRobot robot(VineDesign({HalvingBand(0.2, 0.3)}), L, p);

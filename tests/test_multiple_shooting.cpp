@@ -15,7 +15,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kLength = 0.5, kRadius = 0.001;
 
-// The peer rod of issue 3: steel, L = 0.5 m, r = 1 mm.
+// The peer rod (bench/peer_rod.hpp): steel, L = 0.5 m, r = 1 mm.
 RodModel PeerRod() {
   return RodModel::Uniform(kLength, CrossSection::Circle(kRadius),
                            Material::FromShearModulus(200e9, 80e9, 8000));
@@ -129,7 +129,7 @@ TEST(MultipleShooting, SecondOrderInTimeBelowTheSingleShootingLimit) {
 }
 
 
-// Free-free (seed 002 eq. 29): the unknown at s = 0 is the twist; the junctions work the same.
+// Free-free (FD notes 2025, eq. 29): the unknown at s = 0 is the twist; junctions work the same.
 // A steel rod hit by an oblique tip impulse: the same motion as single shooting (measured 3e-12 m
 // over 200 steps; bound argued as in SameSolutionAsSingleShooting).
 TEST(MultipleShooting, FreeFreeSameSolutionAsSingleShooting) {

@@ -333,7 +333,7 @@ TEST(ProblemIo, LaterAnalysesParseButAreGated) {
   EXPECT_EQ(p.modes.count, 6);
 
   const std::vector<std::string> gated = UnsupportedFeatures(p);
-  // quaternion-fd runs statics, dynamics and buckling (issues 4, 6), with a cantilever only, and
+  // quaternion-fd runs statics, dynamics and buckling, with a cantilever only, and
   // buckling there only under conservative (world-frame) tip loads.
   ASSERT_EQ(gated.size(), 1u);
   EXPECT_EQ(gated[0], R"(boundary: "pinned-pinned" is not implemented in this version )"
@@ -343,7 +343,7 @@ TEST(ProblemIo, LaterAnalysesParseButAreGated) {
   ASSERT_EQ(follower.size(), 2u);
   EXPECT_EQ(follower[1].rfind("loads.tip_force_frame: ", 0), 0u) << follower[1];
   j["loads"].erase("tip_force_frame");
-  // Buckling runs on se3-shooting, with the column end conditions (issue 6).
+  // Buckling runs on se3-shooting, with the column end conditions.
   j["formulation"] = "se3-shooting";
   EXPECT_TRUE(UnsupportedFeatures(*Parse(j).problem).empty());
   j["boundary"] = "free-free";
@@ -988,7 +988,7 @@ TEST(ResultWriter, CsvHasHeaderAndOneRowPerNode) {
   EXPECT_FALSE(std::getline(lines, extra));
 }
 
-// ----- robot section (issue 5) -----------------------------------------------------------------
+// ----- robot section ---------------------------------------------------------------------------
 
 TEST(ProblemIoRobot, TendonRoutesAndTensionsMapToTheModel) {
   json j = ValidProblem();

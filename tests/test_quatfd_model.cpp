@@ -1,4 +1,4 @@
-// The quaternion finite-difference model (seed 000): banded LU, the exact Jacobian against
+// The quaternion finite-difference model (Lang & Linn 2009): banded LU, the exact Jacobian against
 // central differences, bandwidth, frame indifference, the rest state and energy balance.
 
 #include <gtest/gtest.h>

@@ -124,7 +124,7 @@ TEST(QuatFdRadau, AgreesWithSdirkAndRosenbrockAtTightTolerance) {
 TEST(QuatFdRadau, ConstraintStaysOnTheSphere) {
   // Benchmark (a) at the default tolerances over 2 s, in 0.1 s output intervals (Advance
   // continues with its polynomial and step): after each step's projection | |p| − 1 | is
-  // round-off (1e-10, the acceptance of issue 4); the drift the projection undoes is of the
+  // round-off (1e-10, the acceptance); the drift the projection undoes is of the
   // size of the local error, non-zero and far below 1e-4.
   FallingRod s(10);
   RadauIntegrator integ(s.model);
@@ -147,7 +147,7 @@ TEST(QuatFdRadau, PhysicalErrorMeasureAgainstATightReference) {
   // default measure (1e-7 and 1e-9 agree to 1e-10 m at 3 s). Measured (tip at 3 s, m, off the
   // reference; steps, rejected): at 1e-5 components 1.6e-6 (1 801, 378), physical 4.6e-7
   // (1 853, 41); at 1e-6 components 1.0e-6 (1 478, 35), physical 2.0e-8 (1 981, 1). The step
-  // sequence of (b) follows round-off (BENCHMARKS.md), so the bounds leave a margin: the
+  // sequence of (b) follows round-off, so the bounds leave a margin: the
   // physical measure must be at least as accurate as the component measure's measured errors
   // (3e-6 and 1.5e-6: ~2× them), and the rejections caused by p·δṗ (21 % of the steps at 1e-5
   // with the component measure) must be gone (< 5 %, measured 2.2 %).

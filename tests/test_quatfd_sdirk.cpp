@@ -1,7 +1,7 @@
 // The implicit SDIRK4 integrator of the quaternion-FD rod (sdirk.hpp) against the truth: its
 // fixed-step convergence order, the Rosenbrock integrator at tight tolerance, the unit-quaternion
 // constraint, and a stable step map at the step sizes where the Rosenbrock step map is not
-// (BENCHMARKS.md, "What limits the step"; QuatFdDynamics.StepLimitIsTheRosenbrockStepMapNotTheOde).
+// (docs/performance.md; QuatFdDynamics.StepLimitIsTheRosenbrockStepMapNotTheOde).
 
 #include <gtest/gtest.h>
 
@@ -96,7 +96,7 @@ TEST(QuatFdSdirk, AgreesWithRosenbrockAtTightTolerance) {
   EXPECT_LT((tips[0] - tips[1]).norm(), 1e-7);
 }
 
-// Benchmark (b) of issue 4 (bench/quatfd_rods.hpp SteelString, bench_quatfd.cpp): steel
+// Benchmark (b) (bench/quatfd_rods.hpp SteelString, bench_quatfd.cpp): steel
 // string, 20 segments, top pinned, released horizontal, gravity, velocity_abs_tol at its default.
 QuatFdModel SteelStringModel() {
   Material m = Material::FromShearModulus(200e9, 80e9, 7850);
@@ -146,7 +146,7 @@ TEST(QuatFdSdirk, SteelStringTipConvergesWithTheTolerance) {
 
 TEST(QuatFdSdirk, ConstraintStaysOnTheSphere) {
   // Benchmark (a) at the default tolerances over 2 s: after each step's projection
-  // | |p| − 1 | is round-off (1e-10, the acceptance of issue 4); the drift the projection undoes
+  // | |p| − 1 | is round-off (1e-10, the acceptance); the drift the projection undoes
   // is of the size of the local error, non-zero.
   FallingRod s(10);
   SdirkIntegrator integ(s.model);
@@ -220,7 +220,7 @@ TEST(QuatFdSdirk, StepMapIsStableWhereRosenbrocksIsNot) {
   EXPECT_LT(rho_s20, 1.0 + 1e-3);
 
   // And fixed 10 ms steps for 1 s stay bounded and dissipate (Rosenbrock diverges within 4 at
-  // 5 ms, BENCHMARKS.md).
+  // 5 ms, docs/performance.md).
   Eigen::VectorXd out(2 * n), err(2 * n);
   const double e0 = s.model.Energy(s.q, s.v).total();
   SdirkIntegrator fixed(s.model);

@@ -227,7 +227,7 @@ TEST(QuatFdDynamics, BendingFrequenciesMatchSe3Stepper) {
   // Budget: quatfd's second-order spatial error at N = 40 (−0.08 % / −0.4 % for modes 1 / 2 in
   // the Euler–Bernoulli test), the SE(3) stepper's RK4 grid error (< 0.01 %), the peak estimate
   // over six periods (< 0.1 %) and the O((ω dt)⁴) rest of the BDF2 shift (< 0.01 %): together
-  // under 0.6 %, so 1 % (the issue's acceptance) can fail only on a real disagreement.
+  // under 0.6 %, so 1 % (the acceptance) can fail only on a real disagreement.
   std::printf("  quatfd / SE(3): mode 1 %.5f %.5f, mode 2 %.5f %.5f\n", fd[0] / se3[0],
               fd[1] / se3[0], fd[2] / se3[1], fd[3] / se3[1]);
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(fd[k] / se3[k / 2], 1.0, 0.01) << "frequency " << k;
@@ -313,8 +313,8 @@ TEST(QuatFdDynamics, ConstraintStaysOnTheSphereOverTenSeconds) {
 }
 
 TEST(QuatFdDynamics, StepLimitIsTheRosenbrockStepMapNotTheOde) {
-  // Issue 4's step counts (BENCHMARKS.md, "What limits the step"). Benchmark (a) exactly (all four
-  // strain rates damped, τ = 0.01 s), at t = 1 s of the swing:
+  // The Rosenbrock step counts (docs/performance.md, "What limits the Rosenbrock step"). Benchmark
+  // (a) exactly (all four strain rates damped, τ = 0.01 s), at t = 1 s of the swing:
   //  - the ODE is stable: the frozen Jacobian's only eigenvalues with Re λ > 0 are the ±|ṗ|
   //    pairs of the |p| gauge (freezing the quadratic invariant p·ṗ makes them ±|ṗ| instead of
   //    0); nothing grows faster than the slowest segment rotation;

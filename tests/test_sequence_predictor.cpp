@@ -102,7 +102,7 @@ TEST(SequencePredictor, WeightedScoresPickTheDegreeForTheComponentsThatCount) {
 }
 
 TEST(SequencePredictor, RecurrenceHoldsFastDampedModesThatNoDegreeCan) {
-  // The peer release's start-up (BENCHMARKS.md, issue 3, "a recurrence predictor for the start-up"): a slow swing plus the discrete
+  // The peer release's start-up (docs/performance.md, "The start-up after a release"): a slow swing plus the discrete
   // modes 3 and 4 of BDF2 at dt = 2 ms, ζ = 0.895 e^{0.952i} and 0.702 e^{1.372i}, on which a
   // degree-p extrapolation errs by |1 − 1/ζ|^{p+1} ≈ 0.98^{p+1} and 1.57^{p+1} times the
   // amplitude. Six components with different phases and amplitudes, the same roots.

@@ -12,7 +12,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The issue-3 peer rod: steel, r = 1 mm, L = 0.5 m. λL = L (c0² ρA / EI)^{1/4}, c0 = 1.5/dt,
+// The peer rod: steel, r = 1 mm, L = 0.5 m. λL = L (c0² ρA / EI)^{1/4}, c0 = 1.5/dt,
 // written out from the material and radius (not from the section code): 8.66 at dt = 2 ms and
 // 24.5 at 0.25 ms, the values docs/dynamics.md quotes (λL ≈ 9 and ≈ 24).
 TEST(ShootingExponent, UniformCircleMatchesTheClosedForm) {

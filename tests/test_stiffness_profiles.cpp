@@ -1,4 +1,4 @@
-// Stiffness profiles (issue 5): tables, modulus laws, tapering, pressure-dependent modulus, layer
+// Stiffness profiles: tables, modulus laws, tapering, pressure-dependent modulus, layer
 // jamming, inflated tubes and bands, each against a closed form or the static solver.
 #include <gtest/gtest.h>
 
@@ -353,7 +353,7 @@ TEST(InflatedTube, BendingStiffnessRisesWithPressureAndConstrictionsSoften) {
   const double r = 0.025, t = 1e-4;
   const InflatedTubeSection tube(
       r, t, ModulusLaw::Affine(0.2e9, 5e3), 0.4, 950,
-      {{0.3, 0.32, 0.5, 0.36}});  // a band halving the diameter, α = 0.36 (seed 003)
+      {{0.3, 0.32, 0.5, 0.36}});  // a band halving the diameter, α = 0.36 (Suulker et al. 2026)
   std::string why;
   ASSERT_TRUE(tube.IsValid(1.0, &why)) << why;
   Actuation a;
@@ -366,7 +366,7 @@ TEST(InflatedTube, BendingStiffnessRisesWithPressureAndConstrictionsSoften) {
     last = EI;
   }
   a.pressure = 20e3;
-  // Seed 003: EI_eff = α E_eff I(s), I(s) at the local radius: 0.36 × 0.5³.
+  // Suulker et al. 2026: EI_eff = α E_eff I(s), I(s) at the local radius: 0.36 × 0.5³.
   EXPECT_NEAR(tube.BendingStiffnessAt(0.31, a) / tube.BendingStiffnessAt(0.1, a), 0.36 * 0.125,
               1e-14);
   EXPECT_EQ(tube.RadiusAt(0.31), 0.5 * r);

@@ -15,7 +15,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // A 0.25 m rod of radius 1 mm with tendons through disks: steel backbone, or, for the arc test,
-// with shear and extension made 1e6 times stiffer (the "stiff in shear and extension").
+// with shear and extension made 1e6 times stiffer ("stiff in shear and extension").
 struct TendonRod {
   double L = 0.25, r = 0.001;
   Material material = Material::FromShearModulus(200e9, 80e9, 8000);

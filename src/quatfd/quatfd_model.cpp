@@ -375,7 +375,7 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
   }
   constexpr bool kJac = kMode != kValue;
   const int N = layout_.segments;
-  // Phase 1: generalised forces. x rows of `a` collect the vertex forces (N, world); rows
+  // Part 1: generalised forces. x rows of `a` collect the vertex forces (N, world); rows
   // P(ν)+1..+3 collect the body torques of segment ν (N·m). With the Jacobian, the same rows of
   // dfdq/dfdv collect their derivatives.
   a.setZero();
@@ -518,7 +518,7 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     ZeroFixedRows(a);
     return;
   }
-  // Phase 2: accelerations. Vertices: ẍ = Q / m (prescribed: 0). Segments: p̈ from the torque.
+  // Part 2: accelerations. Vertices: ẍ = Q / m (prescribed: 0). Segments: p̈ from the torque.
   for (int n = 0; n <= N; ++n) {
     const int r = L::X(n);
     const double inv_m = fixed_[r] ? 0.0 : 1.0 / mass_[n];

@@ -15,8 +15,8 @@ namespace cosserat::quatfd {
 namespace {
 
 // Newton iterations per step before it counts as failed. RADAU5's NIT is 7; 15 converge steps
-// that 7 would reject (the slowly contracting quaternion rates of BENCHMARKS.md's "What limits
-// the Radau step: Newton"): (a) 1 198 → 1 109 steps, (b) 5 345 → 4 620; tips at 10 s move by
+// that 7 would reject (the slowly contracting quaternion rates of docs/performance.md, "What
+// limits the Radau step: Newton"): (a) 1 198 → 1 109 steps, (b) 5 345 → 4 620; tips at 10 s move by
 // 1e-9 m (a) and 5e-9 m (b).
 constexpr int kMaxIterations = 15;
 // The step-size controller's safety factor keeps RADAU5's NIT = 7 in its formula.

@@ -356,9 +356,9 @@ SectionProperties InflatedTubeSection::At(double s, const Actuation& actuation) 
   const double r_local = c ? c->diameter_ratio * r : r;
   const double alpha = c ? c->factor : 1.0;
   const double pressure_shear = p * kPi * r_local * r_local;  // Fichter's P = p π r²
-  // Seed 003: EI_eff(s) = {α(s) E_eff(p)} I(s): the band scales the modulus by α and the second
-  // moment follows the local diameter, I(s) = π r(s)³ t (the wall keeps its thickness, area and
-  // mass: a band gathers the film, it does not remove it).
+  // Suulker et al. 2026: EI_eff(s) = {α(s) E_eff(p)} I(s): the band scales the modulus by α and the
+  // second moment follows the local diameter, I(s) = π r(s)³ t (the wall keeps its thickness, area
+  // and mass: a band gathers the film, it does not remove it).
   const double I_local = kPi * r_local * r_local * r_local * t;
   SectionProperties out;
   out.stiffness = Vec6(alpha * E * I_local, alpha * E * I_local, alpha * G * 2.0 * I_local,

@@ -14,7 +14,7 @@ constexpr int kMaxDegree = SequencePredictor::kMaxDegree;
 /// LDLᵀ without pivoting. Written out for the recurrence's 10 × 10 normal equations, which are
 /// solved in exactly the transient steps that set the stepper's p99: Eigen's LLT took ~540 ns
 /// there, this ~300 ns (the divisions' latency chain is most of it), which moved the peer
-/// problem's p99 / median by ~0.03 (BENCHMARKS.md, issue 3, session 7). A non-positive pivot
+/// problem's p99 / median by ~0.03 (docs/performance.md). A non-positive pivot
 /// gives a non-finite x, which the caller rejects.
 template <int N>
 Eigen::Matrix<double, N, 1> SolveSpd(const Eigen::Matrix<double, N, N>& A,

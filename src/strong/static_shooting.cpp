@@ -96,7 +96,7 @@ COSSERAT_HOT Vec6 BodyWrench(const ShotState& y) {
   return W;
 }
 
-// d/ds of the state (seed 002 eqs. 14 and 16 with V = 0, for W = [m; n] = −Λ) given the strain:
+// d/ds of the state (FD notes 2025, eqs. 14, 16 with V = 0; W = [m; n] = −Λ) given the strain:
 //   p' = R Γ,  R' = R K̂,  m' = −K × m − Γ × n,  n' = −K × n − Rᵀ f_W.
 COSSERAT_HOT ShotState Rates(const Vec6& xi, const Vec3& f_W, const ShotState& y) {
   const double k0 = xi(0), k1 = xi(1), k2 = xi(2);

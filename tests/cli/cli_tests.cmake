@@ -94,7 +94,7 @@ cosserat_cli_test(NAME bad_dynamics ARGS solve "${_cli_dir}/bad_dynamics.json" C
 cosserat_cli_test(NAME not_implemented ARGS solve "${_cli_dir}/modes_free_free.json" CODE 2
                   STDERR "boundary: \"free-free\" is not implemented in this version")
 
-# Natural frequencies (issue 6). The straight steel wire of modes.json: Euler-Bernoulli gives
+# Natural frequencies. The straight steel wire of modes.json: Euler-Bernoulli gives
 # 5.5959 Hz twice (two planes); shear and rotary inertia lower it by ~1e-5. The sagging example:
 # both formulations find the pairs split by the sag (5.597/5.598 Hz, 35.06/35.07 Hz); quatfd's
 # second-order grid error at 100 segments is ~1e-4 for mode 1 and ~5e-4 for mode 2.
@@ -110,7 +110,7 @@ cosserat_cli_test(NAME solve_modes_example
 cosserat_cli_test(NAME solve_modes_quatfd ARGS solve "${_cli_dir}/modes_quatfd.json" CODE 0
                   STDERR "converged \\(modes, quaternion-fd\\), 4 modes: 5\\.59[67][0-9]* 5\\.597[0-9]* 35\\.0[45]")
 
-# The quaternion finite-difference formulation (issue 4). The static tip x must read -0.1508… or
+# The quaternion finite-difference formulation. The static tip x must read -0.1508… or
 # -0.1509…: the SE(3) shooting result for the same file at 201 nodes is -0.150858 m, and the
 # second-order FD error at 40 segments is ~8e-5 L = 4e-5 m.
 cosserat_cli_test(NAME solve_quatfd_statics ARGS solve "${_cli_dir}/quatfd_statics.json"
@@ -136,7 +136,7 @@ cosserat_cli_test(NAME bad_quatfd_frames ARGS validate "${_cli_dir}/bad_quatfd_f
 cosserat_cli_test(NAME quatfd_free_free ARGS solve "${_cli_dir}/quatfd_free_free.json" CODE 2
                   STDERR "boundary: \"free-free\" is not implemented in this version \\(supported: \"cantilever\"\\)")
 
-# Stiffness profiles (issue 5). A jammed-compliant-jammed rod under a pure tip moment: every
+# Stiffness profiles. A jammed-compliant-jammed rod under a pure tip moment: every
 # error in a bad profile is reported with its path; the good one solves (the curvature ratio is
 # checked against the stiffness ratio in test_stiffness_profiles).
 cosserat_cli_test(NAME bad_stiffness_profile
@@ -145,7 +145,7 @@ cosserat_cli_test(NAME bad_stiffness_profile
 cosserat_cli_test(NAME solve_jamming_profile ARGS solve "${_cli_dir}/jamming_profile.json"
                   CODE 0 STDOUT "\"status\": \"converged\"" STDERR "converged")
 
-# Robots (issue 5): every description file in robots/ solves; bad robot input names the field.
+# Robots: every description file in robots/ solves; bad robot input names the field.
 file(GLOB _robot_files "${CMAKE_CURRENT_LIST_DIR}/../../robots/*.json")
 foreach(_robot IN LISTS _robot_files)
   get_filename_component(_robot_name "${_robot}" NAME_WE)

@@ -1,14 +1,14 @@
 #pragma once
 /// \file
-/// Minimum bend radius (issue 6, seed 003): the smallest radius of curvature an eversion robot's
+/// Minimum bend radius (Suulker et al. 2026): the smallest radius of curvature an eversion robot's
 /// body reaches as an actuation load grows, before the first of three limits: the actuation
 /// limit (the whole load applied), a kink (the bending moment reaches the wrinkling moment
 /// π p r(s)³/2 somewhere; beyond it the tube folds and the elastic model no longer describes the
 /// shape), or a solve that fails (loss of stability).
 ///
 /// The kink limit is found by bisection in the load factor to a relative 1e-6, so the radius there
-/// is R(s) = EI(s)/M_w(s) for the section that kinks: with seed 003's bands (α E_eff I(s), and
-/// M_w ∝ r(s)³) a band reaches α times the plain tube's radius.
+/// is R(s) = EI(s)/M_w(s) for the section that kinks: with Suulker et al.'s bands (α E_eff I(s),
+/// and M_w ∝ r(s)³) a band reaches α times the plain tube's radius.
 
 #include <string>
 
@@ -37,7 +37,7 @@ BendRadiusResult MinimumBendRadius(EversionRobot& robot, const StaticLoads& fixe
 /// base direction: λ is found by regula falsi (Illinois) on the angle between the tip and base
 /// tangents to 1e-10 rad, on top of `fixed`. limit "angle" (kink_ratio says whether the tube has
 /// kinked on the way: a design comparison, not a limit here) or "no_convergence". This is the
-/// comparison where layer jamming matters (seed 003, Do et al. 2023): at a given moment a section's
+/// comparison where layer jamming matters (Do et al. 2023): at a given moment a section's
 /// radius is EI/M whatever the rest of the body does, but a given turn made with stiff (jammed)
 /// segments concentrates in the compliant ones. Under a pure tip moment the turn is
 /// θ = M ∫ ds/EI, so with a fraction f of the length jammed to α times the tube's EI the compliant

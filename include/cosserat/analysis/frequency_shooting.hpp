@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// The SE(3) strong form (seed 002 eqs. 14, 16, 19–20) linearised about a static equilibrium of
-/// the cantilever, in the frequency domain.
+/// The SE(3) strong form (FD notes 2025, eqs. 14, 16, 19–20) linearised about a static equilibrium
+/// of the cantilever, in the frequency domain.
 ///
 /// A perturbation g = g₀ Exp(η̂) with η = [θ; u] (body frame, rad; m) and W = W₀ + δW, harmonic
 /// in time with circular frequency ω (V₀ = 0, so δV = η_t and δV_t = −ω² η), obeys the linear

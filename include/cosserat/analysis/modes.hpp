@@ -4,7 +4,7 @@
 /// straight rest state, or a rod sagging under gravity, bent by tip loads, or stiffened by an
 /// actuated section profile). Two independent formulations (docs/modes.md):
 ///
-/// - Quaternion FD (ComputeModes): solve the statics of the seed-000 model, linearise
+/// - Quaternion FD (ComputeModes): solve the statics of the Lang & Linn model, linearise
 ///   v̇ = f(q, v) there with the analytic banded Jacobian, restrict to the tangent space of the
 ///   constraints (free vertices δx_n; per segment a body rotation θ_ν with δp = ½ p ⊗ [0; θ]), and
 ///   solve  K φ = ω² M φ  (symmetric when the loads are conservative) or, for follower loads,

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// Buckling on the quaternion finite-difference model (seed 000): the critical load along a load
-/// path where the static stiffness of the discrete rod stops being positive definite.
+/// Buckling on the quaternion finite-difference model (Lang & Linn 2009): the critical load along a
+/// load path where the static stiffness of the discrete rod stops being positive definite.
 ///
 /// The equilibrium is followed along loads(λ) = fixed + λ · per_unit with the quaternion-FD Newton
 /// statics (quatfd_statics.hpp), warm-started. At each equilibrium the static stiffness is the

@@ -3,7 +3,8 @@
 /// Unit quaternions as plain Vec4 q = [w, x, y, z] (scalar first, Hamilton product, ij = k).
 /// q and −q are the same rotation. QuatToRotation(q) is the matrix R with QuatRotate(q, x) = R x,
 /// i.e. the same R as SO3Exp(θ a) for q = [cos(θ/2), sin(θ/2) a]. Used by the quaternion
-/// finite-difference model (seed 000). Note that Eigen::Quaterniond stores [x, y, z, w] in memory.
+/// finite-difference model (Lang & Linn 2009). Note that Eigen::Quaterniond stores [x, y, z, w] in
+/// memory.
 
 #include <Eigen/Geometry>
 #include <cmath>

@@ -1,10 +1,10 @@
 #pragma once
 /// \file
 /// SE(3): poses, hat/vee, exponential and logarithm, Ad, ad, coad and the Jacobians.
-/// Seed 002 eqs. 3–6, rewritten for the library ordering: twist ξ = [ω; v] (angular first,
+/// FD notes 2025, eqs. 3–6, rewritten for the library ordering: twist ξ = [ω; v] (angular first,
 /// rad and m per unit of the parameter: 1/s for velocities, 1/m and – for strains), wrench
-/// μ = [m; n] (N·m and N). Seed 002 states ξ^∨ = (Ω, v) but prints its 6×6 matrices (eqs. 5–6) in
-/// the [v; ω] block ordering; the matrices here are the [ω; v] versions.
+/// μ = [m; n] (N·m and N). The notes state ξ^∨ = (Ω, v) but print their 6×6 matrices (eqs. 5–6)
+/// in the [v; ω] block ordering; the matrices here are the [ω; v] versions.
 ///
 /// Jacobian convention as in so3.hpp, for small dξ:
 ///   Exp(ξ + dξ) ≈ Exp(J_l(ξ) dξ) Exp(ξ) ≈ Exp(ξ) Exp(J_r(ξ) dξ).
@@ -66,7 +66,7 @@ inline Vec3 Act(const SE3& g, const Vec3& x, Eigen::Matrix<double, 3, 6>* J_y_g 
   return g.R * x + g.p;
 }
 
-/// se(3) matrix of the twist ξ = [ω; v]: [[hat(ω), v], [0, 0]] (seed 002 eq. 4).
+/// se(3) matrix of the twist ξ = [ω; v]: [[hat(ω), v], [0, 0]] (FD notes 2025, eq. 4).
 inline Mat4 hat6(const Vec6& xi) {
   Mat4 X = Mat4::Zero();
   X.topLeftCorner<3, 3>() = hat<double>(xi.head<3>());
@@ -97,7 +97,7 @@ inline Vec6 SE3Log(const SE3& g) {
 }
 
 /// Adjoint of the Lie algebra on twists: ad(ξ) = [[hat(ω), 0], [hat(v), hat(ω)]], so that
-/// ad(x) y = [x, y] = vee6(hat6(x) hat6(y) − hat6(y) hat6(x)). Seed 002 eq. 5, [ω; v] ordering.
+/// ad(x) y = [x, y] = vee6(hat6(x) hat6(y) − hat6(y) hat6(x)). FD notes 2025, eq. 5, [ω; v] order.
 inline Mat6 ad(const Vec6& xi) {
   const Mat3 W = hat<double>(xi.head<3>());
   Mat6 A;
@@ -108,9 +108,9 @@ inline Mat6 ad(const Vec6& xi) {
 /// Coadjoint on wrenches μ = [m; n]: coad(ξ) = ad(ξ)^T = [[−hat(ω), −hat(v)], [0, −hat(ω)]],
 /// defined by <coad(ξ) μ, η> = <μ, ad(ξ) η> for every twist η. Explicitly
 /// coad(ξ) [m; n] = −[ω × m + v × n; ω × n].
-/// Seed 002 eq. 6 writes ad* = [[−Ω̂, 0], [−v̂, −Ω̂]], which is the same operator in the opposite
-/// block ordering ([v; ω], wrench [n; m]); this library uses [ω; v] and [m; n] throughout. With
-/// this definition seed 002 eq. 16 reads Λ' = … + coad(E) Λ − F_ext unchanged.
+/// FD notes 2025, eq. 6, writes ad* = [[−Ω̂, 0], [−v̂, −Ω̂]], which is the same operator in the
+/// opposite block ordering ([v; ω], wrench [n; m]); this library uses [ω; v] and [m; n] throughout.
+/// With this definition their eq. 16 reads Λ' = … + coad(E) Λ − F_ext unchanged.
 inline Mat6 coad(const Vec6& xi) {
   const Mat3 Wt = -hat<double>(xi.head<3>());
   Mat6 A;

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
 /// SO(3): hat, vee, exponential and logarithm, left and right Jacobians.
-/// Seed 002 eqs. 1–2. Angles in rad; a rotation vector w = θ a has angle θ = |w| and unit axis a.
+/// FD notes 2025, eqs. 1–2. Angles in rad; a rotation vector w = θ a has angle θ = |w| and unit
+/// axis a.
 ///
 /// Jacobian convention (Barfoot; Sola et al. "A micro Lie theory"), for small dw:
 ///   Exp(w + dw) ≈ Exp(J_l(w) dw) Exp(w) ≈ Exp(w) Exp(J_r(w) dw),   J_r(w) = J_l(−w) = J_l(w)^T.

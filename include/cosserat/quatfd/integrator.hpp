@@ -66,7 +66,7 @@ double ErrorNorm(const IntegratorOptions& options, int n,
 /// rel_tol, and the angular-velocity error δω (the first variation of ω = 2 Im(p̄ ṗ)/|p|², rad/s)
 /// against velocity_abs_tol + rel_tol |ω_k| (ω of y_new). The gauge — the radial parts p·δp and
 /// p·δṗ, which the projection discards and neither R(p) nor ω sees — is not measured
-/// (RadauErrorMeasure::kPhysical, radau.hpp; BENCHMARKS.md "What sets the Radau step size").
+/// (RadauErrorMeasure::kPhysical, radau.hpp; docs/performance.md).
 double RotationErrorNorm(const IntegratorOptions& options, const QuatFdLayout& layout,
                          const Eigen::Ref<const Eigen::VectorXd>& y,
                          const Eigen::Ref<const Eigen::VectorXd>& y_new,
@@ -78,8 +78,8 @@ double RotationErrorNorm(const IntegratorOptions& options, const QuatFdLayout& l
 void AcceptStep(const QuatFdModel& model, const IntegratorOptions& options, double h, bool last,
                 double t_end, double* t, Eigen::Ref<Eigen::VectorXd> y, IntegratorStats* stats);
 
-/// y' = [v; f(q, v)] for y = [q; v] (the index-1 form, seed 000 eq. 4) into out, counted in
-/// stats: the right-hand side every integrator here evaluates.
+/// y' = [v; f(q, v)] for y = [q; v] (the index-1 form, Lang & Linn 2009, eq. 4) into out, counted
+/// in stats: the right-hand side every integrator here evaluates.
 inline void FirstOrderRhs(const QuatFdModel& model, const Eigen::Ref<const Eigen::VectorXd>& y,
                           Eigen::Ref<Eigen::VectorXd> out, IntegratorStats* stats) {
   const Eigen::Index n = model.size();

@@ -8,7 +8,7 @@
 ///   fastest mode (axial, shear and rotary-inertia waves), so stiff rods need many steps.
 /// - kRosenbrock: the banded linearly implicit RosenbrockIntegrator (rosenbrock.hpp), O(N) per
 ///   step with the exact Jacobian; its step is limited by the stability of its step map
-///   (BENCHMARKS.md), a few ms for the rubber rod, 0.2 ms for the steel string.
+///   (docs/performance.md), a few ms for the rubber rod, 0.2 ms for the steel string.
 /// - kSdirk: the banded implicit SdirkIntegrator (sdirk.hpp, SDIRK4 with Newton iterations and a
 ///   reused Jacobian), O(N) per Newton iteration.
 /// - kRadau: the banded implicit RadauIntegrator (radau.hpp, Radau IIA order 5, stage order 3,

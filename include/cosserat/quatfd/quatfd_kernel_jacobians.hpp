@@ -1,9 +1,9 @@
 #pragma once
 /// \file
-/// Hand-derived Jacobians of the element kernels of quatfd_kernels.hpp (seed 000: "the analytical
-/// Jacobian ∂f/∂(q, v)"). Each function returns the kernel's value, identical to the kernel's,
-/// and its derivatives with respect to the raw unknowns (x differences, quaternion components and
-/// their rates), exact also off the constraint |p| = 1.
+/// Hand-derived Jacobians of the element kernels of quatfd_kernels.hpp (Lang & Linn 2009: "the
+/// analytical Jacobian ∂f/∂(q, v)"). Each function returns the kernel's value, identical to the
+/// kernel's, and its derivatives with respect to the raw unknowns (x differences, quaternion
+/// components and their rates), exact also off the constraint |p| = 1.
 ///
 /// Notation (all for a quaternion p = [w, x, y, z], n2 = |p|²):
 ///   E(p) (3×4): E(p) b = Im(p̄ b);   note Im(p̄ b) = −Im(b̄ p), so ∂(E(p) b)/∂p = −E(b).

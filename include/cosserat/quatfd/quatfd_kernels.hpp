@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// Element kernels of the quaternion finite-difference rod (seed 000), templated on the scalar so
-/// the same code gives f (T = double) and the exact element Jacobians (T = ceres::Jet).
+/// Element kernels of the quaternion finite-difference rod (Lang & Linn 2009), templated on the
+/// scalar so the same code gives f (T = double) and the exact element Jacobians (T = ceres::Jet).
 ///
 //// Quaternions are [w, x, y, z], Hamilton product. Every kernel depends on a quaternion p only
 /// through the rotation it represents (R(p) = H(p) / |p|², body angular velocity
@@ -71,8 +71,8 @@ struct SegmentConstants {
   Eigen::Vector3d rest = {0, 0, 1};  ///< Γ* = rest value of Rᵀ ∂s x (dimensionless)
 };
 
-/// One segment between vertices a = n and b = n + 1 with quaternion p (seed 000 eq. 1 for Γ),
-/// given dx = x_b − x_a and dv = ẋ_b − ẋ_a:
+/// One segment between vertices a = n and b = n + 1 with quaternion p (Lang & Linn 2009, eq. 1 for
+/// Γ), given dx = x_b − x_a and dv = ẋ_b − ẋ_a:
 ///   Γ = R(p)ᵀ (x_b − x_a) / Δs,  Γ̇ = R(p)ᵀ (ẋ_b − ẋ_a) / Δs + Γ × ω,
 ///   F = C_Γ (Γ − Γ*) + C̃_Γ Γ̇  (body frame, N; Antman/Kelvin–Voigt),
 /// and its generalised forces: on x_a +R F (force_a), on x_b −R F (N, world), and the body torque
@@ -102,7 +102,7 @@ inline void SegmentForces(const SegmentConstants& c, const V3<T>& dx, const V4<T
   SegmentForcesOmega<T>(c, dx, p, dv, AngularVelocity<T>(p, pd), force_a, torque, strain, stress);
 }
 
-/// Discrete curvature (seed 000: "several choices" for K_n from p_{n−1/2}, p_{n+1/2}).
+/// Discrete curvature (Lang & Linn 2009: "several choices" for K_n from p_{n−1/2}, p_{n+1/2}).
 enum class CurvatureKind {
   kBasic,     ///< K = 2 Im(p̄_a p_b) / h: the vertex quaternion is the plain mean (p_a + p_b)/2
   kVariant1,  ///< K = 2 Im(p̄_n p'_n) / |p_n|² with p_n = (p_a+p_b)/2, p'_n = (p_b−p_a)/h:
@@ -170,8 +170,8 @@ struct RotationConstants {
   double beta = 0;   ///< Baumgarte stiffness, 1/s
 };
 
-/// Quaternion acceleration from the body torque (seed 000 eq. 4, written with the exact inverse
-/// of the quaternion mass matrix): with ω = 2 Im(p̄ ṗ)/|p|² and ω̇ = J⁻¹ (τ − ω × J ω),
+/// Quaternion acceleration from the body torque (Lang & Linn 2009, eq. 4, written with the exact
+/// inverse of the quaternion mass matrix): with ω = 2 Im(p̄ ṗ)/|p|² and ω̇ = J⁻¹ (τ − ω × J ω),
 ///   p̈ = p ⊗ [c0, c] / |p|²,  c = |p|² ω̇ / 2 + (p·ṗ) ω,  c0 = −|ṗ|² − 2α p·ṗ − β²(|p|²−1)/2,
 /// so that the represented rotation has angular acceleration ω̇ exactly, and g = (|p|²−1)/2
 /// obeys g̈ + 2α ġ + β² g = 0 (g̈ = 0 without Baumgarte). Here with ω given (QuaternionAcceleration

@@ -1,12 +1,12 @@
 #pragma once
 /// \file
-/// The semi-discrete quaternion finite-difference Cosserat rod of Lang & Linn (seed 000), as an
-/// index-1 second-order ODE q̈ = f(q, q̇) (seed 000 eq. 4 with the multipliers eliminated).
+/// The semi-discrete quaternion finite-difference Cosserat rod of Lang & Linn 2009, as an
+/// index-1 second-order ODE q̈ = f(q, q̇) (their eq. 4 with the multipliers eliminated).
 ///
 /// Staggered grid: vertices 0 = s_0 < … < s_N = L carry the centroids x_n (world, m); the
 /// segment midpoints s_{n+1/2} carry quaternions p_{n+1/2} = [w, x, y, z] whose rotation R(p)
 /// maps the section (body) frame to the world (body z = rod tangent at rest).
-///   Γ_{n+1/2} = R(p)ᵀ (x_{n+1} − x_n)/Δs      (strain [shear1, shear2, stretch], seed 000 eq. 1)
+///   Γ_{n+1/2} = R(p)ᵀ (x_{n+1} − x_n)/Δs      (strain [shear1, shear2, stretch], their eq. 1)
 ///   K_n = K(p_{n−1/2}, p_{n+1/2})            (curvature [bend1, bend2, twist] at vertex n)
 ///   F = C_Γ (Γ − Γ*) + C̃_Γ Γ̇,  M = C_K (K − K*) + C̃_K K̇  (Antman viscoelastic laws)
 /// The forces are the negative gradients of the discrete strain energy (plus the Rayleigh damping
@@ -14,7 +14,7 @@
 ///
 /// Unknown ordering (one block of 7 per vertex + segment): q = [x_0, p_{1/2}, x_1, p_{3/2}, …,
 /// p_{N−1/2}, x_N], size 7N + 3; v = q̇ in the same order. With this ordering ∂f/∂q and ∂f/∂v
-/// have lower and upper bandwidth 10 (seed 000: "bandwidths equal to ten").
+/// have lower and upper bandwidth 10 (Lang & Linn 2009: "bandwidths equal to ten").
 ///
 /// Ends: s = 0 is clamped (x_0 and the orientation fixed: the curvature at vertex 0 is taken
 /// between the clamp's quaternion and p_{1/2} over Δs/2, which is the ghost-point scheme with
@@ -115,7 +115,7 @@ class QuatFdModel {
   /// The rest shape (the discrete configuration with Γ = Γ*, K = K*) from the base pose, at rest.
   void RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const;
 
-  /// a = f(q, v) = q̈ (seed 000 eq. 4). Prescribed vertices get a = 0.
+  /// a = f(q, v) = q̈ (Lang & Linn 2009, eq. 4). Prescribed vertices get a = 0.
   void Acceleration(const Eigen::Ref<const Eigen::VectorXd>& q,
                     const Eigen::Ref<const Eigen::VectorXd>& v,
                     Eigen::Ref<Eigen::VectorXd> a) const;

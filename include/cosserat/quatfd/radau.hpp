@@ -21,7 +21,7 @@
 /// to the stage's current iterate: the residual of stage i is turned back by P_iᵀ, the Kronecker
 /// system solved, the correction of stage i turned by P_i (an approximate Newton matrix whose
 /// mass part is off by the stages' relative rotation, ~h|ω|). One rotation for all three
-/// stages made Newton fail beyond ~4–8 ms on the rubber rod (BENCHMARKS.md).
+/// stages made Newton fail beyond ~4–8 ms on the rubber rod (docs/performance.md).
 ///
 /// Starting values: the collocation polynomial of the last accepted step, extrapolated.
 /// Error estimate: Hairer's (I − hγ₀J)⁻¹ [γ₀ h f(y_n) + Σ e_i Z_i] (order 3 in the non-stiff
@@ -45,8 +45,8 @@
 
 namespace cosserat::quatfd {
 
-/// What RadauIntegrator's error estimate is measured in (BENCHMARKS.md, "What sets the Radau
-/// step size").
+/// What RadauIntegrator's error estimate is measured in (docs/performance.md, "Radau IIA: what
+/// sets the step size").
 enum class RadauErrorMeasure {
   /// ErrorNorm on every component of [q; v]: a quaternion's four components against abs_tol,
   /// its rate's four against velocity_abs_tol (each + rel_tol |y_i|). The default until the

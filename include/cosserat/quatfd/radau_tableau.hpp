@@ -2,8 +2,7 @@
 /// \file
 /// The 3-stage Radau IIA tableau (order 5; Hairer & Wanner, Solving ODEs II, Table IV.5.6) and
 /// the quantities RADAU5's transformed Newton iteration and error estimate need, computed once
-/// from A (no hand-copied 20-digit constants). Used by RadauIntegrator (radau.hpp) and the Newton
-/// diagnostic (bench/quatfd_newton_diag.cpp).
+/// from A (no hand-copied 20-digit constants). Used by RadauIntegrator (radau.hpp).
 
 namespace cosserat::quatfd {
 

@@ -7,7 +7,7 @@
 /// Boost.Odeint's rosenbrock4 (Hairer–Wanner's RODAS coefficients, 6 evaluations of f and one
 /// Jacobian per step), in the same "g" form: (I/(γh) − J) g_i = F(y_i) + Σ c_ij g_j / h.
 /// For J = [[0, I], [A, B]] (A = ∂f/∂q, B = ∂f/∂v) the 2n × 2n system reduces to one banded
-/// n × n system (seed 000: solvers "adapted to second order differential equations"):
+/// n × n system (Lang & Linn 2009: solvers "adapted to second order differential equations"):
 ///   (a² I − a B − A) w = a r_v + A r_q,  u = (r_q + w)/a,  a = 1/(γh),
 /// with bandwidth 10; its LU (partial pivoting) is computed once per step.
 

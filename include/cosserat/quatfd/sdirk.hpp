@@ -5,7 +5,7 @@
 /// (Hairer & Wanner, Solving ODEs II, Table IV.6.5 "SDIRK4", γ = 1/4), with simplified Newton
 /// iterations on every stage.
 ///
-/// Why not the Rosenbrock method (rosenbrock.hpp, BENCHMARKS.md "What limits the step"): a
+/// Why not the Rosenbrock method (rosenbrock.hpp, docs/performance.md): a
 /// Rosenbrock step is exact for the Jacobian frozen at y_n and explicit for the rest. The stiff
 /// directions of this model (shear, extension, rotary inertia) turn with the segments in the
 /// coordinates (x, p, ẋ, ṗ), so the part of the stiff response that has turned over the step is

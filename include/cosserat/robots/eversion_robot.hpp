@@ -1,9 +1,9 @@
 #pragma once
 /// \file
-/// Eversion ("vine") robots and inflated beams (seed 003; docs/eversion.md): a thin-walled tube
-/// inflated to a gauge pressure p, clamped at its base (s = 0), that grows by everting new wall
-/// material at its tip (s = L). Built on InflatedTubeSection (stiffness E_eff(p) I, constrictive
-/// bands) and StaticShootingSolver (cantilever statics).
+/// Eversion ("vine") robots and inflated beams (Suulker et al. 2026; docs/eversion.md): a
+/// thin-walled tube inflated to a gauge pressure p, clamped at its base (s = 0), that grows by
+/// everting new wall material at its tip (s = L). Built on InflatedTubeSection (stiffness E_eff(p)
+/// I, constrictive bands) and StaticShootingSolver (cantilever statics).
 ///
 /// Pressure load. The pressure on the tip pushes the tip outward, along the body tangent d3(L):
 /// a follower tip force of magnitude p A_tip, A_tip = π r(L)², carried by the wall as tension.
@@ -59,8 +59,8 @@ enum class PressureLoadModel {
 
 /// A constrictive band: an inextensible ring that narrows the tube over [start, end) of material
 /// arc length (m from the base) to diameter_ratio times the nominal diameter and multiplies the
-/// bending and torsion stiffness by factor α (seed 003: α ≈ 0.36 for a band that halves the
-/// diameter, Suulker et al. 2026). Its wrinkling moment is diameter_ratio³ times the nominal one.
+/// bending and torsion stiffness by factor α (α ≈ 0.36 for a band that halves the diameter,
+/// Suulker et al. 2026). Its wrinkling moment is diameter_ratio³ times the nominal one.
 using EversionBand = InflatedTubeSection::Constriction;
 
 /// The constant description of an eversion robot.
@@ -72,7 +72,7 @@ struct EversionRobotDesign {
   double wall_density = 920.0;  ///< kg/m³ (LDPE ≈ 920); the air inside is taken as buoyancy-neutral
   KelvinVoigtDamping damping;       ///< for dynamics; unused in statics
   std::vector<EversionBand> bands;  ///< material coordinates, within [0, max_length], no overlap
-  /// Layer-jamming segments (Do et al. 2023, seed 003): EI = EI_tube + E_ℓ(ΔP_k) I_ℓ in segment k,
+  /// Layer-jamming segments (Do et al. 2023): EI = EI_tube + E_ℓ(ΔP_k) I_ℓ in segment k,
   /// ΔP_k set by EversionRobot::SetJammingPressure (0: compliant). Material coordinates, sorted by
   /// start, within [0, max_length], no overlap, at most Actuation::kMaxSegments; not combined
   /// with a band on the same stretch of tube. The wrinkling (kink) moment stays the tube's: the

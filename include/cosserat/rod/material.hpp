@@ -7,7 +7,7 @@
 namespace cosserat {
 
 /// Sectional Kelvin–Voigt damping coefficients: the diagonal of D in
-/// Λ = −K(ξ − ξ*) − D ∂ξ/∂t (seed 002, eq. 16). Units: bending and torsion N·m²·s,
+/// Λ = −K(ξ − ξ*) − D ∂ξ/∂t (FD notes 2025, eq. 16). Units: bending and torsion N·m²·s,
 /// shear and extension N·s.
 struct KelvinVoigtDamping {
   double bending = 0.0;

@@ -3,9 +3,9 @@
 /// Sectional stiffness K(s), mass M(s) and damping D(s) along the rod, as functions of the arc
 /// length s (m) and of the actuation state.
 ///
-/// Strain ordering (seed 002 eq. 7): ξ = [K; Γ] = [κ1, κ2, κ3, Γ1, Γ2, Γ3]: bending about body x
-/// and y, torsion, shear along x and y, stretch. K = diag(E I1, E I2, G J, κ G A, κ G A, E A) for a
-/// principal-axes section (N·m², N·m², N·m², N, N, N).
+/// Strain ordering (FD notes 2025, eq. 7): ξ = [K; Γ] = [κ1, κ2, κ3, Γ1, Γ2, Γ3]: bending about
+/// body x and y, torsion, shear along x and y, stretch. K = diag(E I1, E I2, G J, κ G A, κ G A,
+/// E A) for a principal-axes section (N·m², N·m², N·m², N, N, N).
 
 #include <memory>
 #include <string>
@@ -55,9 +55,9 @@ class UniformSection final : public SectionProfile {
 };
 
 /// Bands [start, end) in which the bending and torsion stiffness are multiplied by a factor α
-/// (seed 003: EI(s) = α(s) E I; α ≈ 0.36 for a band that halves the diameter). Outside the bands,
-/// the base profile. Band ends become grid nodes. Bands must lie within [0, L] and must not overlap
-/// (IsValid); more profiles are in stiffness_profiles.hpp.
+/// (Suulker et al. 2026: EI(s) = α(s) E I; α ≈ 0.36 for a band that halves the diameter). Outside
+/// the bands, the base profile. Band ends become grid nodes. Bands must lie within [0, L] and must
+/// not overlap (IsValid); more profiles are in stiffness_profiles.hpp.
 class BandedSection final : public SectionProfile {
  public:
   struct Band {

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// Stiffness profiles for soft and continuum robots (seed 003): tapering sections, a
-/// pressure-dependent modulus E_eff(p), layer jamming, thin-walled inflated tubes with
+/// Stiffness profiles for soft and continuum robots (Suulker et al. 2026; Do et al. 2023): tapering
+/// sections, a pressure-dependent modulus E_eff(p), layer jamming, thin-walled inflated tubes with
 /// constrictive bands, and the wrinkling (kink) moment of an inflated tube.
 ///
 /// Every profile is a SectionProfile: At(s, actuation) is const, allocates nothing and reads only
@@ -44,9 +44,9 @@ class LinearTable {
 };
 
 /// A modulus as a function of a pressure, E(p) (Pa → Pa): the effective modulus E_eff(p) of a
-/// pressurised body (seed 003: EI(s) = α(s) E_eff(p) I(s)) or the layer modulus E_ℓ(ΔP) of a jammed
-/// stack. Pressures below zero are evaluated as zero. Laws must not fall with pressure (IsValid),
-/// so the stiffness built from them rises monotonically with pressure.
+/// pressurised body (Suulker et al. 2026: EI(s) = α(s) E_eff(p) I(s)) or the layer modulus E_ℓ(ΔP)
+/// of a jammed stack. Pressures below zero are evaluated as zero. Laws must not fall with pressure
+/// (IsValid), so the stiffness built from them rises monotonically with pressure.
 class ModulusLaw {
  public:
   enum class Kind { kAffine, kTable };
@@ -122,7 +122,7 @@ class TaperedSection final : public SectionProfile {
 // --- Pressure-dependent modulus ----------------------------------------------------------------
 
 /// A fixed section whose Young's modulus is E_eff(p) of the inflation pressure p =
-/// actuation.pressure (seed 003: EI = E_eff(p) I). Every stiffness entry follows
+/// actuation.pressure (Suulker et al. 2026: EI = E_eff(p) I). Every stiffness entry follows
 /// (SectionPropertiesWithModulus); the mass does not depend on p.
 class PressureModulusSection final : public SectionProfile {
  public:
@@ -143,7 +143,7 @@ class PressureModulusSection final : public SectionProfile {
 
 // --- Layer jamming -----------------------------------------------------------------------------
 
-/// One switchable layer-jamming segment [start, end) (Do et al. 2023, seed 003):
+/// One switchable layer-jamming segment [start, end) (Do et al. 2023):
 /// EI_eff(ΔP) = EI_tube(P_int) + E_ℓ(ΔP) I_ℓ, with ΔP = actuation.jamming_pressure[k] for the k-th
 /// segment of the list.
 struct JammingSegment {
@@ -201,7 +201,7 @@ double InflatedCollapseMoment(double pressure, double radius);
 /// monotonically with p because the law is non-decreasing. Mass: the wall, ρ_wall per unit volume.
 ///
 /// A constriction [start, end) narrows the tube to diameter_ratio · r there (which lowers the
-/// wrinkling moment and the pressure term); bending and torsion stiffness are those of seed 003,
+/// wrinkling moment and the pressure term); bending and torsion stiffness are Suulker et al.'s
 /// EI_eff(s) = {α(s) E_eff(p)} I(s): the empirical modulus factor α (≈ 0.36 for a band that
 /// halves the diameter) times the second moment at the local radius, I(s) = π r(s)³ t. Area and
 /// mass stay those of the full wall. Constriction ends are breakpoints.

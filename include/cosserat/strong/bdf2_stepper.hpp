@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Dynamics of a cantilevered rod on the SE(3) strong form: BDF2 in time, shooting in s
-/// (seed 002 eqs. 19–28). Built once, then Step() advances one time step without allocating,
+/// (FD notes 2025, eqs. 19–28). Built once, then Step() advances one time step without allocating,
 /// for use inside a controller.
 ///
 /// Per step, with c0, c1, c2 the BDF2 weights (eq. 23, variable-step form) and the history terms
@@ -35,7 +35,7 @@
 
 namespace cosserat {
 
-/// End conditions (seed 002 eqs. 28 and 29).
+/// End conditions (FD notes 2025, eqs. 28 and 29).
 enum class EndConditions {
   kCantilever,  ///< g(0), V(0) prescribed; unknown W(0); W(L) = tip wrench
   kFreeFree,    ///< W(0) = −base wrench, W(L) = tip wrench; unknown V(0), g(0) follows from it

@@ -10,7 +10,7 @@ namespace cosserat {
 
 /// Fields sampled at the grid nodes s_i. The internal wrench W = [m; n] is the wrench the part
 /// (s, L] of the rod exerts on the part [0, s]; for a linear elastic rod W = K (ξ − ξ*), which is
-/// −Λ in seed 002's sign convention (eq. 16).
+/// −Λ in the sign convention of FD notes 2025 (eq. 16).
 struct RodState {
   std::vector<double> s;          ///< arc length, m
   std::vector<Vec3> position_W;   ///< centreline p(s), world frame, m

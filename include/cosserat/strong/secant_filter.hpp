@@ -13,9 +13,9 @@
 /// only ratios of the noise levels matter: J is held to its last measurements (kDriftJ ≪
 /// kDriftRate) and its rate follows the latest steps. The rate decays by kRateMemory per step (a
 /// memory of ~100 steps), so steps without secants (a rod at rest, converged at its first shot)
-/// cannot drift J without bound. Peer problem (issue 3): 2.89 shots per step with Broyden's
-/// update, 2.20 with the filter; the same to ±0.003 with kDriftRate 100× smaller, kDriftJ 100×
-/// larger or kRateMemory 1; 2.23 at kRateMemory 0.95, 2.46 at 0.8.
+/// cannot drift J without bound. Peer release (bench/peer_rod.hpp): 2.89 shots per step with
+/// Broyden's update, 2.20 with the filter; the same to ±0.003 with kDriftRate 100× smaller, kDriftJ
+/// 100× larger or kRateMemory 1; 2.23 at kRateMemory 0.95, 2.46 at 0.8.
 ///
 /// Fixed size, no heap allocation.
 

@@ -15,8 +15,8 @@ namespace cosserat {
 
 class SequencePredictor {
  public:
-  // Degree 10 on the peer problem (issue 3): the first residual of a step falls from 3e-6
-  // (degree ≤ 6) to ~3e-8, near the floor set by the converged terms' own errors (the weights
+  // Degree 10 on the peer release (bench/peer_rod.hpp): the first residual of a step falls from
+  // 3e-6 (degree ≤ 6) to ~3e-8, near the floor set by the converged terms' own errors (the weights
   // of degree p sum to 2^{p+1} − 1 in magnitude, 2047 here); degrees 11–12 gained nothing.
   static constexpr int kMaxDegree = 10;
 
@@ -32,7 +32,7 @@ class SequencePredictor {
   /// by least squares (each component weighted by its column norm of the first weight passed,
   /// older equations forgotten by kRecurrenceMemory per term). It is scored like the degrees and
   /// used when it has predicted best recently. It needs kRecurrenceLags + 3 terms. Why: the
-  /// sudden release of the peer problem (issue 3) excites the rod's third to fifth bending modes,
+  /// sudden release of the peer problem excites the rod's third to fifth bending modes,
   /// which BDF2 at dt = 2 ms turns by 1–1.6 rad per step and damps by 0.9–0.5 per step; no
   /// polynomial can extrapolate them (the degree-p error on such a mode is |1 − 1/ζ|^{p+1} ≥ 1
   /// times its amplitude), while a short recurrence holds them exactly. Off by default.

@@ -1,12 +1,12 @@
 #pragma once
 /// \file
-/// Static cantilever by shooting on the SE(3) strong form (seed 002 eqs. 14 and 16 with V = 0).
+/// Static cantilever by shooting on the SE(3) strong form with V = 0 (FD notes 2025, eqs. 14, 16).
 ///
 /// Unknowns: the internal wrench at the base, W(0) = [m; n] in the base body frame (6).
 /// Integrate in s from 0 to L with fixed-step RK4 on the grid nodes (4th order), with the
 /// rotation R as 9 numbers (orthogonal to O(h⁴)):
 ///   p' = R Γ,  R' = R K̂,  m' = −K × m − Γ × n,  n' = −K × n − Rᵀ f_W,
-///   ξ = [K; Γ] = ξ* + K(s)⁻¹ [m; n]  (body-frame wrench W = [m; n] = −Λ of seed 002),
+///   ξ = [K; Γ] = ξ* + K(s)⁻¹ [m; n]  (body-frame wrench W = [m; n] = −Λ of FD notes 2025),
 /// where f_W = ρ A g + the distributed force (N/m). The residual is the tip condition
 /// W(L) − W_tip in the tip body frame; Levenberg–Marquardt (ceres::TinySolver) with an exact
 /// Jacobian (tangent propagation through the integrator) drives it to zero.

@@ -1,8 +1,9 @@
 // Why the banded Rosenbrock integrator of the quaternion-FD rod needs thousands of steps for
-// issue 4's benchmark problems (BENCHMARKS.md, "What limits the step"): a stability limit of the
-// linearly implicit method, not of the ODE and not of the tolerance.
+// the two benchmark rods of bench_quatfd.cpp (docs/performance.md, "What limits the Rosenbrock
+// step"): a stability limit of the linearly implicit method, not of the ODE and not of the
+// tolerance.
 //
-//   build/bench/quatfd_stability
+//   build/bench/diagnostics/quatfd_stability
 //
 // For each benchmark rod, after an adaptive run to t0 (rel_tol 1e-6) it prints
 //  1. the spectrum of the frozen Jacobian [[0, I], [∂f/∂q, ∂f/∂v]] of the first-order system
@@ -27,7 +28,7 @@
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/rosenbrock.hpp"
 #include "cosserat/quatfd/sdirk.hpp"
-#include "quatfd_rods.hpp"
+#include "../quatfd_rods.hpp"
 
 namespace {
 
@@ -35,7 +36,7 @@ using namespace cosserat;
 using namespace cosserat::quatfd;
 using L = QuatFdLayout;
 
-using bench::Horizontal;  // the two rods of bench_quatfd.cpp: quatfd_rods.hpp
+using bench::Horizontal;  // the two rods of bench_quatfd.cpp: ../quatfd_rods.hpp
 using bench::RubberRod;
 using bench::SteelString;
 

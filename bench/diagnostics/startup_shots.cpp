@@ -1,15 +1,15 @@
-// Shot histogram of the peer release (issue 3, Heun in s, dt = 2 ms, 25 s): how many steps take
+// Shot histogram of the peer release (bench/peer_rod.hpp; Heun in s, dt = 2 ms, 25 s): how many steps take
 // 2, 3, 4 and >= 5 shots, over the whole run and in the first 0.2 s after the release, and the
 // shots per step. With an argument n > 0 it also prints the first n steps (shots, exact
 // Jacobians, Newton iterations); a second argument `rk4` runs RK4 in s instead of Heun.
 //
-//   build/bench/startup_shots [n [rk4]]
+//   build/bench/diagnostics/startup_shots [n [rk4]]
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
 #include "cosserat/strong/bdf2_stepper.hpp"
-#include "peer_rod.hpp"
+#include "../peer_rod.hpp"
 #include "shot_histogram.hpp"
 
 int main(int argc, char** argv) {

@@ -1,13 +1,13 @@
-// Second scenario for the Jacobian tracking of the peer release (issue 3): after 4 s of swing
+// Second scenario for the Jacobian tracking of the peer release (bench/peer_rod.hpp): after 4 s of swing
 // (2000 steps of 2 ms, Heun in s), a sideways tip kick: a force along +y equal to the preload
 // (the weight of 0.02 kg) for one step. Prints the shot histogram of the 1000 steps from the
 // kick on, and of the whole 6 s.
 //
-//   build/bench/kick_shots
+//   build/bench/diagnostics/kick_shots
 #include <cstdio>
 
 #include "cosserat/strong/bdf2_stepper.hpp"
-#include "peer_rod.hpp"
+#include "../peer_rod.hpp"
 #include "shot_histogram.hpp"
 
 int main() {

@@ -1,7 +1,7 @@
 // Instruction count of a warm static re-solve (1 % load change, N = 41), for callgrind, which
 // counts instructions and so gives the same figure whatever else the machine is doing:
-//   valgrind --tool=callgrind build/bench/count_warm_resolve 100
-//   valgrind --tool=callgrind build/bench/count_warm_resolve 1100
+//   valgrind --tool=callgrind build/bench/diagnostics/count_warm_resolve 100
+//   valgrind --tool=callgrind build/bench/diagnostics/count_warm_resolve 1100
 // (difference of the two totals) / 1000 = instructions per re-solve.
 #include <cstdio>
 #include <cstdlib>
