@@ -80,8 +80,7 @@ TEST(AnalyticReferences, BucklingRoots) {
   EXPECT_NEAR(std::tan(truth::ClampedPinnedBetaL()), truth::ClampedPinnedBetaL(), 1e-9);
   EXPECT_NEAR(truth::EulerLoadClampedPinned(1, 1), truth::kClampedPinnedLoadPrinted, 0.005);
   EXPECT_NEAR(truth::GreenhillSelfWeightLoad(), truth::kGreenhillLoadPrinted, 1e-4);
-  EXPECT_NEAR(truth::EulerLoadClampedFree(1, 1, 2) / truth::EulerLoadClampedFree(1, 1), 9.0,
-              1e-12);
+  EXPECT_NEAR(truth::EulerLoadClampedFree(1, 1, 2) / truth::EulerLoadClampedFree(1, 1), 9.0, 1e-12);
 }
 
 // The closed form reproduces every row of the table (its values are printed to 10 digits).

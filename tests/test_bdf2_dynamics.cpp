@@ -9,9 +9,9 @@
 #include <memory>
 #include <vector>
 
+#include "../bench/peer_rod.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
-#include "../bench/peer_rod.hpp"
 #include "support/analytic/beam_vibration.hpp"
 #include "support/rods.hpp"
 #include "support/smooth_ramp.hpp"
@@ -183,14 +183,9 @@ TEST(Bdf2Dynamics, SecondOrderInTime) {
 }
 
 TEST(Bdf2Dynamics, DampedEnergyDecreasesEveryStep) {
-  RodModel model = Steel(0.5, 0.001);
-  Material mat = Material::FromShearModulus(200e9, 80e9, 8000);
   const CrossSection sec = CrossSection::Circle(0.001);
-  mat.damping.bending = 1e-4 * 200e9 * sec.I1;  // relaxation time 0.1 ms on bending
-  mat.damping.torsion = 1e-4 * 80e9 * sec.torsion_constant;
-  mat.damping.shear = 1e-4 * 80e9 * sec.area;
-  mat.damping.extension = 1e-4 * 200e9 * sec.area;
-  model = RodModel::Uniform(0.5, sec, mat);
+  // relaxation time 0.1 ms on bending
+  const RodModel model = RodModel::Uniform(0.5, sec, testing::DampedSteel(sec, 1e-4));
   Bdf2ShootingStepper stepper(model, 40);
   StepInput in;
   in.loads.tip_force = Vec3(-0.1, 0, 0);
@@ -237,13 +232,8 @@ TEST(Bdf2Dynamics, UndampedEnergyLossIsBdf2Dissipation) {
 
 // A very slow ramp of the tip load with damping ends at the static solution.
 TEST(Bdf2Dynamics, QuasiStaticLimitMatchesStatics) {
-  Material mat = Material::FromShearModulus(200e9, 80e9, 8000);
   const CrossSection sec = CrossSection::Circle(0.001);
-  mat.damping.bending = 2e-3 * 200e9 * sec.I1;
-  mat.damping.torsion = 2e-3 * 80e9 * sec.torsion_constant;
-  mat.damping.shear = 2e-3 * 80e9 * sec.area;
-  mat.damping.extension = 2e-3 * 200e9 * sec.area;
-  const RodModel model = RodModel::Uniform(0.5, sec, mat);
+  const RodModel model = RodModel::Uniform(0.5, sec, testing::DampedSteel(sec, 2e-3));
   Bdf2Options opt;
   opt.dt = 5e-3;
   Bdf2ShootingStepper stepper(model, 40, opt);
@@ -318,7 +308,7 @@ namespace cosserat {
 namespace {
 
 void ExpectShootingJacobianMatchesFiniteDifferences(SpatialScheme scheme) {
-  Material mat = Material::FromShearModulus(200e9, 80e9, 8000);
+  Material mat = testing::Steel();
   const CrossSection sec = CrossSection::Circle(0.001);
   mat.damping.bending = 1e-4 * 200e9 * sec.I1;
   mat.damping.extension = 1e-4 * 200e9 * sec.area;
@@ -509,7 +499,7 @@ TEST(Bdf2Dynamics, TipMassLowersTheFundamentalAsTheory) {
   const double ratio = 1.0;  // tip mass = rod mass
   auto g = [&](double l) { return truth::TipMassFrequencyEquation(l, ratio); };
   const double lo = 0.5, hi = truth::CantileverBetaL(1);  // g(lo) > 0 > g(hi): the root below
-  ASSERT_GT(g(lo), 0);                                      // the no-mass λ1
+  ASSERT_GT(g(lo), 0);                                    // the no-mass λ1
   ASSERT_LT(g(hi), 0);
   const double lambda = truth::CantileverTipMassBetaL(ratio);
   const double f = truth::EulerBernoulliOmega(lambda, EI, rhoA, L) / (2 * kPi);

@@ -53,7 +53,8 @@ BucklingSummary Critical(const RodModel& model, int nodes, ColumnEnds ends, doub
   return analysis.FindCriticalLoad();
 }
 
-// Euler's load for each of the library's column end conditions (support/analytic/euler_buckling.hpp).
+// Euler's load for each of the library's column end conditions
+// (support/analytic/euler_buckling.hpp).
 double EulerLoad(ColumnEnds ends, double EI, double L) {
   switch (ends) {
     case ColumnEnds::kClampedFree:
@@ -114,9 +115,8 @@ TEST(Buckling, ModeShapesAreEulers) {
     double s_max;
     double (*shape)(double);
   };
-  const Case cases[] = {
-      {ColumnEnds::kClampedFree, 0.0, truth::EulerModeClampedFree},
-      {ColumnEnds::kPinnedPinned, 0.5, truth::EulerModePinnedPinned}};
+  const Case cases[] = {{ColumnEnds::kClampedFree, 0.0, truth::EulerModeClampedFree},
+                        {ColumnEnds::kPinnedPinned, 0.5, truth::EulerModePinnedPinned}};
   for (const Case& c : cases) {
     const BucklingSummary b =
         Critical(rod.model(), 41, c.ends, 1.5 * EulerLoad(c.ends, rod.EI(), rod.length));
@@ -161,7 +161,9 @@ TEST(Buckling, CriticalLoadConvergesWithTheGrid) {
 // (Timoshenko & Gere 1961, §2.7), in support/analytic/elastica.hpp.
 using Elastica = truth::PostBuckledCantilever;
 Elastica CantileverElastica(double k) { return truth::PostBuckledCantileverAtModulus(k); }
-Elastica CantileverElasticaAtLoad(double ratio) { return truth::PostBuckledCantileverAtLoad(ratio); }
+Elastica CantileverElasticaAtLoad(double ratio) {
+  return truth::PostBuckledCantileverAtLoad(ratio);
+}
 
 TEST(Buckling, EllipticTableCheck) {  // the helper against Timoshenko & Gere's table, α = 60°
   const Elastica e = CantileverElastica(0.5);
@@ -193,15 +195,16 @@ TEST(Buckling, CantileverPostBuckledBranchIsTheElastica) {
     std::printf(
         "P/P_cr = %.4f  deflection %.5f L (elastica %.5f)  angle %.3f deg (%.3f)  "
         "axial %.5f L (%.5f)  deflection/sqrt(P/P_cr-1) = %.4f\n",
-        ratio, deflection, e.deflection, angle * 180 / kPi, e.angle * 180 / kPi, tip.z() / rod.length,
-        e.axial, deflection / std::sqrt(ratio - 1));
+        ratio, deflection, e.deflection, angle * 180 / kPi, e.angle * 180 / kPi,
+        tip.z() / rod.length, e.axial, deflection / std::sqrt(ratio - 1));
     EXPECT_GT(deflection, previous);
     previous = deflection;
     EXPECT_NEAR(deflection, e.deflection, 1e-3) << ratio;
     EXPECT_NEAR(tip.z() / rod.length, e.axial, 1e-3) << ratio;
     EXPECT_NEAR(angle, e.angle, 2e-3) << ratio;
     if (ratio < 1.005)  // the asymptote holds as P → P_cr (at 1.01 the ratio is already 1.78)
-      EXPECT_NEAR(deflection / std::sqrt(ratio - 1), truth::PostBuckledDeflectionSlope(), 0.005) << ratio;
+      EXPECT_NEAR(deflection / std::sqrt(ratio - 1), truth::PostBuckledDeflectionSlope(), 0.005)
+          << ratio;
   }
 }
 
@@ -233,8 +236,8 @@ TEST(Buckling, StaticSolveWithImperfectionLandsOnTheBuckledBranch) {
   std::printf(
       "imperfect static solve: deflection %.5f L (%d load steps, %d on the stable path, %d shots, "
       "%.1f ms); released: angle %.3f deg, deflection %.5f L, axial %.5f L\n",
-      imperfect_x / rod.length, s.load_steps, s.stable_path_steps, s.shots, 1e3 * s.wall_time_s, angle,
-      tip.x() / rod.length, tip.z() / rod.length);
+      imperfect_x / rod.length, s.load_steps, s.stable_path_steps, s.shots, 1e3 * s.wall_time_s,
+      angle, tip.x() / rod.length, tip.z() / rod.length);
   EXPECT_GT(imperfect_x / rod.length, 0.55);  // on the buckled branch already, before the release
   EXPECT_NEAR(angle, 60.0, 0.06);        // 1e-3 rad
   EXPECT_NEAR(tip.x() / rod.length, e.deflection, 1e-3);
@@ -279,7 +282,8 @@ TEST(Buckling, StabilityIndexCountsEulerLoadsBelowTheLoad) {
     Vec6 W0;
     W0 << 0, 0, 0, 0, 0, -ratio * P1;  // the straight state: n(0) = the tip force
     int below = 0;
-    for (int k = 1; k < 10; ++k) below += truth::EulerLoadClampedFree(rod.EI(), rod.length, k) < ratio * P1;
+    for (int k = 1; k < 10; ++k)
+      below += truth::EulerLoadClampedFree(rod.EI(), rod.length, k) < ratio * P1;
     EXPECT_EQ(solver.StabilityIndex(lie::SE3{}, loads, W0), 2 * below) << ratio;
   }
   // A follower load is not conservative: no index.

@@ -46,7 +46,8 @@ TEST(ColumnStatics, TautPinnedBeamMatchesTheTensionedBeamSolution) {
   const double expected = truth::TensionedBeamMidSpanDeflection(q, T, wire.EI(), wire.length);
   EXPECT_NEAR(MidSpanDeflection(solver) / expected, 1.0, 5e-4);
   // The pins carry no bending moment; the base reaction balances the lateral load by symmetry.
-  EXPECT_NEAR(solver.state().wrench_B.front().head<2>().norm(), 0.0, 1e-10 * wire.EI() / wire.length);
+  EXPECT_NEAR(solver.state().wrench_B.front().head<2>().norm(), 0.0,
+              1e-10 * wire.EI() / wire.length);
   EXPECT_NEAR(solver.state().BaseReaction_W().tail<3>().x(), -q * wire.length / 2,
               5e-4 * q * wire.length / 2);
 }
@@ -68,7 +69,8 @@ TEST(ColumnStatics, BeamsUnderAUniformLoadMatchTimoshenko) {
     double expected, tolerance;
   };
   for (const Case& c :
-       {Case{ColumnEnds::kClampedClamped, truth::ClampedClampedUniformLoadMidSpan(q, L, EI, kGA), 2e-5},
+       {Case{ColumnEnds::kClampedClamped, truth::ClampedClampedUniformLoadMidSpan(q, L, EI, kGA),
+             2e-5},
         Case{ColumnEnds::kPinnedPinned, truth::PinnedPinnedUniformLoadMidSpan(q, L, EI, kGA), 2e-5},
         Case{ColumnEnds::kClampedPinned, truth::ClampedPinnedUniformLoadMidSpan(q, L, EI), 5e-4}}) {
     ColumnSolver solver(wire.model(), 41, c.ends);

@@ -179,8 +179,10 @@ TEST(Modes, TorsionalAndAxialFundamentals) {
   rod.length = 1.0;
   rod.r = 0.01;
   const double rho = rod.material.density;
-  const double wt = truth::ClampedFreeWaveOmega(1, std::sqrt(rod.material.shear_modulus / rho), rod.length);
-  const double wa = truth::ClampedFreeWaveOmega(1, std::sqrt(rod.material.youngs_modulus / rho), rod.length);
+  const double wt =
+      truth::ClampedFreeWaveOmega(1, std::sqrt(rod.material.shear_modulus / rho), rod.length);
+  const double wa =
+      truth::ClampedFreeWaveOmega(1, std::sqrt(rod.material.youngs_modulus / rho), rod.length);
   const ModalResult fd = QuatFdModes(rod.model(), lie::SE3(), {}, 40, 6 * 40);
   ASSERT_TRUE(fd.converged()) << ToString(fd.status);
   auto first = [](const ModalResult& r, ModeKind kind) {

@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "cosserat/strong/bdf2_stepper.hpp"
 #include "../bench/peer_rod.hpp"
+#include "cosserat/strong/bdf2_stepper.hpp"
 #include "support/analytic/beam_vibration.hpp"
 #include "support/rods.hpp"
 #include "support/smooth_ramp.hpp"
@@ -16,8 +16,8 @@
 namespace cosserat {
 namespace {
 
-using truth::kPi;
 using bench::PeerRod;  // steel, L = 0.5 m, r = 1 mm
+using truth::kPi;
 constexpr double kLength = 0.5, kRadius = 0.001;
 
 // The peer problem's release (gravity along −x, a 0.02 kg tip weight removed at t = 0), `steps`

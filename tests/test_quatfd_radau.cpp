@@ -127,7 +127,7 @@ TEST(QuatFdRadau, ConstraintStaysOnTheSphere) {
   // round-off (1e-10, the acceptance of issue 4); the drift the projection undoes is of the
   // size of the local error, non-zero and far below 1e-4.
   // The co-rotated iteration matrix lets a Jacobian last several steps.
-  ExpectConstraintStaysOnTheSphere<RadauIntegrator>();
+  testing::ExpectConstraintStaysOnTheSphere<RadauIntegrator>();
 }
 
 TEST(QuatFdRadau, PhysicalErrorMeasureAgainstATightReference) {

@@ -149,7 +149,7 @@ TEST(QuatFdSdirk, ConstraintStaysOnTheSphere) {
   // | |p| − 1 | is round-off (1e-10, the acceptance of issue 4); the drift the projection undoes
   // is of the size of the local error, non-zero.
   // The co-rotated iteration matrix is what makes a Jacobian last many steps.
-  ExpectConstraintStaysOnTheSphere<SdirkIntegrator>();
+  testing::ExpectConstraintStaysOnTheSphere<SdirkIntegrator>();
 }
 
 TEST(QuatFdSdirk, StepMapIsStableWhereRosenbrocksIsNot) {

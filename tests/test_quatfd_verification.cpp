@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../bench/quatfd_rods.hpp"
 #include "cosserat/lie/quaternion.hpp"
 #include "cosserat/quatfd/quatfd_integrate.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
@@ -21,10 +22,9 @@
 #include "cosserat/quatfd/rosenbrock.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
-#include "../bench/quatfd_rods.hpp"
 #include "support/analytic/beam_vibration.hpp"
-#include "support/rods.hpp"
 #include "support/quatfd_falling_rod.hpp"
+#include "support/rods.hpp"
 #include "support/spectral_peak.hpp"
 
 namespace cosserat::quatfd {
@@ -136,8 +136,10 @@ TEST(QuatFdDynamics, BendingFrequenciesMatchEulerBernoulli) {
   BandedMatrix A, B;
   model.Jacobian(q, v, &A, &B);
   const double rhoA = rod.rhoA();
-  const double w1 = truth::EulerBernoulliOmega(truth::CantileverBetaL(1), rod.EI(), rhoA, rod.length);
-  const double w2 = truth::EulerBernoulliOmega(truth::CantileverBetaL(2), rod.EI(), rhoA, rod.length);
+  const double w1 =
+      truth::EulerBernoulliOmega(truth::CantileverBetaL(1), rod.EI(), rhoA, rod.length);
+  const double w2 =
+      truth::EulerBernoulliOmega(truth::CantileverBetaL(2), rod.EI(), rhoA, rod.length);
   const Eigen::EigenSolver<Eigen::MatrixXd> es(A.ToDense(), false);
   std::vector<double> omega;
   for (int i = 0; i < es.eigenvalues().size(); ++i) {

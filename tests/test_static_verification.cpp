@@ -37,7 +37,8 @@ TEST(StaticVerification, ElasticaTableAtN41) {
   for (const auto& row : ref["rows"]) {
     const double alpha = row["alpha"];
     StaticLoads loads;
-    loads.tip_force = Vec3(-alpha * rod.EI() / (rod.length * rod.length), 0, 0);  // dead load along −x
+    loads.tip_force =
+        Vec3(-alpha * rod.EI() / (rod.length * rod.length), 0, 0);  // dead load along −x
     solver.ResetWarmStart();  // every row from a cold start
     const auto summary = solver.Solve(lie::SE3{}, loads);
     ASSERT_TRUE(summary.converged()) << "alpha " << alpha << ": " << ToString(summary.status);
@@ -69,7 +70,8 @@ TEST(StaticVerification, LargeLoadsFollowTheNaturalBranch) {
     ASSERT_TRUE(summary.converged()) << alpha;
     // Model difference (r/L)² α/4 ≈ 3e-4 at α = 50 (the stretch under the load) plus RK4 error:
     // within 1e-3 L, as for the table.
-    EXPECT_NEAR(-solver.state().tip_position_W().x() / rod.length, TipLoadElasticaDeflection(alpha), 1e-3)
+    EXPECT_NEAR(-solver.state().tip_position_W().x() / rod.length, TipLoadElasticaDeflection(alpha),
+                1e-3)
         << alpha;
   }
 }
@@ -137,7 +139,8 @@ TEST(StaticVerification, AxialStretchUnderAxialLoad) {
   ASSERT_TRUE(solver.Solve(lie::SE3{}, loads).converged());
   // Γ3 = 1 + P/EA exactly along the rod: the stretch is PL/(EA) to round-off.
   // Round-off of summing 40 steps of length ~L/40 is ~1e-15 L against a stretch of 1e-3 L.
-  EXPECT_NEAR(solver.state().tip_position_W().z() - rod.length, P * rod.length / EA, 1e-9 * P * rod.length / EA);
+  EXPECT_NEAR(solver.state().tip_position_W().z() - rod.length, P * rod.length / EA,
+              1e-9 * P * rod.length / EA);
 }
 
 // Rest curvature k about y and no load: a circular arc of radius 1/k.

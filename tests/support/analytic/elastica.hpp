@@ -79,7 +79,8 @@ inline PostBuckledCantilever PostBuckledCantileverAtModulus(double k) {
 
 /// Timoshenko & Gere (1961), §2.7, table for a tip angle of 60° (k = sin 30° = 1/2), as printed:
 /// P/P_cr, deflection/L and axial/L.
-constexpr PostBuckledCantilever kPostBuckled60DegreesPrinted = {1.152, 60 * kPi / 180, 0.593, 0.741};
+constexpr PostBuckledCantilever kPostBuckled60DegreesPrinted = {1.152, 60 * kPi / 180, 0.593,
+                                                                0.741};
 
 /// The same at a given load ratio P/P_cr ≥ 1 (bisection on k in [0, 0.999]).
 inline PostBuckledCantilever PostBuckledCantileverAtLoad(double ratio) {

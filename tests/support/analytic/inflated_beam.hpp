@@ -10,9 +10,7 @@
 namespace cosserat::truth {
 
 /// Wrinkling moment (N·m) of a tube of radius r (m) at gauge pressure p (Pa): M_w = π p r³/2.
-inline double WrinklingMoment(double p, double r) {
-  return 0.5 * kPi * p * r * r * r;
-}
+inline double WrinklingMoment(double p, double r) { return 0.5 * kPi * p * r * r * r; }
 
 /// Collapse moment (N·m): M_c = π p r³ = 2 M_w.
 inline double CollapseMoment(double p, double r) { return 2 * WrinklingMoment(p, r); }
