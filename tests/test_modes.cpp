@@ -110,7 +110,7 @@ TEST(Modes, SecondOrderConvergenceOfQuatFdFrequencies) {
 
 TEST(Modes, CompressedCantileverMatchesExactEulerBernoulli) {
   // Axial dead load P = Pcr/2 (Pcr = π² EI / 4L²) along −z at the tip of the straight rod. The
-  // truth is the root of the exact Euler–Bernoulli frequency equation (≈ 0.5 % above Galef's
+  // truth is the root of the exact Euler–Bernoulli frequency equation (≈ 2 % above Galef's
   // ω² = ω₀² (1 − P/Pcr)). Budget: shooting 1e-4 (r/L = 1/500 shear/rotary shifts ~1e-5);
   // quatfd 0.1 % (its grid error for mode 1 at N = 100 is ≈ (β₁ h)²/3 ≈ 0.01 %).
   SteelRod rod;
