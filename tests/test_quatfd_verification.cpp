@@ -316,10 +316,7 @@ TEST(QuatFdDynamics, StepLimitIsTheRosenbrockStepMapNotTheOde) {
     double t = 0;
     ASSERT_EQ(integ.Advance(1.0, &t, q, v), IntegratorStatus::kOk);
   }
-  std::vector<int> keep;  // free unknowns of y = [q; v]
-  for (int k = 0; k < 2; ++k)
-    for (int i = 0; i < n; ++i)
-      if (!model.IsFixed(i)) keep.push_back(k * n + i);
+  const std::vector<int> keep = testing::FreeUnknowns(model);  // free unknowns of y = [q; v]
   const int m = static_cast<int>(keep.size());
 
   BandedMatrix A, B;
@@ -349,26 +346,14 @@ TEST(QuatFdDynamics, StepLimitIsTheRosenbrockStepMapNotTheOde) {
   EXPECT_LT(stiffest, -1e6);  // over-damped shear/rotary modes: h λ ~ 1e3–1e4 at the steps taken
 
   RosenbrockIntegrator integ(model);
-  Eigen::VectorXd y(2 * n), out(2 * n), err(2 * n);
+  Eigen::VectorXd y(2 * n);
   y << q, v;
   const auto spectral_radius = [&](double h) {
-    Eigen::MatrixXd D(m, m);
-    for (int b = 0; b < m; ++b) {
-      const double eps = 1e-7;
-      Eigen::VectorXd d(2 * n);
-      for (int sign : {1, -1}) {
-        Eigen::VectorXd yy = y;
-        yy[keep[b]] += sign * eps;
-        integ.Step(yy, h, out, err);
-        model.Project(out.head(n), out.tail(n));
-        if (sign == 1)
-          d = out;
-        else
-          d = (d - out) / (2 * eps);
-      }
-      for (int a = 0; a < m; ++a) D(a, b) = d[keep[a]];
-    }
-    return Eigen::EigenSolver<Eigen::MatrixXd>(D, false).eigenvalues().cwiseAbs().maxCoeff();
+    return testing::StepMapSpectralRadius(
+        model, y, keep, 1e-7,
+        [&](const Eigen::VectorXd& yy, Eigen::VectorXd& out, Eigen::VectorXd& err) {
+          integ.Step(yy, h, out, err);
+        });
   };
   const double rho_1ms = spectral_radius(1e-3), rho_5ms = spectral_radius(5e-3);
   std::printf("step-map spectral radius: %.6f at h = 1 ms, %.3g at h = 5 ms\n", rho_1ms, rho_5ms);

@@ -4,8 +4,10 @@
 // statuses every error-controlled integrator must give.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <limits>
+#include <vector>
 
 #include "../../bench/quatfd_rods.hpp"
 #include "cosserat/quatfd/integrator.hpp"
@@ -83,6 +85,41 @@ void ExpectConstraintStaysOnTheSphere() {
   EXPECT_GT(integ.stats().max_drift_before_projection, 0.0);
   EXPECT_LT(integ.stats().max_drift_before_projection, 1e-4);
   EXPECT_LT(integ.stats().jacobian_evaluations, integ.stats().steps);
+}
+
+/// The unknowns of y = [q; v] the model does not fix (indices into y).
+inline std::vector<int> FreeUnknowns(const QuatFdModel& model) {
+  const int n = model.size();
+  std::vector<int> keep;
+  for (int k = 0; k < 2; ++k)
+    for (int i = 0; i < n; ++i)
+      if (!model.IsFixed(i)) keep.push_back(k * n + i);
+  return keep;
+}
+
+/// Spectral radius of the one-step map y ↦ Project(step(y)) on the free unknowns `keep`, by
+/// central differences of step eps. step(yy, out, err) advances the state yy = [q; v] by one step
+/// into out.
+template <typename Step>
+double StepMapSpectralRadius(const QuatFdModel& model, const Eigen::VectorXd& y,
+                             const std::vector<int>& keep, double eps, Step step) {
+  const int n = model.size(), m = static_cast<int>(keep.size());
+  Eigen::VectorXd out(2 * n), err(2 * n), d(2 * n);
+  Eigen::MatrixXd D(m, m);
+  for (int b = 0; b < m; ++b) {
+    for (int sign : {1, -1}) {
+      Eigen::VectorXd yy = y;
+      yy[keep[b]] += sign * eps;
+      step(yy, out, err);
+      model.Project(out.head(n), out.tail(n));
+      if (sign == 1)
+        d = out;
+      else
+        d = (d - out) / (2 * eps);
+    }
+    for (int a = 0; a < m; ++a) D(a, b) = d[keep[a]];
+  }
+  return Eigen::EigenSolver<Eigen::MatrixXd>(D, false).eigenvalues().cwiseAbs().maxCoeff();
 }
 
 }  // namespace cosserat::quatfd::testing
