@@ -55,7 +55,7 @@ TEST(AnalyticReferences, CantileverModeShapesMeetTheEndConditions) {
   }
 }
 
-// Blevins (1979), table 8-1: a tip mass equal to the beam's mass, λ₁ = 1.2479. No mass: the bare
+// Blevins (1979), table 8-1: λ₁ for a tip mass equal to the beam's mass, to the digits printed. No mass: the bare
 // root.
 TEST(AnalyticReferences, TipMassRoot) {
   EXPECT_NEAR(truth::CantileverTipMassBetaL(1.0), truth::kTipMassEqualBetaLPrinted, 1e-4);
