@@ -55,8 +55,8 @@ TEST(AnalyticReferences, CantileverModeShapesMeetTheEndConditions) {
   }
 }
 
-// Blevins (1979), table 8-1: λ₁ for a tip mass equal to the beam's mass, to the digits printed. No mass: the bare
-// root.
+// Blevins (1979), table 8-1: λ₁ for a tip mass equal to the beam's mass, to the digits printed.
+// No mass: the bare root.
 TEST(AnalyticReferences, TipMassRoot) {
   EXPECT_NEAR(truth::CantileverTipMassBetaL(1.0), truth::kTipMassEqualBetaLPrinted, 1e-4);
   EXPECT_NEAR(truth::CantileverTipMassBetaL(1e-12), truth::CantileverBetaL(1), 1e-9);
