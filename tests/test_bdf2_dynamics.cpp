@@ -9,28 +9,27 @@
 #include <memory>
 #include <vector>
 
+#include "../bench/peer_rod.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
-#include "spectral_peak.hpp"
+#include "support/analytic/beam_vibration.hpp"
+#include "support/rods.hpp"
+#include "support/smooth_ramp.hpp"
+#include "support/spectral_peak.hpp"
 
 namespace cosserat {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using truth::kPi;
 
-RodModel Steel(double L, double r) {
-  return RodModel::Uniform(L, CrossSection::Circle(r),
-                           Material::FromShearModulus(200e9, 80e9, 8000));
-}
+RodModel Steel(double L, double r) { return testing::SteelRod{L, r}.model(); }
 
 using testing::PeakFrequency;
 
 TEST(Bdf2Dynamics, RodAtRestInEquilibriumStaysThere) {
   const RodModel model = Steel(0.5, 0.001);
   Bdf2ShootingStepper stepper(model, 40);
-  StepInput in;
-  in.loads.gravity_W = Vec3(-9.81, 0, 0);
-  in.loads.tip_force = Vec3(-0.02 * 9.81, 0, 0);
+  StepInput in = bench::PeerPreload();
   ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
   const Vec3 tip0 = stepper.state().tip_position_W();
   // The equilibrium is the same discrete equations with zero rates, and BDF2 of a constant
@@ -59,10 +58,8 @@ TEST(Bdf2Dynamics, FirstTwoBendingFrequencies) {
   const double L = 1.0, r = 0.01;
   const RodModel model = Steel(L, r);
   const double EI = 200e9 * kPi * std::pow(r, 4) / 4, rhoA = 8000 * kPi * r * r;
-  const double f1 =
-      1.8751040687 * 1.8751040687 * std::sqrt(EI / (rhoA * std::pow(L, 4))) / (2 * kPi);
-  const double f2 =
-      4.6940911330 * 4.6940911330 * std::sqrt(EI / (rhoA * std::pow(L, 4))) / (2 * kPi);
+  const double f1 = truth::EulerBernoulliOmega(truth::CantileverBetaL(1), EI, rhoA, L) / (2 * kPi);
+  const double f2 = truth::EulerBernoulliOmega(truth::CantileverBetaL(2), EI, rhoA, L) / (2 * kPi);
   Bdf2Options opt;
   // BDF2 shifts a frequency by −(ω dt)²/3: at ω2 dt = 0.12 that is −0.48 % for mode 2 and
   // −0.01 % for mode 1. Smaller dt is not better for shooting: the bending exponent
@@ -97,7 +94,7 @@ TEST(Bdf2Dynamics, FirstTwoBendingFrequencies) {
 // (c_s = 2 c_a). The axial frequency does not depend on the shear stiffness.
 void ExpectFundamental(const RodModel& model, double L, double wave_speed, bool torsion,
                        double static_load, double omega_dt, double tolerance) {
-  const double f = wave_speed / (4 * L);
+  const double f = truth::ClampedFreeWaveOmega(1, wave_speed, L) / (2 * kPi);
   Bdf2Options opt;
   opt.dt = omega_dt / (2 * kPi * f);  // BDF2 shifts the frequency by −(ω dt)²/3
   opt.tolerance = tolerance;
@@ -142,7 +139,7 @@ TEST(Bdf2Dynamics, SecondOrderInTime) {
   const double L = 0.5, r = 0.001;
   const RodModel model = Steel(L, r);
   const double EI = 200e9 * kPi * std::pow(r, 4) / 4, rhoA = 8000 * kPi * r * r;
-  const double w1 = 1.8751040687 * 1.8751040687 * std::sqrt(EI / (rhoA * std::pow(L, 4)));
+  const double w1 = truth::EulerBernoulliOmega(truth::CantileverBetaL(1), EI, rhoA, L);
   const double period = 2 * kPi / w1, T_ramp = period;
   const double P = 1e-2 * 3 * EI / (L * L);
   const int samples = 32;  // over two periods
@@ -165,7 +162,7 @@ TEST(Bdf2Dynamics, SecondOrderInTime) {
       // A ramp with three continuous derivatives (s⁴(35 − 84s + 70s² − 20s³)), so it excites no
       // mode that the coarse steps cannot resolve.
       const double u = std::min(1.0, t / T_ramp);
-      const double ramp = u * u * u * u * (35 - 84 * u + 70 * u * u - 20 * u * u * u);
+      const double ramp = testing::SmoothRamp(u);
       in.loads.tip_force = Vec3(-P * ramp, 0, 0);
       EXPECT_TRUE(stepper.Step(in).converged()) << steps_per_sample << " step " << i;
       if (i % steps_per_sample == 0) out.push_back(stepper.state().tip_position_W());
@@ -186,14 +183,9 @@ TEST(Bdf2Dynamics, SecondOrderInTime) {
 }
 
 TEST(Bdf2Dynamics, DampedEnergyDecreasesEveryStep) {
-  RodModel model = Steel(0.5, 0.001);
-  Material mat = Material::FromShearModulus(200e9, 80e9, 8000);
   const CrossSection sec = CrossSection::Circle(0.001);
-  mat.damping.bending = 1e-4 * 200e9 * sec.I1;  // relaxation time 0.1 ms on bending
-  mat.damping.torsion = 1e-4 * 80e9 * sec.torsion_constant;
-  mat.damping.shear = 1e-4 * 80e9 * sec.area;
-  mat.damping.extension = 1e-4 * 200e9 * sec.area;
-  model = RodModel::Uniform(0.5, sec, mat);
+  // relaxation time 0.1 ms on bending
+  const RodModel model = RodModel::Uniform(0.5, sec, testing::DampedSteel(sec, 1e-4));
   Bdf2ShootingStepper stepper(model, 40);
   StepInput in;
   in.loads.tip_force = Vec3(-0.1, 0, 0);
@@ -214,7 +206,7 @@ TEST(Bdf2Dynamics, UndampedEnergyLossIsBdf2Dissipation) {
   const double L = 0.5, r = 0.001;
   const RodModel model = Steel(L, r);
   const double EI = 200e9 * kPi * std::pow(r, 4) / 4, rhoA = 8000 * kPi * r * r;
-  const double w1 = 1.8751040687 * 1.8751040687 * std::sqrt(EI / (rhoA * std::pow(L, 4)));
+  const double w1 = truth::EulerBernoulliOmega(truth::CantileverBetaL(1), EI, rhoA, L);
   Bdf2Options opt;
   opt.dt = 0.05 / w1;
   Bdf2ShootingStepper stepper(model, 40, opt);
@@ -240,13 +232,8 @@ TEST(Bdf2Dynamics, UndampedEnergyLossIsBdf2Dissipation) {
 
 // A very slow ramp of the tip load with damping ends at the static solution.
 TEST(Bdf2Dynamics, QuasiStaticLimitMatchesStatics) {
-  Material mat = Material::FromShearModulus(200e9, 80e9, 8000);
   const CrossSection sec = CrossSection::Circle(0.001);
-  mat.damping.bending = 2e-3 * 200e9 * sec.I1;
-  mat.damping.torsion = 2e-3 * 80e9 * sec.torsion_constant;
-  mat.damping.shear = 2e-3 * 80e9 * sec.area;
-  mat.damping.extension = 2e-3 * 200e9 * sec.area;
-  const RodModel model = RodModel::Uniform(0.5, sec, mat);
+  const RodModel model = RodModel::Uniform(0.5, sec, testing::DampedSteel(sec, 2e-3));
   Bdf2Options opt;
   opt.dt = 5e-3;
   Bdf2ShootingStepper stepper(model, 40, opt);
@@ -321,7 +308,7 @@ namespace cosserat {
 namespace {
 
 void ExpectShootingJacobianMatchesFiniteDifferences(SpatialScheme scheme) {
-  Material mat = Material::FromShearModulus(200e9, 80e9, 8000);
+  Material mat = testing::Steel();
   const CrossSection sec = CrossSection::Circle(0.001);
   mat.damping.bending = 1e-4 * 200e9 * sec.I1;
   mat.damping.extension = 1e-4 * 200e9 * sec.area;
@@ -455,9 +442,7 @@ TEST(Bdf2Dynamics, AcceleratingBaseActsLikeGravity) {
   const Vec3 a(2.0, 0, 0);  // m/s²
   const double t_end = 0.4, T = 0.2;
   // S(u) = u⁴(35 − 84u + 70u² − 20u³) on [0, 1], then 1; its first and second integrals in t.
-  auto S = [](double u) {
-    return u >= 1 ? 1.0 : u * u * u * u * (35 - 84 * u + 70 * u * u - 20 * u * u * u);
-  };
+  auto S = [](double u) { return u >= 1 ? 1.0 : testing::SmoothRamp(u); };
   auto I1 = [&](double u) {  // ∫₀ᵗ S dt / T
     if (u >= 1) return 0.5 + (u - 1);
     return std::pow(u, 5) * (7 - 14 * u + 10 * u * u - 2.5 * u * u * u);
@@ -512,16 +497,12 @@ TEST(Bdf2Dynamics, TipMassLowersTheFundamentalAsTheory) {
   const double L = 1.0, r = 0.01;
   const double EI = 200e9 * kPi * std::pow(r, 4) / 4, rhoA = 8000 * kPi * r * r;
   const double ratio = 1.0;  // tip mass = rod mass
-  auto g = [&](double l) {
-    return 1 + std::cos(l) * std::cosh(l) +
-           ratio * l * (std::cos(l) * std::sinh(l) - std::sin(l) * std::cosh(l));
-  };
-  double lo = 0.5, hi = 1.8751;  // g(lo) > 0 > g(hi): the root below the no-mass λ1
-  ASSERT_GT(g(lo), 0);
+  auto g = [&](double l) { return truth::TipMassFrequencyEquation(l, ratio); };
+  const double lo = 0.5, hi = truth::CantileverBetaL(1);  // g(lo) > 0 > g(hi): the root below
+  ASSERT_GT(g(lo), 0);                                    // the no-mass λ1
   ASSERT_LT(g(hi), 0);
-  for (int it = 0; it < 100; ++it) (g(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
-  const double lambda = 0.5 * (lo + hi);
-  const double f = lambda * lambda * std::sqrt(EI / (rhoA * std::pow(L, 4))) / (2 * kPi);
+  const double lambda = truth::CantileverTipMassBetaL(ratio);
+  const double f = truth::EulerBernoulliOmega(lambda, EI, rhoA, L) / (2 * kPi);
 
   Bdf2Options opt;
   opt.dt = 0.05 / (2 * kPi * f);  // BDF2 shift −(ω dt)²/3 = −0.08 %
@@ -589,12 +570,8 @@ namespace {
 // filter's rate kept across such a replacement, the next step's J + rate failed again, and so on
 // step after step (an exact Jacobian, ~10 shots each time); restarted, a handful.
 TEST(Bdf2Dynamics, ASidewaysKickAfterAPlanarSwingNeedsFewExactJacobians) {
-  Bdf2ShootingStepper stepper(RodModel::Uniform(0.5, CrossSection::Circle(0.001),
-                                                Material::FromShearModulus(200e9, 80e9, 8000)),
-                              40);
-  StepInput in;
-  in.loads.gravity_W = Vec3(-9.81, 0, 0);
-  in.loads.tip_force = Vec3(-0.02 * 9.81, 0, 0);
+  Bdf2ShootingStepper stepper(bench::PeerRod(), 40);
+  StepInput in = bench::PeerPreload();
   ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
   in.loads.tip_force.setZero();
   for (int i = 0; i < 2000; ++i) ASSERT_TRUE(stepper.Step(in).converged()) << i;  // planar
@@ -620,13 +597,9 @@ TEST(Bdf2Dynamics, ASidewaysKickAfterAPlanarSwingNeedsFewExactJacobians) {
 TEST(Bdf2Dynamics, FewStepsAfterAReleaseTakeFiveShotsOrMore) {
   Bdf2Options opt;
   opt.spatial_scheme = SpatialScheme::kHeun;
-  Bdf2ShootingStepper stepper(RodModel::Uniform(0.5, CrossSection::Circle(0.001),
-                                                Material::FromShearModulus(200e9, 80e9, 8000)),
-                              40, opt);
+  Bdf2ShootingStepper stepper(bench::PeerRod(), 40, opt);
   ASSERT_EQ(stepper.options().dt, 2e-3);
-  StepInput in;
-  in.loads.gravity_W = Vec3(-9.81, 0, 0);
-  in.loads.tip_force = Vec3(-0.02 * 9.81, 0, 0);
+  StepInput in = bench::PeerPreload();
   ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
   in.loads.tip_force.setZero();
   int slow = 0, shots = 0;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "cosserat/analysis/bend_radius.hpp"
+#include "support/analytic/inflated_beam.hpp"
 
 namespace cosserat {
 namespace {
@@ -26,7 +27,7 @@ EversionRobotDesign Vine(std::vector<EversionBand> bands) {
 TEST(BendRadius, BandsGiveAlphaTimesThePlainRadiusAtTheKink) {
   const double p = 3e3, L = 1.0, r = 0.025;
   const double EI = (100e6 + 1e4 * p) * kPi * r * r * r * 75e-6;
-  const double M_w = kPi * p * r * r * r / 2;
+  const double M_w = truth::WrinklingMoment(p, r);
   StaticLoads moment;
   moment.tip_moment = Vec3(0, 2 * M_w, 0);  // the actuation range: up to twice the kink moment
 
@@ -50,7 +51,7 @@ TEST(BendRadius, BandsGiveAlphaTimesThePlainRadiusAtTheKink) {
 
 TEST(BendRadius, ActuationLimitWhenTheLoadStaysBelowTheKink) {
   const double p = 3e3, r = 0.025;
-  const double M_w = kPi * p * r * r * r / 2;
+  const double M_w = truth::WrinklingMoment(p, r);
   StaticLoads moment;
   moment.tip_moment = Vec3(0.5 * M_w, 0, 0);
   EversionRobot plain(Vine({}), 1.0, p);
@@ -100,7 +101,7 @@ TEST(BendRadius, JammingConcentratesAGivenTurnInTheCompliantSegments) {
   EXPECT_NEAR(b.load_factor / a.load_factor, 1 / (1 - f + f / alpha), 1e-6);
 
   // Kink-limited: the same radius as the plain tube, EI/M_w, in the compliant half.
-  const double M_w = kPi * p * r * r * r / 2;
+  const double M_w = truth::WrinklingMoment(p, r);
   StaticLoads to_kink;
   to_kink.tip_moment = Vec3(0, 2 * M_w, 0);
   const BendRadiusResult c = MinimumBendRadius(jammed, StaticLoads{}, to_kink);

@@ -9,16 +9,16 @@
 
 #include "cosserat/analysis/buckling.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
+#include "support/analytic/euler_buckling.hpp"
+#include "support/analytic/tendon.hpp"
+#include "support/rods.hpp"
 
 namespace cosserat {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // The steel column of test_buckling.cpp (r/L = 1/200), with one tendon.
 RodModel SteelRodWithTendon(const TendonRoute& route) {
-  RodModel model =
-      RodModel::Uniform(1.0, CrossSection::Circle(0.005), Material::FromShearModulus(200e9, 80e9, 8000));
+  RodModel model = testing::SteelRod{1.0, 0.005}.model();
   model.tendons.push_back(Tendon{"t0", route});
   return model;
 }
@@ -32,8 +32,8 @@ RodModel SteelRodWithTendon(const TendonRoute& route) {
 // singular, at any tension — for the centreline tendon and for an offset one alike. The same
 // compressive force as a dead tip load buckles the rod at π²EI/(4L²) (test_buckling.cpp).
 TEST(BucklingLoadPaths, TendonTensionNeverBucklesTheRod) {
-  const double EI = 200e9 * kPi * std::pow(0.005, 4) / 4, L = 1.0;
-  const double P_euler = kPi * kPi * EI / (4 * L * L);
+  const double EI = testing::SteelRod{1.0, 0.005}.EI(), L = 1.0;
+  const double P_euler = truth::EulerLoadClampedFree(EI, L);
   for (const TendonRoute& route :
        {TendonRoute::Parallel(Vec2::Zero()), TendonRoute::Parallel(Vec2(0.004, 0))}) {
     const RodModel model = SteelRodWithTendon(route);
@@ -49,7 +49,7 @@ TEST(BucklingLoadPaths, TendonTensionNeverBucklesTheRod) {
     // τ d; the compression τ changes it by a factor 1 + O(τ/EA) = 1 + 1.5e-4).
     if (route.offset_base.x() > 0) {
       const double kappa = tendon.state().strain[20].head<2>().norm();
-      EXPECT_NEAR(kappa, options.lambda_max * 0.004 / EI, 1e-3 * kappa);
+      EXPECT_NEAR(kappa, truth::TendonArcCurvature(options.lambda_max, 0.004, EI), 1e-3 * kappa);
     }
     std::printf("tendon offset %.3f m: %s up to %.0f N = %.0f Euler loads (%d solves)\n",
                 route.offset_base.x(), ToString(b.status), b.lambda_reached,
@@ -87,7 +87,7 @@ TEST(BucklingLoadPaths, LowestInflationPressureIsEulersWithEffectiveModulus) {
   model.section = std::make_shared<PressureModulusSection>(
       tube, Material::FromPoissonRatio(100e6, 0.45, 920), ModulusLaw::Affine(E0, k));
   const double p_expected = 20e3;
-  const double P = kPi * kPi * (E0 + k * p_expected) * tube.I1 / (4 * L * L);
+  const double P = truth::EulerLoadClampedFree((E0 + k * p_expected) * tube.I1, L);
   StaticLoads loads;
   loads.tip_force = Vec3(0, 0, -P);
   const double p0 = 40e3;

@@ -7,6 +7,9 @@
 #include <cmath>
 
 #include "cosserat/analysis/column.hpp"
+#include "support/analytic/tensioned_beam.hpp"
+#include "support/analytic/timoshenko_beam.hpp"
+#include "support/rods.hpp"
 
 namespace cosserat {
 namespace {
@@ -15,13 +18,8 @@ namespace {
 // loads are chosen for a mid-span deflection ~1e-4 L: geometric nonlinearity is then O(slope²)
 // ~ 1e-7 relative. What separates the rod from Euler–Bernoulli is shear (below) and, under
 // tension, extension; RK4 at h = L/40 is ~1e-8.
-struct Wire {
-  double L = 0.5, r = 1e-3;
-  Material material = Material::FromShearModulus(200e9, 80e9, 8000);
-  CrossSection section = CrossSection::Circle(r);
-  double EI() const { return material.youngs_modulus * section.I1; }
-  double EA() const { return material.youngs_modulus * section.area; }
-  RodModel model() const { return RodModel::Uniform(L, section, material); }
+struct Wire : testing::SteelRod {
+  Wire() : testing::SteelRod{0.5, 1e-3} {}
 };
 
 // Lateral (x) deflection of the node nearest mid-span.
@@ -37,21 +35,21 @@ TEST(ColumnStatics, TautPinnedBeamMatchesTheTensionedBeamSolution) {
   // Tension stretches the rod by T/EA = 2.5e-5, which lengthens the loaded span and its sag by
   // a few T/EA; shear adds ~3e-5 (pinned-pinned, below). 5e-4 (measured +3.9e-5).
   const Wire wire;
-  const double T = 25 * wire.EI() / (wire.L * wire.L), k = std::sqrt(T / wire.EI());
-  const double q = 8 * T * 5e-5 / wire.L;  // N/m, for a string sag of 1e-4 L
+  const double T = 25 * wire.EI() / (wire.length * wire.length);
+  const double q = 8 * T * 5e-5 / wire.length;  // N/m, for a string sag of 1e-4 L
   ColumnSolver solver(wire.model(), 41, ColumnEnds::kPinnedPinned);
   StaticLoads loads;
   loads.distributed_force_W = Vec3(q, 0, 0);
   loads.tip_force = Vec3(0, 0, T);  // pulls the guided tip along the axis
   const ColumnSummary s = solver.SolveFromUnloaded(lie::SE3{}, loads);
   ASSERT_TRUE(s.converged()) << ToString(s.status);
-  const double expected = q * wire.L * wire.L / (8 * T) -
-                          q * wire.EI() / (T * T) * (1 - 1 / std::cosh(k * wire.L / 2));
+  const double expected = truth::TensionedBeamMidSpanDeflection(q, T, wire.EI(), wire.length);
   EXPECT_NEAR(MidSpanDeflection(solver) / expected, 1.0, 5e-4);
   // The pins carry no bending moment; the base reaction balances the lateral load by symmetry.
-  EXPECT_NEAR(solver.state().wrench_B.front().head<2>().norm(), 0.0, 1e-10 * wire.EI() / wire.L);
-  EXPECT_NEAR(solver.state().BaseReaction_W().tail<3>().x(), -q * wire.L / 2,
-              5e-4 * q * wire.L / 2);
+  EXPECT_NEAR(solver.state().wrench_B.front().head<2>().norm(), 0.0,
+              1e-10 * wire.EI() / wire.length);
+  EXPECT_NEAR(solver.state().BaseReaction_W().tail<3>().x(), -q * wire.length / 2,
+              5e-4 * q * wire.length / 2);
 }
 
 TEST(ColumnStatics, BeamsUnderAUniformLoadMatchTimoshenko) {
@@ -62,20 +60,19 @@ TEST(ColumnStatics, BeamsUnderAUniformLoadMatchTimoshenko) {
   // 2.4 (E/κG)(r/L)² = 2.72e-5, asserted to 2e-5 (measured 1.360e-4 and 2.69e-5). For the
   // propped cantilever, the Euler–Bernoulli value to 5e-4 (measured +8.1e-5).
   const Wire wire;
-  const double q = 384 * wire.EI() * 5e-5 / std::pow(wire.L, 3);
+  const double q = 384 * wire.EI() * 5e-5 / std::pow(wire.length, 3);
   StaticLoads loads;
   loads.distributed_force_W = Vec3(q, 0, 0);
-  const double unit = q * std::pow(wire.L, 4) / wire.EI();
-  const double nu = wire.material.youngs_modulus / (2 * wire.material.shear_modulus) - 1;
-  const double kGA = wire.section.ShearCoefficient(nu) * wire.material.shear_modulus * wire.section.area;
-  const double shear = q * wire.L * wire.L / (8 * kGA);
+  const double L = wire.length, EI = wire.EI(), kGA = wire.kGA();
   struct Case {
     ColumnEnds ends;
     double expected, tolerance;
   };
-  for (const Case& c : {Case{ColumnEnds::kClampedClamped, unit / 384 + shear, 2e-5},
-                        Case{ColumnEnds::kPinnedPinned, 5 * unit / 384 + shear, 2e-5},
-                        Case{ColumnEnds::kClampedPinned, unit / 192, 5e-4}}) {
+  for (const Case& c :
+       {Case{ColumnEnds::kClampedClamped, truth::ClampedClampedUniformLoadMidSpan(q, L, EI, kGA),
+             2e-5},
+        Case{ColumnEnds::kPinnedPinned, truth::PinnedPinnedUniformLoadMidSpan(q, L, EI, kGA), 2e-5},
+        Case{ColumnEnds::kClampedPinned, truth::ClampedPinnedUniformLoadMidSpan(q, L, EI), 5e-4}}) {
     ColumnSolver solver(wire.model(), 41, c.ends);
     const ColumnSummary s = solver.SolveFromUnloaded(lie::SE3{}, loads);
     ASSERT_TRUE(s.converged()) << ToString(c.ends) << ": " << ToString(s.status);
@@ -93,14 +90,14 @@ TEST(ColumnStatics, LoadSteppingReportsWhereItStops) {
   options.min_load_step = 0.25;
   ColumnSolver solver(wire.model(), 41, ColumnEnds::kPinnedPinned, options);
   StaticLoads loads;
-  loads.distributed_force_W = Vec3(30 * wire.EI() / std::pow(wire.L, 3), 0, 0);
+  loads.distributed_force_W = Vec3(30 * wire.EI() / std::pow(wire.length, 3), 0, 0);
   const ColumnSummary s = solver.SolveFromUnloaded(lie::SE3{}, loads);
   EXPECT_EQ(s.status, SolveStatus::kLoadSteppingFailed);
   // What state() holds is an equilibrium the stepping reached: the guided tip still on the axis.
   const Vec3 tip = solver.state().position_W.back();
   ASSERT_TRUE(tip.allFinite());
-  EXPECT_NEAR(tip.x(), 0.0, 1e-9 * wire.L);
-  EXPECT_GT(tip.z(), 0.5 * wire.L);
+  EXPECT_NEAR(tip.x(), 0.0, 1e-9 * wire.length);
+  EXPECT_GT(tip.z(), 0.5 * wire.length);
   // Tight steps converge in one iteration, the full load does not: a few steps were taken.
   const ColumnSummary easy = ColumnSolver(wire.model(), 41, ColumnEnds::kPinnedPinned, options)
                                  .SolveFromUnloaded(lie::SE3{}, loads.Scaled(1e-6));

@@ -7,18 +7,14 @@
 
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "support/rods.hpp"
 
 namespace cosserat {
 namespace {
 
 RodModel SteelRod(double length, double relaxation_time) {
   const CrossSection sec = CrossSection::Circle(0.001);
-  Material mat = Material::FromShearModulus(200e9, 80e9, 8000);
-  mat.damping.bending = relaxation_time * 200e9 * sec.I1;
-  mat.damping.torsion = relaxation_time * 80e9 * sec.torsion_constant;
-  mat.damping.shear = relaxation_time * 80e9 * sec.area;
-  mat.damping.extension = relaxation_time * 200e9 * sec.area;
-  return RodModel::Uniform(length, sec, mat);
+  return RodModel::Uniform(length, sec, testing::DampedSteel(sec, relaxation_time));
 }
 
 TEST(GrowthDynamics, FreeBodyUnderAxialTipTensionStaysStraightWithItsTipAtLOfT) {

@@ -8,16 +8,12 @@
 #include <vector>
 
 #include "cosserat/lie/quaternion.hpp"
-#include "lie_test_support.hpp"
+#include "support/lie_test_support.hpp"
 
 namespace cosserat::lie {
 namespace {
 
 using namespace testing;
-
-// Round-off budget for a few dozen flops on O(1) numbers (observed ≲ 1e-15): 1e-13. A wrong sign
-// or index in a conversion is an O(1) error.
-constexpr double kTight = 1e-13;
 
 Vec4 RandomQuat(std::mt19937& rng) {
   std::normal_distribution<double> n(0.0, 1.0);

@@ -10,23 +10,12 @@
 #include <vector>
 
 #include "cosserat/lie/se3.hpp"
-#include "lie_test_support.hpp"
+#include "support/lie_test_support.hpp"
 
 namespace cosserat::lie {
 namespace {
 
 using namespace testing;
-
-// Round-off budget for a chain of a few dozen flops on O(1)–O(10) numbers: observed ≤ 2e-15,
-// so 1e-13 leaves a factor 50.
-// A wrong block, sign or coefficient shows up at 1e-3 or worse.
-constexpr double kTight = 1e-13;
-
-// Central differences with step h: truncation h²/6 |f'''| ≈ 1e-12 and round-off
-// ≈ eps |f| / h ≈ 1e-9 for |f| ≲ 10, i.e. ~1e-9 relative agreement. 1e-6 leaves three orders of
-// margin; a wrong term is O(θ |v|) for our random inputs, far above it.
-constexpr double kFdStep = 1e-6;
-constexpr double kFdTol = 1e-6;
 
 // Twist with rotation angle uniform in [0, max_angle) and translation part in [-2, 2]³ (m).
 Vec6 RandomTwist(std::mt19937& rng, double max_angle) {

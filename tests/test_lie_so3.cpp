@@ -10,24 +10,12 @@
 #include <vector>
 
 #include "cosserat/lie/so3.hpp"
-#include "lie_test_support.hpp"
+#include "support/lie_test_support.hpp"
 
 namespace cosserat::lie {
 namespace {
 
 using namespace testing;
-
-// Round-off budget for a chain of a few dozen O(1) flops (exp, log, products): observed ≲ 1e-15,
-// so 1e-13 (≈ 450 eps) leaves a factor 100. A genuine error in a formula (wrong coefficient, sign
-// or branch) shows up at 1e-4 or worse.
-constexpr double kTight = 1e-13;
-
-// Central differences with step h: truncation h²/6 |f'''| ≈ 2e-13 and round-off ≈ eps |f| / h ≈
-// 1e-9 for |f| ≲ 10, so the difference between analytic and numerical Jacobians is ~1e-9 relative.
-// 1e-6 leaves three orders of margin, and a wrong term in a Jacobian is an O(θ) or O(|v|) error
-// for our random inputs, far above it.
-constexpr double kFdStep = 1e-6;
-constexpr double kFdTol = 1e-6;
 
 // Angles that exercise the Taylor branches and the neighbourhood of π.
 const std::vector<double> kSpecialAngles = {0.0, 1e-12, 1e-8, 1e-4, kPi - 1e-6, kPi - 1e-10};

@@ -15,25 +15,21 @@
 #include "cosserat/analysis/modes.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "support/analytic/beam_vibration.hpp"
+#include "support/analytic/euler_buckling.hpp"
+#include "support/rods.hpp"
 
 namespace cosserat {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-// β_n L of the clamped-free beam (reference/natural_frequencies.json).
-constexpr double kBetaL[4] = {1.8751040687119611, 4.694091132974175, 7.854757438237613,
-                              10.995540734875467};
+using truth::kPi;
 
-struct SteelRod {
-  double length = 0.5, r = 0.001;  // r/L = 1/500
-  Material material = Material::FromShearModulus(200e9, 80e9, 8000);
-  CrossSection section() const { return CrossSection::Circle(r); }
-  double EI() const { return material.youngs_modulus * section().I1; }
-  double rhoA() const { return material.density * section().area; }
-  RodModel model() const { return RodModel::Uniform(length, section(), material); }
+struct SteelRod : testing::SteelRod {
+  SteelRod() : testing::SteelRod{0.5, 0.001} {}  // r/L = 1/500
   /// Euler–Bernoulli cantilever frequency n (0-based), Hz.
   double EulerBernoulliHz(int n) const {
-    return kBetaL[n] * kBetaL[n] / (2 * kPi * length * length) * std::sqrt(EI() / rhoA());
+    return truth::EulerBernoulliOmega(truth::CantileverBetaL(n + 1), EI(), rhoA(), length) /
+           (2 * kPi);
   }
 };
 
@@ -80,7 +76,7 @@ TEST(Modes, StraightCantileverMatchesEulerBernoulliBothFormulations) {
     // The shooting has no grid error to speak of (RK4, < 1e-7): what is left is the physics
     // Euler–Bernoulli leaves out. Shear and rotary inertia lower mode n by c (β_n r)² with
     // c = (1 + E/κG)/4 ≈ 0.9 for a simply supported beam; assert 0 < 1 − f/f_EB < (β_n r)².
-    const double br = kBetaL[k / 2] * rod.r / rod.length;
+    const double br = truth::CantileverBetaL(k / 2 + 1) * rod.r / rod.length;
     EXPECT_GT(1 - sh.modes[k].frequency_hz / eb, 0.0) << "shooting mode " << k;
     EXPECT_LT(1 - sh.modes[k].frequency_hz / eb, br * br) << "shooting mode " << k;
     EXPECT_NEAR(fd.modes[k].frequency_hz / sh.modes[k].frequency_hz, 1.0, 0.005);
@@ -88,13 +84,14 @@ TEST(Modes, StraightCantileverMatchesEulerBernoulliBothFormulations) {
     EXPECT_EQ(sh.modes[k].kind, ModeKind::kBending);
   }
   // The shapes: first bending mode, tip displacement normalised to +L (largest entry), zero at
-  // the clamp, and the Euler–Bernoulli shape at midspan: φ(L/2)/φ(L) = 0.3393.
+  // the clamp, and the Euler–Bernoulli shape at midspan, φ(L/2)/φ(L).
+  const double mid_over_tip = truth::CantileverModeShape(1, 0.5) / truth::CantileverModeShape(1, 1);
   for (const ModalResult* r : {&fd, &sh}) {
     const Mode& m = r->modes[0];
     ASSERT_EQ(m.displacement_W.size(), 101u);
     EXPECT_LT(m.displacement_W.front().norm(), 1e-12);
     const double tip = m.displacement_W.back().norm(), mid = m.displacement_W[50].norm();
-    EXPECT_NEAR(mid / tip, 0.33934, 2e-3);
+    EXPECT_NEAR(mid / tip, mid_over_tip, 2e-3);
   }
 }
 
@@ -111,47 +108,19 @@ TEST(Modes, SecondOrderConvergenceOfQuatFdFrequencies) {
   EXPECT_NEAR(order, 2.0, 0.3);
 }
 
-// Exact Euler–Bernoulli frequency (rad/s) of a cantilever under an axial compressive dead tip
-// load P: EI w'''' + P w'' − ρA ω² w = 0, w(0) = w'(0) = 0, w''(L) = 0, EI w'''(L) + P w'(L) = 0;
-// w = a cosh αs + b sinh αs + c cos βs + d sin βs with α², −β² the roots of EI r⁴ + P r² = ρAω².
-double DetCompressedCantilever(double EI, double rhoA, double P, double L, double w) {
-  const double disc = std::sqrt(P * P + 4 * EI * rhoA * w * w);
-  const double a = std::sqrt((-P + disc) / (2 * EI)), b = std::sqrt((P + disc) / (2 * EI));
-  const double ch = std::cosh(a * L), sh = std::sinh(a * L), c = std::cos(b * L),
-               s = std::sin(b * L);
-  Eigen::Matrix4d M;
-  M << 1, 0, 1, 0,  //
-      0, a, 0, b,   //
-      a * a * ch, a * a * sh, -b * b * c, -b * b * s, EI * a * a * a * sh + P * a * sh,
-      EI * a * a * a * ch + P * a * ch, EI * b * b * b * s - P * b * s,
-      -EI * b * b * b * c + P * b * c;
-  return M.determinant();
-}
-
-double FirstCompressedFrequency(double EI, double rhoA, double P, double L, double w_hi) {
-  double lo = 1e-3 * w_hi, hi = lo;
-  const double d0 = DetCompressedCantilever(EI, rhoA, P, L, lo);
-  while (DetCompressedCantilever(EI, rhoA, P, L, hi) * d0 > 0) hi *= 1.01;
-  lo = hi / 1.01;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (DetCompressedCantilever(EI, rhoA, P, L, mid) * d0 > 0 ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
 TEST(Modes, CompressedCantileverMatchesExactEulerBernoulli) {
   // Axial dead load P = Pcr/2 (Pcr = π² EI / 4L²) along −z at the tip of the straight rod. The
-  // truth is the root of the exact Euler–Bernoulli frequency equation (≈ 0.5 % above Galef's
+  // truth is the root of the exact Euler–Bernoulli frequency equation (≈ 2 % above Galef's
   // ω² = ω₀² (1 − P/Pcr)). Budget: shooting 1e-4 (r/L = 1/500 shear/rotary shifts ~1e-5);
   // quatfd 0.1 % (its grid error for mode 1 at N = 100 is ≈ (β₁ h)²/3 ≈ 0.01 %).
   SteelRod rod;
-  const double Pcr = kPi * kPi * rod.EI() / (4 * rod.length * rod.length);
+  const double Pcr = truth::EulerLoadClampedFree(rod.EI(), rod.length);
   StaticLoads loads;
   loads.tip_force = Vec3(0, 0, -0.5 * Pcr);
   const double w0 =
-      kBetaL[0] * kBetaL[0] / (rod.length * rod.length) * std::sqrt(rod.EI() / rod.rhoA());
-  const double exact = FirstCompressedFrequency(rod.EI(), rod.rhoA(), 0.5 * Pcr, rod.length, w0);
+      truth::EulerBernoulliOmega(truth::CantileverBetaL(1), rod.EI(), rod.rhoA(), rod.length);
+  const double exact =
+      truth::CompressedCantileverOmega(rod.EI(), rod.rhoA(), 0.5 * Pcr, rod.length, w0);
   const ModalResult fd = QuatFdModes(rod.model(), lie::SE3(), loads, 100, 2, false);
   const ModalResult sh = ShootingModes(rod.model(), lie::SE3(), loads, 101, 2);
   ASSERT_TRUE(fd.converged()) << ToString(fd.status);
@@ -210,8 +179,10 @@ TEST(Modes, TorsionalAndAxialFundamentals) {
   rod.length = 1.0;
   rod.r = 0.01;
   const double rho = rod.material.density;
-  const double wt = kPi / (2 * rod.length) * std::sqrt(rod.material.shear_modulus / rho);
-  const double wa = kPi / (2 * rod.length) * std::sqrt(rod.material.youngs_modulus / rho);
+  const double wt =
+      truth::ClampedFreeWaveOmega(1, std::sqrt(rod.material.shear_modulus / rho), rod.length);
+  const double wa =
+      truth::ClampedFreeWaveOmega(1, std::sqrt(rod.material.youngs_modulus / rho), rod.length);
   const ModalResult fd = QuatFdModes(rod.model(), lie::SE3(), {}, 40, 6 * 40);
   ASSERT_TRUE(fd.converged()) << ToString(fd.status);
   auto first = [](const ModalResult& r, ModeKind kind) {

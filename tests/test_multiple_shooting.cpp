@@ -7,19 +7,18 @@
 #include <cstdio>
 #include <vector>
 
+#include "../bench/peer_rod.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
+#include "support/analytic/beam_vibration.hpp"
+#include "support/rods.hpp"
+#include "support/smooth_ramp.hpp"
 
 namespace cosserat {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using bench::PeerRod;  // steel, L = 0.5 m, r = 1 mm
+using truth::kPi;
 constexpr double kLength = 0.5, kRadius = 0.001;
-
-// The peer rod (bench/peer_rod.hpp): steel, L = 0.5 m, r = 1 mm.
-RodModel PeerRod() {
-  return RodModel::Uniform(kLength, CrossSection::Circle(kRadius),
-                           Material::FromShearModulus(200e9, 80e9, 8000));
-}
 
 // The peer problem's release (gravity along −x, a 0.02 kg tip weight removed at t = 0), `steps`
 // steps of dt; the tip position after each.
@@ -30,9 +29,7 @@ std::vector<Vec3> Release(int nodes, double dt, int pieces, int steps, bool* ok,
   opt.shooting_segments = pieces;
   opt.spatial_scheme = scheme;
   Bdf2ShootingStepper stepper(PeerRod(), nodes, opt);
-  StepInput in;
-  in.loads.gravity_W = Vec3(-9.81, 0, 0);
-  in.loads.tip_force = Vec3(-0.02 * 9.81, 0, 0);
+  StepInput in = bench::PeerPreload();
   *ok = stepper.InitializeAtRest(in).converged();
   in.loads.tip_force.setZero();
   std::vector<Vec3> tip;
@@ -83,8 +80,9 @@ TEST(MultipleShooting, BadPieceCountIsAnError) {
 // reaches 29 at the finest step (e^29 ≈ 4e12: the residual cannot get below 1e-10 in double
 // precision); 8 pieces see e^3.6 each.
 TEST(MultipleShooting, SecondOrderInTimeBelowTheSingleShootingLimit) {
-  const double EI = 200e9 * kPi * std::pow(kRadius, 4) / 4, rhoA = 8000 * kPi * kRadius * kRadius;
-  const double w1 = 1.8751040687 * 1.8751040687 * std::sqrt(EI / (rhoA * std::pow(kLength, 4)));
+  const testing::SteelRod rod{kLength, kRadius};
+  const double EI = rod.EI();
+  const double w1 = truth::EulerBernoulliOmega(truth::CantileverBetaL(1), EI, rod.rhoA(), kLength);
   const double period = 2 * kPi / w1;
   const double P = 1e-2 * 3 * EI / (kLength * kLength);
   const int samples = 32;
@@ -101,7 +99,7 @@ TEST(MultipleShooting, SecondOrderInTimeBelowTheSingleShootingLimit) {
     std::vector<Vec3> out;
     for (int i = 1; i <= samples * steps_per_sample && *ok; ++i) {
       const double u = std::min(1.0, i * opt.dt / period);
-      const double ramp = u * u * u * u * (35 - 84 * u + 70 * u * u - 20 * u * u * u);
+      const double ramp = testing::SmoothRamp(u);
       in.loads.tip_force = Vec3(-P * ramp, 0, 0);
       *ok = stepper.Step(in).converged();
       if (i % steps_per_sample == 0) out.push_back(stepper.state().tip_position_W());

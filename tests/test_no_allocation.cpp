@@ -13,6 +13,7 @@
 #include "cosserat/quatfd/sdirk.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "support/rods.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define COSSERAT_COUNT_MALLOC 0  // AddressSanitizer owns malloc; these tests skip themselves
@@ -99,8 +100,7 @@ TEST_F(NoAllocation, GuardSeesAllocations) {
 }
 
 TEST_F(NoAllocation, Bdf2StepAllocatesNothing) {
-  const RodModel model = RodModel::Uniform(0.5, CrossSection::Circle(0.001),
-                                           Material::FromShearModulus(200e9, 80e9, 8000));
+  const RodModel model = testing::SteelRod{0.5, 0.001}.model();
   Bdf2ShootingStepper stepper(model, 40);
   StepInput in;
   in.loads.gravity_W = Vec3(-9.81, 0, 0);
@@ -124,8 +124,7 @@ TEST_F(NoAllocation, Bdf2StepAllocatesNothing) {
 }
 
 TEST_F(NoAllocation, WarmStaticSolveAllocatesNothing) {
-  const RodModel model = RodModel::Uniform(0.5, CrossSection::Circle(0.001),
-                                           Material::FromShearModulus(200e9, 80e9, 8000));
+  const RodModel model = testing::SteelRod{0.5, 0.001}.model();
   StaticShootingSolver solver(model, 41);
   StaticLoads loads;
   loads.tip_force = Vec3(-0.5, 0, 0);

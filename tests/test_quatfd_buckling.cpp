@@ -9,19 +9,17 @@
 
 #include "cosserat/analysis/quatfd_buckling.hpp"
 #include "cosserat/rod/section_profile.hpp"
+#include "support/analytic/euler_buckling.hpp"
+#include "support/rods.hpp"
 
 namespace cosserat {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // The slender steel column of test_buckling.cpp (r/L = 1/200): the Cosserat model's critical load
 // lies 2.8e-5 below Euler's (shear and extension), the same for both formulations.
-RodModel SteelColumn() {
-  return RodModel::Uniform(1.0, CrossSection::Circle(0.005),
-                           Material::FromShearModulus(200e9, 80e9, 8000));
-}
-double EulerCantilever() { return kPi * kPi * 200e9 * kPi * std::pow(0.005, 4) / 4 / 4; }
+const testing::SteelRod kColumn{1.0, 0.005};
+RodModel SteelColumn() { return kColumn.model(); }
+double EulerCantilever() { return truth::EulerLoadClampedFree(kColumn.EI(), kColumn.length); }
 
 QuatFdBucklingSummary QuatFdCritical(int segments) {
   quatfd::QuatFdOptions mo;
@@ -114,8 +112,7 @@ TEST(QuatFdBuckling, StiffnessIsSymmetricAndPositiveUnloaded) {
 TEST(QuatFdBuckling, SoftBandAgreesWithShooting) {
   RodModel model = SteelColumn();
   model.section = std::make_shared<BandedSection>(
-      std::make_shared<UniformSection>(CrossSection::Circle(0.005),
-                                       Material::FromShearModulus(200e9, 80e9, 8000)),
+      std::make_shared<UniformSection>(kColumn.section(), kColumn.material),
       std::vector<BandedSection::Band>{{0.6, 0.7, 0.1}});
   const double P = EulerCantilever();
   BucklingOptions so;
@@ -145,8 +142,8 @@ TEST(QuatFdBuckling, SoftBandAgreesWithShooting) {
 // as for the tip load; the quatfd discretisation, with lumped vertex weights, is O(Δs²)), and
 // within 1e-3 of each other. Measured: quatfd −3.6e-4, SE(3) −3.6e-5 (7.8373 is good to 1e-5).
 TEST(QuatFdBuckling, SelfWeightBucklingIsGreenhills) {
-  const double EI = 200e9 * kPi * std::pow(0.005, 4) / 4, rhoA = 8000 * kPi * 0.005 * 0.005;
-  const double g_cr = 7.8373 * EI / rhoA;  // m/s², L = 1
+  const double EI = kColumn.EI(), rhoA = kColumn.rhoA();
+  const double g_cr = truth::GreenhillSelfWeightLoad() * EI / rhoA;  // m/s², L = 1
   LoadPath path;
   path.per_unit.gravity_W = Vec3(0, 0, -1);  // λ: the gravity, m/s²
   quatfd::QuatFdOptions mo;

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../bench/quatfd_rods.hpp"
 #include "cosserat/lie/quaternion.hpp"
 #include "cosserat/quatfd/quatfd_integrate.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
@@ -21,8 +22,10 @@
 #include "cosserat/quatfd/rosenbrock.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
-#include "../bench/quatfd_rods.hpp"
-#include "spectral_peak.hpp"
+#include "support/analytic/beam_vibration.hpp"
+#include "support/quatfd_falling_rod.hpp"
+#include "support/rods.hpp"
+#include "support/spectral_peak.hpp"
 
 namespace cosserat::quatfd {
 namespace {
@@ -31,12 +34,8 @@ using L = QuatFdLayout;
 
 // A steel rod along +z clamped at the origin, r/L = 1/100 (shear and stretch matter at the 1e-4
 // level, and both formulations model them).
-struct SteelRod {
-  double length = 0.5, r = 0.005;
-  Material material = Material::FromShearModulus(200e9, 80e9, 8000);
-  CrossSection section = CrossSection::Circle(r);
-  double EI() const { return material.youngs_modulus * section.I1; }
-  RodModel model() const { return RodModel::Uniform(length, section, material); }
+struct SteelRod : cosserat::testing::SteelRod {
+  SteelRod() : cosserat::testing::SteelRod{0.5, 0.005} {}
 };
 
 struct QuatFdStatic {
@@ -126,7 +125,7 @@ TEST(QuatFdStatics, SecondOrderConvergenceInSegments) {
 
 TEST(QuatFdDynamics, BendingFrequenciesMatchEulerBernoulli) {
   // Linearise about the straight unloaded cantilever: ẍ = A x, ω² = −λ(A). The two smallest
-  // distinct bending frequencies against Euler–Bernoulli β1 L = 1.8751, β2 L = 4.6941.
+  // distinct bending frequencies against the Euler–Bernoulli cantilever roots β1 L and β2 L.
   SteelRod rod;
   rod.r = 0.001;  // slender: L/r = 500, Timoshenko corrections ~ (r/L)² ≈ 4e-6
   QuatFdOptions opt;
@@ -136,9 +135,11 @@ TEST(QuatFdDynamics, BendingFrequenciesMatchEulerBernoulli) {
   model.RestState(q, v);
   BandedMatrix A, B;
   model.Jacobian(q, v, &A, &B);
-  const double rhoA = rod.material.density * rod.section.area;
-  const double base = std::sqrt(rod.EI() / rhoA) / (rod.length * rod.length);
-  const double w1 = 1.8751 * 1.8751 * base, w2 = 4.6941 * 4.6941 * base;
+  const double rhoA = rod.rhoA();
+  const double w1 =
+      truth::EulerBernoulliOmega(truth::CantileverBetaL(1), rod.EI(), rhoA, rod.length);
+  const double w2 =
+      truth::EulerBernoulliOmega(truth::CantileverBetaL(2), rod.EI(), rhoA, rod.length);
   const Eigen::EigenSolver<Eigen::MatrixXd> es(A.ToDense(), false);
   std::vector<double> omega;
   for (int i = 0; i < es.eigenvalues().size(); ++i) {
@@ -180,21 +181,23 @@ std::vector<double> LinearisedFrequencies(const QuatFdModel& model, double above
   return omega;
 }
 
-using testing::PeakFrequency;
+using cosserat::testing::PeakFrequency;
+using testing::FallingRod;
 
 TEST(QuatFdDynamics, BendingFrequenciesMatchSe3Stepper) {
   // The same stocky steel cantilever (L = 1 m, r = 1 cm, L/r = 100: shear and rotary inertia
   // lower mode 2 by ~0.2 % against Euler–Bernoulli, and both formulations model them) in both
   // paths: the quatfd linearised frequencies against the free vibration of the SE(3) BDF2
   // shooting stepper after a small tip load is released (setup of test_bdf2_dynamics.cpp).
-  const double kPi = 3.14159265358979323846;
+  using truth::kPi;
   SteelRod rod;
   rod.length = 1.0;
   rod.r = 0.01;
-  rod.section = CrossSection::Circle(rod.r);
-  const double rhoA = rod.material.density * rod.section.area;
-  const double base = std::sqrt(rod.EI() / rhoA) / (rod.length * rod.length);
-  const double w1_eb = 1.8751 * 1.8751 * base, w2_eb = 4.6941 * 4.6941 * base;
+  const double rhoA = rod.rhoA();
+  const double w1_eb =
+      truth::EulerBernoulliOmega(truth::CantileverBetaL(1), rod.EI(), rhoA, rod.length);
+  const double w2_eb =
+      truth::EulerBernoulliOmega(truth::CantileverBetaL(2), rod.EI(), rhoA, rod.length);
 
   QuatFdOptions opt;
   opt.segments = 40;
@@ -242,24 +245,16 @@ RodModel RubberRod(double damping_time = 0.0) {
   return RodModel::Uniform(0.5, c, m);
 }
 
-lie::SE3 Horizontal() {
-  lie::SE3 base;  // body z (rod tangent) along world +x
-  base.R << 0, 0, 1, 0, 1, 0, -1, 0, 0;
-  return base;
-}
-
 TEST(QuatFdDynamics, UndampedEnergyIsConserved) {
   // No damping, a dead tip load and gravity are conservative: the total energy is constant. With
   // rel/abs tolerance 1e-9 the integrator's energy error is ~1e-7 of the energy exchanged.
-  QuatFdOptions opt;
-  opt.segments = 10;
-  QuatFdModel model(RubberRod(), Horizontal(), opt);
+  FallingRod s(10, RubberRod());
+  QuatFdModel& model = s.model;
+  Eigen::VectorXd &q = s.q, &v = s.v;
   StaticLoads loads;
   loads.gravity_W = Vec3(0, 0, -9.81);
   loads.tip_force = Vec3(0, 0.01, 0);
   model.set_loads(loads);
-  Eigen::VectorXd q(model.size()), v(model.size());
-  model.RestState(q, v);
   const QuatFdEnergy e0 = model.Energy(q, v);
   IntegratorOptions io;
   io.rel_tol = io.abs_tol = 1e-9;
@@ -272,14 +267,9 @@ TEST(QuatFdDynamics, UndampedEnergyIsConserved) {
 }
 
 TEST(QuatFdDynamics, DampingDissipates) {
-  QuatFdOptions opt;
-  opt.segments = 10;
-  QuatFdModel model(RubberRod(0.01), Horizontal(), opt);
-  StaticLoads loads;
-  loads.gravity_W = Vec3(0, 0, -9.81);
-  model.set_loads(loads);
-  Eigen::VectorXd q(model.size()), v(model.size());
-  model.RestState(q, v);
+  FallingRod s(10, RubberRod(0.01));
+  const QuatFdModel& model = s.model;
+  Eigen::VectorXd &q = s.q, &v = s.v;
   RosenbrockIntegrator integ(model);
   double t = 0, last = model.Energy(q, v).total();
   for (int k = 1; k <= 10; ++k) {
@@ -293,14 +283,9 @@ TEST(QuatFdDynamics, DampingDissipates) {
 TEST(QuatFdDynamics, ConstraintStaysOnTheSphereOverTenSeconds) {
   // Benchmark (a) setup, released from horizontal, 10 s: after each step's projection
   // | |p| − 1 | is round-off; the drift each step undoes is of the size of the local error.
-  QuatFdOptions opt;
-  opt.segments = 10;
-  QuatFdModel model(RubberRod(0.01), Horizontal(), opt);
-  StaticLoads loads;
-  loads.gravity_W = Vec3(0, 0, -9.81);
-  model.set_loads(loads);
-  Eigen::VectorXd q(model.size()), v(model.size());
-  model.RestState(q, v);
+  FallingRod s(10, RubberRod(0.01));
+  const QuatFdModel& model = s.model;
+  Eigen::VectorXd &q = s.q, &v = s.v;
   RosenbrockIntegrator integ(model);
   double t = 0, worst = 0;
   for (int k = 1; k <= 100; ++k) {
@@ -322,24 +307,16 @@ TEST(QuatFdDynamics, StepLimitIsTheRosenbrockStepMapNotTheOde) {
   //    map's spectral radius ρ passes 1 between 2 and 5 ms (ρ ≈ 20 at 5 ms, printed): the frozen
   //    Jacobian misses how the stiff directions in (p, ṗ, x) rotate with the segments over the
   //    step, and that part is integrated explicitly.
-  QuatFdOptions opt;
-  opt.segments = 10;
-  QuatFdModel model(bench::RubberRod(), Horizontal(), opt);  // benchmark (a) exactly
-  StaticLoads loads;
-  loads.gravity_W = Vec3(0, 0, -9.81);
-  model.set_loads(loads);
-  const int n = model.size(), N = opt.segments;
-  Eigen::VectorXd q(n), v(n);
-  model.RestState(q, v);
+  FallingRod s(10);  // benchmark (a) exactly
+  const QuatFdModel& model = s.model;
+  const int n = model.size(), N = 10;
+  Eigen::VectorXd &q = s.q, &v = s.v;
   {
     RosenbrockIntegrator integ(model);
     double t = 0;
     ASSERT_EQ(integ.Advance(1.0, &t, q, v), IntegratorStatus::kOk);
   }
-  std::vector<int> keep;  // free unknowns of y = [q; v]
-  for (int k = 0; k < 2; ++k)
-    for (int i = 0; i < n; ++i)
-      if (!model.IsFixed(i)) keep.push_back(k * n + i);
+  const std::vector<int> keep = testing::FreeUnknowns(model);  // free unknowns of y = [q; v]
   const int m = static_cast<int>(keep.size());
 
   BandedMatrix A, B;
@@ -369,26 +346,14 @@ TEST(QuatFdDynamics, StepLimitIsTheRosenbrockStepMapNotTheOde) {
   EXPECT_LT(stiffest, -1e6);  // over-damped shear/rotary modes: h λ ~ 1e3–1e4 at the steps taken
 
   RosenbrockIntegrator integ(model);
-  Eigen::VectorXd y(2 * n), out(2 * n), err(2 * n);
+  Eigen::VectorXd y(2 * n);
   y << q, v;
   const auto spectral_radius = [&](double h) {
-    Eigen::MatrixXd D(m, m);
-    for (int b = 0; b < m; ++b) {
-      const double eps = 1e-7;
-      Eigen::VectorXd d(2 * n);
-      for (int sign : {1, -1}) {
-        Eigen::VectorXd yy = y;
-        yy[keep[b]] += sign * eps;
-        integ.Step(yy, h, out, err);
-        model.Project(out.head(n), out.tail(n));
-        if (sign == 1)
-          d = out;
-        else
-          d = (d - out) / (2 * eps);
-      }
-      for (int a = 0; a < m; ++a) D(a, b) = d[keep[a]];
-    }
-    return Eigen::EigenSolver<Eigen::MatrixXd>(D, false).eigenvalues().cwiseAbs().maxCoeff();
+    return testing::StepMapSpectralRadius(
+        model, y, keep, 1e-7,
+        [&](const Eigen::VectorXd& yy, Eigen::VectorXd& out, Eigen::VectorXd& err) {
+          integ.Step(yy, h, out, err);
+        });
   };
   const double rho_1ms = spectral_radius(1e-3), rho_5ms = spectral_radius(5e-3);
   std::printf("step-map spectral radius: %.6f at h = 1 ms, %.3g at h = 5 ms\n", rho_1ms, rho_5ms);
@@ -400,17 +365,12 @@ TEST(QuatFdDynamics, BandedRosenbrockStepEqualsOdeintRosenbrock4) {
   // Same coefficients, same step: the banded second-order reduction must reproduce odeint's dense
   // rosenbrock4 to round-off (1e-9 relative leaves room for the different LU pivoting).
   namespace odeint = boost::numeric::odeint;
-  QuatFdOptions opt;
-  opt.segments = 5;
-  QuatFdModel model(RubberRod(0.01), Horizontal(), opt);
-  StaticLoads loads;
-  loads.gravity_W = Vec3(0, 0, -9.81);
-  model.set_loads(loads);
+  FallingRod s(5, RubberRod(0.01));
+  const QuatFdModel& model = s.model;
   const int n = model.size();
   Eigen::VectorXd y(2 * n);
   {
-    Eigen::VectorXd q(n), v(n);
-    model.RestState(q, v);
+    Eigen::VectorXd q = s.q, v = s.v;
     v.setConstant(0.1);
     v.head<3>().setZero();
     model.Project(q, v);
@@ -454,14 +414,9 @@ TEST(QuatFdDynamics, BandedRosenbrockStepEqualsOdeintRosenbrock4) {
 TEST(QuatFdDynamics, Dopri5AndRosenbrockAgree) {
   // A short, mildly stiff run (0.05 s) both can do: the two error-controlled solutions agree to
   // within a few times the tolerance scale (1e-6 × the 0.5 m length → 1e-5 m allowed).
-  QuatFdOptions opt;
-  opt.segments = 6;
-  QuatFdModel model(RubberRod(0.01), Horizontal(), opt);
-  StaticLoads loads;
-  loads.gravity_W = Vec3(0, 0, -9.81);
-  model.set_loads(loads);
-  Eigen::VectorXd q0(model.size()), v0(model.size());
-  model.RestState(q0, v0);
+  const FallingRod s(6, RubberRod(0.01));
+  const QuatFdModel& model = s.model;
+  const Eigen::VectorXd &q0 = s.q, &v0 = s.v;
   Eigen::VectorXd tips[2];
   for (IntegratorKind kind : {IntegratorKind::kDopri5, IntegratorKind::kRosenbrock}) {
     Eigen::VectorXd q = q0, v = v0;

@@ -7,16 +7,14 @@
 
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "support/rods.hpp"
 
 namespace cosserat {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-RodModel SteelRod(double L = 0.5, double r = 0.001) {
-  return RodModel::Uniform(L, CrossSection::Circle(r),
-                           Material::FromShearModulus(200e9, 80e9, 8000));
-}
+RodModel SteelRod(double L = 0.5, double r = 0.001) { return testing::SteelRod{L, r}.model(); }
 double EIof(const RodModel& m) { return m.section->At(0, {}).stiffness(0, 0); }
 
 lie::SE3 TiltedBase() {
@@ -93,8 +91,7 @@ TEST(StaticShooting, LoadSteppingRescuesAStarvedSolve) {
   // With only 3 LM steps allowed per solve a large tip load cannot converge in one go; the
   // continuation in the load must still reach the elastica answer (alpha = 10, deflection
   // 0.8106090249 L from the reference table).
-  const RodModel model = RodModel::Uniform(1.0, CrossSection::Circle(0.005),
-                                           Material::FromShearModulus(200e9, 80e9, 8000));
+  const RodModel model = SteelRod(1.0, 0.005);
   StaticShootingOptions opt;
   opt.max_iterations = 4;        // TinySolver counts the first evaluation: 3 steps
   opt.max_load_increment = 100;  // let the direct attempt happen (and fail)

@@ -7,11 +7,15 @@
 #include <nlohmann/json.hpp>
 
 #include "cosserat/strong/static_shooting.hpp"
+#include "support/analytic/constant_curvature.hpp"
+#include "support/analytic/elastica.hpp"
+#include "support/analytic/timoshenko_beam.hpp"
+#include "support/rods.hpp"
 
 namespace cosserat {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using truth::kPi;
 
 nlohmann::json LoadReference(const std::string& name) {
   std::ifstream in(std::string(COSSERAT_REFERENCE_DIR) + "/" + name);
@@ -21,12 +25,8 @@ nlohmann::json LoadReference(const std::string& name) {
 
 // A slender steel rod along +z, clamped at the origin. r/L = 1/200 so the extensible, shearable
 // rod differs from the inextensible elastica by about alpha (r/L)^2 / 4 < 1e-4 (reference notes).
-struct SlenderRod {
-  double L = 1.0, r = 0.005;
-  Material material = Material::FromShearModulus(200e9, 80e9, 8000);
-  CrossSection section = CrossSection::Circle(r);
-  double EI() const { return material.youngs_modulus * section.I1; }
-  RodModel model() const { return RodModel::Uniform(L, section, material); }
+struct SlenderRod : testing::SteelRod {
+  SlenderRod() : testing::SteelRod{1.0, 0.005} {}
 };
 
 TEST(StaticVerification, ElasticaTableAtN41) {
@@ -37,68 +37,41 @@ TEST(StaticVerification, ElasticaTableAtN41) {
   for (const auto& row : ref["rows"]) {
     const double alpha = row["alpha"];
     StaticLoads loads;
-    loads.tip_force = Vec3(-alpha * rod.EI() / (rod.L * rod.L), 0, 0);  // dead load along −x
+    loads.tip_force =
+        Vec3(-alpha * rod.EI() / (rod.length * rod.length), 0, 0);  // dead load along −x
     solver.ResetWarmStart();  // every row from a cold start
     const auto summary = solver.Solve(lie::SE3{}, loads);
     ASSERT_TRUE(summary.converged()) << "alpha " << alpha << ": " << ToString(summary.status);
     const Vec3 tip = solver.state().tip_position_W();
     // Acceptance: 1e-3 L. RK4 at h = L/40 and the (r/L)^2 model difference are both far below.
-    EXPECT_NEAR(-tip.x() / rod.L, row["deflection_over_L"].get<double>(), 1e-3) << alpha;
-    EXPECT_NEAR(tip.z() / rod.L, row["axial_over_L"].get<double>(), 1e-3) << alpha;
+    EXPECT_NEAR(-tip.x() / rod.length, row["deflection_over_L"].get<double>(), 1e-3) << alpha;
+    EXPECT_NEAR(tip.z() / rod.length, row["axial_over_L"].get<double>(), 1e-3) << alpha;
     const Vec3 t = solver.state().tip_rotation_WB().col(2);
     const double angle_deg = std::atan2(-t.x(), t.z()) * 180.0 / kPi;
     EXPECT_NEAR(angle_deg, row["tip_angle_deg"].get<double>(), 0.06) << alpha;  // 1e-3 rad
   }
 }
 
-// The elastica closed form of the reference file (Bisshopp & Drucker), evaluated with adaptive
-// Simpson quadrature for the incomplete elliptic integrals, for loads beyond the table.
-double EllipticIntegral(double phi, double k, bool second_kind) {
-  auto f = [&](double t) {
-    const double d = std::sqrt(1 - k * k * std::sin(t) * std::sin(t));
-    return second_kind ? d : 1 / d;
-  };
-  const int n = 20000;  // Simpson, smooth integrand (k < 1): error ~ (φ/n)^4, far below 1e-12
-  double sum = f(0) + f(phi);
-  for (int i = 1; i < n; ++i) sum += (i % 2 ? 4 : 2) * f(phi * i / n);
-  return sum * phi / (3 * n);
-}
-
-// Tip deflection / L of the inextensible elastica under a dead end load, PL²/EI = alpha.
-double ElasticaDeflection(double alpha) {
-  auto parts = [&](double theta0, double* k, double* phi1) {
-    *k = std::sqrt((1 + std::sin(theta0)) / 2);
-    *phi1 = std::asin(1 / (*k * std::sqrt(2.0)));
-  };
-  double lo = 1e-9, hi = kPi / 2 - 1e-12;
-  for (int it = 0; it < 100; ++it) {  // sqrt(alpha) = F(k) − F(φ1, k) grows with θ0
-    const double mid = 0.5 * (lo + hi);
-    double k, phi1;
-    parts(mid, &k, &phi1);
-    const double g = EllipticIntegral(kPi / 2, k, false) - EllipticIntegral(phi1, k, false);
-    (g < std::sqrt(alpha) ? lo : hi) = mid;
-  }
-  double k, phi1;
-  parts(0.5 * (lo + hi), &k, &phi1);
-  return 1 - 2 * (EllipticIntegral(kPi / 2, k, true) - EllipticIntegral(phi1, k, true)) /
-                 std::sqrt(alpha);
-}
+// The elastica closed form of the reference file (Bisshopp & Drucker), for loads beyond the
+// table: truth::TipLoadElasticaDeflection.
+using truth::TipLoadElasticaDeflection;
 
 // Large loads have several equilibria (folded ones among them). A cold solve must land on the
 // natural branch, the one reached by loading from zero.
 TEST(StaticVerification, LargeLoadsFollowTheNaturalBranch) {
   // The closed form reproduces the table first, so it can be trusted beyond it.
-  EXPECT_NEAR(ElasticaDeflection(10), 0.8106090249, 1e-8);
+  EXPECT_NEAR(TipLoadElasticaDeflection(10), 0.8106090249, 1e-8);
   SlenderRod rod;
   for (double alpha : {20.0, 50.0}) {
     StaticShootingSolver solver(rod.model(), 41);
     StaticLoads loads;
-    loads.tip_force = Vec3(-alpha * rod.EI() / (rod.L * rod.L), 0, 0);
+    loads.tip_force = Vec3(-alpha * rod.EI() / (rod.length * rod.length), 0, 0);
     const auto summary = solver.Solve(lie::SE3{}, loads);
     ASSERT_TRUE(summary.converged()) << alpha;
     // Model difference (r/L)² α/4 ≈ 3e-4 at α = 50 (the stretch under the load) plus RK4 error:
     // within 1e-3 L, as for the table.
-    EXPECT_NEAR(-solver.state().tip_position_W().x() / rod.L, ElasticaDeflection(alpha), 1e-3)
+    EXPECT_NEAR(-solver.state().tip_position_W().x() / rod.length, TipLoadElasticaDeflection(alpha),
+                1e-3)
         << alpha;
   }
 }
@@ -108,28 +81,28 @@ TEST(StaticVerification, EndMomentClosesCircle) {
   SlenderRod rod;
   StaticShootingSolver solver(rod.model(), 41);
   StaticLoads loads;
-  loads.tip_moment = Vec3(0, 2 * kPi * rod.EI() / rod.L, 0);
+  loads.tip_moment = Vec3(0, truth::EndMomentForTurn(2 * kPi, rod.EI(), rod.length), 0);
   const auto summary = solver.Solve(lie::SE3{}, loads);
   ASSERT_TRUE(summary.converged());
   // The arc has curvature exactly M/EI; the only error is RK4's O(h^4) ~ (2π/40)^4/120 L ≈ 5e-6 L
   // at worst, and in practice far less. Acceptance asks 1e-4 L.
-  EXPECT_LT(solver.state().tip_position_W().norm(), 1e-4 * rod.L);
+  EXPECT_LT(solver.state().tip_position_W().norm(), 1e-4 * rod.length);
 }
 
 TEST(StaticVerification, EndMomentHalfCircle) {
   SlenderRod rod;
   StaticShootingSolver solver(rod.model(), 41);
   StaticLoads loads;
-  loads.tip_moment = Vec3(0, kPi * rod.EI() / rod.L, 0);
+  loads.tip_moment = Vec3(0, truth::EndMomentForTurn(kPi, rod.EI(), rod.length), 0);
   ASSERT_TRUE(solver.Solve(lie::SE3{}, loads).converged());
   const RodState& st = solver.state();
-  const double radius = rod.L / kPi;
+  const double radius = rod.length / kPi;
   // Positive moment about y turns the tangent e3 towards +x: centre at (radius, 0, 0).
   const Vec3 centre(radius, 0, 0);
   for (int i = 0; i < st.size(); ++i)
-    EXPECT_NEAR((st.position_W[i] - centre).norm(), radius, 1e-6 * rod.L) << "node " << i;
-  EXPECT_NEAR(st.tip_position_W().norm(), 2 * radius, 1e-6 * rod.L);
-  EXPECT_NEAR(st.tip_position_W().x(), 2 * radius, 1e-6 * rod.L);
+    EXPECT_NEAR((st.position_W[i] - centre).norm(), radius, 1e-6 * rod.length) << "node " << i;
+  EXPECT_NEAR(st.tip_position_W().norm(), 2 * radius, 1e-6 * rod.length);
+  EXPECT_NEAR(st.tip_position_W().x(), 2 * radius, 1e-6 * rod.length);
 }
 
 // Short, thick rod (L/r = 10): the Timoshenko tip deflection PL³/(3EI) + PL/(κGA).
@@ -147,7 +120,7 @@ TEST(StaticVerification, TimoshenkoShearDeflection) {
   StaticLoads loads;
   loads.tip_force = Vec3(P, 0, 0);
   ASSERT_TRUE(solver.Solve(lie::SE3{}, loads).converged());
-  const double expected = P * L * L * L / (3 * EI) + P * L / kGA;
+  const double expected = truth::CantileverTipDeflection(P, L, EI, kGA);
   const double shear_part = P * L / kGA;
   ASSERT_GT(shear_part / expected, 0.01);  // the shear term is large enough to be tested
   // Linear theory is exact for this model up to (δ/L)²; RK4 integrates a cubic exactly.
@@ -159,14 +132,15 @@ TEST(StaticVerification, AxialStretchUnderAxialLoad) {
   StaticShootingOptions opt;
   opt.tolerance = 1e-14;
   StaticShootingSolver solver(rod.model(), 41, opt);
-  const double EA = rod.material.youngs_modulus * rod.section.area;
+  const double EA = rod.EA();
   const double P = 1e-3 * EA;  // 0.1 % strain
   StaticLoads loads;
   loads.tip_force = Vec3(0, 0, P);
   ASSERT_TRUE(solver.Solve(lie::SE3{}, loads).converged());
   // Γ3 = 1 + P/EA exactly along the rod: the stretch is PL/(EA) to round-off.
   // Round-off of summing 40 steps of length ~L/40 is ~1e-15 L against a stretch of 1e-3 L.
-  EXPECT_NEAR(solver.state().tip_position_W().z() - rod.L, P * rod.L / EA, 1e-9 * P * rod.L / EA);
+  EXPECT_NEAR(solver.state().tip_position_W().z() - rod.length, P * rod.length / EA,
+              1e-9 * P * rod.length / EA);
 }
 
 // Rest curvature k about y and no load: a circular arc of radius 1/k.
@@ -177,10 +151,10 @@ TEST(StaticVerification, RestCurvatureGivesArcUnderNoLoad) {
   model.rest_strain = ConstantRestCurvature(Vec3(0, k, 0));
   StaticShootingSolver solver(model, 41);
   ASSERT_TRUE(solver.Solve(lie::SE3{}, StaticLoads{}).converged());
-  const Vec3 expected((1 - std::cos(k * rod.L)) / k, 0, std::sin(k * rod.L) / k);
+  const Vec3 expected = truth::ArcPoint(k, rod.length);
   // RK4 on R' = R K̂ with constant K truncates exp(hK̂) after the 4th power: (kh)^5/120 =
   // 2.6e-9 rad per step, 1e-7 rad over 40 steps, so the tip is off by about 5e-8 L.
-  EXPECT_LT((solver.state().tip_position_W() - expected).norm(), 2e-7 * rod.L);
+  EXPECT_LT((solver.state().tip_position_W() - expected).norm(), 2e-7 * rod.length);
 }
 
 // Refinement in N: the tip error of RK4 falls as h⁴. A nonlinear case (gravity plus a tip load,

@@ -8,18 +8,12 @@
 #include "cosserat/rod/stiffness_profiles.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "support/rods.hpp"
 
 namespace cosserat {
 namespace {
 
-Material DampedSteel(const CrossSection& sec, double relaxation_time) {
-  Material mat = Material::FromShearModulus(200e9, 80e9, 8000);
-  mat.damping.bending = relaxation_time * 200e9 * sec.I1;
-  mat.damping.torsion = relaxation_time * 80e9 * sec.torsion_constant;
-  mat.damping.shear = relaxation_time * 80e9 * sec.area;
-  mat.damping.extension = relaxation_time * 200e9 * sec.area;
-  return mat;
-}
+using testing::DampedSteel;
 
 // For both spatial schemes: with Heun the stepper settles on Heun's discrete equilibrium, which
 // differs from the static solver's RK4 one by Heun's spatial error, O((h κ)²) relative with
@@ -56,7 +50,7 @@ TEST(TendonDynamics, TensionStepWithDampingSettlesToTheStaticSolution) {
 // Largest node displacement over the step in which segment 0 unjams, for step size dt.
 double SwitchJump(double dt) {
   const CrossSection sec = CrossSection::Circle(0.001);
-  const Material steel = Material::FromShearModulus(200e9, 80e9, 8000);
+  const Material steel = testing::Steel();
   auto tube = std::make_shared<UniformSection>(sec, steel);
   // Layers adding about the tube's own EI when jammed at ΔP = 100 kPa, 1 % of it unjammed.
   const double I_layer = 20 * sec.I1;

@@ -8,24 +8,22 @@
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/robots/tendon_control.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "support/analytic/tendon.hpp"
+#include "support/rods.hpp"
 
 namespace cosserat {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using truth::kPi;
 
 // A 0.25 m rod of radius 1 mm with tendons through disks: steel backbone, or, for the arc test,
 // with shear and extension made 1e6 times stiffer ("stiff in shear and extension").
-struct TendonRod {
-  double L = 0.25, r = 0.001;
-  Material material = Material::FromShearModulus(200e9, 80e9, 8000);
-  CrossSection section = CrossSection::Circle(r);
-  double EI() const { return material.youngs_modulus * section.I1; }
-  double GJ() const { return material.shear_modulus * section.torsion_constant; }
+struct TendonRod : testing::SteelRod {
+  TendonRod() : testing::SteelRod{0.25, 0.001} {}
   RodModel Model(std::vector<Tendon> tendons, double axial_shear_factor = 1.0) const {
-    CrossSection s = section;
+    CrossSection s = section();
     s.area *= axial_shear_factor;
-    RodModel m = RodModel::Uniform(L, s, material);
+    RodModel m = RodModel::Uniform(length, s, material);
     m.tendons = std::move(tendons);
     return m;
   }
@@ -43,15 +41,15 @@ TEST(Tendons, StraightTendonBendsTheRodIntoTheArcOfCurvatureTauROverEI) {
   const double offset = 0.005;  // 5 mm from the axis, along body x
   const RodModel model = rod.Model({{"t0", TendonRoute::Parallel(Vec2(offset, 0))}}, 1e6);
   // A quarter circle: κ L = π/2.
-  const double tau = 0.5 * kPi * rod.EI() / (rod.L * offset);
+  const double tau = truth::TendonTensionForTurn(0.5 * kPi, rod.EI(), rod.length, offset);
   StaticShootingSolver solver(model, 41, {}, Tensions({tau}));
   const auto summary = solver.Solve(lie::SE3{}, StaticLoads{});
   ASSERT_TRUE(summary.converged()) << ToString(summary.status);
-  const double kappa = tau * offset / rod.EI();
+  const double kappa = truth::TendonArcCurvature(tau, offset, rod.EI());
   // With Γ = (1 − τ/EA) e3 the centreline is a circle of radius (1 − τ/EA)/κ about (ρ, 0, 0),
   // bent towards the tendon (+x). τ/EA ≈ 1e-9 here.
-  const double EA = rod.material.youngs_modulus * rod.section.area * 1e6;
-  const double radius = (1 - tau / EA) / kappa;
+  const double EA = rod.EA() * 1e6;
+  const double radius = truth::TendonArcRadius(tau, offset, rod.EI(), EA);
   const Vec3 centre(radius, 0, 0);
   for (int i = 0; i < solver.state().size(); ++i) {
     // Acceptance 0.1 %. The arc is exact in the model; RK4 at h = L/40 integrates it with a
@@ -76,8 +74,7 @@ TEST(Tendons, HelicalTendonTwistsAgainstItsHandednessAndMoreWithTension) {
   // the guides is a torque −τ r × r'/|q| = −τ ρ² w e3/|q| (w = 2π/pitch): the rod twists opposite
   // to the helix, by θ ≈ −τ ρ² w L /(GJ sqrt(1 + ρ² w²)) for small τ, growing monotonically.
   TendonRod rod;
-  const double rho = 0.005, pitch = rod.L / 2;  // two full turns: the bending parts cancel
-  const double w = 2 * kPi / pitch;
+  const double rho = 0.005, pitch = rod.length / 2;  // two full turns: the bending parts cancel
   for (double sign : {1.0, -1.0}) {
     const RodModel model = rod.Model({{"helix", TendonRoute::Helical(rho, sign * pitch, 0.0)}});
     StaticShootingSolver solver(model, 81);
@@ -92,7 +89,7 @@ TEST(Tendons, HelicalTendonTwistsAgainstItsHandednessAndMoreWithTension) {
       last = twist;
       if (tau == 0.05) {
         const double linear =
-            -sign * tau * rho * rho * w * rod.L / (rod.GJ() * std::sqrt(1 + rho * rho * w * w));
+            truth::HelicalTendonTwist(tau, rho, sign * pitch, rod.length, rod.GJ());
         // Small tension: the linear prediction to O(τ) relative (τ ρ/EI·L ≈ 2e-3 here) plus the
         // trapezoid rule on the node torsion (h = L/80).
         EXPECT_NEAR(twist / linear, 1.0, 1e-2);
@@ -110,7 +107,7 @@ TEST(Tendons, BaseReactionBalancesTheExternalLoadsWhateverTheTension) {
   loads.gravity_W = Vec3(0, -9.81, 0);
   loads.tip_force = Vec3(0.2, 0, -0.1);
   StaticShootingSolver solver(model, 41);
-  const double mass = 8000 * rod.section.area * rod.L;
+  const double mass = 8000 * rod.section().area * rod.length;
   const Vec3 external = mass * loads.gravity_W + loads.tip_force;
   for (double tau : {0.0, 1.0, 5.0, 20.0}) {
     solver.SetActuation(Tensions({tau, 0.5 * tau}));
@@ -186,7 +183,7 @@ TEST(Tendons, LengthCommandReachesTheTensionThatProducesItAndASlackTendonCarries
   EXPECT_EQ(a.tendon_tension[1], 0.0);
   EXPECT_TRUE(s.slack[1]);
   EXPECT_FALSE(s.slack[0]);
-  EXPECT_NEAR(solver.tendon_lengths()[0], command[0], 1e-10 * rod.L);
+  EXPECT_NEAR(solver.tendon_lengths()[0], command[0], 1e-10 * rod.length);
   EXPECT_GT(command[1], solver.tendon_lengths()[1]);  // slack: the path is shorter than the cable
 }
 
