@@ -22,6 +22,7 @@
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "../bench/quatfd_rods.hpp"
+#include "quatfd_falling_rod.hpp"
 #include "spectral_peak.hpp"
 
 namespace cosserat::quatfd {
@@ -180,7 +181,7 @@ std::vector<double> LinearisedFrequencies(const QuatFdModel& model, double above
   return omega;
 }
 
-using testing::PeakFrequency;
+using cosserat::testing::PeakFrequency;
 
 TEST(QuatFdDynamics, BendingFrequenciesMatchSe3Stepper) {
   // The same stocky steel cantilever (L = 1 m, r = 1 cm, L/r = 100: shear and rotary inertia
@@ -269,6 +270,10 @@ TEST(QuatFdDynamics, UndampedEnergyIsConserved) {
   const QuatFdEnergy e1 = model.Energy(q, v);
   ASSERT_GT(e1.kinetic, 1e-4);  // it really moves (released horizontal rod sags)
   EXPECT_LT(std::abs(e1.total() - e0.total()), 1e-4 * e1.kinetic);
+}
+
+TEST(QuatFdDynamics, RosenbrockFailureIsAStatus) {
+  testing::ExpectFailuresAreStatuses<RosenbrockIntegrator>();
 }
 
 TEST(QuatFdDynamics, DampingDissipates) {
