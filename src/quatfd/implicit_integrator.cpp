@@ -30,8 +30,8 @@ NewtonControl::Verdict NewtonControl::Check(int iteration, double d) {
 }
 
 ImplicitIntegrator::ImplicitIntegrator(const QuatFdModel& model, const IntegratorOptions& options,
-                                       bool corotate, int rotation_slots,
-                                       int max_newton_iterations, double kappa)
+                                       bool corotate, int rotation_slots, int max_newton_iterations,
+                                       double kappa)
     : AdaptiveIntegrator(model, options),
       corotate_(corotate),
       newton_(max_newton_iterations, kappa),

@@ -1,10 +1,10 @@
+#include "cosserat/quatfd/integrator.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
-
-#include "cosserat/quatfd/integrator.hpp"
 
 namespace cosserat::quatfd {
 
@@ -59,8 +59,7 @@ AdaptiveIntegrator::AdaptiveIntegrator(const QuatFdModel& model, const Integrato
   y_.setConstant(std::numeric_limits<double>::quiet_NaN());  // no state yet (Advance compares)
 }
 
-IntegratorStatus AdaptiveIntegrator::Advance(double t_end, double* t,
-                                             Eigen::Ref<Eigen::VectorXd> q,
+IntegratorStatus AdaptiveIntegrator::Advance(double t_end, double* t, Eigen::Ref<Eigen::VectorXd> q,
                                              Eigen::Ref<Eigen::VectorXd> v) {
   const int n = n_;
   const bool continuing = y_.head(n) == q && y_.tail(n) == v;

@@ -203,7 +203,8 @@ bool RadauIntegrator::Attempt(const Eigen::Ref<const Eigen::VectorXd>& y, double
     if (!Factorize(h)) return false;
   }
   y_new = y + Z_[2];  // stiffly accurate
-  EndStep();  // slow contraction: a fresh J at the next step
+  // A slow Newton contraction: a fresh J for the next step.
+  EndStep();
   // Error: (γ/h I − J)⁻¹ [f(y_n) + Σ dd_i Z_i / h], turned to y_new.
   error = f0_;
   for (int i = 0; i < 3; ++i) error += (k.dd[i] / h) * Z_[i];
@@ -239,8 +240,8 @@ RadauIntegrator::Trial RadauIntegrator::TryStep(double h) {
 
 double RadauIntegrator::StepQuotient(double err) const {
   // RADAU5's controller: safety reduced with the Newton iterations used.
-  const double fac = std::min(kSafety, kSafety * (1 + 2 * kSafetyIterations) /
-                                           (last_iterations_ + 2 * kSafetyIterations));
+  const double fac = std::min(
+      kSafety, kSafety * (1 + 2 * kSafetyIterations) / (last_iterations_ + 2 * kSafetyIterations));
   return std::clamp(std::pow(std::max(err, 1e-10), 0.25) / fac, 0.2, 8.0);
 }
 

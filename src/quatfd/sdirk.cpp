@@ -147,7 +147,8 @@ bool SdirkIntegrator::Step(const Eigen::Ref<const Eigen::VectorXd>& y, double h,
     }
   }
   y_new = y + z_;  // stiffly accurate: y_{n+1} = Y_5
-  EndStep();  // slow contraction: a fresh J at the next step
+  // A slow Newton contraction: a fresh J for the next step.
+  EndStep();
   error.setZero();
   for (int i = 0; i < kStages; ++i)
     if (kE[i] != 0.0) error += (h * kE[i]) * k_[i];

@@ -117,8 +117,8 @@ class ImplicitIntegrator : public AdaptiveIntegrator {
   void SolveShifted(double a, int slot, Eigen::Ref<Eigen::VectorXd> r);
 
   FrozenJacobian jac_;
-  BandedMatrix M_;             ///< a² I − a B − A, factorised for factor_h_
-  double factor_h_ = 0;        ///< the h of the current factorisation; 0: none
+  BandedMatrix M_;       ///< a² I − a B − A, factorised for factor_h_
+  double factor_h_ = 0;  ///< the h of the current factorisation; 0: none
   bool refresh_next_step_ = false;
   bool corotate_ = true;
   NewtonControl newton_;
