@@ -266,6 +266,10 @@ TEST(QuatFdDynamics, UndampedEnergyIsConserved) {
   EXPECT_LT(std::abs(e1.total() - e0.total()), 1e-4 * e1.kinetic);
 }
 
+TEST(QuatFdDynamics, RosenbrockFailureIsAStatus) {
+  testing::ExpectFailuresAreStatuses<RosenbrockIntegrator>();
+}
+
 TEST(QuatFdDynamics, DampingDissipates) {
   FallingRod s(10, RubberRod(0.01));
   const QuatFdModel& model = s.model;

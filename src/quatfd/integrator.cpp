@@ -1,8 +1,10 @@
+#include "cosserat/quatfd/integrator.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 #include <string>
-
-#include "cosserat/quatfd/integrator.hpp"
 
 namespace cosserat::quatfd {
 
@@ -47,6 +49,55 @@ void AcceptStep(const QuatFdModel& model, const IntegratorOptions& options, doub
     stats->max_drift_before_projection =
         std::max(stats->max_drift_before_projection, model.Project(y.head(n), y.tail(n)));
   }
+}
+
+AdaptiveIntegrator::AdaptiveIntegrator(const QuatFdModel& model, const IntegratorOptions& options)
+    : model_(model), options_(options), n_(model.size()), dt_(options.initial_dt) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("IntegratorOptions: " + why);
+  for (Eigen::VectorXd* v : {&y_, &y_new_, &err_}) v->resize(2 * n_);
+  y_.setConstant(std::numeric_limits<double>::quiet_NaN());  // no state yet (Advance compares)
+}
+
+IntegratorStatus AdaptiveIntegrator::Advance(double t_end, double* t, Eigen::Ref<Eigen::VectorXd> q,
+                                             Eigen::Ref<Eigen::VectorXd> v) {
+  const int n = n_;
+  const bool continuing = y_.head(n) == q && y_.tail(n) == v;
+  y_.head(n) = q;
+  y_.tail(n) = v;
+  BeginAdvance(continuing);
+  IntegratorStatus status = IntegratorStatus::kOk;
+  long attempts = 0;
+  while (*t < t_end) {
+    if (++attempts > options_.max_steps) {
+      status = IntegratorStatus::kMaxSteps;
+      break;
+    }
+    if (options_.max_dt > 0) dt_ = std::min(dt_, options_.max_dt);
+    // Land exactly on t_end; a last step within 1e-12 of it is stretched to it.
+    const bool last = *t + dt_ * (1 + 1e-12) >= t_end;
+    const double h = last ? t_end - *t : dt_;
+    Trial trial = TryStep(h);
+    if (trial.ok && (!std::isfinite(trial.err) || !y_new_.allFinite())) trial.err = 1e10;
+    if (!trial.ok || trial.err > 1.0) {
+      ++stats_.rejected;
+      dt_ = Rejected(h, trial);
+      last_rejected_ = true;
+      if (dt_ < options_.min_dt) {
+        status = IntegratorStatus::kStepSizeUnderflow;
+        break;
+      }
+      continue;
+    }
+    y_.swap(y_new_);
+    AcceptStep(model_, options_, h, last, t_end, t, y_, &stats_);
+    const double next = Accepted(h, trial.err);
+    if (!last || next < dt_) dt_ = next;
+    last_rejected_ = false;
+  }
+  q = y_.head(n);
+  v = y_.tail(n);
+  return status;
 }
 
 }  // namespace cosserat::quatfd

@@ -24,32 +24,24 @@ constexpr double c61 = 0.8083246795921522e+01, c62 = -0.7981132988064893e+01,
                  c63 = -0.3152159432874371e+02, c64 = 0.1631930543123136e+02,
                  c65 = -0.6058818238834054e+01;
 
+// Step-size quotient of odeint's rosenbrock4_controller: h_new = h / clamp(err^¼/0.9, 1/6, 5).
+double Quotient(double err) { return std::clamp(std::pow(err, 0.25) / 0.9, 1.0 / 6.0, 5.0); }
+
 }  // namespace
 
 RosenbrockIntegrator::RosenbrockIntegrator(const QuatFdModel& model,
                                            const IntegratorOptions& options)
-    : model_(model), options_(options) {
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument("IntegratorOptions: " + why);
-  n_ = model.size();
+    : AdaptiveIntegrator(model, options) {
   const int bw = QuatFdLayout::kBandwidth;
-  A_.Resize(n_, bw, bw);
-  B_.Resize(n_, bw, bw);
+  jac_.Resize(model);
   M_.Resize(n_, bw, bw);
-  for (Eigen::VectorXd* v : {&y_, &y_new_, &err_, &f_, &tmp_}) v->resize(2 * n_);
+  tmp_.resize(2 * n_);
   for (Eigen::VectorXd& g : g_) g.resize(2 * n_);
   acc_.resize(n_);
-  dt_ = options.initial_dt;
 }
 
 void RosenbrockIntegrator::SolveStage(Eigen::Ref<Eigen::VectorXd> r) {
-  // w = M⁻¹ (a r_v + A r_q), u = (r_q + w)/a.
-  auto rq = r.head(n_);
-  auto rv = r.tail(n_);
-  A_.Multiply(rq, acc_);
-  rv = a_ * rv + acc_;
-  M_.Solve(rv);
-  rq = (rq + rv) / a_;
+  jac_.SolveShifted(a_, M_, r, acc_);
 }
 
 bool RosenbrockIntegrator::Step(const Eigen::Ref<const Eigen::VectorXd>& y, double h,
@@ -57,19 +49,15 @@ bool RosenbrockIntegrator::Step(const Eigen::Ref<const Eigen::VectorXd>& y, doub
                                 Eigen::Ref<Eigen::VectorXd> error) {
   const int n = n_;
   // Jacobian (and f) at y; the iteration matrix M = a² I − a B − A.
-  model_.Jacobian(y.head(n), y.tail(n), &A_, &B_, &acc_);
-  ++stats_.jacobian_evaluations;
+  jac_.Evaluate(model_, y, &stats_);
   a_ = 1.0 / (kGamma * h);
-  const int bw = QuatFdLayout::kBandwidth;
-  for (int j = 0; j < n; ++j)
-    for (int i = std::max(0, j - bw); i <= std::min(n - 1, j + bw); ++i)
-      M_(i, j) = -a_ * B_(i, j) - A_(i, j) + (i == j ? a_ * a_ : 0.0);
+  jac_.AssembleShifted(a_, &M_);
   ++stats_.factorizations;
   if (!M_.Factorize()) return false;
 
   Eigen::VectorXd &g1 = g_[0], &g2 = g_[1], &g3 = g_[2], &g4 = g_[3], &g5 = g_[4];
   g1.head(n) = y.tail(n);
-  g1.tail(n) = acc_;
+  g1.tail(n) = jac_.f;
   SolveStage(g1);
 
   tmp_ = y + a21 * g1;
@@ -100,45 +88,20 @@ bool RosenbrockIntegrator::Step(const Eigen::Ref<const Eigen::VectorXd>& y, doub
   return true;
 }
 
-IntegratorStatus RosenbrockIntegrator::Advance(double t_end, double* t,
-                                               Eigen::Ref<Eigen::VectorXd> q,
-                                               Eigen::Ref<Eigen::VectorXd> v) {
-  const int n = n_;
-  y_.head(n) = q;
-  y_.tail(n) = v;
-  long attempts = 0;
-  while (*t < t_end) {
-    if (++attempts > options_.max_steps) return IntegratorStatus::kMaxSteps;
-    if (options_.max_dt > 0) dt_ = std::min(dt_, options_.max_dt);
-    // Land exactly on t_end; a last step within 1e-12 of it is stretched to it.
-    const bool last = *t + dt_ * (1 + 1e-12) >= t_end;
-    const double h = last ? t_end - *t : dt_;
-    const bool ok = Step(y_, h, y_new_, err_);
-    double err = ok ? ErrorNorm(options_, n, y_, y_new_, err_) : 0.0;
-    if (!ok || !std::isfinite(err) || !y_new_.allFinite()) err = 1e10;  // reject, shrink 6×
-    // Step-size factor of odeint's rosenbrock4_controller: h_new = h / clamp(err^¼/0.9, 1/6, 5).
-    const double fac = std::clamp(std::pow(err, 0.25) / 0.9, 1.0 / 6.0, 5.0);
-    if (err > 1.0) {
-      ++stats_.rejected;
-      dt_ = h / fac;
-      last_rejected_ = true;
-      if (dt_ < options_.min_dt) {
-        q = y_.head(n);
-        v = y_.tail(n);
-        return IntegratorStatus::kStepSizeUnderflow;
-      }
-      continue;
-    }
-    y_.swap(y_new_);
-    AcceptStep(model_, options_, h, last, t_end, t, y_, &stats_);
-    // After a rejection, do not grow at once; a clipped last step keeps the running size.
-    const double next = last_rejected_ ? std::min(h, h / fac) : h / fac;
-    if (!last || next < dt_) dt_ = next;
-    last_rejected_ = false;
-  }
-  q = y_.head(n);
-  v = y_.tail(n);
-  return IntegratorStatus::kOk;
+RosenbrockIntegrator::Trial RosenbrockIntegrator::TryStep(double h) {
+  // A singular iteration matrix counts as a huge error: rejected, the step shrunk 6×.
+  const bool ok = Step(y_, h, y_new_, err_);
+  return {ok, ok ? ErrorNorm(options_, n_, y_, y_new_, err_) : 1e10};
+}
+
+double RosenbrockIntegrator::Rejected(double h, const Trial& trial) {
+  return h / Quotient(trial.err);
+}
+
+double RosenbrockIntegrator::Accepted(double h, double err) {
+  // After a rejection, do not grow at once.
+  const double fac = Quotient(err);
+  return last_rejected_ ? std::min(h, h / fac) : h / fac;
 }
 
 }  // namespace cosserat::quatfd

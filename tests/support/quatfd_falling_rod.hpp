@@ -65,6 +65,8 @@ void ExpectFailuresAreStatuses() {
     EXPECT_EQ(integ.Advance(1.0, &t, q, v), IntegratorStatus::kMaxSteps);
     EXPECT_GT(t, 0.0);
     EXPECT_LT(t, 1.0);
+    // (q, v) are the state at t, not the one passed in: the rod released from rest is moving.
+    EXPECT_GT(v.norm(), 0.0);
   }
 }
 

@@ -101,4 +101,54 @@ class QuatFdIntegrator {
   virtual const char* name() const = 0;
 };
 
+/// The error-controlled step loop of the Rosenbrock, SDIRK and Radau integrators: the step cap
+/// (max_steps), max_dt, the last step landing on t_end, the rejection of a step that failed or
+/// whose error norm exceeds 1, the min_dt floor, and an accepted step's bookkeeping (AcceptStep).
+/// A method supplies one trial step (TryStep) and its step-size rules after a rejection
+/// (Rejected) and after an acceptance (Accepted); a proposal after the clipped last step of an
+/// Advance call is kept only when it is smaller than the running size.
+class AdaptiveIntegrator : public QuatFdIntegrator {
+ public:
+  IntegratorStatus Advance(double t_end, double* t, Eigen::Ref<Eigen::VectorXd> q,
+                           Eigen::Ref<Eigen::VectorXd> v) final;
+  const IntegratorStats& stats() const final { return stats_; }
+
+ protected:
+  /// One trial step: ok = false when it could not be computed (a singular iteration matrix, or
+  /// Newton iterations that failed even with a fresh Jacobian); err its error norm (≤ 1: accepted;
+  /// set to 1e10 by Advance when it or y_new_ is not finite).
+  struct Trial {
+    bool ok;
+    double err;
+  };
+
+  /// Checks the options (std::invalid_argument "IntegratorOptions: …"), allocates y_, y_new_ and
+  /// err_ (y_ NaN: no state yet) and sets the first trial step to options.initial_dt.
+  AdaptiveIntegrator(const QuatFdModel& model, const IntegratorOptions& options);
+
+  /// Called by Advance once y_ holds the caller's (q, v); continuing: that state is the one the
+  /// previous Advance call ended with.
+  virtual void BeginAdvance(bool continuing) { (void)continuing; }
+  /// One step of size h from y_: the new state into y_new_ (and the error estimate into err_).
+  virtual Trial TryStep(double h) = 0;
+  /// The size of the next trial after `trial`, of size h, was rejected (s).
+  virtual double Rejected(double h, const Trial& trial) = 0;
+  /// The proposed size of the next step after a step of size h with error norm err was accepted;
+  /// y_ holds the new state (projected), last_rejected_ still says whether a rejection preceded.
+  virtual double Accepted(double h, double err) = 0;
+
+  /// y' = [v; f(q, v)], counted in stats_.
+  void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out) {
+    FirstOrderRhs(model_, y, out, &stats_);
+  }
+
+  const QuatFdModel& model_;
+  IntegratorOptions options_;
+  IntegratorStats stats_;
+  int n_ = 0;                        ///< size of q (and of v)
+  double dt_ = 0;                    ///< size of the next trial step, s
+  bool last_rejected_ = false;       ///< the last trial step was rejected
+  Eigen::VectorXd y_, y_new_, err_;  ///< [q; v] at *t, a trial step's [q; v] and its error
+};
+
 }  // namespace cosserat::quatfd

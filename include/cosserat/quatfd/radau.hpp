@@ -35,13 +35,9 @@
 /// following steps capped at 0.8 of the failed h (the cap growing 5 % per accepted step).
 
 #include <Eigen/Core>
-#include <vector>
 
 #include "cosserat/quatfd/banded_matrix.hpp"
-#include "cosserat/quatfd/corotation.hpp"
-#include "cosserat/quatfd/frozen_jacobian.hpp"
-#include "cosserat/quatfd/integrator.hpp"
-#include "cosserat/quatfd/sdirk.hpp"
+#include "cosserat/quatfd/implicit_integrator.hpp"
 
 namespace cosserat::quatfd {
 
@@ -66,27 +62,23 @@ enum class RadauErrorMeasure {
   kPhysical,
 };
 
-class RadauIntegrator final : public QuatFdIntegrator {
+class RadauIntegrator final : public ImplicitIntegrator {
  public:
   /// Allocates every buffer; Advance() does not allocate.
   RadauIntegrator(const QuatFdModel& model, const IntegratorOptions& options = {},
                   bool corotate = true);
 
-  IntegratorStatus Advance(double t_end, double* t, Eigen::Ref<Eigen::VectorXd> q,
-                           Eigen::Ref<Eigen::VectorXd> v) override;
-  const IntegratorStats& stats() const override { return stats_; }
-  /// newton_iterations counts iterations of the 3-stage system (3 f each).
-  const SdirkStats& newton_stats() const { return newton_; }
+  /// newton_stats().newton_iterations counts iterations of the 3-stage system (3 f each).
   const char* name() const override { return "radau5-banded"; }
 
   /// One step of size h from y = [q; v] without step-size control (Newton from zero starting
   /// values unless a polynomial of an earlier step is kept): writes y_new and the filtered error
-  /// estimate. Returns false when Newton did not converge even with a fresh Jacobian. Public for
-  /// the tests.
+  /// estimate (for which it evaluates f(y) once). Returns false when Newton did not converge even
+  /// with a fresh Jacobian. Public for the tests.
   bool Step(const Eigen::Ref<const Eigen::VectorXd>& y, double h, Eigen::Ref<Eigen::VectorXd> y_new,
             Eigen::Ref<Eigen::VectorXd> error);
   /// Newton stopping threshold κ (η‖ΔZ‖ ≤ κ in the error norm); for the fixed-step tests.
-  void set_newton_kappa(double kappa) { kappa_ = kappa; }
+  void set_newton_kappa(double kappa) { newton_.set_kappa(kappa); }
   /// Forget the extrapolation polynomial (the next Step starts Newton from Z = 0).
   void ForgetHistory() { have_poly_ = false; }
   /// How the error estimate is measured (default kPhysical); set before Advance.
@@ -95,53 +87,43 @@ class RadauIntegrator final : public QuatFdIntegrator {
 
  private:
   enum class NewtonResult { kConverged, kSlow, kDiverged };
-  void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out) {
-    FirstOrderRhs(model_, y, out, &stats_);
-  }
-  void RefreshJacobian(const Eigen::Ref<const Eigen::VectorXd>& y);
-  bool Factorize(double h);
-  /// The co-rotation (corotation.hpp) from the state of J to y into slot 0–2 (stages) or 3 (the
-  /// error filter); RotateHalf applies a slot's P or Pᵀ to one half. No-ops without corotate_.
-  void UpdateRotations(int slot, const Eigen::Ref<const Eigen::VectorXd>& y) {
-    if (corotate_) corotation_[slot].Update(jac_.q, y.head(n_));
-  }
-  void RotateHalf(int slot, Eigen::Ref<Eigen::VectorXd> r, bool transpose) const {
-    if (corotate_) corotation_[slot].Apply(r, transpose);
-  }
+  void BeginAdvance(bool continuing) override;
+  Trial TryStep(double h) override;
+  /// Step with f0_ = f(y) already in place (Advance keeps it for y_).
+  bool Attempt(const Eigen::Ref<const Eigen::VectorXd>& y, double h,
+               Eigen::Ref<Eigen::VectorXd> y_new, Eigen::Ref<Eigen::VectorXd> error);
+  double Rejected(double h, const Trial& trial) override;
+  double Accepted(double h, double err) override;
+  /// The real (γ/h) and complex ((α + iβ)/h) iteration matrices.
+  bool FactorizeMatrices(double h) override;
+  /// RADAU5's step-size quotient h/h_new for the error norm err, its safety factor reduced with
+  /// the Newton iterations of the last converged step.
+  double StepQuotient(double err) const;
+  /// Keeps the collocation polynomial of the accepted step of size h (Newton form about 1, c2,
+  /// c1) for the next starting values.
+  void KeepPolynomial(double h);
   /// Starting values Z_i for a step of size h (the last polynomial, or zero).
   void StartingValues(double h);
   /// Z_q = h (A ⊗ I)(v_n + Z_v): the exact q-half.
   void FillPositions(const Eigen::Ref<const Eigen::VectorXd>& y, double h);
   NewtonResult Newton(const Eigen::Ref<const Eigen::VectorXd>& y, double h);
-  /// (γ/h I − J) x = r in place on a full vector (the error filter), co-rotated.
+  /// (γ/h I − J) x = r in place on a full vector (the error filter), co-rotated (slot 3).
   void SolveReal(Eigen::Ref<Eigen::VectorXd> r);
   /// The norm of the estimate err_ of the step y_ → y_new_ (≤ 1: accepted), per error_measure_.
   double ErrorMeasure() const;
 
-  const QuatFdModel& model_;
-  IntegratorOptions options_;
-  IntegratorStats stats_;
-  SdirkStats newton_;
-  int n_ = 0;
-  double dt_ = 0;
-  double factor_h_ = 0;
-  double kappa_ = 0.05;
   double newton_cap_ = 0.0;  ///< largest next step after a Newton failure (0: none)
-  bool refresh_next_step_ = false;
   bool have_poly_ = false;
-  bool corotate_ = true;
   RadauErrorMeasure error_measure_ = RadauErrorMeasure::kPhysical;
-  double theta_ = 0.0;      ///< largest contraction of the current step
-  double eta_ = 1.0;        ///< Newton convergence-rate memory
   int last_iterations_ = 0;  ///< Newton iterations of the last converged step
   double h_poly_ = 0;        ///< step of the polynomial in cont_
-  double newton_velocity_atol_ = 0;
-  FrozenJacobian jac_;
-  BandedMatrix Mr_;
-  ComplexBandedMatrix Mc_;
-  Eigen::VectorXd y_, y_new_, err_, f0_, tmp_, acc_;
+  // Step-size control within one Advance call: its first step (no polynomial yet), and the size
+  // and error norm of the last accepted step (Gustafsson's controller).
+  bool first_ = true;
+  double h_acc_ = 0.0, err_acc_ = 1e-2;
+  ComplexBandedMatrix Mc_;  ///< (α + iβ)²/h² I − (α + iβ)/h B − A; the real one is M_
+  Eigen::VectorXd f0_, tmp_;
   Eigen::VectorXd Z_[3], K_[3], dW_[3], cont_[3], dZ_;
-  CoRotation corotation_[4];
 };
 
 }  // namespace cosserat::quatfd

@@ -14,18 +14,16 @@
 #include <Eigen/Core>
 
 #include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/quatfd/frozen_jacobian.hpp"
 #include "cosserat/quatfd/integrator.hpp"
 
 namespace cosserat::quatfd {
 
-class RosenbrockIntegrator final : public QuatFdIntegrator {
+class RosenbrockIntegrator final : public AdaptiveIntegrator {
  public:
   /// Allocates every buffer; Advance() does not allocate.
   RosenbrockIntegrator(const QuatFdModel& model, const IntegratorOptions& options = {});
 
-  IntegratorStatus Advance(double t_end, double* t, Eigen::Ref<Eigen::VectorXd> q,
-                           Eigen::Ref<Eigen::VectorXd> v) override;
-  const IntegratorStats& stats() const override { return stats_; }
   const char* name() const override { return "rosenbrock4-banded"; }
 
   /// One step of size h from y = [q; v] without error control: writes y_new and the error
@@ -35,21 +33,16 @@ class RosenbrockIntegrator final : public QuatFdIntegrator {
             Eigen::Ref<Eigen::VectorXd> error);
 
  private:
-  void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out) {
-    FirstOrderRhs(model_, y, out, &stats_);
-  }
+  Trial TryStep(double h) override;
+  double Rejected(double h, const Trial& trial) override;
+  double Accepted(double h, double err) override;
   /// (I/(γh) − J) g = r for r = rhs (in place).
   void SolveStage(Eigen::Ref<Eigen::VectorXd> rhs);
 
-  const QuatFdModel& model_;
-  IntegratorOptions options_;
-  IntegratorStats stats_;
-  int n_ = 0;
-  double a_ = 0;  ///< 1/(γ h)
-  double dt_ = 0;
-  bool last_rejected_ = false;
-  BandedMatrix A_, B_, M_;
-  Eigen::VectorXd y_, y_new_, err_, g_[5], f_, tmp_, acc_;
+  double a_ = 0;        ///< 1/(γ h)
+  FrozenJacobian jac_;  ///< evaluated at the start of every step
+  BandedMatrix M_;      ///< a² I − a B − A
+  Eigen::VectorXd g_[5], tmp_, acc_;
 };
 
 }  // namespace cosserat::quatfd

@@ -43,22 +43,15 @@
 /// does not move with the tolerance (docs/quatfd.md, "SDIRK4 and the velocity tolerance").
 
 #include <Eigen/Core>
-#include <vector>
 
-#include "cosserat/quatfd/banded_matrix.hpp"
-#include "cosserat/quatfd/corotation.hpp"
-#include "cosserat/quatfd/frozen_jacobian.hpp"
-#include "cosserat/quatfd/integrator.hpp"
+#include "cosserat/quatfd/implicit_integrator.hpp"
 
 namespace cosserat::quatfd {
 
-/// Newton statistics in addition to IntegratorStats.
-struct SdirkStats {
-  long newton_iterations = 0;  ///< over all stages and attempts
-  long newton_failures = 0;    ///< stage iterations that did not contract (J refreshed or h cut)
-};
+/// The Newton statistics of SdirkIntegrator and RadauIntegrator (implicit_integrator.hpp).
+using SdirkStats = NewtonStats;
 
-class SdirkIntegrator final : public QuatFdIntegrator {
+class SdirkIntegrator final : public ImplicitIntegrator {
  public:
   /// Allocates every buffer; Advance() does not allocate.
   /// corotate: turn the iteration matrix with the segments (see the file comment); false only
@@ -66,10 +59,6 @@ class SdirkIntegrator final : public QuatFdIntegrator {
   SdirkIntegrator(const QuatFdModel& model, const IntegratorOptions& options = {},
                   bool corotate = true);
 
-  IntegratorStatus Advance(double t_end, double* t, Eigen::Ref<Eigen::VectorXd> q,
-                           Eigen::Ref<Eigen::VectorXd> v) override;
-  const IntegratorStats& stats() const override { return stats_; }
-  const SdirkStats& newton_stats() const { return newton_; }
   const char* name() const override { return "sdirk4-banded"; }
 
   /// One step of size h from y = [q; v] (Newton to convergence, the Jacobian refreshed when the
@@ -81,21 +70,12 @@ class SdirkIntegrator final : public QuatFdIntegrator {
 
  private:
   enum class StageResult { kConverged, kSlow, kDiverged };
-  void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out) {
-    FirstOrderRhs(model_, y, out, &stats_);
-  }
-  /// Evaluates J at y and marks the iteration matrix stale.
-  void RefreshJacobian(const Eigen::Ref<const Eigen::VectorXd>& y);
-  /// Assembles and factorises a² I − a B − A for the step h if it is not current.
-  bool Factorize(double h);
-  /// (I/(γh) − J) x = r in place, J turned by the current co-rotation.
-  void Solve(Eigen::Ref<Eigen::VectorXd> r);
-  /// The co-rotation from the state of the last Jacobian to y (a no-op without corotate_).
-  void UpdateRotations(const Eigen::Ref<const Eigen::VectorXd>& y) {
-    if (corotate_) corotation_.Update(jac_.q, y.head(n_));
-  }
-  /// r ← P r or Pᵀ r, blockwise on the q and v halves.
-  void Rotate(Eigen::Ref<Eigen::VectorXd> r, bool transpose) const;
+  void BeginAdvance(bool continuing) override;
+  Trial TryStep(double h) override;
+  double Rejected(double h, const Trial& trial) override;
+  double Accepted(double h, double err) override;
+  /// M_ = a² I − a B − A for a = 1/(γh).
+  bool FactorizeMatrices(double h) override;
   /// The velocity half of the Newton correction: rv ← (turned) a M⁻¹ rv.
   void SolveVelocity(Eigen::Ref<Eigen::VectorXd> rv);
   /// Predictor of stage i's derivative (into guess_): the known one nearest in time.
@@ -107,26 +87,9 @@ class SdirkIntegrator final : public QuatFdIntegrator {
   /// y_new_, err_): the position error the step's velocity error makes over one step of size h.
   double IntegratedVelocityError(double h) const;
 
-  const QuatFdModel& model_;
-  IntegratorOptions options_;
-  IntegratorStats stats_;
-  SdirkStats newton_;
-  int n_ = 0;
-  double dt_ = 0;
-  double factor_h_ = 0;       ///< the h of the current factorisation; 0: none
-  bool refresh_next_step_ = false;
-  bool have_k_guess_ = false;    ///< k_[4] holds F at the start of the next step (predictor)
-  double max_theta_ = 0.0;       ///< largest contraction factor seen in the current step
-  double eta_ = 1.0;             ///< Newton convergence-rate memory (Hairer–Wanner's η)
-  bool last_rejected_ = false;
-  FrozenJacobian jac_;
-  BandedMatrix M_;
-  Eigen::VectorXd y_, y_new_, err_, z_, dz_, s_, tmp_, acc_;
+  bool have_k_guess_ = false;  ///< k_[4] holds F at the start of the next step (predictor)
+  Eigen::VectorXd z_, dz_, s_, tmp_;
   Eigen::VectorXd k_[5], k0_, guess_;
-  bool corotate_ = true;
-  /// The tolerances of the Newton norm (ErrorNorm): options_ with abs_tol also on v.
-  IntegratorOptions newton_norm_;
-  CoRotation corotation_;
 };
 
 }  // namespace cosserat::quatfd
