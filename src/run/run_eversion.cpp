@@ -44,7 +44,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   Result result;
   result.json = io::StaticResultToJson(solve, robot.state());
   nlohmann::ordered_json r;
-  r["kind"] = "eversion";
+  r["kind"] = io::ToString(io::RobotKind::kEversion);
   r["pressure"] = pressure;
   r["length"] = robot.length();
   r["tip_force"] = robot.TipForce();
