@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "cosserat/io/problem.hpp"
-#include "run_problem.hpp"
+#include "cosserat/run/run.hpp"
 
 namespace {
 
@@ -137,12 +137,17 @@ int RunSolve(const Command& cmd) {
   if (cmd.out_path) out_file = OpenOutput(*cmd.out_path);
   if (cmd.csv_path) csv_file = OpenOutput(*cmd.csv_path);
   std::ostream& out = out_file ? static_cast<std::ostream&>(*out_file) : std::cout;
-  std::ostream* csv = csv_file ? &*csv_file : nullptr;
 
-  const bool converged = cosserat::cli::RunProblem(*problem, out, csv, std::cerr);
+  cosserat::run::RunOptions options;
+  options.nodes_csv = csv_file.has_value();
+  const cosserat::run::Result result = cosserat::run::Run(*problem, options);
+  out << result.json.dump(2) << '\n';
+  if (csv_file) *csv_file << result.nodes_csv;
+  std::cerr << result.log;
   out.flush();
-  if (!out || (csv && !csv->flush())) throw std::runtime_error("writing the result failed");
-  return converged ? kExitConverged : kExitNotConverged;
+  if (!out || (csv_file && !csv_file->flush()))
+    throw std::runtime_error("writing the result failed");
+  return result.converged ? kExitConverged : kExitNotConverged;
 }
 
 int Run(const std::vector<std::string>& args) {

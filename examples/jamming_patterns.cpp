@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cosserat/io/problem.hpp"
+#include "cosserat/run/solver_options.hpp"
 #include "example_input.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
@@ -27,7 +28,7 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(dir);
   std::ofstream out(dir / "jamming_patterns.csv");
   out << "pattern,node,s,x,y,z,curvature\n";
-  StaticShootingSolver solver(p.rod, p.nodes, p.solver, p.robot.actuation);
+  StaticShootingSolver solver(p.rod, p.nodes, run::StaticOptions(p), p.robot.actuation);
   for (int k = 0; k < 4; ++k) {
     Actuation a = p.robot.actuation;
     for (int seg = 0; seg < 3; ++seg) a.jamming_pressure[seg] = patterns[k][seg];

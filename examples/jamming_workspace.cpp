@@ -10,6 +10,7 @@
 
 #include "cosserat/analysis/sweep.hpp"
 #include "cosserat/io/problem.hpp"
+#include "cosserat/run/solver_options.hpp"
 #include "example_input.hpp"
 
 int main(int argc, char** argv) {
@@ -29,7 +30,8 @@ int main(int argc, char** argv) {
       points.push_back(a);
       pattern_of.push_back(pattern);
     }
-  const WorkspaceSweep w = SweepWorkspace(p.rod, p.nodes, p.solver, p.base, p.loads, points);
+  const WorkspaceSweep w =
+      SweepWorkspace(p.rod, p.nodes, run::StaticOptions(p), p.base, p.loads, points);
   std::filesystem::create_directories(dir);
   std::ofstream out(dir / "jamming_workspace.csv");
   out << "pattern,tension_N,x,y,z,status\n";

@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "cosserat/io/problem.hpp"
+#include "cosserat/run/solver_options.hpp"
 #include "example_input.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
@@ -23,7 +24,7 @@ int main(int argc, char** argv) {
   jac << "tension_N,tendon,dx_dtau,dy_dtau,dz_dtau,dthx_dtau,dthy_dtau,dthz_dtau\n";
 
   Actuation a = p.robot.actuation;
-  StaticShootingSolver solver(p.rod, p.nodes, p.solver, a);
+  StaticShootingSolver solver(p.rod, p.nodes, run::StaticOptions(p), a);
   for (int k = 0; k <= 10; ++k) {
     a.tendon_tension[0] = 0.3 * k;  // N: the sweep warm-starts each solve from the last
     solver.SetActuation(a);

@@ -16,10 +16,10 @@
 #include <string>
 
 #include "cosserat/io/problem.hpp"
-#include "cosserat/io/problem_options.hpp"
+#include "cosserat/run/run.hpp"
+#include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
-#include "run_problem.hpp"
 
 namespace py = pybind11;
 using namespace cosserat;
@@ -49,23 +49,11 @@ const StaticLoads& Valid(const StaticLoads& loads) {
   return loads;
 }
 
-/// An actuation checked before it reaches a solver, with the rules of the problem file: finite
-/// values, pressures and tensions >= 0, a stiffness scale > 0, no tension on a tendon the rod
-/// does not have.
+/// An actuation checked before it reaches a solver, with the rules of the problem file
+/// (Actuation::IsValid against the rod's tendons): a ValueError naming the field.
 const Actuation& Valid(const Actuation& a, int tendons) {
-  auto usable = [](double x) { return std::isfinite(x) && x >= 0; };
-  if (!usable(a.pressure)) throw py::value_error("actuation.pressure: expected a number >= 0 (Pa)");
-  if (!(std::isfinite(a.stiffness_scale) && a.stiffness_scale > 0))
-    throw py::value_error("actuation.stiffness_scale: expected a finite number > 0");
-  for (int i = 0; i < Actuation::kMaxTendons; ++i) {
-    if (!usable(a.tendon_tension[i]))
-      throw py::value_error("actuation.tendon_tension: expected finite tensions >= 0 (N)");
-    if (i >= tendons && a.tendon_tension[i] != 0)
-      throw py::value_error("actuation.tendon_tension: a tension on tendon " + std::to_string(i) +
-                            ", but the rod has " + std::to_string(tendons) + " tendons");
-  }
-  for (double p : a.jamming_pressure)
-    if (!usable(p)) throw py::value_error("actuation.jamming_pressure: expected numbers >= 0 (Pa)");
+  std::string why;
+  if (!a.IsValid(&why, tendons)) throw py::value_error("actuation." + why);
   return a;
 }
 
@@ -73,10 +61,10 @@ const Actuation& Valid(const Actuation& a, int tendons) {
 /// quaternion-FD formulation (solve() runs it), eversion growth and displacement control of
 /// tendons (solve() and the CLI run them).
 const io::Problem& Runnable(const io::Problem& problem, const char* what) {
-  if (problem.formulation != "se3-shooting")
+  if (problem.formulation != io::Formulation::kSe3Shooting)
     throw py::value_error(std::string("formulation: ") + what + " runs \"se3-shooting\", got \"" +
-                          problem.formulation + "\" (cosserat.solve runs it)");
-  if (problem.has_robot && problem.robot.kind == "eversion")
+                          io::ToString(problem.formulation) + "\" (cosserat.solve runs it)");
+  if (problem.has_robot && problem.robot.kind == io::RobotKind::kEversion)
     throw py::value_error(std::string("robot.kind: ") + what +
                           " does not grow an eversion robot (cosserat.solve does)");
   if (problem.robot.tendon_lengths)
@@ -165,17 +153,19 @@ class PyStepper {
  public:
   PyStepper(const io::Problem& problem, std::optional<double> dt,
             std::optional<std::string> spatial_scheme)
-      : options_(io::DynamicsOptions(Runnable(problem, "the Stepper"))),
+      : options_(cosserat::run::DynamicsOptions(Runnable(problem, "the Stepper"))),
         tendons_(static_cast<int>(problem.rod.tendons.size())) {
-    if (problem.boundary != "cantilever" && problem.boundary != "free-free")
+    if (problem.boundary != io::Boundary::kCantilever &&
+        problem.boundary != io::Boundary::kFreeFree)
       throw py::value_error("boundary: the Stepper runs \"cantilever\" or \"free-free\", got \"" +
-                            problem.boundary + "\"");
+                            io::ToString(problem.boundary) + "\"");
     if (dt) options_.dt = *dt;
     if (spatial_scheme) {
-      if (*spatial_scheme == "rk4") options_.spatial_scheme = SpatialScheme::kRk4;
-      else if (*spatial_scheme == "heun") options_.spatial_scheme = SpatialScheme::kHeun;
-      else throw py::value_error("spatial_scheme: expected \"rk4\" or \"heun\", got \"" +
-                                 *spatial_scheme + "\"");
+      io::ShotScheme scheme;
+      if (!io::FromString(*spatial_scheme, &scheme))
+        throw py::value_error("spatial_scheme: expected \"rk4\" or \"heun\", got \"" +
+                              *spatial_scheme + "\"");
+      options_.spatial_scheme = cosserat::run::ToSpatialScheme(scheme);
     }
     std::string why;
     if (!options_.IsValid(&why)) throw py::value_error(why);
@@ -239,14 +229,14 @@ class PyStepper {
 class PyStaticSolver {
  public:
   explicit PyStaticSolver(const io::Problem& problem)
-      : solver_(Runnable(problem, "StaticSolver").rod, problem.nodes, problem.solver,
+      : solver_(Runnable(problem, "StaticSolver").rod, problem.nodes, run::StaticOptions(problem),
                 problem.robot.actuation),
         base_(problem.base),
         loads_(problem.loads),
         tendons_(static_cast<int>(problem.rod.tendons.size())) {
-    if (problem.boundary != "cantilever")
+    if (problem.boundary != io::Boundary::kCantilever)
       throw py::value_error("boundary: StaticSolver solves a cantilever, got \"" +
-                            problem.boundary + "\" (cosserat.solve runs columns)");
+                            io::ToString(problem.boundary) + "\" (cosserat.solve runs columns)");
   }
 
   StaticShootingSummary Solve(std::optional<StaticLoads> loads, std::optional<Vec3> position,
@@ -321,9 +311,12 @@ PYBIND11_MODULE(cosserat, m) {
                     ArraySetter(&Actuation::jamming_pressure, "jamming_pressure"));
 
   py::class_<io::Problem>(m, "Problem", "A validated problem file (docs/problem-format.md).")
-      .def_readonly("analysis", &io::Problem::analysis)
-      .def_readonly("formulation", &io::Problem::formulation)
-      .def_readonly("boundary", &io::Problem::boundary)
+      .def_property_readonly("analysis",
+                             [](const io::Problem& p) { return io::ToString(p.analysis); })
+      .def_property_readonly("formulation",
+                             [](const io::Problem& p) { return io::ToString(p.formulation); })
+      .def_property_readonly("boundary",
+                             [](const io::Problem& p) { return io::ToString(p.boundary); })
       .def_readonly("nodes", &io::Problem::nodes)
       .def_property_readonly("length", [](const io::Problem& p) { return p.rod.length; })
       .def_property_readonly("base_position", [](const io::Problem& p) { return p.base.p; })
@@ -348,17 +341,18 @@ PYBIND11_MODULE(cosserat, m) {
           for (const std::string& e : unsupported) message += (message.empty() ? "" : "\n") + e;
           throw py::value_error(message);
         }
-        std::ostringstream out, csv, log;
-        bool converged;
+        run::RunOptions options;
+        options.nodes_csv = nodes;
+        run::Result result;
         {
           py::gil_scoped_release release;  // a long run leaves other Python threads going
-          converged = cli::RunProblem(problem, out, nodes ? &csv : nullptr, log);
+          result = run::Run(problem, options);
         }
         py::dict d;
-        d["converged"] = converged;
-        d["result"] = py::module_::import("json").attr("loads")(out.str());
-        d["log"] = log.str();
-        if (nodes) d["nodes_csv"] = csv.str();
+        d["converged"] = result.converged;
+        d["result"] = py::module_::import("json").attr("loads")(result.json.dump());
+        d["log"] = result.log;
+        if (nodes) d["nodes_csv"] = result.nodes_csv;
         return d;
       },
       py::arg("problem"), py::arg("nodes") = false,

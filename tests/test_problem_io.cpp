@@ -76,9 +76,9 @@ TEST(ProblemIo, DefaultExampleParsesAndMapsValues) {
   ASSERT_TRUE(r.ok()) << AllErrors(r);
   ASSERT_TRUE(r.problem.has_value());
   const Problem& p = *r.problem;
-  EXPECT_EQ(p.analysis, "statics");
-  EXPECT_EQ(p.formulation, "se3-shooting");
-  EXPECT_EQ(p.boundary, "cantilever");
+  EXPECT_EQ(p.analysis, Analysis::kStatics);
+  EXPECT_EQ(p.formulation, Formulation::kSe3Shooting);
+  EXPECT_EQ(p.boundary, Boundary::kCantilever);
   EXPECT_DOUBLE_EQ(p.rod.length, 0.5);
   EXPECT_EQ(p.nodes, 41);
 
@@ -108,14 +108,43 @@ TEST(ProblemIo, OptionalBlocksTakeTheirDefaults) {
   const ParseResult r = Parse(ValidProblem());
   ASSERT_TRUE(r.ok()) << AllErrors(r);
   const Problem& p = *r.problem;
-  EXPECT_EQ(p.analysis, "statics");
-  EXPECT_EQ(p.boundary, "cantilever");
+  EXPECT_EQ(p.analysis, Analysis::kStatics);
+  EXPECT_EQ(p.boundary, Boundary::kCantilever);
   EXPECT_TRUE(p.loads.gravity_W.isZero());
   EXPECT_TRUE(p.base.R.isIdentity());
   EXPECT_DOUBLE_EQ(p.solver.tolerance, 1e-10);
   EXPECT_EQ(p.solver.max_iterations, 50);
   EXPECT_FALSE(p.has_dynamics || p.has_buckling || p.has_modes);
   EXPECT_TRUE(p.rod.RestStrainAt(0.1).isApprox(StraightRestStrain()));
+}
+
+TEST(ProblemIo, ChoicesAreReadIntoTheirEnums) {
+  json j = ValidProblem();
+  j["analysis"] = "dynamics";
+  j["boundary"] = "free-free";
+  j["dynamics"] = {{"dt", 0.01}, {"duration", 0.1}, {"spatial_scheme", "heun"}};
+  const ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  EXPECT_EQ(r.problem->analysis, Analysis::kDynamics);
+  EXPECT_EQ(r.problem->boundary, Boundary::kFreeFree);
+  EXPECT_EQ(r.problem->dynamics.spatial_scheme, ShotScheme::kHeun);
+  EXPECT_EQ(r.problem->robot.kind, RobotKind::kNone);
+  const ParseResult robot = LoadProblemFile(SourceDir() + "/robots/eversion_banded_vine.json");
+  ASSERT_TRUE(robot.ok()) << AllErrors(robot);
+  EXPECT_EQ(robot.problem->robot.kind, RobotKind::kEversion);
+}
+
+TEST(ProblemIo, ChoiceNamesRoundTrip) {
+  for (const std::string& name : Names<Boundary>()) {
+    Boundary b = Boundary::kCantilever;
+    ASSERT_TRUE(FromString(name, &b)) << name;
+    EXPECT_EQ(ToString(b), name);
+  }
+  EXPECT_EQ(ToString(Formulation::kQuaternionFd), "quaternion-fd");
+  EXPECT_EQ(ToString(BucklingLoad::kDistributedForce), "distributed_force");
+  Analysis a = Analysis::kModes;
+  EXPECT_FALSE(FromString("static", &a));
+  EXPECT_EQ(a, Analysis::kModes);  // unchanged
 }
 
 TEST(ProblemIo, PoissonRatioGivesTheShearModulus) {
@@ -737,7 +766,7 @@ TEST(ProblemIo, BucklingActuationLoadsParse) {
   j["buckling"] = {{"load", "tendon_tension"}, {"tendons", {2, 0}}, {"max", 50.0}};
   ParseResult r = Parse(j);
   ASSERT_TRUE(r.ok()) << AllErrors(r);
-  EXPECT_EQ(r.problem->buckling.load, "tendon_tension");
+  EXPECT_EQ(r.problem->buckling.load, BucklingLoad::kTendonTension);
   EXPECT_EQ(r.problem->buckling.tendon_weights, (std::vector<double>{2, 0}));
   j["buckling"].erase("tendons");  // default: every tendon alike
   r = Parse(j);
@@ -751,7 +780,7 @@ TEST(ProblemIo, BucklingActuationLoadsParse) {
   q["buckling"] = {{"load", "pressure"}, {"max", 30000.0}};
   r = Parse(q);
   ASSERT_TRUE(r.ok()) << AllErrors(r);
-  EXPECT_EQ(r.problem->buckling.load, "pressure");
+  EXPECT_EQ(r.problem->buckling.load, BucklingLoad::kPressure);
   EXPECT_DOUBLE_EQ(r.problem->buckling.max, 30000.0);
   EXPECT_TRUE(UnsupportedFeatures(*r.problem).empty());
   q["formulation"] = "quaternion-fd";

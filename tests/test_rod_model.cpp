@@ -2,7 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <string>
 
+#include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/grid.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/strong/static_shooting.hpp"
@@ -53,6 +56,30 @@ TEST(Material, PoissonAndValidation) {
   bad.shear_modulus = 200e9;  // ν = −0.5 is allowed, but G > E/... : check ν bound instead
   bad.shear_modulus = 50e9;   // ν = 1 is not physical
   EXPECT_FALSE(bad.IsValid(&why));
+}
+
+TEST(Actuation, ValidityNamesTheField) {
+  Actuation a;
+  std::string why;
+  EXPECT_TRUE(a.IsValid(&why, 0));
+  a.tendon_tension[1] = 2.0;
+  EXPECT_TRUE(a.IsValid(&why, 2));
+  EXPECT_FALSE(a.IsValid(&why, 1));  // a tension on a tendon the rod does not have
+  EXPECT_EQ(why, "tendon_tension: a tension on tendon 1, but the rod has 1 tendons");
+  a.tendon_tension[1] = -1.0;  // a tendon cannot push
+  EXPECT_FALSE(a.IsValid(&why, 2));
+  EXPECT_EQ(why.rfind("tendon_tension:", 0), 0u) << why;
+  a = Actuation();
+  a.pressure = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(a.IsValid(&why));
+  EXPECT_EQ(why.rfind("pressure:", 0), 0u) << why;
+  a = Actuation();
+  a.stiffness_scale = 0.0;
+  EXPECT_FALSE(a.IsValid(nullptr));
+  a = Actuation();
+  a.jamming_pressure[15] = -1.0;
+  EXPECT_FALSE(a.IsValid(&why));
+  EXPECT_EQ(why.rfind("jamming_pressure:", 0), 0u) << why;
 }
 
 TEST(SectionProperties, StiffnessAndMassDiagonals) {

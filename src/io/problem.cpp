@@ -14,6 +14,7 @@
 #include "cosserat/io/json_reader.hpp"
 #include "problem_robot.hpp"
 #include "problem_rod.hpp"
+#include "read_enum.hpp"
 
 namespace cosserat::io {
 namespace detail {
@@ -77,7 +78,7 @@ StaticLoads ParseLoads(const ObjectReader& o) {
   return loads;
 }
 
-void ParseSolver(const ObjectReader& o, StaticShootingOptions* options) {
+void ParseSolver(const ObjectReader& o, Problem::Solver* options) {
   o.AllowOnly({"tolerance", "max_iterations"});
   options->tolerance = ReadNumber(o, "tolerance", PositiveNumber(), Presence::kOptional)
                            .value_or(options->tolerance);
@@ -122,8 +123,8 @@ void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
   d->shooting_segments = ReadInteger(o, "shooting_segments", 1, std::max(1, nodes - 1),
                                      Presence::kOptional)
                              .value_or(d->shooting_segments);
-  d->spatial_scheme = ReadChoice(o, "spatial_scheme", {"rk4", "heun"}, Presence::kOptional)
-                          .value_or(d->spatial_scheme);
+  d->spatial_scheme =
+      ReadEnum<ShotScheme>(o, "spatial_scheme", Presence::kOptional).value_or(d->spatial_scheme);
   // Above 0.1 the error control no longer means anything (errors of 10 % of a metre or a
   // radian are accepted).
   const NumberRule tolerance_rule{"a number in (0, 0.1]", [](double x) { return x > 0 && x <= 0.1; }};
@@ -137,18 +138,16 @@ void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
     d->initial_loads = ParseLoads(*loads);
 }
 
-const std::vector<std::string> kBucklingLoads = {
-    "tip_force", "tip_moment", "gravity", "distributed_force", "tendon_tension", "pressure"};
-
 void ParseBuckling(const ObjectReader& o, Problem::Buckling* b) {
   o.AllowOnly({"load", "direction", "max", "tendons"});
-  const auto load = ReadChoice(o, "load", kBucklingLoads, Presence::kOptional);
+  const auto load = ReadEnum<BucklingLoad>(o, "load", Presence::kOptional);
   const bool load_ok = load || !o.Has("load");  // a bad load is reported; no follow-up errors
   b->load = load.value_or(b->load);
-  const bool actuation_path = b->load == "tendon_tension" || b->load == "pressure";
+  const bool actuation_path =
+      b->load == BucklingLoad::kTendonTension || b->load == BucklingLoad::kPressure;
   if (actuation_path && o.Has("direction"))
     o.report().Add(o.PathOf("direction"),
-                   "not used by a " + Quote(b->load) + " load (leave it out)");
+                   "not used by a " + Quote(ToString(b->load)) + " load (leave it out)");
   else if (const auto direction = ReadVec3(o, "direction", Presence::kOptional)) {
     if (direction->norm() > 0)
       b->direction = direction->normalized();
@@ -159,7 +158,7 @@ void ParseBuckling(const ObjectReader& o, Problem::Buckling* b) {
   if (const json* w = o.Find("tendons")) {
     const std::string path = o.PathOf("tendons");
     if (!load_ok) {  // nothing to check the weights against
-    } else if (b->load != "tendon_tension") {
+    } else if (b->load != BucklingLoad::kTendonTension) {
       o.report().Add(path, "only a \"tendon_tension\" load has tendon weights");
     } else if (!w->is_array() || w->empty() ||
                w->size() > static_cast<size_t>(Actuation::kMaxTendons)) {
@@ -187,13 +186,14 @@ void ParseBuckling(const ObjectReader& o, Problem::Buckling* b) {
 /// The checks of a "tendon_tension" or "pressure" load that need the robot and the rod.
 void CheckBucklingActuation(const ObjectReader& top, const Problem& p) {
   const std::string load_path = "buckling.load";
-  if (p.buckling.load == "tendon_tension") {
-    if (!p.has_robot || p.robot.kind != "tendon") {
-      top.report().Expected(load_path,
-                            "a load this problem has (\"tendon_tension\" needs a robot of "
-                            "robot.kind \"tendon\")",
-                            std::string("\"tendon_tension\" with ") +
-                                (p.has_robot ? "robot.kind " + Quote(p.robot.kind) : "no robot"));
+  if (p.buckling.load == BucklingLoad::kTendonTension) {
+    if (!p.has_robot || p.robot.kind != RobotKind::kTendon) {
+      top.report().Expected(
+          load_path,
+          "a load this problem has (\"tendon_tension\" needs a robot of "
+          "robot.kind \"tendon\")",
+          std::string("\"tendon_tension\" with ") +
+              (p.has_robot ? "robot.kind " + Quote(ToString(p.robot.kind)) : "no robot"));
       return;
     }
     const size_t n = p.rod.tendons.size();
@@ -210,7 +210,7 @@ void CheckBucklingActuation(const ObjectReader& top, const Problem& p) {
                             "one weight per tendon (" + std::to_string(n) + " in robot.tendons)",
                             std::to_string(p.buckling.tendon_weights.size()) +
                                 (p.buckling.tendon_weights.size() == 1 ? " weight" : " weights"));
-  } else if (p.buckling.load == "pressure") {
+  } else if (p.buckling.load == BucklingLoad::kPressure) {
     // The section must read the inflation pressure: a "pressure_modulus" or "inflated" profile.
     std::string kind;
     const json& v = top.value();
@@ -236,11 +236,6 @@ void ParseModes(const ObjectReader& o, Problem::Modes* m) {
 
 // --- The whole problem -------------------------------------------------------------------------
 
-const std::vector<std::string> kAnalyses = {"statics", "dynamics", "buckling", "modes"};
-const std::vector<std::string> kFormulations = {"se3-shooting", "quaternion-fd"};
-const std::vector<std::string> kBoundaries = {"cantilever", "free-free", "pinned-pinned",
-                                              "clamped-clamped", "clamped-pinned"};
-
 void CheckFormat(const ObjectReader& top) {
   const std::string expected = Quote(kProblemFormat);
   const json* v = top.Find("format");
@@ -255,12 +250,12 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
                  "loads", "dynamics", "buckling", "modes", "solver", "robot"});
   CheckFormat(top);
   ReadString(top, "description", Presence::kOptional);
-  p->analysis = ReadChoice(top, "analysis", kAnalyses, Presence::kOptional).value_or(p->analysis);
+  p->analysis = ReadEnum<Analysis>(top, "analysis", Presence::kOptional).value_or(p->analysis);
   p->formulation =
-      ReadChoice(top, "formulation", kFormulations, Presence::kOptional).value_or(p->formulation);
+      ReadEnum<Formulation>(top, "formulation", Presence::kOptional).value_or(p->formulation);
   if (const auto rod = ReadObject(top, "rod", Presence::kRequired)) ParseRod(*rod, p);
   if (const auto base = ReadObject(top, "base", Presence::kOptional)) ParseBase(*base, &p->base);
-  p->boundary = ReadChoice(top, "boundary", kBoundaries, Presence::kOptional).value_or(p->boundary);
+  p->boundary = ReadEnum<Boundary>(top, "boundary", Presence::kOptional).value_or(p->boundary);
   if (const auto loads = ReadObject(top, "loads", Presence::kOptional))
     p->loads = ParseLoads(*loads);
   if (const auto o = ReadObject(top, "dynamics", Presence::kOptional)) {
@@ -270,16 +265,18 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
     // whole steps of dt, which are capped above): cap the frames alike.
     const Problem::Dynamics& d = p->dynamics;
     const double frames = std::round(d.duration / d.output_interval);
-    if (p->formulation == "quaternion-fd" && d.output_interval > 0 && frames > kMaxDynamicsSteps)
+    if (p->formulation == Formulation::kQuaternionFd && d.output_interval > 0 &&
+        frames > kMaxDynamicsSteps)
       o->report().Expected(o->PathOf("output_interval"),
                            "an interval giving at most " + std::to_string(kMaxDynamicsSteps) +
                                " frames over duration (" + FormatNumber(d.duration) + " s)",
                            FormatNumber(d.output_interval) + ", " + FormatNumber(frames) +
                                " frames");
   }
-  const auto buckling = ReadObject(
-      top, "buckling", p->analysis == "buckling" ? Presence::kRequired : Presence::kOptional,
-      R"(an object {"load", "direction", "max"})");
+  const auto buckling =
+      ReadObject(top, "buckling",
+                 p->analysis == Analysis::kBuckling ? Presence::kRequired : Presence::kOptional,
+                 R"(an object {"load", "direction", "max"})");
   if (buckling) {
     p->has_buckling = true;
     ParseBuckling(*buckling, &p->buckling);
@@ -298,7 +295,10 @@ void CheckWithLibrary(const Problem& p, ErrorReport* report) {
   std::string why;
   if (!p.rod.IsValid(&why)) report->Add("rod", why);
   if (!p.loads.IsValid(&why)) report->Add("loads", why);
-  if (!p.solver.IsValid(&why)) report->Add("solver", why);
+  const int tendons = static_cast<int>(p.rod.tendons.size());
+  if (!p.robot.actuation.IsValid(&why, tendons)) report->Add("robot.actuation", why);
+  if (!p.robot.initial_actuation.IsValid(&why, tendons))
+    report->Add("robot.initial_actuation", why);
 }
 
 }  // namespace
@@ -338,31 +338,43 @@ ParseResult LoadProblemFile(const std::string& path) {
   return ParseProblem(text.str(), path);
 }
 
+namespace {
+
+/// "<key>: "<value>" is not implemented in this version (supported: ...)" unless `value` is one
+/// of `supported`.
+template <typename Enum>
+void CheckSupported(const char* key, Enum value, std::initializer_list<Enum> supported,
+                    std::vector<std::string>* out) {
+  if (std::find(supported.begin(), supported.end(), value) != supported.end()) return;
+  std::vector<std::string> names;
+  for (Enum e : supported) names.push_back(ToString(e));
+  out->push_back(std::string(key) + ": " + detail::Quote(ToString(value)) +
+                 " is not implemented in this version (supported: " + detail::QuotedList(names) +
+                 ")");
+}
+
+}  // namespace
+
 std::vector<std::string> UnsupportedFeatures(const Problem& p) {
+  using A = Analysis;
+  using B = Boundary;
   std::vector<std::string> out;
-  auto check = [&](const char* key, const std::string& value,
-                   const std::vector<std::string>& supported) {
-    if (std::find(supported.begin(), supported.end(), value) == supported.end())
-      out.push_back(
-          std::string(key) + ": " + detail::Quote(value) +
-          " is not implemented in this version (supported: " + detail::QuotedList(supported) + ")");
-  };
-  check("analysis", p.analysis, {"statics", "dynamics", "buckling", "modes"});
-  check("formulation", p.formulation, {"se3-shooting", "quaternion-fd"});
-  if (p.formulation == "quaternion-fd")  // rod.nodes >= 3 (2 segments) is checked by the parser
-    check("boundary", p.boundary, {"cantilever"});
-  else if (p.analysis == "dynamics")
-    check("boundary", p.boundary, {"cantilever", "free-free"});
-  else if (p.analysis == "buckling" || p.analysis == "statics")
-    check("boundary", p.boundary,
-          {"cantilever", "pinned-pinned", "clamped-clamped", "clamped-pinned"});
+  const bool quatfd = p.formulation == Formulation::kQuaternionFd;
+  // Every analysis and formulation runs; the boundary depends on both.
+  if (quatfd)  // rod.nodes >= 3 (2 segments) is checked by the parser
+    CheckSupported("boundary", p.boundary, {B::kCantilever}, &out);
+  else if (p.analysis == A::kDynamics)
+    CheckSupported("boundary", p.boundary, {B::kCantilever, B::kFreeFree}, &out);
+  else if (p.analysis == A::kBuckling || p.analysis == A::kStatics)
+    CheckSupported("boundary", p.boundary,
+                   {B::kCantilever, B::kPinnedPinned, B::kClampedClamped, B::kClampedPinned}, &out);
   else
-    check("boundary", p.boundary, {"cantilever"});
-  if (p.formulation == "se3-shooting" && p.analysis == "statics" && p.boundary != "cantilever" &&
-      p.boundary != "free-free" && p.has_robot)
+    CheckSupported("boundary", p.boundary, {B::kCantilever}, &out);
+  if (!quatfd && p.analysis == A::kStatics && p.boundary != B::kCantilever &&
+      p.boundary != B::kFreeFree && p.has_robot)
     out.push_back("robot: a robot runs with \"boundary\": \"cantilever\" in statics (got " +
-                  detail::Quote(p.boundary) + ")");
-  if (p.analysis == "buckling" && p.formulation == "quaternion-fd") {
+                  detail::Quote(ToString(p.boundary)) + ")");
+  if (p.analysis == A::kBuckling && quatfd) {
     // The quaternion-FD stiffness is the Hessian of a potential: conservative tip loads only.
     if (p.loads.tip_force_frame == LoadFrame::kBody)
       out.push_back(
@@ -373,21 +385,21 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
           "loads.tip_moment_frame: \"body\" (a follower moment) is not conservative; buckling "
           "on the \"quaternion-fd\" formulation needs \"world\"");
   }
-  if (p.analysis == "buckling" && p.formulation == "quaternion-fd" &&
-      (p.buckling.load == "tendon_tension" || p.buckling.load == "pressure"))
-    out.push_back("buckling.load: " + detail::Quote(p.buckling.load) +
+  if (p.analysis == A::kBuckling && quatfd &&
+      (p.buckling.load == BucklingLoad::kTendonTension ||
+       p.buckling.load == BucklingLoad::kPressure))
+    out.push_back("buckling.load: " + detail::Quote(ToString(p.buckling.load)) +
                   " runs on the \"se3-shooting\" formulation only in this version");
   if (p.has_robot) {
-    check("robot.kind", p.robot.kind, {"tendon", "jamming", "eversion"});
-    if (p.robot.kind == "eversion" && p.analysis != "statics")
+    if (p.robot.kind == RobotKind::kEversion && p.analysis != A::kStatics)
       out.push_back(
           "robot.kind: an \"eversion\" robot runs in statics (quasi-static growth) only "
           "in this version");
-    if (p.formulation == "quaternion-fd")
+    if (quatfd)
       out.push_back("robot: robots run on the \"se3-shooting\" formulation only in this version");
-    if (p.analysis == "modes" && !p.rod.tendons.empty())
+    if (p.analysis == A::kModes && !p.rod.tendons.empty())
       out.push_back("robot: modes of a robot with tendons are not implemented in this version");
-    if (p.robot.tendon_lengths && p.analysis != "statics")
+    if (p.robot.tendon_lengths && p.analysis != A::kStatics)
       out.push_back(
           "robot.actuation.length: displacement control runs in statics only in this "
           "version (use \"tension\" in dynamics)");

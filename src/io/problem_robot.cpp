@@ -8,12 +8,14 @@
 
 #include "cosserat/robots/eversion_robot.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
+#include "read_enum.hpp"
 
 namespace cosserat::io::detail {
 namespace {
 
 using json = nlohmann::json;
 
+/// The kinds a file may name (RobotKind::kNone is the absence of a "robot").
 const std::vector<std::string> kRobotKinds = {"tendon", "jamming", "eversion"};
 const std::vector<std::string> kRoutes = {"parallel", "converging", "helical"};
 
@@ -161,7 +163,8 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
   robot.AllowOnly({"kind", "description", "source", "disk_radius", "tendons", "actuation",
                    "initial_actuation", "growth"});
   p->has_robot = true;
-  p->robot.kind = ReadChoice(robot, "kind", kRobotKinds, Presence::kRequired).value_or("");
+  p->robot.kind = ReadEnum<RobotKind>(robot, "kind", Presence::kRequired, kRobotKinds)
+                      .value_or(RobotKind::kNone);
   ReadString(robot, "description", Presence::kOptional);
   ReadString(robot, "source", Presence::kOptional);
   const std::optional<double> guide = GuideRadius(robot, top);
@@ -193,10 +196,10 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
           p->rod.tendons.push_back(*tendon);
       }
     }
-  } else if (p->robot.kind == "tendon") {
+  } else if (p->robot.kind == RobotKind::kTendon) {
     robot.report().Missing(robot.PathOf("tendons"), "an array of tendons");
   }
-  if (p->robot.kind == "eversion") {
+  if (p->robot.kind == RobotKind::kEversion) {
     if (!dynamic_cast<const InflatedTubeSection*>(p->rod.section.get()))
       robot.Reject("kind",
                    "a robot whose rod.stiffness_profile is of kind \"inflated\" (the "
@@ -221,7 +224,7 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
     p->robot.growth_initial_length = ReadNumber(*g, "initial_length", shorter, Presence::kRequired);
     p->robot.growth_steps =
         ReadInteger(*g, "steps", 1, 100000, Presence::kOptional).value_or(p->robot.growth_steps);
-    if (p->robot.kind != "eversion")
+    if (p->robot.kind != RobotKind::kEversion)
       robot.report().Add(robot.PathOf("growth"), "only an \"eversion\" robot grows");
   }
   const int tendons = static_cast<int>(p->rod.tendons.size());

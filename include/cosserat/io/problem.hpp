@@ -8,11 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "cosserat/io/problem_kinds.hpp"
 #include "cosserat/lie/se3.hpp"
 #include "cosserat/lie/types.hpp"
 #include "cosserat/loads/static_loads.hpp"
+#include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
-#include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat::io {
 
@@ -21,14 +22,21 @@ inline constexpr const char* kProblemFormat = "cosserat-problem/1";
 
 /// A validated problem. Every field holds a value from the file or its documented default.
 struct Problem {
-  std::string analysis = "statics";          ///< "statics" | "dynamics" | "buckling" | "modes"
-  std::string formulation = "se3-shooting";  ///< or "quaternion-fd"
-  RodModel rod;                              ///< length, section profile, rest strain
-  int nodes = 41;                            ///< grid points along s, ends included
-  lie::SE3 base;                             ///< clamp pose: R_WB (body z = rod tangent), p_W
-  std::string boundary = "cantilever";
+  Analysis analysis = Analysis::kStatics;
+  Formulation formulation = Formulation::kSe3Shooting;
+  RodModel rod;    ///< length, section profile, rest strain
+  int nodes = 41;  ///< grid points along s, ends included
+  lie::SE3 base;   ///< clamp pose: R_WB (body z = rod tangent), p_W
+  Boundary boundary = Boundary::kCantilever;
   StaticLoads loads;
-  StaticShootingOptions solver;  ///< "solver": {"tolerance", "max_iterations"}
+  /// "solver": the static solves' convergence test, read by every formulation (run/ turns it
+  /// into each solver's options).
+  struct Solver {
+    /// Dimensionless residual norm below which a static solve has converged
+    /// (StaticShootingOptions::tolerance).
+    double tolerance = 1e-10;
+    int max_iterations = 50;  ///< Levenberg–Marquardt or Newton iterations per solve
+  } solver;
 
   /// "dynamics": run by the `cosserat` command (SE(3) path: BDF2 shooting, cantilever or
   /// free-free; quaternion-FD path: the Radau integrator, cantilever).
@@ -44,8 +52,8 @@ struct Problem {
     Vec3 tip_inertia = Vec3::Zero();           ///< kg·m², its principal moments, tip body frame
     /// Bdf2Options::shooting_segments (SE(3) path): multiple shooting for small dt.
     int shooting_segments = 1;
-    /// Bdf2Options::spatial_scheme (SE(3) path): "rk4" | "heun".
-    std::string spatial_scheme = "rk4";
+    /// Bdf2Options::spatial_scheme (SE(3) path).
+    ShotScheme spatial_scheme = ShotScheme::kRk4;
     /// Quaternion-FD path: the Radau integrator's rel_tol = abs_tol (IntegratorOptions; rotations
     /// in rad), in (0, 0.1].
     double integrator_tolerance = 1e-6;
@@ -59,9 +67,7 @@ struct Problem {
 
   /// "buckling": the load path searched (docs/problem-format.md, section "buckling").
   struct Buckling {
-    /// "tip_force" | "tip_moment" | "gravity" | "distributed_force" | "tendon_tension" |
-    /// "pressure".
-    std::string load = "tip_force";
+    BucklingLoad load = BucklingLoad::kTipForce;
     Vec3 direction{0, 0, -1};  ///< unit vector (normalised on input); unused by the last two
     /// Largest load magnitude searched. "tendon_tension": the largest added tension, N (the
     /// most-weighted tendon's); "pressure": the pressure the drop starts from, Pa.
@@ -79,9 +85,9 @@ struct Problem {
 
   /// "robot": the robot kind and its actuation; its tendons are in rod.tendons.
   struct Robot {
-    std::string kind;             ///< "tendon" | "jamming" | "eversion"
-    Actuation actuation;          ///< statics; dynamics for t > 0
-    Actuation initial_actuation;  ///< dynamics: the equilibrium the run starts from
+    RobotKind kind = RobotKind::kNone;  ///< kNone exactly when !has_robot
+    Actuation actuation;                ///< statics; dynamics for t > 0
+    Actuation initial_actuation;        ///< dynamics: the equilibrium the run starts from
     /// Displacement control: commanded tendon path lengths (m) instead of tensions.
     std::optional<std::array<double, Actuation::kMaxTendons>> tendon_lengths;
     /// Eversion: grow from this length to rod.length in `growth_steps` quasi-static steps.

@@ -3,6 +3,7 @@
 /// The actuation state handed to a rod model each control tick.
 
 #include <array>
+#include <string>
 
 namespace cosserat {
 
@@ -22,6 +23,12 @@ struct Actuation {
   std::array<double, kMaxTendons> tendon_tension{};
   /// Layer-jamming pressure difference ΔP of each switchable segment, Pa; 0: compliant.
   std::array<double, kMaxSegments> jamming_pressure{};
+
+  /// The rules every actuation obeys (the problem file's and the Python module's): finite
+  /// values, pressure and jamming pressures >= 0 (Pa), stiffness_scale > 0, tensions >= 0 (N;
+  /// a tendon cannot push), and no tension on a tendon past the first `tendon_count` (the
+  /// rod's). On failure `why` (if given) names the field: "<field>: expected ...".
+  bool IsValid(std::string* why, int tendon_count = kMaxTendons) const;
 };
 
 }  // namespace cosserat

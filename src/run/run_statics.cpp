@@ -1,4 +1,4 @@
-#include "run_statics.hpp"
+#include "cosserat/run/run_statics.hpp"
 
 #include <array>
 #include <chrono>
@@ -10,9 +10,11 @@
 #include "cosserat/analysis/column.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/robots/tendon_control.hpp"
+#include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "node_table.hpp"
 
-namespace cosserat::cli {
+namespace cosserat::run {
 namespace {
 
 std::string StaticSummary(const StaticShootingSummary& s, const RodState& state) {
@@ -30,10 +32,9 @@ std::string StaticSummary(const StaticShootingSummary& s, const RodState& state)
 
 /// A column (boundary "pinned-pinned", "clamped-clamped" or "clamped-pinned"): the loads
 /// followed from the straight, unloaded column (ColumnSolver::SolveFromUnloaded).
-bool RunColumnStatics(const io::Problem& problem, ColumnEnds ends, std::ostream& out,
-                      std::ostream* csv, std::ostream& log) {
+Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  ColumnSolver solver(problem.rod, problem.nodes, ends, problem.solver);
+  ColumnSolver solver(problem.rod, problem.nodes, ends, StaticOptions(problem));
   const ColumnSummary column = solver.SolveFromUnloaded(problem.base, problem.loads);
   StaticShootingSummary summary;  // the result's fields, from the column solve
   summary.status = column.status;
@@ -43,49 +44,51 @@ bool RunColumnStatics(const io::Problem& problem, ColumnEnds ends, std::ostream&
   summary.residual = column.residual;
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out << io::StaticResultToJson(summary, solver.state()).dump(2) << '\n';
-  if (csv) io::WriteNodesCsv(*csv, solver.state());
-  log << StaticSummary(summary, solver.state()) << " (" << ToString(ends) << ")\n";
-  return summary.converged();
+  Result result;
+  result.json = io::StaticResultToJson(summary, solver.state());
+  if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
+  result.log = StaticSummary(summary, solver.state()) + " (" + ToString(ends) + ")\n";
+  result.converged = summary.converged();
+  return result;
 }
 
 }  // namespace
 
-bool RunStatics(const io::Problem& problem, std::ostream& out, std::ostream* csv,
-                std::ostream& log) {
+Result RunStatics(const io::Problem& problem, const RunOptions& options) {
   ColumnEnds ends = ColumnEnds::kClampedFree;
-  if (problem.boundary != "cantilever" && ParseColumnEnds(problem.boundary, &ends))
-    return RunColumnStatics(problem, ends, out, csv, log);
+  if (problem.boundary != io::Boundary::kCantilever && ToColumnEnds(problem.boundary, &ends))
+    return RunColumnStatics(problem, ends, options);
   Actuation actuation = problem.robot.actuation;
-  StaticShootingSolver solver(problem.rod, problem.nodes, problem.solver, actuation);
+  StaticShootingSolver solver(problem.rod, problem.nodes, StaticOptions(problem), actuation);
   StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
   std::array<bool, Actuation::kMaxTendons> slack{};
   for (int i = 0; i < Actuation::kMaxTendons; ++i)
     slack[i] = actuation.tendon_tension[i] == 0.0;  // force control: slack means no tension
   if (problem.robot.tendon_lengths && summary.converged()) {
     // Displacement control: the tensions that give the commanded tendon lengths.
-    const TendonLengthSummary t = SolveTendonLengths(
-        solver, problem.base, problem.loads, *problem.robot.tendon_lengths, &actuation);
+    const TendonLengthSummary t = SolveTendonLengths(solver, problem.base, problem.loads,
+                                                     *problem.robot.tendon_lengths, &actuation);
     summary.status = t.status;
     summary.iterations += t.iterations;
     slack = t.slack;
   }
-  nlohmann::ordered_json result = io::StaticResultToJson(summary, solver.state());
+  Result result;
+  result.json = io::StaticResultToJson(summary, solver.state());
   if (problem.has_robot) {
     const int count = solver.tendon_count();
     nlohmann::ordered_json robot;
-    robot["kind"] = problem.robot.kind;
+    robot["kind"] = io::ToString(problem.robot.kind);
     robot["tendon_tension"] = std::vector<double>(actuation.tendon_tension.begin(),
                                                   actuation.tendon_tension.begin() + count);
     robot["tendon_length"] = std::vector<double>(solver.tendon_lengths().begin(),
                                                  solver.tendon_lengths().begin() + count);
     robot["tendon_slack"] = std::vector<bool>(slack.begin(), slack.begin() + count);
-    result["robot"] = robot;
+    result.json["robot"] = robot;
   }
-  out << result.dump(2) << '\n';
-  if (csv) io::WriteNodesCsv(*csv, solver.state());
-  log << StaticSummary(summary, solver.state()) << '\n';
-  return summary.converged();
+  if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
+  result.log = StaticSummary(summary, solver.state()) + '\n';
+  result.converged = summary.converged();
+  return result;
 }
 
-}  // namespace cosserat::cli
+}  // namespace cosserat::run

@@ -1,4 +1,4 @@
-#include "run_buckling.hpp"
+#include "cosserat/run/run_buckling.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,10 @@
 #include "cosserat/analysis/quatfd_buckling.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
+#include "cosserat/run/solver_options.hpp"
+#include "node_table.hpp"
 
-namespace cosserat::cli {
+namespace cosserat::run {
 
 namespace {
 
@@ -23,16 +25,17 @@ LoadPath MakePath(const io::Problem& problem) {
   path.per_unit.tip_force_frame = problem.loads.tip_force_frame;
   path.per_unit.tip_moment_frame = problem.loads.tip_moment_frame;
   const Vec3& d = problem.buckling.direction;
-  const std::string& load = problem.buckling.load;
-  if (load == "tip_force") {
+  using io::BucklingLoad;
+  const BucklingLoad load = problem.buckling.load;
+  if (load == BucklingLoad::kTipForce) {
     path.per_unit.tip_force = d;
-  } else if (load == "tip_moment") {
+  } else if (load == BucklingLoad::kTipMoment) {
     path.per_unit.tip_moment = d;
-  } else if (load == "gravity") {
+  } else if (load == BucklingLoad::kGravity) {
     path.per_unit.gravity_W = d;
-  } else if (load == "distributed_force") {
+  } else if (load == BucklingLoad::kDistributedForce) {
     path.per_unit.distributed_force_W = d;
-  } else if (load == "tendon_tension") {
+  } else if (load == BucklingLoad::kTendonTension) {
     // λ is the tension added to the most-weighted tendon (the parser checked one weight per
     // tendon, >= 0, not all zero; none given: all alike).
     const std::vector<double>& w = problem.buckling.tendon_weights;
@@ -54,7 +57,7 @@ LoadPath MakePath(const io::Problem& problem) {
 // wrapped at the file's fixed pressures (no robot) is unwrapped, its other pressures kept.
 RodModel MakeModel(const io::Problem& problem, LoadPath* path) {
   RodModel model = problem.rod;
-  if (problem.buckling.load != "pressure") return model;
+  if (problem.buckling.load != io::BucklingLoad::kPressure) return model;
   if (const auto* fixed = dynamic_cast<const FixedActuationSection*>(model.section.get())) {
     path->fixed_actuation.jamming_pressure = fixed->actuation().jamming_pressure;
     model.section = fixed->inner();
@@ -64,7 +67,8 @@ RodModel MakeModel(const io::Problem& problem, LoadPath* path) {
 
 // The load reported for λ: λ itself, or the pressure max − λ for a pressure drop.
 double ReportedLoad(const io::Problem& problem, double lambda) {
-  return problem.buckling.load == "pressure" ? problem.buckling.max - lambda : lambda;
+  return problem.buckling.load == io::BucklingLoad::kPressure ? problem.buckling.max - lambda
+                                                              : lambda;
 }
 
 nlohmann::ordered_json NumberOrNull(double x) {
@@ -73,13 +77,12 @@ nlohmann::ordered_json NumberOrNull(double x) {
 
 }  // namespace
 
-bool RunBuckling(const io::Problem& problem, std::ostream& out, std::ostream* csv,
-                 std::ostream& log) {
+Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   ColumnEnds ends = ColumnEnds::kClampedFree;
-  ParseColumnEnds(problem.boundary, &ends);  // UnsupportedFeatures let only these through
+  ToColumnEnds(problem.boundary, &ends);  // UnsupportedFeatures let only these through
   BucklingOptions options;
   options.lambda_max = problem.buckling.max;
-  options.solver = problem.solver;
+  options.solver = StaticOptions(problem);
   LoadPath path = MakePath(problem);
   const RodModel model = MakeModel(problem, &path);
   BucklingAnalysis analysis(model, problem.nodes, ends, problem.base, path, options);
@@ -92,19 +95,20 @@ bool RunBuckling(const io::Problem& problem, std::ostream& out, std::ostream* cs
   StaticShootingSummary statics;
   statics.status = ok ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
   statics.wall_time_s = b.wall_time_s;
-  nlohmann::ordered_json result = io::StaticResultToJson(statics, analysis.state());
+  Result result;
+  result.json = io::StaticResultToJson(statics, analysis.state());
   nlohmann::ordered_json block;
   block["critical_load"] = NumberOrNull(critical);
   block["mode_s_max"] =
       b.found() ? nlohmann::ordered_json(b.mode.s_max_curvature) : nlohmann::ordered_json(nullptr);
   block["status"] = ToString(b.status);
-  block["load"] = problem.buckling.load;
+  block["load"] = io::ToString(problem.buckling.load);
   if (actuation_load)
     block["direction"] = nullptr;
   else
     block["direction"] = {problem.buckling.direction.x(), problem.buckling.direction.y(),
                           problem.buckling.direction.z()};
-  if (problem.buckling.load == "tendon_tension") {
+  if (problem.buckling.load == io::BucklingLoad::kTendonTension) {
     nlohmann::ordered_json w = nlohmann::ordered_json::array();
     for (size_t i = 0; i < problem.rod.tendons.size(); ++i) w.push_back(path.tension_per_unit[i]);
     block["tension_per_unit"] = w;
@@ -125,34 +129,31 @@ bool RunBuckling(const io::Problem& problem, std::ostream& out, std::ostream* cs
     mode["curvature"] = rows(b.mode.curvature_B);
     block["mode"] = mode;
   }
-  result["buckling"] = block;
-  out << result.dump(2) << '\n';
-  if (csv) io::WriteNodesCsv(*csv, analysis.state());
+  result.json["buckling"] = block;
+  if (run_options.nodes_csv) result.nodes_csv = detail::NodesCsv(analysis.state());
 
   std::ostringstream line;
   line << "cosserat: buckling " << ToString(b.status) << " (" << ToString(ends) << ")";
   if (b.found())
-    line << ", critical " << problem.buckling.load << " " << std::setprecision(6) << critical
-         << ", mode bends most at s = " << b.mode.s_max_curvature << " m";
+    line << ", critical " << io::ToString(problem.buckling.load) << " " << std::setprecision(6)
+         << critical << ", mode bends most at s = " << b.mode.s_max_curvature << " m";
   else
-    line << ", " << (problem.buckling.load == "pressure" ? "pressure" : "load") << " reached "
-         << std::setprecision(6) << reached;
+    line << ", " << (problem.buckling.load == io::BucklingLoad::kPressure ? "pressure" : "load")
+         << " reached " << std::setprecision(6) << reached;
   line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3
        << " ms";
-  log << line.str() << '\n';
-  return ok;
+  result.log = line.str() + '\n';
+  result.converged = ok;
+  return result;
 }
 
-bool RunQuatFdBuckling(const io::Problem& problem, std::ostream& out, std::ostream* csv,
-                       std::ostream& log) {
+Result RunQuatFdBuckling(const io::Problem& problem, const RunOptions& run_options) {
   quatfd::QuatFdOptions model_options;
   model_options.segments = problem.nodes - 1;
   model_options.base_end = quatfd::EndCondition::kClamped;
   QuatFdBucklingOptions options;
   options.lambda_max = problem.buckling.max;
-  options.statics.tolerance = problem.solver.tolerance;
-  options.statics.floor_tolerance = std::max(options.statics.floor_tolerance, problem.solver.tolerance);
-  options.statics.max_iterations = problem.solver.max_iterations;
+  options.statics = QuatFdStaticOptions(problem);
   QuatFdBuckling analysis(problem.rod, problem.base, MakePath(problem), model_options, options);
   const QuatFdBucklingSummary b = analysis.FindCriticalLoad();
   const bool ok = b.status != BucklingStatus::kPathFailed;
@@ -162,12 +163,13 @@ bool RunQuatFdBuckling(const io::Problem& problem, std::ostream& out, std::ostre
   StaticShootingSummary statics;
   statics.status = ok ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
   statics.wall_time_s = b.wall_time_s;
-  nlohmann::ordered_json result = io::StaticResultToJson(statics, state);
+  Result result;
+  result.json = io::StaticResultToJson(statics, state);
   nlohmann::ordered_json block;
   block["critical_load"] = NumberOrNull(b.critical_load);
   block["mode_s_max"] = NumberOrNull(b.mode_s_max);
   block["status"] = ToString(b.status);
-  block["load"] = problem.buckling.load;
+  block["load"] = io::ToString(problem.buckling.load);
   block["direction"] = {problem.buckling.direction.x(), problem.buckling.direction.y(),
                         problem.buckling.direction.z()};
   block["boundary"] = "cantilever";
@@ -175,21 +177,21 @@ bool RunQuatFdBuckling(const io::Problem& problem, std::ostream& out, std::ostre
   block["load_reached"] = b.lambda_reached;
   block["static_solves"] = b.solves;
   block["multiplicity"] = b.multiplicity;
-  result["buckling"] = block;
-  out << result.dump(2) << '\n';
-  if (csv) io::WriteNodesCsv(*csv, state);
+  result.json["buckling"] = block;
+  if (run_options.nodes_csv) result.nodes_csv = detail::NodesCsv(state);
 
   std::ostringstream line;
   line << "cosserat: buckling " << ToString(b.status) << " (cantilever, quaternion-fd)";
   if (b.found())
-    line << ", critical " << problem.buckling.load << " " << std::setprecision(6) << b.critical_load
-         << ", mode bends most at s = " << b.mode_s_max << " m";
+    line << ", critical " << io::ToString(problem.buckling.load) << " " << std::setprecision(6)
+         << b.critical_load << ", mode bends most at s = " << b.mode_s_max << " m";
   else
     line << ", load reached " << std::setprecision(6) << b.lambda_reached;
   line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3
        << " ms";
-  log << line.str() << '\n';
-  return ok;
+  result.log = line.str() + '\n';
+  result.converged = ok;
+  return result;
 }
 
-}  // namespace cosserat::cli
+}  // namespace cosserat::run

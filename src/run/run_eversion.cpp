@@ -1,4 +1,4 @@
-#include "run_eversion.hpp"
+#include "cosserat/run/run_eversion.hpp"
 
 #include <cmath>
 #include <iomanip>
@@ -7,16 +7,17 @@
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/robots/eversion_robot.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
+#include "cosserat/run/solver_options.hpp"
+#include "node_table.hpp"
 
-namespace cosserat::cli {
+namespace cosserat::run {
 
-bool RunEversion(const io::Problem& problem, std::ostream& out, std::ostream* csv,
-                 std::ostream& log) {
+Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   // The parser guarantees an inflated-tube profile for this kind.
   const auto& tube = dynamic_cast<const InflatedTubeSection&>(*problem.rod.section);
   const EversionRobotDesign design = DesignFromTube(tube, problem.rod.length, problem.base);
   EversionOptions options;
-  options.solver = problem.solver;
+  options.solver = StaticOptions(problem);
   const double pressure = problem.robot.actuation.pressure;
   const double start = problem.robot.growth_initial_length.value_or(problem.rod.length);
   EversionRobot robot(design, start, pressure, options);
@@ -40,9 +41,10 @@ bool RunEversion(const io::Problem& problem, std::ostream& out, std::ostream* cs
     solve = s.solve;
     kink = s.kink;
   }
-  nlohmann::ordered_json result = io::StaticResultToJson(solve, robot.state());
+  Result result;
+  result.json = io::StaticResultToJson(solve, robot.state());
   nlohmann::ordered_json r;
-  r["kind"] = "eversion";
+  r["kind"] = io::ToString(io::RobotKind::kEversion);
   r["pressure"] = pressure;
   r["length"] = robot.length();
   r["tip_force"] = robot.TipForce();
@@ -53,10 +55,10 @@ bool RunEversion(const io::Problem& problem, std::ostream& out, std::ostream* cs
   k["s_max"] = kink.s_max;
   k["first_kink_s"] = kink.first_kink_s;
   r["kink"] = k;
-  result["robot"] = r;
-  out << result.dump(2) << '\n';
-  if (csv) io::WriteNodesCsv(*csv, robot.state());
+  result.json["robot"] = r;
+  if (run_options.nodes_csv) result.nodes_csv = detail::NodesCsv(robot.state());
   const Vec3 tip = robot.state().tip_position_W();
+  std::ostringstream log;
   log << "cosserat: eversion " << ToString(solve.status) << growth_note.str()
       << ", L = " << robot.length() << " m, tip at [" << std::setprecision(6) << tip.x() << ", "
       << tip.y() << ", " << tip.z() << "] m, kink: " << ToString(kink.status);
@@ -64,7 +66,9 @@ bool RunEversion(const io::Problem& problem, std::ostream& out, std::ostream* cs
     log << " (|m|/M_w = " << kink.max_ratio << " at s = " << kink.s_max << " m: the tube folds "
         << "there; the shape beyond is not modelled)";
   log << '\n';
-  return converged;
+  result.log = log.str();
+  result.converged = converged;
+  return result;
 }
 
-}  // namespace cosserat::cli
+}  // namespace cosserat::run

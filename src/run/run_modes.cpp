@@ -1,13 +1,16 @@
-#include "run_modes.hpp"
+#include "cosserat/run/run_modes.hpp"
 
 #include <iomanip>
+#include <sstream>
 #include <vector>
 
 #include "cosserat/analysis/modes.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
+#include "cosserat/run/solver_options.hpp"
+#include "node_table.hpp"
 
-namespace cosserat::cli {
+namespace cosserat::run {
 namespace {
 
 nlohmann::ordered_json Vectors(const std::vector<Vec3>& v) {
@@ -18,32 +21,28 @@ nlohmann::ordered_json Vectors(const std::vector<Vec3>& v) {
 
 }  // namespace
 
-bool RunModes(const io::Problem& problem, std::ostream& out, std::ostream* csv, std::ostream& log) {
-  const bool quatfd = problem.formulation == "quaternion-fd";
+Result RunModes(const io::Problem& problem, const RunOptions& options) {
+  const bool quatfd = problem.formulation == io::Formulation::kQuaternionFd;
   ModalOptions mo;
   mo.count = problem.modes.count;
   ModalResult r;
   if (quatfd) {
-    quatfd::QuatFdOptions options;
-    options.segments = problem.nodes - 1;
-    quatfd::QuatFdModel model(problem.rod, problem.base, options, problem.robot.actuation);
-    quatfd::QuatFdStaticsOptions so;
-    so.tolerance = problem.solver.tolerance;
-    so.floor_tolerance = std::max(so.floor_tolerance, so.tolerance);
-    so.max_iterations = problem.solver.max_iterations;
-    r = ComputeModes(&model, problem.loads, mo, nullptr, nullptr, so);
+    quatfd::QuatFdOptions model_options;
+    model_options.segments = problem.nodes - 1;
+    quatfd::QuatFdModel model(problem.rod, problem.base, model_options, problem.robot.actuation);
+    r = ComputeModes(&model, problem.loads, mo, nullptr, nullptr, QuatFdStaticOptions(problem));
   } else {
     ShootingModalOptions so;
     so.modal = mo;
-    so.statics = problem.solver;
+    so.statics = StaticOptions(problem);
     r = ComputeModesShooting(problem.rod, problem.nodes, problem.base, problem.loads, so,
                              problem.robot.actuation);
   }
 
-  nlohmann::ordered_json result;
-  result["status"] = ToString(r.status);
+  Result result;
+  result.json["status"] = ToString(r.status);
   nlohmann::ordered_json modes;
-  modes["formulation"] = problem.formulation;
+  modes["formulation"] = io::ToString(problem.formulation);
   modes["frequencies_hz"] = r.frequencies_hz();
   std::vector<std::string> kinds;
   for (const Mode& m : r.modes) kinds.push_back(ToString(m.kind));
@@ -63,22 +62,24 @@ bool RunModes(const io::Problem& problem, std::ostream& out, std::ostream* csv, 
     shapes.push_back(
         {{"displacement", Vectors(m.displacement_W)}, {"rotation", Vectors(m.rotation_W)}});
   modes["shapes"] = shapes;
-  result["modes"] = modes;
+  result.json["modes"] = modes;
   StaticShootingSummary eq;
   eq.status = r.statics_status;
   nlohmann::ordered_json equilibrium = io::StaticResultToJson(eq, r.equilibrium);
   for (const char* key : {"iterations", "shots", "load_steps", "residual", "wall_time_s"})
     equilibrium.erase(key);
-  result["equilibrium"] = equilibrium;
-  result["wall_time_s"] = r.wall_time_s;
-  out << result.dump(2) << '\n';
-  if (csv) io::WriteNodesCsv(*csv, r.equilibrium);
+  result.json["equilibrium"] = equilibrium;
+  result.json["wall_time_s"] = r.wall_time_s;
+  if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(r.equilibrium);
 
-  log << "cosserat: " << ToString(r.status) << " (modes, " << problem.formulation << "), "
-      << r.modes.size() << " modes:";
+  std::ostringstream log;
+  log << "cosserat: " << ToString(r.status) << " (modes, " << io::ToString(problem.formulation)
+      << "), " << r.modes.size() << " modes:";
   for (const Mode& m : r.modes) log << ' ' << std::setprecision(6) << m.frequency_hz;
   log << " Hz, " << std::setprecision(3) << r.wall_time_s * 1e3 << " ms\n";
-  return r.converged();
+  result.log = log.str();
+  result.converged = r.converged();
+  return result;
 }
 
-}  // namespace cosserat::cli
+}  // namespace cosserat::run

@@ -1,4 +1,4 @@
-#include "run_quatfd.hpp"
+#include "cosserat/run/run_quatfd.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -9,8 +9,10 @@
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/quatfd_statics.hpp"
 #include "cosserat/quatfd/radau.hpp"
+#include "cosserat/run/solver_options.hpp"
+#include "node_table.hpp"
 
-namespace cosserat::cli {
+namespace cosserat::run {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -20,14 +22,6 @@ quatfd::QuatFdModel MakeModel(const io::Problem& problem) {
   options.segments = problem.nodes - 1;
   options.base_end = quatfd::EndCondition::kClamped;
   return quatfd::QuatFdModel(problem.rod, problem.base, options);
-}
-
-quatfd::QuatFdStaticsOptions StaticsOptions(const io::Problem& problem) {
-  quatfd::QuatFdStaticsOptions o;
-  o.tolerance = problem.solver.tolerance;
-  o.floor_tolerance = std::max(o.floor_tolerance, o.tolerance);
-  o.max_iterations = problem.solver.max_iterations;
-  return o;
 }
 
 StaticShootingSummary AsSummary(const quatfd::QuatFdStaticsSummary& s) {
@@ -50,25 +44,27 @@ std::string TipText(const RodState& state) {
 
 }  // namespace
 
-bool RunQuatFdStatics(const io::Problem& problem, std::ostream& out, std::ostream* csv,
-                      std::ostream& log) {
+Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   quatfd::QuatFdModel model = MakeModel(problem);
   Eigen::VectorXd q(model.size()), v(model.size());
   model.RestState(q, v);
   const quatfd::QuatFdStaticsSummary s =
-      quatfd::SolveStatics(&model, problem.loads, q, StaticsOptions(problem));
+      quatfd::SolveStatics(&model, problem.loads, q, QuatFdStaticOptions(problem));
   RodState state;
   model.ToRodState(q, v, &state);
-  out << io::StaticResultToJson(AsSummary(s), state).dump(2) << '\n';
-  if (csv) io::WriteNodesCsv(*csv, state);
+  Result result;
+  result.json = io::StaticResultToJson(AsSummary(s), state);
+  if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(state);
+  std::ostringstream log;
   log << "cosserat: " << ToString(s.status) << " (quaternion-fd), " << s.iterations
       << " iterations, residual " << std::setprecision(3) << s.residual << ", " << TipText(state)
       << ", " << s.wall_time_s * 1e3 << " ms\n";
-  return s.converged();
+  result.log = log.str();
+  result.converged = s.converged();
+  return result;
 }
 
-bool RunQuatFdDynamics(const io::Problem& problem, std::ostream& out, std::ostream* csv,
-                       std::ostream& log) {
+Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) {
   const io::Problem::Dynamics& d = problem.dynamics;
   const auto start = Clock::now();
   quatfd::QuatFdModel model = MakeModel(problem);
@@ -77,7 +73,7 @@ bool RunQuatFdDynamics(const io::Problem& problem, std::ostream& out, std::ostre
   model.RestState(q, v);
   io::DynamicRun run;
   const quatfd::QuatFdStaticsSummary init = quatfd::SolveStatics(
-      &model, d.initial_loads.value_or(problem.loads), q, StaticsOptions(problem));
+      &model, d.initial_loads.value_or(problem.loads), q, QuatFdStaticOptions(problem));
   run.iterations = init.iterations;
   run.initial_state_ok = init.converged();
   run.status = init.status;
@@ -87,7 +83,7 @@ bool RunQuatFdDynamics(const io::Problem& problem, std::ostream& out, std::ostre
     model.ToRodState(q, v, &state);
     run.frame_t.push_back(t);
     run.frame_tip.push_back(state.tip_position_W());
-    if (csv)
+    if (options.nodes_csv)
       run.frame_positions.insert(run.frame_positions.end(), state.position_W.begin(),
                                  state.position_W.end());
   };
@@ -140,19 +136,23 @@ bool RunQuatFdDynamics(const io::Problem& problem, std::ostream& out, std::ostre
   }
   run.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
   model.ToRodState(q, v, &state);
-  out << io::DynamicResultToJson(run, state).dump(2) << '\n';
-  if (csv) io::WriteTrajectoryCsv(*csv, run, state.s);
+  Result result;
+  result.json = io::DynamicResultToJson(run, state);
+  if (options.nodes_csv) result.nodes_csv = detail::TrajectoryCsv(run, state.s);
+  std::ostringstream log;
   log << "cosserat: " << ToString(run.status) << " (quaternion-fd";
   if (run.initial_state_ok) log << ", radau: " << quatfd::ToString(istatus);
   log << "), " << run.steps << " steps, " << run.halved_steps << " rejected, "
       << std::setprecision(6) << run.simulated_time_s << " s simulated in " << std::setprecision(3)
       << run.wall_time_s << " s, " << TipText(state) << '\n';
   if (istatus == quatfd::IntegratorStatus::kMaxSteps)
-    log << "cosserat: hint: Radau took dynamics.integrator_max_steps ("
-        << d.integrator_max_steps << ") steps within one output interval, the last of "
-        << std::setprecision(3) << integrator_last_dt << " s: a load the rod cannot carry, or a "
+    log << "cosserat: hint: Radau took dynamics.integrator_max_steps (" << d.integrator_max_steps
+        << ") steps within one output interval, the last of " << std::setprecision(3)
+        << integrator_last_dt << " s: a load the rod cannot carry, or a "
         << "run that needs a larger integrator_max_steps or a shorter output_interval\n";
-  return run.status == SolveStatus::kConverged;
+  result.log = log.str();
+  result.converged = run.status == SolveStatus::kConverged;
+  return result;
 }
 
-}  // namespace cosserat::cli
+}  // namespace cosserat::run

@@ -1,4 +1,4 @@
-#include "run_dynamics.hpp"
+#include "cosserat/run/run_dynamics.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -7,12 +7,13 @@
 #include <sstream>
 #include <string>
 
-#include "cosserat/io/problem_options.hpp"
 #include "cosserat/io/result_writer.hpp"
+#include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/shooting_exponent.hpp"
+#include "node_table.hpp"
 
-namespace cosserat::cli {
+namespace cosserat::run {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -130,13 +131,14 @@ std::string SummaryLine(const io::DynamicRun& run, const RodState& state) {
 
 }  // namespace
 
-bool RunDynamics(const io::Problem& problem, std::ostream& out, std::ostream* csv,
-                 std::ostream& log) {
-  const Bdf2Options options = io::DynamicsOptions(problem);
+Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
+  const Bdf2Options options = DynamicsOptions(problem);
   Bdf2ShootingStepper stepper(problem.rod, problem.nodes, options);
-  const io::DynamicRun run = Simulate(problem, csv != nullptr, &stepper);
-  out << io::DynamicResultToJson(run, stepper.state()).dump(2) << '\n';
-  if (csv) io::WriteTrajectoryCsv(*csv, run, stepper.state().s);
+  const io::DynamicRun run = Simulate(problem, run_options.nodes_csv, &stepper);
+  Result result;
+  result.json = io::DynamicResultToJson(run, stepper.state());
+  if (run_options.nodes_csv) result.nodes_csv = detail::TrajectoryCsv(run, stepper.state().s);
+  std::ostringstream log;
   log << SummaryLine(run, stepper.state()) << '\n';
   if (run.initial_state_ok && run.status != SolveStatus::kConverged &&
       options.shooting_segments == 1) {
@@ -145,12 +147,15 @@ bool RunDynamics(const io::Problem& problem, std::ostream& out, std::ostream* cs
         SingleShootingExponent(problem.rod, options.dt, problem.robot.actuation);
     if (exponent > 10.0)
       log << "cosserat: hint: at dt = " << options.dt << " s single shooting amplifies errors by"
-          << " e^" << std::setprecision(3) << exponent << " along the rod (docs/dynamics.md, \"Where"
+          << " e^" << std::setprecision(3) << exponent
+          << " along the rod (docs/dynamics.md, \"Where"
           << " it stops\"); \"dynamics\": {\"shooting_segments\": "
           << std::min(SuggestedShootingSegments(exponent), problem.nodes - 1)
           << "} shoots it in pieces\n";
   }
-  return run.status == SolveStatus::kConverged;
+  result.log = log.str();
+  result.converged = run.status == SolveStatus::kConverged;
+  return result;
 }
 
-}  // namespace cosserat::cli
+}  // namespace cosserat::run

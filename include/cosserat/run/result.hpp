@@ -1,0 +1,33 @@
+#pragma once
+/// \file
+/// What running a problem produces (run.hpp): the result document, the node table and the
+/// summary, as `cosserat solve` writes them and `cosserat.solve` returns them.
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace cosserat::run {
+
+/// What a run asks for beyond the result document.
+struct RunOptions {
+  /// Fill Result::nodes_csv. Dynamics then records every node of every output frame, not only
+  /// the tip.
+  bool nodes_csv = false;
+};
+
+/// The outcome of a run. A run that did not converge still has a full result document, whose
+/// "status" says why.
+struct Result {
+  /// True when every solve converged (for buckling: the load path could be followed).
+  bool converged = false;
+  /// The result document (docs/problem-format.md, "Result"): "status" first, then the keys of
+  /// the analysis run (io/result_writer.hpp).
+  nlohmann::ordered_json json;
+  /// Statics: one row per node, `s,x,y,z,k1,k2,k3`; dynamics: every recorded frame,
+  /// `t,node,s,x,y,z`. Empty unless RunOptions::nodes_csv.
+  std::string nodes_csv;
+  /// The one-line summary and any hints, each line ending in '\n'.
+  std::string log;
+};
+
+}  // namespace cosserat::run

@@ -1,0 +1,28 @@
+#include "cosserat/rod/actuation.hpp"
+
+#include <cmath>
+
+namespace cosserat {
+
+bool Actuation::IsValid(std::string* why, int tendon_count) const {
+  auto fail = [&](const std::string& message) {
+    if (why) *why = message;
+    return false;
+  };
+  auto usable = [](double x) { return std::isfinite(x) && x >= 0; };
+  if (!usable(pressure)) return fail("pressure: expected a number >= 0 (Pa)");
+  if (!(std::isfinite(stiffness_scale) && stiffness_scale > 0))
+    return fail("stiffness_scale: expected a finite number > 0");
+  for (int i = 0; i < kMaxTendons; ++i) {
+    if (!usable(tendon_tension[i]))
+      return fail("tendon_tension: expected finite tensions >= 0 (N)");
+    if (i >= tendon_count && tendon_tension[i] != 0)
+      return fail("tendon_tension: a tension on tendon " + std::to_string(i) +
+                  ", but the rod has " + std::to_string(tendon_count) + " tendons");
+  }
+  for (double p : jamming_pressure)
+    if (!usable(p)) return fail("jamming_pressure: expected numbers >= 0 (Pa)");
+  return true;
+}
+
+}  // namespace cosserat

@@ -1,0 +1,60 @@
+#include "cosserat/run/solver_options.hpp"
+
+#include <algorithm>
+
+namespace cosserat::run {
+
+StaticShootingOptions StaticOptions(const io::Problem& problem) {
+  StaticShootingOptions options;
+  options.tolerance = problem.solver.tolerance;
+  options.max_iterations = problem.solver.max_iterations;
+  return options;
+}
+
+quatfd::QuatFdStaticsOptions QuatFdStaticOptions(const io::Problem& problem) {
+  quatfd::QuatFdStaticsOptions options;
+  options.tolerance = problem.solver.tolerance;
+  options.floor_tolerance = std::max(options.floor_tolerance, options.tolerance);
+  options.max_iterations = problem.solver.max_iterations;
+  return options;
+}
+
+Bdf2Options DynamicsOptions(const io::Problem& problem) {
+  Bdf2Options options;
+  options.dt = problem.dynamics.dt;
+  options.ends = problem.boundary == io::Boundary::kFreeFree ? EndConditions::kFreeFree
+                                                             : EndConditions::kCantilever;
+  options.tolerance = problem.solver.tolerance;
+  options.tip_mass = problem.dynamics.tip_mass;
+  options.tip_inertia_B = problem.dynamics.tip_inertia;
+  options.max_iterations = problem.solver.max_iterations;
+  options.shooting_segments = problem.dynamics.shooting_segments;
+  options.spatial_scheme = ToSpatialScheme(problem.dynamics.spatial_scheme);
+  return options;
+}
+
+SpatialScheme ToSpatialScheme(io::ShotScheme scheme) {
+  return scheme == io::ShotScheme::kHeun ? SpatialScheme::kHeun : SpatialScheme::kRk4;
+}
+
+bool ToColumnEnds(io::Boundary boundary, ColumnEnds* ends) {
+  switch (boundary) {
+    case io::Boundary::kCantilever:
+      *ends = ColumnEnds::kClampedFree;
+      return true;
+    case io::Boundary::kPinnedPinned:
+      *ends = ColumnEnds::kPinnedPinned;
+      return true;
+    case io::Boundary::kClampedClamped:
+      *ends = ColumnEnds::kClampedClamped;
+      return true;
+    case io::Boundary::kClampedPinned:
+      *ends = ColumnEnds::kClampedPinned;
+      return true;
+    case io::Boundary::kFreeFree:
+      break;
+  }
+  return false;
+}
+
+}  // namespace cosserat::run
