@@ -426,11 +426,11 @@ PYBIND11_MODULE(cosserat, m) {
              py::dict d;
              d["kinetic"] = e.kinetic;
              d["elastic"] = e.elastic;
-             d["gravity"] = e.gravity;
+             d["potential"] = e.potential;
              d["total"] = e.total();
              return d;
            },
-           "Kinetic, elastic and gravitational energy (J) under the gravity step() applies.")
+           "Kinetic, elastic and potential energy (J); potential: of the distributed loads step() applies.")
       .def("momentum",
            [](const PyStepper& s) {
              const RodMomentum p = s.run().Momentum();

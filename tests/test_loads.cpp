@@ -29,7 +29,7 @@ TEST(Loads, EachLoadInItsFrame) {
   EXPECT_EQ(DistributedForce(Vec3(1, 2, 3)).TipWrench(1.0).dead_W, Vec6::Zero());
   // Lumped on a piece of 0.3 m with 0.075 kg: the resultants.
   const LoadSite piece{0.1, 0.3, 0.075};
-  EXPECT_EQ(DistributedForce(Vec3(1, 2, 3)).DistributedForce_W(piece), Vec3(0.3, 0.6, 0.9));
+  EXPECT_EQ(DistributedForce(Vec3(1, 2, 3)).DistributedForce_W(piece), 0.3 * Vec3(1, 2, 3));
   EXPECT_EQ(Gravity(g).DistributedForce_W(piece), Vec3(0.075 * g));
   const SplitWrench dead = TipForce(Vec3(1, 0, 0), LoadFrame::kWorld).TipWrench(0);
   const SplitWrench follower = TipMoment(Vec3(0, 2, 0), LoadFrame::kBody).TipWrench(0);

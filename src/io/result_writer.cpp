@@ -97,7 +97,7 @@ json DynamicResultToJson(const DynamicRun& run, const RodState& final_state) {
   AddTipAndBaseWrench(final_state, &out);
   out["energy"] = {{"kinetic", run.energy.kinetic},
                    {"elastic", run.energy.elastic},
-                   {"gravity", run.energy.gravity}};
+                   {"potential", run.energy.potential}};
   json tip = json::array();
   for (const Vec3& p : run.frame_tip) tip.push_back(ToArray(p));
   out["trajectory"] = {{"t", run.frame_t}, {"tip_position", std::move(tip)}};

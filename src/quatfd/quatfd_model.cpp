@@ -752,7 +752,7 @@ QuatFdEnergy QuatFdModel::Energy(const Eigen::Ref<const Eigen::VectorXd>& q,
   for (int n = 0; n <= N; ++n) {
     const Vec3 x = q.segment<3>(L::X(n)), xd = v.segment<3>(L::X(n));
     e.kinetic += 0.5 * mass_[n] * xd.squaredNorm();
-    e.gravity -= vertex_force_W_[n].dot(x);
+    e.potential -= vertex_force_W_[n].dot(x);
   }
   for (int i = 0; i < N; ++i) {
     const Vec4 p = q.segment<4>(L::P(i)), pd = v.segment<4>(L::P(i));

@@ -132,7 +132,7 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
     const quatfd::QuatFdEnergy e = model.Energy(q, v);
     run.energy.kinetic = e.kinetic;
     run.energy.elastic = e.elastic;
-    run.energy.gravity = e.gravity;
+    run.energy.potential = e.potential;
   }
   run.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
   model.ToRodState(q, v, &state);

@@ -106,8 +106,8 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   const int pieces = options_.shooting_segments;
   if (pieces > n - 1)
     throw std::invalid_argument("Bdf2Options: shooting_segments (" + std::to_string(pieces) +
-                                ") exceeds the number of grid segments (" +
-                                std::to_string(n - 1) + ")");
+                                ") exceeds the number of grid segments (" + std::to_string(n - 1) +
+                                ")");
   if (pieces > 1) {
     const int unknowns = 6 + 18 * (pieces - 1);
     junction_nodes_.resize(pieces - 1);
@@ -138,7 +138,8 @@ std::uint64_t Bdf2ShootingStepper::ModelFingerprint() const {
     const auto* b = static_cast<const unsigned char*>(data);
     for (std::size_t i = 0; i < bytes; ++i) h = (h ^ b[i]) * 1099511628211ull;
   };
-  const int ends = static_cast<int>(options_.ends), scheme = static_cast<int>(options_.spatial_scheme);
+  const int ends = static_cast<int>(options_.ends),
+            scheme = static_cast<int>(options_.spatial_scheme);
   add(&ends, sizeof ends);
   add(&scheme, sizeof scheme);
   for (const double s : grid_) {
@@ -355,7 +356,8 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
 void Bdf2ShootingStepper::Commit(double h) {
   // Degrees scored in residual units with the Jacobian the next step starts from (single
   // shooting; multiple shooting keeps its own).
-  run_.unknowns.Push(predictor_term_, h, junction_nodes_.empty() ? &run_.jacobian_filter.jacobian() : nullptr);
+  run_.unknowns.Push(predictor_term_, h,
+                     junction_nodes_.empty() ? &run_.jacobian_filter.jacobian() : nullptr);
   std::swap(run_.strain2, run_.strain1);
   std::swap(run_.strain1, strain_now_);
   std::swap(run_.twist2, run_.twist1);
@@ -401,9 +403,9 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
     // solver's job (continuation). The tip frame of the guess is the clamp's: a follower force
     // turns with it.
     const SplitWrench tip = TotalTipWrench(input.loads, options_.tip_mass);
-    const Vec3 total =
-        model_.length * TotalDistributedForce_W(input.loads, {samples_[1].s, 1.0, samples_[1].mass(5)}) +
-        tip.dead_W.tail<3>() + input.base_pose.R * tip.follower_B.tail<3>();
+    const Vec3 total = model_.length * TotalDistributedForce_W(
+                                           input.loads, {samples_[1].s, 1.0, samples_[1].mass(5)}) +
+                       tip.dead_W.tail<3>() + input.base_pose.R * tip.follower_B.tail<3>();
     Vec6 W;
     W << Vec3::Zero(), input.base_pose.R.transpose() * total;
     run_.unknowns.Reset(W.cwiseQuotient(scale_));
@@ -505,7 +507,8 @@ RodEnergy Bdf2ShootingStepper::Energy(const StaticLoads& loads) const {
     const Vec6 dxi = run_.strain1[q] - smp.rest_strain;
     e.kinetic += w * 0.5 * run_.twist1[q].dot(smp.mass.cwiseProduct(run_.twist1[q]));
     e.elastic += w * 0.5 * dxi.dot(smp.stiffness.cwiseProduct(dxi));
-    e.gravity += w * TotalDistributedPotential(loads, {smp.s, 1.0, smp.mass(5)}, run_.position1[q]);
+    e.potential +=
+        w * TotalDistributedPotential(loads, {smp.s, 1.0, smp.mass(5)}, run_.position1[q]);
   });
   return e;
 }

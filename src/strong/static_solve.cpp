@@ -12,22 +12,6 @@
 
 namespace cosserat {
 
-const char* ToString(SolveStatus status) {
-  switch (status) {
-    case SolveStatus::kNotRun:
-      return "not_run";
-    case SolveStatus::kConverged:
-      return "converged";
-    case SolveStatus::kMaxIterations:
-      return "max_iterations";
-    case SolveStatus::kLoadSteppingFailed:
-      return "load_stepping_failed";
-    case SolveStatus::kNonFinite:
-      return "non_finite";
-  }
-  return "unknown";
-}
-
 bool StaticShootingOptions::IsValid(std::string* why) const {
   auto fail = [&](const char* msg) {
     if (why) *why = msg;

@@ -24,8 +24,8 @@
 #include "cosserat/quatfd/quatfd_statics.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
-#include "cosserat/strong/rod_state.hpp"
-#include "cosserat/strong/solver_status.hpp"
+#include "cosserat/state/rod_state.hpp"
+#include "cosserat/state/solve_status.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat {

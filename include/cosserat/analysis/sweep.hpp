@@ -11,7 +11,7 @@
 #include "cosserat/loads/static_loads.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
-#include "cosserat/strong/solver_status.hpp"
+#include "cosserat/state/solve_status.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat {

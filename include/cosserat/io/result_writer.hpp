@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cosserat/strong/bdf2_stepper.hpp"
-#include "cosserat/strong/rod_state.hpp"
+#include "cosserat/state/rod_state.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat::io {
@@ -53,7 +53,7 @@ struct DynamicRun {
 /// The dynamics result: status, failed_at_t (only on failure), steps, halved_steps, iterations,
 /// shots, wall_time_s, simulated_time_s, real_time_ratio (simulated time / stepping loop wall
 /// time), step_time_us {median, p99, max}, then for the final state (when the initial one
-/// converged) tip, base_wrench, energy {kinetic, elastic, gravity}, trajectory {t, tip_position}
+/// converged) tip, base_wrench, energy {kinetic, elastic, potential}, trajectory {t, tip_position}
 /// and nodes as in StaticResultToJson. Non-finite numbers are written as null.
 nlohmann::ordered_json DynamicResultToJson(const DynamicRun& run, const RodState& final_state);
 

@@ -33,7 +33,7 @@
 #include "cosserat/quatfd/quatfd_kernels.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
-#include "cosserat/strong/rod_state.hpp"
+#include "cosserat/state/rod_state.hpp"
 
 namespace cosserat::quatfd {
 
@@ -86,10 +86,10 @@ struct QuatFdLayout {
 
 /// Energies of a state (J).
 struct QuatFdEnergy {
-  /// gravity: potential of the distributed dead loads (gravity, distributed force);
+  /// potential: of the distributed dead loads (gravity, distributed force);
   /// loads: −work of the dead tip force
-  double kinetic = 0, elastic = 0, gravity = 0, loads = 0;
-  double total() const { return kinetic + elastic + gravity + loads; }
+  double kinetic = 0, elastic = 0, potential = 0, loads = 0;
+  double total() const { return kinetic + elastic + potential + loads; }
 };
 
 class QuatFdModel {

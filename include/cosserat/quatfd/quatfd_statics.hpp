@@ -11,7 +11,7 @@
 #include <Eigen/Core>
 
 #include "cosserat/quatfd/quatfd_model.hpp"
-#include "cosserat/strong/solver_status.hpp"
+#include "cosserat/state/solve_status.hpp"
 
 namespace cosserat::quatfd {
 

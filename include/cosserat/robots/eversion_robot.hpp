@@ -46,7 +46,7 @@
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
-#include "cosserat/strong/rod_state.hpp"
+#include "cosserat/state/rod_state.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat {

@@ -27,10 +27,10 @@
 #include "cosserat/constitutive/tendon_law.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
-#include "cosserat/strong/rod_state.hpp"
+#include "cosserat/state/rod_state.hpp"
 #include "cosserat/strong/secant_filter.hpp"
 #include "cosserat/strong/sequence_predictor.hpp"
-#include "cosserat/strong/solver_status.hpp"
+#include "cosserat/state/solve_status.hpp"
 #include "cosserat/strong/spatial_scheme.hpp"
 
 namespace cosserat {
@@ -105,8 +105,8 @@ struct StepSummary {
 struct RodEnergy {
   double kinetic = 0.0;
   double elastic = 0.0;
-  double gravity = 0.0;  ///< potential of the distributed dead loads (gravity, distributed force)
-  double total() const { return kinetic + elastic + gravity; }
+  double potential = 0.0;  ///< of the distributed dead loads (gravity, distributed force)
+  double total() const { return kinetic + elastic + potential; }
 };
 
 /// Linear momentum (kg·m/s) and angular momentum about the world origin (kg·m²/s), world frame,
@@ -133,7 +133,7 @@ class Bdf2ShootingStepper {
   const RodState& state() const { return run_.state; }
   const Bdf2Options& options() const { return options_; }
   const std::vector<double>& grid() const { return grid_; }
-  /// Energy of the current state under the gravity of `loads` (the rod only: a tip body's energy
+  /// Energy of the current state under the distributed loads of `loads` (the rod only: a tip body's energy
   /// and momentum are not included).
   RodEnergy Energy(const StaticLoads& loads) const;
   /// Momentum of the current state (the rod only).

@@ -21,8 +21,8 @@
 #include "cosserat/constitutive/tendon_law.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
-#include "cosserat/strong/rod_state.hpp"
-#include "cosserat/strong/solver_status.hpp"
+#include "cosserat/state/rod_state.hpp"
+#include "cosserat/state/solve_status.hpp"
 
 namespace cosserat {
 

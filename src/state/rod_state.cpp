@@ -1,4 +1,4 @@
-#include "cosserat/strong/rod_state.hpp"
+#include "cosserat/state/rod_state.hpp"
 
 namespace cosserat {
 

@@ -1,0 +1,21 @@
+#include "cosserat/state/solve_status.hpp"
+
+namespace cosserat {
+
+const char* ToString(SolveStatus status) {
+  switch (status) {
+    case SolveStatus::kNotRun:
+      return "not_run";
+    case SolveStatus::kConverged:
+      return "converged";
+    case SolveStatus::kMaxIterations:
+      return "max_iterations";
+    case SolveStatus::kLoadSteppingFailed:
+      return "load_stepping_failed";
+    case SolveStatus::kNonFinite:
+      return "non_finite";
+  }
+  return "unknown";
+}
+
+}  // namespace cosserat
