@@ -1,0 +1,158 @@
+// The read-outs of a quaternion-FD state: projection onto |p| = 1, the constraint violation, mass,
+// the RodState (poses, strains, wrenches, twists at the vertices) and the energy.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "cosserat/lie/quaternion.hpp"
+#include "cosserat/quatfd/quatfd_kernels.hpp"
+#include "cosserat/quatfd/quatfd_model.hpp"
+
+namespace cosserat::quatfd {
+namespace {
+
+using L = QuatFdLayout;
+
+}  // namespace
+
+double QuatFdModel::Project(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const {
+  double worst = 0.0;
+  for (int i = 0; i < layout_.segments; ++i) {
+    auto p = q.segment<4>(L::P(i));
+    auto pd = v.segment<4>(L::P(i));
+    const double norm = p.norm();
+    worst = std::max(worst, std::abs(norm - 1.0));
+    // p ← p/|p| and ṗ ← (ṗ − (p̂·ṗ) p̂)/|p| keep the rotation and ω = 2 Im(p̄ ṗ)/|p|² exactly.
+    p /= norm;
+    pd = (pd - p.dot(pd) * p) / norm;
+  }
+  return worst;
+}
+
+double QuatFdModel::ConstraintViolation(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  double worst = 0.0;
+  for (int i = 0; i < layout_.segments; ++i)
+    worst = std::max(worst, std::abs(q.segment<4>(L::P(i)).norm() - 1.0));
+  return worst;
+}
+
+double QuatFdModel::min_rotational_inertia() const {
+  double j = rotation_[0].inertia.minCoeff();
+  for (const kernels::RotationConstants& r : rotation_) j = std::min(j, r.inertia.minCoeff());
+  return j;
+}
+
+double QuatFdModel::Mass() const {
+  double m = 0;
+  for (double mn : mass_) m += mn;
+  return m;
+}
+
+void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
+                             const Eigen::Ref<const Eigen::VectorXd>& v, RodState* state) const {
+  const int N = layout_.segments;
+  state->Resize(N + 1);
+  // Per segment: strain Γ, force F (body), ω.
+  std::vector<Vec3> gamma(N), force(N), omega(N);
+  for (int i = 0; i < N; ++i) {
+    Vec3 fa, tau;
+    kernels::SegmentForces<double>(segment_[i], q.segment<3>(L::X(i + 1)) - q.segment<3>(L::X(i)),
+                                   q.segment<4>(L::P(i)),
+                                   v.segment<3>(L::X(i + 1)) - v.segment<3>(L::X(i)),
+                                   v.segment<4>(L::P(i)), &fa, &tau, &gamma[i], &force[i]);
+    omega[i] = kernels::AngularVelocity<double>(q.segment<4>(L::P(i)), v.segment<4>(L::P(i)));
+  }
+  for (int n = 0; n <= N; ++n) {
+    state->s[n] = s_[n];
+    state->position_W[n] = q.segment<3>(L::X(n));
+    Vec4 p;
+    if (n == 0) {
+      p = options_.base_end == EndCondition::kClamped ? base_quat_ : Vec4(q.segment<4>(L::P(0)));
+    } else if (n == N) {
+      p = TipQuaternion<double>(q.segment<4>(L::P(N - 1)));
+    } else {
+      const Vec4 pa = q.segment<4>(L::P(n - 1));
+      Vec4 pb = q.segment<4>(L::P(n));
+      if (pa.dot(pb) < 0) pb = -pb;
+      p = pa + pb;
+    }
+    p.normalize();
+    const Mat3 R = lie::QuatToRotation(p);
+    state->rotation_WB[n] = R;
+    Vec3 K = Vec3::Zero(), M = Vec3::Zero();
+    if (bend_active_[n]) {
+      Vec3 ta, tb;
+      const Vec4 pa = n == 0 ? base_quat_ : Vec4(q.segment<4>(L::P(n - 1)));
+      const Vec4 pda = n == 0 ? Vec4::Zero() : Vec4(v.segment<4>(L::P(n - 1)));
+      kernels::BendTorques<double>(bend_[n], pa, q.segment<4>(L::P(n)), pda, v.segment<4>(L::P(n)),
+                                   &ta, &tb, &K, &M);
+    }
+    // Strain and force: mean of the neighbouring segments, rotated into this vertex's frame.
+    Vec3 G = Vec3::Zero(), Fw = Vec3::Zero(), W = Vec3::Zero();
+    int count = 0;
+    for (int i : {n - 1, n}) {
+      if (i < 0 || i >= N) continue;
+      const Mat3 Ri = lie::QuatToRotation(q.segment<4>(L::P(i)).normalized());
+      G += R.transpose() * Ri * gamma[i];
+      Fw += Ri * force[i];
+      W += Ri * omega[i];
+      ++count;
+    }
+    G /= count;
+    Fw /= count;
+    W /= count;
+    if (n == 0) {
+      // The support reaction balances the first segment's pull and the load lumped at x_0:
+      // W(0) = R_{1/2} F_{1/2} + f_0 (world), f_0 the distributed loads lumped on x_0: the wrench
+      // the rod beyond s = 0 exerts.
+      Fw = lie::QuatToRotation(q.segment<4>(L::P(0)).normalized()) * force[0] + vertex_force_W_[0];
+    } else if (n == N) {
+      Fw = lie::QuatToRotation(q.segment<4>(L::P(N - 1)).normalized()) * force[N - 1];
+    }
+    if (n == N) {  // the free end: K(L) = K* + C⁻¹ m, M(L) = the tip moment in the tip frame
+      Vec3 f, m;
+      TipLoads<double>(q.segment<4>(L::P(N - 1)), &f, &m);
+      M = R.transpose() * lie::QuatToRotation(q.segment<4>(L::P(N - 1)).normalized()) * m;
+      K = tip_rest_ + tip_compliance_ * M;
+    }
+    state->strain[n] << K, G;
+    state->wrench_B[n] << M, R.transpose() * Fw;
+    state->twist_B[n] << R.transpose() * W, R.transpose() * Vec3(v.segment<3>(L::X(n)));
+  }
+}
+
+QuatFdEnergy QuatFdModel::Energy(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                 const Eigen::Ref<const Eigen::VectorXd>& v) const {
+  const int N = layout_.segments;
+  QuatFdEnergy e;
+  for (int n = 0; n <= N; ++n) {
+    const Vec3 x = q.segment<3>(L::X(n)), xd = v.segment<3>(L::X(n));
+    e.kinetic += 0.5 * mass_[n] * xd.squaredNorm();
+    e.potential -= vertex_force_W_[n].dot(x);
+  }
+  for (int i = 0; i < N; ++i) {
+    const Vec4 p = q.segment<4>(L::P(i)), pd = v.segment<4>(L::P(i));
+    const Vec3 w = kernels::AngularVelocity<double>(p, pd);
+    e.kinetic += 0.5 * w.dot(rotation_[i].inertia.cwiseProduct(w));
+    const Vec3 gamma = kernels::ToBody<double>(
+        p, Vec3((q.segment<3>(L::X(i + 1)) - q.segment<3>(L::X(i))) / segment_[i].ds));
+    const Vec3 eg = gamma - segment_[i].rest;
+    e.elastic += 0.5 * segment_[i].ds * eg.dot(segment_[i].stiffness * eg);
+  }
+  for (int n = 0; n <= N; ++n) {
+    if (!bend_active_[n]) continue;
+    const Vec4 pa = n == 0 ? base_quat_ : Vec4(q.segment<4>(L::P(n - 1)));
+    kernels::BendConstants c = bend_[n];
+    c.damping.setZero();
+    Vec3 ta, tb, K;
+    kernels::BendTorques<double>(c, pa, q.segment<4>(L::P(n)), Vec4::Zero(), Vec4::Zero(), &ta, &tb,
+                                 &K);
+    const Vec3 ek = K - c.rest;
+    e.elastic += 0.5 * c.weight * ek.dot(c.stiffness * ek);
+  }
+  // Dead tip loads (world frame) have the potential −f·x_N; follower loads have none.
+  e.loads -= tip_wrench_.dead_W.tail<3>().dot(q.segment<3>(L::X(N)));
+  return e;
+}
+
+}  // namespace cosserat::quatfd
