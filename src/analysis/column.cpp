@@ -221,9 +221,9 @@ double ColumnSolver::LoadMeasure(const StaticLoads& loads) const {
   const double L = length(), EI = scale_(0) * L;
   const Vec3 distributed = TotalDistributedForce_W(loads, {0.0, 1.0, mass_per_length_});
   const SplitWrench tip = TotalTipWrench(loads);
-  const Vec6 tip_wrench = tip.dead_W + tip.follower_B;  // magnitudes only
-  return std::max({tip_wrench.tail<3>().norm() * L * L / EI, tip_wrench.head<3>().norm() * L / EI,
-                   distributed.norm() * L * L * L / EI});
+  const double force = tip.dead_W.tail<3>().norm() + tip.follower_B.tail<3>().norm();
+  const double moment = tip.dead_W.head<3>().norm() + tip.follower_B.head<3>().norm();
+  return std::max({force * L * L / EI, moment * L / EI, distributed.norm() * L * L * L / EI});
 }
 
 ColumnSummary ColumnSolver::SolveFromUnloaded(const lie::SE3& base, const StaticLoads& loads) {
