@@ -9,48 +9,22 @@
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/rod/grid.hpp"
+#include "cosserat/strong/cosserat_rhs.hpp"
+#include "cosserat/strong/spatial_scheme.hpp"
 
 namespace cosserat {
 namespace {
 
-Mat3 Hat(const Vec3& a) {
-  Mat3 m;
-  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return m;
-}
-
-// The equilibrium carried along s, as in the statics solver (StaticShootingSolver::Shoot).
-struct Primal {
-  Vec3 p;
-  Mat3 R;
-  Vec3 m, n;
-};
+using lie::hat;
+using Primal = rhs::StaticPoint<double>;  // the equilibrium carried along s (cosserat_rhs.hpp)
 
 struct Sample {
-  Mat6 compliance;
+  Vec6 compliance;  ///< diag K⁻¹ (principal axes)
   Vec6 rest;
   Vec3 J;
   double rhoA;
   double s;  // arc length, m
 };
-
-Primal Rates(const Sample& smp, const Vec3& f_W, const Primal& y, Vec6* xi_out) {
-  Vec6 W;
-  W << y.m, y.n;
-  const Vec6 xi = smp.rest + smp.compliance * W;
-  const Vec3 K = xi.head<3>(), G = xi.tail<3>();
-  Primal d;
-  d.p = y.R * G;
-  d.R = y.R * Hat(K);
-  d.m = y.m.cross(K) + y.n.cross(G);
-  d.n = y.n.cross(K) - y.R.transpose() * f_W;
-  *xi_out = xi;
-  return d;
-}
-
-Primal Axpy(const Primal& y, double a, const Primal& d) {
-  return {y.p + a * d.p, y.R + a * d.R, y.m + a * d.m, y.n + a * d.n};
-}
 
 }  // namespace
 
@@ -74,8 +48,8 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
   std::vector<Sample> samples(points.size());
   for (size_t q = 0; q < points.size(); ++q) {
     const SectionProperties sp = PrincipalAxesSectionAt(rod, points[q], actuation);
-    samples[q] = {sp.stiffness.inverse(), rod.RestStrainAt(points[q]), sp.mass.diagonal().head<3>(),
-                  sp.mass(5, 5), points[q]};
+    samples[q] = {sp.stiffness.diagonal().cwiseInverse(), rod.RestStrainAt(points[q]),
+                  sp.mass.diagonal().head<3>(), sp.mass(5, 5), points[q]};
   }
   auto f_at = [&](const Sample& smp) -> Vec3 {
     return TotalDistributedForce_W(loads, {smp.s, 1.0, smp.rhoA});
@@ -83,9 +57,10 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
   // The stage matrix A0 at a primal state with strain xi (see the file comment).
   auto stage = [&](const Sample& smp, const Primal& y, const Vec6& xi) {
     const Vec3 K = xi.head<3>(), G = xi.tail<3>();
-    const Mat3 Kh = Hat(K), Gh = Hat(G), mh = Hat(y.m), nh = Hat(y.n);
-    const Eigen::Matrix<double, 3, 6> Ct = smp.compliance.topRows<3>();
-    const Eigen::Matrix<double, 3, 6> Cb = smp.compliance.bottomRows<3>();
+    const Mat3 Kh = hat(K), Gh = hat(G), mh = hat(y.m), nh = hat(y.n);
+    const Mat6 C = smp.compliance.asDiagonal();
+    const Eigen::Matrix<double, 3, 6> Ct = C.topRows<3>();
+    const Eigen::Matrix<double, 3, 6> Cb = C.bottomRows<3>();
     Stage st;
     Mat12& A = st.a0;
     A.setZero();
@@ -97,7 +72,7 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
     A.block<3, 6>(6, 6) = mh * Ct + nh * Cb;
     A.block<3, 3>(6, 6) -= Kh;
     A.block<3, 3>(6, 9) -= Gh;
-    A.block<3, 3>(9, 0) = -Hat(y.R.transpose() * f_at(smp));
+    A.block<3, 3>(9, 0) = -hat(y.R.transpose() * f_at(smp));
     A.block<3, 6>(9, 6) = nh * Ct;
     A.block<3, 3>(9, 9) -= Kh;
     st.J = smp.J;
@@ -115,28 +90,28 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
     const Sample& b = samples[3 * i + 1];
     const Sample& c = samples[3 * i + 2];
     node_R_[i] = y.R;
-    const Primal k1 = Rates(a, f_at(a), y, &xi1);
-    const Primal y2 = Axpy(y, 0.5 * h, k1);
-    const Primal k2 = Rates(b, f_at(b), y2, &xi2);
-    const Primal y3 = Axpy(y, 0.5 * h, k2);
-    const Primal k3 = Rates(b, f_at(b), y3, &xi3);
-    const Primal y4 = Axpy(y, h, k3);
-    const Primal k4 = Rates(c, f_at(c), y4, &xi4);
+    auto rates = [&](const Sample& smp, const Primal& ys, Vec6* xi) {
+      return rhs::StaticDerivative<double>(smp.rest, smp.compliance, f_at(smp), ys, xi);
+    };
+    const Primal k1 = rates(a, y, &xi1);
+    const Primal y2 = internal::Axpy(y, 0.5 * h, k1);
+    const Primal k2 = rates(b, y2, &xi2);
+    const Primal y3 = internal::Axpy(y, 0.5 * h, k2);
+    const Primal k3 = rates(b, y3, &xi3);
+    const Primal y4 = internal::Axpy(y, h, k3);
+    const Primal k4 = rates(c, y4, &xi4);
     stages_.push_back(stage(a, y, xi1));
     stages_.push_back(stage(b, y2, xi2));
     stages_.push_back(stage(b, y3, xi3));
     stages_.push_back(stage(c, y4, xi4));
-    y.p += h / 6 * (k1.p + 2 * k2.p + 2 * k3.p + k4.p);
-    y.R += h / 6 * (k1.R + 2 * k2.R + 2 * k3.R + k4.R);
-    y.m += h / 6 * (k1.m + 2 * k2.m + 2 * k3.m + k4.m);
-    y.n += h / 6 * (k1.n + 2 * k2.n + 2 * k3.n + k4.n);
+    internal::Rk4Update(h, k1, k2, k3, k4, &y);
   }
   node_R_[n - 1] = y.R;
   const Mat3 Rt = y.R.transpose();
   // Only the dead part of the tip wrench turns relative to the tip section.
   const SplitWrench tip = TotalTipWrench(loads);
-  tip_moment_cross_ = Hat(Rt * tip.dead_W.head<3>());
-  tip_force_cross_ = Hat(Rt * tip.dead_W.tail<3>());
+  tip_moment_cross_ = hat(Rt * tip.dead_W.head<3>());
+  tip_force_cross_ = hat(Rt * tip.dead_W.tail<3>());
 }
 
 template <typename Visit>

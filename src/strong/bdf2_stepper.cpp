@@ -1,7 +1,5 @@
 #include "cosserat/strong/bdf2_stepper.hpp"
 
-#include <ceres/tiny_solver.h>
-
 #include <Eigen/LU>
 #include <algorithm>
 #include <array>
@@ -16,7 +14,8 @@
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/rod/grid.hpp"
 #include "cosserat/strong/secant_filter.hpp"
-#include "frame_tangent.hpp"
+#include "cosserat/strong/shot_newton.hpp"
+#include "cosserat/strong/frame_tangent.hpp"
 
 namespace cosserat {
 
@@ -202,48 +201,26 @@ void Bdf2ShootingStepper::SetImplicitCompliance(double c0) {
   current_c0_ = c0;
 }
 
-namespace {
-
-// The shooting problem in the form ceres::TinySolver expects, with the exact Jacobian.
-struct StepCost {
-  using Scalar = double;
-  enum { NUM_RESIDUALS = 6, NUM_PARAMETERS = 6 };
-  Bdf2ShootingStepper* stepper;
-  const StepInput* input;
-  const Coefficients* c;
-  bool statics;
-  int* shots;
-  int* jacobians;
-  Mat6* last_jacobian;
-
-  bool operator()(const double* x_ptr, double* r_ptr, double* J_ptr) const {
-    const Eigen::Map<const Vec6> x(x_ptr);
-    Eigen::Map<Vec6> r(r_ptr);
-    ++*shots;
-    if (J_ptr) {
-      Mat6 J;
-      ++*jacobians;
-      r = stepper->Residual(*input, *c, statics, x, &J);
-      Eigen::Map<Mat6> J_out(J_ptr);
-      J_out = J;
-      *last_jacobian = J;
-    } else {
-      r = stepper->Residual(*input, *c, statics, x);
-    }
-    return r.allFinite();
-  }
-};
-
-}  // namespace
-
 bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& c, double h,
                                     bool statics, StepSummary* summary) {
   if (!statics && !junction_nodes_.empty()) return SolveStepMultiple(input, c, h, summary);
-  // 1. Newton with the last steps' Jacobian, tracked by the secant filter below, from an
-  //    extrapolation of the last steps' unknowns. A Jacobian from another c0 (statics, another
-  //    step size) is replaced by the exact one first.
   Vec6 x = statics ? run_.unknowns.latest() : run_.unknowns.Predict(h);
   Vec6 r;
+  if (SolveStepBySecantNewton(input, c, statics, &x, &r, summary)) return true;
+  // Levenberg–Marquardt from the best point Newton reached (it only moves on a decrease of the
+  // residual), or the last step's unknowns if that is not finite.
+  return SolveStepByLevenbergMarquardt(input, c, statics,
+                                       r.allFinite() ? x : run_.unknowns.latest(), summary);
+}
+
+bool Bdf2ShootingStepper::SolveStepBySecantNewton(const StepInput& input, const Coefficients& c,
+                                                  bool statics, Vec6* x_io, Vec6* r_out,
+                                                  StepSummary* summary) {
+  // Newton with the last steps' Jacobian, tracked by the secant filter below, from the
+  // predicted unknowns. A Jacobian from another c0 (statics, another step size) is replaced by
+  // the exact one first.
+  Vec6& x = *x_io;
+  Vec6& r = *r_out;
   bool fresh = false;  // the filter's J is the exact Jacobian at x, not yet updated
   // The Jacobian: the secant filter's estimate (secant_filter.hpp), carried from the last steps;
   // this step's copy replaces it only if the step converges.
@@ -325,20 +302,24 @@ bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& 
     predictor_term_ = x - lu.solve(r);
     return true;
   }
+  return false;
+}
 
-  // 2. Levenberg–Marquardt with the exact Jacobian, from the best point Newton reached (it only
-  //    moves on a decrease of the residual), or the last step's unknowns if that is not finite.
+bool Bdf2ShootingStepper::SolveStepByLevenbergMarquardt(const StepInput& input,
+                                                        const Coefficients& c, bool statics,
+                                                        const Vec6& x_start,
+                                                        StepSummary* summary) {
+  // Levenberg–Marquardt with the exact Jacobian.
   Mat6 J_lm = run_.jacobian_filter.jacobian();
-  const StepCost cost{this, &input, &c, statics, &summary->shots, &summary->jacobians, &J_lm};
-  ceres::TinySolver<StepCost> lm;
-  lm.options.max_num_iterations = options_.max_iterations + 1;  // TinySolver runs n − 1 steps
-  lm.options.cost_threshold = 0.5 * options_.tolerance * options_.tolerance;
-  lm.options.gradient_tolerance = 0.0;
-  lm.options.parameter_tolerance = 1e-15;
-  lm.options.function_tolerance = 0.0;
-  Vec6 x_lm = r.allFinite() ? x : run_.unknowns.latest();
-  const auto& s = lm.Solve(cost, &x_lm);
-  summary->iterations += s.iterations;
+  auto shot = [&](const Vec6& x_try, Mat6* J_try) {
+    return Residual(input, c, statics, x_try, J_try);
+  };
+  Vec6 x_lm = x_start;
+  const ShotSolveCounts counts =
+      LevenbergMarquardtShot(shot, options_.tolerance, options_.max_iterations, &x_lm, &J_lm);
+  summary->shots += counts.shots;
+  summary->jacobians += counts.jacobians;
+  summary->iterations += counts.iterations;
   const Vec6 r_final = Residual(input, c, statics, x_lm);  // leaves the trial state at x_lm
   ++summary->shots;
   summary->residual = r_final.norm();
@@ -490,51 +471,20 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
   return summary;
 }
 
-template <typename Visit>
-void Bdf2ShootingStepper::ForEachStage(Visit&& visit) const {
+RodQuadrature Bdf2ShootingStepper::QuadraturePoints() const {
   // The scheme's quadrature on each segment (RK4: h/6, h/3, h/3, h/6; Heun: h/2, h/2).
   const internal::SchemeTable& T = internal::Table(options_.spatial_scheme);
+  RodQuadrature points;
+  points.reserve(T.stages * (grid_.size() - 1));
   for (size_t i = 0; i + 1 < grid_.size(); ++i) {
     const double h = grid_[i + 1] - grid_[i];
-    for (int j = 0; j < T.stages; ++j)
-      visit(static_cast<int>(T.stages * i + j), samples_[3 * i + T.sample[j]], h * T.weight[j]);
+    for (int j = 0; j < T.stages; ++j) {
+      const size_t q = T.stages * i + j;
+      points.push_back({&samples_[3 * i + T.sample[j]], run_.position1[q], run_.rotation1[q],
+                        run_.twist1[q], run_.strain1[q], h * T.weight[j]});
+    }
   }
-}
-
-RodEnergy Bdf2ShootingStepper::Energy(const StaticLoads& loads) const {
-  RodEnergy e;
-  ForEachStage([&](int q, const Sample& smp, double w) {
-    const Vec6 dxi = run_.strain1[q] - smp.rest_strain;
-    e.kinetic += w * 0.5 * run_.twist1[q].dot(smp.mass.cwiseProduct(run_.twist1[q]));
-    e.elastic += w * 0.5 * dxi.dot(smp.stiffness.cwiseProduct(dxi));
-    e.potential +=
-        w * TotalDistributedPotential(loads, {smp.s, 1.0, smp.mass(5)}, run_.position1[q]);
-  });
-  return e;
-}
-
-RodMomentum Bdf2ShootingStepper::Momentum() const {
-  RodMomentum out;
-  ForEachStage([&](int q, const Sample& smp, double w) {
-    const Vec3 linear = smp.mass(5) * (run_.rotation1[q] * run_.twist1[q].tail<3>());
-    const Vec3 spin = run_.rotation1[q] * smp.mass.head<3>().cwiseProduct(run_.twist1[q].head<3>());
-    out.linear_W += w * linear;
-    out.angular_W += w * (run_.position1[q].cross(linear) + spin);
-  });
-  return out;
-}
-
-double Bdf2ShootingStepper::Mass() const {
-  double mass = 0;
-  ForEachStage([&](int, const Sample& smp, double w) { mass += w * smp.mass(5); });
-  return mass;
-}
-
-Vec3 Bdf2ShootingStepper::CentreOfMass_W() const {
-  Vec3 first = Vec3::Zero();
-  ForEachStage(
-      [&](int q, const Sample& smp, double w) { first += w * smp.mass(5) * run_.position1[q]; });
-  return first / Mass();
+  return points;
 }
 
 void Bdf2ShootingStepper::Grow(const RodModel& longer, int new_segments) {

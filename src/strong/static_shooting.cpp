@@ -6,12 +6,14 @@
 #include <array>
 #include <cmath>
 
-#include "cosserat/lie/so3.hpp"
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/constitutive/tendon_law.hpp"
+#include "cosserat/lie/so3.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/rod/grid.hpp"
-#include "frame_tangent.hpp"
+#include "cosserat/strong/frame_tangent.hpp"
+#include "cosserat/strong/shot_tangent.hpp"
+#include "cosserat/strong/spatial_scheme.hpp"
 
 namespace cosserat {
 
@@ -25,39 +27,16 @@ namespace {
 
 using Sample = StaticShootingSolver::Sample;
 using namespace internal;
+using internal::Axpy;  // the scheme on states (spatial_scheme.hpp)
+using internal::Rk4Update;
 
-// State of the integration in s: centreline and frame in the world, internal wrench in the body
-// frame. Keeping W in the body frame keeps the chain of dependent operations per stage short,
-// which is what bounds the speed of a shot.
-struct ShotState {
-  Vec3 p;  // p_W, m
-  Mat3 R;  // R_WB
-  Vec3 m;  // m_B, N·m
-  Vec3 n;  // n_B, N
-};
+// The integration state and its tangent along the 6 unknowns (cosserat_rhs.hpp,
+// shot_tangent.hpp): RK4 applied to (state, tangent) gives the exact derivative of the discrete
+// map.
+using ShotState = rhs::StaticPoint<double>;
+using ShotTangent = rhs::StaticTangent;
 
-// Derivative of ShotState with respect to the 6 unknowns (one column each), in the same
-// coordinates, so RK4 applied to (state, tangent) gives the exact derivative of the discrete map.
-struct ShotTangent {
-  Mat36 p;
-  RotationTangent R;  // d(R e_j)
-  Mat36 m;
-  Mat36 n;
-};
-
-// ShotState is 18 contiguous doubles; the hot loops below treat it as a flat array.
 static_assert(sizeof(ShotState) == 18 * sizeof(double), "ShotState must be 18 packed doubles");
-inline double* Flat(ShotState& y) { return y.p.data(); }
-inline const double* Flat(const ShotState& y) { return y.p.data(); }
-
-COSSERAT_HOT ShotState Axpy(const ShotState& y, double a, const ShotState& d) {
-  ShotState out;
-  double* o = Flat(out);
-  const double* py = Flat(y);
-  const double* pd = Flat(d);
-  for (int i = 0; i < 18; ++i) o[i] = py[i] + a * pd[i];
-  return out;
-}
 
 ShotTangent Axpy(const ShotTangent& y, double a, const ShotTangent& d) {
   return {y.p + a * d.p,
@@ -66,15 +45,7 @@ ShotTangent Axpy(const ShotTangent& y, double a, const ShotTangent& d) {
           y.n + a * d.n};
 }
 
-// RK4 combination y += h/6 (k1 + 2 k2 + 2 k3 + k4), for states and tangents.
-COSSERAT_HOT void Rk4Update(double h, const ShotState& k1, const ShotState& k2, const ShotState& k3,
-                            const ShotState& k4, ShotState* y) {
-  const double a = h / 6, b = h / 3;
-  double* o = Flat(*y);
-  const double *p1 = Flat(k1), *p2 = Flat(k2), *p3 = Flat(k3), *p4 = Flat(k4);
-  for (int i = 0; i < 18; ++i) o[i] += a * (p1[i] + p4[i]) + b * (p2[i] + p3[i]);
-}
-
+// RK4 combination y += h/6 (k1 + 2 k2 + 2 k3 + k4) for tangents (states: spatial_scheme.hpp).
 void Rk4Update(double h, const ShotTangent& k1, const ShotTangent& k2, const ShotTangent& k3,
                const ShotTangent& k4, ShotTangent* y) {
   const double a = h / 6, b = h / 3;
@@ -84,11 +55,6 @@ void Rk4Update(double h, const ShotTangent& k1, const ShotTangent& k2, const Sho
   y->n += a * (k1.n + k4.n) + b * (k2.n + k3.n);
 }
 
-// ξ = ξ* + C W, C = K⁻¹ (diagonal: sections are principal-axes, constitutive/section_law.hpp).
-COSSERAT_HOT Vec6 Compliance(const Sample& smp, const Vec6& W) {
-  return smp.rest_strain + smp.compliance_diagonal.cwiseProduct(W);
-}
-
 COSSERAT_HOT Vec6 BodyWrench(const ShotState& y) {
   Vec6 W;
   W.head<3>() = y.m;
@@ -96,46 +62,10 @@ COSSERAT_HOT Vec6 BodyWrench(const ShotState& y) {
   return W;
 }
 
-// d/ds of the state (FD notes 2025, eqs. 14, 16 with V = 0; W = [m; n] = −Λ) given the strain:
-//   p' = R Γ,  R' = R K̂,  m' = −K × m − Γ × n,  n' = −K × n − Rᵀ f_W.
-COSSERAT_HOT ShotState Rates(const Vec6& xi, const Vec3& f_W, const ShotState& y) {
-  const double k0 = xi(0), k1 = xi(1), k2 = xi(2);
-  const double g0 = xi(3), g1 = xi(4), g2 = xi(5);
-  const double m0 = y.m(0), m1 = y.m(1), m2 = y.m(2);
-  const double n0 = y.n(0), n1 = y.n(1), n2 = y.n(2);
-  const Mat3& R = y.R;
-  ShotState d;
-  for (int i = 0; i < 3; ++i) {
-    d.p(i) = R(i, 0) * g0 + R(i, 1) * g1 + R(i, 2) * g2;
-    // (R K̂) row i = (row i of R) × K
-    d.R(i, 0) = R(i, 1) * k2 - R(i, 2) * k1;
-    d.R(i, 1) = R(i, 2) * k0 - R(i, 0) * k2;
-    d.R(i, 2) = R(i, 0) * k1 - R(i, 1) * k0;
-  }
-  // m' = m × K + n × Γ,  n' = n × K − Rᵀ f
-  d.m(0) = m1 * k2 - m2 * k1 + n1 * g2 - n2 * g1;
-  d.m(1) = m2 * k0 - m0 * k2 + n2 * g0 - n0 * g2;
-  d.m(2) = m0 * k1 - m1 * k0 + n0 * g1 - n1 * g0;
-  const double f0 = f_W(0), f1 = f_W(1), f2 = f_W(2);
-  d.n(0) = n1 * k2 - n2 * k1 - (R(0, 0) * f0 + R(1, 0) * f1 + R(2, 0) * f2);
-  d.n(1) = n2 * k0 - n0 * k2 - (R(0, 1) * f0 + R(1, 1) * f1 + R(2, 1) * f2);
-  d.n(2) = n0 * k1 - n1 * k0 - (R(0, 2) * f0 + R(1, 2) * f1 + R(2, 2) * f2);
-  return d;
-}
-
-// The plain rod's derivative: strain from the linear law, then the rates. Writes the strain.
+// The plain rod's derivative (cosserat_rhs.hpp): strain from the linear law, then the rates.
 COSSERAT_HOT ShotState Derivative(const Sample& smp, const Vec3& f_W, const ShotState& y,
                                   Vec6* xi) {
-  // Compliance written out: this is the innermost loop of every solve.
-  const double* c = smp.compliance_diagonal.data();
-  const double* r = smp.rest_strain.data();
-  (*xi)(0) = r[0] + c[0] * y.m(0);
-  (*xi)(1) = r[1] + c[1] * y.m(1);
-  (*xi)(2) = r[2] + c[2] * y.m(2);
-  (*xi)(3) = r[3] + c[3] * y.n(0);
-  (*xi)(4) = r[4] + c[4] * y.n(1);
-  (*xi)(5) = r[5] + c[5] * y.n(2);
-  return Rates(*xi, f_W, y);
+  return rhs::StaticDerivative<double>(smp.rest_strain, smp.compliance_diagonal, f_W, y, xi);
 }
 
 // With tendons, the strain solves K (ξ − ξ*) + Σ τ a(ξ) = W (tendons.hpp), starting from the
@@ -145,28 +75,14 @@ ShotState TendonDerivative(const Sample& smp, const StaticShootingSolver::Tendon
                            Mat6* H) {
   if (!SolveTendonStrain(ts.stiffness, smp.rest_strain, ts.tendons, tension, BodyWrench(y), xi, H))
     xi->setConstant(NAN);
-  return Rates(*xi, f_W, y);
+  return rhs::StaticRates<double>(*xi, f_W, y);
 }
 
-// The linearisation of Derivative along the tangent dy, given the primal strain.
-// With tendons (H given), dξ = H⁻¹ (dW − source), the source being ∂(Σ τ a)/∂(direction).
+// The linearisation of Derivative along dy (shot_tangent.hpp).
 ShotTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const ShotState& y,
                               const ShotTangent& dy, const Vec6& xi, const Mat6* H = nullptr,
                               const Mat6* source = nullptr) {
-  Mat6 dW;
-  dW << dy.m, dy.n;
-  if (source) dW -= *source;
-  const Mat6 dxi = H ? Mat6(H->partialPivLu().solve(dW))
-                     : Mat6(smp.compliance_diagonal.asDiagonal() * dW);
-  const Mat36 dK = dxi.topRows<3>(), dG = dxi.bottomRows<3>();
-  const Vec3 K = xi.head<3>(), G = xi.tail<3>();
-  ShotTangent dd;
-  dd.p = RotateTangent(y.R, dy.R, G, dG);
-  dd.R = RotationRateTangent(y.R, dy.R, K, dK);
-  // d(m × K + n × Γ) and d(n × K − Rᵀ f)
-  dd.m = Cross(y.m, dK) + Cross(dy.m, K) + Cross(y.n, dG) + Cross(dy.n, G);
-  dd.n = Cross(y.n, dK) + Cross(dy.n, K) - TransposeTimesFixed(dy.R, f_W);
-  return dd;
+  return rhs::StaticTangentDerivative(smp.compliance_diagonal, f_W, y, dy, xi, H, source);
 }
 
 // Tip condition W(L) = W_tip in the tip body frame, made dimensionless by scale.
@@ -229,6 +145,67 @@ struct TangentSeed {
   StaticShootingSolver::StateTangent* node_rows = nullptr;
 };
 
+// The tangent at s = 0: along the unknowns W(0) = scale ⊙ x, or zero when the directions are
+// tendon tensions, or the seed's start value.
+ShotTangent StartTangent(const Vec6& scale, const TendonContext* tc, const TangentSeed* seed) {
+  if (seed && seed->start) return *seed->start;
+  ShotTangent dy;
+  dy.p.setZero();
+  for (auto& c : dy.R) c.setZero();
+  dy.m.setZero();
+  dy.n.setZero();
+  if (!(tc && tc->tension_block >= 0)) {
+    dy.m.leftCols<3>() = scale.head<3>().asDiagonal();
+    dy.n.rightCols<3>() = scale.tail<3>().asDiagonal();
+  }
+  return dy;
+}
+
+// The primal values of one RK4 segment's four stages: states, strains, distributed forces and,
+// with tendons, the law's ∂W/∂ξ.
+struct SegmentStages {
+  const ShotState* y[4];
+  Vec6 xi[4];
+  Vec3 f[4];
+  Mat6 H[4];
+  int q[4];  // sample index of each stage
+};
+
+// Carries the tangent dy through one RK4 segment of length h (the exact derivative of the
+// discrete shot). With tension directions, the law's source term enters at every stage.
+void PropagateSegment(const std::vector<Sample>& samples, const SegmentStages& st, double h,
+                      const TendonContext* tc, ShotTangent* dy) {
+  const bool tendons = tc != nullptr;
+  const bool tension = tc && tc->tension_block >= 0;
+  Mat6 src[4];
+  if (tension)
+    for (int j = 0; j < 4; ++j)
+      src[j] = TensionSource((*tc->stages)[st.q[j]], tc->tension, st.xi[j], tc->tension_block);
+  const double step[4] = {0.0, 0.5, 0.5, 1.0};
+  ShotTangent t[4];
+  for (int j = 0; j < 4; ++j)
+    t[j] = TangentDerivative(samples[st.q[j]], st.f[j], *st.y[j],
+                             j == 0 ? *dy : Axpy(*dy, step[j] * h, t[j - 1]), st.xi[j],
+                             tendons ? &st.H[j] : nullptr, tension ? &src[j] : nullptr);
+  Rk4Update(h, t[0], t[1], t[2], t[3], dy);
+}
+
+// d r / d x at the tip from the tangent: the section's wrench less the dead part of the tip
+// wrench turning with the tip (the follower part does not turn), scaled.
+Mat6 TipJacobian(const ShotTangent& dy, const StaticLoads& loads, const Vec6& scale) {
+  Mat6 J;
+  J.topRows<3>() = dy.m;
+  J.bottomRows<3>() = dy.n;
+  const SplitWrench tip = TotalTipWrench(loads);
+  J.topRows<3>() -= TransposeTimesFixed(dy.R, Vec3(tip.dead_W.head<3>()));
+  J.bottomRows<3>() -= TransposeTimesFixed(dy.R, Vec3(tip.dead_W.tail<3>()));
+  return scale.cwiseInverse().asDiagonal() * J;
+}
+
+// Integrates from s = 0 to L with RK4 on the grid and returns the dimensionless tip residual.
+// With record, writes the node values; with J, propagates the tangent and writes d r / d x.
+// With tendons (tc not null): the tendon strain law at every stage, and the tendon path lengths
+// by the same RK4 quadrature.
 Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, const Vec6& scale,
            const lie::SE3& base, const StaticLoads& loads, const Vec6& x, RodState* record, Mat6* J,
            const TendonContext* tc = nullptr, const TangentSeed* seed = nullptr) {
@@ -236,120 +213,74 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
   const Vec6 W0 = scale.cwiseProduct(x);
   ShotState y{base.p, base.R, W0.head<3>(), W0.tail<3>()};
   ShotTangent dy;
-  if (J) {
-    dy.p.setZero();
-    for (auto& c : dy.R) c.setZero();
-    dy.m.setZero();
-    dy.n.setZero();
-    if (!(tc && tc->tension_block >= 0)) {  // directions: the unknowns, W(0) = scale ⊙ x
-      dy.m.leftCols<3>() = scale.head<3>().asDiagonal();
-      dy.n.rightCols<3>() = scale.tail<3>().asDiagonal();
-    }
-    if (seed && seed->start) dy = *seed->start;
-  }
-  auto f_at = [&](const Sample& smp) -> Vec3 {
-    return TotalDistributedForce_W(loads, {smp.s, 1.0, smp.mass_per_length});
-  };
+  if (J) dy = StartTangent(scale, tc, seed);
   auto record_node = [&](int i, const Vec6& xi) {
     record->position_W[i] = y.p;
     record->rotation_WB[i] = y.R;
     record->wrench_B[i] = BodyWrench(y);
     record->strain[i] = xi;
   };
-
-  Vec6 xi1, xi2, xi3, xi4;
-  Mat6 H1, H2, H3, H4;
+  SegmentStages st;
   Vec6 guess = samples.front().rest_strain;  // tendon strain solves start from the last stage
-  int count = 0;
-  if (tc) {
-    count = (*tc->stages)[0].tendons.count;
-    for (int k = 0; k < count; ++k) tc->length[k] = 0.0;
-  }
-  // One stage: the plain law, or the tendon law from the running guess.
-  auto derivative = [&](int q, const Vec3& f, const ShotState& ys, Vec6* xi, Mat6* H) {
-    if (!tc) return Derivative(samples[q], f, ys, xi);
-    *xi = guess;
-    const ShotState d =
-        TendonDerivative(samples[q], (*tc->stages)[q], tc->tension, f, ys, xi, J ? H : nullptr);
-    guess = *xi;
+  const int count = tc ? (*tc->stages)[0].tendons.count : 0;
+  for (int k = 0; k < count; ++k) tc->length[k] = 0.0;
+  // One stage j: the plain law, or the tendon law from the running guess.
+  auto stage = [&](int j, const ShotState& ys) {
+    st.y[j] = &ys;
+    const Sample& smp = samples[st.q[j]];
+    // Stages 1 and 2 share the midpoint sample: one load evaluation for both.
+    st.f[j] = j == 2 ? st.f[1] : TotalDistributedForce_W(loads, {smp.s, 1.0, smp.mass_per_length});
+    if (!tc) return Derivative(smp, st.f[j], ys, &st.xi[j]);
+    st.xi[j] = guess;
+    const ShotState d = TendonDerivative(smp, (*tc->stages)[st.q[j]], tc->tension, st.f[j], ys,
+                                         &st.xi[j], J ? &st.H[j] : nullptr);
+    guess = st.xi[j];
     return d;
   };
   for (int i = 0; i + 1 < n; ++i) {
     const double h = grid[i + 1] - grid[i];
-    const int q0 = 3 * i, qm = 3 * i + 1, q1 = 3 * i + 2;
-    const Sample& s0 = samples[q0];
-    const Sample& sm = samples[qm];
-    const Sample& s1 = samples[q1];
-    const Vec3 f0 = f_at(s0), fm = f_at(sm), f1 = f_at(s1);
-    const ShotState k1 = derivative(q0, f0, y, &xi1, &H1);
-    if (record) record_node(i, xi1);
+    st.q[0] = 3 * i;
+    st.q[1] = st.q[2] = 3 * i + 1;
+    st.q[3] = 3 * i + 2;
+    const ShotState k1 = stage(0, y);
+    if (record) record_node(i, st.xi[0]);
     const ShotState y2 = Axpy(y, 0.5 * h, k1);
-    const ShotState k2 = derivative(qm, fm, y2, &xi2, &H2);
+    const ShotState k2 = stage(1, y2);
     const ShotState y3 = Axpy(y, 0.5 * h, k2);
-    const ShotState k3 = derivative(qm, fm, y3, &xi3, &H3);
+    const ShotState k3 = stage(2, y3);
     const ShotState y4 = Axpy(y, h, k3);
-    const ShotState k4 = derivative(q1, f1, y4, &xi4, &H4);
+    const ShotState k4 = stage(3, y4);
     if (J) {
       if (seed && seed->nodes) (*seed->nodes)[i] = dy;
       if (seed && seed->node_rows) seed->node_rows[i] = ToRows(dy);
-      const Mat6* h1 = tc ? &H1 : nullptr;
-      const Mat6* h2 = tc ? &H2 : nullptr;
-      const Mat6* h3 = tc ? &H3 : nullptr;
-      const Mat6* h4 = tc ? &H4 : nullptr;
-      Mat6 src[4];
-      const bool tension = tc && tc->tension_block >= 0;
-      if (tension) {
-        const auto& ts = *tc->stages;
-        const int k0 = tc->tension_block;
-        src[0] = TensionSource(ts[q0], tc->tension, xi1, k0);
-        src[1] = TensionSource(ts[qm], tc->tension, xi2, k0);
-        src[2] = TensionSource(ts[qm], tc->tension, xi3, k0);
-        src[3] = TensionSource(ts[q1], tc->tension, xi4, k0);
-      }
-      auto source = [&](int j) { return tension ? &src[j] : nullptr; };
-      const ShotTangent t1 = TangentDerivative(s0, f0, y, dy, xi1, h1, source(0));
-      const ShotTangent t2 =
-          TangentDerivative(sm, fm, y2, Axpy(dy, 0.5 * h, t1), xi2, h2, source(1));
-      const ShotTangent t3 =
-          TangentDerivative(sm, fm, y3, Axpy(dy, 0.5 * h, t2), xi3, h3, source(2));
-      const ShotTangent t4 = TangentDerivative(s1, f1, y4, Axpy(dy, h, t3), xi4, h4, source(3));
-      Rk4Update(h, t1, t2, t3, t4, &dy);
+      PropagateSegment(samples, st, h, tc, &dy);
     }
     for (int k = 0; k < count; ++k) {
       const auto& ts = *tc->stages;
-      tc->length[k] +=
-          h / 6 *
-          (TendonPathRate(ts[q0].tendons, k, xi1) + 2 * TendonPathRate(ts[qm].tendons, k, xi2) +
-           2 * TendonPathRate(ts[qm].tendons, k, xi3) + TendonPathRate(ts[q1].tendons, k, xi4));
+      double rate[4];
+      for (int j = 0; j < 4; ++j) rate[j] = TendonPathRate(ts[st.q[j]].tendons, k, st.xi[j]);
+      tc->length[k] += h / 6 * (rate[0] + 2 * rate[1] + 2 * rate[2] + rate[3]);
     }
     Rk4Update(h, k1, k2, k3, k4, &y);
   }
   if (record) {
     const int q_tip = 3 * (n - 2) + 2;
-    Vec6 xi_tip = Compliance(samples[q_tip], BodyWrench(y));
+    const Sample& tip = samples[q_tip];
+    Vec6 xi_tip = rhs::LinearStrain<double>(tip.rest_strain, tip.compliance_diagonal, y.m, y.n);
     if (tc) {
       xi_tip = guess;
-      if (!SolveTendonStrain((*tc->stages)[q_tip].stiffness, samples[q_tip].rest_strain,
+      if (!SolveTendonStrain((*tc->stages)[q_tip].stiffness, tip.rest_strain,
                              (*tc->stages)[q_tip].tendons, tc->tension, BodyWrench(y), &xi_tip,
                              nullptr))
         xi_tip.setConstant(NAN);
     }
     record_node(n - 1, xi_tip);
   }
-
-  if (J && seed) {
-    if (seed->nodes) seed->nodes->back() = dy;
-    if (seed->node_rows) seed->node_rows[n - 1] = ToRows(dy);
-    if (seed->tip) *seed->tip = dy;
-  }
   if (J) {
-    J->topRows<3>() = dy.m;
-    J->bottomRows<3>() = dy.n;
-    // d(Rᵀ w_dead) for the dead part of the tip wrench; the follower part does not turn.
-    const SplitWrench tip = TotalTipWrench(loads);
-    J->topRows<3>() -= TransposeTimesFixed(dy.R, Vec3(tip.dead_W.head<3>()));
-    J->bottomRows<3>() -= TransposeTimesFixed(dy.R, Vec3(tip.dead_W.tail<3>()));
-    *J = scale.cwiseInverse().asDiagonal() * *J;
+    if (seed && seed->nodes) seed->nodes->back() = dy;
+    if (seed && seed->node_rows) seed->node_rows[n - 1] = ToRows(dy);
+    if (seed && seed->tip) *seed->tip = dy;
+    *J = TipJacobian(dy, loads, scale);
     if (tc && tc->tip_dp) *tc->tip_dp = dy.p;
     if (tc && tc->tip_dR) *tc->tip_dR = dy.R;
   }
@@ -449,8 +380,8 @@ Mat6 StaticShootingSolver::ResidualJacobian(const lie::SE3& base, const StaticLo
 }
 
 Mat6 StaticShootingSolver::ResidualJacobianKeepingTangents(const lie::SE3& base,
-                                                           const StaticLoads& loads,
-                                                           const Vec6& x, Vec6* residual) {
+                                                           const StaticLoads& loads, const Vec6& x,
+                                                           Vec6* residual) {
   Mat6 J;
   std::array<double, Actuation::kMaxTendons> lengths{};
   const TendonContext tc{&tendon_stages_, actuation_.tendon_tension.data(), lengths.data()};

@@ -1,13 +1,12 @@
 // The static solve around the shot of static_shooting.cpp: quasi-Newton warm re-solves,
 // Levenberg–Marquardt, continuation in the load and the search for a stable equilibrium.
-#include <ceres/tiny_solver.h>
-
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "cosserat/loads/total_load.hpp"
+#include "cosserat/strong/shot_newton.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat {
@@ -43,45 +42,68 @@ int StaticShootingSolver::IndexAfterSolve(const lie::SE3& base, const StaticLoad
   return StabilityIndex(base, loads, scale_.cwiseProduct(x));
 }
 
-bool StaticShootingSolver::FollowStablePath(const lie::SE3& base, const StaticLoads& loads,
-                                            double max_fraction, Vec6* x_out,
-                                            StaticShootingSummary* summary) {
-  // Natural-parameter continuation from the unloaded rod (W ≡ 0: stable, the energy is a
-  // positive definite quadratic about the rest shape) along loads(μ) = μ · loads, with a secant
-  // predictor; a step is accepted only if it converges on an equilibrium without unstable
-  // directions, otherwise halved. Along an imperfect path (no bifurcation) the stable branch is
-  // connected to μ = 0, and small enough steps follow it through its sharp turn near P_cr.
-  const StaticLoads zero = loads.Scaled(0.0);
-  Vec6 x_a = Vec6::Zero(), x_prev = Vec6::Zero();
-  double mu = 0.0, mu_prev = 0.0, dmu = max_fraction;
-  int steps = 0;
-  while (summary->load_steps + steps < options_.max_load_steps) {
+bool StaticShootingSolver::FollowLoadPath(const lie::SE3& base, const StaticLoads& start,
+                                          const StaticLoads& loads, const Vec6& x_start,
+                                          const LoadPath& path, Vec6* x, int* steps,
+                                          StaticShootingSummary* summary) {
+  Vec6 x_a = x_start, x_prev = x_start;
+  double mu = 0.0, mu_prev = 0.0, dmu = path.max_fraction;
+  *steps = 0;
+  bool reached = false;
+  while (*steps < path.max_steps) {
     const double mu_try = std::min(1.0, mu + dmu);
-    const StaticLoads target = mu_try == 1.0 ? loads : StaticLoads::Blend(zero, loads, mu_try);
+    const StaticLoads target = mu_try == 1.0 ? loads : StaticLoads::Blend(start, loads, mu_try);
     Vec6 guess = x_a;
     if (mu > mu_prev) guess += (x_a - x_prev) * ((mu_try - mu) / (mu - mu_prev));
-    ++steps;
+    ++*steps;
+    // Intermediate equilibria only seed the next step: a looser tolerance is enough.
     const double tol =
         mu_try == 1.0 ? options_.tolerance : std::max(options_.tolerance, kIntermediateTolerance);
     if (TryLevenbergMarquardt(base, target, tol, &guess, summary) &&
-        IndexAfterSolve(base, target, guess) == 0) {
+        (!path.require_stable || IndexAfterSolve(base, target, guess) == 0)) {
       x_prev = x_a;
       mu_prev = mu;
       x_a = guess;
       mu = mu_try;
       if (mu == 1.0) {
-        *x_out = x_a;
-        summary->stable_path_steps = steps;
-        return true;
+        reached = true;
+        break;
       }
-      dmu = std::min({2.0 * dmu, max_fraction, 1.0 - mu});
+      dmu = std::min({2.0 * dmu, path.max_fraction, 1.0 - mu});
     } else {
+      if (!path.halve_on_failure) break;
       dmu *= 0.5;
       if (dmu < options_.min_load_step) break;
     }
   }
-  summary->stable_path_steps = steps;
-  return false;
+  *x = x_a;
+  return reached;
+}
+
+bool StaticShootingSolver::KeepStableBranch(const lie::SE3& base, const StaticLoads& loads,
+                                            double max_fraction, Vec6* x,
+                                            StaticShootingSummary* summary) {
+  summary->stability_index = IndexAfterSolve(base, loads, *x);
+  if (summary->stability_index == 0) return false;
+  // Natural-parameter continuation from the unloaded rod (W ≡ 0: stable, the energy is a
+  // positive definite quadratic about the rest shape) along loads(μ) = μ · loads; a step is
+  // accepted only if it converges on an equilibrium without unstable directions. Along an
+  // imperfect path (no bifurcation) the stable branch is connected to μ = 0, and small enough
+  // steps follow it through its sharp turn near P_cr.
+  const Mat6 J_first = jacobian_;  // d r/d x at x, for the next warm start if we keep x
+  LoadPath path;
+  path.max_fraction = max_fraction;
+  path.require_stable = true;
+  path.max_steps = options_.max_load_steps - summary->load_steps;
+  Vec6 x_stable;
+  if (FollowLoadPath(base, loads.Scaled(0.0), loads, Vec6::Zero(), path, &x_stable,
+                     &summary->stable_path_steps, summary)) {
+    *x = x_stable;
+    summary->stability_index = 0;
+  } else {
+    jacobian_ = J_first;
+  }
+  return true;
 }
 
 Vec6 StaticShootingSolver::base_wrench_B() const { return scale_.cwiseProduct(x_); }
@@ -110,51 +132,21 @@ Vec6 StaticShootingSolver::RigidGuess(const lie::SE3& base, const StaticLoads& l
   return W_B.cwiseQuotient(scale_);
 }
 
-namespace {
-
-// The 6 × 6 shooting problem in the form ceres::TinySolver expects.
-struct ShootingCost {
-  using Scalar = double;
-  enum { NUM_RESIDUALS = 6, NUM_PARAMETERS = 6 };
-  StaticShootingSolver* solver;
-  const lie::SE3* base;
-  const StaticLoads* loads;
-  int* shots;
-  Mat6* last_jacobian;
-
-  bool operator()(const double* x_ptr, double* r_ptr, double* J_ptr) const {
-    const Eigen::Map<const Vec6> x(x_ptr);
-    Eigen::Map<Vec6> r(r_ptr);
-    ++*shots;
-    if (J_ptr) {
-      Eigen::Map<Mat6> J(J_ptr);
-      Vec6 r_value;
-      J = solver->ResidualJacobianKeepingTangents(*base, *loads, x, &r_value);
-      r = r_value;
-      *last_jacobian = J;
-    } else {
-      r = solver->Residual(*base, *loads, x);
-    }
-    return r.allFinite();
-  }
-};
-
-}  // namespace
-
 bool StaticShootingSolver::TryLevenbergMarquardt(const lie::SE3& base, const StaticLoads& loads,
                                                  double tolerance, Vec6* x,
                                                  StaticShootingSummary* summary) {
   Mat6 J = Mat6::Identity();
-  ShootingCost cost{this, &base, &loads, &summary->shots, &J};
-  ceres::TinySolver<ShootingCost> lm;
-  lm.options.max_num_iterations = options_.max_iterations + 1;  // TinySolver runs n − 1 steps
-  lm.options.cost_threshold = 0.5 * tolerance * tolerance;
-  lm.options.gradient_tolerance = 0.0;  // stop on the residual only
-  lm.options.parameter_tolerance = 1e-15;
-  lm.options.function_tolerance = 0.0;
+  auto shot = [&](const Vec6& x_try, Mat6* J_try) -> Vec6 {
+    if (!J_try) return Residual(base, loads, x_try);
+    Vec6 r;
+    *J_try = ResidualJacobianKeepingTangents(base, loads, x_try, &r);
+    return r;
+  };
   Vec6 xt = *x;
-  const auto& s = lm.Solve(cost, &xt);
-  summary->iterations += s.iterations;
+  const ShotSolveCounts counts =
+      LevenbergMarquardtShot(shot, tolerance, options_.max_iterations, &xt, &J);
+  summary->shots += counts.shots;
+  summary->iterations += counts.iterations;
   // Decide on a residual evaluated here: TinySolver's final cost is not set when the first
   // evaluation is not finite.
   const double res = xt.allFinite() ? Residual(base, loads, xt).norm() : NAN;
@@ -259,39 +251,14 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
   }
 
   if (!ok && (options_.load_stepping || max_fraction < 1.0)) {
-    // Continuation along loads(μ) = start + μ (loads − start), μ: 0 → 1, with a secant predictor,
-    // step halving on failure and doubling on success, never above max_fraction.
-    Vec6 x_a = x_start, x_prev = x_start;
-    double mu = 0.0, mu_prev = 0.0, dmu = max_fraction;
-    int steps = 0;
+    // Continuation from the start to the loads, step halving on failure when load stepping is
+    // on, never above max_fraction.
+    LoadPath path;
+    path.max_fraction = max_fraction;
+    path.halve_on_failure = options_.load_stepping;
+    path.max_steps = options_.max_load_steps;
+    ok = FollowLoadPath(base, start, loads, x_start, path, &x, &summary.load_steps, &summary);
     state_current = false;
-    while (steps < options_.max_load_steps) {
-      const double mu_try = std::min(1.0, mu + dmu);
-      const StaticLoads target = mu_try == 1.0 ? loads : StaticLoads::Blend(start, loads, mu_try);
-      Vec6 guess = x_a;
-      if (mu > mu_prev) guess += (x_a - x_prev) * ((mu_try - mu) / (mu - mu_prev));
-      ++steps;
-      // Intermediate equilibria only seed the next step: a looser tolerance is enough.
-      const double tol =
-          mu_try == 1.0 ? options_.tolerance : std::max(options_.tolerance, kIntermediateTolerance);
-      if (TryLevenbergMarquardt(base, target, tol, &guess, &summary)) {
-        x_prev = x_a;
-        mu_prev = mu;
-        x_a = guess;
-        mu = mu_try;
-        if (mu == 1.0) {
-          ok = true;
-          break;
-        }
-        dmu = std::min({2.0 * dmu, max_fraction, 1.0 - mu});
-      } else {
-        if (!options_.load_stepping) break;
-        dmu *= 0.5;
-        if (dmu < options_.min_load_step) break;
-      }
-    }
-    summary.load_steps = steps;
-    x = x_a;
     if (!ok && summary.status != SolveStatus::kNonFinite)
       summary.status =
           options_.load_stepping ? SolveStatus::kLoadSteppingFailed : SolveStatus::kMaxIterations;
@@ -306,18 +273,7 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
   // quasi-Newton warm re-solve is not checked: it continues the previous solution by steps that
   // halve the residual, and takes no tangent shot (17 µs; a check would add one, ≈ 53 µs).
   if (ok && options_.stable_branch && !via_quasi_newton) {
-    summary.stability_index = IndexAfterSolve(base, loads, x);
-    if (summary.stability_index > 0) {
-      Vec6 x_stable = x;
-      const Mat6 J_first = jacobian_;  // d r/d x at x, for the next warm start if we keep x
-      if (FollowStablePath(base, loads, max_fraction, &x_stable, &summary)) {
-        x = x_stable;
-        summary.stability_index = 0;
-      } else {
-        jacobian_ = J_first;
-      }
-      state_current = false;
-    }
+    if (KeepStableBranch(base, loads, max_fraction, &x, &summary)) state_current = false;
   }
 
   if (!state_current) {

@@ -13,14 +13,18 @@
 
 namespace cosserat::lie {
 
-/// Hamilton product a ⊗ b = [a_w b_w − a_v·b_v; a_w b_v + b_w a_v + a_v × b_v].
-/// For unit quaternions, QuatToRotation(a ⊗ b) = QuatToRotation(a) QuatToRotation(b).
-inline Vec4 QuatMultiply(const Vec4& a, const Vec4& b) {
-  const Vec3 av = a.tail<3>(), bv = b.tail<3>();
-  Vec4 q;
-  q << a[0] * b[0] - av.dot(bv), a[0] * bv + b[0] * av + av.cross(bv);
-  return q;
+/// Hamilton product a ⊗ b = [a_w b_w − a_v·b_v; a_w b_v + b_w a_v + a_v × b_v], written out by
+/// component. Templated on the scalar (the quaternion finite-difference kernels use it with
+/// ceres::Jet). For unit quaternions, QuatToRotation(a ⊗ b) = QuatToRotation(a) QuatToRotation(b).
+template <typename T>
+inline Eigen::Matrix<T, 4, 1> QuatMultiply(const Eigen::Matrix<T, 4, 1>& a,
+                                           const Eigen::Matrix<T, 4, 1>& b) {
+  return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+          a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+          a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+          a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
 }
+inline Vec4 QuatMultiply(const Vec4& a, const Vec4& b) { return QuatMultiply<double>(a, b); }
 
 /// Conjugate [w, −x, −y, −z]; the inverse of a unit quaternion.
 inline Vec4 QuatConjugate(const Vec4& q) { return Vec4(q[0], -q[1], -q[2], -q[3]); }

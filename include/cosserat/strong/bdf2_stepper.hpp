@@ -28,6 +28,8 @@
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/state/rod_state.hpp"
+#include "cosserat/strong/cosserat_rhs.hpp"
+#include "cosserat/strong/rod_integrals.hpp"
 #include "cosserat/strong/secant_filter.hpp"
 #include "cosserat/strong/sequence_predictor.hpp"
 #include "cosserat/state/solve_status.hpp"
@@ -100,22 +102,6 @@ struct StepSummary {
   bool converged() const { return status == SolveStatus::kConverged; }
 };
 
-/// Kinetic, elastic and gravitational potential energy of the rod (J), integrated with the
-/// stage weights of the spatial scheme on the grid.
-struct RodEnergy {
-  double kinetic = 0.0;
-  double elastic = 0.0;
-  double potential = 0.0;  ///< of the distributed dead loads (gravity, distributed force)
-  double total() const { return kinetic + elastic + potential; }
-};
-
-/// Linear momentum (kg·m/s) and angular momentum about the world origin (kg·m²/s), world frame,
-/// integrated like RodEnergy.
-struct RodMomentum {
-  Vec3 linear_W = Vec3::Zero();
-  Vec3 angular_W = Vec3::Zero();
-};
-
 class Bdf2ShootingStepper {
  public:
   Bdf2ShootingStepper(const RodModel& model, int num_nodes, const Bdf2Options& options = {});
@@ -133,14 +119,17 @@ class Bdf2ShootingStepper {
   const RodState& state() const { return run_.state; }
   const Bdf2Options& options() const { return options_; }
   const std::vector<double>& grid() const { return grid_; }
-  /// Energy of the current state under the distributed loads of `loads` (the rod only: a tip body's energy
-  /// and momentum are not included).
-  RodEnergy Energy(const StaticLoads& loads) const;
-  /// Momentum of the current state (the rod only).
-  RodMomentum Momentum() const;
-  /// Total mass (kg) and centre of mass (world, m) of the current state.
-  double Mass() const;
-  Vec3 CentreOfMass_W() const;
+  /// The current state at the stage points of the spatial scheme with its quadrature weights:
+  /// what the free functions of rod_integrals.hpp (energy, momentum, mass) integrate.
+  RodQuadrature QuadraturePoints() const;
+  /// Shorthands for those integrals of the current state (the rod only: a tip body's energy and
+  /// momentum are not included).
+  RodEnergy Energy(const StaticLoads& loads) const {
+    return cosserat::Energy(QuadraturePoints(), loads);
+  }
+  RodMomentum Momentum() const { return cosserat::Momentum(QuadraturePoints()); }
+  double Mass() const { return cosserat::Mass(QuadraturePoints()); }
+  Vec3 CentreOfMass_W() const { return cosserat::CentreOfMass_W(QuadraturePoints()); }
 
   /// Everything Step() needs to continue a run. Save() allocates; Restore() into a stepper of the
   /// same model and grid does not, and throws std::invalid_argument for a snapshot taken before
@@ -182,19 +171,8 @@ class Bdf2ShootingStepper {
   Snapshot Save() const { return run_; }
   void Restore(const Snapshot& snapshot);
 
-  // Per-stage section data; public for the implementation's helpers.
-  struct Sample {
-    Vec6 stiffness;            ///< diag K
-    Vec6 damping;              ///< diag D
-    Vec6 compliance;           ///< diag K⁻¹ (statics)
-    Vec6 rest_strain;          ///< ξ*
-    Vec6 mass;                 ///< diag M = [ρI1, ρI2, ρ(I1+I2), ρA, ρA, ρA]
-    Vec6 implicit_compliance;  ///< A = diag (K + c0 D)⁻¹ for the current c0
-    Vec6 implicit_damping;     ///< A D
-    Vec6 implicit_offset;      ///< ξ* − c0 A D ξ*
-    bool damped = false;       ///< D ≠ 0
-    double s = 0.0;            ///< arc length of the sample point, m
-  };
+  // Per-stage section data (cosserat_rhs.hpp); public for the implementation's helpers.
+  using Sample = rhs::SectionSample;
   struct Coefficients {
     double c0 = 0, c1 = 0, c2 = 0;
   };
@@ -208,16 +186,21 @@ class Bdf2ShootingStepper {
                 Mat6* J = nullptr);
 
  private:
+  class Shot;  ///< one shot in progress (bdf2_shot.cpp)
   bool Attempt(const StepInput& input, double h, StepSummary* summary);
   bool AttemptInterval(const StepInput& from, const StepInput& to, double h, int depth,
                        StepSummary* summary);
-  /// Calls visit(stage index, section sample, quadrature weight in m) for every stage.
-  template <typename Visit>
-  void ForEachStage(Visit&& visit) const;
   /// Solves one step of size h (statics: h unused) for the unknowns; on success they are in
   /// solved_unknowns_ and the trial state holds the shot.
   bool SolveStep(const StepInput& input, const Coefficients& c, double h, bool statics,
                  StepSummary* summary);
+  /// SolveStep's fast path: Newton with the secant filter's Jacobian from *x; on failure *x is
+  /// the best point reached and *r its residual.
+  bool SolveStepBySecantNewton(const StepInput& input, const Coefficients& c, bool statics,
+                               Vec6* x, Vec6* r, StepSummary* summary);
+  /// SolveStep's fallback: Levenberg–Marquardt with the exact Jacobian from x_start.
+  bool SolveStepByLevenbergMarquardt(const StepInput& input, const Coefficients& c, bool statics,
+                                     const Vec6& x_start, StepSummary* summary);
   /// SolveStep for shooting_segments > 1 (bdf2_multiple_shooting.cpp), dynamics only.
   bool SolveStepMultiple(const StepInput& input, const Coefficients& c, double h,
                          StepSummary* summary);

@@ -13,6 +13,12 @@
 /// spatial error of either is far below BDF2's time error at dt = 2 ms (BENCHMARKS.md), so the
 /// real-time path can use Heun; statics (static_shooting.hpp) always uses RK4.
 
+#ifdef __GNUC__
+#define COSSERAT_SCHEME_INLINE inline __attribute__((always_inline))
+#else
+#define COSSERAT_SCHEME_INLINE inline
+#endif
+
 namespace cosserat {
 
 enum class SpatialScheme {
@@ -38,6 +44,41 @@ inline constexpr SchemeTable kHeunTable{2, {0.0, 1.0, 0, 0}, {0, 2, 0, 0}, {0.5,
 
 constexpr const SchemeTable& Table(SpatialScheme s) {
   return s == SpatialScheme::kHeun ? kHeunTable : kRk4Table;
+}
+
+/// The scheme's vector operations on a shot's point (cosserat_rhs.hpp), which is a packed array
+/// of doubles: one flat loop per operation, which the compiler vectorises.
+template <typename Point>
+inline constexpr int kFlatSize = static_cast<int>(sizeof(Point) / sizeof(double));
+
+/// y + a d.
+template <typename Point>
+COSSERAT_SCHEME_INLINE Point Axpy(const Point& y, double a, const Point& d) {
+  Point out;
+  double* o = out.p.data();
+  const double* py = y.p.data();
+  const double* pd = d.p.data();
+  for (int i = 0; i < kFlatSize<Point>; ++i) o[i] = py[i] + a * pd[i];
+  return out;
+}
+
+/// y += h/6 (k1 + 2 k2 + 2 k3 + k4): the RK4 step.
+template <typename Point>
+COSSERAT_SCHEME_INLINE void Rk4Update(double h, const Point& k1, const Point& k2, const Point& k3,
+                                      const Point& k4, Point* y) {
+  const double a = h / 6, b = h / 3;
+  const double *p1 = k1.p.data(), *p2 = k2.p.data(), *p3 = k3.p.data(), *p4 = k4.p.data();
+  double* o = y->p.data();
+  for (int i = 0; i < kFlatSize<Point>; ++i) o[i] += a * (p1[i] + p4[i]) + b * (p2[i] + p3[i]);
+}
+
+/// y += h/2 (k1 + k2): the Heun step.
+template <typename Point>
+COSSERAT_SCHEME_INLINE void HeunUpdate(double h, const Point& k1, const Point& k2, Point* y) {
+  const double a = 0.5 * h;
+  const double *p1 = k1.p.data(), *p2 = k2.p.data();
+  double* o = y->p.data();
+  for (int i = 0; i < kFlatSize<Point>; ++i) o[i] += a * (p1[i] + p2[i]);
 }
 
 }  // namespace internal

@@ -184,7 +184,26 @@ class StaticShootingSolver {
   Vec6 RigidGuess(const lie::SE3& base, const StaticLoads& loads) const;
   /// The residual of the stored shot (state_) under other tip loads: only the tip condition.
   Vec6 StoredShotResidual(const StaticLoads& loads) const;
-  bool FollowStablePath(const lie::SE3& base, const StaticLoads& loads, double max_fraction,
+  /// How FollowLoadPath steps: never more than max_fraction of the path at once; halve a step
+  /// that fails (else stop); accept only equilibria without unstable directions; at most
+  /// max_steps steps.
+  struct LoadPath {
+    double max_fraction = 1.0;
+    bool halve_on_failure = true;
+    bool require_stable = false;
+    int max_steps = 1;
+  };
+  /// Natural-parameter continuation along loads(μ) = start + μ (loads − start), μ: 0 → 1, from
+  /// the solution x_start at μ = 0, with a secant predictor and Levenberg–Marquardt at each μ;
+  /// a step doubles after a success. Writes the last accepted unknowns to *x and the number of
+  /// steps to *steps; true when μ = 1 was reached.
+  bool FollowLoadPath(const lie::SE3& base, const StaticLoads& start, const StaticLoads& loads,
+                      const Vec6& x_start, const LoadPath& path, Vec6* x, int* steps,
+                      StaticShootingSummary* summary);
+  /// Past a critical load the converged equilibrium may be unstable: if it is, replaces *x by
+  /// the stable equilibrium the path from the unloaded rod leads to, when that path exists.
+  /// False when the equilibrium was stable (the stored shot is still that of *x).
+  bool KeepStableBranch(const lie::SE3& base, const StaticLoads& loads, double max_fraction,
                         Vec6* x, StaticShootingSummary* summary);
   /// StabilityIndex at the unknown x just solved for: from the kept Jacobian shot when it was
   /// taken at x under (base, loads), else with a shot of its own.

@@ -1,7 +1,7 @@
 #pragma once
-// Private to the shooting solvers: algebra of tangents (derivatives along 6 unknowns, one column
-// each) of the quantities a shot carries, with the rotation R stored as its three columns
-// d(R e_j). Used to propagate exact Jacobians through RK4.
+// Internal to the shooting solvers (namespace internal): algebra of tangents (derivatives along 6
+// unknowns, one column each) of the quantities a shot carries, with the rotation R stored as its
+// three columns d(R e_j). Used to propagate exact Jacobians through RK4.
 
 #include <Eigen/Geometry>
 #include <array>

@@ -1,0 +1,47 @@
+#include "cosserat/strong/rod_integrals.hpp"
+
+#include <Eigen/Geometry>
+
+#include "cosserat/loads/total_load.hpp"
+
+namespace cosserat {
+
+RodEnergy Energy(const RodQuadrature& points, const StaticLoads& loads) {
+  RodEnergy e;
+  for (const RodQuadraturePoint& pt : points) {
+    const rhs::SectionSample& smp = *pt.section;
+    const double w = pt.weight;
+    const Vec6 dxi = pt.strain - smp.rest_strain;
+    e.kinetic += w * 0.5 * pt.twist_B.dot(smp.mass.cwiseProduct(pt.twist_B));
+    e.elastic += w * 0.5 * dxi.dot(smp.stiffness.cwiseProduct(dxi));
+    e.potential += w * TotalDistributedPotential(loads, {smp.s, 1.0, smp.mass(5)}, pt.position_W);
+  }
+  return e;
+}
+
+RodMomentum Momentum(const RodQuadrature& points) {
+  RodMomentum out;
+  for (const RodQuadraturePoint& pt : points) {
+    const rhs::SectionSample& smp = *pt.section;
+    const Vec3 linear = smp.mass(5) * (pt.rotation_WB * pt.twist_B.tail<3>());
+    const Vec3 spin = pt.rotation_WB * smp.mass.head<3>().cwiseProduct(pt.twist_B.head<3>());
+    out.linear_W += pt.weight * linear;
+    out.angular_W += pt.weight * (pt.position_W.cross(linear) + spin);
+  }
+  return out;
+}
+
+double Mass(const RodQuadrature& points) {
+  double mass = 0;
+  for (const RodQuadraturePoint& pt : points) mass += pt.weight * pt.section->mass(5);
+  return mass;
+}
+
+Vec3 CentreOfMass_W(const RodQuadrature& points) {
+  Vec3 first = Vec3::Zero();
+  for (const RodQuadraturePoint& pt : points)
+    first += pt.weight * pt.section->mass(5) * pt.position_W;
+  return first / Mass(points);
+}
+
+}  // namespace cosserat
