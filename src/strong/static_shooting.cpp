@@ -161,14 +161,14 @@ ShotTangent StartTangent(const Vec6& scale, const TendonContext* tc, const Tange
   return dy;
 }
 
-// The primal values of one RK4 segment's four stages: states, strains, distributed forces and,
-// with tendons, the law's ∂W/∂ξ.
+// The primal values of one RK4 segment's four stages the tangent needs: states, strains,
+// distributed forces, sample indices and, with tendons, the law's ∂W/∂ξ.
 struct SegmentStages {
   const ShotState* y[4];
-  Vec6 xi[4];
-  Vec3 f[4];
-  Mat6 H[4];
-  int q[4];  // sample index of each stage
+  const Vec6* xi[4];
+  const Vec3* f[4];
+  const Mat6* H;  // 4 of them
+  int q[4];
 };
 
 // Carries the tangent dy through one RK4 segment of length h (the exact derivative of the
@@ -180,12 +180,12 @@ void PropagateSegment(const std::vector<Sample>& samples, const SegmentStages& s
   Mat6 src[4];
   if (tension)
     for (int j = 0; j < 4; ++j)
-      src[j] = TensionSource((*tc->stages)[st.q[j]], tc->tension, st.xi[j], tc->tension_block);
+      src[j] = TensionSource((*tc->stages)[st.q[j]], tc->tension, *st.xi[j], tc->tension_block);
   const double step[4] = {0.0, 0.5, 0.5, 1.0};
   ShotTangent t[4];
   for (int j = 0; j < 4; ++j)
-    t[j] = TangentDerivative(samples[st.q[j]], st.f[j], *st.y[j],
-                             j == 0 ? *dy : Axpy(*dy, step[j] * h, t[j - 1]), st.xi[j],
+    t[j] = TangentDerivative(samples[st.q[j]], *st.f[j], *st.y[j],
+                             j == 0 ? *dy : Axpy(*dy, step[j] * h, t[j - 1]), *st.xi[j],
                              tendons ? &st.H[j] : nullptr, tension ? &src[j] : nullptr);
   Rk4Update(h, t[0], t[1], t[2], t[3], dy);
 }
@@ -220,46 +220,48 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
     record->wrench_B[i] = BodyWrench(y);
     record->strain[i] = xi;
   };
-  SegmentStages st;
+  Vec6 xi1, xi2, xi3, xi4;
+  Mat6 H[4];
   Vec6 guess = samples.front().rest_strain;  // tendon strain solves start from the last stage
   const int count = tc ? (*tc->stages)[0].tendons.count : 0;
   for (int k = 0; k < count; ++k) tc->length[k] = 0.0;
-  // One stage j: the plain law, or the tendon law from the running guess.
-  auto stage = [&](int j, const ShotState& ys) {
-    st.y[j] = &ys;
-    const Sample& smp = samples[st.q[j]];
-    // Stages 1 and 2 share the midpoint sample: one load evaluation for both.
-    st.f[j] = j == 2 ? st.f[1] : TotalDistributedForce_W(loads, {smp.s, 1.0, smp.mass_per_length});
-    if (!tc) return Derivative(smp, st.f[j], ys, &st.xi[j]);
-    st.xi[j] = guess;
-    const ShotState d = TendonDerivative(smp, (*tc->stages)[st.q[j]], tc->tension, st.f[j], ys,
-                                         &st.xi[j], J ? &st.H[j] : nullptr);
-    guess = st.xi[j];
+  // One stage: the plain law, or the tendon law from the running guess.
+  auto derivative = [&](int q, const Vec3& f, const ShotState& ys, Vec6* xi, Mat6* H_q) {
+    if (!tc) return Derivative(samples[q], f, ys, xi);
+    *xi = guess;
+    const ShotState d = TendonDerivative(samples[q], (*tc->stages)[q], tc->tension, f, ys, xi,
+                                         J ? H_q : nullptr);
+    guess = *xi;
     return d;
+  };
+  auto f_at = [&](int q) {
+    return TotalDistributedForce_W(loads, {samples[q].s, 1.0, samples[q].mass_per_length});
   };
   for (int i = 0; i + 1 < n; ++i) {
     const double h = grid[i + 1] - grid[i];
-    st.q[0] = 3 * i;
-    st.q[1] = st.q[2] = 3 * i + 1;
-    st.q[3] = 3 * i + 2;
-    const ShotState k1 = stage(0, y);
-    if (record) record_node(i, st.xi[0]);
+    const int q0 = 3 * i, qm = 3 * i + 1, q1 = 3 * i + 2;
+    const Vec3 f0 = f_at(q0), fm = f_at(qm), f1 = f_at(q1);
+    const ShotState k1 = derivative(q0, f0, y, &xi1, &H[0]);
+    if (record) record_node(i, xi1);
     const ShotState y2 = Axpy(y, 0.5 * h, k1);
-    const ShotState k2 = stage(1, y2);
+    const ShotState k2 = derivative(qm, fm, y2, &xi2, &H[1]);
     const ShotState y3 = Axpy(y, 0.5 * h, k2);
-    const ShotState k3 = stage(2, y3);
+    const ShotState k3 = derivative(qm, fm, y3, &xi3, &H[2]);
     const ShotState y4 = Axpy(y, h, k3);
-    const ShotState k4 = stage(3, y4);
+    const ShotState k4 = derivative(q1, f1, y4, &xi4, &H[3]);
     if (J) {
       if (seed && seed->nodes) (*seed->nodes)[i] = dy;
       if (seed && seed->node_rows) seed->node_rows[i] = ToRows(dy);
+      const SegmentStages st{
+          {&y, &y2, &y3, &y4}, {&xi1, &xi2, &xi3, &xi4}, {&f0, &fm, &fm, &f1}, H, {q0, qm, qm, q1}};
       PropagateSegment(samples, st, h, tc, &dy);
     }
     for (int k = 0; k < count; ++k) {
       const auto& ts = *tc->stages;
-      double rate[4];
-      for (int j = 0; j < 4; ++j) rate[j] = TendonPathRate(ts[st.q[j]].tendons, k, st.xi[j]);
-      tc->length[k] += h / 6 * (rate[0] + 2 * rate[1] + 2 * rate[2] + rate[3]);
+      tc->length[k] +=
+          h / 6 *
+          (TendonPathRate(ts[q0].tendons, k, xi1) + 2 * TendonPathRate(ts[qm].tendons, k, xi2) +
+           2 * TendonPathRate(ts[qm].tendons, k, xi3) + TendonPathRate(ts[q1].tendons, k, xi4));
     }
     Rk4Update(h, k1, k2, k3, k4, &y);
   }

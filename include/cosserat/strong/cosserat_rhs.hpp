@@ -52,7 +52,7 @@ struct DynamicPoint {
 template <typename T>
 COSSERAT_RHS_INLINE void KinematicRates(const Matrix3<T>& R, const T* xi, Vector3<T>* dp,
                                         Matrix3<T>* dR) {
-  const T &k0 = xi[0], &k1 = xi[1], &k2 = xi[2], &g0 = xi[3], &g1 = xi[4], &g2 = xi[5];
+  const T k0 = xi[0], k1 = xi[1], k2 = xi[2], g0 = xi[3], g1 = xi[4], g2 = xi[5];
   for (int i = 0; i < 3; ++i) {
     (*dp)(i) = R(i, 0) * g0 + R(i, 1) * g1 + R(i, 2) * g2;
     // (R K̂) row i = (row i of R) × K
@@ -65,7 +65,7 @@ COSSERAT_RHS_INLINE void KinematicRates(const Matrix3<T>& R, const T* xi, Vector
 /// The elastic part of the balance of moments, m × K + n_B × Γ.
 template <typename T>
 COSSERAT_RHS_INLINE Vector3<T> ElasticMomentRate(const Vector3<T>& m, const T* n_B, const T* xi) {
-  const T &k0 = xi[0], &k1 = xi[1], &k2 = xi[2], &g0 = xi[3], &g1 = xi[4], &g2 = xi[5];
+  const T k0 = xi[0], k1 = xi[1], k2 = xi[2], g0 = xi[3], g1 = xi[4], g2 = xi[5];
   return Vector3<T>(m(1) * k2 - m(2) * k1 + n_B[1] * g2 - n_B[2] * g1,
                     m(2) * k0 - m(0) * k2 + n_B[2] * g0 - n_B[0] * g2,
                     m(0) * k1 - m(1) * k0 + n_B[0] * g1 - n_B[1] * g0);
@@ -96,9 +96,9 @@ COSSERAT_RHS_INLINE StaticPoint<T> StaticRates(const Vector6<T>& xi, const Vecto
   StaticPoint<T> d;
   KinematicRates<T>(R, x, &d.p, &d.R);
   d.m = ElasticMomentRate<T>(y.m, y.n.data(), x);
-  const T &k0 = x[0], &k1 = x[1], &k2 = x[2];
-  const T &n0 = y.n(0), &n1 = y.n(1), &n2 = y.n(2);
-  const T &f0 = f_W(0), &f1 = f_W(1), &f2 = f_W(2);
+  const T k0 = x[0], k1 = x[1], k2 = x[2];
+  const T n0 = y.n(0), n1 = y.n(1), n2 = y.n(2);
+  const T f0 = f_W(0), f1 = f_W(1), f2 = f_W(2);
   d.n(0) = n1 * k2 - n2 * k1 - (R(0, 0) * f0 + R(1, 0) * f1 + R(2, 0) * f2);
   d.n(1) = n2 * k0 - n0 * k2 - (R(0, 1) * f0 + R(1, 1) * f1 + R(2, 1) * f2);
   d.n(2) = n0 * k1 - n1 * k0 - (R(0, 2) * f0 + R(1, 2) * f1 + R(2, 2) * f2);
@@ -179,7 +179,7 @@ COSSERAT_RHS_INLINE DynamicPoint<T> DynamicDerivative(const SectionSample& smp,
     }
   }
   *twist << w, v;
-  const T &k0 = xi[0], &k1 = xi[1], &k2 = xi[2], &g0 = xi[3], &g1 = xi[4], &g2 = xi[5];
+  const T k0 = xi[0], k1 = xi[1], k2 = xi[2], g0 = xi[3], g1 = xi[4], g2 = xi[5];
   const double J0 = smp.mass(0), J1 = smp.mass(1), J2 = smp.mass(2), rhoA = smp.mass(5);
   DynamicPoint<T> d;
   KinematicRates<T>(R, xi, &d.p, &d.R);
