@@ -102,7 +102,8 @@ const Matrix& Finite(const Matrix& m, const char* field) {
 const Mat3& Rotation(const Mat3& R, const char* field) {
   Finite(R, field);
   if ((R.transpose() * R - Mat3::Identity()).norm() > 1e-9 || R.determinant() < 0)
-    throw py::value_error(std::string(field) + ": expected a rotation matrix (orthonormal, det +1)");
+    throw py::value_error(std::string(field) +
+                          ": expected a rotation matrix (orthonormal, det +1)");
   return R;
 }
 
@@ -207,7 +208,7 @@ class PyStepper {
   }
   Bdf2ShootingStepper::Snapshot Save() const { return run().Save(); }
   void Restore(const Bdf2ShootingStepper::Snapshot& snapshot) {
-    stepper_->Restore(snapshot);  // throws std::invalid_argument (ValueError) if it can't
+    stepper_->Restore(snapshot);   // throws std::invalid_argument (ValueError) if it can't
     input_ = snapshot.last_input;  // what the saved run was applying
     has_state_ = true;
   }
@@ -262,15 +263,11 @@ class PyStaticSolver {
   bool solved_ = false;
 };
 
-}  // namespace
-
-PYBIND11_MODULE(cosserat, m) {
-  m.doc() = "Cosserat rods for soft and continuum robots: statics and BDF2 dynamics (SE(3) "
-            "shooting) from problem files.";
-  m.attr("__version__") = COSSERAT_VERSION_STRING;
-
-  py::class_<StaticLoads>(m, "Loads", "External loads: gravity (m/s²), a uniform distributed "
-                                      "force (N/m), a tip force (N) and moment (N·m).")
+/// cosserat.Loads: the external loads, their frames and a readable repr.
+void BindLoads(py::module_& m) {
+  py::class_<StaticLoads>(m, "Loads",
+                          "External loads: gravity (m/s²), a uniform distributed "
+                          "force (N/m), a tip force (N) and moment (N·m).")
       .def(py::init<>())
       .def_readwrite("gravity", &StaticLoads::gravity_W)
       .def_readwrite("distributed_force", &StaticLoads::distributed_force_W)
@@ -292,12 +289,15 @@ PYBIND11_MODULE(cosserat, m) {
           o << std::setprecision(6) << "[" << x(0) << ", " << x(1) << ", " << x(2) << "]";
           return o.str();
         };
-        return "Loads(gravity=" + v(l.gravity_W) + ", distributed_force=" +
-               v(l.distributed_force_W) + ", tip_force=" + v(l.tip_force) + " (" +
-               ToString(l.tip_force_frame) + "), tip_moment=" + v(l.tip_moment) + " (" +
+        return "Loads(gravity=" + v(l.gravity_W) +
+               ", distributed_force=" + v(l.distributed_force_W) + ", tip_force=" + v(l.tip_force) +
+               " (" + ToString(l.tip_force_frame) + "), tip_moment=" + v(l.tip_moment) + " (" +
                ToString(l.tip_moment_frame) + "))";
       });
+}
 
+/// cosserat.Actuation: tendon tensions, pressures and the stiffness scale.
+void BindActuation(py::module_& m) {
   py::class_<Actuation>(m, "Actuation",
                         "What the actuators do: tendon tensions (N, in the robot's tendon order), "
                         "inflation pressure (Pa), jamming pressure per segment (Pa), stiffness "
@@ -309,7 +309,11 @@ PYBIND11_MODULE(cosserat, m) {
                     ArraySetter(&Actuation::tendon_tension, "tendon_tension"))
       .def_property("jamming_pressure", ArrayGetter(&Actuation::jamming_pressure),
                     ArraySetter(&Actuation::jamming_pressure, "jamming_pressure"));
+}
 
+/// cosserat.Problem, read-only views of a validated problem file, and load_problem and
+/// parse_problem, which make one.
+void BindProblem(py::module_& m) {
   py::class_<io::Problem>(m, "Problem", "A validated problem file (docs/problem-format.md).")
       .def_property_readonly("analysis",
                              [](const io::Problem& p) { return io::ToString(p.analysis); })
@@ -331,6 +335,17 @@ PYBIND11_MODULE(cosserat, m) {
         return p.dynamics.initial_loads.value_or(p.loads);
       });
 
+  m.def(
+      "load_problem", [](const std::string& path) { return Checked(io::LoadProblemFile(path)); },
+      py::arg("path"), "Reads and validates a problem file; ValueError names every bad field.");
+  m.def(
+      "parse_problem",
+      [](const std::string& text) { return Checked(io::ParseProblem(text, "<python>")); },
+      py::arg("json_text"), "Validates a problem given as JSON text.");
+}
+
+/// cosserat.solve: any problem run as `cosserat solve` runs it.
+void BindSolve(py::module_& m) {
   m.def(
       "solve",
       [](const io::Problem& problem, bool nodes) {
@@ -359,13 +374,10 @@ PYBIND11_MODULE(cosserat, m) {
       "Runs the problem exactly as `cosserat solve` does (any analysis, either formulation, the "
       "robots): a dict with converged, result (the result JSON as a dict), log (the summary "
       "line and hints) and, with nodes=True, nodes_csv (the --csv table as text).");
+}
 
-  m.def("load_problem", [](const std::string& path) { return Checked(io::LoadProblemFile(path)); },
-        py::arg("path"), "Reads and validates a problem file; ValueError names every bad field.");
-  m.def("parse_problem",
-        [](const std::string& text) { return Checked(io::ParseProblem(text, "<python>")); },
-        py::arg("json_text"), "Validates a problem given as JSON text.");
-
+/// cosserat.StaticSolver and its StaticSummary.
+void BindStaticSolver(py::module_& m) {
   py::class_<StaticShootingSummary> static_summary(m, "StaticSummary");
   BindSummary(static_summary)
       .def_readonly("load_steps", &StaticShootingSummary::load_steps)
@@ -381,7 +393,10 @@ PYBIND11_MODULE(cosserat, m) {
            "Solves for the loads, clamp pose and actuation given; what is not given keeps its "
            "last value, at first the problem's loads, base and robot actuation.")
       .def("state", [](const PyStaticSolver& s) { return StateDict(s.state()); });
+}
 
+/// cosserat.Stepper (BDF2 dynamics for control loops), its StepSummary and Snapshot.
+void BindStepper(py::module_& m) {
   py::class_<StepSummary> step_summary(m, "StepSummary");
   BindSummary(step_summary)
       .def_readonly("jacobians", &StepSummary::jacobians)
@@ -410,36 +425,59 @@ PYBIND11_MODULE(cosserat, m) {
            "from the pose); free-free: the wrench on the s = 0 end (body frame).")
       .def_property_readonly("time", &PyStepper::time)
       .def_property_readonly("dt", [](const PyStepper& s) { return s.options().dt; })
-      .def_property_readonly("loads", [](const PyStepper& s) { return s.input().loads; },
-                             "A copy of the loads step() applies.")
-      .def_property_readonly("actuation", [](const PyStepper& s) { return s.input().actuation; },
-                             "A copy of the actuation step() applies.")
+      .def_property_readonly(
+          "loads", [](const PyStepper& s) { return s.input().loads; },
+          "A copy of the loads step() applies.")
+      .def_property_readonly(
+          "actuation", [](const PyStepper& s) { return s.input().actuation; },
+          "A copy of the actuation step() applies.")
       .def("state", [](const PyStepper& s) { return StateDict(s.run().state()); })
-      .def("tip_position", [](const PyStepper& s) { return Vec3(s.run().state().tip_position_W()); })
-      .def("tip_rotation", [](const PyStepper& s) { return Mat3(s.run().state().tip_rotation_WB()); })
+      .def("tip_position",
+           [](const PyStepper& s) { return Vec3(s.run().state().tip_position_W()); })
+      .def("tip_rotation",
+           [](const PyStepper& s) { return Mat3(s.run().state().tip_rotation_WB()); })
       .def("tip_twist_B", [](const PyStepper& s) { return Vec6(s.run().state().twist_B.back()); })
-      .def("base_reaction", [](const PyStepper& s) { return s.run().state().BaseReaction_W(); },
-           "The wrench [moment; force] the support applies at s = 0, world frame.")
-      .def("energy",
-           [](const PyStepper& s) {
-             const RodEnergy e = s.run().Energy(s.input().loads);
-             py::dict d;
-             d["kinetic"] = e.kinetic;
-             d["elastic"] = e.elastic;
-             d["potential"] = e.potential;
-             d["total"] = e.total();
-             return d;
-           },
-           "Kinetic, elastic and potential energy (J); potential: of the distributed loads step() applies.")
-      .def("momentum",
-           [](const PyStepper& s) {
-             const RodMomentum p = s.run().Momentum();
-             return py::make_tuple(p.linear_W, p.angular_W);
-           },
-           "(linear, angular about the origin), world frame.")
+      .def(
+          "base_reaction", [](const PyStepper& s) { return s.run().state().BaseReaction_W(); },
+          "The wrench [moment; force] the support applies at s = 0, world frame.")
+      .def(
+          "energy",
+          [](const PyStepper& s) {
+            const RodEnergy e = s.run().Energy(s.input().loads);
+            py::dict d;
+            d["kinetic"] = e.kinetic;
+            d["elastic"] = e.elastic;
+            d["potential"] = e.potential;
+            d["total"] = e.total();
+            return d;
+          },
+          "Kinetic, elastic and potential energy (J); potential: of the distributed loads step() "
+          "applies.")
+      .def(
+          "momentum",
+          [](const PyStepper& s) {
+            const RodMomentum p = s.run().Momentum();
+            return py::make_tuple(p.linear_W, p.angular_W);
+          },
+          "(linear, angular about the origin), world frame.")
       .def("mass", [](const PyStepper& s) { return s.run().Mass(); })
       .def("save", &PyStepper::Save)
       .def("restore", &PyStepper::Restore,
            "Continues the saved run, with the inputs it was applying; a snapshot from another "
            "rod, grid or end conditions, or taken before initialize_at_rest, is refused.");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(cosserat, m) {
+  m.doc() =
+      "Cosserat rods for soft and continuum robots: statics and BDF2 dynamics (SE(3) "
+      "shooting) from problem files.";
+  m.attr("__version__") = COSSERAT_VERSION_STRING;
+  BindLoads(m);
+  BindActuation(m);
+  BindProblem(m);
+  BindSolve(m);
+  BindStaticSolver(m);
+  BindStepper(m);
 }

@@ -93,7 +93,8 @@ BucklingAnalysis::BucklingAnalysis(const RodModel& model, int num_nodes, ColumnE
   std::string why;
   if (!options_.IsValid(&why)) throw std::invalid_argument("BucklingOptions: " + why);
   // A falling pressure must stay >= 0 (the modulus laws are defined for p >= 0).
-  const double p_end = path_.fixed_actuation.pressure + options_.lambda_max * path_.pressure_per_unit;
+  const double p_end =
+      path_.fixed_actuation.pressure + options_.lambda_max * path_.pressure_per_unit;
   if (!std::isfinite(path_.pressure_per_unit) || p_end < 0)
     throw std::invalid_argument(
         "BucklingOptions: lambda_max must keep the pressure >= 0 along the path (it reaches " +
@@ -131,6 +132,121 @@ Vec6 Interpolate(const PathPoint& a, const PathPoint& b, double lambda) {
   return a.u + (b.u - a.u) * ((lambda - a.lambda) / (b.lambda - a.lambda));
 }
 
+/// How the scan along λ ended.
+enum class ScanEnd {
+  kSignChange,  ///< det J changed sign between two path points
+  kDip,         ///< σ_min dipped below singular_threshold σ_min(0)
+  kNotFound,    ///< λ_max reached without either
+  kPathFailed,  ///< a solve failed after 10 halvings of the step, or inside a dip
+};
+
+/// Golden-section search for the minimum of σ_min between the path points *a and *b. Returns
+/// false when a solve fails; else [*a, *b] brackets the minimum to lambda_tolerance and *least
+/// is the least point evaluated. evaluate(λ, guess, &point) solves at λ from a guess.
+template <class Evaluate>
+bool RefineDip(const Evaluate& evaluate, double lambda_tolerance, PathPoint* a, PathPoint* b,
+               PathPoint* least) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  PathPoint c, d;
+  bool fine = evaluate(b->lambda - g * (b->lambda - a->lambda),
+                       Interpolate(*a, *b, b->lambda - g * (b->lambda - a->lambda)), &c) &&
+              evaluate(a->lambda + g * (b->lambda - a->lambda),
+                       Interpolate(*a, *b, a->lambda + g * (b->lambda - a->lambda)), &d);
+  while (fine && b->lambda - a->lambda > lambda_tolerance * b->lambda) {
+    if (c.sigma < d.sigma) {
+      *b = d;
+      d = c;
+      const double l = b->lambda - g * (b->lambda - a->lambda);
+      fine = evaluate(l, Interpolate(*a, *b, l), &c);
+    } else {
+      *a = c;
+      c = d;
+      const double l = a->lambda + g * (b->lambda - a->lambda);
+      fine = evaluate(l, Interpolate(*a, *b, l), &d);
+    }
+  }
+  if (fine) *least = c.sigma < d.sigma ? c : d;
+  return fine;
+}
+
+/// The scan from pts (the path point at λ = 0) in steps of λ_max/scan_steps, each step halved
+/// after a failed solve (up to 10 times in a row), the guess extrapolated from the last two
+/// points; every point is recorded in out's scan. Stops at a sign change of det J ([*lo, *hi])
+/// or at a local minimum of σ_min, refined by RefineDip, below singular_threshold sigma0 ([*lo,
+/// *hi] and its least point *mid).
+template <class Evaluate>
+ScanEnd ScanPath(const Evaluate& evaluate, const BucklingOptions& options, double sigma0,
+                 std::vector<PathPoint>* pts, BucklingSummary* out, PathPoint* lo, PathPoint* hi,
+                 PathPoint* mid) {
+  const double h_nominal = options.lambda_max / options.scan_steps;
+  double h = h_nominal;
+  int halvings = 0;
+  while (pts->back().lambda < options.lambda_max) {
+    const PathPoint& last = pts->back();
+    const double lambda = std::min(options.lambda_max, last.lambda + h);
+    const Vec6 guess =
+        pts->size() >= 2 ? Interpolate((*pts)[pts->size() - 2], last, lambda) : Vec6(last.u);
+    PathPoint p;
+    if (!evaluate(lambda, guess, &p)) {
+      if (++halvings > 10) return ScanEnd::kPathFailed;
+      h *= 0.5;
+      continue;
+    }
+    halvings = 0;
+    h = h_nominal;
+    out->scan_lambda.push_back(p.lambda);
+    out->scan_sigma_min.push_back(p.sigma);
+    pts->push_back(p);
+    const std::vector<PathPoint>& q = *pts;
+    const size_t k = q.size() - 1;
+    if (q[k].det_sign * q[k - 1].det_sign < 0) {
+      *lo = q[k - 1];
+      *hi = q[k];
+      return ScanEnd::kSignChange;
+    }
+    if (k >= 2 && q[k - 1].sigma < q[k - 2].sigma && q[k - 1].sigma < q[k].sigma) {
+      // A dip of σ_min: refine it by golden section and keep it if J is singular there.
+      PathPoint a = q[k - 2], b = q[k];
+      if (!RefineDip(evaluate, options.lambda_tolerance, &a, &b, mid)) return ScanEnd::kPathFailed;
+      if (mid->sigma < options.singular_threshold * sigma0) {
+        *lo = a;
+        *hi = b;
+        return ScanEnd::kDip;
+      }
+    }
+  }
+  return ScanEnd::kNotFound;
+}
+
+/// Bisection of [*lo, *hi] on the sign of det J down to lambda_tolerance; false when a solve
+/// fails (*lo is then the last point below the sign change).
+template <class Evaluate>
+bool BisectDetSign(const Evaluate& evaluate, double lambda_tolerance, PathPoint* lo,
+                   PathPoint* hi) {
+  while (hi->lambda - lo->lambda > lambda_tolerance * hi->lambda) {
+    const double l = 0.5 * (lo->lambda + hi->lambda);
+    PathPoint p;
+    if (!evaluate(l, Interpolate(*lo, *hi, l), &p)) return false;
+    (p.det_sign * lo->det_sign > 0 ? *lo : *hi) = p;
+  }
+  return true;
+}
+
+/// The null vector of J from its SVD. For a double root any vector of the 2-D null space is a
+/// mode; the one nearest a coordinate axis of the unknowns is taken, so the answer does not
+/// depend on rounding.
+Vec6 NullVector(const Eigen::JacobiSVD<Mat6>& svd, bool double_root) {
+  Vec6 v = svd.matrixV().col(5);
+  if (!double_root) return v;
+  const Eigen::Matrix<double, 6, 2> N = svd.matrixV().rightCols<2>();
+  int best = 0;
+  for (int k = 1; k < 6; ++k)
+    if (N.row(k).norm() > N.row(best).norm()) best = k;
+  v = N * N.row(best).transpose();
+  v.normalize();
+  return v;
+}
+
 }  // namespace
 
 void BucklingAnalysis::Singularity(double lambda, double* sigma_min, double* det_sign,
@@ -145,6 +261,45 @@ void BucklingAnalysis::Singularity(double lambda, double* sigma_min, double* det
   *det_sign = det > 0 ? 1.0 : (det < 0 ? -1.0 : 0.0);
 }
 
+bool BucklingAnalysis::SolveFixedLoads(int* solves) {
+  // From the unloaded rod, with the fixed loads applied in 1, 4, 16 or 64 equal steps.
+  bool ok = false;
+  const LoadPath saved = path_;
+  for (int pieces = 1; pieces <= 64 && !ok; pieces *= 4) {
+    column_.set_unknowns(Vec6::Zero());
+    ok = true;
+    for (int k = 1; k <= pieces && ok; ++k) {
+      path_.fixed = saved.fixed.Scaled(static_cast<double>(k) / pieces);
+      path_.fixed.tip_force_frame = saved.fixed.tip_force_frame;
+      path_.fixed.tip_moment_frame = saved.fixed.tip_moment_frame;
+      ++*solves;
+      ok = SolveAt(0.0).converged();
+    }
+  }
+  path_ = saved;
+  return ok;
+}
+
+void BucklingAnalysis::SetCriticalPoint(double lambda, const Vec6& guess, double sigma0,
+                                        BucklingSummary* out) {
+  lambda_cr_ = lambda;
+  column_.set_unknowns(guess);
+  ++out->solves;
+  SolveAt(lambda_cr_);
+  u_cr_ = column_.unknowns();
+  Mat6 J;
+  ResidualAt(lambda_cr_, u_cr_, &J);
+  const Eigen::JacobiSVD<Mat6> svd(J, Eigen::ComputeFullV);
+  const Vec6 sv = svd.singularValues();
+  const bool double_root = sv(4) < std::sqrt(options_.singular_threshold) * sigma0;
+  out->mode = ExtractMode(lambda_cr_, NullVector(svd, double_root), double_root);
+  v_cr_ = out->mode.unknowns;
+  out->critical_load = lambda_cr_;
+  out->lambda_reached = lambda_cr_;
+  out->sigma_min_ratio = sv(5) / sigma0;
+  found_ = true;
+}
+
 BucklingSummary BucklingAnalysis::FindCriticalLoad() {
   const auto t0 = std::chrono::steady_clock::now();
   BucklingSummary out;
@@ -155,26 +310,8 @@ BucklingSummary BucklingAnalysis::FindCriticalLoad() {
     return out;
   };
 
-  // λ = 0: from the unloaded rod, with the fixed loads applied in steps if need be.
   column_.set_unknowns(Vec6::Zero());
-  bool ok = false;
-  {
-    const LoadPath saved = path_;
-    for (int pieces = 1; pieces <= 64 && !ok; pieces *= 4) {
-      column_.set_unknowns(Vec6::Zero());
-      ok = true;
-      for (int k = 1; k <= pieces && ok; ++k) {
-        path_.fixed = saved.fixed.Scaled(static_cast<double>(k) / pieces);
-        path_.fixed.tip_force_frame = saved.fixed.tip_force_frame;
-        path_.fixed.tip_moment_frame = saved.fixed.tip_moment_frame;
-        ++out.solves;
-        ok = SolveAt(0.0).converged();
-      }
-    }
-    path_ = saved;
-  }
-  if (!ok) return finish(BucklingStatus::kPathFailed);
-
+  if (!SolveFixedLoads(&out.solves)) return finish(BucklingStatus::kPathFailed);
   PathPoint cur{0.0, column_.unknowns(), 0, 0};
   Singularity(0.0, &cur.sigma, &cur.det_sign, nullptr, nullptr);
   const double sigma0 = cur.sigma;
@@ -192,117 +329,22 @@ BucklingSummary BucklingAnalysis::FindCriticalLoad() {
     Singularity(lambda, &p->sigma, &p->det_sign, nullptr, nullptr);
     return true;
   };
-
-  const double h_nominal = options_.lambda_max / options_.scan_steps;
-  double h = h_nominal;
-  int halvings = 0;
-  bool bracketed = false;
-  bool by_sign = false;
   PathPoint lo{}, hi{}, mid{};
-  while (!bracketed && pts.back().lambda < options_.lambda_max) {
-    const PathPoint& last = pts.back();
-    const double lambda = std::min(options_.lambda_max, last.lambda + h);
-    const Vec6 guess =
-        pts.size() >= 2 ? Interpolate(pts[pts.size() - 2], last, lambda) : Vec6(last.u);
-    PathPoint p;
-    if (!evaluate(lambda, guess, &p)) {
-      if (++halvings > 10) {
-        out.lambda_reached = last.lambda;
-        return finish(BucklingStatus::kPathFailed);
-      }
-      h *= 0.5;
-      continue;
-    }
-    halvings = 0;
-    h = h_nominal;
-    out.scan_lambda.push_back(p.lambda);
-    out.scan_sigma_min.push_back(p.sigma);
-    pts.push_back(p);
-    const size_t k = pts.size() - 1;
-    if (pts[k].det_sign * pts[k - 1].det_sign < 0) {
-      bracketed = by_sign = true;
-      lo = pts[k - 1];
-      hi = pts[k];
-    } else if (k >= 2 && pts[k - 1].sigma < pts[k - 2].sigma && pts[k - 1].sigma < pts[k].sigma) {
-      // A dip of σ_min: refine it by golden section and keep it if J is singular there.
-      PathPoint a = pts[k - 2], b = pts[k];
-      const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-      PathPoint c, d;
-      bool fine = evaluate(b.lambda - g * (b.lambda - a.lambda),
-                           Interpolate(a, b, b.lambda - g * (b.lambda - a.lambda)), &c) &&
-                  evaluate(a.lambda + g * (b.lambda - a.lambda),
-                           Interpolate(a, b, a.lambda + g * (b.lambda - a.lambda)), &d);
-      while (fine && b.lambda - a.lambda > options_.lambda_tolerance * b.lambda) {
-        if (c.sigma < d.sigma) {
-          b = d;
-          d = c;
-          const double l = b.lambda - g * (b.lambda - a.lambda);
-          fine = evaluate(l, Interpolate(a, b, l), &c);
-        } else {
-          a = c;
-          c = d;
-          const double l = a.lambda + g * (b.lambda - a.lambda);
-          fine = evaluate(l, Interpolate(a, b, l), &d);
-        }
-      }
-      if (!fine) {
-        out.lambda_reached = pts.back().lambda;
-        return finish(BucklingStatus::kPathFailed);
-      }
-      mid = c.sigma < d.sigma ? c : d;
-      if (mid.sigma < options_.singular_threshold * sigma0) {
-        bracketed = true;
-        lo = a;
-        hi = b;
-      }
-    }
-  }
-  if (!bracketed) {
+  const ScanEnd end = ScanPath(evaluate, options_, sigma0, &pts, &out, &lo, &hi, &mid);
+  if (end == ScanEnd::kPathFailed || end == ScanEnd::kNotFound) {
     out.lambda_reached = pts.back().lambda;
-    return finish(BucklingStatus::kNotFound);
+    return finish(end == ScanEnd::kNotFound ? BucklingStatus::kNotFound
+                                            : BucklingStatus::kPathFailed);
   }
-  if (by_sign) {
-    // Bisection on the sign of det J.
-    while (hi.lambda - lo.lambda > options_.lambda_tolerance * hi.lambda) {
-      const double l = 0.5 * (lo.lambda + hi.lambda);
-      PathPoint p;
-      if (!evaluate(l, Interpolate(lo, hi, l), &p)) {
-        out.lambda_reached = lo.lambda;
-        return finish(BucklingStatus::kPathFailed);
-      }
-      (p.det_sign * lo.det_sign > 0 ? lo : hi) = p;
+  if (end == ScanEnd::kSignChange) {
+    if (!BisectDetSign(evaluate, options_.lambda_tolerance, &lo, &hi)) {
+      out.lambda_reached = lo.lambda;
+      return finish(BucklingStatus::kPathFailed);
     }
     mid = std::abs(lo.sigma) < std::abs(hi.sigma) ? lo : hi;
   }
-
   // The pre-buckled equilibrium at λ_cr, its null vector and the mode.
-  lambda_cr_ = mid.lambda;
-  column_.set_unknowns(mid.u);
-  ++out.solves;
-  SolveAt(lambda_cr_);
-  u_cr_ = column_.unknowns();
-  Mat6 J;
-  ResidualAt(lambda_cr_, u_cr_, &J);
-  const Eigen::JacobiSVD<Mat6> svd(J, Eigen::ComputeFullV);
-  const Vec6 sv = svd.singularValues();
-  const bool double_root = sv(4) < std::sqrt(options_.singular_threshold) * sigma0;
-  Vec6 v = svd.matrixV().col(5);
-  if (double_root) {
-    // Any vector of the 2-D null space is a mode; take the one nearest a coordinate axis of the
-    // unknowns so the answer does not depend on rounding.
-    const Eigen::Matrix<double, 6, 2> N = svd.matrixV().rightCols<2>();
-    int best = 0;
-    for (int k = 1; k < 6; ++k)
-      if (N.row(k).norm() > N.row(best).norm()) best = k;
-    v = N * N.row(best).transpose();
-    v.normalize();
-  }
-  out.mode = ExtractMode(lambda_cr_, v, double_root);
-  v_cr_ = out.mode.unknowns;
-  out.critical_load = lambda_cr_;
-  out.lambda_reached = lambda_cr_;
-  out.sigma_min_ratio = sv(5) / sigma0;
-  found_ = true;
+  SetCriticalPoint(mid.lambda, mid.u, sigma0, &out);
   return finish(BucklingStatus::kFound);
 }
 
@@ -364,53 +406,55 @@ BucklingMode BucklingAnalysis::ExtractMode(double lambda, const Vec6& v, bool do
   return mode;
 }
 
+bool BucklingAnalysis::BorderedNewton(double eta, Vec6* u, double* lambda) {
+  // Newton on z = (u, λ/λ_cr): r(u, λ) = 0, v · (u − u_cr) = η. Minimum-norm steps.
+  const double lc = lambda_cr_;
+  const double tol = options_.solver.tolerance;
+  const Vec6& v = v_cr_;
+  for (int it = 0; it <= options_.solver.max_iterations; ++it) {
+    Mat6 J;
+    const Vec6 r = ResidualAt(*lambda, *u, &J);
+    Eigen::Matrix<double, 7, 1> F;
+    F << r, v.dot(*u - u_cr_) - eta;
+    if (!F.allFinite()) return false;
+    if (F.norm() < tol) return true;
+    if (it == options_.solver.max_iterations) return false;
+    const double h = 1e-6 * lc;
+    const Vec6 r_lambda =
+        (ResidualAt(*lambda + h, *u, nullptr) - ResidualAt(*lambda - h, *u, nullptr)) / (2 * h) *
+        lc;
+    Eigen::Matrix<double, 7, 7> A = Eigen::Matrix<double, 7, 7>::Zero();
+    A.topLeftCorner<6, 6>() = J;
+    A.topRightCorner<6, 1>() = r_lambda;
+    A.bottomLeftCorner<1, 6>() = v.transpose();
+    Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, 7, 7>> cod;
+    cod.setThreshold(1e-10);
+    cod.compute(A);
+    const Eigen::Matrix<double, 7, 1> dz = -cod.solve(F);
+    double t = 1.0;
+    bool accepted = false;
+    for (int k = 0; k < 12 && !accepted; ++k, t *= 0.5) {
+      const Vec6 u_try = *u + t * dz.head<6>();
+      const double l_try = *lambda + t * dz(6) * lc;
+      Eigen::Matrix<double, 7, 1> F_try;
+      F_try << ResidualAt(l_try, u_try, nullptr), v.dot(u_try - u_cr_) - eta;
+      if (F_try.allFinite() && F_try.norm() < (1 - 1e-4 * t) * F.norm()) {
+        *u = u_try;
+        *lambda = l_try;
+        accepted = true;
+      }
+    }
+    if (!accepted) return false;
+  }
+  return false;
+}
+
 ColumnSummary BucklingAnalysis::SolvePostBuckled(double lambda_target) {
   ColumnSummary fail;
   fail.status = SolveStatus::kMaxIterations;
   if (!found_ || !(lambda_target > lambda_cr_)) return fail;
   const double lc = lambda_cr_;
-  const double tol = options_.solver.tolerance;
   const Vec6& v = v_cr_;
-
-  // Bordered Newton on z = (u, λ/λ_cr): r(u, λ) = 0, v · (u − u_cr) = η. Minimum-norm steps.
-  auto bordered = [&](double eta, Vec6* u, double* lambda) {
-    for (int it = 0; it <= options_.solver.max_iterations; ++it) {
-      Mat6 J;
-      const Vec6 r = ResidualAt(*lambda, *u, &J);
-      Eigen::Matrix<double, 7, 1> F;
-      F << r, v.dot(*u - u_cr_) - eta;
-      if (!F.allFinite()) return false;
-      if (F.norm() < tol) return true;
-      if (it == options_.solver.max_iterations) return false;
-      const double h = 1e-6 * lc;
-      const Vec6 r_lambda =
-          (ResidualAt(*lambda + h, *u, nullptr) - ResidualAt(*lambda - h, *u, nullptr)) / (2 * h) *
-          lc;
-      Eigen::Matrix<double, 7, 7> A = Eigen::Matrix<double, 7, 7>::Zero();
-      A.topLeftCorner<6, 6>() = J;
-      A.topRightCorner<6, 1>() = r_lambda;
-      A.bottomLeftCorner<1, 6>() = v.transpose();
-      Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, 7, 7>> cod;
-      cod.setThreshold(1e-10);
-      cod.compute(A);
-      const Eigen::Matrix<double, 7, 1> dz = -cod.solve(F);
-      double t = 1.0;
-      bool accepted = false;
-      for (int k = 0; k < 12 && !accepted; ++k, t *= 0.5) {
-        const Vec6 u_try = *u + t * dz.head<6>();
-        const double l_try = *lambda + t * dz(6) * lc;
-        Eigen::Matrix<double, 7, 1> F_try;
-        F_try << ResidualAt(l_try, u_try, nullptr), v.dot(u_try - u_cr_) - eta;
-        if (F_try.allFinite() && F_try.norm() < (1 - 1e-4 * t) * F.norm()) {
-          *u = u_try;
-          *lambda = l_try;
-          accepted = true;
-        }
-      }
-      if (!accepted) return false;
-    }
-    return false;
-  };
 
   struct BranchPoint {
     double eta, lambda;
@@ -433,7 +477,7 @@ ColumnSummary BucklingAnalysis::SolvePostBuckled(double lambda_target) {
       u = b.u + d_eta * v;
       lambda = b.lambda;
     }
-    if (!bordered(eta, &u, &lambda)) {
+    if (!BorderedNewton(eta, &u, &lambda)) {
       d_eta *= 0.5;
       continue;
     }
@@ -452,7 +496,7 @@ ColumnSummary BucklingAnalysis::SolvePostBuckled(double lambda_target) {
     const double w = (eta - a.eta) / (b.eta - a.eta);
     Vec6 u = a.u + w * (b.u - a.u);
     double lambda = a.lambda + w * (b.lambda - a.lambda);
-    if (!bordered(eta, &u, &lambda)) return fail;
+    if (!BorderedNewton(eta, &u, &lambda)) return fail;
     c = {eta, lambda, u};
     const double fc = lambda - lambda_target;
     if (fc * fb < 0) {

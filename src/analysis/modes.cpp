@@ -204,18 +204,137 @@ void QuatFdShape(const quatfd::QuatFdModel& model, const Reduction& red, const E
   }
 }
 
+/// What the kinetic-energy shares of a mode weigh, per node: the tangent (world, unit), the
+/// mass (kg) and the rotational inertia (kg·m², world).
+struct NodeWeights {
+  std::vector<Vec3> tangent_W;
+  std::vector<double> mass;
+  std::vector<Mat3> inertia_W;
+};
+
+/// The quatfd vertices' weights: the lumped vertex masses, half of each segment's inertia on
+/// either end vertex (for the shares only), the mean of the neighbouring segments' tangents.
+NodeWeights QuatFdNodeWeights(const quatfd::QuatFdModel& model, const Eigen::VectorXd& q) {
+  using L = quatfd::QuatFdLayout;
+  const int N = model.layout().segments;
+  NodeWeights w;
+  w.tangent_W.assign(N + 1, Vec3::Zero());
+  w.mass.resize(N + 1);
+  w.inertia_W.assign(N + 1, Mat3::Zero());
+  for (int n = 0; n <= N; ++n) w.mass[n] = model.vertex_mass()[n];
+  for (int nu = 0; nu < N; ++nu) {
+    const Mat3 R = lie::QuatToRotation(q.segment<4>(L::P(nu)));
+    const Mat3 J = R * model.segment_inertia(nu).asDiagonal() * R.transpose();
+    w.inertia_W[nu] += 0.5 * J;
+    w.inertia_W[nu + 1] += 0.5 * J;
+    w.tangent_W[nu] += R.col(2);
+    w.tangent_W[nu + 1] += R.col(2);
+  }
+  for (Vec3& t : w.tangent_W) t.normalize();
+  return w;
+}
+
+/// Whether the reduced stiffness S is symmetric to round-off (1e-8 relative per pair, 1e-13 of
+/// its largest entry): true for conservative loads about an equilibrium.
+bool IsSymmetric(const Eigen::MatrixXd& S) {
+  const int m = static_cast<int>(S.rows());
+  const double s_max = S.cwiseAbs().maxCoeff();
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < i; ++j)
+      if (std::abs(S(i, j) - S(j, i)) >
+          1e-8 * std::max(std::abs(S(i, j)), std::abs(S(j, i))) + 1e-13 * s_max)
+        return false;
+  return true;
+}
+
+/// ω² with the reduced shape (empty without shapes), ascending.
+using Spectrum = std::vector<std::pair<double, Eigen::VectorXd>>;
+
+/// The symmetric problem K φ = ω² M φ with diagonal M, as that of M^−½ K M^−½. When damped, also
+/// the first-order form of λ² M + λ C + K = 0 in the undamped modal coordinates (Ψ orthonormal,
+/// Ω² = eigenvalues) with z = [Ω η; η̇]: ż = [[0, Ω], [−Ω, −Ψᵀ M^−½ C M^−½ Ψ]] z. Its norm is
+/// ω_max and it is nearly normal, so the damping ratios of the low modes keep their digits (the
+/// plain companion matrix of M⁻¹K, of norm ω_max², loses them). Br = ∂f/∂v reduced (C = −M Br).
+Spectrum SymmetricSpectrum(const Eigen::MatrixXd& S, const Eigen::VectorXd& mass,
+                           const Eigen::MatrixXd& Br, bool shapes, bool damped,
+                           Eigen::MatrixXd* companion) {
+  const int m = static_cast<int>(mass.size());
+  const Eigen::VectorXd inv_sqrt_m = mass.cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd Ssym = 0.5 * (S + S.transpose());
+  const Eigen::MatrixXd H = inv_sqrt_m.asDiagonal() * Ssym * inv_sqrt_m.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(
+      H, shapes || damped ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+  if (damped) {
+    const Eigen::VectorXd sqrt_m = mass.cwiseSqrt();
+    const Eigen::MatrixXd Cm = -(sqrt_m.asDiagonal() * Br * inv_sqrt_m.asDiagonal());
+    const Eigen::MatrixXd& Psi = es.eigenvectors();
+    const Eigen::VectorXd Om = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+    *companion = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+    companion->topRightCorner(m, m) = Om.asDiagonal();
+    companion->bottomLeftCorner(m, m) = -Eigen::MatrixXd(Om.asDiagonal());
+    companion->bottomRightCorner(m, m) = -(Psi.transpose() * Cm * Psi);
+  }
+  Spectrum eig;
+  for (int i = 0; i < m; ++i)
+    eig.emplace_back(es.eigenvalues()(i),
+                     shapes ? Eigen::VectorXd(inv_sqrt_m.asDiagonal() * es.eigenvectors().col(i))
+                            : Eigen::VectorXd());
+  return eig;
+}
+
+/// The real eigenvalues −λ of Ar (ω² = −λ), ascending; *complex_pair when a pair with an
+/// imaginary part is left out (flutter: no real mode).
+Spectrum GeneralSpectrum(const Eigen::MatrixXd& Ar, bool shapes, bool* complex_pair) {
+  const int m = static_cast<int>(Ar.rows());
+  Spectrum eig;
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(Ar, shapes);
+  for (int i = 0; i < m; ++i) {
+    const std::complex<double> l = es.eigenvalues()(i);
+    if (std::abs(l.imag()) > 1e-6 * std::abs(l)) {
+      *complex_pair = true;
+      continue;
+    }
+    eig.emplace_back(-l.real(),
+                     shapes ? Eigen::VectorXd(es.eigenvectors().col(i).real()) : Eigen::VectorXd());
+  }
+  std::sort(eig.begin(), eig.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  return eig;
+}
+
+/// The damped modes from the eigenvalues of a first-order form: the pairs with a positive
+/// imaginary part, by |λ|, at most `count`. True when one grows (Re λ > 1e-9 |λ|).
+bool DampedModes(const Eigen::MatrixXd& companion, int count, std::vector<DampedMode>* out) {
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(companion, false);
+  std::vector<std::complex<double>> pairs;
+  for (int i = 0; i < companion.rows(); ++i) {
+    const std::complex<double> l = es.eigenvalues()(i);
+    if (l.imag() > 1e-9 * std::abs(l)) pairs.push_back(l);
+  }
+  std::sort(pairs.begin(), pairs.end(),
+            [](const auto& a, const auto& b) { return std::abs(a) < std::abs(b); });
+  bool unstable = false;
+  for (size_t i = 0; i < pairs.size() && static_cast<int>(i) < count; ++i) {
+    DampedMode d;
+    d.omega_n = std::abs(pairs[i]);
+    d.damped_frequency_hz = pairs[i].imag() / kTwoPi;
+    d.damping_ratio = -pairs[i].real() / d.omega_n;
+    if (pairs[i].real() > 1e-9 * d.omega_n) unstable = true;
+    out->push_back(d);
+  }
+  return unstable;
+}
+
 }  // namespace
 
 ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
                          const ModalOptions& options, const Eigen::VectorXd* q_guess,
                          Eigen::VectorXd* q_equilibrium,
                          const quatfd::QuatFdStaticsOptions& statics) {
-  using L = quatfd::QuatFdLayout;
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("ModalOptions: " + why);
   const auto start = Clock::now();
   ModalResult result;
-  const int n_full = model->size(), N = model->layout().segments;
+  const int n_full = model->size();
   Eigen::VectorXd q(n_full), v(n_full);
   model->RestState(q, v);
   if (q_guess) q = *q_guess;
@@ -240,80 +359,18 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   const Eigen::MatrixXd Ar = red.P * (A.ToDense() * red.T);
   const Eigen::MatrixXd Br = red.P * (B.ToDense() * red.T);
 
-  // Stiffness S = −M Ar: symmetric (to round-off) for conservative loads about an equilibrium.
+  // Stiffness S = −M Ar; ω² and reduced eigenvectors, ascending.
   const Eigen::MatrixXd S = -(red.mass.asDiagonal() * Ar);
-  const double s_max = S.cwiseAbs().maxCoeff();
-  bool symmetric = true;
-  for (int i = 0; i < m && symmetric; ++i)
-    for (int j = 0; j < i; ++j)
-      if (std::abs(S(i, j) - S(j, i)) >
-          1e-8 * std::max(std::abs(S(i, j)), std::abs(S(j, i))) + 1e-13 * s_max) {
-        symmetric = false;
-        break;
-      }
-  result.symmetric = symmetric;
-
-  // ω² and reduced eigenvectors, ascending.
-  std::vector<std::pair<double, Eigen::VectorXd>> eig;
+  result.symmetric = IsSymmetric(S);
   bool complex_pair = false;
-  const Eigen::VectorXd inv_sqrt_m = red.mass.cwiseSqrt().cwiseInverse();
   const bool damped = options.damped && Br.cwiseAbs().maxCoeff() > 0;
   Eigen::MatrixXd companion;  // first-order form of λ² M + λ C + K = 0 when damped
-  if (symmetric) {
-    // K φ = ω² M φ with diagonal M: the symmetric problem of M^−½ K M^−½.
-    const Eigen::MatrixXd Ssym = 0.5 * (S + S.transpose());
-    const Eigen::MatrixXd H = inv_sqrt_m.asDiagonal() * Ssym * inv_sqrt_m.asDiagonal();
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(
-        H, options.shapes || damped ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
-    if (damped) {
-      // In the undamped modal coordinates (Ψ orthonormal, Ω² = eigenvalues) with z = [Ω η; η̇]:
-      // ż = [[0, Ω], [−Ω, −Ψᵀ M^−½ C M^−½ Ψ]] z. Its norm is ω_max and it is nearly normal, so
-      // the damping ratios of the low modes keep their digits (the plain companion matrix of
-      // M⁻¹K, of norm ω_max², loses them).
-      const Eigen::VectorXd sqrt_m = red.mass.cwiseSqrt();
-      const Eigen::MatrixXd Cm = -(sqrt_m.asDiagonal() * Br * inv_sqrt_m.asDiagonal());
-      const Eigen::MatrixXd& Psi = es.eigenvectors();
-      const Eigen::VectorXd Om = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-      companion = Eigen::MatrixXd::Zero(2 * m, 2 * m);
-      companion.topRightCorner(m, m) = Om.asDiagonal();
-      companion.bottomLeftCorner(m, m) = -Eigen::MatrixXd(Om.asDiagonal());
-      companion.bottomRightCorner(m, m) = -(Psi.transpose() * Cm * Psi);
-    }
-    for (int i = 0; i < m; ++i)
-      eig.emplace_back(es.eigenvalues()(i),
-                       options.shapes
-                           ? Eigen::VectorXd(inv_sqrt_m.asDiagonal() * es.eigenvectors().col(i))
-                           : Eigen::VectorXd());
-  } else {
-    const Eigen::EigenSolver<Eigen::MatrixXd> es(Ar, options.shapes);
-    for (int i = 0; i < m; ++i) {
-      const std::complex<double> l = es.eigenvalues()(i);
-      if (std::abs(l.imag()) > 1e-6 * std::abs(l)) {
-        complex_pair = true;  // flutter: no real mode
-        continue;
-      }
-      eig.emplace_back(-l.real(), options.shapes ? Eigen::VectorXd(es.eigenvectors().col(i).real())
-                                                 : Eigen::VectorXd());
-    }
-    std::sort(eig.begin(), eig.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-  }
+  const Spectrum eig = result.symmetric
+                           ? SymmetricSpectrum(S, red.mass, Br, options.shapes, damped, &companion)
+                           : GeneralSpectrum(Ar, options.shapes, &complex_pair);
   const double w2_max = eig.empty() ? 0.0 : std::abs(eig.back().first);
   bool unstable = complex_pair;
-  std::vector<Vec3> tangent(N + 1, Vec3::Zero());
-  std::vector<double> node_mass(N + 1);
-  std::vector<Mat3> node_inertia(N + 1, Mat3::Zero());
-  for (int n = 0; n <= N; ++n) node_mass[n] = model->vertex_mass()[n];
-  for (int nu = 0; nu < N; ++nu) {
-    const Mat3 R = lie::QuatToRotation(q.segment<4>(L::P(nu)));
-    const Mat3 J = R * model->segment_inertia(nu).asDiagonal() * R.transpose();
-    // Half of each segment's inertia to each end vertex (for the shares only).
-    node_inertia[nu] += 0.5 * J;
-    node_inertia[nu + 1] += 0.5 * J;
-    tangent[nu] += R.col(2);
-    tangent[nu + 1] += R.col(2);
-  }
-  for (Vec3& t : tangent) t.normalize();
+  const NodeWeights weights = QuatFdNodeWeights(*model, q);
   for (int i = 0;
        i < static_cast<int>(eig.size()) && static_cast<int>(result.modes.size()) < options.count;
        ++i) {
@@ -324,7 +381,7 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
     mode.frequency_hz = mode.omega / kTwoPi;
     if (options.shapes) {
       QuatFdShape(*model, red, q, eig[i].second, &mode);
-      Classify(tangent, node_mass, node_inertia, model->length(), &mode);
+      Classify(weights.tangent_W, weights.mass, weights.inertia_W, model->length(), &mode);
     }
     result.modes.push_back(std::move(mode));
   }
@@ -332,28 +389,13 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   // Damped: λ² M + λ C + K = 0 through a first-order form (the plain companion matrix
   // [[0, I], [Ar, Br]] when the stiffness is not symmetric).
   if (damped) {
-    if (!symmetric) {
+    if (!result.symmetric) {
       companion = Eigen::MatrixXd::Zero(2 * m, 2 * m);
       companion.topRightCorner(m, m).setIdentity();
       companion.bottomLeftCorner(m, m) = Ar;
       companion.bottomRightCorner(m, m) = Br;
     }
-    const Eigen::EigenSolver<Eigen::MatrixXd> es(companion, false);
-    std::vector<std::complex<double>> pairs;
-    for (int i = 0; i < 2 * m; ++i) {
-      const std::complex<double> l = es.eigenvalues()(i);
-      if (l.imag() > 1e-9 * std::abs(l)) pairs.push_back(l);
-    }
-    std::sort(pairs.begin(), pairs.end(),
-              [](const auto& a, const auto& b) { return std::abs(a) < std::abs(b); });
-    for (size_t i = 0; i < pairs.size() && static_cast<int>(i) < options.count; ++i) {
-      DampedMode d;
-      d.omega_n = std::abs(pairs[i]);
-      d.damped_frequency_hz = pairs[i].imag() / kTwoPi;
-      d.damping_ratio = -pairs[i].real() / d.omega_n;
-      if (pairs[i].real() > 1e-9 * d.omega_n) unstable = true;
-      result.damped.push_back(d);
-    }
+    if (DampedModes(companion, options.count, &result.damped)) unstable = true;
   }
   if (unstable) return finish(ModalStatus::kUnstable);
   if (static_cast<int>(result.modes.size()) < options.count)
@@ -408,6 +450,86 @@ void RefineMinima(const FrequencyShooting& fs, double lo, double hi, int* budget
   }
 }
 
+/// A root of det B(ω) and its null vector (dimensionless).
+struct Root {
+  double omega;
+  Vec6 x;
+};
+
+/// The roots in [lo, hi] not yet in *roots, appended with their multiplicity. RefineMinima's
+/// candidates are clustered within 1e-5 ω; the multiplicity is how many singular values are small
+/// at the cluster (below 5 % of their value 1e-3 ω away on the farther-rising side).
+void AddRoots(const FrequencyShooting& fs, double lo, double hi, int* budget,
+              std::vector<Root>* roots) {
+  std::vector<double> found;
+  RefineMinima(fs, lo, hi, budget, &found);
+  std::sort(found.begin(), found.end());
+  for (size_t a = 0; a < found.size();) {
+    size_t b = a + 1;
+    while (b < found.size() && found[b] - found[a] < 1e-5 * found[a]) ++b;
+    const double wc = found[a];
+    bool known = false;
+    for (const Root& r : *roots) known = known || std::abs(r.omega - wc) < 1e-5 * wc;
+    const Vec6 sc = Sigma(fs, wc), sm = Sigma(fs, wc * (1 - 1e-3)), sp = Sigma(fs, wc * (1 + 1e-3));
+    int mult = 0;
+    for (int k = 0; k < 6 && !known; ++k)
+      if (sc(k) < 0.05 * std::max(sm(k), sp(k))) ++mult;
+    const int members = static_cast<int>(b - a);
+    for (int r = 0; r < mult; ++r) {
+      const double w = r < members ? found[a + r] : found[a];
+      const int vec = r < members ? 0 : r - members + 1;
+      const Eigen::JacobiSVD<Mat6> svd(fs.BoundaryMatrix(w), Eigen::ComputeFullV);
+      roots->push_back({w, svd.matrixV().col(5 - vec)});
+    }
+    a = b;
+  }
+}
+
+/// The first `count` roots of det B(ω) above w_lo (rad/s), ascending: a coarse geometric scan
+/// (ratio `step`) of σ_min(B) and of the sign of det B up to w_hi. A sampled local minimum of
+/// σ_min, or a sign change of det B (a simple root hidden in the flank of a neighbour's dip),
+/// brackets candidates; they are refined, clustered and tested (AddRoots).
+std::vector<Root> FindRoots(const FrequencyShooting& fs, double w_lo, double w_hi, double step,
+                            int count) {
+  std::vector<Root> roots;
+  int budget = 200000;
+  auto det_sign = [&](double w) { return fs.BoundaryMatrix(w).determinant() > 0; };
+  double w0 = w_lo, w1 = w_lo * step;
+  double s0 = Sigma(fs, w0)(0), s1 = Sigma(fs, w1)(0);
+  bool d1 = det_sign(w1);
+  while (static_cast<int>(roots.size()) < count && w1 < w_hi && budget > 0) {
+    const double w2 = w1 * step, s2 = Sigma(fs, w2)(0);
+    const bool d2 = det_sign(w2);
+    budget -= 2;
+    if (s1 <= s0 && s1 < s2) AddRoots(fs, w0, w2, &budget, &roots);
+    if (d1 != d2) AddRoots(fs, w0, w2 * step, &budget, &roots);
+    w0 = w1, s0 = s1, w1 = w2, s1 = s2, d1 = d2;
+  }
+  std::sort(roots.begin(), roots.end(),
+            [](const Root& a, const Root& b) { return a.omega < b.omega; });
+  return roots;
+}
+
+/// The shooting nodes' weights: trapezoid masses and inertias (rotated into the world with the
+/// node frames), the tangents d3.
+NodeWeights ShootingNodeWeights(const RodModel& rod, const std::vector<double>& s,
+                                const FrequencyShooting& fs, const Actuation& actuation) {
+  const int n = static_cast<int>(s.size());
+  NodeWeights nw;
+  nw.mass.resize(n);
+  nw.inertia_W.resize(n);
+  nw.tangent_W.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const double w = 0.5 * ((i > 0 ? s[i] - s[i - 1] : 0.0) + (i + 1 < n ? s[i + 1] - s[i] : 0.0));
+    const SectionProperties sp = PrincipalAxesSectionAt(rod, s[i], actuation);
+    const Mat3& R = fs.rotation_WB()[i];
+    nw.mass[i] = sp.mass(5, 5) * w;
+    nw.inertia_W[i] = R * (sp.mass.diagonal().head<3>() * w).asDiagonal() * R.transpose();
+    nw.tangent_W[i] = R.col(2);
+  }
+  return nw;
+}
+
 }  // namespace
 
 ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::SE3& base,
@@ -432,86 +554,24 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
   if (!st.converged()) return finish(ModalStatus::kStaticsFailed);
   const FrequencyShooting fs(rod, solver.grid(), base, loads, solver.base_wrench_B(), actuation);
 
+  // The scan's range, by default 0.01 to 10⁴ times the first Euler–Bernoulli cantilever
+  // frequency of the rod's base section.
   const double L = rod.length;
   const double w_eb =
       1.8751 * 1.8751 / (L * L) * std::sqrt(fs.bending_stiffness() / fs.mass_per_length_at_base());
   const double w_lo = options.omega_min > 0 ? options.omega_min : 0.01 * w_eb;
   const double w_hi = options.omega_max > 0 ? options.omega_max : 1e4 * w_eb;
-  const double step = 1.0 + options.relative_step;
   const int count = options.modal.count;
+  const std::vector<Root> roots = FindRoots(fs, w_lo, w_hi, 1.0 + options.relative_step, count);
 
-  // Coarse scan of σ_min(B) and of the sign of det B. A sampled local minimum of σ_min, or a
-  // sign change of det B (a simple root hidden in the flank of a neighbour's dip), brackets
-  // candidates; they are refined, clustered and tested.
-  struct Root {
-    double omega;
-    Vec6 x;  // dimensionless null vector
-  };
-  std::vector<Root> roots;
-  int budget = 200000;
-  auto process = [&](double lo, double hi) {
-    std::vector<double> found;
-    RefineMinima(fs, lo, hi, &budget, &found);
-    std::sort(found.begin(), found.end());
-    // Clusters of candidates within 1e-5 ω; multiplicity = how many singular values are small
-    // at the cluster (below 5 % of their value 1e-3 ω away on the farther-rising side).
-    for (size_t a = 0; a < found.size();) {
-      size_t b = a + 1;
-      while (b < found.size() && found[b] - found[a] < 1e-5 * found[a]) ++b;
-      const double wc = found[a];
-      bool known = false;
-      for (const Root& r : roots) known = known || std::abs(r.omega - wc) < 1e-5 * wc;
-      const Vec6 sc = Sigma(fs, wc), sm = Sigma(fs, wc * (1 - 1e-3)),
-                 sp = Sigma(fs, wc * (1 + 1e-3));
-      int mult = 0;
-      for (int k = 0; k < 6 && !known; ++k)
-        if (sc(k) < 0.05 * std::max(sm(k), sp(k))) ++mult;
-      const int members = static_cast<int>(b - a);
-      for (int r = 0; r < mult; ++r) {
-        const double w = r < members ? found[a + r] : found[a];
-        const int vec = r < members ? 0 : r - members + 1;
-        const Eigen::JacobiSVD<Mat6> svd(fs.BoundaryMatrix(w), Eigen::ComputeFullV);
-        roots.push_back({w, svd.matrixV().col(5 - vec)});
-      }
-      a = b;
-    }
-  };
-  auto det_sign = [&](double w) { return fs.BoundaryMatrix(w).determinant() > 0; };
-  double w0 = w_lo, w1 = w_lo * step;
-  double s0 = Sigma(fs, w0)(0), s1 = Sigma(fs, w1)(0);
-  bool d1 = det_sign(w1);
-  while (static_cast<int>(roots.size()) < count && w1 < w_hi && budget > 0) {
-    const double w2 = w1 * step, s2 = Sigma(fs, w2)(0);
-    const bool d2 = det_sign(w2);
-    budget -= 2;
-    if (s1 <= s0 && s1 < s2) process(w0, w2);
-    if (d1 != d2) process(w0, w2 * step);
-    w0 = w1, s0 = s1, w1 = w2, s1 = s2, d1 = d2;
-  }
-  std::sort(roots.begin(), roots.end(),
-            [](const Root& a, const Root& b) { return a.omega < b.omega; });
-
-  // Node masses and inertias (trapezoid weights) and tangents for the energy shares.
-  const std::vector<double>& s = solver.grid();
-  const int n = static_cast<int>(s.size());
-  std::vector<double> node_mass(n);
-  std::vector<Mat3> node_inertia(n);
-  std::vector<Vec3> tangent(n);
-  for (int i = 0; i < n; ++i) {
-    const double w = 0.5 * ((i > 0 ? s[i] - s[i - 1] : 0.0) + (i + 1 < n ? s[i + 1] - s[i] : 0.0));
-    const SectionProperties sp = PrincipalAxesSectionAt(rod, s[i], actuation);
-    const Mat3& R = fs.rotation_WB()[i];
-    node_mass[i] = sp.mass(5, 5) * w;
-    node_inertia[i] = R * (sp.mass.diagonal().head<3>() * w).asDiagonal() * R.transpose();
-    tangent[i] = R.col(2);
-  }
+  const NodeWeights weights = ShootingNodeWeights(rod, solver.grid(), fs, actuation);
   for (size_t i = 0; i < roots.size() && static_cast<int>(i) < count; ++i) {
     Mode mode;
     mode.omega = roots[i].omega;
     mode.frequency_hz = mode.omega / kTwoPi;
     if (options.modal.shapes) {
       fs.Shape(mode.omega, roots[i].x, &mode.displacement_W, &mode.rotation_W);
-      Classify(tangent, node_mass, node_inertia, L, &mode);
+      Classify(weights.tangent_W, weights.mass, weights.inertia_W, L, &mode);
     }
     result.modes.push_back(std::move(mode));
   }

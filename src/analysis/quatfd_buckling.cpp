@@ -77,7 +77,8 @@ Eigen::MatrixXd QuatFdBuckling::StiffnessFiniteDifference(const Eigen::VectorXd&
   const double L = model_.length(), h = options_.fd_step;
   // G' = [L F(free vertices); τ(segments)], paired with [δx/L; δθ].
   auto gather = [&](const Eigen::VectorXd& f, Eigen::Ref<Eigen::VectorXd> g) {
-    for (int a = 0; a < nv; ++a) g.segment<3>(3 * a) = L * f.segment<3>(Layout::X(free_vertices_[a]));
+    for (int a = 0; a < nv; ++a)
+      g.segment<3>(3 * a) = L * f.segment<3>(Layout::X(free_vertices_[a]));
     for (int s = 0; s < N; ++s) g.segment<3>(3 * nv + 3 * s) = f.segment<3>(Layout::P(s) + 1);
   };
   // The retraction of q along tangent coordinate j by t.
@@ -132,7 +133,8 @@ Eigen::MatrixXd QuatFdBuckling::StiffnessAnalytic(const Eigen::VectorXd& q) {
   Eigen::MatrixXd H(m, m);
   const std::vector<double>& mass = model_.vertex_mass();
   for (int a = 0; a < nv; ++a)
-    H.middleRows<3>(3 * a) = L * mass[free_vertices_[a]] * AT.middleRows<3>(Layout::X(free_vertices_[a]));
+    H.middleRows<3>(3 * a) =
+        L * mass[free_vertices_[a]] * AT.middleRows<3>(Layout::X(free_vertices_[a]));
   for (int s = 0; s < N; ++s) {
     const Vec4 p = q.segment<4>(Layout::P(s)) / q.segment<4>(Layout::P(s)).squaredNorm();
     const Vec3& J = model_.segment_inertia(s);
@@ -163,6 +165,71 @@ Eigen::VectorXd QuatFdBuckling::StiffnessEigenvalues(double lambda, const Eigen:
   return eig.eigenvalues();
 }
 
+/// The last stable and the first unstable point of the path: λ, the least eigenvalue μ of the
+/// stiffness there, the equilibrium on the stable side and how many eigenvalues are near zero on
+/// the unstable side (|μ| < 1e-4 |μ(0)|).
+struct QuatFdBuckling::Bracket {
+  double lo = 0, mu_lo = NAN, hi = NAN, mu_hi = NAN;
+  int multiplicity = 0;
+  double mu0 = NAN;  ///< μ at λ = 0
+  Eigen::VectorXd q_lo;
+  int NearZero(const Eigen::VectorXd& e) const {
+    return static_cast<int>((e.array().abs() < 1e-4 * std::abs(mu0)).count());
+  }
+};
+
+void QuatFdBuckling::RefineBracket(Bracket* b) {
+  // Illinois regula falsi on μ(λ), from the stable side (every solve starts at the last stable
+  // equilibrium, so it stays on the pre-buckled branch).
+  Eigen::VectorXd q_try(model_.size());
+  int side = 0;
+  for (int it = 0; it < 100 && b->hi - b->lo > options_.lambda_tolerance * b->hi; ++it) {
+    double c = (b->lo * b->mu_hi - b->hi * b->mu_lo) / (b->mu_hi - b->mu_lo);
+    if (!(c > b->lo && c < b->hi)) c = 0.5 * (b->lo + b->hi);
+    if (!SolveAt(c, b->q_lo, &q_try)) {
+      c = 0.5 * (b->lo + b->hi);
+      if (!SolveAt(c, b->q_lo, &q_try)) break;
+    }
+    const Eigen::VectorXd e = StiffnessEigenvalues(c, q_try);
+    if (e(0) > 0) {
+      b->lo = c;
+      b->mu_lo = e(0);
+      b->q_lo = q_try;
+      if (side == 1) b->mu_hi *= 0.5;
+      side = 1;
+    } else {
+      b->hi = c;
+      b->mu_hi = e(0);
+      b->multiplicity = b->NearZero(e);
+      if (side == -1) b->mu_lo *= 0.5;
+      side = -1;
+    }
+  }
+}
+
+double QuatFdBuckling::ModeMaxCurvatureS(double lambda, const Eigen::VectorXd& q) {
+  // The mode: the vertex where its curvature change (the difference of neighbouring segment
+  // rotations over the distance of their midpoints) is largest.
+  Eigen::MatrixXd V;
+  StiffnessEigenvalues(lambda, q, &V);
+  const int N = model_.layout().segments;
+  const int nv = static_cast<int>(free_vertices_.size());
+  const std::vector<double>& s = model_.grid();
+  auto theta = [&](int seg) { return Vec3(V.col(0).segment<3>(3 * nv + 3 * seg)); };
+  double best = -1, s_max = NAN;
+  for (int n = 0; n < N; ++n) {  // the free tip carries no bending element
+    const double mid_b = 0.5 * (s[n] + s[n + 1]);
+    const double mid_a = n == 0 ? 0.0 : 0.5 * (s[n - 1] + s[n]);
+    const Vec3 dK = (theta(n) - (n == 0 ? Vec3::Zero() : theta(n - 1))) / (mid_b - mid_a);
+    const double k = dK.head<2>().norm();
+    if (k > best * (1 + 1e-9)) {
+      best = k;
+      s_max = s[n];
+    }
+  }
+  return s_max;
+}
+
 QuatFdBucklingSummary QuatFdBuckling::FindCriticalLoad() {
   const auto t0 = std::chrono::steady_clock::now();
   QuatFdBucklingSummary out;
@@ -173,28 +240,29 @@ QuatFdBucklingSummary QuatFdBuckling::FindCriticalLoad() {
     out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
   };
-  Eigen::VectorXd v(model_.size()), q_lo(model_.size()), q_try(model_.size());
-  model_.RestState(q_lo, v);
-  if (!SolveAt(0.0, q_lo, &q_lo)) {
-    q_ = q_lo;
+  Bracket b;
+  Eigen::VectorXd v(model_.size()), q_try(model_.size());
+  b.q_lo.resize(model_.size());
+  model_.RestState(b.q_lo, v);
+  if (!SolveAt(0.0, b.q_lo, &b.q_lo)) {
+    q_ = b.q_lo;
     return finish(BucklingStatus::kPathFailed);
   }
-  double lo = 0.0, mu_lo = StiffnessEigenvalues(0.0, q_lo)(0);
-  out.scan_lambda.push_back(lo);
-  out.scan_min_eigenvalue.push_back(mu_lo);
+  b.mu_lo = StiffnessEigenvalues(0.0, b.q_lo)(0);
+  b.mu0 = b.mu_lo;
+  out.scan_lambda.push_back(b.lo);
+  out.scan_min_eigenvalue.push_back(b.mu_lo);
+  // The scan: steps of λ_max/scan_steps, halved after a failed solve (up to 10 times in a row)
+  // and grown back after a success, until the least eigenvalue is <= 0.
   const double h_nominal = options_.lambda_max / options_.scan_steps;
-  double h = h_nominal, hi = NAN, mu_hi = NAN;
-  int halvings = 0, multiplicity = 0;
-  const double mu0 = mu_lo;
-  auto near_zero = [&](const Eigen::VectorXd& e) {
-    return static_cast<int>((e.array().abs() < 1e-4 * std::abs(mu0)).count());
-  };
-  while (lo < options_.lambda_max) {
-    const double lambda = std::min(options_.lambda_max, lo + h);
-    if (!SolveAt(lambda, q_lo, &q_try)) {
+  double h = h_nominal;
+  int halvings = 0;
+  while (b.lo < options_.lambda_max) {
+    const double lambda = std::min(options_.lambda_max, b.lo + h);
+    if (!SolveAt(lambda, b.q_lo, &q_try)) {
       if (++halvings > 10) {
-        q_ = q_lo;
-        out.lambda_reached = lo;
+        q_ = b.q_lo;
+        out.lambda_reached = b.lo;
         return finish(BucklingStatus::kPathFailed);
       }
       h *= 0.5;
@@ -204,71 +272,29 @@ QuatFdBucklingSummary QuatFdBuckling::FindCriticalLoad() {
     out.scan_lambda.push_back(lambda);
     out.scan_min_eigenvalue.push_back(e(0));
     if (e(0) <= 0) {
-      hi = lambda;
-      mu_hi = e(0);
-      multiplicity = near_zero(e);
+      b.hi = lambda;
+      b.mu_hi = e(0);
+      b.multiplicity = b.NearZero(e);
       break;
     }
-    lo = lambda;
-    mu_lo = e(0);
-    q_lo = q_try;
+    b.lo = lambda;
+    b.mu_lo = e(0);
+    b.q_lo = q_try;
     h = std::min(h_nominal, 2 * h);
   }
-  out.lambda_reached = lo;
-  if (std::isnan(hi)) {
-    q_ = q_lo;
+  out.lambda_reached = b.lo;
+  if (std::isnan(b.hi)) {
+    q_ = b.q_lo;
     return finish(BucklingStatus::kNotFound);
   }
-  // Illinois regula falsi on μ(λ), from the stable side (every solve starts at the last stable
-  // equilibrium, so it stays on the pre-buckled branch).
-  int side = 0;
-  for (int it = 0; it < 100 && hi - lo > options_.lambda_tolerance * hi; ++it) {
-    double c = (lo * mu_hi - hi * mu_lo) / (mu_hi - mu_lo);
-    if (!(c > lo && c < hi)) c = 0.5 * (lo + hi);
-    if (!SolveAt(c, q_lo, &q_try)) {
-      c = 0.5 * (lo + hi);
-      if (!SolveAt(c, q_lo, &q_try)) break;
-    }
-    const Eigen::VectorXd e = StiffnessEigenvalues(c, q_try);
-    if (e(0) > 0) {
-      lo = c;
-      mu_lo = e(0);
-      q_lo = q_try;
-      if (side == 1) mu_hi *= 0.5;
-      side = 1;
-    } else {
-      hi = c;
-      mu_hi = e(0);
-      multiplicity = near_zero(e);
-      if (side == -1) mu_lo *= 0.5;
-      side = -1;
-    }
-  }
-  q_ = q_lo;
-  {
-    // The mode: where its curvature change is largest.
-    Eigen::MatrixXd V;
-    StiffnessEigenvalues(lo, q_lo, &V);
-    const int N = model_.layout().segments;
-    const int nv = static_cast<int>(free_vertices_.size());
-    const std::vector<double>& s = model_.grid();
-    auto theta = [&](int seg) { return Vec3(V.col(0).segment<3>(3 * nv + 3 * seg)); };
-    double best = -1;
-    for (int n = 0; n < N; ++n) {  // the free tip carries no bending element
-      const double mid_b = 0.5 * (s[n] + s[n + 1]);
-      const double mid_a = n == 0 ? 0.0 : 0.5 * (s[n - 1] + s[n]);
-      const Vec3 dK = (theta(n) - (n == 0 ? Vec3::Zero() : theta(n - 1))) / (mid_b - mid_a);
-      const double k = dK.head<2>().norm();
-      if (k > best * (1 + 1e-9)) {
-        best = k;
-        out.mode_s_max = s[n];
-      }
-    }
-  }
+  RefineBracket(&b);
+  q_ = b.q_lo;
+  out.mode_s_max = ModeMaxCurvatureS(b.lo, b.q_lo);
+  const double lo = b.lo, hi = b.hi, mu_lo = b.mu_lo, mu_hi = b.mu_hi;
   out.critical_load = mu_lo == mu_hi ? lo : (lo * mu_hi - hi * mu_lo) / (mu_hi - mu_lo);
   out.critical_load = std::clamp(out.critical_load, lo, hi);
   out.lambda_reached = lo;
-  out.multiplicity = multiplicity;
+  out.multiplicity = b.multiplicity;
   return finish(BucklingStatus::kFound);
 }
 

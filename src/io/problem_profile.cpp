@@ -234,6 +234,65 @@ std::optional<ProfilePtr> WithBands(const ObjectReader& p, const ProfileBase& ba
   return ProfilePtr(std::make_shared<BandedSection>(*inner, *bands));
 }
 
+/// The knots of a taper: s (m) with the outer and inner radii there (m; inner 0 for a circle).
+struct TaperKnots {
+  std::vector<double> s{0.0}, outer, inner;
+};
+
+/// Reads one knot's radii from `row` ("radius", or "outer_radius" and "inner_radius" for an
+/// annulus, inner < outer) into knots; false (reported) if they are missing or invalid.
+bool ReadTaperRadii(const ObjectReader& row, bool annulus, TaperKnots* knots) {
+  const auto ro =
+      ReadNumber(row, annulus ? "outer_radius" : "radius", PositiveNumber(), Presence::kRequired);
+  std::optional<double> ri = 0.0;
+  if (annulus) {
+    ri = ReadNumber(row, "inner_radius", NonNegativeNumber(), Presence::kRequired);
+    if (ro && ri && *ri >= *ro) {
+      row.Reject("inner_radius", "a number smaller than outer_radius (" + FormatNumber(*ro) + ")");
+      ri.reset();
+    }
+  }
+  if (!ro || !ri) return false;
+  knots->outer.push_back(*ro);
+  knots->inner.push_back(*ri);
+  return true;
+}
+
+/// The rows {"s", <radii>} of a taper "table" (at `path`), s increasing in (0, rod.length], as
+/// knots; false if any row is invalid (each is reported).
+bool ReadTaperTable(const json& rows, const std::string& path, const ObjectReader& p,
+                    const ProfileBase& base, bool annulus,
+                    const std::vector<std::string>& radius_keys, TaperKnots* knots) {
+  bool ok = true;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const std::string at = ElementPath(path, i);
+    if (!rows[i].is_object()) {
+      p.report().Expected(at, R"(a row {"s", <radii>})", Describe(rows[i]));
+      ok = false;
+      continue;
+    }
+    const ObjectReader row(rows[i], at, &p.report());
+    std::vector<std::string> keys{"s"};
+    keys.insert(keys.end(), radius_keys.begin(), radius_keys.end());
+    row.AllowOnly(keys, "for a tapered " + Quote(annulus ? "annulus" : "circle"));
+    const auto si = ReadNumber(row, "s", PositiveNumber(), Presence::kRequired);
+    const double s_prev = knots->s.back();
+    bool row_ok = si.has_value();
+    if (si && !(*si > s_prev)) {
+      row.Reject("s", "a number greater than the previous row's s (" + FormatNumber(s_prev) +
+                          "; rows run from base to tip, s = 0 is rod.section)");
+      row_ok = false;
+    } else if (si && base.length && *si > *base.length) {
+      row.Reject("s", "a number <= rod.length (" + FormatNumber(*base.length) + ")");
+      row_ok = false;
+    }
+    row_ok = ReadTaperRadii(row, annulus, knots) && row_ok;
+    if (row_ok) knots->s.push_back(*si);
+    ok = ok && row_ok;
+  }
+  return ok;
+}
+
 /// "taper": rod.section at s = 0, then "tip" (linear to s = L) or "table" rows at s in (0, L].
 std::optional<ProfilePtr> ParseTaper(const ObjectReader& p, const ProfileBase& base) {
   const bool shape_ok = RequireShape(p, base, "taper", true);
@@ -247,35 +306,19 @@ std::optional<ProfilePtr> ParseTaper(const ObjectReader& p, const ProfileBase& b
     return std::nullopt;
   }
   // Knots: s = 0 from rod.section, then the file's rows.
-  std::vector<double> s{0.0}, outer, inner;
+  TaperKnots knots;
   if (base.section) {
-    outer.push_back(base.section->outer_radius);
-    inner.push_back(base.section->inner_radius);
+    knots.outer.push_back(base.section->outer_radius);
+    knots.inner.push_back(base.section->inner_radius);
   }
   bool ok = shape_ok;
-  auto read_radii = [&](const ObjectReader& row) {
-    const auto ro = ReadNumber(row, radius_keys[0], PositiveNumber(), Presence::kRequired);
-    std::optional<double> ri = 0.0;
-    if (annulus) {
-      ri = ReadNumber(row, "inner_radius", NonNegativeNumber(), Presence::kRequired);
-      if (ro && ri && *ri >= *ro) {
-        row.Reject("inner_radius",
-                   "a number smaller than outer_radius (" + FormatNumber(*ro) + ")");
-        ri.reset();
-      }
-    }
-    if (!ro || !ri) return false;
-    outer.push_back(*ro);
-    inner.push_back(*ri);
-    return true;
-  };
   if (p.Has("tip")) {
     const auto tip = ReadObject(p, "tip", Presence::kRequired, "an object with the tip radii");
     if (!tip) return std::nullopt;
     if (shape_ok)
       tip->AllowOnly(radius_keys, "for a tapered " + Quote(annulus ? "annulus" : "circle"));
-    ok = shape_ok && read_radii(*tip) && ok;
-    if (base.length) s.push_back(*base.length);
+    ok = shape_ok && ReadTaperRadii(*tip, annulus, &knots) && ok;
+    if (base.length) knots.s.push_back(*base.length);
   } else {
     const std::string path = p.PathOf("table");
     const json* rows =
@@ -285,36 +328,12 @@ std::optional<ProfilePtr> ParseTaper(const ObjectReader& p, const ProfileBase& b
       p.report().Expected(path, "at least one row", "an empty array");
       return std::nullopt;
     }
-    for (std::size_t i = 0; i < rows->size() && shape_ok; ++i) {
-      const std::string at = ElementPath(path, i);
-      if (!(*rows)[i].is_object()) {
-        p.report().Expected(at, R"(a row {"s", <radii>})", Describe((*rows)[i]));
-        ok = false;
-        continue;
-      }
-      const ObjectReader row((*rows)[i], at, &p.report());
-      std::vector<std::string> keys{"s"};
-      keys.insert(keys.end(), radius_keys.begin(), radius_keys.end());
-      row.AllowOnly(keys, "for a tapered " + Quote(annulus ? "annulus" : "circle"));
-      const auto si = ReadNumber(row, "s", PositiveNumber(), Presence::kRequired);
-      bool row_ok = si.has_value();
-      if (si && !(*si > s.back())) {
-        row.Reject("s", "a number greater than the previous row's s (" + FormatNumber(s.back()) +
-                            "; rows run from base to tip, s = 0 is rod.section)");
-        row_ok = false;
-      } else if (si && base.length && *si > *base.length) {
-        row.Reject("s", "a number <= rod.length (" + FormatNumber(*base.length) + ")");
-        row_ok = false;
-      }
-      row_ok = read_radii(row) && row_ok;
-      if (row_ok) s.push_back(*si);
-      ok = ok && row_ok;
-    }
+    if (shape_ok) ok = ReadTaperTable(*rows, path, p, base, annulus, radius_keys, &knots) && ok;
   }
   if (!ok || !base.complete()) return std::nullopt;
-  LinearTable inner_table = annulus ? LinearTable(s, inner) : LinearTable();
-  return ProfilePtr(std::make_shared<TaperedSection>(LinearTable(s, outer), std::move(inner_table),
-                                                     *base.material));
+  LinearTable inner_table = annulus ? LinearTable(knots.s, knots.inner) : LinearTable();
+  return ProfilePtr(std::make_shared<TaperedSection>(LinearTable(knots.s, knots.outer),
+                                                     std::move(inner_table), *base.material));
 }
 
 /// The section and material of a pressure-dependent body: E from the law, ν and ρ from

@@ -48,67 +48,57 @@ struct System {
 
 struct Dopri5Integrator::Impl {
   // odeint's error stepper (5th order with the embedded 4th-order estimate, FSAL); the step-size
-  // control is ours so both integrators share ErrorNorm and the per-block tolerances.
+  // control is ours so all integrators share ErrorNorm and the per-block tolerances. odeint's
+  // state is a std::vector: y mirrors y_ at every trial.
   odeint::runge_kutta_dopri5<State> stepper;
   State y, dydt, y_new, dydt_new, err;
 };
 
+namespace {
+
+/// The order-5 controller's factor clamp(0.9 err^(−1/5), 0.2, 5).
+double StepFactor(double err) {
+  return std::clamp(0.9 * std::pow(std::max(err, 1e-300), -0.2), 0.2, 5.0);
+}
+
+}  // namespace
+
 Dopri5Integrator::Dopri5Integrator(const QuatFdModel& model, const IntegratorOptions& options)
-    : model_(model), options_(options) {
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument("IntegratorOptions: " + why);
+    : AdaptiveIntegrator(model, options) {
   impl_ = std::make_unique<Impl>();
   for (State* s : {&impl_->y, &impl_->dydt, &impl_->y_new, &impl_->dydt_new, &impl_->err})
-    s->resize(2 * model.size());
-  dt_ = options.initial_dt;
+    s->resize(2 * n_);
 }
 
 Dopri5Integrator::~Dopri5Integrator() = default;
 
-IntegratorStatus Dopri5Integrator::Advance(double t_end, double* t, Eigen::Ref<Eigen::VectorXd> q,
-                                           Eigen::Ref<Eigen::VectorXd> v) {
-  const int n = model_.size();
+void Dopri5Integrator::BeginAdvance(bool /*continuing*/) {
   Impl& m = *impl_;
-  Eigen::Map<Eigen::VectorXd> ym(m.y.data(), 2 * n), ynm(m.y_new.data(), 2 * n),
-      em(m.err.data(), 2 * n);
-  ym.head(n) = q;
-  ym.tail(n) = v;
+  Eigen::Map<Eigen::VectorXd>(m.y.data(), 2 * n_) = y_;
+  // FSAL: the derivative at the start of the interval (the system is autonomous: t is unused).
+  System{&model_, &stats_.f_evaluations}(m.y, m.dydt, 0.0);
+}
+
+AdaptiveIntegrator::Trial Dopri5Integrator::TryStep(double h) {
+  Impl& m = *impl_;
   const System sys{&model_, &stats_.f_evaluations};
-  sys(m.y, m.dydt, *t);  // FSAL: the derivative at the start of the interval
-  long attempts = 0;
-  IntegratorStatus status = IntegratorStatus::kOk;
-  while (*t < t_end) {
-    if (++attempts > options_.max_steps) {
-      status = IntegratorStatus::kMaxSteps;
-      break;
-    }
-    if (options_.max_dt > 0) dt_ = std::min(dt_, options_.max_dt);
-    const bool last = *t + dt_ * (1 + 1e-12) >= t_end;
-    const double h = last ? t_end - *t : dt_;
-    m.stepper.do_step(sys, m.y, m.dydt, *t, m.y_new, m.dydt_new, h, m.err);
-    double err = ErrorNorm(options_, n, ym, ynm, em);
-    if (!std::isfinite(err) || !ynm.allFinite()) err = 1e10;
-    // Order-5 controller: h_new = h · clamp(0.9 err^(−1/5), 0.2, 5).
-    const double fac = std::clamp(0.9 * std::pow(std::max(err, 1e-300), -0.2), 0.2, 5.0);
-    if (err > 1.0) {
-      ++stats_.rejected;
-      dt_ = h * std::min(fac, 0.9);
-      if (dt_ < options_.min_dt) {
-        status = IntegratorStatus::kStepSizeUnderflow;
-        break;
-      }
-      continue;
-    }
-    ym = ynm;  // copies keep the maps valid
-    m.dydt = m.dydt_new;
-    AcceptStep(model_, options_, h, last, t_end, t, ym, &stats_);
-    if (options_.project) sys(m.y, m.dydt, *t);  // the FSAL derivative of the projected state
-    const double next = h * fac;
-    if (!last || next < dt_) dt_ = next;
-  }
-  q = ym.head(n);
-  v = ym.tail(n);
-  return status;
+  m.stepper.do_step(sys, m.y, m.dydt, 0.0, m.y_new, m.dydt_new, h, m.err);
+  y_new_ = Eigen::Map<const Eigen::VectorXd>(m.y_new.data(), 2 * n_);
+  err_ = Eigen::Map<const Eigen::VectorXd>(m.err.data(), 2 * n_);
+  return {true, ErrorNorm(options_, n_, y_, y_new_, err_)};
+}
+
+double Dopri5Integrator::Rejected(double h, const Trial& trial) {
+  return h * std::min(StepFactor(trial.err), 0.9);
+}
+
+double Dopri5Integrator::Accepted(double h, double err) {
+  Impl& m = *impl_;
+  Eigen::Map<Eigen::VectorXd>(m.y.data(), 2 * n_) = y_;  // the new state, projected
+  m.dydt = m.dydt_new;
+  if (options_.project)  // the FSAL derivative of the projected state
+    System{&model_, &stats_.f_evaluations}(m.y, m.dydt, 0.0);
+  return h * StepFactor(err);
 }
 
 std::unique_ptr<QuatFdIntegrator> MakeIntegrator(IntegratorKind kind, const QuatFdModel& model,

@@ -19,31 +19,12 @@ using kernels::V3;
 using kernels::V4;
 using L = QuatFdLayout;
 
-template <int N>
-using Jet = ceres::Jet<double, N>;
-
-/// Seeds a Jet vector from doubles, derivative slots offset .. offset + size − 1.
-template <int N, int M>
-Eigen::Matrix<Jet<N>, M, 1> Seed(const Eigen::Ref<const Eigen::VectorXd>& x, int at, int offset) {
-  Eigen::Matrix<Jet<N>, M, 1> out;
-  for (int i = 0; i < M; ++i) out[i] = Jet<N>(x[at + i], offset + i);
-  return out;
-}
+Mat3 Block(const Mat6& M, int r, int c) { return M.block<3, 3>(r, c); }
 
 template <int M>
 Eigen::Matrix<double, M, 1> Value(const Eigen::Ref<const Eigen::VectorXd>& x, int at) {
   return x.segment<M>(at);
 }
-
-/// Adds d out / d(slots [slot, slot + width)) of a 3-vector Jet output into rows row..row+2 of
-/// the band matrix, columns col..col+width−1.
-template <int N>
-void AddBlock(const V3<Jet<N>>& out, int slot, int width, int row, int col, BandedMatrix* A) {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < width; ++j) (*A)(row + i, col + j) += out[i].v[slot + j];
-}
-
-Mat3 Block(const Mat6& M, int r, int c) { return M.block<3, 3>(r, c); }
 
 // The f path's per-segment kernels for doubles (EvaluateValue): the formulas of AngularVelocity,
 // SegmentForcesOmega and QuaternionAccelerationOmega (quatfd_kernels.hpp), with 1/|p|² formed
@@ -89,6 +70,57 @@ inline Vec4 QuaternionAccelerationFrame(const Vec3& inertia, const Vec3& inv_ine
   return kernels::QMul<double>(p, Vec4(c0, cv[0], cv[1], cv[2])) * f.inv_n2;
 }
 
+/// The vertices s_n (m): options.grid when given (checked: segments + 1 increasing values from 0
+/// to the rod length), else ModelGrid's.
+std::vector<double> VertexGrid(const RodModel& rod, const QuatFdOptions& options) {
+  std::vector<double> s = ModelGrid(rod, options.segments + 1);  // throws for an invalid rod
+  if (options.grid.empty()) return s;
+  const std::vector<double>& g = options.grid;
+  bool ok = static_cast<int>(g.size()) == options.segments + 1 && g.front() == 0.0 &&
+            std::abs(g.back() - rod.length) <= 1e-12 * rod.length;
+  for (size_t i = 1; ok && i < g.size(); ++i) ok = g[i] > g[i - 1];
+  if (!ok)
+    throw std::invalid_argument(
+        "QuatFdOptions: grid: expected segments + 1 increasing values from 0 to the rod length");
+  s = g;
+  s.back() = rod.length;
+  return s;
+}
+
+/// The bending/torsion element of interior vertex n, spanning [s_{n−1/2}, s_{n+1/2}]: its two
+/// half cells act in series, so C_K = w (h1 C1⁻¹ + h2 C2⁻¹)⁻¹ with each half sampled at its own
+/// midpoint (a stiffness jump at a vertex is then resolved to second order).
+kernels::BendConstants InteriorBendElement(const RodModel& rod, const Actuation& actuation,
+                                           const std::vector<double>& s, int n,
+                                           kernels::CurvatureKind kind) {
+  const double h1 = 0.5 * (s[n] - s[n - 1]), h2 = 0.5 * (s[n + 1] - s[n]);
+  const SectionProperties a = PrincipalAxesSectionAt(rod, s[n] - 0.5 * h1, actuation);
+  const SectionProperties b = PrincipalAxesSectionAt(rod, s[n] + 0.5 * h2, actuation);
+  kernels::BendConstants c;
+  c.h = c.weight = h1 + h2;
+  const Mat3 Ca = Block(a.stiffness, 0, 0), Cb = Block(b.stiffness, 0, 0);
+  c.stiffness = c.weight * (h1 * Ca.inverse() + h2 * Cb.inverse()).inverse();
+  c.damping = (h1 * Block(a.damping, 0, 0) + h2 * Block(b.damping, 0, 0)) / c.weight;
+  c.rest = rod.RestStrainAt(s[n]).head<3>();
+  c.kind = kind;
+  return c;
+}
+
+/// The one-sided element between a clamp at s = 0 and p_{1/2}: length Δs/2 (ghost point
+/// p_{−1/2}).
+kernels::BendConstants ClampBendElement(const RodModel& rod, const Actuation& actuation,
+                                        const std::vector<double>& s, kernels::CurvatureKind kind) {
+  const double h = 0.5 * (s[1] - s[0]);
+  const SectionProperties a = PrincipalAxesSectionAt(rod, 0.5 * h, actuation);
+  kernels::BendConstants c;
+  c.h = c.weight = h;
+  c.stiffness = Block(a.stiffness, 0, 0);
+  c.damping = Block(a.damping, 0, 0);
+  c.rest = rod.RestStrainAt(0.0).head<3>();
+  c.kind = kind;
+  return c;
+}
+
 }  // namespace
 
 bool QuatFdOptions::IsValid(std::string* why) const {
@@ -111,22 +143,13 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
     : options_(options), base_(base) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("QuatFdOptions: " + why);
-  s_ = ModelGrid(rod, options.segments + 1);  // throws for an invalid rod
-  if (!options.grid.empty()) {
-    const std::vector<double>& g = options.grid;
-    bool ok = static_cast<int>(g.size()) == options.segments + 1 && g.front() == 0.0 &&
-              std::abs(g.back() - rod.length) <= 1e-12 * rod.length;
-    for (size_t i = 1; ok && i < g.size(); ++i) ok = g[i] > g[i - 1];
-    if (!ok)
-      throw std::invalid_argument(
-          "QuatFdOptions: grid: expected segments + 1 increasing values from 0 to the rod length");
-    s_ = g;
-    s_.back() = rod.length;
-  }
+  s_ = VertexGrid(rod, options);
   const int N = options.segments;
   layout_.segments = N;
   base_quat_ = lie::RotationToQuat(base.R);
 
+  // Segments (stretch and shear, translational and rotary inertia) sampled at their midpoints;
+  // each lumps half its mass and length on either vertex.
   segment_.resize(N);
   rotation_.resize(N);
   inv_inertia_.resize(N);
@@ -149,36 +172,17 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
     vertex_weight_[i + 1] += 0.5 * ds;
   }
 
-  // Bending/torsion elements. Interior vertex n spans [s_{n−1/2}, s_{n+1/2}]: its two half cells
-  // act in series, so C_K = w (h1 C1⁻¹ + h2 C2⁻¹)⁻¹ with each half sampled at its own midpoint
-  // (a stiffness jump at a vertex is then resolved to second order).
+  // Bending/torsion elements at the interior vertices, and at a clamped base.
   const auto kind = options.curvature == Curvature::kBasic ? kernels::CurvatureKind::kBasic
                                                            : kernels::CurvatureKind::kVariant1;
   bend_.resize(N + 1);
   bend_active_.assign(N + 1, 0);
   for (int n = 1; n < N; ++n) {
-    const double h1 = 0.5 * (s_[n] - s_[n - 1]), h2 = 0.5 * (s_[n + 1] - s_[n]);
-    const SectionProperties a = PrincipalAxesSectionAt(rod, s_[n] - 0.5 * h1, actuation);
-    const SectionProperties b = PrincipalAxesSectionAt(rod, s_[n] + 0.5 * h2, actuation);
-    kernels::BendConstants& c = bend_[n];
-    c.h = c.weight = h1 + h2;
-    const Mat3 Ca = Block(a.stiffness, 0, 0), Cb = Block(b.stiffness, 0, 0);
-    c.stiffness = c.weight * (h1 * Ca.inverse() + h2 * Cb.inverse()).inverse();
-    c.damping = (h1 * Block(a.damping, 0, 0) + h2 * Block(b.damping, 0, 0)) / c.weight;
-    c.rest = rod.RestStrainAt(s_[n]).head<3>();
-    c.kind = kind;
+    bend_[n] = InteriorBendElement(rod, actuation, s_, n, kind);
     bend_active_[n] = 1;
   }
   if (options.base_end == EndCondition::kClamped) {
-    // One-sided element between the clamp and p_{1/2}: length Δs/2 (ghost point p_{−1/2}).
-    const double h = 0.5 * (s_[1] - s_[0]);
-    const SectionProperties a = PrincipalAxesSectionAt(rod, 0.5 * h, actuation);
-    kernels::BendConstants& c = bend_[0];
-    c.h = c.weight = h;
-    c.stiffness = Block(a.stiffness, 0, 0);
-    c.damping = Block(a.damping, 0, 0);
-    c.rest = rod.RestStrainAt(0.0).head<3>();
-    c.kind = kind;
+    bend_[0] = ClampBendElement(rod, actuation, s_, kind);
     bend_active_[0] = 1;
   }
 
@@ -274,6 +278,10 @@ void QuatFdModel::TipLoads(const kernels::V4<T>& p_last, kernels::V3<T>* force_W
 template kernels::V4<double> QuatFdModel::TipQuaternion<double>(const kernels::V4<double>&) const;
 template void QuatFdModel::TipLoads<double>(const kernels::V4<double>&, kernels::V3<double>*,
                                             kernels::V3<double>*) const;
+// The Jacobian path (quatfd_model_jacobian.cpp) differentiates the tip loads with Jets.
+template void QuatFdModel::TipLoads<ceres::Jet<double, 4>>(
+    const kernels::V4<ceres::Jet<double, 4>>&, kernels::V3<ceres::Jet<double, 4>>*,
+    kernels::V3<ceres::Jet<double, 4>>*) const;
 
 void QuatFdModel::TipLoadsJacobian(const Vec4& p_last, Vec3* force_W, Vec3* torque_B,
                                    Eigen::Matrix<double, 3, 4>* force_p,
@@ -303,6 +311,31 @@ void QuatFdModel::TipLoadsJacobian(const Vec4& p_last, Vec3* force_W, Vec3* torq
     const kernels::M34 Ge = (2.0 / e.squaredNorm()) * kernels::ImConjMulMatrix(e);
     const kernels::M34 half_p = 0.25 * tip_h_ * tip_compliance_ * kernels::Skew(moment_dead_B) * Gp;
     *force_p -= Rp * Re * kernels::Skew(F) * Ge.rightCols<3>() * half_p;
+  }
+}
+
+void QuatFdModel::AddExternalLoads(const Vec3& tip_force_W, const Vec3& tip_torque_B,
+                                   Eigen::Ref<Eigen::VectorXd> a) const {
+  const int N = layout_.segments;
+  for (int n = 0; n <= N; ++n) a.segment<3>(L::X(n)) += vertex_force_W_[n];
+  a.segment<3>(L::X(N)) += tip_force_W;
+  a.segment<3>(L::P(N - 1) + 1) += tip_torque_B;
+}
+
+void QuatFdModel::DivideVertexRowsByMass(Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
+                                         BandedMatrix* dfdv) const {
+  for (int n = 0; n <= layout_.segments; ++n) {
+    const int r = L::X(n);
+    const double inv_m = fixed_[r] ? 0.0 : 1.0 / mass_[n];
+    a.segment<3>(r) *= inv_m;
+    if (!dfdq) continue;
+    for (int i = r; i < r + 3; ++i) {
+      const int c0 = std::max(0, i - L::kBandwidth), c1 = std::min(size() - 1, i + L::kBandwidth);
+      for (int c = c0; c <= c1; ++c) {
+        (*dfdq)(i, c) *= inv_m;
+        (*dfdv)(i, c) *= inv_m;
+      }
+    }
   }
 }
 
@@ -353,254 +386,27 @@ void QuatFdModel::EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
     pd_prev = pd;
     f_prev = f;
   }
-  for (int n = 0; n <= N; ++n) a.segment<3>(L::X(n)) += vertex_force_W_[n];
-  {
-    const int xt = L::X(N), pl = L::P(N - 1);
-    Vec3 f, m;
-    TipLoads<double>(p_prev, &f, &m);
-    a.segment<3>(xt) += f;
-    a.segment<3>(pl + 1) += m;
-  }
+  Vec3 tip_force_W, tip_torque_B;
+  TipLoads<double>(p_prev, &tip_force_W, &tip_torque_B);
+  AddExternalLoads(tip_force_W, tip_torque_B, a);
   if (forces_only) {
     ZeroFixedRows(a);
     return;
   }
-  for (int n = 0; n <= N; ++n) {
-    const int r = L::X(n);
-    a.segment<3>(r) *= fixed_[r] ? 0.0 : 1.0 / mass_[n];
-  }
+  DivideVertexRowsByMass(a, nullptr, nullptr);
   accelerate(N - 1, p_prev, pd_prev, f_prev);
-}
-
-template <int kMode>
-void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
-                           const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
-                           Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq, BandedMatrix* dfdv,
-                           bool forces_only) const {
-  if constexpr (kMode == kValue) {
-    EvaluateValue(q, v, alpha, beta, a, forces_only);
-    return;
-  }
-  constexpr bool kJac = kMode != kValue;
-  const int N = layout_.segments;
-  // Part 1: generalised forces. x rows of `a` collect the vertex forces (N, world); rows
-  // P(ν)+1..+3 collect the body torques of segment ν (N·m). With the Jacobian, the same rows of
-  // dfdq/dfdv collect their derivatives.
-  a.setZero();
-  if (kJac) {
-    dfdq->SetZero();
-    dfdv->SetZero();
-  }
-  // Adds a (3 × w) block into rows row.., columns col.. of D.
-  auto add = [](BandedMatrix* D, int row, int col, const auto& block) {
-    for (int j = 0; j < block.cols(); ++j)
-      for (int i = 0; i < 3; ++i) (*D)(row + i, col + j) += block(i, j);
-  };
-  for (int i = 0; i < N; ++i) {
-    const int xa = L::X(i), xb = L::X(i + 1), pp = L::P(i);
-    kernels::SegmentJacobian J;
-    Vec3 fa, tau;
-    if (kMode == kAnalytic) {
-      kernels::SegmentForcesJacobian(segment_[i], Value<3>(q, xb) - Value<3>(q, xa),
-                                     Value<4>(q, pp), Value<3>(v, xb) - Value<3>(v, xa),
-                                     Value<4>(v, pp), &fa, &tau, &J);
-    } else {
-      // Slots: dx 0..2, p 3..6, dv 7..9, ṗ 10..13.
-      using Jt = Jet<14>;
-      V3<Jt> dx, dv, fj, tj;
-      for (int k = 0; k < 3; ++k) {
-        dx[k] = Jt(q[xb + k] - q[xa + k], k);
-        dv[k] = Jt(v[xb + k] - v[xa + k], 7 + k);
-      }
-      kernels::SegmentForces<Jt>(segment_[i], dx, Seed<14, 4>(q, pp, 3), dv, Seed<14, 4>(v, pp, 10),
-                                 &fj, &tj);
-      for (int r = 0; r < 3; ++r) {
-        fa[r] = fj[r].a;
-        tau[r] = tj[r].a;
-        for (int k = 0; k < 3; ++k) {
-          J.fa_dx(r, k) = fj[r].v[k];
-          J.fa_dv(r, k) = fj[r].v[7 + k];
-          J.tau_dx(r, k) = tj[r].v[k];
-          J.tau_dv(r, k) = tj[r].v[7 + k];
-        }
-        for (int k = 0; k < 4; ++k) {
-          J.fa_p(r, k) = fj[r].v[3 + k];
-          J.fa_pd(r, k) = fj[r].v[10 + k];
-          J.tau_p(r, k) = tj[r].v[3 + k];
-          J.tau_pd(r, k) = tj[r].v[10 + k];
-        }
-      }
-    }
-    a.segment<3>(xa) += fa;
-    a.segment<3>(xb) -= fa;
-    a.segment<3>(pp + 1) += tau;
-    // ∂/∂x_b = ∂/∂dx = −∂/∂x_a; the force on x_b is −force_a.
-    add(dfdq, xa, xb, J.fa_dx);
-    add(dfdq, xa, xa, -J.fa_dx);
-    add(dfdq, xa, pp, J.fa_p);
-    add(dfdv, xa, xb, J.fa_dv);
-    add(dfdv, xa, xa, -J.fa_dv);
-    add(dfdv, xa, pp, J.fa_pd);
-    add(dfdq, xb, xb, -J.fa_dx);
-    add(dfdq, xb, xa, J.fa_dx);
-    add(dfdq, xb, pp, -J.fa_p);
-    add(dfdv, xb, xb, -J.fa_dv);
-    add(dfdv, xb, xa, J.fa_dv);
-    add(dfdv, xb, pp, -J.fa_pd);
-    add(dfdq, pp + 1, xb, J.tau_dx);
-    add(dfdq, pp + 1, xa, -J.tau_dx);
-    add(dfdq, pp + 1, pp, J.tau_p);
-    add(dfdv, pp + 1, xb, J.tau_dv);
-    add(dfdv, pp + 1, xa, -J.tau_dv);
-    add(dfdv, pp + 1, pp, J.tau_pd);
-  }
-  // Bending elements; n = 0 is the clamp's (its p_a is the constant clamp quaternion).
-  for (int n = 0; n < N; ++n) {
-    if (!bend_active_[n]) continue;
-    const bool clamp = n == 0;
-    const int pa = clamp ? -1 : L::P(n - 1), pb = L::P(n);
-    const Vec4 qa = clamp ? base_quat_ : Value<4>(q, pa);
-    const Vec4 va = clamp ? Vec4::Zero() : Value<4>(v, pa);
-    kernels::BendJacobian J;
-    Vec3 ta, tb;
-    if (kMode == kAnalytic) {
-      kernels::BendTorquesJacobian(bend_[n], qa, Value<4>(q, pb), va, Value<4>(v, pb), &ta, &tb,
-                                   &J);
-    } else {
-      using Jt = Jet<16>;
-      V3<Jt> tja, tjb;
-      kernels::BendTorques<Jt>(bend_[n], Seed<16, 4>(qa, 0, 0), Seed<16, 4>(q, pb, 4),
-                               Seed<16, 4>(va, 0, 8), Seed<16, 4>(v, pb, 12), &tja, &tjb);
-      for (int r = 0; r < 3; ++r) {
-        ta[r] = tja[r].a;
-        tb[r] = tjb[r].a;
-        for (int k = 0; k < 4; ++k) {
-          J.ta_pa(r, k) = tja[r].v[k];
-          J.ta_pb(r, k) = tja[r].v[4 + k];
-          J.ta_pda(r, k) = tja[r].v[8 + k];
-          J.ta_pdb(r, k) = tja[r].v[12 + k];
-          J.tb_pa(r, k) = tjb[r].v[k];
-          J.tb_pb(r, k) = tjb[r].v[4 + k];
-          J.tb_pda(r, k) = tjb[r].v[8 + k];
-          J.tb_pdb(r, k) = tjb[r].v[12 + k];
-        }
-      }
-    }
-    a.segment<3>(pb + 1) += tb;
-    add(dfdq, pb + 1, pb, J.tb_pb);
-    add(dfdv, pb + 1, pb, J.tb_pdb);
-    if (clamp) continue;
-    a.segment<3>(pa + 1) += ta;
-    add(dfdq, pa + 1, pa, J.ta_pa);
-    add(dfdq, pa + 1, pb, J.ta_pb);
-    add(dfdv, pa + 1, pa, J.ta_pda);
-    add(dfdv, pa + 1, pb, J.ta_pdb);
-    add(dfdq, pb + 1, pa, J.tb_pa);
-    add(dfdv, pb + 1, pa, J.tb_pda);
-  }
-  // External loads: the distributed loads lumped on the vertices (constant); tip
-  // force on x_N, tip moment on the last segment (body torque).
-  for (int n = 0; n <= N; ++n) a.segment<3>(L::X(n)) += vertex_force_W_[n];
-  {
-    const int xt = L::X(N), pl = L::P(N - 1);
-    Vec3 f, m;
-    if (kMode == kAnalytic) {
-      Eigen::Matrix<double, 3, 4> f_p, m_p;
-      TipLoadsJacobian(Value<4>(q, pl), &f, &m, &f_p, &m_p);
-      add(dfdq, xt, pl, f_p);
-      add(dfdq, pl + 1, pl, m_p);
-    } else {
-      using Jt = Jet<4>;
-      V3<Jt> fj, mj;
-      TipLoads<Jt>(Seed<4, 4>(q, pl, 0), &fj, &mj);
-      f = V3<double>(fj[0].a, fj[1].a, fj[2].a);
-      m = V3<double>(mj[0].a, mj[1].a, mj[2].a);
-      AddBlock<4>(fj, 0, 4, xt, pl, dfdq);
-      AddBlock<4>(mj, 0, 4, pl + 1, pl, dfdq);
-    }
-    a.segment<3>(xt) += f;
-    a.segment<3>(pl + 1) += m;
-  }
-
-  if (forces_only) {
-    ZeroFixedRows(a);
-    return;
-  }
-  // Part 2: accelerations. Vertices: ẍ = Q / m (prescribed: 0). Segments: p̈ from the torque.
-  for (int n = 0; n <= N; ++n) {
-    const int r = L::X(n);
-    const double inv_m = fixed_[r] ? 0.0 : 1.0 / mass_[n];
-    a.segment<3>(r) *= inv_m;
-    if (kJac) {
-      for (int i = r; i < r + 3; ++i) {
-        const int c0 = std::max(0, i - L::kBandwidth), c1 = std::min(size() - 1, i + L::kBandwidth);
-        for (int c = c0; c <= c1; ++c) {
-          (*dfdq)(i, c) *= inv_m;
-          (*dfdv)(i, c) *= inv_m;
-        }
-      }
-    }
-  }
-  kernels::RotationConstants rc;
-  rc.alpha = alpha;
-  rc.beta = beta;
-  for (int i = 0; i < N; ++i) {
-    const int pp = L::P(i);
-    rc.inertia = rotation_[i].inertia;
-    const Vec3 tau = a.segment<3>(pp + 1);
-    Vec4 acc;
-    kernels::M44 acc_p, acc_pd;
-    kernels::M43 acc_tau;
-    if (kMode == kAnalytic) {
-      kernels::QuaternionAccelerationJacobian(rc, Value<4>(q, pp), Value<4>(v, pp), tau, &acc,
-                                              &acc_p, &acc_pd, &acc_tau);
-    } else {
-      using Jt = Jet<11>;
-      Eigen::Matrix<Jt, 3, 1> tj;
-      for (int k = 0; k < 3; ++k) tj[k] = Jt(tau[k], 8 + k);
-      const V4<Jt> accj =
-          kernels::QuaternionAcceleration<Jt>(rc, Seed<11, 4>(q, pp, 0), Seed<11, 4>(v, pp, 4), tj);
-      for (int r = 0; r < 4; ++r) {
-        acc[r] = accj[r].a;
-        for (int k = 0; k < 4; ++k) {
-          acc_p(r, k) = accj[r].v[k];
-          acc_pd(r, k) = accj[r].v[4 + k];
-        }
-        for (int k = 0; k < 3; ++k) acc_tau(r, k) = accj[r].v[8 + k];
-      }
-    }
-    // Rows pp+1..pp+3 of dfdq/dfdv hold dτ/d(q, v) over the window of columns c0..c0+17
-    // (p_{ν−1}, x_ν, p_ν, x_{ν+1}, p_{ν+1}); replace rows pp..pp+3 by ∂p̈/∂τ · dτ + own terms.
-    const int c0 = std::max(0, pp - 7), c1 = std::min(size() - 1, pp + 10);
-    for (BandedMatrix* D : {dfdq, dfdv}) {
-      const kernels::M44& own = D == dfdq ? acc_p : acc_pd;
-      double window[3][18];
-      for (int k = 0; k < 3; ++k)
-        for (int c = c0; c <= c1; ++c) window[k][c - c0] = (*D)(pp + 1 + k, c);
-      for (int r = 0; r < 4; ++r) {
-        for (int c = c0; c <= c1; ++c) {
-          double sum = 0.0;
-          for (int k = 0; k < 3; ++k) sum += acc_tau(r, k) * window[k][c - c0];
-          (*D)(pp + r, c) = sum;
-        }
-        for (int k = 0; k < 4; ++k) (*D)(pp + r, pp + k) += own(r, k);
-      }
-    }
-    a.segment<4>(pp) = acc;
-  }
 }
 
 void QuatFdModel::Acceleration(const Eigen::Ref<const Eigen::VectorXd>& q,
                                const Eigen::Ref<const Eigen::VectorXd>& v,
                                Eigen::Ref<Eigen::VectorXd> a) const {
-  Evaluate<kValue>(q, v, options_.baumgarte_alpha, options_.baumgarte_beta, a, nullptr, nullptr,
-                   false);
+  EvaluateValue(q, v, options_.baumgarte_alpha, options_.baumgarte_beta, a, false);
 }
 
 void QuatFdModel::Acceleration(const Eigen::Ref<const Eigen::VectorXd>& q,
                                const Eigen::Ref<const Eigen::VectorXd>& v, double alpha,
                                double beta, Eigen::Ref<Eigen::VectorXd> a) const {
-  Evaluate<kValue>(q, v, alpha, beta, a, nullptr, nullptr, false);
+  EvaluateValue(q, v, alpha, beta, a, false);
 }
 
 void QuatFdModel::Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
@@ -609,42 +415,10 @@ void QuatFdModel::Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
   Jacobian(q, v, options_.baumgarte_alpha, options_.baumgarte_beta, dfdq, dfdv, a);
 }
 
-template <int kMode>
-void QuatFdModel::JacobianImpl(const Eigen::Ref<const Eigen::VectorXd>& q,
-                               const Eigen::Ref<const Eigen::VectorXd>& v, double alpha,
-                               double beta, BandedMatrix* dfdq, BandedMatrix* dfdv,
-                               Eigen::VectorXd* a) const {
-  const int n = size();
-  if (dfdq->rows() != n || dfdq->lower() != L::kBandwidth || dfdq->upper() != L::kBandwidth)
-    dfdq->Resize(n, L::kBandwidth, L::kBandwidth);
-  if (dfdv->rows() != n || dfdv->lower() != L::kBandwidth || dfdv->upper() != L::kBandwidth)
-    dfdv->Resize(n, L::kBandwidth, L::kBandwidth);
-  if (a) {
-    a->resize(n);
-    Evaluate<kMode>(q, v, alpha, beta, *a, dfdq, dfdv, false);
-  } else {
-    Eigen::VectorXd tmp(n);
-    Evaluate<kMode>(q, v, alpha, beta, tmp, dfdq, dfdv, false);
-  }
-}
-
-void QuatFdModel::Jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
-                           const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
-                           BandedMatrix* dfdq, BandedMatrix* dfdv, Eigen::VectorXd* a) const {
-  JacobianImpl<kAnalytic>(q, v, alpha, beta, dfdq, dfdv, a);
-}
-
-void QuatFdModel::JacobianAutoDiff(const Eigen::Ref<const Eigen::VectorXd>& q,
-                                   const Eigen::Ref<const Eigen::VectorXd>& v, double alpha,
-                                   double beta, BandedMatrix* dfdq, BandedMatrix* dfdv,
-                                   Eigen::VectorXd* a) const {
-  JacobianImpl<kAutoDiff>(q, v, alpha, beta, dfdq, dfdv, a);
-}
-
 void QuatFdModel::Forces(const Eigen::Ref<const Eigen::VectorXd>& q,
                          const Eigen::Ref<const Eigen::VectorXd>& v,
                          Eigen::Ref<Eigen::VectorXd> forces) const {
-  Evaluate<kValue>(q, v, 0.0, 0.0, forces, nullptr, nullptr, true);
+  EvaluateValue(q, v, 0.0, 0.0, forces, true);
 }
 
 }  // namespace cosserat::quatfd

@@ -6,12 +6,36 @@
 
 namespace cosserat {
 
+namespace {
+
+using VecT = Eigen::Matrix<double, Actuation::kMaxTendons, 1>;
+using MatT = Eigen::Matrix<double, Actuation::kMaxTendons, Actuation::kMaxTendons>;
+
+/// The Newton matrix of the active set: dℓ_i/dτ_j (m/N) by forward differences (step 1e-6 of the
+/// tension scale) for active i and j, the identity elsewhere. mismatch(τ, &g) gives the lengths
+/// minus the commands at τ (false if the static solve fails, and then so does this).
+template <class Mismatch>
+bool ActiveSensitivities(const Mismatch& mismatch, int count, const VecT& tau, const VecT& g,
+                         const std::array<bool, Actuation::kMaxTendons>& active, MatT* D) {
+  *D = MatT::Identity();
+  const double scale = std::max(1e-3, tau.head(count).cwiseAbs().maxCoeff());
+  for (int j = 0; j < count; ++j) {
+    if (!active[j]) continue;
+    VecT t2 = tau, g2;
+    const double h = 1e-6 * scale;
+    t2(j) += h;
+    if (!mismatch(t2, &g2)) return false;
+    for (int i = 0; i < count; ++i) (*D)(i, j) = active[i] ? (g2(i) - g(i)) / h : (i == j);
+  }
+  return true;
+}
+
+}  // namespace
+
 TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::SE3& base,
                                        const StaticLoads& loads,
                                        const std::array<double, Actuation::kMaxTendons>& lengths,
                                        Actuation* actuation, const TendonLengthOptions& options) {
-  using VecT = Eigen::Matrix<double, Actuation::kMaxTendons, 1>;
-  using MatT = Eigen::Matrix<double, Actuation::kMaxTendons, Actuation::kMaxTendons>;
   TendonLengthSummary summary;
   const int count = solver.tendon_count();
   const double tol = options.tolerance * solver.length();
@@ -53,17 +77,8 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
       }
       return summary;
     }
-    // Sensitivities dℓ/dτ by forward differences (step ~1e-6 of the tension scale).
-    MatT D = MatT::Identity();
-    const double scale = std::max(1e-3, tau.head(count).cwiseAbs().maxCoeff());
-    for (int j = 0; j < count; ++j) {
-      if (!active[j]) continue;
-      VecT t2 = tau, g2;
-      const double h = 1e-6 * scale;
-      t2(j) += h;
-      if (!mismatch(t2, &g2)) return summary;
-      for (int i = 0; i < count; ++i) D(i, j) = active[i] ? (g2(i) - g(i)) / h : (i == j);
-    }
+    MatT D;
+    if (!ActiveSensitivities(mismatch, count, tau, g, active, &D)) return summary;
     VecT rhs = VecT::Zero();
     for (int i = 0; i < count; ++i) rhs(i) = active[i] ? -g(i) : 0.0;
     const VecT step = D.partialPivLu().solve(rhs);

@@ -64,6 +64,82 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   return result;
 }
 
+namespace {
+
+/// What the Radau run reports besides io::DynamicRun.
+struct RadauOutcome {
+  quatfd::IntegratorStatus status = quatfd::IntegratorStatus::kNotRun;
+  double last_dt = 0.0;  ///< s, the last accepted step
+};
+
+/// Integrates (q, v) from t = 0 to the problem's duration with Radau IIA, calling record(t) at
+/// every output interval, and fills run's step counts, times, status and final energy.
+template <class Record>
+RadauOutcome IntegrateRadau(quatfd::QuatFdModel& model, const io::Problem::Dynamics& d,
+                            Eigen::VectorXd& q, Eigen::VectorXd& v, const Record& record,
+                            io::DynamicRun* run) {
+  RadauOutcome outcome;
+  quatfd::IntegratorOptions io_opt;
+  io_opt.initial_dt = d.dt;
+  io_opt.rel_tol = io_opt.abs_tol = d.integrator_tolerance;
+  io_opt.max_steps = d.integrator_max_steps;
+  // The implicit Radau IIA integrator (docs/quatfd.md): like SDIRK4 its step map stays stable
+  // at the steps the error control asks for, where the Rosenbrock integrator's does not, and
+  // with stage order 3 it needs fewer steps than SDIRK4 on both benchmarks (BENCHMARKS.md).
+  quatfd::RadauIntegrator integrator(model, io_opt);
+  const int intervals = std::max(1, static_cast<int>(std::lround(d.duration / d.output_interval)));
+  const auto loop_start = Clock::now();
+  double t = 0.0;
+  for (int k = 1; k <= intervals; ++k) {
+    const double t_end = k == intervals ? d.duration : k * d.output_interval;
+    const long steps_before = integrator.stats().steps;
+    const auto t0 = Clock::now();
+    outcome.status = integrator.Advance(t_end, &t, q, v);
+    const long steps = integrator.stats().steps - steps_before;
+    if (steps > 0)
+      run->step_time_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count() / steps);
+    if (outcome.status != quatfd::IntegratorStatus::kOk) {
+      // Divergence (step-size underflow) or the step cap: reported as a failed run.
+      run->status = outcome.status == quatfd::IntegratorStatus::kMaxSteps
+                        ? SolveStatus::kMaxIterations
+                        : SolveStatus::kNonFinite;
+      run->failed_at_t = t;
+      break;
+    }
+    record(t);
+  }
+  run->stepping_wall_time_s = std::chrono::duration<double>(Clock::now() - loop_start).count();
+  run->steps = static_cast<int>(integrator.stats().steps);
+  run->halved_steps = static_cast<int>(integrator.stats().rejected);  // rejected steps
+  run->simulated_time_s = t;
+  outcome.last_dt = integrator.stats().last_dt;
+  if (run->frame_t.back() != t) record(t);
+  const quatfd::QuatFdEnergy e = model.Energy(q, v);
+  run->energy.kinetic = e.kinetic;
+  run->energy.elastic = e.elastic;
+  run->energy.potential = e.potential;
+  return outcome;
+}
+
+/// The summary line of a dynamics run, and the hint for a run stopped by the step cap.
+std::string DynamicsLog(const io::DynamicRun& run, const RadauOutcome& radau,
+                        const io::Problem::Dynamics& d, const RodState& state) {
+  std::ostringstream log;
+  log << "cosserat: " << ToString(run.status) << " (quaternion-fd";
+  if (run.initial_state_ok) log << ", radau: " << quatfd::ToString(radau.status);
+  log << "), " << run.steps << " steps, " << run.halved_steps << " rejected, "
+      << std::setprecision(6) << run.simulated_time_s << " s simulated in " << std::setprecision(3)
+      << run.wall_time_s << " s, " << TipText(state) << '\n';
+  if (radau.status == quatfd::IntegratorStatus::kMaxSteps)
+    log << "cosserat: hint: Radau took dynamics.integrator_max_steps (" << d.integrator_max_steps
+        << ") steps within one output interval, the last of " << std::setprecision(3)
+        << radau.last_dt << " s: a load the rod cannot carry, or a "
+        << "run that needs a larger integrator_max_steps or a shorter output_interval\n";
+  return log.str();
+}
+
+}  // namespace
+
 Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) {
   const io::Problem::Dynamics& d = problem.dynamics;
   const auto start = Clock::now();
@@ -87,70 +163,20 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
       run.frame_positions.insert(run.frame_positions.end(), state.position_W.begin(),
                                  state.position_W.end());
   };
-  quatfd::IntegratorStatus istatus = quatfd::IntegratorStatus::kNotRun;
-  double integrator_last_dt = 0.0;  // s, the last accepted Radau step
+  RadauOutcome radau;
   if (!run.initial_state_ok) {
     run.failed_at_t = 0.0;
   } else {
     record(0.0);
     model.set_loads(problem.loads);
-    quatfd::IntegratorOptions io_opt;
-    io_opt.initial_dt = d.dt;
-    io_opt.rel_tol = io_opt.abs_tol = d.integrator_tolerance;
-    io_opt.max_steps = d.integrator_max_steps;
-    // The implicit Radau IIA integrator (docs/quatfd.md): like SDIRK4 its step map stays stable
-    // at the steps the error control asks for, where the Rosenbrock integrator's does not, and
-    // with stage order 3 it needs fewer steps than SDIRK4 on both benchmarks (BENCHMARKS.md).
-    quatfd::RadauIntegrator integrator(model, io_opt);
-    const int intervals =
-        std::max(1, static_cast<int>(std::lround(d.duration / d.output_interval)));
-    const auto loop_start = Clock::now();
-    double t = 0.0;
-    for (int k = 1; k <= intervals; ++k) {
-      const double t_end = k == intervals ? d.duration : k * d.output_interval;
-      const long steps_before = integrator.stats().steps;
-      const auto t0 = Clock::now();
-      istatus = integrator.Advance(t_end, &t, q, v);
-      const long steps = integrator.stats().steps - steps_before;
-      if (steps > 0)
-        run.step_time_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count() / steps);
-      if (istatus != quatfd::IntegratorStatus::kOk) {
-        // Divergence (step-size underflow) or the step cap: reported as a failed run.
-        run.status = istatus == quatfd::IntegratorStatus::kMaxSteps ? SolveStatus::kMaxIterations
-                                                                    : SolveStatus::kNonFinite;
-        run.failed_at_t = t;
-        break;
-      }
-      record(t);
-    }
-    run.stepping_wall_time_s = std::chrono::duration<double>(Clock::now() - loop_start).count();
-    run.steps = static_cast<int>(integrator.stats().steps);
-    run.halved_steps = static_cast<int>(integrator.stats().rejected);  // rejected steps
-    run.simulated_time_s = t;
-    integrator_last_dt = integrator.stats().last_dt;
-    if (run.frame_t.back() != t) record(t);
-    const quatfd::QuatFdEnergy e = model.Energy(q, v);
-    run.energy.kinetic = e.kinetic;
-    run.energy.elastic = e.elastic;
-    run.energy.potential = e.potential;
+    radau = IntegrateRadau(model, d, q, v, record, &run);
   }
   run.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
   model.ToRodState(q, v, &state);
   Result result;
   result.json = io::DynamicResultToJson(run, state);
   if (options.nodes_csv) result.nodes_csv = detail::TrajectoryCsv(run, state.s);
-  std::ostringstream log;
-  log << "cosserat: " << ToString(run.status) << " (quaternion-fd";
-  if (run.initial_state_ok) log << ", radau: " << quatfd::ToString(istatus);
-  log << "), " << run.steps << " steps, " << run.halved_steps << " rejected, "
-      << std::setprecision(6) << run.simulated_time_s << " s simulated in " << std::setprecision(3)
-      << run.wall_time_s << " s, " << TipText(state) << '\n';
-  if (istatus == quatfd::IntegratorStatus::kMaxSteps)
-    log << "cosserat: hint: Radau took dynamics.integrator_max_steps (" << d.integrator_max_steps
-        << ") steps within one output interval, the last of " << std::setprecision(3)
-        << integrator_last_dt << " s: a load the rod cannot carry, or a "
-        << "run that needs a larger integrator_max_steps or a shorter output_interval\n";
-  result.log = log.str();
+  result.log = DynamicsLog(run, radau, d, state);
   result.converged = run.status == SolveStatus::kConverged;
   return result;
 }

@@ -128,6 +128,15 @@ class BucklingAnalysis {
   void Singularity(double lambda, double* sigma_min, double* det_sign, Vec6* null_vector,
                    double* sigma_second);
   BucklingMode ExtractMode(double lambda, const Vec6& v, bool double_root) const;
+  /// The equilibrium at λ = 0 from the unloaded rod, the fixed loads applied in 1, 4, 16 or 64
+  /// equal steps until all converge (false if none does); counts the solves.
+  bool SolveFixedLoads(int* solves);
+  /// λ_cr, the pre-buckled equilibrium there (solved from `guess`), its null vector and the
+  /// mode, into the members and *out; sigma0 = σ_min(J) at λ = 0.
+  void SetCriticalPoint(double lambda, const Vec6& guess, double sigma0, BucklingSummary* out);
+  /// The bordered Newton iteration of SolvePostBuckled at mode amplitude η = v · (u − u_cr),
+  /// λ free: true when |r| and the amplitude condition meet the solver's tolerance.
+  bool BorderedNewton(double eta, Vec6* u, double* lambda);
 
   ColumnSolver column_;
   RodModel model_;

@@ -15,10 +15,11 @@
 /// and the quaternion rows p ⊗ [0, ½ J⁻¹τ]; at an equilibrium (f = 0) the forces' derivative is
 /// m ∂f_x/∂q and 2 J Im(p̄ ⊗ ∂f_p/∂q), taken along the tangent directions ∂q/∂δx and
 /// ∂p/∂δθ = ½ p ⊗ [0, e_k]; central differences of QuatFdModel::Forces along exact retractions
-/// are the cross-check (finite_difference_stiffness). Its smallest eigenvalue μ(λ) changes sign where the equilibrium loses
-/// stability, whether the root is simple or double (a rod symmetric about its axis buckles in two
-/// planes at once; det would touch zero without changing sign, an eigenvalue does not).
-/// The scan brackets the sign change of μ and the Illinois variant of regula falsi refines it.
+/// are the cross-check (finite_difference_stiffness). Its smallest eigenvalue μ(λ) changes sign
+/// where the equilibrium loses stability, whether the root is simple or double (a rod symmetric
+/// about its axis buckles in two planes at once; det would touch zero without changing sign, an
+/// eigenvalue does not). The scan brackets the sign change of μ and the Illinois variant of regula
+/// falsi refines it.
 ///
 /// Needs a clamped base (a pinned–free rod is a mechanism: μ ≡ 0) and conservative loads: dead tip
 /// force and moment in the world frame, gravity, distributed force. Tendon tension and pressure
@@ -54,8 +55,8 @@ struct QuatFdBucklingOptions {
 
 struct QuatFdBucklingSummary {
   BucklingStatus status = BucklingStatus::kNotRun;
-  double critical_load = NAN;            ///< λ_cr (load units); NaN unless found
-  double lambda_reached = 0;             ///< the last λ where statics converged
+  double critical_load = NAN;  ///< λ_cr (load units); NaN unless found
+  double lambda_reached = 0;   ///< the last λ where statics converged
   /// Eigenvalues of the stiffness within 1e-4 μ(0) of zero at λ_cr: the multiplicity of the root
   /// (2: a double root, any plane buckles alike). The threshold sits far above the difference
   /// error (≈ 1e-6 EI/L) and far below the next mode's eigenvalue (the second cantilever Euler load
@@ -65,9 +66,9 @@ struct QuatFdBucklingSummary {
   /// vertex of largest |δK⊥|, δK_n ≈ (δθ_{n+1/2} − δθ_{n−1/2})/(s_{n+1/2} − s_{n−1/2}) (the clamp's
   /// δθ is zero), m. NaN unless found.
   double mode_s_max = NAN;
-  std::vector<double> scan_lambda;       ///< the scan: λ …
+  std::vector<double> scan_lambda;          ///< the scan: λ …
   std::vector<double> scan_min_eigenvalue;  ///< … and μ(λ) (dimensionless, units EI/L)
-  int solves = 0;                        ///< static solves
+  int solves = 0;                           ///< static solves
   double wall_time_s = 0;
   bool found() const { return status == BucklingStatus::kFound; }
 };
@@ -102,6 +103,11 @@ class QuatFdBuckling {
 
  private:
   bool SolveAt(double lambda, const Eigen::VectorXd& start, Eigen::VectorXd* q);
+  struct Bracket;
+  /// Narrows the bracket of the stability loss to lambda_tolerance (FindCriticalLoad).
+  void RefineBracket(Bracket* bracket);
+  /// s (m) of the vertex where the buckling mode at (λ, q) bends most.
+  double ModeMaxCurvatureS(double lambda, const Eigen::VectorXd& q);
 
   quatfd::QuatFdModel model_;
   LoadPath path_;

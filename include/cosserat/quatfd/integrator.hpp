@@ -101,8 +101,8 @@ class QuatFdIntegrator {
   virtual const char* name() const = 0;
 };
 
-/// The error-controlled step loop of the Rosenbrock, SDIRK and Radau integrators: the step cap
-/// (max_steps), max_dt, the last step landing on t_end, the rejection of a step that failed or
+/// The error-controlled step loop of the Dopri5, Rosenbrock, SDIRK and Radau integrators: the step
+/// cap (max_steps), max_dt, the last step landing on t_end, the rejection of a step that failed or
 /// whose error norm exceeds 1, the min_dt floor, and an accepted step's bookkeeping (AcceptStep).
 /// A method supplies one trial step (TryStep) and its step-size rules after a rejection
 /// (Rejected) and after an acceptance (Accepted); a proposal after the clipped last step of an

@@ -27,22 +27,23 @@ enum class IntegratorKind { kDopri5, kRosenbrock, kSdirk, kRadau };
 /// "dopri5", "rosenbrock", "sdirk", "radau".
 const char* ToString(IntegratorKind kind);
 
-class Dopri5Integrator final : public QuatFdIntegrator {
+/// odeint's runge_kutta_dopri5 (5th order with the embedded 4th-order estimate, FSAL) as the
+/// trial step of the shared step loop (AdaptiveIntegrator), with an order-5 step-size controller:
+/// h_new = h · clamp(0.9 err^(−1/5), 0.2, 5), at most 0.9 h after a rejection.
+class Dopri5Integrator final : public AdaptiveIntegrator {
  public:
   Dopri5Integrator(const QuatFdModel& model, const IntegratorOptions& options = {});
   ~Dopri5Integrator() override;
-  IntegratorStatus Advance(double t_end, double* t, Eigen::Ref<Eigen::VectorXd> q,
-                           Eigen::Ref<Eigen::VectorXd> v) override;
-  const IntegratorStats& stats() const override { return stats_; }
   const char* name() const override { return "dopri5"; }
 
  private:
+  void BeginAdvance(bool continuing) override;
+  Trial TryStep(double h) override;
+  double Rejected(double h, const Trial& trial) override;
+  double Accepted(double h, double err) override;
+
   struct Impl;
-  const QuatFdModel& model_;
-  IntegratorOptions options_;
-  IntegratorStats stats_;
   std::unique_ptr<Impl> impl_;
-  double dt_ = 0;
 };
 
 std::unique_ptr<QuatFdIntegrator> MakeIntegrator(IntegratorKind kind, const QuatFdModel& model,

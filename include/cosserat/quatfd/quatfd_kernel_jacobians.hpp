@@ -123,6 +123,27 @@ struct BendJacobian {
   M34 tb_pa, tb_pb, tb_pda, tb_pdb;
 };
 
+using M54 = Eigen::Matrix<double, 5, 4>;
+
+/// ∂ξ/∂p_a and ∂ξ/∂p_b of the bending invariants ξ = (r0, r⃗, s) of BendTorquesJacobian (rows
+/// r0, r⃗, s), with Ea = E(p_a), Eb = E(p_b); variant1: s is the variant-1 normaliser (else
+/// s ≡ 1 and its row is zero).
+inline void BendInvariantsJacobian(const Eigen::Vector4d& pa, const Eigen::Vector4d& pb,
+                                   const M34& Ea, const M34& Eb, bool variant1, M54* xi_pa,
+                                   M54* xi_pb) {
+  xi_pa->row(0) = pb.transpose();
+  xi_pb->row(0) = pa.transpose();
+  xi_pa->middleRows<3>(1) = -Eb;
+  xi_pb->middleRows<3>(1) = Ea;
+  if (variant1) {
+    xi_pa->row(4) = 0.5 * (pa + pb).transpose();
+    xi_pb->row(4) = xi_pa->row(4);
+  } else {
+    xi_pa->row(4).setZero();
+    xi_pb->row(4).setZero();
+  }
+}
+
 /// BendTorques (same outputs) and its exact Jacobian. Write T_a = ∂K/∂θ_a, T_b = ∂K/∂θ_b (see
 /// BendTorques); then K̇ = T_a ω_a + T_b ω_b and torque_x = −w T_xᵀ M. Everything else depends
 /// on p_a, p_b through ξ = (r0, r⃗, s) with r = p̄_a p_b, s the variant-1 normaliser:
@@ -143,7 +164,6 @@ inline void BendTorquesJacobian(const BendConstants& c, const Eigen::Vector4d& p
                                 Eigen::Vector3d* torque_b, BendJacobian* J) {
   using V3 = Eigen::Vector3d;
   using M35 = Eigen::Matrix<double, 3, 5>;
-  using M54 = Eigen::Matrix<double, 5, 4>;
   const bool v1 = c.kind == CurvatureKind::kVariant1;
   const M34 Ea = ImConjMulMatrix(pa), Eb = ImConjMulMatrix(pb);
   const V3 rv = Ea * pb;
@@ -169,19 +189,8 @@ inline void BendTorquesJacobian(const BendConstants& c, const Eigen::Vector4d& p
   *torque_a = taM * M;
   *torque_b = tbM * M;
 
-  // ∂ξ/∂p_a, ∂ξ/∂p_b (rows r0, r⃗, s).
   M54 xa, xb;
-  xa.row(0) = pb.transpose();
-  xb.row(0) = pa.transpose();
-  xa.middleRows<3>(1) = -Eb;
-  xb.middleRows<3>(1) = Ea;
-  if (v1) {
-    xa.row(4) = 0.5 * (pa + pb).transpose();
-    xb.row(4) = xa.row(4);
-  } else {
-    xa.row(4).setZero();
-    xb.row(4).setZero();
-  }
+  BendInvariantsJacobian(pa, pb, Ea, Eb, v1, &xa, &xb);
   // ∂K/∂ξ, ∂K̇/∂ξ at fixed ω, then ∂M/∂ξ.
   M35 K_xi, Kd_xi;
   K_xi.col(0).setZero();

@@ -182,12 +182,12 @@ class QuatFdModel {
   double force_scale() const { return force_scale_; }
 
  private:
-  enum : int { kValue, kAutoDiff, kAnalytic };  ///< Evaluate's mode: f, f + J by Jet, by hand
+  enum : int { kAutoDiff, kAnalytic };  ///< Evaluate's mode: J by Jet, by hand
   template <int kMode>
   void JacobianImpl(const Eigen::Ref<const Eigen::VectorXd>& q,
                     const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
                     BandedMatrix* dfdq, BandedMatrix* dfdv, Eigen::VectorXd* a) const;
-  /// Evaluate's f (kValue) in one pass, each segment's R(p), ω and 1/|p|² formed once.
+  /// f alone (Acceleration, Forces) in one pass, each segment's R(p), ω and 1/|p|² formed once.
   void EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
                      const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
                      Eigen::Ref<Eigen::VectorXd> a, bool forces_only) const;
@@ -196,11 +196,43 @@ class QuatFdModel {
     for (int r = 0; r < size(); ++r)
       if (fixed_[r]) a[r] = 0.0;
   }
+  /// f with ∂f/∂q, ∂f/∂v (quatfd_model_jacobian.cpp): the force parts below, then ẍ = Q/m and
+  /// p̈ from each segment's torque.
   template <int kMode>
   void Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
                 Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq, BandedMatrix* dfdv,
                 bool forces_only) const;
+  /// Evaluate's force parts with their derivatives (kAutoDiff or kAnalytic), added into the x rows
+  /// (vertex forces, N, world) and rows P(ν)+1..+3 (body torques of segment ν, N·m) of a, and the
+  /// same rows of dfdq, dfdv: the segments' stretch and shear, the bending/torsion elements,
+  /// and the external loads.
+  template <int kMode>
+  void AddSegmentForces(const Eigen::Ref<const Eigen::VectorXd>& q,
+                        const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Ref<Eigen::VectorXd> a,
+                        BandedMatrix* dfdq, BandedMatrix* dfdv) const;
+  template <int kMode>
+  void AddBendTorques(const Eigen::Ref<const Eigen::VectorXd>& q,
+                      const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Ref<Eigen::VectorXd> a,
+                      BandedMatrix* dfdq, BandedMatrix* dfdv) const;
+  template <int kMode>
+  void AddLoads(const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> a,
+                BandedMatrix* dfdq) const;
+  /// Replaces each segment's torque rows of a by its p̈ (4 rows from P(ν)) and chains the
+  /// derivatives through ∂p̈/∂τ.
+  template <int kMode>
+  void AccelerateSegments(const Eigen::Ref<const Eigen::VectorXd>& q,
+                          const Eigen::Ref<const Eigen::VectorXd>& v, double alpha, double beta,
+                          Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
+                          BandedMatrix* dfdv) const;
+  /// Adds the external loads to the force rows of a: the distributed loads lumped on the
+  /// vertices, the tip force on x_N (N, world) and the tip moment as a body torque on p_{N−1/2}.
+  void AddExternalLoads(const Vec3& tip_force_W, const Vec3& tip_torque_B,
+                        Eigen::Ref<Eigen::VectorXd> a) const;
+  /// Vertex forces to accelerations, ẍ = Q/m (prescribed vertices: 0); with dfdq, dfdv (or
+  /// nullptr) their rows likewise.
+  void DivideVertexRowsByMass(Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
+                              BandedMatrix* dfdv) const;
 
   /// Quaternion of the frame at s = L from p_{N−1/2} (free end).
   template <typename T>
@@ -222,12 +254,12 @@ class QuatFdModel {
   lie::SE3 base_;
   Vec4 base_quat_;
   StaticLoads loads_;
-  SplitWrench tip_wrench_;           ///< loads_ on the tip (dead: world, follower: tip frame)
-  std::vector<Vec3> vertex_force_W_;  ///< distributed loads lumped on each vertex, world, N
-  std::vector<double> s_;                             ///< vertices s_n, m
-  std::vector<double> mass_;                          ///< lumped vertex masses m_n, kg
-  std::vector<double> vertex_weight_;                 ///< dual lengths w_n, m
-  std::vector<unsigned char> fixed_;                  ///< per unknown
+  SplitWrench tip_wrench_;             ///< loads_ on the tip (dead: world, follower: tip frame)
+  std::vector<Vec3> vertex_force_W_;   ///< distributed loads lumped on each vertex, world, N
+  std::vector<double> s_;              ///< vertices s_n, m
+  std::vector<double> mass_;           ///< lumped vertex masses m_n, kg
+  std::vector<double> vertex_weight_;  ///< dual lengths w_n, m
+  std::vector<unsigned char> fixed_;   ///< per unknown
   std::vector<kernels::SegmentConstants> segment_;    ///< per segment
   std::vector<kernels::RotationConstants> rotation_;  ///< per segment (inertia)
   std::vector<Vec3> inv_inertia_;                     ///< per segment, 1/inertia (f path)
