@@ -16,11 +16,17 @@ NOT_A_FUNCTION = re.compile(r"^\s*(namespace|class|struct|union|enum|extern)\b|=
 
 
 def strip(text):
-    """Source with comments, string and character literals blanked (newlines kept)."""
+    """Source with comments, preprocessor lines, string and character literals blanked (newlines
+    kept)."""
     out, i, n = [], 0, len(text)
     while i < n:
         c = text[i]
-        if text.startswith("//", i):
+        if c == "#" and (i == 0 or text[i - 1] == "\n"):
+            j = text.find("\n", i)
+            j = n if j < 0 else j
+            out.append(" " * (j - i))
+            i = j
+        elif text.startswith("//", i):
             j = text.find("\n", i)
             j = n if j < 0 else j
             out.append(" " * (j - i))

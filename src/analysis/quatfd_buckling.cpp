@@ -92,7 +92,7 @@ Eigen::MatrixXd QuatFdBuckling::StiffnessFiniteDifference(const Eigen::VectorXd&
       Vec4 d(std::cos(0.5 * t), 0, 0, 0);
       d[1 + k] = std::sin(0.5 * t);
       const Vec4 p = q.segment<4>(Layout::P(s));
-      qt.segment<4>(Layout::P(s)) = quatfd::kernels::QMul<double>(p, d);
+      qt.segment<4>(Layout::P(s)) = lie::QuatMultiply<double>(p, d);
     }
   };
   Eigen::MatrixXd H(m, m);
@@ -125,7 +125,7 @@ Eigen::MatrixXd QuatFdBuckling::StiffnessAnalytic(const Eigen::VectorXd& q) {
     for (int k = 0; k < 3; ++k) {
       Vec4 e = Vec4::Zero();
       e[1 + k] = 1.0;
-      const Vec4 dp = 0.5 * quatfd::kernels::QMul<double>(p, e);
+      const Vec4 dp = 0.5 * lie::QuatMultiply<double>(p, e);
       AT.col(3 * nv + 3 * s + k) = A.middleCols<4>(Layout::P(s)) * dp;
     }
   }

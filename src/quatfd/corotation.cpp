@@ -26,7 +26,7 @@ void CoRotation::Update(const Eigen::Ref<const Eigen::VectorXd>& q_ref,
     const Eigen::Vector4d pj = q_ref.segment<4>(QuatFdLayout::P(nu));
     // w = p ⊗ p̄_J / (|p| |p_J|): the world rotation that takes segment ν from where J was
     // evaluated to q.
-    Eigen::Vector4d w = kernels::QMul<double>(p, Eigen::Vector4d(pj[0], -pj[1], -pj[2], -pj[3]));
+    Eigen::Vector4d w = lie::QuatMultiply<double>(p, Eigen::Vector4d(pj[0], -pj[1], -pj[2], -pj[3]));
     w *= 1.0 / std::sqrt(w.squaredNorm());
     segment_w_[nu] = w;
     Eigen::Matrix4d& L = segment_rot_[nu];  // left multiplication by w

@@ -67,7 +67,7 @@ inline Vec4 QuaternionAccelerationFrame(const Vec3& inertia, const Vec3& inv_ine
   const Vec3 wdot = (torque - w.cross(inertia.cwiseProduct(w))).cwiseProduct(inv_inertia);
   const Vec3 cv = 0.5 * n2 * wdot + ppd * w;
   const double c0 = -pd.squaredNorm() - 2.0 * alpha * ppd - 0.5 * beta * beta * (n2 - 1.0);
-  return kernels::QMul<double>(p, Vec4(c0, cv[0], cv[1], cv[2])) * f.inv_n2;
+  return lie::QuatMultiply<double>(p, Vec4(c0, cv[0], cv[1], cv[2])) * f.inv_n2;
 }
 
 /// The vertices s_n (m): options.grid when given (checked: segments + 1 increasing values from 0
@@ -250,7 +250,7 @@ kernels::V4<T> QuatFdModel::TipQuaternion(const kernels::V4<T>& p_last) const {
     m += kernels::ToBody<T>(p_last, V3<T>(tip_wrench_.dead_W.head<3>().cast<T>()));
   const V3<T> k = tip_rest_.cast<T>() + tip_compliance_.cast<T>() * m;
   const V3<T> half = T(0.5 * tip_h_) * k * T(0.5);
-  return kernels::QMul<T>(p_last, kernels::V4<T>(T(1), half[0], half[1], half[2]));
+  return lie::QuatMultiply<T>(p_last, kernels::V4<T>(T(1), half[0], half[1], half[2]));
 }
 
 template <typename T>

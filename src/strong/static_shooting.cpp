@@ -268,7 +268,8 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
   if (record) {
     const int q_tip = 3 * (n - 2) + 2;
     const Sample& tip = samples[q_tip];
-    Vec6 xi_tip = rhs::LinearStrain<double>(tip.rest_strain, tip.compliance_diagonal, y.m, y.n);
+    Vec6 xi_tip;
+    rhs::LinearStrain<double>(tip.rest_strain, tip.compliance_diagonal, y.m, y.n, &xi_tip);
     if (tc) {
       xi_tip = guess;
       if (!SolveTendonStrain((*tc->stages)[q_tip].stiffness, tip.rest_strain,

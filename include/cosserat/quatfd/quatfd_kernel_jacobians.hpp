@@ -22,11 +22,8 @@ using M34 = Eigen::Matrix<double, 3, 4>;
 using M43 = Eigen::Matrix<double, 4, 3>;
 using M44 = Eigen::Matrix4d;
 
-inline M33 Skew(const Eigen::Vector3d& v) {
-  M33 S;
-  S << 0, -v[2], v[1], v[2], 0, -v[0], -v[1], v[0], 0;
-  return S;
-}
+/// hat(v): Skew(v) u = v × u (lie/so3.hpp).
+inline M33 Skew(const Eigen::Vector3d& v) { return lie::hat(v); }
 
 /// E(p): E(p) b = Im(p̄ ⊗ b).
 inline M34 ImConjMulMatrix(const Eigen::Vector4d& p) {

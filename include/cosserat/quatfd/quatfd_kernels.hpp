@@ -10,6 +10,8 @@
 
 #include <Eigen/Core>
 
+#include "cosserat/lie/quaternion.hpp"
+
 namespace cosserat::quatfd::kernels {
 
 template <typename T>
@@ -22,14 +24,8 @@ inline V3<T> Cross(const V3<T>& a, const V3<T>& b) {
   return V3<T>(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
 }
 
-/// a ⊗ b.
-template <typename T>
-inline V4<T> QMul(const V4<T>& a, const V4<T>& b) {
-  return V4<T>(a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-               a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-               a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-               a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]);
-}
+/// a ⊗ b (lie/quaternion.hpp).
+using lie::QuatMultiply;
 
 /// Im(ā ⊗ b): the vector part of conj(a) ⊗ b.
 template <typename T>
@@ -128,7 +124,7 @@ inline void BendTorquesOmega(const BendConstants& c, const V4<T>& pa, const V4<T
                              const V3<T>& wa, const V3<T>& wb, V3<T>* torque_a, V3<T>* torque_b,
                              V3<T>* curvature = nullptr, V3<T>* moment = nullptr) {
   const V4<T> conj_a(pa[0], -pa[1], -pa[2], -pa[3]);
-  const V4<T> r = QMul<T>(conj_a, pb);
+  const V4<T> r = QuatMultiply<T>(conj_a, pb);
   const V3<T> rv(r[1], r[2], r[3]);
   const T r0 = r[0];
   // s = |p_n|² with p_n the mean (variant 1); 1 for the basic choice.
@@ -160,8 +156,8 @@ template <typename T>
 inline void BendTorques(const BendConstants& c, const V4<T>& pa, const V4<T>& pb, const V4<T>& pda,
                         const V4<T>& pdb, V3<T>* torque_a, V3<T>* torque_b,
                         V3<T>* curvature = nullptr, V3<T>* moment = nullptr) {
-  BendTorquesOmega<T>(c, pa, pb, AngularVelocity<T>(pa, pda), AngularVelocity<T>(pb, pdb),
-                      torque_a, torque_b, curvature, moment);
+  BendTorquesOmega<T>(c, pa, pb, AngularVelocity<T>(pa, pda), AngularVelocity<T>(pb, pdb), torque_a,
+                      torque_b, curvature, moment);
 }
 
 struct RotationConstants {
@@ -186,7 +182,7 @@ inline V4<T> QuaternionAccelerationOmega(const RotationConstants& c, const V4<T>
   const V3<T> wdot(rhs[0] / T(c.inertia[0]), rhs[1] / T(c.inertia[1]), rhs[2] / T(c.inertia[2]));
   const V3<T> cv = T(0.5) * n2 * wdot + ppd * w;
   const T c0 = -pd.squaredNorm() - T(2 * c.alpha) * ppd - T(0.5 * c.beta * c.beta) * (n2 - T(1));
-  return QMul<T>(p, V4<T>(c0, cv[0], cv[1], cv[2])) / n2;
+  return QuatMultiply<T>(p, V4<T>(c0, cv[0], cv[1], cv[2])) / n2;
 }
 
 /// QuaternionAccelerationOmega with ω = AngularVelocity(p, ṗ).

@@ -71,20 +71,19 @@ COSSERAT_RHS_INLINE Vector3<T> ElasticMomentRate(const Vector3<T>& m, const T* n
                     m(0) * k1 - m(1) * k0 + n_B[0] * g1 - n_B[1] * g0);
 }
 
-/// The linear law's strain in statics: ξ = ξ* + C W with C = K⁻¹ diagonal (principal axes).
+/// The linear law's strain in statics: ξ = ξ* + C W with C = K⁻¹ diagonal (principal axes),
+/// written element by element into *xi.
 template <typename T>
-COSSERAT_RHS_INLINE Vector6<T> LinearStrain(const Vec6& rest_strain, const Vec6& compliance,
-                                            const Vector3<T>& m, const Vector3<T>& n_B) {
+COSSERAT_RHS_INLINE void LinearStrain(const Vec6& rest_strain, const Vec6& compliance,
+                                      const Vector3<T>& m, const Vector3<T>& n_B, Vector6<T>* xi) {
   const double* c = compliance.data();
   const double* r = rest_strain.data();
-  Vector6<T> xi;
-  xi(0) = r[0] + c[0] * m(0);
-  xi(1) = r[1] + c[1] * m(1);
-  xi(2) = r[2] + c[2] * m(2);
-  xi(3) = r[3] + c[3] * n_B(0);
-  xi(4) = r[4] + c[4] * n_B(1);
-  xi(5) = r[5] + c[5] * n_B(2);
-  return xi;
+  (*xi)(0) = r[0] + c[0] * m(0);
+  (*xi)(1) = r[1] + c[1] * m(1);
+  (*xi)(2) = r[2] + c[2] * m(2);
+  (*xi)(3) = r[3] + c[3] * n_B(0);
+  (*xi)(4) = r[4] + c[4] * n_B(1);
+  (*xi)(5) = r[5] + c[5] * n_B(2);
 }
 
 /// d/ds of a static point for the strain xi and the distributed force f_W (N/m, world).
@@ -110,7 +109,7 @@ template <typename T>
 COSSERAT_RHS_INLINE StaticPoint<T> StaticDerivative(const Vec6& rest_strain, const Vec6& compliance,
                                                     const Vector3<T>& f_W, const StaticPoint<T>& y,
                                                     Vector6<T>* xi) {
-  *xi = LinearStrain<T>(rest_strain, compliance, y.m, y.n);
+  LinearStrain<T>(rest_strain, compliance, y.m, y.n, xi);
   return StaticRates<T>(*xi, f_W, y);
 }
 
@@ -154,8 +153,7 @@ COSSERAT_RHS_INLINE DynamicPoint<T> DynamicDerivative(const SectionSample& smp,
   const Matrix3<T>& R = y.R;
   const Vector3<T> n_B = R.transpose() * y.n;
   const T W[6] = {y.m(0), y.m(1), y.m(2), n_B(0), n_B(1), n_B(2)};
-  T* xi = strain->data();
-  T xt[6], Vt[6];
+  T xi[6], xt[6], Vt[6];
   if (given) {
     for (int i = 0; i < 6; ++i) xi[i] = (*given)(i);
   } else if (h.statics) {
@@ -167,8 +165,8 @@ COSSERAT_RHS_INLINE DynamicPoint<T> DynamicDerivative(const SectionSample& smp,
     if (smp.damped)
       for (int i = 0; i < 6; ++i) xi[i] -= smp.implicit_damping(i) * (*h.strain)(i);
   }
-  const Vector3<T>& w = y.w;
-  const Vector3<T>& v = y.v;
+  const Vector3<T> w = y.w;
+  const Vector3<T> v = y.v;
   if (h.statics) {
     for (int i = 0; i < 6; ++i) xt[i] = Vt[i] = T(0.0);
   } else {
@@ -178,6 +176,7 @@ COSSERAT_RHS_INLINE DynamicPoint<T> DynamicDerivative(const SectionSample& smp,
       Vt[3 + i] = h.c0 * v(i) + (*h.twist)(3 + i);
     }
   }
+  for (int i = 0; i < 6; ++i) (*strain)(i) = xi[i];
   *twist << w, v;
   const T k0 = xi[0], k1 = xi[1], k2 = xi[2], g0 = xi[3], g1 = xi[4], g2 = xi[5];
   const double J0 = smp.mass(0), J1 = smp.mass(1), J2 = smp.mass(2), rhoA = smp.mass(5);
