@@ -263,12 +263,31 @@ class PyStaticSolver {
   bool solved_ = false;
 };
 
+/// cosserat.Fluid: the fluid around the rod (environment.fluid of a problem file).
+void BindFluid(py::module_& m) {
+  py::class_<Fluid>(m, "Fluid",
+                    "The fluid around the rod: density (kg/m³), a uniform flow velocity (m/s, "
+                    "world), the Morison coefficients drag_normal, drag_tangential, added_mass "
+                    "and the drag diameter (m; 0: the section's). A sheared profile is set from "
+                    "a problem file.")
+      .def(py::init<>())
+      .def_readwrite("density", &Fluid::density)
+      .def_readwrite("velocity", &Fluid::velocity_W)
+      .def_readwrite("drag_normal", &Fluid::drag_normal)
+      .def_readwrite("drag_tangential", &Fluid::drag_tangential)
+      .def_readwrite("added_mass", &Fluid::added_mass)
+      .def_readwrite("diameter", &Fluid::diameter);
+}
+
 /// cosserat.Loads: the external loads, their frames and a readable repr.
 void BindLoads(py::module_& m) {
+  BindFluid(m);
   py::class_<StaticLoads>(m, "Loads",
                           "External loads: gravity (m/s²), a uniform distributed "
-                          "force (N/m), a tip force (N) and moment (N·m).")
+                          "force (N/m), a tip force (N) and moment (N·m), and the fluid "
+                          "around the rod (buoyancy, drag, added mass).")
       .def(py::init<>())
+      .def_readwrite("fluid", &StaticLoads::fluid)
       .def_readwrite("gravity", &StaticLoads::gravity_W)
       .def_readwrite("distributed_force", &StaticLoads::distributed_force_W)
       .def_readwrite("tip_force", &StaticLoads::tip_force)

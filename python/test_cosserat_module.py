@@ -34,6 +34,28 @@ def wire(analysis="statics", extra=None):
     return cosserat.parse_problem(json.dumps(problem))
 
 
+class Environment(unittest.TestCase):
+    def test_a_current_bends_a_cantilever_as_beam_theory(self):
+        # q L^4 / (8 EI) with q = 1/2 rho_f C_dn D U^2; at delta/L ~ 1e-3 the nonlinearity is
+        # O(1e-3) of delta, inside the 1 % (test_fluid_loads.cpp argues it in full).
+        loads = cosserat.Loads()
+        fluid = cosserat.Fluid()
+        fluid.density, fluid.drag_normal, fluid.velocity = 1000.0, 1.2, [0.05, 0, 0]
+        loads.fluid = fluid
+        solver = cosserat.StaticSolver(wire())
+        self.assertTrue(solver.solve(loads).converged)
+        q = 0.5 * 1000.0 * 1.2 * 2 * R * 0.05**2
+        expected = q * L**4 / (8 * EI)
+        self.assertLess(expected, 2e-3 * L)
+        self.assertAlmostEqual(solver.state()["position"][-1][0], expected, delta=0.01 * expected)
+
+    def test_the_environment_of_a_problem_file_is_read(self):
+        p = cosserat.load_problem("examples/cantilever_in_current.json")
+        self.assertAlmostEqual(p.loads.fluid.density, 1025.0)
+        np.testing.assert_allclose(p.loads.fluid.velocity, [0.8, 0, 0])
+        self.assertAlmostEqual(p.loads.fluid.added_mass, 1.0)
+
+
 class ProblemFiles(unittest.TestCase):
     def test_reads_the_default_problem(self):
         p = cosserat.load_problem("examples/cantilever.json")

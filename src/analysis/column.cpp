@@ -55,6 +55,7 @@ ColumnSolver::ColumnSolver(const RodModel& model, int num_nodes, ColumnEnds ends
   const double L = model.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
   mass_per_length_ = p.mass(3, 3);
+  outer_diameter_ = p.outer_diameter;
   state_.Resize(static_cast<int>(shooter_.grid().size()));
   for (int i = 0; i < state_.size(); ++i) state_.s[i] = shooter_.grid()[i];
 }
@@ -219,7 +220,7 @@ ColumnSummary ColumnSolver::Solve(const lie::SE3& base, const StaticLoads& loads
 
 double ColumnSolver::LoadMeasure(const StaticLoads& loads) const {
   const double L = length(), EI = scale_(0) * L;
-  const Vec3 distributed = TotalDistributedForce_W(loads, {0.0, 1.0, mass_per_length_});
+  const Vec3 distributed = TotalDistributedForce_W(loads, {0.0, 1.0, mass_per_length_, outer_diameter_});
   const SplitWrench tip = TotalTipWrench(loads);
   const double force = tip.dead_W.tail<3>().norm() + tip.follower_B.tail<3>().norm();
   const double moment = tip.dead_W.head<3>().norm() + tip.follower_B.head<3>().norm();

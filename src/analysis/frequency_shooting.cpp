@@ -24,6 +24,7 @@ struct Sample {
   Vec3 J;
   double rhoA;
   double s;  // arc length, m
+  double outer_diameter;  // m
 };
 
 }  // namespace
@@ -49,10 +50,10 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
   for (size_t q = 0; q < points.size(); ++q) {
     const SectionProperties sp = PrincipalAxesSectionAt(rod, points[q], actuation);
     samples[q] = {sp.stiffness.diagonal().cwiseInverse(), rod.RestStrainAt(points[q]),
-                  sp.mass.diagonal().head<3>(), sp.mass(5, 5), points[q]};
+                  sp.mass.diagonal().head<3>(), sp.mass(5, 5), points[q], sp.outer_diameter};
   }
   auto f_at = [&](const Sample& smp) -> Vec3 {
-    return TotalDistributedForce_W(loads, {smp.s, 1.0, smp.rhoA});
+    return TotalDistributedForce_W(loads, {smp.s, 1.0, smp.rhoA, smp.outer_diameter});
   };
   // The stage matrix A0 at a primal state with strain xi (see the file comment).
   auto stage = [&](const Sample& smp, const Primal& y, const Vec6& xi) {
@@ -76,7 +77,8 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
     A.block<3, 6>(9, 6) = nh * Ct;
     A.block<3, 3>(9, 9) -= Kh;
     st.J = smp.J;
-    st.rhoA = smp.rhoA;
+    const double added = TotalNormalAddedMass(loads, {smp.s, 1.0, smp.rhoA, smp.outer_diameter});
+    st.mass = Vec3(smp.rhoA + added, smp.rhoA + added, smp.rhoA);
     return st;
   };
 
@@ -123,7 +125,7 @@ Eigen::Matrix<double, 12, 6> FrequencyShooting::Integrate(double omega,
   auto rate = [&](const Stage& st, const Z& z) {
     Z d = st.a0 * z;
     d.middleRows<3>(6) -= w2 * st.J.asDiagonal() * z.topRows<3>();
-    d.bottomRows<3>() -= (w2 * st.rhoA) * z.middleRows<3>(3);
+    d.bottomRows<3>() -= w2 * st.mass.asDiagonal() * z.middleRows<3>(3);
     return d;
   };
   Z z = z0;

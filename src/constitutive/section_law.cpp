@@ -41,6 +41,7 @@ SectionLaw SectionLaw::At(const RodModel& rod, double s, const Actuation& actuat
   law.damping = p.damping.diagonal();
   law.mass = p.mass.diagonal();
   law.rest_strain = rod.RestStrainAt(s);
+  law.outer_diameter = p.outer_diameter;
   return law;
 }
 

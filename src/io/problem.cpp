@@ -12,6 +12,7 @@
 
 #include "cosserat/io/json_document.hpp"
 #include "cosserat/io/json_reader.hpp"
+#include "problem_environment.hpp"
 #include "problem_robot.hpp"
 #include "problem_rod.hpp"
 #include "read_enum.hpp"
@@ -247,7 +248,7 @@ void CheckFormat(const ObjectReader& top) {
 
 void ParseTopLevel(const ObjectReader& top, Problem* p) {
   top.AllowOnly({"format", "description", "analysis", "formulation", "rod", "base", "boundary",
-                 "loads", "dynamics", "buckling", "modes", "solver", "robot"});
+                 "loads", "environment", "dynamics", "buckling", "modes", "solver", "robot"});
   CheckFormat(top);
   ReadString(top, "description", Presence::kOptional);
   p->analysis = ReadEnum<Analysis>(top, "analysis", Presence::kOptional).value_or(p->analysis);
@@ -258,6 +259,8 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   p->boundary = ReadEnum<Boundary>(top, "boundary", Presence::kOptional).value_or(p->boundary);
   if (const auto loads = ReadObject(top, "loads", Presence::kOptional))
     p->loads = ParseLoads(*loads);
+  if (const auto env = ReadObject(top, "environment", Presence::kOptional))
+    ParseEnvironment(*env, &p->loads.fluid);
   if (const auto o = ReadObject(top, "dynamics", Presence::kOptional)) {
     p->has_dynamics = true;
     ParseDynamics(*o, p->nodes, &p->dynamics);
@@ -288,6 +291,14 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   if (const auto o = ReadObject(top, "solver", Presence::kOptional)) ParseSolver(*o, &p->solver);
   if (const auto o = ReadObject(top, "robot", Presence::kOptional)) ParseRobot(*o, top.value(), p);
   if (buckling) CheckBucklingActuation(top, *p);
+  // The environment is the world: it acts under the initial loads of a dynamics run too.
+  if (p->dynamics.initial_loads) p->dynamics.initial_loads->fluid = p->loads.fluid;
+  const Fluid& fluid = p->loads.fluid;
+  if (p->formulation == Formulation::kQuaternionFd && (fluid.has_drag() || fluid.has_added_mass()))
+    top.report().Expected("environment.fluid",
+                          "buoyancy only with the quaternion-FD formulation (its drag and added "
+                          "mass are not implemented yet: use the formulation se3-shooting)",
+                          "drag_normal, drag_tangential or added_mass above 0");
 }
 
 /// The library's own checks; they should never fire after the ones above.

@@ -1,5 +1,8 @@
 #include "cosserat/loads/static_loads.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace cosserat {
 
 StaticLoads StaticLoads::Scaled(double lambda) const {
@@ -8,6 +11,7 @@ StaticLoads StaticLoads::Scaled(double lambda) const {
   out.distributed_force_W *= lambda;
   out.tip_force *= lambda;
   out.tip_moment *= lambda;
+  out.fluid.velocity_W *= std::sqrt(std::max(lambda, 0.0));
   return out;
 }
 
@@ -18,13 +22,14 @@ StaticLoads StaticLoads::Blend(const StaticLoads& a, const StaticLoads& b, doubl
       a.distributed_force_W + t * (b.distributed_force_W - a.distributed_force_W);
   out.tip_force = a.tip_force + t * (b.tip_force - a.tip_force);
   out.tip_moment = a.tip_moment + t * (b.tip_moment - a.tip_moment);
+  out.fluid.velocity_W = a.fluid.velocity_W + t * (b.fluid.velocity_W - a.fluid.velocity_W);
   return out;
 }
 
 bool StaticLoads::operator==(const StaticLoads& other) const {
   return gravity_W == other.gravity_W && distributed_force_W == other.distributed_force_W &&
          tip_force == other.tip_force && tip_moment == other.tip_moment &&
-         SameFrames(*this, other);
+         SameFrames(*this, other) && fluid == other.fluid;
 }
 
 bool StaticLoads::IsValid(std::string* why) const {
@@ -36,7 +41,7 @@ bool StaticLoads::IsValid(std::string* why) const {
   if (!distributed_force_W.allFinite()) return fail("distributed_force");
   if (!tip_force.allFinite()) return fail("tip_force");
   if (!tip_moment.allFinite()) return fail("tip_moment");
-  return true;
+  return fluid.IsValid(why);
 }
 
 }  // namespace cosserat

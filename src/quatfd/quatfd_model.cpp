@@ -155,6 +155,7 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   inv_inertia_.resize(N);
   mass_.assign(N + 1, 0.0);
   vertex_weight_.assign(N + 1, 0.0);
+  std::vector<double> displaced(N + 1, 0.0);  // volume a vertex displaces in a fluid, m³
   for (int i = 0; i < N; ++i) {
     const double ds = s_[i + 1] - s_[i], mid = 0.5 * (s_[i] + s_[i + 1]);
     const SectionProperties sp = PrincipalAxesSectionAt(rod, mid, actuation);
@@ -170,7 +171,14 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
     mass_[i + 1] += half_mass;
     vertex_weight_[i] += 0.5 * ds;
     vertex_weight_[i + 1] += 0.5 * ds;
+    const double half_volume = 0.125 * M_PI * sp.outer_diameter * sp.outer_diameter * ds;
+    displaced[i] += half_volume;
+    displaced[i + 1] += half_volume;
   }
+  // The diameter of the cylinder of the vertex's dual length that displaces its volume.
+  vertex_diameter_.resize(N + 1);
+  for (int n = 0; n <= N; ++n)
+    vertex_diameter_[n] = std::sqrt(4.0 * displaced[n] / (M_PI * vertex_weight_[n]));
 
   // Bending/torsion elements at the interior vertices, and at a clamped base.
   const auto kind = options.curvature == Curvature::kBasic ? kernels::CurvatureKind::kBasic
@@ -237,7 +245,7 @@ void QuatFdModel::set_loads(const StaticLoads& loads) {
   const int N = layout_.segments;
   vertex_force_W_.resize(N + 1);
   for (int n = 0; n <= N; ++n)
-    vertex_force_W_[n] = TotalDistributedForce_W(loads, {s_[n], vertex_weight_[n], mass_[n]});
+    vertex_force_W_[n] = TotalDistributedForce_W(loads, VertexSite(n));
 }
 
 template <typename T>

@@ -241,8 +241,9 @@ Vec6 EversionRobot::PredictBaseWrench(double length, const StaticLoads& loads) c
   const double dL = length - solver_length_;
   const Vec3 step = R_tip.col(2) * dL;  // the new (or removed) material along the tip tangent
   const double s_mid = std::min(std::max(0.0, solver_length_ + 0.5 * dL), design_.max_length);
-  const double rho_A = full_profile_->At(s_mid, actuation()).mass(5, 5);
-  const Vec3 dF = TotalDistributedForce_W(loads, {s_mid, 1.0, rho_A}) * dL;
+  const SectionProperties grown = full_profile_->At(s_mid, actuation());
+  const Vec3 dF =
+      TotalDistributedForce_W(loads, {s_mid, 1.0, grown.mass(5, 5), grown.outer_diameter}) * dL;
   const SplitWrench tip_wrench = TotalTipWrench(loads);
   const Vec3 tip_force_W = tip_wrench.dead_W.tail<3>() + R_tip * tip_wrench.follower_B.tail<3>();
   Vec6 W;

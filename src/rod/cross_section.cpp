@@ -94,4 +94,16 @@ bool CrossSection::IsValid(std::string* why) const {
   return true;
 }
 
+double CrossSection::OuterDiameter() const {
+  switch (shape) {
+    case SectionShape::kCircle:
+    case SectionShape::kAnnulus:
+      return 2.0 * outer_radius;
+    case SectionShape::kRectangle:
+    case SectionShape::kExplicit:
+      break;
+  }
+  return std::sqrt(4.0 * area / M_PI);
+}
+
 }  // namespace cosserat

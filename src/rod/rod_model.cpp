@@ -19,6 +19,7 @@ SectionProperties UniformSectionProperties(const CrossSection& c, const Material
           .asDiagonal();
   const KelvinVoigtDamping& d = m.damping;
   p.damping = Vec6(d.bending, d.bending, d.torsion, d.shear, d.shear, d.extension).asDiagonal();
+  p.outer_diameter = c.OuterDiameter();
   return p;
 }
 

@@ -368,6 +368,7 @@ SectionProperties InflatedTubeSection::At(double s, const Actuation& actuation) 
   out.mass = Vec6(rho * I, rho * I, rho * 2.0 * I, rho * A, rho * A, rho * A).asDiagonal();
   const KelvinVoigtDamping& d = damping_;
   out.damping = Vec6(d.bending, d.bending, d.torsion, d.shear, d.shear, d.extension).asDiagonal();
+  out.outer_diameter = 2.0 * r_local;
   return out;
 }
 

@@ -139,7 +139,9 @@ class Bdf2ShootingStepper::Shot {
         statics_(statics),
         tangent_(tangent),
         guess_(stepper->samples_.front().rest_strain),
-        shot_this_step_(stepper->stage_strains_current_) {
+        shot_this_step_(stepper->stage_strains_current_),
+        motion_(HasMotionLoads(in.loads)),
+        added_mass_(in.loads.fluid.has_added_mass()) {
     if (tangent_)
       for (Mat36* t : {&dy_.p, &dy_.R[0], &dy_.R[1], &dy_.R[2], &dy_.m, &dy_.n, &dy_.w, &dy_.v})
         t->setZero();
@@ -193,7 +195,9 @@ class Bdf2ShootingStepper::Shot {
 
   // Segment by segment with the explicit scheme's S stages (spatial_scheme.hpp), written out
   // per scheme: a loop over stage arrays made the RK4 shot ~25 % slower.
-  template <SpatialScheme kScheme>
+  // kStateLoads: some load depends on the state (drag, added mass); compiled apart, so the plain
+  // shot stays as lean.
+  template <SpatialScheme kScheme, bool kStateLoads>
   void Segments() {
     constexpr int S = Table(kScheme).stages;
     const int n = static_cast<int>(st_.grid_.size());
@@ -206,21 +210,21 @@ class Bdf2ShootingStepper::Shot {
       const double h = st_.grid_[i + 1] - st_.grid_[i];
       const int q = S * i;
       const int smp = 3 * i;
-      const DynState k1 = Stage(q, smp, y);
+      const DynState k1 = Stage<kStateLoads>(q, smp, y);
       RecordNode(i, y, st_.strain_now_[q]);
       if constexpr (S == 4) {
         const DynState y2 = Axpy(y, 0.5 * h, k1);
-        const DynState k2 = Stage(q + 1, smp + 1, y2);
+        const DynState k2 = Stage<kStateLoads>(q + 1, smp + 1, y2);
         const DynState y3 = Axpy(y, 0.5 * h, k2);
-        const DynState k3 = Stage(q + 2, smp + 1, y3);
+        const DynState k3 = Stage<kStateLoads>(q + 2, smp + 1, y3);
         const DynState y4 = Axpy(y, h, k3);
-        const DynState k4 = Stage(q + 3, smp + 2, y4);
-        if (tangent_) Propagate<kScheme>({&y, &y2, &y3, &y4}, q, smp, h);
+        const DynState k4 = Stage<kStateLoads>(q + 3, smp + 2, y4);
+        if (tangent_) Propagate<kScheme, kStateLoads>({&y, &y2, &y3, &y4}, q, smp, h);
         Rk4Update(h, k1, k2, k3, k4, &y);
       } else {
         const DynState y2 = Axpy(y, h, k1);
-        const DynState k2 = Stage(q + 1, smp + 2, y2);
-        if (tangent_) Propagate<kScheme>({&y, &y2}, q, smp, h);
+        const DynState k2 = Stage<kStateLoads>(q + 1, smp + 2, y2);
+        if (tangent_) Propagate<kScheme, kStateLoads>({&y, &y2}, q, smp, h);
         HeunUpdate(h, k1, k2, &y);
       }
     }
@@ -264,7 +268,7 @@ class Bdf2ShootingStepper::Shot {
   using RunningState = Bdf2ShootingStepper::Snapshot;
 
   Vec3 DistributedForce(const Sample& smp) const {
-    return TotalDistributedForce_W(in_.loads, {smp.s, 1.0, smp.mass(5)});
+    return TotalDistributedForce_W(in_.loads, smp.Site());
   }
 
   void RecordNode(int i, const DynState& y, const Vec6& xi) {
@@ -309,6 +313,7 @@ class Bdf2ShootingStepper::Shot {
   }
 
   // One stage q at state ys: record it for the history and return its derivative.
+  template <bool kStateLoads>
   COSSERAT_HOT DynState Stage(int q, int sample_index, const DynState& ys) {
     const Sample& smp = st_.samples_[sample_index];
     const Vec6& xh = statics_ ? zero6_ : st_.strain_h_[q];  // history terms ξʰ, Vʰ
@@ -324,22 +329,58 @@ class Bdf2ShootingStepper::Shot {
     }
     const rhs::StageHistory history{&xh, &Vh, statics_ ? &zero3_ : &st_.velocity_W_h_[q], c_.c0,
                                     statics_};
-    return rhs::DynamicDerivative<double>(
-        smp, DistributedForce(smp), ys, history, &st_.strain_now_[q], &st_.twist_now_[q],
-        &st_.velocity_W_now_[q], st_.tendons_.empty() ? nullptr : &given);
+    const Vec6* strain = st_.tendons_.empty() ? nullptr : &given;
+    if constexpr (!kStateLoads) {
+      return rhs::DynamicDerivative<double>(smp, DistributedForce(smp), ys, history,
+                                            &st_.strain_now_[q], &st_.twist_now_[q],
+                                            &st_.velocity_W_now_[q], strain);
+    } else {
+      Vec3 f = DistributedForce(smp);
+      if (motion_) {
+        // Loads that depend on the motion (drag): at this stage's pose and velocity.
+        const SectionMotion at{ys.p, ys.R.col(2), ys.R * ys.v};
+        f += TotalMotionForce_W(in_.loads, smp.Site(), at,
+                                tangent_ ? &motion_jacobian_[q % st_.StagesPerSegment()] : nullptr);
+      }
+      const double added = added_mass_ ? TotalNormalAddedMass(in_.loads, smp.Site()) : 0.0;
+      return rhs::DynamicDerivative<double>(smp, f, ys, history, &st_.strain_now_[q],
+                                            &st_.twist_now_[q], &st_.velocity_W_now_[q], strain,
+                                            added);
+    }
   }
 
   // The tangent dy through the stages ys of segment i (the exact derivative of the shot).
-  template <SpatialScheme kScheme, int S = Table(kScheme).stages>
+  template <SpatialScheme kScheme, bool kStateLoads, int S = Table(kScheme).stages>
   void Propagate(const std::array<const DynState*, S>& ys, int q, int smp, double h) {
     constexpr const SchemeTable& T = Table(kScheme);
     DynTangent dk[S];
-    for (int j = 0; j < S; ++j)
-      dk[j] = rhs::DynamicTangentDerivative(st_.samples_[smp + T.sample[j]], *ys[j],
-                                            j == 0 ? dy_ : Axpy(dy_, T.step[j] * h, dk[j - 1]),
-                                            st_.strain_now_[q + j], c_.c0, statics_,
-                                            st_.tendons_.empty() ? nullptr : &H_stage_[j]);
+    for (int j = 0; j < S; ++j) {
+      DynTangent stage;
+      if (j > 0) stage = Axpy(dy_, T.step[j] * h, dk[j - 1]);
+      const DynTangent& dyj = j == 0 ? dy_ : stage;
+      const Sample& sample = st_.samples_[smp + T.sample[j]];
+      rhs::StageLoadTangent loads;
+      if constexpr (kStateLoads) LoadTangent(j, q + j, sample, *ys[j], dyj, &loads);
+      dk[j] = rhs::DynamicTangentDerivative(sample, *ys[j], dyj, st_.strain_now_[q + j], c_.c0,
+                                            statics_, st_.tendons_.empty() ? nullptr : &H_stage_[j],
+                                            kStateLoads ? &loads : nullptr);
+    }
     RkUpdate<S>(h, T.weight, dk, &dy_);
+  }
+
+  // What the state-dependent loads add to stage j's tangent (stage index q): the drag's
+  // derivative along dy, d f = ∂f/∂p dp + ∂f/∂t d(R e₃) + ∂f/∂v d(R v), and the added mass.
+  void LoadTangent(int j, int q, const Sample& smp, const DynState& y, const DynTangent& dy,
+                   rhs::StageLoadTangent* out) const {
+    if (motion_) {
+      const MotionJacobian& mj = motion_jacobian_[j];
+      out->force_W = mj.position * dy.p + mj.tangent * dy.R[2] +
+                     mj.velocity * RotateTangent(y.R, dy.R, y.v, dy.v);
+    }
+    if (added_mass_ && !statics_) {
+      out->added_mass = TotalNormalAddedMass(in_.loads, smp.Site());
+      out->acceleration_W = c_.c0 * st_.velocity_W_now_[q] + st_.velocity_W_h_[q];
+    }
   }
 
   // d r / d x from the tangent at the tip: the section's wrench, the dead part of the applied
@@ -374,6 +415,9 @@ class Bdf2ShootingStepper::Shot {
   Vec6 guess_;  // the tendon law's first guess: the last stage's strain
   Mat6 H_stage_[4];
   const bool shot_this_step_;
+  const bool motion_;                  // some load depends on the motion (drag)
+  const bool added_mass_;              // the fluid adds mass
+  MotionJacobian motion_jacobian_[4];  // of the current segment's stages
   const Vec6 zero6_ = Vec6::Zero();
   const Vec3 zero3_ = Vec3::Zero();
 };
@@ -386,10 +430,17 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
   else
     shot.StartCantilever(x);
   if (!statics) PrepareHistory(c);
-  if (options_.spatial_scheme == SpatialScheme::kHeun)
-    shot.Segments<SpatialScheme::kHeun>();
-  else
-    shot.Segments<SpatialScheme::kRk4>();
+  const bool heun = options_.spatial_scheme == SpatialScheme::kHeun;
+  if (HasMotionLoads(in.loads) || in.loads.fluid.has_added_mass()) {
+    if (heun)
+      shot.Segments<SpatialScheme::kHeun, true>();
+    else
+      shot.Segments<SpatialScheme::kRk4, true>();
+  } else if (heun) {
+    shot.Segments<SpatialScheme::kHeun, false>();
+  } else {
+    shot.Segments<SpatialScheme::kRk4, false>();
+  }
   return shot.Finish(J);
 }
 

@@ -173,6 +173,7 @@ void Bdf2ShootingStepper::SampleSections() {
     smp.rest_strain = law.rest_strain;
     smp.mass = law.mass;
     smp.s = s;
+    smp.outer_diameter = law.outer_diameter;
     smp.implicit_compliance = smp.compliance;
     smp.implicit_damping.setZero();
     smp.implicit_offset = smp.rest_strain;
@@ -384,8 +385,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
     // solver's job (continuation). The tip frame of the guess is the clamp's: a follower force
     // turns with it.
     const SplitWrench tip = TotalTipWrench(input.loads, options_.tip_mass);
-    const Vec3 total = model_.length * TotalDistributedForce_W(
-                                           input.loads, {samples_[1].s, 1.0, samples_[1].mass(5)}) +
+    const Vec3 total = model_.length * TotalDistributedForce_W(input.loads, samples_[1].Site()) +
                        tip.dead_W.tail<3>() + input.base_pose.R * tip.follower_B.tail<3>();
     Vec6 W;
     W << Vec3::Zero(), input.base_pose.R.transpose() * total;

@@ -14,7 +14,7 @@ RodEnergy Energy(const RodQuadrature& points, const StaticLoads& loads) {
     const Vec6 dxi = pt.strain - smp.rest_strain;
     e.kinetic += w * 0.5 * pt.twist_B.dot(smp.mass.cwiseProduct(pt.twist_B));
     e.elastic += w * 0.5 * dxi.dot(smp.stiffness.cwiseProduct(dxi));
-    e.potential += w * TotalDistributedPotential(loads, {smp.s, 1.0, smp.mass(5)}, pt.position_W);
+    e.potential += w * TotalDistributedPotential(loads, smp.Site(), pt.position_W);
   }
   return e;
 }

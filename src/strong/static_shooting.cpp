@@ -80,9 +80,9 @@ ShotState TendonDerivative(const Sample& smp, const StaticShootingSolver::Tendon
 
 // The linearisation of Derivative along dy (shot_tangent.hpp).
 ShotTangent TangentDerivative(const Sample& smp, const Vec3& f_W, const ShotState& y,
-                              const ShotTangent& dy, const Vec6& xi, const Mat6* H = nullptr,
-                              const Mat6* source = nullptr) {
-  return rhs::StaticTangentDerivative(smp.compliance_diagonal, f_W, y, dy, xi, H, source);
+                              const ShotTangent& dy, const Vec6& xi, const Mat6* H,
+                              const Mat6* source, const Mat36* df_W) {
+  return rhs::StaticTangentDerivative(smp.compliance_diagonal, f_W, y, dy, xi, H, source, df_W);
 }
 
 // Tip condition W(L) = W_tip in the tip body frame, made dimensionless by scale.
@@ -169,6 +169,7 @@ struct SegmentStages {
   const Vec3* f[4];
   const Mat6* H;  // 4 of them
   int q[4];
+  const MotionJacobian* motion;  // 4 of them, for loads that depend on the pose; else null
 };
 
 // Carries the tangent dy through one RK4 segment of length h (the exact derivative of the
@@ -183,10 +184,16 @@ void PropagateSegment(const std::vector<Sample>& samples, const SegmentStages& s
       src[j] = TensionSource((*tc->stages)[st.q[j]], tc->tension, *st.xi[j], tc->tension_block);
   const double step[4] = {0.0, 0.5, 0.5, 1.0};
   ShotTangent t[4];
-  for (int j = 0; j < 4; ++j)
-    t[j] = TangentDerivative(samples[st.q[j]], *st.f[j], *st.y[j],
-                             j == 0 ? *dy : Axpy(*dy, step[j] * h, t[j - 1]), *st.xi[j],
-                             tendons ? &st.H[j] : nullptr, tension ? &src[j] : nullptr);
+  for (int j = 0; j < 4; ++j) {
+    ShotTangent stage;
+    if (j > 0) stage = Axpy(*dy, step[j] * h, t[j - 1]);
+    const ShotTangent& dyj = j == 0 ? *dy : stage;
+    Mat36 df;  // d f_W = ∂f/∂p dp + ∂f/∂t d(R e₃)
+    if (st.motion) df = st.motion[j].position * dyj.p + st.motion[j].tangent * dyj.R[2];
+    t[j] = TangentDerivative(samples[st.q[j]], *st.f[j], *st.y[j], dyj, *st.xi[j],
+                             tendons ? &st.H[j] : nullptr, tension ? &src[j] : nullptr,
+                             st.motion ? &df : nullptr);
+  }
   Rk4Update(h, t[0], t[1], t[2], t[3], dy);
 }
 
@@ -206,9 +213,11 @@ Mat6 TipJacobian(const ShotTangent& dy, const StaticLoads& loads, const Vec6& sc
 // With record, writes the node values; with J, propagates the tangent and writes d r / d x.
 // With tendons (tc not null): the tendon strain law at every stage, and the tendon path lengths
 // by the same RK4 quadrature.
-Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, const Vec6& scale,
-           const lie::SE3& base, const StaticLoads& loads, const Vec6& x, RodState* record, Mat6* J,
-           const TendonContext* tc = nullptr, const TangentSeed* seed = nullptr) {
+// kMotion: some load depends on the pose (compiled apart, so the plain shot stays as lean).
+template <bool kMotion>
+Vec6 ShootWith(const std::vector<double>& grid, const std::vector<Sample>& samples,
+               const Vec6& scale, const lie::SE3& base, const StaticLoads& loads, const Vec6& x,
+               RodState* record, Mat6* J, const TendonContext* tc, const TangentSeed* seed) {
   const int n = static_cast<int>(grid.size());
   const Vec6 W0 = scale.cwiseProduct(x);
   ShotState y{base.p, base.R, W0.head<3>(), W0.tail<3>()};
@@ -229,31 +238,45 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
   auto derivative = [&](int q, const Vec3& f, const ShotState& ys, Vec6* xi, Mat6* H_q) {
     if (!tc) return Derivative(samples[q], f, ys, xi);
     *xi = guess;
-    const ShotState d = TendonDerivative(samples[q], (*tc->stages)[q], tc->tension, f, ys, xi,
-                                         J ? H_q : nullptr);
+    const ShotState d =
+        TendonDerivative(samples[q], (*tc->stages)[q], tc->tension, f, ys, xi, J ? H_q : nullptr);
     guess = *xi;
     return d;
   };
-  auto f_at = [&](int q) {
-    return TotalDistributedForce_W(loads, {samples[q].s, 1.0, samples[q].mass_per_length});
+  auto f_at = [&](int q) { return TotalDistributedForce_W(loads, samples[q].Site()); };
+  // Loads that depend on the pose (a current's drag): added per stage.
+  Vec3 f_stage[4];
+  MotionJacobian jac[4];
+  auto force = [&](int j, int q, const Vec3& f_dead, const ShotState& ys) -> const Vec3& {
+    if constexpr (!kMotion) {
+      return f_dead;
+    } else {
+      const SectionMotion at{ys.p, ys.R.col(2), Vec3::Zero()};
+      f_stage[j] = f_dead + TotalMotionForce_W(loads, samples[q].Site(), at, J ? &jac[j] : nullptr);
+      return f_stage[j];
+    }
   };
   for (int i = 0; i + 1 < n; ++i) {
     const double h = grid[i + 1] - grid[i];
     const int q0 = 3 * i, qm = 3 * i + 1, q1 = 3 * i + 2;
     const Vec3 f0 = f_at(q0), fm = f_at(qm), f1 = f_at(q1);
-    const ShotState k1 = derivative(q0, f0, y, &xi1, &H[0]);
+    const Vec3& fa = force(0, q0, f0, y);
+    const ShotState k1 = derivative(q0, fa, y, &xi1, &H[0]);
     if (record) record_node(i, xi1);
     const ShotState y2 = Axpy(y, 0.5 * h, k1);
-    const ShotState k2 = derivative(qm, fm, y2, &xi2, &H[1]);
+    const Vec3& fb = force(1, qm, fm, y2);
+    const ShotState k2 = derivative(qm, fb, y2, &xi2, &H[1]);
     const ShotState y3 = Axpy(y, 0.5 * h, k2);
-    const ShotState k3 = derivative(qm, fm, y3, &xi3, &H[2]);
+    const Vec3& fc = force(2, qm, fm, y3);
+    const ShotState k3 = derivative(qm, fc, y3, &xi3, &H[2]);
     const ShotState y4 = Axpy(y, h, k3);
-    const ShotState k4 = derivative(q1, f1, y4, &xi4, &H[3]);
+    const Vec3& fd = force(3, q1, f1, y4);
+    const ShotState k4 = derivative(q1, fd, y4, &xi4, &H[3]);
     if (J) {
       if (seed && seed->nodes) (*seed->nodes)[i] = dy;
       if (seed && seed->node_rows) seed->node_rows[i] = ToRows(dy);
-      const SegmentStages st{
-          {&y, &y2, &y3, &y4}, {&xi1, &xi2, &xi3, &xi4}, {&f0, &fm, &fm, &f1}, H, {q0, qm, qm, q1}};
+      const SegmentStages st{{&y, &y2, &y3, &y4}, {&xi1, &xi2, &xi3, &xi4}, {&fa, &fb, &fc, &fd}, H,
+                             {q0, qm, qm, q1},    kMotion ? jac : nullptr};
       PropagateSegment(samples, st, h, tc, &dy);
     }
     for (int k = 0; k < count; ++k) {
@@ -288,6 +311,14 @@ Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, 
     if (tc && tc->tip_dR) *tc->tip_dR = dy.R;
   }
   return TipResidual(y.R, BodyWrench(y), loads, scale);
+}
+
+Vec6 Shoot(const std::vector<double>& grid, const std::vector<Sample>& samples, const Vec6& scale,
+           const lie::SE3& base, const StaticLoads& loads, const Vec6& x, RodState* record, Mat6* J,
+           const TendonContext* tc = nullptr, const TangentSeed* seed = nullptr) {
+  if (HasMotionLoads(loads))
+    return ShootWith<true>(grid, samples, scale, base, loads, x, record, J, tc, seed);
+  return ShootWith<false>(grid, samples, scale, base, loads, x, record, J, tc, seed);
 }
 
 }  // namespace
@@ -339,6 +370,7 @@ void StaticShootingSolver::SampleSections() {
     smp.rest_strain = law.rest_strain;
     smp.mass_per_length = law.mass_per_length();
     smp.s = s;
+    smp.outer_diameter = law.outer_diameter;
     if (!tendon_stages_.empty()) tendon_stages_[q].stiffness = law.stiffness.asDiagonal();
   }
 }

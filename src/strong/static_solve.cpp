@@ -84,7 +84,7 @@ bool StaticShootingSolver::KeepStableBranch(const lie::SE3& base, const StaticLo
                                             double max_fraction, Vec6* x,
                                             StaticShootingSummary* summary) {
   summary->stability_index = IndexAfterSolve(base, loads, *x);
-  if (summary->stability_index == 0) return false;
+  if (summary->stability_index <= 0) return false;  // stable, or not defined (−1)
   // Natural-parameter continuation from the unloaded rod (W ≡ 0: stable, the energy is a
   // positive definite quadratic about the rest shape) along loads(μ) = μ · loads; a step is
   // accepted only if it converges on an equilibrium without unstable directions. Along an
@@ -120,7 +120,7 @@ Vec6 StaticShootingSolver::RigidGuess(const lie::SE3& base, const StaticLoads& l
   for (int i = 0; i + 1 < n; ++i) {
     const double h = grid_[i + 1] - grid_[i];
     const Sample& sm = samples_[3 * i + 1];
-    const Vec3 f = TotalDistributedForce_W(loads, {sm.s, 1.0, sm.mass_per_length});
+    const Vec3 f = TotalDistributedForce_W(loads, sm.Site());
     add_force(0.5 * (rest_position_B_[i] + rest_position_B_[i + 1]), h * f);
   }
   const Mat3 R_tip = base.R * rest_rotation_B_.back();

@@ -96,6 +96,7 @@ int StaticShootingSolver::StabilityIndex(const lie::SE3& base, const StaticLoads
 int StaticShootingSolver::StabilityIndexFromShot(const StaticLoads& loads, const RodState& record,
                                                  const std::vector<StateTangent>& nodes) const {
   if (!TotalTipWrench(loads).follower_B.isZero(0.0)) return -1;  // not conservative
+  if (HasMotionLoads(loads)) return -1;  // drag: not the gradient of a potential
   // An eigenvalue counts as negative below −1e-8 EI/L. A rod symmetric about its axis has, past
   // buckling, a whole circle of equilibria (the shape turned about the load axis, with the section
   // turned back at the clamp): H(L) is exactly singular along it, and the solve tolerance (1e-10

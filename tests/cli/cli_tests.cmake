@@ -210,3 +210,11 @@ cosserat_cli_test(NAME solve_taut_wire ARGS solve "${_cli_taut}" CODE 0
 # A robot on a column is refused by name (its runner is the cantilever's).
 cosserat_cli_test(NAME column_robot_refused ARGS validate "${_cli_dir}/column_robot.json" CODE 2
                   STDERR "robot: a robot runs with \"boundary\": \"cantilever\" in statics")
+
+# The environment: a cantilever in a current runs; bad fluid keys are named.
+get_filename_component(_cli_current "${CMAKE_CURRENT_LIST_DIR}/../../examples/cantilever_in_current.json"
+                       ABSOLUTE)
+cosserat_cli_test(NAME solve_cantilever_in_current ARGS solve "${_cli_current}" CODE 0
+                  STDERR "converged")
+cosserat_cli_test(NAME bad_environment ARGS validate "${_cli_dir}/bad_environment.json" CODE 2
+                  STDERR "environment.fluid.drag_normal.*environment.fluid.profile.heights.*environment.fluid")

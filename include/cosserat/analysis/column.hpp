@@ -121,6 +121,7 @@ class ColumnSolver {
 
   Vec6 scale_;
   double mass_per_length_ = 0.0;  ///< ρA at s = 0, kg/m
+  double outer_diameter_ = 0.0;   ///< at s = 0, m
   Vec6 u_ = Vec6::Zero();
   RodState state_;
 };

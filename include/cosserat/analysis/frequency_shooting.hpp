@@ -58,7 +58,9 @@ class FrequencyShooting {
   struct Stage {
     Mat12 a0;
     Vec3 J;  // ρ I per length, kg·m
-    double rhoA = 0;
+    /// Translational mass per length in the body frame, kg/m: ρA, plus a fluid's added mass on
+    /// the two directions normal to the rod.
+    Vec3 mass = Vec3::Zero();
   };
   template <typename Visit>
   Eigen::Matrix<double, 12, 6> Integrate(double omega, const Eigen::Matrix<double, 12, 6>& z0,

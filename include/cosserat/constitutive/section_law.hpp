@@ -26,6 +26,7 @@ struct SectionLaw {
   Vec6 damping = Vec6::Zero();    ///< diag D, units of K times s
   Vec6 mass = Vec6::Ones();       ///< diag M = [ρI₁, ρI₂, ρJ, ρA, ρA, ρA] per unit length
   Vec6 rest_strain = Vec6::Zero();  ///< ξ*
+  double outer_diameter = 0.0;      ///< m (SectionProperties::outer_diameter)
 
   /// The section of `rod` at s (m) under `actuation`. Throws std::invalid_argument naming s when
   /// K, D or M has an off-diagonal entry (see the file comment).

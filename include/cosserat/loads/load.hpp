@@ -17,9 +17,25 @@ enum class LoadFrame { kWorld, kBody };
 /// A solver that wants the load per unit length asks for length 1 m with mass ρA; one that lumps
 /// the load on a vertex asks for the vertex's dual length and lumped mass.
 struct LoadSite {
-  double s = 0.0;       ///< arc length, m
-  double length = 1.0;  ///< m
-  double mass = 0.0;    ///< kg on that length
+  double s = 0.0;               ///< arc length, m
+  double length = 1.0;          ///< m
+  double mass = 0.0;            ///< kg on that length
+  double outer_diameter = 0.0;  ///< of the section, m: what it displaces in a fluid
+};
+
+/// The motion of a section, for loads that depend on it (drag, added mass, contact). World frame.
+struct SectionMotion {
+  Vec3 position_W = Vec3::Zero();  ///< centreline, m
+  Vec3 tangent_W = Vec3::UnitZ();  ///< R_WB e₃, unit: the normal of the section
+  Vec3 velocity_W = Vec3::Zero();  ///< centreline velocity, m/s (zero in statics)
+};
+
+/// ∂f/∂(position, tangent, velocity) of a force f on a site (world frame; N per m, N per unit,
+/// N·s/m).
+struct MotionJacobian {
+  Mat3 position = Mat3::Zero();
+  Mat3 tangent = Mat3::Zero();
+  Mat3 velocity = Mat3::Zero();
 };
 
 /// A wrench [m; n] split by the frame it is fixed in: a dead part in the world frame and a
@@ -29,8 +45,10 @@ struct SplitWrench {
   Vec6 follower_B = Vec6::Zero();
 };
 
-/// A load that does not depend on the rod's pose or motion. Loads that do (drag, added mass,
-/// contact) extend this interface with the state they read and their Jacobian.
+/// A load on the rod. Most loads do not depend on the rod's state: a dead distributed force and a
+/// tip wrench. Loads that do (fluid drag, contact) say so with DependsOnMotion and give their
+/// force at a section's motion with its Jacobian; a fluid's added mass is a mass on the normal
+/// acceleration. The solvers add all of these through total_load.hpp.
 class Load {
  public:
   virtual ~Load() = default;
@@ -44,6 +62,23 @@ class Load {
   virtual SplitWrench TipWrench(double tip_mass) const {
     (void)tip_mass;
     return {};
+  }
+  /// True when MotionForce_W is not zero: the solvers then evaluate it at every stage or vertex.
+  virtual bool DependsOnMotion() const { return false; }
+  /// Force on the site at the section's motion, world frame, N (N/m for a site of unit length);
+  /// with J, also its derivative.
+  virtual Vec3 MotionForce_W(const LoadSite& site, const SectionMotion& motion,
+                             MotionJacobian* J) const {
+    (void)site;
+    (void)motion;
+    if (J) *J = MotionJacobian{};
+    return Vec3::Zero();
+  }
+  /// Mass that moves with the site's centreline in its accelerations normal to the tangent only
+  /// (kg; kg/m for unit length): the added mass of a fluid. The force is −m_a (I − t tᵀ) a.
+  virtual double NormalAddedMass(const LoadSite& site) const {
+    (void)site;
+    return 0.0;
   }
 };
 

@@ -1,13 +1,15 @@
 #pragma once
 /// \file
-/// The loads of a problem by value: gravity, a uniform distributed force and a tip wrench. A
-/// plain aggregate, so a controller sets it every step without allocating. Solvers evaluate it
+/// The loads of a problem by value: gravity, a uniform distributed force, a tip wrench and the
+/// fluid around the rod. A plain aggregate, so a controller sets it every step without
+/// allocating. Solvers evaluate it
 /// only through total_load.hpp, which applies each as its Load class (gravity.hpp,
 /// distributed_force.hpp, tip_loads.hpp).
 
 #include <string>
 
 #include "cosserat/lie/types.hpp"
+#include "cosserat/loads/fluid.hpp"
 #include "cosserat/loads/load.hpp"
 
 namespace cosserat {
@@ -19,10 +21,12 @@ struct StaticLoads {
   LoadFrame tip_force_frame = LoadFrame::kWorld;
   Vec3 tip_moment = Vec3::Zero();  ///< N·m, in tip_moment_frame
   LoadFrame tip_moment_frame = LoadFrame::kWorld;
+  Fluid fluid;  ///< buoyancy, drag and added mass (fluid.hpp); none by default
 
-  /// Every load multiplied by lambda (used by load stepping).
+  /// Every load multiplied by lambda (used by load stepping): the fluid's flow by √λ, so that
+  /// its drag scales by λ; buoyancy scales with gravity.
   StaticLoads Scaled(double lambda) const;
-  /// a + t (b − a), with the frames of b (a and b must use the same frames).
+  /// a + t (b − a), with the frames and the fluid of b, its flow velocity blended.
   static StaticLoads Blend(const StaticLoads& a, const StaticLoads& b, double t);
 
   /// Same values and frames.

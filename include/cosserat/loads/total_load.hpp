@@ -4,7 +4,10 @@
 /// wrench on the tip, the potential of the conservative part. Each load of StaticLoads is applied
 /// as its own Load class; the classes are final, so these sums inline to the plain arithmetic.
 
+#include "cosserat/loads/added_mass.hpp"
+#include "cosserat/loads/buoyancy.hpp"
 #include "cosserat/loads/distributed_force.hpp"
+#include "cosserat/loads/fluid_drag.hpp"
 #include "cosserat/loads/gravity.hpp"
 #include "cosserat/loads/static_loads.hpp"
 #include "cosserat/loads/tip_loads.hpp"
@@ -13,8 +16,28 @@ namespace cosserat {
 
 /// Σ dead force of every load on the site, world frame, N (N/m for a site of unit length).
 inline Vec3 TotalDistributedForce_W(const StaticLoads& loads, const LoadSite& site) {
-  return Gravity(loads.gravity_W).DistributedForce_W(site) +
-         DistributedForce(loads.distributed_force_W).DistributedForce_W(site);
+  const Vec3 f = Gravity(loads.gravity_W).DistributedForce_W(site) +
+                 DistributedForce(loads.distributed_force_W).DistributedForce_W(site);
+  if (!loads.fluid.present()) return f;
+  return f + Buoyancy(loads.fluid.density, loads.gravity_W).DistributedForce_W(site);
+}
+
+/// True when some load depends on the section's motion (TotalMotionForce_W is not zero).
+inline bool HasMotionLoads(const StaticLoads& loads) {
+  return FluidDrag(loads.fluid).DependsOnMotion();
+}
+
+/// Σ force of the loads that depend on the section's motion, world frame, N (N/m for a site of
+/// unit length); with J, its derivative.
+inline Vec3 TotalMotionForce_W(const StaticLoads& loads, const LoadSite& site,
+                               const SectionMotion& motion, MotionJacobian* J) {
+  return FluidDrag(loads.fluid).MotionForce_W(site, motion, J);
+}
+
+/// Σ added mass on the normal acceleration of the site, kg (kg/m for a site of unit length).
+inline double TotalNormalAddedMass(const StaticLoads& loads, const LoadSite& site) {
+  if (!loads.fluid.has_added_mass()) return 0.0;
+  return AddedMass(loads.fluid.added_mass, loads.fluid.density).NormalAddedMass(site);
 }
 
 /// Σ wrench of every load on the tip section and a tip body of mass tip_mass (kg), moment about
@@ -45,7 +68,8 @@ inline double TotalDistributedPotential(const StaticLoads& loads, const LoadSite
 
 /// True when the loads change only at the tip between a and b (the distributed loads are equal).
 inline bool SameDistributedLoads(const StaticLoads& a, const StaticLoads& b) {
-  return a.gravity_W == b.gravity_W && a.distributed_force_W == b.distributed_force_W;
+  return a.gravity_W == b.gravity_W && a.distributed_force_W == b.distributed_force_W &&
+         a.fluid == b.fluid;
 }
 
 }  // namespace cosserat

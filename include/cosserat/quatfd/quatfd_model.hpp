@@ -259,6 +259,11 @@ class QuatFdModel {
   std::vector<double> s_;              ///< vertices s_n, m
   std::vector<double> mass_;           ///< lumped vertex masses m_n, kg
   std::vector<double> vertex_weight_;  ///< dual lengths w_n, m
+  std::vector<double> vertex_diameter_;  ///< outer diameter of the dual piece, m (fluid loads)
+  /// The piece of rod lumped on vertex n, for the loads (load.hpp).
+  LoadSite VertexSite(int n) const {
+    return {s_[n], vertex_weight_[n], mass_[n], vertex_diameter_[n]};
+  }
   std::vector<unsigned char> fixed_;   ///< per unknown
   std::vector<kernels::SegmentConstants> segment_;    ///< per segment
   std::vector<kernels::RotationConstants> rotation_;  ///< per segment (inertia)

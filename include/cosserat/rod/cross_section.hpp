@@ -27,6 +27,10 @@ struct CrossSection {
   static CrossSection Explicit(double area, double I1, double I2, double torsion_constant,
                                double shear_coefficient = 1.0);
 
+  /// Diameter of the disc the section displaces and touches with, m: 2 r for circles and the
+  /// outer 2 r_o of annuli; the disc of equal area for rectangles and explicit sections.
+  double OuterDiameter() const;
+
   /// Polar second moment I1 + I2 (m⁴), used for rotary inertia about the centreline.
   double PolarMoment() const { return I1 + I2; }
 

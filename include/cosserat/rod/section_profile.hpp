@@ -22,6 +22,7 @@ struct SectionProperties {
   Mat6 stiffness = Mat6::Identity();  ///< K(s), body frame, see file comment for units
   Mat6 mass = Mat6::Identity();  ///< M(s) per unit length: diag(ρI1, ρI2, ρ(I1+I2), ρA, ρA, ρA)
   Mat6 damping = Mat6::Zero();  ///< D(s), Kelvin–Voigt, units of K times s
+  double outer_diameter = 0.0;  ///< m: what the section displaces in a fluid and touches with
 };
 
 /// Sectional properties of the (unactuated) uniform section.

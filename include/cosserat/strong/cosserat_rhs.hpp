@@ -18,6 +18,7 @@
 /// momentum exactly. The inertia terms vanish in statics, where both forms are the same equations.
 
 #include "cosserat/lie/types.hpp"
+#include "cosserat/loads/load.hpp"
 
 #ifdef __GNUC__
 #define COSSERAT_RHS_INLINE inline __attribute__((always_inline))
@@ -116,16 +117,19 @@ COSSERAT_RHS_INLINE StaticPoint<T> StaticDerivative(const Vec6& rest_strain, con
 /// The section numbers of one sample point a dynamic stage reads (principal axes: every
 /// matrix is diagonal and stored as its diagonal).
 struct SectionSample {
-  Vec6 stiffness;            ///< diag K
-  Vec6 damping;              ///< diag D
-  Vec6 compliance;           ///< diag K⁻¹ (statics)
-  Vec6 rest_strain;          ///< ξ*
-  Vec6 mass;                 ///< diag M = [ρI1, ρI2, ρ(I1+I2), ρA, ρA, ρA]
-  Vec6 implicit_compliance;  ///< A = diag (K + c0 D)⁻¹ for the current c0
-  Vec6 implicit_damping;     ///< A D
-  Vec6 implicit_offset;      ///< ξ* − c0 A D ξ*
-  bool damped = false;       ///< D ≠ 0
-  double s = 0.0;            ///< arc length of the sample point, m
+  Vec6 stiffness;               ///< diag K
+  Vec6 damping;                 ///< diag D
+  Vec6 compliance;              ///< diag K⁻¹ (statics)
+  Vec6 rest_strain;             ///< ξ*
+  Vec6 mass;                    ///< diag M = [ρI1, ρI2, ρ(I1+I2), ρA, ρA, ρA]
+  Vec6 implicit_compliance;     ///< A = diag (K + c0 D)⁻¹ for the current c0
+  Vec6 implicit_damping;        ///< A D
+  Vec6 implicit_offset;         ///< ξ* − c0 A D ξ*
+  bool damped = false;          ///< D ≠ 0
+  double s = 0.0;               ///< arc length of the sample point, m
+  double outer_diameter = 0.0;  ///< m (what the section displaces in a fluid)
+  /// The piece of unit length at this sample, for the loads (load.hpp).
+  LoadSite Site() const { return {s, 1.0, mass(5), outer_diameter}; }
 };
 
 /// What a dynamic stage reads besides the state: the BDF2 history terms ξʰ, Vʰ and (ρA a)ʰ's
@@ -141,15 +145,14 @@ struct StageHistory {
 
 /// d/ds of a dynamic point at one stage: the Kelvin–Voigt law with BDF2 rates (or `given`, the
 /// strain of the tendon-augmented law solved by the caller), then the rates of the file comment.
+/// added_mass m_a (kg/m, a fluid's) adds m_a (I − t tᵀ) a_W to ρA a_W, t = R e₃.
 /// Writes the stage's strain, twist and world velocity R v (m/s) for the BDF2 history of the next
 /// steps. Written out: this is the innermost loop of every dynamic step.
 template <typename T>
-COSSERAT_RHS_INLINE DynamicPoint<T> DynamicDerivative(const SectionSample& smp,
-                                                      const Vector3<T>& f_W,
-                                                      const DynamicPoint<T>& y,
-                                                      const StageHistory& h, Vector6<T>* strain,
-                                                      Vector6<T>* twist, Vector3<T>* velocity_W,
-                                                      const Vector6<T>* given = nullptr) {
+COSSERAT_RHS_INLINE DynamicPoint<T> DynamicDerivative(
+    const SectionSample& smp, const Vector3<T>& f_W, const DynamicPoint<T>& y,
+    const StageHistory& h, Vector6<T>* strain, Vector6<T>* twist, Vector3<T>* velocity_W,
+    const Vector6<T>* given = nullptr, double added_mass = 0.0) {
   const Matrix3<T>& R = y.R;
   const Vector3<T> n_B = R.transpose() * y.n;
   const T W[6] = {y.m(0), y.m(1), y.m(2), n_B(0), n_B(1), n_B(2)};
@@ -206,8 +209,15 @@ COSSERAT_RHS_INLINE DynamicPoint<T> DynamicDerivative(const SectionSample& smp,
   // recurrence exactly, to round-off, when no force acts.
   *velocity_W = R * v;
   d.n = -f_W;
-  if (!h.statics)
+  if (!h.statics) {
     for (int i = 0; i < 3; ++i) d.n(i) += rhoA * (h.c0 * (*velocity_W)(i) + (*h.velocity_W)(i));
+    if (added_mass != 0.0) {
+      Vector3<T> a;
+      for (int i = 0; i < 3; ++i) a(i) = h.c0 * (*velocity_W)(i) + (*h.velocity_W)(i);
+      const Vector3<T> t = R.col(2);
+      d.n += added_mass * (a - t * t.dot(a));
+    }
+  }
   return d;
 }
 

@@ -159,6 +159,9 @@ class StaticShootingSolver {
     Vec6 rest_strain;          ///< ξ*(s)
     double mass_per_length;    ///< ρ A, kg/m
     double s = 0.0;            ///< arc length of the sample point, m
+    double outer_diameter = 0.0;  ///< m (what the section displaces in a fluid)
+    /// The piece of unit length at this sample, for the loads (load.hpp).
+    LoadSite Site() const { return {s, 1.0, mass_per_length, outer_diameter}; }
   };
   /// What the tendon strain law needs at a sample point (only for rods with tendons).
   struct TendonStage {

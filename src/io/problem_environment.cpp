@@ -1,0 +1,103 @@
+#include "problem_environment.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace cosserat::io::detail {
+namespace {
+
+using nlohmann::json;
+
+// A list of 2 to 16 finite numbers at `key`, written to out[0 … count − 1]; false on error.
+bool ReadProfileList(const ObjectReader& o, const std::string& key, double* out, int* count) {
+  const std::string expected = "an array of 2 to 16 numbers";
+  const json* v = o.Find(key);
+  if (!v) {
+    o.report().Missing(o.PathOf(key), expected);
+    return false;
+  }
+  if (!v->is_array() || v->size() < 2 || v->size() > FluidFlowProfile::kMaxPoints) {
+    o.report().Expected(o.PathOf(key), expected, Describe(*v));
+    return false;
+  }
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const auto x = CheckNumber((*v)[i], o.PathOf(key) + "[" + std::to_string(i) + "]",
+                               AnyFiniteNumber(), o.report());
+    if (!x) return false;
+    out[i] = *x;
+  }
+  *count = static_cast<int>(v->size());
+  return true;
+}
+
+// "profile": {"axis", "origin", and either "reference_height" + "exponent" (a power law) or
+// "heights" + "factors" (a table)}.
+void ParseFlowProfile(const ObjectReader& o, FluidFlowProfile* p) {
+  o.AllowOnly({"axis", "origin", "reference_height", "exponent", "heights", "factors"});
+  if (const auto axis = ReadVec3(o, "axis", Presence::kOptional)) {
+    if (!(axis->norm() > 0)) {
+      o.report().Expected(o.PathOf("axis"), "a non-zero vector", "[0, 0, 0]");
+      return;
+    }
+    p->axis_W = axis->normalized();
+  }
+  p->origin_W = ReadVec3(o, "origin", Presence::kOptional).value_or(Vec3::Zero());
+  const bool power = o.Find("exponent") || o.Find("reference_height");
+  const bool table = o.Find("heights") || o.Find("factors");
+  if (power == table) {
+    o.report().Expected(o.PathOf("exponent"),
+                        "either \"reference_height\" and \"exponent\" (a power law) or "
+                        "\"heights\" and \"factors\" (a table)",
+                        power ? "both" : "neither");
+    return;
+  }
+  if (power) {
+    p->kind = FluidFlowProfile::Kind::kPowerLaw;
+    p->reference_height =
+        ReadNumber(o, "reference_height", PositiveNumber(), Presence::kRequired).value_or(1.0);
+    p->exponent = ReadNumber(o, "exponent", NonNegativeNumber(), Presence::kRequired).value_or(0.0);
+    return;
+  }
+  p->kind = FluidFlowProfile::Kind::kTable;
+  int heights = 0, factors = 0;
+  if (!ReadProfileList(o, "heights", p->height.data(), &heights)) return;
+  if (!ReadProfileList(o, "factors", p->factor.data(), &factors)) return;
+  if (heights != factors) {
+    o.report().Expected(o.PathOf("factors"), std::to_string(heights) + " numbers (one per height)",
+                        std::to_string(factors));
+    return;
+  }
+  for (int i = 1; i < heights; ++i) {
+    if (!(p->height[i] > p->height[i - 1])) {
+      o.report().Expected(o.PathOf("heights"), "increasing heights",
+                          FormatNumber(p->height[i - 1]) + " then " + FormatNumber(p->height[i]));
+      return;
+    }
+  }
+  p->points = heights;
+}
+
+void ParseFluid(const ObjectReader& o, Fluid* f) {
+  o.AllowOnly({"density", "velocity", "drag_normal", "drag_tangential", "added_mass", "diameter",
+               "profile"});
+  f->density = ReadNumber(o, "density", PositiveNumber(), Presence::kRequired).value_or(0.0);
+  f->velocity_W = ReadVec3(o, "velocity", Presence::kOptional).value_or(Vec3::Zero());
+  auto coefficient = [&](const char* key) {
+    return ReadNumber(o, key, NonNegativeNumber(), Presence::kOptional).value_or(0.0);
+  };
+  f->drag_normal = coefficient("drag_normal");
+  f->drag_tangential = coefficient("drag_tangential");
+  f->added_mass = coefficient("added_mass");
+  f->diameter = ReadNumber(o, "diameter", PositiveNumber(), Presence::kOptional).value_or(0.0);
+  if (const auto p = ReadObject(o, "profile", Presence::kOptional))
+    ParseFlowProfile(*p, &f->profile);
+}
+
+}  // namespace
+
+void ParseEnvironment(const ObjectReader& o, Fluid* fluid) {
+  o.AllowOnly({"fluid"});
+  if (const auto f = ReadObject(o, "fluid", Presence::kOptional)) ParseFluid(*f, fluid);
+}
+
+}  // namespace cosserat::io::detail

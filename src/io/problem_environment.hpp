@@ -1,0 +1,14 @@
+#pragma once
+/// \file
+/// The "environment" of a problem file: the fluid around the rod (buoyancy, Morison drag, added
+/// mass, a uniform or sheared flow). Keys in docs/problem-format.md.
+
+#include "cosserat/io/json_reader.hpp"
+#include "cosserat/loads/fluid.hpp"
+
+namespace cosserat::io::detail {
+
+/// Reads "environment" into *fluid; errors go to o's report, naming the key.
+void ParseEnvironment(const ObjectReader& o, Fluid* fluid);
+
+}  // namespace cosserat::io::detail

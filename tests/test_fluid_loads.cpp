@@ -1,0 +1,399 @@
+// Fluid loads (buoyancy, Morison drag, added mass) against closed forms: Archimedes, the
+// cantilever under a uniform load, the Euler–Bernoulli frequencies with the added mass, the
+// energy balance of a rod swinging in still water; and the drag's Jacobians against central
+// differences.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "cosserat/analysis/modes.hpp"
+#include "cosserat/loads/fluid_drag.hpp"
+#include "cosserat/loads/total_load.hpp"
+#include "cosserat/quatfd/quatfd_statics.hpp"
+#include "cosserat/strong/bdf2_stepper.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+#include "support/analytic/beam_vibration.hpp"
+#include "support/rods.hpp"
+
+namespace cosserat {
+namespace {
+
+using testing::SteelRod;
+
+constexpr double kWater = 1000.0;  // kg/m³
+
+Fluid Water(const Vec3& current = Vec3::Zero(), double cd = 0.0, double ca = 0.0) {
+  Fluid f;
+  f.density = kWater;
+  f.velocity_W = current;
+  f.drag_normal = cd;
+  f.added_mass = ca;
+  return f;
+}
+
+// --- The drag's own Jacobian -----------------------------------------------------------------
+
+// Central differences at h = 1e-6 (relative to values of order 1): truncation h² |f'''| ≈ 1e-12
+// and round-off 1e-16/h ≈ 1e-10 of |f'|, so 1e-7 of the largest entry is a wide margin that any
+// wrong term (O(1) of it) still fails.
+void ExpectDragJacobianMatchesCentralDifferences(const Fluid& fluid) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const FluidDrag drag(fluid);
+  const LoadSite site{0.3, 1.0, 0.6, 0.02};
+  for (int trial = 0; trial < 10; ++trial) {
+    SectionMotion m;
+    m.position_W = Vec3(u(rng), u(rng), 2.0 + u(rng));
+    m.tangent_W = Vec3(u(rng), u(rng), u(rng)).normalized();
+    m.velocity_W = Vec3(u(rng), u(rng), u(rng));
+    MotionJacobian J;
+    drag.MotionForce_W(site, m, &J);
+    const double h = 1e-6;
+    auto check = [&](Vec3 SectionMotion::*field, const Mat3& analytic, const char* name) {
+      Mat3 fd;
+      for (int k = 0; k < 3; ++k) {
+        SectionMotion p = m, q = m;
+        (p.*field)(k) += h;
+        (q.*field)(k) -= h;
+        fd.col(k) =
+            (drag.MotionForce_W(site, p, nullptr) - drag.MotionForce_W(site, q, nullptr)) / (2 * h);
+      }
+      const double scale = std::max(1.0, analytic.cwiseAbs().maxCoeff());
+      EXPECT_LT((fd - analytic).cwiseAbs().maxCoeff(), 1e-7 * scale) << name;
+    };
+    check(&SectionMotion::position_W, J.position, "position");
+    check(&SectionMotion::tangent_W, J.tangent, "tangent");
+    check(&SectionMotion::velocity_W, J.velocity, "velocity");
+  }
+}
+
+TEST(FluidDrag, JacobianMatchesCentralDifferencesInAUniformCurrent) {
+  Fluid f = Water(Vec3(0.8, -0.3, 0.1), 1.2);
+  f.drag_tangential = 0.1;
+  ExpectDragJacobianMatchesCentralDifferences(f);
+}
+
+TEST(FluidDrag, JacobianMatchesCentralDifferencesInShearedFlows) {
+  Fluid f = Water(Vec3(0.8, 0.3, 0.0), 1.2);
+  f.drag_tangential = 0.05;
+  f.profile.kind = FluidFlowProfile::Kind::kPowerLaw;
+  f.profile.reference_height = 2.0;
+  f.profile.exponent = 0.14;
+  ExpectDragJacobianMatchesCentralDifferences(f);
+  f.profile.kind = FluidFlowProfile::Kind::kTable;
+  f.profile.points = 3;
+  f.profile.height = {0.0, 1.7, 3.5};
+  f.profile.factor = {0.2, 0.9, 1.1};
+  ExpectDragJacobianMatchesCentralDifferences(f);
+}
+
+TEST(FluidDrag, IsMorisonsLawAcrossAndAlongTheRod) {
+  Fluid f = Water(Vec3(0.5, 0, 0.2), 1.1);
+  f.drag_tangential = 0.02;
+  const LoadSite site{0.0, 1.0, 0.0, 0.03};
+  SectionMotion m;  // tangent +z, at rest: u_n = 0.5 x, u_t = 0.2 z
+  const Vec3 force = FluidDrag(f).MotionForce_W(site, m, nullptr);
+  EXPECT_NEAR(force.x(), 0.5 * kWater * 1.1 * 0.03 * 0.5 * 0.5, 1e-12);
+  EXPECT_NEAR(force.z(), 0.5 * kWater * 0.02 * M_PI * 0.03 * 0.2 * 0.2, 1e-12);
+  EXPECT_EQ(force.y(), 0.0);
+}
+
+// --- Buoyancy ----------------------------------------------------------------------------------
+
+// A horizontal cantilever (tangent +x) under gravity −z.
+struct HorizontalCantilever {
+  SteelRod rod{0.5, 0.004};
+  lie::SE3 base;
+  HorizontalCantilever() {
+    base.R << 0, 0, 1, 0, 1, 0, -1, 0, 0;  // body z along world x
+  }
+  Vec3 TipSe3(const RodModel& model, const StaticLoads& loads) const {
+    StaticShootingSolver solver(model, 41);
+    EXPECT_TRUE(solver.Solve(base, loads).converged());
+    return solver.state().position_W.back();
+  }
+};
+
+TEST(Buoyancy, ARodAsDenseAsTheFluidStaysStraight) {
+  HorizontalCantilever c;
+  c.rod.material.density = kWater;
+  StaticLoads loads;
+  loads.gravity_W = Vec3(0, 0, -9.81);
+  loads.fluid = Water();
+  const Vec3 tip = c.TipSe3(c.rod.model(), loads);
+  // Weight and buoyancy are ρA g with A = π r² computed two ways (the section's area and
+  // π d²/4): they cancel to a few ulp, and the droop of that residue is below 1e-12 L.
+  EXPECT_LT(std::abs(tip.z()), 1e-12 * c.rod.length);
+  EXPECT_NEAR(tip.x(), c.rod.length, 1e-12);
+}
+
+TEST(Buoyancy, ADenseRodDroopsAsADryRodOfTheDensityDifference) {
+  HorizontalCantilever c;
+  StaticLoads wet;
+  wet.gravity_W = Vec3(0, 0, -9.81);
+  wet.fluid = Water();
+  StaticLoads dry;
+  dry.gravity_W = wet.gravity_W;
+  SteelRod lighter = c.rod;
+  lighter.material.density = c.rod.material.density - kWater;
+  const Vec3 tip_wet = c.TipSe3(c.rod.model(), wet);
+  const Vec3 tip_dry = c.TipSe3(lighter.model(), dry);
+  // The same distributed force (ρ − ρ_f) A g up to rounding: the same equilibrium to 1e-12 L.
+  EXPECT_LT((tip_wet - tip_dry).norm(), 1e-12 * c.rod.length);
+  EXPECT_GT(-tip_wet.z(), 1e-4 * c.rod.length);  // it does droop
+
+  // The quaternion-FD statics lumps buoyancy per vertex from the displaced volume: the same
+  // (to its solver's tolerance, 1e-10 of the residual).
+  quatfd::QuatFdOptions options;
+  options.segments = 40;
+  auto quatfd_tip = [&](const RodModel& model, const StaticLoads& loads) {
+    quatfd::QuatFdModel m(model, c.base, options);
+    Eigen::VectorXd q(m.size()), v(m.size());
+    m.RestState(q, v);
+    EXPECT_TRUE(quatfd::SolveStatics(&m, loads, q).converged());
+    return Vec3(q.segment<3>(quatfd::QuatFdLayout::X(options.segments)));
+  };
+  const Vec3 a = quatfd_tip(c.rod.model(), wet), b = quatfd_tip(lighter.model(), dry);
+  EXPECT_LT((a - b).norm(), 1e-9 * c.rod.length);
+  EXPECT_LT((a - tip_wet).norm(), 1e-3 * c.rod.length);  // and close to the SE(3) answer
+}
+
+// --- Drag: small deflection --------------------------------------------------------------------
+
+// A vertical cantilever (tangent +z) across a uniform current along x, no gravity: a uniform
+// load q = ½ ρ_f C_dn D U² bends its tip to q L⁴ / (8 EI) (linear beam theory). At δ/L ≈ 1e-3
+// the geometric nonlinearity (the current's normal part shrinks as cos θ) and shear are O(1e-3)
+// of δ, so 1 % is a safe bound that a wrong coefficient (π, ½, D) still fails.
+TEST(FluidDrag, ACantileverAcrossACurrentBendsAsBeamTheory) {
+  const SteelRod rod{1.0, 0.005};
+  const double U = 0.5, cd = 1.2, D = 2 * rod.r;
+  const double q = 0.5 * kWater * cd * D * U * U;
+  StaticLoads loads;
+  loads.fluid = Water(Vec3(U, 0, 0), cd);
+  StaticShootingSolver solver(rod.model(), 41);
+  ASSERT_TRUE(solver.Solve(lie::SE3{}, loads).converged());
+  const double expected = q * std::pow(rod.length, 4) / (8 * rod.EI());
+  ASSERT_LT(expected, 2e-3 * rod.length);
+  const double tip = solver.state().position_W.back().x();
+  std::printf("drag: tip %.6e m, q L^4/(8 EI) %.6e m, relative %.2e\n", tip, expected,
+              tip / expected - 1);
+  EXPECT_NEAR(tip, expected, 0.01 * expected);
+  // The stability index is not defined under drag (not a potential load).
+  EXPECT_EQ(solver.StabilityIndex(lie::SE3{}, loads, solver.base_wrench_B()), -1);
+}
+
+// The static shot's exact Jacobian includes the drag's dependence on the pose: compared with
+// central differences of the residual (h = 1e-6 on dimensionless unknowns; the shot's
+// amplification keeps the truncation below 1e-7 here).
+TEST(FluidDrag, StaticShootingJacobianMatchesFiniteDifferencesUnderAShearedCurrent) {
+  const SteelRod rod{0.6, 0.003};
+  StaticLoads loads;
+  loads.fluid = Water(Vec3(0.4, 0.2, 0), 1.2);
+  loads.fluid.drag_tangential = 0.05;
+  loads.fluid.profile.kind = FluidFlowProfile::Kind::kPowerLaw;
+  loads.fluid.profile.reference_height = 0.5;
+  loads.fluid.profile.exponent = 0.3;
+  loads.fluid.profile.origin_W = Vec3(0, 0, -0.1);
+  loads.gravity_W = Vec3(0, -9.81, 0);
+  StaticShootingSolver solver(rod.model(), 21);
+  const Vec6 x = (Vec6() << 0.1, -0.2, 0.05, 0.3, -0.1, 0.2).finished();
+  Vec6 r;
+  const Mat6 J = solver.ResidualJacobian(lie::SE3{}, loads, x, &r);
+  const double h = 1e-6;
+  for (int k = 0; k < 6; ++k) {
+    Vec6 xp = x, xm = x;
+    xp(k) += h;
+    xm(k) -= h;
+    const Vec6 fd =
+        (solver.Residual(lie::SE3{}, loads, xp) - solver.Residual(lie::SE3{}, loads, xm)) / (2 * h);
+    EXPECT_LT((fd - J.col(k)).norm(), 1e-6 * std::max(1.0, J.col(k).norm())) << "column " << k;
+  }
+}
+
+// The dynamic shot's exact Jacobian with drag (pose, tangent and velocity) and added mass, for
+// a moving state, against central differences (tolerance as in test_bdf2_dynamics.cpp).
+TEST(FluidDrag, DynamicShootingJacobianMatchesFiniteDifferencesWithDragAndAddedMass) {
+  const SteelRod rod{0.5, 0.002};
+  Bdf2Options opt;
+  Bdf2ShootingStepper stepper(rod.model(), 21, opt);
+  StepInput in;
+  in.loads.fluid = Water(Vec3(0.3, -0.1, 0.05), 1.2, 1.0);
+  in.loads.fluid.drag_tangential = 0.1;
+  in.loads.fluid.profile.kind = FluidFlowProfile::Kind::kPowerLaw;
+  in.loads.fluid.profile.reference_height = 0.4;
+  in.loads.fluid.profile.exponent = 0.2;
+  in.loads.fluid.profile.origin_W = Vec3(0, 0, -0.2);
+  in.loads.tip_force = Vec3(-0.2, 0.1, 0);
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads.tip_force = Vec3(0.05, 0, 0.1);
+  in.loads.gravity_W = Vec3(0, -9.81, 0);
+  in.base_twist_B << 0.1, -0.2, 0.3, 0.01, 0.02, -0.01;
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(stepper.Step(in).converged());
+  const double dt = opt.dt;
+  const Bdf2ShootingStepper::Coefficients c{1.5 / dt, -2 / dt, 0.5 / dt};
+  const Vec6 x = (Vec6() << 0.01, -0.3, 0.02, 0.1, -0.05, 0.2).finished();
+  Mat6 J;
+  stepper.Residual(in, c, false, x, &J);
+  const double h = 1e-6;
+  for (int k = 0; k < 6; ++k) {
+    Vec6 xp = x, xm = x;
+    xp(k) += h;
+    xm(k) -= h;
+    const Vec6 fd =
+        (stepper.Residual(in, c, false, xp) - stepper.Residual(in, c, false, xm)) / (2 * h);
+    EXPECT_LT((fd - J.col(k)).norm(), 1e-6 * std::max(1.0, J.col(k).norm())) << "column " << k;
+  }
+}
+
+// --- Added mass --------------------------------------------------------------------------------
+
+// In still water the bending modes are the dry ones divided by sqrt(1 + C_a ρ_f A_o / (ρ A)):
+// the added mass acts on the lateral motion only. The rotary inertia (unchanged) shifts the
+// ratio by O((r/L)²) ≈ 1e-4 here, far inside 0.5 %.
+TEST(AddedMass, CantileverModesInStillWaterAreTheDryOnesOverTheMassRatio) {
+  const SteelRod rod{0.5, 0.004};
+  ShootingModalOptions options;
+  options.modal.count = 4;  // two planes: each bending mode is a pair
+  const ModalResult dry = ComputeModesShooting(rod.model(), 41, lie::SE3{}, StaticLoads{}, options);
+  StaticLoads wet;
+  wet.fluid = Water(Vec3::Zero(), 0.0, 1.0);
+  const ModalResult in_water = ComputeModesShooting(rod.model(), 41, lie::SE3{}, wet, options);
+  ASSERT_EQ(dry.modes.size(), 4u);
+  ASSERT_EQ(in_water.modes.size(), 4u);
+  const double area = M_PI * rod.r * rod.r;
+  const double ratio = std::sqrt(1.0 + kWater * area / rod.rhoA());
+  for (int k : {0, 2}) {  // the first and second bending modes
+    const double expected = dry.modes[k].frequency_hz / ratio;
+    std::printf("mode %d: wet %.6f Hz, dry / ratio %.6f Hz\n", k / 2 + 1,
+                in_water.modes[k].frequency_hz, expected);
+    EXPECT_NEAR(in_water.modes[k].frequency_hz, expected, 0.005 * expected) << "mode " << k / 2 + 1;
+  }
+  // and the dry ones are the Euler–Bernoulli ones (the reference the ratio divides)
+  const double f1 =
+      truth::EulerBernoulliOmega(truth::CantileverBetaL(1), rod.EI(), rod.rhoA(), rod.length) /
+      (2 * M_PI);
+  EXPECT_NEAR(dry.modes[0].frequency_hz, f1, 0.005 * f1);
+}
+
+// Free vibration of the SE(3) stepper: the period of the first mode grows by the same ratio.
+// Periods are measured between upward zero crossings of the tip over 4 cycles, interpolated
+// linearly within a step (dt = T/150: the BDF2 period error, O((ω dt)²) ≈ 2e-3, is common to
+// both runs and cancels in the ratio to well under the 1 % tolerance).
+double TipPeriod(const StaticLoads& loads) {
+  const SteelRod rod{0.5, 0.004};
+  const double f1 =
+      truth::EulerBernoulliOmega(truth::CantileverBetaL(1), rod.EI(), rod.rhoA(), rod.length) /
+      (2 * M_PI);
+  Bdf2Options opt;
+  opt.dt = 1.0 / (150 * f1);
+  Bdf2ShootingStepper stepper(rod.model(), 31, opt);
+  StepInput in;
+  in.loads = loads;
+  in.loads.tip_force = Vec3(0.05, 0, 0);
+  EXPECT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads.tip_force.setZero();
+  std::vector<double> crossings;
+  double x_prev = stepper.state().position_W.back().x();
+  while (crossings.size() < 5 && stepper.time() < 10.0 / f1) {
+    EXPECT_TRUE(stepper.Step(in).converged());
+    const double x = stepper.state().position_W.back().x();
+    if (x_prev < 0 && x >= 0) crossings.push_back(stepper.time() - opt.dt * x / (x - x_prev));
+    x_prev = x;
+  }
+  EXPECT_EQ(crossings.size(), 5u);
+  return (crossings.back() - crossings.front()) / (crossings.size() - 1);
+}
+
+TEST(AddedMass, FreeVibrationInStillWaterIsSlowerByTheMassRatio) {
+  const SteelRod rod{0.5, 0.004};
+  StaticLoads wet;
+  wet.fluid = Water(Vec3::Zero(), 0.0, 1.0);
+  const double ratio = std::sqrt(1.0 + kWater * M_PI * rod.r * rod.r / rod.rhoA());
+  const double measured = TipPeriod(wet) / TipPeriod(StaticLoads{});
+  std::printf("added mass: period ratio %.6f, expected %.6f\n", measured, ratio);
+  EXPECT_NEAR(measured, ratio, 0.01 * ratio);
+}
+
+// --- Drag damping: the energy balance ------------------------------------------------------------
+
+// A cantilever released in still water with quadratic drag: between two instants the rod's
+// energy drops by the work the drag does, ∫∫ f·v ds dt (quadrature of the stepper's stage points
+// in s, trapezoid in t). BDF2's own numerical dissipation at dt = T/400 is measured dry (the
+// same run without fluid) and must stay below 0.1 of the drag's, so the balance is a check of the
+// drag and not of the integrator; 2 % covers the O(dt²) trapezoid and the remaining dissipation.
+struct SwingInWater {
+  double energy_lost = 0, drag_work = 0;
+};
+SwingInWater Swing(const Fluid& fluid, int cycles) {
+  const SteelRod rod{0.5, 0.004};
+  const double f1 =
+      truth::EulerBernoulliOmega(truth::CantileverBetaL(1), rod.EI(), rod.rhoA(), rod.length) /
+      (2 * M_PI);
+  Bdf2Options opt;
+  opt.dt = 1.0 / (400 * f1);
+  Bdf2ShootingStepper stepper(rod.model(), 31, opt);
+  StepInput in;
+  in.loads.fluid = fluid;
+  in.loads.tip_force = Vec3(3.0, 0, 0);  // a large swing: tip ≈ 0.1 L
+  EXPECT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads.tip_force.setZero();
+  auto drag_power = [&]() {
+    double p = 0;
+    for (const RodQuadraturePoint& pt : stepper.QuadraturePoints()) {
+      const Vec3 v = pt.rotation_WB * pt.twist_B.tail<3>();
+      const SectionMotion m{pt.position_W, pt.rotation_WB.col(2), v};
+      p += pt.weight * TotalMotionForce_W(in.loads, pt.section->Site(), m, nullptr).dot(v);
+    }
+    return p;
+  };
+  EXPECT_TRUE(stepper.Step(in).converged());  // the released state, with its first rates
+  SwingInWater out;
+  const double e0 = stepper.Energy(in.loads).total();
+  double p_prev = drag_power();
+  const int steps = static_cast<int>(std::round(cycles * 400));
+  for (int i = 0; i < steps; ++i) {
+    EXPECT_TRUE(stepper.Step(in).converged());
+    const double p = drag_power();
+    out.drag_work += 0.5 * (p + p_prev) * opt.dt;
+    p_prev = p;
+  }
+  out.energy_lost = e0 - stepper.Energy(in.loads).total();
+  return out;
+}
+
+TEST(FluidDrag, ASwingInStillWaterLosesTheEnergyTheDragDissipates) {
+  const SwingInWater dry = Swing(Fluid{}, 2);
+  const SwingInWater wet = Swing(Water(Vec3::Zero(), 2.0), 2);
+  ASSERT_GT(wet.energy_lost, 0.0);
+  EXPECT_LT(std::abs(dry.energy_lost), 0.1 * wet.energy_lost);  // the integrator's own share
+  std::printf("swing: energy lost %.6e J, drag work %.6e J, dry loss %.3e J\n", wet.energy_lost,
+              wet.drag_work, dry.energy_lost);
+  // The drag does negative work: energy lost = −∫ P dt.
+  EXPECT_NEAR(wet.energy_lost, -wet.drag_work, 0.02 * wet.energy_lost);
+}
+
+// --- Bad input ---------------------------------------------------------------------------------
+
+TEST(Fluid, BadValuesAreRefusedNamingTheKey) {
+  Fluid f = Water();
+  std::string why;
+  EXPECT_TRUE(f.IsValid(&why));
+  f.drag_normal = -1;
+  EXPECT_FALSE(f.IsValid(&why));
+  EXPECT_NE(why.find("environment.fluid.drag_normal"), std::string::npos) << why;
+  f = Water();
+  f.velocity_W.x() = NAN;
+  EXPECT_FALSE(f.IsValid(&why));
+  EXPECT_NE(why.find("velocity"), std::string::npos) << why;
+  f = Water();
+  f.profile.kind = FluidFlowProfile::Kind::kTable;
+  f.profile.points = 2;
+  f.profile.height = {1.0, 0.5};
+  EXPECT_FALSE(f.IsValid(&why));
+  EXPECT_NE(why.find("heights"), std::string::npos) << why;
+}
+
+}  // namespace
+}  // namespace cosserat
