@@ -87,6 +87,7 @@ json DynamicResultToJson(const DynamicRun& run, const RodState& final_state) {
   if (run.status != SolveStatus::kConverged) out["failed_at_t"] = run.failed_at_t;
   out["steps"] = run.steps;
   out["halved_steps"] = run.halved_steps;
+  if (run.shooting_segments > 0) out["shooting_segments"] = run.shooting_segments;
   out["iterations"] = run.iterations;
   out["shots"] = run.shots;
   out["wall_time_s"] = run.wall_time_s;

@@ -69,6 +69,7 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
     }
     ++run->steps;
     if (s.halvings > 0) ++run->halved_steps;
+    run->shooting_segments = std::max(run->shooting_segments, s.shooting_segments);
     if (k % stride == 0) Record(*stepper, k * dt, all_nodes, run);
   }
   run->stepping_wall_time_s = SecondsSince(loop_start);
@@ -141,7 +142,7 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   std::ostringstream log;
   log << SummaryLine(run, stepper.state()) << '\n';
   if (run.initial_state_ok && run.status != SolveStatus::kConverged &&
-      options.shooting_segments == 1) {
+      options.shooting_segments == 1) {  // an explicit single shot
     // The usual cause of a failed step at small dt (docs/dynamics.md, "Where it stops").
     const double exponent =
         SingleShootingExponent(problem.rod, options.dt, problem.robot.actuation);

@@ -13,9 +13,10 @@
 #include "cosserat/constitutive/tendon_law.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/rod/grid.hpp"
-#include "cosserat/strong/secant_filter.hpp"
-#include "cosserat/strong/shot_newton.hpp"
 #include "cosserat/strong/frame_tangent.hpp"
+#include "cosserat/strong/secant_filter.hpp"
+#include "cosserat/strong/shooting_exponent.hpp"
+#include "cosserat/strong/shot_newton.hpp"
 
 namespace cosserat {
 
@@ -31,7 +32,7 @@ bool Bdf2Options::IsValid(std::string* why) const {
   if (!(std::isfinite(tip_mass) && tip_mass >= 0)) return fail("tip_mass must be finite and >= 0");
   if (!(tip_inertia_B.allFinite() && (tip_inertia_B.array() >= 0).all()))
     return fail("tip_inertia must be finite and >= 0");
-  if (shooting_segments < 1) return fail("shooting_segments must be at least 1");
+  if (shooting_segments < 0) return fail("shooting_segments must be 0 (automatic) or more");
   if (spatial_scheme != SpatialScheme::kRk4 && spatial_scheme != SpatialScheme::kHeun)
     return fail("spatial_scheme must be rk4 or heun");
   return true;
@@ -102,24 +103,39 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   for (int i = 0; i < n; ++i) run_.state.s[i] = grid_[i];
   trial_ = run_.state;
 
-  const int pieces = options_.shooting_segments;
+  automatic_pieces_ = options_.shooting_segments == 0;
+  int pieces = options_.shooting_segments;
+  if (automatic_pieces_) {
+    const double exponent = SingleShootingExponent(model_, options_.dt);
+    pieces =
+        std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent), MaxAutomaticPieces());
+  }
   if (pieces > n - 1)
     throw std::invalid_argument("Bdf2Options: shooting_segments (" + std::to_string(pieces) +
                                 ") exceeds the number of grid segments (" + std::to_string(n - 1) +
                                 ")");
-  if (pieces > 1) {
-    const int unknowns = 6 + 18 * (pieces - 1);
-    junction_nodes_.resize(pieces - 1);
-    PlaceJunctions();
-    junction_z_.setZero(18 * (pieces - 1));
-    junction_mismatch_.setZero(18 * (pieces - 1));
-    run_.junction_unknowns.setZero(18 * (pieces - 1));
-    for (auto* v : {&ms_x_, &ms_x_new_, &ms_r_, &ms_r_new_, &ms_dx_, &ms_r_base_, &ms_u_, &ms_w_})
-      v->setZero(unknowns);
-    ms_jacobian_.setZero(unknowns, unknowns);
-    ms_inverse_.setZero(unknowns, unknowns);
-    ms_lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(unknowns);
-  }
+  SetShootingPieces(pieces);
+}
+
+int Bdf2ShootingStepper::MaxAutomaticPieces() const {
+  return std::max(1, std::min(32, static_cast<int>(grid_.size()) - 1));
+}
+
+void Bdf2ShootingStepper::SetShootingPieces(int pieces) {
+  const int junctions = pieces - 1;
+  const int unknowns = 6 + 18 * junctions;
+  junction_nodes_.resize(junctions);
+  PlaceJunctions();
+  junction_z_.setZero(18 * junctions);
+  junction_mismatch_.setZero(18 * junctions);
+  run_.junction_unknowns.setZero(18 * junctions);
+  if (junctions == 0) return;
+  for (auto* v : {&ms_x_, &ms_x_new_, &ms_r_, &ms_r_new_, &ms_dx_, &ms_r_base_, &ms_u_, &ms_w_})
+    v->setZero(unknowns);
+  ms_jacobian_.setZero(unknowns, unknowns);
+  ms_inverse_.setZero(unknowns, unknowns);
+  ms_lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(unknowns);
+  ms_jacobian_c0_ = -1.0;  // no Jacobian for these unknowns yet
 }
 
 void Bdf2ShootingStepper::PlaceJunctions() {
@@ -308,8 +324,7 @@ bool Bdf2ShootingStepper::SolveStepBySecantNewton(const StepInput& input, const 
 
 bool Bdf2ShootingStepper::SolveStepByLevenbergMarquardt(const StepInput& input,
                                                         const Coefficients& c, bool statics,
-                                                        const Vec6& x_start,
-                                                        StepSummary* summary) {
+                                                        const Vec6& x_start, StepSummary* summary) {
   // Levenberg–Marquardt with the exact Jacobian.
   Mat6 J_lm = run_.jacobian_filter.jacobian();
   auto shot = [&](const Vec6& x_try, Mat6* J_try) {
@@ -439,6 +454,12 @@ bool Bdf2ShootingStepper::Attempt(const StepInput& input, double h, StepSummary*
 bool Bdf2ShootingStepper::AttemptInterval(const StepInput& from, const StepInput& to, double h,
                                           int depth, StepSummary* summary) {
   if (Attempt(to, h, summary)) return true;
+  // Before halving: more pieces, when the stepper chooses them (a failed attempt commits
+  // nothing; the new junctions start from the last accepted state).
+  while (automatic_pieces_ && ShootingPieces() < MaxAutomaticPieces()) {
+    SetShootingPieces(std::min(MaxAutomaticPieces(), 2 * ShootingPieces()));
+    if (Attempt(to, h, summary)) return true;
+  }
   if (depth >= options_.max_halvings) return false;
   summary->halvings = std::max(summary->halvings, depth + 1);
   // Sub-steps see the input interpolated between the start and the end of the interval.
@@ -466,6 +487,7 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
   const StepInput start = run_.last_input;
   const bool ok = AttemptInterval(start, input, options_.dt, 0, &summary);
   if (ok) summary.status = SolveStatus::kConverged;
+  summary.shooting_segments = ShootingPieces();
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return summary;
@@ -554,6 +576,11 @@ void Bdf2ShootingStepper::Grow(const RodModel& longer, int new_segments) {
 }
 
 void Bdf2ShootingStepper::Restore(const Snapshot& s) {
+  // Automatic pieces may have grown since the snapshot: shoot in its pieces again.
+  if (automatic_pieces_ && s.junction_unknowns.size() != run_.junction_unknowns.size() &&
+      s.junction_unknowns.size() % 18 == 0 &&
+      static_cast<int>(s.junction_unknowns.size() / 18) < MaxAutomaticPieces())
+    SetShootingPieces(1 + static_cast<int>(s.junction_unknowns.size() / 18));
   if (s.strain1.size() != run_.strain1.size() || s.state.size() != run_.state.size() ||
       s.junction_unknowns.size() != run_.junction_unknowns.size())
     throw std::invalid_argument("Snapshot is from a stepper with another grid");

@@ -50,8 +50,8 @@ struct Problem {
     std::optional<StaticLoads> initial_loads;  ///< empty: start from equilibrium under `loads`
     double tip_mass = 0.0;                     ///< kg, a rigid body at the tip (dynamics only)
     Vec3 tip_inertia = Vec3::Zero();           ///< kg·m², its principal moments, tip body frame
-    /// Bdf2Options::shooting_segments (SE(3) path): multiple shooting for small dt.
-    int shooting_segments = 1;
+    /// Bdf2Options::shooting_segments (SE(3) path); 0: chosen by the stepper.
+    int shooting_segments = 0;
     /// Bdf2Options::spatial_scheme (SE(3) path).
     ShotScheme spatial_scheme = ShotScheme::kRk4;
     /// Quaternion-FD path: the Radau integrator's rel_tol = abs_tol (IntegratorOptions; rotations

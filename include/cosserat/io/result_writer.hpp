@@ -37,6 +37,7 @@ struct DynamicRun {
   double failed_at_t = std::numeric_limits<double>::quiet_NaN();  ///< end time of the failed step
   int steps = 0;                                                  ///< steps that converged
   int halved_steps = 0;  ///< of those, steps that needed step halving
+  int shooting_segments = 0;  ///< SE(3) path: the most pieces a step was shot in (0: not reported)
   int iterations = 0;    ///< all solves, the initial one included
   int shots = 0;
   double wall_time_s = 0;           ///< initial state and stepping loop

@@ -15,24 +15,24 @@
 /// force is carried in the world frame so that linear momentum is conserved to round-off.
 ///   ξ = (K + c0 D)⁻¹ (W + K ξ* − D ξʰ),  ξ_t = c0 ξ + ξʰ,  V_t = c0 V + Vʰ   (eq. 27)
 /// with g(0), V(0) prescribed and the unknown W(0) chosen so that W(L) is the tip wrench (eq. 28).
-/// History is kept at the scheme's stage points, so a rod at rest in equilibrium stays there exactly.
+/// History is kept at the scheme's stage points, so a rod at rest in equilibrium stays there
+/// exactly.
 
+#include <Eigen/Dense>
 #include <cstdint>
 #include <vector>
 
-#include <Eigen/Dense>
-
+#include "cosserat/constitutive/tendon_law.hpp"
 #include "cosserat/lie/se3.hpp"
 #include "cosserat/loads/static_loads.hpp"
-#include "cosserat/constitutive/tendon_law.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/state/rod_state.hpp"
+#include "cosserat/state/solve_status.hpp"
 #include "cosserat/strong/cosserat_rhs.hpp"
 #include "cosserat/strong/rod_integrals.hpp"
 #include "cosserat/strong/secant_filter.hpp"
 #include "cosserat/strong/sequence_predictor.hpp"
-#include "cosserat/state/solve_status.hpp"
 #include "cosserat/strong/spatial_scheme.hpp"
 
 namespace cosserat {
@@ -67,7 +67,11 @@ struct Bdf2Options {
   /// pieces see e^2 each. Costs a finite-difference Jacobian of size 6 + 18 (pieces − 1),
   /// reused across steps: for reference runs, not for the real-time path. Steps are solved by
   /// Newton only (no Levenberg–Marquardt fallback; a failure halves the step as usual).
-  int shooting_segments = 1;
+  /// 0 (the default): the stepper chooses. It starts with one piece when λL ≤ 10 (single
+  /// shooting's safe range) and SuggestedShootingSegments(λL) above (shooting_exponent.hpp), and
+  /// when a step fails it doubles the pieces (up to 32, and the grid's segments) before it halves
+  /// the step. StepSummary::shooting_segments reports the pieces of each step.
+  int shooting_segments = 0;
   /// Explicit scheme of the shot in s (spatial_scheme.hpp): RK4 (order 4, the default) or Heun
   /// (order 2, the order of BDF2 in time, half the stage evaluations: a shot costs about half).
   /// The BDF2 history lives at the scheme's stage points, so a stepper keeps its scheme.
@@ -97,6 +101,7 @@ struct StepSummary {
   int shots = 0;       ///< integrations from 0 to L
   int jacobians = 0;   ///< of which with the exact Jacobian (each costs about ten plain shots)
   int halvings = 0;    ///< deepest step halving used (0: the step went through whole)
+  int shooting_segments = 1;  ///< pieces the step was shot in (Bdf2Options::shooting_segments)
   double residual = 0.0;
   double wall_time_s = 0.0;
   bool converged() const { return status == SolveStatus::kConverged; }
@@ -136,10 +141,10 @@ class Bdf2ShootingStepper {
   /// InitializeAtRest or from a stepper of another model, grid or end conditions.
   struct Snapshot {
     double time = 0;
-    double last_dt = 0;             ///< size of the last accepted step (0 before the first)
+    double last_dt = 0;                   ///< size of the last accepted step (0 before the first)
     SequencePredictor unknowns{2, true};  ///< the converged unknowns of the last steps
-    SecantFilter jacobian_filter;  ///< the shooting Jacobian, tracked across steps
-    double jacobian_c0 = -1.0;  ///< the c0 the Jacobian was computed for; −1: none
+    SecantFilter jacobian_filter;         ///< the shooting Jacobian, tracked across steps
+    double jacobian_c0 = -1.0;            ///< the c0 the Jacobian was computed for; −1: none
     int steps_taken = 0;
     // Accepted values at the S stages of each segment (index S i + j; S = 4 for RK4, 2 for
     // Heun), one and two steps back, and at the tip node.
@@ -153,8 +158,8 @@ class Bdf2ShootingStepper {
     /// Multiple shooting: the junction unknowns of the last step (its change of the junction
     /// states, the next step's first guess); empty for single shooting.
     Eigen::VectorXd junction_unknowns;
-    StepInput last_input;   ///< input of the last accepted (sub-)step, for sub-step blending
-    RodState state;         ///< the last accepted step
+    StepInput last_input;  ///< input of the last accepted (sub-)step, for sub-step blending
+    RodState state;        ///< the last accepted step
     /// What Restore() checks: a run exists (InitializeAtRest was called), and the stepper it
     /// came from had the same rod, grid and end conditions (a hash of the grid, the unactuated
     /// sections at its nodes, the ends and the spatial scheme).
@@ -196,8 +201,8 @@ class Bdf2ShootingStepper {
                  StepSummary* summary);
   /// SolveStep's fast path: Newton with the secant filter's Jacobian from *x; on failure *x is
   /// the best point reached and *r its residual.
-  bool SolveStepBySecantNewton(const StepInput& input, const Coefficients& c, bool statics,
-                               Vec6* x, Vec6* r, StepSummary* summary);
+  bool SolveStepBySecantNewton(const StepInput& input, const Coefficients& c, bool statics, Vec6* x,
+                               Vec6* r, StepSummary* summary);
   /// SolveStep's fallback: Levenberg–Marquardt with the exact Jacobian from x_start.
   bool SolveStepByLevenbergMarquardt(const StepInput& input, const Coefficients& c, bool statics,
                                      const Vec6& x_start, StepSummary* summary);
@@ -211,6 +216,12 @@ class Bdf2ShootingStepper {
   void ApplyJunction(int k, State* y);
   /// junction_nodes_ for the current grid (constructor, Grow()).
   void PlaceJunctions();
+  /// Shoot in `pieces` pieces from now on: the junctions and the multiple-shooting workspace
+  /// (constructor, and when automatic pieces grow).
+  void SetShootingPieces(int pieces);
+  int ShootingPieces() const { return static_cast<int>(junction_nodes_.size()) + 1; }
+  /// The most pieces the automatic choice goes to: 32, and no more than the grid's segments.
+  int MaxAutomaticPieces() const;
   void SetImplicitCompliance(double c0);
   /// The sample points of grid_ with their tendon offsets and sections (constructor, Grow()).
   void SampleGrid();
@@ -275,6 +286,7 @@ class Bdf2ShootingStepper {
   Eigen::MatrixXd ms_inverse_;    ///< the Jacobian's inverse, Broyden-updated between renewals
   double ms_jacobian_c0_ = -1.0;  ///< c0 the stored inverse is for; −1: none
   bool initialized_ = false;
+  bool automatic_pieces_ = false;  ///< Bdf2Options::shooting_segments was 0
 };
 
 }  // namespace cosserat
