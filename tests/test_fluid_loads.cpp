@@ -247,6 +247,118 @@ TEST(FluidDrag, DynamicShootingJacobianMatchesFiniteDifferencesWithDragAndAddedM
   }
 }
 
+// The same cantilever and current in the quaternion-FD statics at 60 segments (second order in
+// the grid: O((h/L)²) ≈ 3e-4 of δ): within 1 % as well.
+TEST(FluidDrag, QuaternionFdCantileverAcrossACurrentBendsAsBeamTheory) {
+  const SteelRod rod{1.0, 0.005};
+  const double U = 0.5, cd = 1.2, D = 2 * rod.r;
+  const double q_load = 0.5 * kWater * cd * D * U * U;
+  StaticLoads loads;
+  loads.fluid = Water(Vec3(U, 0, 0), cd);
+  quatfd::QuatFdOptions options;
+  options.segments = 60;
+  quatfd::QuatFdModel model(rod.model(), lie::SE3{}, options);
+  Eigen::VectorXd q(model.size()), v(model.size());
+  model.RestState(q, v);
+  ASSERT_TRUE(quatfd::SolveStatics(&model, loads, q).converged());
+  const double tip = q(quatfd::QuatFdLayout::X(options.segments));
+  const double expected = q_load * std::pow(rod.length, 4) / (8 * rod.EI());
+  std::printf("quatfd drag: tip %.6e m, q L^4/(8 EI) %.6e m, relative %.2e\n", tip, expected,
+              tip / expected - 1);
+  EXPECT_NEAR(tip, expected, 0.01 * expected);
+}
+
+// Large deflection in a strong current (tip ≈ 0.3 L downstream): the two formulations at 60 grid
+// points agree within 0.5 % of L. Their discretisation errors are O(h⁴) (RK4 in s) and O(h²)
+// (finite differences, ≈ (1/60)² ≈ 3e-4 of the deflection), and they read the drag's direction
+// from the section normal (SE(3)) and from the chord between neighbouring vertices
+// (quaternion-FD), which differ by the shear strain, ~1e-6 here.
+TEST(FluidDrag, BothFormulationsAgreeInAStrongCurrent) {
+  const SteelRod rod{1.0, 0.0015};
+  StaticLoads loads;
+  loads.fluid = Water(Vec3(1.2, 0, 0), 1.2);
+  loads.fluid.drag_tangential = 0.05;
+  StaticShootingSolver shooting(rod.model(), 60);
+  ASSERT_TRUE(shooting.Solve(lie::SE3{}, loads).converged());
+  const Vec3 tip_se3 = shooting.state().position_W.back();
+  quatfd::QuatFdOptions options;
+  options.segments = 59;  // 60 vertices
+  quatfd::QuatFdModel model(rod.model(), lie::SE3{}, options);
+  Eigen::VectorXd q(model.size()), v(model.size());
+  model.RestState(q, v);
+  ASSERT_TRUE(quatfd::SolveStatics(&model, loads, q).converged());
+  const Vec3 tip_fd = q.segment<3>(quatfd::QuatFdLayout::X(options.segments));
+  std::printf("strong current: SE(3) tip [%.5f, %.5f] m, quatfd tip [%.5f, %.5f] m, %.2e L\n",
+              tip_se3.x(), tip_se3.z(), tip_fd.x(), tip_fd.z(),
+              (tip_se3 - tip_fd).norm() / rod.length);
+  EXPECT_GT(tip_se3.x(), 0.2 * rod.length);  // a large deflection
+  EXPECT_LT((tip_se3 - tip_fd).norm(), 0.005 * rod.length);
+}
+
+// The quaternion-FD model's banded Jacobian with drag in a sheared flow, at a moving state,
+// against central differences of its acceleration (steps 1e-5 scaled per unknown, as in
+// test_quatfd_model.cpp: truncation and round-off both ~1e-10 relative; rows scaled by their
+// largest entry, so 1e-6 covers both and fails on any missing drag term, O(1e-2) of a row).
+TEST(FluidDrag, QuaternionFdJacobianMatchesCentralDifferences) {
+  // A rubber rod: a steel one's accelerations at a perturbed state are so large that a velocity
+  // step changes them below their last digit.
+  SteelRod rod{0.5, 0.01};
+  rod.material = Material::FromPoissonRatio(5e6, 0.5, 1100);
+  quatfd::QuatFdOptions options;
+  options.segments = 6;
+  quatfd::QuatFdModel model(rod.model(), lie::SE3{}, options);
+  StaticLoads loads;
+  loads.fluid = Water(Vec3(0.8, 0.2, 0), 1.2);
+  loads.fluid.drag_tangential = 0.1;
+  loads.fluid.profile.kind = FluidFlowProfile::Kind::kPowerLaw;
+  loads.fluid.profile.reference_height = 0.3;
+  loads.fluid.profile.exponent = 0.3;
+  loads.fluid.profile.origin_W = Vec3(0, 0, -0.05);
+  model.set_loads(loads);
+  const int n = model.size();
+  Eigen::VectorXd q(n), v(n);
+  model.RestState(q, v);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < n; ++i) {
+    if (model.IsFixed(i)) continue;  // the clamp
+    q(i) += 0.01 * u(rng);
+    v(i) += 0.3 * u(rng);
+  }
+  for (int k = 0; k < options.segments; ++k)  // unit quaternions
+    q.segment<4>(quatfd::QuatFdLayout::P(k)).normalize();
+  quatfd::BandedMatrix A, B;
+  model.Jacobian(q, v, &A, &B);
+  const Eigen::MatrixXd Ad = A.ToDense(), Bd = B.ToDense();
+  Eigen::MatrixXd Afd(n, n), Bfd(n, n);
+  Eigen::VectorXd ap(n), am(n);
+  for (int j = 0; j < n; ++j) {
+    Eigen::VectorXd qp = q, qm = q, vp = v, vm = v;
+    const double hq = 1e-5 * std::max(1.0, std::abs(q(j)));
+    const double hv = 1e-5 * std::max(1.0, std::abs(v(j)));
+    qp(j) += hq;
+    qm(j) -= hq;
+    model.Acceleration(qp, v, ap);
+    model.Acceleration(qm, v, am);
+    Afd.col(j) = (ap - am) / (2 * hq);
+    vp(j) += hv;
+    vm(j) -= hv;
+    model.Acceleration(q, vp, ap);
+    model.Acceleration(q, vm, am);
+    Bfd.col(j) = (ap - am) / (2 * hv);
+  }
+  // The vertex rows (x, where the drag acts); the quaternion rows, which the drag does not
+  // touch, carry the stiff rotational accelerations whose round-off in a central difference
+  // exceeds this tolerance (test_quatfd_model.cpp checks them against the Jet oracle).
+  for (int i = 0; i < n; ++i) {
+    if (i % 7 >= 3) continue;
+    const double sa = std::max(Afd.row(i).cwiseAbs().maxCoeff(), 1e-12);
+    const double sb = std::max(Bfd.row(i).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LT((Ad.row(i) - Afd.row(i)).cwiseAbs().maxCoeff(), 1e-6 * sa) << "row " << i;
+    EXPECT_LT((Bd.row(i) - Bfd.row(i)).cwiseAbs().maxCoeff(), 1e-6 * sb) << "row " << i;
+  }
+}
+
 // --- Added mass --------------------------------------------------------------------------------
 
 // In still water the bending modes are the dry ones divided by sqrt(1 + C_a ρ_f A_o / (ρ A)):

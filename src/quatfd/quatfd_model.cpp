@@ -241,11 +241,11 @@ void QuatFdModel::RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::Vec
 void QuatFdModel::set_loads(const StaticLoads& loads) {
   loads_ = loads;
   tip_wrench_ = TotalTipWrench(loads);
+  motion_loads_ = HasMotionLoads(loads);
   // The distributed loads lumped on each vertex: its dual length and lumped mass.
   const int N = layout_.segments;
   vertex_force_W_.resize(N + 1);
-  for (int n = 0; n <= N; ++n)
-    vertex_force_W_[n] = TotalDistributedForce_W(loads, VertexSite(n));
+  for (int n = 0; n <= N; ++n) vertex_force_W_[n] = TotalDistributedForce_W(loads, VertexSite(n));
 }
 
 template <typename T>
@@ -330,6 +330,35 @@ void QuatFdModel::AddExternalLoads(const Vec3& tip_force_W, const Vec3& tip_torq
   a.segment<3>(L::P(N - 1) + 1) += tip_torque_B;
 }
 
+void QuatFdModel::AddMotionLoads(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                 const Eigen::Ref<const Eigen::VectorXd>& v,
+                                 Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
+                                 BandedMatrix* dfdv) const {
+  const int N = layout_.segments;
+  MotionJacobian J;
+  for (int n = 0; n <= N; ++n) {
+    // The centreline direction at vertex n: the chord between its neighbours (one-sided at the
+    // ends), t = d / |d|, so ∂t/∂x_b = (I − t tᵀ) / |d| = −∂t/∂x_a.
+    const int a_n = std::max(n - 1, 0), b_n = std::min(n + 1, N);
+    const Vec3 d = q.segment<3>(L::X(b_n)) - q.segment<3>(L::X(a_n));
+    const double length = d.norm();
+    const Vec3 t = d / length;
+    const SectionMotion motion{q.segment<3>(L::X(n)), t, v.segment<3>(L::X(n))};
+    const int r = L::X(n);
+    a.segment<3>(r) += TotalMotionForce_W(loads_, VertexSite(n), motion, dfdq ? &J : nullptr);
+    if (!dfdq) continue;
+    const Mat3 f_xb = J.tangent * (Mat3::Identity() - t * t.transpose()) / length;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        (*dfdq)(r + i, r + j) += J.position(i, j);
+        (*dfdq)(r + i, L::X(b_n) + j) += f_xb(i, j);
+        (*dfdq)(r + i, L::X(a_n) + j) -= f_xb(i, j);
+        (*dfdv)(r + i, r + j) += J.velocity(i, j);
+      }
+    }
+  }
+}
+
 void QuatFdModel::DivideVertexRowsByMass(Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
                                          BandedMatrix* dfdv) const {
   for (int n = 0; n <= layout_.segments; ++n) {
@@ -397,6 +426,7 @@ void QuatFdModel::EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
   Vec3 tip_force_W, tip_torque_B;
   TipLoads<double>(p_prev, &tip_force_W, &tip_torque_B);
   AddExternalLoads(tip_force_W, tip_torque_B, a);
+  if (motion_loads_) AddMotionLoads(q, v, a, nullptr, nullptr);
   if (forces_only) {
     ZeroFixedRows(a);
     return;

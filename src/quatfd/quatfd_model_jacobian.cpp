@@ -282,6 +282,7 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
   AddSegmentForces<kMode>(q, v, a, dfdq, dfdv);
   AddBendTorques<kMode>(q, v, a, dfdq, dfdv);
   AddLoads<kMode>(q, a, dfdq);
+  if (motion_loads_) AddMotionLoads(q, v, a, dfdq, dfdv);
   if (forces_only) {
     ZeroFixedRows(a);
     return;

@@ -229,6 +229,12 @@ class QuatFdModel {
   /// vertices, the tip force on x_N (N, world) and the tip moment as a body torque on p_{N−1/2}.
   void AddExternalLoads(const Vec3& tip_force_W, const Vec3& tip_torque_B,
                         Eigen::Ref<Eigen::VectorXd> a) const;
+  /// Adds the loads that depend on the motion (fluid drag) to the vertex rows of a, at each
+  /// vertex's position, velocity and centreline direction t (from its neighbours); with dfdq and
+  /// dfdv (or nullptr), their derivatives.
+  void AddMotionLoads(const Eigen::Ref<const Eigen::VectorXd>& q,
+                      const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Ref<Eigen::VectorXd> a,
+                      BandedMatrix* dfdq, BandedMatrix* dfdv) const;
   /// Vertex forces to accelerations, ẍ = Q/m (prescribed vertices: 0); with dfdq, dfdv (or
   /// nullptr) their rows likewise.
   void DivideVertexRowsByMass(Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
@@ -255,6 +261,7 @@ class QuatFdModel {
   Vec4 base_quat_;
   StaticLoads loads_;
   SplitWrench tip_wrench_;             ///< loads_ on the tip (dead: world, follower: tip frame)
+  bool motion_loads_ = false;          ///< some load of loads_ depends on the motion (drag)
   std::vector<Vec3> vertex_force_W_;   ///< distributed loads lumped on each vertex, world, N
   std::vector<double> s_;              ///< vertices s_n, m
   std::vector<double> mass_;           ///< lumped vertex masses m_n, kg
