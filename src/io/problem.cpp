@@ -260,7 +260,7 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   if (const auto loads = ReadObject(top, "loads", Presence::kOptional))
     p->loads = ParseLoads(*loads);
   if (const auto env = ReadObject(top, "environment", Presence::kOptional))
-    ParseEnvironment(*env, &p->loads.fluid);
+    ParseEnvironment(*env, &p->loads.fluid, &p->loads.contact);
   if (const auto o = ReadObject(top, "dynamics", Presence::kOptional)) {
     p->has_dynamics = true;
     ParseDynamics(*o, p->nodes, &p->dynamics);
@@ -292,7 +292,10 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   if (const auto o = ReadObject(top, "robot", Presence::kOptional)) ParseRobot(*o, top.value(), p);
   if (buckling) CheckBucklingActuation(top, *p);
   // The environment is the world: it acts under the initial loads of a dynamics run too.
-  if (p->dynamics.initial_loads) p->dynamics.initial_loads->fluid = p->loads.fluid;
+  if (p->dynamics.initial_loads) {
+    p->dynamics.initial_loads->fluid = p->loads.fluid;
+    p->dynamics.initial_loads->contact = p->loads.contact;
+  }
   const Fluid& fluid = p->loads.fluid;
   if (p->formulation == Formulation::kQuaternionFd && fluid.has_added_mass())
     top.report().Expected("environment.fluid.added_mass",

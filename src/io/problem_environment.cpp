@@ -1,7 +1,9 @@
 #include "problem_environment.hpp"
 
 #include <cmath>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace cosserat::io::detail {
 namespace {
@@ -93,11 +95,83 @@ void ParseFluid(const ObjectReader& o, Fluid* f) {
     ParseFlowProfile(*p, &f->profile);
 }
 
+// A unit vector at `key` (normalised), or nullopt after reporting a zero or bad one.
+std::optional<Vec3> ReadDirection(const ObjectReader& o, const std::string& key) {
+  const auto v = ReadVec3(o, key, Presence::kRequired);
+  if (!v) return std::nullopt;
+  if (!(v->norm() > 0)) {
+    o.report().Expected(o.PathOf(key), "a non-zero vector", "[0, 0, 0]");
+    return std::nullopt;
+  }
+  return v->normalized();
+}
+
+// One surface: {"shape": "plane", "point", "normal"} | {"shape": "sphere", "center", "radius"} |
+// {"shape": "cylinder", "point", "axis", "radius", "side"}, each with "stiffness", "damping",
+// "friction" and "smoothing".
+void ParseSurface(const ObjectReader& o, ContactSurface* s) {
+  const auto shape = ReadChoice(o, "shape", {"plane", "sphere", "cylinder"}, Presence::kRequired);
+  if (!shape) return;
+  const std::vector<std::string> common = {"shape", "stiffness", "damping", "friction",
+                                           "smoothing"};
+  auto allow = [&](std::vector<std::string> keys) {
+    keys.insert(keys.end(), common.begin(), common.end());
+    o.AllowOnly(keys, "for a \"" + *shape + "\" surface");
+  };
+  if (*shape == "plane") {
+    allow({"point", "normal"});
+    s->shape = ContactSurface::Shape::kPlane;
+    s->point_W = ReadVec3(o, "point", Presence::kOptional).value_or(Vec3::Zero());
+    s->direction_W = ReadDirection(o, "normal").value_or(Vec3::UnitZ());
+  } else if (*shape == "sphere") {
+    allow({"center", "radius"});
+    s->shape = ContactSurface::Shape::kSphere;
+    s->point_W = ReadVec3(o, "center", Presence::kRequired).value_or(Vec3::Zero());
+    s->radius = ReadNumber(o, "radius", PositiveNumber(), Presence::kRequired).value_or(1.0);
+  } else {
+    allow({"point", "axis", "radius", "side"});
+    s->shape = ContactSurface::Shape::kCylinder;
+    s->point_W = ReadVec3(o, "point", Presence::kOptional).value_or(Vec3::Zero());
+    s->direction_W = ReadDirection(o, "axis").value_or(Vec3::UnitZ());
+    s->radius = ReadNumber(o, "radius", PositiveNumber(), Presence::kRequired).value_or(1.0);
+    s->inside = ReadChoice(o, "side", {"inside", "outside"}, Presence::kRequired) ==
+                std::optional<std::string>("inside");
+  }
+  s->stiffness = ReadNumber(o, "stiffness", PositiveNumber(), Presence::kRequired).value_or(0.0);
+  s->damping = ReadNumber(o, "damping", NonNegativeNumber(), Presence::kOptional).value_or(0.0);
+  s->smoothing = ReadNumber(o, "smoothing", NonNegativeNumber(), Presence::kOptional).value_or(0.0);
+  const double friction =
+      ReadNumber(o, "friction", NonNegativeNumber(), Presence::kOptional).value_or(0.0);
+  if (friction > 0.0)
+    o.report().Expected(o.PathOf("friction"), "0 (friction is not implemented in this version)",
+                        FormatNumber(friction));
+}
+
+void ParseContact(const ObjectReader& o, ContactSurfaces* contact) {
+  const std::string expected = "an array of 1 to 8 surface objects";
+  const json* v = o.Find("contact");
+  if (!v) return;
+  if (!v->is_array() || v->empty() || v->size() > kMaxContactSurfaces) {
+    o.report().Expected(o.PathOf("contact"), expected, Describe(*v));
+    return;
+  }
+  contact->count = static_cast<int>(v->size());
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const std::string path = o.PathOf("contact") + "[" + std::to_string(i) + "]";
+    if (!(*v)[i].is_object()) {
+      o.report().Expected(path, "a surface object", Describe((*v)[i]));
+      continue;
+    }
+    ParseSurface(ObjectReader((*v)[i], path, &o.report()), &contact->surface[i]);
+  }
+}
+
 }  // namespace
 
-void ParseEnvironment(const ObjectReader& o, Fluid* fluid) {
-  o.AllowOnly({"fluid"});
+void ParseEnvironment(const ObjectReader& o, Fluid* fluid, ContactSurfaces* contact) {
+  o.AllowOnly({"fluid", "contact"});
   if (const auto f = ReadObject(o, "fluid", Presence::kOptional)) ParseFluid(*f, fluid);
+  ParseContact(o, contact);
 }
 
 }  // namespace cosserat::io::detail

@@ -1,14 +1,16 @@
 #pragma once
 /// \file
 /// The "environment" of a problem file: the fluid around the rod (buoyancy, Morison drag, added
-/// mass, a uniform or sheared flow). Keys in docs/problem-format.md.
+/// mass, a uniform or sheared flow) and the rigid surfaces it touches. Keys in
+/// docs/problem-format.md.
 
 #include "cosserat/io/json_reader.hpp"
+#include "cosserat/loads/contact.hpp"
 #include "cosserat/loads/fluid.hpp"
 
 namespace cosserat::io::detail {
 
-/// Reads "environment" into *fluid; errors go to o's report, naming the key.
-void ParseEnvironment(const ObjectReader& o, Fluid* fluid);
+/// Reads "environment" into *fluid and *contact; errors go to o's report, naming the key.
+void ParseEnvironment(const ObjectReader& o, Fluid* fluid, ContactSurfaces* contact);
 
 }  // namespace cosserat::io::detail

@@ -218,3 +218,5 @@ cosserat_cli_test(NAME solve_cantilever_in_current ARGS solve "${_cli_current}" 
                   STDERR "converged")
 cosserat_cli_test(NAME bad_environment ARGS validate "${_cli_dir}/bad_environment.json" CODE 2
                   STDERR "environment.fluid.drag_normal.*environment.fluid.profile.heights.*environment.fluid")
+cosserat_cli_test(NAME bad_contact ARGS validate "${_cli_dir}/bad_contact.json" CODE 2
+                  STDERR "environment.contact\\[0\\].normal: .*environment.contact\\[1\\].radius: .*environment.contact\\[2\\].stiffness: .*environment.contact\\[3\\].friction: ")

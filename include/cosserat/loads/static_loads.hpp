@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cosserat/lie/types.hpp"
+#include "cosserat/loads/contact.hpp"
 #include "cosserat/loads/fluid.hpp"
 #include "cosserat/loads/load.hpp"
 
@@ -22,6 +23,7 @@ struct StaticLoads {
   Vec3 tip_moment = Vec3::Zero();  ///< N·m, in tip_moment_frame
   LoadFrame tip_moment_frame = LoadFrame::kWorld;
   Fluid fluid;  ///< buoyancy, drag and added mass (fluid.hpp); none by default
+  ContactSurfaces contact;  ///< rigid surfaces (contact.hpp); none by default; never scaled
 
   /// Every load multiplied by lambda (used by load stepping): the fluid's flow by √λ, so that
   /// its drag scales by λ; buoyancy scales with gravity.

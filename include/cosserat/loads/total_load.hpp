@@ -6,6 +6,7 @@
 
 #include "cosserat/loads/added_mass.hpp"
 #include "cosserat/loads/buoyancy.hpp"
+#include "cosserat/loads/contact.hpp"
 #include "cosserat/loads/distributed_force.hpp"
 #include "cosserat/loads/fluid_drag.hpp"
 #include "cosserat/loads/gravity.hpp"
@@ -24,14 +25,28 @@ inline Vec3 TotalDistributedForce_W(const StaticLoads& loads, const LoadSite& si
 
 /// True when some load depends on the section's motion (TotalMotionForce_W is not zero).
 inline bool HasMotionLoads(const StaticLoads& loads) {
-  return FluidDrag(loads.fluid).DependsOnMotion();
+  return FluidDrag(loads.fluid).DependsOnMotion() ||
+         PenaltyContact(loads.contact).DependsOnMotion();
 }
 
 /// Σ force of the loads that depend on the section's motion, world frame, N (N/m for a site of
 /// unit length); with J, its derivative.
 inline Vec3 TotalMotionForce_W(const StaticLoads& loads, const LoadSite& site,
                                const SectionMotion& motion, MotionJacobian* J) {
-  return FluidDrag(loads.fluid).MotionForce_W(site, motion, J);
+  Vec3 f = Vec3::Zero();
+  if (J) *J = MotionJacobian{};
+  MotionJacobian part;
+  auto add = [&](const Load& load) {
+    if (!load.DependsOnMotion()) return;
+    f += load.MotionForce_W(site, motion, J ? &part : nullptr);
+    if (!J) return;
+    J->position += part.position;
+    J->tangent += part.tangent;
+    J->velocity += part.velocity;
+  };
+  add(FluidDrag(loads.fluid));
+  add(PenaltyContact(loads.contact));
+  return f;
 }
 
 /// Σ added mass on the normal acceleration of the site, kg (kg/m for a site of unit length).
@@ -69,7 +84,7 @@ inline double TotalDistributedPotential(const StaticLoads& loads, const LoadSite
 /// True when the loads change only at the tip between a and b (the distributed loads are equal).
 inline bool SameDistributedLoads(const StaticLoads& a, const StaticLoads& b) {
   return a.gravity_W == b.gravity_W && a.distributed_force_W == b.distributed_force_W &&
-         a.fluid == b.fluid;
+         a.fluid == b.fluid && a.contact == b.contact;
 }
 
 }  // namespace cosserat

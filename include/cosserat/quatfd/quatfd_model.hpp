@@ -155,6 +155,11 @@ class QuatFdModel {
 
   /// Whether unknown i is prescribed (the position of a clamped or pinned base vertex).
   bool IsFixed(int i) const { return fixed_[i]; }
+  /// The piece of rod lumped on vertex n (its dual length, lumped mass and outer diameter), the
+  /// site of the loads there (load.hpp).
+  LoadSite VertexSite(int n) const {
+    return {s_[n], vertex_weight_[n], mass_[n], vertex_diameter_[n]};
+  }
 
   /// Node values for the writers: positions x_n; rotations at interior vertices from the
   /// normalised mean of the neighbouring quaternions, the clamp's at s = 0, p_{N−1/2} at a free
@@ -260,18 +265,15 @@ class QuatFdModel {
   lie::SE3 base_;
   Vec4 base_quat_;
   StaticLoads loads_;
-  SplitWrench tip_wrench_;             ///< loads_ on the tip (dead: world, follower: tip frame)
-  bool motion_loads_ = false;          ///< some load of loads_ depends on the motion (drag)
-  std::vector<Vec3> vertex_force_W_;   ///< distributed loads lumped on each vertex, world, N
-  std::vector<double> s_;              ///< vertices s_n, m
-  std::vector<double> mass_;           ///< lumped vertex masses m_n, kg
-  std::vector<double> vertex_weight_;  ///< dual lengths w_n, m
+  SplitWrench tip_wrench_;               ///< loads_ on the tip (dead: world, follower: tip frame)
+  bool motion_loads_ = false;            ///< some load of loads_ depends on the motion (drag)
+  std::vector<Vec3> vertex_force_W_;     ///< distributed loads lumped on each vertex, world, N
+  std::vector<double> s_;                ///< vertices s_n, m
+  std::vector<double> mass_;             ///< lumped vertex masses m_n, kg
+  std::vector<double> vertex_weight_;    ///< dual lengths w_n, m
   std::vector<double> vertex_diameter_;  ///< outer diameter of the dual piece, m (fluid loads)
-  /// The piece of rod lumped on vertex n, for the loads (load.hpp).
-  LoadSite VertexSite(int n) const {
-    return {s_[n], vertex_weight_[n], mass_[n], vertex_diameter_[n]};
-  }
-  std::vector<unsigned char> fixed_;   ///< per unknown
+
+  std::vector<unsigned char> fixed_;                  ///< per unknown
   std::vector<kernels::SegmentConstants> segment_;    ///< per segment
   std::vector<kernels::RotationConstants> rotation_;  ///< per segment (inertia)
   std::vector<Vec3> inv_inertia_;                     ///< per segment, 1/inertia (f path)

@@ -1,0 +1,155 @@
+// Penalty contact with rigid surfaces against linear beam theory: a rod lying down on a floor
+// (touchdown length and clamp reactions as the foundation stiffens) and a cantilever pushed
+// sideways by a sphere (the point-load relation); its Jacobian against central differences.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "cosserat/loads/contact.hpp"
+#include "cosserat/loads/total_load.hpp"
+#include "cosserat/quatfd/quatfd_statics.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+#include "support/rods.hpp"
+
+namespace cosserat {
+namespace {
+
+using testing::SteelRod;
+
+ContactSurface Plane(const Vec3& point, const Vec3& normal, double k) {
+  ContactSurface s;
+  s.point_W = point;
+  s.direction_W = normal.normalized();
+  s.stiffness = k;
+  return s;
+}
+
+// Central differences at h = 1e-7 m of a force of order k δ: truncation (h/ε)² relative in the
+// smoothing ramp (ε = 2e-5 m here, so points are taken beyond it or well inside it) and
+// round-off 1e-16 |f| / h; 1e-6 of the largest entry covers both and fails on any missing term.
+TEST(PenaltyContact, JacobianMatchesCentralDifferences) {
+  ContactSurfaces surfaces;
+  surfaces.count = 4;
+  surfaces.surface[0] = Plane(Vec3(0, 0, -0.01), Vec3(0.2, 0.1, 1.0), 1e5);
+  surfaces.surface[0].damping = 30;
+  surfaces.surface[1].shape = ContactSurface::Shape::kSphere;
+  surfaces.surface[1].point_W = Vec3(0.03, 0.0, 0.0);
+  surfaces.surface[1].radius = 0.028;
+  surfaces.surface[1].stiffness = 2e5;
+  surfaces.surface[1].damping = 10;
+  surfaces.surface[2].shape = ContactSurface::Shape::kCylinder;
+  surfaces.surface[2].point_W = Vec3(0, 0.05, 0);
+  surfaces.surface[2].direction_W = Vec3(1, 0, 0.3).normalized();
+  surfaces.surface[2].radius = 0.0485;
+  surfaces.surface[2].stiffness = 3e5;
+  surfaces.surface[3] = surfaces.surface[2];
+  surfaces.surface[3].inside = true;
+  surfaces.surface[3].point_W = Vec3(0, -0.05, 0.0);
+  surfaces.surface[3].radius = 0.0495;
+  const PenaltyContact contact(surfaces);
+  const LoadSite site{0.1, 1.0, 0.1, 0.02};  // ε = 2e-5 m
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int touching = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    SectionMotion m;
+    m.position_W = Vec3(0.004 * u(rng), 0.004 * u(rng), 0.004 * u(rng));
+    m.velocity_W = Vec3(u(rng), u(rng), u(rng));
+    MotionJacobian J;
+    const Vec3 f = contact.MotionForce_W(site, m, &J);
+    if (f.isZero(0.0)) continue;
+    ++touching;
+    const double h = 1e-7;
+    Mat3 fd_p, fd_v;
+    for (int k = 0; k < 3; ++k) {
+      SectionMotion a = m, b = m;
+      a.position_W(k) += h;
+      b.position_W(k) -= h;
+      fd_p.col(k) =
+          (contact.MotionForce_W(site, a, nullptr) - contact.MotionForce_W(site, b, nullptr)) /
+          (2 * h);
+      a = m;
+      b = m;
+      a.velocity_W(k) += h;
+      b.velocity_W(k) -= h;
+      fd_v.col(k) =
+          (contact.MotionForce_W(site, a, nullptr) - contact.MotionForce_W(site, b, nullptr)) /
+          (2 * h);
+    }
+    EXPECT_LT((fd_p - J.position).cwiseAbs().maxCoeff(),
+              1e-6 * std::max(1.0, J.position.cwiseAbs().maxCoeff()));
+    EXPECT_LT((fd_v - J.velocity).cwiseAbs().maxCoeff(),
+              1e-6 * std::max(1.0, J.velocity.cwiseAbs().maxCoeff()));
+  }
+  EXPECT_GT(touching, 20);
+}
+
+// A heavy rod clamped horizontally with its underside h above a floor lies down beyond a
+// touchdown length. Linear beam theory on a rigid floor (h ≪ a): a = (72 EI h / q)^(1/4), the
+// clamp's vertical reaction 2qa/3 and moment qa²/6. A Winkler floor of stiffness k spreads the
+// rigid floor's point reaction at touchdown over its foundation length ℓ = (4EI/k)^(1/4), so the
+// touchdown length and the clamp's force approach the limit like ℓ/a (first order), while the
+// moment about the clamp only to second order, (ℓ/a)². The quaternion-FD statics (a Newton solve on
+// the whole grid, which a stiff foundation does not ill-condition; 250 segments, 1 cm) at k = 1e4 …
+// 1e7 N/m²: the errors fall with k and stay below 1.5 ℓ/a (plus one grid spacing for the touchdown
+// point, read at the first vertex in contact).
+TEST(PenaltyContact, ARodLyingOnAFloorTendsToTheRigidFloorLimit) {
+  const SteelRod rod{2.5, 0.002};
+  const double q = rod.rhoA() * 9.81, h = 0.01;
+  const double a = std::pow(72 * rod.EI() * h / q, 0.25);
+  lie::SE3 base;
+  base.R << 0, 0, 1, 0, 1, 0, -1, 0, 0;  // tangent +x
+  base.p = Vec3(0, 0, h + rod.r);
+  quatfd::QuatFdOptions options;
+  options.segments = 250;
+  double last_error = 1e9;
+  for (double k : {1e4, 1e5, 1e6, 1e7}) {
+    StaticLoads loads;
+    loads.gravity_W = Vec3(0, 0, -9.81);
+    loads.contact.count = 1;
+    loads.contact.surface[0] = Plane(Vec3::Zero(), Vec3::UnitZ(), k);
+    quatfd::QuatFdModel model(rod.model(), base, options);
+    Eigen::VectorXd qv(model.size()), v(model.size());
+    model.RestState(qv, v);
+    ASSERT_TRUE(quatfd::SolveStatics(&model, loads, qv).converged()) << "k = " << k;
+    // The clamp's reaction balances every other external force on the rod: the lumped weight
+    // and the contact force of each vertex (its own piece of rod, QuatFdModel::VertexSite).
+    const PenaltyContact penalty(loads.contact);
+    Vec3 force = Vec3::Zero(), moment = Vec3::Zero();
+    for (int n = 0; n <= options.segments; ++n) {
+      const LoadSite site = model.VertexSite(n);
+      const Vec3 x = qv.segment<3>(quatfd::QuatFdLayout::X(n));
+      const Vec3 f = site.mass * loads.gravity_W +
+                     penalty.MotionForce_W(site, {x, Vec3::UnitX(), Vec3::Zero()}, nullptr);
+      force += f;
+      moment += (x - base.p).cross(f);
+    }
+    const double V = -force.z(), M = std::abs(moment.y());
+    double touchdown = 0;
+    for (int n = 0; n <= options.segments; ++n) {
+      Vec3 nrm;
+      const Vec3 x = qv.segment<3>(quatfd::QuatFdLayout::X(n));
+      if (loads.contact.surface[0].Distance(x, &nrm) - rod.r < 0) {
+        touchdown = x.x();
+        break;
+      }
+    }
+    const double e_a = touchdown / a - 1, e_V = V / (2 * q * a / 3) - 1,
+                 e_M = M / (q * a * a / 6) - 1;
+    std::printf(
+        "k = %.0e: touchdown %.4f m (a = %.4f), V/(2qa/3) - 1 = %.3e, M/(qa^2/6) - 1 = "
+        "%.3e\n",
+        k, touchdown, a, e_a, e_V, e_M);
+    const double ell = std::pow(4 * rod.EI() / k, 0.25);
+    EXPECT_LT(std::abs(e_V), 1.5 * ell / a) << "k = " << k;
+    EXPECT_LT(std::abs(e_a), 1.5 * ell / a + 0.01 / a) << "k = " << k;
+    EXPECT_LT(std::abs(e_M), (ell / a) * (ell / a)) << "k = " << k;  // second order
+    EXPECT_LT(std::abs(e_V), last_error) << "k = " << k;             // the approach
+    last_error = std::abs(e_V);
+  }
+}
+
+}  // namespace
+}  // namespace cosserat
