@@ -1,5 +1,6 @@
 #include "cosserat/run/run.hpp"
 
+#include "contact_report.hpp"
 #include "cosserat/run/run_buckling.hpp"
 #include "cosserat/run/run_dynamics.hpp"
 #include "cosserat/run/run_eversion.hpp"
@@ -9,7 +10,9 @@
 
 namespace cosserat::run {
 
-Result Run(const io::Problem& problem, const RunOptions& options) {
+namespace {
+
+Result Dispatch(const io::Problem& problem, const RunOptions& options) {
   using io::Analysis;
   const bool dynamics = problem.analysis == Analysis::kDynamics;
   if (problem.analysis == Analysis::kModes) return RunModes(problem, options);
@@ -21,6 +24,14 @@ Result Run(const io::Problem& problem, const RunOptions& options) {
   if (problem.has_robot && problem.robot.kind == io::RobotKind::kEversion)
     return RunEversion(problem, options);
   return dynamics ? RunDynamics(problem, options) : RunStatics(problem, options);
+}
+
+}  // namespace
+
+Result Run(const io::Problem& problem, const RunOptions& options) {
+  Result result = Dispatch(problem, options);
+  detail::AddContactReport(problem, &result);
+  return result;
 }
 
 }  // namespace cosserat::run

@@ -220,3 +220,7 @@ cosserat_cli_test(NAME bad_environment ARGS validate "${_cli_dir}/bad_environmen
                   STDERR "environment.fluid.drag_normal.*environment.fluid.profile.heights.*environment.fluid")
 cosserat_cli_test(NAME bad_contact ARGS validate "${_cli_dir}/bad_contact.json" CODE 2
                   STDERR "environment.contact\\[0\\].normal: .*environment.contact\\[1\\].radius: .*environment.contact\\[2\\].stiffness: .*environment.contact\\[3\\].friction: ")
+get_filename_component(_cli_table "${CMAKE_CURRENT_LIST_DIR}/../../examples/rod_on_table.json"
+                       ABSOLUTE)
+cosserat_cli_test(NAME solve_rod_on_table ARGS solve "${_cli_table}" CODE 0
+                  STDOUT "\"contact\": {.*\"total_force\"" STDERR "converged")

@@ -1,0 +1,18 @@
+#pragma once
+/// \file
+/// The contact part of a result: the force per unit length the surfaces exert at each node
+/// (`nodes.contact_force`, N/m, world frame) and its integral along s (`contact.total_force`, N,
+/// trapezoid rule), from the nodes of the result's (final) state; plus the s-intervals in
+/// contact. In dynamics this is the penalty part at the final state (the damping, which needs the
+/// velocity, is not in it).
+
+#include "cosserat/io/problem.hpp"
+#include "cosserat/run/result.hpp"
+
+namespace cosserat::run::detail {
+
+/// Adds "contact" and "nodes.contact_force" to result->json when the problem has contact
+/// surfaces and the result has nodes.
+void AddContactReport(const io::Problem& problem, Result* result);
+
+}  // namespace cosserat::run::detail
