@@ -386,13 +386,20 @@ void BindSolve(py::module_& m) {
         d["converged"] = result.converged;
         d["result"] = py::module_::import("json").attr("loads")(result.json.dump());
         d["log"] = result.log;
+        if (result.json.contains("contact")) {  // as NumPy arrays: N/m per node, N in total
+          const py::module_ np = py::module_::import("numpy");
+          d["contact_force"] = np.attr("array")(d["result"]["nodes"]["contact_force"]);
+          d["contact_total_force"] = np.attr("array")(d["result"]["contact"]["total_force"]);
+        }
         if (nodes) d["nodes_csv"] = result.nodes_csv;
         return d;
       },
       py::arg("problem"), py::arg("nodes") = false,
       "Runs the problem exactly as `cosserat solve` does (any analysis, either formulation, the "
       "robots): a dict with converged, result (the result JSON as a dict), log (the summary "
-      "line and hints) and, with nodes=True, nodes_csv (the --csv table as text).");
+      "line and hints), with nodes=True nodes_csv (the --csv table as text), and with contact "
+      "surfaces contact_force (N x 3, N/m per node) and contact_total_force (N) as NumPy "
+      "arrays.");
 }
 
 /// cosserat.StaticSolver and its StaticSummary.

@@ -49,6 +49,18 @@ class Environment(unittest.TestCase):
         self.assertLess(expected, 2e-3 * L)
         self.assertAlmostEqual(solver.state()["position"][-1][0], expected, delta=0.01 * expected)
 
+    def test_contact_forces_come_back_as_numpy_arrays(self):
+        # The rod on a table: the table and the clamp together carry the rod's weight (the
+        # contact force is integrated by the trapezoid rule on 250 segments, which is exact to
+        # O(h^2) of the contact region's curvature: 1e-3 of the weight is ample).
+        out = cosserat.solve(cosserat.load_problem("examples/rod_on_table.json"))
+        self.assertTrue(out["converged"], out["log"])
+        forces = out["contact_force"]
+        self.assertEqual(forces.shape, (251, 3))
+        weight = 8000 * math.pi * 0.002**2 * 9.81 * 2.5
+        clamp = out["result"]["base_wrench"]["force"][2]
+        self.assertAlmostEqual(out["contact_total_force"][2] + clamp, weight, delta=1e-3 * weight)
+
     def test_the_environment_of_a_problem_file_is_read(self):
         p = cosserat.load_problem("examples/cantilever_in_current.json")
         self.assertAlmostEqual(p.loads.fluid.density, 1025.0)
