@@ -15,6 +15,7 @@
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "support/analytic/beam_vibration.hpp"
+#include "support/jacobian_check.hpp"
 #include "support/rods.hpp"
 
 namespace cosserat {
@@ -31,6 +32,12 @@ Fluid Water(const Vec3& current = Vec3::Zero(), double cd = 0.0, double ca = 0.0
   f.drag_normal = cd;
   f.added_mass = ca;
   return f;
+}
+
+// The first bending frequency of a cantilever (Euler–Bernoulli), Hz.
+double FirstBendingHz(const SteelRod& rod) {
+  return truth::EulerBernoulliOmega(truth::CantileverBetaL(1), rod.EI(), rod.rhoA(), rod.length) /
+         (2 * M_PI);
 }
 
 // --- The drag's own Jacobian -----------------------------------------------------------------
@@ -201,15 +208,8 @@ TEST(FluidDrag, StaticShootingJacobianMatchesFiniteDifferencesUnderAShearedCurre
   const Vec6 x = (Vec6() << 0.1, -0.2, 0.05, 0.3, -0.1, 0.2).finished();
   Vec6 r;
   const Mat6 J = solver.ResidualJacobian(lie::SE3{}, loads, x, &r);
-  const double h = 1e-6;
-  for (int k = 0; k < 6; ++k) {
-    Vec6 xp = x, xm = x;
-    xp(k) += h;
-    xm(k) -= h;
-    const Vec6 fd =
-        (solver.Residual(lie::SE3{}, loads, xp) - solver.Residual(lie::SE3{}, loads, xm)) / (2 * h);
-    EXPECT_LT((fd - J.col(k)).norm(), 1e-6 * std::max(1.0, J.col(k).norm())) << "column " << k;
-  }
+  testing::ExpectJacobianMatchesCentralDifferences(
+      [&](const Vec6& y) { return solver.Residual(lie::SE3{}, loads, y); }, x, J);
 }
 
 // The dynamic shot's exact Jacobian with drag (pose, tangent and velocity) and added mass, for
@@ -236,15 +236,8 @@ TEST(FluidDrag, DynamicShootingJacobianMatchesFiniteDifferencesWithDragAndAddedM
   const Vec6 x = (Vec6() << 0.01, -0.3, 0.02, 0.1, -0.05, 0.2).finished();
   Mat6 J;
   stepper.Residual(in, c, false, x, &J);
-  const double h = 1e-6;
-  for (int k = 0; k < 6; ++k) {
-    Vec6 xp = x, xm = x;
-    xp(k) += h;
-    xm(k) -= h;
-    const Vec6 fd =
-        (stepper.Residual(in, c, false, xp) - stepper.Residual(in, c, false, xm)) / (2 * h);
-    EXPECT_LT((fd - J.col(k)).norm(), 1e-6 * std::max(1.0, J.col(k).norm())) << "column " << k;
-  }
+  testing::ExpectJacobianMatchesCentralDifferences(
+      [&](const Vec6& y) { return stepper.Residual(in, c, false, y); }, x, J);
 }
 
 // The same cantilever and current in the quaternion-FD statics at 60 segments (second order in
@@ -383,9 +376,7 @@ TEST(AddedMass, CantileverModesInStillWaterAreTheDryOnesOverTheMassRatio) {
     EXPECT_NEAR(in_water.modes[k].frequency_hz, expected, 0.005 * expected) << "mode " << k / 2 + 1;
   }
   // and the dry ones are the Euler–Bernoulli ones (the reference the ratio divides)
-  const double f1 =
-      truth::EulerBernoulliOmega(truth::CantileverBetaL(1), rod.EI(), rod.rhoA(), rod.length) /
-      (2 * M_PI);
+  const double f1 = FirstBendingHz(rod);
   EXPECT_NEAR(dry.modes[0].frequency_hz, f1, 0.005 * f1);
 }
 
@@ -395,9 +386,7 @@ TEST(AddedMass, CantileverModesInStillWaterAreTheDryOnesOverTheMassRatio) {
 // both runs and cancels in the ratio to well under the 1 % tolerance).
 double TipPeriod(const StaticLoads& loads) {
   const SteelRod rod{0.5, 0.004};
-  const double f1 =
-      truth::EulerBernoulliOmega(truth::CantileverBetaL(1), rod.EI(), rod.rhoA(), rod.length) /
-      (2 * M_PI);
+  const double f1 = FirstBendingHz(rod);
   Bdf2Options opt;
   opt.dt = 1.0 / (150 * f1);
   Bdf2ShootingStepper stepper(rod.model(), 31, opt);
@@ -440,9 +429,7 @@ struct SwingInWater {
 };
 SwingInWater Swing(const Fluid& fluid, int cycles) {
   const SteelRod rod{0.5, 0.004};
-  const double f1 =
-      truth::EulerBernoulliOmega(truth::CantileverBetaL(1), rod.EI(), rod.rhoA(), rod.length) /
-      (2 * M_PI);
+  const double f1 = FirstBendingHz(rod);
   Bdf2Options opt;
   opt.dt = 1.0 / (400 * f1);
   Bdf2ShootingStepper stepper(rod.model(), 31, opt);
