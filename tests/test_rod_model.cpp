@@ -7,8 +7,10 @@
 
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/grid.hpp"
+#include "cosserat/rod/rest_shape.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "support/analytic/constant_curvature.hpp"
 
 namespace cosserat {
 namespace {
@@ -145,6 +147,30 @@ TEST(BandedSection, PureMomentBendsBandByOneOverAlpha) {
     if (st.s[i] > a + 1e-12 && st.s[i] < b - 1e-12)
       EXPECT_NEAR(st.strain[i](1), M / (alpha * EI), 1e-9 * M / EI);
   }
+}
+
+}  // namespace
+}  // namespace cosserat
+
+namespace cosserat {
+namespace {
+
+// A constant rest curvature κ about body y: the unloaded rod is the circular arc of
+// truth::ArcPoint, which the exponential of a constant strain reproduces exactly (to round-off;
+// 1e-12 m on a 0.5 m rod).
+TEST(RestShape, ConstantCurvatureGivesTheArc) {
+  const double kappa = 4.0;
+  RodModel rod = RodModel::Uniform(0.5, CrossSection::Circle(0.002),
+                                   Material::FromShearModulus(200e9, 80e9, 8000));
+  rod.rest_strain = [kappa](double) {
+    Vec6 xi;
+    xi << 0, kappa, 0, 0, 0, 1;
+    return xi;
+  };
+  const std::vector<Vec3> line = RestCentreline_W(rod, lie::SE3{}, 51);
+  ASSERT_EQ(line.size(), 51u);
+  for (int i = 0; i < 51; ++i)
+    EXPECT_LT((line[i] - truth::ArcPoint(kappa, 0.01 * i)).norm(), 1e-12) << "point " << i;
 }
 
 }  // namespace

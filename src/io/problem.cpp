@@ -12,6 +12,7 @@
 
 #include "cosserat/io/json_document.hpp"
 #include "cosserat/io/json_reader.hpp"
+#include "cosserat/rod/rest_shape.hpp"
 #include "problem_environment.hpp"
 #include "problem_robot.hpp"
 #include "problem_rod.hpp"
@@ -121,14 +122,15 @@ void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
   }
   d->initial = ReadChoice(o, "initial", {"static"}, Presence::kOptional).value_or(d->initial);
   // One piece per grid segment at most (rod.nodes − 1).
-  d->shooting_segments = ReadInteger(o, "shooting_segments", 1, std::max(1, nodes - 1),
-                                     Presence::kOptional)
-                             .value_or(d->shooting_segments);
+  d->shooting_segments =
+      ReadInteger(o, "shooting_segments", 1, std::max(1, nodes - 1), Presence::kOptional)
+          .value_or(d->shooting_segments);
   d->spatial_scheme =
       ReadEnum<ShotScheme>(o, "spatial_scheme", Presence::kOptional).value_or(d->spatial_scheme);
   // Above 0.1 the error control no longer means anything (errors of 10 % of a metre or a
   // radian are accepted).
-  const NumberRule tolerance_rule{"a number in (0, 0.1]", [](double x) { return x > 0 && x <= 0.1; }};
+  const NumberRule tolerance_rule{"a number in (0, 0.1]",
+                                  [](double x) { return x > 0 && x <= 0.1; }};
   d->integrator_tolerance =
       ReadNumber(o, "integrator_tolerance", tolerance_rule, Presence::kOptional)
           .value_or(d->integrator_tolerance);
@@ -221,12 +223,13 @@ void CheckBucklingActuation(const ObjectReader& top, const Problem& p) {
         kind = sp["kind"].get<std::string>();
     }
     if (kind != "pressure_modulus" && kind != "inflated")
-      top.report().Expected(load_path,
-                            "a load this problem has (\"pressure\" needs a pressure-dependent "
-                            "section: rod.stiffness_profile of kind \"pressure_modulus\" or "
-                            "\"inflated\")",
-                            std::string("\"pressure\" with ") +
-                                (kind.empty() ? "no such profile" : "a " + Quote(kind) + " profile"));
+      top.report().Expected(
+          load_path,
+          "a load this problem has (\"pressure\" needs a pressure-dependent "
+          "section: rod.stiffness_profile of kind \"pressure_modulus\" or "
+          "\"inflated\")",
+          std::string("\"pressure\" with ") +
+              (kind.empty() ? "no such profile" : "a " + Quote(kind) + " profile"));
   }
 }
 
@@ -270,11 +273,11 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
     const double frames = std::round(d.duration / d.output_interval);
     if (p->formulation == Formulation::kQuaternionFd && d.output_interval > 0 &&
         frames > kMaxDynamicsSteps)
-      o->report().Expected(o->PathOf("output_interval"),
-                           "an interval giving at most " + std::to_string(kMaxDynamicsSteps) +
-                               " frames over duration (" + FormatNumber(d.duration) + " s)",
-                           FormatNumber(d.output_interval) + ", " + FormatNumber(frames) +
-                               " frames");
+      o->report().Expected(
+          o->PathOf("output_interval"),
+          "an interval giving at most " + std::to_string(kMaxDynamicsSteps) +
+              " frames over duration (" + FormatNumber(d.duration) + " s)",
+          FormatNumber(d.output_interval) + ", " + FormatNumber(frames) + " frames");
   }
   const auto buckling =
       ReadObject(top, "buckling",
@@ -304,6 +307,32 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
                           FormatNumber(fluid.added_mass));
 }
 
+/// The unloaded rod must not start with its centreline past a contact surface (a penetration
+/// deeper than its outer radius): the penalty would push it on through, or out with an enormous
+/// force. Checked on 201 points of the rest centreline; a shallower start is allowed (the
+/// surface pushes it out).
+void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
+  const ContactSurfaces& contact = p.loads.contact;
+  if (contact.count == 0) return;
+  constexpr int kPoints = 201;
+  const std::vector<Vec3> centreline = RestCentreline_W(p.rod, p.base, kPoints);
+  for (int k = 0; k < contact.count; ++k) {
+    double deepest = 0.0, s_deepest = 0.0;  // the most negative distance, m, and where
+    for (int i = 0; i < kPoints; ++i) {
+      Vec3 normal;
+      const double distance = contact.surface[k].Distance(centreline[i], &normal);
+      if (distance < deepest) {
+        deepest = distance;
+        s_deepest = p.rod.length * i / (kPoints - 1);
+      }
+    }
+    if (deepest < 0.0)
+      report->Add("environment.contact[" + std::to_string(k) + "]",
+                  "the rod starts inside this surface: at s = " + FormatNumber(s_deepest) +
+                      " m its centreline is " + FormatNumber(-deepest) + " m past it");
+  }
+}
+
 /// The library's own checks; they should never fire after the ones above.
 void CheckWithLibrary(const Problem& p, ErrorReport* report) {
   std::string why;
@@ -313,6 +342,7 @@ void CheckWithLibrary(const Problem& p, ErrorReport* report) {
   if (!p.robot.actuation.IsValid(&why, tendons)) report->Add("robot.actuation", why);
   if (!p.robot.initial_actuation.IsValid(&why, tendons))
     report->Add("robot.initial_actuation", why);
+  if (report->empty()) CheckStartsOutsideSurfaces(p, report);
 }
 
 }  // namespace

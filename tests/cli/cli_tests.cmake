@@ -224,3 +224,5 @@ get_filename_component(_cli_table "${CMAKE_CURRENT_LIST_DIR}/../../examples/rod_
                        ABSOLUTE)
 cosserat_cli_test(NAME solve_rod_on_table ARGS solve "${_cli_table}" CODE 0
                   STDOUT "\"contact\": {.*\"total_force\"" STDERR "converged")
+cosserat_cli_test(NAME contact_starts_inside ARGS validate "${_cli_dir}/contact_starts_inside.json"
+                  CODE 2 STDERR "environment.contact\\[0\\]: the rod starts inside this surface: at s = 0\\.25 m its centreline is 0\\.05 m past it")
