@@ -40,6 +40,15 @@ double FirstBendingHz(const SteelRod& rod) {
          (2 * M_PI);
 }
 
+// A flow that grows with height as (h / reference_height)^exponent from the given origin.
+void SetPowerLawFlow(Fluid* f, double reference_height, double exponent,
+                     const Vec3& origin = Vec3::Zero()) {
+  f->profile.kind = FluidFlowProfile::Kind::kPowerLaw;
+  f->profile.reference_height = reference_height;
+  f->profile.exponent = exponent;
+  f->profile.origin_W = origin;
+}
+
 // --- The drag's own Jacobian -----------------------------------------------------------------
 
 // Central differences at h = 1e-6 (relative to values of order 1): truncation h² |f'''| ≈ 1e-12
@@ -85,9 +94,7 @@ TEST(FluidDrag, JacobianMatchesCentralDifferencesInAUniformCurrent) {
 TEST(FluidDrag, JacobianMatchesCentralDifferencesInShearedFlows) {
   Fluid f = Water(Vec3(0.8, 0.3, 0.0), 1.2);
   f.drag_tangential = 0.05;
-  f.profile.kind = FluidFlowProfile::Kind::kPowerLaw;
-  f.profile.reference_height = 2.0;
-  f.profile.exponent = 0.14;
+  SetPowerLawFlow(&f, 2.0, 0.14);
   ExpectDragJacobianMatchesCentralDifferences(f);
   f.profile.kind = FluidFlowProfile::Kind::kTable;
   f.profile.points = 3;
@@ -199,10 +206,7 @@ TEST(FluidDrag, StaticShootingJacobianMatchesFiniteDifferencesUnderAShearedCurre
   StaticLoads loads;
   loads.fluid = Water(Vec3(0.4, 0.2, 0), 1.2);
   loads.fluid.drag_tangential = 0.05;
-  loads.fluid.profile.kind = FluidFlowProfile::Kind::kPowerLaw;
-  loads.fluid.profile.reference_height = 0.5;
-  loads.fluid.profile.exponent = 0.3;
-  loads.fluid.profile.origin_W = Vec3(0, 0, -0.1);
+  SetPowerLawFlow(&loads.fluid, 0.5, 0.3, Vec3(0, 0, -0.1));
   loads.gravity_W = Vec3(0, -9.81, 0);
   StaticShootingSolver solver(rod.model(), 21);
   const Vec6 x = (Vec6() << 0.1, -0.2, 0.05, 0.3, -0.1, 0.2).finished();
@@ -221,10 +225,7 @@ TEST(FluidDrag, DynamicShootingJacobianMatchesFiniteDifferencesWithDragAndAddedM
   StepInput in;
   in.loads.fluid = Water(Vec3(0.3, -0.1, 0.05), 1.2, 1.0);
   in.loads.fluid.drag_tangential = 0.1;
-  in.loads.fluid.profile.kind = FluidFlowProfile::Kind::kPowerLaw;
-  in.loads.fluid.profile.reference_height = 0.4;
-  in.loads.fluid.profile.exponent = 0.2;
-  in.loads.fluid.profile.origin_W = Vec3(0, 0, -0.2);
+  SetPowerLawFlow(&in.loads.fluid, 0.4, 0.2, Vec3(0, 0, -0.2));
   in.loads.tip_force = Vec3(-0.2, 0.1, 0);
   ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
   in.loads.tip_force = Vec3(0.05, 0, 0.1);
@@ -303,10 +304,7 @@ TEST(FluidDrag, QuaternionFdJacobianMatchesCentralDifferences) {
   StaticLoads loads;
   loads.fluid = Water(Vec3(0.8, 0.2, 0), 1.2);
   loads.fluid.drag_tangential = 0.1;
-  loads.fluid.profile.kind = FluidFlowProfile::Kind::kPowerLaw;
-  loads.fluid.profile.reference_height = 0.3;
-  loads.fluid.profile.exponent = 0.3;
-  loads.fluid.profile.origin_W = Vec3(0, 0, -0.05);
+  SetPowerLawFlow(&loads.fluid, 0.3, 0.3, Vec3(0, 0, -0.05));
   model.set_loads(loads);
   const int n = model.size();
   Eigen::VectorXd q(n), v(n);

@@ -29,10 +29,8 @@ using internal::Rk4Update;
 
 #if defined(__GNUC__)
 #define COSSERAT_HOT inline __attribute__((always_inline))
-#define COSSERAT_HOT_LAMBDA __attribute__((always_inline))
 #else
 #define COSSERAT_HOT inline
-#define COSSERAT_HOT_LAMBDA
 #endif
 
 // Integration state in s and its tangent along the 6 unknowns (cosserat_rhs.hpp,
@@ -343,6 +341,7 @@ class Bdf2ShootingStepper::Shot {
                                 tangent_ ? &motion_jacobian_[q % st_.StagesPerSegment()] : nullptr);
       }
       const double added = added_mass_ ? TotalNormalAddedMass(in_.loads, smp.Site()) : 0.0;
+      stage_added_mass_[q % st_.StagesPerSegment()] = added;
       return rhs::DynamicDerivative<double>(smp, f, ys, history, &st_.strain_now_[q],
                                             &st_.twist_now_[q], &st_.velocity_W_now_[q], strain,
                                             added);
@@ -378,7 +377,7 @@ class Bdf2ShootingStepper::Shot {
                      mj.velocity * RotateTangent(y.R, dy.R, y.v, dy.v);
     }
     if (added_mass_ && !statics_) {
-      out->added_mass = TotalNormalAddedMass(in_.loads, smp.Site());
+      out->added_mass = stage_added_mass_[j];  // as the stage's primal used it
       out->acceleration_W = c_.c0 * st_.velocity_W_now_[q] + st_.velocity_W_h_[q];
     }
   }
@@ -418,6 +417,7 @@ class Bdf2ShootingStepper::Shot {
   const bool motion_;                  // some load depends on the motion (drag)
   const bool added_mass_;              // the fluid adds mass
   MotionJacobian motion_jacobian_[4];  // of the current segment's stages
+  double stage_added_mass_[4] = {};    // kg/m, of the current segment's stages
   const Vec6 zero6_ = Vec6::Zero();
   const Vec3 zero3_ = Vec3::Zero();
 };
