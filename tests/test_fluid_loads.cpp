@@ -318,7 +318,7 @@ TEST(FluidDrag, QuaternionFdJacobianMatchesCentralDifferences) {
   }
   for (int k = 0; k < options.segments; ++k)  // unit quaternions
     q.segment<4>(quatfd::QuatFdLayout::P(k)).normalize();
-  quatfd::BandedMatrix A, B;
+  BandedMatrix A, B;
   model.Jacobian(q, v, &A, &B);
   const Eigen::MatrixXd Ad = A.ToDense(), Bd = B.ToDense();
   Eigen::MatrixXd Afd(n, n), Bfd(n, n);

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "cosserat/lie/quaternion.hpp"
-#include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/numerics/banded_matrix.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 
 namespace cosserat::quatfd {

@@ -352,7 +352,7 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   v.setZero();
   model->Project(q, v);
 
-  quatfd::BandedMatrix A, B;
+  BandedMatrix A, B;
   model->Jacobian(q, v, &A, &B);
   const Reduction red = Reduce(*model, q);
   const int m = static_cast<int>(red.mass.size());

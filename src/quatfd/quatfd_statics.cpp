@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/numerics/banded_matrix.hpp"
 #include "cosserat/quatfd/quatfd_kernels.hpp"
 
 namespace cosserat::quatfd {

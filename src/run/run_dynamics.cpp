@@ -153,6 +153,19 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
           << " it stops\"); \"dynamics\": {\"shooting_segments\": "
           << std::min(SuggestedShootingSegments(exponent), problem.nodes - 1)
           << "} shoots it in pieces\n";
+  } else if (run.initial_state_ok && run.status != SolveStatus::kConverged &&
+             options.shooting_segments == 0) {
+    // Automatic pieces bound each piece's gain; what they cannot fix is a grid too coarse for
+    // the step: the BDF2 equations resolved per segment need h λ ≲ 1 (docs/dynamics.md).
+    const double exponent =
+        SingleShootingExponent(problem.rod, options.dt, problem.robot.actuation);
+    const double per_segment = exponent / (problem.nodes - 1);
+    if (per_segment > 0.9)
+      log << "cosserat: hint: at dt = " << options.dt << " s the grid is coarse for the step: "
+          << "its exponent per segment is h*lambda = " << std::setprecision(3) << per_segment
+          << " (above about 1 the steps can fail; docs/dynamics.md, \"Where it stops\"); "
+          << "\"rod\": {\"nodes\": " << static_cast<int>(std::ceil(exponent / 0.9)) + 1
+          << "} or a larger dt\n";
   }
   result.log = log.str();
   result.converged = run.status == SolveStatus::kConverged;

@@ -80,26 +80,36 @@ void RkUpdate(double h, const double (&b)[4], const DynTangent (&k)[S], DynTange
 }  // namespace
 
 template <typename State>
-void Bdf2ShootingStepper::ApplyJunction(int k, State* y) {
+State Bdf2ShootingStepper::JunctionRestart(int k) const {
   const int i = junction_nodes_[k];
   const RodState& ref = run_.state;  // the last accepted state at the junction node
   const auto z = junction_z_.segment<18>(18 * k);
-  const double L = model_.length;
   State restart;
-  restart.p = ref.position_W[i] + L * z.segment<3>(0);
-  restart.R = ref.rotation_WB[i] * lie::SO3Exp(z.segment<3>(3));
+  restart.p = ref.position_W[i] + model_.length * z.segment<3>(0);
+  restart.R = ref.rotation_WB[i] * lie::SO3Exp(Vec3(z.segment<3>(3)));
   restart.m = ref.wrench_B[i].head<3>() + scale_.head<3>().cwiseProduct(z.segment<3>(6));
   restart.n = ref.rotation_WB[i] * ref.wrench_B[i].tail<3>() +
               scale_.tail<3>().cwiseProduct(z.segment<3>(9));
   restart.w = ref.twist_B[i].head<3>() + twist_scale_.head<3>().cwiseProduct(z.segment<3>(12));
   restart.v = ref.twist_B[i].tail<3>() + twist_scale_.tail<3>().cwiseProduct(z.segment<3>(15));
+  return restart;
+}
+
+template <typename State>
+void Bdf2ShootingStepper::RecordJunctionMismatch(int k, const State& y, const State& restart) {
   auto d = junction_mismatch_.segment<18>(18 * k);
-  d.segment<3>(0) = (y->p - restart.p) / L;
-  d.segment<3>(3) = lie::SO3Log(restart.R.transpose() * y->R);
-  d.segment<3>(6) = (y->m - restart.m).cwiseQuotient(scale_.head<3>());
-  d.segment<3>(9) = (y->n - restart.n).cwiseQuotient(scale_.tail<3>());
-  d.segment<3>(12) = (y->w - restart.w).cwiseQuotient(twist_scale_.head<3>());
-  d.segment<3>(15) = (y->v - restart.v).cwiseQuotient(twist_scale_.tail<3>());
+  d.segment<3>(0) = (y.p - restart.p) / model_.length;
+  d.segment<3>(3) = lie::SO3Log(Mat3(restart.R.transpose() * y.R));
+  d.segment<3>(6) = (y.m - restart.m).cwiseQuotient(scale_.head<3>());
+  d.segment<3>(9) = (y.n - restart.n).cwiseQuotient(scale_.tail<3>());
+  d.segment<3>(12) = (y.w - restart.w).cwiseQuotient(twist_scale_.head<3>());
+  d.segment<3>(15) = (y.v - restart.v).cwiseQuotient(twist_scale_.tail<3>());
+}
+
+template <typename State>
+void Bdf2ShootingStepper::ApplyJunction(int k, State* y) {
+  const State restart = JunctionRestart<State>(k);
+  RecordJunctionMismatch(k, *y, restart);
   *y = restart;
 }
 
@@ -191,17 +201,43 @@ class Bdf2ShootingStepper::Shot {
     y_.R = base.R;
   }
 
+  // Segments(first, last) compiled for the scheme and for whether some load depends on the
+  // state.
+  void RunSegments(int first = 0, int last = -1) {
+    const bool heun = st_.options_.spatial_scheme == SpatialScheme::kHeun;
+    if (motion_ || added_mass_) {
+      if (heun)
+        Segments<SpatialScheme::kHeun, true>(first, last);
+      else
+        Segments<SpatialScheme::kRk4, true>(first, last);
+    } else if (heun) {
+      Segments<SpatialScheme::kHeun, false>(first, last);
+    } else {
+      Segments<SpatialScheme::kRk4, false>(first, last);
+    }
+  }
+
+  // Multiple shooting, a piece alone: start from the restart state of junction k.
+  void StartAtJunction(int k) { y_ = st_.JunctionRestart<DynState>(k); }
+  // ... and end at junction k: its mismatch against its restart state.
+  void EndAtJunction(int k) { st_.RecordJunctionMismatch(k, y_, st_.JunctionRestart<DynState>(k)); }
+
   // Segment by segment with the explicit scheme's S stages (spatial_scheme.hpp), written out
   // per scheme: a loop over stage arrays made the RK4 shot ~25 % slower.
   // kStateLoads: some load depends on the state (drag, added mass); compiled apart, so the plain
   // shot stays as lean.
+  // The segments from node `first` to node `last` (all of them by default); the junctions
+  // strictly after `first` restart the shot.
   template <SpatialScheme kScheme, bool kStateLoads>
-  void Segments() {
+  void Segments(int first = 0, int last = -1) {
     constexpr int S = Table(kScheme).stages;
-    const int n = static_cast<int>(st_.grid_.size());
+    if (last < 0) last = static_cast<int>(st_.grid_.size()) - 1;
     DynState y = y_;
     size_t next_junction = 0;
-    for (int i = 0; i + 1 < n; ++i) {
+    while (next_junction < st_.junction_nodes_.size() &&
+           st_.junction_nodes_[next_junction] <= first)
+      ++next_junction;
+    for (int i = first; i < last; ++i) {
       if (st_.junctions_active_ && next_junction < st_.junction_nodes_.size() &&
           i == st_.junction_nodes_[next_junction])
         st_.ApplyJunction(static_cast<int>(next_junction++), &y);
@@ -359,7 +395,7 @@ class Bdf2ShootingStepper::Shot {
       const DynTangent& dyj = j == 0 ? dy_ : stage;
       const Sample& sample = st_.samples_[smp + T.sample[j]];
       rhs::StageLoadTangent loads;
-      if constexpr (kStateLoads) LoadTangent(j, q + j, sample, *ys[j], dyj, &loads);
+      if constexpr (kStateLoads) LoadTangent(j, q + j, *ys[j], dyj, &loads);
       dk[j] = rhs::DynamicTangentDerivative(sample, *ys[j], dyj, st_.strain_now_[q + j], c_.c0,
                                             statics_, st_.tendons_.empty() ? nullptr : &H_stage_[j],
                                             kStateLoads ? &loads : nullptr);
@@ -369,7 +405,7 @@ class Bdf2ShootingStepper::Shot {
 
   // What the state-dependent loads add to stage j's tangent (stage index q): the drag's
   // derivative along dy, d f = ∂f/∂p dp + ∂f/∂t d(R e₃) + ∂f/∂v d(R v), and the added mass.
-  void LoadTangent(int j, int q, const Sample& smp, const DynState& y, const DynTangent& dy,
+  void LoadTangent(int j, int q, const DynState& y, const DynTangent& dy,
                    rhs::StageLoadTangent* out) const {
     if (motion_) {
       const MotionJacobian& mj = motion_jacobian_[j];
@@ -430,18 +466,29 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
   else
     shot.StartCantilever(x);
   if (!statics) PrepareHistory(c);
-  const bool heun = options_.spatial_scheme == SpatialScheme::kHeun;
-  if (HasMotionLoads(in.loads) || in.loads.fluid.has_added_mass()) {
-    if (heun)
-      shot.Segments<SpatialScheme::kHeun, true>();
-    else
-      shot.Segments<SpatialScheme::kRk4, true>();
-  } else if (heun) {
-    shot.Segments<SpatialScheme::kHeun, false>();
-  } else {
-    shot.Segments<SpatialScheme::kRk4, false>();
-  }
+  shot.RunSegments();
   return shot.Finish(J);
+}
+
+Vec6 Bdf2ShootingStepper::ShootPiece(const StepInput& in, const Coefficients& c, int piece,
+                                     const Vec6& x) {
+  Shot shot(this, in, c, false, false);
+  const int junctions = static_cast<int>(junction_nodes_.size());
+  const int first = piece == 0 ? 0 : junction_nodes_[piece - 1];
+  const int last = piece < junctions ? junction_nodes_[piece] : static_cast<int>(grid_.size()) - 1;
+  if (piece > 0)
+    shot.StartAtJunction(piece - 1);
+  else if (options_.ends == EndConditions::kFreeFree)
+    shot.StartFreeFree(x);
+  else
+    shot.StartCantilever(x);
+  PrepareHistory(c);
+  shot.RunSegments(first, last);
+  if (piece < junctions) {
+    shot.EndAtJunction(piece);
+    return Vec6::Zero();
+  }
+  return shot.Finish(nullptr);
 }
 
 }  // namespace cosserat

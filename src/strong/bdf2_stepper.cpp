@@ -130,11 +130,12 @@ void Bdf2ShootingStepper::SetShootingPieces(int pieces) {
   junction_mismatch_.setZero(18 * junctions);
   run_.junction_unknowns.setZero(18 * junctions);
   if (junctions == 0) return;
-  for (auto* v : {&ms_x_, &ms_x_new_, &ms_r_, &ms_r_new_, &ms_dx_, &ms_r_base_, &ms_u_, &ms_w_})
-    v->setZero(unknowns);
-  ms_jacobian_.setZero(unknowns, unknowns);
-  ms_inverse_.setZero(unknowns, unknowns);
-  ms_lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(unknowns);
+  for (auto* v : {&ms_x_, &ms_x_new_, &ms_r_, &ms_r_new_, &ms_dx_}) v->setZero(unknowns);
+  ms_piece_base_.setZero(18);
+  ms_piece_new_.setZero(18);
+  // Junction k's rows reach back to the start of its piece (12 columns before the row block:
+  // 29 sub-diagonals) and forward to its own unknowns (23 super-diagonals).
+  ms_lu_.Resize(unknowns, 29, 23);
   ms_jacobian_c0_ = -1.0;  // no Jacobian for these unknowns yet
 }
 
@@ -144,6 +145,7 @@ void Bdf2ShootingStepper::PlaceJunctions() {
   const int pieces = static_cast<int>(junction_nodes_.size()) + 1;
   for (int k = 1; k < pieces; ++k)
     junction_nodes_[k - 1] = static_cast<int>(std::lround(double(k) * segments / pieces));
+  ms_jacobian_c0_ = -1.0;  // the junctions moved: the factors are stale
 }
 
 std::uint64_t Bdf2ShootingStepper::ModelFingerprint() const {
@@ -589,7 +591,8 @@ void Bdf2ShootingStepper::Restore(const Snapshot& s) {
   if (s.model_fingerprint != run_.model_fingerprint)
     throw std::invalid_argument(
         "Snapshot is from a stepper of another rod, grid or end conditions");
-  run_ = s;  // equal sizes: vectors copy into their existing storage
+  run_ = s;                // equal sizes: vectors copy into their existing storage
+  ms_jacobian_c0_ = -1.0;  // the multiple-shooting factors are for another state: renew them
   history_ready_ = false;
   stage_strains_current_ = false;
   initialized_ = true;

@@ -118,7 +118,7 @@ class QuatFdBuckling {
 
   std::vector<int> free_vertices_;  ///< vertices whose position is not prescribed
   Eigen::VectorXd q_, zero_v_, forces_plus_, forces_minus_;
-  quatfd::BandedMatrix dfdq_, dfdv_;
+  BandedMatrix dfdq_, dfdv_;
   double asymmetry_ = 0;
   int solves_ = 0;
 };

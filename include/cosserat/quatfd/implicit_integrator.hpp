@@ -15,7 +15,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/numerics/banded_matrix.hpp"
 #include "cosserat/quatfd/corotation.hpp"
 #include "cosserat/quatfd/frozen_jacobian.hpp"
 #include "cosserat/quatfd/integrator.hpp"

@@ -29,7 +29,7 @@
 #include "cosserat/lie/types.hpp"
 #include "cosserat/loads/static_loads.hpp"
 #include "cosserat/loads/total_load.hpp"
-#include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/numerics/banded_matrix.hpp"
 #include "cosserat/quatfd/quatfd_kernels.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"

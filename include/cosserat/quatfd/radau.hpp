@@ -36,7 +36,7 @@
 
 #include <Eigen/Core>
 
-#include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/numerics/banded_matrix.hpp"
 #include "cosserat/quatfd/implicit_integrator.hpp"
 
 namespace cosserat::quatfd {

@@ -13,7 +13,7 @@
 
 #include <Eigen/Core>
 
-#include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/numerics/banded_matrix.hpp"
 #include "cosserat/quatfd/frozen_jacobian.hpp"
 #include "cosserat/quatfd/integrator.hpp"
 

@@ -25,6 +25,7 @@
 #include "cosserat/constitutive/tendon_law.hpp"
 #include "cosserat/lie/se3.hpp"
 #include "cosserat/loads/static_loads.hpp"
+#include "cosserat/numerics/banded_matrix.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/state/rod_state.hpp"
@@ -211,9 +212,25 @@ class Bdf2ShootingStepper {
                          StepSummary* summary);
   /// With junctions_active_: restart the shot at junction k (node junction_nodes_[k]) from the
   /// state given by the junction unknowns, after recording the mismatch of the arriving state.
-  /// Templated on the integration state, which is private to bdf2_stepper.cpp.
+  /// Templated on the integration state, which is private to bdf2_shot.cpp.
   template <typename State>
   void ApplyJunction(int k, State* y);
+  /// The state junction k restarts from: the last accepted state there displaced by its 18
+  /// unknowns in junction_z_.
+  template <typename State>
+  State JunctionRestart(int k) const;
+  /// junction_mismatch_ of junction k: arriving − restart, in the units of the unknowns.
+  template <typename State>
+  void RecordJunctionMismatch(int k, const State& arriving, const State& restart);
+  /// Multiple shooting: shoots piece `piece` alone (from x at s = 0 for the first piece, from the
+  /// restart of junction piece − 1 otherwise, with junction_z_). A piece before the last writes
+  /// the mismatch of the junction it ends at to junction_mismatch_ and returns zero; the last
+  /// piece returns the tip residual. The trial state of the piece's nodes is overwritten.
+  Vec6 ShootPiece(const StepInput& input, const Coefficients& c, int piece, const Vec6& x);
+  /// Multiple shooting: the block-banded Jacobian of the residual (junction mismatches, then the
+  /// tip) in the unknowns [x; z] at ms_x_, piece by piece, factorised into ms_lu_. False when
+  /// a shot is not finite or the Jacobian is singular.
+  bool RenewJunctionJacobian(const StepInput& input, const Coefficients& c, StepSummary* summary);
   /// junction_nodes_ for the current grid (constructor, Grow()).
   void PlaceJunctions();
   /// Shoot in `pieces` pieces from now on: the junctions and the multiple-shooting workspace
@@ -280,11 +297,12 @@ class Bdf2ShootingStepper {
   bool junctions_active_ = false;
   Eigen::VectorXd junction_z_;         ///< the unknowns of the shot being tried
   Eigen::VectorXd junction_mismatch_;  ///< arriving − restart state, same units, per junction
-  Eigen::VectorXd ms_x_, ms_x_new_, ms_r_, ms_r_new_, ms_dx_, ms_r_base_, ms_u_, ms_w_;
-  Eigen::MatrixXd ms_jacobian_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> ms_lu_;
-  Eigen::MatrixXd ms_inverse_;    ///< the Jacobian's inverse, Broyden-updated between renewals
-  double ms_jacobian_c0_ = -1.0;  ///< c0 the stored inverse is for; −1: none
+  Eigen::VectorXd ms_x_, ms_x_new_, ms_r_, ms_r_new_, ms_dx_;
+  Eigen::VectorXd ms_piece_base_, ms_piece_new_;  ///< one piece's end residual, for the Jacobian
+  /// The LU factors of the Jacobian: rows [mismatch of junction 0, 1, …; tip], columns
+  /// [x; z of junction 0, 1, …]; block-banded (29 sub-, 23 super-diagonals), O(pieces) to factor.
+  BandedMatrix ms_lu_;
+  double ms_jacobian_c0_ = -1.0;  ///< c0 the factors are for; −1: none
   bool initialized_ = false;
   bool automatic_pieces_ = false;  ///< Bdf2Options::shooting_segments was 0
 };

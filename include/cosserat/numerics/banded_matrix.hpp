@@ -9,7 +9,7 @@
 #include <complex>
 #include <vector>
 
-namespace cosserat::quatfd {
+namespace cosserat {
 
 class BandedMatrix {
  public:
@@ -110,4 +110,4 @@ class ComplexBandedMatrix {
   std::vector<double> inv_re_, inv_im_;  ///< 1/U(j, j), so the solve multiplies
 };
 
-}  // namespace cosserat::quatfd
+}  // namespace cosserat

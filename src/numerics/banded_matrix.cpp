@@ -1,10 +1,10 @@
-#include "cosserat/quatfd/banded_matrix.hpp"
+#include "cosserat/numerics/banded_matrix.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
 
-namespace cosserat::quatfd {
+namespace cosserat {
 
 void BandedMatrix::Resize(int n, int kl, int ku) {
   n_ = n;
@@ -229,4 +229,4 @@ void ComplexBandedMatrix::Solve(Eigen::Ref<Eigen::VectorXcd> b) const {
   b.imag() = im;
 }
 
-}  // namespace cosserat::quatfd
+}  // namespace cosserat
