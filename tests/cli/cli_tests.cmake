@@ -226,3 +226,14 @@ cosserat_cli_test(NAME solve_rod_on_table ARGS solve "${_cli_table}" CODE 0
                   STDOUT "\"contact\": {.*\"total_force\"" STDERR "converged")
 cosserat_cli_test(NAME contact_starts_inside ARGS validate "${_cli_dir}/contact_starts_inside.json"
                   CODE 2 STDERR "environment.contact\\[0\\]: the rod starts inside this surface: at s = 0\\.25 m its centreline is 0\\.05 m past it")
+
+# The soft silicone cantilever with default settings, in both formulations (the SE(3) stepper
+# choosing its shooting pieces; the quaternion-FD path at 1 ms frames). Both runs must converge
+# over the whole 2 s.
+get_filename_component(_cli_soft "${CMAKE_CURRENT_LIST_DIR}/../../bench/problems/soft_cantilever.json"
+                       ABSOLUTE)
+cosserat_cli_test(NAME solve_soft_cantilever_se3 ARGS solve "${_cli_soft}" CODE 0
+                  STDERR "converged, 400 steps, 2 s simulated")
+cosserat_cli_test(NAME solve_soft_cantilever_quatfd
+                  ARGS solve "${_cli_dir}/soft_cantilever_quatfd.json" CODE 0
+                  STDERR "converged \\(quaternion-fd, radau: ok\\).* 2 s simulated")
