@@ -40,7 +40,7 @@ GRAVITY = 9.81
 BLOWUP_REACH = 1.1
 
 
-def build(ea, np, n_elements, dt, damping):
+def build(ea, np, n_elements, dt, damping, inertia_scale=1.0, shear_scale=1.0):
     class Sim(ea.BaseSystemCollection, ea.Constraints, ea.Forcing, ea.Damping):
         pass
 
@@ -56,6 +56,12 @@ def build(ea, np, n_elements, dt, damping):
         youngs_modulus=YOUNGS,
         shear_modulus=SHEAR,
     )
+    if inertia_scale != 1.0:  # diagnostic: how much the rotational inertia matters
+        rod.mass_second_moment_of_inertia *= inertia_scale
+        rod.inv_mass_second_moment_of_inertia /= inertia_scale
+    if shear_scale != 1.0:  # diagnostic: PyElastica's shear stiffness is (27/28) G A
+        rod.shear_matrix[0, 0, :] *= shear_scale
+        rod.shear_matrix[1, 1, :] *= shear_scale
     sim.append(rod)
     sim.constrain(rod).using(
         ea.OneEndFixedBC, constrained_position_idx=(0,), constrained_director_idx=(0,)
@@ -67,6 +73,34 @@ def build(ea, np, n_elements, dt, damping):
         )
     sim.finalize()
     return sim, rod
+
+
+def patch_constitutive_law(np, linear_bending, linear_stretch):
+    """Diagnostic: wraps PyElastica's internal force and torque kernels (looked up as module
+    globals by CosseratRod.compute_internal_forces_and_torques) so that the couple is B kappa
+    instead of B kappa / e^3, and/or the force S sigma instead of S sigma / e. PyElastica's own
+    code is not changed."""
+    import elastica.rod.cosserat_rod as cr
+
+    if linear_bending:
+        torques = cr._compute_internal_torques
+
+        def linear_torques(*a):
+            a = list(a)
+            a[10] = np.ones_like(a[10])  # voronoi_dilatation: used only for the e^-3 factor
+            torques(*a)
+
+        cr._compute_internal_torques = linear_torques
+    if linear_stretch:
+        forces = cr._compute_internal_forces
+
+        def linear_forces(*a):
+            a = list(a)
+            e = a[7]  # dilatation of the previous evaluation (overwritten inside)
+            a[12] = a[12] * e[np.newaxis, np.newaxis, :]  # shear_matrix * e cancels the / e
+            forces(*a)
+
+        cr._compute_internal_forces = linear_forces
 
 
 def main():
@@ -81,6 +115,16 @@ def main():
     ap.add_argument("--all-nodes", action="store_true", help="write every node (t,node,s,x,y,z)")
     ap.add_argument("--warmup-steps", type=int, default=20)
     ap.add_argument("--out", default=None, help="CSV file (default: none)")
+    ap.add_argument("--linear-bending-law", action="store_true",
+                    help="diagnostic: PyElastica's couple is B kappa / e^3 (e the Voronoi dilatation, "
+                         "Gazzola et al. 2018); with this flag it is B kappa, the linear law of cosserat")
+    ap.add_argument("--linear-stretch-law", action="store_true",
+                    help="diagnostic: PyElastica's internal force is S sigma / e; with this flag S sigma "
+                         "(S is rescaled by the dilatation of the previous evaluation)")
+    ap.add_argument("--rotational-inertia-scale", type=float, default=1.0,
+                    help="diagnostic: multiply the elements' mass second moments of inertia")
+    ap.add_argument("--shear-stiffness-scale", type=float, default=1.0,
+                    help="diagnostic: multiply the two shear stiffnesses (e.g. 0.9*28/27 for cosserat's Cowper 0.9)")
     args = ap.parse_args()
 
     sys.path.insert(0, os.path.abspath(args.elastica))
@@ -89,6 +133,9 @@ def main():
     import elastica as ea
     import_s = time.perf_counter() - t_import
 
+    if args.linear_bending_law or args.linear_stretch_law:
+        patch_constitutive_law(np, args.linear_bending_law, args.linear_stretch_law)
+
     n = args.elements
     dt = args.dt
     steps = int(round(args.duration / dt))
@@ -96,7 +143,7 @@ def main():
 
     # JIT warm-up on a throwaway rod of the same size (numba specialises on types, not sizes).
     t0 = time.perf_counter()
-    wsim, _ = build(ea, np, n, dt, args.damping)
+    wsim, _ = build(ea, np, n, dt, args.damping, args.rotational_inertia_scale, args.shear_stiffness_scale)
     stepper = ea.PositionVerlet()
     tw = 0.0
     for _ in range(args.warmup_steps):
@@ -104,7 +151,7 @@ def main():
     compile_s = time.perf_counter() - t0
     del wsim
 
-    sim, rod = build(ea, np, n, dt, args.damping)
+    sim, rod = build(ea, np, n, dt, args.damping, args.rotational_inertia_scale, args.shear_stiffness_scale)
     stepper = ea.PositionVerlet()
     pos = rod.position_collection  # (3, n + 1), updated in place
 
@@ -157,6 +204,10 @@ def main():
         "steps": done,
         "simulated_s": sim_time,
         "damping": args.damping,
+        "rotational_inertia_scale": args.rotational_inertia_scale,
+        "shear_stiffness_scale": args.shear_stiffness_scale,
+        "linear_bending_law": args.linear_bending_law,
+        "linear_stretch_law": args.linear_stretch_law,
         "import_s": round(import_s, 3),
         "compile_s": round(compile_s, 3),
         "wall_s": round(wall, 4),
