@@ -75,32 +75,22 @@ def build(ea, np, n_elements, dt, damping, inertia_scale=1.0, shear_scale=1.0):
     return sim, rod
 
 
-def patch_constitutive_law(np, linear_bending, linear_stretch):
-    """Diagnostic: wraps PyElastica's internal force and torque kernels (looked up as module
-    globals by CosseratRod.compute_internal_forces_and_torques) so that the couple is B kappa
-    instead of B kappa / e^3, and/or the force S sigma instead of S sigma / e. PyElastica's own
-    code is not changed."""
+def patch_bending_law(np):
+    """Diagnostic: PyElastica's couple is B kappa / e^3 (e the Voronoi dilatation; Gazzola et al.
+    2018 scale the section with the stretch of an incompressible rod). This wraps the torque
+    kernel (looked up as a module global by CosseratRod.compute_internal_forces_and_torques) so
+    that it sees e = 1 there, which leaves B kappa, cosserat's linear law. The dilatation still
+    enters the inertia terms; PyElastica's own code is not changed."""
     import elastica.rod.cosserat_rod as cr
 
-    if linear_bending:
-        torques = cr._compute_internal_torques
+    torques = cr._compute_internal_torques
 
-        def linear_torques(*a):
-            a = list(a)
-            a[10] = np.ones_like(a[10])  # voronoi_dilatation: used only for the e^-3 factor
-            torques(*a)
+    def linear_torques(*a):
+        a = list(a)
+        a[10] = np.ones_like(a[10])  # voronoi_dilatation: used only for the e^-3 factor
+        torques(*a)
 
-        cr._compute_internal_torques = linear_torques
-    if linear_stretch:
-        forces = cr._compute_internal_forces
-
-        def linear_forces(*a):
-            a = list(a)
-            e = a[7]  # dilatation of the previous evaluation (overwritten inside)
-            a[12] = a[12] * e[np.newaxis, np.newaxis, :]  # shear_matrix * e cancels the / e
-            forces(*a)
-
-        cr._compute_internal_forces = linear_forces
+    cr._compute_internal_torques = linear_torques
 
 
 def main():
@@ -118,9 +108,6 @@ def main():
     ap.add_argument("--linear-bending-law", action="store_true",
                     help="diagnostic: PyElastica's couple is B kappa / e^3 (e the Voronoi dilatation, "
                          "Gazzola et al. 2018); with this flag it is B kappa, the linear law of cosserat")
-    ap.add_argument("--linear-stretch-law", action="store_true",
-                    help="diagnostic: PyElastica's internal force is S sigma / e; with this flag S sigma "
-                         "(S is rescaled by the dilatation of the previous evaluation)")
     ap.add_argument("--rotational-inertia-scale", type=float, default=1.0,
                     help="diagnostic: multiply the elements' mass second moments of inertia")
     ap.add_argument("--shear-stiffness-scale", type=float, default=1.0,
@@ -133,8 +120,8 @@ def main():
     import elastica as ea
     import_s = time.perf_counter() - t_import
 
-    if args.linear_bending_law or args.linear_stretch_law:
-        patch_constitutive_law(np, args.linear_bending_law, args.linear_stretch_law)
+    if args.linear_bending_law:
+        patch_bending_law(np)
 
     n = args.elements
     dt = args.dt
@@ -207,7 +194,6 @@ def main():
         "rotational_inertia_scale": args.rotational_inertia_scale,
         "shear_stiffness_scale": args.shear_stiffness_scale,
         "linear_bending_law": args.linear_bending_law,
-        "linear_stretch_law": args.linear_stretch_law,
         "import_s": round(import_s, 3),
         "compile_s": round(compile_s, 3),
         "wall_s": round(wall, 4),
