@@ -108,12 +108,12 @@ std::optional<Vec3> ReadDirection(const ObjectReader& o, const std::string& key)
 
 // One surface: {"shape": "plane", "point", "normal"} | {"shape": "sphere", "center", "radius"} |
 // {"shape": "cylinder", "point", "axis", "radius", "side"}, each with "stiffness", "damping",
-// "friction" and "smoothing".
+// "friction", "slip_velocity" and "smoothing".
 void ParseSurface(const ObjectReader& o, ContactSurface* s) {
   const auto shape = ReadChoice(o, "shape", {"plane", "sphere", "cylinder"}, Presence::kRequired);
   if (!shape) return;
-  const std::vector<std::string> common = {"shape", "stiffness", "damping", "friction",
-                                           "smoothing"};
+  const std::vector<std::string> common = {"shape",    "stiffness",     "damping",
+                                           "friction", "slip_velocity", "smoothing"};
   auto allow = [&](std::vector<std::string> keys) {
     keys.insert(keys.end(), common.begin(), common.end());
     o.AllowOnly(keys, "for a \"" + *shape + "\" surface");
@@ -140,11 +140,9 @@ void ParseSurface(const ObjectReader& o, ContactSurface* s) {
   s->stiffness = ReadNumber(o, "stiffness", PositiveNumber(), Presence::kRequired).value_or(0.0);
   s->damping = ReadNumber(o, "damping", NonNegativeNumber(), Presence::kOptional).value_or(0.0);
   s->smoothing = ReadNumber(o, "smoothing", NonNegativeNumber(), Presence::kOptional).value_or(0.0);
-  const double friction =
-      ReadNumber(o, "friction", NonNegativeNumber(), Presence::kOptional).value_or(0.0);
-  if (friction > 0.0)
-    o.report().Expected(o.PathOf("friction"), "0 (friction is not implemented in this version)",
-                        FormatNumber(friction));
+  s->friction = ReadNumber(o, "friction", NonNegativeNumber(), Presence::kOptional).value_or(0.0);
+  s->slip_velocity =
+      ReadNumber(o, "slip_velocity", PositiveNumber(), Presence::kOptional).value_or(1e-4);
 }
 
 void ParseContact(const ObjectReader& o, ContactSurfaces* contact) {

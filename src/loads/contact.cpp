@@ -38,7 +38,8 @@ double ContactSurface::Distance(const Vec3& p_W, Vec3* normal, Mat3* dn) const {
 bool ContactSurface::operator==(const ContactSurface& o) const {
   return shape == o.shape && point_W == o.point_W && direction_W == o.direction_W &&
          radius == o.radius && inside == o.inside && stiffness == o.stiffness &&
-         damping == o.damping && smoothing == o.smoothing;
+         damping == o.damping && smoothing == o.smoothing && friction == o.friction &&
+         slip_velocity == o.slip_velocity;
 }
 
 bool ContactSurface::IsValid(int index, std::string* why) const {
@@ -57,6 +58,9 @@ bool ContactSurface::IsValid(int index, std::string* why) const {
   if (!(std::isfinite(damping) && damping >= 0))
     return fail("damping must be finite and >= 0 (N s/m per m)");
   if (!(std::isfinite(smoothing) && smoothing >= 0)) return fail("smoothing must be >= 0 (m)");
+  if (!(std::isfinite(friction) && friction >= 0)) return fail("friction must be finite and >= 0");
+  if (!(std::isfinite(slip_velocity) && slip_velocity > 0))
+    return fail("slip_velocity must be positive (m/s)");
   return true;
 }
 
@@ -97,15 +101,40 @@ Vec3 PenaltyContact::MotionForce_W(const LoadSite& site, const SectionMotion& mo
     const double vn = n.dot(motion.velocity_W);
     const double magnitude = k * phi - c * psi * vn;  // along n
     total += magnitude * n;
-    if (!J) continue;
+    if (!J) {
+      if (s.friction > 0 && magnitude > 0)
+        AddFriction(s, n, Mat3::Zero(), magnitude, Vec3::Zero(), Vec3::Zero(), motion.velocity_W,
+                    &total, nullptr);
+      continue;
+    }
     // ∂/∂p: dδ/dp = −n; ∂(ψ)/∂δ = 1/ε below ε; ∂vn/∂p = vᵀ dn.
     const double dpsi = delta < eps ? 1.0 / eps : 0.0;
     const Vec3 d_magnitude_dp =
         -(k * psi - c * dpsi * vn) * n - c * psi * (dn.transpose() * motion.velocity_W);
     J->position += n * d_magnitude_dp.transpose() + magnitude * dn;
     J->velocity += -c * psi * n * n.transpose();
+    if (s.friction > 0 && magnitude > 0)
+      AddFriction(s, n, dn, magnitude, d_magnitude_dp, -c * psi * n, motion.velocity_W, &total, J);
   }
   return total;
+}
+
+void PenaltyContact::AddFriction(const ContactSurface& s, const Vec3& n, const Mat3& dn,
+                                 double normal, const Vec3& d_normal_dp, const Vec3& d_normal_dv,
+                                 const Vec3& v, Vec3* force, MotionJacobian* J) {
+  // f = −μ N u, u = v_s / σ, v_s = (I − n nᵀ) v, σ = sqrt(|v_s|² + v_ε²).
+  const double vn = n.dot(v);
+  const Vec3 v_s = v - vn * n;
+  const double sigma = std::sqrt(v_s.squaredNorm() + s.slip_velocity * s.slip_velocity);
+  const Vec3 u = v_s / sigma;
+  *force -= s.friction * normal * u;
+  if (!J) return;
+  // ∂u/∂v_s = (I − u uᵀ) / σ; ∂v_s/∂v = I − n nᵀ; ∂v_s/∂p = −vn dn − n (dnᵀ v)ᵀ.
+  const Mat3 du = (Mat3::Identity() - u * u.transpose()) / sigma;
+  const Mat3 dvs_dv = Mat3::Identity() - n * n.transpose();
+  const Mat3 dvs_dp = -vn * dn - n * (dn.transpose() * v).transpose();
+  J->velocity -= s.friction * (u * d_normal_dv.transpose() + normal * du * dvs_dv);
+  J->position -= s.friction * (u * d_normal_dp.transpose() + normal * du * dvs_dp);
 }
 
 }  // namespace cosserat

@@ -1,10 +1,34 @@
 #include "contact_report.hpp"
 
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "cosserat/loads/contact.hpp"
 
 namespace cosserat::run::detail {
+
+namespace {
+
+// The statics node table (one row per node, header "s,x,y,z,…") gets the contact force per unit
+// length as three more columns. The dynamics trajectory table is left as it is.
+void AppendContactColumns(const nlohmann::ordered_json& per_node, std::string* csv) {
+  if (csv->rfind("s,", 0) != 0) return;
+  std::istringstream in(*csv);
+  std::ostringstream out;
+  std::string line;
+  std::getline(in, line);
+  out << line << ",contact_fx,contact_fy,contact_fz\n";
+  out.precision(17);
+  for (const auto& f : per_node) {
+    if (!std::getline(in, line)) return;  // rows do not match the nodes: leave the table alone
+    out << line << ',' << f[0].get<double>() << ',' << f[1].get<double>() << ','
+        << f[2].get<double>() << '\n';
+  }
+  *csv = out.str();
+}
+
+}  // namespace
 
 void AddContactReport(const io::Problem& problem, Result* result) {
   if (problem.loads.contact.count == 0) return;
@@ -37,6 +61,7 @@ void AddContactReport(const io::Problem& problem, Result* result) {
     s_previous = si;
   }
   if (start >= 0) intervals.push_back({start, s_previous});
+  AppendContactColumns(per_node, &result->nodes_csv);
   json["nodes"]["contact_force"] = per_node;
   json["contact"] = {{"total_force", {total.x(), total.y(), total.z()}}, {"intervals", intervals}};
 }

@@ -3,8 +3,9 @@
 /// The contact part of a result: the force per unit length the surfaces exert at each node
 /// (`nodes.contact_force`, N/m, world frame) and its integral along s (`contact.total_force`, N,
 /// trapezoid rule), from the nodes of the result's (final) state; plus the s-intervals in
-/// contact. In dynamics this is the penalty part at the final state (the damping, which needs the
-/// velocity, is not in it).
+/// contact; the statics node table gets the same forces as columns contact_fx, contact_fy,
+/// contact_fz. In dynamics this is the penalty part at the final state (the damping and the
+/// friction, which need the velocity, are not in it).
 
 #include "cosserat/io/problem.hpp"
 #include "cosserat/run/result.hpp"

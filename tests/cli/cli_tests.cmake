@@ -224,6 +224,16 @@ get_filename_component(_cli_table "${CMAKE_CURRENT_LIST_DIR}/../../examples/rod_
                        ABSOLUTE)
 cosserat_cli_test(NAME solve_rod_on_table ARGS solve "${_cli_table}" CODE 0
                   STDOUT "\"contact\": {.*\"total_force\"" STDERR "converged")
+# Its node table carries the contact force per node as three more columns.
+cosserat_cli_test(NAME solve_rod_on_table_csv
+                  ARGS solve "${_cli_table}" --out "${_cli_out}/table.json" --csv "${_cli_out}/table.csv"
+                  CODE 0 STDERR "converged" FILES "${_cli_out}/table.csv")
+add_test(NAME cli.rod_on_table_csv_has_contact_columns
+         COMMAND ${CMAKE_COMMAND} -DFILE=${_cli_out}/table.csv
+                 -DPATTERN=^s,x,y,z,k1,k2,k3,contact_fx,contact_fy,contact_fz
+                 -P ${CMAKE_CURRENT_LIST_DIR}/file_matches.cmake)
+set_tests_properties(cli.rod_on_table_csv_has_contact_columns PROPERTIES
+                     DEPENDS cli.solve_rod_on_table_csv)
 cosserat_cli_test(NAME contact_starts_inside ARGS validate "${_cli_dir}/contact_starts_inside.json"
                   CODE 2 STDERR "environment.contact\\[0\\]: the rod starts inside this surface: at s = 0\\.25 m its centreline is 0\\.05 m past it")
 

@@ -7,7 +7,11 @@
 /// with φ the penetration smoothed over a width ε (a C¹ ramp: φ(δ) = δ²/(2ε) for 0 < δ < ε,
 /// δ − ε/2 beyond; ε = the surface's `smoothing`, 1e-3 of the rod's outer diameter by default), so
 /// that Newton's method sees a continuous stiffness. Damping −c ψ (v·n) n acts on the approach
-/// velocity while in contact (ψ = min(δ/ε, 1)). No friction yet.
+/// velocity while in contact (ψ = min(δ/ε, 1)). Coulomb friction opposes the slip velocity
+/// v_s = (I − n nᵀ) v with the magnitude μ N, regularised near zero slip:
+/// f_f = −μ N v_s / sqrt(|v_s|² + v_ε²), N = max(normal force, 0), v_ε the surface's
+/// slip_velocity. Below v_ε the rod creeps instead of sticking: under a tangential load T < μN it
+/// slides at v_ε (T/μN) / sqrt(1 − (T/μN)²). At rest (statics) there is no friction.
 /// A plain aggregate: up to kMaxContactSurfaces surfaces in StaticLoads, so a controller may move
 /// an obstacle every step without allocating.
 
@@ -29,6 +33,8 @@ struct ContactSurface {
   double stiffness = 0.0;            ///< k, N/m per metre of rod
   double damping = 0.0;              ///< c, N·s/m per metre of rod (dynamics)
   double smoothing = 0.0;            ///< ε, m; 0: 1e-3 of the rod's outer diameter
+  double friction = 0.0;             ///< Coulomb μ (dynamics)
+  double slip_velocity = 1e-4;       ///< v_ε of the friction's regularisation, m/s
 
   /// Signed distance of the point p_W to the surface (positive on the free side, m) and the unit
   /// normal there (towards the free side); with dn, ∂n/∂p.
@@ -59,6 +65,12 @@ class PenaltyContact final : public Load {
                      MotionJacobian* J) const override;
 
  private:
+  /// Adds the regularised Coulomb friction of surface s (normal n, ∂n/∂p = dn) for the normal
+  /// force `normal` > 0 (N) with its derivatives, at the centreline velocity v.
+  static void AddFriction(const ContactSurface& s, const Vec3& n, const Mat3& dn, double normal,
+                          const Vec3& d_normal_dp, const Vec3& d_normal_dv, const Vec3& v,
+                          Vec3* force, MotionJacobian* J);
+
   const ContactSurfaces& surfaces_;
 };
 
