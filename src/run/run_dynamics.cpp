@@ -156,15 +156,22 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   } else if (run.initial_state_ok && run.status != SolveStatus::kConverged &&
              options.shooting_segments == 0) {
     // Automatic pieces bound each piece's gain; what they cannot fix is a grid too coarse for
-    // the step: the BDF2 equations resolved per segment need h λ ≲ 1 (docs/dynamics.md).
+    // the step: per segment, the bending exponent h λ and the shear wave's h c0 sqrt(ρA/GA)
+    // need to stay below about 1 (docs/dynamics.md, "Grid and step").
     const double exponent =
         SingleShootingExponent(problem.rod, options.dt, problem.robot.actuation);
-    const double per_segment = exponent / (problem.nodes - 1);
+    const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
+    const double shear_wave =
+        1.5 / options.dt * problem.rod.length *
+        std::sqrt(p.mass(3, 3) / p.stiffness.diagonal().segment<2>(3).minCoeff());
+    const double per_segment = std::max(exponent, shear_wave) / (problem.nodes - 1);
     if (per_segment > 0.9)
       log << "cosserat: hint: at dt = " << options.dt << " s the grid is coarse for the step: "
-          << "its exponent per segment is h*lambda = " << std::setprecision(3) << per_segment
-          << " (above about 1 the steps can fail; docs/dynamics.md, \"Where it stops\"); "
-          << "\"rod\": {\"nodes\": " << static_cast<int>(std::ceil(exponent / 0.9)) + 1
+          << "its exponent per segment is " << std::setprecision(3) << per_segment << " (bending "
+          << exponent / (problem.nodes - 1) << ", shear " << shear_wave / (problem.nodes - 1)
+          << "; above about 1 the steps can fail; docs/dynamics.md, \"Grid and step\"); "
+          << "\"rod\": {\"nodes\": "
+          << static_cast<int>(std::ceil(std::max(exponent, shear_wave) / 0.9)) + 1
           << "} or a larger dt\n";
   }
   result.log = log.str();

@@ -247,3 +247,8 @@ cosserat_cli_test(NAME solve_soft_cantilever_se3 ARGS solve "${_cli_soft}" CODE 
 cosserat_cli_test(NAME solve_soft_cantilever_quatfd
                   ARGS solve "${_cli_dir}/soft_cantilever_quatfd.json" CODE 0
                   STDERR "converged \\(quaternion-fd, radau: ok\\).* 2 s simulated")
+# Ten times softer at dt = 1 ms the 51-node grid is too coarse for the step: the run fails and
+# the log names the exponent per segment and the node count that fixes it.
+cosserat_cli_test(NAME solve_soft_cantilever_coarse_grid
+                  ARGS solve "${_cli_dir}/soft_cantilever_coarse_grid.json" CODE 1
+                  STDERR "hint: at dt = 0\\.001 s the grid is coarse for the step: its exponent per segment is 1\\.[0-9]+ .*\"nodes\": [0-9]+}")
