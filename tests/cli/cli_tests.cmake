@@ -252,3 +252,9 @@ cosserat_cli_test(NAME solve_soft_cantilever_quatfd
 cosserat_cli_test(NAME solve_soft_cantilever_coarse_grid
                   ARGS solve "${_cli_dir}/soft_cantilever_coarse_grid.json" CODE 1
                   STDERR "hint: at dt = 0\\.001 s the grid is coarse for the step: its exponent per segment is 1\\.[0-9]+ .*\"nodes\": [0-9]+}")
+# A soft finger pressed onto a sphere touches it along an arc (quaternion-FD statics; the SE(3)
+# shooting of the same file puts the tip within 1e-5 m).
+get_filename_component(_cli_finger "${CMAKE_CURRENT_LIST_DIR}/../../examples/finger_on_sphere.json"
+                       ABSOLUTE)
+cosserat_cli_test(NAME solve_finger_on_sphere ARGS solve "${_cli_finger}" CODE 0
+                  STDOUT "\"intervals\": \\[[^]]*\\[[^]]*0\\.0[67]" STDERR "converged")
