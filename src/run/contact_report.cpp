@@ -47,8 +47,8 @@ void AddContactReport(const io::Problem& problem, Result* result) {
     const Vec3 p(position[i][0].get<double>(), position[i][1].get<double>(),
                  position[i][2].get<double>());
     const double d = problem.rod.section->At(si, problem.robot.actuation).outer_diameter;
-    const Vec3 f =
-        contact.MotionForce_W({si, 1.0, 0.0, d}, {p, Vec3::UnitZ(), Vec3::Zero()}, nullptr);
+    const Vec3 v = result->node_velocity_W.size() == n ? result->node_velocity_W[i] : Vec3::Zero();
+    const Vec3 f = contact.MotionForce_W({si, 1.0, 0.0, d}, {p, Vec3::UnitZ(), v}, nullptr);
     per_node.push_back({f.x(), f.y(), f.z()});
     if (i > 0) total += 0.5 * (si - s_previous) * (f + previous);
     const bool touching = !f.isZero(0.0);

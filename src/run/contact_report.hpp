@@ -4,8 +4,8 @@
 /// (`nodes.contact_force`, N/m, world frame) and its integral along s (`contact.total_force`, N,
 /// trapezoid rule), from the nodes of the result's (final) state; plus the s-intervals in
 /// contact; the statics node table gets the same forces as columns contact_fx, contact_fy,
-/// contact_fz. In dynamics this is the penalty part at the final state (the damping and the
-/// friction, which need the velocity, are not in it).
+/// contact_fz. In dynamics the damping and the friction are taken at the final state's node
+/// velocities (Result::node_velocity_W).
 
 #include "cosserat/io/problem.hpp"
 #include "cosserat/run/result.hpp"

@@ -138,6 +138,8 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   const io::DynamicRun run = Simulate(problem, run_options.nodes_csv, &stepper);
   Result result;
   result.json = io::DynamicResultToJson(run, stepper.state());
+  for (int i = 0; i < stepper.state().size(); ++i)
+    result.node_velocity_W.push_back(stepper.state().rotation_WB[i] * stepper.state().twist_B[i].tail<3>());
   if (run_options.nodes_csv) result.nodes_csv = detail::TrajectoryCsv(run, stepper.state().s);
   std::ostringstream log;
   log << SummaryLine(run, stepper.state()) << '\n';

@@ -175,6 +175,8 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
   model.ToRodState(q, v, &state);
   Result result;
   result.json = io::DynamicResultToJson(run, state);
+  for (int i = 0; i < state.size(); ++i)
+    result.node_velocity_W.push_back(state.rotation_WB[i] * state.twist_B[i].tail<3>());
   if (options.nodes_csv) result.nodes_csv = detail::TrajectoryCsv(run, state.s);
   result.log = DynamicsLog(run, radau, d, state);
   result.converged = run.status == SolveStatus::kConverged;

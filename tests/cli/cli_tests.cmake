@@ -258,3 +258,10 @@ get_filename_component(_cli_finger "${CMAKE_CURRENT_LIST_DIR}/../../examples/fin
                        ABSOLUTE)
 cosserat_cli_test(NAME solve_finger_on_sphere ARGS solve "${_cli_finger}" CODE 0
                   STDOUT "\"intervals\": \\[[^]]*\\[[^]]*0\\.0[67]" STDERR "converged")
+# A free rod sliding down an inclined plane with friction μ = 0.3: the contact report of the
+# final state carries the normal force ρ A L g cos θ = 0.17641839 N and the friction
+# −μ times it = −0.05292552 N along the slide (the normal transient has died out after 0.3 s;
+# at 0.3 m/s the regularisation's deficit (v_ε/v)²/2 is 5e-8), to the 7 digits asserted.
+cosserat_cli_test(NAME solve_rod_slides_on_incline
+                  ARGS solve "${_cli_dir}/rod_slides_on_incline.json" CODE 0
+                  STDOUT "\"total_force\": \\[[^0-9-]*-0\\.0529255[0-9]*,[^]]*0\\.1764183[0-9]*" STDERR "converged")

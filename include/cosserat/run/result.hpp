@@ -5,6 +5,9 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
+
+#include "cosserat/lie/types.hpp"
 
 namespace cosserat::run {
 
@@ -28,6 +31,9 @@ struct Result {
   std::string nodes_csv;
   /// The one-line summary and any hints, each line ending in '\n'.
   std::string log;
+  /// Dynamics: each node's centreline velocity in the final state (m/s, world frame), for the
+  /// velocity-dependent parts of the contact report; empty otherwise.
+  std::vector<Vec3> node_velocity_W;
 };
 
 }  // namespace cosserat::run
