@@ -11,6 +11,7 @@
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/robots/tendon_control.hpp"
 #include "cosserat/run/solver_options.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "node_table.hpp"
 
@@ -52,12 +53,34 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   return result;
 }
 
+/// A cantilever whose single shot would amplify errors beyond double precision (a stiff
+/// contact foundation, a high tension): multiple shooting in pieces it chooses.
+Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& options) {
+  const StaticShootingOptions single = StaticOptions(problem);
+  StaticMultipleShootingOptions opt;
+  opt.tolerance = single.tolerance;
+  opt.max_iterations = single.max_iterations;
+  StaticMultipleShootingSolver solver(problem.rod, problem.nodes, opt);
+  const StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
+  Result result;
+  result.json = io::StaticResultToJson(summary, solver.state());
+  result.json["shooting_segments"] = solver.pieces();
+  if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
+  result.log = StaticSummary(summary, solver.state()) + " (" + std::to_string(solver.pieces()) +
+               " shooting pieces)\n";
+  result.converged = summary.converged();
+  return result;
+}
+
 }  // namespace
 
 Result RunStatics(const io::Problem& problem, const RunOptions& options) {
   ColumnEnds ends = ColumnEnds::kClampedFree;
   if (problem.boundary != io::Boundary::kCantilever && ToColumnEnds(problem.boundary, &ends))
     return RunColumnStatics(problem, ends, options);
+  if (!problem.has_robot && problem.rod.tendons.empty() &&
+      StaticShootingExponent(problem.rod, problem.loads) > 10.0)
+    return RunMultipleShootingStatics(problem, options);
   Actuation actuation = problem.robot.actuation;
   StaticShootingSolver solver(problem.rod, problem.nodes, StaticOptions(problem), actuation);
   StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);

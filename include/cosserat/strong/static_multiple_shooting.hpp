@@ -1,0 +1,104 @@
+#pragma once
+/// \file
+/// Static cantilever by multiple shooting, for rods a single shot cannot resolve: along s the
+/// linearised statics grows like e^{βs} on a stiff foundation (β = (k / 4EI)^{1/4}, k the
+/// contact stiffness in N/m per m) and like e^{s sqrt(T/EI)} under a tension T, and a single
+/// shot amplifies the error of its base unknowns by e^{βL} (double precision gives up near
+/// βL ≈ 15–20).
+///
+/// The same discrete equations as StaticShootingSolver (RK4 on the grid with the section at the
+/// nodes and midpoints; static_shooting.hpp), cut into pieces of about equal node count. Each
+/// piece restarts at its junction from 12 unknowns (pose and body-frame wrench there), and the
+/// junctions' continuity joins the tip condition as residual. Piece k depends only on its
+/// start, so the Jacobian is block-banded: forward differences through each piece alone, about
+/// 13 shots of the whole rod per Jacobian, and a banded LU O(pieces) (Ascher, Mattheij &
+/// Russell 1995, ch. 4). Newton with backtracking at each load level, and natural continuation
+/// in the loads from the unloaded rod (exact: the rest shape) or the last solution.
+/// No tendons; no stability index (summary.stability_index = −1).
+
+#include <vector>
+
+#include "cosserat/lie/se3.hpp"
+#include "cosserat/loads/static_loads.hpp"
+#include "cosserat/numerics/banded_matrix.hpp"
+#include "cosserat/rod/rod_model.hpp"
+#include "cosserat/state/rod_state.hpp"
+#include "cosserat/strong/cosserat_rhs.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+
+namespace cosserat {
+
+/// The exponent of a single static shot, for choosing pieces: the larger of β L over the
+/// stiffest contact surface, β = (k / 4EI)^{1/4}, and sqrt(T / EI) L with T bounded by the
+/// loads' total force (tip force plus the distributed force over L), EI the smaller bending
+/// stiffness at s = 0. Dimensionless; 0 without contact or load.
+double StaticShootingExponent(const RodModel& rod, const StaticLoads& loads);
+
+struct StaticMultipleShootingOptions {
+  /// Pieces; 0: chosen per Solve from StaticShootingExponent (1 up to an exponent of 10, else
+  /// exponent / 5), at most the grid's segments.
+  int pieces = 0;
+  /// Convergence: the residual's 2-norm, dimensionless as in StaticShootingOptions.
+  double tolerance = 1e-10;
+  /// Newton iterations per load level.
+  int max_iterations = 30;
+  /// Load levels of the continuation (accepted and rejected) per Solve.
+  int max_load_steps = 200;
+};
+
+class StaticMultipleShootingSolver {
+ public:
+  /// Throws std::invalid_argument for an invalid model, a rod with tendons, fewer than 3 nodes
+  /// or more pieces than segments.
+  StaticMultipleShootingSolver(const RodModel& model, int num_nodes,
+                               const StaticMultipleShootingOptions& options = {});
+
+  /// Equilibrium of the cantilever clamped at `base` under `loads`, by continuation from the
+  /// last solution (or the unloaded rod). The state is valid when the status is converged.
+  StaticShootingSummary Solve(const lie::SE3& base, const StaticLoads& loads);
+
+  const RodState& state() const { return state_; }
+  /// Pieces of the last Solve.
+  int pieces() const { return static_cast<int>(junction_nodes_.size()) + 1; }
+
+ private:
+  /// The state a piece starts from or arrives with: pose, and wrench in the body frame.
+  using Point = rhs::StaticPoint<double>;
+  void SetPieces(int pieces);
+  /// Integrates piece k from `start` under loads; the arriving state, and with record the node
+  /// values of the piece.
+  Point ShootPiece(int k, const Point& start, const StaticLoads& loads, bool record);
+  Point BaseStart(const lie::SE3& base, const Vec6& x) const;
+  /// [mismatch of junction 0, 1, …; tip residual] at the current unknowns.
+  bool Residual(const lie::SE3& base, const StaticLoads& loads, Eigen::VectorXd* r);
+  /// Mismatch of junction k (12, dimensionless) between the arriving state and its restart.
+  Eigen::Matrix<double, 12, 1> Mismatch(const Point& arriving, const Point& restart) const;
+  Vec6 TipResidual(const Point& tip, const StaticLoads& loads) const;
+  /// A junction state moved by the 12 dimensionless unknowns dz (right perturbation of R).
+  Point Moved(const Point& y, const Eigen::Ref<const Eigen::VectorXd>& dz) const;
+  bool Jacobian(const lie::SE3& base, const StaticLoads& loads, StaticShootingSummary* summary);
+  bool Newton(const lie::SE3& base, const StaticLoads& loads, StaticShootingSummary* summary);
+  /// b moved on by t times its change from a (the secant predictor of the continuation).
+  static Point Extrapolated(const Point& a, const Point& b, double t);
+  /// The unloaded rod at `base`: the rest shape, exact for zero loads.
+  void StartUnloaded(const lie::SE3& base);
+
+  RodModel model_;
+  StaticMultipleShootingOptions options_;
+  std::vector<double> grid_;
+  std::vector<StaticShootingSolver::Sample> samples_;
+  Vec6 scale_;  ///< W = scale ⊙ x: [EI/L ×3, EI/L² ×3]
+  RodState state_;
+
+  std::vector<int> junction_nodes_;  ///< junction k restarts at node junction_nodes_[k]
+  Vec6 x_ = Vec6::Zero();            ///< the base wrench, scaled
+  std::vector<Point> junctions_;     ///< the restart states
+  bool has_solution_ = false;
+  lie::SE3 solved_base_;
+  StaticLoads solved_loads_;
+
+  Eigen::VectorXd r_, r_trial_, dx_;
+  BandedMatrix lu_;
+};
+
+}  // namespace cosserat

@@ -1,0 +1,371 @@
+#include "cosserat/strong/static_multiple_shooting.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "cosserat/constitutive/section_law.hpp"
+#include "cosserat/lie/so3.hpp"
+#include "cosserat/loads/total_load.hpp"
+#include "cosserat/rod/grid.hpp"
+#include "cosserat/strong/shooting_exponent.hpp"
+#include "cosserat/strong/spatial_scheme.hpp"
+
+namespace cosserat {
+
+namespace {
+
+constexpr int kJunction = 12;  // unknowns per junction: δp/L, δθ, δm/(EI/L), δn/(EI/L²)
+
+// Forward-difference step on the dimensionless unknowns: 1e-7 balances truncation against the
+// round-off of a piece whose gain is bounded by the pieces (as for the BDF2 stepper's pieces).
+constexpr double kDifferenceStep = 1e-7;
+
+// Halvings of a Newton step that does not reduce the residual before the load level fails.
+// A rod coming down onto a stiff surface needs deep cuts: from a state not yet touching, the
+// Newton step sags it through the surface (the rod on a table of examples/rod_on_table.json
+// stalls with 6 halvings and converges with 12).
+constexpr int kBacktracks = 12;
+
+// The smallest continuation step, as a fraction of the load path.
+constexpr double kMinLoadStep = 1.0 / 4096.0;
+
+}  // namespace
+
+double StaticShootingExponent(const RodModel& rod, const StaticLoads& loads) {
+  const SectionProperties p = rod.section->At(0.0, Actuation{});
+  const double ei = std::min(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m²
+  const double L = rod.length;
+  double exponent = 0.0;
+  for (int i = 0; i < loads.contact.count; ++i)
+    exponent =
+        std::max(exponent, std::pow(loads.contact.surface[i].stiffness / (4.0 * ei), 0.25) * L);
+  const LoadSite site{0.0, 1.0, p.mass(3, 3), p.outer_diameter};
+  const SplitWrench tip = TotalTipWrench(loads);
+  const double tension = tip.dead_W.tail<3>().norm() + tip.follower_B.tail<3>().norm() +
+                         L * TotalDistributedForce_W(loads, site).norm();  // N, an upper bound
+  return std::max(exponent, std::sqrt(tension / ei) * L);
+}
+
+StaticMultipleShootingSolver::StaticMultipleShootingSolver(
+    const RodModel& model, int num_nodes, const StaticMultipleShootingOptions& options)
+    : model_(model), options_(options) {
+  std::string why;
+  if (!model_.IsValid(&why)) throw std::invalid_argument("RodModel: " + why);
+  if (!model_.tendons.empty())
+    throw std::invalid_argument(
+        "StaticMultipleShootingSolver: rods with tendons are solved by StaticShootingSolver");
+  if (num_nodes < 3)
+    throw std::invalid_argument("StaticMultipleShootingSolver: at least 3 nodes are needed");
+  grid_ = ModelGrid(model_, num_nodes);
+  const int n = static_cast<int>(grid_.size());
+  if (options_.pieces < 0 || options_.pieces > n - 1)
+    throw std::invalid_argument(
+        "StaticMultipleShootingOptions: pieces (" + std::to_string(options_.pieces) +
+        ") must be 0 (automatic) up to the grid's segments (" + std::to_string(n - 1) + ")");
+  const std::vector<double> points = SegmentSamplePoints(grid_);
+  samples_.resize(points.size());
+  for (size_t q = 0; q < points.size(); ++q) {
+    const SectionLaw law = SectionLaw::At(model_, points[q], Actuation{});
+    StaticShootingSolver::Sample& smp = samples_[q];
+    smp.compliance_diagonal = law.stiffness.cwiseInverse();
+    smp.rest_strain = law.rest_strain;
+    smp.mass_per_length = law.mass_per_length();
+    smp.s = points[q];
+    smp.outer_diameter = law.outer_diameter;
+  }
+  const SectionProperties base_section = model_.section->At(0.0, Actuation{});
+  const double EI = std::max(base_section.stiffness(0, 0), base_section.stiffness(1, 1));
+  const double L = model_.length;
+  scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
+  state_.Resize(n);
+  for (int i = 0; i < n; ++i) state_.s[i] = grid_[i];
+  SetPieces(options_.pieces > 0 ? options_.pieces : 1);
+}
+
+void StaticMultipleShootingSolver::SetPieces(int pieces) {
+  const int segments = static_cast<int>(grid_.size()) - 1;
+  junction_nodes_.resize(pieces - 1);
+  junctions_.assign(pieces - 1, Point{Vec3::Zero(), Mat3::Identity(), Vec3::Zero(), Vec3::Zero()});
+  for (int k = 1; k < pieces; ++k) {
+    const int i = static_cast<int>(std::lround(double(k) * segments / pieces));
+    junction_nodes_[k - 1] = i;
+    if (has_solution_) {  // restart from the last solution there
+      junctions_[k - 1] = {state_.position_W[i], state_.rotation_WB[i],
+                           state_.wrench_B[i].head<3>(), state_.wrench_B[i].tail<3>()};
+    }
+  }
+  const int unknowns = 6 + kJunction * (pieces - 1);
+  for (auto* v : {&r_, &r_trial_, &dx_}) v->setZero(unknowns);
+  // Junction k's rows reach back to the start of its piece and forward to its own unknowns:
+  // 17 sub- and 17 super-diagonals.
+  lu_.Resize(unknowns, 17, 17);
+}
+
+StaticMultipleShootingSolver::Point StaticMultipleShootingSolver::BaseStart(const lie::SE3& base,
+                                                                            const Vec6& x) const {
+  const Vec6 W0 = scale_.cwiseProduct(x);
+  return {base.p, base.R, W0.head<3>(), W0.tail<3>()};
+}
+
+StaticMultipleShootingSolver::Point StaticMultipleShootingSolver::ShootPiece(
+    int k, const Point& start, const StaticLoads& loads, bool record) {
+  const int junctions = static_cast<int>(junction_nodes_.size());
+  const int n = static_cast<int>(grid_.size());
+  const int first = k == 0 ? 0 : junction_nodes_[k - 1];
+  const int last = k < junctions ? junction_nodes_[k] : n - 1;
+  const bool motion = HasMotionLoads(loads);
+  // One RK4 stage at sample q: the distributed loads there (and those that depend on the pose,
+  // at the stage's pose, at rest) and the static rates.
+  auto stage = [&](int q, const Point& y, Vec6* xi) {
+    const LoadSite site = samples_[q].Site();
+    Vec3 f = TotalDistributedForce_W(loads, site);
+    if (motion)
+      f += TotalMotionForce_W(loads, site, SectionMotion{y.p, y.R.col(2), Vec3::Zero()}, nullptr);
+    return rhs::StaticDerivative<double>(samples_[q].rest_strain, samples_[q].compliance_diagonal,
+                                         f, y, xi);
+  };
+  auto record_node = [&](int i, const Point& y, const Vec6& xi) {
+    state_.position_W[i] = y.p;
+    state_.rotation_WB[i] = y.R;
+    state_.wrench_B[i] << y.m, y.n;
+    state_.twist_B[i].setZero();
+    state_.strain[i] = xi;
+  };
+  Point y = start;
+  Vec6 xi0, xi;
+  for (int i = first; i < last; ++i) {
+    const double h = grid_[i + 1] - grid_[i];
+    const int q0 = 3 * i, qm = 3 * i + 1, q1 = 3 * i + 2;
+    const Point k1 = stage(q0, y, &xi0);
+    if (record) record_node(i, y, xi0);
+    const Point k2 = stage(qm, internal::Axpy(y, 0.5 * h, k1), &xi);
+    const Point k3 = stage(qm, internal::Axpy(y, 0.5 * h, k2), &xi);
+    const Point k4 = stage(q1, internal::Axpy(y, h, k3), &xi);
+    internal::Rk4Update(h, k1, k2, k3, k4, &y);
+  }
+  if (record && last == n - 1) {
+    const StaticShootingSolver::Sample& tip = samples_[3 * (n - 2) + 2];
+    rhs::LinearStrain<double>(tip.rest_strain, tip.compliance_diagonal, y.m, y.n, &xi);
+    record_node(n - 1, y, xi);
+  }
+  return y;
+}
+
+Eigen::Matrix<double, 12, 1> StaticMultipleShootingSolver::Mismatch(const Point& arriving,
+                                                                    const Point& restart) const {
+  Eigen::Matrix<double, 12, 1> d;
+  d.segment<3>(0) = (arriving.p - restart.p) / model_.length;
+  d.segment<3>(3) = lie::SO3Log(Mat3(restart.R.transpose() * arriving.R));
+  d.segment<3>(6) = (arriving.m - restart.m).cwiseQuotient(scale_.head<3>());
+  d.segment<3>(9) = (arriving.n - restart.n).cwiseQuotient(scale_.tail<3>());
+  return d;
+}
+
+Vec6 StaticMultipleShootingSolver::TipResidual(const Point& tip, const StaticLoads& loads) const {
+  Vec6 W;
+  W << tip.m, tip.n;
+  return (W - TipWrenchInBody(TotalTipWrench(loads), tip.R)).cwiseQuotient(scale_);
+}
+
+StaticMultipleShootingSolver::Point StaticMultipleShootingSolver::Moved(
+    const Point& y, const Eigen::Ref<const Eigen::VectorXd>& dz) const {
+  return {y.p + model_.length * dz.segment<3>(0), y.R * lie::SO3Exp(Vec3(dz.segment<3>(3))),
+          y.m + scale_.head<3>().cwiseProduct(dz.segment<3>(6)),
+          y.n + scale_.tail<3>().cwiseProduct(dz.segment<3>(9))};
+}
+
+bool StaticMultipleShootingSolver::Residual(const lie::SE3& base, const StaticLoads& loads,
+                                            Eigen::VectorXd* r) {
+  const int junctions = static_cast<int>(junction_nodes_.size());
+  for (int k = 0; k <= junctions; ++k) {
+    const Point start = k == 0 ? BaseStart(base, x_) : junctions_[k - 1];
+    const Point arriving = ShootPiece(k, start, loads, false);
+    if (k < junctions)
+      r->segment<kJunction>(kJunction * k) = Mismatch(arriving, junctions_[k]);
+    else
+      r->tail<6>() = TipResidual(arriving, loads);
+  }
+  return r->allFinite();
+}
+
+bool StaticMultipleShootingSolver::Jacobian(const lie::SE3& base, const StaticLoads& loads,
+                                            StaticShootingSummary* summary) {
+  const int junctions = static_cast<int>(junction_nodes_.size());
+  lu_.SetZero();
+  for (int k = 0; k <= junctions; ++k) {
+    const bool last = k == junctions;
+    const int rows = last ? 6 : kJunction, cols = k == 0 ? 6 : kJunction;
+    const int row0 = kJunction * k, col0 = k == 0 ? 0 : 6 + kJunction * (k - 1);
+    // The piece's end residual from a start.
+    auto end = [&](const Point& start) {
+      const Point arriving = ShootPiece(k, start, loads, false);
+      Eigen::Matrix<double, 12, 1> e = Eigen::Matrix<double, 12, 1>::Zero();
+      if (last)
+        e.head<6>() = TipResidual(arriving, loads);
+      else
+        e = Mismatch(arriving, junctions_[k]);
+      return e;
+    };
+    const Point start = k == 0 ? BaseStart(base, x_) : junctions_[k - 1];
+    const Eigen::Matrix<double, 12, 1> e0 = end(start);
+    if (!e0.allFinite()) return false;
+    for (int j = 0; j < cols; ++j) {
+      Point moved;
+      if (k == 0) {
+        Vec6 x = x_;
+        x(j) += kDifferenceStep;
+        moved = BaseStart(base, x);
+      } else {
+        Eigen::Matrix<double, 12, 1> dz = Eigen::Matrix<double, 12, 1>::Zero();
+        dz(j) = kDifferenceStep;
+        moved = Moved(start, dz);
+      }
+      const Eigen::Matrix<double, 12, 1> e = end(moved);
+      if (!e.allFinite()) return false;
+      for (int r = 0; r < rows; ++r) lu_(row0 + r, col0 + j) = (e(r) - e0(r)) / kDifferenceStep;
+    }
+    summary->shots += cols + 1;  // shots of one piece each
+    if (last) break;
+    // The mismatch's derivative in the junction's own unknowns: −1, scaled as the unknowns are,
+    // except for the rotation d = Log(R_jᵀ R_arriving) under R_j → R_j Exp(δ):
+    // ∂d/∂δ = −J_l(d)⁻¹.
+    const int zc = 6 + kJunction * k;
+    for (int r = 0; r < kJunction; ++r) lu_(row0 + r, zc + r) = -1.0;
+    const Mat3 rotation = -lie::SO3LeftJacobianInverse(Vec3(e0.segment<3>(3)));
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) lu_(row0 + 3 + r, zc + 3 + c) = rotation(r, c);
+  }
+  return lu_.Factorize();
+}
+
+bool StaticMultipleShootingSolver::Newton(const lie::SE3& base, const StaticLoads& loads,
+                                          StaticShootingSummary* summary) {
+  ++summary->shots;
+  if (!Residual(base, loads, &r_)) return false;
+  double norm = r_.norm();
+  const int junctions = static_cast<int>(junction_nodes_.size());
+  for (int it = 0; it < options_.max_iterations; ++it) {
+    if (norm < options_.tolerance) break;
+    if (!Jacobian(base, loads, summary)) return false;
+    dx_ = -r_;
+    lu_.Solve(dx_);
+    const Vec6 x_saved = x_;
+    const std::vector<Point> saved = junctions_;
+    bool reduced = false;
+    for (int cut = 0; cut <= kBacktracks && !reduced; ++cut) {
+      const double a = std::ldexp(1.0, -cut);
+      x_ = x_saved + a * dx_.head<6>();
+      for (int k = 0; k < junctions; ++k)
+        junctions_[k] = Moved(saved[k], a * dx_.segment<kJunction>(6 + kJunction * k));
+      ++summary->shots;
+      reduced = Residual(base, loads, &r_trial_) && r_trial_.norm() < norm;
+    }
+    ++summary->iterations;
+    if (!reduced) {
+      x_ = x_saved;
+      junctions_ = saved;
+      return false;
+    }
+    std::swap(r_, r_trial_);
+    norm = r_.norm();
+  }
+  summary->residual = norm;
+  return norm < options_.tolerance;
+}
+
+StaticMultipleShootingSolver::Point StaticMultipleShootingSolver::Extrapolated(const Point& a,
+                                                                               const Point& b,
+                                                                               double t) {
+  return {b.p + t * (b.p - a.p),
+          b.R * lie::SO3Exp(Vec3(t * lie::SO3Log(Mat3(a.R.transpose() * b.R)))),
+          b.m + t * (b.m - a.m), b.n + t * (b.n - a.n)};
+}
+
+void StaticMultipleShootingSolver::StartUnloaded(const lie::SE3& base) {
+  x_.setZero();
+  Point y = BaseStart(base, x_);
+  const StaticLoads none;
+  for (int k = 0; k < static_cast<int>(junction_nodes_.size()); ++k) {
+    y = ShootPiece(k, y, none, false);
+    junctions_[k] = y;
+  }
+}
+
+StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
+                                                          const StaticLoads& loads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  StaticShootingSummary summary;
+  summary.stability_index = -1;
+  if (!loads.IsValid(nullptr) || !base.p.allFinite() || !base.R.allFinite()) {
+    summary.status = SolveStatus::kNonFinite;
+    return summary;
+  }
+  int pieces = options_.pieces;
+  if (pieces == 0) {
+    const double exponent = StaticShootingExponent(model_, loads);
+    pieces = std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent),
+                      static_cast<int>(grid_.size()) - 1);
+  }
+  if (pieces != this->pieces()) SetPieces(pieces);
+  // Continuation from the last solution at this base, else from the unloaded rod.
+  StaticLoads start = loads.Scaled(0.0);
+  summary.warm_started = has_solution_ && solved_base_.p == base.p && solved_base_.R == base.R;
+  if (summary.warm_started)
+    start = solved_loads_;
+  else
+    StartUnloaded(base);
+  // The accepted solution at mu and the one before it at mu_before (for the secant predictor).
+  Vec6 x_accepted = x_, x_before = x_;
+  std::vector<Point> accepted = junctions_, before = junctions_;
+  double mu = 0.0, mu_before = -1.0, step = 1.0;
+  int levels = 0;
+  while (mu < 1.0 && levels < options_.max_load_steps && step >= kMinLoadStep) {
+    const double mu_try = std::min(1.0, mu + step);
+    const StaticLoads target = mu_try == 1.0 ? loads : StaticLoads::Blend(start, loads, mu_try);
+    ++levels;
+    if (mu_before >= 0.0) {  // secant predictor along the path: the unknowns' change per μ
+      const double t = (mu_try - mu) / (mu - mu_before);
+      x_ = x_accepted + t * (x_accepted - x_before);
+      for (size_t k = 0; k < junctions_.size(); ++k)
+        junctions_[k] = Extrapolated(before[k], accepted[k], t);
+    }
+    if (Newton(base, target, &summary)) {
+      mu_before = mu;
+      mu = mu_try;
+      x_before = x_accepted;
+      before = accepted;
+      x_accepted = x_;
+      accepted = junctions_;
+      step *= 2.0;
+    } else {
+      x_ = x_accepted;
+      junctions_ = accepted;
+      step *= 0.5;
+    }
+  }
+  summary.load_steps = levels - 1;
+  const bool converged = mu == 1.0;
+  // The state of the last accepted level (the solution when converged).
+  const StaticLoads& at = converged ? loads : StaticLoads::Blend(start, loads, mu);
+  Point y = BaseStart(base, x_);
+  for (int k = 0; k <= static_cast<int>(junction_nodes_.size()); ++k)
+    y = ShootPiece(k, k == 0 ? y : junctions_[k - 1], at, true);
+  Residual(base, at, &r_);
+  summary.residual = r_.norm();
+  summary.status = converged ? SolveStatus::kConverged
+                             : (std::isfinite(summary.residual) ? SolveStatus::kMaxIterations
+                                                                : SolveStatus::kNonFinite);
+  if (converged) {
+    has_solution_ = true;
+    solved_base_ = base;
+    solved_loads_ = loads;
+  }
+  summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return summary;
+}
+
+}  // namespace cosserat
