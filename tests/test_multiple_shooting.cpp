@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "../bench/peer_rod.hpp"
+#include "cosserat/rod/section_profile.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
+#include "cosserat/strong/shooting_exponent.hpp"
 #include "support/analytic/beam_vibration.hpp"
 #include "support/rods.hpp"
 #include "support/smooth_ramp.hpp"
@@ -261,6 +263,44 @@ TEST(AutomaticPieces, ATenTimesSofterCantileverRunsWithDefaultSettings) {
     EXPECT_TRUE(run.ok) << "dt = " << dt;
     ExpectSwungDown(run, 1e5);
   }
+}
+
+// The peer rod's section with every stiffness times actuation.stiffness_scale (as a jamming
+// or pressure profile scales it).
+class ScaledSteelSection final : public SectionProfile {
+ public:
+  SectionProperties At(double, const Actuation& a) const override {
+    return UniformSectionProperties(
+        CrossSection::Circle(0.001),
+        Material::FromShearModulus(200e9 * a.stiffness_scale, 80e9 * a.stiffness_scale, 8000));
+  }
+  bool IsValid(double, std::string*) const override { return true; }
+};
+
+// A section that softens with the actuation, over 20 steps to 3 % of its stiffness (λL from
+// 8.7 to about 20.9 at dt = 2 ms), re-chooses the pieces as the actuation changes, without a
+// failed step: at the end λL/5 → 5 pieces. Growth after failed steps would double 1 → 2 → 4 → 8
+// and never give 5.
+TEST(AutomaticPieces, ASofteningActuationRechoosesThePieces) {
+  RodModel rod = PeerRod();
+  rod.section = std::make_shared<ScaledSteelSection>();
+  Bdf2Options opt;
+  opt.dt = 2e-3;
+  Bdf2ShootingStepper stepper(rod, 40, opt);
+  StepInput in = bench::PeerPreload();
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads.tip_force.setZero();
+  StepSummary s;
+  for (int i = 1; i <= 20; ++i) {
+    in.actuation.stiffness_scale = std::pow(0.03, i / 20.0);
+    s = stepper.Step(in);
+    ASSERT_TRUE(s.converged()) << "step " << i;
+    EXPECT_EQ(s.halvings, 0) << "step " << i;
+  }
+  const double exponent = SingleShootingExponent(rod, opt.dt, in.actuation);
+  std::printf("softened: lambda L = %.1f, %d pieces\n", exponent, s.shooting_segments);
+  EXPECT_EQ(s.shooting_segments, SuggestedShootingSegments(exponent));
+  EXPECT_EQ(s.shooting_segments, 5);
 }
 
 TEST(AutomaticPieces, TheSteelPeerRodKeepsOneShot) {

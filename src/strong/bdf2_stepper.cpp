@@ -206,7 +206,16 @@ void Bdf2ShootingStepper::ApplyActuation(const Actuation& a) {
                                a.pressure != actuation_.pressure ||
                                a.jamming_pressure != actuation_.jamming_pressure;
   actuation_ = a;
-  if (section_changed) SampleSections();
+  if (!section_changed) return;
+  SampleSections();
+  // A softer section raises the shot's exponent: with automatic pieces, shoot in as many as it
+  // asks for now, rather than after a failed step (never fewer: a run's pieces only grow).
+  if (automatic_pieces_) {
+    const double exponent = SingleShootingExponent(model_, options_.dt, actuation_);
+    const int wanted =
+        std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent), MaxAutomaticPieces());
+    if (wanted > ShootingPieces()) SetShootingPieces(wanted);
+  }
 }
 
 void Bdf2ShootingStepper::SetImplicitCompliance(double c0) {
