@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -19,9 +20,12 @@ namespace {
 
 constexpr int kJunction = 12;  // unknowns per junction: δp/L, δθ, δm/(EI/L), δn/(EI/L²)
 
-// Forward-difference step on the dimensionless unknowns: 1e-7 balances truncation against the
-// round-off of a piece whose gain is bounded by the pieces (as for the BDF2 stepper's pieces).
-constexpr double kDifferenceStep = 1e-7;
+// Forward-difference step on the dimensionless unknowns. Round-off costs ~1e-16 × the piece's
+// gain (≲ e^5) / step, 1.5e-5 relative at 1e-9; truncation follows the curvature of the loads,
+// which a stiff contact surface's smoothing ramp makes large (k/ε): at 1e-7 a node in the ramp
+// gets a Jacobian ~5 % off and the rod on a table of stiffness 1e6–1e7 N/m² stalls at a
+// residual of 1e-4; at 1e-9 it converges on every grid from 51 to 501 nodes.
+constexpr double kDifferenceStep = 1e-9;
 
 // Halvings of a Newton step that does not reduce the residual before the load level fails.
 // A rod coming down onto a stiff surface needs deep cuts: from a state not yet touching, the
@@ -31,6 +35,9 @@ constexpr int kBacktracks = 12;
 
 // The smallest continuation step, as a fraction of the load path.
 constexpr double kMinLoadStep = 1.0 / 4096.0;
+
+// How much softer the surfaces are at the start of the stiffness continuation.
+constexpr double kSoftening = 1e3;
 
 }  // namespace
 
@@ -294,6 +301,39 @@ void StaticMultipleShootingSolver::StartUnloaded(const lie::SE3& base) {
   }
 }
 
+double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
+                                                const std::function<StaticLoads(double)>& at,
+                                                int* levels, StaticShootingSummary* summary) {
+  // The accepted solution at mu and the one before it at mu_before (for the secant predictor).
+  Vec6 x_accepted = x_, x_before = x_;
+  std::vector<Point> accepted = junctions_, before = junctions_;
+  double mu = 0.0, mu_before = -1.0, step = 1.0;
+  while (mu < 1.0 && *levels < options_.max_load_steps && step >= kMinLoadStep) {
+    const double mu_try = std::min(1.0, mu + step);
+    ++*levels;
+    if (mu_before >= 0.0) {  // secant predictor along the path: the unknowns' change per μ
+      const double t = (mu_try - mu) / (mu - mu_before);
+      x_ = x_accepted + t * (x_accepted - x_before);
+      for (size_t k = 0; k < junctions_.size(); ++k)
+        junctions_[k] = Extrapolated(before[k], accepted[k], t);
+    }
+    if (Newton(base, at(mu_try), summary)) {
+      mu_before = mu;
+      mu = mu_try;
+      x_before = x_accepted;
+      before = accepted;
+      x_accepted = x_;
+      accepted = junctions_;
+      step *= 2.0;
+    } else {
+      x_ = x_accepted;
+      junctions_ = accepted;
+      step *= 0.5;
+    }
+  }
+  return mu;
+}
+
 StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
                                                           const StaticLoads& loads) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -310,50 +350,47 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
                       static_cast<int>(grid_.size()) - 1);
   }
   if (pieces != this->pieces()) SetPieces(pieces);
-  // Continuation from the last solution at this base, else from the unloaded rod.
+  // Continuation in the loads from the last solution at this base, else from the unloaded rod.
   StaticLoads start = loads.Scaled(0.0);
   summary.warm_started = has_solution_ && solved_base_.p == base.p && solved_base_.R == base.R;
   if (summary.warm_started)
     start = solved_loads_;
   else
     StartUnloaded(base);
-  // The accepted solution at mu and the one before it at mu_before (for the secant predictor).
-  Vec6 x_accepted = x_, x_before = x_;
-  std::vector<Point> accepted = junctions_, before = junctions_;
-  double mu = 0.0, mu_before = -1.0, step = 1.0;
   int levels = 0;
-  while (mu < 1.0 && levels < options_.max_load_steps && step >= kMinLoadStep) {
-    const double mu_try = std::min(1.0, mu + step);
-    const StaticLoads target = mu_try == 1.0 ? loads : StaticLoads::Blend(start, loads, mu_try);
-    ++levels;
-    if (mu_before >= 0.0) {  // secant predictor along the path: the unknowns' change per μ
-      const double t = (mu_try - mu) / (mu - mu_before);
-      x_ = x_accepted + t * (x_accepted - x_before);
-      for (size_t k = 0; k < junctions_.size(); ++k)
-        junctions_[k] = Extrapolated(before[k], accepted[k], t);
-    }
-    if (Newton(base, target, &summary)) {
-      mu_before = mu;
-      mu = mu_try;
-      x_before = x_accepted;
-      before = accepted;
-      x_accepted = x_;
-      accepted = junctions_;
-      step *= 2.0;
-    } else {
-      x_ = x_accepted;
-      junctions_ = accepted;
-      step *= 0.5;
-    }
+  auto along_loads = [&](double mu) {
+    return mu == 1.0 ? loads : StaticLoads::Blend(start, loads, mu);
+  };
+  double mu = FollowPath(base, along_loads, &levels, &summary);
+  std::function<StaticLoads(double)> at = along_loads;
+  if (mu < 1.0 && loads.contact.count > 0) {
+    // Stiff surfaces: a rod coming down onto them follows the loads on surfaces softened
+    // kSoftening times, then stiffens them geometrically (the touchdown moves little while the
+    // penetration shrinks), from the unloaded rod.
+    StaticLoads soft = loads;
+    for (int i = 0; i < soft.contact.count; ++i) soft.contact.surface[i].stiffness /= kSoftening;
+    start = loads.Scaled(0.0);
+    StartUnloaded(base);
+    const double mu_soft = FollowPath(
+        base, [&](double m) { return m == 1.0 ? soft : StaticLoads::Blend(start, soft, m); },
+        &levels, &summary);
+    at = [&](double m) {
+      StaticLoads l = loads;
+      for (int i = 0; i < l.contact.count; ++i)
+        l.contact.surface[i].stiffness *= std::pow(kSoftening, m - 1.0);
+      return l;
+    };
+    mu = mu_soft == 1.0 ? FollowPath(base, at, &levels, &summary) : 0.0;
+    if (mu_soft < 1.0) at = [&](double) { return soft; };
   }
   summary.load_steps = levels - 1;
   const bool converged = mu == 1.0;
   // The state of the last accepted level (the solution when converged).
-  const StaticLoads& at = converged ? loads : StaticLoads::Blend(start, loads, mu);
+  const StaticLoads last = converged ? loads : at(mu);
   Point y = BaseStart(base, x_);
   for (int k = 0; k <= static_cast<int>(junction_nodes_.size()); ++k)
-    y = ShootPiece(k, k == 0 ? y : junctions_[k - 1], at, true);
-  Residual(base, at, &r_);
+    y = ShootPiece(k, k == 0 ? y : junctions_[k - 1], last, true);
+  Residual(base, last, &r_);
   summary.residual = r_.norm();
   summary.status = converged ? SolveStatus::kConverged
                              : (std::isfinite(summary.residual) ? SolveStatus::kMaxIterations

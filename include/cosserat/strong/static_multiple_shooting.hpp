@@ -13,9 +13,12 @@
 /// start, so the Jacobian is block-banded: forward differences through each piece alone, about
 /// 13 shots of the whole rod per Jacobian, and a banded LU O(pieces) (Ascher, Mattheij &
 /// Russell 1995, ch. 4). Newton with backtracking at each load level, and natural continuation
-/// in the loads from the unloaded rod (exact: the rest shape) or the last solution.
+/// in the loads from the unloaded rod (exact: the rest shape) or the last solution; when that
+/// stalls on stiff contact surfaces, the loads are followed on surfaces 1000 times softer and
+/// the surfaces then stiffened geometrically.
 /// No tendons; no stability index (summary.stability_index = −1).
 
+#include <functional>
 #include <vector>
 
 #include "cosserat/lie/se3.hpp"
@@ -78,6 +81,11 @@ class StaticMultipleShootingSolver {
   Point Moved(const Point& y, const Eigen::Ref<const Eigen::VectorXd>& dz) const;
   bool Jacobian(const lie::SE3& base, const StaticLoads& loads, StaticShootingSummary* summary);
   bool Newton(const lie::SE3& base, const StaticLoads& loads, StaticShootingSummary* summary);
+  /// Natural continuation along at(μ), μ: 0 → 1, from the current unknowns (a solution at
+  /// μ = 0), with a secant predictor; a step doubles after a success and halves after a failure.
+  /// Returns the last μ reached, the unknowns at it; counts the levels tried in *levels.
+  double FollowPath(const lie::SE3& base, const std::function<StaticLoads(double)>& at, int* levels,
+                    StaticShootingSummary* summary);
   /// b moved on by t times its change from a (the secant predictor of the continuation).
   static Point Extrapolated(const Point& a, const Point& b, double t);
   /// The unloaded rod at `base`: the rest shape, exact for zero loads.
