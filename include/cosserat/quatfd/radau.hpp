@@ -112,6 +112,7 @@ class RadauIntegrator final : public ImplicitIntegrator {
   /// The norm of the estimate err_ of the step y_ → y_new_ (≤ 1: accepted), per error_measure_.
   double ErrorMeasure() const;
 
+  bool jac_at_y_ = false;     ///< J was evaluated at y_ after the last accepted step
   double newton_cap_ = 0.0;  ///< largest next step after a Newton failure (0: none)
   bool have_poly_ = false;
   RadauErrorMeasure error_measure_ = RadauErrorMeasure::kPhysical;
