@@ -14,11 +14,16 @@ NewtonControl::Verdict NewtonControl::Check(int iteration, double d) {
   if (!std::isfinite(d)) return Verdict::kDiverged;
   if (iteration > 0) {
     const double theta = d / previous_;
-    if (theta >= 0.99) return Verdict::kDiverged;
-    eta_ = theta / (1.0 - theta);
     max_theta_ = std::max(max_theta_, theta);
+    const bool judged = !(grace_ && iteration == 1);
+    if (theta >= 0.99) {
+      if (judged) return Verdict::kDiverged;
+      previous_ = d;
+      return Verdict::kContinue;
+    }
+    eta_ = theta / (1.0 - theta);
     // Would the iteration still need too many iterations at this rate?
-    if (std::pow(theta, max_iterations_ - 1 - iteration) / (1.0 - theta) * d > kappa_)
+    if (judged && std::pow(theta, max_iterations_ - 1 - iteration) / (1.0 - theta) * d > kappa_)
       return Verdict::kSlow;
   }
   if (eta_ * d <= kappa_ || d == 0.0) {
@@ -31,10 +36,10 @@ NewtonControl::Verdict NewtonControl::Check(int iteration, double d) {
 
 ImplicitIntegrator::ImplicitIntegrator(const QuatFdModel& model, const IntegratorOptions& options,
                                        bool corotate, int rotation_slots, int max_newton_iterations,
-                                       double kappa)
+                                       double kappa, bool first_contraction_grace)
     : AdaptiveIntegrator(model, options),
       corotate_(corotate),
-      newton_(max_newton_iterations, kappa),
+      newton_(max_newton_iterations, kappa, first_contraction_grace),
       newton_norm_(options),
       corotation_(rotation_slots, CoRotation(model.layout().segments)) {
   jac_.Resize(model);

@@ -32,13 +32,15 @@ struct NewtonStats {
 /// IV.8): with θ the observed contraction of the correction norm d and η = θ/(1 − θ), converged
 /// when η d ≤ κ; given up when θ ≥ 0.99 or d is not finite (diverged) or when θ^(k_max − 1 − k)
 /// d/(1 − θ) > κ (too slow to converge within k_max iterations). The first iteration of a solve
-/// uses η of the last converged one, as max(η, 1e-16)^0.8.
+/// uses η of the last converged one, as max(η, 1e-16)^0.8. With first_contraction_grace the
+/// contraction of the first two corrections is recorded (max_theta) but not judged: only the
+/// later ones decide slow or diverged.
 class NewtonControl {
  public:
   enum class Verdict { kContinue, kConverged, kSlow, kDiverged };
 
-  NewtonControl(int max_iterations, double kappa)
-      : max_iterations_(max_iterations), kappa_(kappa) {}
+  NewtonControl(int max_iterations, double kappa, bool first_contraction_grace = false)
+      : max_iterations_(max_iterations), kappa_(kappa), grace_(first_contraction_grace) {}
 
   int max_iterations() const { return max_iterations_; }
   double kappa() const { return kappa_; }
@@ -60,6 +62,7 @@ class NewtonControl {
  private:
   int max_iterations_;
   double kappa_;
+  bool grace_;
   double eta_memory_ = 1.0;  ///< η of the last converged solve (Hairer–Wanner's η)
   double eta_ = 1.0;         ///< η of the current solve
   double previous_ = 0.0;    ///< d of the previous iteration
@@ -83,8 +86,10 @@ class ImplicitIntegrator : public AdaptiveIntegrator {
   /// Allocates every buffer. corotate: turn the kept J with the segments (false only for the
   /// comparisons in the benchmarks and tests); rotation_slots: how many co-rotations the method
   /// keeps (one per iterate it turns J to); max_newton_iterations, kappa: NewtonControl.
+  /// first_contraction_grace: NewtonControl's.
   ImplicitIntegrator(const QuatFdModel& model, const IntegratorOptions& options, bool corotate,
-                     int rotation_slots, int max_newton_iterations, double kappa);
+                     int rotation_slots, int max_newton_iterations, double kappa,
+                     bool first_contraction_grace = false);
 
   /// Evaluates J at y and marks the factorisations stale.
   void RefreshJacobian(const Eigen::Ref<const Eigen::VectorXd>& y);

@@ -28,8 +28,10 @@
 /// components), re-filtered once through f(y_n + err) after a rejection.
 /// Measured as the rotation and ω errors the projection keeps (RadauErrorMeasure::kPhysical,
 /// the default) or per component of [q; v] (kComponents, set_error_measure).
+/// Newton: the first contraction is recorded but not judged (NewtonControl's grace).
 /// Step control: Gustafsson's predictive controller with the Newton-count safety factor of
-/// RADAU5. J is refreshed when the Newton contraction of a step exceeds a threshold; the LUs are
+/// RADAU5. J is refreshed when the Newton contraction of a step exceeds a threshold (evaluated
+/// right after the accepted step, its f reused as the next f(y_n)); the LUs are
 /// redone when J or h changes (h is held for growth below 20 %). A Newton failure with a stale J
 /// refreshes J at y_n and retries; with a fresh J the step is rejected, h halved, and the
 /// following steps capped at 0.8 of the failed h (the cap growing 5 % per accepted step).
@@ -112,6 +114,7 @@ class RadauIntegrator final : public ImplicitIntegrator {
   /// The norm of the estimate err_ of the step y_ → y_new_ (≤ 1: accepted), per error_measure_.
   double ErrorMeasure() const;
 
+  bool jac_at_y_ = false;     ///< J was evaluated at y_ after the last accepted step
   double newton_cap_ = 0.0;  ///< largest next step after a Newton failure (0: none)
   bool have_poly_ = false;
   RadauErrorMeasure error_measure_ = RadauErrorMeasure::kPhysical;
