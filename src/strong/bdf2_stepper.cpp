@@ -45,7 +45,15 @@ using Coefficients = Bdf2ShootingStepper::Coefficients;
 
 // Weights (c0, c1, c2) of the variable-step BDF2 derivative for a step h after a step h_prev:
 // y' ≈ c0 y_n + c1 y_{n−1} + c2 y_{n−2}. Equal steps give eq. 23: 3/(2h), −2/h, 1/(2h).
-Coefficients Bdf2Weights(double h, double h_prev) {
+// The first step of a run (h_prev = 0): backward Euler, 1/h, −1/h, 0, unless the options ask
+// for BDF2 over the rest history (Bdf2Options::first_step). BDF2 over the rest history
+// differences the jump in acceleration when the loads change at t = 0 (a release) and leaves a
+// velocity error of a third of the jump times h, which an undamped rod keeps: the whole run is
+// then first order. A backward Euler start is exact in the velocity for a constant acceleration,
+// and its O(h²) position error keeps the run second order.
+Coefficients Bdf2Weights(double h, double h_prev, Bdf2Options::FirstStep first) {
+  if (!(h_prev > 0) && first == Bdf2Options::FirstStep::kBackwardEuler)
+    return {1.0 / h, -1.0 / h, 0.0};
   const double w = h_prev > 0 ? h / h_prev : 1.0;
   return {(1 + 2 * w) / ((1 + w) * h), -(1 + w) / h, w * w / ((1 + w) * h)};
 }
@@ -451,7 +459,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
 
 bool Bdf2ShootingStepper::Attempt(const StepInput& input, double h, StepSummary* summary) {
   ApplyActuation(input.actuation);
-  const Coefficients c = Bdf2Weights(h, run_.last_dt);
+  const Coefficients c = Bdf2Weights(h, run_.last_dt, options_.first_step);
   SetImplicitCompliance(c.c0);
   xi_back_ = lie::SE3Log(lie::Compose(lie::Inverse(run_.base1), run_.base2));
   if (SolveStep(input, c, h, false, summary)) {
