@@ -12,6 +12,7 @@
 #include "cosserat/loads/fluid_drag.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/quatfd/quatfd_statics.hpp"
+#include "cosserat/quatfd/radau.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "support/analytic/beam_vibration.hpp"
@@ -289,11 +290,11 @@ TEST(FluidDrag, BothFormulationsAgreeInAStrongCurrent) {
   EXPECT_LT((tip_se3 - tip_fd).norm(), 0.005 * rod.length);
 }
 
-// The quaternion-FD model's banded Jacobian with drag in a sheared flow, at a moving state,
-// against central differences of its acceleration (steps 1e-5 scaled per unknown, as in
-// test_quatfd_model.cpp: truncation and round-off both ~1e-10 relative; rows scaled by their
-// largest entry, so 1e-6 covers both and fails on any missing drag term, O(1e-2) of a row).
-TEST(FluidDrag, QuaternionFdJacobianMatchesCentralDifferences) {
+// The quaternion-FD model's banded Jacobian in a fluid, at a moving state, against central
+// differences of its acceleration (steps 1e-5 scaled per unknown, as in test_quatfd_model.cpp:
+// truncation and round-off both ~1e-10 relative; rows scaled by their largest entry, so 1e-6
+// covers both and fails on any missing drag or added-mass term, O(1e-2) of a row).
+void ExpectQuatFdVertexRowsMatchCentralDifferences(const Fluid& fluid) {
   // A rubber rod: a steel one's accelerations at a perturbed state are so large that a velocity
   // step changes them below their last digit.
   SteelRod rod{0.5, 0.01};
@@ -302,9 +303,8 @@ TEST(FluidDrag, QuaternionFdJacobianMatchesCentralDifferences) {
   options.segments = 6;
   quatfd::QuatFdModel model(rod.model(), lie::SE3{}, options);
   StaticLoads loads;
-  loads.fluid = Water(Vec3(0.8, 0.2, 0), 1.2);
-  loads.fluid.drag_tangential = 0.1;
-  SetPowerLawFlow(&loads.fluid, 0.3, 0.3, Vec3(0, 0, -0.05));
+  loads.fluid = fluid;
+  loads.gravity_W = Vec3(0, -3.0, -9.81);  // forces at every vertex for the mass to turn
   model.set_loads(loads);
   const int n = model.size();
   Eigen::VectorXd q(n), v(n);
@@ -348,6 +348,23 @@ TEST(FluidDrag, QuaternionFdJacobianMatchesCentralDifferences) {
     EXPECT_LT((Ad.row(i) - Afd.row(i)).cwiseAbs().maxCoeff(), 1e-6 * sa) << "row " << i;
     EXPECT_LT((Bd.row(i) - Bfd.row(i)).cwiseAbs().maxCoeff(), 1e-6 * sb) << "row " << i;
   }
+}
+
+// Drag in a sheared flow.
+TEST(FluidDrag, QuaternionFdJacobianMatchesCentralDifferences) {
+  Fluid f = Water(Vec3(0.8, 0.2, 0), 1.2);
+  f.drag_tangential = 0.1;
+  SetPowerLawFlow(&f, 0.3, 0.3, Vec3(0, 0, -0.05));
+  ExpectQuatFdVertexRowsMatchCentralDifferences(f);
+}
+
+// An added mass, alone and with the drag: the vertex mass matrix m I + m_a (I − t tᵀ) turns with
+// the chord t between the neighbouring vertices, which the Jacobian must carry.
+TEST(AddedMass, QuaternionFdJacobianMatchesCentralDifferences) {
+  ExpectQuatFdVertexRowsMatchCentralDifferences(Water(Vec3::Zero(), 0.0, 1.0));
+  Fluid f = Water(Vec3(0.8, 0.2, 0), 1.2, 1.0);
+  f.drag_tangential = 0.1;
+  ExpectQuatFdVertexRowsMatchCentralDifferences(f);
 }
 
 // --- Added mass --------------------------------------------------------------------------------
@@ -415,6 +432,74 @@ TEST(AddedMass, FreeVibrationInStillWaterIsSlowerByTheMassRatio) {
   EXPECT_NEAR(measured, ratio, 0.01 * ratio);
 }
 
+// The same in the quaternion-FD modes (40 segments): each vertex carries m_a / m = ρ_f A_o / (ρ A)
+// of its own mass on its lateral motion, so the ratio is that of the continuum up to the rotary
+// inertia's O((r/L)²); the grid's own error (≈ 0.1 % on mode 2) is common to both spectra.
+TEST(AddedMass, QuaternionFdModesInStillWaterAreTheDryOnesOverTheMassRatio) {
+  const SteelRod rod{0.5, 0.004};
+  quatfd::QuatFdOptions grid;
+  grid.segments = 40;
+  ModalOptions options;
+  options.count = 4;
+  quatfd::QuatFdModel model(rod.model(), lie::SE3{}, grid);
+  const ModalResult dry = ComputeModes(&model, StaticLoads{}, options);
+  StaticLoads wet;
+  wet.fluid = Water(Vec3::Zero(), 0.0, 1.0);
+  const ModalResult in_water = ComputeModes(&model, wet, options);
+  ASSERT_EQ(dry.modes.size(), 4u);
+  ASSERT_EQ(in_water.modes.size(), 4u);
+  const double ratio = std::sqrt(1.0 + kWater * M_PI * rod.r * rod.r / rod.rhoA());
+  for (int k : {0, 2}) {
+    const double expected = dry.modes[k].frequency_hz / ratio;
+    std::printf("quatfd mode %d: wet %.6f Hz, dry / ratio %.6f Hz\n", k / 2 + 1,
+                in_water.modes[k].frequency_hz, expected);
+    EXPECT_NEAR(in_water.modes[k].frequency_hz, expected, 0.005 * expected) << "mode " << k / 2 + 1;
+  }
+  const double f1 = FirstBendingHz(rod);  // and the dry one is Euler–Bernoulli's
+  EXPECT_NEAR(dry.modes[0].frequency_hz, f1, 0.005 * f1);
+}
+
+// Free vibration of the quaternion-FD rod (Radau IIA, 20 segments): the first period grows by the
+// same ratio. Zero crossings of the tip over 4 cycles from 1 ms frames, interpolated linearly
+// (frame error ~(ω Δt)² / 8 of a crossing's timing, ≈ 1e-3 of a period, common to both runs).
+double QuatFdTipPeriod(const StaticLoads& loads) {
+  const SteelRod rod{0.5, 0.004};
+  quatfd::QuatFdOptions grid;
+  grid.segments = 20;
+  quatfd::QuatFdModel model(rod.model(), lie::SE3{}, grid);
+  StaticLoads pulled = loads;
+  pulled.tip_force = Vec3(0.05, 0, 0);
+  Eigen::VectorXd q(model.size()), v(model.size());
+  model.RestState(q, v);
+  EXPECT_TRUE(quatfd::SolveStatics(&model, pulled, q).converged());
+  model.set_loads(loads);
+  quatfd::IntegratorOptions io;
+  io.rel_tol = io.abs_tol = 1e-8;
+  quatfd::RadauIntegrator radau(model, io);
+  const double frame = 1e-3, f1 = FirstBendingHz(rod);
+  const int tip = quatfd::QuatFdLayout::X(grid.segments);
+  std::vector<double> crossings;
+  double t = 0, x_prev = q(tip);
+  for (int i = 1; crossings.size() < 5 && t < 10.0 / f1; ++i) {
+    EXPECT_EQ(radau.Advance(i * frame, &t, q, v), quatfd::IntegratorStatus::kOk);
+    const double x = q(tip);
+    if (x_prev < 0 && x >= 0) crossings.push_back(t - frame * x / (x - x_prev));
+    x_prev = x;
+  }
+  EXPECT_EQ(crossings.size(), 5u);
+  return (crossings.back() - crossings.front()) / (crossings.size() - 1);
+}
+
+TEST(AddedMass, QuaternionFdFreeVibrationInStillWaterIsSlowerByTheMassRatio) {
+  const SteelRod rod{0.5, 0.004};
+  StaticLoads wet;
+  wet.fluid = Water(Vec3::Zero(), 0.0, 1.0);
+  const double ratio = std::sqrt(1.0 + kWater * M_PI * rod.r * rod.r / rod.rhoA());
+  const double measured = QuatFdTipPeriod(wet) / QuatFdTipPeriod(StaticLoads{});
+  std::printf("quatfd added mass: period ratio %.6f, expected %.6f\n", measured, ratio);
+  EXPECT_NEAR(measured, ratio, 0.01 * ratio);
+}
+
 // --- Drag damping: the energy balance ------------------------------------------------------------
 
 // A cantilever released in still water with quadratic drag: between two instants the rod's
@@ -468,6 +553,59 @@ TEST(FluidDrag, ASwingInStillWaterLosesTheEnergyTheDragDissipates) {
   std::printf("swing: energy lost %.6e J, drag work %.6e J, dry loss %.3e J\n", wet.energy_lost,
               wet.drag_work, dry.energy_lost);
   // The drag does negative work: energy lost = −∫ P dt.
+  EXPECT_NEAR(wet.energy_lost, -wet.drag_work, 0.02 * wet.energy_lost);
+}
+
+// The same balance in the quaternion-FD formulation (Radau IIA at tolerance 1e-8, 20 segments):
+// the drag's power Σ f_n · ẋ_n over the vertices, 1 ms frames (T/80: the trapezoid's O(Δt²) error
+// is ~1e-4 of the work), and the integrator's own dissipation, measured dry, below 0.1 of it.
+SwingInWater QuatFdSwing(const Fluid& fluid, int cycles) {
+  const SteelRod rod{0.5, 0.004};
+  quatfd::QuatFdOptions grid;
+  grid.segments = 20;
+  quatfd::QuatFdModel model(rod.model(), lie::SE3{}, grid);
+  StaticLoads loads;
+  loads.fluid = fluid;
+  StaticLoads pulled = loads;
+  pulled.tip_force = Vec3(3.0, 0, 0);
+  Eigen::VectorXd q(model.size()), v(model.size());
+  model.RestState(q, v);
+  EXPECT_TRUE(quatfd::SolveStatics(&model, pulled, q).converged());
+  model.set_loads(loads);
+  quatfd::IntegratorOptions io;
+  io.rel_tol = io.abs_tol = 1e-8;
+  quatfd::RadauIntegrator radau(model, io);
+  auto drag_power = [&]() {
+    double p = 0;
+    for (int n = 0; n <= grid.segments; ++n) {
+      const Vec3 x = q.segment<3>(quatfd::QuatFdLayout::X(n));
+      const Vec3 xd = v.segment<3>(quatfd::QuatFdLayout::X(n));
+      const SectionMotion m{x, model.VertexDirection(q, n), xd};
+      p += TotalMotionForce_W(loads, model.VertexSite(n), m, nullptr).dot(xd);
+    }
+    return p;
+  };
+  SwingInWater out;
+  const double e0 = model.Energy(q, v).total(), frame = 1e-3;
+  const int frames = static_cast<int>(std::round(cycles / (FirstBendingHz(rod) * frame)));
+  double t = 0, p_prev = drag_power();
+  for (int i = 1; i <= frames; ++i) {
+    EXPECT_EQ(radau.Advance(i * frame, &t, q, v), quatfd::IntegratorStatus::kOk);
+    const double p = drag_power();
+    out.drag_work += 0.5 * (p + p_prev) * frame;
+    p_prev = p;
+  }
+  out.energy_lost = e0 - model.Energy(q, v).total();
+  return out;
+}
+
+TEST(FluidDrag, AQuaternionFdSwingInStillWaterLosesTheEnergyTheDragDissipates) {
+  const SwingInWater dry = QuatFdSwing(Fluid{}, 2);
+  const SwingInWater wet = QuatFdSwing(Water(Vec3::Zero(), 2.0), 2);
+  ASSERT_GT(wet.energy_lost, 0.0);
+  EXPECT_LT(std::abs(dry.energy_lost), 0.1 * wet.energy_lost);
+  std::printf("quatfd swing: energy lost %.6e J, drag work %.6e J, dry loss %.3e J\n",
+              wet.energy_lost, wet.drag_work, dry.energy_lost);
   EXPECT_NEAR(wet.energy_lost, -wet.drag_work, 0.02 * wet.energy_lost);
 }
 

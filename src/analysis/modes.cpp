@@ -127,9 +127,22 @@ double SignedSqrt(double w2) { return w2 >= 0 ? std::sqrt(w2) : -std::sqrt(-w2);
 
 /// The tangent-space reduction of the quatfd unknowns: columns of T (full ← reduced) and rows
 /// of P = T⁺ (reduced ← full), the reduced mass, and for the shapes which reduced index is what.
+/// The mass block of a vertex with a fluid's added mass: M = m I + m_a (I − t tᵀ), whose
+/// eigenvalues are m (along t) and m + m_a (normal to it).
+struct VertexMassBlock {
+  int column;           // first reduced index of the vertex
+  double mass, added;   // m, m_a, kg
+  Vec3 t;               // the chord direction at the vertex (world, unit)
+  Mat3 Power(double e) const {  // M^e
+    const Mat3 tt = t * t.transpose();
+    return std::pow(mass + added, e) * (Mat3::Identity() - tt) + std::pow(mass, e) * tt;
+  }
+};
+
 struct Reduction {
   Eigen::SparseMatrix<double> T, P;
-  Eigen::VectorXd mass;
+  Eigen::VectorXd mass;  // the diagonal of the reduced mass (kg, kg·m²)
+  std::vector<VertexMassBlock> mass_blocks;  // replace the diagonal at these vertices
   std::vector<int> vertex_column;   // first reduced index of x_n, −1 when prescribed
   std::vector<int> segment_column;  // first reduced index of θ_ν
 };
@@ -149,6 +162,8 @@ Reduction Reduce(const quatfd::QuatFdModel& model, const Eigen::VectorXd& q) {
         p.emplace_back(m + k, L::X(n) + k, 1.0);
         mass.push_back(model.vertex_mass()[n]);
       }
+      if (const double ma = model.vertex_added_mass(n); ma > 0)
+        red.mass_blocks.push_back({m, model.vertex_mass()[n], ma, model.VertexDirection(q, n)});
       m += 3;
     }
     if (n == N) break;
@@ -247,26 +262,48 @@ bool IsSymmetric(const Eigen::MatrixXd& S) {
   return true;
 }
 
+/// M^e X for the reduced mass M (e = 1 or ±½), `diagonal` = the diagonal's M^e: a row scaling
+/// but for the vertex blocks of an added mass.
+Eigen::MatrixXd MassTimes(const Reduction& red, const Eigen::VectorXd& diagonal, double e,
+                          const Eigen::MatrixXd& X) {
+  Eigen::MatrixXd Y = diagonal.asDiagonal() * X;
+  for (const VertexMassBlock& b : red.mass_blocks)
+    Y.middleRows<3>(b.column) = b.Power(e) * X.middleRows<3>(b.column);
+  return Y;
+}
+
+/// X M^e likewise (M is symmetric).
+Eigen::MatrixXd TimesMass(const Reduction& red, const Eigen::VectorXd& diagonal, double e,
+                          const Eigen::MatrixXd& X) {
+  Eigen::MatrixXd Y = X * diagonal.asDiagonal();
+  for (const VertexMassBlock& b : red.mass_blocks)
+    Y.middleCols<3>(b.column) = X.middleCols<3>(b.column) * b.Power(e);
+  return Y;
+}
+
 /// ω² with the reduced shape (empty without shapes), ascending.
 using Spectrum = std::vector<std::pair<double, Eigen::VectorXd>>;
 
-/// The symmetric problem K φ = ω² M φ with diagonal M, as that of M^−½ K M^−½. When damped, also
+/// The symmetric problem K φ = ω² M φ with the reduced mass M (diagonal, or with 3×3 vertex blocks
+/// of an added mass), as that of M^−½ K M^−½. When damped, also
 /// the first-order form of λ² M + λ C + K = 0 in the undamped modal coordinates (Ψ orthonormal,
 /// Ω² = eigenvalues) with z = [Ω η; η̇]: ż = [[0, Ω], [−Ω, −Ψᵀ M^−½ C M^−½ Ψ]] z. Its norm is
 /// ω_max and it is nearly normal, so the damping ratios of the low modes keep their digits (the
 /// plain companion matrix of M⁻¹K, of norm ω_max², loses them). Br = ∂f/∂v reduced (C = −M Br).
-Spectrum SymmetricSpectrum(const Eigen::MatrixXd& S, const Eigen::VectorXd& mass,
+Spectrum SymmetricSpectrum(const Eigen::MatrixXd& S, const Reduction& red,
                            const Eigen::MatrixXd& Br, bool shapes, bool damped,
                            Eigen::MatrixXd* companion) {
-  const int m = static_cast<int>(mass.size());
-  const Eigen::VectorXd inv_sqrt_m = mass.cwiseSqrt().cwiseInverse();
+  const int m = static_cast<int>(red.mass.size());
+  const Eigen::VectorXd inv_sqrt_m = red.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd Ssym = 0.5 * (S + S.transpose());
-  const Eigen::MatrixXd H = inv_sqrt_m.asDiagonal() * Ssym * inv_sqrt_m.asDiagonal();
+  const Eigen::MatrixXd H =
+      TimesMass(red, inv_sqrt_m, -0.5, MassTimes(red, inv_sqrt_m, -0.5, Ssym));
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(
       H, shapes || damped ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
   if (damped) {
-    const Eigen::VectorXd sqrt_m = mass.cwiseSqrt();
-    const Eigen::MatrixXd Cm = -(sqrt_m.asDiagonal() * Br * inv_sqrt_m.asDiagonal());
+    const Eigen::VectorXd sqrt_m = red.mass.cwiseSqrt();
+    const Eigen::MatrixXd Cm =
+        -TimesMass(red, inv_sqrt_m, -0.5, MassTimes(red, sqrt_m, 0.5, Br));
     const Eigen::MatrixXd& Psi = es.eigenvectors();
     const Eigen::VectorXd Om = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
     *companion = Eigen::MatrixXd::Zero(2 * m, 2 * m);
@@ -277,7 +314,8 @@ Spectrum SymmetricSpectrum(const Eigen::MatrixXd& S, const Eigen::VectorXd& mass
   Spectrum eig;
   for (int i = 0; i < m; ++i)
     eig.emplace_back(es.eigenvalues()(i),
-                     shapes ? Eigen::VectorXd(inv_sqrt_m.asDiagonal() * es.eigenvectors().col(i))
+                     shapes ? Eigen::VectorXd(MassTimes(red, inv_sqrt_m, -0.5,
+                                                        es.eigenvectors().col(i)))
                             : Eigen::VectorXd());
   return eig;
 }
@@ -359,14 +397,15 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   const Eigen::MatrixXd Ar = red.P * (A.ToDense() * red.T);
   const Eigen::MatrixXd Br = red.P * (B.ToDense() * red.T);
 
-  // Stiffness S = −M Ar; ω² and reduced eigenvectors, ascending.
-  const Eigen::MatrixXd S = -(red.mass.asDiagonal() * Ar);
+  // Stiffness S = −M Ar (at an equilibrium, where the forces vanish, the turning of an added
+  // mass's block adds nothing to Ar); ω² and reduced eigenvectors, ascending.
+  const Eigen::MatrixXd S = -MassTimes(red, red.mass, 1.0, Ar);
   result.symmetric = IsSymmetric(S);
   bool complex_pair = false;
   const bool damped = options.damped && Br.cwiseAbs().maxCoeff() > 0;
   Eigen::MatrixXd companion;  // first-order form of λ² M + λ C + K = 0 when damped
   const Spectrum eig = result.symmetric
-                           ? SymmetricSpectrum(S, red.mass, Br, options.shapes, damped, &companion)
+                           ? SymmetricSpectrum(S, red, Br, options.shapes, damped, &companion)
                            : GeneralSpectrum(Ar, options.shapes, &complex_pair);
   const double w2_max = eig.empty() ? 0.0 : std::abs(eig.back().first);
   bool unstable = complex_pair;

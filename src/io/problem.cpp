@@ -299,12 +299,6 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
     p->dynamics.initial_loads->fluid = p->loads.fluid;
     p->dynamics.initial_loads->contact = p->loads.contact;
   }
-  const Fluid& fluid = p->loads.fluid;
-  if (p->formulation == Formulation::kQuaternionFd && fluid.has_added_mass())
-    top.report().Expected("environment.fluid.added_mass",
-                          "0 with the quaternion-FD formulation (its added mass is not "
-                          "implemented yet: use the formulation se3-shooting)",
-                          FormatNumber(fluid.added_mass));
 }
 
 /// The unloaded rod must not start with its centreline past a contact surface (a penetration

@@ -246,6 +246,26 @@ void QuatFdModel::set_loads(const StaticLoads& loads) {
   const int N = layout_.segments;
   vertex_force_W_.resize(N + 1);
   for (int n = 0; n <= N; ++n) vertex_force_W_[n] = TotalDistributedForce_W(loads, VertexSite(n));
+  added_mass_.clear();
+  if (loads.fluid.has_added_mass()) {
+    added_mass_.resize(N + 1);
+    for (int n = 0; n <= N; ++n) added_mass_[n] = TotalNormalAddedMass(loads, VertexSite(n));
+  }
+}
+
+QuatFdModel::Chord QuatFdModel::VertexChord(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                            int n) const {
+  Chord c;
+  c.a = std::max(n - 1, 0);
+  c.b = std::min(n + 1, layout_.segments);
+  const Vec3 d = q.segment<3>(L::X(c.b)) - q.segment<3>(L::X(c.a));
+  c.length = d.norm();
+  c.t = d / c.length;
+  return c;
+}
+
+Vec3 QuatFdModel::VertexDirection(const Eigen::Ref<const Eigen::VectorXd>& q, int n) const {
+  return VertexChord(q, n).t;
 }
 
 template <typename T>
@@ -337,12 +357,11 @@ void QuatFdModel::AddMotionLoads(const Eigen::Ref<const Eigen::VectorXd>& q,
   const int N = layout_.segments;
   MotionJacobian J;
   for (int n = 0; n <= N; ++n) {
-    // The centreline direction at vertex n: the chord between its neighbours (one-sided at the
-    // ends), t = d / |d|, so ∂t/∂x_b = (I − t tᵀ) / |d| = −∂t/∂x_a.
-    const int a_n = std::max(n - 1, 0), b_n = std::min(n + 1, N);
-    const Vec3 d = q.segment<3>(L::X(b_n)) - q.segment<3>(L::X(a_n));
-    const double length = d.norm();
-    const Vec3 t = d / length;
+    // The centreline direction at vertex n: the chord between its neighbours.
+    const Chord chord = VertexChord(q, n);
+    const int a_n = chord.a, b_n = chord.b;
+    const double length = chord.length;
+    const Vec3& t = chord.t;
     const SectionMotion motion{q.segment<3>(L::X(n)), t, v.segment<3>(L::X(n))};
     const int r = L::X(n);
     a.segment<3>(r) += TotalMotionForce_W(loads_, VertexSite(n), motion, dfdq ? &J : nullptr);
@@ -359,10 +378,15 @@ void QuatFdModel::AddMotionLoads(const Eigen::Ref<const Eigen::VectorXd>& q,
   }
 }
 
-void QuatFdModel::DivideVertexRowsByMass(Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
+void QuatFdModel::DivideVertexRowsByMass(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                         Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
                                          BandedMatrix* dfdv) const {
   for (int n = 0; n <= layout_.segments; ++n) {
     const int r = L::X(n);
+    if (!fixed_[r] && vertex_added_mass(n) > 0) {
+      DivideVertexRowsByMassMatrix(q, n, a, dfdq, dfdv);
+      continue;
+    }
     const double inv_m = fixed_[r] ? 0.0 : 1.0 / mass_[n];
     a.segment<3>(r) *= inv_m;
     if (!dfdq) continue;
@@ -374,6 +398,38 @@ void QuatFdModel::DivideVertexRowsByMass(Eigen::Ref<Eigen::VectorXd> a, BandedMa
       }
     }
   }
+}
+
+void QuatFdModel::DivideVertexRowsByMassMatrix(const Eigen::Ref<const Eigen::VectorXd>& q, int n,
+                                               Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
+                                               BandedMatrix* dfdv) const {
+  // M = m I + m_a (I − t tᵀ) has M⁻¹ = α I + β t tᵀ with α = 1/(m + m_a), β = 1/m − α.
+  const int r = L::X(n);
+  const Chord chord = VertexChord(q, n);
+  const Vec3& t = chord.t;
+  const double alpha = 1.0 / (mass_[n] + added_mass_[n]), beta = 1.0 / mass_[n] - alpha;
+  const Mat3 inv_M = alpha * Mat3::Identity() + beta * t * t.transpose();
+  const Vec3 Q = a.segment<3>(r);
+  a.segment<3>(r) = inv_M * Q;
+  if (!dfdq) return;
+  // The rows of vertex n reach from x_{n−1} to x_{n+1} (columns r − 7 … r + 9); columns r − 8 …
+  // r + 10 lie in the band of all three rows. Their derivatives turn with M⁻¹ as the forces do.
+  const int c0 = std::max(0, r - 8), c1 = std::min(size() - 1, r + 10);
+  for (BandedMatrix* J : {dfdq, dfdv}) {
+    for (int c = c0; c <= c1; ++c) {
+      const Vec3 column((*J)(r, c), (*J)(r + 1, c), (*J)(r + 2, c));
+      const Vec3 turned = inv_M * column;
+      for (int i = 0; i < 3; ++i) (*J)(r + i, c) = turned(i);
+    }
+  }
+  // ∂(M⁻¹ Q)/∂t = β (t Qᵀ + (tᵀQ) I), and ∂t/∂x_b = (I − t tᵀ)/|d| = −∂t/∂x_a.
+  const Mat3 dx_b = beta * (t * Q.transpose() + t.dot(Q) * Mat3::Identity()) *
+                    (Mat3::Identity() - t * t.transpose()) / chord.length;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      (*dfdq)(r + i, L::X(chord.b) + j) += dx_b(i, j);
+      (*dfdq)(r + i, L::X(chord.a) + j) -= dx_b(i, j);
+    }
 }
 
 void QuatFdModel::EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
@@ -431,7 +487,7 @@ void QuatFdModel::EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
     ZeroFixedRows(a);
     return;
   }
-  DivideVertexRowsByMass(a, nullptr, nullptr);
+  DivideVertexRowsByMass(q, a, nullptr, nullptr);
   accelerate(N - 1, p_prev, pd_prev, f_prev);
 }
 

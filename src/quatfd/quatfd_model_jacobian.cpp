@@ -287,8 +287,8 @@ void QuatFdModel::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     ZeroFixedRows(a);
     return;
   }
-  // Part 2: accelerations. Vertices: ẍ = Q / m (prescribed: 0). Segments: p̈ from the torque.
-  DivideVertexRowsByMass(a, dfdq, dfdv);
+  // Part 2: accelerations. Vertices: ẍ = M⁻¹ Q (prescribed: 0). Segments: p̈ from the torque.
+  DivideVertexRowsByMass(q, a, dfdq, dfdv);
   AccelerateSegments<kMode>(q, v, alpha, beta, a, dfdq, dfdv);
 }
 

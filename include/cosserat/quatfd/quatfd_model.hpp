@@ -175,6 +175,13 @@ class QuatFdModel {
   /// Total mass (kg), and the lumped vertex masses.
   double Mass() const;
   const std::vector<double>& vertex_mass() const { return mass_; }
+  /// The fluid's added mass on vertex n (kg, on the motion normal to the centreline direction
+  /// there; zero without a fluid's added mass). Vertex n's mass matrix is
+  /// m_n I + m_a,n (I − t tᵀ), t the direction of the chord between its neighbours.
+  double vertex_added_mass(int n) const { return added_mass_.empty() ? 0.0 : added_mass_[n]; }
+  /// The centreline direction at vertex n (world, unit): the chord between its neighbours,
+  /// one-sided at the ends. The direction of the fluid loads and the added mass there.
+  Vec3 VertexDirection(const Eigen::Ref<const Eigen::VectorXd>& q, int n) const;
 
   /// Smallest principal rotational inertia of a segment, ρ I Δs (kg·m²).
   double min_rotational_inertia() const;
@@ -241,9 +248,24 @@ class QuatFdModel {
                       const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Ref<Eigen::VectorXd> a,
                       BandedMatrix* dfdq, BandedMatrix* dfdv) const;
   /// Vertex forces to accelerations, ẍ = Q/m (prescribed vertices: 0); with dfdq, dfdv (or
-  /// nullptr) their rows likewise.
-  void DivideVertexRowsByMass(Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
+  /// nullptr) their rows likewise. With a fluid's added mass, ẍ = M⁻¹ Q for the vertex mass
+  /// matrix M = m I + m_a (I − t tᵀ), whose turning with t (a function of the neighbouring
+  /// vertices) adds ∂(M⁻¹)/∂x Q to dfdq.
+  void DivideVertexRowsByMass(const Eigen::Ref<const Eigen::VectorXd>& q,
+                              Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
                               BandedMatrix* dfdv) const;
+  /// The chord between vertex n's neighbours (one-sided at the ends): its vertices a, b, its
+  /// length |x_b − x_a| (m) and direction t (world, unit); ∂t/∂x_b = (I − t tᵀ)/|d| = −∂t/∂x_a.
+  struct Chord {
+    int a, b;
+    double length;
+    Vec3 t;
+  };
+  Chord VertexChord(const Eigen::Ref<const Eigen::VectorXd>& q, int n) const;
+  /// The same for one vertex n with an added mass, at row r = X(n).
+  void DivideVertexRowsByMassMatrix(const Eigen::Ref<const Eigen::VectorXd>& q, int n,
+                                    Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
+                                    BandedMatrix* dfdv) const;
 
   /// Quaternion of the frame at s = L from p_{N−1/2} (free end).
   template <typename T>
@@ -270,6 +292,7 @@ class QuatFdModel {
   std::vector<Vec3> vertex_force_W_;     ///< distributed loads lumped on each vertex, world, N
   std::vector<double> s_;                ///< vertices s_n, m
   std::vector<double> mass_;             ///< lumped vertex masses m_n, kg
+  std::vector<double> added_mass_;       ///< the fluid's added mass per vertex, kg (empty: none)
   std::vector<double> vertex_weight_;    ///< dual lengths w_n, m
   std::vector<double> vertex_diameter_;  ///< outer diameter of the dual piece, m (fluid loads)
 
