@@ -1,18 +1,21 @@
 // Penalty contact with rigid surfaces against linear beam theory: a rod lying down on a floor
 // (touchdown length and clamp reactions as the foundation stiffens), a cantilever pushed
 // sideways by a sphere (the point-load relation), a rod on an inclined plane with Coulomb
-// friction (sliding and creeping); the Jacobian against central differences.
+// friction (sliding and creeping), each in both formulations; the Jacobian against central
+// differences.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
 
 #include "cosserat/loads/contact.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/quatfd/quatfd_statics.hpp"
 #include "cosserat/quatfd/radau.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "support/rods.hpp"
 
@@ -95,27 +98,68 @@ TEST(PenaltyContact, JacobianMatchesCentralDifferences) {
 // A heavy rod clamped horizontally with its underside h above a floor lies down beyond a
 // touchdown length. Linear beam theory on a rigid floor (h ≪ a): a = (72 EI h / q)^(1/4), the
 // clamp's vertical reaction 2qa/3 and moment qa²/6. A Winkler floor of stiffness k spreads the
-// rigid floor's point reaction at touchdown over its foundation length ℓ = (4EI/k)^(1/4), so the
-// touchdown length and the clamp's force approach the limit like ℓ/a (first order), while the
-// moment about the clamp only to second order, (ℓ/a)². The quaternion-FD statics (a Newton solve on
-// the whole grid, which a stiff foundation does not ill-condition; 250 segments, 1 cm) at k = 1e4 …
-// 1e7 N/m²: the errors fall with k and stay below 1.5 ℓ/a (plus one grid spacing for the touchdown
-// point, read at the first vertex in contact).
-TEST(PenaltyContact, ARodLyingOnAFloorTendsToTheRigidFloorLimit) {
-  const SteelRod rod{2.5, 0.002};
-  const double q = rod.rhoA() * 9.81, h = 0.01;
+// rigid floor's point reaction at touchdown over its foundation length ℓ = (4EI/k)^(1/4): the
+// first point in contact moves towards the clamp by O(ℓ), so the touchdown error falls like ℓ/a
+// (asserted below 1.5 ℓ/a plus one grid spacing, and falling with k). The clamp's reactions only
+// feel where the spread load's resultant sits, which moves at second order: V and M within
+// (ℓ/a)² (measured 2.5e-3 at ℓ/a = 0.15, 1e-4 at 0.03 in both formulations), and V also within
+// 1.5 ℓ/a. k = 1e4 … 1e7 N/m² on a 1 cm grid in both formulations: quaternion-FD statics (a Newton
+// solve on the whole grid, which a stiff foundation does not ill-condition) and SE(3) multiple
+// shooting (single shooting cannot: βL = 14 … 79).
+// What a floor run gives: the clamp's vertical reaction V (N) and moment M (N·m), and the
+// touchdown point (m, the first grid point in contact).
+struct FloorRun {
+  double k, V, M, touchdown;
+};
+
+void ExpectTheRigidFloorLimit(const char* formulation, const SteelRod& rod, double h,
+                              double grid_spacing, const std::vector<FloorRun>& runs) {
+  const double q = rod.rhoA() * 9.81;
   const double a = std::pow(72 * rod.EI() * h / q, 0.25);
+  double last_error = 1e9;
+  for (const FloorRun& r : runs) {
+    const double e_a = r.touchdown / a - 1, e_V = r.V / (2 * q * a / 3) - 1,
+                 e_M = r.M / (q * a * a / 6) - 1;
+    std::printf(
+        "%s k = %.0e (l/a = %.3f): touchdown %.4f m (a = %.4f, error %.3e), V/(2qa/3) - 1 = "
+        "%.3e, M/(qa^2/6) - 1 = %.3e\n",
+        formulation, r.k, std::pow(4 * rod.EI() / r.k, 0.25) / a, r.touchdown, a, e_a, e_V, e_M);
+    const double ell = std::pow(4 * rod.EI() / r.k, 0.25);
+    EXPECT_LT(std::abs(e_V), 1.5 * ell / a) << formulation << " k = " << r.k;
+    EXPECT_LT(std::abs(e_a), 1.5 * ell / a + grid_spacing / a) << formulation << " k = " << r.k;
+    EXPECT_LT(std::abs(e_V), (ell / a) * (ell / a)) << formulation << " k = " << r.k;
+    EXPECT_LT(std::abs(e_M), (ell / a) * (ell / a)) << formulation << " k = " << r.k;
+    EXPECT_LT(std::abs(e_a), last_error) << formulation << " k = " << r.k;  // the approach
+    last_error = std::abs(e_a);
+  }
+}
+
+const SteelRod kFloorRod{2.5, 0.002};
+constexpr double kFloorGap = 0.01;  // m, between the rod's underside and the floor at the clamp
+
+lie::SE3 FloorClamp() {
   lie::SE3 base;
   base.R << 0, 0, 1, 0, 1, 0, -1, 0, 0;  // tangent +x
-  base.p = Vec3(0, 0, h + rod.r);
+  base.p = Vec3(0, 0, kFloorGap + kFloorRod.r);
+  return base;
+}
+
+StaticLoads OnAFloor(double k) {
+  StaticLoads loads;
+  loads.gravity_W = Vec3(0, 0, -9.81);
+  loads.contact.count = 1;
+  loads.contact.surface[0] = Plane(Vec3::Zero(), Vec3::UnitZ(), k);
+  return loads;
+}
+
+TEST(PenaltyContact, ARodLyingOnAFloorTendsToTheRigidFloorLimit) {
+  const SteelRod& rod = kFloorRod;
+  const lie::SE3 base = FloorClamp();
   quatfd::QuatFdOptions options;
   options.segments = 250;
-  double last_error = 1e9;
+  std::vector<FloorRun> runs;
   for (double k : {1e4, 1e5, 1e6, 1e7}) {
-    StaticLoads loads;
-    loads.gravity_W = Vec3(0, 0, -9.81);
-    loads.contact.count = 1;
-    loads.contact.surface[0] = Plane(Vec3::Zero(), Vec3::UnitZ(), k);
+    const StaticLoads loads = OnAFloor(k);
     quatfd::QuatFdModel model(rod.model(), base, options);
     Eigen::VectorXd qv(model.size()), v(model.size());
     model.RestState(qv, v);
@@ -132,7 +176,6 @@ TEST(PenaltyContact, ARodLyingOnAFloorTendsToTheRigidFloorLimit) {
       force += f;
       moment += (x - base.p).cross(f);
     }
-    const double V = -force.z(), M = std::abs(moment.y());
     double touchdown = 0;
     for (int n = 0; n <= options.segments; ++n) {
       Vec3 nrm;
@@ -142,19 +185,35 @@ TEST(PenaltyContact, ARodLyingOnAFloorTendsToTheRigidFloorLimit) {
         break;
       }
     }
-    const double e_a = touchdown / a - 1, e_V = V / (2 * q * a / 3) - 1,
-                 e_M = M / (q * a * a / 6) - 1;
-    std::printf(
-        "k = %.0e: touchdown %.4f m (a = %.4f), V/(2qa/3) - 1 = %.3e, M/(qa^2/6) - 1 = "
-        "%.3e\n",
-        k, touchdown, a, e_a, e_V, e_M);
-    const double ell = std::pow(4 * rod.EI() / k, 0.25);
-    EXPECT_LT(std::abs(e_V), 1.5 * ell / a) << "k = " << k;
-    EXPECT_LT(std::abs(e_a), 1.5 * ell / a + 0.01 / a) << "k = " << k;
-    EXPECT_LT(std::abs(e_M), (ell / a) * (ell / a)) << "k = " << k;  // second order
-    EXPECT_LT(std::abs(e_V), last_error) << "k = " << k;             // the approach
-    last_error = std::abs(e_V);
+    runs.push_back({k, -force.z(), std::abs(moment.y()), touchdown});
   }
+  ExpectTheRigidFloorLimit("quatfd", rod, kFloorGap, rod.length / options.segments, runs);
+}
+
+// The same floor by SE(3) multiple shooting (251 nodes, pieces chosen from the foundation's
+// exponent): the clamp's reaction is the base wrench.
+TEST(PenaltyContact, ARodLyingOnAFloorTendsToTheRigidFloorLimitByMultipleShooting) {
+  const SteelRod& rod = kFloorRod;
+  const lie::SE3 base = FloorClamp();
+  const int nodes = 251;
+  std::vector<FloorRun> runs;
+  for (double k : {1e4, 1e5, 1e6, 1e7}) {
+    const StaticLoads loads = OnAFloor(k);
+    StaticMultipleShootingSolver solver(rod.model(), nodes);
+    ASSERT_TRUE(solver.Solve(base, loads).converged()) << "k = " << k;
+    const RodState& st = solver.state();
+    const Vec6 reaction = st.BaseReaction_W();
+    double touchdown = 0;
+    for (const Vec3& x : st.position_W) {
+      Vec3 nrm;
+      if (loads.contact.surface[0].Distance(x, &nrm) - rod.r < 0) {
+        touchdown = x.x();
+        break;
+      }
+    }
+    runs.push_back({k, reaction(5), std::abs(reaction(1)), touchdown});
+  }
+  ExpectTheRigidFloorLimit("SE(3)", rod, kFloorGap, rod.length / (nodes - 1), runs);
 }
 
 // A fixed sphere pushes a vertical cantilever sideways at a = 0.3 m from the clamp (its surface

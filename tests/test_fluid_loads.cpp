@@ -142,6 +142,18 @@ TEST(Buoyancy, ARodAsDenseAsTheFluidStaysStraight) {
   // π d²/4): they cancel to a few ulp, and the droop of that residue is below 1e-12 L.
   EXPECT_LT(std::abs(tip.z()), 1e-12 * c.rod.length);
   EXPECT_NEAR(tip.x(), c.rod.length, 1e-12);
+
+  // The quaternion-FD model lumps the weight (ρ A Δs/2) and the buoyancy (ρ_f of the displaced
+  // volume π d²/4 Δs/2) on each vertex alike: they cancel to round-off there too.
+  quatfd::QuatFdOptions options;
+  options.segments = 40;
+  quatfd::QuatFdModel m(c.rod.model(), c.base, options);
+  Eigen::VectorXd q(m.size()), v(m.size());
+  m.RestState(q, v);
+  ASSERT_TRUE(quatfd::SolveStatics(&m, loads, q).converged());
+  const Vec3 tip_fd = q.segment<3>(quatfd::QuatFdLayout::X(options.segments));
+  std::printf("as dense as water: SE(3) tip z %.2e m, quatfd tip z %.2e m\n", tip.z(), tip_fd.z());
+  EXPECT_LT(std::abs(tip_fd.z()), 1e-12 * c.rod.length);
 }
 
 TEST(Buoyancy, ADenseRodDroopsAsADryRodOfTheDensityDifference) {
