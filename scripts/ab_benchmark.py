@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A/B timing of two builds of cosserat, interleaved in the same minutes: the peer release as a
 whole `cosserat solve` process (RK4 and Heun in s), the warm static re-solve and the Lang & Linn
-rubber rod with Radau IIA. Prints each case's median time for A and B and the ratio B/A.
+rubber rod with Radau IIA and the 1 000-point workspace sweep. Prints each case's median time for A and B and the ratio B/A.
 
     scripts/ab_benchmark.py BUILD_A BUILD_B [--rounds 5]
 
@@ -40,6 +40,8 @@ CASES = [
     ("warm static re-solve, 41 nodes", lambda b: bench_seconds(b, "bench_static", "BM_StaticResolveWarm1Percent/41")),
     ("warm static re-solve, 101 nodes", lambda b: bench_seconds(b, "bench_static", "BM_StaticResolveWarm1Percent/101")),
     ("rubber rod, Radau, 10 segments", lambda b: bench_seconds(b, "bench_quatfd", "BM_RubberRod_Radau/10/iterations:1")),
+    ("1 000-point sweep, 1 thread", lambda b: bench_seconds(b, "bench_sweep", "BM_TendonWorkspace1000/1/iterations:1/real_time")),
+    ("1 000-point sweep, 2 threads", lambda b: bench_seconds(b, "bench_sweep", "BM_TendonWorkspace1000/2/iterations:1/real_time")),
 ]
 
 

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "cosserat/analysis/frequency_shooting.hpp"
+#include "quatfd_reduction.hpp"
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/lie/quaternion.hpp"
 
@@ -76,6 +77,10 @@ std::vector<double> ModalResult::frequencies_hz() const {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using detail::MassTimes;
+using detail::Reduce;
+using detail::Reduction;
+using detail::TimesMass;
 constexpr double kTwoPi = 6.283185307179586;
 
 /// Fills the kinetic-energy shares and the kind of a mode from its node shape, the tangent t_n
@@ -124,76 +129,6 @@ void Classify(const std::vector<Vec3>& tangent_W, const std::vector<double>& mas
 double SignedSqrt(double w2) { return w2 >= 0 ? std::sqrt(w2) : -std::sqrt(-w2); }
 
 // ---- quaternion FD -------------------------------------------------------------------------
-
-/// The tangent-space reduction of the quatfd unknowns: columns of T (full ← reduced) and rows
-/// of P = T⁺ (reduced ← full), the reduced mass, and for the shapes which reduced index is what.
-/// The mass block of a vertex with a fluid's added mass: M = m I + m_a (I − t tᵀ), whose
-/// eigenvalues are m (along t) and m + m_a (normal to it).
-struct VertexMassBlock {
-  int column;           // first reduced index of the vertex
-  double mass, added;   // m, m_a, kg
-  Vec3 t;               // the chord direction at the vertex (world, unit)
-  Mat3 Power(double e) const {  // M^e
-    const Mat3 tt = t * t.transpose();
-    return std::pow(mass + added, e) * (Mat3::Identity() - tt) + std::pow(mass, e) * tt;
-  }
-};
-
-struct Reduction {
-  Eigen::SparseMatrix<double> T, P;
-  Eigen::VectorXd mass;  // the diagonal of the reduced mass (kg, kg·m²)
-  std::vector<VertexMassBlock> mass_blocks;  // replace the diagonal at these vertices
-  std::vector<int> vertex_column;   // first reduced index of x_n, −1 when prescribed
-  std::vector<int> segment_column;  // first reduced index of θ_ν
-};
-
-Reduction Reduce(const quatfd::QuatFdModel& model, const Eigen::VectorXd& q) {
-  using L = quatfd::QuatFdLayout;
-  const int N = model.layout().segments, n_full = model.size();
-  Reduction red;
-  std::vector<Eigen::Triplet<double>> t, p;
-  std::vector<double> mass;
-  int m = 0;
-  for (int n = 0; n <= N; ++n) {
-    red.vertex_column.push_back(model.IsFixed(L::X(n)) ? -1 : m);
-    if (!model.IsFixed(L::X(n))) {
-      for (int k = 0; k < 3; ++k) {
-        t.emplace_back(L::X(n) + k, m + k, 1.0);
-        p.emplace_back(m + k, L::X(n) + k, 1.0);
-        mass.push_back(model.vertex_mass()[n]);
-      }
-      if (const double ma = model.vertex_added_mass(n); ma > 0)
-        red.mass_blocks.push_back({m, model.vertex_mass()[n], ma, model.VertexDirection(q, n)});
-      m += 3;
-    }
-    if (n == N) break;
-    red.segment_column.push_back(m);
-    const Vec4 pq = q.segment<4>(L::P(n));
-    const Vec4 pbar = lie::QuatConjugate(pq);
-    for (int k = 0; k < 3; ++k) {
-      // δp = ½ p ⊗ [0; e_k]  (a body-frame rotation by θ_k: R(p + δp) = R(p) Exp(θ))
-      Vec4 e = Vec4::Zero();
-      e(k + 1) = 1.0;
-      const Vec4 col = 0.5 * lie::QuatMultiply(pq, e);
-      for (int j = 0; j < 4; ++j) t.emplace_back(L::P(n) + j, m + k, col(j));
-      // θ = 2 Im(p̄ ⊗ δp) / |p|² (|p| = 1 after the projection)
-      Vec4 ej = Vec4::Zero();
-      for (int j = 0; j < 4; ++j) {
-        ej.setZero();
-        ej(j) = 1.0;
-        p.emplace_back(m + k, L::P(n) + j, 2.0 * lie::QuatMultiply(pbar, ej)(k + 1));
-      }
-      mass.push_back(model.segment_inertia(n)(k));
-    }
-    m += 3;
-  }
-  red.T.resize(n_full, m);
-  red.T.setFromTriplets(t.begin(), t.end());
-  red.P.resize(m, n_full);
-  red.P.setFromTriplets(p.begin(), p.end());
-  red.mass = Eigen::Map<const Eigen::VectorXd>(mass.data(), m);
-  return red;
-}
 
 /// Node shape of a reduced vector y: vertex displacements, and vertex rotations (world) from
 /// the neighbouring segments (the mean inside, the clamp's zero at a clamped base, the last
@@ -260,25 +195,6 @@ bool IsSymmetric(const Eigen::MatrixXd& S) {
           1e-8 * std::max(std::abs(S(i, j)), std::abs(S(j, i))) + 1e-13 * s_max)
         return false;
   return true;
-}
-
-/// M^e X for the reduced mass M (e = 1 or ±½), `diagonal` = the diagonal's M^e: a row scaling
-/// but for the vertex blocks of an added mass.
-Eigen::MatrixXd MassTimes(const Reduction& red, const Eigen::VectorXd& diagonal, double e,
-                          const Eigen::MatrixXd& X) {
-  Eigen::MatrixXd Y = diagonal.asDiagonal() * X;
-  for (const VertexMassBlock& b : red.mass_blocks)
-    Y.middleRows<3>(b.column) = b.Power(e) * X.middleRows<3>(b.column);
-  return Y;
-}
-
-/// X M^e likewise (M is symmetric).
-Eigen::MatrixXd TimesMass(const Reduction& red, const Eigen::VectorXd& diagonal, double e,
-                          const Eigen::MatrixXd& X) {
-  Eigen::MatrixXd Y = X * diagonal.asDiagonal();
-  for (const VertexMassBlock& b : red.mass_blocks)
-    Y.middleCols<3>(b.column) = X.middleCols<3>(b.column) * b.Power(e);
-  return Y;
 }
 
 /// ω² with the reduced shape (empty without shapes), ascending.

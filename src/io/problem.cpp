@@ -59,6 +59,42 @@ void ParseBase(const ObjectReader& base, lie::SE3* pose) {
   pose->R = ReadRotation(base, "rotation").value_or(Mat3::Identity());
 }
 
+/// "anchor": {"position": [x, y, z], "base": "pinned" | "clamped", "tip": "pinned"}.
+void ParseAnchor(const ObjectReader& o, Problem::Anchor* anchor) {
+  o.AllowOnly({"position", "base", "tip"});
+  anchor->position = ReadVec3(o, "position", Presence::kRequired).value_or(Vec3::Zero());
+  anchor->base_clamped =
+      ReadChoice(o, "base", {"pinned", "clamped"}, Presence::kOptional) == std::string("clamped");
+  if (const auto tip = ReadChoice(o, "tip", {"pinned", "clamped"}, Presence::kOptional);
+      tip == std::string("clamped"))
+    o.report().Expected(o.PathOf("tip"), "\"pinned\" (a clamped tip is not implemented yet)",
+                        "\"clamped\"");
+}
+
+/// The anchors must be apart, and no farther than the rod can reach by a stretch the linear law
+/// describes (50 %).
+void CheckAnchor(const ObjectReader& top, const Problem& p) {
+  const bool anchored = p.boundary == Boundary::kAnchored;
+  if (anchored != (top.Find("anchor") != nullptr)) {
+    if (anchored)
+      top.report().Missing("anchor", "the tip's anchor for \"boundary\": \"anchored\"");
+    else
+      top.report().Add("anchor", "is read only with \"boundary\": \"anchored\" (got \"" +
+                                     ToString(p.boundary) + "\")");
+    return;
+  }
+  if (!anchored) return;
+  const double distance = (p.anchor.position - p.base.p).norm(), L = p.rod.length;
+  if (distance > 1.5 * L)
+    top.report().Expected("anchor.position",
+                          "at most 1.5 × rod.length (" + FormatNumber(1.5 * L) +
+                              " m) from base.position: the rod cannot reach farther",
+                          FormatNumber(distance) + " m away");
+  else if (distance < 1e-6 * L)
+    top.report().Expected("anchor.position", "a point apart from base.position",
+                          FormatNumber(distance) + " m away");
+}
+
 LoadFrame ReadFrame(const ObjectReader& o, const std::string& key) {
   const auto frame = ReadChoice(o, key, {"world", "body"}, Presence::kOptional);
   return frame == std::optional<std::string>("body") ? LoadFrame::kBody : LoadFrame::kWorld;
@@ -251,7 +287,8 @@ void CheckFormat(const ObjectReader& top) {
 
 void ParseTopLevel(const ObjectReader& top, Problem* p) {
   top.AllowOnly({"format", "description", "analysis", "formulation", "rod", "base", "boundary",
-                 "loads", "environment", "dynamics", "buckling", "modes", "solver", "robot"});
+                 "anchor", "loads", "environment", "dynamics", "buckling", "modes", "solver",
+                 "robot"});
   CheckFormat(top);
   ReadString(top, "description", Presence::kOptional);
   p->analysis = ReadEnum<Analysis>(top, "analysis", Presence::kOptional).value_or(p->analysis);
@@ -260,6 +297,9 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   if (const auto rod = ReadObject(top, "rod", Presence::kRequired)) ParseRod(*rod, p);
   if (const auto base = ReadObject(top, "base", Presence::kOptional)) ParseBase(*base, &p->base);
   p->boundary = ReadEnum<Boundary>(top, "boundary", Presence::kOptional).value_or(p->boundary);
+  if (const auto anchor = ReadObject(top, "anchor", Presence::kOptional))
+    ParseAnchor(*anchor, &p->anchor);
+  CheckAnchor(top, *p);
   if (const auto loads = ReadObject(top, "loads", Presence::kOptional))
     p->loads = ParseLoads(*loads);
   if (const auto env = ReadObject(top, "environment", Presence::kOptional))
@@ -399,7 +439,13 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
   std::vector<std::string> out;
   const bool quatfd = p.formulation == Formulation::kQuaternionFd;
   // Every analysis and formulation runs; the boundary depends on both.
-  if (quatfd)  // rod.nodes >= 3 (2 segments) is checked by the parser
+  if (p.boundary == B::kAnchored && (!quatfd || p.analysis == A::kBuckling))
+    out.push_back(
+        "boundary: \"anchored\" runs statics, dynamics and modes on the \"quaternion-fd\" "
+        "formulation in this version");
+  else if (quatfd && p.analysis != A::kBuckling)  // rod.nodes >= 3 is checked by the parser
+    CheckSupported("boundary", p.boundary, {B::kCantilever, B::kAnchored}, &out);
+  else if (quatfd)
     CheckSupported("boundary", p.boundary, {B::kCantilever}, &out);
   else if (p.analysis == A::kDynamics)
     CheckSupported("boundary", p.boundary, {B::kCantilever, B::kFreeFree}, &out);

@@ -22,8 +22,9 @@ const std::vector<std::string>& Names<Formulation>() {
 }
 template <>
 const std::vector<std::string>& Names<Boundary>() {
-  static const std::vector<std::string> names = {"cantilever", "free-free", "pinned-pinned",
-                                                 "clamped-clamped", "clamped-pinned"};
+  static const std::vector<std::string> names = {"cantilever",      "free-free",
+                                                 "pinned-pinned",   "clamped-clamped",
+                                                 "clamped-pinned",  "anchored"};
   return names;
 }
 template <>

@@ -121,6 +121,14 @@ kernels::BendConstants ClampBendElement(const RodModel& rod, const Actuation& ac
   return c;
 }
 
+/// The element's torsional part alone: bending free, twist held (a pin that holds the twist).
+kernels::BendConstants TwistOnly(kernels::BendConstants c) {
+  const Eigen::Vector3d twist(0, 0, 1);
+  c.stiffness = c.stiffness(2, 2) * twist * twist.transpose();
+  c.damping = c.damping(2, 2) * twist * twist.transpose();
+  return c;
+}
+
 }  // namespace
 
 bool QuatFdOptions::IsValid(std::string* why) const {
@@ -129,8 +137,10 @@ bool QuatFdOptions::IsValid(std::string* why) const {
     return false;
   };
   if (segments < 2) return fail("segments: the quaternion-fd model needs at least 2 segments");
-  if (tip_end != EndCondition::kFree)
-    return fail("tip_end: only a free end at s = L is implemented for quaternion-fd");
+  if (tip_end == EndCondition::kClamped)
+    return fail("tip_end: a clamped end at s = L is not implemented for quaternion-fd (free or "
+                "pinned)");
+  if (!tip_position_W.allFinite()) return fail("tip_position_W: expected finite coordinates");
   if (!(std::isfinite(baumgarte_alpha) && baumgarte_alpha >= 0))
     return fail("baumgarte_alpha: expected a finite number >= 0");
   if (!(std::isfinite(baumgarte_beta) && baumgarte_beta >= 0))
@@ -192,11 +202,16 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   if (options.base_end == EndCondition::kClamped) {
     bend_[0] = ClampBendElement(rod, actuation, s_, kind);
     bend_active_[0] = 1;
+  } else if (options.base_end == EndCondition::kPinned && options.base_twist_held) {
+    bend_[0] = TwistOnly(ClampBendElement(rod, actuation, s_, kind));
+    bend_active_[0] = 1;
   }
 
   fixed_.assign(size(), 0);
   if (options.base_end != EndCondition::kFree)
     for (int k = 0; k < 3; ++k) fixed_[L::X(0) + k] = 1;
+  if (options.tip_end == EndCondition::kPinned)
+    for (int k = 0; k < 3; ++k) fixed_[L::X(N) + k] = 1;
 
   {
     const SectionProperties e = PrincipalAxesSectionAt(rod, length() * (1 - 1e-9), actuation);
@@ -214,6 +229,10 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
 void QuatFdModel::RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const {
   const int N = layout_.segments;
   v.setZero();
+  if (options_.tip_end == EndCondition::kPinned) {
+    HeldShape(q);
+    return;
+  }
   // The relative rotation (rotation vector) whose discrete curvature over h is exactly k:
   // basic |K| = (2/h) sin(θ/2), variant 1 |K| = (4/h) tan(θ/4).
   const auto rotation_for = [&](const Vec3& k, double h) -> Vec3 {

@@ -13,7 +13,87 @@ namespace {
 
 using L = QuatFdLayout;
 
+/// The parabola P(ξ) = A + ξ c e + 4 d ξ(1 − ξ) n, ξ ∈ [0, 1], has the arc length
+/// (c / 2k) [F(k) − F(k (1 − 2ξ))] from its start, k = 4d/c, F(u) = (u sqrt(1 + u²) + asinh u)/2;
+/// in all (c/2) (sqrt(1 + k²) + asinh(k)/k).
+double ParabolaF(double u) { return 0.5 * (u * std::sqrt(1 + u * u) + std::asinh(u)); }
+double ParabolaArc(double c, double k, double xi) {
+  return k == 0.0 ? c * xi : c / (2 * k) * (ParabolaF(k) - ParabolaF(k * (1 - 2 * xi)));
+}
+
+/// Bisection of a monotone increasing g on [lo, hi] for g(x) = target, to round-off.
+template <typename G>
+double Invert(const G& g, double target, double lo, double hi) {
+  for (int it = 0; it < 200 && hi - lo > 1e-15 * std::max(1.0, std::abs(hi)); ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (g(mid) < target ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 }  // namespace
+
+void QuatFdModel::HeldShape(Eigen::Ref<Eigen::VectorXd> q) const {
+  const int N = layout_.segments;
+  const Vec3 A = base_.p, chord = options_.tip_position_W - base_.p;
+  const double c = chord.norm(), length = this->length();
+  const Vec3 e = c > 0 ? Vec3(chord / c) : Vec3(base_.R.col(2));
+  const double g = loads_.gravity_W.norm();
+  // Up (against gravity), and the horizontal u in the plane of the chord and gravity.
+  const Vec3 up = g > 0 ? Vec3(-loads_.gravity_W / g) : Vec3::Zero();
+  const Vec3 across = chord - chord.dot(up) * up;
+  const double l = across.norm(), h = chord.dot(up);
+  if (c < length && g > 0 && l > 1e-6 * c) {
+    // The inextensible catenary of the rod's length through both ends (Irvine 1981, ch. 1):
+    // y = a cosh((x − x0)/a) + C with S² − h² = (2a sinh(l/2a))², S = L.
+    const Vec3 u = across / l;
+    const double target = std::sqrt(length * length - h * h);
+    const auto span = [&](double a) { return 2 * a * std::sinh(l / (2 * a)); };  // falls with a
+    double lo = l / 1400.0, hi = l;
+    while (span(hi) > target) hi *= 2.0;
+    const double a = Invert([&](double x) { return -span(x); }, -target, lo, hi);
+    const double x0 = -a * (std::log(length + h) - std::log(a) - l / a - std::log1p(-std::exp(-l / a)));
+    const double sa = std::sinh(-x0 / a), ya = a * std::cosh(-x0 / a);
+    for (int v = 0; v <= N; ++v) {
+      const double x = x0 + a * std::asinh(s_[v] / a + sa);
+      q.segment<3>(L::X(v)) = A + x * u + (a * std::cosh((x - x0) / a) - ya) * up;
+    }
+    q.segment<3>(L::X(N)) = options_.tip_position_W;
+  } else {
+    // The chord, stretched uniformly (a taut rod); or, with no gravity across the chord to hang
+    // from, a parabola of the rod's length bowed along the base frame's x (or y).
+    Vec3 n = Vec3::Zero();
+    for (int k = 0; k < 2 && n.norm() <= 1e-9; ++k) n = base_.R.col(k) - base_.R.col(k).dot(e) * e;
+    n.normalize();
+    double k = 0.0;  // 4 sag / chord
+    if (c < length) {
+      const auto arc = [&](double kk) { return ParabolaArc(c, kk, 1.0); };
+      double hi = 1.0;
+      while (arc(hi) < length) hi *= 2.0;
+      k = Invert(arc, length, 0.0, hi);
+    }
+    const double total = ParabolaArc(c, k, 1.0);
+    for (int v = 0; v <= N; ++v) {
+      const double target = total * s_[v] / length;
+      const double xi =
+          v == 0   ? 0.0
+          : v == N ? 1.0
+                   : Invert([&](double x) { return ParabolaArc(c, k, x); }, target, 0.0, 1.0);
+      q.segment<3>(L::X(v)) = A + xi * c * e + k * c * xi * (1 - xi) * n;
+    }
+  }
+  // Each segment's frame: the base frame turned by the least rotation onto its chord.
+  const Vec3 e3 = base_.R.col(2);
+  Vec4 previous = base_quat_;
+  for (int i = 0; i < N; ++i) {
+    const Vec3 d = (q.segment<3>(L::X(i + 1)) - q.segment<3>(L::X(i))).normalized();
+    const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(e3, d);
+    Vec4 p = lie::QuatMultiply(Vec4(turn.w(), turn.x(), turn.y(), turn.z()), base_quat_);
+    if (p.dot(previous) < 0) p = -p;
+    q.segment<4>(L::P(i)) = p;
+    previous = p;
+  }
+}
 
 double QuatFdModel::Project(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const {
   double worst = 0.0;
@@ -40,6 +120,17 @@ double QuatFdModel::min_rotational_inertia() const {
   double j = rotation_[0].inertia.minCoeff();
   for (const kernels::RotationConstants& r : rotation_) j = std::min(j, r.inertia.minCoeff());
   return j;
+}
+
+double QuatFdModel::MaxSegmentForce(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  double f_max = 0.0;
+  for (int i = 0; i < layout_.segments; ++i) {
+    const kernels::SegmentConstants& c = segment_[i];
+    const Mat3 R = lie::QuatToRotation(q.segment<4>(L::P(i)).normalized());
+    const Vec3 gamma = R.transpose() * (q.segment<3>(L::X(i + 1)) - q.segment<3>(L::X(i))) / c.ds;
+    f_max = std::max(f_max, (c.stiffness * (gamma - c.rest)).norm());
+  }
+  return f_max;
 }
 
 double QuatFdModel::Mass() const {
@@ -108,7 +199,13 @@ void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
       Fw = lie::QuatToRotation(q.segment<4>(L::P(0)).normalized()) * force[0] + vertex_force_W_[0];
     } else if (n == N) {
       Fw = lie::QuatToRotation(q.segment<4>(L::P(N - 1)).normalized()) * force[N - 1];
+      // A held tip: the support's force, which balances the last segment's pull and the load
+      // lumped at x_N.
+      if (options_.tip_end == EndCondition::kPinned) Fw -= vertex_force_W_[N];
     }
+    // A pinned base that holds only the twist: its element's bending part has no stiffness, and
+    // the bend between the base frame and p_{1/2} it sees is no curvature of the rod.
+    if (n == 0 && options_.base_end == EndCondition::kPinned) K.head<2>().setZero();
     if (n == N) {  // the free end: K(L) = K* + C⁻¹ m, M(L) = the tip moment in the tip frame
       Vec3 f, m;
       TipLoads<double>(q.segment<4>(L::P(N - 1)), &f, &m);

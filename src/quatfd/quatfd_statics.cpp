@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 #include "cosserat/numerics/banded_matrix.hpp"
@@ -94,11 +95,17 @@ double StaticResidual(const QuatFdModel& model, const Eigen::Ref<const Eigen::Ve
   const int N = model.layout().segments, n = model.size();
   Eigen::VectorXd forces(n);
   model.Forces(q, Eigen::VectorXd::Zero(n), forces);
+  double force_scale = model.force_scale(), moment_scale = model.moment_scale();
+  if (model.options().tip_end == EndCondition::kPinned) {
+    const double f_max = model.MaxSegmentForce(q);
+    force_scale = std::max(force_scale, f_max);
+    moment_scale = std::max(moment_scale, f_max * model.length() / N);
+  }
   double r = 0.0;
   for (int v = 0; v <= N; ++v)
-    r = std::max(r, forces.segment<3>(L::X(v)).norm() / model.force_scale());
+    r = std::max(r, forces.segment<3>(L::X(v)).norm() / force_scale);
   for (int s = 0; s < N; ++s) {
-    r = std::max(r, forces.segment<3>(L::P(s) + 1).norm() / model.moment_scale());
+    r = std::max(r, forces.segment<3>(L::P(s) + 1).norm() / moment_scale);
     r = std::max(r, std::abs(q.segment<4>(L::P(s)).squaredNorm() - 1.0));
   }
   return r;
@@ -137,13 +144,28 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   // after a failure.
   Eigen::VectorXd q_ok(n), v(n);
   model->RestState(q_ok, v);
+  std::function<StaticLoads(double)> at = [&](double l) { return loads.Scaled(l); };
+  // A rod held at both ends starts from a shape hanging in gravity, which is no equilibrium of
+  // smaller loads when the rod is slack: there the equilibrium under gravity (and buoyancy) alone
+  // comes first, and the continuation adds the other loads to it.
+  StaticLoads hanging = loads.Scaled(0.0);
+  hanging.gravity_W = loads.gravity_W;
+  if (model->options().tip_end == EndCondition::kPinned && hanging != loads &&
+      !loads.gravity_W.isZero()) {
+    model->set_loads(hanging);
+    q = q_ok;
+    if (Newton(*model, options, beta, q, &w, &summary)) {
+      q_ok = q;
+      at = [&](double l) { return StaticLoads::Blend(hanging, loads, l); };
+    }
+  }
   double lambda = 0.0, step = 0.25;
   while (lambda < 1.0) {
     if (summary.load_steps >= options.max_load_steps || step < options.min_load_step)
       return finish(SolveStatus::kLoadSteppingFailed);
     ++summary.load_steps;
     const double target = std::min(1.0, lambda + step);
-    model->set_loads(loads.Scaled(target));
+    model->set_loads(at(target));
     q = q_ok;
     if (Newton(*model, options, beta, q, &w, &summary)) {
       lambda = target;

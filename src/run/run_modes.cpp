@@ -27,9 +27,9 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
   mo.count = problem.modes.count;
   ModalResult r;
   if (quatfd) {
-    quatfd::QuatFdOptions model_options;
-    model_options.segments = problem.nodes - 1;
-    quatfd::QuatFdModel model(problem.rod, problem.base, model_options, problem.robot.actuation);
+    quatfd::QuatFdModel model(problem.rod, problem.base, QuatFdModelOptions(problem),
+                              problem.robot.actuation);
+    model.set_loads(problem.loads);  // the start of a held rod's statics sags along gravity
     r = ComputeModes(&model, problem.loads, mo, nullptr, nullptr, QuatFdStaticOptions(problem));
   } else {
     ShootingModalOptions so;

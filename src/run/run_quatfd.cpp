@@ -17,11 +17,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// The model with the problem's loads set (a rod held at both ends starts from a shape that
+/// sags along their gravity).
 quatfd::QuatFdModel MakeModel(const io::Problem& problem) {
-  quatfd::QuatFdOptions options;
-  options.segments = problem.nodes - 1;
-  options.base_end = quatfd::EndCondition::kClamped;
-  return quatfd::QuatFdModel(problem.rod, problem.base, options);
+  quatfd::QuatFdModel model(problem.rod, problem.base, QuatFdModelOptions(problem));
+  model.set_loads(problem.loads);
+  return model;
 }
 
 StaticShootingSummary AsSummary(const quatfd::QuatFdStaticsSummary& s) {
@@ -57,8 +58,17 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(state);
   std::ostringstream log;
   log << "cosserat: " << ToString(s.status) << " (quaternion-fd), " << s.iterations
-      << " iterations, residual " << std::setprecision(3) << s.residual << ", " << TipText(state)
-      << ", " << s.wall_time_s * 1e3 << " ms\n";
+      << " iterations, residual " << std::setprecision(3) << s.residual << ", ";
+  if (problem.boundary == io::Boundary::kAnchored) {
+    // The force the tip's anchor exerts on the rod (N, world): the top tension of a cable.
+    const Vec3 f = state.rotation_WB.back() * state.wrench_B.back().tail<3>();
+    result.json["anchor_force"] = {f.x(), f.y(), f.z()};
+    log << "anchor force [" << std::setprecision(6) << f.x() << ", " << f.y() << ", " << f.z()
+        << "] N (tension " << f.norm() << " N)";
+  } else {
+    log << TipText(state);
+  }
+  log << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms\n";
   result.log = log.str();
   result.converged = s.converged();
   return result;

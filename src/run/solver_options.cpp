@@ -19,6 +19,21 @@ quatfd::QuatFdStaticsOptions QuatFdStaticOptions(const io::Problem& problem) {
   return options;
 }
 
+quatfd::QuatFdOptions QuatFdModelOptions(const io::Problem& problem) {
+  quatfd::QuatFdOptions options;
+  options.segments = problem.nodes - 1;
+  options.base_end = quatfd::EndCondition::kClamped;
+  if (problem.boundary == io::Boundary::kAnchored) {
+    if (!problem.anchor.base_clamped) {
+      options.base_end = quatfd::EndCondition::kPinned;
+      options.base_twist_held = true;
+    }
+    options.tip_end = quatfd::EndCondition::kPinned;
+    options.tip_position_W = problem.anchor.position;
+  }
+  return options;
+}
+
 Bdf2Options DynamicsOptions(const io::Problem& problem) {
   Bdf2Options options;
   options.dt = problem.dynamics.dt;

@@ -134,7 +134,7 @@ cosserat_cli_test(NAME quatfd_step_cap ARGS solve "${_cli_dir}/quatfd_step_cap.j
 cosserat_cli_test(NAME bad_quatfd_frames ARGS validate "${_cli_dir}/bad_quatfd_frames.json" CODE 2
                   STDERR "dynamics.output_interval: expected an interval giving at most 10000000 frames over duration \\(0\\.05 s\\), got 1e-09, 5e\\+07 frames")
 cosserat_cli_test(NAME quatfd_free_free ARGS solve "${_cli_dir}/quatfd_free_free.json" CODE 2
-                  STDERR "boundary: \"free-free\" is not implemented in this version \\(supported: \"cantilever\"\\)")
+                  STDERR "boundary: \"free-free\" is not implemented in this version \\(supported: \"cantilever\", \"anchored\"\\)")
 
 # Stiffness profiles. A jammed-compliant-jammed rod under a pure tip moment: every
 # error in a bad profile is reported with its path; the good one solves (the curvature ratio is
@@ -269,3 +269,22 @@ cosserat_cli_test(NAME solve_rod_slides_on_incline
 # shoots in pieces; it lies on the table from s = 1.07 m, as the quaternion-FD solve finds.
 cosserat_cli_test(NAME solve_rod_on_table_se3 ARGS solve "${_cli_dir}/rod_on_table_se3.json" CODE 0
                   STDOUT "\"intervals\": .[^0-9]*1\\.07," STDERR "converged.*shooting pieces")
+
+# Rods held at both ends ("boundary": "anchored", quaternion-FD): the mooring line's tensions
+# (the elastic catenary's H = 9450.07 N and top tension 30791.8 N, tests/test_cables.cpp) and the
+# stay cable's first frequency (the taut string's 0.708 Hz); bad anchors name their keys.
+get_filename_component(_cli_mooring "${CMAKE_CURRENT_LIST_DIR}/../../examples/mooring_line.json"
+                       ABSOLUTE)
+cosserat_cli_test(NAME solve_mooring_line ARGS solve "${_cli_mooring}" CODE 0
+                  STDERR "converged.*anchor force \\[9450\\.0[0-9]*, -?0, 2930[0-9.]*\\] N \\(tension 3079[0-9.]* N\\)")
+get_filename_component(_cli_stay "${CMAKE_CURRENT_LIST_DIR}/../../examples/stay_cable.json"
+                       ABSOLUTE)
+cosserat_cli_test(NAME solve_stay_cable ARGS solve "${_cli_stay}" CODE 0
+                  STDERR "converged \\(modes, quaternion-fd\\), 8 modes: 0\\.70")
+cosserat_cli_test(NAME bad_anchor ARGS validate "${_cli_dir}/bad_anchor.json" CODE 2
+                  STDERR "anchor.tip: expected \"pinned\".*anchor.position: expected at most 1.5")
+cosserat_cli_test(NAME anchor_without_boundary ARGS validate
+                  "${_cli_dir}/anchor_without_boundary.json" CODE 2
+                  STDERR "anchor: is read only with \"boundary\": \"anchored\"")
+cosserat_cli_test(NAME anchored_se3 ARGS solve "${_cli_dir}/anchored_se3.json" CODE 2
+                  STDERR "boundary: \"anchored\" runs statics, dynamics and modes on the \"quaternion-fd\"")

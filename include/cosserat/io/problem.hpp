@@ -28,6 +28,12 @@ struct Problem {
   int nodes = 41;  ///< grid points along s, ends included
   lie::SE3 base;   ///< clamp pose: R_WB (body z = rod tangent), p_W
   Boundary boundary = Boundary::kCantilever;
+  /// "anchor", for the boundary "anchored": the tip is pinned at `position`; the base is held at
+  /// base.position, pinned (rotation free) or clamped (base.rotation kept).
+  struct Anchor {
+    Vec3 position = Vec3::Zero();  ///< where the tip is held, world, m
+    bool base_clamped = false;
+  } anchor;
   StaticLoads loads;
   /// "solver": the static solves' convergence test, read by every formulation (run/ turns it
   /// into each solver's options).

@@ -17,7 +17,14 @@ enum class Formulation { kSe3Shooting, kQuaternionFd };
 
 /// "boundary": the end conditions. A cantilever is clamped at s = 0 and free at s = L; the column
 /// ends guide the tip along the base's axis (docs/buckling.md).
-enum class Boundary { kCantilever, kFreeFree, kPinnedPinned, kClampedClamped, kClampedPinned };
+enum class Boundary {
+  kCantilever,
+  kFreeFree,
+  kPinnedPinned,
+  kClampedClamped,
+  kClampedPinned,
+  kAnchored,  ///< both ends held at given points ("anchor"): cables, risers, moorings
+};
 
 /// "dynamics.spatial_scheme": the explicit Runge–Kutta scheme of the dynamic shot in s (RK4,
 /// order 4; Heun, order 2).

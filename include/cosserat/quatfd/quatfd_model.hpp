@@ -19,7 +19,8 @@
 /// Ends: s = 0 is clamped (x_0 and the orientation fixed: the curvature at vertex 0 is taken
 /// between the clamp's quaternion and p_{1/2} over Δs/2, which is the ghost-point scheme with
 /// p_{−1/2} mirrored through the clamp), pinned (x_0 fixed, zero moment) or free (zero force and
-/// moment). s = L is free: zero moment (no bending element at vertex N) and the tip loads.
+/// moment). s = L is free (zero moment: no bending element at vertex N; the tip loads) or pinned
+/// at a given point (x_N held there, zero moment: cables, risers and moorings between anchors).
 
 #include <Eigen/Core>
 #include <string>
@@ -53,7 +54,7 @@ enum class Curvature {
 
 enum class EndCondition {
   kClamped,  ///< position and orientation prescribed (s = 0 only)
-  kPinned,   ///< position prescribed, rotation free, zero moment (s = 0 only)
+  kPinned,   ///< position prescribed, rotation free, zero moment
   kFree,     ///< zero force and moment (tip loads act at s = L)
 };
 
@@ -65,7 +66,13 @@ struct QuatFdOptions {
   std::vector<double> grid;
   Curvature curvature = Curvature::kVariant1;
   EndCondition base_end = EndCondition::kClamped;  ///< the end at s = 0
-  EndCondition tip_end = EndCondition::kFree;      ///< the end at s = L: only kFree
+  /// A pinned base that holds the twist about the rod's axis (a clevis, a universal joint): the
+  /// clamp's element at s = 0 with its torsional part only. Without it, a rod pinned at both ends
+  /// is free to spin about its own line (an isotropic section stores no energy in that).
+  bool base_twist_held = false;
+  EndCondition tip_end = EndCondition::kFree;      ///< the end at s = L: kFree or kPinned
+  /// Where a pinned tip is held (world, m).
+  Vec3 tip_position_W = Vec3::Zero();
   /// Baumgarte stabilisation of g = (|p|² − 1)/2: g̈ + 2α ġ + β² g = 0 (1/s). Zero: g̈ = 0 and
   /// the integrators project onto |p| = 1 after each step instead.
   double baumgarte_alpha = 0.0;
@@ -113,6 +120,10 @@ class QuatFdModel {
   const StaticLoads& loads() const { return loads_; }
 
   /// The rest shape (the discrete configuration with Γ = Γ*, K = K*) from the base pose, at rest.
+  /// With a pinned tip, a shape through both ends instead, the start of a static solve
+  /// (HeldShape): the chord, stretched uniformly, when the ends are at least the rod's length
+  /// apart; else the inextensible catenary of the rod's length hanging in the gravity of the loads
+  /// set (a parabola bowed along the base frame's x when there is no gravity across the chord).
   void RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const;
 
   /// a = f(q, v) = q̈ (Lang & Linn 2009, eq. 4). Prescribed vertices get a = 0.
@@ -191,6 +202,9 @@ class QuatFdModel {
   /// Scales that make residuals dimensionless: EI/L (N·m) and EI/L² (N), EI the largest bending
   /// stiffness at s = 0.
   double moment_scale() const { return moment_scale_; }
+  /// The largest |C_Γ (Γ − Γ*)| over the segments at rest in state q (N): the scale of the
+  /// internal forces (a taut cable's tension).
+  double MaxSegmentForce(const Eigen::Ref<const Eigen::VectorXd>& q) const;
   double force_scale() const { return force_scale_; }
 
  private:
@@ -267,6 +281,8 @@ class QuatFdModel {
                                     Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
                                     BandedMatrix* dfdv) const;
 
+  /// RestState's shape for a pinned tip.
+  void HeldShape(Eigen::Ref<Eigen::VectorXd> q) const;
   /// Quaternion of the frame at s = L from p_{N−1/2} (free end).
   template <typename T>
   kernels::V4<T> TipQuaternion(const kernels::V4<T>& p_last) const;

@@ -21,6 +21,10 @@ StaticShootingOptions StaticOptions(const io::Problem& problem);
 /// round-off floor no tighter than the tolerance.
 quatfd::QuatFdStaticsOptions QuatFdStaticOptions(const io::Problem& problem);
 
+/// The quaternion-FD model's options: the grid (rod.nodes − 1 segments) and the ends (a clamped
+/// cantilever, or the anchors of "anchored").
+quatfd::QuatFdOptions QuatFdModelOptions(const io::Problem& problem);
+
 /// The BDF2 shooting stepper's options for a dynamics problem: "dynamics" (dt, tip body,
 /// shooting_segments, spatial_scheme), "boundary" (cantilever or free-free) and "solver"
 /// (tolerance, max_iterations).
