@@ -270,17 +270,20 @@ cosserat_cli_test(NAME solve_rod_slides_on_incline
 cosserat_cli_test(NAME solve_rod_on_table_se3 ARGS solve "${_cli_dir}/rod_on_table_se3.json" CODE 0
                   STDOUT "\"intervals\": .[^0-9]*1\\.07," STDERR "converged.*shooting pieces")
 
-# Rods held at both ends ("boundary": "anchored", quaternion-FD): the mooring line's tensions
+# Rods held at both ends ("boundary": "anchored", quaternion-FD): the hanging wire's tensions
 # (the elastic catenary's H = 9450.07 N and top tension 30791.8 N, tests/test_cables.cpp) and the
 # stay cable's first frequency (the taut string's 0.708 Hz); bad anchors name their keys.
-get_filename_component(_cli_mooring "${CMAKE_CURRENT_LIST_DIR}/../../examples/mooring_line.json"
+get_filename_component(_cli_mooring "${CMAKE_CURRENT_LIST_DIR}/../../examples/catenary_in_water.json"
                        ABSOLUTE)
-cosserat_cli_test(NAME solve_mooring_line ARGS solve "${_cli_mooring}" CODE 0
+cosserat_cli_test(NAME solve_catenary_in_water ARGS solve "${_cli_mooring}" CODE 0
                   STDERR "converged.*anchor force \\[9450\\.0[0-9]*, -?0, 2930[0-9.]*\\] N \\(tension 3079[0-9.]* N\\)")
 get_filename_component(_cli_stay "${CMAKE_CURRENT_LIST_DIR}/../../examples/stay_cable.json"
                        ABSOLUTE)
 cosserat_cli_test(NAME solve_stay_cable ARGS solve "${_cli_stay}" CODE 0
                   STDERR "converged \\(modes, quaternion-fd\\), 8 modes: 0\\.70")
+get_filename_component(_cli_riser "${CMAKE_CURRENT_LIST_DIR}/../../examples/riser_on_seabed.json"
+                       ABSOLUTE)
+cosserat_cli_test(NAME solve_riser_on_seabed ARGS solve "${_cli_riser}" CODE 0 STDERR "converged")
 cosserat_cli_test(NAME bad_anchor ARGS validate "${_cli_dir}/bad_anchor.json" CODE 2
                   STDERR "anchor.tip: expected \"pinned\".*anchor.position: expected at most 1.5")
 cosserat_cli_test(NAME anchor_without_boundary ARGS validate
