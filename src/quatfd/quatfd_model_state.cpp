@@ -31,57 +31,83 @@ double Invert(const G& g, double target, double lo, double hi) {
   return 0.5 * (lo + hi);
 }
 
+/// The plane in which a rod held at A and B hangs: up (against gravity, unit), u (horizontal,
+/// unit, towards B), the rise h of B over A along up and its run l along u (m).
+struct HangingPlane {
+  Vec3 up, u;
+  double h, l;
+};
+
+/// The inextensible catenary of length L from A through B (Irvine 1981, ch. 1):
+/// y = a cosh((x − x0)/a) + C with L² − h² = (2a sinh(l/2a))², at the arc lengths s.
+void CatenaryPositions(const Vec3& A, const HangingPlane& p, double L, const std::vector<double>& s,
+                       std::vector<Vec3>* x) {
+  const double target = std::sqrt(L * L - p.h * p.h);
+  const auto span = [&](double a) { return 2 * a * std::sinh(p.l / (2 * a)); };  // falls with a
+  double hi = p.l;
+  while (span(hi) > target) hi *= 2.0;
+  const double a = Invert([&](double y) { return -span(y); }, -target, p.l / 1400.0, hi);
+  const double x0 =
+      -a * (std::log(L + p.h) - std::log(a) - p.l / a - std::log1p(-std::exp(-p.l / a)));
+  const double sa = std::sinh(-x0 / a), ya = a * std::cosh(-x0 / a);
+  for (size_t v = 0; v < s.size(); ++v) {
+    const double xv = x0 + a * std::asinh(s[v] / a + sa);
+    (*x)[v] = A + xv * p.u + (a * std::cosh((xv - x0) / a) - ya) * p.up;
+  }
+}
+
+/// The chord from A to B, stretched uniformly when it is at least L long; else a parabola of
+/// length L bowed along n (unit, normal to the chord).
+void BowedChordPositions(const Vec3& A, const Vec3& B, const Vec3& n, double L,
+                         const std::vector<double>& s, std::vector<Vec3>* x) {
+  const Vec3 chord = B - A;
+  const double c = chord.norm();
+  double k = 0.0;  // 4 sag / chord
+  if (c < L) {
+    const auto arc = [&](double kk) { return ParabolaArc(c, kk, 1.0); };
+    double hi = 1.0;
+    while (arc(hi) < L) hi *= 2.0;
+    k = Invert(arc, L, 0.0, hi);
+  }
+  const double total = ParabolaArc(c, k, 1.0);
+  const size_t last = s.size() - 1;
+  for (size_t v = 0; v <= last; ++v) {
+    const double xi = v == 0      ? 0.0
+                      : v == last ? 1.0
+                                  : Invert([&](double y) { return ParabolaArc(c, k, y); },
+                                           total * s[v] / L, 0.0, 1.0);
+    (*x)[v] = A + xi * chord + k * c * xi * (1 - xi) * n;
+  }
+}
+
 }  // namespace
 
 void QuatFdModel::HeldShape(Eigen::Ref<Eigen::VectorXd> q) const {
   const int N = layout_.segments;
-  const Vec3 A = base_.p, chord = options_.tip_position_W - base_.p;
+  const Vec3 A = base_.p, B = options_.tip_position_W, chord = B - A;
   const double c = chord.norm(), length = this->length();
-  const Vec3 e = c > 0 ? Vec3(chord / c) : Vec3(base_.R.col(2));
   const double g = loads_.gravity_W.norm();
-  // Up (against gravity), and the horizontal u in the plane of the chord and gravity.
-  const Vec3 up = g > 0 ? Vec3(-loads_.gravity_W / g) : Vec3::Zero();
-  const Vec3 across = chord - chord.dot(up) * up;
-  const double l = across.norm(), h = chord.dot(up);
-  if (c < length && g > 0 && l > 1e-6 * c) {
-    // The inextensible catenary of the rod's length through both ends (Irvine 1981, ch. 1):
-    // y = a cosh((x − x0)/a) + C with S² − h² = (2a sinh(l/2a))², S = L.
-    const Vec3 u = across / l;
-    const double target = std::sqrt(length * length - h * h);
-    const auto span = [&](double a) { return 2 * a * std::sinh(l / (2 * a)); };  // falls with a
-    double lo = l / 1400.0, hi = l;
-    while (span(hi) > target) hi *= 2.0;
-    const double a = Invert([&](double x) { return -span(x); }, -target, lo, hi);
-    const double x0 = -a * (std::log(length + h) - std::log(a) - l / a - std::log1p(-std::exp(-l / a)));
-    const double sa = std::sinh(-x0 / a), ya = a * std::cosh(-x0 / a);
-    for (int v = 0; v <= N; ++v) {
-      const double x = x0 + a * std::asinh(s_[v] / a + sa);
-      q.segment<3>(L::X(v)) = A + x * u + (a * std::cosh((x - x0) / a) - ya) * up;
-    }
-    q.segment<3>(L::X(N)) = options_.tip_position_W;
+  std::vector<Vec3> x(N + 1);
+  HangingPlane plane{Vec3::Zero(), Vec3::Zero(), 0.0, 0.0};
+  if (g > 0) {
+    plane.up = -loads_.gravity_W / g;
+    plane.h = chord.dot(plane.up);
+    const Vec3 across = chord - plane.h * plane.up;
+    plane.l = across.norm();
+    if (plane.l > 0) plane.u = across / plane.l;
+  }
+  if (c < length && g > 0 && plane.l > 1e-6 * c) {
+    CatenaryPositions(A, plane, length, s_, &x);
   } else {
     // The chord, stretched uniformly (a taut rod); or, with no gravity across the chord to hang
     // from, a parabola of the rod's length bowed along the base frame's x (or y).
+    const Vec3 e = c > 0 ? Vec3(chord / c) : Vec3(base_.R.col(2));
     Vec3 n = Vec3::Zero();
     for (int k = 0; k < 2 && n.norm() <= 1e-9; ++k) n = base_.R.col(k) - base_.R.col(k).dot(e) * e;
-    n.normalize();
-    double k = 0.0;  // 4 sag / chord
-    if (c < length) {
-      const auto arc = [&](double kk) { return ParabolaArc(c, kk, 1.0); };
-      double hi = 1.0;
-      while (arc(hi) < length) hi *= 2.0;
-      k = Invert(arc, length, 0.0, hi);
-    }
-    const double total = ParabolaArc(c, k, 1.0);
-    for (int v = 0; v <= N; ++v) {
-      const double target = total * s_[v] / length;
-      const double xi =
-          v == 0   ? 0.0
-          : v == N ? 1.0
-                   : Invert([&](double x) { return ParabolaArc(c, k, x); }, target, 0.0, 1.0);
-      q.segment<3>(L::X(v)) = A + xi * c * e + k * c * xi * (1 - xi) * n;
-    }
+    BowedChordPositions(A, B, n.normalized(), length, s_, &x);
   }
+  x[N] = B;
+  for (int v = 0; v <= N; ++v) q.segment<3>(L::X(v)) = x[v];
   // Each segment's frame: the base frame turned by the least rotation onto its chord.
   const Vec3 e3 = base_.R.col(2);
   Vec4 previous = base_quat_;
