@@ -153,6 +153,16 @@ TEST(HeldCable, ARiserOnTheSeaBedTouchesDownWithinTwoBendingLengthsOfTheCatenary
   EXPECT_NEAR(r.touchdown, r.cat.touchdown_x, 2 * r.bending_length);
 }
 
+// A near-cable (EI = 2e3 N·m², bending length 0.3 m) on the same bed: its horizontal tension is
+// the grounded catenary's within 0.5 % and its touchdown point within two bending lengths (the
+// acceptance; the grid spacing of 0.5 m and the bed's foundation length (4EI/k)^¼ ≈ 0.4 m could
+// each move it by about that much, measured 0.06 m). Its peak curvature is printed against w/H.
+TEST(HeldCable, ACableOnTheSeaBedHasTheCatenarysTension) {
+  const TouchdownRun r = LineOnTheSeaBed(1e-8);
+  EXPECT_NEAR(r.H, r.cat.H, 5e-3 * r.cat.H);
+  EXPECT_NEAR(r.touchdown, r.cat.touchdown_x, 2 * r.bending_length);
+}
+
 // A taut beam-cable (pinned at both ends, held 0.1 % beyond its length, so T ≈ EA/1000) under a
 // small lateral load q (gravity across it): mid-span deflection q L²/(8T) − (q EI/T²)(1 −
 // sech(kL/2)) with T the measured axial reaction. kL = 50, 200, 1000 by the bending stiffness.

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "cosserat/lie/quaternion.hpp"
+#include "cosserat/loads/contact.hpp"
 #include "cosserat/quatfd/quatfd_kernels.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 
@@ -56,6 +57,27 @@ void CatenaryPositions(const Vec3& A, const HangingPlane& p, double L, const std
   }
 }
 
+/// A line of length L from A lying on a bed (normal up) towards B, then rising to B as a catenary
+/// with zero slope at touchdown: suspended length Ls = sqrt(h² + 2ah), run
+/// L − Ls + a asinh(Ls/a) = l. False when no such shape exists (B is too far for a grounded part,
+/// or too close for the line to leave the bed).
+bool GroundedCatenaryPositions(const Vec3& A, const HangingPlane& p, double L,
+                               const std::vector<double>& s, std::vector<Vec3>* x) {
+  if (p.h <= 0 || L <= p.h) return false;
+  const auto suspended = [&](double a) { return std::sqrt(p.h * p.h + 2 * a * p.h); };
+  const auto run = [&](double a) { return L - suspended(a) + a * std::asinh(suspended(a) / a); };
+  const double a_max = (L * L - p.h * p.h) / (2 * p.h);  // all of the line suspended
+  if (p.l <= run(1e-9 * L) || p.l >= run(a_max)) return false;
+  const double a = Invert(run, p.l, 1e-9 * L, a_max);
+  const double grounded = L - suspended(a);
+  for (size_t v = 0; v < s.size(); ++v) {
+    const double sigma = std::max(0.0, s[v] - grounded);
+    (*x)[v] = A + (std::min(s[v], grounded) + a * std::asinh(sigma / a)) * p.u +
+              (std::hypot(a, sigma) - a) * p.up;
+  }
+  return true;
+}
+
 /// The chord from A to B, stretched uniformly when it is at least L long; else a parabola of
 /// length L bowed along n (unit, normal to the chord).
 void BowedChordPositions(const Vec3& A, const Vec3& B, const Vec3& n, double L,
@@ -98,6 +120,19 @@ void QuatFdModel::HeldShape(Eigen::Ref<Eigen::VectorXd> q) const {
   }
   if (c < length && g > 0 && plane.l > 1e-6 * c) {
     CatenaryPositions(A, plane, length, s_, &x);
+    // A base on a bed the catenary would hang through (a riser, a mooring): lying on it instead.
+    for (int k = 0; k < loads_.contact.count; ++k) {
+      const ContactSurface& bed = loads_.contact.surface[k];
+      Vec3 normal;
+      const double base_gap = bed.Distance(A, &normal) - 0.5 * vertex_diameter_[0];
+      if (bed.shape != ContactSurface::Shape::kPlane || normal.dot(plane.up) < 0.999 ||
+          std::abs(base_gap) > 1e-3 * length)
+        continue;
+      bool through = false;
+      for (int v = 1; v < N && !through; ++v)
+        through = bed.Distance(x[v], &normal) < 0.5 * vertex_diameter_[v];
+      if (through) GroundedCatenaryPositions(A, plane, length, s_, &x);
+    }
   } else {
     // The chord, stretched uniformly (a taut rod); or, with no gravity across the chord to hang
     // from, a parabola of the rod's length bowed along the base frame's x (or y).

@@ -23,8 +23,20 @@ struct Workspace {
 /// β for the solve: β² J_min = EI/L, so the constraint rows (β² (|p|² − 1)/2) and the tangential
 /// rows (torque / J, torques of the order EI/L) have comparable size for pivoting. Only a row
 /// scale: any β > 0 gives the same equilibrium.
-double StaticBeta(const QuatFdModel& model) {
-  return std::sqrt(model.moment_scale() / model.min_rotational_inertia());
+/// A rod held at both ends takes the larger of EI/L and the moments its loads and tension make
+/// over a segment: a cable's EI/L is far below them, and a Baumgarte row that weak leaves the
+/// quaternions' gauge nearly singular beside the torques, which spoils Newton's step.
+double StaticBeta(const QuatFdModel& model, const StaticLoads& loads,
+                  const Eigen::Ref<const Eigen::VectorXd>& q) {
+  double moment = model.moment_scale();
+  if (model.options().tip_end == EndCondition::kPinned) {
+    const double h = model.length() / model.layout().segments;
+    const double weight = model.Mass() * loads.gravity_W.norm() +
+                          loads.distributed_force_W.norm() * model.length() +
+                          loads.tip_force.norm();
+    moment = std::max({moment, model.MaxSegmentForce(q) * h, weight * h});
+  }
+  return std::sqrt(moment / model.min_rotational_inertia());
 }
 
 /// Newton at fixed loads from q. Returns true on convergence; counts iterations.
@@ -125,7 +137,7 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   w.a.resize(n);
   w.dq.resize(n);
   w.zero = Eigen::VectorXd::Zero(n);
-  const double beta = StaticBeta(*model);
+  const double beta = StaticBeta(*model, loads, q);
   auto finish = [&](SolveStatus status) {
     model->set_loads(loads);
     summary.status = status;
@@ -140,41 +152,49 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   if (Newton(*model, options, beta, q, &w, &summary)) return finish(SolveStatus::kConverged);
   if (!options.load_stepping) return finish(SolveStatus::kMaxIterations);
 
-  // Continuation in λ from the unloaded rest state: grow the increment after a success, halve it
-  // after a failure.
+  // Continuation in λ along at(λ) from a solution q_ok at λ = 0: grow the increment after a
+  // success, halve it after a failure. False when the increment falls below its floor or the
+  // load steps run out.
   Eigen::VectorXd q_ok(n), v(n);
   model->RestState(q_ok, v);
-  std::function<StaticLoads(double)> at = [&](double l) { return loads.Scaled(l); };
+  const auto follow = [&](const std::function<StaticLoads(double)>& at) {
+    double lambda = 0.0, step = 0.25;
+    while (lambda < 1.0) {
+      if (summary.load_steps >= options.max_load_steps || step < options.min_load_step)
+        return false;
+      ++summary.load_steps;
+      const double target = std::min(1.0, lambda + step);
+      model->set_loads(at(target));
+      q = q_ok;
+      if (Newton(*model, options, beta, q, &w, &summary)) {
+        lambda = target;
+        q_ok = q;
+        step *= 2.0;
+      } else {
+        step *= 0.5;
+      }
+    }
+    return true;
+  };
   // A rod held at both ends starts from a shape hanging in gravity, which is no equilibrium of
-  // smaller loads when the rod is slack: there the equilibrium under gravity (and buoyancy) alone
-  // comes first, and the continuation adds the other loads to it.
-  StaticLoads hanging = loads.Scaled(0.0);
-  hanging.gravity_W = loads.gravity_W;
-  if (model->options().tip_end == EndCondition::kPinned && hanging != loads &&
-      !loads.gravity_W.isZero()) {
+  // the other loads when the rod is slack: there the rod hanging under gravity (and buoyancy)
+  // comes first, and the continuation adds the other loads to it. The hanging shape does not
+  // depend on the size of gravity, so gravity itself is followed from zero when needed.
+  bool ok;
+  if (model->options().tip_end == EndCondition::kPinned && !loads.gravity_W.isZero()) {
+    StaticLoads hanging = loads.Scaled(0.0);
+    hanging.gravity_W = loads.gravity_W;
     model->set_loads(hanging);
     q = q_ok;
-    if (Newton(*model, options, beta, q, &w, &summary)) {
-      q_ok = q;
-      at = [&](double l) { return StaticLoads::Blend(hanging, loads, l); };
-    }
+    ok = Newton(*model, options, beta, q, &w, &summary);
+    if (ok) q_ok = q;
+    if (!ok) ok = follow([&](double l) { return hanging.Scaled(l); });
+    if (ok && hanging != loads)
+      ok = follow([&](double l) { return StaticLoads::Blend(hanging, loads, l); });
+  } else {
+    ok = follow([&](double l) { return loads.Scaled(l); });
   }
-  double lambda = 0.0, step = 0.25;
-  while (lambda < 1.0) {
-    if (summary.load_steps >= options.max_load_steps || step < options.min_load_step)
-      return finish(SolveStatus::kLoadSteppingFailed);
-    ++summary.load_steps;
-    const double target = std::min(1.0, lambda + step);
-    model->set_loads(at(target));
-    q = q_ok;
-    if (Newton(*model, options, beta, q, &w, &summary)) {
-      lambda = target;
-      q_ok = q;
-      step *= 2.0;
-    } else {
-      step *= 0.5;
-    }
-  }
+  if (!ok) return finish(SolveStatus::kLoadSteppingFailed);
   q = q_ok;
   model->set_loads(loads);
   summary.residual = StaticResidual(*model, q);
