@@ -1,7 +1,9 @@
 // The drill string's torsion: a string clamped at the rotary table with a bottom-hole assembly
 // (a rigid body of rotary inertia J_BHA) at its lower end twists and is let go; its first
 // torsional frequency satisfies (ωL/c) tan(ωL/c) = J_string / J_BHA (SE(3) BDF2 stepper with a
-// tip body).
+// tip body). Driven by the table at a constant speed against the bit's velocity-weakening
+// friction, it sticks and slips as the one-degree-of-freedom torsional pendulum does when the
+// string is light beside the BHA.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +11,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "cosserat/lie/so3.hpp"
+#include "cosserat/loads/bit_friction.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "support/analytic/torsion.hpp"
 
@@ -71,6 +75,160 @@ double MeasuredOverPredicted(double ratio) {
 
 TEST(DrillString, TorsionalFrequencyWithABottomHoleAssembly) {
   for (double ratio : {0.2, 2.0}) EXPECT_NEAR(MeasuredOverPredicted(ratio), 1.0, 5e-3);
+}
+
+// --- Bit friction and stick-slip ----------------------------------------------------------------
+
+// The friction law's derivative against central differences (h = 1e-7 rad/s against the
+// regularisation's scale ω_ε = 1e-2: truncation (h/ω_ε)² ≈ 1e-10, round-off 1e-16 T/h ≈ 1e-9 of
+// the derivative's scale W R/ω_ε).
+TEST(BitFriction, TorqueDerivativeMatchesCentralDifferences) {
+  BitFriction bit{5e4, 0.1, 0.8, 0.5, 1.0, 1e-2, 0.0};
+  for (double w : {-3.0, -0.5, -0.02, -1e-3, 0.0, 1e-3, 0.02, 0.5, 3.0}) {
+    double d;
+    bit.Torque(w, &d);
+    const double h = 1e-7;
+    const double fd = (bit.Torque(w + h) - bit.Torque(w - h)) / (2 * h);
+    EXPECT_NEAR(d, fd, 1e-6 * 5e4 * 0.1 / 1e-2) << "spin " << w;
+  }
+  // Opposes the spin; the static value near rest, the kinetic one fast.
+  EXPECT_NEAR(bit.Torque(0.1), -5e3 * (0.5 + 0.3 * std::exp(-0.1)), 5e3 * 1e-2);
+  EXPECT_NEAR(bit.Torque(-20.0), 5e3 * 0.5, 5e3 * 1e-6);
+}
+
+/// The BHA's spin over time, sampled every dt: from the rod (SE(3) stepper, table turning at
+/// `table` rad/s from rest) or from the lumped pendulum J θ̈ = k (Ω t − θ) + T(θ̇) with the
+/// string's inertia added as J_string/3 (RK4 at 1e-4 s, well inside its stability bound
+/// 2.8 J ω_ε / (W R μ_s) ≈ 3e-3 s).
+struct DrillString {
+  double L = 100, rho = 7850, G = 80e9, E = 200e9;
+  double D = 0.127, d = 0.108;
+  double J_bha = 500;  // kg·m²
+  // W = 50 kN on a 0.1 m bit, μ 0.8 → 0.5 over ω_s = 1 rad/s, mud damping c = 100 N·m·s: the
+  // steady spin is linearly stable above ω_s ln(W R (μ_s − μ_k) / (ω_s c)) ≈ 2.7 rad/s, but a
+  // start from rest still falls into stick-slip up to ~4.9 rad/s (the cycle is subcritical).
+  BitFriction bit{5e4, 0.1, 0.8, 0.5, 1.0, 1e-2, 100.0};
+  double Jp() const { return M_PI / 32 * (std::pow(D, 4) - std::pow(d, 4)); }
+  double k() const { return G * Jp() / L; }
+  double J_string() const { return rho * Jp() * L; }
+};
+
+std::vector<double> RodSpin(const DrillString& s, double table, double duration, double dt) {
+  const double A = M_PI / 4 * (s.D * s.D - s.d * s.d);
+  const Material m = Material::FromShearModulus(s.E, s.G, s.rho);
+  const RodModel rod =
+      RodModel::Uniform(s.L, CrossSection::Explicit(A, s.Jp() / 2, s.Jp() / 2, s.Jp()), m);
+  Bdf2Options opt;
+  opt.dt = dt;
+  opt.tip_mass = 100.0;
+  opt.tip_inertia_B = Vec3(s.J_bha, s.J_bha, s.J_bha);
+  Bdf2ShootingStepper stepper(rod, 41, opt);
+  StepInput in;  // hanging along +z from the table, no gravity: torsion alone
+  EXPECT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads.bit = s.bit;
+  in.base_twist_B << 0, 0, table, 0, 0, 0;
+  std::vector<double> spin;
+  const int steps = static_cast<int>(std::round(duration / dt));
+  for (int i = 1; i <= steps; ++i) {
+    in.base_pose.R = lie::SO3Exp(Vec3(0, 0, table * i * dt));
+    const StepSummary r = stepper.Step(in);
+    EXPECT_TRUE(r.converged()) << "step " << i;
+    if (!r.converged()) break;
+    spin.push_back(stepper.state().twist_B.back()(2));
+  }
+  return spin;
+}
+
+std::vector<double> PendulumSpin(const DrillString& s, double table, double duration, double dt) {
+  const double J = s.J_bha + s.J_string() / 3, k = s.k(), h = 1e-4;
+  const int sub = static_cast<int>(std::round(dt / h));
+  double theta = 0, w = 0, t = 0;
+  const auto acc = [&](double tt, double th, double ww) {
+    return (k * (table * tt - th) + s.bit.Torque(ww)) / J;
+  };
+  std::vector<double> spin;
+  const int steps = static_cast<int>(std::round(duration / dt));
+  for (int i = 0; i < steps; ++i) {
+    for (int j = 0; j < sub; ++j) {
+      const double k1t = w, k1w = acc(t, theta, w);
+      const double k2t = w + 0.5 * h * k1w, k2w = acc(t + 0.5 * h, theta + 0.5 * h * k1t, w + 0.5 * h * k1w);
+      const double k3t = w + 0.5 * h * k2w, k3w = acc(t + 0.5 * h, theta + 0.5 * h * k2t, w + 0.5 * h * k2w);
+      const double k4t = w + h * k3w, k4w = acc(t + h, theta + h * k3t, w + h * k3w);
+      theta += h / 6 * (k1t + 2 * k2t + 2 * k3t + k4t);
+      w += h / 6 * (k1w + 2 * k2w + 2 * k3w + k4w);
+      t += h;
+    }
+    spin.push_back(w);
+  }
+  return spin;
+}
+
+/// The stick-slip cycle of a spin history after `settle` samples: the mean period between
+/// upward crossings of the table speed, and the largest spin.
+struct Cycle {
+  double period = 0, peak = 0;
+  int cycles = 0;
+};
+Cycle Measure(const std::vector<double>& spin, double table, double dt, int settle) {
+  std::vector<double> up;
+  Cycle c;
+  for (size_t i = settle + 1; i < spin.size(); ++i) {
+    c.peak = std::max(c.peak, spin[i]);
+    if (spin[i - 1] < table && spin[i] >= table)
+      up.push_back(dt * (i - 1 + (table - spin[i - 1]) / (spin[i] - spin[i - 1])));
+  }
+  c.cycles = static_cast<int>(up.size()) - 1;
+  if (c.cycles > 0) c.period = (up.back() - up.front()) / c.cycles;
+  return c;
+}
+
+// J_string / J_BHA = 0.02: the rod and the pendulum stick and slip with the same period and
+// peak spin within 5 % (the acceptance). The rod's BDF2 at dt = 5 ms resolves the slip phase
+// (ω_n dt ≈ 0.02) to well under that; the lumped inertia J_string/3 is the first term of the
+// string's own dynamics, whose rest is O((J_string/J_BHA)²).
+TEST(DrillString, StickSlipAsTheTorsionalPendulum) {
+  const DrillString s;
+  const double table = 1.0, duration = 20.0, dt = 5e-3;
+  const Cycle rod = Measure(RodSpin(s, table, duration, dt), table, dt, 1000);
+  const Cycle lumped = Measure(PendulumSpin(s, table, duration, dt), table, dt, 1000);
+  std::printf("stick-slip at %.2f rad/s: rod period %.4f s, peak %.4f rad/s (%d cycles); "
+              "pendulum %.4f s, %.4f rad/s (%d cycles)\n",
+              table, rod.period, rod.peak, rod.cycles, lumped.period, lumped.peak, lumped.cycles);
+  ASSERT_GE(rod.cycles, 3);
+  ASSERT_GE(lumped.cycles, 3);
+  EXPECT_NEAR(rod.period, lumped.period, 0.05 * lumped.period);
+  EXPECT_NEAR(rod.peak, lumped.peak, 0.05 * lumped.peak);
+}
+
+/// Whether the BHA sticks in the settled part of a spin history: its spin falls below a tenth of
+/// the table's.
+bool Sticks(const std::vector<double>& spin, double table, int settle) {
+  for (size_t i = settle; i < spin.size(); ++i)
+    if (spin[i] < 0.1 * table) return true;
+  return false;
+}
+
+// Above a table speed the bit's friction no longer falls fast enough with speed to feed the
+// oscillation, and the BHA turns steadily. The pendulum's threshold by bisection (to 1 %), and
+// the rod at 10 % either side of it: sticking below, turning steadily above.
+TEST(DrillString, StickSlipVanishesAboveATableSpeed) {
+  const DrillString s;
+  const double duration = 20.0, dt = 5e-3;
+  double lo = 1.0, hi = 10.0;  // sticks at lo, not at hi
+  ASSERT_TRUE(Sticks(PendulumSpin(s, lo, duration, dt), lo, 2000));
+  ASSERT_FALSE(Sticks(PendulumSpin(s, hi, duration, dt), hi, 2000));
+  while (hi - lo > 0.01 * lo) {
+    const double mid = 0.5 * (lo + hi);
+    (Sticks(PendulumSpin(s, mid, duration, dt), mid, 2000) ? lo : hi) = mid;
+  }
+  const double threshold = 0.5 * (lo + hi);
+  const bool below = Sticks(RodSpin(s, 0.9 * threshold, duration, dt), 0.9 * threshold, 2000);
+  const bool above = Sticks(RodSpin(s, 1.1 * threshold, duration, dt), 1.1 * threshold, 2000);
+  std::printf("stick-slip vanishes above %.3f rad/s (pendulum); the rod sticks at 0.9x: %s, at "
+              "1.1x: %s\n",
+              threshold, below ? "yes" : "no", above ? "yes" : "no");
+  EXPECT_TRUE(below);
+  EXPECT_FALSE(above);
 }
 
 }  // namespace

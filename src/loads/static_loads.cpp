@@ -29,7 +29,8 @@ StaticLoads StaticLoads::Blend(const StaticLoads& a, const StaticLoads& b, doubl
 bool StaticLoads::operator==(const StaticLoads& other) const {
   return gravity_W == other.gravity_W && distributed_force_W == other.distributed_force_W &&
          tip_force == other.tip_force && tip_moment == other.tip_moment &&
-         SameFrames(*this, other) && fluid == other.fluid && contact == other.contact;
+         SameFrames(*this, other) && fluid == other.fluid && contact == other.contact &&
+         bit == other.bit;
 }
 
 bool StaticLoads::IsValid(std::string* why) const {
@@ -41,7 +42,7 @@ bool StaticLoads::IsValid(std::string* why) const {
   if (!distributed_force_W.allFinite()) return fail("distributed_force");
   if (!tip_force.allFinite()) return fail("tip_force");
   if (!tip_moment.allFinite()) return fail("tip_moment");
-  return fluid.IsValid(why) && contact.IsValid(why);
+  return fluid.IsValid(why) && contact.IsValid(why) && bit.IsValid(why);
 }
 
 }  // namespace cosserat

@@ -67,6 +67,7 @@ bool ToColumnEnds(io::Boundary boundary, ColumnEnds* ends) {
       *ends = ColumnEnds::kClampedPinned;
       return true;
     case io::Boundary::kFreeFree:
+    case io::Boundary::kAnchored:
       break;
   }
   return false;

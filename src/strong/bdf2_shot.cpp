@@ -41,13 +41,15 @@ static_assert(sizeof(DynState) == 24 * sizeof(double), "DynState must be 24 pack
 
 // Tip condition (eq. 28, with a rigid tip body of mass m_t and inertia J_t at the tip):
 //   W(L) = [M_B − J_t ω_t − ω × J_t ω;  F_B − m_t (v_t + ω × v)]   (body frame),
-// where [M_B; F_B] is the loads' tip wrench on the section and the body (its weight included),
+// where [M_B; F_B] is the loads' tip wrench on the section and the body (its weight included,
+// and a drill bit's friction torque about body z at the tip's spin ω_z),
 // made dimensionless by scale. V_t is the BDF2 rate of the tip twist (zero in statics).
 Vec6 TipResidual(const DynState& y, const StaticLoads& loads, const Bdf2Options& opt,
                  const Vec6& V_t, const Vec6& scale) {
   const Mat3 Rt = y.R.transpose();
   const Vec6 applied = TipWrenchInBody(TotalTipWrench(loads, opt.tip_mass), y.R);
   Vec3 M = applied.head<3>(), F = applied.tail<3>();
+  M.z() += loads.bit.Torque(y.w.z());  // a drill bit's friction about the tip's axis
   if (opt.tip_mass > 0 || opt.tip_inertia_B.any()) {
     const Vec3 Jw = opt.tip_inertia_B.cwiseProduct(y.w);
     M -= opt.tip_inertia_B.cwiseProduct(V_t.head<3>()) + y.w.cross(Jw);
@@ -428,6 +430,11 @@ class Bdf2ShootingStepper::Shot {
     const SplitWrench tip = TotalTipWrench(in_.loads, opt.tip_mass);
     J.topRows<3>() -= TransposeTimesFixed(dy_.R, Vec3(tip.dead_W.head<3>()));
     J.bottomRows<3>() -= TransposeTimesFixed(dy_.R, Vec3(tip.dead_W.tail<3>()));
+    if (in_.loads.bit.present()) {
+      double dtorque;
+      in_.loads.bit.Torque(y_.w.z(), &dtorque);
+      J.row(2) -= dtorque * dy_.w.row(2);
+    }
     const double rate = statics_ ? 0.0 : c_.c0;
     const Vec3& Jt = opt.tip_inertia_B;
     const double mt = opt.tip_mass;

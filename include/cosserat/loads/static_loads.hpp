@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cosserat/lie/types.hpp"
+#include "cosserat/loads/bit_friction.hpp"
 #include "cosserat/loads/contact.hpp"
 #include "cosserat/loads/fluid.hpp"
 #include "cosserat/loads/load.hpp"
@@ -24,6 +25,9 @@ struct StaticLoads {
   LoadFrame tip_moment_frame = LoadFrame::kWorld;
   Fluid fluid;  ///< buoyancy, drag and added mass (fluid.hpp); none by default
   ContactSurfaces contact;  ///< rigid surfaces (contact.hpp); none by default; never scaled
+  /// A drill bit's friction torque about the tip's axis (bit_friction.hpp; dynamics of the SE(3)
+  /// stepper); none by default; never scaled.
+  BitFriction bit;
 
   /// Every load multiplied by lambda (used by load stepping): the fluid's flow by √λ, so that
   /// its drag scales by λ; buoyancy scales with gravity.

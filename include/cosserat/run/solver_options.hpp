@@ -34,7 +34,7 @@ Bdf2Options DynamicsOptions(const io::Problem& problem);
 SpatialScheme ToSpatialScheme(io::ShotScheme scheme);
 
 /// The column ends of a boundary the column solvers run; false (and *ends unchanged) for
-/// "free-free".
+/// "free-free" and "anchored".
 bool ToColumnEnds(io::Boundary boundary, ColumnEnds* ends);
 
 }  // namespace cosserat::run
