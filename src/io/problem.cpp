@@ -100,9 +100,37 @@ LoadFrame ReadFrame(const ObjectReader& o, const std::string& key) {
   return frame == std::optional<std::string>("body") ? LoadFrame::kBody : LoadFrame::kWorld;
 }
 
+/// "bit_friction": a drill bit's friction torque at the tip (loads/bit_friction.hpp).
+BitFriction ParseBitFriction(const ObjectReader& o) {
+  o.AllowOnly({"weight_on_bit", "radius", "static_coefficient", "kinetic_coefficient",
+               "stribeck_velocity", "regularisation", "viscous"});
+  BitFriction b;
+  const auto number = [&](const char* key, const NumberRule& rule, Presence presence,
+                          double fallback) {
+    return ReadNumber(o, key, rule, presence).value_or(fallback);
+  };
+  b.weight_on_bit = number("weight_on_bit", PositiveNumber(), Presence::kRequired, 0.0);
+  b.radius = number("radius", PositiveNumber(), Presence::kRequired, 0.0);
+  b.kinetic_coefficient =
+      number("kinetic_coefficient", NonNegativeNumber(), Presence::kRequired, 0.0);
+  b.static_coefficient =
+      number("static_coefficient", NonNegativeNumber(), Presence::kRequired, 0.0);
+  b.stribeck_velocity =
+      number("stribeck_velocity", PositiveNumber(), Presence::kOptional, b.stribeck_velocity);
+  b.regularisation =
+      number("regularisation", PositiveNumber(), Presence::kOptional, b.regularisation);
+  b.viscous = number("viscous", NonNegativeNumber(), Presence::kOptional, b.viscous);
+  if (b.static_coefficient < b.kinetic_coefficient)
+    o.report().Expected(o.PathOf("static_coefficient"),
+                        "a number >= kinetic_coefficient (" +
+                            FormatNumber(b.kinetic_coefficient) + ")",
+                        FormatNumber(b.static_coefficient));
+  return b;
+}
+
 StaticLoads ParseLoads(const ObjectReader& o) {
   o.AllowOnly({"gravity", "tip_force", "tip_force_frame", "tip_moment", "tip_moment_frame",
-               "distributed_force"});
+               "distributed_force", "bit_friction"});
   const auto vector_or_zero = [&](const char* key) {
     return ReadVec3(o, key, Presence::kOptional).value_or(Vec3::Zero());
   };
@@ -113,6 +141,8 @@ StaticLoads ParseLoads(const ObjectReader& o) {
   loads.tip_moment = vector_or_zero("tip_moment");
   loads.tip_moment_frame = ReadFrame(o, "tip_moment_frame");
   loads.distributed_force_W = vector_or_zero("distributed_force");
+  if (const auto bit = ReadObject(o, "bit_friction", Presence::kOptional))
+    loads.bit = ParseBitFriction(*bit);
   return loads;
 }
 
@@ -128,8 +158,10 @@ void ParseSolver(const ObjectReader& o, Problem::Solver* options) {
 
 void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
   o.AllowOnly({"dt", "duration", "output_interval", "initial", "initial_loads", "tip_mass",
-               "tip_inertia", "shooting_segments", "spatial_scheme", "integrator_tolerance",
-               "integrator_max_steps"});
+               "tip_inertia", "base_spin", "shooting_segments", "spatial_scheme",
+               "integrator_tolerance", "integrator_max_steps"});
+  d->base_spin =
+      ReadNumber(o, "base_spin", AnyFiniteNumber(), Presence::kOptional).value_or(d->base_spin);
   const auto dt = ReadNumber(o, "dt", PositiveNumber(), Presence::kOptional);
   const auto duration = ReadNumber(o, "duration", PositiveNumber(), Presence::kOptional);
   const auto interval = ReadNumber(o, "output_interval", PositiveNumber(), Presence::kOptional);
@@ -458,6 +490,11 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
       p.boundary != B::kFreeFree && p.has_robot)
     out.push_back("robot: a robot runs with \"boundary\": \"cantilever\" in statics (got " +
                   detail::Quote(ToString(p.boundary)) + ")");
+  if (quatfd && (p.loads.bit.present() || p.dynamics.base_spin != 0.0))
+    out.push_back(std::string(p.loads.bit.present() ? "loads.bit_friction" : "dynamics.base_spin") +
+                  ": runs on the \"se3-shooting\" formulation's dynamics in this version");
+  if (!quatfd && p.dynamics.base_spin != 0.0 && p.boundary != B::kCantilever)
+    out.push_back("dynamics.base_spin: turns a clamped base (\"boundary\": \"cantilever\")");
   if (p.analysis == A::kBuckling && quatfd) {
     // The quaternion-FD stiffness is the Hessian of a potential: conservative tip loads only.
     if (p.loads.tip_force_frame == LoadFrame::kBody)

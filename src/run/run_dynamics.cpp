@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cosserat/io/result_writer.hpp"
+#include "cosserat/lie/so3.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/shooting_exponent.hpp"
@@ -39,6 +40,7 @@ void Record(const Bdf2ShootingStepper& stepper, double t, bool all_nodes, io::Dy
   const RodState& state = stepper.state();
   run->frame_t.push_back(t);
   run->frame_tip.push_back(state.tip_position_W());
+  run->frame_tip_spin.push_back(state.twist_B.back()(2));
   if (all_nodes)
     run->frame_positions.insert(run->frame_positions.end(), state.position_W.begin(),
                                 state.position_W.end());
@@ -54,10 +56,13 @@ void AddCounts(const StepSummary& s, io::DynamicRun* run) {
 /// after a failed step, which may have committed some halved sub-steps.
 void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_nodes,
                   Bdf2ShootingStepper* stepper, io::DynamicRun* run) {
-  const StepInput input = ClampedInput(problem, problem.loads, problem.robot.actuation);
-  const double dt = problem.dynamics.dt;
+  StepInput input = ClampedInput(problem, problem.loads, problem.robot.actuation);
+  const double dt = problem.dynamics.dt, spin = problem.dynamics.base_spin;
+  input.base_twist_B(2) = spin;
   const auto loop_start = Clock::now();
   for (int k = 1; k <= steps; ++k) {
+    if (spin != 0.0)  // the rotary table: the clamp turned about its own axis by spin t
+      input.base_pose.R = problem.base.R * lie::SO3Exp(Vec3(0, 0, spin * k * dt));
     const auto t0 = Clock::now();
     const StepSummary s = stepper->Step(input);
     run->step_time_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
@@ -88,10 +93,12 @@ io::DynamicRun Simulate(const io::Problem& problem, bool all_nodes, Bdf2Shooting
   const int steps = static_cast<int>(std::lround(d.duration / d.dt));
   const int stride = std::max(1, static_cast<int>(std::lround(d.output_interval / d.dt)));
   io::DynamicRun run;
+  run.report_tip_spin = problem.loads.bit.present() || d.base_spin != 0.0;
   run.step_time_s.reserve(steps);
   const std::size_t frames = steps / stride + 2;
   run.frame_t.reserve(frames);
   run.frame_tip.reserve(frames);
+  run.frame_tip_spin.reserve(frames);
   if (all_nodes) run.frame_positions.reserve(frames * problem.nodes);
 
   const auto start = Clock::now();

@@ -291,3 +291,12 @@ cosserat_cli_test(NAME anchor_without_boundary ARGS validate
                   STDERR "anchor: is read only with \"boundary\": \"anchored\"")
 cosserat_cli_test(NAME anchored_se3 ARGS solve "${_cli_dir}/anchored_se3.json" CODE 2
                   STDERR "boundary: \"anchored\" runs statics, dynamics and modes on the \"quaternion-fd\"")
+
+# The drill string: stick-slip from the command line (tests/test_drill_string.cpp checks it
+# against the torsional pendulum), and bad bit friction named by key.
+get_filename_component(_cli_drill "${CMAKE_CURRENT_LIST_DIR}/../../examples/drill_string_stick_slip.json"
+                       ABSOLUTE)
+cosserat_cli_test(NAME solve_drill_string ARGS solve "${_cli_drill}" --out "${_cli_out}/drill.json"
+                  CODE 0 STDERR "converged, 4000 steps")
+cosserat_cli_test(NAME bad_bit_friction ARGS validate "${_cli_dir}/bad_bit_friction.json" CODE 2
+                  STDERR "loads.bit_friction.radius: expected a positive number.*loads.bit_friction.static_coefficient: expected a number >= kinetic_coefficient")

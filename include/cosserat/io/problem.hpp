@@ -56,6 +56,9 @@ struct Problem {
     std::optional<StaticLoads> initial_loads;  ///< empty: start from equilibrium under `loads`
     double tip_mass = 0.0;                     ///< kg, a rigid body at the tip (dynamics only)
     Vec3 tip_inertia = Vec3::Zero();           ///< kg·m², its principal moments, tip body frame
+    /// rad/s: the clamp turns about its own axis (base body z) at this rate from t = 0 (a
+    /// drill string's rotary table); SE(3) path, cantilever.
+    double base_spin = 0.0;
     /// Bdf2Options::shooting_segments (SE(3) path); 0: chosen by the stepper.
     int shooting_segments = 0;
     /// Bdf2Options::spatial_scheme (SE(3) path).
