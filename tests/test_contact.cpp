@@ -216,6 +216,19 @@ TEST(PenaltyContact, ARodLyingOnAFloorTendsToTheRigidFloorLimitByMultipleShootin
   ExpectTheRigidFloorLimit("SE(3)", rod, kFloorGap, rod.length / (nodes - 1), runs);
 }
 
+/// A stiff sphere (k = 1e6 N/m²) of radius R beside a vertical cantilever at height a, reaching
+/// δ into the straight rod.
+StaticLoads SphereBeside(const SteelRod& rod, double a, double delta, double R) {
+  StaticLoads loads;
+  loads.contact.count = 1;
+  ContactSurface& sphere = loads.contact.surface[0];
+  sphere.shape = ContactSurface::Shape::kSphere;
+  sphere.point_W = Vec3(R + rod.r - delta, 0, a);
+  sphere.radius = R;
+  sphere.stiffness = 1e6;
+  return loads;
+}
+
 // A fixed sphere pushes a vertical cantilever sideways at a = 0.3 m from the clamp (its surface
 // would reach δ = 1 mm into the straight rod). The reaction at the clamp must be the point load
 // P = 3 EI w(a) / a³ of linear beam theory for the rod's deflection w(a) there. The stiff
@@ -225,13 +238,7 @@ TEST(PenaltyContact, ARodLyingOnAFloorTendsToTheRigidFloorLimitByMultipleShootin
 TEST(PenaltyContact, ASphereOnACantileverNeedsThePointLoadOfBeamTheory) {
   const SteelRod rod{0.5, 0.002};
   const double a = 0.3, delta = 0.001, R = 0.02;
-  StaticLoads loads;
-  loads.contact.count = 1;
-  ContactSurface& sphere = loads.contact.surface[0];
-  sphere.shape = ContactSurface::Shape::kSphere;
-  sphere.point_W = Vec3(R + rod.r - delta, 0, a);
-  sphere.radius = R;
-  sphere.stiffness = 1e6;
+  const StaticLoads loads = SphereBeside(rod, a, delta, R);
   StaticShootingSolver solver(rod.model(), 201);  // s = a is node 120
   ASSERT_TRUE(solver.Solve(lie::SE3{}, loads).converged());
   const double w = -solver.state().position_W[120].x();
@@ -249,13 +256,7 @@ TEST(PenaltyContact, ASphereOnACantileverNeedsThePointLoadOfBeamTheory) {
 TEST(PenaltyContact, QuaternionFdSphereOnACantileverNeedsThePointLoadOfBeamTheory) {
   const SteelRod rod{0.5, 0.002};
   const double a = 0.3, delta = 0.001, R = 0.02;
-  StaticLoads loads;
-  loads.contact.count = 1;
-  ContactSurface& sphere = loads.contact.surface[0];
-  sphere.shape = ContactSurface::Shape::kSphere;
-  sphere.point_W = Vec3(R + rod.r - delta, 0, a);
-  sphere.radius = R;
-  sphere.stiffness = 1e6;
+  const StaticLoads loads = SphereBeside(rod, a, delta, R);
   quatfd::QuatFdOptions options;
   options.segments = 200;  // s = a is vertex 120
   quatfd::QuatFdModel model(rod.model(), lie::SE3{}, options);
@@ -317,30 +318,38 @@ struct RodOnIncline {
 // (> 0.3 m/s), so the second difference of x gives it to the normal transient's remains
 // (e^{−ζωt} ≈ e^{−45}) and the solver tolerance: 1e-3 relative is a wide margin inside the 1 %
 // asked for, and a missing or doubled friction term misses it by tens of percent.
-TEST(PenaltyContact, ARodSlidesDownAnInclinedPlaneAtTheCoulombAcceleration) {
-  const double tan_theta = 0.5;
-  const RodOnIncline run(tan_theta);
-  ASSERT_TRUE(run.ok);
+// x_mid: the mid node's x at 0.2, 0.35 and 0.5 s.
+void ExpectCoulombSliding(const char* who, const double (&x_mid)[3], double mu, double tan_theta) {
   const double theta = std::atan(tan_theta), dt = 0.15;
-  const double a = (run.x_mid[2] - 2 * run.x_mid[1] + run.x_mid[0]) / (dt * dt);
-  const double expected = 9.81 * (std::sin(theta) - run.mu * std::cos(theta));
-  std::printf("sliding: a = %.6f m/s², Coulomb %.6f m/s²\n", a, expected);
-  EXPECT_NEAR(a, expected, 1e-3 * expected);
+  const double a = (x_mid[2] - 2 * x_mid[1] + x_mid[0]) / (dt * dt);
+  const double expected = 9.81 * (std::sin(theta) - mu * std::cos(theta));
+  std::printf("%s sliding: a = %.6f m/s², Coulomb %.6f m/s²\n", who, a, expected);
+  EXPECT_NEAR(a, expected, 1e-3 * expected) << who;
 }
 
 // Below tan θ = μ it stays put up to the regularisation's creep: a tangential load T = μ N t
 // (t = tan θ / μ) balances μ N v / sqrt(v² + v_ε²) at v = v_ε t / sqrt(1 − t²) (8.9e-5 m/s
 // here, 4e-5 m over the window, against 0.08 m if it slid). Steady creep is a constant
 // velocity, which BDF2 integrates exactly: 1 % covers the solver tolerance.
-TEST(PenaltyContact, ARodStaysPutOnAPlaneLessSteepThanTheFrictionAngle) {
-  const double tan_theta = 0.2;
-  const RodOnIncline run(tan_theta);
+void ExpectRegularisedCreep(const char* who, const double (&x_mid)[3], double mu,
+                            double slip_velocity, double tan_theta) {
+  const double t = tan_theta / mu;
+  const double creep = slip_velocity * t / std::sqrt(1 - t * t);
+  const double v = (x_mid[2] - x_mid[0]) / 0.3;
+  std::printf("%s sticking: creeps at %.4g m/s, regularisation law %.4g m/s\n", who, v, creep);
+  EXPECT_NEAR(v, creep, 1e-2 * creep) << who;
+}
+
+TEST(PenaltyContact, ARodSlidesDownAnInclinedPlaneAtTheCoulombAcceleration) {
+  const RodOnIncline run(0.5);
   ASSERT_TRUE(run.ok);
-  const double t = tan_theta / run.mu;
-  const double creep = run.slip_velocity * t / std::sqrt(1 - t * t);
-  const double v = (run.x_mid[2] - run.x_mid[0]) / 0.3;
-  std::printf("sticking: creeps at %.4g m/s, regularisation law %.4g m/s\n", v, creep);
-  EXPECT_NEAR(v, creep, 1e-2 * creep);
+  ExpectCoulombSliding("SE(3)", run.x_mid, run.mu, 0.5);
+}
+
+TEST(PenaltyContact, ARodStaysPutOnAPlaneLessSteepThanTheFrictionAngle) {
+  const RodOnIncline run(0.2);
+  ASSERT_TRUE(run.ok);
+  ExpectRegularisedCreep("SE(3)", run.x_mid, run.mu, run.slip_velocity, 0.2);
 }
 
 // The inclined plane in the quaternion-FD formulation: a free rod of 20 segments, Radau IIA at
@@ -385,25 +394,15 @@ struct QuatFdRodOnIncline {
 };
 
 TEST(PenaltyContact, AQuaternionFdRodSlidesDownAnInclinedPlaneAtTheCoulombAcceleration) {
-  const double tan_theta = 0.5;
-  const QuatFdRodOnIncline run(tan_theta);
+  const QuatFdRodOnIncline run(0.5);
   ASSERT_TRUE(run.ok);
-  const double theta = std::atan(tan_theta), dt = 0.15;
-  const double a = (run.x_mid[2] - 2 * run.x_mid[1] + run.x_mid[0]) / (dt * dt);
-  const double expected = 9.81 * (std::sin(theta) - run.mu * std::cos(theta));
-  std::printf("quatfd sliding: a = %.6f m/s², Coulomb %.6f m/s²\n", a, expected);
-  EXPECT_NEAR(a, expected, 1e-3 * expected);
+  ExpectCoulombSliding("quatfd", run.x_mid, run.mu, 0.5);
 }
 
 TEST(PenaltyContact, AQuaternionFdRodStaysPutOnAPlaneLessSteepThanTheFrictionAngle) {
-  const double tan_theta = 0.2;
-  const QuatFdRodOnIncline run(tan_theta);
+  const QuatFdRodOnIncline run(0.2);
   ASSERT_TRUE(run.ok);
-  const double t = tan_theta / run.mu;
-  const double creep = run.slip_velocity * t / std::sqrt(1 - t * t);
-  const double v = (run.x_mid[2] - run.x_mid[0]) / 0.3;
-  std::printf("quatfd sticking: creeps at %.4g m/s, regularisation law %.4g m/s\n", v, creep);
-  EXPECT_NEAR(v, creep, 1e-2 * creep);
+  ExpectRegularisedCreep("quatfd", run.x_mid, run.mu, run.slip_velocity, 0.2);
 }
 
 }  // namespace
