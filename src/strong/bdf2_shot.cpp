@@ -49,7 +49,7 @@ Vec6 TipResidual(const DynState& y, const StaticLoads& loads, const Bdf2Options&
   const Mat3 Rt = y.R.transpose();
   const Vec6 applied = TipWrenchInBody(TotalTipWrench(loads, opt.tip_mass), y.R);
   Vec3 M = applied.head<3>(), F = applied.tail<3>();
-  M.z() += loads.bit.Torque(y.w.z());  // a drill bit's friction about the tip's axis
+  if (loads.bit.present()) M.z() += loads.bit.Torque(y.w.z());  // a drill bit's friction
   if (opt.tip_mass > 0 || opt.tip_inertia_B.any()) {
     const Vec3 Jw = opt.tip_inertia_B.cwiseProduct(y.w);
     M -= opt.tip_inertia_B.cwiseProduct(V_t.head<3>()) + y.w.cross(Jw);
