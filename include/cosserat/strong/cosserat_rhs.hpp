@@ -180,7 +180,8 @@ COSSERAT_RHS_INLINE DynamicPoint<T> DynamicDerivative(
     }
   }
   for (int i = 0; i < 6; ++i) (*strain)(i) = xi[i];
-  *twist << w, v;
+  twist->template head<3>() = w;  // not a comma initializer: gcc leaves that out of line
+  twist->template tail<3>() = v;
   const T k0 = xi[0], k1 = xi[1], k2 = xi[2], g0 = xi[3], g1 = xi[4], g2 = xi[5];
   const double J0 = smp.mass(0), J1 = smp.mass(1), J2 = smp.mass(2), rhoA = smp.mass(5);
   DynamicPoint<T> d;
