@@ -300,3 +300,5 @@ cosserat_cli_test(NAME solve_drill_string ARGS solve "${_cli_drill}" --out "${_c
                   CODE 0 STDERR "converged, 4000 steps")
 cosserat_cli_test(NAME bad_bit_friction ARGS validate "${_cli_dir}/bad_bit_friction.json" CODE 2
                   STDERR "loads.bit_friction.radius: expected a positive number.*loads.bit_friction.static_coefficient: expected a number >= kinetic_coefficient")
+cosserat_cli_test(NAME riser_coarse_grid ARGS solve "${_cli_dir}/riser_coarse_grid.json" CODE 1
+                  STDERR "load_stepping_failed.*hint: the grid spacing 5.03 m is coarse for environment.contact\\[0\\]'s foundation length")
