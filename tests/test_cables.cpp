@@ -34,6 +34,17 @@ struct Cable {
   double EA() const { return E * A; }
 };
 
+/// A rod of `segments` segments pinned at its base (its twist held) and at `tip` (world, m).
+quatfd::QuatFdOptions HeldBetween(const Vec3& tip, int segments) {
+  quatfd::QuatFdOptions options;
+  options.segments = segments;
+  options.base_end = quatfd::EndCondition::kPinned;
+  options.base_twist_held = true;
+  options.tip_end = quatfd::EndCondition::kPinned;
+  options.tip_position_W = tip;
+  return options;
+}
+
 struct HeldSolution {
   quatfd::QuatFdStaticsSummary summary;
   Eigen::VectorXd q;
@@ -41,13 +52,7 @@ struct HeldSolution {
 };
 
 HeldSolution SolveHeld(const Cable& c, const Vec3& tip, const StaticLoads& loads, int segments) {
-  quatfd::QuatFdOptions options;
-  options.segments = segments;
-  options.base_end = quatfd::EndCondition::kPinned;
-  options.base_twist_held = true;
-  options.tip_end = quatfd::EndCondition::kPinned;
-  options.tip_position_W = tip;
-  quatfd::QuatFdModel model(c.Model(), lie::SE3{}, options);
+  quatfd::QuatFdModel model(c.Model(), lie::SE3{}, HeldBetween(tip, segments));
   HeldSolution out;
   out.q.resize(model.size());
   Eigen::VectorXd v(model.size());
@@ -111,12 +116,7 @@ TouchdownRun LineOnTheSeaBed(double I) {
   loads.fluid.density = rho_water;
   loads.contact.count = 1;
   loads.contact.surface[0].stiffness = 1e5;  // the sea bed z = 0 (normal +z by default)
-  quatfd::QuatFdOptions options;
-  options.segments = 700;
-  options.base_end = quatfd::EndCondition::kPinned;
-  options.base_twist_held = true;
-  options.tip_end = quatfd::EndCondition::kPinned;
-  options.tip_position_W = Vec3(X, 0, h + r_o);
+  const quatfd::QuatFdOptions options = HeldBetween(Vec3(X, 0, h + r_o), 700);
   lie::SE3 base;
   base.p = Vec3(0, 0, r_o);
   quatfd::QuatFdModel model(c.Model(), base, options);
@@ -182,10 +182,9 @@ TEST(HeldCable, TensionedBeamsFromKl50To1000MatchTheClosedForm) {
     const HeldSolution s = SolveHeld(c, Vec3(L * (1 + strain), 0, 0), loads, 800);
     ASSERT_TRUE(s.summary.converged()) << "kL = " << kL << ": " << ToString(s.summary.status);
     const double T_measured = -s.state.BaseReaction_W()(3);
-    const double q = c.rho * A * kG * (q_target / (c.rho * A * kG));  // the weight per length
     const double mid = -s.state.position_W[400].z();
     const double expected =
-        truth::TensionedBeamMidSpanDeflection(q, T_measured, E * I, L * (1 + strain));
+        truth::TensionedBeamMidSpanDeflection(q_target, T_measured, E * I, L * (1 + strain));
     std::printf("kL = %4.0f: mid-span deflection %.6e m, closed form %.6e m (T = %.2f N)\n", kL,
                 mid, expected, T_measured);
     EXPECT_NEAR(mid, expected, 0.01 * expected) << "kL = " << kL;
@@ -224,12 +223,7 @@ TEST(HeldCable, ATautCableSwaysAboutItsWindDeflection) {
   wind.fluid.density = 1.2;
   wind.fluid.velocity_W = Vec3(0, 25.0, 0);
   wind.fluid.drag_normal = 1.2;
-  quatfd::QuatFdOptions options;
-  options.segments = 50;
-  options.base_end = quatfd::EndCondition::kPinned;
-  options.base_twist_held = true;
-  options.tip_end = quatfd::EndCondition::kPinned;
-  options.tip_position_W = Vec3(span, 0, 0);
+  const quatfd::QuatFdOptions options = HeldBetween(Vec3(span, 0, 0), 50);
   quatfd::QuatFdModel model(c.Model(), lie::SE3{}, options);
   Eigen::VectorXd q(model.size()), v(model.size());
   model.set_loads(wind);
@@ -274,12 +268,7 @@ SaggingCableModes CableModes(double lambda2_target) {
   // Unstretched length: the parabola's arc span (1 + 8/3 (d/ℓ)²) less the stretch under H.
   const double L0 = span * (1 + 8.0 / 3 * (sag / span) * (sag / span)) / (1 + H0 / EA);
   const Cable c{L0, A, EA / A, 1e-9, m / A};  // EI ~ 2e-7 H ℓ²: bending shifts ω by < 1e-5
-  quatfd::QuatFdOptions options;
-  options.segments = 100;
-  options.base_end = quatfd::EndCondition::kPinned;
-  options.base_twist_held = true;
-  options.tip_end = quatfd::EndCondition::kPinned;
-  options.tip_position_W = Vec3(span, 0, 0);
+  const quatfd::QuatFdOptions options = HeldBetween(Vec3(span, 0, 0), 100);
   quatfd::QuatFdModel model(c.Model(), lie::SE3{}, options);
   StaticLoads loads;
   loads.gravity_W = Vec3(0, 0, -kG);

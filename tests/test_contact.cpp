@@ -275,6 +275,39 @@ TEST(PenaltyContact, QuaternionFdSphereOnACantileverNeedsThePointLoadOfBeamTheor
   EXPECT_NEAR(P, expected, 0.01 * expected);
 }
 
+// The inclined-plane set-up shared by both formulations: a steel rod (0.2 m, r 2 mm) lying along
+// +y with its underside on the plane z = 0 (k = 1e4 N/m², damping for ζ = 0.7 of its normal
+// bounce), and gravity tilted by θ towards +x.
+SteelRod InclineRod() {
+  SteelRod rod;
+  rod.length = 0.2;
+  rod.r = 0.002;
+  return rod;
+}
+
+lie::SE3 LyingAlongY(const SteelRod& rod) {
+  lie::SE3 pose;
+  pose.R << 1, 0, 0, 0, 0, 1, 0, -1, 0;  // tangent along +y
+  pose.p = Vec3(0, 0, rod.r);            // the underside touches the plane
+  return pose;
+}
+
+ContactSurfaces FrictionPlane(const SteelRod& rod, double mu, double slip_velocity) {
+  ContactSurfaces surfaces;
+  surfaces.count = 1;
+  ContactSurface& plane = surfaces.surface[0];
+  plane = Plane(Vec3::Zero(), Vec3::UnitZ(), 1e4);
+  plane.damping = 1.4 * std::sqrt(plane.stiffness * rod.rhoA());  // ζ = 0.7
+  plane.friction = mu;
+  plane.slip_velocity = slip_velocity;
+  return surfaces;
+}
+
+Vec3 TiltedGravity(double tan_theta) {
+  const double theta = std::atan(tan_theta);
+  return 9.81 * Vec3(std::sin(theta), 0, -std::cos(theta));
+}
+
 // A free steel rod (L 0.2 m, r 2 mm, 21 nodes) lying across an inclined plane with Coulomb
 // friction μ = 0.3, in BDF2 dynamics (SE(3) stepper, free-free): the plane is z = 0 and gravity
 // is tilted by θ, g (sin θ, 0, −cos θ), so the rod (along y) slides along x. It starts touching
@@ -285,26 +318,16 @@ struct RodOnIncline {
          x_mid[3] = {0, 0, 0};  // x of the mid node at 0.2/0.35/0.5 s
   bool ok = true;
   explicit RodOnIncline(double tan_theta) {
-    SteelRod rod;
-    rod.length = 0.2;
-    rod.r = 0.002;
+    const SteelRod rod = InclineRod();
     Bdf2Options opt;
     opt.ends = EndConditions::kFreeFree;
     opt.dt = 1e-3;
-    const RodModel model = RodModel::Uniform(rod.length, rod.section(), rod.material);
-    Bdf2ShootingStepper stepper(model, 21, opt);
+    Bdf2ShootingStepper stepper(rod.model(), 21, opt);
     StepInput in;
-    in.base_pose.R << 1, 0, 0, 0, 0, 1, 0, -1, 0;  // tangent along +y
-    in.base_pose.p = Vec3(0, 0, rod.r);            // the underside touches the plane
-    ContactSurface& plane = in.loads.contact.surface[0];
-    in.loads.contact.count = 1;
-    plane.stiffness = 1e4;
-    plane.damping = 1.4 * std::sqrt(plane.stiffness * rod.rhoA());  // ζ = 0.7
-    plane.friction = mu;
-    plane.slip_velocity = slip_velocity;
+    in.base_pose = LyingAlongY(rod);
+    in.loads.contact = FrictionPlane(rod, mu, slip_velocity);
     ok = stepper.InitializeAtRest(in).converged();
-    const double theta = std::atan(tan_theta);
-    in.loads.gravity_W = 9.81 * Vec3(std::sin(theta), 0, -std::cos(theta));
+    in.loads.gravity_W = TiltedGravity(tan_theta);
     for (int i = 1; i <= 500 && ok; ++i) {
       ok = stepper.Step(in).converged();
       if (i == 200 || i == 350 || i == 500)
@@ -360,25 +383,14 @@ struct QuatFdRodOnIncline {
   double mu = 0.3, slip_velocity = 1e-4, x_mid[3] = {0, 0, 0};
   bool ok = true;
   explicit QuatFdRodOnIncline(double tan_theta) {
-    SteelRod rod;
-    rod.length = 0.2;
-    rod.r = 0.002;
+    const SteelRod rod = InclineRod();
     quatfd::QuatFdOptions options;
     options.segments = 20;
     options.base_end = quatfd::EndCondition::kFree;
-    lie::SE3 base;
-    base.R << 1, 0, 0, 0, 0, 1, 0, -1, 0;  // tangent along +y
-    base.p = Vec3(0, 0, rod.r);            // the underside touches the plane
-    quatfd::QuatFdModel model(rod.model(), base, options);
+    quatfd::QuatFdModel model(rod.model(), LyingAlongY(rod), options);
     StaticLoads loads;
-    ContactSurface& plane = loads.contact.surface[0];
-    loads.contact.count = 1;
-    plane = Plane(Vec3::Zero(), Vec3::UnitZ(), 1e4);
-    plane.damping = 1.4 * std::sqrt(plane.stiffness * rod.rhoA());  // ζ = 0.7
-    plane.friction = mu;
-    plane.slip_velocity = slip_velocity;
-    const double theta = std::atan(tan_theta);
-    loads.gravity_W = 9.81 * Vec3(std::sin(theta), 0, -std::cos(theta));
+    loads.contact = FrictionPlane(rod, mu, slip_velocity);
+    loads.gravity_W = TiltedGravity(tan_theta);
     model.set_loads(loads);
     Eigen::VectorXd q(model.size()), v(model.size());
     model.RestState(q, v);

@@ -494,27 +494,48 @@ TEST(AddedMass, QuaternionFdModesInStillWaterAreTheDryOnesOverTheMassRatio) {
 // Free vibration of the quaternion-FD rod (Radau IIA, 20 segments): the first period grows by the
 // same ratio. Zero crossings of the tip over 4 cycles from 1 ms frames, interpolated linearly
 // (frame error ~(ω Δt)² / 8 of a crossing's timing, ≈ 1e-3 of a period, common to both runs).
+/// The quaternion-FD cantilever of these tests (0.5 m steel, r 4 mm, 20 segments) held by a tip
+/// pull (N, along x) under `loads` and let go: the model, its loads set to `loads`, the pulled
+/// state at rest, and a Radau IIA integrator at tolerance 1e-8.
+struct ReleasedQuatFdCantilever {
+  static constexpr int kSegments = 20;
+  SteelRod rod{0.5, 0.004};
+  quatfd::QuatFdModel model;
+  Eigen::VectorXd q, v;
+  quatfd::RadauIntegrator radau;
+  static quatfd::QuatFdOptions Grid() {
+    quatfd::QuatFdOptions grid;
+    grid.segments = kSegments;
+    return grid;
+  }
+  static quatfd::IntegratorOptions Tolerance() {
+    quatfd::IntegratorOptions io;
+    io.rel_tol = io.abs_tol = 1e-8;
+    return io;
+  }
+  ReleasedQuatFdCantilever(const StaticLoads& loads, double pull)
+      : model(rod.model(), lie::SE3{}, Grid()),
+        q(model.size()),
+        v(model.size()),
+        radau(model, Tolerance()) {
+    StaticLoads pulled = loads;
+    pulled.tip_force = Vec3(pull, 0, 0);
+    model.RestState(q, v);
+    EXPECT_TRUE(quatfd::SolveStatics(&model, pulled, q).converged());
+    model.set_loads(loads);
+  }
+};
+
 double QuatFdTipPeriod(const StaticLoads& loads) {
-  const SteelRod rod{0.5, 0.004};
-  quatfd::QuatFdOptions grid;
-  grid.segments = 20;
-  quatfd::QuatFdModel model(rod.model(), lie::SE3{}, grid);
-  StaticLoads pulled = loads;
-  pulled.tip_force = Vec3(0.05, 0, 0);
-  Eigen::VectorXd q(model.size()), v(model.size());
-  model.RestState(q, v);
-  EXPECT_TRUE(quatfd::SolveStatics(&model, pulled, q).converged());
-  model.set_loads(loads);
-  quatfd::IntegratorOptions io;
-  io.rel_tol = io.abs_tol = 1e-8;
-  quatfd::RadauIntegrator radau(model, io);
-  const double frame = 1e-3, f1 = FirstBendingHz(rod);
-  const int tip = quatfd::QuatFdLayout::X(grid.segments);
+  ReleasedQuatFdCantilever c(loads, 0.05);
+  Eigen::VectorXd &q = c.q, &v = c.v;
+  const double frame = 1e-3, f1 = FirstBendingHz(c.rod);
+  const int tip = quatfd::QuatFdLayout::X(c.kSegments);
   double t = 0;
   int i = 0;
   return PeriodOfUpwardCrossings(q(tip), frame, [&](double* t_out, double* x) {
     if (t >= 10.0 / f1) return false;
-    EXPECT_EQ(radau.Advance(++i * frame, &t, q, v), quatfd::IntegratorStatus::kOk);
+    EXPECT_EQ(c.radau.Advance(++i * frame, &t, q, v), quatfd::IntegratorStatus::kOk);
     *t_out = t;
     *x = q(tip);
     return true;
@@ -585,24 +606,14 @@ TEST(FluidDrag, ASwingInStillWaterLosesTheEnergyTheDragDissipates) {
 // the drag's power Σ f_n · ẋ_n over the vertices, 1 ms frames (T/80: the trapezoid's O(Δt²) error
 // is ~1e-4 of the work), and the integrator's own dissipation, measured dry, below 0.1 of it.
 SwingInWater QuatFdSwing(const Fluid& fluid, int cycles) {
-  const SteelRod rod{0.5, 0.004};
-  quatfd::QuatFdOptions grid;
-  grid.segments = 20;
-  quatfd::QuatFdModel model(rod.model(), lie::SE3{}, grid);
   StaticLoads loads;
   loads.fluid = fluid;
-  StaticLoads pulled = loads;
-  pulled.tip_force = Vec3(3.0, 0, 0);
-  Eigen::VectorXd q(model.size()), v(model.size());
-  model.RestState(q, v);
-  EXPECT_TRUE(quatfd::SolveStatics(&model, pulled, q).converged());
-  model.set_loads(loads);
-  quatfd::IntegratorOptions io;
-  io.rel_tol = io.abs_tol = 1e-8;
-  quatfd::RadauIntegrator radau(model, io);
+  ReleasedQuatFdCantilever c(loads, 3.0);
+  const quatfd::QuatFdModel& model = c.model;
+  Eigen::VectorXd &q = c.q, &v = c.v;
   auto drag_power = [&]() {
     double p = 0;
-    for (int n = 0; n <= grid.segments; ++n) {
+    for (int n = 0; n <= c.kSegments; ++n) {
       const Vec3 x = q.segment<3>(quatfd::QuatFdLayout::X(n));
       const Vec3 xd = v.segment<3>(quatfd::QuatFdLayout::X(n));
       const SectionMotion m{x, model.VertexDirection(q, n), xd};
@@ -612,10 +623,10 @@ SwingInWater QuatFdSwing(const Fluid& fluid, int cycles) {
   };
   SwingInWater out;
   const double e0 = model.Energy(q, v).total(), frame = 1e-3;
-  const int frames = static_cast<int>(std::round(cycles / (FirstBendingHz(rod) * frame)));
+  const int frames = static_cast<int>(std::round(cycles / (FirstBendingHz(c.rod) * frame)));
   double t = 0, p_prev = drag_power();
   for (int i = 1; i <= frames; ++i) {
-    EXPECT_EQ(radau.Advance(i * frame, &t, q, v), quatfd::IntegratorStatus::kOk);
+    EXPECT_EQ(c.radau.Advance(i * frame, &t, q, v), quatfd::IntegratorStatus::kOk);
     const double p = drag_power();
     out.drag_work += 0.5 * (p + p_prev) * frame;
     p_prev = p;

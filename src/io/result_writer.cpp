@@ -102,8 +102,7 @@ json DynamicResultToJson(const DynamicRun& run, const RodState& final_state) {
   json tip = json::array();
   for (const Vec3& p : run.frame_tip) tip.push_back(ToArray(p));
   out["trajectory"] = {{"t", run.frame_t}, {"tip_position", std::move(tip)}};
-  if (run.report_tip_spin && run.frame_tip_spin.size() == run.frame_t.size())
-    out["trajectory"]["tip_spin"] = run.frame_tip_spin;
+  if (run.report_tip_spin) out["trajectory"]["tip_spin"] = run.frame_tip_spin;
   out["nodes"] = NodesToJson(final_state);
   return out;
 }

@@ -131,7 +131,7 @@ void QuatFdModel::HeldShape(Eigen::Ref<Eigen::VectorXd> q) const {
       bool through = false;
       for (int v = 1; v < N && !through; ++v)
         through = bed.Distance(x[v], &normal) < 0.5 * vertex_diameter_[v];
-      if (through) GroundedCatenaryPositions(A, plane, length, s_, &x);
+      if (through) GroundedCatenaryPositions(A, plane, length, s_, &x);  // else x stays
     }
   } else {
     // The chord, stretched uniformly (a taut rod); or, with no gravity across the chord to hang
@@ -186,10 +186,11 @@ double QuatFdModel::min_rotational_inertia() const {
 double QuatFdModel::MaxSegmentForce(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   double f_max = 0.0;
   for (int i = 0; i < layout_.segments; ++i) {
-    const kernels::SegmentConstants& c = segment_[i];
-    const Mat3 R = lie::QuatToRotation(q.segment<4>(L::P(i)).normalized());
-    const Vec3 gamma = R.transpose() * (q.segment<3>(L::X(i + 1)) - q.segment<3>(L::X(i))) / c.ds;
-    f_max = std::max(f_max, (c.stiffness * (gamma - c.rest)).norm());
+    Vec3 force_a, torque, F;  // at rest: no strain rate, so F = C_Γ (Γ − Γ*)
+    kernels::SegmentForcesOmega<double>(
+        segment_[i], Vec3(q.segment<3>(L::X(i + 1)) - q.segment<3>(L::X(i))),
+        Vec4(q.segment<4>(L::P(i))), Vec3::Zero(), Vec3::Zero(), &force_a, &torque, nullptr, &F);
+    f_max = std::max(f_max, F.norm());
   }
   return f_max;
 }

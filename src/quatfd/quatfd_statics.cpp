@@ -187,8 +187,10 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
     model->set_loads(hanging);
     q = q_ok;
     ok = Newton(*model, options, beta, q, &w, &summary);
-    if (ok) q_ok = q;
-    if (!ok) ok = follow([&](double l) { return hanging.Scaled(l); });
+    if (ok)
+      q_ok = q;
+    else
+      ok = follow([&](double l) { return hanging.Scaled(l); });
     if (ok && hanging != loads)
       ok = follow([&](double l) { return StaticLoads::Blend(hanging, loads, l); });
   } else {

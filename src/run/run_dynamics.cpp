@@ -40,7 +40,7 @@ void Record(const Bdf2ShootingStepper& stepper, double t, bool all_nodes, io::Dy
   const RodState& state = stepper.state();
   run->frame_t.push_back(t);
   run->frame_tip.push_back(state.tip_position_W());
-  run->frame_tip_spin.push_back(state.twist_B.back()(2));
+  if (run->report_tip_spin) run->frame_tip_spin.push_back(state.twist_B.back()(2));
   if (all_nodes)
     run->frame_positions.insert(run->frame_positions.end(), state.position_W.begin(),
                                 state.position_W.end());
@@ -98,7 +98,7 @@ io::DynamicRun Simulate(const io::Problem& problem, bool all_nodes, Bdf2Shooting
   const std::size_t frames = steps / stride + 2;
   run.frame_t.reserve(frames);
   run.frame_tip.reserve(frames);
-  run.frame_tip_spin.reserve(frames);
+  if (run.report_tip_spin) run.frame_tip_spin.reserve(frames);
   if (all_nodes) run.frame_positions.reserve(frames * problem.nodes);
 
   const auto start = Clock::now();

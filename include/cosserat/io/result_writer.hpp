@@ -48,7 +48,7 @@ struct DynamicRun {
   // Recorded frames: t = 0, every output interval, and the final state.
   std::vector<double> frame_t;
   std::vector<Vec3> frame_tip;        ///< tip position of each frame
-  /// The tip's spin about its own axis (body z, rad/s) of each frame: written as the
+  /// The tip's spin about its own axis (body z, rad/s) of each frame: recorded and written as the
   /// trajectory's tip_spin when `report_tip_spin` (a drill string).
   std::vector<double> frame_tip_spin;
   bool report_tip_spin = false;
