@@ -471,19 +471,26 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
   std::vector<std::string> out;
   const bool quatfd = p.formulation == Formulation::kQuaternionFd;
   // Every analysis and formulation runs; the boundary depends on both.
-  if (p.boundary == B::kAnchored && (!quatfd || p.analysis == A::kBuckling))
+  if (p.boundary == B::kAnchored && p.analysis == A::kBuckling)
+    out.push_back("boundary: \"anchored\" runs statics, dynamics and modes in this version");
+  else if (p.boundary == B::kAnchored && !quatfd && p.analysis != A::kStatics)
     out.push_back(
-        "boundary: \"anchored\" runs statics, dynamics and modes on the \"quaternion-fd\" "
-        "formulation in this version");
+        "boundary: \"anchored\" runs dynamics and modes on the \"quaternion-fd\" formulation "
+        "in this version (statics on both)");
   else if (quatfd && p.analysis != A::kBuckling)  // rod.nodes >= 3 is checked by the parser
     CheckSupported("boundary", p.boundary, {B::kCantilever, B::kAnchored}, &out);
   else if (quatfd)
     CheckSupported("boundary", p.boundary, {B::kCantilever}, &out);
   else if (p.analysis == A::kDynamics)
     CheckSupported("boundary", p.boundary, {B::kCantilever, B::kFreeFree}, &out);
-  else if (p.analysis == A::kBuckling || p.analysis == A::kStatics)
+  else if (p.analysis == A::kBuckling)
     CheckSupported("boundary", p.boundary,
                    {B::kCantilever, B::kPinnedPinned, B::kClampedClamped, B::kClampedPinned}, &out);
+  else if (p.analysis == A::kStatics)
+    CheckSupported("boundary", p.boundary,
+                   {B::kCantilever, B::kPinnedPinned, B::kClampedClamped, B::kClampedPinned,
+                    B::kAnchored},
+                   &out);
   else
     CheckSupported("boundary", p.boundary, {B::kCantilever}, &out);
   if (!quatfd && p.analysis == A::kStatics && p.boundary != B::kCantilever &&

@@ -9,6 +9,8 @@
 
 #include "cosserat/analysis/column.hpp"
 #include "cosserat/io/result_writer.hpp"
+#include "cosserat/quatfd/quatfd_model.hpp"
+#include "cosserat/quatfd/quatfd_statics.hpp"
 #include "cosserat/robots/tendon_control.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
@@ -72,9 +74,81 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
   return result;
 }
 
+/// After an SE(3) solve of a held rod that failed: its shot (RK4 on the grid) follows the bending
+/// boundary layers at the anchors, of length sqrt(EI/T), only while k h = h sqrt(T/EI) stays
+/// below RK4's stability limit on a decaying exponential, 2.8 (a 200 m stay cable at 4 MN fails
+/// at k h = 4.5 and converges at k h = 2.2 and below). The hint names the nodes for k h = 2.
+std::string BoundaryLayerHint(const io::Problem& problem, const RodState& guess) {
+  const SectionProperties p = problem.rod.section->At(0.0, Actuation{});
+  const double ei = std::min(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m²
+  double force = 0.0;                                                 // N
+  for (int i = 0; i < guess.size(); ++i) force = std::max(force, guess.wrench_B[i].tail<3>().norm());
+  const double k = std::sqrt(force / ei), h = problem.rod.length / (problem.nodes - 1);
+  if (k * h <= 2.0) return "";
+  std::ostringstream hint;
+  hint << "cosserat: hint: the grid spacing " << std::setprecision(3) << h
+       << " m is coarse for the bending boundary layers at the anchors, sqrt(EI/T) = " << 1.0 / k
+       << " m, which the SE(3) shot resolves at spacings up to about twice that: try rod.nodes >= "
+       << static_cast<long>(std::ceil(problem.rod.length * k / 2.0)) + 1
+       << ", or \"formulation\": \"quaternion-fd\"\n";
+  return hint.str();
+}
+
+/// A rod held at both ends ("anchored") on the SE(3) path: multiple shooting from the
+/// quaternion-FD equilibrium on the same grid, a state through both anchors with its internal
+/// forces (the SE(3) rest shape does not meet the tip's anchor, and a sagging cable has no
+/// unloaded shape to follow its loads from). The SE(3) solve then satisfies its own discrete
+/// equations; the two differ by their discretisation errors.
+Result RunAnchoredStatics(const io::Problem& problem, const RunOptions& options) {
+  quatfd::QuatFdModel model(problem.rod, problem.base, QuatFdModelOptions(problem));
+  model.set_loads(problem.loads);
+  Eigen::VectorXd q(model.size()), v(model.size());
+  model.RestState(q, v);
+  const quatfd::QuatFdStaticsSummary start =
+      quatfd::SolveStatics(&model, problem.loads, q, QuatFdStaticOptions(problem));
+  RodState guess;
+  model.ToRodState(q, v, &guess);
+
+  StaticMultipleShootingOptions opt;
+  opt.tolerance = problem.solver.tolerance;
+  opt.max_iterations = problem.solver.max_iterations;
+  opt.base_pinned = !problem.anchor.base_clamped;
+  opt.tip_pinned = true;
+  opt.tip_position_W = problem.anchor.position;
+  StaticMultipleShootingSolver solver(problem.rod, problem.nodes, opt);
+  StaticShootingSummary summary;
+  summary.status = start.status;
+  summary.residual = start.residual;
+  summary.iterations = start.iterations;
+  if (start.converged()) summary = solver.SolveFrom(problem.base, problem.loads, guess);
+  const RodState& state = start.converged() ? solver.state() : guess;
+
+  Result result;
+  result.json = io::StaticResultToJson(summary, state);
+  result.json["shooting_segments"] = solver.pieces();
+  // The force the tip's anchor exerts on the rod (N, world): the top tension of a cable.
+  const Vec3 f = state.rotation_WB.back() * state.wrench_B.back().tail<3>();
+  result.json["anchor_force"] = {f.x(), f.y(), f.z()};
+  if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(state);
+  std::ostringstream log;
+  if (!start.converged())
+    log << "cosserat: the start of the SE(3) solve, the quaternion-FD equilibrium on the same "
+           "grid, did not converge ("
+        << ToString(start.status) << ", residual " << std::setprecision(3) << start.residual
+        << "); try \"formulation\": \"quaternion-fd\" for its diagnosis\n";
+  log << StaticSummary(summary, state) << " (" << solver.pieces()
+      << " shooting pieces), anchor force [" << std::setprecision(6) << f.x() << ", " << f.y()
+      << ", " << f.z() << "] N (tension " << f.norm() << " N)\n";
+  if (start.converged() && !summary.converged()) log << BoundaryLayerHint(problem, guess);
+  result.log = log.str();
+  result.converged = start.converged() && summary.converged();
+  return result;
+}
+
 }  // namespace
 
 Result RunStatics(const io::Problem& problem, const RunOptions& options) {
+  if (problem.boundary == io::Boundary::kAnchored) return RunAnchoredStatics(problem, options);
   ColumnEnds ends = ColumnEnds::kClampedFree;
   if (problem.boundary != io::Boundary::kCantilever && ToColumnEnds(problem.boundary, &ends))
     return RunColumnStatics(problem, ends, options);

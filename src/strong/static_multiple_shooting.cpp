@@ -113,8 +113,26 @@ void StaticMultipleShootingSolver::SetPieces(int pieces) {
 
 StaticMultipleShootingSolver::Point StaticMultipleShootingSolver::BaseStart(const lie::SE3& base,
                                                                             const Vec6& x) const {
-  const Vec6 W0 = scale_.cwiseProduct(x);
-  return {base.p, base.R, W0.head<3>(), W0.tail<3>()};
+  if (!options_.base_pinned) {
+    const Vec6 W0 = scale_.cwiseProduct(x);
+    return {base.p, base.R, W0.head<3>(), W0.tail<3>()};
+  }
+  // Pinned with the twist held: the rotation about the base frame's x and y, the torsional
+  // moment (body z) and the force.
+  return {base.p, base.R * lie::SO3Exp(Vec3(x(0), x(1), 0.0)), Vec3(0.0, 0.0, scale_(2) * x(2)),
+          scale_.tail<3>().cwiseProduct(x.tail<3>())};
+}
+
+Vec6 StaticMultipleShootingSolver::BaseUnknowns(const lie::SE3& base, const Point& guess) const {
+  Vec6 x;
+  x.tail<3>() = guess.n.cwiseQuotient(scale_.tail<3>());
+  if (!options_.base_pinned) {
+    x.head<3>() = guess.m.cwiseQuotient(scale_.head<3>());
+  } else {
+    const Vec3 phi = lie::SO3Log(Mat3(base.R.transpose() * guess.R));
+    x.head<3>() << phi(0), phi(1), guess.m(2) / scale_(2);
+  }
+  return x;
 }
 
 StaticMultipleShootingSolver::Point StaticMultipleShootingSolver::ShootPiece(
@@ -174,7 +192,9 @@ Eigen::Matrix<double, 12, 1> StaticMultipleShootingSolver::Mismatch(const Point&
 Vec6 StaticMultipleShootingSolver::TipResidual(const Point& tip, const StaticLoads& loads) const {
   Vec6 W;
   W << tip.m, tip.n;
-  return (W - TipWrenchInBody(TotalTipWrench(loads), tip.R)).cwiseQuotient(scale_);
+  Vec6 e = (W - TipWrenchInBody(TotalTipWrench(loads), tip.R)).cwiseQuotient(scale_);
+  if (options_.tip_pinned) e.tail<3>() = (tip.p - options_.tip_position_W) / model_.length;
+  return e;
 }
 
 StaticMultipleShootingSolver::Point StaticMultipleShootingSolver::Moved(
@@ -343,16 +363,14 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
     summary.status = SolveStatus::kNonFinite;
     return summary;
   }
-  int pieces = options_.pieces;
-  if (pieces == 0) {
-    const double exponent = StaticShootingExponent(model_, loads);
-    pieces = std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent),
-                      static_cast<int>(grid_.size()) - 1);
-  }
+  const int pieces = PiecesFor(StaticShootingExponent(model_, loads));
   if (pieces != this->pieces()) SetPieces(pieces);
   // Continuation in the loads from the last solution at this base, else from the unloaded rod.
   StaticLoads start = loads.Scaled(0.0);
   summary.warm_started = has_solution_ && solved_base_.p == base.p && solved_base_.R == base.R;
+  if (options_.tip_pinned && !summary.warm_started)
+    throw std::logic_error(
+        "StaticMultipleShootingSolver: a pinned tip starts from a guess (SolveFrom)");
   if (summary.warm_started)
     start = solved_loads_;
   else
@@ -386,23 +404,83 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
   summary.load_steps = levels - 1;
   const bool converged = mu == 1.0;
   // The state of the last accepted level (the solution when converged).
-  const StaticLoads last = converged ? loads : at(mu);
+  Finish(base, converged ? loads : at(mu), converged, &summary);
+  summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return summary;
+}
+
+StaticShootingSummary StaticMultipleShootingSolver::SolveFrom(const lie::SE3& base,
+                                                              const StaticLoads& loads,
+                                                              const RodState& guess) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (guess.size() != static_cast<int>(grid_.size()))
+    throw std::invalid_argument("StaticMultipleShootingSolver::SolveFrom: the guess has " +
+                                std::to_string(guess.size()) + " nodes, the grid " +
+                                std::to_string(grid_.size()));
+  StaticShootingSummary summary;
+  summary.stability_index = -1;
+  if (!loads.IsValid(nullptr) || !base.p.allFinite() || !base.R.allFinite()) {
+    summary.status = SolveStatus::kNonFinite;
+    return summary;
+  }
+  // The exponent of a single shot under the guess's largest force (a held cable's tension is
+  // not bounded by its loads), or of the loads and contact surfaces when larger.
+  const SectionProperties p = model_.section->At(0.0, Actuation{});
+  const double ei = std::min(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m²
+  double force = 0.0;  // N
+  for (int i = 0; i < guess.size(); ++i) force = std::max(force, guess.wrench_B[i].tail<3>().norm());
+  const double exponent =
+      std::max(std::sqrt(force / ei) * model_.length, StaticShootingExponent(model_, loads));
+  const int pieces = PiecesFor(exponent);
+  if (pieces != this->pieces()) SetPieces(pieces);
+  // Unknowns and residuals in the guess's own scales: a cable's tension T is (kL)² times EI/L²
+  // (10⁶ at kL = 1000), which would leave the forward differences of the force unknowns
+  // (step 1e-9) at round-off. Its end moments are about sqrt(T EI) (a boundary layer of length
+  // sqrt(EI/T)).
+  const double L = model_.length;
+  const double ei_max = std::max(p.stiffness(0, 0), p.stiffness(1, 1));  // as the constructor's
+  scale_.head<3>().setConstant(std::max(ei_max / L, std::sqrt(force * ei)));
+  scale_.tail<3>().setConstant(std::max(ei_max / (L * L), force));
+  // Each start in the guess's own frame there; the base's rotation from the node after it when
+  // pinned (a state may report the support's frame at a pinned end, not the rod's).
+  auto at_node = [&](int i, int frame) {
+    const Mat3& R = guess.rotation_WB[frame];
+    const Vec3 m_W = guess.rotation_WB[i] * guess.wrench_B[i].head<3>();
+    const Vec3 n_W = guess.rotation_WB[i] * guess.wrench_B[i].tail<3>();
+    return Point{guess.position_W[i], R, Vec3(R.transpose() * m_W), Vec3(R.transpose() * n_W)};
+  };
+  x_ = BaseUnknowns(base, at_node(0, options_.base_pinned ? 1 : 0));
+  for (size_t k = 0; k < junction_nodes_.size(); ++k)
+    junctions_[k] = at_node(junction_nodes_[k], junction_nodes_[k]);
+  const bool converged = Newton(base, loads, &summary);
+  Finish(base, loads, converged, &summary);
+  summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return summary;
+}
+
+int StaticMultipleShootingSolver::PiecesFor(double exponent) const {
+  if (options_.pieces > 0) return options_.pieces;
+  return std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent),
+                  static_cast<int>(grid_.size()) - 1);
+}
+
+void StaticMultipleShootingSolver::Finish(const lie::SE3& base, const StaticLoads& last,
+                                          bool converged, StaticShootingSummary* summary) {
   Point y = BaseStart(base, x_);
   for (int k = 0; k <= static_cast<int>(junction_nodes_.size()); ++k)
     y = ShootPiece(k, k == 0 ? y : junctions_[k - 1], last, true);
   Residual(base, last, &r_);
-  summary.residual = r_.norm();
-  summary.status = converged ? SolveStatus::kConverged
-                             : (std::isfinite(summary.residual) ? SolveStatus::kMaxIterations
-                                                                : SolveStatus::kNonFinite);
+  summary->residual = r_.norm();
+  summary->status = converged ? SolveStatus::kConverged
+                              : (std::isfinite(summary->residual) ? SolveStatus::kMaxIterations
+                                                                  : SolveStatus::kNonFinite);
   if (converged) {
     has_solution_ = true;
     solved_base_ = base;
-    solved_loads_ = loads;
+    solved_loads_ = last;
   }
-  summary.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return summary;
 }
 
 }  // namespace cosserat

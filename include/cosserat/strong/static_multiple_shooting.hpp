@@ -16,6 +16,10 @@
 /// in the loads from the unloaded rod (exact: the rest shape) or the last solution; when that
 /// stalls on stiff contact surfaces, the loads are followed on surfaces 1000 times softer and
 /// the surfaces then stiffened geometrically.
+/// Ends held at points (the boundary "anchored", docs/cables.md): the base pinned, its unknowns
+/// the rotation about the base frame's x and y, the torsional moment and the force; the tip
+/// pinned at a point, its residual the position and the moment. The unloaded rest shape does not
+/// meet the tip's point, so such a rod starts from a guess of the whole rod (SolveFrom).
 /// No tendons; no stability index (summary.stability_index = −1).
 
 #include <functional>
@@ -47,6 +51,14 @@ struct StaticMultipleShootingOptions {
   int max_iterations = 30;
   /// Load levels of the continuation (accepted and rejected) per Solve.
   int max_load_steps = 200;
+  /// The base pinned at its position instead of clamped: its rotation free but for the twist
+  /// about the rod's axis (a clevis), which an isotropic rod pinned at both ends would otherwise
+  /// leave undetermined; the base frame's z stays the reference of the held twist.
+  bool base_pinned = false;
+  /// The tip pinned at tip_position_W (world, m) instead of free; a tip force then acts on the
+  /// anchor, not the rod, and a tip moment still loads the rod.
+  bool tip_pinned = false;
+  Vec3 tip_position_W = Vec3::Zero();
 };
 
 class StaticMultipleShootingSolver {
@@ -58,7 +70,16 @@ class StaticMultipleShootingSolver {
 
   /// Equilibrium of the cantilever clamped at `base` under `loads`, by continuation from the
   /// last solution (or the unloaded rod). The state is valid when the status is converged.
+  /// With a pinned tip, only after SolveFrom (throws std::logic_error otherwise).
   StaticShootingSummary Solve(const lie::SE3& base, const StaticLoads& loads);
+
+  /// Equilibrium by Newton at the full loads from `guess`, a state of the whole rod on this grid
+  /// (node poses, body-frame wrenches: e.g. the quaternion-FD equilibrium), the start of rods held
+  /// at both ends. With options.pieces 0 the pieces follow from the guess's largest force T:
+  /// exponent L sqrt(T / EI), as for Solve. Throws std::invalid_argument when the guess has
+  /// another number of nodes.
+  StaticShootingSummary SolveFrom(const lie::SE3& base, const StaticLoads& loads,
+                                  const RodState& guess);
 
   const RodState& state() const { return state_; }
   /// Pieces of the last Solve.
@@ -71,7 +92,15 @@ class StaticMultipleShootingSolver {
   /// Integrates piece k from `start` under loads; the arriving state, and with record the node
   /// values of the piece.
   Point ShootPiece(int k, const Point& start, const StaticLoads& loads, bool record);
+  /// The base state from the 6 scaled base unknowns x (docs at StaticMultipleShootingOptions).
   Point BaseStart(const lie::SE3& base, const Vec6& x) const;
+  /// The base unknowns that BaseStart maps to the guess's state at s = 0.
+  Vec6 BaseUnknowns(const lie::SE3& base, const Point& guess) const;
+  /// Pieces for a rod whose single shot has this exponent (options.pieces when set).
+  int PiecesFor(double exponent) const;
+  /// The state recorded from the unknowns under `last`, and the summary's status and residual.
+  void Finish(const lie::SE3& base, const StaticLoads& last, bool converged,
+              StaticShootingSummary* summary);
   /// [mismatch of junction 0, 1, …; tip residual] at the current unknowns.
   bool Residual(const lie::SE3& base, const StaticLoads& loads, Eigen::VectorXd* r);
   /// Mismatch of junction k (12, dimensionless) between the arriving state and its restart.
