@@ -1,5 +1,6 @@
 #include "cosserat/run/run.hpp"
 
+#include "bending_stress_report.hpp"
 #include "contact_report.hpp"
 #include "cosserat/run/run_buckling.hpp"
 #include "cosserat/run/run_dynamics.hpp"
@@ -31,6 +32,7 @@ Result Dispatch(const io::Problem& problem, const RunOptions& options) {
 Result Run(const io::Problem& problem, const RunOptions& options) {
   Result result = Dispatch(problem, options);
   detail::AddContactReport(problem, &result);
+  detail::AddBendingStressReport(problem, &result);
   return result;
 }
 
