@@ -1,6 +1,8 @@
 #!/usr/bin/python3
 """Plot a `cosserat solve` result: the centreline in two side views and the curvature along s,
-and for a dynamics result (one with a "trajectory") the tip x, y, z against time. With the
+and for a dynamics result (one with a "trajectory") the tip x, y, z against time, with the
+tip's spin (a drill string's trajectory.tip_spin) and the anchor's tension (|trajectory.
+anchor_force|, a riser's top tension) when the result has them. With the
 problem file, its contact surfaces and the rod's outer surface are drawn in the side views; a
 result with contact also
 shows the contact force per unit length along s.
@@ -116,15 +118,26 @@ def plot_contact_force(ax, result):
     twin.legend(loc="lower right")
 
 
-def plot_trajectory(axes, trajectory):
-    """Tip x, y, z against t, one strip each (their ranges can differ by orders of magnitude)."""
-    t = trajectory["t"]
+def trajectory_strips(trajectory):
+    """(label, values) of each strip: tip x, y, z, then the extras the trajectory holds."""
     columns = list(zip(*trajectory["tip_position"]))
-    for ax, values, name, colour in zip(axes, columns, "xyz", ["C0", "C1", "C2"]):
-        ax.plot(t, values, color=colour, lw=1.0)
-        ax.set_ylabel(f"tip {name} [m]")
+    strips = [(f"tip {name} [m]", values) for name, values in zip("xyz", columns)]
+    if "tip_spin" in trajectory:
+        strips.append(("tip spin [rad/s]", trajectory["tip_spin"]))
+    if "anchor_force" in trajectory:
+        tension = [math.sqrt(sum(c * c for c in f)) / 1e3 for f in trajectory["anchor_force"]]
+        strips.append(("anchor tension [kN]", tension))
+    return strips
+
+
+def plot_trajectory(axes, trajectory):
+    """Each strip against t, one axis each (their ranges can differ by orders of magnitude)."""
+    t = trajectory["t"]
+    for k, (ax, (label, values)) in enumerate(zip(axes, trajectory_strips(trajectory))):
+        ax.plot(t, values, color=f"C{k}", lw=1.0)
+        ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
-    axes[0].set_title("tip position against time")
+    axes[0].set_title("tip against time")
     axes[-1].set_xlabel("t [s]")
 
 
@@ -163,8 +176,9 @@ def main(argv):
             plot_outline(axes[:2], result, problem)
         plot_contact_force(axes[2], result)
     else:
-        fig = plt.figure(figsize=(13, 8.4))
-        grid = fig.add_gridspec(2, 1, height_ratios=[1, 1])
+        count = len(trajectory_strips(trajectory))
+        fig = plt.figure(figsize=(13, 5.6 + 0.95 * count))
+        grid = fig.add_gridspec(2, 1, height_ratios=[3, count])
         top = grid[0].subgridspec(1, 3)
         shape_axes = [fig.add_subplot(top[0, i]) for i in range(3)]
         plot_shape(shape_axes, result)
@@ -172,8 +186,8 @@ def main(argv):
             plot_surfaces(shape_axes[:2], problem)
             plot_outline(shape_axes[:2], result, problem)
         plot_contact_force(shape_axes[2], result)
-        bottom = grid[1].subgridspec(3, 1, hspace=0.08)
-        strips = [fig.add_subplot(bottom[i, 0]) for i in range(3)]
+        bottom = grid[1].subgridspec(count, 1, hspace=0.08)
+        strips = [fig.add_subplot(bottom[i, 0]) for i in range(count)]
         for ax in strips[:-1]:
             ax.sharex(strips[-1])
             ax.tick_params(labelbottom=False)

@@ -331,6 +331,60 @@ TEST(HeldCable, ATautCableSwaysAboutItsWindDeflection) {
   EXPECT_NEAR(mean, expected, 0.01 * expected);
 }
 
+// A taut string (T = 200 kN, 100 m, first mode 0.80 Hz) whose tip anchor is shaken sideways
+// from rest, y = A (1 − cos ωt), at half the first mode's frequency: a vessel's motion at a line's
+// end. The exact response is the static line A x/ℓ, the forced standing wave −A sin(kx)/sin(kℓ)
+// cos(ωt) (k = ω/c, c² = H/m), and the free modes its start excites, c_n sin(nπx/ℓ) cos(ω_n t)
+// with c_n = −(2/ℓ) A (−1)^n k² / (b (b² − k²)), b = nπ/ℓ (the initial shape expanded in modes).
+// Mid-span over 2.5 s against 400 terms of the series (they fall as 1/n³): within 0.2 % of A
+// (measured 7e-4). The 100-segment grid's dispersion shifts mode n by (nπ/100)²/24 (n = 1: 4e-5;
+// the modes that carry the mid-span's motion, n ≤ 5, stay below 1e-3 in phase over 2 periods),
+// the rod's bending (EI = 2e-5 N·m²) and the step's tolerance add less than 1e-6.
+TEST(HeldCable, AStringFollowsItsShakenAnchor) {
+  const Cable c{100.0, 1e-3, 2e11, 1e-10, 7850.0};
+  const double strain = 1e-3, span = c.L0 * (1 + strain), A = 0.01;
+  quatfd::QuatFdOptions options = HeldBetween(Vec3(span, 0, 0), 100);
+  quatfd::QuatFdModel still(c.Model(), lie::SE3{}, options);
+  Eigen::VectorXd q(still.size()), v(still.size());
+  const StaticLoads none;
+  still.set_loads(none);
+  still.RestState(q, v);  // the stretched chord: the equilibrium
+  RodState st;
+  still.ToRodState(q, v, &st);
+  const double H = -st.BaseReaction_W()(3);
+  const double m = c.rho * c.A / (1 + strain);  // kg per stretched metre
+  const double wave = std::sqrt(H / m), w1 = M_PI * wave / span, w = 0.5 * w1;
+  options.tip_motion_amplitude = Vec3(0, A, 0);
+  options.tip_motion_angular_frequency = w;
+  quatfd::QuatFdModel model(c.Model(), lie::SE3{}, options);
+  model.set_loads(none);
+  const double k = w / wave;
+  auto exact_mid = [&](double t) {
+    double y = 0.5 * A - A * std::sin(0.5 * k * span) / std::sin(k * span) * std::cos(w * t);
+    for (int n = 1; n <= 400; ++n) {
+      const double b = n * M_PI / span;
+      const double cn = -2 / span * A * (n % 2 ? -1.0 : 1.0) * k * k / (b * (b * b - k * k));
+      y += cn * std::sin(0.5 * b * span) * std::cos(b * wave * t);
+    }
+    return y;
+  };
+  quatfd::IntegratorOptions io;
+  io.rel_tol = io.abs_tol = 1e-8;
+  quatfd::RadauIntegrator radau(model, io);
+  double t = 0, worst = 0, tip_worst = 0;
+  for (int i = 1; i <= 50; ++i) {
+    ASSERT_EQ(radau.Advance(0.05 * i, &t, q, v), quatfd::IntegratorStatus::kOk) << "t = " << t;
+    worst = std::max(worst, std::abs(q(QuatFdLayout::X(50) + 1) - exact_mid(t)));
+    const double tip = A * (1 - std::cos(w * t));
+    tip_worst = std::max(tip_worst, std::abs(q(QuatFdLayout::X(100) + 1) - tip));
+  }
+  std::printf("shaken anchor: mid-span within %.3e m of the series (A = %.2f m), the tip within "
+              "%.3e m of A (1 - cos wt)\n",
+              worst, A, tip_worst);
+  EXPECT_LT(worst, 2e-3 * A);
+  EXPECT_LT(tip_worst, 1e-6 * A);  // the driven oscillator, integrated to 1e-8
+}
+
 // --- Modes of a sagging cable ---------------------------------------------------------------
 
 /// A horizontal cable of span 100 m sagging ~1 m (d/ℓ = 0.01) under gravity, with EA set so that

@@ -59,9 +59,17 @@ void ParseBase(const ObjectReader& base, lie::SE3* pose) {
   pose->R = ReadRotation(base, "rotation").value_or(Mat3::Identity());
 }
 
-/// "anchor": {"position": [x, y, z], "base": "pinned" | "clamped", "tip": "pinned"}.
+/// "anchor": {"position": [x, y, z], "base": "pinned" | "clamped", "tip": "pinned",
+///            "motion": {"amplitude": [ax, ay, az], "period": T}}.
 void ParseAnchor(const ObjectReader& o, Problem::Anchor* anchor) {
-  o.AllowOnly({"position", "base", "tip"});
+  o.AllowOnly({"position", "base", "tip", "motion"});
+  if (const auto motion = ReadObject(o, "motion", Presence::kOptional)) {
+    motion->AllowOnly({"amplitude", "period"});
+    anchor->motion_amplitude =
+        ReadVec3(*motion, "amplitude", Presence::kRequired).value_or(Vec3::Zero());
+    anchor->motion_period =
+        ReadNumber(*motion, "period", PositiveNumber(), Presence::kRequired).value_or(0.0);
+  }
   anchor->position = ReadVec3(o, "position", Presence::kRequired).value_or(Vec3::Zero());
   anchor->base_clamped =
       ReadChoice(o, "base", {"pinned", "clamped"}, Presence::kOptional) == std::string("clamped");

@@ -141,6 +141,12 @@ bool QuatFdOptions::IsValid(std::string* why) const {
     return fail("tip_end: a clamped end at s = L is not implemented for quaternion-fd (free or "
                 "pinned)");
   if (!tip_position_W.allFinite()) return fail("tip_position_W: expected finite coordinates");
+  if (!tip_motion_amplitude.allFinite())
+    return fail("tip_motion_amplitude: expected finite coordinates");
+  if (!(std::isfinite(tip_motion_angular_frequency) && tip_motion_angular_frequency >= 0))
+    return fail("tip_motion_angular_frequency: expected a finite number >= 0");
+  if (tip_motion_angular_frequency > 0 && tip_end != EndCondition::kPinned)
+    return fail("tip_motion_angular_frequency: moves a pinned tip (tip_end kPinned)");
   if (!(std::isfinite(baumgarte_alpha) && baumgarte_alpha >= 0))
     return fail("baumgarte_alpha: expected a finite number >= 0");
   if (!(std::isfinite(baumgarte_beta) && baumgarte_beta >= 0))
@@ -417,6 +423,14 @@ void QuatFdModel::DivideVertexRowsByMass(const Eigen::Ref<const Eigen::VectorXd>
       }
     }
   }
+  // A moving tip anchor: its vertex driven as the oscillator ẍ = −ω² (x − x̄ − A) (QuatFdOptions).
+  const double w = options_.tip_motion_angular_frequency;
+  if (options_.tip_end != EndCondition::kPinned || w == 0.0) return;
+  const int r = L::X(layout_.segments);
+  a.segment<3>(r) =
+      -w * w * (q.segment<3>(r) - options_.tip_position_W - options_.tip_motion_amplitude);
+  if (dfdq)
+    for (int i = r; i < r + 3; ++i) (*dfdq)(i, i) = -w * w;
 }
 
 void QuatFdModel::DivideVertexRowsByMassMatrix(const Eigen::Ref<const Eigen::VectorXd>& q, int n,

@@ -185,12 +185,15 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
   run.iterations = init.iterations;
   run.initial_state_ok = init.converged();
   run.status = init.status;
+  run.report_anchor_force = problem.boundary == io::Boundary::kAnchored;
   RodState state;
   model.ToRodState(q, v, &state);
   auto record = [&](double t) {
     model.ToRodState(q, v, &state);
     run.frame_t.push_back(t);
     run.frame_tip.push_back(state.tip_position_W());
+    if (run.report_anchor_force)
+      run.frame_anchor_force.push_back(state.rotation_WB.back() * state.wrench_B.back().tail<3>());
     if (options.nodes_csv)
       run.frame_positions.insert(run.frame_positions.end(), state.position_W.begin(),
                                  state.position_W.end());

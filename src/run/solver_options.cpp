@@ -1,6 +1,7 @@
 #include "cosserat/run/solver_options.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cosserat::run {
 
@@ -30,6 +31,10 @@ quatfd::QuatFdOptions QuatFdModelOptions(const io::Problem& problem) {
     }
     options.tip_end = quatfd::EndCondition::kPinned;
     options.tip_position_W = problem.anchor.position;
+    if (problem.analysis == io::Analysis::kDynamics && problem.anchor.motion_period > 0) {
+      options.tip_motion_amplitude = problem.anchor.motion_amplitude;
+      options.tip_motion_angular_frequency = 2 * M_PI / problem.anchor.motion_period;
+    }
   }
   return options;
 }

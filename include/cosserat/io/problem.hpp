@@ -33,6 +33,10 @@ struct Problem {
   struct Anchor {
     Vec3 position = Vec3::Zero();  ///< where the tip is held, world, m
     bool base_clamped = false;
+    /// "motion": in dynamics the anchor moves as position + amplitude (1 − cos(2π t / period)),
+    /// from rest (a vessel's heave and surge; world, m and s). Zero amplitude: held still.
+    Vec3 motion_amplitude = Vec3::Zero();
+    double motion_period = 0.0;
   } anchor;
   StaticLoads loads;
   /// "solver": the static solves' convergence test, read by every formulation (run/ turns it

@@ -52,6 +52,11 @@ struct DynamicRun {
   /// trajectory's tip_spin when `report_tip_spin` (a drill string).
   std::vector<double> frame_tip_spin;
   bool report_tip_spin = false;
+  /// The rod's internal force at the tip of each frame (N, world): for a rod held at an anchor the
+  /// force the anchor exerts on it, a riser's top tension in time; written as the trajectory's
+  /// anchor_force when `report_anchor_force`.
+  std::vector<Vec3> frame_anchor_force;
+  bool report_anchor_force = false;
   std::vector<Vec3> frame_positions;  ///< all node positions, frame after frame (may be empty)
 };
 
