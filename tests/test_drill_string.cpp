@@ -3,7 +3,8 @@
 // torsional frequency satisfies (ωL/c) tan(ωL/c) = J_string / J_BHA (SE(3) BDF2 stepper with a
 // tip body). Driven by the table at a constant speed against the bit's velocity-weakening
 // friction, it sticks and slips as the one-degree-of-freedom torsional pendulum does when the
-// string is light beside the BHA.
+// string is light beside the BHA. Lying in a horizontal bore, a string's end rests on the bore's
+// wall with the reaction beam theory gives for the gap, in both formulations.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,8 +14,11 @@
 
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/loads/bit_friction.hpp"
+#include "cosserat/quatfd/quatfd_statics.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
 #include "support/analytic/torsion.hpp"
+#include "support/rods.hpp"
 
 namespace cosserat {
 namespace {
@@ -229,6 +233,81 @@ TEST(DrillString, StickSlipVanishesAboveATableSpeed) {
               threshold, below ? "yes" : "no", above ? "yes" : "no");
   EXPECT_TRUE(below);
   EXPECT_FALSE(above);
+}
+
+// --- Contact with the bore ------------------------------------------------------------------
+
+// A horizontal steel string (1 m, r = 5 mm) clamped on the axis of a bore (a cylinder, "inside")
+// whose wall lies δ = w0/2 below it, w0 = q L⁴/(8EI) the free sag of its tip under its weight q:
+// the tip comes to rest on the wall and nowhere else (the propped cantilever's deflection rises
+// to its end: w'(L) > 0 for a prop at w ≤ w0). Beam theory then gives the wall's force on the tip
+// from the tip's measured deflection w_L: R = 3 EI (w0 − w_L)/L³, and the clamp carries q L − R.
+// The stiff wall (k = 1e8 N/m²) lets the tip in by ~5e-5 m over a patch of a few mm, whose spread
+// changes R by O(ℓ/L) ≈ 0.5 %; the geometric nonlinearity is O((w/L)²) ≈ 1e-4. Within 1 %; a wrong
+// gap (the outer radius, the side or the axis) moves w_L by millimetres and R by 100 %.
+struct BoreRest {
+  double R, R_expected, w_tip, gap;
+};
+
+BoreRest ExpectedBoreRest(const testing::SteelRod& rod, const RodState& st, double gap) {
+  const double q = rod.rhoA() * 9.81, L = rod.length;
+  const double w0 = q * std::pow(L, 4) / (8 * rod.EI());
+  BoreRest b;
+  b.w_tip = -st.tip_position_W().z();
+  b.R = q * L - st.BaseReaction_W()(5);  // the wall's share of the weight
+  b.R_expected = 3 * rod.EI() * (w0 - b.w_tip) / std::pow(L, 3);
+  b.gap = gap;
+  return b;
+}
+
+struct BoreSetUp {
+  testing::SteelRod rod{1.0, 0.005};
+  lie::SE3 base;  // on the bore's axis, the tangent along +x
+  StaticLoads loads;
+  double gap = 0.0;  // m, from the straight rod's underside to the wall
+  BoreSetUp() {
+    base.R << 0, 0, 1, 0, 1, 0, -1, 0, 0;
+    const double q = rod.rhoA() * 9.81;
+    gap = 0.5 * q * std::pow(rod.length, 4) / (8 * rod.EI());
+    loads.gravity_W = Vec3(0, 0, -9.81);
+    loads.contact.count = 1;
+    ContactSurface& bore = loads.contact.surface[0];
+    bore.shape = ContactSurface::Shape::kCylinder;
+    bore.inside = true;
+    bore.point_W = Vec3::Zero();
+    bore.direction_W = Vec3::UnitX();
+    bore.radius = rod.r + gap;
+    bore.stiffness = 1e8;
+  }
+};
+
+void ExpectRestsOnTheWall(const BoreRest& b, const char* formulation) {
+  std::printf("%s: tip %.4e m down (gap %.4e m), wall force %.5f N, beam theory %.5f N\n",
+              formulation, b.w_tip, b.gap, b.R, b.R_expected);
+  EXPECT_GT(b.w_tip, b.gap);         // on the wall
+  EXPECT_LT(b.w_tip, 1.05 * b.gap);  // in by less than the stiff wall allows
+  EXPECT_NEAR(b.R, b.R_expected, 0.01 * b.R_expected);
+}
+
+TEST(DrillString, AStringInABoreRestsItsEndOnTheWall) {
+  const BoreSetUp set;
+  StaticMultipleShootingSolver solver(set.rod.model(), 201);
+  ASSERT_TRUE(solver.Solve(set.base, set.loads).converged());
+  ExpectRestsOnTheWall(ExpectedBoreRest(set.rod, solver.state(), set.gap), "SE(3)");
+}
+
+TEST(DrillString, AQuaternionFdStringInABoreRestsItsEndOnTheWall) {
+  const BoreSetUp set;
+  quatfd::QuatFdOptions options;
+  options.segments = 200;
+  quatfd::QuatFdModel model(set.rod.model(), set.base, options);
+  Eigen::VectorXd q(model.size()), v(model.size());
+  model.set_loads(set.loads);
+  model.RestState(q, v);
+  ASSERT_TRUE(quatfd::SolveStatics(&model, set.loads, q).converged());
+  RodState st;
+  model.ToRodState(q, Eigen::VectorXd::Zero(model.size()), &st);
+  ExpectRestsOnTheWall(ExpectedBoreRest(set.rod, st, set.gap), "quaternion FD");
 }
 
 }  // namespace
