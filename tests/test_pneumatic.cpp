@@ -11,6 +11,7 @@
 #include "cosserat/constitutive/chamber_law.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/quatfd_statics.hpp"
+#include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "support/analytic/chamber.hpp"
 
@@ -234,6 +235,37 @@ TEST(Pneumatic, ControllerChangesThePressureWithoutANewSolver) {
               1e-6 * rod.length)
         << p;
   }
+}
+
+TEST(Pneumatic, DynamicsFollowsAPressureRampToTheArc) {
+  // BDF2 dynamics, the pressure ramped by the step input from 0 to the quarter-circle pressure
+  // over 0.5 s and then held. Kelvin–Voigt damping of retardation time τ = 0.2 s makes the first
+  // bending mode (ω1 = 3.516 sqrt(EI/ρA)/L² = 13 rad/s) overdamped, ζ = τω1/2 = 1.3, its slow
+  // pole at −6.2 1/s: after 3 s the motion has decayed by e^−15 (3e-7), and the rod at rest is
+  // the static arc, so 1e-5 L is ample.
+  SiliconeRod rod;
+  const double tau = 0.2;
+  rod.material.damping = {tau * rod.EI(),
+                          tau * rod.material.shear_modulus * rod.section.torsion_constant,
+                          tau * rod.material.shear_modulus * rod.section.area, tau * rod.EA()};
+  const RodModel model = rod.Model({rod.At(Vec2(rod.offset, 0), 0, rod.length)});
+  const double p =
+      truth::ChamberPressureForTurn(0.5 * kPi, rod.EI(), rod.length, rod.chamber_area, rod.offset);
+  Bdf2Options opt;
+  opt.dt = 0.01;
+  Bdf2ShootingStepper stepper(model, 41, opt);
+  StepInput input;
+  ASSERT_TRUE(stepper.InitializeAtRest(input).converged());
+  for (int n = 1; n <= 300; ++n) {
+    input.actuation.chamber_pressure[0] = p * std::min(1.0, n * opt.dt / 0.5);
+    ASSERT_TRUE(stepper.Step(input).converged()) << n;
+  }
+  const double k = -truth::ChamberArcCurvature(p, rod.chamber_area, rod.offset, rod.EI());
+  const double nu = truth::ChamberStretch(p * rod.chamber_area, rod.EA());
+  const double error =
+      (stepper.state().tip_position_W() - truth::BodyYArc(k, nu, rod.length).p).norm() / rod.length;
+  std::printf("dynamics after the ramp: tip error %.3g L\n", error);
+  EXPECT_LT(error, 1e-5);
 }
 
 TEST(Pneumatic, ChamberWrenchPushesAwayFromTheChamberOnlyWhereItRuns) {
