@@ -1,6 +1,5 @@
 #include "problem_robot.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -10,6 +9,7 @@
 #include "cosserat/robots/eversion_robot.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
 #include "problem_chambers.hpp"
+#include "problem_rod.hpp"
 #include "read_enum.hpp"
 
 namespace cosserat::io::detail {
@@ -156,13 +156,7 @@ void ParseActuation(const ObjectReader& a, int tendons, int chambers, Actuation*
 /// rod.nodes must hold a node at each chamber end inside the rod, as at every profile breakpoint.
 void CheckNodesHoldChamberEnds(const ObjectReader& robot, const Problem& p) {
   if (p.rod.chambers.empty() || !p.rod.section) return;
-  std::vector<double> cuts = p.rod.Breakpoints();
-  std::sort(cuts.begin(), cuts.end());
-  const double eps = 1e-12 * p.rod.length;
-  double last = 0.0;
-  int needed = 2;
-  for (double c : cuts)
-    if (c > eps && c < p.rod.length - eps && c - last > eps) last = c, ++needed;
+  const int needed = 2 + InteriorBreakpoints(p.rod.Breakpoints(), p.rod.length);
   if (p.nodes < needed)
     robot.report().Expected("rod.nodes",
                             "at least " + std::to_string(needed) +
