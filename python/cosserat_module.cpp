@@ -50,10 +50,10 @@ const StaticLoads& Valid(const StaticLoads& loads) {
 }
 
 /// An actuation checked before it reaches a solver, with the rules of the problem file
-/// (Actuation::IsValid against the rod's tendons): a ValueError naming the field.
-const Actuation& Valid(const Actuation& a, int tendons) {
+/// (Actuation::IsValid against the rod's tendons and chambers): a ValueError naming the field.
+const Actuation& Valid(const Actuation& a, int tendons, int chambers) {
   std::string why;
-  if (!a.IsValid(&why, tendons)) throw py::value_error("actuation." + why);
+  if (!a.IsValid(&why, tendons, chambers)) throw py::value_error("actuation." + why);
   return a;
 }
 
@@ -155,7 +155,8 @@ class PyStepper {
   PyStepper(const io::Problem& problem, std::optional<double> dt,
             std::optional<std::string> spatial_scheme)
       : options_(cosserat::run::DynamicsOptions(Runnable(problem, "the Stepper"))),
-        tendons_(static_cast<int>(problem.rod.tendons.size())) {
+        tendons_(static_cast<int>(problem.rod.tendons.size())),
+        chambers_(static_cast<int>(problem.rod.chambers.size())) {
     if (problem.boundary != io::Boundary::kCantilever &&
         problem.boundary != io::Boundary::kFreeFree)
       throw py::value_error("boundary: the Stepper runs \"cantilever\" or \"free-free\", got \"" +
@@ -182,7 +183,7 @@ class PyStepper {
                                std::optional<Actuation> actuation) {
     StepInput at_rest = input_;
     at_rest.loads = loads ? Valid(*loads) : initial_loads_;
-    at_rest.actuation = actuation ? Valid(*actuation, tendons_) : initial_actuation_;
+    at_rest.actuation = actuation ? Valid(*actuation, tendons_, chambers_) : initial_actuation_;
     const StepSummary s = stepper_->InitializeAtRest(at_rest);
     has_state_ = has_state_ || s.converged();
     return s;
@@ -192,7 +193,7 @@ class PyStepper {
                    std::optional<Mat3> base_rotation, std::optional<Vec6> base_twist_B,
                    std::optional<Vec6> base_wrench_B, std::optional<Actuation> actuation) {
     if (loads) input_.loads = Valid(*loads);
-    if (actuation) input_.actuation = Valid(*actuation, tendons_);
+    if (actuation) input_.actuation = Valid(*actuation, tendons_, chambers_);
     if (base_position) input_.base_pose.p = Finite(*base_position, "base_position");
     if (base_rotation) input_.base_pose.R = Rotation(*base_rotation, "base_rotation");
     if (base_twist_B) input_.base_twist_B = Finite(*base_twist_B, "base_twist_B");
@@ -219,6 +220,7 @@ class PyStepper {
  private:
   Bdf2Options options_;
   int tendons_;
+  int chambers_;
   std::optional<Bdf2ShootingStepper> stepper_;
   StaticLoads initial_loads_;
   Actuation initial_actuation_;
@@ -234,7 +236,8 @@ class PyStaticSolver {
                 problem.robot.actuation),
         base_(problem.base),
         loads_(problem.loads),
-        tendons_(static_cast<int>(problem.rod.tendons.size())) {
+        tendons_(static_cast<int>(problem.rod.tendons.size())),
+        chambers_(static_cast<int>(problem.rod.chambers.size())) {
     if (problem.boundary != io::Boundary::kCantilever)
       throw py::value_error("boundary: StaticSolver solves a cantilever, got \"" +
                             io::ToString(problem.boundary) + "\" (cosserat.solve runs columns)");
@@ -245,7 +248,7 @@ class PyStaticSolver {
     if (loads) loads_ = Valid(*loads);
     if (position) base_.p = Finite(*position, "base_position");
     if (rotation) base_.R = Rotation(*rotation, "base_rotation");
-    if (actuation) solver_.SetActuation(Valid(*actuation, tendons_));
+    if (actuation) solver_.SetActuation(Valid(*actuation, tendons_, chambers_));
     const StaticShootingSummary s = solver_.Solve(base_, loads_);
     solved_ = solved_ || s.converged();
     return s;
@@ -260,6 +263,7 @@ class PyStaticSolver {
   lie::SE3 base_;
   StaticLoads loads_;
   int tendons_;
+  int chambers_;
   bool solved_ = false;
 };
 
@@ -319,6 +323,7 @@ void BindLoads(py::module_& m) {
 void BindActuation(py::module_& m) {
   py::class_<Actuation>(m, "Actuation",
                         "What the actuators do: tendon tensions (N, in the robot's tendon order), "
+                        "chamber pressures (Pa, gauge, in the robot's chamber order), "
                         "inflation pressure (Pa), jamming pressure per segment (Pa), stiffness "
                         "scale.")
       .def(py::init<>())
@@ -326,6 +331,8 @@ void BindActuation(py::module_& m) {
       .def_readwrite("stiffness_scale", &Actuation::stiffness_scale)
       .def_property("tendon_tension", ArrayGetter(&Actuation::tendon_tension),
                     ArraySetter(&Actuation::tendon_tension, "tendon_tension"))
+      .def_property("chamber_pressure", ArrayGetter(&Actuation::chamber_pressure),
+                    ArraySetter(&Actuation::chamber_pressure, "chamber_pressure"))
       .def_property("jamming_pressure", ArrayGetter(&Actuation::jamming_pressure),
                     ArraySetter(&Actuation::jamming_pressure, "jamming_pressure"));
 }

@@ -154,6 +154,26 @@ class Statics(unittest.TestCase):
             solver.solve(cosserat.Loads(), actuation=actuation)
 
 
+    def test_chamber_pressure_bends_its_segment_only(self):
+        # The arm's lower chamber at +x (6 mm, A = 2.827e-5 m^2) at pressure p, no load: the
+        # lower segment takes the curvature -p A d / EI about body y, the upper one none
+        # (constitutive/chamber_law.hpp). Exact in the law, to the solver tolerance.
+        p = cosserat.load_problem("robots/pneumatic_two_segment_arm.json")
+        np.testing.assert_allclose(p.actuation.chamber_pressure[:6], [1.2e5, 0, 0, 0, 8e4, 4e4])
+        solver = cosserat.StaticSolver(p)
+        actuation = cosserat.Actuation()
+        actuation.chamber_pressure = [1e5]
+        self.assertTrue(solver.solve(cosserat.Loads(), actuation=actuation).converged)
+        ei = 1.5e6 * math.pi * 0.012**4 / 4
+        state = solver.state()
+        lower = state["s"] < 0.15
+        np.testing.assert_allclose(state["strain_B"][lower, 1], -1e5 * 2.827e-5 * 0.006 / ei,
+                                   rtol=1e-9)
+        np.testing.assert_allclose(state["strain_B"][~lower, :3], 0, atol=1e-12)
+        actuation.chamber_pressure = [0] * 6 + [1e5]  # a seventh chamber the arm does not have
+        with self.assertRaisesRegex(ValueError, "chamber_pressure"):
+            solver.solve(cosserat.Loads(), actuation=actuation)
+
 class Dynamics(unittest.TestCase):
     def test_first_bending_frequency_is_euler_bernoulli(self):
         # A small tip load released, no gravity, no damping: the tip swings at the first

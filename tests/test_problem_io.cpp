@@ -1064,5 +1064,78 @@ TEST(ProblemIoRobot, LengthControlAndItsErrors) {
   EXPECT_ERROR(r, "robot.tendons", "required key is missing");
 }
 
+TEST(ProblemIoRobot, ChambersAndTheirPressuresMapToTheModel) {
+  json j = ValidProblem();
+  j["robot"] = json::parse(R"({ "kind": "pneumatic",
+    "chambers": [ { "name": "a", "offset": [0.0004, 0], "area": 2.8e-7 },
+                  { "offset": [0, -0.0004], "area": 2.8e-7, "from": 0.1, "to": 0.3 } ],
+    "actuation": { "chamber_pressure": [1e5, -5e4] },
+    "initial_actuation": { "chamber_pressure": [2e4, 0] } })");
+  const ParseResult r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const Problem& p = *r.problem;
+  EXPECT_EQ(p.robot.kind, RobotKind::kPneumatic);
+  ASSERT_EQ(p.rod.chambers.size(), 2u);
+  EXPECT_EQ(p.rod.chambers[0].name, "a");
+  EXPECT_EQ(p.rod.chambers[0].start, 0.0);  // the whole rod by default
+  EXPECT_EQ(p.rod.chambers[0].end, 0.5);
+  EXPECT_EQ(p.rod.chambers[1].offset, Vec2(0, -0.0004));
+  EXPECT_EQ(p.rod.chambers[1].start, 0.1);
+  EXPECT_EQ(p.rod.chambers[1].end, 0.3);
+  EXPECT_EQ(p.robot.actuation.chamber_pressure[1], -5e4);  // a partial vacuum
+  EXPECT_EQ(p.robot.initial_actuation.chamber_pressure[0], 2e4);
+  // Both formulations run a pneumatic robot's statics.
+  j["formulation"] = "quaternion-fd";
+  EXPECT_TRUE(UnsupportedFeatures(*Parse(j).problem).empty());
+}
+
+TEST(ProblemIoRobot, BadChambersAreNamedByTheirPath) {
+  json j = ValidProblem();  // L = 0.5 m, radius 1 mm
+  j["robot"] = json::parse(R"({ "kind": "pneumatic",
+    "chambers": [ { "offset": [0.0004, 0], "area": -1e-7 },
+                  { "offset": [0.0008, 0], "area": 2.8e-7 },
+                  { "offset": [0, 0], "area": 1e-7, "from": 0.3, "to": 0.2 },
+                  { "offset": [0, 0], "area": 1e-7, "to": 0.6 },
+                  { "offset": [0, 12345.5], "area": 1e-7 },
+                  { "offset": [0, 0], "area": 1e-7, "from": -0.1 } ],
+    "actuation": { "chamber_pressure": [1e5, 0, 0] } })");
+  std::string text = j.dump(2);  // an overflowing number, which nlohmann::json cannot hold
+  text.replace(text.find("12345.5"), 7, "1e999");
+  const ParseResult r = ParseProblem(text);
+  EXPECT_ERROR(r, "robot.chambers[0].area: expected a positive number", "-1e-07");
+  EXPECT_ERROR(r, "robot.chambers[1].offset: expected a chamber within the section",
+               "outer radius 0.001 m");
+  EXPECT_ERROR(r, "robot.chambers[2].to: expected from < to", "from = 0.3, to = 0.2");
+  EXPECT_ERROR(r, "robot.chambers[3].to: expected a number within [0, rod.length]", "0.6");
+  EXPECT_ERROR(r, "robot.chambers[4].offset", "finite");
+  EXPECT_ERROR(r, "robot.chambers[5].from: expected a number within [0, rod.length]");
+  EXPECT_ERROR(r,
+               "robot.actuation.chamber_pressure: expected one value per chamber (6 in "
+               "robot.chambers)");
+
+  // A rectangle: the chamber's disc must fit in both directions.
+  j = ValidProblem();
+  j["rod"]["section"] = json::parse(R"({ "shape": "rectangle", "width": 0.004, "height": 0.002 })");
+  j["robot"] = json::parse(R"({ "kind": "pneumatic",
+    "chambers": [ { "offset": [0.0015, 0], "area": 1e-6 } ] })");
+  EXPECT_ERROR(Parse(j), "robot.chambers[0].offset: expected a chamber within the rectangle");
+  j["robot"]["chambers"][0]["offset"] = json::array({0.0, 0.0});
+  EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
+
+  // A pneumatic robot needs chambers; a pressure below vacuum is refused; chamber ends need nodes.
+  j = ValidProblem();
+  j["robot"] = json::parse(R"({ "kind": "pneumatic" })");
+  EXPECT_ERROR(Parse(j), "robot.chambers", "required key is missing");
+  j["robot"] = json::parse(R"({ "kind": "pneumatic",
+    "chambers": [ { "offset": [0, 0], "area": 1e-7 } ],
+    "actuation": { "chamber_pressure": [-2e5] } })");
+  EXPECT_ERROR(Parse(j),
+               "robot.actuation.chamber_pressure[0]: expected a gauge pressure >= -101325");
+  j["rod"]["nodes"] = 3;
+  j["robot"] = json::parse(R"({ "kind": "pneumatic",
+    "chambers": [ { "offset": [0, 0], "area": 1e-7, "from": 0.1, "to": 0.2 } ] })");
+  EXPECT_ERROR(Parse(j), "rod.nodes: expected at least 4");
+}
+
 }  // namespace
 }  // namespace cosserat::io

@@ -48,9 +48,9 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
   const std::vector<double> points = SegmentSamplePoints(grid_);
   std::vector<Sample> samples(points.size());
   for (size_t q = 0; q < points.size(); ++q) {
-    const SectionProperties sp = PrincipalAxesSectionAt(rod, points[q], actuation);
-    samples[q] = {sp.stiffness.diagonal().cwiseInverse(), rod.RestStrainAt(points[q]),
-                  sp.mass.diagonal().head<3>(), sp.mass(5, 5), points[q], sp.outer_diameter};
+    const SectionLaw law = SectionLaw::At(rod, points[q], actuation);  // ξ* with chambers
+    samples[q] = {law.stiffness.cwiseInverse(), law.rest_strain, law.mass.head<3>(),
+                  law.mass(5), points[q], law.outer_diameter};
   }
   auto f_at = [&](const Sample& smp) -> Vec3 {
     return TotalDistributedForce_W(loads, {smp.s, 1.0, smp.rhoA, smp.outer_diameter});

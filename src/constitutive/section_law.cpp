@@ -3,6 +3,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cosserat/constitutive/chamber_law.hpp"
+
 namespace cosserat {
 
 namespace {
@@ -41,6 +43,8 @@ SectionLaw SectionLaw::At(const RodModel& rod, double s, const Actuation& actuat
   law.damping = p.damping.diagonal();
   law.mass = p.mass.diagonal();
   law.rest_strain = rod.RestStrainAt(s);
+  if (!rod.chambers.empty())
+    law.rest_strain += ChamberWrench(rod.chambers, s, actuation).cwiseQuotient(law.stiffness);
   law.outer_diameter = p.outer_diameter;
   return law;
 }

@@ -413,8 +413,9 @@ void CheckWithLibrary(const Problem& p, ErrorReport* report) {
   if (!p.rod.IsValid(&why)) report->Add("rod", why);
   if (!p.loads.IsValid(&why)) report->Add("loads", why);
   const int tendons = static_cast<int>(p.rod.tendons.size());
-  if (!p.robot.actuation.IsValid(&why, tendons)) report->Add("robot.actuation", why);
-  if (!p.robot.initial_actuation.IsValid(&why, tendons))
+  const int chambers = static_cast<int>(p.rod.chambers.size());
+  if (!p.robot.actuation.IsValid(&why, tendons, chambers)) report->Add("robot.actuation", why);
+  if (!p.robot.initial_actuation.IsValid(&why, tendons, chambers))
     report->Add("robot.initial_actuation", why);
   if (report->empty()) CheckStartsOutsideSurfaces(p, report);
 }
@@ -531,8 +532,14 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
       out.push_back(
           "robot.kind: an \"eversion\" robot runs in statics (quasi-static growth) only "
           "in this version");
-    if (quatfd)
-      out.push_back("robot: robots run on the \"se3-shooting\" formulation only in this version");
+    // A pneumatic robot is a rod of actuated rest strain (SectionLaw): the quaternion-FD model
+    // takes it, at the one actuation it is built with (statics, modes).
+    const bool quatfd_pneumatic = p.robot.kind == RobotKind::kPneumatic && p.rod.tendons.empty() &&
+                                  (p.analysis == A::kStatics || p.analysis == A::kModes);
+    if (quatfd && !quatfd_pneumatic)
+      out.push_back(
+          "robot: robots run on the \"se3-shooting\" formulation only in this version (a "
+          "\"pneumatic\" robot without tendons also runs statics and modes on \"quaternion-fd\")");
     if (p.analysis == A::kModes && !p.rod.tendons.empty())
       out.push_back("robot: modes of a robot with tendons are not implemented in this version");
     if (p.robot.tendon_lengths && p.analysis != A::kStatics)

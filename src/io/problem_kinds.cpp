@@ -34,7 +34,8 @@ const std::vector<std::string>& Names<ShotScheme>() {
 }
 template <>
 const std::vector<std::string>& Names<RobotKind>() {
-  static const std::vector<std::string> names = {"none", "tendon", "jamming", "eversion"};
+  static const std::vector<std::string> names = {"none", "tendon", "jamming", "eversion",
+                                                 "pneumatic"};
   return names;
 }
 template <>

@@ -8,6 +8,8 @@
 
 #include "cosserat/robots/eversion_robot.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
+#include "problem_chambers.hpp"
+#include "problem_rod.hpp"
 #include "read_enum.hpp"
 
 namespace cosserat::io::detail {
@@ -16,24 +18,8 @@ namespace {
 using json = nlohmann::json;
 
 /// The kinds a file may name (RobotKind::kNone is the absence of a "robot").
-const std::vector<std::string> kRobotKinds = {"tendon", "jamming", "eversion"};
+const std::vector<std::string> kRobotKinds = {"tendon", "jamming", "eversion", "pneumatic"};
 const std::vector<std::string> kRoutes = {"parallel", "converging", "helical"};
-
-/// An array of exactly 2 numbers (an offset in the section: body x, y), or nullopt (reported).
-std::optional<Vec2> ReadOffset(const ObjectReader& o, const std::string& key) {
-  const json* v = o.Find(key);
-  if (!v) {
-    o.report().Missing(o.PathOf(key), "an array [x, y] of 2 numbers (m, body frame)");
-    return std::nullopt;
-  }
-  if (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number() ||
-      !std::isfinite((*v)[0].get<double>()) || !std::isfinite((*v)[1].get<double>())) {
-    o.report().Expected(o.PathOf(key), "an array [x, y] of 2 finite numbers (m, body frame)",
-                        Describe(*v));
-    return std::nullopt;
-  }
-  return Vec2((*v)[0].get<double>(), (*v)[1].get<double>());
-}
 
 /// The radius within which tendon guides may sit: "disk_radius" if given, else the outer radius
 /// of a circle, annulus or rectangle section; nullopt when neither says (no check).
@@ -122,12 +108,13 @@ bool ReadList(const ObjectReader& o, const std::string& key, int max, const Numb
   return ok;
 }
 
-/// "actuation" / "initial_actuation": tensions or lengths, pressure, jamming pressures.
-void ParseActuation(const ObjectReader& a, int tendons, Actuation* act,
+/// "actuation" / "initial_actuation": tensions or lengths, pressure, chamber and jamming
+/// pressures.
+void ParseActuation(const ObjectReader& a, int tendons, int chambers, Actuation* act,
                     std::optional<std::array<double, Actuation::kMaxTendons>>* lengths) {
-  a.AllowOnly(lengths
-                  ? std::vector<std::string>{"tension", "length", "pressure", "jamming_pressure"}
-                  : std::vector<std::string>{"tension", "pressure", "jamming_pressure"});
+  std::vector<std::string> keys = {"tension", "pressure", "chamber_pressure", "jamming_pressure"};
+  if (lengths) keys.insert(keys.begin() + 1, "length");
+  a.AllowOnly(keys);
   if (a.Has("tension") && lengths && a.Has("length"))
     a.report().Add(a.path(),
                    "give either \"tension\" (force control) or \"length\" "
@@ -152,16 +139,52 @@ void ParseActuation(const ObjectReader& a, int tendons, Actuation* act,
   }
   if (const auto p = ReadNumber(a, "pressure", NonNegativeNumber(), Presence::kOptional))
     act->pressure = *p;
+  if (a.Has("chamber_pressure")) {
+    const NumberRule gauge{"a gauge pressure >= -101325 (Pa; -101325 is a vacuum)",
+                           [](double x) { return x >= Actuation::kVacuumGaugePressure; }};
+    if (ReadList(a, "chamber_pressure", Actuation::kMaxChambers, gauge,
+                 act->chamber_pressure.data(), &count) &&
+        count != chambers)
+      a.Reject("chamber_pressure",
+               "one value per chamber (" + std::to_string(chambers) + " in robot.chambers)");
+  }
   if (a.Has("jamming_pressure"))
     ReadList(a, "jamming_pressure", Actuation::kMaxSegments, NonNegativeNumber(),
              act->jamming_pressure.data(), &count);
 }
 
+/// rod.nodes must hold a node at each chamber end inside the rod, as at every profile breakpoint.
+void CheckNodesHoldChamberEnds(const ObjectReader& robot, const Problem& p) {
+  if (p.rod.chambers.empty() || !p.rod.section) return;
+  const int needed = 2 + InteriorBreakpoints(p.rod.Breakpoints(), p.rod.length);
+  if (p.nodes < needed)
+    robot.report().Expected("rod.nodes",
+                            "at least " + std::to_string(needed) +
+                                " (a node at each end, at every stiffness_profile breakpoint and "
+                                "at every chamber end inside the rod)",
+                            std::to_string(p.nodes));
+}
+
 }  // namespace
 
+std::optional<Vec2> ReadOffset(const ObjectReader& o, const std::string& key) {
+  const json* v = o.Find(key);
+  if (!v) {
+    o.report().Missing(o.PathOf(key), "an array [x, y] of 2 numbers (m, body frame)");
+    return std::nullopt;
+  }
+  if (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number() ||
+      !std::isfinite((*v)[0].get<double>()) || !std::isfinite((*v)[1].get<double>())) {
+    o.report().Expected(o.PathOf(key), "an array [x, y] of 2 finite numbers (m, body frame)",
+                        Describe(*v));
+    return std::nullopt;
+  }
+  return Vec2((*v)[0].get<double>(), (*v)[1].get<double>());
+}
+
 void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
-  robot.AllowOnly({"kind", "description", "source", "disk_radius", "tendons", "actuation",
-                   "initial_actuation", "growth"});
+  robot.AllowOnly({"kind", "description", "source", "disk_radius", "tendons", "chambers",
+                   "actuation", "initial_actuation", "growth"});
   p->has_robot = true;
   p->robot.kind = ReadEnum<RobotKind>(robot, "kind", Presence::kRequired, kRobotKinds)
                       .value_or(RobotKind::kNone);
@@ -199,6 +222,10 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
   } else if (p->robot.kind == RobotKind::kTendon) {
     robot.report().Missing(robot.PathOf("tendons"), "an array of tendons");
   }
+  const int chambers = ParseChambers(robot, top, p);
+  if (p->robot.kind == RobotKind::kPneumatic && !robot.Has("chambers"))
+    robot.report().Missing(robot.PathOf("chambers"), "an array of chambers");
+  CheckNodesHoldChamberEnds(robot, *p);
   if (p->robot.kind == RobotKind::kEversion) {
     if (!dynamic_cast<const InflatedTubeSection*>(p->rod.section.get()))
       robot.Reject("kind",
@@ -206,6 +233,8 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
                    "tube an eversion robot is made of)");
     if (!p->rod.tendons.empty())
       robot.report().Add(robot.PathOf("tendons"), "an eversion robot has no tendons here");
+    if (chambers > 0)
+      robot.report().Add(robot.PathOf("chambers"), "an eversion robot has no chambers here");
     // The robot grids its body by length (EversionOptions), not by rod.nodes.
     const EversionOptions grid;
     if (p->rod.length > grid.MaxLength())
@@ -229,9 +258,9 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
   }
   const int tendons = static_cast<int>(p->rod.tendons.size());
   if (const auto a = ReadObject(robot, "actuation", Presence::kOptional))
-    ParseActuation(*a, tendons, &p->robot.actuation, &p->robot.tendon_lengths);
+    ParseActuation(*a, tendons, chambers, &p->robot.actuation, &p->robot.tendon_lengths);
   if (const auto a = ReadObject(robot, "initial_actuation", Presence::kOptional))
-    ParseActuation(*a, tendons, &p->robot.initial_actuation, nullptr);
+    ParseActuation(*a, tendons, chambers, &p->robot.initial_actuation, nullptr);
 }
 
 }  // namespace cosserat::io::detail

@@ -166,7 +166,8 @@ std::optional<Material> ParseMaterial(const ObjectReader& m) {
   return out;
 }
 
-/// Breakpoints strictly inside (0, L), counted the way MakeGrid places nodes on them.
+}  // namespace
+
 int InteriorBreakpoints(std::vector<double> cuts, double length) {
   std::sort(cuts.begin(), cuts.end());
   const double eps = 1e-12 * length;
@@ -176,8 +177,6 @@ int InteriorBreakpoints(std::vector<double> cuts, double length) {
     if (c > eps && c < length - eps && c - last > eps) last = c, ++count;
   return count;
 }
-
-}  // namespace
 
 void ParseRod(const ObjectReader& rod, Problem* problem) {
   rod.AllowOnly({"length", "nodes", "section", "material", "rest_curvature", "stiffness_profile"});

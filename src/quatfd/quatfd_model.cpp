@@ -87,21 +87,34 @@ std::vector<double> VertexGrid(const RodModel& rod, const QuatFdOptions& options
   return s;
 }
 
+/// The chambers' shift of the rest curvature at s, K⁻¹ w (1/m, body frame): SectionLaw's rest
+/// strain less the rod's own.
+Vec3 ChamberShift(const RodModel& rod, double s, const Actuation& actuation) {
+  if (rod.chambers.empty()) return Vec3::Zero();
+  return (SectionLaw::At(rod, s, actuation).rest_strain - rod.RestStrainAt(s)).head<3>();
+}
+
 /// The bending/torsion element of interior vertex n, spanning [s_{n−1/2}, s_{n+1/2}]: its two
 /// half cells act in series, so C_K = w (h1 C1⁻¹ + h2 C2⁻¹)⁻¹ with each half sampled at its own
-/// midpoint (a stiffness jump at a vertex is then resolved to second order).
+/// midpoint (a stiffness jump at a vertex is then resolved to second order). The rest curvature
+/// is ξ*(s_n) plus the halves' chamber shifts K⁻¹ w in series, (h1 δ1 + h2 δ2) / w
+/// (SectionLaw): the rotation of the two halves adds up, so a chamber that ends at a vertex
+/// counts for its half.
 kernels::BendConstants InteriorBendElement(const RodModel& rod, const Actuation& actuation,
                                            const std::vector<double>& s, int n,
                                            kernels::CurvatureKind kind) {
   const double h1 = 0.5 * (s[n] - s[n - 1]), h2 = 0.5 * (s[n + 1] - s[n]);
-  const SectionProperties a = PrincipalAxesSectionAt(rod, s[n] - 0.5 * h1, actuation);
-  const SectionProperties b = PrincipalAxesSectionAt(rod, s[n] + 0.5 * h2, actuation);
+  const double sa = s[n] - 0.5 * h1, sb = s[n] + 0.5 * h2;
+  const SectionProperties a = PrincipalAxesSectionAt(rod, sa, actuation);
+  const SectionProperties b = PrincipalAxesSectionAt(rod, sb, actuation);
   kernels::BendConstants c;
   c.h = c.weight = h1 + h2;
   const Mat3 Ca = Block(a.stiffness, 0, 0), Cb = Block(b.stiffness, 0, 0);
   c.stiffness = c.weight * (h1 * Ca.inverse() + h2 * Cb.inverse()).inverse();
   c.damping = (h1 * Block(a.damping, 0, 0) + h2 * Block(b.damping, 0, 0)) / c.weight;
-  c.rest = rod.RestStrainAt(s[n]).head<3>();
+  c.rest =
+      rod.RestStrainAt(s[n]).head<3>() +
+      (h1 * ChamberShift(rod, sa, actuation) + h2 * ChamberShift(rod, sb, actuation)) / c.weight;
   c.kind = kind;
   return c;
 }
@@ -116,7 +129,7 @@ kernels::BendConstants ClampBendElement(const RodModel& rod, const Actuation& ac
   c.h = c.weight = h;
   c.stiffness = Block(a.stiffness, 0, 0);
   c.damping = Block(a.damping, 0, 0);
-  c.rest = rod.RestStrainAt(0.0).head<3>();
+  c.rest = rod.RestStrainAt(0.0).head<3>() + ChamberShift(rod, 0.5 * h, actuation);
   c.kind = kind;
   return c;
 }
@@ -179,7 +192,7 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
     c.ds = ds;
     c.stiffness = Block(sp.stiffness, 3, 3);
     c.damping = Block(sp.damping, 3, 3);
-    c.rest = rod.RestStrainAt(mid).tail<3>();
+    c.rest = SectionLaw::At(rod, mid, actuation).rest_strain.tail<3>();  // with chambers
     rotation_[i].inertia = sp.mass.diagonal().head<3>() * ds;
     inv_inertia_[i] = rotation_[i].inertia.cwiseInverse();
     const double half_mass = 0.5 * sp.mass(3, 3) * ds;
@@ -222,7 +235,8 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   {
     const SectionProperties e = PrincipalAxesSectionAt(rod, length() * (1 - 1e-9), actuation);
     tip_compliance_ = Block(e.stiffness, 0, 0).inverse();
-    tip_rest_ = rod.RestStrainAt(length()).head<3>();
+    tip_rest_ =
+        rod.RestStrainAt(length()).head<3>() + ChamberShift(rod, length() * (1 - 1e-9), actuation);
     tip_h_ = s_[N] - s_[N - 1];
   }
   const SectionProperties s0 = PrincipalAxesSectionAt(rod, 0.0, actuation);

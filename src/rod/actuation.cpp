@@ -4,7 +4,7 @@
 
 namespace cosserat {
 
-bool Actuation::IsValid(std::string* why, int tendon_count) const {
+bool Actuation::IsValid(std::string* why, int tendon_count, int chamber_count) const {
   auto fail = [&](const std::string& message) {
     if (why) *why = message;
     return false;
@@ -19,6 +19,14 @@ bool Actuation::IsValid(std::string* why, int tendon_count) const {
     if (i >= tendon_count && tendon_tension[i] != 0)
       return fail("tendon_tension: a tension on tendon " + std::to_string(i) +
                   ", but the rod has " + std::to_string(tendon_count) + " tendons");
+  }
+  for (int j = 0; j < kMaxChambers; ++j) {
+    const double p = chamber_pressure[j];
+    if (!(std::isfinite(p) && p >= kVacuumGaugePressure))
+      return fail("chamber_pressure: expected finite gauge pressures >= -101325 (Pa)");
+    if (j >= chamber_count && p != 0)
+      return fail("chamber_pressure: a pressure in chamber " + std::to_string(j) +
+                  ", but the rod has " + std::to_string(chamber_count) + " chambers");
   }
   for (double p : jamming_pressure)
     if (!usable(p)) return fail("jamming_pressure: expected numbers >= 0 (Pa)");

@@ -45,7 +45,7 @@ std::vector<double> ModelGrid(const RodModel& model, int num_nodes) {
   std::string why;
   if (!model.IsValid(&why)) throw std::invalid_argument("RodModel: " + why);
   if (num_nodes < 2) throw std::invalid_argument("num_nodes must be at least 2");
-  return MakeGrid(model.length, num_nodes, model.section->Breakpoints());
+  return MakeGrid(model.length, num_nodes, model.Breakpoints());
 }
 
 std::vector<double> SegmentSamplePoints(const std::vector<double>& grid) {

@@ -116,7 +116,27 @@ bool RodModel::IsValid(std::string* why) const {
       return false;
     }
   }
+  if (chambers.size() > static_cast<size_t>(Actuation::kMaxChambers)) {
+    if (why) *why = "at most " + std::to_string(Actuation::kMaxChambers) + " chambers";
+    return false;
+  }
+  for (size_t j = 0; j < chambers.size(); ++j) {
+    std::string reason;
+    if (!chambers[j].IsValid(length, &reason)) {
+      if (why) *why = "chamber " + std::to_string(j) + ": " + reason;
+      return false;
+    }
+  }
   return section->IsValid(length, why);
+}
+
+std::vector<double> RodModel::Breakpoints() const {
+  std::vector<double> out = section ? section->Breakpoints() : std::vector<double>{};
+  for (const Chamber& c : chambers) {
+    out.push_back(c.start);
+    out.push_back(c.end);
+  }
+  return out;
 }
 
 }  // namespace cosserat

@@ -20,7 +20,8 @@ using Clock = std::chrono::steady_clock;
 /// The model with the problem's loads set (a rod held at both ends starts from a shape that
 /// sags along their gravity).
 quatfd::QuatFdModel MakeModel(const io::Problem& problem) {
-  quatfd::QuatFdModel model(problem.rod, problem.base, QuatFdModelOptions(problem));
+  quatfd::QuatFdModel model(problem.rod, problem.base, QuatFdModelOptions(problem),
+                            problem.robot.actuation);  // chamber pressures (statics)
   model.set_loads(problem.loads);
   return model;
 }

@@ -180,6 +180,10 @@ Result RunStatics(const io::Problem& problem, const RunOptions& options) {
     robot["tendon_length"] = std::vector<double>(solver.tendon_lengths().begin(),
                                                  solver.tendon_lengths().begin() + count);
     robot["tendon_slack"] = std::vector<bool>(slack.begin(), slack.begin() + count);
+    if (!problem.rod.chambers.empty())
+      robot["chamber_pressure"] =
+          std::vector<double>(actuation.chamber_pressure.begin(),
+                              actuation.chamber_pressure.begin() + problem.rod.chambers.size());
     result.json["robot"] = robot;
   }
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());

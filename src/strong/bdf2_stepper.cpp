@@ -67,15 +67,15 @@ StepInput BlendInputs(const StepInput& a, const StepInput& b, double t) {
   out.base_twist_B = a.base_twist_B + t * (b.base_twist_B - a.base_twist_B);
   out.base_wrench_B = a.base_wrench_B + t * (b.base_wrench_B - a.base_wrench_B);
   out.loads = StaticLoads::Blend(a.loads, b.loads, t);
-  out.actuation.pressure = a.actuation.pressure + t * (b.actuation.pressure - a.actuation.pressure);
+  const Actuation &x = a.actuation, &y = b.actuation;
+  auto lerp = [t](double u, double v) { return u + t * (v - u); };
+  out.actuation.pressure = lerp(x.pressure, y.pressure);
   for (int i = 0; i < Actuation::kMaxTendons; ++i)
-    out.actuation.tendon_tension[i] =
-        a.actuation.tendon_tension[i] +
-        t * (b.actuation.tendon_tension[i] - a.actuation.tendon_tension[i]);
+    out.actuation.tendon_tension[i] = lerp(x.tendon_tension[i], y.tendon_tension[i]);
+  for (int i = 0; i < Actuation::kMaxChambers; ++i)
+    out.actuation.chamber_pressure[i] = lerp(x.chamber_pressure[i], y.chamber_pressure[i]);
   for (int i = 0; i < Actuation::kMaxSegments; ++i)
-    out.actuation.jamming_pressure[i] =
-        a.actuation.jamming_pressure[i] +
-        t * (b.actuation.jamming_pressure[i] - a.actuation.jamming_pressure[i]);
+    out.actuation.jamming_pressure[i] = lerp(x.jamming_pressure[i], y.jamming_pressure[i]);
   return out;
 }
 
@@ -208,10 +208,11 @@ void Bdf2ShootingStepper::SampleSections() {
 }
 
 void Bdf2ShootingStepper::ApplyActuation(const Actuation& a) {
-  // Tensions enter the strain law directly; the section only depends on the other fields, so
-  // only their change costs a re-sampling (no allocation either way).
+  // Tensions enter the strain law directly; the section (and the chambers' rest-strain shift)
+  // depends on the other fields, so only their change costs a re-sampling (no allocation).
   const bool section_changed = a.stiffness_scale != actuation_.stiffness_scale ||
                                a.pressure != actuation_.pressure ||
+                               a.chamber_pressure != actuation_.chamber_pressure ||
                                a.jamming_pressure != actuation_.jamming_pressure;
   actuation_ = a;
   if (!section_changed) return;

@@ -61,9 +61,10 @@ StaticMultipleShootingSolver::StaticMultipleShootingSolver(
     : model_(model), options_(options) {
   std::string why;
   if (!model_.IsValid(&why)) throw std::invalid_argument("RodModel: " + why);
-  if (!model_.tendons.empty())
+  if (!model_.tendons.empty() || !model_.chambers.empty())
     throw std::invalid_argument(
-        "StaticMultipleShootingSolver: rods with tendons are solved by StaticShootingSolver");
+        "StaticMultipleShootingSolver: rods with tendons or chambers (an actuation) are solved "
+        "by StaticShootingSolver");
   if (num_nodes < 3)
     throw std::invalid_argument("StaticMultipleShootingSolver: at least 3 nodes are needed");
   grid_ = ModelGrid(model_, num_nodes);

@@ -154,6 +154,14 @@ foreach(_robot IN LISTS _robot_files)
 endforeach()
 cosserat_cli_test(NAME bad_robot ARGS validate "${_cli_dir}/bad_robot.json" CODE 2
                   STDERR "robot.colour: unknown key.*robot.tendons\\[0\\].offset: expected an offset within the section.*robot.tendons\\[1\\].pich: unknown key.*did you mean \"pitch\".*robot.tendons\\[1\\].pitch: expected .*missing.*robot.actuation.tension\\[1\\]: expected a tension >= 0.*robot.actuation.pressure: expected a number >= 0, got -5")
+# Chambers: every bad one is named by its path (outside the section, negative area, from >= to),
+# and the pressures must match the chambers.
+cosserat_cli_test(NAME bad_chambers ARGS validate "${_cli_dir}/bad_chambers.json" CODE 2
+                  STDERR "robot.chambers\\[1\\].offset: expected a chamber within the section.*robot.chambers\\[2\\].area: expected a positive number.*robot.chambers\\[3\\].to: expected from < to.*robot.actuation.chamber_pressure: expected one value per chamber \\(4 in robot.chambers\\)")
+# The pneumatic finger without its sphere on the quaternion-FD formulation (robots/ files run on
+# SE(3) shooting above): the chamber reaches both formulations through the section law.
+cosserat_cli_test(NAME pneumatic_finger_quatfd ARGS solve "${_cli_dir}/pneumatic_finger_quatfd.json"
+                  CODE 0 STDOUT "\"status\": \"converged\"" STDERR "converged")
 # An eversion robot grids its body at 40 nodes per metre: a 1e9 m one is refused, not gridded.
 cosserat_cli_test(NAME eversion_too_long ARGS solve "${_cli_dir}/eversion_too_long.json" CODE 2
                   STDERR "rod.length: expected at most 25000 m for an eversion robot.*got 1e\\+09")

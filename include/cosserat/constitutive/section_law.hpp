@@ -6,6 +6,10 @@
 /// (Antman 2005, ch. 8; Till, Aloi & Rucker 2019, eq. 8). K, D and the mass M per unit length are
 /// sampled from the rod's SectionProfile.
 ///
+/// Chambers (constitutive/chamber_law.hpp) enter here and nowhere else: their actuation wrench w,
+/// constant in the body frame, shifts the rest strain, ξ* = ξ*_rod + K⁻¹ w, so W(ξ) is the
+/// wrench of rod and fluid together and every solver that samples SectionLaw takes them.
+///
 /// Sections must be principal-axes: K, D and M diagonal. Coupling between bending, shear and
 /// stretch is refused, by every solver, with the one error of `SectionLaw::At`. Why refused and
 /// not supported: every stiffness profile (bands, taper, E_eff(p), jamming, inflated tubes) and
@@ -25,10 +29,11 @@ struct SectionLaw {
   Vec6 stiffness = Vec6::Ones();  ///< diag K = [EI₁, EI₂, GJ, κGA, κGA, EA] (N·m², N)
   Vec6 damping = Vec6::Zero();    ///< diag D, units of K times s
   Vec6 mass = Vec6::Ones();       ///< diag M = [ρI₁, ρI₂, ρJ, ρA, ρA, ρA] per unit length
-  Vec6 rest_strain = Vec6::Zero();  ///< ξ*
+  Vec6 rest_strain = Vec6::Zero();  ///< ξ*, with the chambers' shift K⁻¹ w (1/m; –)
   double outer_diameter = 0.0;      ///< m (SectionProperties::outer_diameter)
 
-  /// The section of `rod` at s (m) under `actuation`. Throws std::invalid_argument naming s when
+  /// The section of `rod` at s (m) under `actuation` (stiffness profiles and chamber pressures
+  /// read it). Throws std::invalid_argument naming s when
   /// K, D or M has an off-diagonal entry (see the file comment).
   static SectionLaw At(const RodModel& rod, double s, const Actuation& actuation);
 

@@ -31,7 +31,7 @@ enum class Boundary {
 enum class ShotScheme { kRk4, kHeun };
 
 /// "robot.kind"; kNone when the problem has no "robot".
-enum class RobotKind { kNone, kTendon, kJamming, kEversion };
+enum class RobotKind { kNone, kTendon, kJamming, kEversion, kPneumatic };
 
 /// "buckling.load": the load path searched.
 enum class BucklingLoad {

@@ -13,6 +13,7 @@ namespace cosserat {
 struct Actuation {
   static constexpr int kMaxTendons = 8;
   static constexpr int kMaxSegments = 16;
+  static constexpr int kMaxChambers = 16;
 
   /// Scales every stiffness profile's actuation-dependent factor; 1 for the plain rod.
   double stiffness_scale = 1.0;
@@ -21,14 +22,23 @@ struct Actuation {
   double pressure = 0.0;
   /// Tendon tensions, N (≥ 0), in the order of the robot's tendon list.
   std::array<double, kMaxTendons> tendon_tension{};
+  /// Gauge pressure of each pressurised chamber (rod/chamber.hpp), Pa, in the order of the rod's
+  /// chamber list; > 0 inflates (extends the rod and bends it away from the chamber), < 0 is a
+  /// partial vacuum (down to −101 325 Pa, absolute vacuum at sea level).
+  std::array<double, kMaxChambers> chamber_pressure{};
   /// Layer-jamming pressure difference ΔP of each switchable segment, Pa; 0: compliant.
   std::array<double, kMaxSegments> jamming_pressure{};
 
   /// The rules every actuation obeys (the problem file's and the Python module's): finite
   /// values, pressure and jamming pressures >= 0 (Pa), stiffness_scale > 0, tensions >= 0 (N;
-  /// a tendon cannot push), and no tension on a tendon past the first `tendon_count` (the
-  /// rod's). On failure `why` (if given) names the field: "<field>: expected ...".
-  bool IsValid(std::string* why, int tendon_count = kMaxTendons) const;
+  /// a tendon cannot push), chamber pressures >= −101 325 Pa, and no tension on a tendon past the
+  /// first `tendon_count` (the rod's) and no pressure in a chamber past the first
+  /// `chamber_count`. On failure `why` (if given) names the field: "<field>: expected ...".
+  bool IsValid(std::string* why, int tendon_count = kMaxTendons,
+               int chamber_count = kMaxChambers) const;
+
+  /// Absolute vacuum as a gauge pressure, Pa: the lowest chamber pressure.
+  static constexpr double kVacuumGaugePressure = -101325.0;
 };
 
 }  // namespace cosserat

@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "cosserat/lie/types.hpp"
-#include "cosserat/rod/tendon_route.hpp"
+#include "cosserat/rod/chamber.hpp"
 #include "cosserat/rod/section_profile.hpp"
+#include "cosserat/rod/tendon_route.hpp"
 
 namespace cosserat {
 
@@ -30,11 +31,17 @@ struct RodModel {
   /// Tendons routed through the rod (at most Actuation::kMaxTendons); their tensions are part of
   /// the Actuation. Empty for a plain rod.
   std::vector<Tendon> tendons;
+  /// Pressurised chambers (at most Actuation::kMaxChambers); their pressures are part of the
+  /// Actuation (constitutive/chamber_law.hpp). Empty for a plain rod.
+  std::vector<Chamber> chambers;
 
   /// A uniform straight rod.
   static RodModel Uniform(double length, const CrossSection& section, const Material& material);
 
   Vec6 RestStrainAt(double s) const { return rest_strain ? rest_strain(s) : StraightRestStrain(); }
+  /// Interior arc lengths where the section or the actuation jumps (m): the section profile's
+  /// breakpoints and the chambers' ends. The grid puts nodes there.
+  std::vector<double> Breakpoints() const;
 
   bool IsValid(std::string* why) const;
 };
