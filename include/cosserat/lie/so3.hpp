@@ -90,9 +90,16 @@ template <typename T>
 inline Vector3<T> SO3Log(const Matrix3<T>& R) {
   using std::atan2;
   using std::sin;
+  using std::sqrt;
   const Vector3<T> sin_axis = vee<T>(R);  // sin θ · a
   const T c = 0.5 * (R.trace() - 1.0);    // cos θ
-  const T theta = atan2(sin_axis.norm(), c);
+  const T s2 = sin_axis.squaredNorm();    // sin² θ
+  if (c > 0.0 && s2 < kSO3Taylor2) {
+    // θ / sin θ = 1 + sin²θ/6 + O(sin⁴θ), without the norm's square root, whose derivative at
+    // zero is infinite (automatic differentiation at the identity would give NaN).
+    return (T(1.0) + s2 / 6.0 * (T(1.0) + 0.45 * s2)) * sin_axis;
+  }
+  const T theta = atan2(sqrt(s2), c);
   const T theta2 = theta * theta;
   if (c > 0.0) {
     // θ / sin θ, with its Taylor series for small θ.

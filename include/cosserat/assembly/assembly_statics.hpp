@@ -1,0 +1,117 @@
+#pragma once
+/// \file
+/// Statics of an Assembly (assembly.hpp) by shooting all its rods together. The unknowns: each
+/// rod's base wrench (its moment about its own tangent replaced by its spin angle for a
+/// torsion-free base) and each body's pose; in the inverse problem each rod's length instead of
+/// the bodies' poses. The residuals: each rod's tip condition (free: no wrench; joined: the joint's
+/// position and rotation conditions, and no moment where it turns freely) and each body's force
+/// and moment balance, with the rods' tip wrenches acting on it. One Newton system for the
+/// whole structure (the junction conditions of the applications chapter of the source, eq. 10.1,
+/// without inertia). Levenberg–Marquardt on it, with its exact Jacobian: each rod shot once in
+/// ceres::Jet arithmetic over its own unknowns and length (rod_shot.hpp), and the bodies'
+/// columns from the algebra of the joints. When a solve from the last solution fails it follows
+/// the loads and the lengths (or the poses) from that solution, halving its steps.
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "cosserat/assembly/assembly.hpp"
+#include "cosserat/assembly/rod_shot.hpp"
+#include "cosserat/loads/static_loads.hpp"
+#include "cosserat/state/rod_state.hpp"
+#include "cosserat/state/solve_status.hpp"
+
+namespace cosserat {
+
+struct AssemblyOptions {
+  /// Convergence: the residual's 2-norm, dimensionless (positions over the rod's length,
+  /// rotations in rad, moments over EI/L, forces over EI/L², the body's over its rods' largest).
+  double tolerance = 1e-10;
+  int max_iterations = 50;  ///< Levenberg–Marquardt iterations per continuation level
+  int max_load_steps = 64;  ///< continuation levels (accepted and rejected) per solve
+};
+
+struct AssemblySummary {
+  SolveStatus status = SolveStatus::kNotRun;
+  int iterations = 0;
+  int load_steps = 0;  ///< continuation levels beyond the direct solve
+  double residual = 0.0;
+  double wall_time_s = 0.0;
+  bool converged() const { return status == SolveStatus::kConverged; }
+};
+
+class AssemblyStaticsSolver {
+ public:
+  /// Throws std::invalid_argument when the assembly is not valid (Assembly::IsValid).
+  explicit AssemblyStaticsSolver(const Assembly& assembly, const AssemblyOptions& options = {});
+
+  /// Forward problem: the bodies' poses and the rods' shapes for the rods' `lengths` (m, one per
+  /// rod; empty: each model's length) under `loads` (their gravity also weighs the bodies; tip
+  /// loads are not used: load a body instead). Starts from the last solution.
+  AssemblySummary Solve(const StaticLoads& loads, const std::vector<double>& lengths = {});
+
+  /// Inverse problem: the rods' lengths that hold each body at `poses` (one per body) under
+  /// `loads`. Needs six rods per body (throws std::invalid_argument otherwise).
+  AssemblySummary SolveLengths(const StaticLoads& loads, const std::vector<lie::SE3>& poses);
+
+  /// d(pose of `body`)/d(lengths) at the last converged forward solution (6 × rods): rows
+  /// dp_W (m/m) and dθ (rad/m) with R(L + dL) ≈ R Exp(dθ dL), the body frame. From the
+  /// solution's Jacobian by the implicit function theorem. Empty without a solution.
+  Eigen::MatrixXd PoseJacobian(int body, const StaticLoads& loads);
+
+  const std::vector<lie::SE3>& body_poses() const { return poses_; }
+  const std::vector<double>& lengths() const { return lengths_; }
+  /// The node states of rod i at the last solve (s from 0 to its length).
+  const RodState& rod_state(int i) const { return states_[i]; }
+  int rod_count() const { return static_cast<int>(rods_.size()); }
+
+ private:
+  enum class Mode { kForward, kInverse };
+  template <typename T>
+  using Point = RodShot::Point<T>;
+  /// Per rod: its shot, scales (moment EI/L, force EI/L²), and the last shot's tip.
+  struct Rod {
+    RodShot shot;
+    double moment_scale = 1.0, force_scale = 1.0;
+    Point<double> tip;
+  };
+  template <typename T>
+  Point<T> BaseStart(int i, const Vector6<T>& x) const;
+  template <typename T>
+  Vector6<T> TipResidual(int i, const Point<T>& tip, const Vector3<T>& p_b,
+                         const Matrix3<T>& R_b) const;
+  /// The force and moment about the body's origin that rod i's tip exerts on its body (world).
+  template <typename T>
+  void TipWrenchOnBody(const Point<T>& tip, const Vector3<T>& p_b, Vector3<T>* f,
+                       Vector3<T>* m) const;
+
+  int Unknowns() const;
+  /// Shoots every rod at the current unknowns; false if a shot is not finite.
+  bool ShootAll();
+  void Residual(const StaticLoads& loads, Eigen::VectorXd* r) const;
+  /// d residual / d unknowns; with J_length, also d residual / d lengths (rows × rods).
+  void Jacobian(const StaticLoads& loads, Eigen::MatrixXd* J, Eigen::MatrixXd* J_length);
+  /// Follows at(μ), μ: 0 → 1, from a solution at μ = 0 (the current unknowns), halving a step
+  /// that fails and doubling one that succeeds; at(μ) sets the lengths or poses of level μ and
+  /// returns its loads. Returns the last μ reached.
+  template <typename At>
+  double Follow(const At& at, AssemblySummary* summary);
+  void Apply(const Eigen::VectorXd& dz, double scale);
+  bool LevenbergMarquardt(const StaticLoads& loads, AssemblySummary* summary);
+  void RecordStates();
+
+  Assembly assembly_;
+  AssemblyOptions options_;
+  Mode mode_ = Mode::kForward;
+  std::vector<Rod> rods_;
+  Eigen::VectorXd x_;  ///< 6 base unknowns per rod, scaled
+  std::vector<lie::SE3> poses_;
+  std::vector<double> lengths_;
+  std::vector<double> body_force_scale_, body_moment_scale_;
+  std::vector<RodState> states_;
+  bool has_solution_ = false;
+  StaticLoads solved_loads_;
+};
+
+}  // namespace cosserat

@@ -1,0 +1,425 @@
+#include "cosserat/assembly/assembly_statics.hpp"
+
+#include <ceres/jet.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "cosserat/lie/so3.hpp"
+
+namespace cosserat {
+
+namespace {
+
+using Jet7 = ceres::Jet<double, 7>;  // a rod's 6 base unknowns and its length
+using Jet6 = ceres::Jet<double, 6>;  // a body's pose increment [δp; δθ]
+
+// Halvings of the continuation step before a solve gives up.
+constexpr double kMinStep = 1.0 / 1024.0;
+// Levenberg–Marquardt: retries with a larger damping before an iteration fails.
+constexpr int kDampingRetries = 12;
+
+}  // namespace
+
+AssemblyStaticsSolver::AssemblyStaticsSolver(const Assembly& assembly,
+                                             const AssemblyOptions& options)
+    : assembly_(assembly), options_(options) {
+  std::string why;
+  if (!assembly_.IsValid(&why)) throw std::invalid_argument("Assembly: " + why);
+  const int R = static_cast<int>(assembly_.rods.size());
+  const int B = static_cast<int>(assembly_.bodies.size());
+  body_force_scale_.assign(B, 0.0);
+  body_moment_scale_.assign(B, 0.0);
+  for (int i = 0; i < R; ++i) {
+    const AssemblyRod& a = assembly_.rods[i];
+    Rod rod{RodShot(a.model, a.nodes), 1.0, 1.0, {}};
+    const double L = a.model.length, EI = rod.shot.bending_stiffness();
+    rod.moment_scale = EI / L;
+    rod.force_scale = EI / (L * L);
+    if (a.body >= 0) {
+      body_force_scale_[a.body] = std::max(body_force_scale_[a.body], rod.force_scale);
+      body_moment_scale_[a.body] = std::max(body_moment_scale_[a.body], rod.moment_scale);
+    }
+    rods_.push_back(std::move(rod));
+    lengths_.push_back(L);
+  }
+  for (const RigidBody& b : assembly_.bodies) poses_.push_back(b.pose);
+  x_.setZero(6 * R);
+  states_.resize(R);
+}
+
+template <typename T>
+AssemblyStaticsSolver::Point<T> AssemblyStaticsSolver::BaseStart(int i,
+                                                                 const Vector6<T>& x) const {
+  const AssemblyRod& a = assembly_.rods[i];
+  const Rod& rod = rods_[i];
+  Point<T> y;
+  y.p = a.base.p.cast<T>();
+  y.R = a.base.R.cast<T>();
+  y.n = x.template tail<3>() * rod.force_scale;
+  if (a.base_joint == BaseJoint::kClamped) {
+    y.m = x.template head<3>() * rod.moment_scale;
+  } else {  // spun by x0 about its tangent, no moment about it
+    y.R = y.R * lie::SO3Exp<T>(Vector3<T>(T(0.0), T(0.0), x(0)));
+    y.m = Vector3<T>(x(1) * rod.moment_scale, x(2) * rod.moment_scale, T(0.0));
+  }
+  return y;
+}
+
+template <typename T>
+Vector6<T> AssemblyStaticsSolver::TipResidual(int i, const Point<T>& tip, const Vector3<T>& p_b,
+                                              const Matrix3<T>& R_b) const {
+  const AssemblyRod& a = assembly_.rods[i];
+  const Rod& rod = rods_[i];
+  Vector6<T> e;
+  if (a.tip_joint == TipJoint::kFree) {
+    e.template head<3>() = tip.m / rod.moment_scale;
+    e.template tail<3>() = tip.n / rod.force_scale;
+    return e;
+  }
+  const Vector3<T> p_target = p_b + R_b * a.attachment.p.cast<T>();
+  const Matrix3<T> R_target = R_b * a.attachment.R.cast<T>();
+  e.template head<3>() = (tip.p - p_target) / a.model.length;
+  switch (a.tip_joint) {
+    case TipJoint::kClamped:
+      e.template tail<3>() = lie::SO3Log<T>(Matrix3<T>(R_target.transpose() * tip.R));
+      break;
+    case TipJoint::kTorsionFree: {  // the tangents aligned, no moment about the tangent
+      const Vector3<T> t = R_target.transpose() * tip.R.col(2);
+      e(3) = t(0);
+      e(4) = t(1);
+      e(5) = tip.m(2) / rod.moment_scale;
+      break;
+    }
+    case TipJoint::kPinned:
+      e.template tail<3>() = tip.m / rod.moment_scale;
+      break;
+    case TipJoint::kFree:
+      break;
+  }
+  return e;
+}
+
+template <typename T>
+void AssemblyStaticsSolver::TipWrenchOnBody(const Point<T>& tip, const Vector3<T>& p_b,
+                                            Vector3<T>* f, Vector3<T>* m) const {
+  // The internal wrench at s = L is what the body exerts on the rod; the rod exerts its negative.
+  const Vector3<T> n_W = tip.R * tip.n;
+  *f = -n_W;
+  *m = -(tip.R * tip.m) - (tip.p - p_b).cross(n_W);
+}
+
+int AssemblyStaticsSolver::Unknowns() const {
+  const int R = rod_count();
+  return 6 * R + (mode_ == Mode::kForward ? 6 * static_cast<int>(poses_.size()) : R);
+}
+
+bool AssemblyStaticsSolver::ShootAll() {
+  for (int i = 0; i < rod_count(); ++i) {
+    const Vec6 x = x_.segment<6>(6 * i);
+    rods_[i].tip = rods_[i].shot.Shoot<double>(BaseStart<double>(i, x), lengths_[i]);
+    if (!rods_[i].tip.p.allFinite() || !rods_[i].tip.n.allFinite()) return false;
+  }
+  return true;
+}
+
+void AssemblyStaticsSolver::Residual(const StaticLoads& loads, Eigen::VectorXd* r) const {
+  const int R = rod_count(), B = static_cast<int>(poses_.size());
+  r->setZero(6 * R + 6 * B);
+  for (int b = 0; b < B; ++b) {
+    const RigidBody& body = assembly_.bodies[b];
+    r->segment<3>(6 * R + 6 * b) = (body.mass * loads.gravity_W + body.force_W);
+    r->segment<3>(6 * R + 6 * b + 3) = body.moment_W;
+  }
+  for (int i = 0; i < R; ++i) {
+    const int b = assembly_.rods[i].body;
+    const Vec3 p_b = b >= 0 ? poses_[b].p : Vec3::Zero();
+    const Mat3 R_b = b >= 0 ? poses_[b].R : Mat3::Identity();
+    r->segment<6>(6 * i) = TipResidual<double>(i, rods_[i].tip, p_b, R_b);
+    if (b < 0) continue;
+    Vec3 f, m;
+    TipWrenchOnBody<double>(rods_[i].tip, p_b, &f, &m);
+    r->segment<3>(6 * R + 6 * b) += f;
+    r->segment<3>(6 * R + 6 * b + 3) += m;
+  }
+  for (int b = 0; b < B; ++b) {
+    r->segment<3>(6 * R + 6 * b) /= body_force_scale_[b];
+    r->segment<3>(6 * R + 6 * b + 3) /= body_moment_scale_[b];
+  }
+}
+
+void AssemblyStaticsSolver::Jacobian(const StaticLoads& loads, Eigen::MatrixXd* J,
+                                     Eigen::MatrixXd* J_length) {
+  (void)loads;  // the loads' derivatives in the unknowns are zero (dead loads)
+  const int R = rod_count(), B = static_cast<int>(poses_.size());
+  const int rows = 6 * R + 6 * B;
+  J->setZero(rows, Unknowns());
+  if (J_length) J_length->setZero(rows, R);
+  for (int i = 0; i < R; ++i) {
+    Vector6<Jet7> x;
+    for (int k = 0; k < 6; ++k) x(k) = Jet7(x_(6 * i + k), k);
+    const Jet7 L(lengths_[i], 6);
+    const Point<Jet7> tip = rods_[i].shot.Shoot<Jet7>(BaseStart<Jet7>(i, x), L);
+    const int b = assembly_.rods[i].body;
+    const Vector3<Jet7> p_b = (b >= 0 ? poses_[b].p : Vec3::Zero()).cast<Jet7>();
+    const Matrix3<Jet7> R_b = (b >= 0 ? poses_[b].R : Mat3::Identity()).cast<Jet7>();
+    const Vector6<Jet7> e = TipResidual<Jet7>(i, tip, p_b, R_b);
+    auto put = [&](int row, const Jet7& value) {
+      for (int k = 0; k < 6; ++k) (*J)(row, 6 * i + k) += value.v[k];
+      if (mode_ == Mode::kInverse) (*J)(row, 6 * R + i) += value.v[6];
+      if (J_length) (*J_length)(row, i) += value.v[6];
+    };
+    for (int r = 0; r < 6; ++r) put(6 * i + r, e(r));
+    if (b < 0) continue;
+    Vector3<Jet7> f, m;
+    TipWrenchOnBody<Jet7>(tip, p_b, &f, &m);
+    for (int r = 0; r < 3; ++r) {
+      put(6 * R + 6 * b + r, f(r) / body_force_scale_[b]);
+      put(6 * R + 6 * b + 3 + r, m(r) / body_moment_scale_[b]);
+    }
+  }
+  if (mode_ != Mode::kForward) return;
+  for (int b = 0; b < B; ++b) {
+    Vector3<Jet6> dp, dth;
+    for (int k = 0; k < 3; ++k) {
+      dp(k) = Jet6(0.0, k);
+      dth(k) = Jet6(0.0, 3 + k);
+    }
+    const Vector3<Jet6> p_b = poses_[b].p.cast<Jet6>() + dp;
+    const Matrix3<Jet6> R_b = poses_[b].R.cast<Jet6>() * lie::SO3Exp<Jet6>(dth);
+    const int col = 6 * R + 6 * b;
+    for (int i = 0; i < R; ++i) {
+      if (assembly_.rods[i].body != b) continue;
+      const Point<double>& t = rods_[i].tip;
+      const Point<Jet6> tip{t.p.cast<Jet6>(), t.R.cast<Jet6>(), t.m.cast<Jet6>(),
+                            t.n.cast<Jet6>()};
+      const Vector6<Jet6> e = TipResidual<Jet6>(i, tip, p_b, R_b);
+      Vector3<Jet6> f, m;
+      TipWrenchOnBody<Jet6>(tip, p_b, &f, &m);
+      for (int k = 0; k < 6; ++k) {
+        for (int r = 0; r < 6; ++r) (*J)(6 * i + r, col + k) += e(r).v[k];
+        for (int r = 0; r < 3; ++r) {
+          (*J)(col + r, col + k) += f(r).v[k] / body_force_scale_[b];
+          (*J)(col + 3 + r, col + k) += m(r).v[k] / body_moment_scale_[b];
+        }
+      }
+    }
+  }
+}
+
+void AssemblyStaticsSolver::Apply(const Eigen::VectorXd& dz, double scale) {
+  const int R = rod_count();
+  x_ += scale * dz.head(6 * R);
+  if (mode_ == Mode::kForward) {
+    for (size_t b = 0; b < poses_.size(); ++b) {
+      poses_[b].p += scale * dz.segment<3>(6 * R + 6 * b);
+      poses_[b].R = poses_[b].R * lie::SO3Exp(Vec3(scale * dz.segment<3>(6 * R + 6 * b + 3)));
+    }
+  } else {
+    for (int i = 0; i < R; ++i) lengths_[i] += scale * dz(6 * R + i);
+  }
+}
+
+bool AssemblyStaticsSolver::LevenbergMarquardt(const StaticLoads& loads,
+                                               AssemblySummary* summary) {
+  Eigen::VectorXd r, r_trial, dz;
+  Eigen::MatrixXd J;
+  for (Rod& rod : rods_) rod.shot.SetLoads(loads);
+  if (!ShootAll()) return false;
+  Residual(loads, &r);
+  double norm = r.norm(), damping = 0.0;
+  for (int it = 0; it < options_.max_iterations; ++it) {
+    summary->residual = norm;
+    if (norm < options_.tolerance) return true;
+    Jacobian(loads, &J, nullptr);
+    ++summary->iterations;
+    const Eigen::MatrixXd A = J.transpose() * J;
+    const Eigen::VectorXd g = J.transpose() * r;
+    const Eigen::VectorXd x_saved = x_;
+    const std::vector<lie::SE3> poses_saved = poses_;
+    const std::vector<double> lengths_saved = lengths_;
+    bool accepted = false;
+    for (int attempt = 0; attempt <= kDampingRetries && !accepted; ++attempt) {
+      if (damping == 0.0) {  // a Newton step first
+        dz = J.partialPivLu().solve(-r);
+      } else {
+        Eigen::MatrixXd M = A;
+        M.diagonal() += damping * (A.diagonal().array() + 1e-12).matrix();
+        dz = M.ldlt().solve(-g);
+      }
+      Apply(dz, 1.0);
+      if (dz.allFinite() && ShootAll()) {
+        Residual(loads, &r_trial);
+        accepted = r_trial.allFinite() && r_trial.norm() < norm;
+      }
+      if (accepted) {
+        damping = damping == 0.0 ? 0.0 : std::max(damping / 3.0, 1e-9);
+        if (damping < 1e-8) damping = 0.0;
+      } else {
+        x_ = x_saved;
+        poses_ = poses_saved;
+        lengths_ = lengths_saved;
+        damping = damping == 0.0 ? 1e-6 : 4.0 * damping;
+      }
+    }
+    if (!accepted) {
+      ShootAll();
+      return false;
+    }
+    r.swap(r_trial);
+    norm = r.norm();
+  }
+  summary->residual = norm;
+  return norm < options_.tolerance;
+}
+
+void AssemblyStaticsSolver::RecordStates() {
+  for (int i = 0; i < rod_count(); ++i) {
+    const Vec6 x = x_.segment<6>(6 * i);
+    rods_[i].shot.Record(BaseStart<double>(i, x), lengths_[i], &states_[i]);
+  }
+}
+
+template <typename At>
+double AssemblyStaticsSolver::Follow(const At& at, AssemblySummary* summary) {
+  double mu = 0.0, step = 1.0;
+  int levels = 0;
+  while (mu < 1.0 && step >= kMinStep && levels < options_.max_load_steps) {
+    const Eigen::VectorXd x_saved = x_;
+    const std::vector<lie::SE3> poses_saved = poses_;
+    const std::vector<double> lengths_saved = lengths_;
+    const double trial = std::min(1.0, mu + step);
+    ++levels;
+    const StaticLoads loads = at(trial);
+    if (LevenbergMarquardt(loads, summary)) {
+      mu = trial;
+      step *= 2.0;
+    } else {
+      x_ = x_saved;
+      poses_ = poses_saved;
+      lengths_ = lengths_saved;
+      step *= 0.5;
+    }
+  }
+  summary->load_steps += levels;
+  return mu;
+}
+
+AssemblySummary AssemblyStaticsSolver::Solve(const StaticLoads& loads,
+                                             const std::vector<double>& lengths) {
+  const auto t0 = std::chrono::steady_clock::now();
+  AssemblySummary summary;
+  std::vector<double> target = lengths;
+  if (target.empty())
+    for (const AssemblyRod& a : assembly_.rods) target.push_back(a.model.length);
+  if (static_cast<int>(target.size()) != rod_count())
+    throw std::invalid_argument("AssemblyStaticsSolver::Solve: " + std::to_string(target.size()) +
+                                " lengths for " + std::to_string(rod_count()) + " rods");
+  bool valid = loads.IsValid(nullptr);
+  for (double L : target) valid = valid && std::isfinite(L) && L > 0;
+  if (!valid) {
+    summary.status = SolveStatus::kNonFinite;
+    return summary;
+  }
+  mode_ = Mode::kForward;
+  // The start: the last solution, else the rods unloaded at the model's lengths.
+  const StaticLoads start_loads = has_solution_ ? solved_loads_ : loads.Scaled(0.0);
+  const std::vector<double> start_lengths = lengths_;
+  const double start_body_loads = has_solution_ ? 1.0 : 0.0;
+  const Eigen::VectorXd start_x = x_;
+  const std::vector<lie::SE3> start_poses = poses_;
+  // Directly at the target first.
+  lengths_ = target;
+  bool converged = LevenbergMarquardt(loads, &summary);
+  if (!converged) {
+    lengths_ = start_lengths;
+    x_ = start_x;
+    poses_ = start_poses;
+    std::vector<RigidBody>& bodies = assembly_.bodies;
+    const std::vector<RigidBody> full = bodies;
+    auto at = [&](double mu) {
+      for (int i = 0; i < rod_count(); ++i)
+        lengths_[i] = start_lengths[i] + mu * (target[i] - start_lengths[i]);
+      const double factor = start_body_loads + mu * (1.0 - start_body_loads);
+      for (size_t b = 0; b < bodies.size(); ++b) {
+        bodies[b].force_W = factor * full[b].force_W;
+        bodies[b].moment_W = factor * full[b].moment_W;
+      }
+      return mu == 1.0 ? loads : StaticLoads::Blend(start_loads, loads, mu);
+    };
+    if (!has_solution_) {  // the unloaded structure at the start lengths first
+      at(0.0);
+      converged = LevenbergMarquardt(start_loads, &summary);
+    } else {
+      converged = true;
+    }
+    converged = converged && Follow(at, &summary) == 1.0;
+    bodies = full;
+  }
+  if (converged) {
+    has_solution_ = true;
+    solved_loads_ = loads;
+  }
+  ShootAll();
+  RecordStates();
+  summary.status = converged ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
+  summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return summary;
+}
+
+AssemblySummary AssemblyStaticsSolver::SolveLengths(const StaticLoads& loads,
+                                                    const std::vector<lie::SE3>& poses) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (rod_count() != 6 * static_cast<int>(poses_.size()) || poses.size() != poses_.size())
+    throw std::invalid_argument(
+        "AssemblyStaticsSolver::SolveLengths: needs six rods per body and one pose per body");
+  AssemblySummary summary;
+  mode_ = Mode::kInverse;
+  const std::vector<lie::SE3> start = poses_;
+  const StaticLoads start_loads = has_solution_ ? solved_loads_ : loads;
+  const Eigen::VectorXd start_x = x_;
+  const std::vector<double> start_lengths = lengths_;
+  poses_ = poses;
+  bool converged = LevenbergMarquardt(loads, &summary);
+  if (!converged && has_solution_) {  // follow the poses from the last solution
+    x_ = start_x;
+    lengths_ = start_lengths;
+    auto at = [&](double mu) {
+      for (size_t b = 0; b < poses_.size(); ++b) {
+        poses_[b].p = start[b].p + mu * (poses[b].p - start[b].p);
+        poses_[b].R =
+            start[b].R * lie::SO3Exp(Vec3(mu * lie::SO3Log(Mat3(start[b].R.transpose() * poses[b].R))));
+      }
+      return mu == 1.0 ? loads : StaticLoads::Blend(start_loads, loads, mu);
+    };
+    at(0.0);
+    converged = Follow(at, &summary) == 1.0;
+  }
+  if (converged) {
+    has_solution_ = true;
+    solved_loads_ = loads;
+  }
+  ShootAll();
+  RecordStates();
+  summary.status = converged ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
+  summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return summary;
+}
+
+Eigen::MatrixXd AssemblyStaticsSolver::PoseJacobian(int body, const StaticLoads& loads) {
+  if (!has_solution_ || body < 0 || body >= static_cast<int>(poses_.size()))
+    return Eigen::MatrixXd();
+  mode_ = Mode::kForward;
+  ShootAll();
+  Eigen::MatrixXd J, J_length;
+  Jacobian(loads, &J, &J_length);
+  const Eigen::MatrixXd dz = J.partialPivLu().solve(-J_length);
+  return dz.middleRows(6 * rod_count() + 6 * body, 6);
+}
+
+}  // namespace cosserat
