@@ -112,6 +112,24 @@ void AssemblyStaticsSolver::TipWrenchOnBody(const Point<T>& tip, const Vector3<T
   *m = -(tip.R * tip.m) - (tip.p - p_b).cross(n_W);
 }
 
+rhs::StaticTangent AssemblyStaticsSolver::StartTangent(int i, const Point<double>& start) const {
+  const Rod& rod = rods_[i];
+  rhs::StaticTangent d;
+  d.p.setZero();
+  for (auto& c : d.R) c.setZero();
+  d.m.setZero();
+  d.n.setZero();
+  d.n.rightCols<3>() = rod.force_scale * Mat3::Identity();
+  if (assembly_.rods[i].base_joint == BaseJoint::kClamped) {
+    d.m.leftCols<3>() = rod.moment_scale * Mat3::Identity();
+  } else {  // x0 spins the frame about its z: d(R e_j) = R (e_z × e_j)
+    for (int j = 0; j < 3; ++j) d.R[j].col(0) = start.R * Vec3::UnitZ().cross(Vec3::Unit(j));
+    d.m(0, 1) = rod.moment_scale;
+    d.m(1, 2) = rod.moment_scale;
+  }
+  return d;
+}
+
 int AssemblyStaticsSolver::Unknowns() const {
   const int R = rod_count();
   return 6 * R + (mode_ == Mode::kForward ? 6 * static_cast<int>(poses_.size()) : R);
@@ -159,10 +177,33 @@ void AssemblyStaticsSolver::Jacobian(const StaticLoads& loads, Eigen::MatrixXd* 
   J->setZero(rows, Unknowns());
   if (J_length) J_length->setZero(rows, R);
   for (int i = 0; i < R; ++i) {
-    Vector6<Jet7> x;
-    for (int k = 0; k < 6; ++k) x(k) = Jet7(x_(6 * i + k), k);
-    const Jet7 L(lengths_[i], 6);
-    const Point<Jet7> tip = rods_[i].shot.Shoot<Jet7>(BaseStart<Jet7>(i, x), L);
+    // The tip's derivatives: along the 6 base unknowns exactly (the tangent shot), along the
+    // length by a forward difference (one more shot; its error, ~1e-7 relative, only slows
+    // Newton, whose residual is exact). Then the joint's algebra in Jet arithmetic.
+    const Vec6 xi = x_.segment<6>(6 * i);
+    const Point<double> start = BaseStart<double>(i, xi);
+    rhs::StaticTangent dtip;
+    const Point<double> tip_value =
+        rods_[i].shot.ShootTangent(start, StartTangent(i, start), lengths_[i], &dtip);
+    const double dL = 1e-7 * lengths_[i];
+    const Point<double> longer = rods_[i].shot.Shoot<double>(start, lengths_[i] + dL);
+    Point<Jet7> tip;
+    for (int r = 0; r < 3; ++r) {
+      tip.p(r) = Jet7(tip_value.p(r));
+      tip.m(r) = Jet7(tip_value.m(r));
+      tip.n(r) = Jet7(tip_value.n(r));
+      tip.p(r).v.head<6>() = dtip.p.row(r).transpose();
+      tip.m(r).v.head<6>() = dtip.m.row(r).transpose();
+      tip.n(r).v.head<6>() = dtip.n.row(r).transpose();
+      tip.p(r).v[6] = (longer.p(r) - tip_value.p(r)) / dL;
+      tip.m(r).v[6] = (longer.m(r) - tip_value.m(r)) / dL;
+      tip.n(r).v[6] = (longer.n(r) - tip_value.n(r)) / dL;
+      for (int c = 0; c < 3; ++c) {
+        tip.R(r, c) = Jet7(tip_value.R(r, c));
+        tip.R(r, c).v.head<6>() = dtip.R[c].row(r).transpose();
+        tip.R(r, c).v[6] = (longer.R(r, c) - tip_value.R(r, c)) / dL;
+      }
+    }
     const int b = assembly_.rods[i].body;
     const Vector3<Jet7> p_b = (b >= 0 ? poses_[b].p : Vec3::Zero()).cast<Jet7>();
     const Matrix3<Jet7> R_b = (b >= 0 ? poses_[b].R : Mat3::Identity()).cast<Jet7>();
@@ -223,45 +264,78 @@ void AssemblyStaticsSolver::Apply(const Eigen::VectorXd& dz, double scale) {
   }
 }
 
+void AssemblyStaticsSolver::Save() {
+  saved_x_ = x_;
+  saved_poses_ = poses_;
+  saved_lengths_ = lengths_;
+}
+
+void AssemblyStaticsSolver::Restore() {
+  x_ = saved_x_;
+  poses_ = saved_poses_;
+  lengths_ = saved_lengths_;
+}
+
+bool AssemblyStaticsSolver::TryStep(const StaticLoads& loads, double norm) {
+  Save();
+  Apply(dz_, 1.0);
+  bool ok = dz_.allFinite() && ShootAll();
+  if (ok) {
+    Residual(loads, &r_trial_);
+    ok = r_trial_.allFinite() && r_trial_.norm() < norm;
+  }
+  if (!ok) Restore();
+  return ok;
+}
+
 bool AssemblyStaticsSolver::LevenbergMarquardt(const StaticLoads& loads,
                                                AssemblySummary* summary) {
-  Eigen::VectorXd r, r_trial, dz;
-  Eigen::MatrixXd J;
   for (Rod& rod : rods_) rod.shot.SetLoads(loads);
   if (!ShootAll()) return false;
-  Residual(loads, &r);
-  double norm = r.norm(), damping = 0.0;
+  Residual(loads, &r_);
+  double norm = r_.norm(), damping = 0.0;
+  bool fresh = false;  // the Jacobian is this state's (else the last one's, for chord steps)
   for (int it = 0; it < options_.max_iterations; ++it) {
     summary->residual = norm;
     if (norm < options_.tolerance) return true;
-    Jacobian(loads, &J, nullptr);
     ++summary->iterations;
-    const Eigen::MatrixXd A = J.transpose() * J;
-    const Eigen::VectorXd g = J.transpose() * r;
-    const Eigen::VectorXd x_saved = x_;
-    const std::vector<lie::SE3> poses_saved = poses_;
-    const std::vector<double> lengths_saved = lengths_;
+    // A quasi-Newton step with the inverse Jacobian of an earlier state, updated by Broyden's
+    // rank-one formula after each step (a warm re-solve after a small change converges at a
+    // fraction of the cost of new Jacobians), kept while it more than halves the residual.
+    if (jacobian_mode_ == mode_ && !fresh) {
+      dz_ = -(inverse_ * r_);
+      const bool ok = TryStep(loads, norm);
+      if (ok) {  // Broyden's good update of the inverse: H += (s − H y) sᵀH / (sᵀ H y)
+        const Eigen::VectorXd y = r_trial_ - r_;
+        const Eigen::VectorXd Hy = inverse_ * y;
+        const double denominator = dz_.dot(Hy);
+        if (std::abs(denominator) > 1e-12 * dz_.norm() * Hy.norm())
+          inverse_ += ((dz_ - Hy) / denominator) * (dz_.transpose() * inverse_);
+        const bool enough = r_trial_.norm() < 0.5 * norm;
+        r_.swap(r_trial_);
+        norm = r_.norm();
+        if (enough) continue;  // else it reduced the residual, just not enough: refresh
+      }
+    }
+    Jacobian(loads, &J_, nullptr);
+    ++summary->jacobians;
+    lu_.compute(J_);
+    inverse_ = lu_.inverse();
+    jacobian_mode_ = mode_;
+    fresh = true;
     bool accepted = false;
     for (int attempt = 0; attempt <= kDampingRetries && !accepted; ++attempt) {
       if (damping == 0.0) {  // a Newton step first
-        dz = J.partialPivLu().solve(-r);
-      } else {
-        Eigen::MatrixXd M = A;
-        M.diagonal() += damping * (A.diagonal().array() + 1e-12).matrix();
-        dz = M.ldlt().solve(-g);
+        dz_ = lu_.solve(-r_);
+      } else {  // Levenberg–Marquardt: (JᵀJ + λ diag JᵀJ) dz = −Jᵀ r
+        A_.noalias() = J_.transpose() * J_;
+        A_.diagonal() += damping * (A_.diagonal().array() + 1e-12).matrix();
+        dz_ = A_.ldlt().solve(-(J_.transpose() * r_));
       }
-      Apply(dz, 1.0);
-      if (dz.allFinite() && ShootAll()) {
-        Residual(loads, &r_trial);
-        accepted = r_trial.allFinite() && r_trial.norm() < norm;
-      }
+      accepted = TryStep(loads, norm);
       if (accepted) {
-        damping = damping == 0.0 ? 0.0 : std::max(damping / 3.0, 1e-9);
-        if (damping < 1e-8) damping = 0.0;
+        damping = damping < 3e-8 ? 0.0 : damping / 3.0;
       } else {
-        x_ = x_saved;
-        poses_ = poses_saved;
-        lengths_ = lengths_saved;
         damping = damping == 0.0 ? 1e-6 : 4.0 * damping;
       }
     }
@@ -269,14 +343,21 @@ bool AssemblyStaticsSolver::LevenbergMarquardt(const StaticLoads& loads,
       ShootAll();
       return false;
     }
-    r.swap(r_trial);
-    norm = r.norm();
+    r_.swap(r_trial_);
+    norm = r_.norm();
+    fresh = damping != 0.0;  // after a Newton step, try chord steps with this Jacobian
   }
   summary->residual = norm;
   return norm < options_.tolerance;
 }
 
+const RodState& AssemblyStaticsSolver::rod_state(int i) {
+  if (states_dirty_) RecordStates();
+  return states_[i];
+}
+
 void AssemblyStaticsSolver::RecordStates() {
+  states_dirty_ = false;
   for (int i = 0; i < rod_count(); ++i) {
     const Vec6 x = x_.segment<6>(6 * i);
     rods_[i].shot.Record(BaseStart<double>(i, x), lengths_[i], &states_[i]);
@@ -363,8 +444,7 @@ AssemblySummary AssemblyStaticsSolver::Solve(const StaticLoads& loads,
     has_solution_ = true;
     solved_loads_ = loads;
   }
-  ShootAll();
-  RecordStates();
+  states_dirty_ = true;
   summary.status = converged ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -403,8 +483,7 @@ AssemblySummary AssemblyStaticsSolver::SolveLengths(const StaticLoads& loads,
     has_solution_ = true;
     solved_loads_ = loads;
   }
-  ShootAll();
-  RecordStates();
+  states_dirty_ = true;
   summary.status = converged ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

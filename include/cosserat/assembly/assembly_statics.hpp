@@ -7,9 +7,10 @@
 /// position and rotation conditions, and no moment where it turns freely) and each body's force
 /// and moment balance, with the rods' tip wrenches acting on it. One Newton system for the
 /// whole structure (the junction conditions of the applications chapter of the source, eq. 10.1,
-/// without inertia). Levenberg–Marquardt on it, with its exact Jacobian: each rod shot once in
-/// ceres::Jet arithmetic over its own unknowns and length (rod_shot.hpp), and the bodies'
-/// columns from the algebra of the joints. When a solve from the last solution fails it follows
+/// without inertia). Levenberg–Marquardt on it, with the exact Jacobian of each rod's shot along
+/// its unknowns (a tangent shot, rod_shot.hpp; its length by a forward difference) and of the
+/// joints' algebra (ceres::Jet); a warm re-solve first takes quasi-Newton steps with the last
+/// inverse Jacobian, updated by Broyden's formula. When a solve from the last solution fails it follows
 /// the loads and the lengths (or the poses) from that solution, halving its steps.
 
 #include <vector>
@@ -35,6 +36,7 @@ struct AssemblyOptions {
 struct AssemblySummary {
   SolveStatus status = SolveStatus::kNotRun;
   int iterations = 0;
+  int jacobians = 0;   ///< exact Jacobians evaluated (the other iterations reuse the last one)
   int load_steps = 0;  ///< continuation levels beyond the direct solve
   double residual = 0.0;
   double wall_time_s = 0.0;
@@ -62,8 +64,9 @@ class AssemblyStaticsSolver {
 
   const std::vector<lie::SE3>& body_poses() const { return poses_; }
   const std::vector<double>& lengths() const { return lengths_; }
-  /// The node states of rod i at the last solve (s from 0 to its length).
-  const RodState& rod_state(int i) const { return states_[i]; }
+  /// The node states of rod i at the last solve (s from 0 to its length), recorded on the first
+  /// call after a solve.
+  const RodState& rod_state(int i);
   int rod_count() const { return static_cast<int>(rods_.size()); }
 
  private:
@@ -86,6 +89,8 @@ class AssemblyStaticsSolver {
   void TipWrenchOnBody(const Point<T>& tip, const Vector3<T>& p_b, Vector3<T>* f,
                        Vector3<T>* m) const;
 
+  /// The tangent of rod i's start along its 6 base unknowns, at the start `start`.
+  rhs::StaticTangent StartTangent(int i, const Point<double>& start) const;
   int Unknowns() const;
   /// Shoots every rod at the current unknowns; false if a shot is not finite.
   bool ShootAll();
@@ -99,6 +104,10 @@ class AssemblyStaticsSolver {
   double Follow(const At& at, AssemblySummary* summary);
   void Apply(const Eigen::VectorXd& dz, double scale);
   bool LevenbergMarquardt(const StaticLoads& loads, AssemblySummary* summary);
+  /// Applies dz_; keeps it when the residual (into r_trial_) falls below `norm`, else restores.
+  bool TryStep(const StaticLoads& loads, double norm);
+  void Save();
+  void Restore();
   void RecordStates();
 
   Assembly assembly_;
@@ -110,7 +119,17 @@ class AssemblyStaticsSolver {
   std::vector<double> lengths_;
   std::vector<double> body_force_scale_, body_moment_scale_;
   std::vector<RodState> states_;
+  bool states_dirty_ = true;
   bool has_solution_ = false;
+  // Workspace of the Levenberg–Marquardt iterations (sized on first use).
+  Eigen::VectorXd r_, r_trial_, dz_, saved_x_;
+  std::vector<lie::SE3> saved_poses_;
+  std::vector<double> saved_lengths_;
+  Eigen::MatrixXd J_, A_;
+  Eigen::MatrixXd inverse_;  ///< the quasi-Newton estimate of J⁻¹ (Broyden)
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  /// The mode whose Jacobian lu_ holds (none yet: a mode that never occurs).
+  Mode jacobian_mode_ = static_cast<Mode>(-1);
   StaticLoads solved_loads_;
 };
 

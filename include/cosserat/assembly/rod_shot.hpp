@@ -14,6 +14,7 @@
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/state/rod_state.hpp"
 #include "cosserat/strong/cosserat_rhs.hpp"
+#include "cosserat/strong/shot_tangent.hpp"
 
 namespace cosserat {
 
@@ -32,6 +33,12 @@ class RodShot {
   /// The state at s = L from the state at s = 0, for the rod's length L (m).
   template <typename T>
   Point<T> Shoot(const Point<T>& start, const T& length) const;
+
+  /// The same shot in double with the exact derivative of its tip along 6 directions of the
+  /// start (`start_tangent`, the length fixed): the hand-written linearisation of the right-hand
+  /// side (shot_tangent.hpp) carried through the same RK4 steps. Writes the tip's tangent.
+  Point<double> ShootTangent(const Point<double>& start, const rhs::StaticTangent& start_tangent,
+                             double length, rhs::StaticTangent* tip_tangent) const;
 
   /// The same shot, recording every node into *state (resized to the grid; s scaled to L).
   void Record(const Point<double>& start, double length, RodState* state) const;
