@@ -1,6 +1,6 @@
 // Assemblies of rods and rigid bodies (AssemblyStaticsSolver): two parallel rods joined at their
 // tips by a plate share an axial load equally and, loaded sideways, deflect as guided beams,
-// P L³/(12 · 2EI); the six-rod continuum Stewart–Gough robot of Till, Aloi & Rucker (2019)
+// P L³/(12 · 2EI); as a portal frame with a rigid girder they sway at their Euler load; the six-rod continuum Stewart–Gough robot of Till, Aloi & Rucker (2019)
 // solves its inverse kinematics self-consistently (forward kinematics of the lengths returns the
 // pose), its base reactions balance the platform's load and the rods' weight, and its pose
 // Jacobian matches central differences.
@@ -80,6 +80,36 @@ TEST(Assembly, TwoRodsJoinedAtTheirTipsDeflectAsAGuidedBeam) {
               "%d iterations\n",
               delta, expected, turn, s.iterations);
   EXPECT_NEAR(delta, expected, 1e-3 * expected);
+}
+
+// A portal frame whose girder is rigid (the plate on the two rods) sways under a vertical load P
+// on each column: each column is clamped at its foot and guided at its head, so the frame's sway
+// stiffness is 2 · 12EI/L³ · φ(u), φ = u³/(3(tan u − u)), u = (L/2) sqrt(P/EI), and vanishes at
+// the columns' Euler load π²EI/L² (Timoshenko & Gere 1961, §2.2 and the stability functions of
+// §1.11). Measured: the stiffness ε/δ under a lateral load ε = 1e-4 N at P = 0.5, 0.95 and 0.97
+// P_cr; the critical load from the secant through the last two (the closed form's own secant
+// root lies 2.4e-5 above P_cr). The acceptance asks 1 %; the plate's turn (3r²/d² ≈ 3e-4), shear
+// and the columns' shortening (~P/EA ≈ 4e-5) shift both by less than 1e-3, so 2e-3 is asserted.
+TEST(Assembly, APortalFrameWithARigidGirderSwaysAtTheEulerLoadOfItsColumns) {
+  const SteelRod rod{0.5, 0.001};
+  const double L = rod.length, euler = M_PI * M_PI * rod.EI() / (L * L), eps = 1e-4;
+  auto stiffness = [&](double ratio) {
+    AssemblyStaticsSolver solver(TwoRodsAndAPlate(0.1, Vec3(eps, 0, -2 * ratio * euler)));
+    const AssemblySummary s = solver.Solve(StaticLoads{});
+    EXPECT_TRUE(s.converged()) << "P = " << ratio << " P_cr: " << ToString(s.status);
+    return eps / solver.body_poses()[0].p.x();
+  };
+  auto closed_form = [&](double ratio) {
+    const double u = 0.5 * M_PI * std::sqrt(ratio);
+    return 2 * 12 * rod.EI() / std::pow(L, 3) * std::pow(u, 3) / (3 * (std::tan(u) - u));
+  };
+  const double k_half = stiffness(0.5), k_a = stiffness(0.95), k_b = stiffness(0.97);
+  const double critical = 0.97 - k_b * (0.97 - 0.95) / (k_b - k_a);  // in units of π²EI/L²
+  std::printf("portal frame: sway stiffness %.6f N/m at P_cr/2 (closed form %.6f); critical "
+              "load %.6f pi^2 EI/L^2 per column\n",
+              k_half, closed_form(0.5), critical);
+  EXPECT_NEAR(k_half, closed_form(0.5), 2e-3 * closed_form(0.5));
+  EXPECT_NEAR(critical, 1.0, 2e-3);
 }
 
 /// The continuum Stewart–Gough robot of Till, Aloi & Rucker (2019) as their example code builds
