@@ -31,7 +31,7 @@ bool Assembly::IsValid(std::string* why) const {
     if (!body.force_W.allFinite() || !body.moment_W.allFinite())
       return fail(name + ".force, .moment: expected finite values");
   }
-  std::vector<int> joined(bodies.size(), 0);
+  std::vector<int> joined(bodies.size(), 0);  // rod ends on each body
   for (size_t i = 0; i < rods.size(); ++i) {
     const AssemblyRod& rod = rods[i];
     const std::string name = "rods[" + std::to_string(i) + "] (" + rod.name + ")";
@@ -40,6 +40,10 @@ bool Assembly::IsValid(std::string* why) const {
     if (rod.nodes < 2) return fail(name + ".nodes: expected at least 2");
     if (!rod.base.p.allFinite() || !IsRotation(rod.base.R))
       return fail(name + ".base: expected a finite position and a rotation");
+    if (rod.base_body >= static_cast<int>(bodies.size()) || rod.base_body < -1)
+      return fail(name + ".base_body: names body " + std::to_string(rod.base_body) +
+                  ", but there are " + std::to_string(bodies.size()));
+    if (rod.base_body >= 0) ++joined[rod.base_body];
     const bool free = rod.tip_joint == TipJoint::kFree;
     if (free != (rod.body < 0))
       return fail(name + ".body: " + (free ? "a free tip joins no body"

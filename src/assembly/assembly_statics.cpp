@@ -14,7 +14,8 @@ namespace cosserat {
 
 namespace {
 
-using Jet7 = ceres::Jet<double, 7>;  // a rod's 6 base unknowns and its length
+// A rod's 6 base unknowns, its length and the pose of the body its base is on.
+using Jet13 = ceres::Jet<double, 13>;
 using Jet6 = ceres::Jet<double, 6>;  // a body's pose increment [δp; δθ]
 
 // Halvings of the continuation step before a solve gives up.
@@ -52,13 +53,14 @@ AssemblyStaticsSolver::AssemblyStaticsSolver(const Assembly& assembly,
 }
 
 template <typename T>
-AssemblyStaticsSolver::Point<T> AssemblyStaticsSolver::BaseStart(int i,
-                                                                 const Vector6<T>& x) const {
+AssemblyStaticsSolver::Point<T> AssemblyStaticsSolver::BaseStart(int i, const Vector6<T>& x,
+                                                                 const Vector3<T>& p_body,
+                                                                 const Matrix3<T>& R_body) const {
   const AssemblyRod& a = assembly_.rods[i];
   const Rod& rod = rods_[i];
   Point<T> y;
-  y.p = a.base.p.cast<T>();
-  y.R = a.base.R.cast<T>();
+  y.p = p_body + R_body * a.base.p.cast<T>();
+  y.R = R_body * a.base.R.cast<T>();
   y.n = x.template tail<3>() * rod.force_scale;
   if (a.base_joint == BaseJoint::kClamped) {
     y.m = x.template head<3>() * rod.moment_scale;
@@ -67,6 +69,13 @@ AssemblyStaticsSolver::Point<T> AssemblyStaticsSolver::BaseStart(int i,
     y.m = Vector3<T>(x(1) * rod.moment_scale, x(2) * rod.moment_scale, T(0.0));
   }
   return y;
+}
+
+AssemblyStaticsSolver::Point<double> AssemblyStaticsSolver::BaseStart(int i) const {
+  const int b = assembly_.rods[i].base_body;
+  const Vec6 x = x_.segment<6>(6 * i);
+  return b < 0 ? BaseStart<double>(i, x, Vec3::Zero(), Mat3::Identity())
+               : BaseStart<double>(i, x, poses_[b].p, poses_[b].R);
 }
 
 template <typename T>
@@ -130,6 +139,31 @@ rhs::StaticTangent AssemblyStaticsSolver::StartTangent(int i, const Point<double
   return d;
 }
 
+template <typename T>
+void AssemblyStaticsSolver::BaseWrenchOnBody(const Point<T>& base, const Vector3<T>& p_b,
+                                             Vector3<T>* f, Vector3<T>* m) const {
+  // The internal wrench at s = 0 is what the rod exerts on what holds its base.
+  const Vector3<T> n_W = base.R * base.n;
+  *f = n_W;
+  *m = base.R * base.m + (base.p - p_b).cross(n_W);
+}
+
+rhs::StaticTangent AssemblyStaticsSolver::BodyStartTangent(int i, const Point<double>& start) const {
+  // p0 = p_b + R_b a, R0 = R_b Exp(δθ) A under p_b → p_b + δp, R_b → R_b Exp(δθ):
+  // dp0 = δp − R_b [a]× δθ and d(R0 e_j) = −R_b [A e_j]× δθ, A e_j = R_bᵀ R0 e_j.
+  const Mat3& R_b = poses_[assembly_.rods[i].base_body].R;
+  rhs::StaticTangent d;
+  d.p.leftCols<3>() = Mat3::Identity();
+  d.p.rightCols<3>() = -R_b * lie::hat(Vec3(assembly_.rods[i].base.p));
+  for (int j = 0; j < 3; ++j) {
+    d.R[j].leftCols<3>().setZero();
+    d.R[j].rightCols<3>() = -R_b * lie::hat(Vec3(R_b.transpose() * start.R.col(j)));
+  }
+  d.m.setZero();
+  d.n.setZero();
+  return d;
+}
+
 int AssemblyStaticsSolver::Unknowns() const {
   const int R = rod_count();
   return 6 * R + (mode_ == Mode::kForward ? 6 * static_cast<int>(poses_.size()) : R);
@@ -137,8 +171,7 @@ int AssemblyStaticsSolver::Unknowns() const {
 
 bool AssemblyStaticsSolver::ShootAll() {
   for (int i = 0; i < rod_count(); ++i) {
-    const Vec6 x = x_.segment<6>(6 * i);
-    rods_[i].tip = rods_[i].shot.Shoot<double>(BaseStart<double>(i, x), lengths_[i]);
+    rods_[i].tip = rods_[i].shot.Shoot<double>(BaseStart(i), lengths_[i]);
     if (!rods_[i].tip.p.allFinite() || !rods_[i].tip.n.allFinite()) return false;
   }
   return true;
@@ -157,6 +190,12 @@ void AssemblyStaticsSolver::Residual(const StaticLoads& loads, Eigen::VectorXd* 
     const Vec3 p_b = b >= 0 ? poses_[b].p : Vec3::Zero();
     const Mat3 R_b = b >= 0 ? poses_[b].R : Mat3::Identity();
     r->segment<6>(6 * i) = TipResidual<double>(i, rods_[i].tip, p_b, R_b);
+    if (const int bb = assembly_.rods[i].base_body; bb >= 0) {
+      Vec3 f, m;
+      BaseWrenchOnBody<double>(BaseStart(i), poses_[bb].p, &f, &m);
+      r->segment<3>(6 * R + 6 * bb) += f;
+      r->segment<3>(6 * R + 6 * bb + 3) += m;
+    }
     if (b < 0) continue;
     Vec3 f, m;
     TipWrenchOnBody<double>(rods_[i].tip, p_b, &f, &m);
@@ -176,50 +215,74 @@ void AssemblyStaticsSolver::Jacobian(const StaticLoads& loads, Eigen::MatrixXd* 
   const int rows = 6 * R + 6 * B;
   J->setZero(rows, Unknowns());
   if (J_length) J_length->setZero(rows, R);
+  const bool forward = mode_ == Mode::kForward;
   for (int i = 0; i < R; ++i) {
-    // The tip's derivatives: along the 6 base unknowns exactly (the tangent shot), along the
-    // length by a forward difference (one more shot; its error, ~1e-7 relative, only slows
-    // Newton, whose residual is exact). Then the joint's algebra in Jet arithmetic.
-    const Vec6 xi = x_.segment<6>(6 * i);
-    const Point<double> start = BaseStart<double>(i, xi);
-    rhs::StaticTangent dtip;
+    // The tip's derivatives: along the 6 base unknowns and the base body's pose exactly (tangent
+    // shots), along the length by a forward difference (one more shot; its error, ~1e-7
+    // relative, only slows Newton, whose residual is exact). Then the joints' algebra in Jet
+    // arithmetic.
+    const int bb = assembly_.rods[i].base_body;
+    const bool on_body = forward && bb >= 0;
+    const Point<double> start = BaseStart(i);
+    rhs::StaticTangent dtip, dtip_body;
     const Point<double> tip_value =
         rods_[i].shot.ShootTangent(start, StartTangent(i, start), lengths_[i], &dtip);
+    if (on_body)
+      rods_[i].shot.ShootTangent(start, BodyStartTangent(i, start), lengths_[i], &dtip_body);
     const double dL = 1e-7 * lengths_[i];
     const Point<double> longer = rods_[i].shot.Shoot<double>(start, lengths_[i] + dL);
-    Point<Jet7> tip;
+    auto lift = [&](double value, double longer_value, const auto& row_x, const auto& row_b) {
+      Jet13 j(value);
+      j.v.head<6>() = row_x.transpose();
+      j.v[6] = (longer_value - value) / dL;
+      if (on_body) j.v.tail<6>() = row_b.transpose();
+      return j;
+    };
+    Point<Jet13> tip;
     for (int r = 0; r < 3; ++r) {
-      tip.p(r) = Jet7(tip_value.p(r));
-      tip.m(r) = Jet7(tip_value.m(r));
-      tip.n(r) = Jet7(tip_value.n(r));
-      tip.p(r).v.head<6>() = dtip.p.row(r).transpose();
-      tip.m(r).v.head<6>() = dtip.m.row(r).transpose();
-      tip.n(r).v.head<6>() = dtip.n.row(r).transpose();
-      tip.p(r).v[6] = (longer.p(r) - tip_value.p(r)) / dL;
-      tip.m(r).v[6] = (longer.m(r) - tip_value.m(r)) / dL;
-      tip.n(r).v[6] = (longer.n(r) - tip_value.n(r)) / dL;
-      for (int c = 0; c < 3; ++c) {
-        tip.R(r, c) = Jet7(tip_value.R(r, c));
-        tip.R(r, c).v.head<6>() = dtip.R[c].row(r).transpose();
-        tip.R(r, c).v[6] = (longer.R(r, c) - tip_value.R(r, c)) / dL;
+      tip.p(r) = lift(tip_value.p(r), longer.p(r), dtip.p.row(r), dtip_body.p.row(r));
+      tip.m(r) = lift(tip_value.m(r), longer.m(r), dtip.m.row(r), dtip_body.m.row(r));
+      tip.n(r) = lift(tip_value.n(r), longer.n(r), dtip.n.row(r), dtip_body.n.row(r));
+      for (int c = 0; c < 3; ++c)
+        tip.R(r, c) =
+            lift(tip_value.R(r, c), longer.R(r, c), dtip.R[c].row(r), dtip_body.R[c].row(r));
+    }
+    auto put = [&](int row, const Jet13& value) {
+      for (int k = 0; k < 6; ++k) (*J)(row, 6 * i + k) += value.v[k];
+      if (!forward) (*J)(row, 6 * R + i) += value.v[6];
+      if (J_length) (*J_length)(row, i) += value.v[6];
+      if (on_body)
+        for (int k = 0; k < 6; ++k) (*J)(row, 6 * R + 6 * bb + k) += value.v[7 + k];
+    };
+    const int b = assembly_.rods[i].body;
+    const Vector3<Jet13> p_b = (b >= 0 ? poses_[b].p : Vec3::Zero()).cast<Jet13>();
+    const Matrix3<Jet13> R_b = (b >= 0 ? poses_[b].R : Mat3::Identity()).cast<Jet13>();
+    const Vector6<Jet13> e = TipResidual<Jet13>(i, tip, p_b, R_b);
+    for (int r = 0; r < 6; ++r) put(6 * i + r, e(r));
+    if (b >= 0) {
+      Vector3<Jet13> f, m;
+      TipWrenchOnBody<Jet13>(tip, p_b, &f, &m);
+      for (int r = 0; r < 3; ++r) {
+        put(6 * R + 6 * b + r, f(r) / body_force_scale_[b]);
+        put(6 * R + 6 * b + 3 + r, m(r) / body_moment_scale_[b]);
       }
     }
-    const int b = assembly_.rods[i].body;
-    const Vector3<Jet7> p_b = (b >= 0 ? poses_[b].p : Vec3::Zero()).cast<Jet7>();
-    const Matrix3<Jet7> R_b = (b >= 0 ? poses_[b].R : Mat3::Identity()).cast<Jet7>();
-    const Vector6<Jet7> e = TipResidual<Jet7>(i, tip, p_b, R_b);
-    auto put = [&](int row, const Jet7& value) {
-      for (int k = 0; k < 6; ++k) (*J)(row, 6 * i + k) += value.v[k];
-      if (mode_ == Mode::kInverse) (*J)(row, 6 * R + i) += value.v[6];
-      if (J_length) (*J_length)(row, i) += value.v[6];
-    };
-    for (int r = 0; r < 6; ++r) put(6 * i + r, e(r));
-    if (b < 0) continue;
-    Vector3<Jet7> f, m;
-    TipWrenchOnBody<Jet7>(tip, p_b, &f, &m);
+    if (bb < 0) continue;
+    // What the base exerts on its body, along the base unknowns and the body's pose.
+    Vector6<Jet13> x;
+    for (int k = 0; k < 6; ++k) x(k) = Jet13(x_(6 * i + k), k);
+    Vector3<Jet13> dp, dth;
+    for (int k = 0; k < 3; ++k) {
+      dp(k) = on_body ? Jet13(0.0, 7 + k) : Jet13(0.0);
+      dth(k) = on_body ? Jet13(0.0, 10 + k) : Jet13(0.0);
+    }
+    const Vector3<Jet13> p_bb = poses_[bb].p.cast<Jet13>() + dp;
+    const Matrix3<Jet13> R_bb = poses_[bb].R.cast<Jet13>() * lie::SO3Exp<Jet13>(dth);
+    Vector3<Jet13> f, m;
+    BaseWrenchOnBody<Jet13>(BaseStart<Jet13>(i, x, p_bb, R_bb), p_bb, &f, &m);
     for (int r = 0; r < 3; ++r) {
-      put(6 * R + 6 * b + r, f(r) / body_force_scale_[b]);
-      put(6 * R + 6 * b + 3 + r, m(r) / body_moment_scale_[b]);
+      put(6 * R + 6 * bb + r, f(r) / body_force_scale_[bb]);
+      put(6 * R + 6 * bb + 3 + r, m(r) / body_moment_scale_[bb]);
     }
   }
   if (mode_ != Mode::kForward) return;
@@ -359,8 +422,7 @@ const RodState& AssemblyStaticsSolver::rod_state(int i) {
 void AssemblyStaticsSolver::RecordStates() {
   states_dirty_ = false;
   for (int i = 0; i < rod_count(); ++i) {
-    const Vec6 x = x_.segment<6>(6 * i);
-    rods_[i].shot.Record(BaseStart<double>(i, x), lengths_[i], &states_[i]);
+    rods_[i].shot.Record(BaseStart(i), lengths_[i], &states_[i]);
   }
 }
 

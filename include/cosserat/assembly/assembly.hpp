@@ -5,9 +5,10 @@
 /// bodies, and how each rod's ends are held. Solved by AssemblyStaticsSolver
 /// (assembly_statics.hpp).
 ///
-/// Each rod's base is held in the world at a given pose (its tangent along the pose's z), either
-/// clamped or torsion-free (free to spin about its own tangent, as a rod passing through a hole of
-/// a base plate). Its tip is free, or joined to a point of a rigid body:
+/// Each rod's base is held at a given pose (its tangent along the pose's z), in the world or on a
+/// rigid body (a frame's corner, a multi-backbone robot's disk), either clamped or torsion-free
+/// (free to spin about its own tangent, as a rod passing through a hole of a base plate). Its tip
+/// is free, or joined to a point of a rigid body:
 ///   clamped       the tip's frame is the body's attachment frame;
 ///   torsion_free  the tip's tangent is the attachment frame's z, the spin about it free;
 ///   pinned        only the tip's position is held: a ball joint.
@@ -39,7 +40,8 @@ struct AssemblyRod {
   std::string name;
   RodModel model;        ///< its length is the rod's length (the actuator of a parallel robot)
   int nodes = 41;        ///< grid points, ends included
-  lie::SE3 base;         ///< world pose of s = 0; tangent along base.R's z
+  lie::SE3 base;         ///< pose of s = 0 in the world, or in base_body's frame; tangent z
+  int base_body = -1;    ///< the body the base is held on (index; −1: the world)
   BaseJoint base_joint = BaseJoint::kClamped;
   TipJoint tip_joint = TipJoint::kFree;
   int body = -1;         ///< the body the tip is joined to (index; −1 with kFree)

@@ -79,8 +79,18 @@ class AssemblyStaticsSolver {
     double moment_scale = 1.0, force_scale = 1.0;
     Point<double> tip;
   };
+  /// Rod i's state at s = 0 for its 6 base unknowns x, its base on a body at (p_body, R_body)
+  /// (the world: zero and identity); the second form at the current unknowns.
   template <typename T>
-  Point<T> BaseStart(int i, const Vector6<T>& x) const;
+  Point<T> BaseStart(int i, const Vector6<T>& x, const Vector3<T>& p_body,
+                     const Matrix3<T>& R_body) const;
+  Point<double> BaseStart(int i) const;
+  /// The force and moment about the body's origin that rod i's base exerts on its body (world).
+  template <typename T>
+  void BaseWrenchOnBody(const Point<T>& base, const Vector3<T>& p_b, Vector3<T>* f,
+                        Vector3<T>* m) const;
+  /// The tangent of rod i's start along its base body's pose increment [δp; δθ].
+  rhs::StaticTangent BodyStartTangent(int i, const Point<double>& start) const;
   template <typename T>
   Vector6<T> TipResidual(int i, const Point<T>& tip, const Vector3<T>& p_b,
                          const Matrix3<T>& R_b) const;
