@@ -215,100 +215,106 @@ void AssemblyStaticsSolver::Jacobian(const StaticLoads& loads, Eigen::MatrixXd* 
   const int rows = 6 * R + 6 * B;
   J->setZero(rows, Unknowns());
   if (J_length) J_length->setZero(rows, R);
+  for (int i = 0; i < R; ++i) AddRodColumns(i, J, J_length);
+  if (mode_ != Mode::kForward) return;
+  for (int b = 0; b < B; ++b) AddBodyColumns(b, J);
+}
+
+void AssemblyStaticsSolver::AddRodColumns(int i, Eigen::MatrixXd* J, Eigen::MatrixXd* J_length) {
+  const int R = rod_count();
   const bool forward = mode_ == Mode::kForward;
-  for (int i = 0; i < R; ++i) {
-    // The tip's derivatives: along the 6 base unknowns and the base body's pose exactly (tangent
-    // shots), along the length by a forward difference (one more shot; its error, ~1e-7
-    // relative, only slows Newton, whose residual is exact). Then the joints' algebra in Jet
-    // arithmetic.
-    const int bb = assembly_.rods[i].base_body;
-    const bool on_body = forward && bb >= 0;
-    const Point<double> start = BaseStart(i);
-    rhs::StaticTangent dtip, dtip_body;
-    const Point<double> tip_value =
-        rods_[i].shot.ShootTangent(start, StartTangent(i, start), lengths_[i], &dtip);
+  // The tip's derivatives: along the 6 base unknowns and the base body's pose exactly (tangent
+  // shots), along the length by a forward difference (one more shot; its error, ~1e-7
+  // relative, only slows Newton, whose residual is exact). Then the joints' algebra in Jet
+  // arithmetic.
+  const int bb = assembly_.rods[i].base_body;
+  const bool on_body = forward && bb >= 0;
+  const Point<double> start = BaseStart(i);
+  rhs::StaticTangent dtip, dtip_body;
+  const Point<double> tip_value =
+      rods_[i].shot.ShootTangent(start, StartTangent(i, start), lengths_[i], &dtip);
+  if (on_body)
+    rods_[i].shot.ShootTangent(start, BodyStartTangent(i, start), lengths_[i], &dtip_body);
+  const double dL = 1e-7 * lengths_[i];
+  const Point<double> longer = rods_[i].shot.Shoot<double>(start, lengths_[i] + dL);
+  auto lift = [&](double value, double longer_value, const auto& row_x, const auto& row_b) {
+    Jet13 j(value);
+    j.v.head<6>() = row_x.transpose();
+    j.v[6] = (longer_value - value) / dL;
+    if (on_body) j.v.tail<6>() = row_b.transpose();
+    return j;
+  };
+  Point<Jet13> tip;
+  for (int r = 0; r < 3; ++r) {
+    tip.p(r) = lift(tip_value.p(r), longer.p(r), dtip.p.row(r), dtip_body.p.row(r));
+    tip.m(r) = lift(tip_value.m(r), longer.m(r), dtip.m.row(r), dtip_body.m.row(r));
+    tip.n(r) = lift(tip_value.n(r), longer.n(r), dtip.n.row(r), dtip_body.n.row(r));
+    for (int c = 0; c < 3; ++c)
+      tip.R(r, c) =
+          lift(tip_value.R(r, c), longer.R(r, c), dtip.R[c].row(r), dtip_body.R[c].row(r));
+  }
+  auto put = [&](int row, const Jet13& value) {
+    for (int k = 0; k < 6; ++k) (*J)(row, 6 * i + k) += value.v[k];
+    if (!forward) (*J)(row, 6 * R + i) += value.v[6];
+    if (J_length) (*J_length)(row, i) += value.v[6];
     if (on_body)
-      rods_[i].shot.ShootTangent(start, BodyStartTangent(i, start), lengths_[i], &dtip_body);
-    const double dL = 1e-7 * lengths_[i];
-    const Point<double> longer = rods_[i].shot.Shoot<double>(start, lengths_[i] + dL);
-    auto lift = [&](double value, double longer_value, const auto& row_x, const auto& row_b) {
-      Jet13 j(value);
-      j.v.head<6>() = row_x.transpose();
-      j.v[6] = (longer_value - value) / dL;
-      if (on_body) j.v.tail<6>() = row_b.transpose();
-      return j;
-    };
-    Point<Jet13> tip;
-    for (int r = 0; r < 3; ++r) {
-      tip.p(r) = lift(tip_value.p(r), longer.p(r), dtip.p.row(r), dtip_body.p.row(r));
-      tip.m(r) = lift(tip_value.m(r), longer.m(r), dtip.m.row(r), dtip_body.m.row(r));
-      tip.n(r) = lift(tip_value.n(r), longer.n(r), dtip.n.row(r), dtip_body.n.row(r));
-      for (int c = 0; c < 3; ++c)
-        tip.R(r, c) =
-            lift(tip_value.R(r, c), longer.R(r, c), dtip.R[c].row(r), dtip_body.R[c].row(r));
-    }
-    auto put = [&](int row, const Jet13& value) {
-      for (int k = 0; k < 6; ++k) (*J)(row, 6 * i + k) += value.v[k];
-      if (!forward) (*J)(row, 6 * R + i) += value.v[6];
-      if (J_length) (*J_length)(row, i) += value.v[6];
-      if (on_body)
-        for (int k = 0; k < 6; ++k) (*J)(row, 6 * R + 6 * bb + k) += value.v[7 + k];
-    };
-    const int b = assembly_.rods[i].body;
-    const Vector3<Jet13> p_b = (b >= 0 ? poses_[b].p : Vec3::Zero()).cast<Jet13>();
-    const Matrix3<Jet13> R_b = (b >= 0 ? poses_[b].R : Mat3::Identity()).cast<Jet13>();
-    const Vector6<Jet13> e = TipResidual<Jet13>(i, tip, p_b, R_b);
-    for (int r = 0; r < 6; ++r) put(6 * i + r, e(r));
-    if (b >= 0) {
-      Vector3<Jet13> f, m;
-      TipWrenchOnBody<Jet13>(tip, p_b, &f, &m);
-      for (int r = 0; r < 3; ++r) {
-        put(6 * R + 6 * b + r, f(r) / body_force_scale_[b]);
-        put(6 * R + 6 * b + 3 + r, m(r) / body_moment_scale_[b]);
-      }
-    }
-    if (bb < 0) continue;
-    // What the base exerts on its body, along the base unknowns and the body's pose.
-    Vector6<Jet13> x;
-    for (int k = 0; k < 6; ++k) x(k) = Jet13(x_(6 * i + k), k);
-    Vector3<Jet13> dp, dth;
-    for (int k = 0; k < 3; ++k) {
-      dp(k) = on_body ? Jet13(0.0, 7 + k) : Jet13(0.0);
-      dth(k) = on_body ? Jet13(0.0, 10 + k) : Jet13(0.0);
-    }
-    const Vector3<Jet13> p_bb = poses_[bb].p.cast<Jet13>() + dp;
-    const Matrix3<Jet13> R_bb = poses_[bb].R.cast<Jet13>() * lie::SO3Exp<Jet13>(dth);
+      for (int k = 0; k < 6; ++k) (*J)(row, 6 * R + 6 * bb + k) += value.v[7 + k];
+  };
+  const int b = assembly_.rods[i].body;
+  const Vector3<Jet13> p_b = (b >= 0 ? poses_[b].p : Vec3::Zero()).cast<Jet13>();
+  const Matrix3<Jet13> R_b = (b >= 0 ? poses_[b].R : Mat3::Identity()).cast<Jet13>();
+  const Vector6<Jet13> e = TipResidual<Jet13>(i, tip, p_b, R_b);
+  for (int r = 0; r < 6; ++r) put(6 * i + r, e(r));
+  if (b >= 0) {
     Vector3<Jet13> f, m;
-    BaseWrenchOnBody<Jet13>(BaseStart<Jet13>(i, x, p_bb, R_bb), p_bb, &f, &m);
+    TipWrenchOnBody<Jet13>(tip, p_b, &f, &m);
     for (int r = 0; r < 3; ++r) {
-      put(6 * R + 6 * bb + r, f(r) / body_force_scale_[bb]);
-      put(6 * R + 6 * bb + 3 + r, m(r) / body_moment_scale_[bb]);
+      put(6 * R + 6 * b + r, f(r) / body_force_scale_[b]);
+      put(6 * R + 6 * b + 3 + r, m(r) / body_moment_scale_[b]);
     }
   }
-  if (mode_ != Mode::kForward) return;
-  for (int b = 0; b < B; ++b) {
-    Vector3<Jet6> dp, dth;
-    for (int k = 0; k < 3; ++k) {
-      dp(k) = Jet6(0.0, k);
-      dth(k) = Jet6(0.0, 3 + k);
-    }
-    const Vector3<Jet6> p_b = poses_[b].p.cast<Jet6>() + dp;
-    const Matrix3<Jet6> R_b = poses_[b].R.cast<Jet6>() * lie::SO3Exp<Jet6>(dth);
-    const int col = 6 * R + 6 * b;
-    for (int i = 0; i < R; ++i) {
-      if (assembly_.rods[i].body != b) continue;
-      const Point<double>& t = rods_[i].tip;
-      const Point<Jet6> tip{t.p.cast<Jet6>(), t.R.cast<Jet6>(), t.m.cast<Jet6>(),
-                            t.n.cast<Jet6>()};
-      const Vector6<Jet6> e = TipResidual<Jet6>(i, tip, p_b, R_b);
-      Vector3<Jet6> f, m;
-      TipWrenchOnBody<Jet6>(tip, p_b, &f, &m);
-      for (int k = 0; k < 6; ++k) {
-        for (int r = 0; r < 6; ++r) (*J)(6 * i + r, col + k) += e(r).v[k];
-        for (int r = 0; r < 3; ++r) {
-          (*J)(col + r, col + k) += f(r).v[k] / body_force_scale_[b];
-          (*J)(col + 3 + r, col + k) += m(r).v[k] / body_moment_scale_[b];
-        }
+  if (bb < 0) return;
+  // What the base exerts on its body, along the base unknowns and the body's pose.
+  Vector6<Jet13> x;
+  for (int k = 0; k < 6; ++k) x(k) = Jet13(x_(6 * i + k), k);
+  Vector3<Jet13> dp, dth;
+  for (int k = 0; k < 3; ++k) {
+    dp(k) = on_body ? Jet13(0.0, 7 + k) : Jet13(0.0);
+    dth(k) = on_body ? Jet13(0.0, 10 + k) : Jet13(0.0);
+  }
+  const Vector3<Jet13> p_bb = poses_[bb].p.cast<Jet13>() + dp;
+  const Matrix3<Jet13> R_bb = poses_[bb].R.cast<Jet13>() * lie::SO3Exp<Jet13>(dth);
+  Vector3<Jet13> f, m;
+  BaseWrenchOnBody<Jet13>(BaseStart<Jet13>(i, x, p_bb, R_bb), p_bb, &f, &m);
+  for (int r = 0; r < 3; ++r) {
+    put(6 * R + 6 * bb + r, f(r) / body_force_scale_[bb]);
+    put(6 * R + 6 * bb + 3 + r, m(r) / body_moment_scale_[bb]);
+  }
+}
+
+void AssemblyStaticsSolver::AddBodyColumns(int b, Eigen::MatrixXd* J) {
+  const int R = rod_count();
+  Vector3<Jet6> dp, dth;
+  for (int k = 0; k < 3; ++k) {
+    dp(k) = Jet6(0.0, k);
+    dth(k) = Jet6(0.0, 3 + k);
+  }
+  const Vector3<Jet6> p_b = poses_[b].p.cast<Jet6>() + dp;
+  const Matrix3<Jet6> R_b = poses_[b].R.cast<Jet6>() * lie::SO3Exp<Jet6>(dth);
+  const int col = 6 * R + 6 * b;
+  for (int i = 0; i < R; ++i) {
+    if (assembly_.rods[i].body != b) continue;
+    const Point<double>& t = rods_[i].tip;
+    const Point<Jet6> tip{t.p.cast<Jet6>(), t.R.cast<Jet6>(), t.m.cast<Jet6>(),
+                          t.n.cast<Jet6>()};
+    const Vector6<Jet6> e = TipResidual<Jet6>(i, tip, p_b, R_b);
+    Vector3<Jet6> f, m;
+    TipWrenchOnBody<Jet6>(tip, p_b, &f, &m);
+    for (int k = 0; k < 6; ++k) {
+      for (int r = 0; r < 6; ++r) (*J)(6 * i + r, col + k) += e(r).v[k];
+      for (int r = 0; r < 3; ++r) {
+        (*J)(col + r, col + k) += f(r).v[k] / body_force_scale_[b];
+        (*J)(col + 3 + r, col + k) += m(r).v[k] / body_moment_scale_[b];
       }
     }
   }

@@ -107,6 +107,11 @@ class AssemblyStaticsSolver {
   void Residual(const StaticLoads& loads, Eigen::VectorXd* r) const;
   /// d residual / d unknowns; with J_length, also d residual / d lengths (rows × rods).
   void Jacobian(const StaticLoads& loads, Eigen::MatrixXd* J, Eigen::MatrixXd* J_length);
+  /// Jacobian's columns of rod i's unknowns (its length into J_length or, in the inverse
+  /// problem, J; its base body's pose in the forward one) in every row they reach.
+  void AddRodColumns(int i, Eigen::MatrixXd* J, Eigen::MatrixXd* J_length);
+  /// Jacobian's columns of body b's pose in the rows of the rods' tips on it and its balance.
+  void AddBodyColumns(int b, Eigen::MatrixXd* J);
   /// Follows at(μ), μ: 0 → 1, from a solution at μ = 0 (the current unknowns), halving a step
   /// that fails and doubling one that succeeds; at(μ) sets the lengths or poses of level μ and
   /// returns its loads. Returns the last μ reached.
