@@ -343,7 +343,7 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   if (const auto loads = ReadObject(top, "loads", Presence::kOptional))
     p->loads = ParseLoads(*loads);
   if (const auto env = ReadObject(top, "environment", Presence::kOptional))
-    ParseEnvironment(*env, &p->loads.fluid, &p->loads.contact);
+    ParseEnvironment(*env, &p->loads.fluid, &p->gust, &p->loads.contact);
   if (const auto o = ReadObject(top, "dynamics", Presence::kOptional)) {
     p->has_dynamics = true;
     ParseDynamics(*o, p->nodes, &p->dynamics);
@@ -506,6 +506,8 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
       p.boundary != B::kFreeFree && p.has_robot)
     out.push_back("robot: a robot runs with \"boundary\": \"cantilever\" in statics (got " +
                   detail::Quote(ToString(p.boundary)) + ")");
+  if (p.gust.present() && p.analysis != A::kDynamics)
+    out.push_back("environment.fluid.gust: a gusting flow needs \"analysis\": \"dynamics\"");
   if (quatfd && (p.loads.bit.present() || p.dynamics.base_spin != 0.0))
     out.push_back(std::string(p.loads.bit.present() ? "loads.bit_friction" : "dynamics.base_spin") +
                   ": runs on the \"se3-shooting\" formulation's dynamics in this version");

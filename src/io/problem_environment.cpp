@@ -79,9 +79,15 @@ void ParseFlowProfile(const ObjectReader& o, FluidFlowProfile* p) {
   p->points = heights;
 }
 
-void ParseFluid(const ObjectReader& o, Fluid* f) {
+void ParseFluid(const ObjectReader& o, Fluid* f, FluidGust* gust) {
   o.AllowOnly({"density", "velocity", "drag_normal", "drag_tangential", "added_mass", "diameter",
-               "profile"});
+               "profile", "gust"});
+  if (const auto g = ReadObject(o, "gust", Presence::kOptional)) {
+    g->AllowOnly({"amplitude", "period"});
+    gust->amplitude =
+        ReadNumber(*g, "amplitude", NonNegativeNumber(), Presence::kRequired).value_or(0.0);
+    gust->period = ReadNumber(*g, "period", PositiveNumber(), Presence::kRequired).value_or(0.0);
+  }
   f->density = ReadNumber(o, "density", PositiveNumber(), Presence::kRequired).value_or(0.0);
   f->velocity_W = ReadVec3(o, "velocity", Presence::kOptional).value_or(Vec3::Zero());
   auto coefficient = [&](const char* key) {
@@ -166,9 +172,10 @@ void ParseContact(const ObjectReader& o, ContactSurfaces* contact) {
 
 }  // namespace
 
-void ParseEnvironment(const ObjectReader& o, Fluid* fluid, ContactSurfaces* contact) {
+void ParseEnvironment(const ObjectReader& o, Fluid* fluid, FluidGust* gust,
+                      ContactSurfaces* contact) {
   o.AllowOnly({"fluid", "contact"});
-  if (const auto f = ReadObject(o, "fluid", Presence::kOptional)) ParseFluid(*f, fluid);
+  if (const auto f = ReadObject(o, "fluid", Presence::kOptional)) ParseFluid(*f, fluid, gust);
   ParseContact(o, contact);
 }
 

@@ -11,6 +11,7 @@
 namespace cosserat::io::detail {
 
 /// Reads "environment" into *fluid and *contact; errors go to o's report, naming the key.
-void ParseEnvironment(const ObjectReader& o, Fluid* fluid, ContactSurfaces* contact);
+void ParseEnvironment(const ObjectReader& o, Fluid* fluid, FluidGust* gust,
+                      ContactSurfaces* contact);
 
 }  // namespace cosserat::io::detail

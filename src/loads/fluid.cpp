@@ -83,4 +83,14 @@ bool Fluid::IsValid(std::string* why) const {
   return true;
 }
 
+double FluidGust::Factor(double t) const {
+  return present() ? 1.0 + amplitude * std::sin(2.0 * M_PI * t / period) : 1.0;
+}
+
+Fluid FluidGust::At(const Fluid& steady, double t) const {
+  Fluid f = steady;
+  f.velocity_W *= Factor(t);
+  return f;
+}
+
 }  // namespace cosserat

@@ -61,6 +61,8 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
   input.base_twist_B(2) = spin;
   const auto loop_start = Clock::now();
   for (int k = 1; k <= steps; ++k) {
+    if (problem.gust.present())  // the flow of the step's end (BDF2 is implicit)
+      input.loads.fluid = problem.gust.At(problem.loads.fluid, k * dt);
     if (spin != 0.0)  // the rotary table: the clamp turned about its own axis by spin t
       input.base_pose.R = problem.base.R * lie::SO3Exp(Vec3(0, 0, spin * k * dt));
     const auto t0 = Clock::now();

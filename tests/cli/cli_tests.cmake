@@ -226,6 +226,8 @@ cosserat_cli_test(NAME solve_cantilever_in_current ARGS solve "${_cli_current}" 
                   STDERR "converged")
 cosserat_cli_test(NAME bad_environment ARGS validate "${_cli_dir}/bad_environment.json" CODE 2
                   STDERR "environment.fluid.drag_normal: .*environment.fluid.diameter: .*environment.fluid.profile.heights: ")
+cosserat_cli_test(NAME bad_gust ARGS validate "${_cli_dir}/bad_gust.json" CODE 2
+                  STDERR "environment.fluid.gust.amplitude: expected .*environment.fluid.gust.period: expected a positive number, got -3")
 cosserat_cli_test(NAME bad_contact ARGS validate "${_cli_dir}/bad_contact.json" CODE 2
                   STDERR "environment.contact\\[0\\].normal: .*environment.contact\\[1\\].radius: .*environment.contact\\[2\\].stiffness: .*environment.contact\\[3\\].friction: ")
 get_filename_component(_cli_table "${CMAKE_CURRENT_LIST_DIR}/../../examples/rod_on_table.json"

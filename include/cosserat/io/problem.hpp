@@ -39,6 +39,8 @@ struct Problem {
     double motion_period = 0.0;
   } anchor;
   StaticLoads loads;
+  /// "environment.fluid.gust": the flow's gusting in dynamics (loads/fluid.hpp).
+  FluidGust gust;
   /// "solver": the static solves' convergence test, read by every formulation (run/ turns it
   /// into each solver's options).
   struct Solver {

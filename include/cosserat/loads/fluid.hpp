@@ -55,4 +55,16 @@ struct Fluid {
   bool IsValid(std::string* why) const;
 };
 
+/// A gusting flow: the flow velocity times 1 + amplitude sin(2π t / period) (dimensionless; s).
+/// Loads have no clock, so the dynamics runners apply it to the fluid of each step (SE(3)) or of
+/// each hold interval (quaternion FD). period 0: steady.
+struct FluidGust {
+  double amplitude = 0.0;
+  double period = 0.0;
+  bool present() const { return period > 0.0 && amplitude != 0.0; }
+  double Factor(double t) const;
+  /// The fluid at time t: `steady` with its velocity scaled by Factor(t).
+  Fluid At(const Fluid& steady, double t) const;
+};
+
 }  // namespace cosserat
