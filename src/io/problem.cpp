@@ -17,8 +17,8 @@
 #include "problem_environment.hpp"
 #include "problem_robot.hpp"
 #include "problem_rod.hpp"
-#include "read_pose.hpp"
 #include "read_enum.hpp"
+#include "read_pose.hpp"
 
 namespace cosserat::io {
 namespace detail {
@@ -306,8 +306,9 @@ void CheckFormat(const ObjectReader& top) {
 void ParseAssemblyTopLevel(const ObjectReader& top, Problem* p) {
   for (const std::string& key : SingleRodKeys())
     if (top.Has(key))
-      top.report().Add(key, "not read with \"assembly\" (each rod of assembly.rods has its own "
-                            "\"rod\" and \"base\")");
+      top.report().Add(key,
+                       "not read with \"assembly\" (each rod of assembly.rods has its own "
+                       "\"rod\" and \"base\")");
   if (const auto loads = ReadObject(top, "loads", Presence::kOptional)) {
     p->loads = ParseLoads(*loads);
     CheckAssemblyLoads(*loads);
@@ -476,16 +477,7 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
   using B = Boundary;
   std::vector<std::string> out;
   const bool quatfd = p.formulation == Formulation::kQuaternionFd;
-  if (p.has_assembly) {  // statics on the SE(3) path only (docs/assemblies.md, "Limits")
-    if (p.analysis != A::kStatics)
-      out.push_back("analysis: " + detail::Quote(ToString(p.analysis)) +
-                    " of an \"assembly\" is not implemented in this version (supported: "
-                    "\"statics\")");
-    if (quatfd)
-      out.push_back("formulation: \"quaternion-fd\" of an \"assembly\" is not implemented in "
-                    "this version (supported: \"se3-shooting\")");
-    return out;
-  }
+  if (p.has_assembly) return detail::UnsupportedAssemblyFeatures(p);
   // Every analysis and formulation runs; the boundary depends on both.
   if (p.boundary == B::kAnchored && p.analysis == A::kBuckling)
     out.push_back("boundary: \"anchored\" runs statics, dynamics and modes in this version");

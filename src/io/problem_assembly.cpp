@@ -274,4 +274,17 @@ void ParseAssembly(const ObjectReader& o, Problem* p) {
   }
 }
 
+std::vector<std::string> UnsupportedAssemblyFeatures(const Problem& p) {
+  std::vector<std::string> out;  // statics on the SE(3) path only (docs/assemblies.md, "Limits")
+  if (p.analysis != Analysis::kStatics)
+    out.push_back("analysis: " + Quote(ToString(p.analysis)) +
+                  " of an \"assembly\" is not implemented in this version (supported: "
+                  "\"statics\")");
+  if (p.formulation != Formulation::kSe3Shooting)
+    out.push_back("formulation: " + Quote(ToString(p.formulation)) +
+                  " of an \"assembly\" is not implemented in this version (supported: "
+                  "\"se3-shooting\")");
+  return out;
+}
+
 }  // namespace cosserat::io::detail

@@ -25,4 +25,8 @@ const std::vector<std::string>& SingleRodKeys();
 /// tips are joined to bodies, which carry their own force and moment), reported if given.
 void CheckAssemblyLoads(const ObjectReader& loads);
 
+/// What this version cannot run of an assembly problem (UnsupportedFeatures): an analysis other
+/// than "statics", a formulation other than "se3-shooting". One line each.
+std::vector<std::string> UnsupportedAssemblyFeatures(const Problem& problem);
+
 }  // namespace cosserat::io::detail
