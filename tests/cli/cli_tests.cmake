@@ -333,7 +333,7 @@ cosserat_cli_test(NAME riser_coarse_grid ARGS solve "${_cli_dir}/riser_coarse_gr
 # reaches 1e-10 m at full precision).
 set(_cli_robots "${CMAKE_CURRENT_LIST_DIR}/../../robots")
 cosserat_cli_test(NAME assembly_stewart_gough_inverse ARGS solve "${_cli_robots}/stewart_gough.json"
-                  CODE 0 STDOUT "\"kind\": \"inverse\".*\"pose_jacobian\": \\["
+                  CODE 0 STDOUT "\"pose_jacobian\": \\[[^]]*[0-9]"
                   STDERR "converged \\(assembly, inverse\\), [0-9]+ iterations.*platform at \\[0, 0\\.02, 0\\.45\\] m, rotation vector \\[0, 0, 0\\.1\\] rad, lengths \\[0\\.4[0-9]+, 0\\.4[0-9]+, 0\\.4[0-9]+, 0\\.4[0-9]+, 0\\.4[0-9]+, 0\\.4[0-9]+\\] m")
 cosserat_cli_test(NAME assembly_stewart_gough_forward
                   ARGS solve "${_cli_robots}/stewart_gough_forward.json" --csv "${_cli_out}/stewart_gough.csv"
@@ -350,7 +350,7 @@ cosserat_cli_test(NAME assembly_guided_beam ARGS solve "${_cli_guided}" CODE 0
                   STDERR "converged \\(assembly, forward\\).*plate at \\[0\\.00033[12][0-9]*, 0, 0\\.5\\] m")
 # Bad assemblies: every error names its JSON path.
 cosserat_cli_test(NAME bad_assembly_joints ARGS validate "${_cli_dir}/bad_assembly_joints.json"
-                  CODE 2 STDERR "assembly.rods\\[1\\].name: expected a name no other rod has.*\"leg1\", already the name of assembly.rods\\[0\\].*assembly.bodies\\[2\\].name: expected a name no other body has.*assembly.rods\\[2\\].tip.body: names \"plate\", but the bodies are \"platform\", \"lid\".*assembly.rods\\[3\\].tip.body: a \"free\" tip joins no body.*assembly.rods\\[3\\].base.joint: expected \"clamped\" unless the tip is clamped.*assembly.bodies\\[1\\]: no rod holds \"lid\"")
+                  CODE 2 STDERR "assembly.bodies\\[2\\].name: expected a name no other body has.*assembly.rods\\[1\\].name: expected a name no other rod has.*\"leg1\", already the name of assembly.rods\\[0\\].*assembly.rods\\[2\\].tip.body: names \"plate\", but the bodies are \"platform\", \"lid\".*assembly.rods\\[3\\].tip.body: a \"free\" tip joins no body.*assembly.rods\\[3\\].base.joint: expected \"clamped\" unless the tip is clamped.*assembly.bodies\\[1\\]: no rod holds \"lid\"")
 cosserat_cli_test(NAME bad_assembly_inverse ARGS validate "${_cli_dir}/bad_assembly_inverse.json"
                   CODE 2 STDERR "assembly.lengths: not read with \"inverse\".*assembly.inverse: expected six rods joined to each body.*got 2 on \"plate\".*assembly.inverse.poses\\[0\\].body: names \"plates\", but the bodies are \"plate\"")
 cosserat_cli_test(NAME bad_assembly_keys ARGS validate "${_cli_dir}/bad_assembly_keys.json"
