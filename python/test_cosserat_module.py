@@ -359,5 +359,33 @@ class SolveLikeTheCommand(unittest.TestCase):
                                              "boundary": "pinned-pinned"}))
 
 
+class Assemblies(unittest.TestCase):
+    def test_stewart_gough_inverse_then_forward_returns_the_pose(self):
+        # Inverse kinematics of robots/stewart_gough.json, then forward kinematics at the lengths
+        # it found: the platform returns to the file's pose within 1e-6 m and 1e-6 rad (both
+        # solves converge to 1e-10 of their scales; the pose returns to ~1e-10 m,
+        # tests/test_assembly_io.cpp).
+        with open("robots/stewart_gough.json") as f:
+            problem = json.load(f)
+        inverse = cosserat.solve(cosserat.parse_problem(json.dumps(problem)))
+        self.assertTrue(inverse["converged"], inverse["log"])
+        self.assertEqual(inverse["result"]["assembly"]["kind"], "inverse")
+        lengths = [rod["length"] for rod in inverse["result"]["assembly"]["rods"]]
+        self.assertEqual(len(lengths), 6)
+        target = problem["assembly"].pop("inverse")["poses"][0]
+        problem["assembly"]["lengths"] = lengths
+        forward = cosserat.solve(cosserat.parse_problem(json.dumps(problem)))
+        self.assertTrue(forward["converged"], forward["log"])
+        body = forward["result"]["assembly"]["bodies"][0]
+        self.assertEqual(body["name"], "platform")
+        dp = np.linalg.norm(np.array(body["position"]) - np.array(target["position"]))
+        # |R0^T R - I|_F = 2 sqrt(2) sin(angle / 2) ~ sqrt(2) angle for a small angle.
+        turn = np.linalg.norm(np.array(target["rotation"]).T @ np.array(body["rotation"])
+                              - np.eye(3)) / math.sqrt(2)
+        self.assertLess(dp, 1e-6)
+        self.assertLess(turn, 1e-6)
+        self.assertEqual(np.array(forward["result"]["assembly"]["pose_jacobian"]).shape, (6, 6))
+
+
 if __name__ == "__main__":
     unittest.main()

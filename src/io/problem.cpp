@@ -13,10 +13,12 @@
 #include "cosserat/io/json_document.hpp"
 #include "cosserat/io/json_reader.hpp"
 #include "cosserat/rod/rest_shape.hpp"
+#include "problem_assembly.hpp"
 #include "problem_environment.hpp"
 #include "problem_robot.hpp"
 #include "problem_rod.hpp"
 #include "read_enum.hpp"
+#include "read_pose.hpp"
 
 namespace cosserat::io {
 namespace detail {
@@ -26,37 +28,12 @@ using json = nlohmann::json;
 
 constexpr int kMaxIterations = 1000000;
 constexpr int kMaxModes = 1000;
-constexpr double kRotationTolerance = 1e-6;
 
 // --- base, loads, solver -----------------------------------------------------------------------
 
-/// The rotation nearest to M (polar decomposition), so a matrix accepted within the tolerance
-/// reaches the solver exactly orthonormal.
-Mat3 NearestRotation(const Mat3& M) {
-  Eigen::JacobiSVD<Mat3> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  return svd.matrixU() * svd.matrixV().transpose();
-}
-
-std::optional<Mat3> ReadRotation(const ObjectReader& o, const std::string& key) {
-  const auto M = ReadMatrix3(o, key, Presence::kOptional);
-  if (!M) return std::nullopt;
-  const double orthogonality = (M->transpose() * *M - Mat3::Identity()).cwiseAbs().maxCoeff();
-  const double det = M->determinant();
-  if (!(orthogonality <= kRotationTolerance && det > 0)) {
-    o.report().Expected(o.PathOf(key),
-                        "a rotation matrix (orthonormal within 1e-6, i.e. max |R^T R - I| <= "
-                        "1e-6, with determinant +1)",
-                        "max |R^T R - I| = " + FormatNumber(orthogonality) + " and determinant " +
-                            FormatNumber(det));
-    return std::nullopt;
-  }
-  return NearestRotation(*M);
-}
-
 void ParseBase(const ObjectReader& base, lie::SE3* pose) {
   base.AllowOnly({"position", "rotation"});
-  pose->p = ReadVec3(base, "position", Presence::kOptional).value_or(Vec3::Zero());
-  pose->R = ReadRotation(base, "rotation").value_or(Mat3::Identity());
+  *pose = ReadPose(base);
 }
 
 /// "anchor": {"position": [x, y, z], "base": "pinned" | "clamped", "tip": "pinned",
@@ -325,15 +302,31 @@ void CheckFormat(const ObjectReader& top) {
     top.report().Expected("format", expected, Describe(*v));
 }
 
+/// A problem of rods and bodies: "assembly" in place of the single rod's keys.
+void ParseAssemblyTopLevel(const ObjectReader& top, Problem* p) {
+  for (const std::string& key : SingleRodKeys())
+    if (top.Has(key))
+      top.report().Add(key,
+                       "not read with \"assembly\" (each rod of assembly.rods has its own "
+                       "\"rod\" and \"base\")");
+  if (const auto loads = ReadObject(top, "loads", Presence::kOptional)) {
+    p->loads = ParseLoads(*loads);
+    CheckAssemblyLoads(*loads);
+  }
+  if (const auto o = ReadObject(top, "solver", Presence::kOptional)) ParseSolver(*o, &p->solver);
+  if (const auto o = ReadObject(top, "assembly", Presence::kRequired)) ParseAssembly(*o, p);
+}
+
 void ParseTopLevel(const ObjectReader& top, Problem* p) {
   top.AllowOnly({"format", "description", "analysis", "formulation", "rod", "base", "boundary",
                  "anchor", "loads", "environment", "dynamics", "buckling", "modes", "solver",
-                 "robot"});
+                 "robot", "assembly"});
   CheckFormat(top);
   ReadString(top, "description", Presence::kOptional);
   p->analysis = ReadEnum<Analysis>(top, "analysis", Presence::kOptional).value_or(p->analysis);
   p->formulation =
       ReadEnum<Formulation>(top, "formulation", Presence::kOptional).value_or(p->formulation);
+  if (top.Has("assembly")) return ParseAssemblyTopLevel(top, p);
   if (const auto rod = ReadObject(top, "rod", Presence::kRequired)) ParseRod(*rod, p);
   if (const auto base = ReadObject(top, "base", Presence::kOptional)) ParseBase(*base, &p->base);
   p->boundary = ReadEnum<Boundary>(top, "boundary", Presence::kOptional).value_or(p->boundary);
@@ -410,6 +403,11 @@ void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
 /// The library's own checks; they should never fire after the ones above.
 void CheckWithLibrary(const Problem& p, ErrorReport* report) {
   std::string why;
+  if (p.has_assembly) {
+    if (!p.assembly.assembly.IsValid(&why)) report->Add("assembly", why);
+    if (!p.loads.IsValid(&why)) report->Add("loads", why);
+    return;
+  }
   if (!p.rod.IsValid(&why)) report->Add("rod", why);
   if (!p.loads.IsValid(&why)) report->Add("loads", why);
   const int tendons = static_cast<int>(p.rod.tendons.size());
@@ -479,6 +477,7 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
   using B = Boundary;
   std::vector<std::string> out;
   const bool quatfd = p.formulation == Formulation::kQuaternionFd;
+  if (p.has_assembly) return detail::UnsupportedAssemblyFeatures(p);
   // Every analysis and formulation runs; the boundary depends on both.
   if (p.boundary == B::kAnchored && p.analysis == A::kBuckling)
     out.push_back("boundary: \"anchored\" runs statics, dynamics and modes in this version");

@@ -2,6 +2,7 @@
 
 #include "bending_stress_report.hpp"
 #include "contact_report.hpp"
+#include "cosserat/run/run_assembly.hpp"
 #include "cosserat/run/run_buckling.hpp"
 #include "cosserat/run/run_dynamics.hpp"
 #include "cosserat/run/run_eversion.hpp"
@@ -16,6 +17,7 @@ namespace {
 Result Dispatch(const io::Problem& problem, const RunOptions& options) {
   using io::Analysis;
   const bool dynamics = problem.analysis == Analysis::kDynamics;
+  if (problem.has_assembly) return RunAssembly(problem, options);
   if (problem.analysis == Analysis::kModes) return RunModes(problem, options);
   if (problem.formulation == io::Formulation::kQuaternionFd) {
     if (problem.analysis == Analysis::kBuckling) return RunQuatFdBuckling(problem, options);

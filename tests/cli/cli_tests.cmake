@@ -150,7 +150,7 @@ file(GLOB _robot_files "${CMAKE_CURRENT_LIST_DIR}/../../robots/*.json")
 foreach(_robot IN LISTS _robot_files)
   get_filename_component(_robot_name "${_robot}" NAME_WE)
   cosserat_cli_test(NAME robot_${_robot_name} ARGS solve "${_robot}" CODE 0
-                    STDOUT "\"robot\": {" STDERR "converged")
+                    STDOUT "\"(robot|assembly)\": {" STDERR "converged")
 endforeach()
 cosserat_cli_test(NAME bad_robot ARGS validate "${_cli_dir}/bad_robot.json" CODE 2
                   STDERR "robot.colour: unknown key.*robot.tendons\\[0\\].offset: expected an offset within the section.*robot.tendons\\[1\\].pich: unknown key.*did you mean \"pitch\".*robot.tendons\\[1\\].pitch: expected .*missing.*robot.actuation.tension\\[1\\]: expected a tension >= 0.*robot.actuation.pressure: expected a number >= 0, got -5")
@@ -326,3 +326,36 @@ cosserat_cli_test(NAME bad_bit_friction ARGS validate "${_cli_dir}/bad_bit_frict
                   STDERR "loads.bit_friction.radius: expected a positive number.*loads.bit_friction.static_coefficient: expected a number >= kinetic_coefficient")
 cosserat_cli_test(NAME riser_coarse_grid ARGS solve "${_cli_dir}/riser_coarse_grid.json" CODE 1
                   STDERR "load_stepping_failed.*hint: the grid spacing 5.03 m is coarse for environment.contact\\[0\\]'s foundation length")
+
+# Assemblies of rods and bodies (docs/assemblies.md; robots/stewart_gough*.json also run in the
+# robots/ loop above). The continuum Stewart-Gough robot's inverse kinematics holds the platform
+# at the file's pose and prints the six lengths (each between the 0.4 m start and 0.5 m); its
+# forward kinematics at those lengths, rounded to 1 nm, returns the platform to (0, 0.02, 0.45) m
+# turned 0.1 rad about z within the rounding (the C++ round trip, tests/test_assembly_io.cpp,
+# reaches 1e-10 m at full precision).
+set(_cli_robots "${CMAKE_CURRENT_LIST_DIR}/../../robots")
+cosserat_cli_test(NAME assembly_stewart_gough_inverse ARGS solve "${_cli_robots}/stewart_gough.json"
+                  CODE 0 STDOUT "\"pose_jacobian\": \\[[^]]*[0-9]"
+                  STDERR "converged \\(assembly, inverse\\), [0-9]+ iterations.*platform at \\[0, 0\\.02, 0\\.45\\] m, rotation vector \\[0, 0, 0\\.1\\] rad, lengths \\[0\\.4[0-9]+, 0\\.4[0-9]+, 0\\.4[0-9]+, 0\\.4[0-9]+, 0\\.4[0-9]+, 0\\.4[0-9]+\\] m")
+cosserat_cli_test(NAME assembly_stewart_gough_forward
+                  ARGS solve "${_cli_robots}/stewart_gough_forward.json" --csv "${_cli_out}/stewart_gough.csv"
+                  CODE 0 STDOUT "\"kind\": \"forward\""
+                  STDERR "converged \\(assembly, forward\\).*platform at \\[(-?[0-9.]+e-(09|1[0-9])|0), 0\\.02, 0\\.45\\] m, rotation vector \\[(-?[0-9.]+e-(09|1[0-9])|0), (-?[0-9.]+e-(09|1[0-9])|0), 0\\.1\\] rad"
+                  FILES "${_cli_out}/stewart_gough.csv")
+cosserat_cli_test(NAME assembly_validate ARGS validate "${_cli_robots}/stewart_gough.json" CODE 0
+                  STDOUT "stewart_gough.json: ok")
+# Two wires under a plate pushed sideways by 0.01 N: guided beams, P L^3/(24 EI) = 3.3157e-4 m
+# (the plate's residual turn adds 3.3e-4 of it; tests/test_assembly_io.cpp checks 1e-3).
+get_filename_component(_cli_guided "${CMAKE_CURRENT_LIST_DIR}/../../examples/guided_beam.json"
+                       ABSOLUTE)
+cosserat_cli_test(NAME assembly_guided_beam ARGS solve "${_cli_guided}" CODE 0
+                  STDERR "converged \\(assembly, forward\\).*plate at \\[0\\.00033[12][0-9]*, 0, 0\\.5\\] m")
+# Bad assemblies: every error names its JSON path.
+cosserat_cli_test(NAME bad_assembly_joints ARGS validate "${_cli_dir}/bad_assembly_joints.json"
+                  CODE 2 STDERR "assembly.bodies\\[2\\].name: expected a name no other body has.*assembly.rods\\[1\\].name: expected a name no other rod has.*\"leg1\", already the name of assembly.rods\\[0\\].*assembly.rods\\[2\\].tip.body: names \"plate\", but the bodies are \"platform\", \"lid\".*assembly.rods\\[3\\].tip.body: a \"free\" tip joins no body.*assembly.rods\\[3\\].base.joint: expected \"clamped\" unless the tip is clamped.*assembly.bodies\\[1\\]: no rod holds \"lid\"")
+cosserat_cli_test(NAME bad_assembly_inverse ARGS validate "${_cli_dir}/bad_assembly_inverse.json"
+                  CODE 2 STDERR "assembly.lengths: not read with \"inverse\".*assembly.inverse: expected six rods joined to each body.*got 2 on \"plate\".*assembly.inverse.poses\\[0\\].body: names \"plates\", but the bodies are \"plate\"")
+cosserat_cli_test(NAME bad_assembly_keys ARGS validate "${_cli_dir}/bad_assembly_keys.json"
+                  CODE 2 STDERR "rod: not read with \"assembly\".*boundary: not read with \"assembly\".*loads.tip_force: not read with \"assembly\"")
+cosserat_cli_test(NAME assembly_dynamics ARGS solve "${_cli_dir}/assembly_dynamics.json" CODE 2
+                  STDERR "analysis: \"dynamics\" of an \"assembly\" is not implemented in this version")

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cosserat/assembly/assembly.hpp"
 #include "cosserat/io/problem_kinds.hpp"
 #include "cosserat/lie/se3.hpp"
 #include "cosserat/lie/types.hpp"
@@ -110,6 +111,19 @@ struct Problem {
     int growth_steps = 20;
   } robot;
   bool has_robot = false;
+
+  /// "assembly": rods and rigid bodies solved together (docs/assemblies.md), in place of "rod",
+  /// "base" and "boundary"; statics on the SE(3) path. `rod` and `base` keep their defaults.
+  struct AssemblyProblem {
+    Assembly assembly;  ///< rods (their models at rod.length) and bodies (pose: the start guess)
+    /// Forward kinematics: one length per rod, m; empty: each rod's rod.length.
+    std::vector<double> lengths;
+    /// "inverse": one pose per body, in the bodies' order (world); the rods' lengths are solved.
+    /// Empty: the forward problem.
+    std::vector<lie::SE3> inverse_poses;
+    bool inverse() const { return !inverse_poses.empty(); }
+  } assembly;
+  bool has_assembly = false;
 };
 
 struct ParseResult {

@@ -1,0 +1,290 @@
+#include "problem_assembly.hpp"
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "problem_rod.hpp"
+#include "read_pose.hpp"
+
+namespace cosserat::io::detail {
+namespace {
+
+using json = nlohmann::json;
+
+/// The rods that set a body's pose in the inverse problem: one length per degree of freedom.
+constexpr int kRodsPerBodyInverse = 6;
+
+/// tip.joint's names, in TipJoint's order.
+const std::vector<std::string>& TipJointNames() {
+  static const std::vector<std::string> names{"free", "clamped", "torsion_free", "pinned"};
+  return names;
+}
+
+/// The objects of the array at `key`, each read at its own index; a non-array, an empty array or
+/// a non-object element is reported.
+std::vector<ObjectReader> ReadObjects(const ObjectReader& o, const std::string& key,
+                                      const std::string& expected) {
+  std::vector<ObjectReader> out;
+  const json* v = o.Find(key);
+  if (!v) {
+    o.report().Missing(o.PathOf(key), expected);
+    return out;
+  }
+  if (!v->is_array() || v->empty()) {
+    o.report().Expected(o.PathOf(key), expected, Describe(*v));
+    return out;
+  }
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const std::string path = ElementPath(o.PathOf(key), i);
+    if ((*v)[i].is_object())
+      out.emplace_back((*v)[i], path, &o.report());
+    else
+      o.report().Expected(path, "an object", Describe((*v)[i]));
+  }
+  return out;
+}
+
+/// "name": a non-empty string no earlier element has (`seen`: name -> path of its owner).
+std::string ReadUniqueName(const ObjectReader& o, const std::string& what,
+                           std::map<std::string, std::string>* seen) {
+  const std::optional<std::string> name = ReadString(o, "name", Presence::kRequired);
+  if (!name) return "";
+  if (name->empty()) {
+    o.Reject("name", "a non-empty name");
+  } else if (const auto it = seen->find(*name); it != seen->end()) {
+    o.report().Expected(o.PathOf("name"),
+                        "a name no other " + what + " has (each " + what + " appears once)",
+                        Quote(*name) + ", already the name of " + it->second);
+  } else {
+    (*seen)[*name] = o.path();
+  }
+  return *name;
+}
+
+/// The index of the body named at `key`, or -1 (reported).
+int FindBody(const ObjectReader& o, const std::string& key, const std::vector<RigidBody>& bodies) {
+  const std::optional<std::string> name = ReadString(o, key, Presence::kRequired);
+  if (!name) return -1;
+  std::vector<std::string> names;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (bodies[b].name == *name) return static_cast<int>(b);
+    names.push_back(bodies[b].name);
+  }
+  o.report().Add(o.PathOf(key),
+                 "names " + Quote(*name) + ", but " +
+                     (names.empty() ? std::string("there are no bodies (assembly.bodies)")
+                                    : "the bodies are " + QuotedList(names)));
+  return -1;
+}
+
+RigidBody ParseBody(const ObjectReader& o, std::map<std::string, std::string>* names) {
+  o.AllowOnly({"name", "mass", "pose", "force", "moment"});
+  RigidBody body;
+  body.name = ReadUniqueName(o, "body", names);
+  body.mass = ReadNumber(o, "mass", NonNegativeNumber(), Presence::kOptional).value_or(0.0);
+  if (const auto pose = ReadObject(o, "pose", Presence::kOptional)) {
+    pose->AllowOnly({"position", "rotation"});
+    body.pose = ReadPose(*pose);
+  }
+  body.force_W = ReadVec3(o, "force", Presence::kOptional).value_or(Vec3::Zero());
+  body.moment_W = ReadVec3(o, "moment", Presence::kOptional).value_or(Vec3::Zero());
+  return body;
+}
+
+/// "base": {"position", "rotation", "joint"}.
+void ParseRodBase(const ObjectReader& base, AssemblyRod* rod) {
+  base.AllowOnly({"position", "rotation", "joint"});
+  rod->base = ReadPose(base);
+  const auto joint = ReadChoice(base, "joint", {"clamped", "torsion_free"}, Presence::kOptional);
+  rod->base_joint =
+      joint == std::string("torsion_free") ? BaseJoint::kTorsionFree : BaseJoint::kClamped;
+}
+
+/// "tip": {"joint", "body", "attachment"}; a joined tip names its body, a free one none.
+void ParseRodTip(const ObjectReader& tip, const std::vector<RigidBody>& bodies, AssemblyRod* rod) {
+  tip.AllowOnly({"joint", "body", "attachment"});
+  const std::vector<std::string>& joints = TipJointNames();
+  const auto joint = ReadChoice(tip, "joint", joints, Presence::kOptional);
+  if (joint)
+    rod->tip_joint =
+        static_cast<TipJoint>(std::find(joints.begin(), joints.end(), *joint) - joints.begin());
+  if (tip.Has("joint") && !joint) return;  // reported; the rest would only echo it
+  const std::string joint_name = joint.value_or("free");
+  if (rod->tip_joint == TipJoint::kFree) {
+    for (const char* key : {"body", "attachment"})
+      if (tip.Has(key))
+        tip.report().Add(tip.PathOf(key), std::string("a \"free\" tip joins no body (set ") +
+                                              "tip.joint to \"clamped\", \"torsion_free\" or "
+                                              "\"pinned\", or leave " +
+                                              key + " out)");
+    return;
+  }
+  if (!tip.Has("body")) {
+    tip.report().Missing(tip.PathOf("body"),
+                         "the name of the body a " + Quote(joint_name) + " tip is joined to");
+    return;
+  }
+  rod->body = FindBody(tip, "body", bodies);
+  if (const auto attachment = ReadObject(tip, "attachment", Presence::kOptional)) {
+    attachment->AllowOnly({"position", "rotation"});
+    rod->attachment = ReadPose(*attachment);
+  }
+}
+
+AssemblyRod ParseAssemblyRod(const ObjectReader& o, const std::vector<RigidBody>& bodies,
+                             std::map<std::string, std::string>* names) {
+  o.AllowOnly({"name", "rod", "base", "tip"});
+  AssemblyRod rod;
+  rod.name = ReadUniqueName(o, "rod", names);
+  if (const auto model = ReadObject(o, "rod", Presence::kRequired)) {
+    Problem single;  // the top-level "rod" parser, on a problem of its own
+    ParseRod(*model, &single);
+    rod.model = single.rod;
+    rod.nodes = single.nodes;
+  }
+  if (const auto base = ReadObject(o, "base", Presence::kOptional)) ParseRodBase(*base, &rod);
+  if (const auto tip = ReadObject(o, "tip", Presence::kOptional)) ParseRodTip(*tip, bodies, &rod);
+  if (rod.base_joint == BaseJoint::kTorsionFree && rod.tip_joint != TipJoint::kClamped)
+    o.report().Expected(o.PathOf("base") + ".joint",
+                        "\"clamped\" unless the tip is clamped (a rod free to turn at both ends "
+                        "would spin about itself)",
+                        "\"torsion_free\" with a " +
+                            Quote(TipJointNames()[static_cast<int>(rod.tip_joint)]) + " tip");
+  return rod;
+}
+
+/// "lengths": one positive length per rod.
+std::vector<double> ParseLengths(const ObjectReader& o, std::size_t rods) {
+  const std::string path = o.PathOf("lengths");
+  const json& v = *o.Find("lengths");
+  if (!v.is_array() || v.size() != rods) {
+    o.report().Expected(
+        path, "an array of one length per rod (" + std::to_string(rods) + " in assembly.rods), m",
+        Describe(v));
+    return {};
+  }
+  std::vector<double> lengths;
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (const auto L = CheckNumber(v[i], ElementPath(path, i), PositiveNumber(), o.report()))
+      lengths.push_back(*L);
+  return lengths.size() == rods ? lengths : std::vector<double>{};
+}
+
+/// The inverse problem's structure: every rod joined, six to each body.
+void CheckInverseStructure(const ObjectReader& o, const Assembly& a) {
+  std::vector<int> count(a.bodies.size(), 0);
+  for (std::size_t i = 0; i < a.rods.size(); ++i) {
+    if (a.rods[i].body >= 0) ++count[a.rods[i].body];
+    if (a.rods[i].tip_joint == TipJoint::kFree)
+      o.report().Expected(o.PathOf("inverse"),
+                          "every rod joined to a body (a free rod's length moves no body)",
+                          "a free tip on assembly.rods[" + std::to_string(i) + "]");
+  }
+  for (std::size_t b = 0; b < a.bodies.size(); ++b)
+    if (count[b] != kRodsPerBodyInverse)
+      o.report().Expected(o.PathOf("inverse"),
+                          "six rods joined to each body (their lengths set its six degrees of "
+                          "freedom)",
+                          std::to_string(count[b]) + " on " + Quote(a.bodies[b].name));
+}
+
+/// "inverse": {"poses": [{"body", "position", "rotation"}, ...]}, one pose per body.
+std::vector<lie::SE3> ParseInverse(const ObjectReader& inverse, const Assembly& a) {
+  inverse.AllowOnly({"poses"});
+  std::vector<std::optional<lie::SE3>> poses(a.bodies.size());
+  const std::vector<ObjectReader> given =
+      ReadObjects(inverse, "poses", "an array of poses {\"body\", \"position\", \"rotation\"}");
+  bool ok = !given.empty();  // else reported
+  for (const ObjectReader& pose : given) {
+    pose.AllowOnly({"body", "position", "rotation"});
+    const int b = FindBody(pose, "body", a.bodies);
+    const lie::SE3 value = ReadPose(pose);
+    if (b < 0) {
+      ok = false;
+    } else if (poses[b]) {
+      pose.report().Expected(pose.PathOf("body"), "one pose per body",
+                             "a second pose for " + Quote(a.bodies[b].name));
+      ok = false;
+    } else {
+      poses[b] = value;
+    }
+  }
+  std::vector<lie::SE3> out;
+  for (std::size_t b = 0; b < poses.size(); ++b) {
+    if (poses[b]) {
+      out.push_back(*poses[b]);
+    } else if (ok) {
+      inverse.report().Expected(inverse.PathOf("poses"), "one pose per body",
+                                "none for " + Quote(a.bodies[b].name));
+      ok = false;
+    }
+  }
+  return ok ? out : std::vector<lie::SE3>{};
+}
+
+}  // namespace
+
+const std::vector<std::string>& SingleRodKeys() {
+  static const std::vector<std::string> keys{
+      "rod", "base", "boundary", "anchor", "robot", "dynamics", "buckling", "modes", "environment"};
+  return keys;
+}
+
+void CheckAssemblyLoads(const ObjectReader& loads) {
+  for (const char* key :
+       {"tip_force", "tip_moment", "tip_force_frame", "tip_moment_frame", "bit_friction"})
+    if (loads.Has(key))
+      loads.report().Add(loads.PathOf(key),
+                         "not read with \"assembly\" (load a body instead: assembly.bodies[i]"
+                         ".force and .moment)");
+}
+
+void ParseAssembly(const ObjectReader& o, Problem* p) {
+  o.AllowOnly({"rods", "bodies", "lengths", "inverse"});
+  Assembly& a = p->assembly.assembly;
+  std::map<std::string, std::string> body_names, rod_names;
+  if (o.Has("bodies"))
+    for (const ObjectReader& body : ReadObjects(o, "bodies", "an array of bodies"))
+      a.bodies.push_back(ParseBody(body, &body_names));
+  for (const ObjectReader& rod : ReadObjects(o, "rods", "an array of rods"))
+    a.rods.push_back(ParseAssemblyRod(rod, a.bodies, &rod_names));
+  p->has_assembly = true;
+
+  std::vector<int> held(a.bodies.size(), 0);
+  for (const AssemblyRod& rod : a.rods)
+    if (rod.body >= 0) ++held[rod.body];
+  for (std::size_t b = 0; b < a.bodies.size(); ++b)
+    if (held[b] == 0)
+      o.report().Add(ElementPath(o.PathOf("bodies"), b),
+                     "no rod holds " + Quote(a.bodies[b].name) +
+                         " (no tip names it in tip.body; it would fall freely)");
+
+  if (o.Has("lengths") && o.Has("inverse"))
+    o.report().Add(o.PathOf("lengths"),
+                   "not read with \"inverse\" (the inverse problem solves "
+                   "the lengths)");
+  else if (o.Has("lengths") && !a.rods.empty())
+    p->assembly.lengths = ParseLengths(o, a.rods.size());
+  if (const auto inverse = ReadObject(o, "inverse", Presence::kOptional)) {
+    CheckInverseStructure(o, a);
+    p->assembly.inverse_poses = ParseInverse(*inverse, a);
+  }
+}
+
+std::vector<std::string> UnsupportedAssemblyFeatures(const Problem& p) {
+  std::vector<std::string> out;  // statics on the SE(3) path only (docs/assemblies.md, "Limits")
+  if (p.analysis != Analysis::kStatics)
+    out.push_back("analysis: " + Quote(ToString(p.analysis)) +
+                  " of an \"assembly\" is not implemented in this version (supported: "
+                  "\"statics\")");
+  if (p.formulation != Formulation::kSe3Shooting)
+    out.push_back("formulation: " + Quote(ToString(p.formulation)) +
+                  " of an \"assembly\" is not implemented in this version (supported: "
+                  "\"se3-shooting\")");
+  return out;
+}
+
+}  // namespace cosserat::io::detail

@@ -1,0 +1,142 @@
+#include "cosserat/run/run_assembly.hpp"
+
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cosserat/assembly/assembly_statics.hpp"
+#include "cosserat/lie/so3.hpp"
+
+namespace cosserat::run {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+json ToArray(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+/// Row-major [[r00, r01, r02], ...].
+json ToRows(const Mat3& m) {
+  json out = json::array();
+  for (int i = 0; i < 3; ++i) out.push_back(ToArray(Vec3(m.row(i).transpose())));
+  return out;
+}
+
+json RodToJson(const AssemblyRod& rod, double length, const RodState& state) {
+  json s = json::array(), position = json::array();
+  for (int n = 0; n < state.size(); ++n) {
+    s.push_back(state.s[n]);
+    position.push_back(ToArray(state.position_W[n]));
+  }
+  const Vec6 reaction = state.BaseReaction_W();  // [moment about the base point; force], world
+  json out;
+  out["name"] = rod.name;
+  out["length"] = length;
+  out["base_wrench"] = {{"moment", ToArray(reaction.head<3>())},
+                        {"force", ToArray(reaction.tail<3>())}};
+  out["tip"] = {{"position", ToArray(state.tip_position_W())},
+                {"rotation", ToRows(state.tip_rotation_WB())}};
+  out["nodes"] = {{"s", s}, {"position", position}};
+  return out;
+}
+
+/// The "assembly" block of the solver's last solution, without the Jacobian.
+json SolutionToJson(const Assembly& assembly, bool inverse, AssemblyStaticsSolver* solver,
+                    std::string* csv) {
+  json bodies = json::array(), rods = json::array();
+  for (std::size_t b = 0; b < assembly.bodies.size(); ++b) {
+    const lie::SE3& pose = solver->body_poses()[b];
+    bodies.push_back({{"name", assembly.bodies[b].name},
+                      {"position", ToArray(pose.p)},
+                      {"rotation", ToRows(pose.R)}});
+  }
+  std::ostringstream table;
+  table << "rod,s,x,y,z\n" << std::setprecision(17);
+  for (int i = 0; i < solver->rod_count(); ++i) {
+    const RodState& state = solver->rod_state(i);
+    rods.push_back(RodToJson(assembly.rods[i], solver->lengths()[i], state));
+    for (int n = 0; n < state.size(); ++n) {
+      const Vec3& p = state.position_W[n];
+      table << i << ',' << state.s[n] << ',' << p.x() << ',' << p.y() << ',' << p.z() << '\n';
+    }
+  }
+  if (csv) *csv = table.str();
+  json out;
+  out["kind"] = inverse ? "inverse" : "forward";
+  out["bodies"] = bodies;
+  out["rods"] = rods;
+  return out;
+}
+
+/// d pose / d lengths of body 0 (6 × rods) from a forward solve at the solver's lengths: after
+/// an inverse solve this solve starts at its solution and returns at once. Null if it fails.
+json PoseJacobianJson(const io::Problem& problem, AssemblyStaticsSolver* solver) {
+  if (problem.assembly.assembly.bodies.empty()) return nullptr;
+  if (problem.assembly.inverse()) {
+    const std::vector<double> lengths = solver->lengths();
+    if (!solver->Solve(problem.loads, lengths).converged()) return nullptr;
+  }
+  const Eigen::MatrixXd J = solver->PoseJacobian(0, problem.loads);
+  if (J.rows() != 6) return nullptr;
+  json rows = json::array();
+  for (int r = 0; r < 6; ++r) {
+    json row = json::array();
+    for (int c = 0; c < J.cols(); ++c) row.push_back(J(r, c));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::string Summary(const io::Problem& problem, const AssemblySummary& s,
+                    const AssemblyStaticsSolver& solver) {
+  std::ostringstream line;
+  line << "cosserat: " << ToString(s.status) << " (assembly, "
+       << (problem.assembly.inverse() ? "inverse" : "forward") << "), " << s.iterations
+       << " iterations, residual " << std::setprecision(3) << s.residual;
+  const auto& bodies = problem.assembly.assembly.bodies;
+  if (!bodies.empty()) {
+    const lie::SE3& pose = solver.body_poses()[0];
+    const Vec3 theta = lie::SO3Log(pose.R);
+    line << std::setprecision(6) << ", " << bodies[0].name << " at [" << pose.p.x() << ", "
+         << pose.p.y() << ", " << pose.p.z() << "] m, rotation vector [" << theta.x() << ", "
+         << theta.y() << ", " << theta.z() << "] rad";
+  }
+  if (problem.assembly.inverse()) {
+    line << ", lengths [";
+    for (std::size_t i = 0; i < solver.lengths().size(); ++i)
+      line << (i ? ", " : "") << std::setprecision(9) << solver.lengths()[i];
+    line << "] m";
+  }
+  line << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms";
+  return line.str();
+}
+
+}  // namespace
+
+Result RunAssembly(const io::Problem& problem, const RunOptions& options) {
+  const io::Problem::AssemblyProblem& spec = problem.assembly;
+  AssemblyOptions opt;
+  opt.tolerance = problem.solver.tolerance;
+  opt.max_iterations = problem.solver.max_iterations;
+  AssemblyStaticsSolver solver(spec.assembly, opt);
+  const AssemblySummary summary = spec.inverse()
+                                      ? solver.SolveLengths(problem.loads, spec.inverse_poses)
+                                      : solver.Solve(problem.loads, spec.lengths);
+  Result result;
+  result.converged = summary.converged();
+  result.log = Summary(problem, summary, solver) + '\n';
+  json& out = result.json;
+  out["status"] = ToString(summary.status);
+  out["iterations"] = summary.iterations;
+  out["jacobians"] = summary.jacobians;
+  out["load_steps"] = summary.load_steps;
+  out["residual"] = summary.residual;
+  out["wall_time_s"] = summary.wall_time_s;
+  out["assembly"] = SolutionToJson(spec.assembly, spec.inverse(), &solver,
+                                   options.nodes_csv ? &result.nodes_csv : nullptr);
+  out["assembly"]["pose_jacobian"] =
+      summary.converged() ? PoseJacobianJson(problem, &solver) : json(nullptr);
+  return result;
+}
+
+}  // namespace cosserat::run
