@@ -95,9 +95,13 @@ RigidBody ParseBody(const ObjectReader& o, std::map<std::string, std::string>* n
 }
 
 /// "base": {"position", "rotation", "joint"}.
-void ParseRodBase(const ObjectReader& base, AssemblyRod* rod) {
-  base.AllowOnly({"position", "rotation", "joint"});
+/// "base": {"position", "rotation", "joint", "body"}: the pose in the world, or in the frame of
+/// the body it names.
+void ParseRodBase(const ObjectReader& base, const std::vector<RigidBody>& bodies,
+                  AssemblyRod* rod) {
+  base.AllowOnly({"position", "rotation", "joint", "body"});
   rod->base = ReadPose(base);
+  if (base.Has("body")) rod->base_body = FindBody(base, "body", bodies);
   const auto joint = ReadChoice(base, "joint", {"clamped", "torsion_free"}, Presence::kOptional);
   rod->base_joint =
       joint == std::string("torsion_free") ? BaseJoint::kTorsionFree : BaseJoint::kClamped;
@@ -145,7 +149,8 @@ AssemblyRod ParseAssemblyRod(const ObjectReader& o, const std::vector<RigidBody>
     rod.model = single.rod;
     rod.nodes = single.nodes;
   }
-  if (const auto base = ReadObject(o, "base", Presence::kOptional)) ParseRodBase(*base, &rod);
+  if (const auto base = ReadObject(o, "base", Presence::kOptional))
+    ParseRodBase(*base, bodies, &rod);
   if (const auto tip = ReadObject(o, "tip", Presence::kOptional)) ParseRodTip(*tip, bodies, &rod);
   if (rod.base_joint == BaseJoint::kTorsionFree && rod.tip_joint != TipJoint::kClamped)
     o.report().Expected(o.PathOf("base") + ".joint",
@@ -254,13 +259,15 @@ void ParseAssembly(const ObjectReader& o, Problem* p) {
   p->has_assembly = true;
 
   std::vector<int> held(a.bodies.size(), 0);
-  for (const AssemblyRod& rod : a.rods)
+  for (const AssemblyRod& rod : a.rods) {
     if (rod.body >= 0) ++held[rod.body];
+    if (rod.base_body >= 0) ++held[rod.base_body];
+  }
   for (std::size_t b = 0; b < a.bodies.size(); ++b)
     if (held[b] == 0)
       o.report().Add(ElementPath(o.PathOf("bodies"), b),
                      "no rod holds " + Quote(a.bodies[b].name) +
-                         " (no tip names it in tip.body; it would fall freely)");
+                         " (no rod names it in tip.body or base.body; it would fall freely)");
 
   if (o.Has("lengths") && o.Has("inverse"))
     o.report().Add(o.PathOf("lengths"),
