@@ -113,12 +113,15 @@ Vector6<T> AssemblyStaticsSolver::TipResidual(int i, const Point<T>& tip, const 
 }
 
 template <typename T>
-void AssemblyStaticsSolver::TipWrenchOnBody(const Point<T>& tip, const Vector3<T>& p_b,
-                                            Vector3<T>* f, Vector3<T>* m) const {
-  // The internal wrench at s = L is what the body exerts on the rod; the rod exerts its negative.
-  const Vector3<T> n_W = tip.R * tip.n;
-  *f = -n_W;
-  *m = -(tip.R * tip.m) - (tip.p - p_b).cross(n_W);
+void AssemblyStaticsSolver::EndWrenchOnBody(const Point<T>& end, double sign,
+                                            const Vector3<T>& p_b, Vector3<T>* f,
+                                            Vector3<T>* m) const {
+  // The internal wrench at s is what the part beyond s exerts on the part before it: at the
+  // base (sign +1) the rod's pull on what holds it, at the tip (sign −1) the negative of the
+  // body's pull on the rod. Moved to the body's origin.
+  const Vector3<T> n_W = sign * (end.R * end.n);
+  *f = n_W;
+  *m = sign * (end.R * end.m) + (end.p - p_b).cross(n_W);
 }
 
 rhs::StaticTangent AssemblyStaticsSolver::StartTangent(int i, const Point<double>& start) const {
@@ -137,15 +140,6 @@ rhs::StaticTangent AssemblyStaticsSolver::StartTangent(int i, const Point<double
     d.m(1, 2) = rod.moment_scale;
   }
   return d;
-}
-
-template <typename T>
-void AssemblyStaticsSolver::BaseWrenchOnBody(const Point<T>& base, const Vector3<T>& p_b,
-                                             Vector3<T>* f, Vector3<T>* m) const {
-  // The internal wrench at s = 0 is what the rod exerts on what holds its base.
-  const Vector3<T> n_W = base.R * base.n;
-  *f = n_W;
-  *m = base.R * base.m + (base.p - p_b).cross(n_W);
 }
 
 rhs::StaticTangent AssemblyStaticsSolver::BodyStartTangent(int i, const Point<double>& start) const {
@@ -192,13 +186,13 @@ void AssemblyStaticsSolver::Residual(const StaticLoads& loads, Eigen::VectorXd* 
     r->segment<6>(6 * i) = TipResidual<double>(i, rods_[i].tip, p_b, R_b);
     if (const int bb = assembly_.rods[i].base_body; bb >= 0) {
       Vec3 f, m;
-      BaseWrenchOnBody<double>(BaseStart(i), poses_[bb].p, &f, &m);
+      EndWrenchOnBody<double>(BaseStart(i), 1.0, poses_[bb].p, &f, &m);
       r->segment<3>(6 * R + 6 * bb) += f;
       r->segment<3>(6 * R + 6 * bb + 3) += m;
     }
     if (b < 0) continue;
     Vec3 f, m;
-    TipWrenchOnBody<double>(rods_[i].tip, p_b, &f, &m);
+    EndWrenchOnBody<double>(rods_[i].tip, -1.0, p_b, &f, &m);
     r->segment<3>(6 * R + 6 * b) += f;
     r->segment<3>(6 * R + 6 * b + 3) += m;
   }
@@ -267,7 +261,7 @@ void AssemblyStaticsSolver::AddRodColumns(int i, Eigen::MatrixXd* J, Eigen::Matr
   for (int r = 0; r < 6; ++r) put(6 * i + r, e(r));
   if (b >= 0) {
     Vector3<Jet13> f, m;
-    TipWrenchOnBody<Jet13>(tip, p_b, &f, &m);
+    EndWrenchOnBody<Jet13>(tip, -1.0, p_b, &f, &m);
     for (int r = 0; r < 3; ++r) {
       put(6 * R + 6 * b + r, f(r) / body_force_scale_[b]);
       put(6 * R + 6 * b + 3 + r, m(r) / body_moment_scale_[b]);
@@ -285,7 +279,7 @@ void AssemblyStaticsSolver::AddRodColumns(int i, Eigen::MatrixXd* J, Eigen::Matr
   const Vector3<Jet13> p_bb = poses_[bb].p.cast<Jet13>() + dp;
   const Matrix3<Jet13> R_bb = poses_[bb].R.cast<Jet13>() * lie::SO3Exp<Jet13>(dth);
   Vector3<Jet13> f, m;
-  BaseWrenchOnBody<Jet13>(BaseStart<Jet13>(i, x, p_bb, R_bb), p_bb, &f, &m);
+  EndWrenchOnBody<Jet13>(BaseStart<Jet13>(i, x, p_bb, R_bb), 1.0, p_bb, &f, &m);
   for (int r = 0; r < 3; ++r) {
     put(6 * R + 6 * bb + r, f(r) / body_force_scale_[bb]);
     put(6 * R + 6 * bb + 3 + r, m(r) / body_moment_scale_[bb]);
@@ -309,7 +303,7 @@ void AssemblyStaticsSolver::AddBodyColumns(int b, Eigen::MatrixXd* J) {
                           t.n.cast<Jet6>()};
     const Vector6<Jet6> e = TipResidual<Jet6>(i, tip, p_b, R_b);
     Vector3<Jet6> f, m;
-    TipWrenchOnBody<Jet6>(tip, p_b, &f, &m);
+    EndWrenchOnBody<Jet6>(tip, -1.0, p_b, &f, &m);
     for (int k = 0; k < 6; ++k) {
       for (int r = 0; r < 6; ++r) (*J)(6 * i + r, col + k) += e(r).v[k];
       for (int r = 0; r < 3; ++r) {

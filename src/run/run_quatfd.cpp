@@ -18,15 +18,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The model with the problem's loads set (a rod held at both ends starts from a shape that
-/// sags along their gravity).
-quatfd::QuatFdModel MakeModel(const io::Problem& problem) {
-  quatfd::QuatFdModel model(problem.rod, problem.base, QuatFdModelOptions(problem),
-                            problem.robot.actuation);  // chamber pressures (statics)
-  model.set_loads(problem.loads);
-  return model;
-}
-
 StaticShootingSummary AsSummary(const quatfd::QuatFdStaticsSummary& s) {
   StaticShootingSummary out;
   out.status = s.status;
@@ -68,14 +59,27 @@ std::string ContactGridHint(const io::Problem& problem, const quatfd::QuatFdMode
 
 }  // namespace
 
-Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
-  quatfd::QuatFdModel model = MakeModel(problem);
-  Eigen::VectorXd q(model.size()), v(model.size());
-  model.RestState(q, v);
+quatfd::QuatFdModel MakeQuatFdModel(const io::Problem& problem) {
+  quatfd::QuatFdModel model(problem.rod, problem.base, QuatFdModelOptions(problem),
+                            problem.robot.actuation);  // chamber pressures (statics)
+  model.set_loads(problem.loads);
+  return model;
+}
+
+quatfd::QuatFdStaticsSummary SolveQuatFdEquilibrium(const io::Problem& problem,
+                                                    quatfd::QuatFdModel* model, RodState* state) {
+  Eigen::VectorXd q(model->size()), v(model->size());
+  model->RestState(q, v);
   const quatfd::QuatFdStaticsSummary s =
-      quatfd::SolveStatics(&model, problem.loads, q, QuatFdStaticOptions(problem));
+      quatfd::SolveStatics(model, problem.loads, q, QuatFdStaticOptions(problem));
+  model->ToRodState(q, v, state);
+  return s;
+}
+
+Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
+  quatfd::QuatFdModel model = MakeQuatFdModel(problem);
   RodState state;
-  model.ToRodState(q, v, &state);
+  const quatfd::QuatFdStaticsSummary s = SolveQuatFdEquilibrium(problem, &model, &state);
   Result result;
   result.json = io::StaticResultToJson(AsSummary(s), state);
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(state);
@@ -199,7 +203,7 @@ std::string DynamicsLog(const io::DynamicRun& run, const RadauOutcome& radau,
 Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) {
   const io::Problem::Dynamics& d = problem.dynamics;
   const auto start = Clock::now();
-  quatfd::QuatFdModel model = MakeModel(problem);
+  quatfd::QuatFdModel model = MakeQuatFdModel(problem);
   const int n = model.size();
   Eigen::VectorXd q(n), v(n);
   model.RestState(q, v);

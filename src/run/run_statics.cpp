@@ -9,8 +9,7 @@
 
 #include "cosserat/analysis/column.hpp"
 #include "cosserat/io/result_writer.hpp"
-#include "cosserat/quatfd/quatfd_model.hpp"
-#include "cosserat/quatfd/quatfd_statics.hpp"
+#include "cosserat/run/run_quatfd.hpp"
 #include "cosserat/robots/tendon_control.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
@@ -100,14 +99,9 @@ std::string BoundaryLayerHint(const io::Problem& problem, const RodState& guess)
 /// unloaded shape to follow its loads from). The SE(3) solve then satisfies its own discrete
 /// equations; the two differ by their discretisation errors.
 Result RunAnchoredStatics(const io::Problem& problem, const RunOptions& options) {
-  quatfd::QuatFdModel model(problem.rod, problem.base, QuatFdModelOptions(problem));
-  model.set_loads(problem.loads);
-  Eigen::VectorXd q(model.size()), v(model.size());
-  model.RestState(q, v);
-  const quatfd::QuatFdStaticsSummary start =
-      quatfd::SolveStatics(&model, problem.loads, q, QuatFdStaticOptions(problem));
+  quatfd::QuatFdModel model = MakeQuatFdModel(problem);
   RodState guess;
-  model.ToRodState(q, v, &guess);
+  const quatfd::QuatFdStaticsSummary start = SolveQuatFdEquilibrium(problem, &model, &guess);
 
   StaticMultipleShootingOptions opt;
   opt.tolerance = problem.solver.tolerance;

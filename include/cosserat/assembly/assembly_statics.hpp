@@ -85,18 +85,15 @@ class AssemblyStaticsSolver {
   Point<T> BaseStart(int i, const Vector6<T>& x, const Vector3<T>& p_body,
                      const Matrix3<T>& R_body) const;
   Point<double> BaseStart(int i) const;
-  /// The force and moment about the body's origin that rod i's base exerts on its body (world).
-  template <typename T>
-  void BaseWrenchOnBody(const Point<T>& base, const Vector3<T>& p_b, Vector3<T>* f,
-                        Vector3<T>* m) const;
   /// The tangent of rod i's start along its base body's pose increment [δp; δθ].
   rhs::StaticTangent BodyStartTangent(int i, const Point<double>& start) const;
   template <typename T>
   Vector6<T> TipResidual(int i, const Point<T>& tip, const Vector3<T>& p_b,
                          const Matrix3<T>& R_b) const;
-  /// The force and moment about the body's origin that rod i's tip exerts on its body (world).
+  /// The force and moment about the body's origin (p_b) that a rod end exerts on the body it is
+  /// joined to (world): the base with sign +1, the tip with −1.
   template <typename T>
-  void TipWrenchOnBody(const Point<T>& tip, const Vector3<T>& p_b, Vector3<T>* f,
+  void EndWrenchOnBody(const Point<T>& end, double sign, const Vector3<T>& p_b, Vector3<T>* f,
                        Vector3<T>* m) const;
 
   /// The tangent of rod i's start along its 6 base unknowns, at the start `start`.

@@ -4,9 +4,22 @@
 /// dynamics with the Radau IIA integrator. Same result document as the SE(3) path.
 
 #include "cosserat/io/problem.hpp"
+#include "cosserat/quatfd/quatfd_model.hpp"
+#include "cosserat/quatfd/quatfd_statics.hpp"
 #include "cosserat/run/result.hpp"
+#include "cosserat/state/rod_state.hpp"
 
 namespace cosserat::run {
+
+/// The problem's quaternion-FD model with its loads set (a rod held at both ends then starts from
+/// a shape that sags along their gravity).
+quatfd::QuatFdModel MakeQuatFdModel(const io::Problem& problem);
+
+/// The static equilibrium of `model` under the problem's loads from its start (RestState), node
+/// values into *state: the quaternion-FD statics, and the start of the SE(3) solve of a rod held
+/// at both ends.
+quatfd::QuatFdStaticsSummary SolveQuatFdEquilibrium(const io::Problem& problem,
+                                                    quatfd::QuatFdModel* model, RodState* state);
 
 /// Statics of the cantilever. Converged when the solve converged.
 Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options);
