@@ -143,8 +143,19 @@ void ParseSolver(const ObjectReader& o, Problem::Solver* options) {
 
 void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
   o.AllowOnly({"dt", "duration", "output_interval", "initial", "initial_loads", "tip_mass",
-               "tip_inertia", "base_spin", "shooting_segments", "spatial_scheme",
+               "tip_inertia", "base_spin", "rotary_table", "shooting_segments", "spatial_scheme",
                "integrator_tolerance", "integrator_max_steps"});
+  if (const auto t = ReadObject(o, "rotary_table", Presence::kOptional)) {
+    t->AllowOnly({"inertia", "torque", "no_load_speed"});
+    RotaryTable& table = d->rotary_table;
+    table.inertia = ReadNumber(*t, "inertia", PositiveNumber(), Presence::kRequired).value_or(0.0);
+    table.torque = ReadNumber(*t, "torque", AnyFiniteNumber(), Presence::kOptional).value_or(0.0);
+    table.no_load_speed =
+        ReadNumber(*t, "no_load_speed", PositiveNumber(), Presence::kOptional).value_or(0.0);
+    if (o.Has("base_spin"))
+      o.report().Add(o.PathOf("base_spin"),
+                     "is not read with \"rotary_table\" (the table's motor sets its speed)");
+  }
   d->base_spin =
       ReadNumber(o, "base_spin", AnyFiniteNumber(), Presence::kOptional).value_or(d->base_spin);
   const auto dt = ReadNumber(o, "dt", PositiveNumber(), Presence::kOptional);
@@ -510,6 +521,10 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
   if (quatfd && (p.loads.bit.present() || p.dynamics.base_spin != 0.0))
     out.push_back(std::string(p.loads.bit.present() ? "loads.bit_friction" : "dynamics.base_spin") +
                   ": runs on the \"se3-shooting\" formulation's dynamics in this version");
+  if (p.dynamics.rotary_table.present() && (quatfd || p.boundary != B::kCantilever))
+    out.push_back(
+        "dynamics.rotary_table: turns a clamped base (\"boundary\": \"cantilever\") on the "
+        "\"se3-shooting\" formulation");
   if (!quatfd && p.dynamics.base_spin != 0.0 && p.boundary != B::kCantilever)
     out.push_back("dynamics.base_spin: turns a clamped base (\"boundary\": \"cantilever\")");
   if (p.analysis == A::kBuckling && quatfd) {

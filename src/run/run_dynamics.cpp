@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -59,6 +60,9 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
   StepInput input = ClampedInput(problem, problem.loads, problem.robot.actuation);
   const double dt = problem.dynamics.dt, spin = problem.dynamics.base_spin;
   input.base_twist_B(2) = spin;
+  std::optional<RotaryTableDrive> table;
+  if (problem.dynamics.rotary_table.present())
+    table.emplace(problem.dynamics.rotary_table, problem.base);
   const auto loop_start = Clock::now();
   for (int k = 1; k <= steps; ++k) {
     if (problem.gust.present())  // the flow of the step's end (BDF2 is implicit)
@@ -66,7 +70,7 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
     if (spin != 0.0)  // the rotary table: the clamp turned about its own axis by spin t
       input.base_pose.R = problem.base.R * lie::SO3Exp(Vec3(0, 0, spin * k * dt));
     const auto t0 = Clock::now();
-    const StepSummary s = stepper->Step(input);
+    const StepSummary s = table ? table->Step(stepper, &input, dt) : stepper->Step(input);
     run->step_time_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
     AddCounts(s, run);
     if (!s.converged()) {
@@ -95,7 +99,8 @@ io::DynamicRun Simulate(const io::Problem& problem, bool all_nodes, Bdf2Shooting
   const int steps = static_cast<int>(std::lround(d.duration / d.dt));
   const int stride = std::max(1, static_cast<int>(std::lround(d.output_interval / d.dt)));
   io::DynamicRun run;
-  run.report_tip_spin = problem.loads.bit.present() || d.base_spin != 0.0;
+  run.report_tip_spin =
+      problem.loads.bit.present() || d.base_spin != 0.0 || d.rotary_table.present();
   run.step_time_s.reserve(steps);
   const std::size_t frames = steps / stride + 2;
   run.frame_t.reserve(frames);

@@ -322,6 +322,14 @@ get_filename_component(_cli_drill "${CMAKE_CURRENT_LIST_DIR}/../../examples/dril
                        ABSOLUTE)
 cosserat_cli_test(NAME solve_drill_string ARGS solve "${_cli_drill}" --out "${_cli_out}/drill.json"
                   CODE 0 STDERR "converged, 4000 steps")
+# The same string turned by a motor with inertia (tests/test_drill_string.cpp checks the
+# table-string-BHA frequency): it runs, and a bad table is named by key.
+get_filename_component(_cli_motor "${CMAKE_CURRENT_LIST_DIR}/../../examples/drill_string_motor.json"
+                       ABSOLUTE)
+cosserat_cli_test(NAME solve_drill_string_motor ARGS solve "${_cli_motor}" --out "${_cli_out}/motor.json"
+                  CODE 0 STDERR "converged, 4000 steps")
+cosserat_cli_test(NAME bad_rotary_table ARGS validate "${_cli_dir}/bad_rotary_table.json" CODE 2
+                  STDERR "dynamics.rotary_table.inertia: expected a positive number, got -5.*dynamics.base_spin: is not read with \"rotary_table\"")
 cosserat_cli_test(NAME bad_bit_friction ARGS validate "${_cli_dir}/bad_bit_friction.json" CODE 2
                   STDERR "loads.bit_friction.radius: expected a positive number.*loads.bit_friction.static_coefficient: expected a number >= kinetic_coefficient")
 cosserat_cli_test(NAME riser_coarse_grid ARGS solve "${_cli_dir}/riser_coarse_grid.json" CODE 1

@@ -12,6 +12,7 @@
 #include "cosserat/io/problem_kinds.hpp"
 #include "cosserat/lie/se3.hpp"
 #include "cosserat/lie/types.hpp"
+#include "cosserat/robots/rotary_table.hpp"
 #include "cosserat/loads/static_loads.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
@@ -66,6 +67,9 @@ struct Problem {
     /// rad/s: the clamp turns about its own axis (base body z) at this rate from t = 0 (a
     /// drill string's rotary table); SE(3) path, cantilever.
     double base_spin = 0.0;
+    /// "rotary_table": the clamp turned by a motor with inertia instead (robots/rotary_table.hpp;
+    /// SE(3) path, cantilever); absent: inertia 0.
+    RotaryTable rotary_table;
     /// Bdf2Options::shooting_segments (SE(3) path); 0: chosen by the stepper.
     int shooting_segments = 0;
     /// Bdf2Options::spatial_scheme (SE(3) path).
