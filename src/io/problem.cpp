@@ -481,6 +481,24 @@ void CheckSupported(const char* key, Enum value, std::initializer_list<Enum> sup
                  ")");
 }
 
+/// What the drill string's drives (table speed, motor, bit) and a gusting flow run on.
+void DriveAndFlowFeatures(const Problem& p, std::vector<std::string>* out) {
+  const bool quatfd = p.formulation == Formulation::kQuaternionFd;
+  const bool cantilever = p.boundary == Boundary::kCantilever;
+  if (p.gust.present() && p.analysis != Analysis::kDynamics)
+    out->push_back("environment.fluid.gust: a gusting flow needs \"analysis\": \"dynamics\"");
+  if (quatfd && (p.loads.bit.present() || p.dynamics.base_spin != 0.0))
+    out->push_back(
+        std::string(p.loads.bit.present() ? "loads.bit_friction" : "dynamics.base_spin") +
+        ": runs on the \"se3-shooting\" formulation's dynamics in this version");
+  if (p.dynamics.rotary_table.present() && (quatfd || !cantilever))
+    out->push_back(
+        "dynamics.rotary_table: turns a clamped base (\"boundary\": \"cantilever\") on the "
+        "\"se3-shooting\" formulation");
+  if (!quatfd && p.dynamics.base_spin != 0.0 && !cantilever)
+    out->push_back("dynamics.base_spin: turns a clamped base (\"boundary\": \"cantilever\")");
+}
+
 }  // namespace
 
 std::vector<std::string> UnsupportedFeatures(const Problem& p) {
@@ -516,17 +534,7 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
       p.boundary != B::kFreeFree && p.has_robot)
     out.push_back("robot: a robot runs with \"boundary\": \"cantilever\" in statics (got " +
                   detail::Quote(ToString(p.boundary)) + ")");
-  if (p.gust.present() && p.analysis != A::kDynamics)
-    out.push_back("environment.fluid.gust: a gusting flow needs \"analysis\": \"dynamics\"");
-  if (quatfd && (p.loads.bit.present() || p.dynamics.base_spin != 0.0))
-    out.push_back(std::string(p.loads.bit.present() ? "loads.bit_friction" : "dynamics.base_spin") +
-                  ": runs on the \"se3-shooting\" formulation's dynamics in this version");
-  if (p.dynamics.rotary_table.present() && (quatfd || p.boundary != B::kCantilever))
-    out.push_back(
-        "dynamics.rotary_table: turns a clamped base (\"boundary\": \"cantilever\") on the "
-        "\"se3-shooting\" formulation");
-  if (!quatfd && p.dynamics.base_spin != 0.0 && p.boundary != B::kCantilever)
-    out.push_back("dynamics.base_spin: turns a clamped base (\"boundary\": \"cantilever\")");
+  DriveAndFlowFeatures(p, &out);
   if (p.analysis == A::kBuckling && quatfd) {
     // The quaternion-FD stiffness is the Hessian of a potential: conservative tip loads only.
     if (p.loads.tip_force_frame == LoadFrame::kBody)
