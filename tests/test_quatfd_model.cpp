@@ -83,6 +83,7 @@ struct JacobianCase {
   EndCondition base;
   LoadFrame force_frame, moment_frame;
   bool off_manifold;
+  EndCondition tip = EndCondition::kFree;
 };
 
 class QuatFdJacobian : public ::testing::TestWithParam<JacobianCase> {};
@@ -93,6 +94,9 @@ TEST_P(QuatFdJacobian, MatchesCentralDifferences) {
   opt.segments = 6;
   opt.curvature = c.curvature;
   opt.base_end = c.base;
+  opt.tip_end = c.tip;  // a held tip at a point and a turn of its own
+  opt.tip_position_W = Vec3(0.3, 0.1, 0.2);
+  opt.tip_rotation_W = lie::QuatToRotation(lie::QuatFromAxisAngle(Vec3(-0.5, 0.7, 0.1)));
   opt.baumgarte_alpha = 3.0;
   opt.baumgarte_beta = 5.0;
   opt.grid = {0.0, 0.05, 0.12, 0.2, 0.31, 0.4, 0.5};  // non-equidistant
@@ -183,7 +187,9 @@ INSTANTIATE_TEST_SUITE_P(
                       JacobianCase{Curvature::kBasic, EndCondition::kPinned, LoadFrame::kBody,
                                    LoadFrame::kWorld, true},
                       JacobianCase{Curvature::kBasic, EndCondition::kFree, LoadFrame::kWorld,
-                                   LoadFrame::kBody, false}));
+                                   LoadFrame::kBody, false},
+                      JacobianCase{Curvature::kVariant1, EndCondition::kClamped, LoadFrame::kWorld,
+                                   LoadFrame::kWorld, true, EndCondition::kClamped}));
 
 TEST(QuatFdModel, RestStateIsStressFreeEquilibrium) {
   for (Curvature k : {Curvature::kBasic, Curvature::kVariant1}) {
@@ -246,6 +252,7 @@ TEST(QuatFdModel, BadInputIsAClearError) {
   }
   opt.segments = 4;
   opt.tip_end = EndCondition::kClamped;
+  opt.tip_rotation_W = 2.0 * Mat3::Identity();  // not a rotation
   EXPECT_THROW(QuatFdModel(RubberRod(0.5, false), lie::SE3(), opt), std::invalid_argument);
   opt.tip_end = EndCondition::kFree;
   opt.grid = {0, 0.2, 0.1, 0.3, 0.5};

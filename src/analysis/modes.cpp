@@ -148,7 +148,8 @@ void QuatFdShape(const quatfd::QuatFdModel& model, const Reduction& red, const E
       mode->rotation_W[n] =
           model.options().base_end == quatfd::EndCondition::kClamped ? Vec3::Zero() : seg[0];
     else if (n == N)
-      mode->rotation_W[n] = seg[N - 1];
+      mode->rotation_W[n] =
+          model.options().tip_end == quatfd::EndCondition::kClamped ? Vec3::Zero() : seg[N - 1];
     else
       mode->rotation_W[n] = 0.5 * (seg[n - 1] + seg[n]);
   }

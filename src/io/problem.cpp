@@ -36,10 +36,10 @@ void ParseBase(const ObjectReader& base, lie::SE3* pose) {
   *pose = ReadPose(base);
 }
 
-/// "anchor": {"position": [x, y, z], "base": "pinned" | "clamped", "tip": "pinned",
-///            "motion": {"amplitude": [ax, ay, az], "period": T}}.
+/// "anchor": {"position": [x, y, z], "base": "pinned" | "clamped", "tip": "pinned" | "clamped",
+///            "rotation": [[..]] (a clamped tip's), "motion": {"amplitude": [..], "period": T}}.
 void ParseAnchor(const ObjectReader& o, Problem::Anchor* anchor) {
-  o.AllowOnly({"position", "base", "tip", "motion"});
+  o.AllowOnly({"position", "base", "tip", "motion", "rotation"});
   if (const auto motion = ReadObject(o, "motion", Presence::kOptional)) {
     motion->AllowOnly({"amplitude", "period"});
     anchor->motion_amplitude =
@@ -50,10 +50,11 @@ void ParseAnchor(const ObjectReader& o, Problem::Anchor* anchor) {
   anchor->position = ReadVec3(o, "position", Presence::kRequired).value_or(Vec3::Zero());
   anchor->base_clamped =
       ReadChoice(o, "base", {"pinned", "clamped"}, Presence::kOptional) == std::string("clamped");
-  if (const auto tip = ReadChoice(o, "tip", {"pinned", "clamped"}, Presence::kOptional);
-      tip == std::string("clamped"))
-    o.report().Expected(o.PathOf("tip"), "\"pinned\" (a clamped tip is not implemented yet)",
-                        "\"clamped\"");
+  anchor->tip_clamped =
+      ReadChoice(o, "tip", {"pinned", "clamped"}, Presence::kOptional) == std::string("clamped");
+  if (const auto R = ReadRotation(o, "rotation")) anchor->rotation = *R;
+  if (o.Has("rotation") && !anchor->tip_clamped)
+    o.report().Add(o.PathOf("rotation"), "is read only with \"tip\": \"clamped\"");
 }
 
 /// The anchors must be apart, and no farther than the rod can reach by a stretch the linear law
@@ -341,6 +342,7 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   if (const auto rod = ReadObject(top, "rod", Presence::kRequired)) ParseRod(*rod, p);
   if (const auto base = ReadObject(top, "base", Presence::kOptional)) ParseBase(*base, &p->base);
   p->boundary = ReadEnum<Boundary>(top, "boundary", Presence::kOptional).value_or(p->boundary);
+  p->anchor.rotation = p->base.R;  // a clamped tip's default: as the base
   if (const auto anchor = ReadObject(top, "anchor", Presence::kOptional))
     ParseAnchor(*anchor, &p->anchor);
   CheckAnchor(top, *p);

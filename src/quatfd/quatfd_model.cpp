@@ -119,6 +119,22 @@ kernels::BendConstants InteriorBendElement(const RodModel& rod, const Actuation&
   return c;
 }
 
+/// The one-sided element between p_{N−1/2} and a clamp at s = L: length Δs/2, its mirror.
+kernels::BendConstants TipClampBendElement(const RodModel& rod, const Actuation& actuation,
+                                           const std::vector<double>& s,
+                                           kernels::CurvatureKind kind) {
+  const int N = static_cast<int>(s.size()) - 1;
+  const double h = 0.5 * (s[N] - s[N - 1]);
+  const SectionProperties a = PrincipalAxesSectionAt(rod, s[N] - 0.5 * h, actuation);
+  kernels::BendConstants c;
+  c.h = c.weight = h;
+  c.stiffness = Block(a.stiffness, 0, 0);
+  c.damping = Block(a.damping, 0, 0);
+  c.rest = rod.RestStrainAt(s[N]).head<3>() + ChamberShift(rod, s[N] - 0.5 * h, actuation);
+  c.kind = kind;
+  return c;
+}
+
 /// The one-sided element between a clamp at s = 0 and p_{1/2}: length Δs/2 (ghost point
 /// p_{−1/2}).
 kernels::BendConstants ClampBendElement(const RodModel& rod, const Actuation& actuation,
@@ -150,16 +166,17 @@ bool QuatFdOptions::IsValid(std::string* why) const {
     return false;
   };
   if (segments < 2) return fail("segments: the quaternion-fd model needs at least 2 segments");
-  if (tip_end == EndCondition::kClamped)
-    return fail("tip_end: a clamped end at s = L is not implemented for quaternion-fd (free or "
-                "pinned)");
+  if (tip_end == EndCondition::kClamped &&
+      !((tip_rotation_W.transpose() * tip_rotation_W - Mat3::Identity()).norm() < 1e-9 &&
+        tip_rotation_W.determinant() > 0))
+    return fail("tip_rotation_W: a clamped tip needs a rotation matrix");
   if (!tip_position_W.allFinite()) return fail("tip_position_W: expected finite coordinates");
   if (!tip_motion_amplitude.allFinite())
     return fail("tip_motion_amplitude: expected finite coordinates");
   if (!(std::isfinite(tip_motion_angular_frequency) && tip_motion_angular_frequency >= 0))
     return fail("tip_motion_angular_frequency: expected a finite number >= 0");
-  if (tip_motion_angular_frequency > 0 && tip_end != EndCondition::kPinned)
-    return fail("tip_motion_angular_frequency: moves a pinned tip (tip_end kPinned)");
+  if (tip_motion_angular_frequency > 0 && !TipHeld())
+    return fail("tip_motion_angular_frequency: moves a held tip (tip_end kPinned or kClamped)");
   if (!(std::isfinite(baumgarte_alpha) && baumgarte_alpha >= 0))
     return fail("baumgarte_alpha: expected a finite number >= 0");
   if (!(std::isfinite(baumgarte_beta) && baumgarte_beta >= 0))
@@ -218,6 +235,11 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
     bend_[n] = InteriorBendElement(rod, actuation, s_, n, kind);
     bend_active_[n] = 1;
   }
+  if (options.tip_end == EndCondition::kClamped) {  // element N: p_{N−1/2} to the tip's clamp
+    bend_[N] = TipClampBendElement(rod, actuation, s_, kind);
+    bend_active_[N] = 1;
+    tip_quat_ = lie::RotationToQuat(options.tip_rotation_W);
+  }
   if (options.base_end == EndCondition::kClamped) {
     bend_[0] = ClampBendElement(rod, actuation, s_, kind);
     bend_active_[0] = 1;
@@ -229,7 +251,7 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   fixed_.assign(size(), 0);
   if (options.base_end != EndCondition::kFree)
     for (int k = 0; k < 3; ++k) fixed_[L::X(0) + k] = 1;
-  if (options.tip_end == EndCondition::kPinned)
+  if (options.TipHeld())
     for (int k = 0; k < 3; ++k) fixed_[L::X(N) + k] = 1;
 
   {
@@ -249,7 +271,7 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
 void QuatFdModel::RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const {
   const int N = layout_.segments;
   v.setZero();
-  if (options_.tip_end == EndCondition::kPinned) {
+  if (options_.TipHeld()) {
     HeldShape(q);
     return;
   }
@@ -439,7 +461,7 @@ void QuatFdModel::DivideVertexRowsByMass(const Eigen::Ref<const Eigen::VectorXd>
   }
   // A moving tip anchor: its vertex driven as the oscillator ẍ = −ω² (x − x̄ − A) (QuatFdOptions).
   const double w = options_.tip_motion_angular_frequency;
-  if (options_.tip_end != EndCondition::kPinned || w == 0.0) return;
+  if (!options_.TipHeld() || w == 0.0) return;
   const int r = L::X(layout_.segments);
   a.segment<3>(r) =
       -w * w * (q.segment<3>(r) - options_.tip_position_W - options_.tip_motion_amplitude);
@@ -525,6 +547,12 @@ void QuatFdModel::EvaluateValue(const Eigen::Ref<const Eigen::VectorXd>& q,
     p_prev = p;
     pd_prev = pd;
     f_prev = f;
+  }
+  if (bend_active_[N]) {  // the tip's clamp
+    Vec3 ta, tb;
+    kernels::BendTorquesOmega<double>(bend_[N], p_prev, tip_quat_, f_prev.omega, Vec3::Zero(), &ta,
+                                      &tb);
+    a.segment<3>(L::P(N - 1) + 1) += ta;
   }
   Vec3 tip_force_W, tip_torque_B;
   TipLoads<double>(p_prev, &tip_force_W, &tip_torque_B);

@@ -189,20 +189,29 @@ void QuatFdModel::AddBendTorques(const Eigen::Ref<const Eigen::VectorXd>& q,
                                  const Eigen::Ref<const Eigen::VectorXd>& v,
                                  Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
                                  BandedMatrix* dfdv) const {
-  // n = 0 is the clamp's element (its p_a is the constant clamp quaternion).
-  for (int n = 0; n < layout_.segments; ++n) {
+  // n = 0 is the base clamp's element (its p_a is the constant clamp quaternion), n = N the tip
+  // clamp's (its p_b).
+  const int N = layout_.segments;
+  for (int n = 0; n <= N; ++n) {
     if (!bend_active_[n]) continue;
-    const bool clamp = n == 0;
-    const int pa = clamp ? -1 : L::P(n - 1), pb = L::P(n);
+    const bool clamp = n == 0, tip_clamp = n == N;
+    const int pa = clamp ? -1 : L::P(n - 1), pb = tip_clamp ? -1 : L::P(n);
     const Vec4 qa = clamp ? base_quat_ : Value<4>(q, pa);
     const Vec4 va = clamp ? Vec4::Zero() : Value<4>(v, pa);
+    const Vec4 qb = tip_clamp ? tip_quat_ : Value<4>(q, pb);
+    const Vec4 vb = tip_clamp ? Vec4::Zero() : Value<4>(v, pb);
     kernels::BendJacobian J;
     Vec3 ta, tb;
     if (kMode == kAnalytic)
-      kernels::BendTorquesJacobian(bend_[n], qa, Value<4>(q, pb), va, Value<4>(v, pb), &ta, &tb,
-                                   &J);
+      kernels::BendTorquesJacobian(bend_[n], qa, qb, va, vb, &ta, &tb, &J);
     else
-      BendTorquesAutoDiff(bend_[n], qa, Value<4>(q, pb), va, Value<4>(v, pb), &ta, &tb, &J);
+      BendTorquesAutoDiff(bend_[n], qa, qb, va, vb, &ta, &tb, &J);
+    if (tip_clamp) {
+      a.segment<3>(pa + 1) += ta;
+      AddRows(dfdq, pa + 1, pa, J.ta_pa);
+      AddRows(dfdv, pa + 1, pa, J.ta_pda);
+      continue;
+    }
     a.segment<3>(pb + 1) += tb;
     AddRows(dfdq, pb + 1, pb, J.tb_pb);
     AddRows(dfdv, pb + 1, pb, J.tb_pdb);

@@ -222,7 +222,9 @@ void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
     if (n == 0) {
       p = options_.base_end == EndCondition::kClamped ? base_quat_ : Vec4(q.segment<4>(L::P(0)));
     } else if (n == N) {
-      p = TipQuaternion<double>(q.segment<4>(L::P(N - 1)));
+      p = options_.tip_end == EndCondition::kClamped
+              ? tip_quat_
+              : TipQuaternion<double>(q.segment<4>(L::P(N - 1)));
     } else {
       const Vec4 pa = q.segment<4>(L::P(n - 1));
       Vec4 pb = q.segment<4>(L::P(n));
@@ -237,8 +239,9 @@ void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
       Vec3 ta, tb;
       const Vec4 pa = n == 0 ? base_quat_ : Vec4(q.segment<4>(L::P(n - 1)));
       const Vec4 pda = n == 0 ? Vec4::Zero() : Vec4(v.segment<4>(L::P(n - 1)));
-      kernels::BendTorques<double>(bend_[n], pa, q.segment<4>(L::P(n)), pda, v.segment<4>(L::P(n)),
-                                   &ta, &tb, &K, &M);
+      const Vec4 pb = n == N ? tip_quat_ : Vec4(q.segment<4>(L::P(n)));
+      const Vec4 pdb = n == N ? Vec4::Zero() : Vec4(v.segment<4>(L::P(n)));
+      kernels::BendTorques<double>(bend_[n], pa, pb, pda, pdb, &ta, &tb, &K, &M);
     }
     // Strain and force: mean of the neighbouring segments, rotated into this vertex's frame.
     Vec3 G = Vec3::Zero(), Fw = Vec3::Zero(), W = Vec3::Zero();
@@ -263,12 +266,13 @@ void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
       Fw = lie::QuatToRotation(q.segment<4>(L::P(N - 1)).normalized()) * force[N - 1];
       // A held tip: the support's force, which balances the last segment's pull and the load
       // lumped at x_N.
-      if (options_.tip_end == EndCondition::kPinned) Fw -= vertex_force_W_[N];
+      if (options_.TipHeld()) Fw -= vertex_force_W_[N];
     }
     // A pinned base that holds only the twist: its element's bending part has no stiffness, and
     // the bend between the base frame and p_{1/2} it sees is no curvature of the rod.
     if (n == 0 && options_.base_end == EndCondition::kPinned) K.head<2>().setZero();
-    if (n == N) {  // the free end: K(L) = K* + C⁻¹ m, M(L) = the tip moment in the tip frame
+    if (n == N && options_.tip_end != EndCondition::kClamped) {
+      // The free or pinned end: K(L) = K* + C⁻¹ m, M(L) = the tip moment in the tip frame.
       Vec3 f, m;
       TipLoads<double>(q.segment<4>(L::P(N - 1)), &f, &m);
       M = R.transpose() * lie::QuatToRotation(q.segment<4>(L::P(N - 1)).normalized()) * m;
@@ -301,11 +305,11 @@ QuatFdEnergy QuatFdModel::Energy(const Eigen::Ref<const Eigen::VectorXd>& q,
   for (int n = 0; n <= N; ++n) {
     if (!bend_active_[n]) continue;
     const Vec4 pa = n == 0 ? base_quat_ : Vec4(q.segment<4>(L::P(n - 1)));
+    const Vec4 pb = n == N ? tip_quat_ : Vec4(q.segment<4>(L::P(n)));
     kernels::BendConstants c = bend_[n];
     c.damping.setZero();
     Vec3 ta, tb, K;
-    kernels::BendTorques<double>(c, pa, q.segment<4>(L::P(n)), Vec4::Zero(), Vec4::Zero(), &ta, &tb,
-                                 &K);
+    kernels::BendTorques<double>(c, pa, pb, Vec4::Zero(), Vec4::Zero(), &ta, &tb, &K);
     const Vec3 ek = K - c.rest;
     e.elastic += 0.5 * c.weight * ek.dot(c.stiffness * ek);
   }

@@ -29,7 +29,7 @@ struct Workspace {
 double StaticBeta(const QuatFdModel& model, const StaticLoads& loads,
                   const Eigen::Ref<const Eigen::VectorXd>& q) {
   double moment = model.moment_scale();
-  if (model.options().tip_end == EndCondition::kPinned) {
+  if (model.options().TipHeld()) {
     const double h = model.length() / model.layout().segments;
     const double weight = model.Mass() * loads.gravity_W.norm() +
                           loads.distributed_force_W.norm() * model.length() +
@@ -108,7 +108,7 @@ double StaticResidual(const QuatFdModel& model, const Eigen::Ref<const Eigen::Ve
   Eigen::VectorXd forces(n);
   model.Forces(q, Eigen::VectorXd::Zero(n), forces);
   double force_scale = model.force_scale(), moment_scale = model.moment_scale();
-  if (model.options().tip_end == EndCondition::kPinned) {
+  if (model.options().TipHeld()) {
     const double f_max = model.MaxSegmentForce(q);
     force_scale = std::max(force_scale, f_max);
     moment_scale = std::max(moment_scale, f_max * model.length() / N);
@@ -181,7 +181,7 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   // comes first, and the continuation adds the other loads to it. The hanging shape does not
   // depend on the size of gravity, so gravity itself is followed from zero when needed.
   bool ok;
-  if (model->options().tip_end == EndCondition::kPinned && !loads.gravity_W.isZero()) {
+  if (model->options().TipHeld() && !loads.gravity_W.isZero()) {
     StaticLoads hanging = loads.Scaled(0.0);
     hanging.gravity_W = loads.gravity_W;
     model->set_loads(hanging);

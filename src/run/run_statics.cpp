@@ -109,6 +109,8 @@ Result RunAnchoredStatics(const io::Problem& problem, const RunOptions& options)
   opt.base_pinned = !problem.anchor.base_clamped;
   opt.tip_pinned = true;
   opt.tip_position_W = problem.anchor.position;
+  opt.tip_clamped = problem.anchor.tip_clamped;
+  opt.tip_rotation_W = problem.anchor.rotation;
   StaticMultipleShootingSolver solver(problem.rod, problem.nodes, opt);
   StaticShootingSummary summary;
   summary.status = start.status;

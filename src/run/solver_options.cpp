@@ -29,8 +29,10 @@ quatfd::QuatFdOptions QuatFdModelOptions(const io::Problem& problem) {
       options.base_end = quatfd::EndCondition::kPinned;
       options.base_twist_held = true;
     }
-    options.tip_end = quatfd::EndCondition::kPinned;
+    options.tip_end = problem.anchor.tip_clamped ? quatfd::EndCondition::kClamped
+                                                 : quatfd::EndCondition::kPinned;
     options.tip_position_W = problem.anchor.position;
+    options.tip_rotation_W = problem.anchor.rotation;
     if (problem.analysis == io::Analysis::kDynamics && problem.anchor.motion_period > 0) {
       options.tip_motion_amplitude = problem.anchor.motion_amplitude;
       options.tip_motion_angular_frequency = 2 * M_PI / problem.anchor.motion_period;

@@ -195,6 +195,8 @@ Vec6 StaticMultipleShootingSolver::TipResidual(const Point& tip, const StaticLoa
   W << tip.m, tip.n;
   Vec6 e = (W - TipWrenchInBody(TotalTipWrench(loads), tip.R)).cwiseQuotient(scale_);
   if (options_.tip_pinned) e.tail<3>() = (tip.p - options_.tip_position_W) / model_.length;
+  if (options_.tip_pinned && options_.tip_clamped)
+    e.head<3>() = lie::SO3Log(Mat3(options_.tip_rotation_W.transpose() * tip.R));
   return e;
 }
 

@@ -301,7 +301,7 @@ get_filename_component(_cli_vessel "${CMAKE_CURRENT_LIST_DIR}/../../examples/ris
 cosserat_cli_test(NAME solve_riser_vessel_motion ARGS solve "${_cli_vessel}" --out "${_cli_out}/vessel.json"
                   CODE 0 STDERR "converged \\(quaternion-fd, radau: ok\\).*60 s simulated")
 cosserat_cli_test(NAME bad_anchor ARGS validate "${_cli_dir}/bad_anchor.json" CODE 2
-                  STDERR "anchor.motion.period: expected a positive number, got -2.*anchor.tip: expected \"pinned\".*anchor.position: expected at most 1.5")
+                  STDERR "anchor.motion.period: expected a positive number, got -2.*anchor.tip: expected one of \"pinned\", \"clamped\", got \"welded\".*anchor.rotation: is read only with \"tip\": \"clamped\".*anchor.position: expected at most 1.5")
 cosserat_cli_test(NAME anchor_without_boundary ARGS validate
                   "${_cli_dir}/anchor_without_boundary.json" CODE 2
                   STDERR "anchor: is read only with \"boundary\": \"anchored\"")
@@ -315,6 +315,13 @@ cosserat_cli_test(NAME anchored_se3_coarse ARGS solve "${_cli_dir}/stay_cable_se
                   CODE 1 STDERR "boundary layers at the anchors.*try rod.nodes >= 455")
 cosserat_cli_test(NAME anchored_se3_dynamics ARGS solve "${_cli_dir}/anchored_se3_dynamics.json"
                   CODE 2 STDERR "boundary: \"anchored\" runs dynamics and modes on the \"quaternion-fd\"")
+# A beam clamped at both ends ("tip": "clamped") in both formulations: each anchor carries half
+# the load, q L/2 = 30.159 N (tests/test_cables.cpp checks its deflection and end moments
+# against beam theory).
+cosserat_cli_test(NAME clamped_beam ARGS solve "${_cli_dir}/clamped_beam.json" CODE 0
+                  STDERR "converged \\(quaternion-fd\\).*anchor force \\[1\\.53[0-9]*, -?0, 30\\.159[0-9]*\\] N")
+cosserat_cli_test(NAME clamped_beam_se3 ARGS solve "${_cli_dir}/clamped_beam_se3.json" CODE 0
+                  STDERR "converged.*anchor force \\[1\\.53[0-9]*, -?0, 30\\.159[0-9]*\\] N")
 
 # The drill string: stick-slip from the command line (tests/test_drill_string.cpp checks it
 # against the torsional pendulum), and bad bit friction named by key.

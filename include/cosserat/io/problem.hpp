@@ -35,6 +35,10 @@ struct Problem {
   struct Anchor {
     Vec3 position = Vec3::Zero();  ///< where the tip is held, world, m
     bool base_clamped = false;
+    bool tip_clamped = false;
+    /// A clamped tip's rotation R_WB (world; its third column the tangent at s = L); "rotation",
+    /// by default base.rotation.
+    Mat3 rotation = Mat3::Identity();
     /// "motion": in dynamics the anchor moves as position + amplitude (1 − cos(2π t / period)),
     /// from rest (a vessel's heave and surge; world, m and s). Zero amplitude: held still.
     Vec3 motion_amplitude = Vec3::Zero();

@@ -70,10 +70,15 @@ struct QuatFdOptions {
   /// clamp's element at s = 0 with its torsional part only. Without it, a rod pinned at both ends
   /// is free to spin about its own line (an isotropic section stores no energy in that).
   bool base_twist_held = false;
-  EndCondition tip_end = EndCondition::kFree;      ///< the end at s = L: kFree or kPinned
-  /// Where a pinned tip is held (world, m).
+  EndCondition tip_end = EndCondition::kFree;      ///< the end at s = L
+  /// Where a pinned or clamped tip is held (world, m).
   Vec3 tip_position_W = Vec3::Zero();
-  /// A pinned tip that moves as tip_position_W + A (1 − cos ω t) (a vessel's heave and surge,
+  /// A clamped tip's rotation R_WB (its third column the rod's tangent at s = L): the clamp's
+  /// element at s = L, the mirror of the base's.
+  Mat3 tip_rotation_W = Mat3::Identity();
+  /// Whether the tip is held at tip_position_W (pinned or clamped).
+  bool TipHeld() const { return tip_end != EndCondition::kFree; }
+  /// A held tip that moves as tip_position_W + A (1 − cos ω t) (a vessel's heave and surge,
   /// setting off from rest at tip_position_W and swinging about tip_position_W + A; A in m,
   /// world; ω in rad/s; 0: held still). The model has no time: the tip vertex is driven as the
   /// oscillator ẍ = −ω² (x − tip_position_W − A), which from rest at tip_position_W follows that
@@ -312,6 +317,7 @@ class QuatFdModel {
   double tip_h_ = 0;                        ///< Δs_{N−1/2}
   lie::SE3 base_;
   Vec4 base_quat_;
+  Vec4 tip_quat_ = Vec4(1, 0, 0, 0);  ///< a clamped tip's rotation (QuatFdOptions::tip_rotation_W)
   StaticLoads loads_;
   SplitWrench tip_wrench_;               ///< loads_ on the tip (dead: world, follower: tip frame)
   bool motion_loads_ = false;            ///< some load of loads_ depends on the motion (drag)

@@ -59,6 +59,10 @@ struct StaticMultipleShootingOptions {
   /// anchor, not the rod, and a tip moment still loads the rod.
   bool tip_pinned = false;
   Vec3 tip_position_W = Vec3::Zero();
+  /// With tip_pinned: the tip clamped at tip_rotation_W (R_WB) too, its residual the rotation
+  /// error instead of the moment.
+  bool tip_clamped = false;
+  Mat3 tip_rotation_W = Mat3::Identity();
 };
 
 class StaticMultipleShootingSolver {
