@@ -184,6 +184,32 @@ bool QuatFdOptions::IsValid(std::string* why) const {
   return true;
 }
 
+void QuatFdModel::SetUpBendElements(const RodModel& rod, const Actuation& actuation) {
+  // Bending/torsion elements at the interior vertices, and at clamped ends (element 0 from the
+  // base's clamp to p_{1/2}, element N from p_{N−1/2} to the tip's).
+  const int N = layout_.segments;
+  const auto kind = options_.curvature == Curvature::kBasic ? kernels::CurvatureKind::kBasic
+                                                            : kernels::CurvatureKind::kVariant1;
+  bend_.resize(N + 1);
+  bend_active_.assign(N + 1, 0);
+  for (int n = 1; n < N; ++n) {
+    bend_[n] = InteriorBendElement(rod, actuation, s_, n, kind);
+    bend_active_[n] = 1;
+  }
+  if (options_.tip_end == EndCondition::kClamped) {
+    bend_[N] = TipClampBendElement(rod, actuation, s_, kind);
+    bend_active_[N] = 1;
+    tip_quat_ = lie::RotationToQuat(options_.tip_rotation_W);
+  }
+  if (options_.base_end == EndCondition::kClamped) {
+    bend_[0] = ClampBendElement(rod, actuation, s_, kind);
+    bend_active_[0] = 1;
+  } else if (options_.base_end == EndCondition::kPinned && options_.base_twist_held) {
+    bend_[0] = TwistOnly(ClampBendElement(rod, actuation, s_, kind));
+    bend_active_[0] = 1;
+  }
+}
+
 QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFdOptions& options,
                          const Actuation& actuation)
     : options_(options), base_(base) {
@@ -226,27 +252,7 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   for (int n = 0; n <= N; ++n)
     vertex_diameter_[n] = std::sqrt(4.0 * displaced[n] / (M_PI * vertex_weight_[n]));
 
-  // Bending/torsion elements at the interior vertices, and at a clamped base.
-  const auto kind = options.curvature == Curvature::kBasic ? kernels::CurvatureKind::kBasic
-                                                           : kernels::CurvatureKind::kVariant1;
-  bend_.resize(N + 1);
-  bend_active_.assign(N + 1, 0);
-  for (int n = 1; n < N; ++n) {
-    bend_[n] = InteriorBendElement(rod, actuation, s_, n, kind);
-    bend_active_[n] = 1;
-  }
-  if (options.tip_end == EndCondition::kClamped) {  // element N: p_{N−1/2} to the tip's clamp
-    bend_[N] = TipClampBendElement(rod, actuation, s_, kind);
-    bend_active_[N] = 1;
-    tip_quat_ = lie::RotationToQuat(options.tip_rotation_W);
-  }
-  if (options.base_end == EndCondition::kClamped) {
-    bend_[0] = ClampBendElement(rod, actuation, s_, kind);
-    bend_active_[0] = 1;
-  } else if (options.base_end == EndCondition::kPinned && options.base_twist_held) {
-    bend_[0] = TwistOnly(ClampBendElement(rod, actuation, s_, kind));
-    bend_active_[0] = 1;
-  }
+  SetUpBendElements(rod, actuation);
 
   fixed_.assign(size(), 0);
   if (options.base_end != EndCondition::kFree)

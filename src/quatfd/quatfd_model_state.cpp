@@ -201,6 +201,25 @@ double QuatFdModel::Mass() const {
   return m;
 }
 
+Vec4 QuatFdModel::VertexQuaternion(const Eigen::Ref<const Eigen::VectorXd>& q, int n) const {
+  const int N = layout_.segments;
+  Vec4 p;
+  if (n == 0) {
+    p = options_.base_end == EndCondition::kClamped ? base_quat_ : Vec4(q.segment<4>(L::P(0)));
+  } else if (n == N) {
+    p = options_.tip_end == EndCondition::kClamped
+            ? tip_quat_
+            : TipQuaternion<double>(q.segment<4>(L::P(N - 1)));
+  } else {
+    const Vec4 pa = q.segment<4>(L::P(n - 1));
+    Vec4 pb = q.segment<4>(L::P(n));
+    if (pa.dot(pb) < 0) pb = -pb;
+    p = pa + pb;
+  }
+  p.normalize();
+  return p;
+}
+
 void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
                              const Eigen::Ref<const Eigen::VectorXd>& v, RodState* state) const {
   const int N = layout_.segments;
@@ -218,20 +237,7 @@ void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
   for (int n = 0; n <= N; ++n) {
     state->s[n] = s_[n];
     state->position_W[n] = q.segment<3>(L::X(n));
-    Vec4 p;
-    if (n == 0) {
-      p = options_.base_end == EndCondition::kClamped ? base_quat_ : Vec4(q.segment<4>(L::P(0)));
-    } else if (n == N) {
-      p = options_.tip_end == EndCondition::kClamped
-              ? tip_quat_
-              : TipQuaternion<double>(q.segment<4>(L::P(N - 1)));
-    } else {
-      const Vec4 pa = q.segment<4>(L::P(n - 1));
-      Vec4 pb = q.segment<4>(L::P(n));
-      if (pa.dot(pb) < 0) pb = -pb;
-      p = pa + pb;
-    }
-    p.normalize();
+    const Vec4 p = VertexQuaternion(q, n);
     const Mat3 R = lie::QuatToRotation(p);
     state->rotation_WB[n] = R;
     Vec3 K = Vec3::Zero(), M = Vec3::Zero();

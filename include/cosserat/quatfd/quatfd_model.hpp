@@ -223,6 +223,11 @@ class QuatFdModel {
   double force_scale() const { return force_scale_; }
 
  private:
+  /// The rotation of vertex n for the writers (ToRodState): the clamps' at clamped ends, the
+  /// last segment's at a free or pinned tip, else the normalised mean of its two segments'.
+  Vec4 VertexQuaternion(const Eigen::Ref<const Eigen::VectorXd>& q, int n) const;
+  /// bend_ and bend_active_ for the grid, the ends and the actuation (constructor).
+  void SetUpBendElements(const RodModel& rod, const Actuation& actuation);
   enum : int { kAutoDiff, kAnalytic };  ///< Evaluate's mode: J by Jet, by hand
   template <int kMode>
   void JacobianImpl(const Eigen::Ref<const Eigen::VectorXd>& q,
