@@ -103,6 +103,7 @@ json DynamicResultToJson(const DynamicRun& run, const RodState& final_state) {
   for (const Vec3& p : run.frame_tip) tip.push_back(ToArray(p));
   out["trajectory"] = {{"t", run.frame_t}, {"tip_position", std::move(tip)}};
   if (run.report_tip_spin) out["trajectory"]["tip_spin"] = run.frame_tip_spin;
+  if (run.report_touchdown) out["trajectory"]["touchdown_s"] = run.frame_touchdown_s;
   if (run.report_anchor_force) {
     json force = json::array();
     for (const Vec3& f : run.frame_anchor_force) force.push_back(ToArray(f));

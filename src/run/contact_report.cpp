@@ -1,5 +1,7 @@
 #include "contact_report.hpp"
 
+#include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -29,6 +31,22 @@ void AppendContactColumns(const nlohmann::ordered_json& per_node, std::string* c
 }
 
 }  // namespace
+
+double TouchdownS(const io::Problem& problem, const RodState& state) {
+  double touchdown = std::numeric_limits<double>::quiet_NaN();
+  for (int i = 0; i < state.size(); ++i) {
+    const double r_o =
+        0.5 * problem.rod.section->At(state.s[i], problem.robot.actuation).outer_diameter;
+    bool touching = false;
+    for (int k = 0; k < problem.loads.contact.count && !touching; ++k) {
+      Vec3 normal;
+      touching = problem.loads.contact.surface[k].Distance(state.position_W[i], &normal) < r_o;
+    }
+    if (touching) touchdown = state.s[i];
+    if (!touching && !std::isnan(touchdown)) break;  // the end of the first stretch in contact
+  }
+  return touchdown;
+}
 
 void AddContactReport(const io::Problem& problem, Result* result) {
   if (problem.loads.contact.count == 0) return;

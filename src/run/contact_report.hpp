@@ -16,4 +16,9 @@ namespace cosserat::run::detail {
 /// surfaces and the result has nodes.
 void AddContactReport(const io::Problem& problem, Result* result);
 
+/// The touchdown point of a state: the s of the last node of the first stretch of nodes, from
+/// the base, whose sections press into a contact surface (their centreline nearer to it than
+/// their outer radius); NaN when none does.
+double TouchdownS(const io::Problem& problem, const RodState& state);
+
 }  // namespace cosserat::run::detail

@@ -11,6 +11,7 @@
 #include "cosserat/quatfd/quatfd_statics.hpp"
 #include "cosserat/quatfd/radau.hpp"
 #include "cosserat/run/solver_options.hpp"
+#include "contact_report.hpp"
 #include "node_table.hpp"
 
 namespace cosserat::run {
@@ -214,6 +215,7 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
   run.initial_state_ok = init.converged();
   run.status = init.status;
   run.report_anchor_force = problem.boundary == io::Boundary::kAnchored;
+  run.report_touchdown = run.report_anchor_force && problem.loads.contact.count > 0;
   RodState state;
   model.ToRodState(q, v, &state);
   auto record = [&](double t) {
@@ -222,6 +224,7 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
     run.frame_tip.push_back(state.tip_position_W());
     if (run.report_anchor_force)
       run.frame_anchor_force.push_back(state.rotation_WB.back() * state.wrench_B.back().tail<3>());
+    if (run.report_touchdown) run.frame_touchdown_s.push_back(detail::TouchdownS(problem, state));
     if (options.nodes_csv)
       run.frame_positions.insert(run.frame_positions.end(), state.position_W.begin(),
                                  state.position_W.end());

@@ -57,6 +57,11 @@ struct DynamicRun {
   /// anchor_force when `report_anchor_force`.
   std::vector<Vec3> frame_anchor_force;
   bool report_anchor_force = false;
+  /// The touchdown point of each frame (m of s: the end of the first stretch pressing into a
+  /// contact surface, from the base; NaN when none does), written as the trajectory's
+  /// touchdown_s when `report_touchdown` (a riser on the sea bed).
+  std::vector<double> frame_touchdown_s;
+  bool report_touchdown = false;
   std::vector<Vec3> frame_positions;  ///< all node positions, frame after frame (may be empty)
 };
 
