@@ -211,6 +211,21 @@ TEST(Assembly, AnLFrameDeflectsAsLinearBeamTheorySays) {
               drop, drop_expected, sway, sway_expected);
   EXPECT_NEAR(drop, drop_expected, 3e-3 * drop_expected);
   EXPECT_NEAR(std::abs(sway), sway_expected, 3e-3 * sway_expected);
+
+  // The same frame with the beam run the other way, from the end body to the corner: the end
+  // body is then held by a rod's base alone. The same structure: the same end, to the solves'
+  // tolerances and the grids' different sampling of the same beam (1e-6 of the drop).
+  AssemblyRod reversed = a.rods[1];
+  reversed.base_body = 1;
+  reversed.base.R = lie::SO3Exp(Vec3(0, -0.5 * M_PI, 0));  // tangent along −x
+  reversed.body = 0;
+  reversed.attachment.R = reversed.base.R;
+  a.rods[1] = reversed;
+  AssemblyStaticsSolver turned(a);
+  ASSERT_TRUE(turned.Solve(StaticLoads{}).converged());
+  const double drop_turned = end.p.z() - turned.body_poses()[1].p.z();
+  std::printf("L-frame, the beam reversed: the end drops %.6e m\n", drop_turned);
+  EXPECT_NEAR(drop_turned, drop, 1e-6 * drop);
 }
 
 /// The continuum Stewart–Gough robot of Till, Aloi & Rucker (2019) as their example code builds

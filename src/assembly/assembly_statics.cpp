@@ -40,9 +40,10 @@ AssemblyStaticsSolver::AssemblyStaticsSolver(const Assembly& assembly,
     const double L = a.model.length, EI = rod.shot.bending_stiffness();
     rod.moment_scale = EI / L;
     rod.force_scale = EI / (L * L);
-    if (a.body >= 0) {
-      body_force_scale_[a.body] = std::max(body_force_scale_[a.body], rod.force_scale);
-      body_moment_scale_[a.body] = std::max(body_moment_scale_[a.body], rod.moment_scale);
+    for (int b : {a.body, a.base_body}) {  // every body either end of the rod is on
+      if (b < 0) continue;
+      body_force_scale_[b] = std::max(body_force_scale_[b], rod.force_scale);
+      body_moment_scale_[b] = std::max(body_moment_scale_[b], rod.moment_scale);
     }
     rods_.push_back(std::move(rod));
     lengths_.push_back(L);
@@ -501,6 +502,11 @@ AssemblySummary AssemblyStaticsSolver::Solve(const StaticLoads& loads,
     }
     converged = converged && Follow(at, &summary) == 1.0;
     bodies = full;
+    if (!converged && has_solution_) {  // back to the last solution, the next solve's start
+      x_ = start_x;
+      poses_ = start_poses;
+      lengths_ = start_lengths;
+    }
   }
   if (converged) {
     has_solution_ = true;
@@ -533,13 +539,18 @@ AssemblySummary AssemblyStaticsSolver::SolveLengths(const StaticLoads& loads,
     auto at = [&](double mu) {
       for (size_t b = 0; b < poses_.size(); ++b) {
         poses_[b].p = start[b].p + mu * (poses[b].p - start[b].p);
-        poses_[b].R =
-            start[b].R * lie::SO3Exp(Vec3(mu * lie::SO3Log(Mat3(start[b].R.transpose() * poses[b].R))));
+        const Vec3 turn = lie::SO3Log(Mat3(start[b].R.transpose() * poses[b].R));
+        poses_[b].R = start[b].R * lie::SO3Exp(Vec3(mu * turn));
       }
       return mu == 1.0 ? loads : StaticLoads::Blend(start_loads, loads, mu);
     };
     at(0.0);
     converged = Follow(at, &summary) == 1.0;
+    if (!converged) {  // back to the last solution, the next solve's start
+      x_ = start_x;
+      lengths_ = start_lengths;
+      poses_ = start;
+    }
   }
   if (converged) {
     has_solution_ = true;

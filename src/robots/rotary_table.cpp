@@ -1,5 +1,6 @@
 #include "cosserat/robots/rotary_table.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "cosserat/lie/so3.hpp"
@@ -17,6 +18,8 @@ constexpr double kAngleTolerance = 1e-12;
 // than its solve's tolerance (~GJ/h × 1e-6), small beside any twist (the equation is affine in
 // the angle to that order).
 constexpr double kSecantOffset = 1e-6;
+// The table's equation's residual accepted, relative to its largest term.
+constexpr double kEquationTolerance = 1e-6;
 
 }  // namespace
 
@@ -48,8 +51,18 @@ StepSummary RotaryTableDrive::Step(Bdf2ShootingStepper* stepper, StepInput* inpu
   };
   // Two starts: the angle the last speed carries the table to, and a nudge of it.
   double a = phi_ + dt * w_, b = a + kSecantOffset;
-  double ra = residual(a, false), rb = residual(b, true);
+  double ra = residual(a, false);
   bool converged = summary.converged();
+  double rb = converged ? residual(b, true) : 0.0;
+  converged = converged && summary.converged();
+  // N·m: the size of the equation's terms at the latest trial, for its acceptance.
+  auto term_scale = [&](double phi) {
+    const double w = speed_at(phi);
+    return std::max({std::abs(table_.inertia * acceleration_at(w)),
+                     std::abs(table_.MotorTorque(w)),
+                     std::abs(stepper->state().wrench_B.front()(2)), 1e-300});
+  };
+  double scale = term_scale(b);
   for (int it = 0; it < kMaxSecantIterations && converged; ++it) {
     if (rb == ra) break;
     const double c = b - rb * (b - a) / (rb - ra);
@@ -58,9 +71,16 @@ StepSummary RotaryTableDrive::Step(Bdf2ShootingStepper* stepper, StepInput* inpu
     b = c;
     rb = residual(b, true);
     converged = summary.converged();
+    scale = term_scale(b);
     if (std::abs(b - a) < kAngleTolerance * (1.0 + std::abs(b))) break;
   }
-  if (!converged) return summary;
+  // The table's equation must hold to the string's solve (its torque to ~1e-10 of EI/L, far
+  // below 1e-6 of the equation's terms), else the step is not taken.
+  if (!converged || !(std::abs(rb) <= kEquationTolerance * scale)) {
+    if (converged) summary.status = SolveStatus::kMaxIterations;
+    stepper->Restore(start);
+    return summary;
+  }
   const double w = speed_at(b);  // before the history moves on
   phi1_ = phi_;
   w1_ = w_;

@@ -50,7 +50,8 @@ class AssemblyStaticsSolver {
 
   /// Forward problem: the bodies' poses and the rods' shapes for the rods' `lengths` (m, one per
   /// rod; empty: each model's length) under `loads` (their gravity also weighs the bodies; tip
-  /// loads are not used: load a body instead). Starts from the last solution.
+  /// loads are not used: load a body instead). Starts from the last solution; when it fails, the
+  /// solver keeps that solution as the next solve's start (the state then reports it).
   AssemblySummary Solve(const StaticLoads& loads, const std::vector<double>& lengths = {});
 
   /// Inverse problem: the rods' lengths that hold each body at `poses` (one per body) under

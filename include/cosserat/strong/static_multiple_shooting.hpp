@@ -80,8 +80,10 @@ class StaticMultipleShootingSolver {
   /// Equilibrium by Newton at the full loads from `guess`, a state of the whole rod on this grid
   /// (node poses, body-frame wrenches: e.g. the quaternion-FD equilibrium), the start of rods held
   /// at both ends. With options.pieces 0 the pieces follow from the guess's largest force T:
-  /// exponent L sqrt(T / EI), as for Solve. Throws std::invalid_argument when the guess has
-  /// another number of nodes.
+  /// exponent L sqrt(T / EI), as for Solve. The unknowns and residuals are scaled by the guess's
+  /// largest force T (forces) and sqrt(T EI) (moments) instead of EI/L² and EI/L, and keep those
+  /// scales for later solves on this object (options.tolerance is measured in them). Throws
+  /// std::invalid_argument when the guess has another number of nodes.
   StaticShootingSummary SolveFrom(const lie::SE3& base, const StaticLoads& loads,
                                   const RodState& guess);
 
