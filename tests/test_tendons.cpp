@@ -1,9 +1,11 @@
 // Tendon-driven rods (Rucker & Webster's model as a tendon-augmented constitutive law) against
 // the truth: the exact circular arc of a straight tendon, the small-tension twist of a helical
-// tendon, and global equilibrium, which tendon tension (an internal load) cannot change.
+// tendon, and global equilibrium, which tendon tension (an internal load) cannot change; a
+// tendon anchored mid-rod (a two-segment robot) bends its segment only.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/robots/tendon_control.hpp"
@@ -185,6 +187,42 @@ TEST(Tendons, LengthCommandReachesTheTensionThatProducesItAndASlackTendonCarries
   EXPECT_FALSE(s.slack[0]);
   EXPECT_NEAR(solver.tendon_lengths()[0], command[0], 1e-10 * rod.length);
   EXPECT_GT(command[1], solver.tendon_lengths()[1]);  // slack: the path is shorter than the cable
+}
+
+// A two-segment robot: tendon A anchored at the middle (s = L/2, its segment's end), tendon B
+// at the tip, passing through the first segment. With A pulled and B slack and no external load,
+// the first half is the one-segment robot of length L/2 with A anchored at its tip (the same
+// grid, h = L/40), and the second half carries no wrench (W = 0 beyond A's anchor), so it runs on
+// straight and unstretched along the first half's end tangent. Both solves converge to 1e-10:
+// the tips agree to 1e-9 L. B pulled as well bends the whole rod (its tip moves by κ_B L²/2 ≈ 6e-3 L),
+// and the base reaction stays zero (the tensions are internal).
+TEST(Tendons, ATendonAnchoredMidRodBendsOnlyItsSegment) {
+  TendonRod rod;
+  const double L = rod.length;
+  Tendon a, b;
+  a.route = TendonRoute::Parallel(Vec2(0.008, 0));
+  a.anchor = 0.5 * L;
+  b.route = TendonRoute::Parallel(Vec2(0, 0.008));
+  StaticShootingSolver two(rod.Model({a, b}), 41, {}, Tensions({1.5, 0.0}));
+  ASSERT_TRUE(two.Solve(lie::SE3{}, StaticLoads{}).converged());
+  TendonRod half;
+  half.length = 0.5 * L;
+  Tendon a_tip = a;
+  a_tip.anchor = 0.0;
+  StaticShootingSolver one(half.Model({a_tip}), 21, {}, Tensions({1.5}));
+  ASSERT_TRUE(one.Solve(lie::SE3{}, StaticLoads{}).converged());
+  const RodState& h = one.state();
+  const Vec3 expected = h.tip_position_W() + h.rotation_WB.back().col(2) * (0.5 * L);
+  const Vec3 tip = two.state().tip_position_W();
+  std::printf("two segments: tip [%.9f, %.9f, %.9f] m, first half + straight [%.9f, %.9f, %.9f] m\n",
+              tip.x(), tip.y(), tip.z(), expected.x(), expected.y(), expected.z());
+  EXPECT_LT((tip - expected).norm(), 1e-9 * L);
+  EXPECT_LT((two.state().position_W[20] - h.tip_position_W()).norm(), 1e-9 * L);
+
+  two.SetActuation(Tensions({1.5, 1.0}));
+  ASSERT_TRUE(two.Solve(lie::SE3{}, StaticLoads{}).converged());
+  EXPECT_GT((two.state().tip_position_W() - tip).norm(), 5e-3 * L);  // κ_B L²/2 ≈ 6e-3 L
+  EXPECT_LT(two.base_wrench_B().norm(), 1e-9);
 }
 
 }  // namespace

@@ -17,7 +17,7 @@ Vec3 PathTangent(const TendonSample& sample, int i, const Vec6& xi) {
 }  // namespace
 
 double TendonPathRate(const TendonSample& sample, int i, const Vec6& xi) {
-  return PathTangent(sample, i, xi).norm();
+  return sample.ended[i] ? 0.0 : PathTangent(sample, i, xi).norm();
 }
 
 Vec6 TendonWrench(const TendonSample& sample, const double* tension, const Vec6& xi, Mat6* d_xi,
@@ -25,6 +25,10 @@ Vec6 TendonWrench(const TendonSample& sample, const double* tension, const Vec6&
   Vec6 total = Vec6::Zero();
   if (d_xi) d_xi->setZero();
   for (int i = 0; i < sample.count; ++i) {
+    if (sample.ended[i]) {  // past its anchor: no tension, no derivative in it
+      if (a) (*a)[i].setZero();
+      continue;
+    }
     const Vec3& r = sample.offset[i];
     const Vec3 q = PathTangent(sample, i, xi);
     const double q_norm = q.norm();

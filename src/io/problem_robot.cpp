@@ -1,5 +1,6 @@
 #include "problem_robot.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -42,13 +43,14 @@ std::optional<double> GuideRadius(const ObjectReader& robot, const json& top) {
 
 std::optional<Tendon> ParseTendon(const ObjectReader& t, std::optional<double> guide_radius) {
   const std::optional<std::string> route = ReadChoice(t, "route", kRoutes, Presence::kRequired);
-  std::vector<std::string> keys = {"name", "route"};
+  std::vector<std::string> keys = {"name", "route", "anchor"};
   if (route == "parallel") keys.push_back("offset");
   if (route == "converging") keys.insert(keys.end(), {"offset_base", "offset_tip"});
   if (route == "helical") keys.insert(keys.end(), {"radius", "pitch", "phase"});
   t.AllowOnly(keys, route ? "for a \"" + *route + "\" tendon" : "");
   Tendon out;
   out.name = ReadString(t, "name", Presence::kOptional).value_or("");
+  out.anchor = ReadNumber(t, "anchor", PositiveNumber(), Presence::kOptional).value_or(0.0);
   if (!route) return std::nullopt;
   // Each offset must lie within the guides' radius.
   bool ok = true;
@@ -153,15 +155,18 @@ void ParseActuation(const ObjectReader& a, int tendons, int chambers, Actuation*
              act->jamming_pressure.data(), &count);
 }
 
-/// rod.nodes must hold a node at each chamber end inside the rod, as at every profile breakpoint.
+/// rod.nodes must hold a node at each chamber end and tendon anchor inside the rod, as at every
+/// profile breakpoint.
 void CheckNodesHoldChamberEnds(const ObjectReader& robot, const Problem& p) {
-  if (p.rod.chambers.empty() || !p.rod.section) return;
+  const bool anchors = std::any_of(p.rod.tendons.begin(), p.rod.tendons.end(),
+                                   [](const Tendon& t) { return t.anchor > 0.0; });
+  if ((p.rod.chambers.empty() && !anchors) || !p.rod.section) return;
   const int needed = 2 + InteriorBreakpoints(p.rod.Breakpoints(), p.rod.length);
   if (p.nodes < needed)
     robot.report().Expected("rod.nodes",
                             "at least " + std::to_string(needed) +
-                                " (a node at each end, at every stiffness_profile breakpoint and "
-                                "at every chamber end inside the rod)",
+                                " (a node at each end, at every stiffness_profile breakpoint, "
+                                "chamber end and tendon anchor inside the rod)",
                             std::to_string(p.nodes));
 }
 
@@ -215,8 +220,15 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
           robot.report().Expected(tp, "a tendon object {\"route\", ...}", Describe((*t)[i]));
           continue;
         }
-        if (auto tendon = ParseTendon(ObjectReader((*t)[i], tp, &robot.report()), guide))
-          p->rod.tendons.push_back(*tendon);
+        if (auto tendon = ParseTendon(ObjectReader((*t)[i], tp, &robot.report()), guide)) {
+          if (tendon->anchor > p->rod.length)
+            robot.report().Expected(tp + ".anchor",
+                                    "an arc length within the rod (<= rod.length, " +
+                                        FormatNumber(p->rod.length) + " m; 0 or absent: the tip)",
+                                    FormatNumber(tendon->anchor) + " m");
+          else
+            p->rod.tendons.push_back(*tendon);
+        }
       }
     }
   } else if (p->robot.kind == RobotKind::kTendon) {

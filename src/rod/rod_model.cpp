@@ -115,6 +115,11 @@ bool RodModel::IsValid(std::string* why) const {
       if (why) *why = "tendon " + std::to_string(i) + ": " + reason;
       return false;
     }
+    const double anchor = tendons[i].anchor;
+    if (!(std::isfinite(anchor) && anchor >= 0.0 && anchor <= length)) {
+      if (why) *why = "tendon " + std::to_string(i) + ": anchor must lie in [0, length] (0: the tip)";
+      return false;
+    }
   }
   if (chambers.size() > static_cast<size_t>(Actuation::kMaxChambers)) {
     if (why) *why = "at most " + std::to_string(Actuation::kMaxChambers) + " chambers";
@@ -136,6 +141,8 @@ std::vector<double> RodModel::Breakpoints() const {
     out.push_back(c.start);
     out.push_back(c.end);
   }
+  for (const Tendon& t : tendons)
+    if (t.anchor > 0.0 && t.anchor < length) out.push_back(t.anchor);
   return out;
 }
 

@@ -67,6 +67,7 @@ TendonSample SampleTendons(const std::vector<Tendon>& tendons, double s, double 
   for (int i = 0; i < out.count; ++i) {
     out.offset[i] = tendons[i].route.OffsetAt(s, length);
     out.offset_rate[i] = tendons[i].route.OffsetRateAt(s, length);
+    out.ended[i] = tendons[i].anchor > 0.0 && s >= tendons[i].anchor;
   }
   return out;
 }

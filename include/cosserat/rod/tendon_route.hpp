@@ -44,6 +44,10 @@ struct TendonRoute {
 struct Tendon {
   std::string name;
   TendonRoute route;
+  /// Where it is anchored, m of s: 0 for the tip; else inside the rod (a multi-segment robot's
+  /// tendons end at their segment's end, passing through the segments before it). Beyond its
+  /// anchor the tendon carries nothing; the grid puts a node there (RodModel::Breakpoints).
+  double anchor = 0.0;
 };
 
 /// The tendons' offsets at one point s, sampled once per solver (routes do not change).
@@ -51,6 +55,7 @@ struct TendonSample {
   int count = 0;
   std::array<Vec3, Actuation::kMaxTendons> offset{};       ///< r_i(s), body frame, m
   std::array<Vec3, Actuation::kMaxTendons> offset_rate{};  ///< r_i'(s)
+  std::array<bool, Actuation::kMaxTendons> ended{};        ///< s at or past tendon i's anchor
 };
 
 TendonSample SampleTendons(const std::vector<Tendon>& tendons, double s, double length);
