@@ -155,6 +155,39 @@ void ParseActuation(const ObjectReader& a, int tendons, int chambers, Actuation*
              act->jamming_pressure.data(), &count);
 }
 
+/// "tendons": each tendon's route, within the guides' radius `guide`, and its anchor within the
+/// rod.
+void ParseTendons(const ObjectReader& robot, std::optional<double> guide, Problem* p) {
+  p->rod.tendons.clear();
+  if (const json* t = robot.Find("tendons")) {
+    const std::string path = robot.PathOf("tendons");
+    if (!t->is_array() || t->size() > static_cast<size_t>(Actuation::kMaxTendons)) {
+      robot.report().Expected(
+          path, "an array of at most " + std::to_string(Actuation::kMaxTendons) + " tendons",
+          Describe(*t));
+    } else {
+      for (size_t i = 0; i < t->size(); ++i) {
+        const std::string tp = ElementPath(path, i);
+        if (!(*t)[i].is_object()) {
+          robot.report().Expected(tp, "a tendon object {\"route\", ...}", Describe((*t)[i]));
+          continue;
+        }
+        if (auto tendon = ParseTendon(ObjectReader((*t)[i], tp, &robot.report()), guide)) {
+          if (tendon->anchor > p->rod.length)
+            robot.report().Expected(tp + ".anchor",
+                                    "an arc length within the rod (<= rod.length, " +
+                                        FormatNumber(p->rod.length) + " m; 0 or absent: the tip)",
+                                    FormatNumber(tendon->anchor) + " m");
+          else
+            p->rod.tendons.push_back(*tendon);
+        }
+      }
+    }
+  } else if (p->robot.kind == RobotKind::kTendon) {
+    robot.report().Missing(robot.PathOf("tendons"), "an array of tendons");
+  }
+}
+
 /// rod.nodes must hold a node at each chamber end and tendon anchor inside the rod, as at every
 /// profile breakpoint.
 void CheckNodesHoldChamberEnds(const ObjectReader& robot, const Problem& p) {
@@ -206,34 +239,7 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
     p->rod.section = fixed->inner();
   }
 
-  p->rod.tendons.clear();
-  if (const json* t = robot.Find("tendons")) {
-    const std::string path = robot.PathOf("tendons");
-    if (!t->is_array() || t->size() > static_cast<size_t>(Actuation::kMaxTendons)) {
-      robot.report().Expected(
-          path, "an array of at most " + std::to_string(Actuation::kMaxTendons) + " tendons",
-          Describe(*t));
-    } else {
-      for (size_t i = 0; i < t->size(); ++i) {
-        const std::string tp = ElementPath(path, i);
-        if (!(*t)[i].is_object()) {
-          robot.report().Expected(tp, "a tendon object {\"route\", ...}", Describe((*t)[i]));
-          continue;
-        }
-        if (auto tendon = ParseTendon(ObjectReader((*t)[i], tp, &robot.report()), guide)) {
-          if (tendon->anchor > p->rod.length)
-            robot.report().Expected(tp + ".anchor",
-                                    "an arc length within the rod (<= rod.length, " +
-                                        FormatNumber(p->rod.length) + " m; 0 or absent: the tip)",
-                                    FormatNumber(tendon->anchor) + " m");
-          else
-            p->rod.tendons.push_back(*tendon);
-        }
-      }
-    }
-  } else if (p->robot.kind == RobotKind::kTendon) {
-    robot.report().Missing(robot.PathOf("tendons"), "an array of tendons");
-  }
+  ParseTendons(robot, guide, p);
   const int chambers = ParseChambers(robot, top, p);
   if (p->robot.kind == RobotKind::kPneumatic && !robot.Has("chambers"))
     robot.report().Missing(robot.PathOf("chambers"), "an array of chambers");
