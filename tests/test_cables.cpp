@@ -275,6 +275,40 @@ TEST(HeldCable, TensionedBeamsFromKl50To1000MatchTheClosedFormInBothFormulations
   }
 }
 
+// The near-cable line on the sea bed of ACableOnTheSeaBedHasTheCatenarysTension (EI = 2e3 N·m²,
+// bending length sqrt(EI/H) = 0.32 m) run as dynamics from rest through the command line's runner:
+// its trajectory reports the touchdown point, the s where the line lying on the bed lifts off. At
+// t = 0 (the static equilibrium) it is the grounded catenary's, L0 minus the suspended length,
+// within two bending lengths and a grid spacing (0.5 m), as the statics finds; held still, it
+// stays on the same node over the run.
+TEST(HeldCable, AHeldLineReportsItsTouchdownPointInTime) {
+  const char* problem_text = R"({
+    "format": "cosserat-problem/1", "analysis": "dynamics", "formulation": "quaternion-fd",
+    "rod": { "length": 350, "nodes": 701,
+             "section": { "area": 5e-3, "I1": 1e-8, "I2": 1e-8, "J": 2e-8 },
+             "material": { "youngs_modulus": 2e11, "poisson_ratio": 0.3, "density": 7800 } },
+    "base": { "position": [0, 0, 0.0398942] },
+    "boundary": "anchored", "anchor": { "position": [300, 0, 100.0398942] },
+    "loads": { "gravity": [0, 0, -9.81] },
+    "environment": { "fluid": { "density": 1025 },
+                     "contact": [ { "shape": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+                                    "stiffness": 1e5 } ] },
+    "dynamics": { "dt": 0.01, "duration": 0.2, "output_interval": 0.1 } })";
+  const io::ParseResult parsed = io::ParseProblem(problem_text);
+  ASSERT_TRUE(parsed.ok()) << (parsed.errors.empty() ? "" : parsed.errors.front());
+  const run::Result r = run::Run(*parsed.problem);
+  ASSERT_TRUE(r.converged) << r.log;
+  const auto& touchdown = r.json["trajectory"]["touchdown_s"];
+  ASSERT_EQ(touchdown.size(), 3u);
+  const double A = 5e-3, w = (7800 - 1025) * A * kG;
+  const truth::GroundedCatenary cat = truth::SolveGroundedCatenary(300, 100, 350, w, 2e11 * A);
+  const double truth_s = 350 - cat.suspended, bending = std::sqrt(2e3 / cat.H);
+  std::printf("touchdown at t = 0: s = %.3f m, grounded catenary %.3f m (bending length %.2f m)\n",
+              touchdown[0].get<double>(), truth_s, bending);
+  EXPECT_NEAR(touchdown[0].get<double>(), truth_s, 2 * bending + 0.5);
+  for (const auto& t : touchdown) EXPECT_NEAR(t.get<double>(), touchdown[0].get<double>(), 1e-6);
+}
+
 // A taut cable (no gravity) in a uniform wind across it: the drag ½ ρ C_d D U² per length
 // deflects mid-span by w_d ℓ²/(8H) (the string under a uniform load, H the tension). Within 1 %:
 // the deflection is 0.5 % of the span (tension growth ~(δ/ℓ)² EA/H ≈ 0.2 %).
