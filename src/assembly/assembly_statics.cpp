@@ -177,8 +177,8 @@ void AssemblyStaticsSolver::Residual(const StaticLoads& loads, Eigen::VectorXd* 
   r->setZero(6 * R + 6 * B);
   for (int b = 0; b < B; ++b) {
     const RigidBody& body = assembly_.bodies[b];
-    r->segment<3>(6 * R + 6 * b) = (body.mass * loads.gravity_W + body.force_W);
-    r->segment<3>(6 * R + 6 * b + 3) = body.moment_W;
+    r->segment<3>(6 * R + 6 * b) = body.mass * loads.gravity_W + body_load_factor_ * body.force_W;
+    r->segment<3>(6 * R + 6 * b + 3) = body_load_factor_ * body.moment_W;
   }
   for (int i = 0; i < R; ++i) {
     const int b = assembly_.rods[i].body;
@@ -328,33 +328,53 @@ void AssemblyStaticsSolver::Apply(const Eigen::VectorXd& dz, double scale) {
   }
 }
 
-void AssemblyStaticsSolver::Save() {
-  saved_x_ = x_;
-  saved_poses_ = poses_;
-  saved_lengths_ = lengths_;
+void AssemblyStaticsSolver::Store(Iterate* u) const {
+  u->x = x_;  // assignments into buffers of the same size: no allocation after the first
+  u->poses = poses_;
+  u->lengths = lengths_;
 }
 
-void AssemblyStaticsSolver::Restore() {
-  x_ = saved_x_;
-  poses_ = saved_poses_;
-  lengths_ = saved_lengths_;
+void AssemblyStaticsSolver::Load(const Iterate& u) {
+  x_ = u.x;
+  poses_ = u.poses;
+  lengths_ = u.lengths;
+}
+
+void AssemblyStaticsSolver::Conclude(bool converged, const StaticLoads& loads,
+                                     const Iterate& start,
+                                     std::chrono::steady_clock::time_point t0,
+                                     AssemblySummary* summary) {
+  if (converged) {
+    has_solution_ = true;
+    solved_loads_ = loads;
+  } else if (has_solution_) {
+    Load(start);  // back to the last solution, the next solve's start
+  }
+  states_dirty_ = true;
+  summary->status = converged ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
+  summary->wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 bool AssemblyStaticsSolver::TryStep(const StaticLoads& loads, double norm) {
-  Save();
+  Store(&saved_);
   Apply(dz_, 1.0);
   bool ok = dz_.allFinite() && ShootAll();
   if (ok) {
     Residual(loads, &r_trial_);
     ok = r_trial_.allFinite() && r_trial_.norm() < norm;
   }
-  if (!ok) Restore();
+  if (!ok) Load(saved_);
   return ok;
 }
 
 bool AssemblyStaticsSolver::LevenbergMarquardt(const StaticLoads& loads,
                                                AssemblySummary* summary) {
-  for (Rod& rod : rods_) rod.shot.SetLoads(loads);
+  if (!shot_loads_set_ || !(loads == shot_loads_)) {  // the samples' loads, once per change
+    for (Rod& rod : rods_) rod.shot.SetLoads(loads);
+    shot_loads_ = loads;
+    shot_loads_set_ = true;
+  }
   if (!ShootAll()) return false;
   Residual(loads, &r_);
   double norm = r_.norm(), damping = 0.0;
@@ -431,10 +451,9 @@ template <typename At>
 double AssemblyStaticsSolver::Follow(const At& at, AssemblySummary* summary) {
   double mu = 0.0, step = 1.0;
   int levels = 0;
+  Iterate accepted;
   while (mu < 1.0 && step >= kMinStep && levels < options_.max_load_steps) {
-    const Eigen::VectorXd x_saved = x_;
-    const std::vector<lie::SE3> poses_saved = poses_;
-    const std::vector<double> lengths_saved = lengths_;
+    Store(&accepted);
     const double trial = std::min(1.0, mu + step);
     ++levels;
     const StaticLoads loads = at(trial);
@@ -442,9 +461,7 @@ double AssemblyStaticsSolver::Follow(const At& at, AssemblySummary* summary) {
       mu = trial;
       step *= 2.0;
     } else {
-      x_ = x_saved;
-      poses_ = poses_saved;
-      lengths_ = lengths_saved;
+      Load(accepted);
       step *= 0.5;
     }
   }
@@ -471,27 +488,18 @@ AssemblySummary AssemblyStaticsSolver::Solve(const StaticLoads& loads,
   mode_ = Mode::kForward;
   // The start: the last solution, else the rods unloaded at the model's lengths.
   const StaticLoads start_loads = has_solution_ ? solved_loads_ : loads.Scaled(0.0);
-  const std::vector<double> start_lengths = lengths_;
   const double start_body_loads = has_solution_ ? 1.0 : 0.0;
-  const Eigen::VectorXd start_x = x_;
-  const std::vector<lie::SE3> start_poses = poses_;
+  Iterate start;
+  Store(&start);
   // Directly at the target first.
   lengths_ = target;
   bool converged = LevenbergMarquardt(loads, &summary);
   if (!converged) {
-    lengths_ = start_lengths;
-    x_ = start_x;
-    poses_ = start_poses;
-    std::vector<RigidBody>& bodies = assembly_.bodies;
-    const std::vector<RigidBody> full = bodies;
+    Load(start);
     auto at = [&](double mu) {
       for (int i = 0; i < rod_count(); ++i)
-        lengths_[i] = start_lengths[i] + mu * (target[i] - start_lengths[i]);
-      const double factor = start_body_loads + mu * (1.0 - start_body_loads);
-      for (size_t b = 0; b < bodies.size(); ++b) {
-        bodies[b].force_W = factor * full[b].force_W;
-        bodies[b].moment_W = factor * full[b].moment_W;
-      }
+        lengths_[i] = start.lengths[i] + mu * (target[i] - start.lengths[i]);
+      body_load_factor_ = start_body_loads + mu * (1.0 - start_body_loads);
       return mu == 1.0 ? loads : StaticLoads::Blend(start_loads, loads, mu);
     };
     if (!has_solution_) {  // the unloaded structure at the start lengths first
@@ -501,21 +509,9 @@ AssemblySummary AssemblyStaticsSolver::Solve(const StaticLoads& loads,
       converged = true;
     }
     converged = converged && Follow(at, &summary) == 1.0;
-    bodies = full;
-    if (!converged && has_solution_) {  // back to the last solution, the next solve's start
-      x_ = start_x;
-      poses_ = start_poses;
-      lengths_ = start_lengths;
-    }
+    body_load_factor_ = 1.0;
   }
-  if (converged) {
-    has_solution_ = true;
-    solved_loads_ = loads;
-  }
-  states_dirty_ = true;
-  summary.status = converged ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
-  summary.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Conclude(converged, loads, start, t0, &summary);
   return summary;
 }
 
@@ -527,39 +523,25 @@ AssemblySummary AssemblyStaticsSolver::SolveLengths(const StaticLoads& loads,
         "AssemblyStaticsSolver::SolveLengths: needs six rods per body and one pose per body");
   AssemblySummary summary;
   mode_ = Mode::kInverse;
-  const std::vector<lie::SE3> start = poses_;
   const StaticLoads start_loads = has_solution_ ? solved_loads_ : loads;
-  const Eigen::VectorXd start_x = x_;
-  const std::vector<double> start_lengths = lengths_;
+  Iterate start;
+  Store(&start);
   poses_ = poses;
   bool converged = LevenbergMarquardt(loads, &summary);
   if (!converged && has_solution_) {  // follow the poses from the last solution
-    x_ = start_x;
-    lengths_ = start_lengths;
+    Load(start);
     auto at = [&](double mu) {
       for (size_t b = 0; b < poses_.size(); ++b) {
-        poses_[b].p = start[b].p + mu * (poses[b].p - start[b].p);
-        const Vec3 turn = lie::SO3Log(Mat3(start[b].R.transpose() * poses[b].R));
-        poses_[b].R = start[b].R * lie::SO3Exp(Vec3(mu * turn));
+        const lie::SE3& from = start.poses[b];
+        poses_[b].p = from.p + mu * (poses[b].p - from.p);
+        const Vec3 turn = lie::SO3Log(Mat3(from.R.transpose() * poses[b].R));
+        poses_[b].R = from.R * lie::SO3Exp(Vec3(mu * turn));
       }
       return mu == 1.0 ? loads : StaticLoads::Blend(start_loads, loads, mu);
     };
-    at(0.0);
     converged = Follow(at, &summary) == 1.0;
-    if (!converged) {  // back to the last solution, the next solve's start
-      x_ = start_x;
-      lengths_ = start_lengths;
-      poses_ = start;
-    }
   }
-  if (converged) {
-    has_solution_ = true;
-    solved_loads_ = loads;
-  }
-  states_dirty_ = true;
-  summary.status = converged ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
-  summary.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Conclude(converged, loads, start, t0, &summary);
   return summary;
 }
 

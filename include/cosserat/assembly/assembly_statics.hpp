@@ -13,6 +13,7 @@
 /// inverse Jacobian, updated by Broyden's formula. When a solve from the last solution fails it follows
 /// the loads and the lengths (or the poses) from that solution, halving its steps.
 
+#include <chrono>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -117,10 +118,20 @@ class AssemblyStaticsSolver {
   double Follow(const At& at, AssemblySummary* summary);
   void Apply(const Eigen::VectorXd& dz, double scale);
   bool LevenbergMarquardt(const StaticLoads& loads, AssemblySummary* summary);
+  /// A point of the solve (its unknowns), to go back to.
+  struct Iterate {
+    Eigen::VectorXd x;
+    std::vector<lie::SE3> poses;
+    std::vector<double> lengths;
+  };
+  void Store(Iterate* u) const;
+  void Load(const Iterate& u);
+  /// Ends a solve: a solution becomes the next start; a failure goes back to `start` when there
+  /// was a solution before; the summary's status and time.
+  void Conclude(bool converged, const StaticLoads& loads, const Iterate& start,
+                std::chrono::steady_clock::time_point t0, AssemblySummary* summary);
   /// Applies dz_; keeps it when the residual (into r_trial_) falls below `norm`, else restores.
   bool TryStep(const StaticLoads& loads, double norm);
-  void Save();
-  void Restore();
   void RecordStates();
 
   Assembly assembly_;
@@ -135,9 +146,13 @@ class AssemblyStaticsSolver {
   bool states_dirty_ = true;
   bool has_solution_ = false;
   // Workspace of the Levenberg–Marquardt iterations (sized on first use).
-  Eigen::VectorXd r_, r_trial_, dz_, saved_x_;
-  std::vector<lie::SE3> saved_poses_;
-  std::vector<double> saved_lengths_;
+  Eigen::VectorXd r_, r_trial_, dz_;
+  Iterate saved_;  ///< the point before a trial step
+  /// The share of the bodies' applied force and moment in force (the continuation from an
+  /// unloaded start ramps it; 1 otherwise).
+  double body_load_factor_ = 1.0;
+  StaticLoads shot_loads_;  ///< the loads the rods' samples hold (RodShot::SetLoads)
+  bool shot_loads_set_ = false;
   Eigen::MatrixXd J_, A_;
   Eigen::MatrixXd inverse_;  ///< the quasi-Newton estimate of J⁻¹ (Broyden)
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
