@@ -10,44 +10,21 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-template <typename Vector>
-json ToArray(const Vector& v) {
-  json out = json::array();
-  for (int i = 0; i < v.size(); ++i) out.push_back(v(i));
-  return out;
-}
-
-/// Row-major nested array [[r00, r01, r02], [r10, ...], ...].
-json ToRows(const Mat3& m) {
-  json out = json::array();
-  for (int i = 0; i < 3; ++i) out.push_back(ToArray(Vec3(m.row(i).transpose())));
-  return out;
-}
-
 json NodesToJson(const RodState& state) {
   json s = json::array(), position = json::array(), curvature = json::array();
   json moment = json::array(), force = json::array();
   for (int i = 0; i < state.size(); ++i) {
     s.push_back(state.s[i]);
-    position.push_back(ToArray(state.position_W[i]));
-    curvature.push_back(ToArray(Vec3(state.strain[i].head<3>())));
-    moment.push_back(ToArray(Vec3(state.wrench_B[i].head<3>())));
-    force.push_back(ToArray(Vec3(state.wrench_B[i].tail<3>())));
+    position.push_back(ToJson(state.position_W[i]));
+    curvature.push_back(ToJson(Vec3(state.strain[i].head<3>())));
+    moment.push_back(ToJson(Vec3(state.wrench_B[i].head<3>())));
+    force.push_back(ToJson(Vec3(state.wrench_B[i].tail<3>())));
   }
   return {{"s", s},
           {"position", position},
           {"curvature", curvature},
           {"moment_body", moment},
           {"force_body", force}};
-}
-
-/// tip {position, rotation} and base_wrench {moment, force} of a state.
-void AddTipAndBaseWrench(const RodState& state, json* out) {
-  (*out)["tip"] = {{"position", ToArray(state.tip_position_W())},
-                   {"rotation", ToRows(state.tip_rotation_WB())}};
-  const Vec6 reaction = state.BaseReaction_W();
-  (*out)["base_wrench"] = {{"moment", ToArray(Vec3(reaction.head<3>()))},
-                           {"force", ToArray(Vec3(reaction.tail<3>()))}};
 }
 
 /// The value below which a fraction q of `sorted` lies (nearest rank); NaN when empty.
@@ -67,6 +44,22 @@ json StepTimeStats(std::vector<double> times_s) {
 }
 
 }  // namespace
+
+json ToJson(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+json ToJson(const Mat3& m) {
+  json out = json::array();
+  for (int i = 0; i < 3; ++i) out.push_back(ToJson(Vec3(m.row(i).transpose())));
+  return out;
+}
+
+void AddTipAndBaseWrench(const RodState& state, json* out) {
+  (*out)["tip"] = {{"position", ToJson(state.tip_position_W())},
+                   {"rotation", ToJson(state.tip_rotation_WB())}};
+  const Vec6 reaction = state.BaseReaction_W();
+  (*out)["base_wrench"] = {{"moment", ToJson(Vec3(reaction.head<3>()))},
+                           {"force", ToJson(Vec3(reaction.tail<3>()))}};
+}
 
 json StaticResultToJson(const StaticShootingSummary& summary, const RodState& state) {
   json out;
@@ -100,13 +93,13 @@ json DynamicResultToJson(const DynamicRun& run, const RodState& final_state) {
                    {"elastic", run.energy.elastic},
                    {"potential", run.energy.potential}};
   json tip = json::array();
-  for (const Vec3& p : run.frame_tip) tip.push_back(ToArray(p));
+  for (const Vec3& p : run.frame_tip) tip.push_back(ToJson(p));
   out["trajectory"] = {{"t", run.frame_t}, {"tip_position", std::move(tip)}};
   if (run.report_tip_spin) out["trajectory"]["tip_spin"] = run.frame_tip_spin;
   if (run.report_touchdown) out["trajectory"]["touchdown_s"] = run.frame_touchdown_s;
   if (run.report_anchor_force) {
     json force = json::array();
-    for (const Vec3& f : run.frame_anchor_force) force.push_back(ToArray(f));
+    for (const Vec3& f : run.frame_anchor_force) force.push_back(ToJson(f));
     out["trajectory"]["anchor_force"] = std::move(force);
   }
   out["nodes"] = NodesToJson(final_state);

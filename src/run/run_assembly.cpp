@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cosserat/assembly/assembly_statics.hpp"
+#include "cosserat/io/result_writer.hpp"
 #include "cosserat/lie/so3.hpp"
 
 namespace cosserat::run {
@@ -13,29 +14,16 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-json ToArray(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
-
-/// Row-major [[r00, r01, r02], ...].
-json ToRows(const Mat3& m) {
-  json out = json::array();
-  for (int i = 0; i < 3; ++i) out.push_back(ToArray(Vec3(m.row(i).transpose())));
-  return out;
-}
-
 json RodToJson(const AssemblyRod& rod, double length, const RodState& state) {
   json s = json::array(), position = json::array();
   for (int n = 0; n < state.size(); ++n) {
     s.push_back(state.s[n]);
-    position.push_back(ToArray(state.position_W[n]));
+    position.push_back(io::ToJson(state.position_W[n]));
   }
-  const Vec6 reaction = state.BaseReaction_W();  // [moment about the base point; force], world
   json out;
   out["name"] = rod.name;
   out["length"] = length;
-  out["base_wrench"] = {{"moment", ToArray(reaction.head<3>())},
-                        {"force", ToArray(reaction.tail<3>())}};
-  out["tip"] = {{"position", ToArray(state.tip_position_W())},
-                {"rotation", ToRows(state.tip_rotation_WB())}};
+  io::AddTipAndBaseWrench(state, &out);  // base_wrench: [moment about the base point; force]
   out["nodes"] = {{"s", s}, {"position", position}};
   return out;
 }
@@ -47,8 +35,8 @@ json SolutionToJson(const Assembly& assembly, bool inverse, AssemblyStaticsSolve
   for (std::size_t b = 0; b < assembly.bodies.size(); ++b) {
     const lie::SE3& pose = solver->body_poses()[b];
     bodies.push_back({{"name", assembly.bodies[b].name},
-                      {"position", ToArray(pose.p)},
-                      {"rotation", ToRows(pose.R)}});
+                      {"position", io::ToJson(pose.p)},
+                      {"rotation", io::ToJson(pose.R)}});
   }
   std::ostringstream table;
   table << "rod,s,x,y,z\n" << std::setprecision(17);

@@ -14,6 +14,14 @@
 
 namespace cosserat::io {
 
+/// A vector as [x, y, z]; a rotation matrix row-major, [[r00, r01, r02], [r10, ...], ...].
+nlohmann::ordered_json ToJson(const Vec3& v);
+nlohmann::ordered_json ToJson(const Mat3& m);
+
+/// tip {position (m), rotation (R_WB, row-major)} and base_wrench {moment (N·m), force (N)} of a
+/// state: the support's reaction on the rod, world frame, the moment about the base point.
+void AddTipAndBaseWrench(const RodState& state, nlohmann::ordered_json* out);
+
 /// The statics result:
 ///   status (ToString of the status), iterations, shots, load_steps, residual, wall_time_s,
 ///   tip {position (m), rotation (R_WB, row-major 3×3)},
