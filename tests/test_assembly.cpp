@@ -22,6 +22,20 @@ namespace {
 
 using testing::SteelRod;
 
+/// A rod on `nodes` whose tip is clamped to body `body` (at its origin unless moved), its base in
+/// the world or on `base_body`, both at the identity unless moved.
+AssemblyRod ClampedRod(const std::string& name, const RodModel& model, int nodes, int body,
+                       int base_body = -1) {
+  AssemblyRod r;
+  r.name = name;
+  r.model = model;
+  r.nodes = nodes;
+  r.base_body = base_body;
+  r.tip_joint = TipJoint::kClamped;
+  r.body = body;
+  return r;
+}
+
 /// Two vertical steel rods (0.5 m, r = 1 mm) from (±d/2, 0, 0), their tips clamped to a plate
 /// at height L carrying `force` at its centre.
 Assembly TwoRodsAndAPlate(double d, const Vec3& force) {
@@ -33,13 +47,8 @@ Assembly TwoRodsAndAPlate(double d, const Vec3& force) {
   plate.force_W = force;
   a.bodies.push_back(plate);
   for (double x : {-0.5 * d, 0.5 * d}) {
-    AssemblyRod r;
-    r.name = x < 0 ? "left" : "right";
-    r.model = rod.model();
-    r.nodes = 51;
+    AssemblyRod r = ClampedRod(x < 0 ? "left" : "right", rod.model(), 51, 0);
     r.base.p = Vec3(x, 0, 0);
-    r.tip_joint = TipJoint::kClamped;
-    r.body = 0;
     r.attachment.p = Vec3(x, 0, 0);
     a.rods.push_back(r);
   }
@@ -140,19 +149,8 @@ TEST(Assembly, ARodCutAtAJunctionIsTheUncutRod) {
   at_tip.p = Vec3(0, 0, 0.5);
   a.bodies = {Junction("cut", at_cut), Junction("end", at_tip)};
   a.bodies[1].force_W = P;
-  AssemblyRod r1, r2;
-  r1.name = "lower";
-  r1.model = lower.model();
-  r1.nodes = 31;
-  r1.tip_joint = TipJoint::kClamped;
-  r1.body = 0;
-  r2.name = "upper";
-  r2.model = upper.model();
-  r2.nodes = 21;
-  r2.base_body = 0;
-  r2.tip_joint = TipJoint::kClamped;
-  r2.body = 1;
-  a.rods = {r1, r2};
+  a.rods = {ClampedRod("lower", lower.model(), 31, 0),
+            ClampedRod("upper", upper.model(), 21, 1, 0)};  // its base on the cut
   AssemblyStaticsSolver solver(a);
   const AssemblySummary s = solver.Solve(StaticLoads{});
   ASSERT_TRUE(s.converged()) << ToString(s.status);
@@ -183,19 +181,9 @@ TEST(Assembly, AnLFrameDeflectsAsLinearBeamTheorySays) {
   end.p = Vec3(b_len, 0, a_len);
   a.bodies = {Junction("corner", corner), Junction("end", end)};
   a.bodies[1].force_W = Vec3(0, 0, -P);
-  AssemblyRod c, b;
-  c.name = "column";
-  c.model = column.model();
-  c.nodes = 41;
-  c.tip_joint = TipJoint::kClamped;
-  c.body = 0;
-  b.name = "beam";
-  b.model = beam.model();
-  b.nodes = 31;
-  b.base_body = 0;
+  AssemblyRod c = ClampedRod("column", column.model(), 41, 0);
+  AssemblyRod b = ClampedRod("beam", beam.model(), 31, 1, 0);
   b.base.R = lie::SO3Exp(Vec3(0, 0.5 * M_PI, 0));  // tangent along +x
-  b.tip_joint = TipJoint::kClamped;
-  b.body = 1;
   b.attachment.R = b.base.R;
   a.rods = {c, b};
   AssemblyStaticsSolver solver(a);
