@@ -80,9 +80,7 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
 std::string BoundaryLayerHint(const io::Problem& problem, const RodState& guess) {
   const SectionProperties p = problem.rod.section->At(0.0, Actuation{});
   const double ei = std::min(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m²
-  double force = 0.0;                                                 // N
-  for (int i = 0; i < guess.size(); ++i) force = std::max(force, guess.wrench_B[i].tail<3>().norm());
-  const double k = std::sqrt(force / ei), h = problem.rod.length / (problem.nodes - 1);
+  const double k = std::sqrt(guess.MaxForce() / ei), h = problem.rod.length / (problem.nodes - 1);
   if (k * h <= 2.0) return "";
   std::ostringstream hint;
   hint << "cosserat: hint: the grid spacing " << std::setprecision(3) << h

@@ -1,5 +1,7 @@
 #include "cosserat/state/rod_state.hpp"
 
+#include <algorithm>
+
 namespace cosserat {
 
 void RodState::Resize(int n) {
@@ -17,6 +19,12 @@ Vec6 RodState::BaseReaction_W() const {
   out.head<3>() = -R * wrench_B.front().head<3>();
   out.tail<3>() = -R * wrench_B.front().tail<3>();
   return out;
+}
+
+double RodState::MaxForce() const {
+  double force = 0.0;
+  for (const Vec6& w : wrench_B) force = std::max(force, w.tail<3>().norm());
+  return force;
 }
 
 }  // namespace cosserat

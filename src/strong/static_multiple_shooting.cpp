@@ -431,8 +431,7 @@ StaticShootingSummary StaticMultipleShootingSolver::SolveFrom(const lie::SE3& ba
   // not bounded by its loads), or of the loads and contact surfaces when larger.
   const SectionProperties p = model_.section->At(0.0, Actuation{});
   const double ei = std::min(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m²
-  double force = 0.0;  // N
-  for (int i = 0; i < guess.size(); ++i) force = std::max(force, guess.wrench_B[i].tail<3>().norm());
+  const double force = guess.MaxForce();  // N
   const double exponent =
       std::max(std::sqrt(force / ei) * model_.length, StaticShootingExponent(model_, loads));
   const int pieces = PiecesFor(exponent);

@@ -26,6 +26,8 @@ struct RodState {
   /// The wrench the support applies to the rod at s = 0, world frame, moment about p(0):
   /// [m; n] = −[R m_B; R n_B] at s = 0. It balances the external loads.
   Vec6 BaseReaction_W() const;
+  /// The largest internal force |n| over the nodes (N): a held cable's top tension.
+  double MaxForce() const;
 };
 
 }  // namespace cosserat
