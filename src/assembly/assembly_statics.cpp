@@ -390,11 +390,14 @@ bool AssemblyStaticsSolver::LevenbergMarquardt(const StaticLoads& loads,
       dz_ = -(inverse_ * r_);
       const bool ok = TryStep(loads, norm);
       if (ok) {  // Broyden's good update of the inverse: H += (s − H y) sᵀH / (sᵀ H y)
-        const Eigen::VectorXd y = r_trial_ - r_;
-        const Eigen::VectorXd Hy = inverse_ * y;
-        const double denominator = dz_.dot(Hy);
-        if (std::abs(denominator) > 1e-12 * dz_.norm() * Hy.norm())
-          inverse_ += ((dz_ - Hy) / denominator) * (dz_.transpose() * inverse_);
+        broyden_y_ = r_trial_ - r_;
+        broyden_Hy_.noalias() = inverse_ * broyden_y_;
+        const double denominator = dz_.dot(broyden_Hy_);
+        if (std::abs(denominator) > 1e-12 * dz_.norm() * broyden_Hy_.norm()) {
+          broyden_sH_.noalias() = inverse_.transpose() * dz_;  // (sᵀH)ᵀ
+          broyden_y_ = (dz_ - broyden_Hy_) / denominator;
+          inverse_.noalias() += broyden_y_ * broyden_sH_.transpose();
+        }
         const bool enough = r_trial_.norm() < 0.5 * norm;
         r_.swap(r_trial_);
         norm = r_.norm();

@@ -155,6 +155,7 @@ class AssemblyStaticsSolver {
   bool shot_loads_set_ = false;
   Eigen::MatrixXd J_, A_;
   Eigen::MatrixXd inverse_;  ///< the quasi-Newton estimate of J⁻¹ (Broyden)
+  Eigen::VectorXd broyden_y_, broyden_Hy_, broyden_sH_;  ///< the update's vectors
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   /// The mode whose Jacobian lu_ holds (none yet: a mode that never occurs).
   Mode jacobian_mode_ = static_cast<Mode>(-1);
