@@ -15,7 +15,7 @@
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/loads/bit_friction.hpp"
 #include "cosserat/quatfd/quatfd_statics.hpp"
-#include "cosserat/robots/rotary_table.hpp"
+#include "cosserat/robots/rotary_table_drive.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "support/analytic/torsion.hpp"

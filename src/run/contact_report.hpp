@@ -9,6 +9,7 @@
 
 #include "cosserat/io/problem.hpp"
 #include "cosserat/run/result.hpp"
+#include "cosserat/state/rod_state.hpp"
 
 namespace cosserat::run::detail {
 

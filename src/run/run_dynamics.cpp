@@ -10,6 +10,7 @@
 
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/lie/so3.hpp"
+#include "cosserat/robots/rotary_table_drive.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/shooting_exponent.hpp"

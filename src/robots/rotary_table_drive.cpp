@@ -1,4 +1,4 @@
-#include "cosserat/robots/rotary_table.hpp"
+#include "cosserat/robots/rotary_table_drive.hpp"
 
 #include <algorithm>
 #include <cmath>
