@@ -68,6 +68,17 @@ HeldSolution SolveHeld(const Cable& c, const Vec3& tip, const StaticLoads& loads
   return out;
 }
 
+/// A problem file's text run as the command runs it (with the node table when asked); a text
+/// that does not parse fails the test and gives an empty, unconverged result.
+run::Result RunProblemText(const char* text, bool nodes_csv) {
+  const io::ParseResult parsed = io::ParseProblem(text);
+  EXPECT_TRUE(parsed.ok()) << (parsed.errors.empty() ? "" : parsed.errors.front());
+  if (!parsed.ok()) return run::Result{};
+  run::RunOptions options;
+  options.nodes_csv = nodes_csv;
+  return run::Run(*parsed.problem, options);
+}
+
 /// The SE(3) multiple-shooting equilibrium of the same rod on the same grid, held the same way,
 /// by Newton from the quaternion-FD one (`guess`).
 struct Se3HeldSolution {
@@ -294,9 +305,7 @@ TEST(HeldCable, AHeldLineReportsItsTouchdownPointInTime) {
                      "contact": [ { "shape": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
                                     "stiffness": 1e5 } ] },
     "dynamics": { "dt": 0.01, "duration": 0.2, "output_interval": 0.1 } })";
-  const io::ParseResult parsed = io::ParseProblem(problem_text);
-  ASSERT_TRUE(parsed.ok()) << (parsed.errors.empty() ? "" : parsed.errors.front());
-  const run::Result r = run::Run(*parsed.problem);
+  const run::Result r = RunProblemText(problem_text, false);
   ASSERT_TRUE(r.converged) << r.log;
   const auto& touchdown = r.json["trajectory"]["touchdown_s"];
   ASSERT_EQ(touchdown.size(), 3u);
@@ -439,11 +448,7 @@ TEST(HeldCable, ATautCableFollowsASlowGust) {
     "environment": { "fluid": { "density": 1.2, "velocity": [0, 25, 0], "drag_normal": 1.2,
                                 "gust": { "amplitude": 0.3, "period": 20 } } },
     "dynamics": { "dt": 0.01, "duration": 40, "output_interval": 0.5 } })";
-  const io::ParseResult parsed = io::ParseProblem(problem_text);
-  ASSERT_TRUE(parsed.ok()) << (parsed.errors.empty() ? "" : parsed.errors.front());
-  run::RunOptions options;
-  options.nodes_csv = true;
-  const run::Result r = run::Run(*parsed.problem, options);
+  const run::Result r = RunProblemText(problem_text, true);
   ASSERT_TRUE(r.converged) << r.log;
   // Mid-span (node 25) y from the node table "t,node,s,x,y,z".
   std::vector<double> t, y;
