@@ -60,6 +60,23 @@ Vec6 TipResidual(const DynState& y, const StaticLoads& loads, const Bdf2Options&
   return r.cwiseQuotient(scale);
 }
 
+// A held tip (TipHold): position rows (p − p_h)/L, and rotation rows that vanish when the tip's
+// frame R is the holder's R_h, ≈ θ for R = R_h Exp(θ):
+//   θx ≈ −(R e₃)·(R_h e₂),  θy ≈ (R e₃)·(R_h e₁),  θz ≈ −(R e₂)·(R_h e₁);
+// a joint that leaves a rotation free asks instead for no moment about it (the moment over its
+// scale, body frame). Dot products of frame columns keep the exact Jacobian simple.
+Vec6 HeldTipResidual(const DynState& y, const StepInput& in, double length, const Vec6& scale) {
+  const Mat3& Rh = in.tip_pose.R;
+  Vec6 r;
+  r.tail<3>() = (y.p - in.tip_pose.p) / length;
+  r(0) = -y.R.col(2).dot(Rh.col(1));
+  r(1) = y.R.col(2).dot(Rh.col(0));
+  r(2) = -y.R.col(1).dot(Rh.col(0));
+  if (in.tip_hold == TipHold::kPinned) r.head<3>() = y.m.cwiseQuotient(scale.head<3>());
+  if (in.tip_hold == TipHold::kTorsionFree) r(2) = y.m.z() / scale(2);
+  return r;
+}
+
 DynTangent Axpy(const DynTangent& y, double a, const DynTangent& d) {
   return {y.p + a * d.p, {y.R[0] + a * d.R[0], y.R[1] + a * d.R[1], y.R[2] + a * d.R[2]},
           y.m + a * d.m, y.n + a * d.n,
@@ -296,6 +313,10 @@ class Bdf2ShootingStepper::Shot {
       V_t_tip << c_.c0 * y_.w, c_.c0 * y_.v;
       V_t_tip += V_h_tip;
     }
+    if (in_.tip_hold != TipHold::kFree) {
+      if (J) *J = HeldTipJacobian();
+      return HeldTipResidual(y_, in_, st_.model_.length, st_.scale_);
+    }
     if (J) *J = TipJacobian();
     return TipResidual(y_, in_.loads, st_.options_, V_t_tip, st_.scale_);
   }
@@ -419,6 +440,21 @@ class Bdf2ShootingStepper::Shot {
       out->added_mass = stage_added_mass_[j];  // as the stage's primal used it
       out->acceleration_W = c_.c0 * st_.velocity_W_now_[q] + st_.velocity_W_h_[q];
     }
+  }
+
+  // d r / d x of HeldTipResidual: the columns of R and the moment along the tangent.
+  Mat6 HeldTipJacobian() const {
+    const Mat3& Rh = in_.tip_pose.R;
+    const Vec6& scale = st_.scale_;
+    Mat6 J;
+    J.bottomRows<3>() = dy_.p / st_.model_.length;
+    J.row(0) = -Rh.col(1).transpose() * dy_.R[2];
+    J.row(1) = Rh.col(0).transpose() * dy_.R[2];
+    J.row(2) = -Rh.col(0).transpose() * dy_.R[1];
+    if (in_.tip_hold == TipHold::kPinned)
+      J.topRows<3>() = scale.head<3>().cwiseInverse().asDiagonal() * dy_.m;
+    if (in_.tip_hold == TipHold::kTorsionFree) J.row(2) = dy_.m.row(2) / scale(2);
+    return J;
   }
 
   // d r / d x from the tangent at the tip: the section's wrench, the dead part of the applied

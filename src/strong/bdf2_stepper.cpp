@@ -66,6 +66,11 @@ StepInput BlendInputs(const StepInput& a, const StepInput& b, double t) {
       a.base_pose.R * lie::SO3Exp(t * lie::SO3Log(a.base_pose.R.transpose() * b.base_pose.R));
   out.base_twist_B = a.base_twist_B + t * (b.base_twist_B - a.base_twist_B);
   out.base_wrench_B = a.base_wrench_B + t * (b.base_wrench_B - a.base_wrench_B);
+  if (a.tip_hold == b.tip_hold && b.tip_hold != TipHold::kFree) {
+    out.tip_pose.p = a.tip_pose.p + t * (b.tip_pose.p - a.tip_pose.p);
+    out.tip_pose.R =
+        a.tip_pose.R * lie::SO3Exp(t * lie::SO3Log(a.tip_pose.R.transpose() * b.tip_pose.R));
+  }
   out.loads = StaticLoads::Blend(a.loads, b.loads, t);
   const Actuation &x = a.actuation, &y = b.actuation;
   auto lerp = [t](double u, double v) { return u + t * (v - u); };
@@ -397,9 +402,12 @@ void Bdf2ShootingStepper::Commit(double h) {
   ++run_.steps_taken;
 }
 
-StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
+StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input,
+                                                  const Vec6* base_wrench_B) {
   const auto t0 = std::chrono::steady_clock::now();
   StepSummary summary;
+  if (options_.ends == EndConditions::kFreeFree && input.tip_hold != TipHold::kFree)
+    throw std::invalid_argument("Bdf2ShootingStepper: a held tip needs cantilever ends");
   initialized_ = false;  // until this succeeds, Step() refuses to run
   run_.base1 = run_.base2 = input.base_pose;
   run_.steps_taken = 0;
@@ -424,6 +432,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
                        tip.dead_W.tail<3>() + input.base_pose.R * tip.follower_B.tail<3>();
     Vec6 W;
     W << Vec3::Zero(), input.base_pose.R.transpose() * total;
+    if (base_wrench_B) W = *base_wrench_B;
     run_.unknowns.Reset(W.cwiseQuotient(scale_));
     ok = SolveStep(input, c, 0.0, true, &summary);
     if (ok) run_.unknowns.Reset(solved_unknowns_);
@@ -456,6 +465,11 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input) {
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return summary;
+}
+
+Bdf2ShootingStepper::Coefficients Bdf2ShootingStepper::Weights(double h, double h_prev,
+                                                                Bdf2Options::FirstStep first) {
+  return Bdf2Weights(h, h_prev, first);
 }
 
 bool Bdf2ShootingStepper::Attempt(const StepInput& input, double h, StepSummary* summary) {
@@ -500,7 +514,8 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
   // smaller steps raise the shot's exponent λL ∝ dt^(-1/2), so halving helps less than usual.)
   if (!input.loads.IsValid(nullptr) || !input.base_twist_B.allFinite() ||
       !input.base_wrench_B.allFinite() || !input.base_pose.R.allFinite() ||
-      !input.base_pose.p.allFinite()) {
+      !input.base_pose.p.allFinite() || !input.tip_pose.R.allFinite() ||
+      !input.tip_pose.p.allFinite()) {
     summary.status = SolveStatus::kNonFinite;  // NaN or Inf in the input: the state stays put
     return summary;
   }

@@ -44,6 +44,17 @@ enum class EndConditions {
   kFreeFree,    ///< W(0) = −base wrench, W(L) = tip wrench; unknown V(0), g(0) follows from it
 };
 
+/// How the tip (s = L) of a cantilevered rod is held during a step. Free: the tip wrench
+/// condition (eq. 28). Otherwise the tip is joined to a frame that moves with the step
+/// (StepInput::tip_pose: a body of an assembly, a moving anchor), and the joint's conditions
+/// replace the wrench condition:
+///   kClamped      the tip's frame is tip_pose;
+///   kTorsionFree  the tip's position and tangent (body z) are tip_pose's, no moment about it;
+///   kPinned       the tip's position is tip_pose's, no moment (a ball joint).
+/// The holder takes the loads' tip wrench and a tip body (Bdf2Options::tip_mass): they are not
+/// used with a held tip.
+enum class TipHold { kFree, kClamped, kTorsionFree, kPinned };
+
 struct Bdf2Options {
   double dt = 2e-3;  ///< time step, s
   /// The first step of a run (after InitializeAtRest). Backward Euler (the default) keeps a run
@@ -95,6 +106,8 @@ struct StepInput {
   lie::SE3 base_pose;
   Vec6 base_twist_B = Vec6::Zero();   ///< cantilever: V(0, t) = [ω; v], body frame (rad/s; m/s)
   Vec6 base_wrench_B = Vec6::Zero();  ///< free-free: wrench applied to the s = 0 end, body frame
+  TipHold tip_hold = TipHold::kFree;  ///< cantilever only
+  lie::SE3 tip_pose;                  ///< the frame a held tip is joined to, world
   StaticLoads loads;                  ///< gravity, distributed force, tip force and moment
   /// Tendon tensions (used when the model has tendons), pressure and jamming states (read by the
   /// section profile). A change of the section-related fields re-samples the sections at the
@@ -120,8 +133,10 @@ class Bdf2ShootingStepper {
   Bdf2ShootingStepper(const RodModel& model, int num_nodes, const Bdf2Options& options = {});
 
   /// Puts the rod at rest in static equilibrium under `input` (its base twist is ignored) at
-  /// time t = 0, with a history that says it has been at rest. Allocates nothing.
-  StepSummary InitializeAtRest(const StepInput& input);
+  /// time t = 0, with a history that says it has been at rest. Allocates nothing. Cantilever:
+  /// the solve starts from `base_wrench_B` (W(0), body frame) when given, else from the wrench
+  /// that carries the loads as a rigid body.
+  StepSummary InitializeAtRest(const StepInput& input, const Vec6* base_wrench_B = nullptr);
 
   /// Advances by options().dt to the state under `input`. No heap allocation. When a step
   /// fails even after halving, the status says why and time() and state() are those of the last
@@ -189,6 +204,10 @@ class Bdf2ShootingStepper {
   struct Coefficients {
     double c0 = 0, c1 = 0, c2 = 0;
   };
+  /// The BDF2 weights of a step h after a step h_prev (0: the first step of a run), as Step()
+  /// uses them: y' ≈ c0 y_n + c1 y_{n−1} + c2 y_{n−2}. For what moves with the rod (a body
+  /// joined to it) and must see the same rates.
+  static Coefficients Weights(double h, double h_prev, Bdf2Options::FirstStep first);
   /// One shot: the dimensionless tip residual for the dimensionless unknown x (W(0) = scale ⊙ x),
   /// with BDF2 weights c, or the static equations when statics is true. Writes the trial state
   /// and the stage values. With J, also d r / d x: the exact derivative of the discrete shot
