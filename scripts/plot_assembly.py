@@ -1,19 +1,39 @@
 #!/usr/bin/python3
 """Plot a `cosserat solve` result of an assembly: every rod's centreline in 3D and in two side
 views, each body's frame at its pose (its axes 0.2 of the structure's size long), and for an
-inverse problem the rods' lengths in the title.
+inverse problem the rods' lengths in the title. A dynamics result adds a row: each body's
+displacement from its start against time, and the energy.
 
 Usage: plot_assembly.py RESULT.json OUT.png
 Uses Debian's python3-matplotlib and python3-numpy (run it with /usr/bin/python3).
 """
 import json
 import sys
+import warnings
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+
+def plot_trajectory(trajectory, ax_pose, ax_energy):
+    """Each body's displacement components (mm) and the total energy (J) against time (s)."""
+    t = np.asarray(trajectory["t"])
+    for k, body in enumerate(trajectory["bodies"]):
+        p = np.asarray(body["position"])
+        for axis, style in zip(range(3), ("-", "--", ":")):
+            ax_pose.plot(t, 1e3 * (p[:, axis] - p[0, axis]), style, color=f"C{k % 10}",
+                         lw=1.2, label=f"{body['name']} {'xyz'[axis]}")
+    ax_pose.set_xlabel("t [s]")
+    ax_pose.set_ylabel("displacement [mm]")
+    ax_pose.legend(fontsize=7)
+    ax_pose.grid(True, alpha=0.3)
+    ax_energy.plot(t, trajectory["energy"], color="k", lw=1.2)
+    ax_energy.set_xlabel("t [s]")
+    ax_energy.set_ylabel("energy [J]")
+    ax_energy.grid(True, alpha=0.3)
 
 
 def main(argv):
@@ -29,9 +49,13 @@ def main(argv):
     rods = [(r["name"], np.asarray(r["nodes"]["position"])) for r in assembly["rods"]]
     points = np.vstack([p for _, p in rods])
     size = float(np.ptp(points, axis=0).max()) or 1.0
-    fig = plt.figure(figsize=(13, 4.6))
-    ax3 = fig.add_subplot(1, 3, 1, projection="3d")
-    views = [fig.add_subplot(1, 3, 2), fig.add_subplot(1, 3, 3)]
+    trajectory = result.get("trajectory")
+    rows = 2 if trajectory else 1
+    fig = plt.figure(figsize=(13, 4.6 * rows))
+    ax3 = fig.add_subplot(rows, 3, 1, projection="3d")
+    views = [fig.add_subplot(rows, 3, 2), fig.add_subplot(rows, 3, 3)]
+    if trajectory:
+        plot_trajectory(trajectory, fig.add_subplot(2, 2, 3), fig.add_subplot(2, 2, 4))
     for k, (name, p) in enumerate(rods):
         colour = f"C{k % 10}"
         ax3.plot(p[:, 0], p[:, 1], p[:, 2], color=colour, lw=1.5, label=name)
@@ -61,7 +85,9 @@ def main(argv):
     if assembly.get("kind") == "inverse":
         title += ", lengths " + ", ".join(f"{r['length']:.4f}" for r in assembly["rods"]) + " m"
     fig.suptitle(title)
-    fig.tight_layout()
+    with warnings.catch_warnings():  # the trajectory row's two panels span the three above
+        warnings.simplefilter("ignore")
+        fig.tight_layout()
     fig.savefig(argv[2], dpi=120)
     print(f"plot written to {argv[2]}")
     return 0

@@ -326,6 +326,11 @@ void ParseAssemblyTopLevel(const ObjectReader& top, Problem* p) {
     CheckAssemblyLoads(*loads);
   }
   if (const auto o = ReadObject(top, "solver", Presence::kOptional)) ParseSolver(*o, &p->solver);
+  if (const auto o = ReadObject(top, "dynamics", Presence::kOptional)) {
+    p->has_dynamics = true;
+    ParseDynamics(*o, kMaxDynamicsSteps, &p->dynamics);
+    CheckAssemblyDynamics(*o);
+  }
   if (const auto o = ReadObject(top, "assembly", Presence::kRequired)) ParseAssembly(*o, p);
 }
 

@@ -80,8 +80,10 @@ int FindBody(const ObjectReader& o, const std::string& key, const std::vector<Ri
   return -1;
 }
 
-RigidBody ParseBody(const ObjectReader& o, std::map<std::string, std::string>* names) {
-  o.AllowOnly({"name", "mass", "pose", "force", "moment"});
+RigidBody ParseBody(const ObjectReader& o, std::map<std::string, std::string>* names,
+                    Problem::AssemblyProblem* spec) {
+  o.AllowOnly({"name", "mass", "inertia", "pose", "force", "moment", "initial_force",
+               "initial_moment"});
   RigidBody body;
   body.name = ReadUniqueName(o, "body", names);
   body.mass = ReadNumber(o, "mass", NonNegativeNumber(), Presence::kOptional).value_or(0.0);
@@ -91,6 +93,16 @@ RigidBody ParseBody(const ObjectReader& o, std::map<std::string, std::string>* n
   }
   body.force_W = ReadVec3(o, "force", Presence::kOptional).value_or(Vec3::Zero());
   body.moment_W = ReadVec3(o, "moment", Presence::kOptional).value_or(Vec3::Zero());
+  if (const auto inertia = ReadVec3(o, "inertia", Presence::kOptional)) {
+    if ((inertia->array() >= 0).all())
+      body.inertia_B = inertia->asDiagonal();
+    else
+      o.Reject("inertia", "three principal moments of inertia >= 0 (kg·m², body frame)");
+  }
+  spec->initial_force.push_back(
+      ReadVec3(o, "initial_force", Presence::kOptional).value_or(body.force_W));
+  spec->initial_moment.push_back(
+      ReadVec3(o, "initial_moment", Presence::kOptional).value_or(body.moment_W));
   return body;
 }
 
@@ -234,8 +246,17 @@ std::vector<lie::SE3> ParseInverse(const ObjectReader& inverse, const Assembly& 
 
 const std::vector<std::string>& SingleRodKeys() {
   static const std::vector<std::string> keys{
-      "rod", "base", "boundary", "anchor", "robot", "dynamics", "buckling", "modes", "environment"};
+      "rod", "base", "boundary", "anchor", "robot", "buckling", "modes", "environment"};
   return keys;
+}
+
+void CheckAssemblyDynamics(const ObjectReader& dynamics) {
+  for (const char* key : {"tip_mass", "tip_inertia", "base_spin", "rotary_table",
+                          "shooting_segments", "integrator_tolerance", "integrator_max_steps"})
+    if (dynamics.Has(key))
+      dynamics.report().Add(dynamics.PathOf(key),
+                            "not read with \"assembly\" (a body carries mass and inertia: "
+                            "assembly.bodies[i].mass and .inertia)");
 }
 
 void CheckAssemblyLoads(const ObjectReader& loads) {
@@ -253,7 +274,7 @@ void ParseAssembly(const ObjectReader& o, Problem* p) {
   std::map<std::string, std::string> body_names, rod_names;
   if (o.Has("bodies"))
     for (const ObjectReader& body : ReadObjects(o, "bodies", "an array of bodies"))
-      a.bodies.push_back(ParseBody(body, &body_names));
+      a.bodies.push_back(ParseBody(body, &body_names, &p->assembly));
   for (const ObjectReader& rod : ReadObjects(o, "rods", "an array of rods"))
     a.rods.push_back(ParseAssemblyRod(rod, a.bodies, &rod_names));
   p->has_assembly = true;
@@ -282,11 +303,26 @@ void ParseAssembly(const ObjectReader& o, Problem* p) {
 }
 
 std::vector<std::string> UnsupportedAssemblyFeatures(const Problem& p) {
-  std::vector<std::string> out;  // statics on the SE(3) path only (docs/assemblies.md, "Limits")
-  if (p.analysis != Analysis::kStatics)
+  // Statics and dynamics on the SE(3) path (docs/assemblies.md, "Limits").
+  std::vector<std::string> out;
+  if (p.analysis != Analysis::kStatics && p.analysis != Analysis::kDynamics)
     out.push_back("analysis: " + Quote(ToString(p.analysis)) +
                   " of an \"assembly\" is not implemented in this version (supported: "
-                  "\"statics\")");
+                  "\"statics\", \"dynamics\")");
+  if (p.analysis == Analysis::kDynamics) {
+    if (p.assembly.inverse())
+      out.push_back("assembly.inverse: not read in dynamics (the forward problem only: the "
+                    "rods' lengths are their rod.length)");
+    if (!p.assembly.lengths.empty())
+      out.push_back("assembly.lengths: not read in dynamics (each rod's length is its "
+                    "rod.length)");
+    const auto& rods = p.assembly.assembly.rods;
+    for (std::size_t i = 0; i < rods.size(); ++i)
+      if (rods[i].base_joint != BaseJoint::kClamped)
+        out.push_back("assembly.rods[" + std::to_string(i) +
+                      "].base.joint: \"torsion_free\" is statics only (dynamics clamps each "
+                      "base)");
+  }
   if (p.formulation != Formulation::kSe3Shooting)
     out.push_back("formulation: " + Quote(ToString(p.formulation)) +
                   " of an \"assembly\" is not implemented in this version (supported: "

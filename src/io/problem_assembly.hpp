@@ -25,8 +25,13 @@ const std::vector<std::string>& SingleRodKeys();
 /// tips are joined to bodies, which carry their own force and moment), reported if given.
 void CheckAssemblyLoads(const ObjectReader& loads);
 
+/// The keys of "dynamics" that belong to a single rod ("tip_mass", "base_spin", ...), reported
+/// if given beside "assembly".
+void CheckAssemblyDynamics(const ObjectReader& dynamics);
+
 /// What this version cannot run of an assembly problem (UnsupportedFeatures): an analysis other
-/// than "statics", a formulation other than "se3-shooting". One line each.
+/// than "statics" or "dynamics", a formulation other than "se3-shooting", and in dynamics an
+/// inverse problem, given lengths or a torsion-free base. One line each.
 std::vector<std::string> UnsupportedAssemblyFeatures(const Problem& problem);
 
 }  // namespace cosserat::io::detail

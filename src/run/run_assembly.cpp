@@ -8,6 +8,7 @@
 #include "cosserat/assembly/assembly_statics.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/lie/so3.hpp"
+#include "cosserat/run/run_assembly_dynamics.hpp"
 
 namespace cosserat::run {
 namespace {
@@ -102,6 +103,7 @@ std::string Summary(const io::Problem& problem, const AssemblySummary& s,
 }  // namespace
 
 Result RunAssembly(const io::Problem& problem, const RunOptions& options) {
+  if (problem.analysis == io::Analysis::kDynamics) return RunAssemblyDynamics(problem, options);
   const io::Problem::AssemblyProblem& spec = problem.assembly;
   AssemblyOptions opt;
   opt.tolerance = problem.solver.tolerance;

@@ -130,6 +130,9 @@ struct Problem {
     /// Empty: the forward problem.
     std::vector<lie::SE3> inverse_poses;
     bool inverse() const { return !inverse_poses.empty(); }
+    /// Dynamics: each body's applied force and moment in the equilibrium the run starts from
+    /// (bodies[j].initial_force, .initial_moment; default: its force and moment), world.
+    std::vector<Vec3> initial_force, initial_moment;
   } assembly;
   bool has_assembly = false;
 };

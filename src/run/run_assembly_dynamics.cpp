@@ -1,0 +1,151 @@
+#include "cosserat/run/run_assembly_dynamics.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cosserat/assembly/assembly_dynamics.hpp"
+#include "cosserat/io/result_writer.hpp"
+#include "cosserat/lie/so3.hpp"
+
+namespace cosserat::run {
+namespace {
+
+using json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+/// What a run records at every output frame.
+struct Frames {
+  json t = json::array(), energy = json::array();
+  std::vector<json> position, rotation, velocity;  ///< per body, a list of frames
+  std::ostringstream csv;
+};
+
+void Record(const AssemblyDynamics& dyn, const StaticLoads& loads, bool nodes, Frames* f) {
+  f->t.push_back(dyn.time());
+  f->energy.push_back(dyn.Energy(loads));
+  for (int b = 0; b < dyn.body_count(); ++b) {
+    f->position[b].push_back(io::ToJson(dyn.body_pose(b).p));
+    f->rotation[b].push_back(io::ToJson(lie::SO3Log(dyn.body_pose(b).R)));
+    f->velocity[b].push_back(io::ToJson(dyn.body_velocity_W(b)));
+  }
+  if (!nodes) return;
+  for (int i = 0; i < dyn.rod_count(); ++i) {
+    const RodState& s = dyn.rod(i).state();
+    for (int n = 0; n < s.size(); ++n)
+      f->csv << dyn.time() << ',' << i << ',' << s.s[n] << ',' << s.position_W[n].x() << ','
+             << s.position_W[n].y() << ',' << s.position_W[n].z() << '\n';
+  }
+}
+
+json FinalState(const Assembly& assembly, const AssemblyDynamics& dyn) {
+  json bodies = json::array(), rods = json::array();
+  for (int b = 0; b < dyn.body_count(); ++b)
+    bodies.push_back({{"name", assembly.bodies[b].name},
+                      {"position", io::ToJson(dyn.body_pose(b).p)},
+                      {"rotation", io::ToJson(dyn.body_pose(b).R)}});
+  for (int i = 0; i < dyn.rod_count(); ++i) {
+    const RodState& state = dyn.rod(i).state();
+    json s = json::array(), position = json::array();
+    for (int n = 0; n < state.size(); ++n) {
+      s.push_back(state.s[n]);
+      position.push_back(io::ToJson(state.position_W[n]));
+    }
+    json rod;
+    rod["name"] = assembly.rods[i].name;
+    rod["length"] = assembly.rods[i].model.length;
+    io::AddTipAndBaseWrench(state, &rod);
+    rod["nodes"] = {{"s", s}, {"position", position}};
+    rods.push_back(rod);
+  }
+  return {{"kind", "dynamics"}, {"bodies", bodies}, {"rods", rods}};
+}
+
+}  // namespace
+
+Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options) {
+  const io::Problem::AssemblyProblem& spec = problem.assembly;
+  const io::Problem::Dynamics& d = problem.dynamics;
+  AssemblyDynamicsOptions opt;
+  opt.dt = d.dt;
+  opt.rod.spatial_scheme = d.spatial_scheme == io::ShotScheme::kHeun ? SpatialScheme::kHeun
+                                                                     : SpatialScheme::kRk4;
+  AssemblyDynamics dyn(spec.assembly, opt);
+  const int B = dyn.body_count();
+  const auto start = Clock::now();
+  for (int b = 0; b < B; ++b) dyn.SetBodyLoad(b, spec.initial_force[b], spec.initial_moment[b]);
+  const AssemblySummary init = dyn.InitializeAtRest(d.initial_loads.value_or(problem.loads));
+  for (int b = 0; b < B; ++b)
+    dyn.SetBodyLoad(b, spec.assembly.bodies[b].force_W, spec.assembly.bodies[b].moment_W);
+
+  Frames frames;
+  frames.position.assign(B, json::array());
+  frames.rotation.assign(B, json::array());
+  frames.velocity.assign(B, json::array());
+  frames.csv << "t,rod,s,x,y,z\n" << std::setprecision(17);
+  const int steps = static_cast<int>(std::lround(d.duration / d.dt));
+  const int stride = std::max(1, static_cast<int>(std::lround(d.output_interval / d.dt)));
+  SolveStatus status = init.status;
+  int taken = 0, iterations = init.iterations;
+  double failed_at = -1.0;
+  if (init.converged()) {
+    Record(dyn, problem.loads, options.nodes_csv, &frames);
+    for (int k = 1; k <= steps; ++k) {
+      const AssemblySummary s = dyn.Step(problem.loads);
+      iterations += s.iterations;
+      if (!s.converged()) {
+        status = s.status;
+        failed_at = dyn.time() + d.dt;
+        break;
+      }
+      ++taken;
+      if (k % stride == 0 || k == steps) Record(dyn, problem.loads, options.nodes_csv, &frames);
+    }
+  } else {
+    failed_at = 0.0;
+  }
+  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+
+  Result result;
+  result.converged = status == SolveStatus::kConverged;
+  json& out = result.json;
+  out["status"] = ToString(status);
+  out["steps"] = taken;
+  out["iterations"] = iterations;
+  out["simulated_time_s"] = dyn.time();
+  out["wall_time_s"] = wall;
+  out["failed_at_t"] = failed_at < 0 ? json(nullptr) : json(failed_at);
+  json bodies = json::array();
+  for (int b = 0; b < B; ++b)
+    bodies.push_back({{"name", spec.assembly.bodies[b].name},
+                      {"position", frames.position[b]},
+                      {"rotation_vector", frames.rotation[b]},
+                      {"velocity", frames.velocity[b]}});
+  out["trajectory"] = {{"t", frames.t}, {"energy", frames.energy}, {"bodies", bodies}};
+  out["assembly"] = FinalState(spec.assembly, dyn);
+  if (options.nodes_csv) result.nodes_csv = frames.csv.str();
+
+  std::ostringstream line;
+  line << "cosserat: " << ToString(status) << " (assembly dynamics)";
+  if (!init.converged()) {
+    line << ", the initial equilibrium did not converge (residual " << std::setprecision(3)
+         << init.residual << ")";
+  } else {
+    if (!result.converged)
+      line << " in the step to t = " << std::setprecision(6) << failed_at << " s";
+    line << ", " << taken << " steps, " << std::setprecision(6) << dyn.time() << " s simulated in "
+         << std::setprecision(3) << wall << " s";
+    if (B > 0) {
+      const Vec3& p = dyn.body_pose(0).p;
+      line << ", " << spec.assembly.bodies[0].name << " at [" << std::setprecision(6) << p.x()
+           << ", " << p.y() << ", " << p.z() << "] m";
+    }
+  }
+  result.log = line.str() + '\n';
+  return result;
+}
+
+}  // namespace cosserat::run
