@@ -256,9 +256,15 @@ TEST(Assembly, StewartGoughInverseKinematicsIsSelfConsistent) {
 }
 
 /// The force and the moment about the origin (world) that the loads leave unbalanced by the six
-/// base reactions of the Stewart–Gough robot with a 0.5 kg platform under gravity, on `nodes`.
+/// base reactions of the Stewart–Gough robot with a 0.5 kg platform under gravity, on `nodes`,
+/// at solver tolerance 1e-13. The rods' weight is what each rod's shot sums
+/// (RodShot::LoadWrench_W: RK4's quadrature of ∫ f and ∫ p × f on the solved rod); its force
+/// part must also be the weight ρ A L g, exactly for a uniform rod.
 Vec6 StewartGoughImbalance(int nodes, double* weight) {
-  AssemblyStaticsSolver solver(StewartGough(0.5, nodes));
+  const Assembly assembly = StewartGough(0.5, nodes);
+  AssemblyOptions options;
+  options.tolerance = 1e-13;
+  AssemblyStaticsSolver solver(assembly, options);
   StaticLoads loads;
   loads.gravity_W = Vec3(0, 0, -9.81);
   EXPECT_TRUE(
@@ -271,14 +277,15 @@ Vec6 StewartGoughImbalance(int nodes, double* weight) {
     const Vec6 reaction = st.BaseReaction_W();  // [moment about p(0); force]
     force += reaction.tail<3>();
     moment += reaction.head<3>() + st.position_W[0].cross(Vec3(reaction.tail<3>()));
-    // The rod's weight, at the centroid of its centreline (trapezoid rule per segment).
+    RodShot shot(assembly.rods[i].model, nodes);
+    shot.SetLoads(loads);
+    const RodShot::Point<double> start{st.position_W[0], st.rotation_WB[0],
+                                       st.wrench_B[0].head<3>(), st.wrench_B[0].tail<3>()};
+    const Vec6 rod_load = shot.LoadWrench_W(start, solver.lengths()[i]);
     const double w = rhoA * solver.lengths()[i] * g;
-    Vec3 centroid = Vec3::Zero();
-    for (int n = 0; n + 1 < st.size(); ++n)
-      centroid += 0.5 * (st.position_W[n] + st.position_W[n + 1]) * (st.s[n + 1] - st.s[n]);
-    centroid /= solver.lengths()[i];
-    force.z() -= w;
-    moment += centroid.cross(Vec3(0, 0, -w));
+    EXPECT_NEAR(rod_load(5), -w, 1e-14) << "rod " << i;
+    force += rod_load.tail<3>();
+    moment += rod_load.head<3>();
     *weight += w;
   }
   Vec6 out;
@@ -286,24 +293,22 @@ Vec6 StewartGoughImbalance(int nodes, double* weight) {
   return out;
 }
 
-// The six base reactions balance the platform's weight and the rods' weight. Not to round-off:
-// the shot carries the internal force in the body frame, where RK4 does not integrate
-// n' = −K × n − Rᵀ f exactly, and the rods' centroids are taken by the trapezoid rule. Both errors
-// fall with the grid, as h⁴ and h²: the imbalance must be below 1e-7 of the weight on 40 nodes
-// and fall at least 3.5 times from 40 to 80 nodes (a missing load or a wrong lever arm would not
-// fall).
+// The six base reactions balance the platform's weight and the rods' weight to round-off: the
+// rods' shots carry the internal force in the world and the moment about the world origin, so
+// the loads enter as n_W' = −f and J' = −p × f, which RK4 sums exactly with its own
+// quadrature, and the platform's balance is solved to 1e-13 of EI/L² (0.15 N: 1.5e-14 N). With
+// a weight of 5.19 N and lever arms below 0.5 m, round-off is ~1e-15 N and N·m: bounded by
+// 1e-13 of the weight. On 40 and 80 nodes alike (a missing load or a wrong lever arm would show
+// at either).
 TEST(Assembly, StewartGoughBaseReactionsBalanceTheLoads) {
-  double weight = 0.0;
-  const Vec6 coarse = StewartGoughImbalance(40, &weight);
-  const Vec6 fine = StewartGoughImbalance(80, &weight);
-  std::printf("balance: force imbalance %.2e N, moment %.2e N m on 40 nodes; %.2e N, %.2e N m "
-              "on 80 (weight %.4f N)\n",
-              coarse.head<3>().norm(), coarse.tail<3>().norm(), fine.head<3>().norm(),
-              fine.tail<3>().norm(), weight);
-  EXPECT_LT(coarse.head<3>().norm(), 1e-7 * weight);
-  EXPECT_LT(coarse.tail<3>().norm(), 1e-7 * weight * 0.1);  // lever arms ≲ 0.1 m
-  EXPECT_LT(fine.head<3>().norm(), coarse.head<3>().norm() / 3.5);
-  EXPECT_LT(fine.tail<3>().norm(), coarse.tail<3>().norm() / 3.5);
+  for (int nodes : {40, 80}) {
+    double weight = 0.0;
+    const Vec6 imbalance = StewartGoughImbalance(nodes, &weight);
+    std::printf("balance on %d nodes: force imbalance %.2e N, moment %.2e N m (weight %.4f N)\n",
+                nodes, imbalance.head<3>().norm(), imbalance.tail<3>().norm(), weight);
+    EXPECT_LT(imbalance.head<3>().norm(), 1e-13 * weight);
+    EXPECT_LT(imbalance.tail<3>().norm(), 1e-13 * weight * 1.0);  // N·m, lever arms < 1 m
+  }
 }
 
 // d(pose)/d(lengths) by the implicit function theorem (each rod's shot differentiated exactly in

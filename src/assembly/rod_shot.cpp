@@ -7,6 +7,7 @@
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/rod/grid.hpp"
+#include "cosserat/strong/frame_tangent.hpp"
 
 namespace cosserat {
 
@@ -44,9 +45,14 @@ void RodShot::SetLoads(const StaticLoads& loads) {
 namespace {
 
 using rhs::StaticTangent;
+using namespace internal;  // the tangent algebra of frame_tangent.hpp
 
-StaticTangent Axpy(const StaticTangent& y, double a, const StaticTangent& d) {
-  StaticTangent out;
+/// The tangent of the carried state (RodShot's p, R, J, n_W), in StaticTangent's fields: m holds
+/// dJ and n holds dn_W.
+using CarriedTangent = StaticTangent;
+
+CarriedTangent Axpy(const CarriedTangent& y, double a, const CarriedTangent& d) {
+  CarriedTangent out;
   out.p = y.p + a * d.p;
   for (int j = 0; j < 3; ++j) out.R[j] = y.R[j] + a * d.R[j];
   out.m = y.m + a * d.m;
@@ -54,73 +60,105 @@ StaticTangent Axpy(const StaticTangent& y, double a, const StaticTangent& d) {
   return out;
 }
 
+/// The body-frame tangent (dm_B, dn_B) of the carried tangent at the carried state (p, R, J, n):
+/// n_B = Rᵀ n, m_B = Rᵀ (J − p × n). At the tip, where the wrench is converted with R⁻¹, this is
+/// exact to R's distance from a rotation (RK4's truncation, ~1e-9).
+StaticTangent BodyTangent(const Vec3& p, const Mat3& R, const Vec3& J, const Vec3& n,
+                          const CarriedTangent& dc) {
+  StaticTangent d;
+  d.p = dc.p;
+  d.R = dc.R;
+  d.n = TransposeTimesFixed(dc.R, n) + R.transpose() * dc.n;
+  d.m = TransposeTimesFixed(dc.R, J - p.cross(n)) +
+        R.transpose() * (dc.m + Cross(n, dc.p) - Cross(p, dc.n));
+  return d;
+}
+
 }  // namespace
 
 RodShot::Point<double> RodShot::ShootTangent(const Point<double>& start,
                                              const rhs::StaticTangent& start_tangent,
                                              double length, rhs::StaticTangent* tip_tangent) const {
-  auto axpy = [](const Point<double>& y, double a, const Point<double>& k) {
-    return Point<double>{y.p + a * k.p, y.R + a * k.R, y.m + a * k.m, y.n + a * k.n};
+  auto axpy = [](const Carried<double>& y, double a, const Carried<double>& k) {
+    return Carried<double>{y.p + a * k.p, y.R + a * k.R, y.J + a * k.J, y.n + a * k.n};
   };
-  Point<double> y = start;
-  StaticTangent dy = start_tangent;
+  Carried<double> c = ToCarried(start);
+  // The start's tangent carried: dn_W = d(R n_B), dJ = d(R m_B) + dp × n_W + p × dn_W.
+  CarriedTangent dc;
+  dc.p = start_tangent.p;
+  dc.R = start_tangent.R;
+  dc.n = RotateTangent(start.R, start_tangent.R, start.n, start_tangent.n);
+  dc.m = RotateTangent(start.R, start_tangent.R, start.m, start_tangent.m) - Cross(c.n, dc.p) +
+         Cross(start.p, dc.n);
   const double stage_step[4] = {0.0, 0.5, 0.5, 1.0};
   for (int i = 0; i + 1 < nodes(); ++i) {
     const double h = sigma_[i + 1] - sigma_[i];
     const Sample* smp[4] = {&samples_[2 * i], &samples_[2 * i + 1], &samples_[2 * i + 1],
                             &samples_[2 * i + 2]};
-    Point<double> k[4];
-    StaticTangent t[4];
+    Carried<double> k[4];
+    CarriedTangent t[4];
     for (int j = 0; j < 4; ++j) {
-      const Point<double> yj = j == 0 ? y : axpy(y, stage_step[j] * h, k[j - 1]);
-      const StaticTangent dyj = j == 0 ? dy : Axpy(dy, stage_step[j] * h, t[j - 1]);
+      const Carried<double> cj = j == 0 ? c : axpy(c, stage_step[j] * h, k[j - 1]);
+      const CarriedTangent dcj = j == 0 ? dc : Axpy(dc, stage_step[j] * h, t[j - 1]);
+      const Point<double> y = AtStage(cj);
+      const StaticTangent dy = BodyTangent(cj.p, cj.R, cj.J, cj.n, dcj);
+      const Vec3& f = smp[j]->force_W;
       Vec6 xi;
-      k[j] = rhs::StaticDerivative<double>(smp[j]->rest_strain, smp[j]->compliance,
-                                           smp[j]->force_W, yj, &xi);
-      t[j] = rhs::StaticTangentDerivative(smp[j]->compliance, smp[j]->force_W, yj, dyj, xi);
-      // dy/dσ = L y'(s): the rates and their tangents scale with the length.
-      k[j].p *= length;
-      k[j].R *= length;
-      k[j].m *= length;
-      k[j].n *= length;
-      t[j].p *= length;
-      for (auto& c : t[j].R) c *= length;
-      t[j].m *= length;
-      t[j].n *= length;
+      const Point<double> rates =
+          rhs::StaticDerivative<double>(smp[j]->rest_strain, smp[j]->compliance, f, y, &xi);
+      const StaticTangent body = rhs::StaticTangentDerivative(smp[j]->compliance, f, y, dy, xi);
+      // dc/dσ = L c'(s): J' = −p × f, n_W' = −f (f does not depend on the pose).
+      k[j] = Carried<double>{length * rates.p, length * rates.R, -length * cj.p.cross(f),
+                             -length * f};
+      t[j].p = length * body.p;
+      for (int a = 0; a < 3; ++a) t[j].R[a] = length * body.R[a];
+      t[j].m = length * Cross(f, dcj.p);  // d(−p × f) = f × dp
+      t[j].n.setZero();
     }
     const double a = h / 6, b = h / 3;
-    y.p += a * (k[0].p + k[3].p) + b * (k[1].p + k[2].p);
-    y.R += a * (k[0].R + k[3].R) + b * (k[1].R + k[2].R);
-    y.m += a * (k[0].m + k[3].m) + b * (k[1].m + k[2].m);
-    y.n += a * (k[0].n + k[3].n) + b * (k[1].n + k[2].n);
-    dy.p += a * (t[0].p + t[3].p) + b * (t[1].p + t[2].p);
-    for (int c = 0; c < 3; ++c) dy.R[c] += a * (t[0].R[c] + t[3].R[c]) + b * (t[1].R[c] + t[2].R[c]);
-    dy.m += a * (t[0].m + t[3].m) + b * (t[1].m + t[2].m);
-    dy.n += a * (t[0].n + t[3].n) + b * (t[1].n + t[2].n);
+    c.p += a * (k[0].p + k[3].p) + b * (k[1].p + k[2].p);
+    c.R += a * (k[0].R + k[3].R) + b * (k[1].R + k[2].R);
+    c.J += a * (k[0].J + k[3].J) + b * (k[1].J + k[2].J);
+    c.n += a * (k[0].n + k[3].n) + b * (k[1].n + k[2].n);
+    dc.p += a * (t[0].p + t[3].p) + b * (t[1].p + t[2].p);
+    for (int r = 0; r < 3; ++r) dc.R[r] += a * (t[0].R[r] + t[3].R[r]) + b * (t[1].R[r] + t[2].R[r]);
+    dc.m += a * (t[0].m + t[3].m) + b * (t[1].m + t[2].m);
   }
-  *tip_tangent = dy;
-  return y;
+  *tip_tangent = BodyTangent(c.p, c.R, c.J, c.n, dc);
+  return FromCarried(c);
 }
 
 void RodShot::Record(const Point<double>& start, double length, RodState* state) const {
   state->Resize(nodes());
-  Point<double> y = start;
-  auto record = [&](int i, const Point<double>& at) {
+  Carried<double> c = ToCarried(start);
+  auto record = [&](int i, const Carried<double>& at) {
+    const Point<double> y = FromCarried(at);
     Vec6 xi;
-    rhs::LinearStrain<double>(samples_[2 * i].rest_strain, samples_[2 * i].compliance, at.m, at.n,
+    rhs::LinearStrain<double>(samples_[2 * i].rest_strain, samples_[2 * i].compliance, y.m, y.n,
                               &xi);
     state->s[i] = sigma_[i] * length;
-    state->position_W[i] = at.p;
-    state->rotation_WB[i] = at.R;
-    state->wrench_B[i] << at.m, at.n;
+    state->position_W[i] = y.p;
+    state->rotation_WB[i] = y.R;
+    state->wrench_B[i] << y.m, y.n;
     state->strain[i] = xi;
     state->twist_B[i].setZero();
   };
-  record(0, y);
+  record(0, c);
   for (int i = 0; i + 1 < nodes(); ++i) {
-    y = Step<double>(i, y, length);
-    record(i + 1, y);
+    c = Step<double>(i, c, length);
+    record(i + 1, c);
   }
+}
+
+Vec6 RodShot::LoadWrench_W(const Point<double>& start, double length) const {
+  // The loads are what the carried wrench loses along the rod: J(0) − J(L), n_W(0) − n_W(L),
+  // i.e. RK4's own sum of ∫ p × f and ∫ f.
+  const Carried<double> c0 = ToCarried(start);
+  Carried<double> c = c0;
+  for (int i = 0; i + 1 < nodes(); ++i) c = Step<double>(i, c, length);
+  Vec6 out;
+  out << c0.J - c.J, c0.n - c.n;
+  return out;
 }
 
 }  // namespace cosserat

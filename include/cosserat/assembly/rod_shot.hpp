@@ -2,11 +2,16 @@
 /// \file
 /// One rod's static shot for the assembly solver, in the normalised arc length σ = s/L, so that
 /// the rod's length is a variable like its start: dy/dσ = L y'(s), RK4 over the rod's grid with
-/// the sections at the nodes and the midpoints (the scheme of StaticShootingSolver). Templated on
-/// the scalar: with T = ceres::Jet one shot gives the tip's exact derivatives in the start and
-/// the length. The sections are sampled once at s = σ L₀ (L₀ the model's length): exact for a
-/// uniform rod at any length. Loads: the distributed ones that do not depend on the pose
-/// (gravity, buoyancy, a distributed force).
+/// the sections at the nodes and the midpoints. Templated on the scalar: with T = ceres::Jet one
+/// shot gives the tip's exact derivatives in the start and the length. The sections are sampled
+/// once at s = σ L₀ (L₀ the model's length): exact for a uniform rod at any length. Loads: the
+/// distributed ones that do not depend on the pose (gravity, buoyancy, a distributed force).
+///
+/// Its ends speak the body-frame wrench [m; n] (Point), but the shot carries the internal force
+/// in the world, n_W = R n, and the internal moment about the world origin, J = R m + p × n_W:
+/// then n_W' = −f and J' = −p × f, so RK4 sums the loads with its own quadrature and a rod's end
+/// wrenches balance them to round-off (LoadWrench_W gives that sum): an assembly's reactions
+/// balance its loads exactly, not to the grid's truncation.
 
 #include <vector>
 
@@ -43,6 +48,11 @@ class RodShot {
   /// The same shot, recording every node into *state (resized to the grid; s scaled to L).
   void Record(const Point<double>& start, double length, RodState* state) const;
 
+  /// The distributed loads on the rod shot from `start` at `length`, as the shot sums them:
+  /// [moment about the world origin (N·m); force (N)], world. The rod's end wrenches balance it
+  /// to round-off.
+  Vec6 LoadWrench_W(const Point<double>& start, double length) const;
+
   int nodes() const { return static_cast<int>(sigma_.size()); }
   double model_length() const { return model_length_; }
   /// Bending stiffness at s = 0, the larger of the two (N·m²): the rod's scale.
@@ -55,11 +65,32 @@ class RodShot {
     Vec3 force_W = Vec3::Zero();  ///< distributed load, N/m
     double mass_per_length = 0.0, outer_diameter = 0.0, s = 0.0;
   };
+  /// The state the shot carries: pose, J = R m + p × n_W (N·m, about the world origin) and
+  /// n_W (N), world.
   template <typename T>
-  Point<T> Rate(const Sample& smp, const Point<T>& y, const T& length) const;
+  struct Carried {
+    Vector3<T> p;
+    Matrix3<T> R;
+    Vector3<T> J;
+    Vector3<T> n;
+  };
+  template <typename T>
+  static Carried<T> ToCarried(const Point<T>& y);
+  /// The body-frame wrench at the ends: m_B = R⁻¹ (J − p × n_W), n_B = R⁻¹ n_W with the inverse,
+  /// not the transpose: RK4 leaves R a rotation only to its truncation (~1e-9), and R n_B must
+  /// give back n_W to round-off for the balance.
+  template <typename T>
+  static Point<T> FromCarried(const Carried<T>& c);
+  /// The same with Rᵀ, for the strain at a stage (where the difference is truncation).
+  template <typename T>
+  static Point<T> AtStage(const Carried<T>& c);
+  /// dc/dσ: p' = R Γ, R' = R K̂ (the strain from the body-frame wrench), J' = −p × f,
+  /// n_W' = −f, each times the length.
+  template <typename T>
+  Carried<T> Rate(const Sample& smp, const Carried<T>& c, const T& length) const;
   /// The RK4 step over segment i (nodes i to i + 1).
   template <typename T>
-  Point<T> Step(int i, const Point<T>& y, const T& length) const;
+  Carried<T> Step(int i, const Carried<T>& c, const T& length) const;
 
   std::vector<double> sigma_;    ///< node fractions s/L₀, 0 … 1
   std::vector<Sample> samples_;  ///< node i at 2i, midpoint i + 1/2 at 2i + 1
@@ -67,42 +98,65 @@ class RodShot {
 };
 
 template <typename T>
-RodShot::Point<T> RodShot::Rate(const Sample& smp, const Point<T>& y, const T& length) const {
+RodShot::Carried<T> RodShot::ToCarried(const Point<T>& y) {
+  Carried<T> c{y.p, y.R, Vector3<T>(), Vector3<T>()};
+  c.n = y.R * y.n;
+  c.J = y.R * y.m + y.p.cross(c.n);
+  return c;
+}
+
+template <typename T>
+RodShot::Point<T> RodShot::FromCarried(const Carried<T>& c) {
+  const Matrix3<T> R_inv = c.R.inverse();
+  return Point<T>{c.p, c.R, R_inv * (c.J - c.p.cross(c.n)), R_inv * c.n};
+}
+
+template <typename T>
+RodShot::Point<T> RodShot::AtStage(const Carried<T>& c) {
+  const Matrix3<T> Rt = c.R.transpose();
+  return Point<T>{c.p, c.R, Rt * (c.J - c.p.cross(c.n)), Rt * c.n};
+}
+
+template <typename T>
+RodShot::Carried<T> RodShot::Rate(const Sample& smp, const Carried<T>& c, const T& length) const {
+  const Point<T> y = AtStage(c);
   Vector6<T> xi;
+  rhs::LinearStrain<T>(smp.rest_strain, smp.compliance, y.m, y.n, &xi);
   const Vector3<T> f = smp.force_W.template cast<T>();
-  Point<T> d = rhs::StaticDerivative<T>(smp.rest_strain, smp.compliance, f, y, &xi);
+  Carried<T> d;
+  rhs::KinematicRates<T>(c.R, xi.data(), &d.p, &d.R);
   d.p *= length;
   d.R *= length;
-  d.m *= length;
-  d.n *= length;
+  d.J = -length * c.p.cross(f);
+  d.n = -length * f;
   return d;
 }
 
 template <typename T>
-RodShot::Point<T> RodShot::Step(int i, const Point<T>& y0, const T& length) const {
-  auto axpy = [](const Point<T>& y, double a, const Point<T>& k) {
-    return Point<T>{y.p + a * k.p, y.R + a * k.R, y.m + a * k.m, y.n + a * k.n};
+RodShot::Carried<T> RodShot::Step(int i, const Carried<T>& c0, const T& length) const {
+  auto axpy = [](const Carried<T>& y, double a, const Carried<T>& k) {
+    return Carried<T>{y.p + a * k.p, y.R + a * k.R, y.J + a * k.J, y.n + a * k.n};
   };
   const double h = sigma_[i + 1] - sigma_[i];
   const Sample &s0 = samples_[2 * i], &sm = samples_[2 * i + 1], &s1 = samples_[2 * i + 2];
-  const Point<T> k1 = Rate(s0, y0, length);
-  const Point<T> k2 = Rate(sm, axpy(y0, 0.5 * h, k1), length);
-  const Point<T> k3 = Rate(sm, axpy(y0, 0.5 * h, k2), length);
-  const Point<T> k4 = Rate(s1, axpy(y0, h, k3), length);
+  const Carried<T> k1 = Rate(s0, c0, length);
+  const Carried<T> k2 = Rate(sm, axpy(c0, 0.5 * h, k1), length);
+  const Carried<T> k3 = Rate(sm, axpy(c0, 0.5 * h, k2), length);
+  const Carried<T> k4 = Rate(s1, axpy(c0, h, k3), length);
   const double a = h / 6, b = h / 3;
-  Point<T> y = y0;
-  y.p += a * (k1.p + k4.p) + b * (k2.p + k3.p);
-  y.R += a * (k1.R + k4.R) + b * (k2.R + k3.R);
-  y.m += a * (k1.m + k4.m) + b * (k2.m + k3.m);
-  y.n += a * (k1.n + k4.n) + b * (k2.n + k3.n);
-  return y;
+  Carried<T> c = c0;
+  c.p += a * (k1.p + k4.p) + b * (k2.p + k3.p);
+  c.R += a * (k1.R + k4.R) + b * (k2.R + k3.R);
+  c.J += a * (k1.J + k4.J) + b * (k2.J + k3.J);
+  c.n += a * (k1.n + k4.n) + b * (k2.n + k3.n);
+  return c;
 }
 
 template <typename T>
 RodShot::Point<T> RodShot::Shoot(const Point<T>& start, const T& length) const {
-  Point<T> y = start;
-  for (int i = 0; i + 1 < nodes(); ++i) y = Step(i, y, length);
-  return y;
+  Carried<T> c = ToCarried(start);
+  for (int i = 0; i + 1 < nodes(); ++i) c = Step(i, c, length);
+  return FromCarried(c);
 }
 
 }  // namespace cosserat
