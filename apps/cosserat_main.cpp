@@ -1,5 +1,5 @@
 // The `cosserat` command:
-//   cosserat solve PROBLEM.json [--out RESULT.json] [--csv NODES.csv]
+//   cosserat solve PROBLEM.json [--out RESULT.json] [--csv NODES.csv] [--vtk DIR]
 //   cosserat validate PROBLEM.json
 //   cosserat --version | --help
 // Exit codes: 0 converged (or valid), 1 solved but not converged, 2 bad input or usage.
@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "cosserat/io/problem.hpp"
+#include "cosserat/io/vtk_series.hpp"
 #include "cosserat/run/run.hpp"
 
 namespace {
@@ -25,14 +27,16 @@ constexpr int kExitBadInput = 2;
 
 const char* const kUsage =
     "usage:\n"
-    "  cosserat solve PROBLEM.json [--out RESULT.json] [--csv NODES.csv]\n"
+    "  cosserat solve PROBLEM.json [--out RESULT.json] [--csv NODES.csv] [--vtk DIR]\n"
     "  cosserat validate PROBLEM.json\n"
     "  cosserat --version\n"
     "  cosserat --help\n"
     "\n"
     "solve     solve the problem; the result JSON goes to stdout or to --out, the node table\n"
     "          to --csv (statics: s,x,y,z,k1,k2,k3; dynamics: t,node,s,x,y,z for every\n"
-    "          recorded frame). A one-line summary is printed on stderr.\n"
+    "          recorded frame). A one-line summary is printed on stderr. Dynamics with\n"
+    "          --vtk also writes a ParaView time series to DIR: DIR/<problem>.pvd and one\n"
+    "          .vtp per recorded frame (positions, directors, strains, internal wrench).\n"
     "validate  check the problem file and print every error found.\n"
     "\n"
     "exit status: 0 converged (or valid), 1 ran but did not converge (the result is still\n"
@@ -48,6 +52,7 @@ struct Command {
   std::string problem_path;
   std::optional<std::string> out_path;
   std::optional<std::string> csv_path;
+  std::optional<std::string> vtk_dir;
 };
 
 /// Takes the value of an option such as `--out FILE` or `--out=FILE`.
@@ -56,7 +61,8 @@ std::string OptionValue(const std::vector<std::string>& args, std::size_t* i,
   const std::string& arg = args[*i];
   if (arg.size() > option.size() && arg.compare(0, option.size() + 1, option + "=") == 0)
     return arg.substr(option.size() + 1);
-  if (*i + 1 >= args.size()) throw UsageError{option + " needs a file name"};
+  if (*i + 1 >= args.size())
+    throw UsageError{option + (option == "--vtk" ? " needs a directory" : " needs a file name")};
   return args[++*i];
 }
 
@@ -77,12 +83,15 @@ Command ParseCommandLine(const std::vector<std::string>& args) {
     const std::string& arg = args[i];
     const bool is_out = arg == "--out" || arg.rfind("--out=", 0) == 0;
     const bool is_csv = arg == "--csv" || arg.rfind("--csv=", 0) == 0;
+    const bool is_vtk = arg == "--vtk" || arg.rfind("--vtk=", 0) == 0;
     if (arg == "--help" || arg == "-h")
       cmd.name = "help";
     else if (cmd.name == "solve" && is_out)
       cmd.out_path = OptionValue(args, &i, "--out");
     else if (cmd.name == "solve" && is_csv)
       cmd.csv_path = OptionValue(args, &i, "--csv");
+    else if (cmd.name == "solve" && is_vtk)
+      cmd.vtk_dir = OptionValue(args, &i, "--vtk");
     else if (arg.size() > 1 && arg[0] == '-')
       throw UsageError{"unknown option '" + arg + "'"};
     else if (cmd.problem_path.empty())
@@ -140,10 +149,23 @@ int RunSolve(const Command& cmd) {
 
   cosserat::run::RunOptions options;
   options.nodes_csv = csv_file.has_value();
+  options.frames = cmd.vtk_dir.has_value();
+  if (cmd.vtk_dir && problem->analysis != cosserat::io::Analysis::kDynamics)
+    throw UsageError{"--vtk writes the frames of a dynamics run; this problem's analysis is \"" +
+                     cosserat::io::ToString(problem->analysis) + "\""};
   const cosserat::run::Result result = cosserat::run::Run(*problem, options);
   out << result.json.dump(2) << '\n';
   if (csv_file) *csv_file << result.nodes_csv;
   std::cerr << result.log;
+  if (cmd.vtk_dir) {
+    const std::string stem = std::filesystem::path(cmd.problem_path).stem().string();
+    std::string error;
+    if (!cosserat::io::WriteVtkSeries(*cmd.vtk_dir, stem, result.frames, result.node_radius,
+                                      &error))
+      throw std::runtime_error(error);
+    std::cerr << "cosserat: " << result.frames.size() << " frames written to "
+              << (std::filesystem::path(*cmd.vtk_dir) / (stem + ".pvd")).string() << '\n';
+  }
   out.flush();
   if (!out || (csv_file && !csv_file->flush()))
     throw std::runtime_error("writing the result failed");

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages cosserat needs to build, test, benchmark and plot.
+# Installs the Debian 12 packages cosserat needs to build, benchmark and plot; with --test, also
+# what only the test suite reads (python3-vtk9: the VTK time series read back with VTK).
 # Run as root (or with sudo). Safe to run again: apt skips what is already there.
 set -euo pipefail
 packages=(
@@ -9,6 +10,9 @@ packages=(
   nlohmann-json3-dev
   python3 python3-dev python3-numpy python3-matplotlib pybind11-dev
 )
+if [ "${1:-}" = "--test" ]; then
+  packages+=(python3-vtk9)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

@@ -2,6 +2,6 @@
 # README command 2: install what is missing, build everything and run the whole test suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
+bash scripts/install-deps.sh --test
 bash scripts/build.sh -DBUILD_TESTING=ON -DCOSSERAT_BUILD_EXAMPLES=ON -DCOSSERAT_BUILD_BENCHMARKS=ON
 ctest --test-dir build --output-on-failure -j"$(nproc)"

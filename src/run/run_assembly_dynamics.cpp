@@ -5,11 +5,13 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cosserat/assembly/assembly_dynamics.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/lie/so3.hpp"
+#include "frame_output.hpp"
 
 namespace cosserat::run {
 namespace {
@@ -24,8 +26,15 @@ struct Frames {
   std::ostringstream csv;
 };
 
-void Record(const AssemblyDynamics& dyn, const StaticLoads& loads, bool nodes, Frames* f) {
+void Record(const AssemblyDynamics& dyn, const StaticLoads& loads, const RunOptions& options,
+            Frames* f, Result* result) {
   f->t.push_back(dyn.time());
+  if (options.frames) {
+    io::VtkFrame frame{dyn.time(), {}};
+    for (int i = 0; i < dyn.rod_count(); ++i) frame.rods.push_back(dyn.rod(i).state());
+    result->frames.push_back(std::move(frame));
+  }
+  const bool nodes = options.nodes_csv;
   f->energy.push_back(dyn.Energy(loads));
   for (int b = 0; b < dyn.body_count(); ++b) {
     f->position[b].push_back(io::ToJson(dyn.body_pose(b).p));
@@ -81,6 +90,11 @@ Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options
   for (int b = 0; b < B; ++b)
     dyn.SetBodyLoad(b, spec.assembly.bodies[b].force_W, spec.assembly.bodies[b].moment_W);
 
+  Result result;
+  if (options.frames)
+    for (int i = 0; i < dyn.rod_count(); ++i)
+      result.node_radius.push_back(detail::NodeRadius(spec.assembly.rods[i].model,
+                                                      dyn.rod(i).state().s, Actuation{}));
   Frames frames;
   frames.position.assign(B, json::array());
   frames.rotation.assign(B, json::array());
@@ -92,7 +106,7 @@ Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options
   int taken = 0, iterations = init.iterations;
   double failed_at = -1.0;
   if (init.converged()) {
-    Record(dyn, problem.loads, options.nodes_csv, &frames);
+    Record(dyn, problem.loads, options, &frames, &result);
     for (int k = 1; k <= steps; ++k) {
       const AssemblySummary s = dyn.Step(problem.loads);
       iterations += s.iterations;
@@ -102,14 +116,13 @@ Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options
         break;
       }
       ++taken;
-      if (k % stride == 0 || k == steps) Record(dyn, problem.loads, options.nodes_csv, &frames);
+      if (k % stride == 0 || k == steps) Record(dyn, problem.loads, options, &frames, &result);
     }
   } else {
     failed_at = 0.0;
   }
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
 
-  Result result;
   result.converged = status == SolveStatus::kConverged;
   json& out = result.json;
   out["status"] = ToString(status);

@@ -14,6 +14,7 @@
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/shooting_exponent.hpp"
+#include "frame_output.hpp"
 #include "node_table.hpp"
 
 namespace cosserat::run {
@@ -46,6 +47,7 @@ void Record(const Bdf2ShootingStepper& stepper, double t, bool all_nodes, io::Dy
   if (all_nodes)
     run->frame_positions.insert(run->frame_positions.end(), state.position_W.begin(),
                                 state.position_W.end());
+  if (run->record_states) run->frame_states.push_back(state);
 }
 
 void AddCounts(const StepSummary& s, io::DynamicRun* run) {
@@ -95,11 +97,13 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
 }
 
 /// The whole simulation: initial equilibrium, then round(duration / dt) steps.
-io::DynamicRun Simulate(const io::Problem& problem, bool all_nodes, Bdf2ShootingStepper* stepper) {
+io::DynamicRun Simulate(const io::Problem& problem, bool all_nodes, bool states,
+                        Bdf2ShootingStepper* stepper) {
   const io::Problem::Dynamics& d = problem.dynamics;
   const int steps = static_cast<int>(std::lround(d.duration / d.dt));
   const int stride = std::max(1, static_cast<int>(std::lround(d.output_interval / d.dt)));
   io::DynamicRun run;
+  run.record_states = states;
   run.report_tip_spin =
       problem.loads.bit.present() || d.base_spin != 0.0 || d.rotary_table.present();
   run.step_time_s.reserve(steps);
@@ -150,9 +154,10 @@ std::string SummaryLine(const io::DynamicRun& run, const RodState& state) {
 Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   const Bdf2Options options = DynamicsOptions(problem);
   Bdf2ShootingStepper stepper(problem.rod, problem.nodes, options);
-  const io::DynamicRun run = Simulate(problem, run_options.nodes_csv, &stepper);
+  io::DynamicRun run = Simulate(problem, run_options.nodes_csv, run_options.frames, &stepper);
   Result result;
   result.json = io::DynamicResultToJson(run, stepper.state());
+  detail::MoveFrames(problem.rod, problem.robot.actuation, &run, &result);
   for (int i = 0; i < stepper.state().size(); ++i)
     result.node_velocity_W.push_back(stepper.state().rotation_WB[i] * stepper.state().twist_B[i].tail<3>());
   if (run_options.nodes_csv) result.nodes_csv = detail::TrajectoryCsv(run, stepper.state().s);

@@ -12,6 +12,7 @@
 #include "cosserat/quatfd/radau.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "contact_report.hpp"
+#include "frame_output.hpp"
 #include "node_table.hpp"
 
 namespace cosserat::run {
@@ -228,6 +229,7 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
     if (options.nodes_csv)
       run.frame_positions.insert(run.frame_positions.end(), state.position_W.begin(),
                                  state.position_W.end());
+    if (options.frames) run.frame_states.push_back(state);
   };
   RadauOutcome radau;
   if (!run.initial_state_ok) {
@@ -241,6 +243,7 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
   model.ToRodState(q, v, &state);
   Result result;
   result.json = io::DynamicResultToJson(run, state);
+  detail::MoveFrames(problem.rod, problem.robot.actuation, &run, &result);
   for (int i = 0; i < state.size(); ++i)
     result.node_velocity_W.push_back(state.rotation_WB[i] * state.twist_B[i].tail<3>());
   if (options.nodes_csv) result.nodes_csv = detail::TrajectoryCsv(run, state.s);

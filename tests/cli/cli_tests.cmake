@@ -44,6 +44,16 @@ cosserat_cli_test(NAME solve_dynamics
                   CODE 0 STDOUT "\"trajectory\": {" STDERR "converged, 100 steps"
                   FILES "${_cli_out}/frames.csv")
 
+# A VTK time series of a dynamics run (read back with VTK in tests/vtk/); statics has no frames.
+cosserat_cli_test(NAME solve_dynamics_vtk
+                  ARGS solve "${_cli_dir}/dynamics.json" --out "${_cli_out}/vtk_result.json"
+                       --vtk "${_cli_out}/vtk"
+                  CODE 0 STDERR "frames written to .*dynamics.pvd"
+                  FILES "${_cli_out}/vtk/dynamics.pvd" "${_cli_out}/vtk/dynamics_000000.vtp")
+cosserat_cli_test(NAME vtk_needs_dynamics
+                  ARGS solve "${_cli_example}" --vtk "${_cli_out}/vtk_statics"
+                  CODE 2 STDERR "--vtk writes the frames of a dynamics run; this problem's analysis is \"statics\"")
+
 # The same release with the order-2 Heun scheme in s (half the stage evaluations).
 cosserat_cli_test(NAME solve_dynamics_heun
                   ARGS solve "${_cli_dir}/dynamics_heun.json"

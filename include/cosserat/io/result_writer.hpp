@@ -71,6 +71,9 @@ struct DynamicRun {
   std::vector<double> frame_touchdown_s;
   bool report_touchdown = false;
   std::vector<Vec3> frame_positions;  ///< all node positions, frame after frame (may be empty)
+  /// The whole state of each frame, when `record_states` (for the VTK time series).
+  std::vector<RodState> frame_states;
+  bool record_states = false;
 };
 
 /// The dynamics result: status, failed_at_t (only on failure), steps, halved_steps, iterations,

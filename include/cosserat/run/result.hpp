@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cosserat/io/vtk_series.hpp"
 #include "cosserat/lie/types.hpp"
 
 namespace cosserat::run {
@@ -16,6 +17,9 @@ struct RunOptions {
   /// Fill Result::nodes_csv. Dynamics then records every node of every output frame, not only
   /// the tip.
   bool nodes_csv = false;
+  /// Fill Result::frames: every rod's whole state at every output frame of a dynamics run, for
+  /// the VTK time series (io/vtk_series.hpp; `cosserat solve --vtk DIR`).
+  bool frames = false;
 };
 
 /// The outcome of a run. A run that did not converge still has a full result document, whose
@@ -34,6 +38,10 @@ struct Result {
   /// Dynamics: each node's centreline velocity in the final state (m/s, world frame), for the
   /// velocity-dependent parts of the contact report; empty otherwise.
   std::vector<Vec3> node_velocity_W;
+  /// Dynamics with RunOptions::frames: the recorded frames (the times of the result's
+  /// trajectory), and each rod's outer radius at its nodes (m).
+  std::vector<io::VtkFrame> frames;
+  std::vector<std::vector<double>> node_radius;
 };
 
 }  // namespace cosserat::run

@@ -1,0 +1,109 @@
+#include "cosserat/io/vtk_series.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <system_error>
+
+namespace cosserat::io {
+namespace {
+
+/// A point-data array of 3-vectors, one per node, computed by `value(node)`.
+template <typename Value>
+void VectorArray(std::ostream& out, const char* name, int nodes, const Value& value) {
+  out << "        <DataArray type=\"Float64\" Name=\"" << name
+      << "\" NumberOfComponents=\"3\" format=\"ascii\">\n         ";
+  for (int i = 0; i < nodes; ++i) {
+    const Vec3 v = value(i);
+    out << ' ' << v.x() << ' ' << v.y() << ' ' << v.z();
+  }
+  out << "\n        </DataArray>\n";
+}
+
+template <typename Value>
+void ScalarArray(std::ostream& out, const char* name, int nodes, const Value& value) {
+  out << "        <DataArray type=\"Float64\" Name=\"" << name << "\" format=\"ascii\">\n         ";
+  for (int i = 0; i < nodes; ++i) out << ' ' << value(i);
+  out << "\n        </DataArray>\n";
+}
+
+void Piece(std::ostream& out, const RodState& st, const std::vector<double>& radius) {
+  const int n = st.size();
+  out << "    <Piece NumberOfPoints=\"" << n
+      << "\" NumberOfVerts=\"0\" NumberOfLines=\"1\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
+      << "      <PointData Scalars=\"radius\">\n";
+  ScalarArray(out, "s", n, [&](int i) { return st.s[i]; });
+  ScalarArray(out, "radius", n, [&](int i) { return i < int(radius.size()) ? radius[i] : 0.0; });
+  for (int j = 0; j < 3; ++j) {
+    const char* names[] = {"d1", "d2", "d3"};
+    VectorArray(out, names[j], n, [&](int i) { return Vec3(st.rotation_WB[i].col(j)); });
+  }
+  VectorArray(out, "curvature", n, [&](int i) { return Vec3(st.strain[i].head<3>()); });
+  VectorArray(out, "shear_stretch", n, [&](int i) { return Vec3(st.strain[i].tail<3>()); });
+  VectorArray(out, "force", n,
+              [&](int i) { return Vec3(st.rotation_WB[i] * st.wrench_B[i].tail<3>()); });
+  VectorArray(out, "moment", n,
+              [&](int i) { return Vec3(st.rotation_WB[i] * st.wrench_B[i].head<3>()); });
+  VectorArray(out, "velocity", n,
+              [&](int i) { return Vec3(st.rotation_WB[i] * st.twist_B[i].tail<3>()); });
+  out << "      </PointData>\n      <Points>\n";
+  VectorArray(out, "position", n, [&](int i) { return st.position_W[i]; });
+  out << "      </Points>\n      <Lines>\n"
+      << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n         ";
+  for (int i = 0; i < n; ++i) out << ' ' << i;
+  out << "\n        </DataArray>\n"
+      << "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n          " << n
+      << "\n        </DataArray>\n      </Lines>\n    </Piece>\n";
+}
+
+bool WriteFile(const std::filesystem::path& path, const std::string& text, std::string* error) {
+  std::ofstream f(path);
+  f << text;
+  f.close();
+  if (!f) {
+    if (error) *error = path.string() + ": cannot write";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool WriteVtkSeries(const std::string& directory, const std::string& stem,
+                    const std::vector<VtkFrame>& frames,
+                    const std::vector<std::vector<double>>& radius, std::string* error) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(directory, ec);
+  if (ec) {
+    if (error) *error = directory + ": cannot create the directory (" + ec.message() + ")";
+    return false;
+  }
+  std::ostringstream pvd;
+  pvd << std::setprecision(17);
+  pvd << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <Collection>\n";
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    char name[64];
+    std::snprintf(name, sizeof name, "_%06zu.vtp", k);
+    const std::string file = stem + name;
+    std::ostringstream vtp;
+    vtp << std::setprecision(17);
+    vtp << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+        << "  <PolyData>\n";
+    for (std::size_t r = 0; r < frames[k].rods.size(); ++r)
+      Piece(vtp, frames[k].rods[r], r < radius.size() ? radius[r] : std::vector<double>{});
+    vtp << "  </PolyData>\n</VTKFile>\n";
+    if (!WriteFile(fs::path(directory) / file, vtp.str(), error)) return false;
+    pvd << "    <DataSet timestep=\"" << frames[k].t << "\" group=\"\" part=\"0\" file=\"" << file
+        << "\"/>\n";
+  }
+  pvd << "  </Collection>\n</VTKFile>\n";
+  return WriteFile(fs::path(directory) / (stem + ".pvd"), pvd.str(), error);
+}
+
+}  // namespace cosserat::io

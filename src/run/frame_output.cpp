@@ -1,0 +1,27 @@
+#include "frame_output.hpp"
+
+#include <utility>
+
+#include "cosserat/rod/section_profile.hpp"
+
+namespace cosserat::run::detail {
+
+std::vector<double> NodeRadius(const RodModel& model, const std::vector<double>& s,
+                               const Actuation& actuation) {
+  std::vector<double> radius;
+  radius.reserve(s.size());
+  for (double si : s) radius.push_back(0.5 * model.section->At(si, actuation).outer_diameter);
+  return radius;
+}
+
+void MoveFrames(const RodModel& model, const Actuation& actuation, io::DynamicRun* run,
+                Result* result) {
+  if (run->frame_states.empty()) return;
+  result->node_radius = {NodeRadius(model, run->frame_states.front().s, actuation)};
+  result->frames.reserve(run->frame_states.size());
+  for (std::size_t k = 0; k < run->frame_states.size() && k < run->frame_t.size(); ++k)
+    result->frames.push_back({run->frame_t[k], {std::move(run->frame_states[k])}});
+  run->frame_states.clear();
+}
+
+}  // namespace cosserat::run::detail
