@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# `pip install --no-build-isolation .` into a fresh virtual environment that sees the system's
+# site packages (Debian's numpy, setuptools, wheel), then the module's own tests with that
+# environment's interpreter and no PYTHONPATH: the module they import is the installed one.
+#   run.sh SOURCE_DIR CMAKE_BUILD_DIR WORK_DIR
+# COSSERAT_BUILD_DIR makes setup.py reuse the test build's CMake directory instead of building
+# the library a second time.
+set -euo pipefail
+SRC=$1 BUILD=$2 WORK=$3
+rm -rf "$WORK"
+mkdir -p "$WORK"
+/usr/bin/python3 -m venv --system-site-packages "$WORK/venv"
+cd "$SRC"
+COSSERAT_BUILD_DIR="$BUILD" "$WORK/venv/bin/pip" install --no-build-isolation --no-index \
+  --quiet .
+env -u PYTHONPATH "$WORK/venv/bin/python" - "$WORK" <<'PY'
+import sys
+import cosserat
+assert cosserat.__file__.startswith(sys.argv[1]), f"imported {cosserat.__file__}, not the installed module"
+print("installed module:", cosserat.__file__)
+PY
+env -u PYTHONPATH "$WORK/venv/bin/python" python/test_cosserat_module.py
