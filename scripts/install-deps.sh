@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages cosserat needs to build, benchmark and plot; with --test, also
 # what only the test suite reads (python3-vtk9: the VTK time series read back with VTK;
-# python3-venv, -pip, -setuptools, -wheel: `pip install .` into a fresh virtual environment).
+# python3-venv, -pip, -setuptools, -wheel: `pip install .` into a fresh virtual environment;
+# python3-nbconvert, python3-ipykernel: the notebooks of examples/notebooks run top to bottom).
 # Run as root (or with sudo). Safe to run again: apt skips what is already there.
 set -euo pipefail
 packages=(
@@ -12,7 +13,8 @@ packages=(
   python3 python3-dev python3-numpy python3-matplotlib pybind11-dev
 )
 if [ "${1:-}" = "--test" ]; then
-  packages+=(python3-vtk9 python3-venv python3-pip python3-setuptools python3-wheel)
+  packages+=(python3-vtk9 python3-venv python3-pip python3-setuptools python3-wheel
+             python3-nbconvert python3-ipykernel)
 fi
 missing=()
 for p in "${packages[@]}"; do
