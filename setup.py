@@ -1,5 +1,5 @@
-"""Builds the cosserat Python module (python/cosserat_module.cpp) with the project's CMake and
-installs it as the extension module `cosserat`.
+"""Builds the cosserat Python package with the project's CMake and installs it: the compiled
+core cosserat._core (python/cosserat_module.cpp) and the Python files of python/cosserat/.
 
   pip install --no-build-isolation .
 
@@ -44,13 +44,14 @@ class CMakeBuild(build_ext):
         jobs = str(os.cpu_count() or 1)
         subprocess.check_call(["cmake", "--build", build_dir, "--target", "cosserat_python",
                                "-j", jobs])
-        built = glob.glob(os.path.join(build_dir, "python", "cosserat*.so"))
+        built = glob.glob(os.path.join(build_dir, "python", "cosserat", "_core*.so"))
         if len(built) != 1:
-            raise RuntimeError(f"expected one built module in {build_dir}/python, found {built}")
+            raise RuntimeError(f"expected one built core in {build_dir}/python/cosserat, found {built}")
         target = self.get_ext_fullpath(ext.name)
         os.makedirs(os.path.dirname(target), exist_ok=True)
         shutil.copyfile(built[0], target)
 
 
-setup(ext_modules=[CMakeExtension("cosserat")], cmdclass={"build_ext": CMakeBuild},
+setup(packages=["cosserat"], package_dir={"cosserat": "python/cosserat"},
+      ext_modules=[CMakeExtension("cosserat._core")], cmdclass={"build_ext": CMakeBuild},
       zip_safe=False)

@@ -502,7 +502,7 @@ void BindStepper(py::module_& m) {
 
 }  // namespace
 
-PYBIND11_MODULE(cosserat, m) {
+PYBIND11_MODULE(_core, m) {
   m.doc() =
       "Cosserat rods for soft and continuum robots: statics and BDF2 dynamics (SE(3) "
       "shooting) from problem files.";

@@ -19,4 +19,4 @@ import cosserat
 assert cosserat.__file__.startswith(sys.argv[1]), f"imported {cosserat.__file__}, not the installed module"
 print("installed module:", cosserat.__file__)
 PY
-env -u PYTHONPATH "$WORK/venv/bin/python" python/test_cosserat_module.py
+env -u PYTHONPATH "$WORK/venv/bin/python" tests/python/test_cosserat_module.py

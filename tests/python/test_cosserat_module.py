@@ -387,5 +387,52 @@ class Assemblies(unittest.TestCase):
         self.assertEqual(np.array(forward["result"]["assembly"]["pose_jacobian"]).shape, (6, 6))
 
 
+class PythonSide(unittest.TestCase):
+    """The package's Python side: problems as dicts and paths, NumPy results, plot, animate."""
+
+    def test_a_dict_solves_like_its_file_and_gives_numpy_arrays(self):
+        # The elastica at alpha = 1 (Bisshopp & Drucker 1945): tip deflection 0.3017207738 L;
+        # the wire's extension and shear move it by ~(r/L)^2 = 4e-6.
+        out = cosserat.solve(wire(extra={"loads": {"tip_force": [-EI / L**2, 0, 0]}}))
+        self.assertTrue(out["converged"])
+        nodes = out["nodes"]["position"]
+        self.assertIsInstance(nodes, np.ndarray)
+        self.assertEqual(nodes.shape, (41, 3))
+        self.assertAlmostEqual(-nodes[-1, 0] / L, 0.3017207738, delta=2e-5)
+        from_file = cosserat.solve("examples/cantilever.json")
+        self.assertTrue(from_file["converged"])
+        with self.assertRaises(TypeError):
+            cosserat.solve(42)
+        with self.assertRaisesRegex(ValueError, "rod.length: expected a positive number"):
+            cosserat.solve(wire(extra={"rod": {"length": -1, "nodes": 41,
+                                               "section": {"shape": "circle", "radius": R},
+                                               "material": {"youngs_modulus": E,
+                                                            "shear_modulus": G,
+                                                            "density": RHO}}}))
+
+    def test_frames_plot_and_animate(self):
+        import matplotlib
+        matplotlib.use("Agg")
+        import tempfile
+        from PIL import Image
+        out = cosserat.solve("tests/vtk/release_2s.json", nodes=True)
+        frames = out["frames"]
+        # The frames are the trajectory's: 41 times, the tip of each is the trajectory's tip.
+        self.assertEqual(frames["position"].shape, (41, 21, 3))
+        np.testing.assert_array_equal(frames["t"], out["trajectory"]["t"])
+        np.testing.assert_allclose(frames["position"][:, -1, :], out["trajectory"]["tip_position"],
+                                   rtol=0, atol=1e-15)
+        ax = cosserat.plot(out)
+        self.assertEqual(len(ax.lines), 3)  # the rod, its base, the tip's path
+        with tempfile.TemporaryDirectory() as d:
+            gif = d + "/release.gif"
+            written = cosserat.animate(out, gif, every=4)
+            self.assertEqual(written, 11)
+            with Image.open(gif) as image:
+                self.assertEqual(image.n_frames, 11)
+        with self.assertRaisesRegex(ValueError, "nodes=True"):
+            cosserat.animate(cosserat.solve("examples/cantilever.json"), "x.gif")
+
+
 if __name__ == "__main__":
     unittest.main()

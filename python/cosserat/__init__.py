@@ -1,0 +1,20 @@
+"""Cosserat rods for soft and continuum robots and slender structures.
+
+The compiled core (cosserat._core) holds the problem reader, every analysis as the `cosserat`
+command runs it, the static solver and the BDF2 dynamics stepper; this package adds what makes it
+pleasant from Python:
+
+  solve(problem)      a Problem, a dict with the problem-file keys, or a file path; the result
+                      with its node and trajectory arrays as NumPy (see solve's help)
+  plot(out)           the rod (and its tip trajectory) of a solve's output, with matplotlib
+  animate(out, path)  an MP4 (ffmpeg) or GIF (Pillow) of a dynamics run's frames
+
+Units are SI; positions, forces and rotations are in the world frame unless a name ends in _B
+(the section's body frame: x, y across the section, z along the rod). docs/python.md has the
+whole module.
+"""
+from . import _core
+from ._core import *  # noqa: F401,F403  (Problem, Loads, Actuation, Fluid, StaticSolver, Stepper, ...)
+from ._core import __version__  # noqa: F401
+from .plotting import animate, plot  # noqa: F401
+from .results import solve  # noqa: F401  (accepts dicts and paths; adds NumPy arrays)

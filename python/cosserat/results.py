@@ -1,0 +1,73 @@
+"""cosserat.solve: any problem, given as a Problem, a dict or a path, with NumPy results."""
+import json
+import os
+
+import numpy as np
+
+from . import _core
+
+
+def _as_problem(problem):
+    if isinstance(problem, _core.Problem):
+        return problem
+    if isinstance(problem, dict):
+        return _core.parse_problem(json.dumps(problem))
+    if isinstance(problem, (str, os.PathLike)):
+        return _core.load_problem(os.fspath(problem))
+    raise TypeError("problem: expected a cosserat.Problem, a dict with the problem-file keys "
+                    f"or a file path, got {type(problem).__name__}")
+
+
+def _arrays(block):
+    """The lists of a result block (nodes, trajectory) as NumPy arrays; other values as they are."""
+    out = {}
+    for key, value in block.items():
+        if isinstance(value, list) and value and not isinstance(value[0], (dict, str)):
+            try:
+                out[key] = np.asarray(value, dtype=float)
+                continue
+            except (TypeError, ValueError):
+                pass
+        out[key] = value
+    return out
+
+
+def _frames(nodes_csv):
+    """The --csv table of a dynamics run: (times (F,), positions (F, N, 3)), or None."""
+    lines = nodes_csv.strip().splitlines()
+    if not lines or not lines[0].startswith("t,node"):
+        return None
+    rows = np.asarray([[float(v) for v in line.split(",")] for line in lines[1:]])
+    nodes = int(rows[:, 1].max()) + 1
+    frames = rows.reshape(-1, nodes, rows.shape[1])
+    return frames[:, 0, 0], frames[:, :, 3:6]
+
+
+def solve(problem, nodes=False):
+    """Runs a problem exactly as `cosserat solve` does.
+
+    problem: a cosserat.Problem, a dict with the problem-file keys (docs/problem-format.md), or
+    the path of a problem file. Bad input raises ValueError naming every bad field.
+    nodes: also record every node of every frame of a dynamics run (the --csv table).
+
+    Returns a dict:
+      converged   bool
+      result      the result document as a dict (its lists as Python lists)
+      log         the summary line and any hints
+      nodes       result["nodes"] with its lists as NumPy arrays (positions N x 3, m; s, m; ...)
+      trajectory  result["trajectory"] likewise (t (s), tip_position (F x 3, m), ...), if any
+      frames      with nodes=True in dynamics: {"t": (F,), "position": (F, N, 3)} (m, world)
+      nodes_csv   with nodes=True: the --csv table as text
+      contact_force, contact_total_force   with contact surfaces (N/m per node; N)
+    """
+    out = _core.solve(_as_problem(problem), nodes)
+    result = out["result"]
+    if isinstance(result.get("nodes"), dict):
+        out["nodes"] = _arrays(result["nodes"])
+    if isinstance(result.get("trajectory"), dict):
+        out["trajectory"] = _arrays(result["trajectory"])
+    if nodes and out.get("nodes_csv"):
+        frames = _frames(out["nodes_csv"])
+        if frames is not None:
+            out["frames"] = {"t": frames[0], "position": frames[1]}
+    return out
