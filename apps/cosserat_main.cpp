@@ -4,13 +4,19 @@
 //   cosserat --version | --help
 // Exit codes: 0 converged (or valid), 1 solved but not converged, 2 bad input or usage.
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -132,6 +138,38 @@ int RunValidate(const Command& cmd) {
   return kExitConverged;
 }
 
+/// A progress line on stderr for a run longer than about two seconds, when stderr is a terminal
+/// (a file or a pipe gets nothing): simulated time, share of the run, time left. Redrawn at most
+/// four times a second; cleared when the run ends.
+class ProgressLine {
+ public:
+  ProgressLine() : active_(isatty(STDERR_FILENO) != 0), start_(Clock::now()) {}
+  ~ProgressLine() {
+    if (drawn_) std::cerr << "\r\033[K" << std::flush;
+  }
+  void operator()(double t, double duration) {
+    if (!active_ || !(duration > 0)) return;
+    const auto now = Clock::now();
+    const double elapsed = Seconds(now - start_);
+    if (elapsed < 2.0 || (drawn_ && Seconds(now - last_) < 0.25)) return;
+    last_ = now;
+    drawn_ = true;
+    const double share = std::min(1.0, t / duration);
+    std::ostringstream line;
+    line << std::fixed << std::setprecision(3) << "\rcosserat: t = " << t << " of " << duration
+         << " s (" << std::setprecision(0) << 100 * share << " %), " << std::setprecision(1)
+         << elapsed << " s";
+    if (share > 0) line << ", about " << elapsed * (1 - share) / share << " s left";
+    std::cerr << line.str() << "\033[K" << std::flush;
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  static double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+  bool active_, drawn_ = false;
+  Clock::time_point start_, last_;
+};
+
 /// Opens an output file before the solve, so a bad path fails fast.
 std::ofstream OpenOutput(const std::string& path) {
   std::ofstream out(path);
@@ -153,7 +191,12 @@ int RunSolve(const Command& cmd) {
   if (cmd.vtk_dir && problem->analysis != cosserat::io::Analysis::kDynamics)
     throw UsageError{"--vtk writes the frames of a dynamics run; this problem's analysis is \"" +
                      cosserat::io::ToString(problem->analysis) + "\""};
-  const cosserat::run::Result result = cosserat::run::Run(*problem, options);
+  cosserat::run::Result result;
+  {
+    ProgressLine progress;
+    options.progress = [&progress](double t, double duration) { progress(t, duration); };
+    result = cosserat::run::Run(*problem, options);
+  }
   out << result.json.dump(2) << '\n';
   if (csv_file) *csv_file << result.nodes_csv;
   std::cerr << result.log;

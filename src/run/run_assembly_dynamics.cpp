@@ -117,6 +117,7 @@ Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options
       }
       ++taken;
       if (k % stride == 0 || k == steps) Record(dyn, problem.loads, options, &frames, &result);
+      if (options.progress) options.progress(dyn.time(), d.duration);
     }
   } else {
     failed_at = 0.0;

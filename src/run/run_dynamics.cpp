@@ -59,6 +59,7 @@ void AddCounts(const StepSummary& s, io::DynamicRun* run) {
 /// Times are reported as k dt (the stepper's own clock sums the steps, with rounding), except
 /// after a failed step, which may have committed some halved sub-steps.
 void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_nodes,
+                  const std::function<void(double, double)>& progress,
                   Bdf2ShootingStepper* stepper, io::DynamicRun* run) {
   StepInput input = ClampedInput(problem, problem.loads, problem.robot.actuation);
   const double dt = problem.dynamics.dt, spin = problem.dynamics.base_spin;
@@ -85,6 +86,7 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
     if (s.halvings > 0) ++run->halved_steps;
     run->shooting_segments = std::max(run->shooting_segments, s.shooting_segments);
     if (k % stride == 0) Record(*stepper, k * dt, all_nodes, run);
+    if (progress) progress(k * dt, problem.dynamics.duration);
   }
   run->stepping_wall_time_s = SecondsSince(loop_start);
   // A failed step may have committed halved sub-steps (at least dt / 2^max_halvings each).
@@ -97,13 +99,14 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
 }
 
 /// The whole simulation: initial equilibrium, then round(duration / dt) steps.
-io::DynamicRun Simulate(const io::Problem& problem, bool all_nodes, bool states,
+io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
                         Bdf2ShootingStepper* stepper) {
   const io::Problem::Dynamics& d = problem.dynamics;
   const int steps = static_cast<int>(std::lround(d.duration / d.dt));
   const int stride = std::max(1, static_cast<int>(std::lround(d.output_interval / d.dt)));
+  const bool all_nodes = options.nodes_csv;
   io::DynamicRun run;
-  run.record_states = states;
+  run.record_states = options.frames;
   run.report_tip_spin =
       problem.loads.bit.present() || d.base_spin != 0.0 || d.rotary_table.present();
   run.step_time_s.reserve(steps);
@@ -123,7 +126,7 @@ io::DynamicRun Simulate(const io::Problem& problem, bool all_nodes, bool states,
     run.failed_at_t = 0.0;
   } else {
     Record(*stepper, 0.0, all_nodes, &run);
-    StepToTheEnd(problem, steps, stride, all_nodes, stepper, &run);
+    StepToTheEnd(problem, steps, stride, all_nodes, options.progress, stepper, &run);
     run.energy = stepper->Energy(problem.loads);
   }
   run.wall_time_s = SecondsSince(start);
@@ -154,7 +157,7 @@ std::string SummaryLine(const io::DynamicRun& run, const RodState& state) {
 Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   const Bdf2Options options = DynamicsOptions(problem);
   Bdf2ShootingStepper stepper(problem.rod, problem.nodes, options);
-  io::DynamicRun run = Simulate(problem, run_options.nodes_csv, run_options.frames, &stepper);
+  io::DynamicRun run = Simulate(problem, run_options, &stepper);
   Result result;
   result.json = io::DynamicResultToJson(run, stepper.state());
   detail::MoveFrames(problem.rod, problem.robot.actuation, &run, &result);

@@ -230,6 +230,7 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
       run.frame_positions.insert(run.frame_positions.end(), state.position_W.begin(),
                                  state.position_W.end());
     if (options.frames) run.frame_states.push_back(state);
+    if (options.progress) options.progress(t, d.duration);
   };
   RadauOutcome radau;
   if (!run.initial_state_ok) {

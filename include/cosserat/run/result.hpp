@@ -3,6 +3,7 @@
 /// What running a problem produces (run.hpp): the result document, the node table and the
 /// summary, as `cosserat solve` writes them and `cosserat.solve` returns them.
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -20,6 +21,10 @@ struct RunOptions {
   /// Fill Result::frames: every rod's whole state at every output frame of a dynamics run, for
   /// the VTK time series (io/vtk_series.hpp; `cosserat solve --vtk DIR`).
   bool frames = false;
+  /// Called during a dynamics run with the simulated time reached and the run's duration (s),
+  /// after every step (SE(3), assemblies) or output frame (quaternion FD); may be empty. The
+  /// `cosserat` command draws a progress line with it on a terminal.
+  std::function<void(double t, double duration)> progress;
 };
 
 /// The outcome of a run. A run that did not converge still has a full result document, whose
