@@ -73,6 +73,39 @@ json FinalState(const Assembly& assembly, const AssemblyDynamics& dyn) {
   return {{"kind", "dynamics"}, {"bodies", bodies}, {"rods", rods}};
 }
 
+/// The one-line summary of a run (and why it stopped).
+std::string SummaryLine(const Assembly& assembly, const AssemblySummary& init, SolveStatus status,
+                        int taken, double failed_at, double wall, const AssemblyDynamics& dyn) {
+  std::ostringstream line;
+  line << "cosserat: " << ToString(status) << " (assembly dynamics)";
+  if (!init.converged()) {
+    line << ", the initial equilibrium did not converge (residual " << std::setprecision(3)
+         << init.residual << ")";
+  } else {
+    if (status != SolveStatus::kConverged)
+      line << " in the step to t = " << std::setprecision(6) << failed_at << " s";
+    line << ", " << taken << " steps, " << std::setprecision(6) << dyn.time() << " s simulated in "
+         << std::setprecision(3) << wall << " s";
+    if (dyn.body_count() > 0) {
+      const Vec3& p = dyn.body_pose(0).p;
+      line << ", " << assembly.bodies[0].name << " at [" << std::setprecision(6) << p.x() << ", "
+           << p.y() << ", " << p.z() << "] m";
+    }
+  }
+  return line.str() + '\n';
+}
+
+/// The trajectory block: the frames' times, energies and each body's path.
+json TrajectoryJson(const Assembly& assembly, const Frames& frames) {
+  json bodies = json::array();
+  for (std::size_t b = 0; b < assembly.bodies.size(); ++b)
+    bodies.push_back({{"name", assembly.bodies[b].name},
+                      {"position", frames.position[b]},
+                      {"rotation_vector", frames.rotation[b]},
+                      {"velocity", frames.velocity[b]}});
+  return {{"t", frames.t}, {"energy", frames.energy}, {"bodies", bodies}};
+}
+
 }  // namespace
 
 Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options) {
@@ -132,33 +165,11 @@ Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options
   out["simulated_time_s"] = dyn.time();
   out["wall_time_s"] = wall;
   out["failed_at_t"] = failed_at < 0 ? json(nullptr) : json(failed_at);
-  json bodies = json::array();
-  for (int b = 0; b < B; ++b)
-    bodies.push_back({{"name", spec.assembly.bodies[b].name},
-                      {"position", frames.position[b]},
-                      {"rotation_vector", frames.rotation[b]},
-                      {"velocity", frames.velocity[b]}});
-  out["trajectory"] = {{"t", frames.t}, {"energy", frames.energy}, {"bodies", bodies}};
+  out["trajectory"] = TrajectoryJson(spec.assembly, frames);
   out["assembly"] = FinalState(spec.assembly, dyn);
   if (options.nodes_csv) result.nodes_csv = frames.csv.str();
 
-  std::ostringstream line;
-  line << "cosserat: " << ToString(status) << " (assembly dynamics)";
-  if (!init.converged()) {
-    line << ", the initial equilibrium did not converge (residual " << std::setprecision(3)
-         << init.residual << ")";
-  } else {
-    if (!result.converged)
-      line << " in the step to t = " << std::setprecision(6) << failed_at << " s";
-    line << ", " << taken << " steps, " << std::setprecision(6) << dyn.time() << " s simulated in "
-         << std::setprecision(3) << wall << " s";
-    if (B > 0) {
-      const Vec3& p = dyn.body_pose(0).p;
-      line << ", " << spec.assembly.bodies[0].name << " at [" << std::setprecision(6) << p.x()
-           << ", " << p.y() << ", " << p.z() << "] m";
-    }
-  }
-  result.log = line.str() + '\n';
+  result.log = SummaryLine(spec.assembly, init, status, taken, failed_at, wall, dyn);
   return result;
 }
 
