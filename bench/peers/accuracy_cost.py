@@ -19,7 +19,6 @@ adds ~2-15 s of imports and JIT. For cosserat the process CPU is the whole run (
 equilibrium, stepping, writing the frames).
 """
 import argparse
-import csv
 import json
 import os
 import subprocess
@@ -28,14 +27,10 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import compare_tip_trajectories as ctt  # noqa: E402
+from interleave import median, run_interleaved  # noqa: E402
 
 DURATION = 1.0
 
-
-def median(v):
-    v = sorted(v)
-    n = len(v)
-    return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
 
 
 def timed(cmd):
@@ -182,22 +177,7 @@ def main():
                     yield row
 
     gens = [pe_jobs(), ours_jobs()]
-    while gens:
-        for g in list(gens):
-            try:
-                row = next(g)
-            except StopIteration:
-                gens.remove(g)
-                continue
-            if row is None:
-                continue
-            rows.append(row)
-            print(json.dumps(row), flush=True)
-            with open(args.out, "w", newline="") as f:
-                w = csv.DictWriter(f, fieldnames=fields)
-                w.writeheader()
-                for r in rows:
-                    w.writerow(r)
+    run_interleaved(gens, rows, args.out, fields)
     return 0
 
 

@@ -39,7 +39,6 @@ loop_cpu_s): the cost to compare. The errors, % of L:
                    (--fine-static NAME=X,Z: cosserat's SE(3) statics at 401 nodes, say).
 """
 import argparse
-import csv
 import json
 import math
 import os
@@ -50,6 +49,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import compare_tip_trajectories as ctt  # noqa: E402
+from interleave import median, run_interleaved  # noqa: E402
 
 BASE = os.path.join(HERE, "..", "problems", "soft_cantilever.json")
 LENGTH = 0.3
@@ -58,11 +58,6 @@ AREA = math.pi * R * R
 I2 = math.pi * R ** 4 / 4.0
 KAPPA = 0.9  # Cowper's shear coefficient for nu = 0.5 (6 (1 + nu) / (7 + 6 nu))
 
-
-def median(v):
-    v = sorted(v)
-    n = len(v)
-    return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
 
 
 def timed(cmd):
@@ -292,22 +287,7 @@ def main():
             ours_jobs("se3", parse_pairs(args.se3_configs, float), False, 0.0, True),
             ours_jobs("qfd", parse_pairs(args.qfd_configs, float), True, 0.0, False),
             ours_jobs("qfd-ll", parse_pairs(args.qfd_ll_configs, float), True, args.tau_extension_shear, False)]
-    while gens:
-        for g in list(gens):
-            try:
-                row = next(g)
-            except StopIteration:
-                gens.remove(g)
-                continue
-            if row is None:
-                continue
-            rows.append(row)
-            print(json.dumps(row), flush=True)
-            with open(args.out, "w", newline="") as f:
-                w = csv.DictWriter(f, fieldnames=fields)
-                w.writeheader()
-                for x in rows:
-                    w.writerow(x)
+    run_interleaved(gens, rows, args.out, fields)
 
     # The coarsest (cheapest) configuration of each family within each accuracy level.
     cost = lambda r: r["loop_cpu_s"] if r["code"] == "pyelastica" else r["cpu_s"]  # noqa: E731
