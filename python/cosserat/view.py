@@ -1,0 +1,394 @@
+"""The live browser view: `python3 -m cosserat.view PROBLEM.json [--port 8765] [--open]`.
+
+A local server steps the problem's rod in real time and the page (web/index.html, three.js)
+draws it; sliders change the tip force, move the base, and set tendon tensions and chamber
+pressures. Two modes, by what the problem is:
+
+  dynamics      a cantilever on the SE(3) path (any analysis): BDF2 steps of the problem's dt
+                (2 ms by default), as many per 1/60 s frame as keep up with the wall clock. A
+                rod whose material has no damping gets Kelvin–Voigt damping of 0.05 s on bending
+                and torsion in the view, so that it settles; the page says so.
+  quasi-static  anything else (the quaternion-FD path, held rods, assemblies): every change of
+                a control re-solves the statics, as `cosserat solve` would.
+
+HTTP: GET / (the page), GET /config (the controls and the mode), GET /state (the latest frame:
+nodes, tip, status, real-time ratio), POST /control {"name": ..., "value": ...} (400 with a
+message for an unknown control or a value outside its range). A problem file that cannot be
+read still serves the page, which shows the error.
+"""
+import argparse
+import copy
+import json
+import math
+import os
+import threading
+import time
+import webbrowser
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+
+import numpy as np
+
+from . import _core
+
+FRAME_S = 1.0 / 60.0
+VIEW_DAMPING_S = 0.05
+
+
+def _web_dir():
+    here = os.path.dirname(os.path.abspath(__file__))
+    for root in (os.path.join(here, "..", "..", ".."), os.path.join(here, "..", "..")):
+        web = os.path.abspath(os.path.join(root, "web"))
+        if os.path.exists(os.path.join(web, "index.html")):
+            return web
+    return os.environ.get("COSSERAT_WEB_DIR", "web")
+
+
+def _section_stiffness(rod):
+    """EI and GJ of a circular or tubular section given by radii (None for other shapes)."""
+    sec, mat = rod.get("section", {}), rod.get("material", {})
+    E = mat.get("youngs_modulus")
+    if not E or sec.get("shape") not in ("circle", "tube"):
+        return None
+    ro = sec.get("radius") or sec.get("outer_radius")
+    ri = sec.get("inner_radius", 0.0) if sec.get("shape") == "tube" else 0.0
+    if not ro:
+        return None
+    I = math.pi * (ro**4 - ri**4) / 4
+    G = mat.get("shear_modulus") or E / (2 * (1 + mat.get("poisson_ratio", 0.3)))
+    return E * I, G * 2 * I
+
+
+class LiveRod:
+    """The problem, its controls and the simulation thread."""
+
+    def __init__(self, path):
+        self.path = path
+        self.lock = threading.Lock()
+        self.error = None
+        self.controls = []
+        self.values = {}
+        self.control_version = 0
+        self.state = {"frame": 0, "status": "starting", "rods": [], "tip": None,
+                      "real_time_ratio": None, "t": 0.0, "control_version": 0}
+        self.notes = []
+        try:
+            with open(path) as f:
+                self.spec = json.load(f)
+            self.problem = _core.parse_problem(json.dumps(self.spec))
+        except (OSError, ValueError) as e:
+            self.error = f"{path}: {e}"
+            self.mode = "none"
+            return
+        self._make_controls()
+        try:  # the SE(3) stepper takes it (a cantilever, a tendon or pneumatic robot)?
+            if "assembly" in self.spec:
+                raise ValueError("an assembly")
+            self.dynamic = _core.parse_problem(json.dumps(self._dynamic_problem()))
+            _core.Stepper(self.dynamic)
+            self.mode = "dynamics"
+        except ValueError:
+            self.mode, self.notes = "quasi-static", []
+        if self.mode == "dynamics":
+            L = self.spec.get("rod", {}).get("length", 1.0)
+            self._add("base_x", "base position x", "m", -0.5 * L, 0.5 * L, 0.0)
+            self._add("base_angle_y", "base turn about y", "rad", -1.5, 1.5, 0.0)
+        self.running = True
+        self.thread = threading.Thread(target=self._run, daemon=True)
+        self.thread.start()
+
+    # -- the problem ------------------------------------------------------------------------
+    def _rod(self):
+        """The rod whose scale sets the controls' ranges: the problem's, or an assembly's first."""
+        if "assembly" in self.spec:
+            rods = self.spec["assembly"].get("rods", [])
+            return rods[0].get("rod", {}) if rods else {}
+        return self.spec.get("rod", {})
+
+    def _scale(self):
+        rod = self._rod()
+        L = rod.get("length", 1.0)
+        stiff = _section_stiffness(rod)
+        force = 3 * stiff[0] / L**2 if stiff else 1.0
+        tip = np.linalg.norm(self.spec.get("loads", {}).get("tip_force", [0, 0, 0]))
+        return L, max(force, 2 * tip)
+
+    def _make_controls(self):
+        L, force = self._scale()
+        if "assembly" in self.spec:  # the first body's applied force
+            body = (self.spec["assembly"].get("bodies") or [{}])[0]
+            f = body.get("force", [0, 0, 0])
+            for k, axis in enumerate("xyz"):
+                self._add(f"body_force_{axis}", f"{body.get('name', 'body')} force {axis}", "N",
+                          -force, force, f[k])
+            return
+        tip = self.spec.get("loads", {}).get("tip_force", [0, 0, 0])
+        for k, axis in enumerate("xyz"):
+            self._add(f"tip_force_{axis}", f"tip force {axis}", "N", -force, force, tip[k])
+        robot = self.spec.get("robot", {})
+        act = robot.get("actuation", {})
+        for i, t in enumerate(robot.get("tendons", [])):
+            value = (act.get("tension") or [0] * 8)[i] if i < len(act.get("tension", [])) else 0.0
+            self._add(f"tension_{i}", f"tendon {t.get('name', i)} tension", "N", 0.0,
+                      max(2.0, 3 * value), value)
+        for i, c in enumerate(robot.get("chambers", [])):
+            pressures = act.get("chamber_pressure", [])
+            value = pressures[i] if i < len(pressures) else 0.0
+            self._add(f"pressure_{i}", f"chamber {c.get('name', i)} pressure", "Pa", 0.0,
+                      max(2e5, 3 * value), value)
+
+    def _add(self, name, label, unit, lo, hi, value):
+        self.controls.append({"name": name, "label": label, "unit": unit, "min": lo, "max": hi,
+                              "value": float(value)})
+        self.values[name] = float(value)
+
+    def set_control(self, name, value):
+        """Returns None, or what is wrong with the control."""
+        c = next((c for c in self.controls if c["name"] == name), None)
+        if c is None:
+            return f"{name}: no such control (the controls are " + \
+                ", ".join(c["name"] for c in self.controls) + ")"
+        try:
+            value = float(value)
+        except (TypeError, ValueError):
+            return f"{name}: expected a number, got {value!r}"
+        if not (c["min"] <= value <= c["max"]):
+            return f"{name}: {value:g} {c['unit']} is outside [{c['min']:g}, {c['max']:g}]"
+        with self.lock:
+            self.values[name] = value
+            self.control_version += 1
+        return None
+
+    # -- stepping ---------------------------------------------------------------------------
+    def _loads(self, v):
+        loads = copy.deepcopy(self.spec.get("loads", {}))
+        loads["tip_force"] = [v["tip_force_x"], v["tip_force_y"], v["tip_force_z"]]
+        loads.setdefault("tip_force_frame", "world")
+        return loads
+
+    def _actuated(self, spec, v):
+        robot = spec.get("robot")
+        if not robot:
+            return spec
+        act = robot.setdefault("actuation", {})
+        n_t = len(robot.get("tendons", []))
+        if n_t:
+            act["tension"] = [v[f"tension_{i}"] for i in range(n_t)]
+        n_c = len(robot.get("chambers", []))
+        if n_c:
+            act["chamber_pressure"] = [v[f"pressure_{i}"] for i in range(n_c)]
+        return spec
+
+    def _dynamic_problem(self):
+        spec = copy.deepcopy(self.spec)
+        spec["analysis"] = "dynamics"
+        spec.setdefault("dynamics", {}).setdefault("dt", 0.002)
+        spec["dynamics"]["duration"] = max(spec["dynamics"]["dt"], 1.0)
+        spec["dynamics"].pop("initial_loads", None)
+        mat = spec["rod"].setdefault("material", {})
+        stiff = _section_stiffness(spec["rod"])
+        if "damping" not in mat and stiff:
+            mat["damping"] = {"bending": VIEW_DAMPING_S * stiff[0],
+                              "torsion": VIEW_DAMPING_S * stiff[1]}
+            self.notes.append(f"the view adds Kelvin-Voigt damping of {VIEW_DAMPING_S} s on "
+                              "bending and torsion (the file has none), so that the rod settles")
+        spec["loads"] = self._loads(self.values)
+        return self._actuated(spec, self.values)
+
+    def _run(self):
+        try:
+            if self.mode == "dynamics":
+                self._run_dynamics()
+            else:
+                self._run_quasi_static()
+        except Exception as e:  # shown on the page; the server keeps serving
+            with self.lock:
+                self.state["status"] = "error"
+                self.error = f"{type(e).__name__}: {e}"
+
+    def _publish(self, rods, tip, status, t, ratio, version):
+        with self.lock:
+            self.state = {"frame": self.state["frame"] + 1, "status": status, "rods": rods,
+                          "tip": tip, "t": t, "real_time_ratio": ratio,
+                          "control_version": version}
+
+    def _run_dynamics(self):
+        problem = self.dynamic
+        stepper = _core.Stepper(problem)
+        summary = stepper.initialize_at_rest(problem.loads)
+        status = "running" if summary.converged else "initial equilibrium failed"
+        loads, act = problem.loads, problem.actuation  # copies, changed by the controls
+        n_tendons = len(self.spec.get("robot", {}).get("tendons", []))
+        n_chambers = len(self.spec.get("robot", {}).get("chambers", []))
+        base0 = np.asarray(self.spec.get("base", {}).get("position", [0, 0, 0]), float)
+        R0 = np.asarray(self.spec.get("base", {}).get("rotation", np.eye(3)), float)
+        base_x = angle = 0.0
+        dt = stepper.dt
+        wall0, sim0 = time.perf_counter(), 0.0
+        run_start_wall, run_start_sim = wall0, 0.0
+        next_frame = wall0
+        while self.running:
+            with self.lock:
+                v = dict(self.values)
+                version = self.control_version
+            loads.tip_force = [v["tip_force_x"], v["tip_force_y"], v["tip_force_z"]]
+            if n_tendons:
+                tension = list(act.tendon_tension)
+                tension[:n_tendons] = [v[f"tension_{i}"] for i in range(n_tendons)]
+                act.tendon_tension = tension
+            if n_chambers:
+                pressure = list(act.chamber_pressure)
+                pressure[:n_chambers] = [v[f"pressure_{i}"] for i in range(n_chambers)]
+                act.chamber_pressure = pressure
+            # Real time: step until the simulated time catches up with the wall clock, at most
+            # four frames' worth at once (a slow machine then runs slower than real time).
+            target = stepper.time + min(4 * FRAME_S, max(0.0, run_start_sim + time.perf_counter()
+                                                         - run_start_wall - stepper.time))
+            while status == "running" and stepper.time + 0.5 * dt < target:
+                # The base follows its sliders at up to 1 m/s and 3 rad/s, with the twist of
+                # that motion (body frame).
+                vx = float(np.clip((v["base_x"] - base_x) / dt, -1.0, 1.0))
+                wy = float(np.clip((v["base_angle_y"] - angle) / dt, -3.0, 3.0))
+                base_x += vx * dt
+                angle += wy * dt
+                c, s = math.cos(angle), math.sin(angle)
+                R = np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]]) @ R0
+                twist = np.concatenate([R.T @ np.array([0, wy, 0]), R.T @ np.array([vx, 0, 0])])
+                step = stepper.step(loads=loads, base_position=base0 + np.array([base_x, 0, 0]),
+                                    base_rotation=R, base_twist_B=twist, actuation=act)
+                if not step.converged:
+                    status = f"step failed: {step.status}"
+                    break
+            pos = np.asarray(stepper.state()["position"]).tolist()
+            sim, wall = stepper.time, time.perf_counter()
+            ratio = (sim - sim0) / max(wall - wall0, 1e-9)
+            if wall - wall0 > 2.0:  # the ratio over a window of about two seconds
+                wall0, sim0 = wall, sim
+            self._publish([pos], pos[-1], status, sim, ratio, version)
+            next_frame += FRAME_S
+            delay = next_frame - time.perf_counter()
+            if delay > 0:
+                time.sleep(delay)
+            else:
+                next_frame = time.perf_counter()
+
+    def _run_quasi_static(self):
+        solved = -1
+        rods, tip, status = [], None, "solving"
+        while self.running:
+            with self.lock:
+                v = dict(self.values)
+                version = self.control_version
+            if version != solved:
+                spec = copy.deepcopy(self.spec)
+                spec["analysis"] = "statics"
+                spec.pop("dynamics", None)
+                if "assembly" in spec and spec["assembly"].get("bodies"):
+                    spec["assembly"]["bodies"][0]["force"] = [v["body_force_x"], v["body_force_y"],
+                                                              v["body_force_z"]]
+                else:
+                    spec["loads"] = self._loads(v)
+                spec = self._actuated(spec, v)
+                try:
+                    out = _core.solve(_core.parse_problem(json.dumps(spec)), False)
+                    res = out["result"]
+                    if "assembly" in res:
+                        rods = [r["nodes"]["position"] for r in res["assembly"]["rods"]]
+                    else:
+                        rods = [res["nodes"]["position"]]
+                    tip = rods[0][-1]
+                    status = "converged" if out["converged"] else res.get("status", "failed")
+                except ValueError as e:
+                    status = f"refused: {e}"
+                solved = version
+            self._publish(rods, tip, status, 0.0, None, version)
+            time.sleep(FRAME_S)
+
+    def config(self):
+        return {"problem": os.path.basename(self.path), "mode": self.mode,
+                "controls": self.controls, "notes": self.notes, "error": self.error,
+                "radius": self._radius()}
+
+    def _radius(self):
+        sec = self._rod().get("section", {}) if self.error is None else {}
+        return sec.get("radius") or sec.get("outer_radius") or 0.005
+
+    def snapshot(self):
+        with self.lock:
+            out = dict(self.state)
+        out["error"] = self.error
+        return out
+
+
+def make_handler(live, web_dir):
+    files = {"/": ("index.html", "text/html"), "/index.html": ("index.html", "text/html"),
+             "/app.js": ("app.js", "text/javascript"),
+             "/three.min.js": (os.path.join("node_modules", "three", "build", "three.min.js"),
+                               "text/javascript")}
+
+    class Handler(BaseHTTPRequestHandler):
+        def log_message(self, *args):  # quiet: the page shows what happens
+            pass
+
+        def _send(self, code, body, kind="application/json"):
+            data = body if isinstance(body, bytes) else json.dumps(body).encode()
+            self.send_response(code)
+            self.send_header("Content-Type", kind)
+            self.send_header("Content-Length", str(len(data)))
+            self.send_header("Cache-Control", "no-store")
+            self.end_headers()
+            self.wfile.write(data)
+
+        def do_GET(self):
+            if self.path == "/state":
+                return self._send(200, live.snapshot())
+            if self.path == "/config":
+                return self._send(200, live.config())
+            if self.path in files:
+                name, kind = files[self.path]
+                try:
+                    with open(os.path.join(web_dir, name), "rb") as f:
+                        return self._send(200, f.read(), kind)
+                except OSError:
+                    return self._send(404, {"error": f"{name}: not found (npm install in web/)"})
+            self._send(404, {"error": f"{self.path}: not found"})
+
+        def do_POST(self):
+            if self.path != "/control":
+                return self._send(404, {"error": f"{self.path}: not found"})
+            try:
+                length = int(self.headers.get("Content-Length", 0))
+                body = json.loads(self.rfile.read(length) or b"{}")
+                why = live.set_control(body.get("name"), body.get("value"))
+            except (ValueError, AttributeError) as e:
+                why = f"control: expected JSON {{\"name\": ..., \"value\": ...}} ({e})"
+            if why:
+                return self._send(400, {"error": why})
+            self._send(200, {"ok": True, "control_version": live.control_version})
+
+    return Handler
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="python3 -m cosserat.view", description=__doc__.splitlines()[0])
+    ap.add_argument("problem")
+    ap.add_argument("--port", type=int, default=8765)
+    ap.add_argument("--open", action="store_true", help="open the page in the default browser")
+    args = ap.parse_args(argv)
+    live = LiveRod(args.problem)
+    server = ThreadingHTTPServer(("127.0.0.1", args.port), make_handler(live, _web_dir()))
+    url = f"http://127.0.0.1:{server.server_address[1]}/"
+    print(f"cosserat view: {url} ({live.mode}{'; ' + live.error if live.error else ''})",
+          flush=True)
+    if args.open:
+        webbrowser.open(url)
+    try:
+        server.serve_forever()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        live.running = False
+        server.server_close()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,157 @@
+#!/usr/bin/python3
+"""End-to-end test of the live browser view (python3 -m cosserat.view) in headless Chromium
+(Debian's chromium, chromium-driver and python3-selenium; scripts/install-deps.sh --test).
+
+  test_live_view.py [--screenshot PNG]     (PYTHONPATH: the built package; web/ npm-installed)
+
+On the default problem (examples/cantilever.json, stepped in real time):
+  - the page draws the rod (a WebGL canvas, frames counted by the page) and shows the status and
+    the real-time ratio;
+  - the server publishes at least 60 frames of simulated state per second (95 % of 60 over 3 s,
+    allowing for the scheduler) at a real-time ratio within 10 % of 1;
+  - moving the tip-force slider from −0.2 N to +1.5 N moves the tip the server reports across to
+    +x (the wire's tip deflection at +1.5 N is P L³/(3EI) ≈ 0.4 m in beam theory: the reported
+    x must exceed +0.05 m within 3 s), and the page measures the slider-to-frame latency;
+  - a value past a slider's limit gets a message on the page, and the page keeps drawing.
+With a malformed problem file the page shows the error naming the field.
+"""
+import argparse
+import json
+import os
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+
+from selenium import webdriver
+from selenium.webdriver.chrome.options import Options
+from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.by import By
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def start_server(problem):
+    port = free_port()
+    proc = subprocess.Popen([sys.executable, "-m", "cosserat.view", problem, "--port", str(port)],
+                            cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    url = f"http://127.0.0.1:{port}/"
+    for _ in range(100):
+        try:
+            urllib.request.urlopen(url + "config", timeout=1).read()
+            return proc, url
+        except OSError:
+            time.sleep(0.1)
+    proc.kill()
+    sys.exit(f"the server did not start: {proc.stdout.read()}")
+
+
+def state(url):
+    return json.loads(urllib.request.urlopen(url + "state", timeout=2).read())
+
+
+def browser():
+    opts = Options()
+    opts.binary_location = "/usr/bin/chromium"
+    for arg in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--use-angle=swiftshader",
+                "--enable-unsafe-swiftshader", "--window-size=1200,800"):
+        opts.add_argument(arg)
+    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=opts)
+
+
+def wait_for(what, check, timeout=10.0):
+    end = time.time() + timeout
+    while time.time() < end:
+        value = check()
+        if value:
+            return value
+        time.sleep(0.1)
+    raise AssertionError(f"timed out waiting for {what}")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--screenshot")
+    args = ap.parse_args()
+    failures = []
+
+    def check(ok, what):
+        print(("ok   " if ok else "FAIL ") + what, flush=True)
+        if not ok:
+            failures.append(what)
+
+    driver = browser()
+    server, url = start_server("examples/cantilever.json")
+    try:
+        driver.get(url)
+        body = driver.find_element(By.TAG_NAME, "body")
+        drawn = lambda: int(body.get_attribute("data-frames-drawn") or 0)  # noqa: E731
+        wait_for("the page to draw frames", lambda: drawn() > 20)
+        check(len(driver.find_elements(By.CSS_SELECTOR, "#scene canvas")) == 1, "a canvas is drawn")
+        check(body.get_attribute("data-status") == "running", "the page shows the status running")
+        readout = driver.find_element(By.ID, "readout").text
+        check("real time" in readout and "×" in readout, f"the real-time ratio is shown: {readout!r}")
+
+        s0, t0 = state(url), time.time()
+        time.sleep(3.0)
+        s1, t1 = state(url), time.time()
+        rate = (s1["frame"] - s0["frame"]) / (t1 - t0)
+        check(rate >= 0.95 * 60, f"the server publishes {rate:.1f} frames of state per second")
+        ratio = s1["real_time_ratio"]
+        check(ratio is not None and abs(ratio - 1) < 0.1, f"real-time ratio {ratio}")
+
+        x_before = s1["tip"][0]
+        driver.execute_script(
+            "const s = document.getElementById('control-tip_force_x');"
+            "s.value = 1.5; s.dispatchEvent(new Event('input'));")
+        wait_for("the tip to cross to +x", lambda: state(url)["tip"][0] > 0.05, timeout=3.0)
+        x_after = state(url)["tip"][0]
+        check(x_after > 0.05 > x_before, f"the slider moved the tip from x = {x_before:.4f} to {x_after:.4f} m")
+        latency = wait_for("the page's latency", lambda: body.get_attribute("data-latency-ms"))
+        print(f"slider to drawn frame: {latency} ms", flush=True)
+        fps = body.get_attribute("data-fps")
+        print(f"page draws {fps} frames per second (headless Chromium, software WebGL)", flush=True)
+
+        drawn_before = drawn()
+        ok = driver.execute_script("return await window.cosseratSetControl('tip_force_x', 1e9);")
+        message = driver.find_element(By.ID, "message").text
+        check(ok is False and "tip_force_x" in message and "outside" in message,
+              f"a value past the limit is refused on the page: {message!r}")
+        wait_for("the page to keep drawing", lambda: drawn() > drawn_before + 10, timeout=5.0)
+        check(True, "the page keeps drawing after the refusal")
+        if args.screenshot:
+            driver.execute_script("const s = document.getElementById('control-tip_force_y');"
+                                  "s.value = 0.8; s.dispatchEvent(new Event('input'));")
+            time.sleep(1.5)
+            driver.save_screenshot(args.screenshot)
+            print(f"screenshot: {args.screenshot}")
+    finally:
+        server.kill()
+
+    with tempfile.TemporaryDirectory() as d:
+        bad = os.path.join(d, "bad.json")
+        with open(bad, "w") as f:
+            json.dump({"format": "cosserat-problem/1", "rod": {"length": -1}}, f)
+        server, url = start_server(bad)
+        try:
+            driver.get(url)
+            error = wait_for("the error on the page",
+                             lambda: driver.find_element(By.ID, "error").text)
+            check("rod.length" in error, f"a malformed file's error is on the page: {error[:80]!r}")
+        finally:
+            server.kill()
+            driver.quit()
+    print("FAILED: " + "; ".join(failures) if failures else "all checks passed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,160 @@
+// The live view's page: polls the server's latest frame (/state), draws every rod as a tube
+// with three.js, and sends the sliders' values (/control). What the page measured is on
+// document.body.dataset (frames drawn, drawn frames per second, slider-to-frame latency) for
+// the end-to-end test.
+"use strict";
+
+const stats = { drawn: 0, fps: 0, latencyMs: null };
+let config = null;
+let pending = null;  // {version, sentAt}: a control sent, until a frame shows it
+
+const el = (id) => document.getElementById(id);
+const scene = new THREE.Scene();
+const camera = new THREE.PerspectiveCamera(45, 1, 1e-4, 1e4);
+const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+renderer.setClearColor(0xf4f5f7);
+el("scene").appendChild(renderer.domElement);
+scene.add(new THREE.AmbientLight(0xffffff, 0.55));
+const sun = new THREE.DirectionalLight(0xffffff, 0.9);
+sun.position.set(1, -2, 3);
+scene.add(sun);
+const material = new THREE.MeshStandardMaterial({ color: 0x3b6fb6, roughness: 0.5 });
+let tubes = [];
+let framed = false;
+
+function resize() {
+  const box = el("scene").getBoundingClientRect();
+  renderer.setSize(box.width, box.height);
+  camera.aspect = box.width / Math.max(box.height, 1);
+  camera.updateProjectionMatrix();
+}
+window.addEventListener("resize", resize);
+resize();
+
+let drawRadius = null;  // the tube's radius on screen: the section's, or L/120 for thin rods
+function frameCamera(points) {
+  const box = new THREE.Box3().setFromPoints(points);
+  const size = Math.max(box.getSize(new THREE.Vector3()).length(), 1e-3);
+  const centre = box.getCenter(new THREE.Vector3());
+  let length = 0;
+  for (let i = 1; i < points.length; i++) length += points[i].distanceTo(points[i - 1]);
+  drawRadius = Math.max(config ? config.radius : 0, length / 120);
+  const grid = new THREE.GridHelper(2 * size, 20, 0xb0b4bc, 0xd8dbe0);
+  grid.rotation.x = Math.PI / 2;  // in the world's x-y plane, z up
+  grid.position.set(centre.x, centre.y, box.min.z);
+  scene.add(grid, new THREE.AxesHelper(0.25 * size));
+  camera.up.set(0, 0, 1);
+  camera.position.copy(centre).add(new THREE.Vector3(0.2 * size, -1.8 * size, 0.6 * size));
+  camera.lookAt(centre);
+  framed = true;
+}
+
+function draw(state) {
+  for (const t of tubes) { scene.remove(t); t.geometry.dispose(); }
+  tubes = [];
+  for (const rod of state.rods || []) {
+    if (rod.length < 2) continue;
+    const points = rod.map((p) => new THREE.Vector3(p[0], p[1], p[2]));
+    if (!framed) frameCamera(points);
+    const curve = new THREE.CatmullRomCurve3(points);
+    const mesh = new THREE.Mesh(new THREE.TubeGeometry(curve, 4 * points.length, drawRadius, 12), material);
+    scene.add(mesh);
+    tubes.push(mesh);
+  }
+  renderer.render(scene, camera);
+  stats.drawn += 1;
+  document.body.dataset.framesDrawn = String(stats.drawn);
+}
+
+function readout(state) {
+  const tip = state.tip ? state.tip.map((v) => v.toFixed(5)).join(", ") : "–";
+  const ratio = state.real_time_ratio == null ? "– (statics)" : state.real_time_ratio.toFixed(2) + "×";
+  el("readout").textContent =
+    `status      ${state.status}\nt           ${state.t.toFixed(3)} s\n` +
+    `real time   ${ratio}\ntip         [${tip}] m\nframes/s    ${stats.fps.toFixed(0)}\n` +
+    `latency     ${stats.latencyMs == null ? "–" : stats.latencyMs.toFixed(0) + " ms"}`;
+  document.body.dataset.status = state.status;
+  document.body.dataset.tip = JSON.stringify(state.tip);
+}
+
+async function setControl(name, value) {
+  try {
+    const sentAt = performance.now();
+    const r = await fetch("/control", { method: "POST", body: JSON.stringify({ name, value }) });
+    const body = await r.json();
+    if (!r.ok) { el("message").textContent = body.error; return false; }
+    el("message").textContent = "";
+    pending = { version: body.control_version, sentAt };
+    return true;
+  } catch (e) {
+    el("message").textContent = `the server did not answer (${e})`;
+    return false;
+  }
+}
+window.cosseratSetControl = setControl;
+
+function buildControls() {
+  const box = el("controls");
+  for (const c of config.controls) {
+    const row = document.createElement("div");
+    row.className = "row";
+    const label = document.createElement("label");
+    const input = document.createElement("input");
+    input.type = "range";
+    input.id = "control-" + c.name;
+    input.min = c.min; input.max = c.max; input.step = (c.max - c.min) / 200; input.value = c.value;
+    const show = () => { label.textContent = `${c.label}: ${Number(input.value).toPrecision(3)} ${c.unit}`; };
+    input.addEventListener("input", () => { show(); setControl(c.name, Number(input.value)); });
+    show();
+    row.append(label, input);
+    box.append(row);
+  }
+  el("notes").textContent = (config.notes || []).join("\n");
+}
+
+let busy = false;
+async function poll() {
+  if (!busy) {
+    busy = true;
+    try {
+      const state = await (await fetch("/state")).json();
+      if (state.error) el("error").textContent = state.error;
+      if (pending && state.control_version >= pending.version) {
+        stats.latencyMs = performance.now() - pending.sentAt;
+        document.body.dataset.latencyMs = stats.latencyMs.toFixed(1);
+        pending = null;
+      }
+      draw(state);
+      readout(state);
+    } catch (e) {
+      el("message").textContent = `lost the server (${e})`;
+    }
+    busy = false;
+  }
+  requestAnimationFrame(poll);
+}
+
+let lastCount = 0, lastTime = performance.now();
+setInterval(() => {
+  const now = performance.now();
+  stats.fps = (1000 * (stats.drawn - lastCount)) / (now - lastTime);
+  document.body.dataset.fps = stats.fps.toFixed(1);
+  lastCount = stats.drawn; lastTime = now;
+}, 1000);
+
+(async () => {
+  try {
+    config = await (await fetch("/config")).json();
+  } catch (e) {
+    el("error").textContent = `no server (${e})`;
+    return;
+  }
+  el("problem").textContent = `${config.problem} — ${config.mode}`;
+  if (config.error) {
+    el("error").textContent = config.error;
+    document.body.dataset.status = "error";
+    return;
+  }
+  buildControls();
+  requestAnimationFrame(poll);
+})();
