@@ -112,6 +112,53 @@ function buildControls() {
   el("notes").textContent = (config.notes || []).join("\n");
 }
 
+// Dragging the tip: a spring of config.drag_stiffness (N/m) pulls it toward the pointer, in the
+// plane through the tip facing the camera; the tip-force sliders follow, and go back to their
+// values when the pointer is released.
+let lastState = null, drag = null;
+const pointer = new THREE.Vector2(), raycaster = new THREE.Raycaster();
+function tipOnScreen() {
+  if (!lastState || !lastState.tip) return null;
+  const p = new THREE.Vector3(...lastState.tip).project(camera);
+  const box = renderer.domElement.getBoundingClientRect();
+  return { x: box.left + (p.x + 1) / 2 * box.width, y: box.top + (1 - p.y) / 2 * box.height };
+}
+function setSlider(name, value) {
+  const input = document.getElementById("control-" + name);
+  if (!input) return;
+  input.value = value;
+  input.dispatchEvent(new Event("input"));
+}
+window.cosseratTipOnScreen = tipOnScreen;
+renderer.domElement.addEventListener("pointerdown", (e) => {
+  const tip = tipOnScreen();
+  if (!tip || !config || !config.drag_stiffness || Math.hypot(e.clientX - tip.x, e.clientY - tip.y) > 25) return;
+  const names = ["tip_force_x", "tip_force_y", "tip_force_z"];
+  if (!names.every((n) => document.getElementById("control-" + n))) return;
+  const normal = camera.getWorldDirection(new THREE.Vector3());
+  drag = { plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, new THREE.Vector3(...lastState.tip)),
+           saved: names.map((n) => Number(document.getElementById("control-" + n).value)), names };
+  renderer.domElement.setPointerCapture(e.pointerId);
+});
+renderer.domElement.addEventListener("pointermove", (e) => {
+  if (!drag) return;
+  const box = renderer.domElement.getBoundingClientRect();
+  pointer.set(((e.clientX - box.left) / box.width) * 2 - 1, -((e.clientY - box.top) / box.height) * 2 + 1);
+  raycaster.setFromCamera(pointer, camera);
+  const target = new THREE.Vector3();
+  if (!raycaster.ray.intersectPlane(drag.plane, target)) return;
+  const pull = target.sub(new THREE.Vector3(...lastState.tip)).multiplyScalar(config.drag_stiffness);
+  drag.names.forEach((n, i) => {
+    const c = config.controls.find((c) => c.name === n);
+    setSlider(n, Math.min(c.max, Math.max(c.min, drag.saved[i] + pull.getComponent(i))));
+  });
+});
+renderer.domElement.addEventListener("pointerup", () => {
+  if (!drag) return;
+  drag.names.forEach((n, i) => setSlider(n, drag.saved[i]));
+  drag = null;
+});
+
 let busy = false;
 async function poll() {
   if (!busy) {
@@ -124,6 +171,7 @@ async function poll() {
         document.body.dataset.latencyMs = stats.latencyMs.toFixed(1);
         pending = null;
       }
+      lastState = state;
       draw(state);
       readout(state);
     } catch (e) {

@@ -1,8 +1,9 @@
 """The live browser view: `python3 -m cosserat.view PROBLEM.json [--port 8765] [--open]`.
 
 A local server steps the problem's rod in real time and the page (web/index.html, three.js)
-draws it; sliders change the tip force, move the base, and set tendon tensions and chamber
-pressures. Two modes, by what the problem is:
+draws it; sliders (or dragging the tip with the mouse) change the tip force, move the base, and
+set tendon tensions, chamber pressures, jamming and inflation pressures. Two modes, by what the
+problem is:
 
   dynamics      a cantilever on the SE(3) path (any analysis): BDF2 steps of the problem's dt
                 (2 ms by default), as many per 1/60 s frame as keep up with the wall clock. A
@@ -135,6 +136,12 @@ class LiveRod:
             value = pressures[i] if i < len(pressures) else 0.0
             self._add(f"pressure_{i}", f"chamber {c.get('name', i)} pressure", "Pa", 0.0,
                       max(2e5, 3 * value), value)
+        for i, value in enumerate(act.get("jamming_pressure", [])):
+            self._add(f"jamming_{i}", f"segment {i} jamming pressure", "Pa", 0.0,
+                      max(1e5, 2 * value), value)
+        if "pressure" in act:
+            self._add("inflation", "inflation pressure", "Pa", 0.0, max(1e4, 3 * act["pressure"]),
+                      act["pressure"])
 
     def _add(self, name, label, unit, lo, hi, value):
         self.controls.append({"name": name, "label": label, "unit": unit, "min": lo, "max": hi,
@@ -176,6 +183,11 @@ class LiveRod:
         n_c = len(robot.get("chambers", []))
         if n_c:
             act["chamber_pressure"] = [v[f"pressure_{i}"] for i in range(n_c)]
+        n_j = len(act.get("jamming_pressure", []))
+        if n_j:
+            act["jamming_pressure"] = [v[f"jamming_{i}"] for i in range(n_j)]
+        if "inflation" in v:
+            act["pressure"] = v["inflation"]
         return spec
 
     def _dynamic_problem(self):
@@ -239,6 +251,13 @@ class LiveRod:
                 pressure = list(act.chamber_pressure)
                 pressure[:n_chambers] = [v[f"pressure_{i}"] for i in range(n_chambers)]
                 act.chamber_pressure = pressure
+            n_jam = sum(1 for name in v if name.startswith("jamming_"))
+            if n_jam:
+                jam = list(act.jamming_pressure)
+                jam[:n_jam] = [v[f"jamming_{i}"] for i in range(n_jam)]
+                act.jamming_pressure = jam
+            if "inflation" in v:
+                act.pressure = v["inflation"]
             # Real time: step until the simulated time catches up with the wall clock, at most
             # four frames' worth at once (a slow machine then runs slower than real time).
             target = stepper.time + min(4 * FRAME_S, max(0.0, run_start_sim + time.perf_counter()
@@ -304,9 +323,16 @@ class LiveRod:
             time.sleep(FRAME_S)
 
     def config(self):
-        return {"problem": os.path.basename(self.path), "mode": self.mode,
-                "controls": self.controls, "notes": self.notes, "error": self.error,
-                "radius": self._radius()}
+        out = {"problem": os.path.basename(self.path), "mode": self.mode,
+               "controls": self.controls, "notes": self.notes, "error": self.error,
+               "radius": self._radius()}
+        if self.error is None:
+            # Dragging the tip pulls it with a spring of about the cantilever's tip stiffness,
+            # 3 EI/L³ (N/m), toward the pointer.
+            L, force = self._scale()
+            stiff = _section_stiffness(self._rod())
+            out["drag_stiffness"] = 3 * stiff[0] / L**3 if stiff else force / L
+        return out
 
     def _radius(self):
         sec = self._rod().get("section", {}) if self.error is None else {}

@@ -29,7 +29,8 @@ void ScalarArray(std::ostream& out, const char* name, int nodes, const Value& va
   out << "\n        </DataArray>\n";
 }
 
-void Piece(std::ostream& out, const RodState& st, const std::vector<double>& radius) {
+void Piece(std::ostream& out, const RodState& st, const std::vector<double>& radius,
+           const std::vector<Vec3>* contact_force) {
   const int n = st.size();
   out << "    <Piece NumberOfPoints=\"" << n
       << "\" NumberOfVerts=\"0\" NumberOfLines=\"1\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
@@ -48,6 +49,8 @@ void Piece(std::ostream& out, const RodState& st, const std::vector<double>& rad
               [&](int i) { return Vec3(st.rotation_WB[i] * st.wrench_B[i].head<3>()); });
   VectorArray(out, "velocity", n,
               [&](int i) { return Vec3(st.rotation_WB[i] * st.twist_B[i].tail<3>()); });
+  if (contact_force && static_cast<int>(contact_force->size()) == n)
+    VectorArray(out, "contact_force", n, [&](int i) { return (*contact_force)[i]; });
   out << "      </PointData>\n      <Points>\n";
   VectorArray(out, "position", n, [&](int i) { return st.position_W[i]; });
   out << "      </Points>\n      <Lines>\n"
@@ -95,8 +98,10 @@ bool WriteVtkSeries(const std::string& directory, const std::string& stem,
     vtp << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <PolyData>\n";
-    for (std::size_t r = 0; r < frames[k].rods.size(); ++r)
-      Piece(vtp, frames[k].rods[r], r < radius.size() ? radius[r] : std::vector<double>{});
+    const VtkFrame& frame = frames[k];
+    for (std::size_t r = 0; r < frame.rods.size(); ++r)
+      Piece(vtp, frame.rods[r], r < radius.size() ? radius[r] : std::vector<double>{},
+            r < frame.contact_force.size() ? &frame.contact_force[r] : nullptr);
     vtp << "  </PolyData>\n</VTKFile>\n";
     if (!WriteFile(fs::path(directory) / file, vtp.str(), error)) return false;
     pvd << "    <DataSet timestep=\"" << frames[k].t << "\" group=\"\" part=\"0\" file=\"" << file

@@ -4,6 +4,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cosserat/loads/contact.hpp"
@@ -82,6 +83,24 @@ void AddContactReport(const io::Problem& problem, Result* result) {
   AppendContactColumns(per_node, &result->nodes_csv);
   json["nodes"]["contact_force"] = per_node;
   json["contact"] = {{"total_force", {total.x(), total.y(), total.z()}}, {"intervals", intervals}};
+}
+
+void AddFrameContactForces(const io::Problem& problem, Result* result) {
+  if (problem.loads.contact.count == 0 || result->frames.empty() || problem.has_assembly) return;
+  const PenaltyContact contact(problem.loads.contact);
+  for (io::VtkFrame& frame : result->frames) {
+    frame.contact_force.clear();
+    for (const RodState& st : frame.rods) {
+      std::vector<Vec3> f(st.size());
+      for (int i = 0; i < st.size(); ++i) {
+        const double d = problem.rod.section->At(st.s[i], problem.robot.actuation).outer_diameter;
+        const Vec3 v = st.rotation_WB[i] * st.twist_B[i].tail<3>();
+        f[i] = contact.MotionForce_W({st.s[i], 1.0, 0.0, d}, {st.position_W[i], Vec3::UnitZ(), v},
+                                     nullptr);
+      }
+      frame.contact_force.push_back(std::move(f));
+    }
+  }
 }
 
 }  // namespace cosserat::run::detail

@@ -17,6 +17,10 @@ namespace cosserat::run::detail {
 /// surfaces and the result has nodes.
 void AddContactReport(const io::Problem& problem, Result* result);
 
+/// With contact surfaces, each recorded frame's contact force per unit length at every node
+/// (N/m, world; io::VtkFrame::contact_force), at the frame's node velocities.
+void AddFrameContactForces(const io::Problem& problem, Result* result);
+
 /// The touchdown point of a state: the s of the last node of the first stretch of nodes, from
 /// the base, whose sections press into a contact surface (their centreline nearer to it than
 /// their outer radius); NaN when none does.

@@ -34,6 +34,7 @@ Result Dispatch(const io::Problem& problem, const RunOptions& options) {
 Result Run(const io::Problem& problem, const RunOptions& options) {
   Result result = Dispatch(problem, options);
   detail::AddContactReport(problem, &result);
+  detail::AddFrameContactForces(problem, &result);
   detail::AddBendingStressReport(problem, &result);
   return result;
 }

@@ -9,7 +9,8 @@ every frame's last point is the trajectory's tip position and the last frame's p
 result's final nodes, to 1e-12 m (both are written with 17 significant digits, so the doubles
 come back exactly; 1e-12 leaves room for nothing but the text round trip); the last frame's
 directors at the tip are the columns of the result's tip rotation and its internal force at the
-clamp is the negative of the result's base reaction, to 1e-12; the directors are orthonormal to
+clamp is the negative of the result's base reaction, to 1e-12 (with contact surfaces, the contact force
+per node is the result's, to 1e-12 relative); the directors are orthonormal to
 1e-2 (the quaternion-FD path's rotations are exact; the SE(3) path's RK4 keeps R a rotation to
 its truncation, which near this soft rod's clamp, at h κ ≈ 1.2, measures 1.5e-3). A file the
 test cannot read fails it.
@@ -104,6 +105,10 @@ def main(argv):
         check(np.abs(clamp_force + reaction).max() < 1e-12,
               f"clamp force {clamp_force} against the result's reaction {reaction} N")
         check(np.allclose(arrays["radius"], r), "radius point data")
+        if "contact_force" in result["nodes"]:
+            contact = np.abs(arrays["contact_force"] - np.asarray(result["nodes"]["contact_force"]))
+            check(contact.max() < 1e-12 * max(1.0, np.abs(arrays["contact_force"]).max()),
+                  f"contact force differs from the result's by {contact.max()} N/m")
         print(f"{len(datasets)} frames; tip {worst_tip:.1e} m, final nodes {final:.1e} m, "
               f"directors orthonormal to {ortho:.1e}, clamp force "
               f"{clamp_force} N")

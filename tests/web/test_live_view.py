@@ -12,6 +12,7 @@ On the default problem (examples/cantilever.json, stepped in real time):
   - moving the tip-force slider from −0.2 N to +1.5 N moves the tip the server reports across to
     +x (the wire's tip deflection at +1.5 N is P L³/(3EI) ≈ 0.4 m in beam theory: the reported
     x must exceed +0.05 m within 3 s), and the page measures the slider-to-frame latency;
+  - dragging the tip with the mouse moves it (over 1 cm for a 150 px drag);
   - a value past a slider's limit gets a message on the page, and the page keeps drawing.
 With a malformed problem file the page shows the error naming the field.
 """
@@ -25,9 +26,12 @@ import tempfile
 import time
 import urllib.request
 
+import numpy as np
+
 from selenium import webdriver
 from selenium.webdriver.chrome.options import Options
 from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.action_chains import ActionChains
 from selenium.webdriver.common.by import By
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -119,6 +123,21 @@ def main():
         print(f"slider to drawn frame: {latency} ms", flush=True)
         fps = body.get_attribute("data-fps")
         print(f"page draws {fps} frames per second (headless Chromium, software WebGL)", flush=True)
+
+        # Dragging the tip with the mouse pulls it (a spring toward the pointer): 150 px to the
+        # left of where it is drawn must move the tip the server reports by over 1 cm.
+        tip_screen = driver.execute_script("return window.cosseratTipOnScreen();")
+        before = np.asarray(state(url)["tip"])
+        canvas = driver.find_element(By.CSS_SELECTOR, "#scene canvas")
+        rect = driver.execute_script("return arguments[0].getBoundingClientRect();", canvas)
+        dx = tip_screen["x"] - (rect["left"] + rect["width"] / 2)
+        dy = tip_screen["y"] - (rect["top"] + rect["height"] / 2)
+        actions = ActionChains(driver)
+        actions.move_to_element_with_offset(canvas, int(dx), int(dy)).click_and_hold()
+        actions.move_by_offset(-75, 0).move_by_offset(-75, 0).pause(1.5).perform()
+        moved = np.linalg.norm(np.asarray(state(url)["tip"]) - before)
+        ActionChains(driver).release().perform()
+        check(moved > 0.01, f"dragging the tip moved it by {moved:.4f} m")
 
         drawn_before = drawn()
         ok = driver.execute_script("return await window.cosseratSetControl('tip_force_x', 1e9);")

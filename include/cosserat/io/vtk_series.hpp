@@ -7,7 +7,8 @@
 /// Point data per node (world frame unless the name says otherwise):
 ///   s (m), radius (m: the section's outer radius), d1, d2, d3 (the section's directors, the
 ///   columns of R_WB), curvature (body frame K, 1/m), shear_stretch (body frame Γ), force (the
-///   internal force R n, N), moment (the internal moment R m, N·m), velocity (R v, m/s).
+///   internal force R n, N), moment (the internal moment R m, N·m), velocity (R v, m/s), and
+///   with contact surfaces contact_force (N/m).
 /// Positions and values are written as text with 17 significant digits: read back, they are the
 /// doubles that were written.
 
@@ -22,6 +23,9 @@ namespace cosserat::io {
 struct VtkFrame {
   double t = 0.0;  ///< s
   std::vector<RodState> rods;
+  /// With contact surfaces: each rod's contact force per unit length at its nodes (N/m, world),
+  /// written as the point data "contact_force"; empty otherwise.
+  std::vector<std::vector<Vec3>> contact_force;
 };
 
 /// Writes `directory`/`stem`_NNNNNN.vtp for every frame and `directory`/`stem`.pvd listing them
