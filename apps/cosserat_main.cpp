@@ -19,6 +19,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cosserat/io/problem.hpp"
@@ -139,11 +140,17 @@ int RunValidate(const Command& cmd) {
 }
 
 /// A progress line on stderr for a run longer than about two seconds, when stderr is a terminal
-/// (a file or a pipe gets nothing): simulated time, share of the run, time left. Redrawn at most
+/// (a file or a pipe gets nothing): how far it got (a dynamics run's time, a buckling search's
+/// load), the share done, the time left. Redrawn at most
 /// four times a second; cleared when the run ends.
 class ProgressLine {
  public:
-  ProgressLine() : active_(isatty(STDERR_FILENO) != 0), start_(Clock::now()) {}
+  /// `what` names the quantity ("t" in s, or a buckling search's "load"), `unit` its unit.
+  ProgressLine(std::string what, std::string unit)
+      : active_(isatty(STDERR_FILENO) != 0),
+        what_(std::move(what)),
+        unit_(std::move(unit)),
+        start_(Clock::now()) {}
   ~ProgressLine() {
     if (drawn_) std::cerr << "\r\033[K" << std::flush;
   }
@@ -156,8 +163,9 @@ class ProgressLine {
     drawn_ = true;
     const double share = std::min(1.0, t / duration);
     std::ostringstream line;
-    line << std::fixed << std::setprecision(3) << "\rcosserat: t = " << t << " of " << duration
-         << " s (" << std::setprecision(0) << 100 * share << " %), " << std::setprecision(1)
+    line << std::setprecision(4) << "\rcosserat: " << what_ << " " << t << " of " << duration
+         << unit_ << " (" << std::fixed << std::setprecision(0) << 100 * share << " %), "
+         << std::setprecision(1)
          << elapsed << " s";
     if (share > 0) line << ", about " << elapsed * (1 - share) / share << " s left";
     std::cerr << line.str() << "\033[K" << std::flush;
@@ -167,6 +175,7 @@ class ProgressLine {
   using Clock = std::chrono::steady_clock;
   static double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
   bool active_, drawn_ = false;
+  std::string what_, unit_;
   Clock::time_point start_, last_;
 };
 
@@ -193,7 +202,8 @@ int RunSolve(const Command& cmd) {
                      cosserat::io::ToString(problem->analysis) + "\""};
   cosserat::run::Result result;
   {
-    ProgressLine progress;
+    const bool dynamics = problem->analysis == cosserat::io::Analysis::kDynamics;
+    ProgressLine progress(dynamics ? "t =" : "load", dynamics ? " s" : "");
     options.progress = [&progress](double t, double duration) { progress(t, duration); };
     result = cosserat::run::Run(*problem, options);
   }

@@ -197,6 +197,7 @@ ScanEnd ScanPath(const Evaluate& evaluate, const BucklingOptions& options, doubl
     out->scan_lambda.push_back(p.lambda);
     out->scan_sigma_min.push_back(p.sigma);
     pts->push_back(p);
+    if (options.progress) options.progress(p.lambda, options.lambda_max);
     const std::vector<PathPoint>& q = *pts;
     const size_t k = q.size() - 1;
     if (q[k].det_sign * q[k - 1].det_sign < 0) {

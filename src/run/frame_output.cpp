@@ -20,7 +20,7 @@ void MoveFrames(const RodModel& model, const Actuation& actuation, io::DynamicRu
   result->node_radius = {NodeRadius(model, run->frame_states.front().s, actuation)};
   result->frames.reserve(run->frame_states.size());
   for (std::size_t k = 0; k < run->frame_states.size() && k < run->frame_t.size(); ++k)
-    result->frames.push_back({run->frame_t[k], {std::move(run->frame_states[k])}});
+    result->frames.push_back({run->frame_t[k], {std::move(run->frame_states[k])}, {}});
   run->frame_states.clear();
 }
 

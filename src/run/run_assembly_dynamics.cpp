@@ -30,7 +30,7 @@ void Record(const AssemblyDynamics& dyn, const StaticLoads& loads, const RunOpti
             Frames* f, Result* result) {
   f->t.push_back(dyn.time());
   if (options.frames) {
-    io::VtkFrame frame{dyn.time(), {}};
+    io::VtkFrame frame{dyn.time(), {}, {}};
     for (int i = 0; i < dyn.rod_count(); ++i) frame.rods.push_back(dyn.rod(i).state());
     result->frames.push_back(std::move(frame));
   }

@@ -83,6 +83,7 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   BucklingOptions options;
   options.lambda_max = problem.buckling.max;
   options.solver = StaticOptions(problem);
+  options.progress = run_options.progress;  // the load reached, of the search's maximum
   LoadPath path = MakePath(problem);
   const RodModel model = MakeModel(problem, &path);
   BucklingAnalysis analysis(model, problem.nodes, ends, problem.base, path, options);

@@ -12,6 +12,7 @@
 /// mode is the null vector of J propagated along s by the shot's tangent.
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,9 @@ struct BucklingOptions {
   double singular_threshold = 1e-6;
   /// The static solves: tolerance and Newton iterations per solve.
   StaticShootingOptions solver;
+  /// Called after every accepted point of the scan with its λ and lambda_max; may be empty (a
+  /// progress line for a long search).
+  std::function<void(double lambda, double lambda_max)> progress;
 
   bool IsValid(std::string* why) const;
 };

@@ -21,10 +21,11 @@ struct RunOptions {
   /// Fill Result::frames: every rod's whole state at every output frame of a dynamics run, for
   /// the VTK time series (io/vtk_series.hpp; `cosserat solve --vtk DIR`).
   bool frames = false;
-  /// Called during a dynamics run with the simulated time reached and the run's duration (s),
-  /// after every step (SE(3), assemblies) or output frame (quaternion FD); may be empty. The
-  /// `cosserat` command draws a progress line with it on a terminal.
-  std::function<void(double t, double duration)> progress;
+  /// Called during a long run with how far it got and where it ends: a dynamics run's simulated
+  /// time and duration (s), after every step (SE(3), assemblies) or output frame (quaternion
+  /// FD); an SE(3) buckling search's load reached and its maximum. May be empty. The `cosserat`
+  /// command draws a progress line with it on a terminal.
+  std::function<void(double reached, double end)> progress;
 };
 
 /// The outcome of a run. A run that did not converge still has a full result document, whose
