@@ -2,6 +2,7 @@
 with PYTHONPATH at build/python and the repository root as working directory)."""
 import json
 import math
+import subprocess
 import unittest
 
 import numpy as np
@@ -430,6 +431,14 @@ class PythonSide(unittest.TestCase):
             self.assertEqual(written, 11)
             with Image.open(gif) as image:
                 self.assertEqual(image.n_frames, 11)
+            # MP4 through ffmpeg (Debian's ffmpeg, install-deps.sh --test): ffprobe counts the
+            # frames written.
+            mp4 = d + "/release.mp4"
+            self.assertEqual(cosserat.animate(out, mp4, every=4), 11)
+            probe = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams",
+                                    "v:0", "-show_entries", "stream=nb_read_frames", "-of",
+                                    "csv=p=0", mp4], stdout=subprocess.PIPE, text=True, check=True)
+            self.assertEqual(int(probe.stdout.strip()), 11)
         with self.assertRaisesRegex(ValueError, "nodes=True"):
             cosserat.animate(cosserat.solve("examples/cantilever.json"), "x.gif")
 
