@@ -1,5 +1,6 @@
 // The `cosserat` command:
 //   cosserat solve PROBLEM.json [--out RESULT.json] [--csv NODES.csv] [--vtk DIR]
+//   cosserat sweep STUDY.json --out RESULTS.csv [--threads N]
 //   cosserat validate PROBLEM.json
 //   cosserat --version | --help
 // Exit codes: 0 converged (or valid), 1 solved but not converged, 2 bad input or usage.
@@ -19,12 +20,15 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
 #include "cosserat/io/problem.hpp"
+#include "cosserat/io/study.hpp"
 #include "cosserat/io/vtk_series.hpp"
 #include "cosserat/run/run.hpp"
+#include "cosserat/run/sweep.hpp"
 
 namespace {
 
@@ -35,6 +39,7 @@ constexpr int kExitBadInput = 2;
 const char* const kUsage =
     "usage:\n"
     "  cosserat solve PROBLEM.json [--out RESULT.json] [--csv NODES.csv] [--vtk DIR]\n"
+    "  cosserat sweep STUDY.json --out RESULTS.csv [--threads N]\n"
     "  cosserat validate PROBLEM.json\n"
     "  cosserat --version\n"
     "  cosserat --help\n"
@@ -44,6 +49,8 @@ const char* const kUsage =
     "          recorded frame). A one-line summary is printed on stderr. Dynamics with\n"
     "          --vtk also writes a ParaView time series to DIR: DIR/<problem>.pvd and one\n"
     "          .vtp per recorded frame (positions, directors, strains, internal wrench).\n"
+    "sweep     run a study (docs/sweeps.md): its problem at every point of its parameters, one\n"
+    "          CSV row per point as it finishes; run again on the same file, it resumes.\n"
     "validate  check the problem file and print every error found.\n"
     "\n"
     "exit status: 0 converged (or valid), 1 ran but did not converge (the result is still\n"
@@ -60,6 +67,7 @@ struct Command {
   std::optional<std::string> out_path;
   std::optional<std::string> csv_path;
   std::optional<std::string> vtk_dir;
+  int threads = 0;  // sweep: 0 = all cores
 };
 
 /// Takes the value of an option such as `--out FILE` or `--out=FILE`.
@@ -81,7 +89,7 @@ Command ParseCommandLine(const std::vector<std::string>& args) {
     cmd.name = "version";
   else if (first == "--help" || first == "-h" || first == "help")
     cmd.name = "help";
-  else if (first == "solve" || first == "validate")
+  else if (first == "solve" || first == "validate" || first == "sweep")
     cmd.name = first;
   else
     throw UsageError{"unknown command '" + first + "'"};
@@ -93,8 +101,17 @@ Command ParseCommandLine(const std::vector<std::string>& args) {
     const bool is_vtk = arg == "--vtk" || arg.rfind("--vtk=", 0) == 0;
     if (arg == "--help" || arg == "-h")
       cmd.name = "help";
-    else if (cmd.name == "solve" && is_out)
+    else if ((cmd.name == "solve" || cmd.name == "sweep") && is_out)
       cmd.out_path = OptionValue(args, &i, "--out");
+    else if (cmd.name == "sweep" && (arg == "--threads" || arg.rfind("--threads=", 0) == 0)) {
+      const std::string n = OptionValue(args, &i, "--threads");
+      try {
+        cmd.threads = std::stoi(n);
+      } catch (const std::exception&) {
+        cmd.threads = -1;
+      }
+      if (cmd.threads < 1) throw UsageError{"--threads needs a whole number >= 1, got '" + n + "'"};
+    }
     else if (cmd.name == "solve" && is_csv)
       cmd.csv_path = OptionValue(args, &i, "--csv");
     else if (cmd.name == "solve" && is_vtk)
@@ -111,6 +128,8 @@ Command ParseCommandLine(const std::vector<std::string>& args) {
     throw UsageError{"--version takes no arguments"};
   if ((cmd.name == "solve" || cmd.name == "validate") && cmd.problem_path.empty())
     throw UsageError{cmd.name + " needs a problem file"};
+  if (cmd.name == "sweep" && cmd.problem_path.empty()) throw UsageError{"sweep needs a study file"};
+  if (cmd.name == "sweep" && !cmd.out_path) throw UsageError{"sweep needs --out RESULTS.csv"};
   return cmd;
 }
 
@@ -151,8 +170,10 @@ class ProgressLine {
         what_(std::move(what)),
         unit_(std::move(unit)),
         start_(Clock::now()) {}
-  ~ProgressLine() {
+  ~ProgressLine() { Clear(); }
+  void Clear() {
     if (drawn_) std::cerr << "\r\033[K" << std::flush;
+    drawn_ = false;
   }
   void operator()(double t, double duration) {
     if (!active_ || !(duration > 0)) return;
@@ -225,6 +246,29 @@ int RunSolve(const Command& cmd) {
   return result.converged ? kExitConverged : kExitNotConverged;
 }
 
+int RunSweep(const Command& cmd) {
+  const cosserat::io::StudyParseResult parsed = cosserat::io::LoadStudyFile(cmd.problem_path);
+  if (!parsed.study) {
+    PrintLines(parsed.errors);
+    return kExitBadInput;
+  }
+  cosserat::run::SweepOptions options;
+  options.threads = cmd.threads > 0 ? cmd.threads
+                                    : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  ProgressLine progress("point", "");
+  options.progress = [&progress](std::uint64_t done, std::uint64_t total) {
+    progress(static_cast<double>(done), static_cast<double>(total));
+  };
+  const cosserat::run::SweepSummary s =
+      cosserat::run::RunSweep(*parsed.study, *cmd.out_path, options);
+  progress.Clear();
+  std::cerr << "cosserat: sweep " << (s.complete ? "complete" : "incomplete") << ", " << s.points
+            << " points (" << s.resumed << " from the file, " << s.ran << " run now on "
+            << options.threads << " threads), " << s.failed << " not converged, "
+            << std::setprecision(3) << s.wall_time_s << " s; rows in " << *cmd.out_path << '\n';
+  return s.complete && s.failed == 0 ? kExitConverged : kExitNotConverged;
+}
+
 int Run(const std::vector<std::string>& args) {
   const Command cmd = ParseCommandLine(args);
   if (cmd.name == "help") {
@@ -236,6 +280,7 @@ int Run(const std::vector<std::string>& args) {
     return 0;
   }
   if (cmd.name == "validate") return RunValidate(cmd);
+  if (cmd.name == "sweep") return RunSweep(cmd);
   return RunSolve(cmd);
 }
 

@@ -439,23 +439,38 @@ void CheckWithLibrary(const Problem& p, ErrorReport* report) {
 }  // namespace
 }  // namespace detail
 
-ParseResult ParseProblem(const std::string& json_text, const std::string& source_name) {
+namespace {
+
+/// The checks of a parsed document, after `errors` (those of the text) were found.
+ParseResult ParseValue(const nlohmann::json& value, std::vector<std::string> errors) {
   ParseResult result;
-  detail::JsonDocument doc = detail::ParseJsonDocument(json_text, source_name);
-  result.errors = std::move(doc.errors);  // malformed JSON, or duplicate keys
-  if (!doc.value) return result;
+  result.errors = std::move(errors);
   detail::ErrorReport report;
-  if (!doc.value->is_object()) {
-    report.Expected("", "an object", detail::Describe(*doc.value));
+  if (!value.is_object()) {
+    report.Expected("", "an object", detail::Describe(value));
   } else {
     Problem problem;
-    detail::ParseTopLevel(detail::ObjectReader(*doc.value, "", &report), &problem);
+    detail::ParseTopLevel(detail::ObjectReader(value, "", &report), &problem);
     if (report.empty() && result.errors.empty()) detail::CheckWithLibrary(problem, &report);
     if (report.empty() && result.errors.empty()) result.problem = std::move(problem);
   }
   for (std::string& line : report.TakeLines()) result.errors.push_back(std::move(line));
   return result;
 }
+
+}  // namespace
+
+ParseResult ParseProblem(const std::string& json_text, const std::string& source_name) {
+  detail::JsonDocument doc = detail::ParseJsonDocument(json_text, source_name);
+  if (!doc.value) {
+    ParseResult result;
+    result.errors = std::move(doc.errors);  // malformed JSON
+    return result;
+  }
+  return ParseValue(*doc.value, std::move(doc.errors));  // errors: duplicate keys
+}
+
+ParseResult ParseProblemDocument(const nlohmann::json& document) { return ParseValue(document, {}); }
 
 ParseResult LoadProblemFile(const std::string& path) {
   auto unreadable = [&](const std::string& why) {

@@ -4,6 +4,7 @@
 /// types, with every input error reported as one line `<json.path>: expected <what>, got <found>`.
 
 #include <array>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -146,6 +147,9 @@ struct ParseResult {
 /// Parses and validates a problem given as JSON text, collecting every error. `source_name`
 /// prefixes the message for malformed JSON (e.g. the file name).
 ParseResult ParseProblem(const std::string& json_text, const std::string& source_name = "<input>");
+
+/// The same for a document already parsed (a study's point: no text to read again).
+ParseResult ParseProblemDocument(const nlohmann::json& document);
 
 /// Reads a file and parses it; an unreadable file gives one error naming the path.
 ParseResult LoadProblemFile(const std::string& path);

@@ -1,0 +1,239 @@
+#include "cosserat/io/study.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cosserat/io/json_document.hpp"
+#include "cosserat/io/json_reader.hpp"
+#include "cosserat/io/problem.hpp"
+
+namespace cosserat::io {
+namespace {
+
+using json = nlohmann::json;
+using detail::ErrorReport;
+using detail::ObjectReader;
+using detail::Presence;
+
+/// A uniform double in [0, 1) from (seed, point, parameter): SplitMix64 of their mix.
+double UnitDraw(std::uint64_t seed, std::uint64_t point, std::uint64_t stream) {
+  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (point + 1) + 0xBF58476D1CE4E5B9ULL * (stream + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1.0p-53;
+}
+
+void ParseParameter(const ObjectReader& o, StudyParameter* p) {
+  o.AllowOnly({"path", "grid", "values", "random"});
+  p->path = detail::ReadString(o, "path", Presence::kRequired).value_or("");
+  const int kinds = o.Has("grid") + o.Has("values") + o.Has("random");
+  if (kinds != 1) {
+    o.report().Add(o.path(), "expected exactly one of \"grid\", \"values\", \"random\"");
+    return;
+  }
+  if (const auto g = detail::ReadObject(o, "grid", Presence::kOptional)) {
+    g->AllowOnly({"from", "to", "count"});
+    const auto from = detail::ReadNumber(*g, "from", detail::AnyFiniteNumber(), Presence::kRequired);
+    const auto to = detail::ReadNumber(*g, "to", detail::AnyFiniteNumber(), Presence::kRequired);
+    const auto count = detail::ReadInteger(*g, "count", 1, 1000000, Presence::kRequired);
+    if (from && to && count) {
+      if (*count > 1 && *from == *to)
+        g->report().Add(g->PathOf("to"), "an empty range: \"from\" equals \"to\" with " +
+                                             std::to_string(*count) + " points");
+      for (int i = 0; i < *count; ++i)
+        p->values.push_back(*count == 1 ? *from : *from + (*to - *from) * i / (*count - 1));
+    }
+  }
+  if (const json* v = o.Find("values")) {
+    if (!v->is_array() || v->empty()) {
+      o.report().Expected(o.PathOf("values"), "a non-empty array of numbers", detail::Describe(*v));
+    } else {
+      for (std::size_t i = 0; i < v->size(); ++i)
+        if (const auto x = detail::CheckNumber((*v)[i], detail::ElementPath(o.PathOf("values"), i),
+                                               detail::AnyFiniteNumber(), o.report()))
+          p->values.push_back(*x);
+    }
+  }
+  if (const auto r = detail::ReadObject(o, "random", Presence::kOptional)) {
+    r->AllowOnly({"distribution", "low", "high", "mean", "std"});
+    const auto kind =
+        detail::ReadChoice(*r, "distribution", {"uniform", "normal"}, Presence::kRequired);
+    if (kind == "uniform") {
+      p->distribution = StudyParameter::Distribution::kUniform;
+      p->a = detail::ReadNumber(*r, "low", detail::AnyFiniteNumber(), Presence::kRequired).value_or(0);
+      p->b = detail::ReadNumber(*r, "high", detail::AnyFiniteNumber(), Presence::kRequired).value_or(1);
+      if (r->Has("low") && r->Has("high") && !(p->a < p->b))
+        r->report().Add(r->PathOf("high"), "expected a bound above \"low\" (" +
+                                               detail::FormatNumber(p->a) + "), got " +
+                                               detail::FormatNumber(p->b));
+    } else if (kind == "normal") {
+      p->distribution = StudyParameter::Distribution::kNormal;
+      p->a = detail::ReadNumber(*r, "mean", detail::AnyFiniteNumber(), Presence::kRequired).value_or(0);
+      p->b = detail::ReadNumber(*r, "std", detail::PositiveNumber(), Presence::kRequired).value_or(1);
+    }
+  }
+}
+
+/// The parameter's path must name a place in the base problem: a valid JSON pointer whose parent
+/// exists (the key itself may be new: an optional key the base leaves out).
+void CheckPath(const json& problem, const std::string& where, const std::string& path,
+               ErrorReport* report) {
+  try {
+    const json::json_pointer pointer(path);
+    if (pointer.empty()) {
+      report->Add(where, "expected a pointer to a value inside the problem, got \"\"");
+      return;
+    }
+    const json::json_pointer parent = pointer.parent_pointer();
+    if (!problem.contains(parent))
+      report->Add(where, "names " + detail::Quote(path) + ", but the problem has no " +
+                             detail::Quote(parent.to_string()));
+  } catch (const json::exception& e) {
+    report->Add(where, "expected a JSON pointer such as \"/rod/length\", got " +
+                           detail::Quote(path) + " (" + e.what() + ")");
+  }
+}
+
+}  // namespace
+
+std::uint64_t Study::PointCount() const {
+  std::uint64_t n = static_cast<std::uint64_t>(samples);
+  for (const StudyParameter& p : parameters)
+    if (!p.values.empty()) n *= p.values.size();
+  return n;
+}
+
+std::vector<double> Study::Point(std::uint64_t k) const {
+  std::vector<double> out(parameters.size(), 0.0);
+  std::uint64_t grid = k / static_cast<std::uint64_t>(samples);
+  for (std::size_t j = parameters.size(); j-- > 0;) {  // the last grid parameter varies fastest
+    const StudyParameter& p = parameters[j];
+    if (p.values.empty()) continue;
+    out[j] = p.values[grid % p.values.size()];
+    grid /= p.values.size();
+  }
+  for (std::size_t j = 0; j < parameters.size(); ++j) {
+    const StudyParameter& p = parameters[j];
+    if (p.distribution == StudyParameter::Distribution::kUniform) {
+      out[j] = p.a + (p.b - p.a) * UnitDraw(seed, k, 2 * j);
+    } else if (p.distribution == StudyParameter::Distribution::kNormal) {  // Box–Muller
+      const double u1 = 1.0 - UnitDraw(seed, k, 2 * j), u2 = UnitDraw(seed, k, 2 * j + 1);
+      out[j] = p.a + p.b * std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+    }
+  }
+  return out;
+}
+
+json Study::PointProblem(std::uint64_t k) const {
+  json doc = problem;
+  const std::vector<double> values = Point(k);
+  for (std::size_t j = 0; j < parameters.size(); ++j)
+    doc[json::json_pointer(parameters[j].path)] = values[j];
+  return doc;
+}
+
+StudyParseResult ParseStudy(const std::string& text, const std::string& source_name,
+                            const std::string& base_directory) {
+  StudyParseResult result;
+  detail::JsonDocument doc = detail::ParseJsonDocument(text, source_name);
+  result.errors = std::move(doc.errors);
+  if (!doc.value) return result;
+  ErrorReport report;
+  Study study;
+  if (!doc.value->is_object()) {
+    report.Expected("", "an object", detail::Describe(*doc.value));
+  } else {
+    const ObjectReader top(*doc.value, "", &report);
+    top.AllowOnly({"format", "description", "problem", "parameters", "samples", "seed", "outputs"});
+    const json* format = top.Find("format");
+    if (!format || *format != "cosserat-study/1")
+      report.Expected("format", "\"cosserat-study/1\"", format ? detail::Describe(*format) : "nothing");
+    detail::ReadString(top, "description", Presence::kOptional);
+    const json* problem = top.Find("problem");
+    if (!problem) {
+      report.Missing("problem", "a problem file's path or a problem object");
+    } else if (problem->is_string()) {
+      std::filesystem::path path(problem->get<std::string>());
+      if (path.is_relative()) path = std::filesystem::path(base_directory) / path;
+      std::ifstream f(path);
+      std::stringstream buffer;
+      buffer << f.rdbuf();
+      detail::JsonDocument pd = detail::ParseJsonDocument(buffer.str(), path.string());
+      if (!f)
+        report.Add("problem", path.string() + ": cannot read the file");
+      else if (!pd.value)
+        for (const std::string& e : pd.errors) report.Add("problem", e);
+      else
+        study.problem = *pd.value;
+    } else if (problem->is_object()) {
+      study.problem = *problem;
+    } else {
+      report.Expected("problem", "a problem file's path or a problem object",
+                      detail::Describe(*problem));
+    }
+    study.samples = detail::ReadInteger(top, "samples", 1, 100000000, Presence::kOptional).value_or(1);
+    study.seed = static_cast<std::uint64_t>(
+        detail::ReadInteger(top, "seed", 0, 2147483647, Presence::kOptional).value_or(1));
+    const json* params = top.Find("parameters");
+    if (!params || !params->is_array()) {
+      report.Expected("parameters", "an array of parameters",
+                      params ? detail::Describe(*params) : "nothing");
+    } else {
+      for (std::size_t i = 0; i < params->size(); ++i) {
+        const std::string where = detail::ElementPath("parameters", i);
+        if (!(*params)[i].is_object()) {
+          report.Expected(where, "an object", detail::Describe((*params)[i]));
+          continue;
+        }
+        StudyParameter p;
+        ParseParameter(ObjectReader((*params)[i], where, &report), &p);
+        if (!p.path.empty() && study.problem.is_object())
+          CheckPath(study.problem, where + ".path", p.path, &report);
+        study.parameters.push_back(p);
+      }
+    }
+    if (const auto outputs = detail::ReadObject(top, "outputs", Presence::kRequired)) {
+      for (const auto& [name, value] : outputs->value().items()) {
+        const std::string where = outputs->PathOf(name);
+        if (!value.is_string()) {
+          report.Expected(where, "a JSON pointer into the result, such as \"/tip/position/0\"",
+                          detail::Describe(value));
+          continue;
+        }
+        try {
+          (void)json::json_pointer(value.get<std::string>());
+          study.outputs.push_back({name, value.get<std::string>()});
+        } catch (const json::exception&) {
+          report.Expected(where, "a JSON pointer such as \"/tip/position/0\"",
+                          detail::Quote(value.get<std::string>()));
+        }
+      }
+    }
+  }
+  // The first point must be a valid problem: a path naming an unknown key shows here.
+  if (report.empty() && result.errors.empty()) {
+    const ParseResult first = ParseProblemDocument(study.PointProblem(0));
+    for (const std::string& e : first.errors) report.Add("problem (with the parameters)", e);
+  }
+  for (std::string& line : report.TakeLines()) result.errors.push_back(std::move(line));
+  if (result.errors.empty()) result.study = std::move(study);
+  return result;
+}
+
+StudyParseResult LoadStudyFile(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) {
+    StudyParseResult r;
+    r.errors.push_back(path + ": cannot read the file");
+    return r;
+  }
+  std::stringstream buffer;
+  buffer << f.rdbuf();
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return ParseStudy(buffer.str(), path, dir.empty() ? "." : dir);
+}
+
+}  // namespace cosserat::io
