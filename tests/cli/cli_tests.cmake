@@ -54,6 +54,10 @@ cosserat_cli_test(NAME vtk_needs_dynamics
                   ARGS solve "${_cli_example}" --vtk "${_cli_out}/vtk_statics"
                   CODE 2 STDERR "--vtk writes the frames of a dynamics run; this problem's analysis is \"statics\"")
 
+# A study file's errors name their fields (docs/sweeps.md).
+cosserat_cli_test(NAME bad_study ARGS sweep "${_cli_dir}/bad_study.json" --out "${_cli_out}/bad_study.csv"
+                  CODE 2 STDERR "parameters\\[0\\].path: names \"/rod/nosuch/x\", but the problem has no \"/rod/nosuch\".*parameters\\[1\\].grid.to: an empty range.*parameters\\[2\\].random.high: expected a bound above \"low\"")
+
 # The same release with the order-2 Heun scheme in s (half the stage evaluations).
 cosserat_cli_test(NAME solve_dynamics_heun
                   ARGS solve "${_cli_dir}/dynamics_heun.json"
