@@ -52,8 +52,9 @@ std::string OutputField(const nlohmann::ordered_json& result, const std::string&
   return Field(v.dump());
 }
 
-/// Runs point k; its row without the line break.
-std::string RunPoint(const io::Study& study, std::uint64_t k) {
+}  // namespace
+
+std::string SweepPointRow(const io::Study& study, std::uint64_t k) {
   const auto t0 = std::chrono::steady_clock::now();
   std::ostringstream row;
   row << k;
@@ -83,6 +84,8 @@ std::string RunPoint(const io::Study& study, std::uint64_t k) {
   row << ',' << Field(status) << ',' << Number(wall);
   return row.str();
 }
+
+namespace {
 
 /// The rows already in the file (whole lines after the study's header), by point index.
 std::map<std::uint64_t, std::string> ReadRows(const std::string& path, const std::string& header,
@@ -133,55 +136,74 @@ std::string SweepHeader(const io::Study& study) {
   return h + ",status,wall_time_s";
 }
 
+SweepFile::SweepFile(const io::Study& study, const std::string& path)
+    : path_(path), header_(SweepHeader(study)), points_(study.PointCount()) {
+  rows_ = ReadRows(path_, header_, points_);
+  resumed_ = rows_.size();
+  WriteAll(path_, header_, rows_);  // drops a torn line; the file now ends with a whole row
+  for (std::uint64_t k = 0; k < points_; ++k)
+    if (!rows_.count(k)) pending_.push_back(k);
+  status_column_ = 1 + study.parameters.size() + study.outputs.size();
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND);
+  if (fd_ < 0) throw std::runtime_error(path_ + ": cannot open for appending");
+}
+
+SweepFile::~SweepFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+std::uint64_t SweepFile::Append(std::uint64_t k, const std::string& row) {
+  const std::string line = row + '\n';
+  std::lock_guard<std::mutex> lock(mutex_);
+  // One write of the whole line: a kill leaves it whole or absent.
+  if (::write(fd_, line.data(), line.size()) != static_cast<ssize_t>(line.size()))
+    write_failed_ = true;
+  if (!rows_.count(k)) ++ran_;
+  rows_[k] = row;
+  return rows_.size();
+}
+
+SweepSummary SweepFile::Finish() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (write_failed_) throw std::runtime_error(path_ + ": a row could not be written");
+  SweepSummary s;
+  s.points = points_;
+  s.resumed = resumed_;
+  s.ran = ran_;
+  s.complete = rows_.size() == points_;
+  if (s.complete) WriteAll(path_, header_, rows_);  // in point order
+  for (const auto& [k, line] : rows_) {
+    std::size_t pos = 0;
+    for (std::size_t c = 0; c < status_column_; ++c) pos = line.find(',', pos) + 1;
+    if (line.compare(pos, 10, "converged,") != 0) ++s.failed;
+  }
+  return s;
+}
+
 SweepSummary RunSweep(const io::Study& study, const std::string& csv_path,
                       const SweepOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
-  SweepSummary summary;
-  summary.points = study.PointCount();
-  const std::string header = SweepHeader(study);
-  std::map<std::uint64_t, std::string> rows = ReadRows(csv_path, header, summary.points);
-  summary.resumed = rows.size();
-  WriteAll(csv_path, header, rows);  // drops a torn line; the file now ends with a whole row
-
-  std::vector<std::uint64_t> pending;
-  for (std::uint64_t k = 0; k < summary.points; ++k)
-    if (!rows.count(k)) pending.push_back(k);
+  SweepFile file(study, csv_path);
+  std::vector<std::uint64_t> pending = file.pending();
   if (options.max_new_points > 0 && pending.size() > options.max_new_points)
     pending.resize(options.max_new_points);
-
-  const int fd = ::open(csv_path.c_str(), O_WRONLY | O_APPEND);
-  if (fd < 0) throw std::runtime_error(csv_path + ": cannot open for appending");
+  const std::uint64_t total = study.PointCount();
   std::atomic<std::size_t> next{0};
-  std::mutex mutex;
-  std::uint64_t done = summary.resumed;
-  bool write_failed = false;
+  std::mutex progress_mutex;
   auto worker = [&] {
     for (std::size_t i = next++; i < pending.size(); i = next++) {
-      const std::string line = RunPoint(study, pending[i]) + '\n';
-      std::lock_guard<std::mutex> lock(mutex);
-      // One write of the whole line: a kill leaves it whole or absent.
-      if (::write(fd, line.data(), line.size()) != static_cast<ssize_t>(line.size()))
-        write_failed = true;
-      rows[pending[i]] = line.substr(0, line.size() - 1);
-      ++summary.ran;
-      if (options.progress) options.progress(++done, summary.points);
+      const std::uint64_t done = file.Append(pending[i], SweepPointRow(study, pending[i]));
+      if (options.progress) {
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        options.progress(done, total);
+      }
     }
   };
   std::vector<std::thread> threads;
   for (int t = 1; t < std::max(1, options.threads); ++t) threads.emplace_back(worker);
   worker();
   for (std::thread& t : threads) t.join();
-  ::close(fd);
-  if (write_failed) throw std::runtime_error(csv_path + ": a row could not be written");
-
-  summary.complete = rows.size() == summary.points;
-  if (summary.complete) WriteAll(csv_path, header, rows);  // in point order
-  const std::size_t status_column = 1 + study.parameters.size() + study.outputs.size();
-  for (const auto& [k, line] : rows) {
-    std::size_t pos = 0;
-    for (std::size_t c = 0; c < status_column; ++c) pos = line.find(',', pos) + 1;
-    if (line.compare(pos, 10, "converged,") != 0) ++summary.failed;
-  }
+  SweepSummary summary = file.Finish();
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return summary;

@@ -10,7 +10,10 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <mutex>
 #include <string>
+#include <vector>
 
 #include "cosserat/io/study.hpp"
 
@@ -38,6 +41,40 @@ struct SweepSummary {
 /// cannot be written or belongs to another study (its header differs).
 SweepSummary RunSweep(const io::Study& study, const std::string& csv_path,
                       const SweepOptions& options = {});
+
+/// Point k of the study run: its CSV row, without the line break.
+std::string SweepPointRow(const io::Study& study, std::uint64_t k);
+
+/// A study's results file, for runners that hand out points themselves (RunSweep's threads, MPI
+/// ranks): opening it resumes (keeps the whole rows of this study, drops a torn last line),
+/// Append writes one row in one write, Finish rewrites it in point order once every point has its
+/// row. Append may be called from several threads.
+class SweepFile {
+ public:
+  /// Throws std::runtime_error as RunSweep does.
+  SweepFile(const io::Study& study, const std::string& path);
+  ~SweepFile();
+  SweepFile(const SweepFile&) = delete;
+  SweepFile& operator=(const SweepFile&) = delete;
+
+  /// The points without a row, in order.
+  const std::vector<std::uint64_t>& pending() const { return pending_; }
+  std::uint64_t resumed() const { return resumed_; }
+  /// Writes point k's row (without its line break); returns the rows in the file.
+  std::uint64_t Append(std::uint64_t k, const std::string& row);
+  /// Rewrites the file in point order if every point has its row; the summary's counts.
+  SweepSummary Finish();
+
+ private:
+  std::string path_, header_;
+  std::uint64_t points_ = 0, resumed_ = 0, ran_ = 0;
+  std::size_t status_column_ = 0;
+  std::map<std::uint64_t, std::string> rows_;
+  std::vector<std::uint64_t> pending_;
+  int fd_ = -1;
+  bool write_failed_ = false;
+  std::mutex mutex_;
+};
 
 /// The CSV header of the study's rows.
 std::string SweepHeader(const io::Study& study);
