@@ -29,6 +29,7 @@
 #include "cosserat/io/vtk_series.hpp"
 #include "cosserat/run/run.hpp"
 #include "cosserat/run/sweep.hpp"
+#include "sweep_mpi.hpp"
 
 namespace {
 
@@ -39,7 +40,7 @@ constexpr int kExitBadInput = 2;
 const char* const kUsage =
     "usage:\n"
     "  cosserat solve PROBLEM.json [--out RESULT.json] [--csv NODES.csv] [--vtk DIR]\n"
-    "  cosserat sweep STUDY.json --out RESULTS.csv [--threads N]\n"
+    "  cosserat sweep STUDY.json --out RESULTS.csv [--threads N]   (or under mpirun -np K)\n"
     "  cosserat validate PROBLEM.json\n"
     "  cosserat --version\n"
     "  cosserat --help\n"
@@ -259,13 +260,27 @@ int RunSweep(const Command& cmd) {
   options.progress = [&progress](std::uint64_t done, std::uint64_t total) {
     progress(static_cast<double>(done), static_cast<double>(total));
   };
+  const int ranks = cosserat::apps::LaunchedRanks();
+  if (ranks > 1 && !cosserat::apps::HaveMpi())
+    throw std::runtime_error("started by mpirun with " + std::to_string(ranks) +
+                             " ranks, but this build has no MPI: every rank would run the whole "
+                             "study (install libopenmpi-dev and build again)");
+  bool root = true;
   const cosserat::run::SweepSummary s =
-      cosserat::run::RunSweep(*parsed.study, *cmd.out_path, options);
+      ranks > 1 ? cosserat::apps::RunSweepMpi(*parsed.study, *cmd.out_path,
+                                              cmd.threads > 0 ? cmd.threads : 1, options.progress,
+                                              &root)
+                : cosserat::run::RunSweep(*parsed.study, *cmd.out_path, options);
   progress.Clear();
+  if (!root) return kExitConverged;  // rank 0 reports and exits with the study's status
   std::cerr << "cosserat: sweep " << (s.complete ? "complete" : "incomplete") << ", " << s.points
-            << " points (" << s.resumed << " from the file, " << s.ran << " run now on "
-            << options.threads << " threads), " << s.failed << " not converged, "
-            << std::setprecision(3) << s.wall_time_s << " s; rows in " << *cmd.out_path << '\n';
+            << " points (" << s.resumed << " from the file, " << s.ran << " run now on ";
+  if (ranks > 1)
+    std::cerr << ranks << " MPI ranks";
+  else
+    std::cerr << options.threads << " threads";
+  std::cerr << "), " << s.failed << " not converged, " << std::setprecision(3) << s.wall_time_s
+            << " s; rows in " << *cmd.out_path << '\n';
   return s.complete && s.failed == 0 ? kExitConverged : kExitNotConverged;
 }
 

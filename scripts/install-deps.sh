@@ -4,7 +4,8 @@
 # python3-venv, -pip, -setuptools, -wheel: `pip install .` into a fresh virtual environment;
 # python3-nbconvert, python3-ipykernel: the notebooks of examples/notebooks run top to bottom;
 # chromium, chromium-driver, python3-selenium, and npm when there is none: the live view's
-# end-to-end test in headless Chromium, with three.js from npm; ffmpeg: animations as MP4).
+# end-to-end test in headless Chromium, with three.js from npm; ffmpeg: animations as MP4;
+# libopenmpi-dev, openmpi-bin: sweeps over MPI ranks, and their test).
 # Run as root (or with sudo). Safe to run again: apt skips what is already there.
 set -euo pipefail
 packages=(
@@ -16,7 +17,8 @@ packages=(
 )
 if [ "${1:-}" = "--test" ]; then
   packages+=(python3-vtk9 python3-venv python3-pip python3-setuptools python3-wheel
-             python3-nbconvert python3-ipykernel chromium chromium-driver python3-selenium ffmpeg)
+             python3-nbconvert python3-ipykernel chromium chromium-driver python3-selenium ffmpeg
+             libopenmpi-dev openmpi-bin)
   # Debian's npm, unless a Node.js with its own npm is installed (nodesource's conflicts).
   command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 fi

@@ -1,0 +1,135 @@
+#include "sweep_mpi.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#ifdef COSSERAT_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace cosserat::apps {
+
+int LaunchedRanks() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
+    if (const char* v = std::getenv(name)) return std::max(1, std::atoi(v));
+  return 1;
+}
+
+#ifndef COSSERAT_HAVE_MPI
+
+bool HaveMpi() { return false; }
+
+run::SweepSummary RunSweepMpi(const io::Study&, const std::string&, int,
+                              const std::function<void(std::uint64_t, std::uint64_t)>&, bool*) {
+  throw std::runtime_error("this build has no MPI (install libopenmpi-dev and build again)");
+}
+
+#else
+
+namespace {
+
+constexpr int kTagRequest = 1;  // worker -> root: the rows of its last points, and "more"
+constexpr int kTagPoint = 2;    // root -> worker: up to kChunk point indices; none: no more
+// Points per request: each round trip waits for the root's polling (up to ~50 µs), small
+// against a chunk of points (~1 ms each), and the chunks stay small for the balance at the end.
+constexpr int kChunk = 4;
+
+}  // namespace
+
+bool HaveMpi() { return true; }
+
+run::SweepSummary RunSweepMpi(const io::Study& study, const std::string& path, int threads,
+                              const std::function<void(std::uint64_t, std::uint64_t)>& progress,
+                              bool* is_root) {
+  int provided = 0;
+  MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  *is_root = rank == 0;
+  run::SweepSummary summary;
+  if (rank != 0) {
+    // A worker: send the rows of the last chunk ("k\trow" lines) with each request, compute
+    // the chunk it gets back, until it gets none.
+    std::string rows;
+    std::vector<std::int64_t> chunk(kChunk);
+    for (;;) {
+      MPI_Send(rows.data(), static_cast<int>(rows.size()), MPI_CHAR, 0, kTagRequest,
+               MPI_COMM_WORLD);
+      MPI_Status status;
+      MPI_Recv(chunk.data(), kChunk, MPI_INT64_T, 0, kTagPoint, MPI_COMM_WORLD, &status);
+      int count = 0;
+      MPI_Get_count(&status, MPI_INT64_T, &count);
+      if (count == 0) break;
+      rows.clear();
+      for (int i = 0; i < count; ++i)
+        rows += std::to_string(chunk[i]) + "\t" +
+                run::SweepPointRow(study, static_cast<std::uint64_t>(chunk[i])) + "\n";
+    }
+    MPI_Finalize();
+    return summary;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  run::SweepFile file(study, path);
+  const std::vector<std::uint64_t>& pending = file.pending();
+  const std::uint64_t total = study.PointCount();
+  std::atomic<std::size_t> next{0};
+  std::mutex progress_mutex;
+  auto report = [&](std::uint64_t done) {
+    if (!progress) return;
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    progress(done, total);
+  };
+  // The root's own workers take points from the same counter as the other ranks.
+  std::vector<std::thread> local;
+  for (int t = 0; t < std::max(1, threads - 1); ++t)
+    local.emplace_back([&] {
+      for (std::size_t i = next++; i < pending.size(); i = next++)
+        report(file.Append(pending[i], run::SweepPointRow(study, pending[i])));
+    });
+  // The root's main thread serves the other ranks (MPI from this thread only).
+  int active = size - 1;
+  std::vector<char> buffer;
+  while (active > 0) {
+    int flag = 0;
+    MPI_Status status;
+    MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &flag, &status);
+    if (!flag) {
+      std::this_thread::sleep_for(std::chrono::microseconds(50));
+      continue;
+    }
+    int count = 0;
+    MPI_Get_count(&status, MPI_CHAR, &count);
+    buffer.resize(static_cast<std::size_t>(count));
+    MPI_Recv(buffer.data(), count, MPI_CHAR, status.MPI_SOURCE, kTagRequest, MPI_COMM_WORLD,
+             MPI_STATUS_IGNORE);
+    const std::string message(buffer.begin(), buffer.end());
+    for (std::size_t start = 0; start < message.size();) {
+      const std::size_t tab = message.find('\t', start), end = message.find('\n', start);
+      report(file.Append(std::stoull(message.substr(start, tab - start)),
+                         message.substr(tab + 1, end - tab - 1)));
+      start = end + 1;
+    }
+    std::int64_t chunk[kChunk];
+    int handed = 0;
+    for (std::size_t i; handed < kChunk && (i = next++) < pending.size();)
+      chunk[handed++] = static_cast<std::int64_t>(pending[i]);
+    MPI_Send(chunk, handed, MPI_INT64_T, status.MPI_SOURCE, kTagPoint, MPI_COMM_WORLD);
+    if (handed == 0) --active;
+  }
+  for (std::thread& t : local) t.join();
+  summary = file.Finish();
+  summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  MPI_Finalize();
+  return summary;
+}
+
+#endif
+
+}  // namespace cosserat::apps

@@ -1,0 +1,29 @@
+#pragma once
+// `mpirun -np K cosserat sweep STUDY.json --out RESULTS.csv`: the study's points spread over K
+// MPI ranks (sweep_mpi.cpp, built when CMake finds MPI).
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "cosserat/io/study.hpp"
+#include "cosserat/run/sweep.hpp"
+
+namespace cosserat::apps {
+
+/// The number of ranks this process was started with by mpirun (OpenMPI's, MPICH's or SLURM's
+/// environment), or 1.
+int LaunchedRanks();
+
+/// True when this build can run a sweep over MPI ranks.
+bool HaveMpi();
+
+/// Runs the study over MPI: rank 0 owns the file and hands out points, one at a time, to whichever
+/// rank asks (points differ in cost), and computes points on `threads` − 1 threads of its own
+/// meanwhile (at least one); the other ranks compute one point at a time. Every rank returns;
+/// rank 0's summary counts the study, the others' are empty. `is_root` says which.
+run::SweepSummary RunSweepMpi(const io::Study& study, const std::string& path, int threads,
+                              const std::function<void(std::uint64_t, std::uint64_t)>& progress,
+                              bool* is_root);
+
+}  // namespace cosserat::apps

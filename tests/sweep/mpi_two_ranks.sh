@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The same study on one thread and on two MPI ranks: identical rows apart from the timing column.
+#   mpi_two_ranks.sh MPIEXEC COSSERAT_BINARY STUDY.json WORK_DIR
+set -euo pipefail
+MPIEXEC=$1 BIN=$2 STUDY=$3 WORK=$4
+rm -rf "$WORK" && mkdir -p "$WORK"
+"$BIN" sweep "$STUDY" --out "$WORK/one.csv" --threads 1 2>/dev/null
+# --allow-run-as-root: CI runs as root; --oversubscribe: two ranks may share fewer cores.
+"$MPIEXEC" --allow-run-as-root --oversubscribe -np 2 "$BIN" sweep "$STUDY" --out "$WORK/ranks.csv" \
+  2> "$WORK/ranks.log"
+grep -q "on 2 MPI ranks" "$WORK/ranks.log" || { cat "$WORK/ranks.log"; echo "not run on 2 ranks"; exit 1; }
+strip() { sed 's/,[^,]*$//' "$1"; }  # drop the last column, wall_time_s
+if diff <(strip "$WORK/one.csv") <(strip "$WORK/ranks.csv") > "$WORK/diff.txt"; then
+  echo "2 MPI ranks: $(($(wc -l < "$WORK/ranks.csv") - 1)) rows, identical to one thread's"
+else
+  head "$WORK/diff.txt"; echo "rows differ"; exit 1
+fi
