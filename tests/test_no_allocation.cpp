@@ -7,10 +7,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <new>
+#include <vector>
 
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/radau.hpp"
 #include "cosserat/quatfd/sdirk.hpp"
+#include "cosserat/strong/batch_stepper.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "support/rods.hpp"
@@ -120,6 +122,31 @@ TEST_F(NoAllocation, Bdf2StepAllocatesNothing) {
     allocations = guard.count();
   }
   EXPECT_EQ(converged, 200);
+  EXPECT_EQ(allocations, 0);
+}
+
+// 16 rods on two threads: the team's hand-out (a function pointer, a counter, a condition
+// variable) and every rod's step allocate nothing, on the worker thread as on the caller's (the
+// guard counts every thread's mallocs).
+TEST_F(NoAllocation, BatchStepAllocatesNothing) {
+  const RodModel model = testing::SteelRod{0.5, 0.001}.model();
+  const int M = 16;
+  BatchStepper batch(model, 21, Bdf2Options{}, M, 2);
+  StepInput rest;
+  rest.loads.gravity_W = Vec3(-9.81, 0, 0);
+  ASSERT_EQ(batch.InitializeAtRest(rest), M);
+  std::vector<StepInput> inputs(M, rest);
+  long allocations = 0;
+  int converged = 0;
+  {
+    AllocationGuard guard;
+    for (int k = 0; k < 50; ++k) {
+      for (int i = 0; i < M; ++i) inputs[i].loads.tip_force = Vec3(-0.01 * (i % 4), 1e-3 * k, 0);
+      converged += batch.Step(inputs.data());
+    }
+    allocations = guard.count();
+  }
+  EXPECT_EQ(converged, 50 * M);
   EXPECT_EQ(allocations, 0);
 }
 

@@ -8,6 +8,8 @@ pleasant from Python:
                       with its node and trajectory arrays as NumPy (see solve's help)
   plot(out)           the rod (and its tip trajectory) of a solve's output, with matplotlib
   animate(out, path)  an MP4 (ffmpeg) or GIF (Pillow) of a dynamics run's frames
+  sweep(study)        a study (docs/sweeps.md) on all cores; its rows as a list of dicts
+  BatchStepper        M rods stepped together on all cores, inputs and outputs as (M, ...) arrays
 
 Units are SI; positions, forces and rotations are in the world frame unless a name ends in _B
 (the section's body frame: x, y across the section, z along the rod). docs/python.md has the
@@ -18,3 +20,4 @@ from ._core import *  # noqa: F401,F403  (Problem, Loads, Actuation, Fluid, Stat
 from ._core import __version__  # noqa: F401
 from .plotting import animate, plot  # noqa: F401
 from .results import solve  # noqa: F401  (accepts dicts and paths; adds NumPy arrays)
+from .studies import sweep  # noqa: F401

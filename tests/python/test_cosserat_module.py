@@ -443,5 +443,52 @@ class PythonSide(unittest.TestCase):
             cosserat.animate(cosserat.solve("examples/cantilever.json"), "x.gif")
 
 
+class Batches(unittest.TestCase):
+    """cosserat.BatchStepper and cosserat.sweep."""
+
+    def test_64_rods_step_exactly_as_64_steppers(self):
+        # The peer release's wire, 64 rods each with its own tip-force history: every rod's tip
+        # is bitwise the one a lone Stepper reaches with the same inputs (the threads only share
+        # out the rods).
+        p = cosserat.load_problem("examples/cantilever_release.json")
+        M, steps = 64, 10
+        batch = cosserat.BatchStepper(p, M, threads=2)
+        self.assertEqual(batch.initialize_at_rest(), M)
+        lone = [cosserat.Stepper(p) for _ in range(M)]
+        for s in lone:
+            self.assertTrue(s.initialize_at_rest().converged)
+        for k in range(steps):
+            forces = np.array([[-0.01 * (i % 8), 1e-3 * k * (i % 3), 0.0] for i in range(M)])
+            self.assertEqual(batch.step(tip_force=forces), M)
+            for i, s in enumerate(lone):
+                loads = s.loads
+                loads.tip_force = forces[i]
+                self.assertTrue(s.step(loads=loads).converged)
+        tips = batch.tip_positions()
+        self.assertEqual(tips.shape, (M, 3))
+        for i, s in enumerate(lone):
+            np.testing.assert_array_equal(tips[i], s.tip_position())
+        with self.assertRaisesRegex(ValueError, r"tip_force: expected shape \(64, 3\)"):
+            batch.step(tip_force=np.zeros((3, 3)))
+
+    def test_sweep_rows_are_the_solves_of_their_points(self):
+        # Each row of a small study is what solving its point alone gives.
+        study = {"format": "cosserat-study/1", "problem": "examples/cantilever.json",
+                 "parameters": [{"path": "/loads/tip_force/0", "values": [-0.2, 0.0, 0.3]}],
+                 "outputs": {"tip_x": "/tip/position/0"}}
+        out = cosserat.sweep(study, threads=2)
+        self.assertTrue(out["summary"]["complete"])
+        self.assertEqual([r["index"] for r in out["rows"]], [0, 1, 2])
+        for row in out["rows"]:
+            with open("examples/cantilever.json") as f:
+                spec = json.load(f)
+            spec["loads"]["tip_force"][0] = row["/loads/tip_force/0"]
+            alone = cosserat.solve(spec)["result"]["tip"]["position"][0]
+            self.assertEqual(row["tip_x"], alone)
+            self.assertEqual(row["status"], "converged")
+        with self.assertRaisesRegex(ValueError, "parameters\\[0\\].path"):
+            cosserat.sweep(dict(study, parameters=[{"path": "/nope/x", "values": [1]}]))
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -1,0 +1,38 @@
+#pragma once
+/// \file
+/// M independent rods of one model stepped together on a team of threads, for controllers and
+/// learning loops that run many rods at once: each rod is a Bdf2ShootingStepper with its own
+/// input per step. Built once; InitializeAtRest and Step allocate nothing, and rod i's state is
+/// exactly what a lone stepper fed the same inputs reaches (the threads only share out the rods).
+
+#include <memory>
+#include <vector>
+
+#include "cosserat/numerics/thread_team.hpp"
+#include "cosserat/strong/bdf2_stepper.hpp"
+
+namespace cosserat {
+
+class BatchStepper {
+ public:
+  /// `count` rods of `model` on `nodes` grid points, on `threads` threads (the caller included).
+  BatchStepper(const RodModel& model, int nodes, const Bdf2Options& options, int count,
+               int threads);
+
+  /// Every rod at rest under `input` (the same for all). Returns how many converged.
+  int InitializeAtRest(const StepInput& input);
+  /// Steps rod i under inputs[i] (count of them). Returns how many converged; summary(i) says
+  /// how each went.
+  int Step(const StepInput* inputs);
+
+  int count() const { return static_cast<int>(rods_.size()); }
+  const Bdf2ShootingStepper& rod(int i) const { return *rods_[i]; }
+  const StepSummary& summary(int i) const { return summaries_[i]; }
+
+ private:
+  std::vector<std::unique_ptr<Bdf2ShootingStepper>> rods_;
+  std::vector<StepSummary> summaries_;
+  ThreadTeam team_;
+};
+
+}  // namespace cosserat

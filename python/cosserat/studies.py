@@ -1,0 +1,46 @@
+"""cosserat.sweep: a study (docs/sweeps.md) from Python, with its rows as a list of dicts."""
+import csv
+import json
+import os
+import tempfile
+
+from . import _core
+
+
+def _cell(text):
+    if text == "":
+        return None
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+def sweep(study, out=None, threads=None):
+    """Runs a study: a dict with the study-file keys (a relative "problem" path is read from the
+    current directory) or the path of a study file.
+
+    out: the CSV file the rows go to, one per point as it finishes; given an existing file of the
+    same study, it resumes (only the points without a row run). Default: a temporary file.
+    threads: default all cores.
+
+    Returns {"rows": [one dict per point, in point order: index, each parameter by its path,
+    each output by its name, status, wall_time_s], "summary": {points, resumed, ran, failed,
+    complete, wall_time_s}, "csv": the file's path}. Bad study files raise ValueError naming the
+    field.
+    """
+    if isinstance(study, dict):
+        text, base = json.dumps(study), os.getcwd()
+    else:
+        with open(os.fspath(study)) as f:
+            text = f.read()
+        base = os.path.dirname(os.path.abspath(os.fspath(study)))
+    if out is None:
+        handle, out = tempfile.mkstemp(prefix="cosserat_sweep_", suffix=".csv")
+        os.close(handle)
+        os.remove(out)
+    summary = _core.sweep(text, base, os.fspath(out), threads or os.cpu_count() or 1)
+    with open(out, newline="") as f:
+        rows = [{k: (int(v) if k == "index" else _cell(v)) for k, v in row.items()}
+                for row in csv.DictReader(f)]
+    return {"rows": rows, "summary": summary, "csv": os.fspath(out)}

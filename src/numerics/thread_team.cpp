@@ -1,0 +1,57 @@
+#include "cosserat/numerics/thread_team.hpp"
+
+#include <algorithm>
+
+namespace cosserat {
+
+ThreadTeam::ThreadTeam(int threads) {
+  for (int t = 1; t < std::max(1, threads); ++t) workers_.emplace_back([this] { Work(); });
+}
+
+ThreadTeam::~ThreadTeam() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  for (std::thread& t : workers_) t.join();
+}
+
+void ThreadTeam::Drain() {
+  for (std::size_t i = next_++; i < n_; i = next_++) job_(context_, i);
+}
+
+void ThreadTeam::Work() {
+  std::size_t seen = 0;
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+      if (stop_) return;
+      seen = generation_;
+    }
+    Drain();
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (--busy_ == 0) done_.notify_one();
+    }
+  }
+}
+
+void ThreadTeam::Run(std::size_t n, void (*job)(void*, std::size_t), void* context) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    n_ = n;
+    job_ = job;
+    context_ = context;
+    next_ = 0;
+    busy_ = workers_.size();
+    ++generation_;
+  }
+  wake_.notify_all();
+  Drain();
+  std::unique_lock<std::mutex> lock(mutex_);
+  done_.wait(lock, [&] { return busy_ == 0; });
+}
+
+}  // namespace cosserat
