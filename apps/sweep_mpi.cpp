@@ -39,61 +39,35 @@ constexpr int kTagPoint = 2;    // root -> worker: up to kChunk point indices; n
 // against a chunk of points (~1 ms each), and the chunks stay small for the balance at the end.
 constexpr int kChunk = 4;
 
-}  // namespace
-
-bool HaveMpi() { return true; }
-
-run::SweepSummary RunSweepMpi(const io::Study& study, const std::string& path, int threads,
-                              const std::function<void(std::uint64_t, std::uint64_t)>& progress,
-                              bool* is_root) {
-  int provided = 0;
-  MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
-  int rank = 0, size = 1;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  *is_root = rank == 0;
-  run::SweepSummary summary;
-  if (rank != 0) {
-    // A worker: send the rows of the last chunk ("k\trow" lines) with each request, compute
-    // the chunk it gets back, until it gets none.
-    std::string rows;
-    std::vector<std::int64_t> chunk(kChunk);
-    for (;;) {
-      MPI_Send(rows.data(), static_cast<int>(rows.size()), MPI_CHAR, 0, kTagRequest,
-               MPI_COMM_WORLD);
-      MPI_Status status;
-      MPI_Recv(chunk.data(), kChunk, MPI_INT64_T, 0, kTagPoint, MPI_COMM_WORLD, &status);
-      int count = 0;
-      MPI_Get_count(&status, MPI_INT64_T, &count);
-      if (count == 0) break;
-      rows.clear();
-      for (int i = 0; i < count; ++i)
-        rows += std::to_string(chunk[i]) + "\t" +
-                run::SweepPointRow(study, static_cast<std::uint64_t>(chunk[i])) + "\n";
-    }
-    MPI_Finalize();
-    return summary;
+/// A rank other than 0: sends the rows of its last chunk ("k\trow" lines) with each request
+/// and computes the chunk it gets back, until it gets none.
+void ComputeForRoot(const io::Study& study) {
+  std::string rows;
+  std::vector<std::int64_t> chunk(kChunk);
+  for (;;) {
+    MPI_Send(rows.data(), static_cast<int>(rows.size()), MPI_CHAR, 0, kTagRequest,
+             MPI_COMM_WORLD);
+    MPI_Status status;
+    MPI_Recv(chunk.data(), kChunk, MPI_INT64_T, 0, kTagPoint, MPI_COMM_WORLD, &status);
+    int count = 0;
+    MPI_Get_count(&status, MPI_INT64_T, &count);
+    if (count == 0) return;
+    rows.clear();
+    for (int i = 0; i < count; ++i)
+      rows += std::to_string(chunk[i]) + "\t" +
+              run::SweepPointRow(study, static_cast<std::uint64_t>(chunk[i])) + "\n";
   }
-  const auto t0 = std::chrono::steady_clock::now();
-  run::SweepFile file(study, path);
-  const std::vector<std::uint64_t>& pending = file.pending();
-  const std::uint64_t total = study.PointCount();
-  std::atomic<std::size_t> next{0};
-  std::mutex progress_mutex;
-  auto report = [&](std::uint64_t done) {
-    if (!progress) return;
-    std::lock_guard<std::mutex> lock(progress_mutex);
-    progress(done, total);
-  };
-  // The root's own workers take points from the same counter as the other ranks.
-  std::vector<std::thread> local;
-  for (int t = 0; t < std::max(1, threads - 1); ++t)
-    local.emplace_back([&] {
-      for (std::size_t i = next++; i < pending.size(); i = next++)
-        report(file.Append(pending[i], run::SweepPointRow(study, pending[i])));
-    });
-  // The root's main thread serves the other ranks (MPI from this thread only).
-  int active = size - 1;
+}
+
+/// Rank 0's main thread: takes the rows the other `workers` ranks send and hands each the next
+/// chunk of `pending` from the counter the root's own threads share, until every rank got none.
+template <typename Report>
+void ServeRanks(int workers, const std::vector<std::uint64_t>& pending,
+                std::atomic<std::size_t>* next_index, run::SweepFile* file_out,
+                const Report& report) {
+  std::atomic<std::size_t>& next = *next_index;
+  run::SweepFile& file = *file_out;
+  int active = workers;
   std::vector<char> buffer;
   while (active > 0) {
     int flag = 0;
@@ -122,6 +96,47 @@ run::SweepSummary RunSweepMpi(const io::Study& study, const std::string& path, i
     MPI_Send(chunk, handed, MPI_INT64_T, status.MPI_SOURCE, kTagPoint, MPI_COMM_WORLD);
     if (handed == 0) --active;
   }
+}
+
+}  // namespace
+
+bool HaveMpi() { return true; }
+
+run::SweepSummary RunSweepMpi(const io::Study& study, const std::string& path, int threads,
+                              const std::function<void(std::uint64_t, std::uint64_t)>& progress,
+                              bool* is_root) {
+  int provided = 0;
+  MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  *is_root = rank == 0;
+  run::SweepSummary summary;
+  if (rank != 0) {
+    ComputeForRoot(study);
+    MPI_Finalize();
+    return summary;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  run::SweepFile file(study, path);
+  const std::vector<std::uint64_t>& pending = file.pending();
+  const std::uint64_t total = study.PointCount();
+  std::atomic<std::size_t> next{0};
+  std::mutex progress_mutex;
+  auto report = [&](std::uint64_t done) {
+    if (!progress) return;
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    progress(done, total);
+  };
+  // The root's own workers take points from the same counter as the other ranks.
+  std::vector<std::thread> local;
+  for (int t = 0; t < std::max(1, threads - 1); ++t)
+    local.emplace_back([&] {
+      for (std::size_t i = next++; i < pending.size(); i = next++)
+        report(file.Append(pending[i], run::SweepPointRow(study, pending[i])));
+    });
+  // The root's main thread serves the other ranks (MPI from this thread only).
+  ServeRanks(size - 1, pending, &next, &file, report);
   for (std::thread& t : local) t.join();
   summary = file.Finish();
   summary.wall_time_s =

@@ -14,19 +14,19 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
+#include "batch_bindings.hpp"
 #include "cosserat/io/problem.hpp"
+#include "problem_checks.hpp"
 #include "cosserat/run/run.hpp"
 #include "cosserat/run/solver_options.hpp"
-#include "cosserat/run/sweep.hpp"
-#include "cosserat/io/study.hpp"
-#include "cosserat/strong/batch_stepper.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace py = pybind11;
 using namespace cosserat;
+using cosserat::python::BindBatches;
+using cosserat::python::Runnable;
 
 namespace {
 
@@ -59,22 +59,6 @@ const Actuation& Valid(const Actuation& a, int tendons, int chambers) {
   std::string why;
   if (!a.IsValid(&why, tendons, chambers)) throw py::value_error("actuation." + why);
   return a;
-}
-
-/// What the module's objects cannot run, refused by the field that asks for it: the
-/// quaternion-FD formulation (solve() runs it), eversion growth and displacement control of
-/// tendons (solve() and the CLI run them).
-const io::Problem& Runnable(const io::Problem& problem, const char* what) {
-  if (problem.formulation != io::Formulation::kSe3Shooting)
-    throw py::value_error(std::string("formulation: ") + what + " runs \"se3-shooting\", got \"" +
-                          io::ToString(problem.formulation) + "\" (cosserat.solve runs it)");
-  if (problem.has_robot && problem.robot.kind == io::RobotKind::kEversion)
-    throw py::value_error(std::string("robot.kind: ") + what +
-                          " does not grow an eversion robot (cosserat.solve does)");
-  if (problem.robot.tendon_lengths)
-    throw py::value_error(std::string("robot.actuation.length: ") + what +
-                          " takes tensions, not tendon lengths (cosserat.solve solves for them)");
-  return problem;
 }
 
 /// A fixed-size array field of Actuation as a Python list, and back from a sequence of at most
@@ -230,79 +214,6 @@ class PyStepper {
   Actuation initial_actuation_;
   StepInput input_;  ///< what step() applies
   bool has_state_ = false;
-};
-
-/// M rods of the problem stepped together on a team of threads (BatchStepper), with inputs and
-/// outputs as (M, ...) arrays: each rod starts from the problem's input, as a Stepper does, and
-/// step() replaces what it is given, rod by rod.
-class PyBatchStepper {
- public:
-  PyBatchStepper(const io::Problem& problem, int count, std::optional<int> threads)
-      : options_(cosserat::run::DynamicsOptions(Runnable(problem, "the BatchStepper"))),
-        tendons_(static_cast<int>(problem.rod.tendons.size())) {
-    if (problem.boundary != io::Boundary::kCantilever)
-      throw py::value_error("boundary: the BatchStepper runs \"cantilever\", got \"" +
-                            io::ToString(problem.boundary) + "\"");
-    if (count < 1) throw py::value_error("count: expected at least 1 rod, got " +
-                                         std::to_string(count));
-    const int team = threads ? *threads : static_cast<int>(std::thread::hardware_concurrency());
-    if (team < 1) throw py::value_error("threads: expected at least 1");
-    batch_.emplace(problem.rod, problem.nodes, options_, count, team);
-    initial_.base_pose = problem.base;
-    initial_.loads = problem.dynamics.initial_loads.value_or(problem.loads);
-    initial_.actuation = problem.robot.initial_actuation;
-    StepInput input;
-    input.base_pose = problem.base;
-    input.loads = problem.loads;
-    input.actuation = problem.robot.actuation;
-    inputs_.assign(count, input);
-  }
-
-  int InitializeAtRest() {
-    py::gil_scoped_release release;
-    return batch_->InitializeAtRest(initial_);
-  }
-
-  /// tip_force (M, 3) N, world; tension (M, tendons) N. Returns how many rods converged.
-  int Step(std::optional<Eigen::MatrixXd> tip_force, std::optional<Eigen::MatrixXd> tension) {
-    const int M = batch_->count();
-    if (tip_force) {
-      Check(*tip_force, M, 3, "tip_force");
-      for (int i = 0; i < M; ++i) inputs_[i].loads.tip_force = tip_force->row(i).transpose();
-    }
-    if (tension) {
-      Check(*tension, M, tendons_, "tension");
-      if ((tension->array() < 0).any()) throw py::value_error("tension: a tendon cannot push");
-      for (int i = 0; i < M; ++i)
-        for (int j = 0; j < tendons_; ++j) inputs_[i].actuation.tendon_tension[j] = (*tension)(i, j);
-    }
-    py::gil_scoped_release release;
-    return batch_->Step(inputs_.data());
-  }
-
-  Eigen::MatrixXd TipPositions() const {
-    Eigen::MatrixXd out(batch_->count(), 3);
-    for (int i = 0; i < batch_->count(); ++i)
-      out.row(i) = batch_->rod(i).state().tip_position_W().transpose();
-    return out;
-  }
-  double time() const { return batch_->rod(0).time(); }
-  int count() const { return batch_->count(); }
-
- private:
-  static void Check(const Eigen::MatrixXd& a, int rows, int cols, const char* name) {
-    if (a.rows() != rows || a.cols() != cols)
-      throw py::value_error(std::string(name) + ": expected shape (" + std::to_string(rows) + ", " +
-                            std::to_string(cols) + "), got (" + std::to_string(a.rows()) + ", " +
-                            std::to_string(a.cols()) + ")");
-    if (!a.allFinite()) throw py::value_error(std::string(name) + ": expected finite numbers");
-  }
-
-  Bdf2Options options_;
-  int tendons_;
-  std::optional<BatchStepper> batch_;
-  StepInput initial_;
-  std::vector<StepInput> inputs_;
 };
 
 /// The static solver with the problem's clamp pose and loads as defaults.
@@ -579,61 +490,6 @@ void BindStepper(py::module_& m) {
 
 }  // namespace
 
-/// cosserat._core.sweep: a study (io/study.hpp) run into a CSV file (run/sweep.hpp).
-void BindSweep(py::module_& m) {
-  m.def(
-      "sweep",
-      [](const std::string& study_json, const std::string& base_directory, const std::string& out,
-         int threads) {
-        const io::StudyParseResult parsed = io::ParseStudy(study_json, "<study>", base_directory);
-        if (!parsed.study) {
-          std::string message;
-          for (const std::string& e : parsed.errors) message += (message.empty() ? "" : "\n") + e;
-          throw py::value_error(message);
-        }
-        run::SweepOptions options;
-        options.threads = threads;
-        run::SweepSummary s;
-        {
-          py::gil_scoped_release release;
-          s = run::RunSweep(*parsed.study, out, options);
-        }
-        py::dict d;
-        d["points"] = s.points;
-        d["resumed"] = s.resumed;
-        d["ran"] = s.ran;
-        d["failed"] = s.failed;
-        d["complete"] = s.complete;
-        d["wall_time_s"] = s.wall_time_s;
-        return d;
-      },
-      py::arg("study_json"), py::arg("base_directory"), py::arg("out"), py::arg("threads"),
-      "Runs a study given as JSON text into the CSV file `out` (resuming it); the summary.");
-}
-
-/// cosserat.BatchStepper.
-void BindBatchStepper(py::module_& m) {
-  py::class_<PyBatchStepper>(m, "BatchStepper",
-                             "M independent rods of the problem (a cantilever, SE(3) path) stepped "
-                             "together on all cores, for controllers and learning loops: inputs "
-                             "and outputs are (M, ...) NumPy arrays, and rod i reaches exactly "
-                             "what a Stepper given the same inputs reaches.")
-      .def(py::init<const io::Problem&, int, std::optional<int>>(), py::arg("problem"),
-           py::arg("count"), py::arg("threads") = py::none(),
-           "count rods of the problem on `threads` threads (default: all cores).")
-      .def("initialize_at_rest", &PyBatchStepper::InitializeAtRest,
-           "Every rod at rest under the problem's initial loads and actuation; returns how many "
-           "converged.")
-      .def("step", &PyBatchStepper::Step, py::arg("tip_force") = py::none(),
-           py::arg("tension") = py::none(),
-           "Advances every rod by dt: tip_force (M, 3) in N (world), tension (M, tendons) in N; "
-           "what is not given keeps its last value (at first the problem's). Returns how many "
-           "rods converged.")
-      .def("tip_positions", &PyBatchStepper::TipPositions, "(M, 3) tip positions, m, world.")
-      .def_property_readonly("time", &PyBatchStepper::time)
-      .def_property_readonly("count", &PyBatchStepper::count);
-}
-
 PYBIND11_MODULE(_core, m) {
   m.doc() =
       "Cosserat rods for soft and continuum robots: statics and BDF2 dynamics (SE(3) "
@@ -645,6 +501,5 @@ PYBIND11_MODULE(_core, m) {
   BindSolve(m);
   BindStaticSolver(m);
   BindStepper(m);
-  BindBatchStepper(m);
-  BindSweep(m);
+  BindBatches(m);
 }

@@ -97,6 +97,57 @@ void CheckPath(const json& problem, const std::string& where, const std::string&
   }
 }
 
+/// "problem": a path (relative to the study's directory) or the problem object itself.
+void ReadProblem(const ObjectReader& top, const std::string& base_directory, Study* study_out) {
+  ErrorReport& report = top.report();
+  Study& study = *study_out;
+  const json* problem = top.Find("problem");
+  if (!problem) {
+    report.Missing("problem", "a problem file's path or a problem object");
+  } else if (problem->is_string()) {
+    std::filesystem::path path(problem->get<std::string>());
+    if (path.is_relative()) path = std::filesystem::path(base_directory) / path;
+    std::ifstream f(path);
+    std::stringstream buffer;
+    buffer << f.rdbuf();
+    detail::JsonDocument pd = detail::ParseJsonDocument(buffer.str(), path.string());
+    if (!f)
+      report.Add("problem", path.string() + ": cannot read the file");
+    else if (!pd.value)
+      for (const std::string& e : pd.errors) report.Add("problem", e);
+    else
+      study.problem = *pd.value;
+  } else if (problem->is_object()) {
+    study.problem = *problem;
+  } else {
+    report.Expected("problem", "a problem file's path or a problem object",
+                    detail::Describe(*problem));
+  }
+}
+
+/// "outputs": column name -> JSON pointer into each point's result.
+void ReadOutputs(const ObjectReader& top, Study* study_out) {
+  Study& study = *study_out;
+  ErrorReport& report = top.report();
+  if (const auto outputs = detail::ReadObject(top, "outputs", Presence::kRequired)) {
+    for (const auto& [name, value] : outputs->value().items()) {
+      const std::string where = outputs->PathOf(name);
+      if (!value.is_string()) {
+        report.Expected(where, "a JSON pointer into the result, such as \"/tip/position/0\"",
+                        detail::Describe(value));
+        continue;
+      }
+      try {
+        (void)json::json_pointer(value.get<std::string>());
+        study.outputs.push_back({name, value.get<std::string>()});
+      } catch (const json::exception&) {
+        report.Expected(where, "a JSON pointer such as \"/tip/position/0\"",
+                        detail::Quote(value.get<std::string>()));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::uint64_t Study::PointCount() const {
@@ -152,28 +203,7 @@ StudyParseResult ParseStudy(const std::string& text, const std::string& source_n
     if (!format || *format != "cosserat-study/1")
       report.Expected("format", "\"cosserat-study/1\"", format ? detail::Describe(*format) : "nothing");
     detail::ReadString(top, "description", Presence::kOptional);
-    const json* problem = top.Find("problem");
-    if (!problem) {
-      report.Missing("problem", "a problem file's path or a problem object");
-    } else if (problem->is_string()) {
-      std::filesystem::path path(problem->get<std::string>());
-      if (path.is_relative()) path = std::filesystem::path(base_directory) / path;
-      std::ifstream f(path);
-      std::stringstream buffer;
-      buffer << f.rdbuf();
-      detail::JsonDocument pd = detail::ParseJsonDocument(buffer.str(), path.string());
-      if (!f)
-        report.Add("problem", path.string() + ": cannot read the file");
-      else if (!pd.value)
-        for (const std::string& e : pd.errors) report.Add("problem", e);
-      else
-        study.problem = *pd.value;
-    } else if (problem->is_object()) {
-      study.problem = *problem;
-    } else {
-      report.Expected("problem", "a problem file's path or a problem object",
-                      detail::Describe(*problem));
-    }
+    ReadProblem(top, base_directory, &study);
     study.samples = detail::ReadInteger(top, "samples", 1, 100000000, Presence::kOptional).value_or(1);
     study.seed = static_cast<std::uint64_t>(
         detail::ReadInteger(top, "seed", 0, 2147483647, Presence::kOptional).value_or(1));
@@ -195,23 +225,7 @@ StudyParseResult ParseStudy(const std::string& text, const std::string& source_n
         study.parameters.push_back(p);
       }
     }
-    if (const auto outputs = detail::ReadObject(top, "outputs", Presence::kRequired)) {
-      for (const auto& [name, value] : outputs->value().items()) {
-        const std::string where = outputs->PathOf(name);
-        if (!value.is_string()) {
-          report.Expected(where, "a JSON pointer into the result, such as \"/tip/position/0\"",
-                          detail::Describe(value));
-          continue;
-        }
-        try {
-          (void)json::json_pointer(value.get<std::string>());
-          study.outputs.push_back({name, value.get<std::string>()});
-        } catch (const json::exception&) {
-          report.Expected(where, "a JSON pointer such as \"/tip/position/0\"",
-                          detail::Quote(value.get<std::string>()));
-        }
-      }
-    }
+    ReadOutputs(top, &study);
   }
   // The first point must be a valid problem: a path naming an unknown key shows here.
   if (report.empty() && result.errors.empty()) {
