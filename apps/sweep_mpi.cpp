@@ -35,9 +35,10 @@ namespace {
 
 constexpr int kTagRequest = 1;  // worker -> root: the rows of its last points, and "more"
 constexpr int kTagPoint = 2;    // root -> worker: up to kChunk point indices; none: no more
-// Points per request: each round trip waits for the root's polling (up to ~50 µs), small
-// against a chunk of points (~1 ms each), and the chunks stay small for the balance at the end.
-constexpr int kChunk = 4;
+// Points per request: a request waits while the root finishes the point it is computing (or up
+// to 1 ms of its idle wait), small against a chunk of 16 points (~1 ms each); the chunks stay
+// small against a study for the balance at the end.
+constexpr int kChunk = 16;
 
 /// A rank other than 0: sends the rows of its last chunk ("k\trow" lines) with each request
 /// and computes the chunk it gets back, until it gets none.
@@ -60,21 +61,28 @@ void ComputeForRoot(const io::Study& study) {
 }
 
 /// Rank 0's main thread: takes the rows the other `workers` ranks send and hands each the next
-/// chunk of `pending` from the counter the root's own threads share, until every rank got none.
+/// chunk of `pending` from the counter the root's own threads share, computing points itself
+/// between requests, until every rank got none and no point is left.
 template <typename Report>
-void ServeRanks(int workers, const std::vector<std::uint64_t>& pending,
+void ServeRanks(int workers, const io::Study& study, const std::vector<std::uint64_t>& pending,
                 std::atomic<std::size_t>* next_index, run::SweepFile* file_out,
                 const Report& report) {
   std::atomic<std::size_t>& next = *next_index;
   run::SweepFile& file = *file_out;
   int active = workers;
   std::vector<char> buffer;
-  while (active > 0) {
+  bool local_work = true;
+  while (active > 0 || local_work) {
     int flag = 0;
     MPI_Status status;
-    MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &flag, &status);
+    if (active > 0) MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &flag, &status);
     if (!flag) {
-      std::this_thread::sleep_for(std::chrono::microseconds(50));
+      // Nobody asks: compute a point here (a request then waits at most one point), or wait.
+      const std::size_t i = local_work ? next++ : pending.size();
+      if (i < pending.size())
+        report(file.Append(pending[i], run::SweepPointRow(study, pending[i])));
+      else if ((local_work = false), active > 0)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
       continue;
     }
     int count = 0;
@@ -128,15 +136,15 @@ run::SweepSummary RunSweepMpi(const io::Study& study, const std::string& path, i
     std::lock_guard<std::mutex> lock(progress_mutex);
     progress(done, total);
   };
-  // The root's own workers take points from the same counter as the other ranks.
+  // The root's own extra threads take points from the same counter as the other ranks.
   std::vector<std::thread> local;
-  for (int t = 0; t < std::max(1, threads - 1); ++t)
+  for (int t = 1; t < threads; ++t)
     local.emplace_back([&] {
       for (std::size_t i = next++; i < pending.size(); i = next++)
         report(file.Append(pending[i], run::SweepPointRow(study, pending[i])));
     });
   // The root's main thread serves the other ranks (MPI from this thread only).
-  ServeRanks(size - 1, pending, &next, &file, report);
+  ServeRanks(size - 1, study, pending, &next, &file, report);
   for (std::thread& t : local) t.join();
   summary = file.Finish();
   summary.wall_time_s =

@@ -18,9 +18,9 @@ int LaunchedRanks();
 /// True when this build can run a sweep over MPI ranks.
 bool HaveMpi();
 
-/// Runs the study over MPI: rank 0 owns the file and hands out points, one at a time, to whichever
-/// rank asks (points differ in cost), and computes points on `threads` − 1 threads of its own
-/// meanwhile (at least one); the other ranks compute one point at a time. Every rank returns;
+/// Runs the study over MPI: rank 0 owns the file and hands out points, a chunk at a time, to
+/// whichever rank asks (points differ in cost), and computes points between requests, and on
+/// `threads` − 1 more threads of its own; the other ranks compute one point at a time. Every rank returns;
 /// rank 0's summary counts the study, the others' are empty. `is_root` says which.
 run::SweepSummary RunSweepMpi(const io::Study& study, const std::string& path, int threads,
                               const std::function<void(std::uint64_t, std::uint64_t)>& progress,
