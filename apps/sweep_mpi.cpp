@@ -33,31 +33,42 @@ run::SweepSummary RunSweepMpi(const io::Study&, const std::string&, int,
 
 namespace {
 
-constexpr int kTagRequest = 1;  // worker -> root: the rows of its last points, and "more"
+constexpr int kTagRequest = 1;  // worker -> root: a flag ('1' more, '0' last) and rows
 constexpr int kTagPoint = 2;    // root -> worker: up to kChunk point indices; none: no more
-// Points per request: a request waits while the root finishes the point it is computing (or up
-// to 1 ms of its idle wait), small against a chunk of 16 points (~1 ms each); the chunks stay
-// small against a study for the balance at the end.
+// Points per request: a worker asks for its next chunk before computing the one in hand, so the
+// root's answer (after the point the root is computing, or 1 ms of its idle wait) comes while it
+// computes 16 points (~1 ms each); the chunks stay small against a study for the balance at the
+// end.
 constexpr int kChunk = 16;
 
-/// A rank other than 0: sends the rows of its last chunk ("k\trow" lines) with each request
-/// and computes the chunk it gets back, until it gets none.
+/// A rank other than 0. Its messages to the root are a flag and the rows of its last chunk
+/// ("k\trow" lines): flag '1' asks for a chunk, '0' is its last message. It asks for the next
+/// chunk before computing the one in hand, so the root's answer arrives while it computes.
 void ComputeForRoot(const io::Study& study) {
-  std::string rows;
-  std::vector<std::int64_t> chunk(kChunk);
-  for (;;) {
-    MPI_Send(rows.data(), static_cast<int>(rows.size()), MPI_CHAR, 0, kTagRequest,
+  auto send = [](const std::string& message) {
+    MPI_Send(message.data(), static_cast<int>(message.size()), MPI_CHAR, 0, kTagRequest,
              MPI_COMM_WORLD);
+  };
+  std::vector<std::int64_t> chunk(kChunk);
+  auto receive = [&] {
     MPI_Status status;
     MPI_Recv(chunk.data(), kChunk, MPI_INT64_T, 0, kTagPoint, MPI_COMM_WORLD, &status);
     int count = 0;
     MPI_Get_count(&status, MPI_INT64_T, &count);
-    if (count == 0) return;
+    return count;
+  };
+  std::string rows;
+  send("1");
+  for (int count = receive(); count > 0;) {
+    const std::vector<std::int64_t> in_hand(chunk.begin(), chunk.begin() + count);
+    send("1" + rows);
     rows.clear();
-    for (int i = 0; i < count; ++i)
-      rows += std::to_string(chunk[i]) + "\t" +
-              run::SweepPointRow(study, static_cast<std::uint64_t>(chunk[i])) + "\n";
+    for (std::int64_t k : in_hand)
+      rows += std::to_string(k) + "\t" + run::SweepPointRow(study, static_cast<std::uint64_t>(k)) +
+              "\n";
+    count = receive();
   }
+  send("0" + rows);
 }
 
 /// Rank 0's main thread: takes the rows the other `workers` ranks send and hands each the next
@@ -91,18 +102,21 @@ void ServeRanks(int workers, const io::Study& study, const std::vector<std::uint
     MPI_Recv(buffer.data(), count, MPI_CHAR, status.MPI_SOURCE, kTagRequest, MPI_COMM_WORLD,
              MPI_STATUS_IGNORE);
     const std::string message(buffer.begin(), buffer.end());
-    for (std::size_t start = 0; start < message.size();) {
+    for (std::size_t start = 1; start < message.size();) {
       const std::size_t tab = message.find('\t', start), end = message.find('\n', start);
       report(file.Append(std::stoull(message.substr(start, tab - start)),
                          message.substr(tab + 1, end - tab - 1)));
       start = end + 1;
+    }
+    if (message.empty() || message[0] != '1') {  // the rank's last message
+      --active;
+      continue;
     }
     std::int64_t chunk[kChunk];
     int handed = 0;
     for (std::size_t i; handed < kChunk && (i = next++) < pending.size();)
       chunk[handed++] = static_cast<std::int64_t>(pending[i]);
     MPI_Send(chunk, handed, MPI_INT64_T, status.MPI_SOURCE, kTagPoint, MPI_COMM_WORLD);
-    if (handed == 0) --active;
   }
 }
 
