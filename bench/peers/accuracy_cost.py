@@ -27,25 +27,12 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import compare_tip_trajectories as ctt  # noqa: E402
-from interleave import median, run_interleaved  # noqa: E402
+from interleave import median, run_interleaved, timed  # noqa: E402
 
 DURATION = 1.0
 
 
 
-def timed(cmd):
-    """Runs cmd under /usr/bin/time; returns (exit code, stdout, stderr, cpu seconds, wall seconds)."""
-    p = subprocess.run(["/usr/bin/time", "-f", "PEERTIME %U %S %e"] + cmd,
-                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    cpu = wall = None
-    err = []
-    for line in p.stderr.splitlines():
-        if line.startswith("PEERTIME "):
-            u, s, e = line.split()[1:]
-            cpu, wall = float(u) + float(s), float(e)
-        else:
-            err.append(line)
-    return p.returncode, p.stdout, "\n".join(err), cpu, wall
 
 
 def errors(ref, path, untils, length):
@@ -115,7 +102,7 @@ def main():
                     os.remove(csvp)
                 cpus, loops, walls = [], [], []
                 for rep in range(args.repeat):
-                    code, out, err, cpu, wall = timed([
+                    code, out, err, cpu, _, wall = timed([
                         "/usr/bin/python3", os.path.join(HERE, "pyelastica_cantilever.py"),
                         "--elastica", args.elastica, "--elements", str(n), "--dt", repr(dt),
                         "--duration", repr(DURATION), "--out", csvp])
@@ -157,7 +144,7 @@ def main():
                     resp = os.path.join(args.work, name + ".out.json")
                     cpus, walls = [], []
                     for rep in range(args.repeat):
-                        code, out, err, cpu, wall = timed([args.cosserat, "solve", prob, "--out", resp, "--csv", csvp])
+                        code, out, err, cpu, _, wall = timed([args.cosserat, "solve", prob, "--out", resp, "--csv", csvp])
                         if code == 2:
                             sys.exit("cosserat refused %s:\n%s" % (prob, err))
                         with open(resp) as f:

@@ -42,14 +42,12 @@ import argparse
 import json
 import math
 import os
-import resource
-import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import compare_tip_trajectories as ctt  # noqa: E402
-from interleave import median, run_interleaved  # noqa: E402
+from interleave import median, run_interleaved, timed  # noqa: E402
 
 BASE = os.path.join(HERE, "..", "problems", "soft_cantilever.json")
 LENGTH = 0.3
@@ -60,23 +58,6 @@ KAPPA = 0.9  # Cowper's shear coefficient for nu = 0.5 (6 (1 + nu) / (7 + 6 nu))
 
 
 
-def timed(cmd):
-    """Runs cmd under /usr/bin/time. Returns (exit code, stdout, stderr, cpu from /usr/bin/time,
-    cpu from rusage, wall)."""
-    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    p = subprocess.run(["/usr/bin/time", "-f", "PEERTIME %U %S %e"] + cmd,
-                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu_ru = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
-    cpu = wall = None
-    err = []
-    for line in p.stderr.splitlines():
-        if line.startswith("PEERTIME "):
-            u, s, e = line.split()[1:]
-            cpu, wall = float(u) + float(s), float(e)
-        else:
-            err.append(line)
-    return p.returncode, p.stdout, "\n".join(err), cpu, cpu_ru, wall
 
 
 def cosserat_problem(path, nodes, args, qfd=False, tau_es=0.0, dt=None, tol=None, statics=False):

@@ -1,8 +1,30 @@
-"""What the peer tables share: the median of repeated timings, and running several generators of
-table rows (one per code or configuration family) in turn, so that every code sees the same
-minutes of machine load, writing the CSV after each row."""
+"""What the peer tables share: timing a command, the median of repeated timings, and running
+several generators of table rows (one per code or configuration family) in turn, so that every
+code sees the same minutes of machine load, writing the CSV after each row."""
 import csv
 import json
+import resource
+import subprocess
+
+
+def timed(cmd):
+    """Runs cmd under /usr/bin/time. Returns (exit code, stdout, stderr without the timing line,
+    CPU seconds (user + sys) from /usr/bin/time (10 ms resolution), CPU seconds from the
+    children's rusage (µs resolution), wall seconds)."""
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    p = subprocess.run(["/usr/bin/time", "-f", "PEERTIME %U %S %e"] + cmd,
+                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu_rusage = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+    cpu = wall = None
+    err = []
+    for line in p.stderr.splitlines():
+        if line.startswith("PEERTIME "):
+            u, s, e = line.split()[1:]
+            cpu, wall = float(u) + float(s), float(e)
+        else:
+            err.append(line)
+    return p.returncode, p.stdout, "\n".join(err), cpu, cpu_rusage, wall
 
 
 def median(v):
