@@ -10,51 +10,30 @@
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/run/run_assembly_dynamics.hpp"
 
+#include "assembly_json.hpp"
+
 namespace cosserat::run {
 namespace {
 
 using json = nlohmann::ordered_json;
 
-json RodToJson(const AssemblyRod& rod, double length, const RodState& state) {
-  json s = json::array(), position = json::array();
-  for (int n = 0; n < state.size(); ++n) {
-    s.push_back(state.s[n]);
-    position.push_back(io::ToJson(state.position_W[n]));
-  }
-  json out;
-  out["name"] = rod.name;
-  out["length"] = length;
-  io::AddTipAndBaseWrench(state, &out);  // base_wrench: [moment about the base point; force]
-  out["nodes"] = {{"s", s}, {"position", position}};
-  return out;
-}
-
 /// The "assembly" block of the solver's last solution, without the Jacobian.
 json SolutionToJson(const Assembly& assembly, bool inverse, AssemblyStaticsSolver* solver,
                     std::string* csv) {
-  json bodies = json::array(), rods = json::array();
-  for (std::size_t b = 0; b < assembly.bodies.size(); ++b) {
-    const lie::SE3& pose = solver->body_poses()[b];
-    bodies.push_back({{"name", assembly.bodies[b].name},
-                      {"position", io::ToJson(pose.p)},
-                      {"rotation", io::ToJson(pose.R)}});
-  }
+  std::vector<const RodState*> rods;
   std::ostringstream table;
   table << "rod,s,x,y,z\n" << std::setprecision(17);
   for (int i = 0; i < solver->rod_count(); ++i) {
     const RodState& state = solver->rod_state(i);
-    rods.push_back(RodToJson(assembly.rods[i], solver->lengths()[i], state));
+    rods.push_back(&state);
     for (int n = 0; n < state.size(); ++n) {
       const Vec3& p = state.position_W[n];
       table << i << ',' << state.s[n] << ',' << p.x() << ',' << p.y() << ',' << p.z() << '\n';
     }
   }
   if (csv) *csv = table.str();
-  json out;
-  out["kind"] = inverse ? "inverse" : "forward";
-  out["bodies"] = bodies;
-  out["rods"] = rods;
-  return out;
+  return detail::AssemblyJson(assembly, inverse ? "inverse" : "forward", solver->body_poses(),
+                              rods, solver->lengths());
 }
 
 /// d pose / d lengths of body 0 (6 × rods) from a forward solve at the solver's lengths: after

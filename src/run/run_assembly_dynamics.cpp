@@ -11,6 +11,7 @@
 #include "cosserat/assembly/assembly_dynamics.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/lie/so3.hpp"
+#include "assembly_json.hpp"
 #include "frame_output.hpp"
 
 namespace cosserat::run {
@@ -51,26 +52,15 @@ void Record(const AssemblyDynamics& dyn, const StaticLoads& loads, const RunOpti
 }
 
 json FinalState(const Assembly& assembly, const AssemblyDynamics& dyn) {
-  json bodies = json::array(), rods = json::array();
-  for (int b = 0; b < dyn.body_count(); ++b)
-    bodies.push_back({{"name", assembly.bodies[b].name},
-                      {"position", io::ToJson(dyn.body_pose(b).p)},
-                      {"rotation", io::ToJson(dyn.body_pose(b).R)}});
+  std::vector<lie::SE3> poses;
+  for (int b = 0; b < dyn.body_count(); ++b) poses.push_back(dyn.body_pose(b));
+  std::vector<const RodState*> rods;
+  std::vector<double> lengths;
   for (int i = 0; i < dyn.rod_count(); ++i) {
-    const RodState& state = dyn.rod(i).state();
-    json s = json::array(), position = json::array();
-    for (int n = 0; n < state.size(); ++n) {
-      s.push_back(state.s[n]);
-      position.push_back(io::ToJson(state.position_W[n]));
-    }
-    json rod;
-    rod["name"] = assembly.rods[i].name;
-    rod["length"] = assembly.rods[i].model.length;
-    io::AddTipAndBaseWrench(state, &rod);
-    rod["nodes"] = {{"s", s}, {"position", position}};
-    rods.push_back(rod);
+    rods.push_back(&dyn.rod(i).state());
+    lengths.push_back(assembly.rods[i].model.length);
   }
-  return {{"kind", "dynamics"}, {"bodies", bodies}, {"rods", rods}};
+  return detail::AssemblyJson(assembly, "dynamics", poses, rods, lengths);
 }
 
 /// The one-line summary of a run (and why it stopped).
