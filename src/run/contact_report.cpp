@@ -31,6 +31,14 @@ void AppendContactColumns(const nlohmann::ordered_json& per_node, std::string* c
   *csv = out.str();
 }
 
+/// The contact force per unit length on the node at arc length s, position p and velocity v
+/// (world): its section's outer diameter meets the surfaces.
+Vec3 NodeContactForce_W(const io::Problem& problem, const PenaltyContact& contact, double s,
+                        const Vec3& p, const Vec3& v) {
+  const double d = problem.rod.section->At(s, problem.robot.actuation).outer_diameter;
+  return contact.MotionForce_W({s, 1.0, 0.0, d}, {p, Vec3::UnitZ(), v}, nullptr);
+}
+
 }  // namespace
 
 double TouchdownS(const io::Problem& problem, const RodState& state) {
@@ -65,9 +73,8 @@ void AddContactReport(const io::Problem& problem, Result* result) {
     const double si = s[i].get<double>();
     const Vec3 p(position[i][0].get<double>(), position[i][1].get<double>(),
                  position[i][2].get<double>());
-    const double d = problem.rod.section->At(si, problem.robot.actuation).outer_diameter;
     const Vec3 v = result->node_velocity_W.size() == n ? result->node_velocity_W[i] : Vec3::Zero();
-    const Vec3 f = contact.MotionForce_W({si, 1.0, 0.0, d}, {p, Vec3::UnitZ(), v}, nullptr);
+    const Vec3 f = NodeContactForce_W(problem, contact, si, p, v);
     per_node.push_back({f.x(), f.y(), f.z()});
     if (i > 0) total += 0.5 * (si - s_previous) * (f + previous);
     const bool touching = !f.isZero(0.0);
@@ -92,12 +99,9 @@ void AddFrameContactForces(const io::Problem& problem, Result* result) {
     frame.contact_force.clear();
     for (const RodState& st : frame.rods) {
       std::vector<Vec3> f(st.size());
-      for (int i = 0; i < st.size(); ++i) {
-        const double d = problem.rod.section->At(st.s[i], problem.robot.actuation).outer_diameter;
-        const Vec3 v = st.rotation_WB[i] * st.twist_B[i].tail<3>();
-        f[i] = contact.MotionForce_W({st.s[i], 1.0, 0.0, d}, {st.position_W[i], Vec3::UnitZ(), v},
-                                     nullptr);
-      }
+      for (int i = 0; i < st.size(); ++i)
+        f[i] = NodeContactForce_W(problem, contact, st.s[i], st.position_W[i],
+                                  st.rotation_WB[i] * st.twist_B[i].tail<3>());
       frame.contact_force.push_back(std::move(f));
     }
   }
