@@ -231,6 +231,7 @@ class LiveRod:
         loads, act = problem.loads, problem.actuation  # copies, changed by the controls
         n_tendons = len(self.spec.get("robot", {}).get("tendons", []))
         n_chambers = len(self.spec.get("robot", {}).get("chambers", []))
+        n_jam = sum(1 for c in self.controls if c["name"].startswith("jamming_"))
         base0 = np.asarray(self.spec.get("base", {}).get("position", [0, 0, 0]), float)
         R0 = np.asarray(self.spec.get("base", {}).get("rotation", np.eye(3)), float)
         base_x = angle = 0.0
@@ -251,7 +252,6 @@ class LiveRod:
                 pressure = list(act.chamber_pressure)
                 pressure[:n_chambers] = [v[f"pressure_{i}"] for i in range(n_chambers)]
                 act.chamber_pressure = pressure
-            n_jam = sum(1 for name in v if name.startswith("jamming_"))
             if n_jam:
                 jam = list(act.jamming_pressure)
                 jam[:n_jam] = [v[f"jamming_{i}"] for i in range(n_jam)]
