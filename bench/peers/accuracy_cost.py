@@ -27,7 +27,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import compare_tip_trajectories as ctt  # noqa: E402
-from interleave import median, run_interleaved, timed  # noqa: E402
+from interleave import median, repeat_solve, run_interleaved, timed  # noqa: E402
 
 DURATION = 1.0
 
@@ -142,20 +142,8 @@ def main():
                     if os.path.exists(csvp):
                         os.remove(csvp)
                     resp = os.path.join(args.work, name + ".out.json")
-                    cpus, walls = [], []
-                    for rep in range(args.repeat):
-                        code, out, err, cpu, _, wall = timed([args.cosserat, "solve", prob, "--out", resp, "--csv", csvp])
-                        if code == 2:
-                            sys.exit("cosserat refused %s:\n%s" % (prob, err))
-                        with open(resp) as f:
-                            r = json.load(f)
-                        ok = r["status"] == "converged"
-                        cpus.append(cpu)
-                        walls.append(wall)
-                        if not ok:
-                            break
-                        if rep + 1 < args.repeat:
-                            yield None
+                    r, cpus, _, walls = yield from repeat_solve(args.cosserat, prob, resp, csvp,
+                                                                args.repeat)
                     row = {"code": "cosserat", "resolution": "%d nodes" % n, "dt": dt, "scheme": scheme,
                            "status": r["status"], "blew_up_at_t": r.get("failed_at_t"),
                            "cpu_s_per_sim_s": round(median(cpus) / DURATION, 4), "loop_cpu_s_per_sim_s": None,

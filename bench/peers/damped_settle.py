@@ -47,7 +47,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import compare_tip_trajectories as ctt  # noqa: E402
-from interleave import median, run_interleaved, timed  # noqa: E402
+from interleave import median, repeat_solve, run_interleaved, timed  # noqa: E402
 
 BASE = os.path.join(HERE, "..", "problems", "soft_cantilever.json")
 LENGTH = 0.3
@@ -240,21 +240,8 @@ def main():
             for p in (csvp, resp):
                 if os.path.exists(p):
                     os.remove(p)
-            cpus, cputs, walls = [], [], []
-            r = {}
-            for rep in range(args.repeat):
-                code, out, err, cput, cpu, wall = timed([args.cosserat, "solve", prob, "--out", resp, "--csv", csvp])
-                if code == 2:
-                    sys.exit("cosserat refused %s:\n%s" % (prob, err))
-                with open(resp) as f:
-                    r = json.load(f)
-                ok = r["status"] == "converged"
-                cpus.append(cpu)
-                cputs.append(cput)
-                walls.append(wall)
-                if not ok:
-                    break
-                yield None
+            r, cputs, cpus, walls = yield from repeat_solve(args.cosserat, prob, resp, csvp,
+                                                            args.repeat)
             damping = "Kelvin-Voigt tau_b %g s" % args.tau_bending + (", tau_es %g s" % tau_es if tau_es else "")
             row = {"code": "cosserat", "family": family,
                    "configuration": "%d nodes, %s %g" % (n, "dt" if fixed_dt else "tol", v),

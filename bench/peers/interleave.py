@@ -1,10 +1,11 @@
-"""What the peer tables share: timing a command, the median of repeated timings, and running
+"""What the peer tables share: timing a command, repeating a cosserat run, the median of repeated timings, and running
 several generators of table rows (one per code or configuration family) in turn, so that every
 code sees the same minutes of machine load, writing the CSV after each row."""
 import csv
 import json
 import resource
 import subprocess
+import sys
 
 
 def timed(cmd):
@@ -25,6 +26,30 @@ def timed(cmd):
         else:
             err.append(line)
     return p.returncode, p.stdout, "\n".join(err), cpu, cpu_rusage, wall
+
+
+def repeat_solve(cosserat, problem, out_json, out_csv, repeat):
+    """Runs `cosserat solve problem --out out_json --csv out_csv` up to `repeat` times, stopping
+    after a run that does not converge, and yields None between runs so that the other codes take
+    their turn (use it with `yield from`). Returns (the last result document, CPU seconds from
+    /usr/bin/time, CPU seconds from rusage, wall seconds), one per run. Exits on a refused
+    problem."""
+    result, cpus, cpus_rusage, walls = {}, [], [], []
+    for rep in range(repeat):
+        code, _, err, cpu, cpu_rusage, wall = timed(
+            [cosserat, "solve", problem, "--out", out_json, "--csv", out_csv])
+        if code == 2:
+            sys.exit("cosserat refused %s:\n%s" % (problem, err))
+        with open(out_json) as f:
+            result = json.load(f)
+        cpus.append(cpu)
+        cpus_rusage.append(cpu_rusage)
+        walls.append(wall)
+        if result["status"] != "converged":
+            break
+        if rep + 1 < repeat:
+            yield None
+    return result, cpus, cpus_rusage, walls
 
 
 def median(v):
