@@ -104,8 +104,8 @@ void PeerRelease(benchmark::State& state, SpatialScheme scheme, int passes = 1) 
 // `every_run`-th frame of the run against every `every_ref`-th frame of the reference.
 // Counters: the largest tip distance over the 25 s, and over the first 1 s and 5 s (BDF2's
 // phase error grows with time).
-void CompareTo(benchmark::State& state, int ref_nodes, double ref_dt, int every_run,
-               int every_ref, int ref_pieces = 1, SpatialScheme scheme = SpatialScheme::kRk4) {
+void CompareTo(benchmark::State& state, int ref_nodes, double ref_dt, int every_run, int every_ref,
+               int ref_pieces = 1, SpatialScheme scheme = SpatialScheme::kRk4) {
   for (auto _ : state) {
     const Run run = Simulate(40, 2e-3, every_run, 1e-10, 1, scheme);
     const Run ref = Simulate(ref_nodes, ref_dt, every_ref, 1e-10, ref_pieces);
@@ -136,11 +136,21 @@ void BM_PeerReleaseHeunFastestOf5(benchmark::State& state) {
 void BM_PeerReleaseFastestOf5(benchmark::State& state) {
   PeerRelease(state, SpatialScheme::kRk4, 5);
 }
+// RK4 across pairs of segments, the default (19 pairs and one segment alone at 40 nodes).
+void BM_PeerReleaseRk4Pairs(benchmark::State& state) {
+  PeerRelease(state, SpatialScheme::kRk4Pairs);
+}
+void BM_PeerReleaseRk4PairsFastestOf5(benchmark::State& state) {
+  PeerRelease(state, SpatialScheme::kRk4Pairs, 5);
+}
 
 void BM_PeerAccuracyGrid4x(benchmark::State& state) { CompareTo(state, 160, 2e-3, 1, 1); }
 // Heun at 40 nodes against RK4 at 160 (same dt): the spatial error of the order-2 scheme.
 void BM_PeerAccuracyHeunGrid4x(benchmark::State& state) {
   CompareTo(state, 160, 2e-3, 1, 1, 1, SpatialScheme::kHeun);
+}
+void BM_PeerAccuracyRk4PairsGrid4x(benchmark::State& state) {
+  CompareTo(state, 160, 2e-3, 1, 1, 1, SpatialScheme::kRk4Pairs);
 }
 
 // dt/2 and 4× the grid at once: every 2nd reference frame is every frame of the 2 ms run.
@@ -151,6 +161,9 @@ void BM_PeerAccuracyDt8Grid4x(benchmark::State& state) { CompareTo(state, 160, 2
 void BM_PeerAccuracyHeunDt8Grid4x(benchmark::State& state) {
   CompareTo(state, 160, 2.5e-4, 1, 8, 8, SpatialScheme::kHeun);
 }
+void BM_PeerAccuracyRk4PairsDt8Grid4x(benchmark::State& state) {
+  CompareTo(state, 160, 2.5e-4, 1, 8, 8, SpatialScheme::kRk4Pairs);
+}
 
 }  // namespace
 
@@ -158,8 +171,12 @@ BENCHMARK(BM_PeerRelease)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_PeerReleaseHeun)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_PeerReleaseFastestOf5)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_PeerReleaseHeunFastestOf5)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_PeerReleaseRk4Pairs)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_PeerReleaseRk4PairsFastestOf5)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_PeerAccuracyGrid4x)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_PeerAccuracyHeunGrid4x)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_PeerAccuracyRk4PairsGrid4x)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_PeerAccuracyDtHalfGrid4x)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_PeerAccuracyDt8Grid4x)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_PeerAccuracyHeunDt8Grid4x)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_PeerAccuracyRk4PairsDt8Grid4x)->Iterations(1)->Unit(benchmark::kSecond);

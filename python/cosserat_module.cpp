@@ -153,7 +153,7 @@ class PyStepper {
     if (spatial_scheme) {
       io::ShotScheme scheme;
       if (!io::FromString(*spatial_scheme, &scheme))
-        throw py::value_error("spatial_scheme: expected \"rk4\" or \"heun\", got \"" +
+        throw py::value_error("spatial_scheme: expected \"rk4\", \"heun\" or \"rk4-pairs\", got \"" +
                               *spatial_scheme + "\"");
       options_.spatial_scheme = cosserat::run::ToSpatialScheme(scheme);
     }

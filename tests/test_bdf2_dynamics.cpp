@@ -13,10 +13,10 @@
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "support/analytic/beam_vibration.hpp"
-#include "support/step_jacobian_check.hpp"
 #include "support/rods.hpp"
 #include "support/smooth_ramp.hpp"
 #include "support/spectral_peak.hpp"
+#include "support/step_jacobian_check.hpp"
 
 namespace cosserat {
 namespace {
@@ -42,7 +42,9 @@ TEST(Bdf2Dynamics, RodAtRestInEquilibriumStaysThere) {
 
 TEST(Bdf2Dynamics, EquilibriumMatchesStaticSolver) {
   const RodModel model = Steel(0.5, 0.001);
-  Bdf2ShootingStepper stepper(model, 40);
+  Bdf2Options rk4;  // the static solver's scheme (the default pairs segments: order 4 at 2h)
+  rk4.spatial_scheme = SpatialScheme::kRk4;
+  Bdf2ShootingStepper stepper(model, 40, rk4);
   StaticShootingSolver statics(model, 40);
   StepInput in;
   in.loads.gravity_W = Vec3(-9.81, 0, 0);
@@ -317,7 +319,10 @@ void ExpectShootingJacobianMatchesFiniteDifferences(SpatialScheme scheme) {
   opt.spatial_scheme = scheme;
   opt.tip_mass = 0.01;  // with a tip body, so its terms are checked too
   opt.tip_inertia_B = Vec3(1e-6, 2e-6, 3e-7);
-  Bdf2ShootingStepper stepper(RodModel::Uniform(0.5, sec, mat), 21, opt);
+  // Pairs form where 2hλ ≤ ½ (λL ≈ 8.7 here): at 41 nodes, not at 21.
+  const int nodes = scheme == SpatialScheme::kRk4Pairs ? 41 : 21;
+  Bdf2ShootingStepper stepper(RodModel::Uniform(0.5, sec, mat), nodes, opt);
+  if (scheme == SpatialScheme::kRk4Pairs) ASSERT_EQ(stepper.shot_steps(), 20);
   StepInput in;
   in.loads.tip_force = Vec3(-0.2, 0.1, 0);
   ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
@@ -333,8 +338,11 @@ void ExpectShootingJacobianMatchesFiniteDifferences(SpatialScheme scheme) {
 
 // For both spatial schemes (the tangent is propagated through each scheme's own stages).
 TEST(Bdf2Dynamics, ShootingJacobianMatchesFiniteDifferences) {
-  for (SpatialScheme scheme : {SpatialScheme::kRk4, SpatialScheme::kHeun}) {
-    SCOPED_TRACE(scheme == SpatialScheme::kRk4 ? "rk4" : "heun");
+  for (SpatialScheme scheme :
+       {SpatialScheme::kRk4, SpatialScheme::kHeun, SpatialScheme::kRk4Pairs}) {
+    SCOPED_TRACE(scheme == SpatialScheme::kRk4    ? "rk4"
+                 : scheme == SpatialScheme::kHeun ? "heun"
+                                                  : "rk4-pairs");
     ExpectShootingJacobianMatchesFiniteDifferences(scheme);
   }
 }

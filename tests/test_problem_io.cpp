@@ -128,6 +128,8 @@ TEST(ProblemIo, ChoicesAreReadIntoTheirEnums) {
   EXPECT_EQ(r.problem->analysis, Analysis::kDynamics);
   EXPECT_EQ(r.problem->boundary, Boundary::kFreeFree);
   EXPECT_EQ(r.problem->dynamics.spatial_scheme, ShotScheme::kHeun);
+  j["dynamics"]["spatial_scheme"] = "rk4-pairs";
+  EXPECT_EQ(Parse(j).problem->dynamics.spatial_scheme, ShotScheme::kRk4Pairs);
   EXPECT_EQ(r.problem->robot.kind, RobotKind::kNone);
   const ParseResult robot = LoadProblemFile(SourceDir() + "/robots/eversion_banded_vine.json");
   ASSERT_TRUE(robot.ok()) << AllErrors(robot);

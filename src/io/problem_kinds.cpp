@@ -29,7 +29,7 @@ const std::vector<std::string>& Names<Boundary>() {
 }
 template <>
 const std::vector<std::string>& Names<ShotScheme>() {
-  static const std::vector<std::string> names = {"rk4", "heun"};
+  static const std::vector<std::string> names = {"rk4", "heun", "rk4-pairs"};
   return names;
 }
 template <>

@@ -11,6 +11,7 @@
 #include "cosserat/assembly/assembly_dynamics.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/lie/so3.hpp"
+#include "cosserat/run/solver_options.hpp"
 #include "assembly_json.hpp"
 #include "frame_output.hpp"
 
@@ -103,8 +104,7 @@ Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options
   const io::Problem::Dynamics& d = problem.dynamics;
   AssemblyDynamicsOptions opt;
   opt.dt = d.dt;
-  opt.rod.spatial_scheme = d.spatial_scheme == io::ShotScheme::kHeun ? SpatialScheme::kHeun
-                                                                     : SpatialScheme::kRk4;
+  opt.rod.spatial_scheme = ToSpatialScheme(d.spatial_scheme);
   AssemblyDynamics dyn(spec.assembly, opt);
   const int B = dyn.body_count();
   const auto start = Clock::now();

@@ -56,7 +56,15 @@ Bdf2Options DynamicsOptions(const io::Problem& problem) {
 }
 
 SpatialScheme ToSpatialScheme(io::ShotScheme scheme) {
-  return scheme == io::ShotScheme::kHeun ? SpatialScheme::kHeun : SpatialScheme::kRk4;
+  switch (scheme) {
+    case io::ShotScheme::kHeun:
+      return SpatialScheme::kHeun;
+    case io::ShotScheme::kRk4Pairs:
+      return SpatialScheme::kRk4Pairs;
+    case io::ShotScheme::kRk4:
+      break;
+  }
+  return SpatialScheme::kRk4;
 }
 
 bool ToColumnEnds(io::Boundary boundary, ColumnEnds* ends) {

@@ -33,8 +33,9 @@ bool Bdf2Options::IsValid(std::string* why) const {
   if (!(tip_inertia_B.allFinite() && (tip_inertia_B.array() >= 0).all()))
     return fail("tip_inertia must be finite and >= 0");
   if (shooting_segments < 0) return fail("shooting_segments must be 0 (automatic) or more");
-  if (spatial_scheme != SpatialScheme::kRk4 && spatial_scheme != SpatialScheme::kHeun)
-    return fail("spatial_scheme must be rk4 or heun");
+  if (spatial_scheme != SpatialScheme::kRk4 && spatial_scheme != SpatialScheme::kHeun &&
+      spatial_scheme != SpatialScheme::kRk4Pairs)
+    return fail("spatial_scheme must be rk4, heun or rk4-pairs");
   return true;
 }
 
@@ -96,12 +97,13 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
 
   if (!model_.IsValid(&why)) throw std::invalid_argument("RodModel: " + why);
   SampleGrid();
+  PlanSteps();
   run_.model_fingerprint = ModelFingerprint();
   const double EI = std::max(samples_[0].stiffness(0), samples_[0].stiffness(1));
   const double L = model_.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
 
-  const int stages = StagesPerSegment() * (n - 1);
+  const int stages = stage_slots_;
   for (auto* v : {&strain_now_, &run_.strain1, &run_.strain2, &twist_now_, &run_.twist1,
                   &run_.twist2, &strain_h_, &twist_h_})
     v->assign(stages, Vec6::Zero());
@@ -123,15 +125,60 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
     pieces =
         std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent), MaxAutomaticPieces());
   }
-  if (pieces > n - 1)
-    throw std::invalid_argument("Bdf2Options: shooting_segments (" + std::to_string(pieces) +
-                                ") exceeds the number of grid segments (" + std::to_string(n - 1) +
-                                ")");
+  int steps = 0;  // a junction needs a step of the shot to start at it
+  for (int i = 0; i < n - 1; ++i) steps += StepStartsAt(i);
+  if (pieces > steps)
+    throw std::invalid_argument(
+        "Bdf2Options: shooting_segments (" + std::to_string(pieces) +
+        ") exceeds the number of grid segments (" + std::to_string(n - 1) + ")" +
+        (steps < n - 1 ? " the shot steps over in pairs (" + std::to_string(steps) + " steps)"
+                       : std::string()));
   SetShootingPieces(pieces);
 }
 
 int Bdf2ShootingStepper::MaxAutomaticPieces() const {
-  return std::max(1, std::min(32, static_cast<int>(grid_.size()) - 1));
+  int steps = 0;
+  for (int i = 0; i + 1 < static_cast<int>(grid_.size()); ++i) steps += StepStartsAt(i);
+  return std::max(1, std::min(32, steps));
+}
+
+double Bdf2ShootingStepper::StepRate(const Sample& smp) const {
+  // Along s the BDF2 step's rod bends like e^{λs}, λ = (c0² ρA / EI)^¼, c0 = 1.5/dt
+  // (shooting_exponent.hpp), and each wave of the section (rotary, torsional, shear, axial:
+  // inertia M_k against stiffness K_k) goes like e^{c0 s sqrt(M_k / K_k)}.
+  const double c0 = 1.5 / options_.dt;
+  double rate = std::pow(c0 * c0 * smp.mass(5) / smp.stiffness.head<2>().minCoeff(), 0.25);
+  for (int k = 0; k < 6; ++k) rate = std::max(rate, c0 * std::sqrt(smp.mass(k) / smp.stiffness(k)));
+  return rate;
+}
+
+void Bdf2ShootingStepper::PlanSteps(int keep) {
+  const int segments = static_cast<int>(grid_.size()) - 1;
+  pair_start_.resize(std::max(segments, 0));
+  std::fill(pair_start_.begin() + keep, pair_start_.end(), 0);
+  if (options_.spatial_scheme == SpatialScheme::kRk4Pairs) {
+    const std::vector<double> breaks = model_.Breakpoints();
+    for (int i = keep; i + 1 < segments; ++i) {
+      const double h0 = grid_[i + 1] - grid_[i], h1 = grid_[i + 2] - grid_[i + 1];
+      const double mid = grid_[i + 1];
+      const bool on_break = std::any_of(breaks.begin(), breaks.end(), [&](double b) {
+        return std::abs(b - mid) <= 1e-9 * model_.length;
+      });
+      if (std::abs(h0 - h1) > 1e-9 * h0 || on_break) continue;
+      double rate = 0.0;
+      for (int k : {3 * i, 3 * i + 3, 3 * i + 5}) rate = std::max(rate, StepRate(samples_[k]));
+      if ((h0 + h1) * rate > kMaxPairExponent) continue;
+      pair_start_[i] = 1;
+      ++i;  // the pair's second segment
+    }
+  }
+  step_slot_.assign(std::max(segments, 0), -1);
+  stage_slots_ = 0;
+  for (int i = 0; i < segments; ++i) {
+    if (!StepStartsAt(i)) continue;
+    step_slot_[i] = stage_slots_;
+    stage_slots_ += StepTable(i).stages;
+  }
 }
 
 void Bdf2ShootingStepper::SetShootingPieces(int pieces) {
@@ -153,11 +200,19 @@ void Bdf2ShootingStepper::SetShootingPieces(int pieces) {
 }
 
 void Bdf2ShootingStepper::PlaceJunctions() {
-  // Pieces of about equal node count (junction k at node round(k (n − 1) / pieces)).
+  // Pieces of about equal node count.
   const int segments = static_cast<int>(grid_.size()) - 1;
   const int pieces = static_cast<int>(junction_nodes_.size()) + 1;
-  for (int k = 1; k < pieces; ++k)
-    junction_nodes_[k - 1] = static_cast<int>(std::lround(double(k) * segments / pieces));
+  // Junctions sit where a step of the shot starts (every node but a pair's middle, kRk4Pairs):
+  // junction k at the start of step round(k steps / pieces).
+  int steps = 0;
+  for (int i = 0; i < segments; ++i) steps += StepStartsAt(i);
+  int node = 0, step = 0;
+  for (int k = 1; k < pieces; ++k) {
+    const int target = static_cast<int>(std::lround(double(k) * steps / pieces));
+    while (step < target) step += StepStartsAt(++node);
+    junction_nodes_[k - 1] = node;
+  }
   ms_jacobian_c0_ = -1.0;  // the junctions moved: the factors are stale
 }
 
@@ -468,7 +523,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input,
 }
 
 Bdf2ShootingStepper::Coefficients Bdf2ShootingStepper::Weights(double h, double h_prev,
-                                                                Bdf2Options::FirstStep first) {
+                                                               Bdf2Options::FirstStep first) {
   return Bdf2Weights(h, h_prev, first);
 }
 
@@ -529,14 +584,16 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
 }
 
 RodQuadrature Bdf2ShootingStepper::QuadraturePoints() const {
-  // The scheme's quadrature on each segment (RK4: h/6, h/3, h/3, h/6; Heun: h/2, h/2).
-  const internal::SchemeTable& T = internal::Table(options_.spatial_scheme);
+  // The scheme's quadrature on each step (RK4: h/6, h/3, h/3, h/6; Heun: h/2, h/2; a pair of
+  // segments: RK4's weights times the pair's length).
   RodQuadrature points;
-  points.reserve(T.stages * (grid_.size() - 1));
-  for (size_t i = 0; i + 1 < grid_.size(); ++i) {
-    const double h = grid_[i + 1] - grid_[i];
+  points.reserve(stage_slots_);
+  for (int i = 0; i + 1 < static_cast<int>(grid_.size()); ++i) {
+    if (!StepStartsAt(i)) continue;
+    const internal::SchemeTable& T = StepTable(i);
+    const double h = grid_[i + StepSpan(i)] - grid_[i];
     for (int j = 0; j < T.stages; ++j) {
-      const size_t q = T.stages * i + j;
+      const int q = step_slot_[i] + j;
       points.push_back({&samples_[3 * i + T.sample[j]], run_.position1[q], run_.rotation1[q],
                         run_.twist1[q], run_.strain1[q], h * T.weight[j]});
     }
@@ -566,12 +623,13 @@ void Bdf2ShootingStepper::Grow(const RodModel& longer, int new_segments) {
   model_ = longer;
   const int n = static_cast<int>(grid_.size());
   SampleGrid();
+  const int stages_old = stage_slots_;
+  PlanSteps(n_old - 1);  // the old segments keep their steps (their history is at those stages)
+  const int stages = stage_slots_;
   run_.model_fingerprint = ModelFingerprint();
   if (!junction_nodes_.empty()) PlaceJunctions();
 
   // New stages and nodes start with the old tip's history, placed along its tangent.
-  const int S = StagesPerSegment();
-  const int stages_old = S * (n_old - 1), stages = S * (n - 1);
   const Mat3 R_tip = run_.state.rotation_WB.back();
   const Vec3 p_tip = run_.state.position_W.back();
   auto along = [&](double s) { return Vec3(p_tip + R_tip.col(2) * (s - L_old)); };
@@ -587,10 +645,12 @@ void Bdf2ShootingStepper::Grow(const RodModel& longer, int new_segments) {
   run_.velocity_W1.resize(stages, v1);
   run_.velocity_W2.resize(stages, v2);
   run_.position1.resize(stages);
-  for (int q = stages_old; q < stages; ++q) {
-    const int i = q / S;
-    const double offset = internal::Table(options_.spatial_scheme).step[q % S];
-    run_.position1[q] = along(grid_[i] + offset * (grid_[i + 1] - grid_[i]));
+  for (int i = 0; i + 1 < n; ++i) {
+    if (!StepStartsAt(i) || step_slot_[i] < stages_old) continue;
+    const internal::SchemeTable& T = StepTable(i);
+    for (int j = 0; j < T.stages; ++j)
+      run_.position1[step_slot_[i] + j] =
+          along(grid_[i] + T.step[j] * (grid_[i + StepSpan(i)] - grid_[i]));
   }
   RodState& st = run_.state;
   const RodState old = st;

@@ -27,8 +27,8 @@ enum class Boundary {
 };
 
 /// "dynamics.spatial_scheme": the explicit Runge–Kutta scheme of the dynamic shot in s (RK4,
-/// order 4; Heun, order 2).
-enum class ShotScheme { kRk4, kHeun };
+/// order 4; Heun, order 2; RK4 across pairs of segments, order 4 at Heun's cost).
+enum class ShotScheme { kRk4, kHeun, kRk4Pairs };
 
 /// "robot.kind"; kNone when the problem has no "robot".
 enum class RobotKind { kNone, kTendon, kJamming, kEversion, kPneumatic };

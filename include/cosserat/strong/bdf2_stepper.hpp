@@ -19,6 +19,7 @@
 /// exactly.
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -147,6 +148,11 @@ class Bdf2ShootingStepper {
   const RodState& state() const { return run_.state; }
   const Bdf2Options& options() const { return options_; }
   const std::vector<double>& grid() const { return grid_; }
+  /// The steps of the shot in s: the grid's segments, less one for each pair kRk4Pairs forms.
+  int shot_steps() const {
+    return static_cast<int>(grid_.size()) - 1 -
+           static_cast<int>(std::count(pair_start_.begin(), pair_start_.end(), 1));
+  }
   /// The current state at the stage points of the spatial scheme with its quadrature weights:
   /// what the free functions of rod_integrals.hpp (energy, momentum, mass) integrate.
   RodQuadrature QuadraturePoints() const;
@@ -275,8 +281,25 @@ class Bdf2ShootingStepper {
   void ApplyActuation(const Actuation& actuation);
   /// Fills the history terms ξʰ, Vʰ at every stage for the weights c (once per step).
   void PrepareHistory(const Coefficients& c);
-  /// 4 for RK4, 2 for Heun (spatial_scheme.hpp).
+  /// Stages per step: 4 for RK4 and kRk4Pairs, 2 for Heun (spatial_scheme.hpp).
   int StagesPerSegment() const { return internal::Table(options_.spatial_scheme).stages; }
+  /// The shot's steps: kRk4Pairs pairs equal segments (pair_start_), segments before `keep`
+  /// keep their plan (Grow()); then each step's first stage slot (step_slot_). Needs samples_.
+  void PlanSteps(int keep = 0);
+  /// The fastest exponential rate (1/m) along s of the step's rod at a sample: bending or a wave.
+  double StepRate(const Sample& smp) const;
+  /// kRk4Pairs pairs two segments only where the pair's length times StepRate stays below this:
+  /// RK4's error on e^{z} over one step is about z⁵/120, 2.6e-4 at z = ½.
+  static constexpr double kMaxPairExponent = 0.5;
+  /// Whether node i starts a step of the shot: a junction may sit only there.
+  bool StepStartsAt(int i) const { return i == 0 || !pair_start_[i - 1]; }
+  /// The scheme table and number of segments of the step that starts at node i.
+  const internal::SchemeTable& StepTable(int i) const {
+    return pair_start_[i] || options_.spatial_scheme != SpatialScheme::kRk4Pairs
+               ? internal::Table(options_.spatial_scheme)
+               : internal::kRk4Table;
+  }
+  int StepSpan(int i) const { return pair_start_[i] ? 2 : 1; }
   void Commit(double h);
 
   RodModel model_;
@@ -285,8 +308,14 @@ class Bdf2ShootingStepper {
   std::vector<double> sample_points_;  ///< s of every sample, m
   std::vector<Sample> samples_;        ///< 3 per segment: start, midpoint, end
   std::vector<TendonSample> tendons_;  ///< parallel to samples_; empty without tendons
-  Actuation actuation_;                ///< the actuation the samples are for
-  Vec6 scale_;                         ///< W(0) = scale ⊙ x
+  /// kRk4Pairs: pair_start_[i] when segments i and i + 1 are integrated as one RK4 step (equal
+  /// lengths, no section breakpoint on node i + 1); all false for the other schemes.
+  std::vector<char> pair_start_;
+  /// The first stage slot (index into the stage arrays) of the step that starts at node i.
+  std::vector<int> step_slot_;
+  int stage_slots_ = 0;  ///< stage slots of the whole shot
+  Actuation actuation_;  ///< the actuation the samples are for
+  Vec6 scale_;           ///< W(0) = scale ⊙ x
 
   Snapshot run_;  ///< the accepted run: all Save() and Restore() copy
 

@@ -154,8 +154,8 @@ COSSERAT_RHS_INLINE DynamicPoint<T> DynamicDerivative(
     const StageHistory& h, Vector6<T>* strain, Vector6<T>* twist, Vector3<T>* velocity_W,
     const Vector6<T>* given = nullptr, double added_mass = 0.0) {
   const Matrix3<T>& R = y.R;
-  const Vector3<T> n_B = R.transpose() * y.n;
-  const T W[6] = {y.m(0), y.m(1), y.m(2), n_B(0), n_B(1), n_B(2)};
+  // n_B = Rᵀ n, written out: Eigen's product is not always inlined into the shot's loop.
+  const T W[6] = {y.m(0), y.m(1), y.m(2), R.col(0).dot(y.n), R.col(1).dot(y.n), R.col(2).dot(y.n)};
   T xi[6], xt[6], Vt[6];
   if (given) {
     for (int i = 0; i < 6; ++i) xi[i] = (*given)(i);

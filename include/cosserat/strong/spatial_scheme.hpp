@@ -24,6 +24,9 @@ namespace cosserat {
 enum class SpatialScheme {
   kRk4,   ///< classic RK4: 4 stage evaluations per segment, order 4 (the default)
   kHeun,  ///< Heun / explicit trapezoid: 2 stage evaluations per segment, order 2
+  /// RK4 across pairs of equal segments: 4 stage evaluations per pair (2 per segment, as Heun),
+  /// order 4 in the pair's length; the node between is RK4's dense output at θ = ½
+  kRk4Pairs,
 };
 
 namespace internal {
@@ -41,9 +44,15 @@ struct SchemeTable {
 inline constexpr SchemeTable kRk4Table{
     4, {0.0, 0.5, 0.5, 1.0}, {0, 1, 1, 2}, {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}};
 inline constexpr SchemeTable kHeunTable{2, {0.0, 1.0, 0, 0}, {0, 2, 0, 0}, {0.5, 0.5, 0, 0}};
+/// RK4 over the pair of segments i, i + 1 (h: the pair's length): the middle stages sit on node
+/// i + 1 (sample 3 = the second segment's start), the last at the pair's end (sample 5).
+inline constexpr SchemeTable kRk4PairTable{
+    4, {0.0, 0.5, 0.5, 1.0}, {0, 3, 3, 5}, {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}};
 
 constexpr const SchemeTable& Table(SpatialScheme s) {
-  return s == SpatialScheme::kHeun ? kHeunTable : kRk4Table;
+  return s == SpatialScheme::kHeun       ? kHeunTable
+         : s == SpatialScheme::kRk4Pairs ? kRk4PairTable
+                                         : kRk4Table;
 }
 
 /// The scheme's vector operations on a shot's point (cosserat_rhs.hpp), which is a packed array
@@ -79,6 +88,21 @@ COSSERAT_SCHEME_INLINE void HeunUpdate(double h, const Point& k1, const Point& k
   const double *p1 = k1.p.data(), *p2 = k2.p.data();
   double* o = y->p.data();
   for (int i = 0; i < kFlatSize<Point>; ++i) o[i] += a * (p1[i] + p2[i]);
+}
+
+/// RK4's continuous extension at θ = ½ of its step (Hairer, Nørsett & Wanner 1993, II.6):
+/// y(½) ≈ y + h (5/24 k1 + 1/6 k2 + 1/6 k3 − 1/24 k4), local error O(h⁴).
+template <typename Point>
+COSSERAT_SCHEME_INLINE Point Rk4Midpoint(double h, const Point& y, const Point& k1, const Point& k2,
+                                         const Point& k3, const Point& k4) {
+  Point out;
+  const double a = h * 5.0 / 24, b = h / 6, c = -h / 24;
+  const double *py = y.p.data(), *p1 = k1.p.data(), *p2 = k2.p.data(), *p3 = k3.p.data(),
+               *p4 = k4.p.data();
+  double* o = out.p.data();
+  for (int i = 0; i < kFlatSize<Point>; ++i)
+    o[i] = py[i] + a * p1[i] + b * (p2[i] + p3[i]) + c * p4[i];
+  return out;
 }
 
 }  // namespace internal
