@@ -5,9 +5,10 @@ peer release"), this library's `cosserat solve` against peer binaries, interleav
     python3 bench/peers/p1_release.py --cosserat build/apps/cosserat \
         --peer till=/tmp/till_release [--peer NAME=BINARY ...] [--rounds 9] [--csv OUT.csv]
 
-Each round runs, in turn: our RK4 problem (examples/cantilever_release.json, the default
-spatial scheme), the first peer, our Heun problem (bench/problems/peer_heun.json), the next
-peer, ... (ours and theirs alternate; the order rotates by one program each round). Each run is
+Each round runs, in turn: our problem with default settings (examples/cantilever_release.json,
+RK4 across pairs of segments in s), the first peer, the same with RK4 on every segment
+(bench/problems/peer_rk4.json), the next peer, with Heun (bench/problems/peer_heun.json), ...
+(ours and theirs alternate; the order rotates by one program each round). Each run is
 a whole process: start-up, the initial equilibrium, 12 500 steps, our JSON result written to
 /tmp (the problems record a frame every 10 ms), the peer's output as its binary does it.
 CPU time is user + sys of the child (os.wait4); wall is time.perf_counter around it.
@@ -73,7 +74,10 @@ def main():
     a = ap.parse_args()
 
     ours = [
-        ("ours_rk4", [os.path.abspath(a.cosserat), "solve", os.path.join(REPO, "examples/cantilever_release.json"),
+        ("ours_default", [os.path.abspath(a.cosserat), "solve",
+                          os.path.join(REPO, "examples/cantilever_release.json"),
+                          "--out", "/tmp/p1_release_default.json"]),
+        ("ours_rk4", [os.path.abspath(a.cosserat), "solve", os.path.join(REPO, "bench/problems/peer_rk4.json"),
                       "--out", "/tmp/p1_release_rk4.json"]),
         ("ours_heun", [os.path.abspath(a.cosserat), "solve", os.path.join(REPO, "bench/problems/peer_heun.json"),
                        "--out", "/tmp/p1_release_heun.json"]),

@@ -78,7 +78,7 @@ struct Problem {
     /// Bdf2Options::shooting_segments (SE(3) path); 0: chosen by the stepper.
     int shooting_segments = 0;
     /// Bdf2Options::spatial_scheme (SE(3) path).
-    ShotScheme spatial_scheme = ShotScheme::kRk4;
+    ShotScheme spatial_scheme = ShotScheme::kRk4Pairs;
     /// Quaternion-FD path: the Radau integrator's rel_tol = abs_tol (IntegratorOptions; rotations
     /// in rad), in (0, 0.1].
     double integrator_tolerance = 1e-6;

@@ -92,10 +92,12 @@ struct Bdf2Options {
   /// when a step fails it doubles the pieces (up to 32, and the grid's segments) before it halves
   /// the step. StepSummary::shooting_segments reports the pieces of each step.
   int shooting_segments = 0;
-  /// Explicit scheme of the shot in s (spatial_scheme.hpp): RK4 (order 4, the default) or Heun
-  /// (order 2, the order of BDF2 in time, half the stage evaluations: a shot costs about half).
-  /// The BDF2 history lives at the scheme's stage points, so a stepper keeps its scheme.
-  SpatialScheme spatial_scheme = SpatialScheme::kRk4;
+  /// Explicit scheme of the shot in s (spatial_scheme.hpp): RK4 across pairs of segments (the
+  /// default: order 4 at two stage evaluations per segment where the pair is short against the
+  /// step's exponent, plain RK4 elsewhere), RK4 on every segment, or Heun (order 2, as BDF2 in
+  /// time, at two). The BDF2 history lives at the scheme's stage points, so a stepper keeps its
+  /// scheme.
+  SpatialScheme spatial_scheme = SpatialScheme::kRk4Pairs;
 
   bool IsValid(std::string* why) const;
 };

@@ -2,16 +2,18 @@
 /// \file
 /// The explicit Runge–Kutta schemes the dynamic shot integrates with in s (bdf2_stepper.hpp).
 ///
-/// Both are of the form where stage j sits at y + a_j h k_{j−1} (a_0 = 0) and
-/// y_{i+1} = y_i + h Σ_j b_j k_j, so one loop serves both. BDF2 keeps its history at every stage
+/// All are of the form where stage j sits at y + a_j h k_{j−1} (a_0 = 0) and
+/// y_{i+1} = y_i + h Σ_j b_j k_j, so one loop serves them. BDF2 keeps its history at every stage
 /// point, and the rod's integrals (mass, momentum, energy) use the weights b_j at the stage
 /// points: the linear-momentum balance n_W' = −f + ρA a_W is then summed by exactly the
-/// quadrature the shot uses, and momentum stays conserved to round-off with either scheme.
+/// quadrature the shot uses, and momentum stays conserved to round-off with any scheme.
 ///
-/// Choosing: RK4 is order 4 in s; Heun (explicit trapezoid) is order 2 for half the stage
-/// evaluations, the same order as BDF2 in time. On the peer rod (steel, L = 0.5 m) at 40 nodes the
-/// spatial error of either is far below BDF2's time error at dt = 2 ms (BENCHMARKS.md), so the
-/// real-time path can use Heun; statics (static_shooting.hpp) always uses RK4.
+/// Choosing (docs/dynamics.md, "Choosing the scheme in s"): RK4 is order 4 in s; Heun (explicit
+/// trapezoid) is order 2 for half the stage evaluations, the same order as BDF2 in time; RK4
+/// across pairs of segments is order 4 for Heun's stage evaluations where the pair is short
+/// against the step's exponent (2hλ ≤ ½) and plain RK4 elsewhere, the default. On the peer rod
+/// (steel, L = 0.5 m, 40 nodes, dt = 2 ms) the pairs' spatial error is 1/1000 of BDF2's time error
+/// at 62 % of RK4's cost (BENCHMARKS.md). Statics (static_shooting.hpp) always uses RK4.
 
 #ifdef __GNUC__
 #define COSSERAT_SCHEME_INLINE inline __attribute__((always_inline))
@@ -22,10 +24,11 @@
 namespace cosserat {
 
 enum class SpatialScheme {
-  kRk4,   ///< classic RK4: 4 stage evaluations per segment, order 4 (the default)
+  kRk4,   ///< classic RK4: 4 stage evaluations per segment, order 4
   kHeun,  ///< Heun / explicit trapezoid: 2 stage evaluations per segment, order 2
   /// RK4 across pairs of equal segments: 4 stage evaluations per pair (2 per segment, as Heun),
-  /// order 4 in the pair's length; the node between is RK4's dense output at θ = ½
+  /// order 4 in the pair's length; the node between is RK4's dense output at θ = ½. A pair forms
+  /// only where 2hλ ≤ ½ and not over a section breakpoint; RK4 on the other segments (the default)
   kRk4Pairs,
 };
 
