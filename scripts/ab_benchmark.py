@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """A/B timing of two builds of cosserat, interleaved in the same minutes: the peer release as a
-whole `cosserat solve` process (RK4 and Heun in s), the warm static re-solve and the Lang & Linn
+whole `cosserat solve` process (default settings, RK4 and Heun in s), the warm static re-solve and the Lang & Linn
 rubber rod with Radau IIA and the 1 000-point workspace sweep. Prints each case's median time for A and B and the ratio B/A.
 
     scripts/ab_benchmark.py BUILD_A BUILD_B [--rounds 5]
@@ -35,7 +35,8 @@ def bench_seconds(build, binary, name):
 
 
 CASES = [
-    ("peer release, RK4 (whole process)", lambda b: solve_seconds(b, "examples/cantilever_release.json")),
+    ("peer release, default settings (whole process)", lambda b: solve_seconds(b, "examples/cantilever_release.json")),
+    ("peer release, RK4 (whole process)", lambda b: solve_seconds(b, "bench/problems/peer_rk4.json")),
     ("peer release, Heun (whole process)", lambda b: solve_seconds(b, "bench/problems/peer_heun.json")),
     ("warm static re-solve, 41 nodes", lambda b: bench_seconds(b, "bench_static", "BM_StaticResolveWarm1Percent/41")),
     ("warm static re-solve, 101 nodes", lambda b: bench_seconds(b, "bench_static", "BM_StaticResolveWarm1Percent/101")),

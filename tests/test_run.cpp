@@ -55,6 +55,17 @@ TEST(Run, FollowsTheFormulation) {
   EXPECT_EQ(modes.json["modes"]["frequencies_hz"].size(), 2u);
 }
 
+// A dynamics result says how the default scheme in s stepped: the peer release's 40 nodes are 39
+// equal segments, 2hλ ≈ 0.44 ≤ ½ at dt = 2 ms, so 19 pairs and one segment alone: 20 steps; with
+// "rk4" every segment is a step.
+TEST(Run, ADynamicsResultReportsTheStepsOfTheShot) {
+  io::Problem problem = Load("examples/cantilever_release.json");
+  problem.dynamics.duration = 0.01;
+  EXPECT_EQ(cosserat::run::Run(problem).json["shot_steps"], 20);
+  problem.dynamics.spatial_scheme = io::ShotScheme::kRk4;
+  EXPECT_EQ(cosserat::run::Run(problem).json["shot_steps"], 39);
+}
+
 // The bending stress at the clamp of a weightless cantilever under a tip force F (world) is fixed by
 // the moment balance about the base, M = |x_tip × F|, whatever the deflection: σ = M r / I for the
 // wire's circle. The report's largest stress is there (the moment falls to zero at the tip). The

@@ -158,6 +158,7 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   const Bdf2Options options = DynamicsOptions(problem);
   Bdf2ShootingStepper stepper(problem.rod, problem.nodes, options);
   io::DynamicRun run = Simulate(problem, run_options, &stepper);
+  run.shot_steps = stepper.shot_steps();
   Result result;
   result.json = io::DynamicResultToJson(run, stepper.state());
   detail::MoveFrames(problem.rod, problem.robot.actuation, &run, &result);

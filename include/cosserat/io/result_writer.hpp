@@ -46,6 +46,9 @@ struct DynamicRun {
   int steps = 0;                                                  ///< steps that converged
   int halved_steps = 0;  ///< of those, steps that needed step halving
   int shooting_segments = 0;  ///< SE(3) path: the most pieces a step was shot in (0: not reported)
+  /// SE(3) path: the steps of the shot in s, the grid's segments less the pairs of the default
+  /// scheme (Bdf2ShootingStepper::shot_steps; 0: not reported)
+  int shot_steps = 0;
   int iterations = 0;    ///< all solves, the initial one included
   int shots = 0;
   double wall_time_s = 0;           ///< initial state and stepping loop
