@@ -28,6 +28,9 @@ TEST(GrowthDynamics, FreeBodyUnderAxialTipTensionStaysStraightWithItsTipAtLOfT) 
   Bdf2Options opt;
   opt.dt = 2e-3;
   Bdf2ShootingStepper stepper(model, 17, opt);
+  // The default scheme pairs the 16 segments (2hλ ≈ 0.43); a grown segment keeps to itself, and
+  // the old ones keep their pairs (their history is at the pairs' stages): 8 + 20 steps at the end.
+  EXPECT_EQ(stepper.shot_steps(), 8);
   StepInput in;
   in.loads.tip_force = Vec3(0, 0, P);
   in.loads.tip_force_frame = LoadFrame::kBody;
@@ -44,6 +47,7 @@ TEST(GrowthDynamics, FreeBodyUnderAxialTipTensionStaysStraightWithItsTipAtLOfT) 
     EXPECT_NEAR(st.tip_position_W().z(), model.length * (1 + eps), 1e-12 * model.length);
   }
   EXPECT_NEAR(model.length, 0.4, 1e-12);
+  EXPECT_EQ(stepper.shot_steps(), 28);
 }
 
 TEST(GrowthDynamics, SlowGrowthUnderGravityEndsOnTheStaticCantileverOfTheFinalLength) {
