@@ -263,12 +263,15 @@ class Bdf2ShootingStepper::Shot {
     while (next_junction < st_.junction_nodes_.size() &&
            st_.junction_nodes_[next_junction] <= first)
       ++next_junction;
+    // Every segment from `first` on is a step of S stages here (a plain scheme, or one segment
+    // alone of kRk4Pairs).
+    const int q_first = st_.step_slot_[first];
     for (int i = first; i < last; ++i) {
       if (st_.junctions_active_ && next_junction < st_.junction_nodes_.size() &&
           i == st_.junction_nodes_[next_junction])
         st_.ApplyJunction(static_cast<int>(next_junction++), &y);
       const double h = st_.grid_[i + 1] - st_.grid_[i];
-      const int q = st_.step_slot_[i];
+      const int q = q_first + S * (i - first);
       const int smp = 3 * i;
       const DynState k1 = Stage<kStateLoads>(q, 0, smp, y);
       RecordNode(i, y, st_.strain_now_[q]);

@@ -155,7 +155,12 @@ COSSERAT_RHS_INLINE DynamicPoint<T> DynamicDerivative(
     const Vector6<T>* given = nullptr, double added_mass = 0.0) {
   const Matrix3<T>& R = y.R;
   // n_B = Rᵀ n, written out: Eigen's product is not always inlined into the shot's loop.
-  const T W[6] = {y.m(0), y.m(1), y.m(2), R.col(0).dot(y.n), R.col(1).dot(y.n), R.col(2).dot(y.n)};
+  const T W[6] = {y.m(0),
+                  y.m(1),
+                  y.m(2),
+                  R(0, 0) * y.n(0) + R(1, 0) * y.n(1) + R(2, 0) * y.n(2),
+                  R(0, 1) * y.n(0) + R(1, 1) * y.n(1) + R(2, 1) * y.n(2),
+                  R(0, 2) * y.n(0) + R(1, 2) * y.n(1) + R(2, 2) * y.n(2)};
   T xi[6], xt[6], Vt[6];
   if (given) {
     for (int i = 0; i < 6; ++i) xi[i] = (*given)(i);
