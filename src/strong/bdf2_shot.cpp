@@ -101,40 +101,6 @@ void RkUpdate(double h, const double (&b)[4], const DynTangent (&k)[S], DynTange
 
 }  // namespace
 
-template <typename State>
-State Bdf2ShootingStepper::JunctionRestart(int k) const {
-  const int i = junction_nodes_[k];
-  const RodState& ref = run_.state;  // the last accepted state at the junction node
-  const auto z = junction_z_.segment<18>(18 * k);
-  State restart;
-  restart.p = ref.position_W[i] + model_.length * z.segment<3>(0);
-  restart.R = ref.rotation_WB[i] * lie::SO3Exp(Vec3(z.segment<3>(3)));
-  restart.m = ref.wrench_B[i].head<3>() + scale_.head<3>().cwiseProduct(z.segment<3>(6));
-  restart.n = ref.rotation_WB[i] * ref.wrench_B[i].tail<3>() +
-              scale_.tail<3>().cwiseProduct(z.segment<3>(9));
-  restart.w = ref.twist_B[i].head<3>() + twist_scale_.head<3>().cwiseProduct(z.segment<3>(12));
-  restart.v = ref.twist_B[i].tail<3>() + twist_scale_.tail<3>().cwiseProduct(z.segment<3>(15));
-  return restart;
-}
-
-template <typename State>
-void Bdf2ShootingStepper::RecordJunctionMismatch(int k, const State& y, const State& restart) {
-  auto d = junction_mismatch_.segment<18>(18 * k);
-  d.segment<3>(0) = (y.p - restart.p) / model_.length;
-  d.segment<3>(3) = lie::SO3Log(Mat3(restart.R.transpose() * y.R));
-  d.segment<3>(6) = (y.m - restart.m).cwiseQuotient(scale_.head<3>());
-  d.segment<3>(9) = (y.n - restart.n).cwiseQuotient(scale_.tail<3>());
-  d.segment<3>(12) = (y.w - restart.w).cwiseQuotient(twist_scale_.head<3>());
-  d.segment<3>(15) = (y.v - restart.v).cwiseQuotient(twist_scale_.tail<3>());
-}
-
-template <typename State>
-void Bdf2ShootingStepper::ApplyJunction(int k, State* y) {
-  const State restart = JunctionRestart<State>(k);
-  RecordJunctionMismatch(k, *y, restart);
-  *y = restart;
-}
-
 void Bdf2ShootingStepper::PrepareHistory(const Coefficients& c) {
   if (history_ready_ && c.c0 == history_c_.c0 && c.c2 == history_c_.c2) return;
   // Written so that a constant history gives exactly zero rates:
