@@ -214,6 +214,19 @@ class Bdf2ShootingStepper::Shot {
   // ... and end at junction k: its mismatch against its restart state.
   void EndAtJunction(int k) { st_.RecordJunctionMismatch(k, y_, st_.JunctionRestart<DynState>(k)); }
 
+  // The first junction a run of segments from node `first` crosses (those strictly after it).
+  size_t FirstJunctionAfter(int first) const {
+    size_t k = 0;
+    while (k < st_.junction_nodes_.size() && st_.junction_nodes_[k] <= first) ++k;
+    return k;
+  }
+  // At node i: restart the shot if junction *next sits there, and move on to the next one.
+  COSSERAT_HOT void CrossJunction(int i, size_t* next, DynState* y) {
+    if (st_.junctions_active_ && *next < st_.junction_nodes_.size() &&
+        i == st_.junction_nodes_[*next])
+      st_.ApplyJunction(static_cast<int>((*next)++), y);
+  }
+
   // Segment by segment with the explicit scheme's S stages (spatial_scheme.hpp), written out
   // per scheme: a loop over stage arrays made the RK4 shot ~25 % slower.
   // kStateLoads: some load depends on the state (drag, added mass); compiled apart, so the plain
@@ -225,17 +238,12 @@ class Bdf2ShootingStepper::Shot {
     constexpr int S = Table(kScheme).stages;
     if (last < 0) last = static_cast<int>(st_.grid_.size()) - 1;
     DynState y = y_;
-    size_t next_junction = 0;
-    while (next_junction < st_.junction_nodes_.size() &&
-           st_.junction_nodes_[next_junction] <= first)
-      ++next_junction;
+    size_t next_junction = FirstJunctionAfter(first);
     // Every segment from `first` on is a step of S stages here (a plain scheme, or one segment
     // alone of kRk4Pairs).
     const int q_first = st_.step_slot_[first];
     for (int i = first; i < last; ++i) {
-      if (st_.junctions_active_ && next_junction < st_.junction_nodes_.size() &&
-          i == st_.junction_nodes_[next_junction])
-        st_.ApplyJunction(static_cast<int>(next_junction++), &y);
+      CrossJunction(i, &next_junction, &y);
       const double h = st_.grid_[i + 1] - st_.grid_[i];
       const int q = q_first + S * (i - first);
       const int smp = 3 * i;
@@ -268,14 +276,9 @@ class Bdf2ShootingStepper::Shot {
     constexpr const SchemeTable& T = Table(SpatialScheme::kRk4Pairs);
     if (last < 0) last = static_cast<int>(st_.grid_.size()) - 1;
     DynState y = y_;
-    size_t next_junction = 0;
-    while (next_junction < st_.junction_nodes_.size() &&
-           st_.junction_nodes_[next_junction] <= first)
-      ++next_junction;
+    size_t next_junction = FirstJunctionAfter(first);
     for (int i = first; i < last;) {
-      if (st_.junctions_active_ && next_junction < st_.junction_nodes_.size() &&
-          i == st_.junction_nodes_[next_junction])
-        st_.ApplyJunction(static_cast<int>(next_junction++), &y);
+      CrossJunction(i, &next_junction, &y);
       if (!st_.pair_start_[i] || i + 2 > last) {
         y_ = y;
         SingleSegment<kStateLoads>(i);
