@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include "../bench/peer_rod.hpp"
@@ -163,6 +164,22 @@ TEST(SpatialScheme, Rk4PairsLeaveASegmentAloneWhereTheyMust) {
     Bdf2ShootingStepper stepper(rod, 41, Options(SpatialScheme::kRk4Pairs));
     EXPECT_EQ(stepper.shot_steps(), cut == 0.25 ? 20 : 21) << cut;
   }
+}
+
+// The pairs' stage slots depend on dt: a snapshot is refused by a stepper that pairs otherwise
+// (here none at dt = 0.1 ms), and one that asks for more pieces than there would be steps keeps
+// every segment alone instead of refusing them.
+TEST(SpatialScheme, Rk4PairsPlanIsPartOfASnapshotAndYieldsToExplicitPieces) {
+  Bdf2Options paired = Options(SpatialScheme::kRk4Pairs), fast = paired;
+  fast.dt = 1e-4;
+  Bdf2ShootingStepper a(PeerRod(), 41, paired), b(PeerRod(), 41, fast);
+  ASSERT_TRUE(a.InitializeAtRest(PeerPreload()).converged());
+  EXPECT_THROW(b.Restore(a.Save()), std::invalid_argument);
+  Bdf2Options pieces = paired;
+  pieces.shooting_segments = 30;  // more than the 20 steps of the pairs
+  Bdf2ShootingStepper c(PeerRod(), 41, pieces);
+  EXPECT_EQ(c.shot_steps(), 40);
+  EXPECT_TRUE(c.InitializeAtRest(PeerPreload()).converged());
 }
 
 // As HeunConservesTheLinearMomentumOfAFreeRod, with RK4 across pairs: the quadrature is RK4's

@@ -279,7 +279,8 @@ class Bdf2ShootingStepper::Shot {
     size_t next_junction = FirstJunctionAfter(first);
     for (int i = first; i < last;) {
       CrossJunction(i, &next_junction, &y);
-      if (!st_.pair_start_[i] || i + 2 > last) {
+      // A pair never straddles `last`: junctions sit only where a step starts.
+      if (!st_.pair_start_[i]) {
         y_ = y;
         SingleSegment<kStateLoads>(i);
         y = y_;
@@ -461,7 +462,8 @@ class Bdf2ShootingStepper::Shot {
     }
   }
 
-  // The tangent dy through the stages ys of segment i (the exact derivative of the shot).
+  // The tangent dy through the stages ys of the step from node i (the exact derivative of the
+  // shot).
   template <SpatialScheme kScheme, bool kStateLoads, int S = Table(kScheme).stages>
   void Propagate(const std::array<const DynState*, S>& ys, int q, int smp, double h) {
     constexpr const SchemeTable& T = Table(kScheme);

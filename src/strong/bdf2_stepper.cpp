@@ -125,14 +125,10 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
     pieces =
         std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent), MaxAutomaticPieces());
   }
-  int steps = 0;  // a junction needs a step of the shot to start at it
-  for (int i = 0; i < n - 1; ++i) steps += StepStartsAt(i);
-  if (pieces > steps)
-    throw std::invalid_argument(
-        "Bdf2Options: shooting_segments (" + std::to_string(pieces) +
-        ") exceeds the number of grid segments (" + std::to_string(n - 1) + ")" +
-        (steps < n - 1 ? " the shot steps over in pairs (" + std::to_string(steps) + " steps)"
-                       : std::string()));
+  if (pieces > n - 1)  // PlanSteps() leaves as many steps as pieces
+    throw std::invalid_argument("Bdf2Options: shooting_segments (" + std::to_string(pieces) +
+                                ") exceeds the number of grid segments (" + std::to_string(n - 1) +
+                                ")");
   SetShootingPieces(pieces);
 }
 
@@ -171,6 +167,11 @@ void Bdf2ShootingStepper::PlanSteps(int keep) {
       pair_start_[i] = 1;
       ++i;  // the pair's second segment
     }
+    // Junctions sit where steps start: more pieces asked for than there are steps leave every
+    // segment alone (plain RK4), as before the pairs.
+    const int pairs = static_cast<int>(std::count(pair_start_.begin(), pair_start_.end(), 1));
+    if (keep == 0 && options_.shooting_segments > segments - pairs)
+      std::fill(pair_start_.begin(), pair_start_.end(), 0);
   }
   step_slot_.assign(std::max(segments, 0), -1);
   stage_slots_ = 0;
@@ -227,6 +228,7 @@ std::uint64_t Bdf2ShootingStepper::ModelFingerprint() const {
             scheme = static_cast<int>(options_.spatial_scheme);
   add(&ends, sizeof ends);
   add(&scheme, sizeof scheme);
+  add(pair_start_.data(), pair_start_.size());  // where the stage slots are (PlanSteps)
   for (const double s : grid_) {
     const SectionProperties p = model_.section->At(s, Actuation{});
     const Vec6 k = p.stiffness.diagonal(), m = p.mass.diagonal();
@@ -678,12 +680,15 @@ void Bdf2ShootingStepper::Restore(const Snapshot& s) {
     SetShootingPieces(1 + static_cast<int>(s.junction_unknowns.size() / 18));
   if (s.strain1.size() != run_.strain1.size() || s.state.size() != run_.state.size() ||
       s.junction_unknowns.size() != run_.junction_unknowns.size())
-    throw std::invalid_argument("Snapshot is from a stepper with another grid");
+    throw std::invalid_argument(
+        "Snapshot is from a stepper with another grid or another plan of the shot's steps (its "
+        "dt and spatial scheme decide where segments are paired)");
   if (!s.initialized)
     throw std::invalid_argument("Snapshot was saved before InitializeAtRest: it holds no run");
   if (s.model_fingerprint != run_.model_fingerprint)
     throw std::invalid_argument(
-        "Snapshot is from a stepper of another rod, grid or end conditions");
+        "Snapshot is from a stepper of another rod, grid, end conditions or plan of the shot's "
+        "steps (dt, spatial scheme)");
   run_ = s;                // equal sizes: vectors copy into their existing storage
   ms_jacobian_c0_ = -1.0;  // the multiple-shooting factors are for another state: renew them
   history_ready_ = false;

@@ -6,7 +6,7 @@
 ///
 /// Per step, with c0, c1, c2 the BDF2 weights (eq. 23, variable-step form) and the history terms
 /// ξʰ = c1 ξ(t−h₁) + c2 ξ(t−h₁−h₂), Vʰ likewise (eqs. 21–22), integrate from s = 0 to L with an
-/// explicit Runge–Kutta scheme (RK4 or Heun, spatial_scheme.hpp):
+/// explicit Runge–Kutta scheme (RK4 across pairs of segments, RK4 or Heun; spatial_scheme.hpp):
 ///   p' = R Γ,  R' = R K̂,
 ///   V' = ξ_t + ad_V ξ                  (eq. 25; ω' = K_t + ω × K, v' = Γ_t + ω × Γ + v × K)
 ///   m' = m × K + n × Γ + J ω_t + ω × J ω,
@@ -89,7 +89,7 @@ struct Bdf2Options {
   /// Newton only (no Levenberg–Marquardt fallback; a failure halves the step as usual).
   /// 0 (the default): the stepper chooses. It starts with one piece when λL ≤ 10 (single
   /// shooting's safe range) and SuggestedShootingSegments(λL) above (shooting_exponent.hpp), and
-  /// when a step fails it doubles the pieces (up to 32, and the grid's segments) before it halves
+  /// when a step fails it doubles the pieces (up to 32, and the shot's steps) before it halves
   /// the step. StepSummary::shooting_segments reports the pieces of each step.
   int shooting_segments = 0;
   /// Explicit scheme of the shot in s (spatial_scheme.hpp): RK4 across pairs of segments (the
@@ -177,8 +177,8 @@ class Bdf2ShootingStepper {
     SecantFilter jacobian_filter;         ///< the shooting Jacobian, tracked across steps
     double jacobian_c0 = -1.0;            ///< the c0 the Jacobian was computed for; −1: none
     int steps_taken = 0;
-    // Accepted values at the S stages of each segment (index S i + j; S = 4 for RK4, 2 for
-    // Heun), one and two steps back, and at the tip node.
+    // Accepted values at the stages of each step of the shot (index step_slot_[i] + j for the
+    // step from node i), one and two steps back, and at the tip node.
     std::vector<Vec6> strain1, strain2, twist1, twist2;
     std::vector<Vec3> position1;
     std::vector<Mat3> rotation1;
@@ -283,8 +283,6 @@ class Bdf2ShootingStepper {
   void ApplyActuation(const Actuation& actuation);
   /// Fills the history terms ξʰ, Vʰ at every stage for the weights c (once per step).
   void PrepareHistory(const Coefficients& c);
-  /// Stages per step: 4 for RK4 and kRk4Pairs, 2 for Heun (spatial_scheme.hpp).
-  int StagesPerSegment() const { return internal::Table(options_.spatial_scheme).stages; }
   /// The shot's steps: kRk4Pairs pairs equal segments (pair_start_), segments before `keep`
   /// keep their plan (Grow()); then each step's first stage slot (step_slot_). Needs samples_.
   void PlanSteps(int keep = 0);

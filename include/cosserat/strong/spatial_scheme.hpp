@@ -34,9 +34,10 @@ enum class SpatialScheme {
 
 namespace internal {
 
-/// Stage j of segment i: state y_i + step[j] h k_{j−1}; section sample `sample[j]` of the
-/// segment (0: its start, 1: its middle, 2: its end, as SegmentSamplePoints lays them out);
-/// quadrature weight weight[j] (times h). Offset in s of stage j: step[j] h for both schemes.
+/// Stage j of the step from node i (h: the step's length, one segment or a pair): state
+/// y_i + step[j] h k_{j−1}; section sample 3 i + sample[j] (3 samples per segment: start,
+/// middle, end, as SegmentSamplePoints lays them out; 3 and 5 are the next segment's start and
+/// end); quadrature weight weight[j] (times h). Offset in s of stage j: step[j] h.
 struct SchemeTable {
   int stages;
   double step[4];
