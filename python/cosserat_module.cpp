@@ -153,8 +153,9 @@ class PyStepper {
     if (spatial_scheme) {
       io::ShotScheme scheme;
       if (!io::FromString(*spatial_scheme, &scheme))
-        throw py::value_error("spatial_scheme: expected \"rk4\", \"heun\" or \"rk4-pairs\", got \"" +
-                              *spatial_scheme + "\"");
+        throw py::value_error(
+            "spatial_scheme: expected \"rk4-pairs\", \"rk4\" or \"heun\", got \"" +
+            *spatial_scheme + "\"");
       options_.spatial_scheme = cosserat::run::ToSpatialScheme(scheme);
     }
     std::string why;
@@ -202,6 +203,7 @@ class PyStepper {
     has_state_ = true;
   }
   double time() const { return stepper_->time(); }
+  int shot_steps() const { return stepper_->shot_steps(); }  // planned at construction
   const StepInput& input() const { return input_; }
   const Bdf2Options& options() const { return options_; }
 
@@ -446,6 +448,10 @@ void BindStepper(py::module_& m) {
            "from the pose); free-free: the wrench on the s = 0 end (body frame).")
       .def_property_readonly("time", &PyStepper::time)
       .def_property_readonly("dt", [](const PyStepper& s) { return s.options().dt; })
+      .def_property_readonly(
+          "shot_steps", &PyStepper::shot_steps,
+          "The steps of the shot in s: the grid's segments less the pairs the default scheme "
+          "forms (docs/dynamics.md, \"Choosing the scheme in s\").")
       .def_property_readonly(
           "loads", [](const PyStepper& s) { return s.input().loads; },
           "A copy of the loads step() applies.")

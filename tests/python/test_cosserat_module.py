@@ -200,6 +200,17 @@ class Dynamics(unittest.TestCase):
         self.assertGreaterEqual(len(crossings), 3)
         self.assertAlmostEqual(measured / expected, 1.0, delta=0.01)
 
+    def test_the_default_scheme_pairs_segments_where_the_step_allows(self):
+        # The wire at dt = 2 ms: lambda L = L (c0^2 rho A / EI)^(1/4) = 8.7 with c0 = 1.5/dt, so
+        # a pair of its 40 segments has 2 h lambda = 0.43 <= 1/2 and all 40 pair; Heun and RK4
+        # step every segment.
+        p = wire("dynamics", {"dynamics": {"dt": 2e-3}})
+        self.assertEqual(cosserat.Stepper(p).shot_steps, 20)
+        self.assertEqual(cosserat.Stepper(p, spatial_scheme="heun").shot_steps, 40)
+        self.assertEqual(cosserat.Stepper(p, spatial_scheme="rk4").shot_steps, 40)
+        with self.assertRaisesRegex(ValueError, "spatial_scheme"):
+            cosserat.Stepper(p, spatial_scheme="euler")
+
     def test_rest_stays_rest_and_restore_repeats_a_run(self):
         loads = cosserat.Loads()
         loads.gravity = [-9.81, 0, 0]
