@@ -19,7 +19,6 @@ adds ~2-15 s of imports and JIT. For cosserat the process CPU is the whole run (
 equilibrium, stepping, writing the frames).
 """
 import argparse
-import json
 import os
 import subprocess
 import sys
@@ -27,33 +26,17 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import compare_tip_trajectories as ctt  # noqa: E402
-from interleave import median, repeat_solve, run_interleaved, timed  # noqa: E402
+from interleave import median, repeat_solve, run_interleaved, run_pyelastica  # noqa: E402
 
 DURATION = 1.0
 
 
-
-
-
 def errors(ref, path, untils, length):
-    """Max tip distance / L over the run's own frames in [0, until]; the (denser) reference is
-    interpolated onto them."""
+    """Max tip distance / L over the run's own frames in [0, until] for each until (None when
+    the run or the reference ends before it); the (denser) reference is interpolated onto them."""
     _, run = ctt.read_tip(path)
-    f, _ = ctt.interpolator(ref)
     t_end = min(run[-1][0], ref[-1][0])
-    out = []
-    for u in untils:
-        if t_end < u - 1e-9:
-            out.append(None)
-            continue
-        dmax = 0.0
-        for t, x, y, z in run:
-            if t > u + 1e-9:
-                break
-            p = f(t)
-            dmax = max(dmax, ((p[0] - x) ** 2 + (p[1] - y) ** 2 + (p[2] - z) ** 2) ** 0.5)
-        out.append(dmax / length)
-    return out
+    return [None if t_end < u - 1e-9 else ctt.max_distance(run, ref, u) / length for u in untils]
 
 
 def main():
@@ -102,14 +85,7 @@ def main():
                     os.remove(csvp)
                 cpus, loops, walls = [], [], []
                 for rep in range(args.repeat):
-                    code, out, err, cpu, _, wall = timed([
-                        "/usr/bin/python3", os.path.join(HERE, "pyelastica_cantilever.py"),
-                        "--elastica", args.elastica, "--elements", str(n), "--dt", repr(dt),
-                        "--duration", repr(DURATION), "--out", csvp])
-                    try:
-                        s = json.loads(out.strip().splitlines()[-1])
-                    except (ValueError, IndexError):
-                        sys.exit("pyelastica run failed:\n" + err)
+                    s, cpu, _, wall = run_pyelastica(args.elastica, n, dt, DURATION, csvp)
                     ok = s["finite"] == "yes"
                     cpus.append(cpu)
                     loops.append(s["cpu_s"] / s["simulated_s"] if s["simulated_s"] > 0 else float("nan"))

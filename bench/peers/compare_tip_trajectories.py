@@ -76,6 +76,20 @@ def interpolator(rows):
         return lin, "linear"
 
 
+def max_distance(rows, ref, until=math.inf):
+    """The largest distance (m) from the tip rows (t, x, y, z) with t <= until, and not past the
+    end of the reference rows `ref`, to `ref` interpolated at their times."""
+    f, _ = interpolator(ref)
+    t_end = min(until, ref[-1][0])
+    d = 0.0
+    for t, x, y, z in rows:
+        if t > t_end + 1e-9:
+            break
+        p = f(t)
+        d = max(d, math.sqrt((p[0] - x) ** 2 + (p[1] - y) ** 2 + (p[2] - z) ** 2))
+    return d
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("a")

@@ -47,7 +47,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import compare_tip_trajectories as ctt  # noqa: E402
-from interleave import median, repeat_solve, run_interleaved, timed  # noqa: E402
+from interleave import median, repeat_solve, run_interleaved, run_pyelastica, timed  # noqa: E402
 
 BASE = os.path.join(HERE, "..", "problems", "soft_cantilever.json")
 LENGTH = 0.3
@@ -90,18 +90,6 @@ def cosserat_problem(path, nodes, args, qfd=False, tau_es=0.0, dt=None, tol=None
         "" if tol is None else ", integrator_tolerance %g" % tol, json.dumps(damping))
     with open(path, "w") as f:
         json.dump(p, f, indent=2)
-
-
-def max_err(ref, rows):
-    f, _ = ctt.interpolator(ref)
-    t_end = ref[-1][0]
-    d = 0.0
-    for t, x, y, z in rows:
-        if t > t_end + 1e-9:
-            break
-        p = f(t)
-        d = max(d, math.sqrt((p[0] - x) ** 2 + (p[1] - y) ** 2 + (p[2] - z) ** 2))
-    return d
 
 
 def dist(a, b):
@@ -167,7 +155,7 @@ def main():
             row["final_tip_x"], row["final_tip_z"] = round(tip[0], 8), round(tip[2], 8)
             if row["status"] in ("ok", "converged"):
                 if fam in refs:
-                    row["err_ref_pct"] = round(100.0 * max_err(refs[fam], tr) / LENGTH, 5)
+                    row["err_ref_pct"] = round(100.0 * ctt.max_distance(tr, refs[fam]) / LENGTH, 5)
                 if static_tip is not None:
                     row["final_to_static_pct"] = round(100.0 * dist(tip, static_tip) / LENGTH, 5)
                 if fam in fine_static:
@@ -184,15 +172,9 @@ def main():
                     os.remove(csvp)
                 cpus, cputs, loops, walls = [], [], [], []
                 for rep in range(args.repeat):
-                    code, out, err, cput, cpu, wall = timed([
-                        "/usr/bin/python3", os.path.join(HERE, "pyelastica_cantilever.py"),
-                        "--elastica", args.elastica, "--elements", str(n), "--dt", repr(dt),
-                        "--duration", repr(args.duration), "--damping", repr(args.pe_damping),
-                        "--output-interval", repr(args.output_interval), "--out", csvp])
-                    try:
-                        s = json.loads(out.strip().splitlines()[-1])
-                    except (ValueError, IndexError):
-                        sys.exit("pyelastica run failed:\n" + err)
+                    s, cput, cpu, wall = run_pyelastica(
+                        args.elastica, n, dt, args.duration, csvp, "--damping",
+                        repr(args.pe_damping), "--output-interval", repr(args.output_interval))
                     ok = s["finite"] == "yes"
                     cpus.append(cpu)
                     cputs.append(cput)
@@ -204,12 +186,10 @@ def main():
                 static_tip = None
                 if ok:  # the same rod settled: a longer run with stronger damping, untimed
                     sp = os.path.join(args.work, tag + "_static.csv")
-                    _, out, err, _, _, _ = timed([
-                        "/usr/bin/python3", os.path.join(HERE, "pyelastica_cantilever.py"),
-                        "--elastica", args.elastica, "--elements", str(n), "--dt", repr(dt),
-                        "--duration", repr(args.pe_static_duration), "--damping", repr(args.pe_static_damping),
-                        "--output-interval", repr(args.pe_static_duration), "--out", sp])
-                    static_tip = tuple(json.loads(out.strip().splitlines()[-1])["tip"])
+                    settled, _, _, _ = run_pyelastica(
+                        args.elastica, n, dt, args.pe_static_duration, sp, "--damping",
+                        repr(args.pe_static_damping), "--output-interval", repr(args.pe_static_duration))
+                    static_tip = tuple(settled["tip"])
                 row = {"code": "pyelastica", "family": "pe", "configuration": "%d elements, dt %g" % (n, dt),
                        "resolution": n, "dt_or_tol": dt, "damping": "AnalyticalLinearDamper %g 1/s" % args.pe_damping,
                        "status": "ok" if ok else "blew_up", "failed_at_t": s["blew_up_at_t"],

@@ -1,8 +1,9 @@
-"""What the peer tables share: timing a command, repeating a cosserat run, the median of repeated timings, and running
+"""What the peer tables share: timing a command, running PyElastica's cantilever, repeating a cosserat run, the median of repeated timings, and running
 several generators of table rows (one per code or configuration family) in turn, so that every
 code sees the same minutes of machine load, writing the CSV after each row."""
 import csv
 import json
+import os
 import resource
 import subprocess
 import sys
@@ -26,6 +27,25 @@ def timed(cmd):
         else:
             err.append(line)
     return p.returncode, p.stdout, "\n".join(err), cpu, cpu_rusage, wall
+
+
+PYELASTICA_CANTILEVER = os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                     "pyelastica_cantilever.py")
+
+
+def run_pyelastica(elastica, elements, dt, duration, out_csv, *options):
+    """Runs pyelastica_cantilever.py (P2 in PyElastica) under timed(). Returns (its JSON report,
+    CPU seconds from /usr/bin/time, CPU seconds from rusage, wall seconds); exits when the run
+    prints no report. `options`: further arguments (--damping, --output-interval, ...)."""
+    _, out, err, cpu, cpu_rusage, wall = timed([
+        "/usr/bin/python3", PYELASTICA_CANTILEVER, "--elastica", elastica,
+        "--elements", str(elements), "--dt", repr(dt), "--duration", repr(duration),
+        "--out", out_csv, *options])
+    try:
+        report = json.loads(out.strip().splitlines()[-1])
+    except (ValueError, IndexError):
+        sys.exit("pyelastica run failed:\n" + err)
+    return report, cpu, cpu_rusage, wall
 
 
 def repeat_solve(cosserat, problem, out_json, out_csv, repeat):

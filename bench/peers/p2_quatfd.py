@@ -22,24 +22,23 @@ import csv
 import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
 
-from interleave import timed
+import compare_tip_trajectories as ctt
+from interleave import run_pyelastica, timed
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 DURATION = 1.0
+LENGTH = 0.3  # m, the soft cantilever's
 OURS = [(nodes, tol) for nodes in (21, 31, 51, 101) for tol in (1e-6, 1e-2)]
 THEIRS = [(100, 5e-5), (200, 2.5e-5), (400, 2e-5)]
 
 
-def tip_error(run_csv, ref_csv, until):
-    out = subprocess.run([sys.executable, os.path.join(HERE, "compare_tip_trajectories.py"),
-                          run_csv, ref_csv, "--until", str(until), "--json"],
-                         check=True, capture_output=True, text=True)
-    return 100.0 * json.loads(out.stdout)["max_over_L"]
+def tip_error(run_csv, ref, until):
+    """Largest tip distance to the reference rows over [0, until], % L."""
+    return 100.0 * ctt.max_distance(ctt.read_tip(run_csv)[1], ref, until) / LENGTH
 
 
 def run_ours(binary, nodes, tol, tmp):
@@ -62,12 +61,8 @@ def run_ours(binary, nodes, tol, tmp):
 
 def run_theirs(elastica, elements, dt, tmp):
     trajectory = os.path.join(tmp, f"e{elements}.csv")
-    out = subprocess.run(["/usr/bin/python3", os.path.join(HERE, "pyelastica_cantilever.py"),
-                          "--elastica", elastica, "--elements", str(elements), "--dt", str(dt),
-                          "--duration", str(DURATION), "--out", trajectory],
-                         check=True, capture_output=True, text=True)
-    report = json.loads(out.stdout.strip().splitlines()[-1])
-    return report["cpu_s"], trajectory
+    report, _, _, _ = run_pyelastica(elastica, elements, dt, DURATION, trajectory)
+    return report["cpu_s"], trajectory  # the stepping loop alone
 
 
 def main():
@@ -79,8 +74,9 @@ def main():
     ap.add_argument("--csv", help="write every run here")
     a = ap.parse_args()
     binary = os.path.abspath(a.cosserat)
-    ref_ours = os.path.join(HERE, "results/ref_cosserat_backward_euler_start_extrapolated.csv")
-    ref_theirs = os.path.join(HERE, "results/ref_pyelastica_extrapolated.csv")
+    ref_ours = ctt.read_tip(
+        os.path.join(HERE, "results/ref_cosserat_backward_euler_start_extrapolated.csv"))[1]
+    ref_theirs = ctt.read_tip(os.path.join(HERE, "results/ref_pyelastica_extrapolated.csv"))[1]
     rows, errors = [], {}
     with tempfile.TemporaryDirectory() as tmp:
         for rnd in range(a.rounds):
