@@ -363,7 +363,7 @@ class Bdf2ShootingStepper::Shot {
     trial.position_W[i] = y.p;
     trial.rotation_WB[i] = y.R;
     trial.wrench_B[i].head<3>() = y.m;
-    for (int r = 0; r < 3; ++r) trial.wrench_B[i](3 + r) = y.R.col(r).dot(y.n);  // Rᵀ n, inlined
+    trial.wrench_B[i].tail<3>() = rhs::RotateToBody(y.R, y.n);
     trial.twist_B[i].head<3>() = y.w;
     trial.twist_B[i].tail<3>() = y.v;
     trial.strain[i] = xi;
@@ -374,24 +374,16 @@ class Bdf2ShootingStepper::Shot {
   COSSERAT_HOT void RecordSteppedOverNode(int i, int q, int sample_index, const DynState& y) {
     const Sample& smp = st_.samples_[sample_index];
     Vec6 W;
-    W.head<3>() = y.m;
-    for (int r = 0; r < 3; ++r) W(3 + r) = y.R.col(r).dot(y.n);  // Rᵀ n, written out: inlined
-    Vec6 xi;
+    W << y.m, rhs::RotateToBody(y.R, y.n);
     const Vec6& xh = statics_ ? zero6_ : st_.strain_h_[q];
     if (!st_.tendons_.empty())
-      xi = TendonStrain(sample_index, StageGuess(q), xh, W, nullptr);
+      RecordNode(i, y, TendonStrain(sample_index, StageGuess(q), xh, W, nullptr));
     else if (statics_)
-      xi = smp.rest_strain + smp.compliance.cwiseProduct(W);
+      RecordNode(i, y, smp.rest_strain + smp.compliance.cwiseProduct(W));
     else
-      xi = smp.implicit_offset + smp.implicit_compliance.cwiseProduct(W) -
-           smp.implicit_damping.cwiseProduct(xh);
-    RodState& trial = st_.trial_;
-    trial.position_W[i] = y.p;
-    trial.rotation_WB[i] = y.R;
-    trial.wrench_B[i] = W;
-    trial.twist_B[i].head<3>() = y.w;
-    trial.twist_B[i].tail<3>() = y.v;
-    trial.strain[i] = xi;
+      RecordNode(i, y,
+                 smp.implicit_offset + smp.implicit_compliance.cwiseProduct(W) -
+                     smp.implicit_damping.cwiseProduct(xh));
   }
 
   // In dynamics a stage's strain moves little between shots and steps: the best first guess for

@@ -133,9 +133,7 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
 }
 
 int Bdf2ShootingStepper::MaxAutomaticPieces() const {
-  int steps = 0;
-  for (int i = 0; i + 1 < static_cast<int>(grid_.size()); ++i) steps += StepStartsAt(i);
-  return std::max(1, std::min(32, steps));
+  return std::max(1, std::min(32, shot_steps()));
 }
 
 double Bdf2ShootingStepper::StepRate(const Sample& smp) const {
@@ -169,8 +167,7 @@ void Bdf2ShootingStepper::PlanSteps(int keep) {
     }
     // Junctions sit where steps start: more pieces asked for than there are steps leave every
     // segment alone (plain RK4), as before the pairs.
-    const int pairs = static_cast<int>(std::count(pair_start_.begin(), pair_start_.end(), 1));
-    if (keep == 0 && options_.shooting_segments > segments - pairs)
+    if (keep == 0 && options_.shooting_segments > shot_steps())
       std::fill(pair_start_.begin(), pair_start_.end(), 0);
   }
   step_slot_.assign(std::max(segments, 0), -1);
@@ -201,13 +198,10 @@ void Bdf2ShootingStepper::SetShootingPieces(int pieces) {
 }
 
 void Bdf2ShootingStepper::PlaceJunctions() {
-  // Pieces of about equal node count.
-  const int segments = static_cast<int>(grid_.size()) - 1;
+  // Pieces of about equal step count; a junction sits where a step of the shot starts (every
+  // node but a pair's middle, kRk4Pairs): junction k at the start of step round(k steps / pieces).
   const int pieces = static_cast<int>(junction_nodes_.size()) + 1;
-  // Junctions sit where a step of the shot starts (every node but a pair's middle, kRk4Pairs):
-  // junction k at the start of step round(k steps / pieces).
-  int steps = 0;
-  for (int i = 0; i < segments; ++i) steps += StepStartsAt(i);
+  const int steps = shot_steps();
   int node = 0, step = 0;
   for (int k = 1; k < pieces; ++k) {
     const int target = static_cast<int>(std::lround(double(k) * steps / pieces));

@@ -63,6 +63,15 @@ COSSERAT_RHS_INLINE void KinematicRates(const Matrix3<T>& R, const T* xi, Vector
   }
 }
 
+/// Rᵀ v: a world vector in the body frame, written out in the order of Eigen's product (whose
+/// call gcc does not always inline into the shot's loop).
+template <typename T>
+COSSERAT_RHS_INLINE Vector3<T> RotateToBody(const Matrix3<T>& R, const Vector3<T>& v) {
+  return Vector3<T>(R(0, 0) * v(0) + R(1, 0) * v(1) + R(2, 0) * v(2),
+                    R(0, 1) * v(0) + R(1, 1) * v(1) + R(2, 1) * v(2),
+                    R(0, 2) * v(0) + R(1, 2) * v(1) + R(2, 2) * v(2));
+}
+
 /// The elastic part of the balance of moments, m × K + n_B × Γ.
 template <typename T>
 COSSERAT_RHS_INLINE Vector3<T> ElasticMomentRate(const Vector3<T>& m, const T* n_B, const T* xi) {
@@ -154,13 +163,8 @@ COSSERAT_RHS_INLINE DynamicPoint<T> DynamicDerivative(
     const StageHistory& h, Vector6<T>* strain, Vector6<T>* twist, Vector3<T>* velocity_W,
     const Vector6<T>* given = nullptr, double added_mass = 0.0) {
   const Matrix3<T>& R = y.R;
-  // n_B = Rᵀ n, written out: Eigen's product is not always inlined into the shot's loop.
-  const T W[6] = {y.m(0),
-                  y.m(1),
-                  y.m(2),
-                  R(0, 0) * y.n(0) + R(1, 0) * y.n(1) + R(2, 0) * y.n(2),
-                  R(0, 1) * y.n(0) + R(1, 1) * y.n(1) + R(2, 1) * y.n(2),
-                  R(0, 2) * y.n(0) + R(1, 2) * y.n(1) + R(2, 2) * y.n(2)};
+  const Vector3<T> n_B = RotateToBody(R, y.n);
+  const T W[6] = {y.m(0), y.m(1), y.m(2), n_B(0), n_B(1), n_B(2)};
   T xi[6], xt[6], Vt[6];
   if (given) {
     for (int i = 0; i < 6; ++i) xi[i] = (*given)(i);
