@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -13,10 +12,10 @@
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 #include <vector>
 
 #include "cosserat/io/problem.hpp"
+#include "cosserat/numerics/thread_team.hpp"
 #include "cosserat/run/run.hpp"
 
 namespace cosserat::run {
@@ -188,21 +187,15 @@ SweepSummary RunSweep(const io::Study& study, const std::string& csv_path,
   if (options.max_new_points > 0 && pending.size() > options.max_new_points)
     pending.resize(options.max_new_points);
   const std::uint64_t total = study.PointCount();
-  std::atomic<std::size_t> next{0};
   std::mutex progress_mutex;
-  auto worker = [&] {
-    for (std::size_t i = next++; i < pending.size(); i = next++) {
-      const std::uint64_t done = file.Append(pending[i], SweepPointRow(study, pending[i]));
-      if (options.progress) {
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        options.progress(done, total);
-      }
+  auto point = [&](std::size_t i) {
+    const std::uint64_t done = file.Append(pending[i], SweepPointRow(study, pending[i]));
+    if (options.progress) {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      options.progress(done, total);
     }
   };
-  std::vector<std::thread> threads;
-  for (int t = 1; t < std::max(1, options.threads); ++t) threads.emplace_back(worker);
-  worker();
-  for (std::thread& t : threads) t.join();
+  ThreadTeam(std::max(1, options.threads)).For(pending.size(), point);
   SweepSummary summary = file.Finish();
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
