@@ -1,10 +1,17 @@
 #include "frame_output.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "cosserat/rod/section_profile.hpp"
 
 namespace cosserat::run::detail {
+
+FixedSteps StepsOf(const io::Problem::Dynamics& d) {
+  return {static_cast<int>(std::lround(d.duration / d.dt)),
+          std::max(1, static_cast<int>(std::lround(d.output_interval / d.dt)))};
+}
 
 std::vector<double> NodeRadius(const RodModel& model, const std::vector<double>& s,
                                const Actuation& actuation) {

@@ -3,12 +3,21 @@
 
 #include <vector>
 
+#include "cosserat/io/problem.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/run/result.hpp"
 
 namespace cosserat::run::detail {
+
+/// A fixed-step run of `dynamics`: its steps, round(duration / dt), and the steps between
+/// recorded frames, round(output_interval / dt) and at least 1.
+struct FixedSteps {
+  int steps;
+  int stride;
+};
+FixedSteps StepsOf(const io::Problem::Dynamics& dynamics);
 
 /// The outer radius of `model` at each arc length of `s` (m), for `actuation`.
 std::vector<double> NodeRadius(const RodModel& model, const std::vector<double>& s,

@@ -123,8 +123,7 @@ Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options
   frames.rotation.assign(B, json::array());
   frames.velocity.assign(B, json::array());
   frames.csv << "t,rod,s,x,y,z\n" << std::setprecision(17);
-  const int steps = static_cast<int>(std::lround(d.duration / d.dt));
-  const int stride = std::max(1, static_cast<int>(std::lround(d.output_interval / d.dt)));
+  const auto [steps, stride] = detail::StepsOf(d);
   SolveStatus status = init.status;
   int taken = 0, iterations = init.iterations;
   double failed_at = -1.0;

@@ -102,8 +102,7 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
 io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
                         Bdf2ShootingStepper* stepper) {
   const io::Problem::Dynamics& d = problem.dynamics;
-  const int steps = static_cast<int>(std::lround(d.duration / d.dt));
-  const int stride = std::max(1, static_cast<int>(std::lround(d.output_interval / d.dt)));
+  const auto [steps, stride] = detail::StepsOf(d);
   const bool all_nodes = options.nodes_csv;
   io::DynamicRun run;
   run.record_states = options.frames;
