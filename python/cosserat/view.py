@@ -59,6 +59,26 @@ def _section_stiffness(rod):
     return E * I, G * 2 * I
 
 
+# The problem file's actuation names and cosserat.Actuation's attributes for them.
+ACTUATION_ATTRIBUTE = {"tension": "tendon_tension", "chamber_pressure": "chamber_pressure",
+                       "jamming_pressure": "jamming_pressure", "pressure": "pressure"}
+
+
+def _control_actuation(v, tendons, chambers, jammed):
+    """The actuation the controls' values v set, by the problem file's names: tendon tensions,
+    chamber pressures and jamming pressures (lists of the given lengths) and the inflation."""
+    out = {}
+    if tendons:
+        out["tension"] = [v[f"tension_{i}"] for i in range(tendons)]
+    if chambers:
+        out["chamber_pressure"] = [v[f"pressure_{i}"] for i in range(chambers)]
+    if jammed:
+        out["jamming_pressure"] = [v[f"jamming_{i}"] for i in range(jammed)]
+    if "inflation" in v:
+        out["pressure"] = v["inflation"]
+    return out
+
+
 class LiveRod:
     """The problem, its controls and the simulation thread."""
 
@@ -177,17 +197,9 @@ class LiveRod:
         if not robot:
             return spec
         act = robot.setdefault("actuation", {})
-        n_t = len(robot.get("tendons", []))
-        if n_t:
-            act["tension"] = [v[f"tension_{i}"] for i in range(n_t)]
-        n_c = len(robot.get("chambers", []))
-        if n_c:
-            act["chamber_pressure"] = [v[f"pressure_{i}"] for i in range(n_c)]
-        n_j = len(act.get("jamming_pressure", []))
-        if n_j:
-            act["jamming_pressure"] = [v[f"jamming_{i}"] for i in range(n_j)]
-        if "inflation" in v:
-            act["pressure"] = v["inflation"]
+        act.update(_control_actuation(v, len(robot.get("tendons", [])),
+                                      len(robot.get("chambers", [])),
+                                      len(act.get("jamming_pressure", []))))
         return spec
 
     def _dynamic_problem(self):
@@ -244,20 +256,13 @@ class LiveRod:
                 v = dict(self.values)
                 version = self.control_version
             loads.tip_force = [v["tip_force_x"], v["tip_force_y"], v["tip_force_z"]]
-            if n_tendons:
-                tension = list(act.tendon_tension)
-                tension[:n_tendons] = [v[f"tension_{i}"] for i in range(n_tendons)]
-                act.tendon_tension = tension
-            if n_chambers:
-                pressure = list(act.chamber_pressure)
-                pressure[:n_chambers] = [v[f"pressure_{i}"] for i in range(n_chambers)]
-                act.chamber_pressure = pressure
-            if n_jam:
-                jam = list(act.jamming_pressure)
-                jam[:n_jam] = [v[f"jamming_{i}"] for i in range(n_jam)]
-                act.jamming_pressure = jam
-            if "inflation" in v:
-                act.pressure = v["inflation"]
+            for key, value in _control_actuation(v, n_tendons, n_chambers, n_jam).items():
+                attribute = ACTUATION_ATTRIBUTE[key]
+                if isinstance(value, list):  # the Actuation's arrays are longer: set their head
+                    head = list(getattr(act, attribute))
+                    head[:len(value)] = value
+                    value = head
+                setattr(act, attribute, value)
             # Real time: step until the simulated time catches up with the wall clock, at most
             # four frames' worth at once (a slow machine then runs slower than real time).
             target = stepper.time + min(4 * FRAME_S, max(0.0, run_start_sim + time.perf_counter()
