@@ -265,14 +265,15 @@ void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
     W /= count;
     if (n == 0) {
       // The support reaction balances the first segment's pull and the load lumped at x_0:
-      // W(0) = R_{1/2} F_{1/2} + f_0 (world), f_0 the distributed loads lumped on x_0: the wrench
-      // the rod beyond s = 0 exerts.
-      Fw = lie::QuatToRotation(q.segment<4>(L::P(0)).normalized()) * force[0] + vertex_force_W_[0];
+      // W(0) = R_{1/2} F_{1/2} + f_0 (world), f_0 the distributed loads lumped on x_0 (dead and
+      // motion-dependent): the wrench the rod beyond s = 0 exerts.
+      Fw = lie::QuatToRotation(q.segment<4>(L::P(0)).normalized()) * force[0] + vertex_force_W_[0] +
+           VertexMotionForce_W(q, v, 0);
     } else if (n == N) {
       Fw = lie::QuatToRotation(q.segment<4>(L::P(N - 1)).normalized()) * force[N - 1];
       // A held tip: the support's force, which balances the last segment's pull and the load
       // lumped at x_N.
-      if (options_.TipHeld()) Fw -= vertex_force_W_[N];
+      if (options_.TipHeld()) Fw -= vertex_force_W_[N] + VertexMotionForce_W(q, v, N);
     }
     // A pinned base that holds only the twist: its element's bending part has no stiffness, and
     // the bend between the base frame and p_{1/2} it sees is no curvature of the rod.

@@ -296,6 +296,10 @@ class QuatFdModel {
     Vec3 t;
   };
   Chord VertexChord(const Eigen::Ref<const Eigen::VectorXd>& q, int n) const;
+  /// The loads that depend on the motion (drag, contact) lumped on vertex n, world frame, N
+  /// (zero without such loads).
+  Vec3 VertexMotionForce_W(const Eigen::Ref<const Eigen::VectorXd>& q,
+                           const Eigen::Ref<const Eigen::VectorXd>& v, int n) const;
   /// The same for one vertex n with an added mass, at row r = X(n).
   void DivideVertexRowsByMassMatrix(const Eigen::Ref<const Eigen::VectorXd>& q, int n,
                                     Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
