@@ -52,8 +52,15 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
     samples[q] = {law.stiffness.cwiseInverse(), law.rest_strain, law.mass.head<3>(),
                   law.mass(5), points[q], law.outer_diameter};
   }
-  auto f_at = [&](const Sample& smp) -> Vec3 {
-    return TotalDistributedForce_W(loads, {smp.s, 1.0, smp.rhoA, smp.outer_diameter});
+  // The distributed force at a stage of the equilibrium, as the static solver applies it: the
+  // dead loads and those of the pose at rest (a current's drag, contact), with the latter's
+  // derivative in `jac`.
+  const bool motion = HasMotionLoads(loads);
+  auto f_at = [&](const Sample& smp, const Primal& y, MotionJacobian* jac) -> Vec3 {
+    const LoadSite site{smp.s, 1.0, smp.rhoA, smp.outer_diameter};
+    Vec3 f = TotalDistributedForce_W(loads, site);
+    if (motion) f += TotalMotionForce_W(loads, site, {y.p, y.R.col(2), Vec3::Zero()}, jac);
+    return f;
   };
   // The stage matrix A0 at a primal state with strain xi (see the file comment).
   auto stage = [&](const Sample& smp, const Primal& y, const Vec6& xi) {
@@ -73,7 +80,15 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
     A.block<3, 6>(6, 6) = mh * Ct + nh * Cb;
     A.block<3, 3>(6, 6) -= Kh;
     A.block<3, 3>(6, 9) -= Gh;
-    A.block<3, 3>(9, 0) = -hat(y.R.transpose() * f_at(smp));
+    MotionJacobian jac;
+    A.block<3, 3>(9, 0) = -hat(y.R.transpose() * f_at(smp, y, motion ? &jac : nullptr));
+    if (motion) {
+      // A pose-dependent force moves with the section: δp = R₀ u and δt = R₀ (θ × e₃), and its
+      // change δf_W enters δn' as −R₀ᵀ δf_W.
+      const Mat3 Rt = y.R.transpose();
+      A.block<3, 3>(9, 3) -= Rt * jac.position * y.R;
+      A.block<3, 3>(9, 0) += Rt * jac.tangent * y.R * hat(Vec3::UnitZ());
+    }
     A.block<3, 6>(9, 6) = nh * Ct;
     A.block<3, 3>(9, 9) -= Kh;
     st.J = smp.J;
@@ -93,7 +108,8 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
     const Sample& c = samples[3 * i + 2];
     node_R_[i] = y.R;
     auto rates = [&](const Sample& smp, const Primal& ys, Vec6* xi) {
-      return rhs::StaticDerivative<double>(smp.rest, smp.compliance, f_at(smp), ys, xi);
+      return rhs::StaticDerivative<double>(smp.rest, smp.compliance, f_at(smp, ys, nullptr), ys,
+                                           xi);
     };
     const Primal k1 = rates(a, y, &xi1);
     const Primal y2 = internal::Axpy(y, 0.5 * h, k1);

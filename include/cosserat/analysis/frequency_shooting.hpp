@@ -8,7 +8,9 @@
 /// ODE in s (ξ₀ = [K; Γ], W₀ = [m; n], f_W the distributed force per length):
 ///   θ'  = δK − K × θ,            u'  = δΓ − K × u − Γ × θ          (δξ = η' + ad_ξ₀ η)
 ///   δm' = δm × K + m × δK + δn × Γ + n × δΓ − ω² J θ
-///   δn' = δn × K + n × δK + θ × (R₀ᵀ f_W) − ω² ρA u,   δξ = K(s)⁻¹ δW
+///   δn' = δn × K + n × δK + θ × (R₀ᵀ f_W) − R₀ᵀ δf_W − ω² ρA u,   δξ = K(s)⁻¹ δW
+/// where δf_W is the change of the loads that depend on the pose (contact, a current's drag at
+/// rest) with δp = R₀ u and δt = R₀ (θ × e₃), and f_W includes them as the static solver does.
 /// with θ(0) = u(0) = 0 at the clamp and δW(0) the 6 unknowns. The tip condition
 /// W(L) = [R(L)ᵀ M_W; R(L)ᵀ F_W] (world loads; body loads are constant) linearises to
 ///   B(ω) δW(0) = [δm − (R₀ᵀ M_W) × θ;  δn − (R₀ᵀ F_W) × θ](L) = 0,
