@@ -48,7 +48,7 @@ def main(argv):
     if not modes or not modes.get("shapes"):
         sys.stderr.write(f"{argv[1]}: no mode shapes (status: {result.get('status')})\n")
         return 1
-    _, in_plane, out_of_plane = plane_axes(result["equilibrium"]["nodes"]["position"])
+    _, in_plane, out_of_plane = plane_axes(result["nodes"]["position"])
     s = np.asarray(modes["s"])
     shapes = modes["shapes"][:count]
     fig, axes = plt.subplots(2, 1, figsize=(10, 7), sharex=True)

@@ -295,6 +295,8 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   if (q_guess) q = *q_guess;
   const quatfd::QuatFdStaticsSummary st = quatfd::SolveStatics(model, loads, q, statics);
   result.statics_status = st.status;
+  result.statics_iterations = st.iterations;
+  result.statics_residual = st.residual;
   if (q_equilibrium) *q_equilibrium = q;
   result.s = model->grid();
   model->ToRodState(q, Eigen::VectorXd::Zero(n_full), &result.equilibrium);
@@ -505,6 +507,8 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
   StaticShootingSolver solver(rod, num_nodes, options.statics, actuation);
   const StaticShootingSummary st = solver.Solve(base, loads);
   result.statics_status = st.status;
+  result.statics_iterations = st.iterations;
+  result.statics_residual = st.residual;
   result.s = solver.grid();
   result.equilibrium = solver.state();
   if (!st.converged()) return finish(ModalStatus::kStaticsFailed);

@@ -39,8 +39,20 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
                              problem.robot.actuation);
   }
 
+  // The contract's fields of every result (status, iterations, residual, tip, base_wrench,
+  // nodes) describe the equilibrium the modes are about; "modes" and the statics' own status
+  // ("equilibrium") follow.
+  StaticShootingSummary eq;
+  eq.status = r.statics_status;
+  eq.iterations = r.statics_iterations;
+  eq.residual = r.statics_residual;
+  const nlohmann::ordered_json statics = io::StaticResultToJson(eq, r.equilibrium);
   Result result;
   result.json["status"] = ToString(r.status);
+  for (const char* key : {"iterations", "residual"}) result.json[key] = statics[key];
+  result.json["wall_time_s"] = r.wall_time_s;
+  for (const char* key : {"tip", "base_wrench", "nodes"})
+    if (statics.contains(key)) result.json[key] = statics[key];
   nlohmann::ordered_json modes;
   modes["formulation"] = io::ToString(problem.formulation);
   modes["frequencies_hz"] = r.frequencies_hz();
@@ -63,13 +75,7 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
         {{"displacement", Vectors(m.displacement_W)}, {"rotation", Vectors(m.rotation_W)}});
   modes["shapes"] = shapes;
   result.json["modes"] = modes;
-  StaticShootingSummary eq;
-  eq.status = r.statics_status;
-  nlohmann::ordered_json equilibrium = io::StaticResultToJson(eq, r.equilibrium);
-  for (const char* key : {"iterations", "shots", "load_steps", "residual", "wall_time_s"})
-    equilibrium.erase(key);
-  result.json["equilibrium"] = equilibrium;
-  result.json["wall_time_s"] = r.wall_time_s;
+  result.json["equilibrium"] = {{"status", ToString(r.statics_status)}};
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(r.equilibrium);
 
   std::ostringstream log;

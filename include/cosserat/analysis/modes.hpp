@@ -82,6 +82,8 @@ struct ModalOptions {
 struct ModalResult {
   ModalStatus status = ModalStatus::kNotRun;
   SolveStatus statics_status = SolveStatus::kNotRun;
+  int statics_iterations = 0;     ///< Newton iterations of the equilibrium solve
+  double statics_residual = 0.0;  ///< its final residual (the solver's norm)
   std::vector<double> s;    ///< node arc lengths of the shapes, m
   RodState equilibrium;     ///< the static equilibrium linearised about (last iterate if failed)
   std::vector<Mode> modes;  ///< the lowest `count`, by frequency
