@@ -83,6 +83,7 @@ json DynamicResultToJson(const DynamicRun& run, const RodState& final_state) {
   if (run.shooting_segments > 0) out["shooting_segments"] = run.shooting_segments;
   if (run.shot_steps > 0) out["shot_steps"] = run.shot_steps;
   out["iterations"] = run.iterations;
+  out["residual"] = run.residual;
   out["shots"] = run.shots;
   out["wall_time_s"] = run.wall_time_s;
   out["simulated_time_s"] = run.simulated_time_s;

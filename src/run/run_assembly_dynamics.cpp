@@ -1,5 +1,6 @@
 #include "cosserat/run/run_assembly_dynamics.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -126,12 +127,14 @@ Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options
   const auto [steps, stride] = detail::StepsOf(d);
   SolveStatus status = init.status;
   int taken = 0, iterations = init.iterations;
+  double residual = init.residual;  // the largest final residual of the solves
   double failed_at = -1.0;
   if (init.converged()) {
     Record(dyn, problem.loads, options, &frames, &result);
     for (int k = 1; k <= steps; ++k) {
       const AssemblySummary s = dyn.Step(problem.loads);
       iterations += s.iterations;
+      residual = std::max(residual, s.residual);
       if (!s.converged()) {
         status = s.status;
         failed_at = dyn.time() + d.dt;
@@ -151,6 +154,7 @@ Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options
   out["status"] = ToString(status);
   out["steps"] = taken;
   out["iterations"] = iterations;
+  out["residual"] = residual;
   out["simulated_time_s"] = dyn.time();
   out["wall_time_s"] = wall;
   out["failed_at_t"] = failed_at < 0 ? json(nullptr) : json(failed_at);

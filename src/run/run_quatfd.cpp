@@ -213,6 +213,7 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
   const quatfd::QuatFdStaticsSummary init = quatfd::SolveStatics(
       &model, d.initial_loads.value_or(problem.loads), q, QuatFdStaticOptions(problem));
   run.iterations = init.iterations;
+  run.residual = init.residual;
   run.initial_state_ok = init.converged();
   run.status = init.status;
   run.report_anchor_force = problem.boundary == io::Boundary::kAnchored;

@@ -50,6 +50,9 @@ struct DynamicRun {
   /// scheme (Bdf2ShootingStepper::shot_steps; 0: not reported)
   int shot_steps = 0;
   int iterations = 0;    ///< all solves, the initial one included
+  /// The largest final residual of those solves (each solver's own norm; quaternion FD: the
+  /// initial equilibrium's, its Radau steps being controlled by their error estimate).
+  double residual = 0.0;
   int shots = 0;
   double wall_time_s = 0;           ///< initial state and stepping loop
   double stepping_wall_time_s = 0;  ///< the stepping loop alone
