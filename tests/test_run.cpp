@@ -55,6 +55,47 @@ TEST(Run, FollowsTheFormulation) {
   EXPECT_EQ(modes.json["modes"]["frequencies_hz"].size(), 2u);
 }
 
+// Every result holds the contract's fields (status, iterations, residual, wall_time_s, tip,
+// base_wrench, nodes), and contact adds contact.total_force and nodes.contact_force, in every
+// analysis. The modes' fields describe the equilibrium they are about: the same numbers as the
+// statics of the same problem (the same solver on the same grid: equal to round-off, 1e-12 of
+// the rod's weight, since the modes' statics may start from another guess only in iterations).
+TEST(Run, EveryAnalysisWritesTheContractsFieldsAndTheContact) {
+  io::Problem problem = Load("examples/rod_on_table.json");
+  problem.nodes = 61;
+  problem.rod.length = 1.0;
+  const double weight = 8000 * M_PI * 0.002 * 0.002 * 1.0 * 9.81;  // N
+  for (io::Formulation formulation :
+       {io::Formulation::kSe3Shooting, io::Formulation::kQuaternionFd}) {
+    problem.formulation = formulation;
+    problem.analysis = io::Analysis::kStatics;
+    const Result statics = cosserat::run::Run(problem);
+    problem.analysis = io::Analysis::kModes;
+    problem.modes.count = 2;
+    const Result modes = cosserat::run::Run(problem);
+    problem.analysis = io::Analysis::kDynamics;
+    problem.dynamics.duration = 4 * problem.dynamics.dt;
+    const Result dynamics = cosserat::run::Run(problem);
+    const std::string name = io::ToString(formulation);
+    for (const Result* r : {&statics, &modes, &dynamics}) {
+      ASSERT_TRUE(r->converged) << name << r->log;
+      for (const char* key :
+           {"status", "iterations", "residual", "wall_time_s", "tip", "base_wrench", "nodes"})
+        EXPECT_TRUE(r->json.contains(key)) << name << ": " << key << " in " << r->log;
+      ASSERT_TRUE(r->json.contains("contact")) << name << r->log;
+      EXPECT_EQ(r->json["nodes"]["contact_force"].size(), static_cast<size_t>(problem.nodes));
+    }
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(modes.json["base_wrench"]["force"][i].get<double>(),
+                  statics.json["base_wrench"]["force"][i].get<double>(), 1e-12 * weight)
+          << name;
+      EXPECT_NEAR(modes.json["contact"]["total_force"][i].get<double>(),
+                  statics.json["contact"]["total_force"][i].get<double>(), 1e-12 * weight)
+          << name;
+    }
+  }
+}
+
 // A dynamics result says how the default scheme in s stepped: the peer release's 40 nodes are 39
 // equal segments, 2hλ ≈ 0.44 ≤ ½ at dt = 2 ms, so 19 pairs and one segment alone: 20 steps; with
 // "rk4" every segment is a step.

@@ -13,6 +13,8 @@
 #include "cosserat/robots/rotary_table_drive.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
+#include "cosserat/strong/static_shooting.hpp"
 #include "cosserat/strong/shooting_exponent.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"
@@ -37,6 +39,27 @@ StepInput ClampedInput(const io::Problem& problem, const StaticLoads& loads,
   return input;
 }
 
+/// The base wrench W(0) (base body frame) of the clamped rod's equilibrium under `loads`, from
+/// the statics solver with its continuation in the load (multiple shooting where a single shot
+/// cannot: a stiff contact foundation, a high tension). False if that does not converge either.
+bool StaticBaseWrench(const io::Problem& problem, const StaticLoads& loads,
+                      const Actuation& actuation, Vec6* base_wrench_B) {
+  const StaticShootingOptions single = StaticOptions(problem);
+  if (problem.rod.tendons.empty() && StaticShootingExponent(problem.rod, loads) > 10.0) {
+    StaticMultipleShootingOptions opt;
+    opt.tolerance = single.tolerance;
+    opt.max_iterations = single.max_iterations;
+    StaticMultipleShootingSolver solver(problem.rod, problem.nodes, opt);
+    if (!solver.Solve(problem.base, loads).converged()) return false;
+    *base_wrench_B = solver.state().wrench_B.front();
+    return true;
+  }
+  StaticShootingSolver solver(problem.rod, problem.nodes, single, actuation);
+  if (!solver.Solve(problem.base, loads).converged()) return false;
+  *base_wrench_B = solver.base_wrench_B();
+  return true;
+}
+
 /// Adds the stepper's current state as the frame at time t; node positions only when
 /// `all_nodes`.
 void Record(const Bdf2ShootingStepper& stepper, double t, bool all_nodes, io::DynamicRun* run) {
@@ -52,6 +75,7 @@ void Record(const Bdf2ShootingStepper& stepper, double t, bool all_nodes, io::Dy
 
 void AddCounts(const StepSummary& s, io::DynamicRun* run) {
   run->iterations += s.iterations;
+  run->residual = std::max(run->residual, s.residual);
   run->shots += s.shots;
 }
 
@@ -116,8 +140,19 @@ io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
   if (all_nodes) run.frame_positions.reserve(frames * problem.nodes);
 
   const auto start = Clock::now();
-  const StepSummary init = stepper->InitializeAtRest(ClampedInput(
-      problem, d.initial_loads.value_or(problem.loads), problem.robot.initial_actuation));
+  const StaticLoads& initial_loads = d.initial_loads.value_or(problem.loads);
+  const StepInput initial =
+      ClampedInput(problem, initial_loads, problem.robot.initial_actuation);
+  StepSummary init = stepper->InitializeAtRest(initial);
+  Vec6 base_wrench_B;
+  if (!init.converged() && problem.boundary == io::Boundary::kCantilever &&
+      StaticBaseWrench(problem, initial_loads, problem.robot.initial_actuation, &base_wrench_B)) {
+    // The rigid-body guess was too far off (a large preload, a contact foundation): start again
+    // from the statics solver's equilibrium (the failed attempt's work counted, not its residual).
+    run.iterations += init.iterations;
+    run.shots += init.shots;
+    init = stepper->InitializeAtRest(initial, &base_wrench_B);
+  }
   AddCounts(init, &run);
   run.initial_state_ok = init.converged();
   run.status = init.status;
