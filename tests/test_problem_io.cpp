@@ -384,6 +384,45 @@ TEST(ProblemIo, LaterAnalysesParseButAreGated) {
                      R"("cantilever", "pinned-pinned", "clamped-clamped", "clamped-pinned"))");
 }
 
+// A massless rod (density 0) is a statics case the SE(3) solvers take; the quaternion-FD model
+// divides forces by the vertex masses, so it is refused there, naming the density, instead of
+// failing or writing NaN frequencies.
+TEST(ProblemIo, AMasslessRodIsRefusedOnlyWhereTheModelNeedsMass) {
+  json j = ValidProblem();
+  j["rod"]["material"]["density"] = 0;
+  j["loads"] = {{"tip_force", {0.01, 0, 0}}};
+  for (const char* analysis : {"statics", "modes", "dynamics"}) {
+    j["analysis"] = analysis;
+    j["formulation"] = "quaternion-fd";
+    ParseResult r = Parse(j);
+    ASSERT_TRUE(r.ok()) << AllErrors(r);
+    const std::vector<std::string> gated = UnsupportedFeatures(*r.problem);
+    ASSERT_EQ(gated.size(), 1u) << analysis;
+    EXPECT_EQ(gated[0].rfind("rod.material.density: a massless rod", 0), 0u) << gated[0];
+    j["formulation"] = "se3-shooting";
+    r = Parse(j);
+    EXPECT_TRUE(UnsupportedFeatures(*r.problem).empty()) << analysis;
+  }
+}
+
+// An anchor's motion sweeps position + amplitude (1 − cos): its far end must be within the rod's
+// reach, as the anchor itself (an amplitude of 1e5 m once ran Radau into its step cap).
+TEST(ProblemIo, AnAnchorMotionOutOfReachIsRefused) {
+  json j = ValidProblem();
+  j["analysis"] = "dynamics";
+  j["formulation"] = "quaternion-fd";
+  j["boundary"] = "anchored";
+  j["anchor"] = {{"position", {0.4, 0, 0}},
+                 {"motion", {{"amplitude", {0.1, 0, 0}}, {"period", 2.0}}}};
+  EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));  // reaches 0.6 m ≤ 1.5 L = 0.75 m
+  j["anchor"]["motion"]["amplitude"] = {0.2, 0, 0};   // 0.8 m
+  const ParseResult r = Parse(j);
+  EXPECT_TRUE(HasError(r, {"anchor.motion.amplitude: expected a motion that keeps the anchor "
+                           "within 1.5 × rod.length (0.75 m)",
+                           "got 0.8 m away"}))
+      << AllErrors(r);
+}
+
 TEST(ProblemIo, DynamicsParsesAndRuns) {
   json j = ValidProblem();
   j["analysis"] = "dynamics";

@@ -79,6 +79,15 @@ void CheckAnchor(const ObjectReader& top, const Problem& p) {
   else if (distance < 1e-6 * L)
     top.report().Expected("anchor.position", "a point apart from base.position",
                           FormatNumber(distance) + " m away");
+  // A moving anchor sweeps position + amplitude (1 − cos): its farthest point, + 2 amplitude,
+  // must be in reach too.
+  const double farthest = (p.anchor.position + 2 * p.anchor.motion_amplitude - p.base.p).norm();
+  if (distance <= 1.5 * L && farthest > 1.5 * L)
+    top.report().Expected("anchor.motion.amplitude",
+                          "a motion that keeps the anchor within 1.5 × rod.length (" +
+                              FormatNumber(1.5 * L) +
+                              " m) of base.position (it reaches position + 2 amplitude)",
+                          FormatNumber(farthest) + " m away");
 }
 
 LoadFrame ReadFrame(const ObjectReader& o, const std::string& key) {
@@ -521,6 +530,16 @@ void DriveAndFlowFeatures(const Problem& p, std::vector<std::string>* out) {
     out->push_back("dynamics.base_spin: turns a clamped base (\"boundary\": \"cantilever\")");
 }
 
+/// Whether the rod has no mass per length at some node of its grid.
+bool MasslessSomewhere(const Problem& p) {
+  const int n = std::max(p.nodes, 2);
+  for (int i = 0; i < n; ++i) {
+    const double s = p.rod.length * i / (n - 1);
+    if (!(p.rod.section->At(s, p.robot.actuation).mass(5, 5) > 0.0)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 std::vector<std::string> UnsupportedFeatures(const Problem& p) {
@@ -557,6 +576,10 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
     out.push_back("robot: a robot runs with \"boundary\": \"cantilever\" in statics (got " +
                   detail::Quote(ToString(p.boundary)) + ")");
   DriveAndFlowFeatures(p, &out);
+  if (quatfd && p.rod.section && MasslessSomewhere(p))
+    out.push_back(
+        "rod.material.density: a massless rod (density 0) runs on the \"se3-shooting\" "
+        "formulation only; the \"quaternion-fd\" model divides its forces by the nodes' masses");
   if (p.analysis == A::kBuckling && quatfd) {
     // The quaternion-FD stiffness is the Hessian of a potential: conservative tip loads only.
     if (p.loads.tip_force_frame == LoadFrame::kBody)
