@@ -138,6 +138,22 @@ TEST(Study, BadStudiesNameTheField) {
   EXPECT_TRUE(HasError(e, "parameters[0].random.distribution"));
   e = Errors(TendonStudy(R"([{"path": "/rod/length", "values": [1], "grid": {"from": 0, "to": 1, "count": 2}}])"));
   EXPECT_TRUE(HasError(e, "parameters[0]: expected exactly one of"));
+  // Paths that point inside a number or past an array's end, or at the whole problem.
+  e = Errors(TendonStudy(R"([{"path": "/rod/nodes/0", "values": [1]}])"));
+  EXPECT_TRUE(HasError(e, "parameters[0].path: names \"/rod/nodes/0\", inside \"/rod/nodes\""));
+  for (const char* past_the_end : {"/1", "/-1", "/-", "/~1", "/00"}) {
+    e = Errors(TendonStudy(std::string(R"([{"path": "/robot/actuation/tension)") + past_the_end +
+                           R"(", "values": [1]}])"));
+    EXPECT_TRUE(HasError(e, "is an array of 1 value, so the last part must be an index below 1"))
+        << past_the_end;
+  }
+  e = Errors(TendonStudy(R"([{"path": "", "values": [1]}, {"path": "/rod/length", "values": [1]}])"));
+  EXPECT_TRUE(HasError(e, "parameters[0].path: expected a pointer to a value inside the problem"));
+  // Too many points for the sweep's memory: named, whatever the product.
+  e = Errors(TendonStudy(
+      R"([{"path": "/rod/length", "grid": {"from": 0.1, "to": 0.2, "count": 1000000}},
+          {"path": "/robot/actuation/tension/0", "grid": {"from": 0, "to": 1, "count": 1000000}}])"));
+  EXPECT_TRUE(HasError(e, "parameters: expected at most 10000000 points in all"));
 }
 
 // Each row's tip is the arc's: the tendon's moment T r bends the backbone to κ = T r/EI and its

@@ -1,5 +1,6 @@
 #include "cosserat/io/study.hpp"
 
+#include <limits>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -88,9 +89,28 @@ void CheckPath(const json& problem, const std::string& where, const std::string&
       return;
     }
     const json::json_pointer parent = pointer.parent_pointer();
-    if (!problem.contains(parent))
+    if (!problem.contains(parent)) {
       report->Add(where, "names " + detail::Quote(path) + ", but the problem has no " +
                              detail::Quote(parent.to_string()));
+      return;
+    }
+    // The value goes into an object (any key) or an array (an existing index): not inside a
+    // number or a string.
+    const json& holder = problem.at(parent);
+    const std::string key = pointer.back();
+    const bool index = !key.empty() && key.size() <= 9 &&
+                       key.find_first_not_of("0123456789") == std::string::npos &&
+                       (key == "0" || key[0] != '0');
+    if (holder.is_array() && !(index && std::stoul(key) < holder.size()))
+      report->Add(where, "names " + detail::Quote(path) + ": " + detail::Quote(parent.to_string()) +
+                             " is an array of " + std::to_string(holder.size()) +
+                             (holder.size() == 1 ? " value" : " values") +
+                             ", so the last part must be an index below " +
+                             std::to_string(holder.size()));
+    else if (!holder.is_object() && !holder.is_array())
+      report->Add(where, "names " + detail::Quote(path) + ", inside " +
+                             detail::Quote(parent.to_string()) + ", which is " +
+                             detail::Describe(holder) + ", not an object or an array");
   } catch (const json::exception& e) {
     report->Add(where, "expected a JSON pointer such as \"/rod/length\", got " +
                            detail::Quote(path) + " (" + e.what() + ")");
@@ -151,9 +171,11 @@ void ReadOutputs(const ObjectReader& top, Study* study_out) {
 }  // namespace
 
 std::uint64_t Study::PointCount() const {
+  // Saturates instead of wrapping: many large grids must not count as a small study.
+  constexpr std::uint64_t kMax = std::numeric_limits<std::uint64_t>::max();
   std::uint64_t n = static_cast<std::uint64_t>(samples);
   for (const StudyParameter& p : parameters)
-    if (!p.values.empty()) n *= p.values.size();
+    if (!p.values.empty()) n = n > kMax / p.values.size() ? kMax : n * p.values.size();
   return n;
 }
 
@@ -204,7 +226,9 @@ StudyParseResult ParseStudy(const std::string& text, const std::string& source_n
       report.Expected("format", "\"cosserat-study/1\"", format ? detail::Describe(*format) : "nothing");
     detail::ReadString(top, "description", Presence::kOptional);
     ReadProblem(top, base_directory, &study);
-    study.samples = detail::ReadInteger(top, "samples", 1, 100000000, Presence::kOptional).value_or(1);
+    study.samples =
+        detail::ReadInteger(top, "samples", 1, static_cast<int>(kMaxStudyPoints), Presence::kOptional)
+            .value_or(1);
     study.seed = static_cast<std::uint64_t>(
         detail::ReadInteger(top, "seed", 0, 2147483647, Presence::kOptional).value_or(1));
     const json* params = top.Find("parameters");
@@ -220,17 +244,28 @@ StudyParseResult ParseStudy(const std::string& text, const std::string& source_n
         }
         StudyParameter p;
         ParseParameter(ObjectReader((*params)[i], where, &report), &p);
-        if (!p.path.empty() && study.problem.is_object())
+        const json* path = (*params)[i].contains("path") ? &(*params)[i]["path"] : nullptr;
+        if (path && path->is_string() && study.problem.is_object())
           CheckPath(study.problem, where + ".path", p.path, &report);
         study.parameters.push_back(p);
       }
     }
     ReadOutputs(top, &study);
+    if (report.empty() && study.PointCount() > kMaxStudyPoints)
+      report.Expected("parameters",
+                      "at most " + std::to_string(kMaxStudyPoints) +
+                          " points in all (samples × the grids' counts; the sweep keeps each "
+                          "point's row in memory)",
+                      std::to_string(study.PointCount()) + " points");
   }
   // The first point must be a valid problem: a path naming an unknown key shows here.
   if (report.empty() && result.errors.empty()) {
-    const ParseResult first = ParseProblemDocument(study.PointProblem(0));
-    for (const std::string& e : first.errors) report.Add("problem (with the parameters)", e);
+    try {
+      const ParseResult first = ParseProblemDocument(study.PointProblem(0));
+      for (const std::string& e : first.errors) report.Add("problem (with the parameters)", e);
+    } catch (const json::exception& e) {  // a path CheckPath let through: still named
+      report.Add("parameters", std::string("cannot be set in the problem (") + e.what() + ")");
+    }
   }
   for (std::string& line : report.TakeLines()) result.errors.push_back(std::move(line));
   if (result.errors.empty()) result.study = std::move(study);

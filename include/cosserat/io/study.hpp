@@ -26,6 +26,10 @@
 
 namespace cosserat::io {
 
+/// The most points a study may have (samples × the grids' counts): a sweep keeps each point's
+/// row in memory, ~100 bytes, so this bounds it near a gigabyte.
+constexpr std::uint64_t kMaxStudyPoints = 10'000'000;
+
 struct StudyParameter {
   std::string path;            ///< JSON pointer into the problem document
   std::vector<double> values;  ///< a grid's or a list's values; empty for a random parameter
