@@ -216,6 +216,43 @@ TEST(Assembly, AnLFrameDeflectsAsLinearBeamTheorySays) {
   EXPECT_NEAR(drop_turned, drop, 1e-6 * drop);
 }
 
+// The same frame with a beam far stiffer than the column (radius 5 cm and 1 m against 1 mm, EI
+// 6e6 and 1e12 times the column's): the load reaches the corner through an almost rigid beam, so
+// the corner still sways P b a²/(2EI) (the column alone bends), and the end drops by the column's
+// turn, P b² a/EI, the beam's own bending now negligible. A body's balance measured in its own
+// rods' scale once let this frame stop undeformed at 0 iterations: the load at the beam's end was
+// below 1e-10 of the stiff beam's force scale. Tolerances as above (second order near 1e-3).
+TEST(Assembly, AStiffBeamPassesItsLoadToTheSoftColumn) {
+  for (double beam_radius : {0.05, 1.0}) {
+    const SteelRod column{0.4, 0.001}, beam{0.3, beam_radius};
+    const double a_len = column.length, b_len = beam.length;
+    const double P = 1e-3 * column.EI() / (a_len * a_len);  // N
+    Assembly a;
+    lie::SE3 corner, end;
+    corner.p = Vec3(0, 0, a_len);
+    end.p = Vec3(b_len, 0, a_len);
+    a.bodies = {Junction("corner", corner), Junction("end", end)};
+    a.bodies[1].force_W = Vec3(0, 0, -P);
+    AssemblyRod b = ClampedRod("beam", beam.model(), 31, 1, 0);
+    b.base.R = lie::SO3Exp(Vec3(0, 0.5 * M_PI, 0));  // tangent along +x
+    b.attachment.R = b.base.R;
+    a.rods = {ClampedRod("column", column.model(), 41, 0), b};
+    AssemblyStaticsSolver solver(a);
+    const AssemblySummary s = solver.Solve(StaticLoads{});
+    ASSERT_TRUE(s.converged()) << ToString(s.status) << " at beam radius " << beam_radius;
+    EXPECT_GT(s.iterations, 0);
+    const double EI = column.EI();
+    const double sway = solver.body_poses()[0].p.x() - corner.p.x();
+    const double drop = end.p.z() - solver.body_poses()[1].p.z();
+    const double sway_expected = P * b_len * a_len * a_len / (2 * EI);
+    const double drop_expected = P * b_len * b_len * a_len / EI;
+    std::printf("L-frame, beam radius %g m: corner sways %.6e m (%.6e), end drops %.6e m (%.6e)\n",
+                beam_radius, sway, sway_expected, drop, drop_expected);
+    EXPECT_NEAR(std::abs(sway), sway_expected, 3e-3 * sway_expected);
+    EXPECT_NEAR(drop, drop_expected, 3e-3 * drop_expected);
+  }
+}
+
 /// The continuum Stewart–Gough robot of Till, Aloi & Rucker (2019) as their example code builds
 /// it (robots/stewart_gough.hpp), with a platform of `platform_mass` and rods of `nodes`.
 Assembly StewartGough(double platform_mass, int nodes = 40) {

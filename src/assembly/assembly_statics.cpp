@@ -1,5 +1,6 @@
 #include "cosserat/assembly/assembly_statics.hpp"
 
+#include <limits>
 #include <ceres/jet.h>
 
 #include <algorithm>
@@ -32,22 +33,25 @@ AssemblyStaticsSolver::AssemblyStaticsSolver(const Assembly& assembly,
   if (!assembly_.IsValid(&why)) throw std::invalid_argument("Assembly: " + why);
   const int R = static_cast<int>(assembly_.rods.size());
   const int B = static_cast<int>(assembly_.bodies.size());
-  body_force_scale_.assign(B, 0.0);
-  body_moment_scale_.assign(B, 0.0);
+  // Every body's balance is measured in the force and moment scales of the assembly's most
+  // compliant rod: a force left unbalanced on any body is carried through the structure to that
+  // rod, where it moves the bodies most. (A body's own stiffest rod once set its scale, and a
+  // stiff beam hanging off a soft column declared the unloaded frame converged: the load at the
+  // beam's end fell below the tolerance before the first iteration.)
+  double force_scale = std::numeric_limits<double>::infinity(), moment_scale = force_scale;
   for (int i = 0; i < R; ++i) {
     const AssemblyRod& a = assembly_.rods[i];
     Rod rod{RodShot(a.model, a.nodes), 1.0, 1.0, {}};
     const double L = a.model.length, EI = rod.shot.bending_stiffness();
     rod.moment_scale = EI / L;
     rod.force_scale = EI / (L * L);
-    for (int b : {a.body, a.base_body}) {  // every body either end of the rod is on
-      if (b < 0) continue;
-      body_force_scale_[b] = std::max(body_force_scale_[b], rod.force_scale);
-      body_moment_scale_[b] = std::max(body_moment_scale_[b], rod.moment_scale);
-    }
+    force_scale = std::min(force_scale, rod.force_scale);
+    moment_scale = std::min(moment_scale, rod.moment_scale);
     rods_.push_back(std::move(rod));
     lengths_.push_back(L);
   }
+  body_force_scale_.assign(B, force_scale);
+  body_moment_scale_.assign(B, moment_scale);
   for (const RigidBody& b : assembly_.bodies) poses_.push_back(b.pose);
   x_.setZero(6 * R);
   states_.resize(R);
