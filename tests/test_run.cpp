@@ -96,6 +96,19 @@ TEST(Run, EveryAnalysisWritesTheContractsFieldsAndTheContact) {
   }
 }
 
+// A solve that converges onto NaN (a rod of 1e-300 m: the quaternion-FD segment length
+// underflows in its strains) is reported as non_finite, not as a converged result with nulls.
+TEST(Run, ANonFiniteAnswerIsNotConverged) {
+  io::Problem problem = Load("examples/cantilever.json");
+  problem.formulation = io::Formulation::kQuaternionFd;
+  problem.nodes = 5;
+  problem.rod.length = 1e-300;
+  const Result r = cosserat::run::Run(problem);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.json["status"], "non_finite") << r.log;
+  EXPECT_NE(r.log.find("NaN or Inf"), std::string::npos) << r.log;
+}
+
 // A dynamics result says how the default scheme in s stepped: the peer release's 40 nodes are 39
 // equal segments, 2hλ ≈ 0.44 ≤ ½ at dt = 2 ms, so 19 pairs and one segment alone: 20 steps; with
 // "rk4" every segment is a step.

@@ -1,5 +1,8 @@
 #include "cosserat/run/run.hpp"
 
+#include <cmath>
+#include <string>
+
 #include "bending_stress_report.hpp"
 #include "contact_report.hpp"
 #include "cosserat/run/run_assembly.hpp"
@@ -29,10 +32,34 @@ Result Dispatch(const io::Problem& problem, const RunOptions& options) {
   return dynamics ? RunDynamics(problem, options) : RunStatics(problem, options);
 }
 
+/// True when a number somewhere in j is not finite (the writer would print it as null).
+bool HasNonFinite(const nlohmann::ordered_json& j) {
+  if (j.is_number_float()) return !std::isfinite(j.get<double>());
+  if (j.is_structured())
+    for (const auto& v : j)
+      if (HasNonFinite(v)) return true;
+  return false;
+}
+
+/// A converged solve whose state holds NaN or Inf (a degenerate but accepted input, such as a
+/// rod of 1e-300 m) is no answer: its status becomes non_finite, never a silent null.
+void RefuseNonFiniteAnswers(Result* result) {
+  if (!result->converged) return;
+  for (const char* key : {"tip", "base_wrench", "nodes", "modes", "buckling"}) {
+    if (!result->json.contains(key) || !HasNonFinite(result->json[key])) continue;
+    result->converged = false;
+    result->json["status"] = ToString(SolveStatus::kNonFinite);
+    result->log += std::string("cosserat: the solve converged, but its result holds NaN or Inf (in \"") +
+                   key + "\"): status non_finite; check the rod's scales\n";
+    return;
+  }
+}
+
 }  // namespace
 
 Result Run(const io::Problem& problem, const RunOptions& options) {
   Result result = Dispatch(problem, options);
+  RefuseNonFiniteAnswers(&result);
   detail::AddContactReport(problem, &result);
   detail::AddFrameContactForces(problem, &result);
   detail::AddBendingStressReport(problem, &result);
