@@ -384,6 +384,22 @@ TEST(ProblemIo, LaterAnalysesParseButAreGated) {
                      R"("cantilever", "pinned-pinned", "clamped-clamped", "clamped-pinned"))");
 }
 
+// Dimensions that pass their own checks but underflow together are named where they were given:
+// a radius of 1e-300 m has an area of 0, and E = 1e-300 Pa against G = 8e10 Pa a Poisson ratio
+// that rounds to −1.
+TEST(ProblemIo, DegenerateSectionsAndMaterialsAreNamed) {
+  json j = ValidProblem();
+  j["rod"]["section"]["radius"] = 1e-300;
+  ParseResult r = Parse(j);
+  EXPECT_TRUE(HasError(r, {"rod.section: area must be a finite positive number"})) << AllErrors(r);
+  j = ValidProblem();
+  j["rod"]["material"]["youngs_modulus"] = 1e-300;
+  r = Parse(j);
+  EXPECT_TRUE(HasError(r, {"rod.material: expected youngs_modulus and shear_modulus whose Poisson "
+                           "ratio E/(2G) − 1 is above −1"}))
+      << AllErrors(r);
+}
+
 // A massless rod (density 0) is a statics case the SE(3) solvers take; the quaternion-FD model
 // divides forces by the vertex masses, so it is refused there, naming the density, instead of
 // failing or writing NaN frequencies.

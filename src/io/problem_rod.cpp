@@ -80,6 +80,17 @@ std::optional<CrossSection> ParseExplicitSection(const ObjectReader& s) {
   return CrossSection::Explicit(*area, *I1, *I2, *J, kappa.value_or(1.0));
 }
 
+/// A section built from valid dimensions can still be degenerate: a radius of 1e-300 m has an
+/// area that underflows to 0. Named at the section, instead of the rod's check later.
+std::optional<CrossSection> Checked(const ObjectReader& s, std::optional<CrossSection> c) {
+  std::string why;
+  if (c && !c->IsValid(&why)) {
+    s.report().Add(s.path(), why + " (the dimensions under- or overflow in double precision)");
+    return std::nullopt;
+  }
+  return c;
+}
+
 std::optional<CrossSection> ParseSection(const ObjectReader& s) {
   const std::optional<std::string> shape = SectionShape(s);
   if (!shape) {
@@ -90,14 +101,14 @@ std::optional<CrossSection> ParseSection(const ObjectReader& s) {
   if (*shape == "circle") {
     const auto r = ReadNumber(s, "radius", PositiveNumber(), Presence::kRequired);
     if (!r) return std::nullopt;
-    return CrossSection::Circle(*r);
+    return Checked(s, CrossSection::Circle(*r));
   }
-  if (*shape == "annulus") return ParseAnnulus(s);
+  if (*shape == "annulus") return Checked(s, ParseAnnulus(s));
   if (*shape == "rectangle") {
     const auto w = ReadNumber(s, "width", PositiveNumber(), Presence::kRequired);
     const auto h = ReadNumber(s, "height", PositiveNumber(), Presence::kRequired);
     if (!w || !h) return std::nullopt;
-    return CrossSection::Rectangle(*w, *h);
+    return Checked(s, CrossSection::Rectangle(*w, *h));
   }
   return ParseExplicitSection(s);
 }
@@ -145,6 +156,13 @@ std::optional<double> ParseShearModulus(const ObjectReader& m, std::optional<dou
         m.PathOf("shear_modulus"),
         "at least youngs_modulus / 3 = " + FormatNumber(*E / 3.0) + " (a Poisson ratio <= 0.5)",
         Describe(*m.Find("shear_modulus")) + " (Poisson ratio " + FormatNumber(implied_nu) + ")");
+    return std::nullopt;
+  }
+  if (!(implied_nu > -1.0)) {  // E ≪ G: E / (2G) underflows
+    m.report().Expected(m.path(),
+                        "youngs_modulus and shear_modulus whose Poisson ratio E/(2G) − 1 is above −1",
+                        "E = " + FormatNumber(*E) + " Pa and G = " + FormatNumber(*G) +
+                            " Pa (Poisson ratio " + FormatNumber(implied_nu) + ")");
     return std::nullopt;
   }
   return *G;
