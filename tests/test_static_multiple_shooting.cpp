@@ -109,5 +109,21 @@ TEST(StaticMultipleShooting, BadOptionsAreErrors) {
   EXPECT_THROW(StaticMultipleShootingSolver(model, 11, opt), std::invalid_argument);
 }
 
+// A continuation that cannot reach the full load says so: a 2 mm wire 2³¹ m long under its own
+// weight (its weight is 10¹⁹ times EI/L²) stops short, and the status is load_stepping_failed,
+// not max_iterations at the last level it reached.
+TEST(StaticMultipleShooting, AContinuationThatStopsShortIsLoadSteppingFailed) {
+  const RodModel model =
+      RodModel::Uniform(2147483648.0, CrossSection::Circle(0.001), testing::Steel());
+  StaticMultipleShootingSolver solver(model, 41, StaticMultipleShootingOptions{});
+  StaticLoads loads;
+  loads.gravity_W = Vec3(0, 0, -9.81);
+  lie::SE3 base;
+  base.R = lie::SO3Exp(Vec3(0, 0.5 * M_PI, 0));  // horizontal
+  const StaticShootingSummary s = solver.Solve(base, loads);
+  EXPECT_EQ(s.status, SolveStatus::kLoadSteppingFailed) << ToString(s.status);
+  EXPECT_GT(s.load_steps, 0);
+}
+
 }  // namespace
 }  // namespace cosserat

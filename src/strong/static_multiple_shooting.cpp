@@ -408,6 +408,9 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
   const bool converged = mu == 1.0;
   // The state of the last accepted level (the solution when converged).
   Finish(base, converged ? loads : at(mu), converged, &summary);
+  // The continuation stopped short of the full load (its residual is the last level's).
+  if (!converged && summary.status == SolveStatus::kMaxIterations)
+    summary.status = SolveStatus::kLoadSteppingFailed;
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return summary;
