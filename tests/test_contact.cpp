@@ -468,5 +468,50 @@ TEST(PenaltyContact, AFloorAddsItsStiffnessToTheVerticalModesInBothFormulations)
   }
 }
 
+// A tip force pushes a cantilever's end straight at a sphere (centre on the tip's line of
+// travel, 15 mm from the axis, radius 10 mm; a 1 mm wire, 0.1 N, k = 1e5 N/m per metre). Solved
+// at the full load directly, both formulations once converged with the tip through the sphere
+// and beyond it, touching nothing. The surfaces must hold the rod back: every node stays out of
+// the sphere but for the penalty's penetration (the force over k and a contact patch of a few
+// millimetres: ~0.3 mm; 1 mm bounds it, a tenth of the radius), the tip stays on the near side,
+// and the sphere carries load.
+TEST(PenaltyContact, ARodPushedAtASphereIsHeldBackInBothFormulations) {
+  const SteelRod rod{0.5, 0.001};
+  const Vec3 centre(0.015, 0, 0.5);
+  const double R = 0.01;
+  StaticLoads loads;
+  loads.tip_force = Vec3(0.1, 0, 0);
+  loads.contact.count = 1;
+  ContactSurface& sphere = loads.contact.surface[0];
+  sphere.shape = ContactSurface::Shape::kSphere;
+  sphere.point_W = centre;
+  sphere.radius = R;
+  sphere.stiffness = 1e5;
+  StaticShootingSolver shooting(rod.model(), 41);
+  ASSERT_TRUE(shooting.Solve(lie::SE3{}, loads).converged());
+  quatfd::QuatFdOptions options;
+  options.segments = 40;
+  quatfd::QuatFdModel model(rod.model(), lie::SE3{}, options);
+  Eigen::VectorXd q(model.size()), v(model.size());
+  model.RestState(q, v);
+  ASSERT_TRUE(quatfd::SolveStatics(&model, loads, q).converged());
+  RodState fd;
+  model.ToRodState(q, v, &fd);
+  const RodState se3 = shooting.state();
+  const RodState* states[] = {&se3, &fd};
+  for (const RodState* st : states) {
+    const char* name = st == &fd ? "quatfd" : "se3";
+    double nearest = 1e9;
+    for (const Vec3& p : st->position_W) nearest = std::min(nearest, (p - centre).norm());
+    const Vec3 tip = st->position_W.back();
+    const Vec3 reaction = st->BaseReaction_W().tail<3>();
+    std::printf("%s: tip [%.5f, %.5f] m, nearest node %.5f m from the centre, clamp force x %.4f N\n",
+                name, tip.x(), tip.z(), nearest, reaction.x());
+    EXPECT_GT(nearest, R + rod.r - 0.001) << name;
+    EXPECT_LT(tip.x(), centre.x()) << name;
+    EXPECT_GT(reaction.x(), -0.1 + 0.01) << name;  // the sphere takes some of the 0.1 N
+  }
+}
+
 }  // namespace
 }  // namespace cosserat

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <functional>
 #include <stdexcept>
+#include <vector>
 
+#include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/numerics/banded_matrix.hpp"
 #include "cosserat/quatfd/quatfd_kernels.hpp"
 
@@ -37,6 +39,21 @@ double StaticBeta(const QuatFdModel& model, const StaticLoads& loads,
     moment = std::max({moment, model.MaxSegmentForce(q) * h, weight * h});
   }
   return std::sqrt(moment / model.min_rotational_inertia());
+}
+
+/// Whether the surfaces hold the rod back at q: no vertex, segment or vertex path from `from`
+/// reaches into an obstacle's core (obstacle_core.hpp). Always true without obstacles.
+bool HeldBack(const QuatFdModel& model, const ContactSurfaces& surfaces,
+              const Eigen::Ref<const Eigen::VectorXd>& from,
+              const Eigen::Ref<const Eigen::VectorXd>& q) {
+  if (!HasObstacleCore(surfaces)) return true;
+  const int N = model.layout().segments;
+  std::vector<Vec3> before(N + 1), after(N + 1);
+  for (int v = 0; v <= N; ++v) {
+    before[v] = from.segment<3>(L::X(v));
+    after[v] = q.segment<3>(L::X(v));
+  }
+  return !ReachesObstacleCore(surfaces, before, after);
 }
 
 /// Newton at fixed loads from q. Returns true on convergence; counts iterations.
@@ -149,7 +166,11 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   if (!loads.IsValid(&load_why) || !q.allFinite()) return finish(SolveStatus::kNonFinite);
 
   model->set_loads(loads);
-  if (Newton(*model, options, beta, q, &w, &summary)) return finish(SolveStatus::kConverged);
+  const Eigen::VectorXd q_start = q;
+  // A direct solve that lands beyond an obstacle jumped through it: the continuation then.
+  if (Newton(*model, options, beta, q, &w, &summary) &&
+      HeldBack(*model, loads.contact, q_start, q))
+    return finish(SolveStatus::kConverged);
   if (!options.load_stepping) return finish(SolveStatus::kMaxIterations);
 
   // Continuation in λ along at(λ) from a solution q_ok at λ = 0: grow the increment after a
@@ -166,7 +187,8 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
       const double target = std::min(1.0, lambda + step);
       model->set_loads(at(target));
       q = q_ok;
-      if (Newton(*model, options, beta, q, &w, &summary)) {
+      if (Newton(*model, options, beta, q, &w, &summary) &&
+          HeldBack(*model, loads.contact, q_ok, q)) {
         lambda = target;
         q_ok = q;
         step *= 2.0;
@@ -186,7 +208,8 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
     hanging.gravity_W = loads.gravity_W;
     model->set_loads(hanging);
     q = q_ok;
-    ok = Newton(*model, options, beta, q, &w, &summary);
+    ok = Newton(*model, options, beta, q, &w, &summary) &&
+         HeldBack(*model, loads.contact, q_ok, q);
     if (ok)
       q_ok = q;
     else

@@ -9,6 +9,7 @@
 
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/lie/so3.hpp"
+#include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/rod/grid.hpp"
 #include "cosserat/strong/shooting_exponent.hpp"
@@ -324,6 +325,14 @@ void StaticMultipleShootingSolver::StartUnloaded(const lie::SE3& base) {
   }
 }
 
+std::vector<Vec3> StaticMultipleShootingSolver::Positions(const lie::SE3& base,
+                                                         const StaticLoads& loads) {
+  Point y = BaseStart(base, x_);
+  for (int k = 0; k <= static_cast<int>(junction_nodes_.size()); ++k)
+    y = ShootPiece(k, k == 0 ? y : junctions_[k - 1], loads, true);
+  return state_.position_W;
+}
+
 double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
                                                 const std::function<StaticLoads(double)>& at,
                                                 int* levels, StaticShootingSummary* summary) {
@@ -331,6 +340,12 @@ double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
   Vec6 x_accepted = x_, x_before = x_;
   std::vector<Point> accepted = junctions_, before = junctions_;
   double mu = 0.0, mu_before = -1.0, step = 1.0;
+  // A level that passes a node into an obstacle's core jumped through it (obstacle_core.hpp):
+  // refused like a failed one, so the steps shrink until the surfaces hold the rod back.
+  const ContactSurfaces surfaces = at(1.0).contact;
+  const bool obstacles = HasObstacleCore(surfaces);
+  std::vector<Vec3> at_accepted;
+  if (obstacles) at_accepted = Positions(base, at(0.0));
   while (mu < 1.0 && *levels < options_.max_load_steps && step >= kMinLoadStep) {
     const double mu_try = std::min(1.0, mu + step);
     ++*levels;
@@ -340,7 +355,13 @@ double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
       for (size_t k = 0; k < junctions_.size(); ++k)
         junctions_[k] = Extrapolated(before[k], accepted[k], t);
     }
-    if (Newton(base, at(mu_try), summary)) {
+    bool held = Newton(base, at(mu_try), summary);
+    if (held && obstacles) {
+      std::vector<Vec3> now = Positions(base, at(mu_try));
+      held = !ReachesObstacleCore(surfaces, at_accepted, now);
+      if (held) at_accepted = std::move(now);
+    }
+    if (held) {
       mu_before = mu;
       mu = mu_try;
       x_before = x_accepted;

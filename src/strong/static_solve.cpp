@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/strong/shot_newton.hpp"
 #include "cosserat/strong/static_shooting.hpp"
@@ -42,6 +43,19 @@ int StaticShootingSolver::IndexAfterSolve(const lie::SE3& base, const StaticLoad
   return StabilityIndex(base, loads, scale_.cwiseProduct(x));
 }
 
+std::vector<Vec3> StaticShootingSolver::ShotPositions(const lie::SE3& base,
+                                                     const StaticLoads& loads, const Vec6& x) {
+  Residual(base, loads, x);
+  return state_.position_W;
+}
+
+bool StaticShootingSolver::HeldBack(const lie::SE3& base, const StaticLoads& loads_from,
+                                    const Vec6& x_from, const StaticLoads& loads, const Vec6& x) {
+  if (!HasObstacleCore(loads.contact)) return true;
+  const std::vector<Vec3> before = ShotPositions(base, loads_from, x_from);
+  return !ReachesObstacleCore(loads.contact, before, ShotPositions(base, loads, x));
+}
+
 bool StaticShootingSolver::FollowLoadPath(const lie::SE3& base, const StaticLoads& start,
                                           const StaticLoads& loads, const Vec6& x_start,
                                           const LoadPath& path, Vec6* x, int* steps,
@@ -60,7 +74,9 @@ bool StaticShootingSolver::FollowLoadPath(const lie::SE3& base, const StaticLoad
     const double tol =
         mu_try == 1.0 ? options_.tolerance : std::max(options_.tolerance, kIntermediateTolerance);
     if (TryLevenbergMarquardt(base, target, tol, &guess, summary) &&
-        (!path.require_stable || IndexAfterSolve(base, target, guess) == 0)) {
+        (!path.require_stable || IndexAfterSolve(base, target, guess) == 0) &&
+        HeldBack(base, mu == 0.0 ? start : StaticLoads::Blend(start, loads, mu), x_a, target,
+                 guess)) {
       x_prev = x_a;
       mu_prev = mu;
       x_a = guess;
@@ -247,6 +263,11 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
     if (!ok) {
       x = from_previous ? x_ : RigidGuess(base, loads);
       ok = TryLevenbergMarquardt(base, loads, options_.tolerance, &x, &summary);
+    }
+    // A direct solve that lands beyond an obstacle jumped through it: the continuation then.
+    if (ok && !HeldBack(base, start, x_start, loads, x)) {
+      ok = state_current = via_quasi_newton = false;
+      x = x_start;
     }
   }
 

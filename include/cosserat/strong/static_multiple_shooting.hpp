@@ -121,6 +121,8 @@ class StaticMultipleShootingSolver {
   /// Returns the last μ reached, the unknowns at it; counts the levels tried in *levels.
   double FollowPath(const lie::SE3& base, const std::function<StaticLoads(double)>& at, int* levels,
                     StaticShootingSummary* summary);
+  /// The node positions (world, m) the current unknowns give under `loads` (records state_).
+  std::vector<Vec3> Positions(const lie::SE3& base, const StaticLoads& loads);
   /// b moved on by t times its change from a (the secant predictor of the continuation).
   static Point Extrapolated(const Point& a, const Point& b, double t);
   /// The unloaded rod at `base`: the rest shape, exact for zero loads.

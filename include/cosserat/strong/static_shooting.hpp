@@ -203,6 +203,13 @@ class StaticShootingSolver {
   bool FollowLoadPath(const lie::SE3& base, const StaticLoads& start, const StaticLoads& loads,
                       const Vec6& x_start, const LoadPath& path, Vec6* x, int* steps,
                       StaticShootingSummary* summary);
+  /// The node positions of the shot at x under `loads` (world, m; records state_).
+  std::vector<Vec3> ShotPositions(const lie::SE3& base, const StaticLoads& loads, const Vec6& x);
+  /// False when the step from the shot (x_from, loads_from) to (x, loads) passes a node into an
+  /// obstacle's core (obstacle_core.hpp): a solution the surfaces would have held back. True
+  /// without obstacles, with no shot.
+  bool HeldBack(const lie::SE3& base, const StaticLoads& loads_from, const Vec6& x_from,
+                const StaticLoads& loads, const Vec6& x);
   /// Past a critical load the converged equilibrium may be unstable: if it is, replaces *x by
   /// the stable equilibrium the path from the unloaded rod leads to, when that path exists.
   /// False when the equilibrium was stable (the stored shot is still that of *x).

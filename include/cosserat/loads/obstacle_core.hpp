@@ -1,0 +1,26 @@
+#pragma once
+/// \file
+/// Whether a rod has passed through an obstacle. A penalty foundation (contact.hpp) lets a rod
+/// press into a surface by its load over its stiffness, never deep: a centreline within half the
+/// radius of a sphere's centre or of an outside cylinder's axis has gone through the surface (a
+/// load step that jumped it, or a load no penalty of this stiffness holds). The static solvers
+/// refuse such a step and take smaller ones, so their answer is one the surfaces hold back.
+/// Planes and bores have no far side to pass to.
+
+#include <vector>
+
+#include "cosserat/lie/types.hpp"
+#include "cosserat/loads/contact.hpp"
+
+namespace cosserat {
+
+/// True when a surface has a core to pass through (a sphere, a cylinder the rod stays outside).
+bool HasObstacleCore(const ContactSurfaces& surfaces);
+
+/// True when the centreline through `after` (nodes, world frame, m: the nodes and the straight
+/// segments between them) or a node's straight path from `before` to `after` (same size; empty:
+/// no path) comes within half the radius of a sphere's centre or an outside cylinder's axis.
+bool ReachesObstacleCore(const ContactSurfaces& surfaces, const std::vector<Vec3>& before,
+                         const std::vector<Vec3>& after);
+
+}  // namespace cosserat

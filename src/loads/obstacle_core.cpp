@@ -1,0 +1,57 @@
+#include "cosserat/loads/obstacle_core.hpp"
+
+#include <algorithm>
+
+namespace cosserat {
+namespace {
+
+using Shape = ContactSurface::Shape;
+
+bool HasCore(const ContactSurface& s) {
+  return s.shape == Shape::kSphere || (s.shape == Shape::kCylinder && !s.inside);
+}
+
+/// The core's measure of a point: its vector from the sphere's centre, or from the cylinder's
+/// axis (the part normal to the axis), m.
+Vec3 FromCore(const ContactSurface& s, const Vec3& p) {
+  const Vec3 r = p - s.point_W;
+  return s.shape == Shape::kSphere ? r : Vec3(r - s.direction_W * s.direction_W.dot(r));
+}
+
+/// The distance from the origin to the segment [a, b] (in FromCore's coordinates, where the
+/// core is a ball about the origin: for a cylinder both ends are projected on the normal plane).
+double DistanceToOrigin(const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double dd = d.squaredNorm();
+  const double t = dd > 0.0 ? std::clamp(-a.dot(d) / dd, 0.0, 1.0) : 0.0;
+  return (a + t * d).norm();
+}
+
+bool SegmentReaches(const ContactSurface& s, const Vec3& a, const Vec3& b) {
+  return DistanceToOrigin(FromCore(s, a), FromCore(s, b)) < 0.5 * s.radius;
+}
+
+}  // namespace
+
+bool HasObstacleCore(const ContactSurfaces& surfaces) {
+  for (int k = 0; k < surfaces.count; ++k)
+    if (HasCore(surfaces.surface[k])) return true;
+  return false;
+}
+
+bool ReachesObstacleCore(const ContactSurfaces& surfaces, const std::vector<Vec3>& before,
+                         const std::vector<Vec3>& after) {
+  const bool paths = before.size() == after.size();
+  for (int k = 0; k < surfaces.count; ++k) {
+    const ContactSurface& s = surfaces.surface[k];
+    if (!HasCore(s)) continue;
+    for (size_t i = 0; i < after.size(); ++i) {
+      if (i > 0 && SegmentReaches(s, after[i - 1], after[i])) return true;
+      if (paths && SegmentReaches(s, before[i], after[i])) return true;
+      if (after.size() == 1 && SegmentReaches(s, after[0], after[0])) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace cosserat
