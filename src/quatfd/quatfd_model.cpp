@@ -445,13 +445,6 @@ void QuatFdModel::AddMotionLoads(const Eigen::Ref<const Eigen::VectorXd>& q,
   }
 }
 
-Vec3 QuatFdModel::VertexMotionForce_W(const Eigen::Ref<const Eigen::VectorXd>& q,
-                                      const Eigen::Ref<const Eigen::VectorXd>& v, int n) const {
-  if (!motion_loads_) return Vec3::Zero();
-  const SectionMotion motion{q.segment<3>(L::X(n)), VertexChord(q, n).t, v.segment<3>(L::X(n))};
-  return TotalMotionForce_W(loads_, VertexSite(n), motion, nullptr);
-}
-
 void QuatFdModel::DivideVertexRowsByMass(const Eigen::Ref<const Eigen::VectorXd>& q,
                                          Eigen::Ref<Eigen::VectorXd> a, BandedMatrix* dfdq,
                                          BandedMatrix* dfdv) const {

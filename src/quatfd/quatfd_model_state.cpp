@@ -6,6 +6,7 @@
 
 #include "cosserat/lie/quaternion.hpp"
 #include "cosserat/loads/contact.hpp"
+#include "cosserat/loads/total_load.hpp"
 #include "cosserat/quatfd/quatfd_kernels.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 
@@ -218,6 +219,13 @@ Vec4 QuatFdModel::VertexQuaternion(const Eigen::Ref<const Eigen::VectorXd>& q, i
   }
   p.normalize();
   return p;
+}
+
+Vec3 QuatFdModel::VertexMotionForce_W(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                      const Eigen::Ref<const Eigen::VectorXd>& v, int n) const {
+  if (!motion_loads_) return Vec3::Zero();
+  const SectionMotion motion{q.segment<3>(L::X(n)), VertexChord(q, n).t, v.segment<3>(L::X(n))};
+  return TotalMotionForce_W(loads_, VertexSite(n), motion, nullptr);
 }
 
 void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,

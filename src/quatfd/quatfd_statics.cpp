@@ -17,6 +17,12 @@ namespace {
 using L = QuatFdLayout;
 
 struct Workspace {
+  explicit Workspace(int n)
+      : A(n, L::kBandwidth, L::kBandwidth),
+        B(n, L::kBandwidth, L::kBandwidth),
+        a(n),
+        dq(n),
+        zero(Eigen::VectorXd::Zero(n)) {}
   BandedMatrix A, B;
   Eigen::VectorXd a, dq, zero;
   double residual = 0;
@@ -148,12 +154,7 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   if (!options.IsValid(&why)) throw std::invalid_argument("QuatFdStaticsOptions: " + why);
   QuatFdStaticsSummary summary;
   const int n = model->size();
-  Workspace w;
-  w.A.Resize(n, L::kBandwidth, L::kBandwidth);
-  w.B.Resize(n, L::kBandwidth, L::kBandwidth);
-  w.a.resize(n);
-  w.dq.resize(n);
-  w.zero = Eigen::VectorXd::Zero(n);
+  Workspace w(n);
   const double beta = StaticBeta(*model, loads, q);
   auto finish = [&](SolveStatus status) {
     model->set_loads(loads);

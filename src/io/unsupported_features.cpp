@@ -1,0 +1,136 @@
+// What this version runs: the combinations of analysis, formulation, boundary and features a
+// valid problem may still ask for in vain (io::UnsupportedFeatures).
+#include <algorithm>
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include "cosserat/io/problem.hpp"
+#include "cosserat/io/json_reader.hpp"
+#include "problem_assembly.hpp"
+
+namespace cosserat::io {
+
+namespace {
+
+/// "<key>: "<value>" is not implemented in this version (supported: ...)" unless `value` is one
+/// of `supported`.
+template <typename Enum>
+void CheckSupported(const char* key, Enum value, std::initializer_list<Enum> supported,
+                    std::vector<std::string>* out) {
+  if (std::find(supported.begin(), supported.end(), value) != supported.end()) return;
+  std::vector<std::string> names;
+  for (Enum e : supported) names.push_back(ToString(e));
+  out->push_back(std::string(key) + ": " + detail::Quote(ToString(value)) +
+                 " is not implemented in this version (supported: " + detail::QuotedList(names) +
+                 ")");
+}
+
+/// What the drill string's drives (table speed, motor, bit) and a gusting flow run on.
+void DriveAndFlowFeatures(const Problem& p, std::vector<std::string>* out) {
+  const bool quatfd = p.formulation == Formulation::kQuaternionFd;
+  const bool cantilever = p.boundary == Boundary::kCantilever;
+  if (p.gust.present() && p.analysis != Analysis::kDynamics)
+    out->push_back("environment.fluid.gust: a gusting flow needs \"analysis\": \"dynamics\"");
+  if (quatfd && (p.loads.bit.present() || p.dynamics.base_spin != 0.0))
+    out->push_back(
+        std::string(p.loads.bit.present() ? "loads.bit_friction" : "dynamics.base_spin") +
+        ": runs on the \"se3-shooting\" formulation's dynamics in this version");
+  if (p.dynamics.rotary_table.present() && (quatfd || !cantilever))
+    out->push_back(
+        "dynamics.rotary_table: turns a clamped base (\"boundary\": \"cantilever\") on the "
+        "\"se3-shooting\" formulation");
+  if (!quatfd && p.dynamics.base_spin != 0.0 && !cantilever)
+    out->push_back("dynamics.base_spin: turns a clamped base (\"boundary\": \"cantilever\")");
+}
+
+/// Whether the rod has no mass per length at some node of its grid.
+bool MasslessSomewhere(const Problem& p) {
+  const int n = std::max(p.nodes, 2);
+  for (int i = 0; i < n; ++i) {
+    const double s = p.rod.length * i / (n - 1);
+    if (!(p.rod.section->At(s, p.robot.actuation).mass(5, 5) > 0.0)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<std::string> UnsupportedFeatures(const Problem& p) {
+  using A = Analysis;
+  using B = Boundary;
+  std::vector<std::string> out;
+  const bool quatfd = p.formulation == Formulation::kQuaternionFd;
+  if (p.has_assembly) return detail::UnsupportedAssemblyFeatures(p);
+  // Every analysis and formulation runs; the boundary depends on both.
+  if (p.boundary == B::kAnchored && p.analysis == A::kBuckling)
+    out.push_back("boundary: \"anchored\" runs statics, dynamics and modes in this version");
+  else if (p.boundary == B::kAnchored && !quatfd && p.analysis != A::kStatics)
+    out.push_back(
+        "boundary: \"anchored\" runs dynamics and modes on the \"quaternion-fd\" formulation "
+        "in this version (statics on both)");
+  else if (quatfd && p.analysis != A::kBuckling)  // rod.nodes >= 3 is checked by the parser
+    CheckSupported("boundary", p.boundary, {B::kCantilever, B::kAnchored}, &out);
+  else if (quatfd)
+    CheckSupported("boundary", p.boundary, {B::kCantilever}, &out);
+  else if (p.analysis == A::kDynamics)
+    CheckSupported("boundary", p.boundary, {B::kCantilever, B::kFreeFree}, &out);
+  else if (p.analysis == A::kBuckling)
+    CheckSupported("boundary", p.boundary,
+                   {B::kCantilever, B::kPinnedPinned, B::kClampedClamped, B::kClampedPinned}, &out);
+  else if (p.analysis == A::kStatics)
+    CheckSupported("boundary", p.boundary,
+                   {B::kCantilever, B::kPinnedPinned, B::kClampedClamped, B::kClampedPinned,
+                    B::kAnchored},
+                   &out);
+  else
+    CheckSupported("boundary", p.boundary, {B::kCantilever}, &out);
+  if (!quatfd && p.analysis == A::kStatics && p.boundary != B::kCantilever &&
+      p.boundary != B::kFreeFree && p.has_robot)
+    out.push_back("robot: a robot runs with \"boundary\": \"cantilever\" in statics (got " +
+                  detail::Quote(ToString(p.boundary)) + ")");
+  DriveAndFlowFeatures(p, &out);
+  if (quatfd && p.rod.section && MasslessSomewhere(p))
+    out.push_back(
+        "rod.material.density: a massless rod (density 0) runs on the \"se3-shooting\" "
+        "formulation only; the \"quaternion-fd\" model divides its forces by the nodes' masses");
+  if (p.analysis == A::kBuckling && quatfd) {
+    // The quaternion-FD stiffness is the Hessian of a potential: conservative tip loads only.
+    if (p.loads.tip_force_frame == LoadFrame::kBody)
+      out.push_back(
+          "loads.tip_force_frame: \"body\" (a follower force) is not conservative; buckling on "
+          "the \"quaternion-fd\" formulation needs \"world\"");
+    if (p.loads.tip_moment_frame == LoadFrame::kBody)
+      out.push_back(
+          "loads.tip_moment_frame: \"body\" (a follower moment) is not conservative; buckling "
+          "on the \"quaternion-fd\" formulation needs \"world\"");
+  }
+  if (p.analysis == A::kBuckling && quatfd &&
+      (p.buckling.load == BucklingLoad::kTendonTension ||
+       p.buckling.load == BucklingLoad::kPressure))
+    out.push_back("buckling.load: " + detail::Quote(ToString(p.buckling.load)) +
+                  " runs on the \"se3-shooting\" formulation only in this version");
+  if (p.has_robot) {
+    if (p.robot.kind == RobotKind::kEversion && p.analysis != A::kStatics)
+      out.push_back(
+          "robot.kind: an \"eversion\" robot runs in statics (quasi-static growth) only "
+          "in this version");
+    // A pneumatic robot is a rod of actuated rest strain (SectionLaw): the quaternion-FD model
+    // takes it, at the one actuation it is built with (statics, modes).
+    const bool quatfd_pneumatic = p.robot.kind == RobotKind::kPneumatic && p.rod.tendons.empty() &&
+                                  (p.analysis == A::kStatics || p.analysis == A::kModes);
+    if (quatfd && !quatfd_pneumatic)
+      out.push_back(
+          "robot: robots run on the \"se3-shooting\" formulation only in this version (a "
+          "\"pneumatic\" robot without tendons also runs statics and modes on \"quaternion-fd\")");
+    if (p.analysis == A::kModes && !p.rod.tendons.empty())
+      out.push_back("robot: modes of a robot with tendons are not implemented in this version");
+    if (p.robot.tendon_lengths && p.analysis != A::kStatics)
+      out.push_back(
+          "robot.actuation.length: displacement control runs in statics only in this "
+          "version (use \"tension\" in dynamics)");
+  }
+  return out;
+}
+
+}  // namespace cosserat::io
