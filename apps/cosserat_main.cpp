@@ -36,6 +36,8 @@ namespace {
 constexpr int kExitConverged = 0;
 constexpr int kExitNotConverged = 1;
 constexpr int kExitBadInput = 2;
+// The most threads `sweep --threads` takes (a sweep uses no more threads than points anyway).
+constexpr int kMaxThreads = 4096;
 
 const char* const kUsage =
     "usage:\n"
@@ -106,12 +108,15 @@ Command ParseCommandLine(const std::vector<std::string>& args) {
       cmd.out_path = OptionValue(args, &i, "--out");
     else if (cmd.name == "sweep" && (arg == "--threads" || arg.rfind("--threads=", 0) == 0)) {
       const std::string n = OptionValue(args, &i, "--threads");
+      std::size_t used = 0;
       try {
-        cmd.threads = std::stoi(n);
+        cmd.threads = std::stoi(n, &used);
       } catch (const std::exception&) {
         cmd.threads = -1;
       }
-      if (cmd.threads < 1) throw UsageError{"--threads needs a whole number >= 1, got '" + n + "'"};
+      if (used != n.size() || cmd.threads < 1 || cmd.threads > kMaxThreads)
+        throw UsageError{"--threads needs a whole number from 1 to " + std::to_string(kMaxThreads) +
+                         ", got '" + n + "'"};
     }
     else if (cmd.name == "solve" && is_csv)
       cmd.csv_path = OptionValue(args, &i, "--csv");

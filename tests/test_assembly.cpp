@@ -171,21 +171,28 @@ TEST(Assembly, ARodCutAtAJunctionIsTheUncutRod) {
 // the corner sways P b a²/(2EI). P is 1e-4 of the column's buckling load scale EI/a², so the
 // frame's second-order effects (P a²/EI, the rotations ~1e-3) stay near 1e-3; shear and stretch
 // add ~(r/L)² ≈ 1e-5: within 0.3 %.
+/// The L-frame: the column from the world up to the corner body, the beam from the corner along
+/// +x to the end body, which carries P downwards.
+Assembly LFrame(const SteelRod& column, const SteelRod& beam, double P) {
+  Assembly a;
+  lie::SE3 corner, end;
+  corner.p = Vec3(0, 0, column.length);
+  end.p = Vec3(beam.length, 0, column.length);
+  a.bodies = {Junction("corner", corner), Junction("end", end)};
+  a.bodies[1].force_W = Vec3(0, 0, -P);
+  AssemblyRod b = ClampedRod("beam", beam.model(), 31, 1, 0);
+  b.base.R = lie::SO3Exp(Vec3(0, 0.5 * M_PI, 0));  // tangent along +x
+  b.attachment.R = b.base.R;
+  a.rods = {ClampedRod("column", column.model(), 41, 0), b};
+  return a;
+}
+
 TEST(Assembly, AnLFrameDeflectsAsLinearBeamTheorySays) {
   const SteelRod column{0.4, 0.001}, beam{0.3, 0.001};
   const double a_len = column.length, b_len = beam.length;
   const double P = 1e-3 * column.EI() / (a_len * a_len);  // N
-  Assembly a;
-  lie::SE3 corner, end;
-  corner.p = Vec3(0, 0, a_len);
-  end.p = Vec3(b_len, 0, a_len);
-  a.bodies = {Junction("corner", corner), Junction("end", end)};
-  a.bodies[1].force_W = Vec3(0, 0, -P);
-  AssemblyRod c = ClampedRod("column", column.model(), 41, 0);
-  AssemblyRod b = ClampedRod("beam", beam.model(), 31, 1, 0);
-  b.base.R = lie::SO3Exp(Vec3(0, 0.5 * M_PI, 0));  // tangent along +x
-  b.attachment.R = b.base.R;
-  a.rods = {c, b};
+  Assembly a = LFrame(column, beam, P);
+  const lie::SE3 corner = a.bodies[0].pose, end = a.bodies[1].pose;
   AssemblyStaticsSolver solver(a);
   const AssemblySummary s = solver.Solve(StaticLoads{});
   ASSERT_TRUE(s.converged()) << ToString(s.status);
@@ -227,16 +234,8 @@ TEST(Assembly, AStiffBeamPassesItsLoadToTheSoftColumn) {
     const SteelRod column{0.4, 0.001}, beam{0.3, beam_radius};
     const double a_len = column.length, b_len = beam.length;
     const double P = 1e-3 * column.EI() / (a_len * a_len);  // N
-    Assembly a;
-    lie::SE3 corner, end;
-    corner.p = Vec3(0, 0, a_len);
-    end.p = Vec3(b_len, 0, a_len);
-    a.bodies = {Junction("corner", corner), Junction("end", end)};
-    a.bodies[1].force_W = Vec3(0, 0, -P);
-    AssemblyRod b = ClampedRod("beam", beam.model(), 31, 1, 0);
-    b.base.R = lie::SO3Exp(Vec3(0, 0.5 * M_PI, 0));  // tangent along +x
-    b.attachment.R = b.base.R;
-    a.rods = {ClampedRod("column", column.model(), 41, 0), b};
+    const Assembly a = LFrame(column, beam, P);
+    const lie::SE3 corner = a.bodies[0].pose, end = a.bodies[1].pose;
     AssemblyStaticsSolver solver(a);
     const AssemblySummary s = solver.Solve(StaticLoads{});
     ASSERT_TRUE(s.converged()) << ToString(s.status) << " at beam radius " << beam_radius;

@@ -31,7 +31,9 @@ TEST(BatchStepper, RodsReachExactlyWhatLoneSteppersReach) {
   const int M = 8, steps = 30;
   Bdf2Options opt;
   opt.dt = 2e-3;
-  for (int threads : {1, 2, 3}) {
+  // A million threads asked for: the team is never larger than the rods (it once tried to
+  // start them all and ran the system out of threads).
+  for (int threads : {1, 2, 3, 1000000}) {
     SCOPED_TRACE(threads);
     BatchStepper batch(rod.model(), 21, opt, M, threads);
     StepInput rest;
@@ -51,6 +53,11 @@ TEST(BatchStepper, RodsReachExactlyWhatLoneSteppersReach) {
       EXPECT_EQ(batch.rod(i).state().twist_B.back(), lone[i].state().twist_B.back()) << i;
     }
   }
+}
+
+TEST(BatchStepper, NoThreadsIsAnError) {
+  const testing::SteelRod rod{0.5, 0.001};
+  EXPECT_THROW(BatchStepper(rod.model(), 21, Bdf2Options{}, 4, 0), std::invalid_argument);
 }
 
 }  // namespace

@@ -195,7 +195,11 @@ SweepSummary RunSweep(const io::Study& study, const std::string& csv_path,
       options.progress(done, total);
     }
   };
-  ThreadTeam(std::max(1, options.threads)).For(pending.size(), point);
+  // No more threads than points (a --threads of 10⁹ once asked the system for 10⁹ threads).
+  const int threads = static_cast<int>(
+      std::clamp<std::uint64_t>(static_cast<std::uint64_t>(std::max(1, options.threads)), 1,
+                                std::max<std::uint64_t>(1, pending.size())));
+  ThreadTeam(threads).For(pending.size(), point);
   SweepSummary summary = file.Finish();
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
