@@ -80,8 +80,23 @@ std::string OptionValue(const std::vector<std::string>& args, std::size_t* i,
   if (arg.size() > option.size() && arg.compare(0, option.size() + 1, option + "=") == 0)
     return arg.substr(option.size() + 1);
   if (*i + 1 >= args.size())
-    throw UsageError{option + (option == "--vtk" ? " needs a directory" : " needs a file name")};
+    throw UsageError{option + (option == "--vtk"       ? " needs a directory"
+                               : option == "--threads" ? " needs a number of threads"
+                                                       : " needs a file name")};
   return args[++*i];
+}
+
+/// True when both paths name one existing file.
+bool SameFile(const std::string& a, const std::string& b) {
+  std::error_code ea, eb;
+  return std::filesystem::exists(a, ea) && std::filesystem::exists(b, eb) &&
+         std::filesystem::equivalent(a, b, ea);
+}
+
+/// Sets an option that may be given once.
+void SetOnce(std::optional<std::string>* value, const std::string& option, std::string given) {
+  if (*value) throw UsageError{option + " is given twice ('" + **value + "' and '" + given + "')"};
+  *value = std::move(given);
 }
 
 Command ParseCommandLine(const std::vector<std::string>& args) {
@@ -105,7 +120,7 @@ Command ParseCommandLine(const std::vector<std::string>& args) {
     if (arg == "--help" || arg == "-h")
       cmd.name = "help";
     else if ((cmd.name == "solve" || cmd.name == "sweep") && is_out)
-      cmd.out_path = OptionValue(args, &i, "--out");
+      SetOnce(&cmd.out_path, "--out", OptionValue(args, &i, "--out"));
     else if (cmd.name == "sweep" && (arg == "--threads" || arg.rfind("--threads=", 0) == 0)) {
       const std::string n = OptionValue(args, &i, "--threads");
       std::size_t used = 0;
@@ -119,9 +134,9 @@ Command ParseCommandLine(const std::vector<std::string>& args) {
                          ", got '" + n + "'"};
     }
     else if (cmd.name == "solve" && is_csv)
-      cmd.csv_path = OptionValue(args, &i, "--csv");
+      SetOnce(&cmd.csv_path, "--csv", OptionValue(args, &i, "--csv"));
     else if (cmd.name == "solve" && is_vtk)
-      cmd.vtk_dir = OptionValue(args, &i, "--vtk");
+      SetOnce(&cmd.vtk_dir, "--vtk", OptionValue(args, &i, "--vtk"));
     else if (arg.size() > 1 && arg[0] == '-')
       throw UsageError{"unknown option '" + arg + "'"};
     else if (cmd.problem_path.empty())
@@ -136,6 +151,10 @@ Command ParseCommandLine(const std::vector<std::string>& args) {
     throw UsageError{cmd.name + " needs a problem file"};
   if (cmd.name == "sweep" && cmd.problem_path.empty()) throw UsageError{"sweep needs a study file"};
   if (cmd.name == "sweep" && !cmd.out_path) throw UsageError{"sweep needs --out RESULTS.csv"};
+  // An output written over the input file would lose it.
+  for (const std::optional<std::string>* out : {&cmd.out_path, &cmd.csv_path})
+    if (*out && SameFile(**out, cmd.problem_path))
+      throw UsageError{"the output '" + **out + "' is the input file; choose another name"};
   return cmd;
 }
 
@@ -213,6 +232,20 @@ std::ofstream OpenOutput(const std::string& path) {
   return out;
 }
 
+/// The --vtk directory, made before the run, and its series file writable: a bad directory
+/// fails fast instead of after the simulation.
+void CheckVtkDirectory(const std::string& directory, const std::string& stem) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  if (ec || !std::filesystem::is_directory(directory, ec))
+    throw std::runtime_error(directory + ": cannot create the directory" +
+                             (ec ? " (" + ec.message() + ")" : std::string(" (a file is there)")));
+  const std::string pvd = (std::filesystem::path(directory) / (stem + ".pvd")).string();
+  std::ofstream probe(pvd, std::ios::app);
+  if (!probe)
+    throw std::runtime_error("cannot write '" + pvd + "' (" + std::strerror(errno) + ")");
+}
+
 int RunSolve(const Command& cmd) {
   const std::optional<cosserat::io::Problem> problem = LoadRunnableProblem(cmd.problem_path);
   if (!problem) return kExitBadInput;
@@ -227,6 +260,8 @@ int RunSolve(const Command& cmd) {
   if (cmd.vtk_dir && problem->analysis != cosserat::io::Analysis::kDynamics)
     throw UsageError{"--vtk writes the frames of a dynamics run; this problem's analysis is \"" +
                      cosserat::io::ToString(problem->analysis) + "\""};
+  const std::string stem = std::filesystem::path(cmd.problem_path).stem().string();
+  if (cmd.vtk_dir) CheckVtkDirectory(*cmd.vtk_dir, stem);
   cosserat::run::Result result;
   {
     const bool dynamics = problem->analysis == cosserat::io::Analysis::kDynamics;
@@ -238,7 +273,6 @@ int RunSolve(const Command& cmd) {
   if (csv_file) *csv_file << result.nodes_csv;
   std::cerr << result.log;
   if (cmd.vtk_dir) {
-    const std::string stem = std::filesystem::path(cmd.problem_path).stem().string();
     std::string error;
     if (!cosserat::io::WriteVtkSeries(*cmd.vtk_dir, stem, result.frames, result.node_radius,
                                       &error))

@@ -1,11 +1,18 @@
 #include "cosserat/numerics/thread_team.hpp"
 
 #include <algorithm>
+#include <system_error>
 
 namespace cosserat {
 
 ThreadTeam::ThreadTeam(int threads) {
-  for (int t = 1; t < std::max(1, threads); ++t) workers_.emplace_back([this] { Work(); });
+  for (int t = 1; t < std::max(1, threads); ++t) {
+    try {
+      workers_.emplace_back([this] { Work(); });
+    } catch (const std::system_error&) {
+      break;  // the system has no more threads to give: a smaller team does the same work
+    }
+  }
 }
 
 ThreadTeam::~ThreadTeam() {

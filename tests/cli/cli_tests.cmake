@@ -67,6 +67,19 @@ cosserat_cli_test(NAME sweep_threads_too_many
                   ARGS sweep "${_cli_dir}/bad_study.json" --out "${_cli_out}/t.csv" --threads 1000000000
                   CODE 2 STDERR "--threads needs a whole number from 1 to 4096, got '1000000000'")
 
+# Outputs are checked before the run: a --vtk directory that cannot be made, an option given
+# twice, an output over the input file (a copy here, so a failure would not eat the example).
+cosserat_cli_test(NAME vtk_directory_unwritable
+                  ARGS solve "${_cli_dir}/dynamics.json" --vtk "/proc/cosserat_no_such_dir"
+                  CODE 2 STDERR "/proc/cosserat_no_such_dir: cannot create the directory")
+cosserat_cli_test(NAME out_given_twice
+                  ARGS solve "${_cli_example}" --out "${_cli_out}/a.json" --out "${_cli_out}/b.json"
+                  CODE 2 STDERR "--out is given twice")
+file(COPY "${_cli_example}" DESTINATION "${_cli_out}/own")
+cosserat_cli_test(NAME out_over_the_input
+                  ARGS solve "${_cli_out}/own/cantilever.json" --out "${_cli_out}/own/cantilever.json"
+                  CODE 2 STDERR "is the input file; choose another name")
+
 # The same release with the order-2 Heun scheme in s (half the stage evaluations).
 cosserat_cli_test(NAME solve_dynamics_heun
                   ARGS solve "${_cli_dir}/dynamics_heun.json"

@@ -16,7 +16,8 @@ namespace cosserat {
 
 class ThreadTeam {
  public:
-  /// `threads` in all, the caller included (at least 1).
+  /// `threads` in all, the caller included (at least 1); fewer when the system cannot start
+  /// that many (size() says how many).
   explicit ThreadTeam(int threads);
   ~ThreadTeam();
   ThreadTeam(const ThreadTeam&) = delete;
