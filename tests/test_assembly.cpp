@@ -291,6 +291,17 @@ TEST(Assembly, StewartGoughInverseKinematicsIsSelfConsistent) {
   EXPECT_LT(dr, 1e-6);
 }
 
+// A pose below the base plate is out of the robot's reach: the equations' root there is the
+// robot's mirror image, every rod of negative length. It once came back "converged" with six
+// lengths near −0.45 m.
+TEST(Assembly, AStewartGoughPoseBelowTheBaseIsOutOfReach) {
+  AssemblyStaticsSolver inverse(StewartGough(0.0));
+  const AssemblySummary s =
+      inverse.SolveLengths(StaticLoads{}, {Pose(Vec3(0, 0.02, -0.45), Vec3(0, 0, 0.1))});
+  EXPECT_EQ(s.status, SolveStatus::kOutOfReach) << ToString(s.status);
+  EXPECT_FALSE(s.converged());
+}
+
 /// The force and the moment about the origin (world) that the loads leave unbalanced by the six
 /// base reactions of the Stewart–Gough robot with a 0.5 kg platform under gravity, on `nodes`,
 /// at solver tolerance 1e-13. The rods' weight is what each rod's shot sums

@@ -548,7 +548,12 @@ AssemblySummary AssemblyStaticsSolver::SolveLengths(const StaticLoads& loads,
     };
     converged = Follow(at, &summary) == 1.0;
   }
-  Conclude(converged, loads, start, t0, &summary);
+  // A root with a rod of zero or negative length (the mirror image of the robot through its
+  // base, for a pose below it) solves the equations but is no robot: out of reach.
+  const bool reachable =
+      std::all_of(lengths_.begin(), lengths_.end(), [](double l) { return l > 0.0; });
+  Conclude(converged && reachable, loads, start, t0, &summary);
+  if (converged && !reachable) summary.status = SolveStatus::kOutOfReach;
   return summary;
 }
 

@@ -45,7 +45,7 @@ bool HasNonFinite(const nlohmann::ordered_json& j) {
 /// rod of 1e-300 m) is no answer: its status becomes non_finite, never a silent null.
 void RefuseNonFiniteAnswers(Result* result) {
   if (!result->converged) return;
-  for (const char* key : {"tip", "base_wrench", "nodes", "modes", "buckling"}) {
+  for (const char* key : {"tip", "base_wrench", "nodes", "modes", "buckling", "robot", "assembly"}) {
     if (!result->json.contains(key) || !HasNonFinite(result->json[key])) continue;
     result->converged = false;
     result->json["status"] = ToString(SolveStatus::kNonFinite);

@@ -14,6 +14,8 @@ const char* ToString(SolveStatus status) {
       return "load_stepping_failed";
     case SolveStatus::kNonFinite:
       return "non_finite";
+    case SolveStatus::kOutOfReach:
+      return "out_of_reach";
   }
   return "unknown";
 }

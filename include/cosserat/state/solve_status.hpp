@@ -11,9 +11,12 @@ enum class SolveStatus {
   kLoadSteppingFailed,  ///< continuation could not reach the full load: the load increment fell
                         ///< below Options::min_load_step or Options::max_load_steps was hit.
   kNonFinite,           ///< the integration produced NaN or Inf at every attempt.
+  kOutOfReach,          ///< the equations have a root, but one no body can take: an inverse
+                        ///< pose that needs a rod of zero or negative length.
 };
 
-/// "converged", "max_iterations", "load_stepping_failed", "non_finite", "not_run".
+/// "converged", "max_iterations", "load_stepping_failed", "non_finite", "out_of_reach",
+/// "not_run".
 const char* ToString(SolveStatus status);
 
 }  // namespace cosserat
