@@ -400,6 +400,21 @@ TEST(ProblemIo, DegenerateSectionsAndMaterialsAreNamed) {
       << AllErrors(r);
 }
 
+// Jamming pressures are one per switchable segment of the rod's jamming profile, as chamber
+// pressures are one per chamber: a wrong count, or a robot with no jamming profile, once ran
+// with the extra values ignored.
+TEST(ProblemIo, JammingPressuresMatchTheProfilesSegments) {
+  json j = json::parse(std::ifstream(SourceDir() + "/robots/jamming_virtual_joints.json"));
+  ASSERT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
+  j["robot"]["actuation"]["jamming_pressure"] = {80000, 0};
+  EXPECT_ERROR(Parse(j), "robot.actuation.jamming_pressure: expected one value per segment of the "
+                         "jamming profile (3 in rod.stiffness_profile.segments)");
+  j = json::parse(std::ifstream(SourceDir() + "/robots/tendon_three_tendon.json"));
+  j["robot"]["actuation"]["jamming_pressure"] = {1000};
+  EXPECT_ERROR(Parse(j), "robot.actuation.jamming_pressure: expected a rod.stiffness_profile of "
+                         "kind \"jamming\"");
+}
+
 // A massless rod (density 0) is a statics case the SE(3) solvers take; the quaternion-FD model
 // divides forces by the vertex masses, so it is refused there, naming the density, instead of
 // failing or writing NaN frequencies.

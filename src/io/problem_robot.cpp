@@ -112,7 +112,8 @@ bool ReadList(const ObjectReader& o, const std::string& key, int max, const Numb
 
 /// "actuation" / "initial_actuation": tensions or lengths, pressure, chamber and jamming
 /// pressures.
-void ParseActuation(const ObjectReader& a, int tendons, int chambers, Actuation* act,
+void ParseActuation(const ObjectReader& a, int tendons, int chambers, int jamming_segments,
+                    Actuation* act,
                     std::optional<std::array<double, Actuation::kMaxTendons>>* lengths) {
   std::vector<std::string> keys = {"tension", "pressure", "chamber_pressure", "jamming_pressure"};
   if (lengths) keys.insert(keys.begin() + 1, "length");
@@ -150,9 +151,28 @@ void ParseActuation(const ObjectReader& a, int tendons, int chambers, Actuation*
       a.Reject("chamber_pressure",
                "one value per chamber (" + std::to_string(chambers) + " in robot.chambers)");
   }
-  if (a.Has("jamming_pressure"))
-    ReadList(a, "jamming_pressure", Actuation::kMaxSegments, NonNegativeNumber(),
-             act->jamming_pressure.data(), &count);
+  if (a.Has("jamming_pressure") &&
+      ReadList(a, "jamming_pressure", Actuation::kMaxSegments, NonNegativeNumber(),
+               act->jamming_pressure.data(), &count) &&
+      count != jamming_segments)
+    a.Reject("jamming_pressure",
+             jamming_segments == 0
+                 ? std::string("a rod.stiffness_profile of kind \"jamming\" to act on (it has "
+                               "no switchable segments)")
+                 : "one value per segment of the jamming profile (" +
+                       std::to_string(jamming_segments) + " in rod.stiffness_profile.segments)");
+}
+
+/// The switchable segments of a "jamming" rod.stiffness_profile (0 for any other).
+int JammingSegments(const json& top) {
+  const auto rod = top.find("rod");
+  const json* profile = rod != top.end() && rod->is_object() && rod->contains("stiffness_profile")
+                            ? &(*rod)["stiffness_profile"]
+                            : nullptr;
+  if (!profile || !profile->is_object() || profile->value("kind", "") != "jamming") return 0;
+  const auto segments = profile->find("segments");
+  return segments != profile->end() && segments->is_array() ? static_cast<int>(segments->size())
+                                                            : 0;
 }
 
 /// "tendons": each tendon's route, within the guides' radius `guide`, and its anchor within the
@@ -275,10 +295,11 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
       robot.report().Add(robot.PathOf("growth"), "only an \"eversion\" robot grows");
   }
   const int tendons = static_cast<int>(p->rod.tendons.size());
+  const int jamming = JammingSegments(top);
   if (const auto a = ReadObject(robot, "actuation", Presence::kOptional))
-    ParseActuation(*a, tendons, chambers, &p->robot.actuation, &p->robot.tendon_lengths);
+    ParseActuation(*a, tendons, chambers, jamming, &p->robot.actuation, &p->robot.tendon_lengths);
   if (const auto a = ReadObject(robot, "initial_actuation", Presence::kOptional))
-    ParseActuation(*a, tendons, chambers, &p->robot.initial_actuation, nullptr);
+    ParseActuation(*a, tendons, chambers, jamming, &p->robot.initial_actuation, nullptr);
 }
 
 }  // namespace cosserat::io::detail
