@@ -50,11 +50,14 @@ class PyBatchStepper {
 
   int InitializeAtRest() {
     py::gil_scoped_release release;
-    return batch_->InitializeAtRest(initial_);
+    const int converged = batch_->InitializeAtRest(initial_);
+    initialized_ = converged == batch_->count();
+    return converged;
   }
 
   /// tip_force (M, 3) N, world; tension (M, tendons) N. Returns how many rods converged.
   int Step(std::optional<Eigen::MatrixXd> tip_force, std::optional<Eigen::MatrixXd> tension) {
+    RequireState();
     const int M = batch_->count();
     if (tip_force) {
       Check(*tip_force, M, 3, "tip_force");
@@ -71,6 +74,7 @@ class PyBatchStepper {
   }
 
   Eigen::MatrixXd TipPositions() const {
+    RequireState();
     Eigen::MatrixXd out(batch_->count(), 3);
     for (int i = 0; i < batch_->count(); ++i)
       out.row(i) = batch_->rod(i).state().tip_position_W().transpose();
@@ -80,6 +84,14 @@ class PyBatchStepper {
   int count() const { return batch_->count(); }
 
  private:
+  /// Every rod at rest after a converged initialize_at_rest (as the Stepper requires).
+  void RequireState() const {
+    if (!initialized_)
+      throw std::runtime_error(
+          "the BatchStepper has no state yet: call initialize_at_rest() first (and every rod's "
+          "initial equilibrium must converge)");
+  }
+
   static void Check(const Eigen::MatrixXd& a, int rows, int cols, const char* name) {
     if (a.rows() != rows || a.cols() != cols)
       throw py::value_error(std::string(name) + ": expected shape (" + std::to_string(rows) + ", " +
@@ -93,6 +105,7 @@ class PyBatchStepper {
   std::optional<BatchStepper> batch_;
   StepInput initial_;
   std::vector<StepInput> inputs_;
+  bool initialized_ = false;
 };
 
 /// cosserat._core.sweep: a study (io/study.hpp) run into a CSV file (run/sweep.hpp).

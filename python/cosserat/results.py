@@ -7,11 +7,48 @@ import numpy as np
 from . import _core
 
 
+def _path(parent, key):
+    """A field's path as the error messages of the problem files write it: rod.length, a[2]."""
+    if isinstance(key, int):
+        return f"{parent}[{key}]"
+    return f"{parent}.{key}" if parent else str(key)
+
+
+def _check_json_values(value, path=""):
+    """Raises ValueError for a NaN or an infinity and TypeError for a value JSON cannot hold,
+    naming the field, before the dict is written as JSON (which would write NaN, not JSON)."""
+    if isinstance(value, dict):
+        for key, item in value.items():
+            if not isinstance(key, str):
+                raise TypeError(f"{path or 'problem'}: keys must be strings, got {key!r}")
+            _check_json_values(item, _path(path, key))
+    elif isinstance(value, (list, tuple)):
+        for i, item in enumerate(value):
+            _check_json_values(item, _path(path, i))
+    elif isinstance(value, np.ndarray):
+        _check_json_values(value.tolist(), path)
+    elif isinstance(value, (bool, str, int, np.integer)) or value is None:
+        return
+    elif isinstance(value, (float, np.floating)):
+        if not np.isfinite(value):
+            raise ValueError(f"{path}: expected a finite number, got {value}")
+    else:
+        raise TypeError(f"{path}: expected a JSON value (number, string, list, dict), "
+                        f"got {type(value).__name__}")
+
+
+def _json_text(value):
+    """A dict (a problem or a study) as JSON text, NumPy values included, bad values named."""
+    _check_json_values(value)
+    return json.dumps(value, allow_nan=False,
+                      default=lambda v: v.tolist() if hasattr(v, "tolist") else v)
+
+
 def _as_problem(problem):
     if isinstance(problem, _core.Problem):
         return problem
     if isinstance(problem, dict):
-        return _core.parse_problem(json.dumps(problem))
+        return _core.parse_problem(_json_text(problem))
     if isinstance(problem, (str, os.PathLike)):
         return _core.load_problem(os.fspath(problem))
     raise TypeError("problem: expected a cosserat.Problem, a dict with the problem-file keys "

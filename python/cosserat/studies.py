@@ -1,10 +1,10 @@
 """cosserat.sweep: a study (docs/sweeps.md) from Python, with its rows as a list of dicts."""
 import csv
-import json
 import os
 import tempfile
 
 from . import _core
+from .results import _json_text
 
 
 def _cell(text):
@@ -30,11 +30,20 @@ def sweep(study, out=None, threads=None):
     field.
     """
     if isinstance(study, dict):
-        text, base = json.dumps(study), os.getcwd()
-    else:
-        with open(os.fspath(study)) as f:
-            text = f.read()
+        text, base = _json_text(study), os.getcwd()
+    elif isinstance(study, (str, os.PathLike)):
+        try:
+            with open(os.fspath(study)) as f:
+                text = f.read()
+        except OSError as e:
+            raise ValueError(f"study: cannot read {os.fspath(study)!r} ({e.strerror})") from e
         base = os.path.dirname(os.path.abspath(os.fspath(study)))
+    else:
+        raise TypeError("study: expected a dict with the study-file keys or a file path, got "
+                        f"{type(study).__name__}")
+    if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int)
+                                or threads < 1):
+        raise ValueError(f"threads: expected a whole number >= 1, got {threads!r}")
     if out is None:
         handle, out = tempfile.mkstemp(prefix="cosserat_sweep_", suffix=".csv")
         os.close(handle)

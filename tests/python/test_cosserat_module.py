@@ -21,7 +21,8 @@ with open("tests/reference/natural_frequencies.json") as f:
     BETA_L = json.load(f)["beta_L_clamped_free"]
 
 
-def wire(analysis="statics", extra=None):
+def wire_spec(analysis="statics", extra=None):
+    """The wire as a dict with the problem-file keys."""
     problem = {
         "format": "cosserat-problem/1",
         "analysis": analysis,
@@ -32,7 +33,11 @@ def wire(analysis="statics", extra=None):
         "loads": {},
     }
     problem.update(extra or {})
-    return cosserat.parse_problem(json.dumps(problem))
+    return problem
+
+
+def wire(analysis="statics", extra=None):
+    return cosserat.parse_problem(json.dumps(wire_spec(analysis, extra)))
 
 
 class Environment(unittest.TestCase):
@@ -421,6 +426,16 @@ class PythonSide(unittest.TestCase):
                                                "material": {"youngs_modulus": E,
                                                             "shear_modulus": G,
                                                             "density": RHO}}}))
+        # A NaN or an object in the dict is named where it is (JSON has no NaN: once a parse
+        # error at a column of the written text).
+        bad = wire_spec(extra={"loads": {"tip_force": [float("nan"), 0, 0]}})
+        with self.assertRaisesRegex(ValueError, r"loads.tip_force\[0\]: expected a finite number"):
+            cosserat.solve(bad)
+        with self.assertRaisesRegex(TypeError, "loads.gravity: expected a JSON value"):
+            cosserat.solve(wire_spec(extra={"loads": {"gravity": object()}}))
+        # NumPy values are numbers like any other.
+        self.assertTrue(cosserat.solve(
+            wire_spec(extra={"loads": {"tip_force": np.array([-EI / L**2, 0.0, 0.0])}}))["converged"])
 
     def test_frames_plot_and_animate(self):
         import matplotlib
@@ -481,6 +496,15 @@ class Batches(unittest.TestCase):
             np.testing.assert_array_equal(tips[i], s.tip_position())
         with self.assertRaisesRegex(ValueError, r"tip_force: expected shape \(64, 3\)"):
             batch.step(tip_force=np.zeros((3, 3)))
+        # No state before initialize_at_rest (it once returned zeros), and no more threads than
+        # rods whatever is asked (a million once started a million).
+        fresh = cosserat.BatchStepper(p, 2, threads=10**6)
+        with self.assertRaisesRegex(RuntimeError, "initialize_at_rest"):
+            fresh.tip_positions()
+        with self.assertRaisesRegex(RuntimeError, "initialize_at_rest"):
+            fresh.step()
+        self.assertEqual(fresh.initialize_at_rest(), 2)
+        self.assertEqual(fresh.tip_positions().shape, (2, 3))
 
     def test_sweep_rows_are_the_solves_of_their_points(self):
         # Each row of a small study is what solving its point alone gives.
@@ -499,6 +523,16 @@ class Batches(unittest.TestCase):
             self.assertEqual(row["status"], "converged")
         with self.assertRaisesRegex(ValueError, "parameters\\[0\\].path"):
             cosserat.sweep(dict(study, parameters=[{"path": "/nope/x", "values": [1]}]))
+        for threads in (0, -1, 1.5):
+            with self.assertRaisesRegex(ValueError, "threads: expected a whole number"):
+                cosserat.sweep(study, threads=threads)
+        with self.assertRaisesRegex(ValueError, r"parameters\[0\].values\[0\]: expected a finite"):
+            cosserat.sweep(dict(study, parameters=[{"path": "/loads/tip_force/0",
+                                                    "values": [float("nan")]}]))
+        with self.assertRaisesRegex(ValueError, "study: cannot read"):
+            cosserat.sweep("no_such_study.json")
+        with self.assertRaisesRegex(TypeError, "study: expected a dict"):
+            cosserat.sweep(42)
 
 
 if __name__ == "__main__":
