@@ -415,6 +415,16 @@ TEST(ProblemIo, JammingPressuresMatchTheProfilesSegments) {
                          "kind \"jamming\"");
 }
 
+// A tolerance above 1e-3 of the dimensionless residual can pass the rigid-body guess itself as
+// converged (tolerance 1: the example cantilever's tip 1.4 % off): refused.
+TEST(ProblemIo, ASolverToleranceAboveOneThousandthIsRefused) {
+  json j = ValidProblem();
+  j["solver"] = {{"tolerance", 1e-3}};
+  EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
+  j["solver"] = {{"tolerance", 1.0}};
+  EXPECT_ERROR(Parse(j), "solver.tolerance: expected a number in (0, 1e-3]");
+}
+
 // A massless rod (density 0) is a statics case the SE(3) solvers take; the quaternion-FD model
 // divides forces by the vertex masses, so it is refused there, naming the density, instead of
 // failing or writing NaN frequencies.

@@ -143,7 +143,11 @@ StaticLoads ParseLoads(const ObjectReader& o) {
 
 void ParseSolver(const ObjectReader& o, Problem::Solver* options) {
   o.AllowOnly({"tolerance", "max_iterations"});
-  options->tolerance = ReadNumber(o, "tolerance", PositiveNumber(), Presence::kOptional)
+  // The residual is dimensionless (moments over EI/L, forces over EI/L²): above 1e-3 a
+  // "converged" solve may be the rigid-body guess itself (at 1, 1.4 % of the tip's deflection
+  // off on the example cantilever).
+  const NumberRule tolerance{"a number in (0, 1e-3]", [](double x) { return x > 0 && x <= 1e-3; }};
+  options->tolerance = ReadNumber(o, "tolerance", tolerance, Presence::kOptional)
                            .value_or(options->tolerance);
   options->max_iterations = ReadInteger(o, "max_iterations", 1, kMaxIterations, Presence::kOptional)
                                 .value_or(options->max_iterations);
