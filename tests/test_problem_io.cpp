@@ -425,6 +425,17 @@ TEST(ProblemIo, ASolverToleranceAboveOneThousandthIsRefused) {
   EXPECT_ERROR(Parse(j), "solver.tolerance: expected a number in (0, 1e-3]");
 }
 
+// One error in an eversion robot's inflated profile is one line: the robot's checks of its
+// profile kind and of its growth against rod.length once added two false ones ("expected a
+// robot whose rod.stiffness_profile is of kind \"inflated\"", "<= rod.length (0 m)").
+TEST(ProblemIo, ABadInflatedProfileIsOneError) {
+  json j = json::parse(std::ifstream(SourceDir() + "/robots/eversion_banded_vine.json"));
+  j["rod"]["stiffness_profile"]["wall_thickness"] = j["rod"]["section"]["radius"];
+  const ParseResult r = Parse(j);
+  ASSERT_EQ(r.errors.size(), 1u) << AllErrors(r);
+  EXPECT_ERROR(r, "rod.stiffness_profile.wall_thickness: expected a number smaller than");
+}
+
 // A massless rod (density 0) is a statics case the SE(3) solvers take; the quaternion-FD model
 // divides forces by the vertex masses, so it is refused there, naming the density, instead of
 // failing or writing NaN frequencies.

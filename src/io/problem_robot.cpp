@@ -265,7 +265,8 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
     robot.report().Missing(robot.PathOf("chambers"), "an array of chambers");
   CheckNodesHoldChamberEnds(robot, *p);
   if (p->robot.kind == RobotKind::kEversion) {
-    if (!dynamic_cast<const InflatedTubeSection*>(p->rod.section.get()))
+    // (No rod model: the rod's own errors are reported, and its profile is unknown.)
+    if (p->rod.section && !dynamic_cast<const InflatedTubeSection*>(p->rod.section.get()))
       robot.Reject("kind",
                    "a robot whose rod.stiffness_profile is of kind \"inflated\" (the "
                    "tube an eversion robot is made of)");
@@ -285,9 +286,10 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
   }
   if (const auto g = ReadObject(robot, "growth", Presence::kOptional)) {
     g->AllowOnly({"initial_length", "steps"});
+    const bool known = p->rod.section != nullptr;  // else the rod's errors are reported
     const NumberRule shorter{
         "a length > 0 and <= rod.length (" + FormatNumber(p->rod.length) + " m)",
-        [&](double x) { return x > 0 && x <= p->rod.length; }};
+        [&](double x) { return x > 0 && (!known || x <= p->rod.length); }};
     p->robot.growth_initial_length = ReadNumber(*g, "initial_length", shorter, Presence::kRequired);
     p->robot.growth_steps =
         ReadInteger(*g, "steps", 1, 100000, Presence::kOptional).value_or(p->robot.growth_steps);
