@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "cosserat/io/result_writer.hpp"
@@ -45,7 +46,10 @@ StepInput ClampedInput(const io::Problem& problem, const StaticLoads& loads,
 bool StaticBaseWrench(const io::Problem& problem, const StaticLoads& loads,
                       const Actuation& actuation, Vec6* base_wrench_B) {
   const StaticShootingOptions single = StaticOptions(problem);
-  if (problem.rod.tendons.empty() && StaticShootingExponent(problem.rod, loads) > 10.0) {
+  // As the statics runner chooses: multiple shooting for plain rods only (it takes no actuation,
+  // tendons or chambers).
+  if (!problem.has_robot && problem.rod.tendons.empty() && problem.rod.chambers.empty() &&
+      StaticShootingExponent(problem.rod, loads) > 10.0) {
     StaticMultipleShootingOptions opt;
     opt.tolerance = single.tolerance;
     opt.max_iterations = single.max_iterations;
@@ -75,7 +79,8 @@ void Record(const Bdf2ShootingStepper& stepper, double t, bool all_nodes, io::Dy
 
 void AddCounts(const StepSummary& s, io::DynamicRun* run) {
   run->iterations += s.iterations;
-  run->residual = std::max(run->residual, s.residual);
+  // The largest, a NaN kept (std::max would drop it).
+  if (!(s.residual <= run->residual)) run->residual = s.residual;
   run->shots += s.shots;
 }
 
@@ -145,8 +150,16 @@ io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
       ClampedInput(problem, initial_loads, problem.robot.initial_actuation);
   StepSummary init = stepper->InitializeAtRest(initial);
   Vec6 base_wrench_B;
-  if (!init.converged() && problem.boundary == io::Boundary::kCantilever &&
-      StaticBaseWrench(problem, initial_loads, problem.robot.initial_actuation, &base_wrench_B)) {
+  bool statics = false;
+  if (!init.converged() && problem.boundary == io::Boundary::kCantilever) {
+    try {
+      statics =
+          StaticBaseWrench(problem, initial_loads, problem.robot.initial_actuation, &base_wrench_B);
+    } catch (const std::invalid_argument&) {
+      statics = false;  // a rod the statics solvers do not take: the first failure stands
+    }
+  }
+  if (statics) {
     // The rigid-body guess was too far off (a large preload, a contact foundation): start again
     // from the statics solver's equilibrium (the failed attempt's work counted, not its residual).
     run.iterations += init.iterations;
