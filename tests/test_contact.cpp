@@ -13,6 +13,7 @@
 
 #include "cosserat/analysis/modes.hpp"
 #include "cosserat/loads/contact.hpp"
+#include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/quatfd/quatfd_statics.hpp"
 #include "cosserat/quatfd/radau.hpp"
@@ -470,7 +471,7 @@ TEST(PenaltyContact, AFloorAddsItsStiffnessToTheVerticalModesInBothFormulations)
 
 // A tip force pushes a cantilever's end straight at a sphere (centre on the tip's line of
 // travel, 15 mm from the axis, radius 10 mm; a 1 mm wire, 0.1 N, k = 1e5 N/m per metre). Solved
-// at the full load directly, both formulations once converged with the tip through the sphere
+// at the full load directly, both formulations can converge with the tip through the sphere
 // and beyond it, touching nothing. The surfaces must hold the rod back: every node stays out of
 // the sphere but for the penalty's penetration (the force over k and a contact patch of a few
 // millimetres: ~0.3 mm; 1 mm bounds it, a tenth of the radius), the tip stays on the near side,
@@ -511,6 +512,30 @@ TEST(PenaltyContact, ARodPushedAtASphereIsHeldBackInBothFormulations) {
     EXPECT_LT(tip.x(), centre.x()) << name;
     EXPECT_GT(reaction.x(), -0.1 + 0.01) << name;  // the sphere takes some of the 0.1 N
   }
+}
+
+// The obstacle rule on plain geometry: a sphere of radius 1 at the origin, its core the ball of
+// radius ½. A node that moves through it, or a segment that cuts it, enters the core; a node that
+// stays outside, or was inside already, or a surface of zero stiffness (which pushes on
+// nothing), does not count.
+TEST(ObstacleCore, EnteringTheCoreIsWhatCounts) {
+  ContactSurfaces surfaces;
+  surfaces.count = 1;
+  ContactSurface& sphere = surfaces.surface[0];
+  sphere.shape = ContactSurface::Shape::kSphere;
+  sphere.radius = 1.0;
+  sphere.stiffness = 1e5;
+  const std::vector<Vec3> left{Vec3(-2, 0, 0)}, right{Vec3(2, 0, 0)}, near{Vec3(0, 0.6, 0)};
+  EXPECT_TRUE(ReachesObstacleCore(surfaces, left, right));   // straight through the centre
+  EXPECT_FALSE(ReachesObstacleCore(surfaces, left, left));
+  EXPECT_FALSE(ReachesObstacleCore(surfaces, near, near));  // pressed in, not to the core
+  EXPECT_TRUE(ReachesObstacleCore(surfaces, {}, {Vec3(0, -2, 0), Vec3(0, 2, 0)}));  // a segment
+  EXPECT_FALSE(ReachesObstacleCore(surfaces, {}, {Vec3(0, -2, 0.6), Vec3(0, 2, 0.6)}));
+  const std::vector<Vec3> inside{Vec3(0.1, 0, 0)}, deeper{Vec3(0.05, 0, 0)};
+  EXPECT_FALSE(ReachesObstacleCore(surfaces, inside, deeper));  // in the core already
+  sphere.stiffness = 0.0;
+  EXPECT_FALSE(ReachesObstacleCore(surfaces, left, right));
+  EXPECT_FALSE(HasObstacleCore(surfaces));
 }
 
 }  // namespace

@@ -8,7 +8,9 @@ namespace {
 using Shape = ContactSurface::Shape;
 
 bool HasCore(const ContactSurface& s) {
-  return s.shape == Shape::kSphere || (s.shape == Shape::kCylinder && !s.inside);
+  // (A surface of zero stiffness pushes on nothing: a rod may pass it.)
+  return s.stiffness > 0.0 &&
+         (s.shape == Shape::kSphere || (s.shape == Shape::kCylinder && !s.inside));
 }
 
 /// The core's measure of a point: its vector from the sphere's centre, or from the cylinder's
@@ -46,9 +48,13 @@ bool ReachesObstacleCore(const ContactSurfaces& surfaces, const std::vector<Vec3
     const ContactSurface& s = surfaces.surface[k];
     if (!HasCore(s)) continue;
     for (size_t i = 0; i < after.size(); ++i) {
-      if (i > 0 && SegmentReaches(s, after[i - 1], after[i])) return true;
-      if (paths && SegmentReaches(s, before[i], after[i])) return true;
-      if (after.size() == 1 && SegmentReaches(s, after[0], after[0])) return true;
+      // What was in the core already (a start the caller gave, a surface moved onto the rod)
+      // is not refused again: only what enters it.
+      const bool node_was_clear = !paths || !SegmentReaches(s, before[i], before[i]);
+      if (node_was_clear && SegmentReaches(s, paths ? before[i] : after[i], after[i])) return true;
+      if (i == 0) continue;
+      const bool segment_was_clear = !paths || !SegmentReaches(s, before[i - 1], before[i]);
+      if (segment_was_clear && SegmentReaches(s, after[i - 1], after[i])) return true;
     }
   }
   return false;

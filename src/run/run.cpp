@@ -5,6 +5,7 @@
 
 #include "bending_stress_report.hpp"
 #include "contact_report.hpp"
+#include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/run/run_assembly.hpp"
 #include "cosserat/run/run_buckling.hpp"
 #include "cosserat/run/run_dynamics.hpp"
@@ -55,11 +56,25 @@ void RefuseNonFiniteAnswers(Result* result) {
   }
 }
 
+/// A continuation that failed beside a sphere or post may have been held back by the statics'
+/// obstacle rule (obstacle_core.hpp): say so.
+void ObstacleHint(const io::Problem& problem, Result* result) {
+  if (result->converged || !HasObstacleCore(problem.loads.contact) ||
+      result->json.value("status", "") != ToString(SolveStatus::kLoadSteppingFailed))
+    return;
+  result->log +=
+      "cosserat: hint: load steps that would take the rod into a sphere's or post's core (within "
+      "half its radius of the centre or axis) are refused: the surface's stiffness may be too "
+      "low for the load, or (quaternion-fd, where contact acts at the nodes) the obstacle "
+      "smaller than the node spacing\n";
+}
+
 }  // namespace
 
 Result Run(const io::Problem& problem, const RunOptions& options) {
   Result result = Dispatch(problem, options);
   RefuseNonFiniteAnswers(&result);
+  ObstacleHint(problem, &result);
   detail::AddContactReport(problem, &result);
   detail::AddFrameContactForces(problem, &result);
   detail::AddBendingStressReport(problem, &result);

@@ -268,6 +268,7 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
     if (ok && !HeldBack(base, start, x_start, loads, x)) {
       ok = state_current = via_quasi_newton = false;
       x = x_start;
+      summary.status = SolveStatus::kMaxIterations;  // without load stepping, this is the end
     }
   }
 
