@@ -9,6 +9,7 @@
 
 #include "cosserat/loads/contact.hpp"
 #include "cosserat/loads/total_load.hpp"
+#include "cosserat/rod/grid.hpp"
 
 namespace cosserat::run::detail {
 
@@ -44,58 +45,49 @@ Vec3 VectorAt(const nlohmann::ordered_json& j) {
   return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
 }
 
-/// SE(3) statics: the contact force the solver applied, from the rod's balance. RK4 in s keeps
-/// d(R n)/ds = −f exactly in its stages, so ∫ f = R n(0) − R n(L) = −(base reaction) − R n(L),
-/// with the contact at the stages' own poses: a contact concentrated in a segment or two, which
-/// the node values resolve badly, comes out as the solver pressed it. Less the dead loads (the
-/// solver's Simpson weights on its sample points s_i, s_i + h/2, s_{i+1}) and a current's drag
-/// (smooth: the trapezoid at the nodes, along the chords), it is the surfaces' force. False where
-/// the balance does not apply (quaternion FD, which lumps the contact on the nodes and sums it
-/// exactly by the trapezoid; dynamics; tendons, whose loads on the backbone are internal).
-bool BalancedContactTotal(const io::Problem& problem, const PenaltyContact& contact,
-                          const nlohmann::ordered_json& json, Vec3* total) {
+/// SE(3) statics: the contact force the solver applied, from the rod's balance. Along the shot
+/// d(R n)/ds = −f, so ∫ f = R n(0) − R n(L) = −(base reaction) − R n(L), to RK4's order in s
+/// (it carries n in the body frame and integrates R, so the balance is O(h⁴), not exact), with
+/// the contact at the stages' own poses: a contact concentrated in a segment or two, which the
+/// node values resolve badly, comes out as the solver pressed it. Less the dead loads, on the
+/// solver's own samples and Simpson weights, it is the surfaces' force. False where the balance
+/// does not give it: quaternion FD (which lumps the contact on the nodes, so the trapezoid is
+/// its own sum), dynamics, tendons (their loads on the backbone are internal), and other loads
+/// that depend on the pose (a current's drag, which would have to be subtracted by a quadrature
+/// of its own).
+bool BalancedContactTotal(const io::Problem& problem, const nlohmann::ordered_json& json,
+                          Vec3* total) {
   using io::Analysis;
+  StaticLoads others = problem.loads;
+  others.contact.count = 0;
   if (problem.formulation != io::Formulation::kSe3Shooting || problem.has_assembly ||
-      !problem.rod.tendons.empty() ||
+      !problem.rod.tendons.empty() || HasMotionLoads(others) ||
       (problem.analysis != Analysis::kStatics && problem.analysis != Analysis::kModes))
     return false;
   if (!json.contains("base_wrench") || !json.contains("tip") ||
       !json["nodes"].contains("force_body"))
     return false;
   const auto& s = json["nodes"]["s"];
-  const auto& position = json["nodes"]["position"];
   const std::size_t n = s.size();
   Mat3 R_tip;
   for (int i = 0; i < 3; ++i) R_tip.row(i) = VectorAt(json["tip"]["rotation"][i]).transpose();
   const Vec3 applied = -VectorAt(json["base_wrench"]["force"]) -
                        R_tip * VectorAt(json["nodes"]["force_body"][n - 1]);
-  auto site = [&](double si) {
-    const SectionProperties sp = problem.rod.section->At(si, problem.robot.actuation);
-    return LoadSite{si, 1.0, sp.mass(5, 5), sp.outer_diameter};
-  };
-  Vec3 dead = Vec3::Zero(), drag = Vec3::Zero(), drag_previous = Vec3::Zero();
-  const bool motion = HasMotionLoads(problem.loads);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double si = s[i].get<double>();
-    if (i > 0) {
-      const double s0 = s[i - 1].get<double>(), h = si - s0;
-      dead += h / 6 *
-              (TotalDistributedForce_W(problem.loads, site(s0)) +
-               4 * TotalDistributedForce_W(problem.loads, site(s0 + h / 2)) +
-               TotalDistributedForce_W(problem.loads, site(si)));
+  std::vector<double> grid(n);
+  for (std::size_t i = 0; i < n; ++i) grid[i] = s[i].get<double>();
+  const std::vector<double> samples = SegmentSamplePoints(grid);  // start, middle, end
+  Vec3 dead = Vec3::Zero();
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const double h = grid[i + 1] - grid[i];
+    const double w[3] = {h / 6, 4 * h / 6, h / 6};
+    for (int j = 0; j < 3; ++j) {
+      const double sj = samples[3 * i + j];
+      const SectionProperties sp = problem.rod.section->At(sj, problem.robot.actuation);
+      dead += w[j] * TotalDistributedForce_W(problem.loads,
+                                             LoadSite{sj, 1.0, sp.mass(5, 5), sp.outer_diameter});
     }
-    if (!motion) continue;
-    const Vec3 p = VectorAt(position[i]);
-    const Vec3 t = (VectorAt(position[std::min(i + 1, n - 1)]) -
-                    VectorAt(position[i > 0 ? i - 1 : 0])).normalized();
-    const LoadSite at = site(si);
-    const SectionMotion rest{p, t, Vec3::Zero()};
-    const Vec3 f = TotalMotionForce_W(problem.loads, at, rest, nullptr) -
-                   contact.MotionForce_W(at, rest, nullptr);
-    if (i > 0) drag += 0.5 * (si - s[i - 1].get<double>()) * (f + drag_previous);
-    drag_previous = f;
   }
-  *total = applied - dead - drag;
+  *total = applied - dead;
   return total->allFinite();
 }
 
@@ -148,7 +140,7 @@ void AddContactReport(const io::Problem& problem, Result* result) {
   }
   if (start >= 0) intervals.push_back({start, s_previous});
   Vec3 balanced;
-  if (BalancedContactTotal(problem, contact, json, &balanced)) total = balanced;
+  if (BalancedContactTotal(problem, json, &balanced)) total = balanced;
   AppendContactColumns(per_node, &result->nodes_csv);
   json["nodes"]["contact_force"] = per_node;
   json["contact"] = {{"total_force", {total.x(), total.y(), total.z()}}, {"intervals", intervals}};

@@ -2,9 +2,10 @@
 /// \file
 /// The contact part of a result: the force per unit length the surfaces exert at each node
 /// (`nodes.contact_force`, N/m, world frame) and its integral along s (`contact.total_force`, N:
-/// in SE(3) statics and modes from the rod's force balance, which holds the contact at the
-/// shot's own stages; otherwise the trapezoid rule on the nodes, which is the quaternion-FD
-/// model's own lumping), from the nodes of the result's (final) state; plus the s-intervals in
+/// in SE(3) statics and modes without other pose-dependent loads, from the rod's force balance,
+/// which holds the contact at the shot's own stages; otherwise the trapezoid rule on the nodes,
+/// the quaternion-FD model's own lumping), from the nodes of the result's (final) state; plus
+/// the s-intervals in
 /// contact; the statics node table gets the same forces as columns contact_fx, contact_fy,
 /// contact_fz. In dynamics the damping and the friction are taken at the final state's node
 /// velocities (Result::node_velocity_W).
