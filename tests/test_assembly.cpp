@@ -227,7 +227,7 @@ TEST(Assembly, AnLFrameDeflectsAsLinearBeamTheorySays) {
 // 6e6 and 1e12 times the column's): the load reaches the corner through an almost rigid beam, so
 // the corner still sways P b a²/(2EI) (the column alone bends), and the end drops by the column's
 // turn, P b² a/EI, the beam's own bending now negligible. A body's balance measured in its own
-// rods' scale once let this frame stop undeformed at 0 iterations: the load at the beam's end was
+// rods' scale would let this frame stop undeformed at 0 iterations: the load at the beam's end is
 // below 1e-10 of the stiff beam's force scale. Tolerances as above (second order near 1e-3).
 TEST(Assembly, AStiffBeamPassesItsLoadToTheSoftColumn) {
   for (double beam_radius : {0.05, 1.0}) {
@@ -292,8 +292,8 @@ TEST(Assembly, StewartGoughInverseKinematicsIsSelfConsistent) {
 }
 
 // A pose below the base plate is out of the robot's reach: the equations' root there is the
-// robot's mirror image, every rod of negative length. It once came back "converged" with six
-// lengths near −0.45 m.
+// robot's mirror image, every rod of negative length (six lengths near −0.45 m), which is no
+// answer.
 TEST(Assembly, AStewartGoughPoseBelowTheBaseIsOutOfReach) {
   AssemblyStaticsSolver inverse(StewartGough(0.0));
   const AssemblySummary s =

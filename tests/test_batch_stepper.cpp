@@ -31,8 +31,8 @@ TEST(BatchStepper, RodsReachExactlyWhatLoneSteppersReach) {
   const int M = 8, steps = 30;
   Bdf2Options opt;
   opt.dt = 2e-3;
-  // A million threads asked for: the team is never larger than the rods (it once tried to
-  // start them all and ran the system out of threads).
+  // A million threads asked for: the team is never larger than the rods (starting them all
+  // would run the system out of threads).
   for (int threads : {1, 2, 3, 1000000}) {
     SCOPED_TRACE(threads);
     BatchStepper batch(rod.model(), 21, opt, M, threads);

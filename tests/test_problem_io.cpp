@@ -401,7 +401,7 @@ TEST(ProblemIo, DegenerateSectionsAndMaterialsAreNamed) {
 }
 
 // Jamming pressures are one per switchable segment of the rod's jamming profile, as chamber
-// pressures are one per chamber: a wrong count, or a robot with no jamming profile, once ran
+// pressures are one per chamber: a wrong count, or a robot with no jamming profile, would run
 // with the extra values ignored.
 TEST(ProblemIo, JammingPressuresMatchTheProfilesSegments) {
   json j = json::parse(std::ifstream(SourceDir() + "/robots/jamming_virtual_joints.json"));
@@ -426,7 +426,7 @@ TEST(ProblemIo, ASolverToleranceAboveOneThousandthIsRefused) {
 }
 
 // One error in an eversion robot's inflated profile is one line: the robot's checks of its
-// profile kind and of its growth against rod.length once added two false ones ("expected a
+// profile kind and of its growth against rod.length must not add false ones ("expected a
 // robot whose rod.stiffness_profile is of kind \"inflated\"", "<= rod.length (0 m)").
 TEST(ProblemIo, ABadInflatedProfileIsOneError) {
   json j = json::parse(std::ifstream(SourceDir() + "/robots/eversion_banded_vine.json"));
@@ -458,7 +458,7 @@ TEST(ProblemIo, AMasslessRodIsRefusedOnlyWhereTheModelNeedsMass) {
 }
 
 // An anchor's motion sweeps position + amplitude (1 − cos): its far end must be within the rod's
-// reach, as the anchor itself (an amplitude of 1e5 m once ran Radau into its step cap).
+// reach, as the anchor itself (an amplitude of 1e5 m would run Radau into its step cap).
 TEST(ProblemIo, AnAnchorMotionOutOfReachIsRefused) {
   json j = ValidProblem();
   j["analysis"] = "dynamics";

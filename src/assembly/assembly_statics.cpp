@@ -35,9 +35,9 @@ AssemblyStaticsSolver::AssemblyStaticsSolver(const Assembly& assembly,
   const int B = static_cast<int>(assembly_.bodies.size());
   // Every body's balance is measured in the force and moment scales of the assembly's most
   // compliant rod: a force left unbalanced on any body is carried through the structure to that
-  // rod, where it moves the bodies most. (A body's own stiffest rod once set its scale, and a
-  // stiff beam hanging off a soft column declared the unloaded frame converged: the load at the
-  // beam's end fell below the tolerance before the first iteration.)
+  // rod, where it moves the bodies most. (In a body's own stiffest rod's scale, the load at the
+  // end of a stiff beam hanging off a soft column can fall below the tolerance before the first
+  // iteration, and the unloaded frame pass as converged.)
   double force_scale = std::numeric_limits<double>::infinity(), moment_scale = force_scale;
   for (int i = 0; i < R; ++i) {
     const AssemblyRod& a = assembly_.rods[i];

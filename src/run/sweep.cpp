@@ -195,7 +195,7 @@ SweepSummary RunSweep(const io::Study& study, const std::string& csv_path,
       options.progress(done, total);
     }
   };
-  // No more threads than points (a --threads of 10⁹ once asked the system for 10⁹ threads).
+  // No more threads than points, whatever --threads asks for.
   const int threads = static_cast<int>(
       std::clamp<std::uint64_t>(static_cast<std::uint64_t>(std::max(1, options.threads)), 1,
                                 std::max<std::uint64_t>(1, pending.size())));

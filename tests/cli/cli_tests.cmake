@@ -58,8 +58,8 @@ cosserat_cli_test(NAME vtk_needs_dynamics
 cosserat_cli_test(NAME bad_study ARGS sweep "${_cli_dir}/bad_study.json" --out "${_cli_out}/bad_study.csv"
                   CODE 2 STDERR "parameters\\[0\\].path: names \"/rod/nosuch/x\", but the problem has no \"/rod/nosuch\".*parameters\\[1\\].grid.to: an empty range.*parameters\\[2\\].random.high: expected a bound above \"low\"")
 
-# --threads takes a whole number from 1 to 4096: "1e9" once read as 1, and 10⁹ asked the system
-# for as many threads.
+# --threads takes a whole number from 1 to 4096, written in full: "1e9" is not a count (a prefix
+# parse would read 1), and 10⁹ would ask the system for as many threads.
 cosserat_cli_test(NAME sweep_threads_not_a_count
                   ARGS sweep "${_cli_dir}/bad_study.json" --out "${_cli_out}/t.csv" --threads 1e9
                   CODE 2 STDERR "--threads needs a whole number from 1 to 4096, got '1e9'")

@@ -426,8 +426,8 @@ class PythonSide(unittest.TestCase):
                                                "material": {"youngs_modulus": E,
                                                             "shear_modulus": G,
                                                             "density": RHO}}}))
-        # A NaN or an object in the dict is named where it is (JSON has no NaN: once a parse
-        # error at a column of the written text).
+        # A NaN or an object in the dict is named where it is (JSON has no NaN: written out, it
+        # would be a parse error at a column of the text).
         bad = wire_spec(extra={"loads": {"tip_force": [float("nan"), 0, 0]}})
         with self.assertRaisesRegex(ValueError, r"loads.tip_force\[0\]: expected a finite number"):
             cosserat.solve(bad)
@@ -496,8 +496,8 @@ class Batches(unittest.TestCase):
             np.testing.assert_array_equal(tips[i], s.tip_position())
         with self.assertRaisesRegex(ValueError, r"tip_force: expected shape \(64, 3\)"):
             batch.step(tip_force=np.zeros((3, 3)))
-        # No state before initialize_at_rest (it once returned zeros), and no more threads than
-        # rods whatever is asked (a million once started a million).
+        # No state before initialize_at_rest (no zeros passed off as tips), and no more threads
+        # than rods whatever is asked (a million asked for here).
         fresh = cosserat.BatchStepper(p, 2, threads=10**6)
         with self.assertRaisesRegex(RuntimeError, "initialize_at_rest"):
             fresh.tip_positions()
