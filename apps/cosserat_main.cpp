@@ -155,6 +155,8 @@ Command ParseCommandLine(const std::vector<std::string>& args) {
   for (const std::optional<std::string>* out : {&cmd.out_path, &cmd.csv_path})
     if (*out && SameFile(**out, cmd.problem_path))
       throw UsageError{"the output '" + **out + "' is the input file; choose another name"};
+  if (cmd.out_path && cmd.csv_path && *cmd.out_path == *cmd.csv_path)
+    throw UsageError{"--out and --csv name the same file '" + *cmd.out_path + "'"};
   return cmd;
 }
 

@@ -27,7 +27,7 @@ def _check_json_values(value, path=""):
             _check_json_values(item, _path(path, i))
     elif isinstance(value, np.ndarray):
         _check_json_values(value.tolist(), path)
-    elif isinstance(value, (bool, str, int, np.integer)) or value is None:
+    elif isinstance(value, (bool, str, int, np.integer, np.bool_)) or value is None:
         return
     elif isinstance(value, (float, np.floating)):
         if not np.isfinite(value):
@@ -41,7 +41,7 @@ def _json_text(value):
     """A dict (a problem or a study) as JSON text, NumPy values included, bad values named."""
     _check_json_values(value)
     return json.dumps(value, allow_nan=False,
-                      default=lambda v: v.tolist() if hasattr(v, "tolist") else v)
+                      default=lambda v: v.tolist() if hasattr(v, "tolist") else v.item())
 
 
 def _as_problem(problem):

@@ -75,6 +75,9 @@ cosserat_cli_test(NAME vtk_directory_unwritable
 cosserat_cli_test(NAME out_given_twice
                   ARGS solve "${_cli_example}" --out "${_cli_out}/a.json" --out "${_cli_out}/b.json"
                   CODE 2 STDERR "--out is given twice")
+cosserat_cli_test(NAME out_and_csv_same_file
+                  ARGS solve "${_cli_example}" --out "${_cli_out}/same.txt" --csv "${_cli_out}/same.txt"
+                  CODE 2 STDERR "--out and --csv name the same file")
 file(COPY "${_cli_example}" DESTINATION "${_cli_out}/own")
 cosserat_cli_test(NAME out_over_the_input
                   ARGS solve "${_cli_out}/own/cantilever.json" --out "${_cli_out}/own/cantilever.json"

@@ -433,9 +433,12 @@ class PythonSide(unittest.TestCase):
             cosserat.solve(bad)
         with self.assertRaisesRegex(TypeError, "loads.gravity: expected a JSON value"):
             cosserat.solve(wire_spec(extra={"loads": {"gravity": object()}}))
-        # NumPy values are numbers like any other.
-        self.assertTrue(cosserat.solve(
-            wire_spec(extra={"loads": {"tip_force": np.array([-EI / L**2, 0.0, 0.0])}}))["converged"])
+        # NumPy values are numbers and booleans like any other.
+        spec = wire_spec(extra={"loads": {"tip_force": np.array([-EI / L**2, 0.0, 0.0])}})
+        spec["rod"]["nodes"] = np.int64(41)
+        self.assertTrue(cosserat.solve(spec)["converged"])
+        spec["solver"] = {"tolerance": np.float64(1e-10), "max_iterations": np.int32(50)}
+        self.assertTrue(cosserat.solve(spec)["converged"])
 
     def test_frames_plot_and_animate(self):
         import matplotlib
