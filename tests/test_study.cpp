@@ -147,6 +147,10 @@ TEST(Study, BadStudiesNameTheField) {
     EXPECT_TRUE(HasError(e, "is an array of 1 value, so the last part must be an index below 1"))
         << past_the_end;
   }
+  e = Errors(TendonStudy(R"([{"path": "rod/length", "values": [1]}])"));
+  EXPECT_TRUE(HasError(e, "parameters[0].path: expected a JSON pointer such as \"/rod/length\" (it "
+                          "starts with \"/\"), got \"rod/length\""));
+  EXPECT_FALSE(HasError(e, "json.exception"));  // the parser's own text is not the user's
   e = Errors(TendonStudy(R"([{"path": "", "values": [1]}, {"path": "/rod/length", "values": [1]}])"));
   EXPECT_TRUE(HasError(e, "parameters[0].path: expected a pointer to a value inside the problem"));
   // Too many points for the sweep's memory: named, whatever the product.

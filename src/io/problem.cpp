@@ -371,15 +371,15 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   if (const auto o = ReadObject(top, "dynamics", Presence::kOptional)) {
     p->has_dynamics = true;
     ParseDynamics(*o, p->nodes, &p->dynamics);
-    // The quaternion-FD path records a frame every output_interval (the SE(3) path rounds it to
-    // whole steps of dt, which are capped above): cap the frames alike.
+    // The quaternion-FD path records a frame every output_interval, each at least a Radau step
+    // (the SE(3) path rounds it to whole steps of dt, which are capped above): cap the frames.
     const Problem::Dynamics& d = p->dynamics;
     const double frames = std::round(d.duration / d.output_interval);
     if (p->formulation == Formulation::kQuaternionFd && d.output_interval > 0 &&
-        frames > kMaxDynamicsSteps)
+        frames > kMaxQuatFdFrames)
       o->report().Expected(
           o->PathOf("output_interval"),
-          "an interval giving at most " + std::to_string(kMaxDynamicsSteps) +
+          "an interval giving at most " + std::to_string(kMaxQuatFdFrames) +
               " frames over duration (" + FormatNumber(d.duration) + " s)",
           FormatNumber(d.output_interval) + ", " + FormatNumber(frames) + " frames");
   }

@@ -111,9 +111,9 @@ void CheckPath(const json& problem, const std::string& where, const std::string&
       report->Add(where, "names " + detail::Quote(path) + ", inside " +
                              detail::Quote(parent.to_string()) + ", which is " +
                              detail::Describe(holder) + ", not an object or an array");
-  } catch (const json::exception& e) {
-    report->Add(where, "expected a JSON pointer such as \"/rod/length\", got " +
-                           detail::Quote(path) + " (" + e.what() + ")");
+  } catch (const json::exception&) {  // not a pointer at all ("x", "rod/length")
+    report->Add(where, "expected a JSON pointer such as \"/rod/length\" (it starts with \"/\"), "
+                       "got " + detail::Quote(path));
   }
 }
 

@@ -156,6 +156,10 @@ ParseResult LoadProblemFile(const std::string& path);
 
 /// The most time steps (round(duration / dt)) a dynamics problem may ask for.
 inline constexpr int kMaxDynamicsSteps = 10000000;
+/// The most frames a quaternion-FD run may record (round(duration / output_interval)): each is
+/// at least one Radau step and a stored state, ~35 µs and ~300 bytes, so 10⁶ frames take about
+/// half a minute and 300 MB.
+inline constexpr int kMaxQuatFdFrames = 1000000;
 
 /// Things the contract names but this version cannot run yet: an analysis other than "statics",
 /// "dynamics", "buckling" or "modes", a boundary other than "cantilever" (se3-shooting dynamics
