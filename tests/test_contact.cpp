@@ -538,5 +538,35 @@ TEST(ObstacleCore, EnteringTheCoreIsWhatCounts) {
   EXPECT_FALSE(HasObstacleCore(surfaces));
 }
 
+// A cantilever (0.5 m, 1 mm wire) pushed sideways at its tip (0.3 N) onto a sphere beside it
+// (R = 10 mm, centre 0.3 m up). The sphere's surface turns away from the rod: pressing on it
+// with N ≈ 0.56 N gives a sideways stiffness of about −N/(R + r) ≈ −51 N/m, against the rod's
+// own 3EI/s³ ≈ 17 N/m there, so the equilibrium is unstable to sliding round the sphere. The
+// quaternion-FD modes see a negative ω²; the SE(3) frequency scan sees only real frequencies, so
+// its result must take the equilibrium's Morse index, not report "converged".
+TEST(PenaltyContact, ARodPressedOnASphereIsUnstableInBothFormulations) {
+  const SteelRod rod{0.5, 0.001};
+  StaticLoads loads;
+  loads.tip_force = Vec3(0.3, 0, 0);
+  loads.contact.count = 1;
+  ContactSurface& sphere = loads.contact.surface[0];
+  sphere.shape = ContactSurface::Shape::kSphere;
+  sphere.point_W = Vec3(0.012, 0, 0.3);
+  sphere.radius = 0.01;
+  sphere.stiffness = 1e5;
+  ModalOptions mo;
+  mo.count = 2;
+  ShootingModalOptions so;
+  so.modal = mo;
+  const ModalResult se3 = ComputeModesShooting(rod.model(), 41, lie::SE3{}, loads, so);
+  quatfd::QuatFdOptions options;
+  options.segments = 40;
+  quatfd::QuatFdModel model(rod.model(), lie::SE3{}, options);
+  model.set_loads(loads);
+  const ModalResult fd = ComputeModes(&model, loads, mo);
+  EXPECT_EQ(se3.status, ModalStatus::kUnstable) << ToString(se3.status);
+  EXPECT_EQ(fd.status, ModalStatus::kUnstable) << ToString(fd.status);
+}
+
 }  // namespace
 }  // namespace cosserat

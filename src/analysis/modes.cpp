@@ -536,6 +536,11 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
     result.modes.push_back(std::move(mode));
   }
   if (static_cast<int>(result.modes.size()) < count) return finish(ModalStatus::kTooFewModes);
+  // The scan finds real frequencies only: an unstable direction of the equilibrium (a rod pressed
+  // on a convex obstacle harder than it bends back) has an imaginary one it cannot see, so the
+  // equilibrium's Morse index decides (−1, not defined for drag or follower loads: stable).
+  if (solver.StabilityIndex(base, loads, solver.base_wrench_B()) > 0)
+    return finish(ModalStatus::kUnstable);
   return finish(ModalStatus::kConverged);
 }
 
