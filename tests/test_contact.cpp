@@ -20,6 +20,7 @@
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "support/modes_of_both_formulations.hpp"
 #include "support/rods.hpp"
 
 namespace cosserat {
@@ -444,18 +445,10 @@ TEST(PenaltyContact, AFloorAddsItsStiffnessToTheVerticalModesInBothFormulations)
                      std::sqrt(rod.EI() / (rod.rhoA() * std::pow(rod.length, 4))) / (2 * M_PI);
   const double f_k = std::sqrt(k / rod.rhoA()) / (2 * M_PI);
   const double vertical = std::sqrt(f_b * f_b + f_k * f_k);
-  ModalOptions mo;
-  mo.count = 4;
-  ShootingModalOptions so;
-  so.modal = mo;
-  const ModalResult se3 = ComputeModesShooting(rod.model(), 41, base, loads, so);
-  quatfd::QuatFdOptions options;
-  options.segments = 40;
-  quatfd::QuatFdModel model(rod.model(), base, options);
-  model.set_loads(loads);
-  const ModalResult fd = ComputeModes(&model, loads, mo);
-  for (const ModalResult* r : {&se3, &fd}) {
-    const char* name = r == &se3 ? "se3" : "quatfd";
+  const testing::ModesOfBothFormulations both =
+      testing::ModesInBothFormulations(rod, loads, 4, 41, base);
+  for (const ModalResult* r : {&both.se3, &both.quatfd}) {
+    const char* name = r == &both.se3 ? "se3" : "quatfd";
     ASSERT_TRUE(r->converged()) << name;
     const std::vector<double> f = r->frequencies_hz();
     ASSERT_EQ(f.size(), 4u) << name;
@@ -554,18 +547,9 @@ TEST(PenaltyContact, ARodPressedOnASphereIsUnstableInBothFormulations) {
   sphere.point_W = Vec3(0.012, 0, 0.3);
   sphere.radius = 0.01;
   sphere.stiffness = 1e5;
-  ModalOptions mo;
-  mo.count = 2;
-  ShootingModalOptions so;
-  so.modal = mo;
-  const ModalResult se3 = ComputeModesShooting(rod.model(), 41, lie::SE3{}, loads, so);
-  quatfd::QuatFdOptions options;
-  options.segments = 40;
-  quatfd::QuatFdModel model(rod.model(), lie::SE3{}, options);
-  model.set_loads(loads);
-  const ModalResult fd = ComputeModes(&model, loads, mo);
-  EXPECT_EQ(se3.status, ModalStatus::kUnstable) << ToString(se3.status);
-  EXPECT_EQ(fd.status, ModalStatus::kUnstable) << ToString(fd.status);
+  const testing::ModesOfBothFormulations both = testing::ModesInBothFormulations(rod, loads, 2);
+  EXPECT_EQ(both.se3.status, ModalStatus::kUnstable) << ToString(both.se3.status);
+  EXPECT_EQ(both.quatfd.status, ModalStatus::kUnstable) << ToString(both.quatfd.status);
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "cosserat/strong/static_shooting.hpp"
 #include "support/analytic/beam_vibration.hpp"
 #include "support/jacobian_check.hpp"
+#include "support/modes_of_both_formulations.hpp"
 #include "support/rods.hpp"
 
 namespace cosserat {
@@ -297,18 +298,9 @@ TEST(FluidDrag, BothFormulationsSplitTheModesInACurrentAlike) {
   const SteelRod rod{0.5, 0.001};
   StaticLoads loads;
   loads.fluid = Water(Vec3(1.0, 0, 0), 1.2);
-  ModalOptions mo;
-  mo.count = 2;
-  ShootingModalOptions so;
-  so.modal = mo;
-  const ModalResult se3 = ComputeModesShooting(rod.model(), 41, lie::SE3{}, loads, so);
-  quatfd::QuatFdOptions options;
-  options.segments = 40;
-  quatfd::QuatFdModel model(rod.model(), lie::SE3{}, options);
-  model.set_loads(loads);
-  const ModalResult fd = ComputeModes(&model, loads, mo);
-  ASSERT_TRUE(se3.converged() && fd.converged());
-  const std::vector<double> a = se3.frequencies_hz(), b = fd.frequencies_hz();
+  const testing::ModesOfBothFormulations both = testing::ModesInBothFormulations(rod, loads, 2);
+  ASSERT_TRUE(both.se3.converged() && both.quatfd.converged());
+  const std::vector<double> a = both.se3.frequencies_hz(), b = both.quatfd.frequencies_hz();
   ASSERT_EQ(a.size(), 2u);
   ASSERT_EQ(b.size(), 2u);
   std::printf("modes in a current: SE(3) %.5f %.5f Hz, quaternion FD %.5f %.5f Hz\n", a[0], a[1],
