@@ -58,10 +58,8 @@ Vec3 VectorAt(const nlohmann::ordered_json& j) {
 bool BalancedContactTotal(const io::Problem& problem, const nlohmann::ordered_json& json,
                           Vec3* total) {
   using io::Analysis;
-  StaticLoads others = problem.loads;
-  others.contact.count = 0;
   if (problem.formulation != io::Formulation::kSe3Shooting || problem.has_assembly ||
-      !problem.rod.tendons.empty() || HasMotionLoads(others) ||
+      !problem.rod.tendons.empty() || HasDrag(problem.loads) ||
       (problem.analysis != Analysis::kStatics && problem.analysis != Analysis::kModes))
     return false;
   if (!json.contains("base_wrench") || !json.contains("tip") ||

@@ -98,9 +98,7 @@ int StaticShootingSolver::StabilityIndexFromShot(const StaticLoads& loads, const
   if (!TotalTipWrench(loads).follower_B.isZero(0.0)) return -1;  // not conservative
   // Drag is not the gradient of a potential; contact in statics is (a penalty on the position
   // alone, no damping or friction at rest), and the tangent shot carries its stiffness.
-  StaticLoads others = loads;
-  others.contact.count = 0;
-  if (HasMotionLoads(others)) return -1;
+  if (HasDrag(loads)) return -1;
   // An eigenvalue counts as negative below −1e-8 EI/L. A rod symmetric about its axis has, past
   // buckling, a whole circle of equilibria (the shape turned about the load axis, with the section
   // turned back at the clamp): H(L) is exactly singular along it, and the solve tolerance (1e-10

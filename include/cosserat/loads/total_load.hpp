@@ -23,10 +23,12 @@ inline Vec3 TotalDistributedForce_W(const StaticLoads& loads, const LoadSite& si
   return f + Buoyancy(loads.fluid.density, loads.gravity_W).DistributedForce_W(site);
 }
 
+/// True when a fluid's drag acts (a load on the motion that is no potential's gradient).
+inline bool HasDrag(const StaticLoads& loads) { return FluidDrag(loads.fluid).DependsOnMotion(); }
+
 /// True when some load depends on the section's motion (TotalMotionForce_W is not zero).
 inline bool HasMotionLoads(const StaticLoads& loads) {
-  return FluidDrag(loads.fluid).DependsOnMotion() ||
-         PenaltyContact(loads.contact).DependsOnMotion();
+  return HasDrag(loads) || PenaltyContact(loads.contact).DependsOnMotion();
 }
 
 /// Σ force of the loads that depend on the section's motion, world frame, N (N/m for a site of
