@@ -13,6 +13,7 @@
 
 #include "cosserat/analysis/modes.hpp"
 #include "cosserat/loads/contact.hpp"
+#include "cosserat/loads/contact_entry.hpp"
 #include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/quatfd/quatfd_statics.hpp"
@@ -529,6 +530,26 @@ TEST(ObstacleCore, EnteringTheCoreIsWhatCounts) {
   sphere.stiffness = 0.0;
   EXPECT_FALSE(ReachesObstacleCore(surfaces, left, right));
   EXPECT_FALSE(HasObstacleCore(surfaces));
+}
+
+// The entry rule on plain geometry: the floor z = 0 and a node of outer radius 0.1 m. Moving
+// from z = 1 to z = −1 its penetration goes from −0.9 to 1.1 m linearly, reaching its radius
+// half-way: t = 0.5. A move that ends less deep than the radius, a node already pressed in, or a
+// floor of zero stiffness does not cut the step; the deepest cut of several nodes wins.
+TEST(ContactEntry, AClearNodeMayEnterByItsRadius) {
+  ContactSurfaces floor;
+  floor.count = 1;
+  floor.surface[0] = Plane(Vec3::Zero(), Vec3::UnitZ(), 1e5);
+  const std::vector<double> d1{0.2}, d2{0.2, 0.2};
+  const auto at = [](double z) { return std::vector<Vec3>{Vec3(0, 0, z)}; };
+  EXPECT_DOUBLE_EQ(ContactEntryFraction(floor, at(1.0), at(-1.0), d1), 0.5);
+  EXPECT_DOUBLE_EQ(ContactEntryFraction(floor, at(1.0), at(0.05), d1), 1.0);   // 0.05 m deep
+  EXPECT_DOUBLE_EQ(ContactEntryFraction(floor, at(0.05), at(-1.0), d1), 1.0);  // in contact
+  EXPECT_DOUBLE_EQ(ContactEntryFraction(floor, {Vec3(0, 0, 1), Vec3(1, 0, 0.1)},
+                                        {Vec3(0, 0, -1), Vec3(1, 0, -0.3)}, d2),
+                   0.25);  // the second node, touching (gap 0), reaches 0.1 m deep at a quarter
+  floor.surface[0].stiffness = 0.0;
+  EXPECT_DOUBLE_EQ(ContactEntryFraction(floor, at(1.0), at(-1.0), d1), 1.0);
 }
 
 // A cantilever (0.5 m, 1 mm wire) pushed sideways at its tip (0.3 N) onto a sphere beside it

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "cosserat/loads/contact_entry.hpp"
 #include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/numerics/banded_matrix.hpp"
 #include "cosserat/quatfd/quatfd_kernels.hpp"
@@ -62,6 +63,23 @@ bool HeldBack(const QuatFdModel& model, const ContactSurfaces& surfaces,
   return !ReachesObstacleCore(surfaces, before, after);
 }
 
+/// The fraction of the step dq from q after which the first vertex clear of a contact surface
+/// has entered it by its outer radius (contact_entry.hpp); 1 without surfaces.
+double ContactEntry(const QuatFdModel& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                    const Eigen::Ref<const Eigen::VectorXd>& dq) {
+  const ContactSurfaces& surfaces = model.loads().contact;
+  if (surfaces.count == 0) return 1.0;
+  const int N = model.layout().segments;
+  std::vector<Vec3> before(N + 1), after(N + 1);
+  std::vector<double> diameter(N + 1);
+  for (int v = 0; v <= N; ++v) {
+    before[v] = q.segment<3>(L::X(v));
+    after[v] = before[v] + dq.segment<3>(L::X(v));
+    diameter[v] = model.VertexSite(v).outer_diameter;
+  }
+  return ContactEntryFraction(surfaces, before, after, diameter);
+}
+
 /// Newton at fixed loads from q. Returns true on convergence; counts iterations.
 bool Newton(const QuatFdModel& model, const QuatFdStaticsOptions& opt, double beta,
             Eigen::Ref<Eigen::VectorXd> q, Workspace* w, QuatFdStaticsSummary* summary) {
@@ -92,6 +110,7 @@ bool Newton(const QuatFdModel& model, const QuatFdStaticsOptions& opt, double be
       scale = std::min(scale, 0.25 / std::max(1e-300, w->dq.segment<4>(L::P(s)).norm()));
     for (int v = 0; v <= model.layout().segments; ++v)
       scale = std::min(scale, 0.5 * L / std::max(1e-300, w->dq.segment<3>(L::X(v)).norm()));
+    scale *= ContactEntry(model, q, scale * w->dq);
     q += scale * w->dq;
     for (int s = 0; s < model.layout().segments; ++s) q.segment<4>(L::P(s)).normalize();
     double step_x = 0.0, step_p = 0.0;
