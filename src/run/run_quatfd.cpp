@@ -40,8 +40,7 @@ std::string TipText(const RodState& state) {
 
 /// After a static solve that failed: when the grid spacing exceeds half a contact surface's
 /// foundation length (4EI/k)^¼, over which the rod settles into it, the grid hardly resolves the
-/// contact, and the hint says how many nodes would (a 1 km riser with a 3 m foundation length
-/// fails at 5 m and 3 m spacing and converges at 2.5 m and below).
+/// contact (a few vertices carry a patch's load), and the hint says how many nodes would.
 std::string ContactGridHint(const io::Problem& problem, const quatfd::QuatFdModel& model) {
   const double EI = model.moment_scale() * model.length();
   const double spacing = model.length() / model.layout().segments;
