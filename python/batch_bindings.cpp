@@ -28,7 +28,7 @@ namespace {
 class PyBatchStepper {
  public:
   PyBatchStepper(const io::Problem& problem, int count, std::optional<int> threads)
-      : options_(cosserat::run::DynamicsOptions(Runnable(problem, "the BatchStepper"))),
+      : options_(cosserat::run::DynamicsOptions(Steppable(problem, "the BatchStepper"))),
         tendons_(static_cast<int>(problem.rod.tendons.size())) {
     if (problem.boundary != io::Boundary::kCantilever)
       throw py::value_error("boundary: the BatchStepper runs \"cantilever\", got \"" +
@@ -55,17 +55,19 @@ class PyBatchStepper {
     return converged;
   }
 
-  /// tip_force (M, 3) N, world; tension (M, tendons) N. Returns how many rods converged.
+  /// tip_force (M, 3) N, world; tension (M, tendons) N. Returns how many rods converged. Both
+  /// are checked before either is applied: a refused call changes nothing.
   int Step(std::optional<Eigen::MatrixXd> tip_force, std::optional<Eigen::MatrixXd> tension) {
     RequireState();
     const int M = batch_->count();
-    if (tip_force) {
-      Check(*tip_force, M, 3, "tip_force");
-      for (int i = 0; i < M; ++i) inputs_[i].loads.tip_force = tip_force->row(i).transpose();
-    }
+    if (tip_force) Check(*tip_force, M, 3, "tip_force");
     if (tension) {
       Check(*tension, M, tendons_, "tension");
       if ((tension->array() < 0).any()) throw py::value_error("tension: a tendon cannot push");
+    }
+    if (tip_force)
+      for (int i = 0; i < M; ++i) inputs_[i].loads.tip_force = tip_force->row(i).transpose();
+    if (tension) {
       for (int i = 0; i < M; ++i)
         for (int j = 0; j < tendons_; ++j) inputs_[i].actuation.tendon_tension[j] = (*tension)(i, j);
     }

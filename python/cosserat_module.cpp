@@ -21,12 +21,16 @@
 #include "cosserat/run/run.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace py = pybind11;
 using namespace cosserat;
 using cosserat::python::BindBatches;
+using cosserat::python::Rotation;
 using cosserat::python::Runnable;
+using cosserat::python::Steppable;
+using cosserat::python::Valid;
 
 namespace {
 
@@ -45,21 +49,6 @@ LoadFrame FrameFromString(const std::string& name, const char* field) {
                         "\"");
 }
 const char* ToString(LoadFrame frame) { return frame == LoadFrame::kWorld ? "world" : "body"; }
-
-/// Loads checked before they reach a solver (NaN, Inf): a ValueError naming the field.
-const StaticLoads& Valid(const StaticLoads& loads) {
-  std::string why;
-  if (!loads.IsValid(&why)) throw py::value_error("loads: " + why);
-  return loads;
-}
-
-/// An actuation checked before it reaches a solver, with the rules of the problem file
-/// (Actuation::IsValid against the rod's tendons and chambers): a ValueError naming the field.
-const Actuation& Valid(const Actuation& a, int tendons, int chambers) {
-  std::string why;
-  if (!a.IsValid(&why, tendons, chambers)) throw py::value_error("actuation." + why);
-  return a;
-}
 
 /// A fixed-size array field of Actuation as a Python list, and back from a sequence of at most
 /// N numbers (zero-filled).
@@ -80,19 +69,11 @@ auto ArraySetter(std::array<double, N> Actuation::*field, const char* name) {
   };
 }
 
-/// Base motion from Python, checked: finite values, and a rotation matrix (orthonormal to 1e-9,
-/// det +1) for the base rotation.
+/// Base motion from Python, checked: finite values (rotations: python::Rotation).
 template <typename Matrix>
 const Matrix& Finite(const Matrix& m, const char* field) {
   if (!m.allFinite()) throw py::value_error(std::string(field) + ": expected finite numbers");
   return m;
-}
-const Mat3& Rotation(const Mat3& R, const char* field) {
-  Finite(R, field);
-  if ((R.transpose() * R - Mat3::Identity()).norm() > 1e-9 || R.determinant() < 0)
-    throw py::value_error(std::string(field) +
-                          ": expected a rotation matrix (orthonormal, det +1)");
-  return R;
 }
 
 Eigen::MatrixXd Stack(const std::vector<Vec3>& v) {
@@ -142,9 +123,8 @@ class PyStepper {
  public:
   PyStepper(const io::Problem& problem, std::optional<double> dt,
             std::optional<std::string> spatial_scheme)
-      : options_(cosserat::run::DynamicsOptions(Runnable(problem, "the Stepper"))),
-        tendons_(static_cast<int>(problem.rod.tendons.size())),
-        chambers_(static_cast<int>(problem.rod.chambers.size())) {
+      : problem_(Steppable(problem, "the Stepper")),
+        options_(cosserat::run::DynamicsOptions(problem)) {
     if (problem.boundary != io::Boundary::kCantilever &&
         problem.boundary != io::Boundary::kFreeFree)
       throw py::value_error("boundary: the Stepper runs \"cantilever\" or \"free-free\", got \"" +
@@ -163,30 +143,35 @@ class PyStepper {
     stepper_.emplace(problem.rod, problem.nodes, options_);
     initial_loads_ = problem.dynamics.initial_loads.value_or(problem.loads);
     initial_actuation_ = problem.robot.initial_actuation;
-    input_.base_pose = problem.base;
-    input_.loads = problem.loads;
-    input_.actuation = problem.robot.actuation;
+    first_input_.base_pose = problem.base;
+    first_input_.loads = problem.loads;
+    first_input_.actuation = problem.robot.actuation;
+    input_ = first_input_;
   }
 
   StepSummary InitializeAtRest(std::optional<StaticLoads> loads,
                                std::optional<Actuation> actuation) {
     StepInput at_rest = input_;
     at_rest.loads = loads ? Valid(*loads) : initial_loads_;
-    at_rest.actuation = actuation ? Valid(*actuation, tendons_, chambers_) : initial_actuation_;
+    at_rest.actuation = actuation ? Valid(*actuation, problem_) : initial_actuation_;
     const StepSummary s = stepper_->InitializeAtRest(at_rest);
     has_state_ = has_state_ || s.converged();
     return s;
   }
 
+  /// Every argument is checked before any is applied: a refused call changes nothing.
   StepSummary Step(std::optional<StaticLoads> loads, std::optional<Vec3> base_position,
                    std::optional<Mat3> base_rotation, std::optional<Vec6> base_twist_B,
                    std::optional<Vec6> base_wrench_B, std::optional<Actuation> actuation) {
-    if (loads) input_.loads = Valid(*loads);
-    if (actuation) input_.actuation = Valid(*actuation, tendons_, chambers_);
-    if (base_position) input_.base_pose.p = Finite(*base_position, "base_position");
-    if (base_rotation) input_.base_pose.R = Rotation(*base_rotation, "base_rotation");
-    if (base_twist_B) input_.base_twist_B = Finite(*base_twist_B, "base_twist_B");
-    if (base_wrench_B) input_.base_wrench_B = Finite(*base_wrench_B, "base_wrench_B");
+    run();  // a state to step from
+    StepInput next = input_;
+    if (loads) next.loads = Valid(*loads);
+    if (actuation) next.actuation = Valid(*actuation, problem_);
+    if (base_position) next.base_pose.p = Finite(*base_position, "base_position");
+    if (base_rotation) next.base_pose.R = Rotation(*base_rotation, "base_rotation");
+    if (base_twist_B) next.base_twist_B = Finite(*base_twist_B, "base_twist_B");
+    if (base_wrench_B) next.base_wrench_B = Finite(*base_wrench_B, "base_wrench_B");
+    input_ = next;
     return stepper_->Step(input_);
   }
 
@@ -198,8 +183,16 @@ class PyStepper {
   }
   Bdf2ShootingStepper::Snapshot Save() const { return run().Save(); }
   void Restore(const Bdf2ShootingStepper::Snapshot& snapshot) {
-    stepper_->Restore(snapshot);   // throws std::invalid_argument (ValueError) if it can't
-    input_ = snapshot.last_input;  // what the saved run was applying
+    stepper_->Restore(snapshot);  // throws std::invalid_argument (ValueError) if it can't
+    // What the saved run was applying. A snapshot of the state at rest, before any step, holds
+    // the inputs of the equilibrium (the preload): the steps apply the problem's, as after
+    // initialize_at_rest, with the base where the rest state had it.
+    input_ = snapshot.last_input;
+    if (stepper_->time() == 0.0) {
+      const lie::SE3 base = input_.base_pose;
+      input_ = first_input_;
+      input_.base_pose = base;
+    }
     has_state_ = true;
   }
   double time() const { return stepper_->time(); }
@@ -208,13 +201,13 @@ class PyStepper {
   const Bdf2Options& options() const { return options_; }
 
  private:
+  io::Problem problem_;  ///< for the actuation's rules (tendons, chambers, jamming segments)
   Bdf2Options options_;
-  int tendons_;
-  int chambers_;
   std::optional<Bdf2ShootingStepper> stepper_;
   StaticLoads initial_loads_;
   Actuation initial_actuation_;
-  StepInput input_;  ///< what step() applies
+  StepInput first_input_;  ///< what the first step applies: the problem's loads and actuation
+  StepInput input_;        ///< what step() applies
   bool has_state_ = false;
 };
 
@@ -222,39 +215,61 @@ class PyStepper {
 class PyStaticSolver {
  public:
   explicit PyStaticSolver(const io::Problem& problem)
-      : solver_(Runnable(problem, "StaticSolver").rod, problem.nodes, run::StaticOptions(problem),
-                problem.robot.actuation),
+      : problem_(Runnable(problem, "StaticSolver")),
+        solver_(problem.rod, problem.nodes, run::StaticOptions(problem), problem.robot.actuation),
         base_(problem.base),
-        loads_(problem.loads),
-        tendons_(static_cast<int>(problem.rod.tendons.size())),
-        chambers_(static_cast<int>(problem.rod.chambers.size())) {
+        loads_(problem.loads) {
     if (problem.boundary != io::Boundary::kCantilever)
       throw py::value_error("boundary: StaticSolver solves a cantilever, got \"" +
-                            io::ToString(problem.boundary) + "\" (cosserat.solve runs columns)");
+                            io::ToString(problem.boundary) +
+                            "\" (cosserat.solve runs the other ends)");
+    // A rod whose shot grows too fast for one shooting piece: the CLI solves it by multiple
+    // shooting (run_statics.cpp), which this object does not.
+    const double exponent = StaticShootingExponent(problem.rod, problem.loads);
+    if (problem.rod.tendons.empty() && !problem.has_robot && exponent > 10.0) {
+      std::ostringstream why;
+      why << "rod: StaticSolver shoots from the clamp in one piece, and this problem's shot "
+             "grows like e^"
+          << std::setprecision(3) << exponent
+          << " (stiff contact, a foundation or tension); cosserat.solve runs it by multiple "
+             "shooting";
+      throw py::value_error(why.str());
+    }
   }
 
+  /// Every argument is checked before any is applied: a refused call changes nothing.
   StaticShootingSummary Solve(std::optional<StaticLoads> loads, std::optional<Vec3> position,
                               std::optional<Mat3> rotation, std::optional<Actuation> actuation) {
-    if (loads) loads_ = Valid(*loads);
-    if (position) base_.p = Finite(*position, "base_position");
-    if (rotation) base_.R = Rotation(*rotation, "base_rotation");
-    if (actuation) solver_.SetActuation(Valid(*actuation, tendons_, chambers_));
+    const StaticLoads next_loads = loads ? Valid(*loads) : loads_;
+    lie::SE3 next_base = base_;
+    if (position) next_base.p = Finite(*position, "base_position");
+    if (rotation) next_base.R = Rotation(*rotation, "base_rotation");
+    if (actuation) Valid(*actuation, problem_);
+    loads_ = next_loads;
+    base_ = next_base;
+    if (actuation) solver_.SetActuation(*actuation);
     const StaticShootingSummary s = solver_.Solve(base_, loads_);
-    solved_ = solved_ || s.converged();
+    last_status_ = s.status;
     return s;
   }
+  /// The equilibrium of the last solve(); refused when it did not converge (the solver's state
+  /// is then a load step's, not an equilibrium of what was asked).
   const RodState& state() const {
-    if (!solved_) throw std::runtime_error("StaticSolver has no solution yet: call solve() first");
+    if (last_status_ == SolveStatus::kNotRun)
+      throw std::runtime_error("StaticSolver has no solution yet: call solve() first");
+    if (last_status_ != SolveStatus::kConverged)
+      throw std::runtime_error(std::string("StaticSolver has no solution: the last solve() "
+                                           "ended with status ") +
+                               ToString(last_status_));
     return solver_.state();
   }
 
  private:
+  io::Problem problem_;  ///< for the actuation's rules (tendons, chambers, jamming segments)
   StaticShootingSolver solver_;
   lie::SE3 base_;
   StaticLoads loads_;
-  int tendons_;
-  int chambers_;
-  bool solved_ = false;
+  SolveStatus last_status_ = SolveStatus::kNotRun;
 };
 
 /// cosserat.Fluid: the fluid around the rod (environment.fluid of a problem file).
