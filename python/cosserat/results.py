@@ -70,14 +70,23 @@ def _arrays(block):
 
 
 def _frames(nodes_csv):
-    """The --csv table of a dynamics run: (times (F,), positions (F, N, 3)), or None."""
+    """The --csv table of a dynamics run as {"t": (F,), "position": (F, N, 3)}; of an assembly
+    (columns t,rod,s,x,y,z) as {"t": (F,), "rods": [(F, N_i, 3) per rod]}; None for a table
+    without times."""
     lines = nodes_csv.strip().splitlines()
-    if not lines or not lines[0].startswith("t,node"):
+    if not lines or not (lines[0].startswith("t,node") or lines[0].startswith("t,rod")):
         return None
     rows = np.asarray([[float(v) for v in line.split(",")] for line in lines[1:]])
-    nodes = int(rows[:, 1].max()) + 1
-    frames = rows.reshape(-1, nodes, rows.shape[1])
-    return frames[:, 0, 0], frames[:, :, 3:6]
+    times = np.unique(rows[:, 0])
+    if lines[0].startswith("t,node"):
+        nodes = int(rows[:, 1].max()) + 1
+        frames = rows.reshape(-1, nodes, rows.shape[1])
+        return {"t": frames[:, 0, 0], "position": frames[:, :, 3:6]}
+    rods = []
+    for rod in range(int(rows[:, 1].max()) + 1):
+        mine = rows[rows[:, 1] == rod]
+        rods.append(mine[:, 3:6].reshape(len(times), -1, 3))
+    return {"t": times, "rods": rods}
 
 
 def solve(problem, nodes=False):
@@ -93,7 +102,8 @@ def solve(problem, nodes=False):
       log         the summary line and any hints
       nodes       result["nodes"] with its lists as NumPy arrays (positions N x 3, m; s, m; ...)
       trajectory  result["trajectory"] likewise (t (s), tip_position (F x 3, m), ...), if any
-      frames      with nodes=True in dynamics: {"t": (F,), "position": (F, N, 3)} (m, world)
+      frames      with nodes=True in dynamics: {"t": (F,), "position": (F, N, 3)} (m, world);
+                  of an assembly {"t": (F,), "rods": [(F, N_i, 3) per rod]}
       nodes_csv   with nodes=True: the --csv table as text
       contact_force, contact_total_force   with contact surfaces (N/m per node; N)
     """
@@ -106,5 +116,5 @@ def solve(problem, nodes=False):
     if nodes and out.get("nodes_csv"):
         frames = _frames(out["nodes_csv"])
         if frames is not None:
-            out["frames"] = {"t": frames[0], "position": frames[1]}
+            out["frames"] = frames
     return out

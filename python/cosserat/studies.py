@@ -3,6 +3,8 @@ import csv
 import os
 import tempfile
 
+import numpy as np
+
 from . import _core
 from .results import _json_text
 
@@ -41,9 +43,10 @@ def sweep(study, out=None, threads=None):
     else:
         raise TypeError("study: expected a dict with the study-file keys or a file path, got "
                         f"{type(study).__name__}")
-    if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int)
-                                or threads < 1):
+    if threads is not None and (isinstance(threads, bool)
+                                or not isinstance(threads, (int, np.integer)) or threads < 1):
         raise ValueError(f"threads: expected a whole number >= 1, got {threads!r}")
+    threads = None if threads is None else int(threads)
     if out is None:
         handle, out = tempfile.mkstemp(prefix="cosserat_sweep_", suffix=".csv")
         os.close(handle)

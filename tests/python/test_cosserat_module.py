@@ -269,7 +269,8 @@ class Dynamics(unittest.TestCase):
             stepper.tip_position()
         with self.assertRaisesRegex(RuntimeError, "initialize_at_rest"):
             stepper.save()
-        self.assertEqual(stepper.step().status, "not_run")
+        with self.assertRaisesRegex(RuntimeError, "initialize_at_rest"):
+            stepper.step()
         with self.assertRaisesRegex(RuntimeError, "solve"):
             cosserat.StaticSolver(wire()).state()
         # A snapshot of a thicker wire on the same grid does not continue this one.
@@ -282,6 +283,95 @@ class Dynamics(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "another rod"):
             stepper.restore(other.save())
 
+    def test_a_snapshot_at_rest_restores_the_release(self):
+        # The peer release: a preload held at rest, released at t = 0. A snapshot of the rest
+        # state holds the preload as its last input; restored, the run must still release, so
+        # 100 steps match those of the Stepper that was never saved, bit for bit.
+        p = cosserat.load_problem("examples/cantilever_release.json")
+        original = cosserat.Stepper(p)
+        self.assertTrue(original.initialize_at_rest().converged)
+        restored = cosserat.Stepper(p)
+        self.assertTrue(restored.initialize_at_rest().converged)
+        restored.restore(restored.save())
+        np.testing.assert_array_equal(restored.loads.tip_force, p.loads.tip_force)
+        for _ in range(100):
+            self.assertTrue(original.step().converged)
+            self.assertTrue(restored.step().converged)
+        np.testing.assert_array_equal(restored.tip_position(), original.tip_position())
+
+    def test_a_refused_call_changes_nothing(self):
+        # A step with good loads and a bad actuation, or a good base position and a bad
+        # rotation, is refused whole: the next step applies what it applied before.
+        p = cosserat.load_problem("robots/tendon_three_tendon.json")
+        stepper = cosserat.Stepper(p)
+        self.assertTrue(stepper.initialize_at_rest().converged)
+        loads = stepper.loads
+        loads.tip_force = [0.5, 0, 0]
+        bad = cosserat.Actuation()
+        bad.tendon_tension = [float("nan")]
+        with self.assertRaisesRegex(ValueError, "actuation.tendon_tension"):
+            stepper.step(loads, actuation=bad)
+        np.testing.assert_array_equal(stepper.loads.tip_force, p.loads.tip_force)
+        with self.assertRaisesRegex(ValueError, "base_rotation"):
+            stepper.step(base_position=[0.1, 0, 0], base_rotation=2 * np.eye(3))
+        self.assertTrue(stepper.step().converged)
+        np.testing.assert_array_equal(stepper.state()["position"][0], p.base_position)
+        solver = cosserat.StaticSolver(p)
+        with self.assertRaisesRegex(ValueError, "actuation.tendon_tension"):
+            solver.solve(loads, actuation=bad)
+        self.assertTrue(solver.solve().converged)
+        fresh = cosserat.StaticSolver(p)
+        self.assertTrue(fresh.solve().converged)
+        np.testing.assert_array_equal(solver.state()["position"], fresh.state()["position"])
+
+    def test_rotations_follow_the_problem_file_rule(self):
+        # A rotation sent as float32 (orthonormal to ~1e-7) is taken as the nearest rotation, as a
+        # problem file's within 1e-6; the clamp then turns the rod's base frame by it exactly.
+        stepper = cosserat.Stepper(wire("dynamics"))
+        self.assertTrue(stepper.initialize_at_rest().converged)
+        c, s = math.cos(0.3), math.sin(0.3)
+        exact = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+        self.assertTrue(stepper.step(base_rotation=exact.astype(np.float32)).converged)
+        base = stepper.state()["rotation"][0]
+        self.assertLess(np.abs(base.T @ base - np.eye(3)).max(), 1e-15)
+        np.testing.assert_allclose(base, exact, atol=1e-7)  # float32's rounding
+        off = exact.copy()
+        off[0, 1] += 2e-6
+        with self.assertRaisesRegex(ValueError, r"base_rotation: .*within 1e-6.*got max"):
+            stepper.step(base_rotation=off)
+
+    def test_inputs_the_command_drives_in_time_are_refused_by_the_steppers(self):
+        # The CLI turns a drill string's clamp (base_spin, rotary_table) and gusts the flow by
+        # itself; a Stepper applies what step() is given, so it refuses such files by name.
+        for path, field in [("examples/drill_string_stick_slip.json", "dynamics.base_spin"),
+                            ("examples/drill_string_motor.json", "dynamics.rotary_table")]:
+            with self.assertRaisesRegex(ValueError, field):
+                cosserat.Stepper(cosserat.load_problem(path))
+        with open("examples/cantilever_in_current.json") as f:
+            spec = json.load(f)
+        spec["analysis"] = "dynamics"
+        spec["environment"]["fluid"]["gust"] = {"amplitude": 0.2, "period": 2.0}
+        with self.assertRaisesRegex(ValueError, "environment.fluid.gust"):
+            cosserat.Stepper(cosserat.parse_problem(json.dumps(spec)))
+        with self.assertRaisesRegex(ValueError, "environment.fluid.gust"):
+            cosserat.BatchStepper(cosserat.parse_problem(json.dumps(spec)), 2)
+
+    def test_static_solver_leaves_multiple_shooting_to_solve(self):
+        # A rod lying on a stiff table shoots like e^25 in one piece: the CLI solves it by
+        # multiple shooting, StaticSolver refuses it by name; a failed solve has no state.
+        with open("examples/rod_on_table.json") as f:
+            spec = json.load(f)
+        spec["formulation"] = "se3-shooting"
+        with self.assertRaisesRegex(ValueError, "multiple shooting"):
+            cosserat.StaticSolver(cosserat.parse_problem(json.dumps(spec)))
+        self.assertTrue(cosserat.solve(spec)["converged"])
+        solver = cosserat.StaticSolver(wire())
+        loads = cosserat.Loads()
+        loads.tip_force = [-1e5, 0, 0]  # 1e5 N on a 1 mm wire: no load path reaches it
+        self.assertFalse(solver.solve(loads).converged)
+        with self.assertRaisesRegex(RuntimeError, "status"):
+            solver.state()
+
     def test_actuation_follows_the_problem_file_rules(self):
         p = cosserat.load_problem("robots/tendon_three_tendon.json")
         solver = cosserat.StaticSolver(p)
@@ -291,6 +381,15 @@ class Dynamics(unittest.TestCase):
             setattr(a, field, value)
             with self.assertRaisesRegex(ValueError, "actuation." + field):
                 solver.solve(actuation=a)
+        # Jamming pressures on segments the rod does not have, as the file's rule.
+        a = cosserat.Actuation()
+        a.jamming_pressure = [1e5]
+        with self.assertRaisesRegex(ValueError, "actuation.jamming_pressure: .* 0 switchable"):
+            solver.solve(actuation=a)
+        jamming = cosserat.load_problem("robots/jamming_virtual_joints.json")
+        a.jamming_pressure = [0.0] * 3 + [1e5]
+        with self.assertRaisesRegex(ValueError, "segment 3, but the rod has 3"):
+            cosserat.StaticSolver(jamming).solve(actuation=a)
         with self.assertRaisesRegex(ValueError, "robot.kind"):
             cosserat.Stepper(cosserat.load_problem("robots/eversion_banded_vine.json"))
         with self.assertRaisesRegex(ValueError, "robot.kind"):
@@ -472,6 +571,30 @@ class PythonSide(unittest.TestCase):
             cosserat.animate(cosserat.solve("examples/cantilever.json"), "x.gif")
 
 
+    def test_assemblies_are_plotted_and_animated_rod_by_rod(self):
+        # The plate on two wires: its frames hold each rod's nodes, which end where the run's
+        # result puts them; plot draws both rods and the plate, animate writes every frame.
+        import matplotlib
+        matplotlib.use("Agg")
+        import tempfile
+        out = cosserat.solve("examples/platform_release.json", nodes=True)
+        self.assertTrue(out["converged"], out["log"])
+        rods = out["frames"]["rods"]
+        self.assertEqual(len(rods), 2)
+        for frames, rod in zip(rods, out["result"]["assembly"]["rods"]):
+            self.assertEqual(frames.shape, (len(out["frames"]["t"]), 21, 3))
+            np.testing.assert_allclose(frames[-1], rod["nodes"]["position"], rtol=0, atol=1e-15)
+        ax = cosserat.plot(out)
+        self.assertEqual(len(ax.lines), 2 * 2 + 1)  # each rod and its base, the plate
+        with tempfile.TemporaryDirectory() as d:
+            self.assertEqual(cosserat.animate(out, d + "/plate.gif", every=100),
+                             len(out["frames"]["t"][::100]))
+        with self.assertRaisesRegex(ValueError, "every"):
+            cosserat.animate(out, "x.gif", every=0)
+        with self.assertRaisesRegex(ValueError, "path"):
+            cosserat.animate(out, "x.png")
+
+
 class Batches(unittest.TestCase):
     """cosserat.BatchStepper and cosserat.sweep."""
 
@@ -514,7 +637,7 @@ class Batches(unittest.TestCase):
         study = {"format": "cosserat-study/1", "problem": "examples/cantilever.json",
                  "parameters": [{"path": "/loads/tip_force/0", "values": [-0.2, 0.0, 0.3]}],
                  "outputs": {"tip_x": "/tip/position/0"}}
-        out = cosserat.sweep(study, threads=2)
+        out = cosserat.sweep(study, threads=np.int64(2))  # a NumPy integer is a whole number
         self.assertTrue(out["summary"]["complete"])
         self.assertEqual([r["index"] for r in out["rows"]], [0, 1, 2])
         for row in out["rows"]:
