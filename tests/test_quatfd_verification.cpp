@@ -104,6 +104,40 @@ TEST(QuatFdStatics, BendingAndTorsionAgreesWithShooting) {
               (fd_body.tip - ref_body).norm() / rod.length);
 }
 
+// A slender steel wire (r = 5 mm) hanging from its clamp under its own weight, L/r = 4 000 …
+// 200 000: it stretches by ρ g L²/(2E), exactly at the vertices of the central difference (the
+// tension is linear in s), and the clamp carries its weight. The weight (123 N at L = 20 m) is
+// ~500 EI/L², so round-off in the tension alone sits above 1e-6 EI/L²; the residual is measured
+// against the largest segment force, and the solve must converge at every length. 1e-6 of the
+// stretch bounds the solver's tolerance (1e-10 of the weight) and fails on a missing or halved
+// self-weight.
+TEST(QuatFdStatics, ASlenderWireHangsUnderItsWeightAtEveryLength) {
+  for (const double length : {20.0, 100.0, 1000.0}) {
+    const cosserat::testing::SteelRod rod{length, 0.005};
+    StaticLoads loads;
+    loads.gravity_W = Vec3(0, 0, 9.81);  // along +z, the rod's own direction: hanging
+    QuatFdOptions opt;
+    opt.segments = 100;
+    QuatFdModel model(rod.model(), lie::SE3(), opt);
+    Eigen::VectorXd q(model.size()), v(model.size());
+    model.RestState(q, v);
+    const QuatFdStaticsSummary s = SolveStatics(&model, loads, q);
+    ASSERT_TRUE(s.converged()) << "L " << length << ": " << ToString(s.status) << " residual "
+                               << s.residual;
+    RodState state;
+    model.ToRodState(q, v, &state);
+    const double weight = rod.rhoA() * 9.81 * length;
+    const double stretch = rod.material.density * 9.81 * length * length /
+                           (2 * rod.material.youngs_modulus);
+    const double measured = state.tip_position_W().z() - length;
+    std::printf("  hanging wire L = %g m: stretch %.9e m (truth %.9e), clamp force %.6f N "
+                "(weight %.6f N)\n",
+                length, measured, stretch, state.BaseReaction_W()(5), weight);
+    EXPECT_NEAR(measured, stretch, 1e-6 * stretch) << length;
+    EXPECT_NEAR(-state.BaseReaction_W()(5), weight, 1e-9 * weight) << length;
+  }
+}
+
 TEST(QuatFdStatics, SecondOrderConvergenceInSegments) {
   SteelRod rod;
   StaticLoads loads;

@@ -149,12 +149,9 @@ double StaticResidual(const QuatFdModel& model, const Eigen::Ref<const Eigen::Ve
   const int N = model.layout().segments, n = model.size();
   Eigen::VectorXd forces(n);
   model.Forces(q, Eigen::VectorXd::Zero(n), forces);
-  double force_scale = model.force_scale(), moment_scale = model.moment_scale();
-  if (model.options().TipHeld()) {
-    const double f_max = model.MaxSegmentForce(q);
-    force_scale = std::max(force_scale, f_max);
-    moment_scale = std::max(moment_scale, f_max * model.length() / N);
-  }
+  const double f_max = model.MaxSegmentForce(q);
+  const double force_scale = std::max(model.force_scale(), f_max);
+  const double moment_scale = std::max(model.moment_scale(), f_max * model.length() / N);
   double r = 0.0;
   for (int v = 0; v <= N; ++v)
     r = std::max(r, forces.segment<3>(L::X(v)).norm() / force_scale);
