@@ -5,6 +5,7 @@
 
 #include "bending_stress_report.hpp"
 #include "contact_report.hpp"
+#include "scale_warnings.hpp"
 #include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/run/run_assembly.hpp"
 #include "cosserat/run/run_buckling.hpp"
@@ -78,6 +79,7 @@ Result Run(const io::Problem& problem, const RunOptions& options) {
   detail::AddContactReport(problem, &result);
   detail::AddFrameContactForces(problem, &result);
   detail::AddBendingStressReport(problem, &result);
+  detail::AddScaleWarnings(problem, &result);
   return result;
 }
 

@@ -33,6 +33,19 @@ std::string StaticSummary(const StaticShootingSummary& s, const RodState& state)
   return line.str();
 }
 
+/// After an SE(3) cantilever solve whose load steps stopped short: what to try. A soft rod bent
+/// far by its loads is followed in finer steps on a finer grid (a silicone-soft 1 m rod under
+/// gravity fails at 41 nodes and converges at 201), and the quaternion-FD statics follow the
+/// same loads by Newton on every node at once.
+std::string ContinuationHint(const io::Problem& problem, const StaticShootingSummary& summary) {
+  if (summary.status != SolveStatus::kLoadSteppingFailed) return "";
+  std::ostringstream hint;
+  hint << "cosserat: hint: the load steps stopped short of the full load (the shape written is "
+          "the last load level reached): a finer grid (rod.nodes, now "
+       << problem.nodes << ") or \"formulation\": \"quaternion-fd\" may follow the loads to the end\n";
+  return hint.str();
+}
+
 /// A column (boundary "pinned-pinned", "clamped-clamped" or "clamped-pinned"): the loads
 /// followed from the straight, unloaded column (ColumnSolver::SolveFromUnloaded).
 Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOptions& options) {
@@ -69,7 +82,7 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
   result.json["shooting_segments"] = solver.pieces();
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
   result.log = StaticSummary(summary, solver.state()) + " (" + std::to_string(solver.pieces()) +
-               " shooting pieces)\n";
+               " shooting pieces)\n" + ContinuationHint(problem, summary);
   result.converged = summary.converged();
   return result;
 }
@@ -209,6 +222,7 @@ Result RunStatics(const io::Problem& problem, const RunOptions& options) {
   }
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
   result.log = StaticSummary(summary, solver.state()) + '\n';
+  if (!problem.has_robot) result.log += ContinuationHint(problem, summary);
   result.converged = summary.converged();
   return result;
 }

@@ -429,9 +429,12 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
   const bool converged = mu == 1.0;
   // The state of the last accepted level (the solution when converged).
   Finish(base, converged ? loads : at(mu), converged, &summary);
-  // The continuation stopped short of the full load (its residual is the last level's).
-  if (!converged && summary.status == SolveStatus::kMaxIterations)
+  if (!converged && summary.status == SolveStatus::kMaxIterations) {
+    // The continuation stopped short of the full load. The residual reported is that state's
+    // under the loads asked for, as single shooting reports it (the last level's own is ~0).
     summary.status = SolveStatus::kLoadSteppingFailed;
+    if (Residual(base, loads, &r_)) summary.residual = r_.norm();
+  }
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return summary;

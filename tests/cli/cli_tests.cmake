@@ -381,6 +381,15 @@ cosserat_cli_test(NAME bad_bit_friction ARGS validate "${_cli_dir}/bad_bit_frict
 cosserat_cli_test(NAME riser_coarse_grid ARGS solve "${_cli_dir}/riser_coarse_grid.json" CODE 1
                   STDERR "hint: the grid spacing 8.75 m is coarse for environment.contact\\[0\\]'s foundation length.*try rod.nodes >= 119")
 
+# Answers only a slip of units gives run, and the log says what to check (run/scale_warnings.hpp);
+# a soft rod's SE(3) load steps that stop short say what to try.
+cosserat_cli_test(NAME radius_in_mm ARGS solve "${_cli_dir}/radius_in_mm.json" CODE 0
+                  STDERR "warning: the rod is 1 m long and 10 m across: not a slender rod")
+cosserat_cli_test(NAME modulus_in_mpa ARGS solve "${_cli_dir}/modulus_in_mpa.json" CODE 0
+                  STDERR "warning: the rod is stretched or compressed by .* check the units of the material")
+cosserat_cli_test(NAME soft_rod_coarse_se3 ARGS solve "${_cli_dir}/soft_rod_coarse_se3.json" CODE 1
+                  STDERR "load_stepping_failed.*hint: the load steps stopped short.*rod.nodes, now 41")
+
 # Assemblies of rods and bodies (docs/assemblies.md; robots/stewart_gough*.json also run in the
 # robots/ loop above). The continuum Stewart-Gough robot's inverse kinematics holds the platform
 # at the file's pose and prints the six lengths (each between the 0.4 m start and 0.5 m); its

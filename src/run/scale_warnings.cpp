@@ -1,0 +1,70 @@
+#include "scale_warnings.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace cosserat::run::detail {
+namespace {
+
+/// A rod shorter than this many outer diameters is not slender: rod theory does not hold.
+constexpr double kSlenderness = 2.0;
+/// The largest node-to-node stretch |Δx|/Δs − 1 (either way) a linear elastic rod is trusted
+/// with; beyond it the answer is almost surely a unit slip.
+constexpr double kLargestStretch = 0.5;
+
+/// The largest |Δx/Δs − 1| between consecutive nodes of a "nodes" block ({"s", "position"}),
+/// and the s where it starts (m); 0 when the block has no such lists.
+double LargestStretch(const nlohmann::ordered_json& nodes, double* at_s) {
+  if (!nodes.is_object() || !nodes.contains("s") || !nodes.contains("position")) return 0.0;
+  const nlohmann::ordered_json& s = nodes["s"];
+  const nlohmann::ordered_json& x = nodes["position"];
+  double worst = 0.0;
+  for (size_t i = 0; i + 1 < s.size() && i + 1 < x.size(); ++i) {
+    const double ds = s[i + 1].get<double>() - s[i].get<double>();
+    if (!(ds > 0)) continue;
+    double dx2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double d = x[i + 1][k].get<double>() - x[i][k].get<double>();
+      dx2 += d * d;
+    }
+    const double stretch = std::abs(std::sqrt(dx2) / ds - 1.0);
+    if (stretch > worst) {
+      worst = stretch;
+      *at_s = s[i].get<double>();
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
+void AddScaleWarnings(const io::Problem& problem, Result* result) {
+  std::ostringstream log;
+  log << std::setprecision(3);
+  if (!problem.has_assembly && problem.rod.section) {
+    const double d = problem.rod.section->At(0.0, problem.robot.actuation).outer_diameter;
+    if (d > 0 && problem.rod.length < kSlenderness * d)
+      log << "cosserat: warning: the rod is " << problem.rod.length << " m long and " << d
+          << " m across: not a slender rod, which rod theory assumes; check rod.length and the "
+             "section's sizes (m)\n";
+  }
+  const nlohmann::ordered_json& j = result->json;
+  double at_s = 0.0, worst = 0.0;
+  if (j.contains("nodes")) worst = LargestStretch(j["nodes"], &at_s);
+  if (j.contains("assembly") && j["assembly"].contains("rods"))
+    for (const nlohmann::ordered_json& rod : j["assembly"]["rods"])
+      if (rod.contains("nodes")) {
+        double s = 0.0;
+        const double w = LargestStretch(rod["nodes"], &s);
+        if (w > worst) worst = w, at_s = s;
+      }
+  if (worst > kLargestStretch)
+    log << "cosserat: warning: the rod is stretched or compressed by " << 100 * worst
+        << " % of its length near s = " << at_s
+        << " m, far beyond a linear elastic law; check the units of the material (Pa, kg/m³) "
+           "and of the loads (N, m)\n";
+  result->log += log.str();
+}
+
+}  // namespace cosserat::run::detail
