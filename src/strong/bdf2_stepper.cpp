@@ -129,6 +129,7 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
     throw std::invalid_argument("Bdf2Options: shooting_segments (" + std::to_string(pieces) +
                                 ") exceeds the number of grid segments (" + std::to_string(n - 1) +
                                 ")");
+  initial_pieces_ = pieces;
   SetShootingPieces(pieces);
 }
 
@@ -460,6 +461,9 @@ StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input,
   if (options_.ends == EndConditions::kFreeFree && input.tip_hold != TipHold::kFree)
     throw std::invalid_argument("Bdf2ShootingStepper: a held tip needs cantilever ends");
   initialized_ = false;  // until this succeeds, Step() refuses to run
+  // A new run starts from the constructor's plan: pieces a failed step of an earlier run added
+  // would make the same inputs give another run (ApplyActuation adds what this one asks for).
+  if (automatic_pieces_ && ShootingPieces() != initial_pieces_) SetShootingPieces(initial_pieces_);
   run_.base1 = run_.base2 = input.base_pose;
   run_.steps_taken = 0;
   run_.jacobian_c0 = -1.0;  // the first solve computes the exact Jacobian

@@ -360,6 +360,7 @@ class Bdf2ShootingStepper {
   double ms_jacobian_c0_ = -1.0;  ///< c0 the factors are for; −1: none
   bool initialized_ = false;
   bool automatic_pieces_ = false;  ///< Bdf2Options::shooting_segments was 0
+  int initial_pieces_ = 1;  ///< the constructor's plan, which every InitializeAtRest starts from
 };
 
 }  // namespace cosserat
