@@ -105,15 +105,49 @@ py::dict StateDict(const RodState& state) {
   return d;
 }
 
+/// [x, y, z] with 6 significant digits, for the reprs.
+std::string Text(const Vec3& x) {
+  std::ostringstream o;
+  o << std::setprecision(6) << "[" << x(0) << ", " << x(1) << ", " << x(2) << "]";
+  return o.str();
+}
+
+/// The first n values of a list, with 6 significant digits, for the reprs.
+template <size_t N>
+std::string Text(const std::array<double, N>& values, size_t n) {
+  std::ostringstream o;
+  o << std::setprecision(6) << "[";
+  for (size_t i = 0; i < n && i < N; ++i) o << (i ? ", " : "") << values[i];
+  o << "]";
+  return o.str();
+}
+
+/// The index past the last non-zero value (0 when all are zero).
+template <size_t N>
+size_t Used(const std::array<double, N>& values) {
+  size_t n = 0;
+  for (size_t i = 0; i < N; ++i)
+    if (values[i] != 0.0) n = i + 1;
+  return n;
+}
+
 /// The fields the static and the step summaries share.
 template <typename Summary>
 py::class_<Summary>& BindSummary(py::class_<Summary>& c) {
+  const std::string name = py::str(c.attr("__name__"));
   return c.def_property_readonly("status", [](const Summary& s) { return ToString(s.status); })
       .def_property_readonly("converged", &Summary::converged)
       .def_readonly("iterations", &Summary::iterations)
       .def_readonly("shots", &Summary::shots)
       .def_readonly("residual", &Summary::residual)
-      .def_readonly("wall_time_s", &Summary::wall_time_s);
+      .def_readonly("wall_time_s", &Summary::wall_time_s)
+      .def("__repr__", [name](const Summary& s) {
+        std::ostringstream o;
+        o << std::setprecision(3) << name << "(status=" << ToString(s.status)
+          << ", iterations=" << s.iterations << ", shots=" << s.shots << ", residual=" << s.residual
+          << ", wall_time_s=" << s.wall_time_s << ")";
+        return o.str();
+      });
 }
 
 /// The dynamics stepper with the input it applies, so that a control loop only says what
@@ -285,7 +319,15 @@ void BindFluid(py::module_& m) {
       .def_readwrite("drag_normal", &Fluid::drag_normal)
       .def_readwrite("drag_tangential", &Fluid::drag_tangential)
       .def_readwrite("added_mass", &Fluid::added_mass)
-      .def_readwrite("diameter", &Fluid::diameter);
+      .def_readwrite("diameter", &Fluid::diameter)
+      .def("__repr__", [](const Fluid& f) {
+        std::ostringstream o;
+        o << std::setprecision(6) << "Fluid(density=" << f.density
+          << ", velocity=" << Text(f.velocity_W) << ", drag_normal=" << f.drag_normal
+          << ", drag_tangential=" << f.drag_tangential << ", added_mass=" << f.added_mass
+          << ", diameter=" << f.diameter << ")";
+        return o.str();
+      });
 }
 
 /// cosserat.Loads: the external loads, their frames and a readable repr.
@@ -312,15 +354,14 @@ void BindLoads(py::module_& m) {
             l.tip_moment_frame = FrameFromString(f, "tip_moment_frame");
           })
       .def("__repr__", [](const StaticLoads& l) {
-        auto v = [](const Vec3& x) {
-          std::ostringstream o;
-          o << std::setprecision(6) << "[" << x(0) << ", " << x(1) << ", " << x(2) << "]";
-          return o.str();
-        };
-        return "Loads(gravity=" + v(l.gravity_W) +
-               ", distributed_force=" + v(l.distributed_force_W) + ", tip_force=" + v(l.tip_force) +
-               " (" + ToString(l.tip_force_frame) + "), tip_moment=" + v(l.tip_moment) + " (" +
-               ToString(l.tip_moment_frame) + "))";
+        std::string text = "Loads(gravity=" + Text(l.gravity_W) +
+                           ", distributed_force=" + Text(l.distributed_force_W) +
+                           ", tip_force=" + Text(l.tip_force) + " (" +
+                           ToString(l.tip_force_frame) + "), tip_moment=" + Text(l.tip_moment) +
+                           " (" + ToString(l.tip_moment_frame) + ")";
+        if (l.fluid.present())
+          text += ", fluid=" + py::repr(py::cast(l.fluid)).cast<std::string>();
+        return text + ")";
       });
 }
 
@@ -339,7 +380,17 @@ void BindActuation(py::module_& m) {
       .def_property("chamber_pressure", ArrayGetter(&Actuation::chamber_pressure),
                     ArraySetter(&Actuation::chamber_pressure, "chamber_pressure"))
       .def_property("jamming_pressure", ArrayGetter(&Actuation::jamming_pressure),
-                    ArraySetter(&Actuation::jamming_pressure, "jamming_pressure"));
+                    ArraySetter(&Actuation::jamming_pressure, "jamming_pressure"))
+      .def("__repr__", [](const Actuation& a) {
+        // The lists up to their last non-zero value (they hold 8 or 16, zero-filled).
+        std::ostringstream o;
+        o << std::setprecision(6) << "Actuation(tendon_tension="
+          << Text(a.tendon_tension, Used(a.tendon_tension))
+          << ", chamber_pressure=" << Text(a.chamber_pressure, Used(a.chamber_pressure))
+          << ", jamming_pressure=" << Text(a.jamming_pressure, Used(a.jamming_pressure))
+          << ", pressure=" << a.pressure << ", stiffness_scale=" << a.stiffness_scale << ")";
+        return o.str();
+      });
 }
 
 /// cosserat.Problem, read-only views of a validated problem file, and load_problem and
@@ -364,6 +415,18 @@ void BindProblem(py::module_& m) {
       .def_property_readonly("duration", [](const io::Problem& p) { return p.dynamics.duration; })
       .def_property_readonly("initial_loads", [](const io::Problem& p) {
         return p.dynamics.initial_loads.value_or(p.loads);
+      })
+      .def("__repr__", [](const io::Problem& p) {
+        std::ostringstream o;
+        o << std::setprecision(6) << "Problem(analysis=" << io::ToString(p.analysis)
+          << ", formulation=" << io::ToString(p.formulation)
+          << ", boundary=" << io::ToString(p.boundary);
+        if (p.has_assembly)
+          o << ", assembly";
+        else
+          o << ", length=" << p.rod.length << " m, nodes=" << p.nodes;
+        o << ")";
+        return o.str();
       });
 
   m.def(
@@ -430,7 +493,10 @@ void BindStaticSolver(py::module_& m) {
            py::arg("actuation") = py::none(),
            "Solves for the loads, clamp pose and actuation given; what is not given keeps its "
            "last value, at first the problem's loads, base and robot actuation.")
-      .def("state", [](const PyStaticSolver& s) { return StateDict(s.state()); });
+      .def(
+          "state", [](const PyStaticSolver& s) { return StateDict(s.state()); },
+          "The equilibrium of the last solve(), as Stepper.state(); RuntimeError when it did "
+          "not converge.");
 }
 
 /// cosserat.Stepper (BDF2 dynamics for control loops), its StepSummary and Snapshot.
@@ -448,7 +514,9 @@ void BindStepper(py::module_& m) {
                         "CLI runs it: initialize_at_rest() under the problem's initial loads and "
                         "actuation, step() under its loads and actuation unless told otherwise.")
       .def(py::init<const io::Problem&, std::optional<double>, std::optional<std::string>>(),
-           py::arg("problem"), py::arg("dt") = py::none(), py::arg("spatial_scheme") = py::none())
+           py::arg("problem"), py::arg("dt") = py::none(), py::arg("spatial_scheme") = py::none(),
+           "The problem's rod, grid, ends and dynamics options; dt (s) and spatial_scheme "
+           "(\"rk4-pairs\", the default, \"rk4\" or \"heun\") override the file's.")
       .def("initialize_at_rest", &PyStepper::InitializeAtRest, py::arg("loads") = py::none(),
            py::arg("actuation") = py::none(),
            "Static equilibrium at t = 0 under `loads` and `actuation` (default: the problem's "
@@ -461,8 +529,9 @@ void BindStepper(py::module_& m) {
            "loads, base pose and robot actuation). Cantilever: the base pose and twist [w; v] "
            "(body frame) at the end of the step, which must agree (the twist is not derived "
            "from the pose); free-free: the wrench on the s = 0 end (body frame).")
-      .def_property_readonly("time", &PyStepper::time)
-      .def_property_readonly("dt", [](const PyStepper& s) { return s.options().dt; })
+      .def_property_readonly("time", &PyStepper::time, "Simulated time since the rest state, s.")
+      .def_property_readonly(
+          "dt", [](const PyStepper& s) { return s.options().dt; }, "The step, s.")
       .def_property_readonly(
           "shot_steps", &PyStepper::shot_steps,
           "The steps of the shot in s: the grid's segments less the pairs the default scheme "
@@ -473,12 +542,22 @@ void BindStepper(py::module_& m) {
       .def_property_readonly(
           "actuation", [](const PyStepper& s) { return s.input().actuation; },
           "A copy of the actuation step() applies.")
-      .def("state", [](const PyStepper& s) { return StateDict(s.run().state()); })
-      .def("tip_position",
-           [](const PyStepper& s) { return Vec3(s.run().state().tip_position_W()); })
-      .def("tip_rotation",
-           [](const PyStepper& s) { return Mat3(s.run().state().tip_rotation_WB()); })
-      .def("tip_twist_B", [](const PyStepper& s) { return Vec6(s.run().state().twist_B.back()); })
+      .def(
+          "state", [](const PyStepper& s) { return StateDict(s.run().state()); },
+          "The rod now: a dict of s (N, m), position (N×3, m, world), rotation (N×3×3, body to "
+          "world), strain_B, wrench_B ([moment; force], N·m and N) and twist_B ([ω; v], rad/s "
+          "and m/s), N×6 in each section's body frame.")
+      .def(
+          "tip_position",
+          [](const PyStepper& s) { return Vec3(s.run().state().tip_position_W()); },
+          "The tip's position, m, world frame.")
+      .def(
+          "tip_rotation",
+          [](const PyStepper& s) { return Mat3(s.run().state().tip_rotation_WB()); },
+          "The tip section's rotation, body to world.")
+      .def(
+          "tip_twist_B", [](const PyStepper& s) { return Vec6(s.run().state().twist_B.back()); },
+          "The tip's twist [ω; v] (rad/s, m/s) in its body frame.")
       .def(
           "base_reaction", [](const PyStepper& s) { return s.run().state().BaseReaction_W(); },
           "The wrench [moment; force] the support applies at s = 0, world frame.")
@@ -502,8 +581,11 @@ void BindStepper(py::module_& m) {
             return py::make_tuple(p.linear_W, p.angular_W);
           },
           "(linear, angular about the origin), world frame.")
-      .def("mass", [](const PyStepper& s) { return s.run().Mass(); })
-      .def("save", &PyStepper::Save)
+      .def(
+          "mass", [](const PyStepper& s) { return s.run().Mass(); },
+          "The rod's mass with its tip body, kg.")
+      .def("save", &PyStepper::Save,
+           "A Snapshot of the run (state, history and inputs) for restore(); allocates.")
       .def("restore", &PyStepper::Restore,
            "Continues the saved run, with the inputs it was applying; a snapshot from another "
            "rod, grid or end conditions, or taken before initialize_at_rest, is refused.");

@@ -571,6 +571,16 @@ class PythonSide(unittest.TestCase):
             cosserat.animate(cosserat.solve("examples/cantilever.json"), "x.gif")
 
 
+    def test_reprs_show_the_values(self):
+        # What a notebook prints: the file's values, not object addresses.
+        p = cosserat.load_problem("robots/tendon_three_tendon.json")
+        self.assertIn("tendon_tension=[1.5, 0, 0.5]", repr(p.actuation))
+        self.assertIn("length=0.25 m", repr(p))
+        current = cosserat.load_problem("examples/cantilever_in_current.json")
+        self.assertIn("Fluid(density=1025, velocity=[0.8, 0, 0]", repr(current.loads))
+        summary = cosserat.StaticSolver(p).solve()
+        self.assertTrue(repr(summary).startswith("StaticSummary(status=converged"))
+
     def test_assemblies_are_plotted_and_animated_rod_by_rod(self):
         # The plate on two wires: its frames hold each rod's nodes, which end where the run's
         # result puts them; plot draws both rods and the plate, animate writes every frame.
