@@ -372,6 +372,30 @@ TEST(HeldCable, ASlackCableBesideABarItDoesNotTouchHangsAsWithoutIt) {
   }
 }
 
+// The modes of a held cable are about its static equilibrium, so their result reports the same
+// anchor force as the statics of the same file (both solve the same statics with the same
+// options: equal to round-off; 1e-9 of the ~56 N tension).
+TEST(HeldCable, ModesReportTheAnchorForceOfTheirEquilibrium) {
+  const char* text = R"({"format": "cosserat-problem/1", "analysis": "%s",
+    "formulation": "quaternion-fd",
+    "rod": {"length": 10.5, "nodes": 41, "section": {"shape": "circle", "radius": 0.005},
+            "material": {"youngs_modulus": 2e11, "poisson_ratio": 0.3, "density": 7800}},
+    "boundary": "anchored", "anchor": {"position": [10, 0, 0]},
+    "loads": {"gravity": [0, 0, -9.81]}, "modes": {"count": 2}})";
+  char statics_text[1024], modes_text[1024];
+  std::snprintf(statics_text, sizeof statics_text, text, "statics");
+  std::snprintf(modes_text, sizeof modes_text, text, "modes");
+  const run::Result statics = RunProblemText(statics_text, false);
+  const run::Result modes = RunProblemText(modes_text, false);
+  ASSERT_TRUE(statics.converged) << statics.log;
+  ASSERT_TRUE(modes.converged) << modes.log;
+  ASSERT_TRUE(modes.json.contains("anchor_force"));
+  for (int k = 0; k < 3; ++k) {
+    const double a = statics.json["anchor_force"][k].get<double>();
+    EXPECT_NEAR(modes.json["anchor_force"][k].get<double>(), a, 1e-9 * 60.0) << k;
+  }
+}
+
 // A taut cable (no gravity) in a uniform wind across it: the drag ½ ρ C_d D U² per length
 // deflects mid-span by w_d ℓ²/(8H) (the string under a uniform load, H the tension). Within 1 %:
 // the deflection is 0.5 % of the span (tension growth ~(δ/ℓ)² EA/H ≈ 0.2 %).

@@ -53,6 +53,11 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
   result.json["wall_time_s"] = r.wall_time_s;
   for (const char* key : {"tip", "base_wrench", "nodes"})
     if (statics.contains(key)) result.json[key] = statics[key];
+  if (problem.boundary == io::Boundary::kAnchored && r.equilibrium.size() > 0) {
+    // As the statics report it: the force the tip's anchor exerts on the rod (N, world).
+    const Vec3 f = r.equilibrium.rotation_WB.back() * r.equilibrium.wrench_B.back().tail<3>();
+    result.json["anchor_force"] = {f.x(), f.y(), f.z()};
+  }
   nlohmann::ordered_json modes;
   modes["formulation"] = io::ToString(problem.formulation);
   modes["frequencies_hz"] = r.frequencies_hz();
