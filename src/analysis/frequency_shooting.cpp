@@ -17,15 +17,71 @@ namespace {
 
 using lie::hat;
 using Primal = rhs::StaticPoint<double>;  // the equilibrium carried along s (cosserat_rhs.hpp)
+using Mat12 = FrequencyShooting::Mat12;
 
 struct Sample {
   Vec6 compliance;  ///< diag K⁻¹ (principal axes)
   Vec6 rest;
   Vec3 J;
   double rhoA;
-  double s;  // arc length, m
+  double s;               // arc length, m
   double outer_diameter;  // m
 };
+
+/// The distributed force at a stage of the equilibrium (N/m, world), as the static solver
+/// applies it: the dead loads and those of the pose at rest (a current's drag, contact), with the
+/// latter's derivative in `jac` (when not null).
+Vec3 ForceAt(const StaticLoads& loads, const Sample& smp, const Primal& y, MotionJacobian* jac) {
+  const LoadSite site{smp.s, 1.0, smp.rhoA, smp.outer_diameter};
+  Vec3 f = TotalDistributedForce_W(loads, site);
+  if (HasMotionLoads(loads))
+    f += TotalMotionForce_W(loads, site, {y.p, y.R.col(2), Vec3::Zero()}, jac);
+  return f;
+}
+
+/// What FrequencyShooting keeps of one RK4 stage (its Stage).
+struct StageTerms {
+  Mat12 a0;
+  Vec3 J;     // ρ I per length, kg·m
+  Vec3 mass;  // translational mass per length, body frame, kg/m (with added mass)
+};
+
+/// The stage matrix A0 at a primal state y with strain xi (see the file comment), with the
+/// rotary and translational inertia per length.
+StageTerms StageAt(const StaticLoads& loads, const Sample& smp, const Primal& y, const Vec6& xi) {
+  const bool motion = HasMotionLoads(loads);
+  const Vec3 K = xi.head<3>(), G = xi.tail<3>();
+  const Mat3 Kh = hat(K), Gh = hat(G), mh = hat(y.m), nh = hat(y.n);
+  const Mat6 C = smp.compliance.asDiagonal();
+  const Eigen::Matrix<double, 3, 6> Ct = C.topRows<3>();
+  const Eigen::Matrix<double, 3, 6> Cb = C.bottomRows<3>();
+  StageTerms st;
+  Mat12& A = st.a0;
+  A.setZero();
+  A.block<3, 3>(0, 0) = -Kh;
+  A.block<3, 6>(0, 6) = Ct;
+  A.block<3, 3>(3, 0) = -Gh;
+  A.block<3, 3>(3, 3) = -Kh;
+  A.block<3, 6>(3, 6) = Cb;
+  A.block<3, 6>(6, 6) = mh * Ct + nh * Cb;
+  A.block<3, 3>(6, 6) -= Kh;
+  A.block<3, 3>(6, 9) -= Gh;
+  MotionJacobian jac;
+  A.block<3, 3>(9, 0) = -hat(y.R.transpose() * ForceAt(loads, smp, y, motion ? &jac : nullptr));
+  if (motion) {
+    // A pose-dependent force moves with the section: δp = R₀ u and δt = R₀ (θ × e₃), and its
+    // change δf_W enters δn' as −R₀ᵀ δf_W.
+    const Mat3 Rt = y.R.transpose();
+    A.block<3, 3>(9, 3) -= Rt * jac.position * y.R;
+    A.block<3, 3>(9, 0) += Rt * jac.tangent * y.R * hat(Vec3::UnitZ());
+  }
+  A.block<3, 6>(9, 6) = nh * Ct;
+  A.block<3, 3>(9, 9) -= Kh;
+  st.J = smp.J;
+  const double added = TotalNormalAddedMass(loads, {smp.s, 1.0, smp.rhoA, smp.outer_diameter});
+  st.mass = Vec3(smp.rhoA + added, smp.rhoA + added, smp.rhoA);
+  return st;
+}
 
 }  // namespace
 
@@ -49,52 +105,19 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
   std::vector<Sample> samples(points.size());
   for (size_t q = 0; q < points.size(); ++q) {
     const SectionLaw law = SectionLaw::At(rod, points[q], actuation);  // ξ* with chambers
-    samples[q] = {law.stiffness.cwiseInverse(), law.rest_strain, law.mass.head<3>(),
-                  law.mass(5), points[q], law.outer_diameter};
+    samples[q] = {law.stiffness.cwiseInverse(),
+                  law.rest_strain,
+                  law.mass.head<3>(),
+                  law.mass(5),
+                  points[q],
+                  law.outer_diameter};
   }
-  // The distributed force at a stage of the equilibrium, as the static solver applies it: the
-  // dead loads and those of the pose at rest (a current's drag, contact), with the latter's
-  // derivative in `jac`.
-  const bool motion = HasMotionLoads(loads);
-  auto f_at = [&](const Sample& smp, const Primal& y, MotionJacobian* jac) -> Vec3 {
-    const LoadSite site{smp.s, 1.0, smp.rhoA, smp.outer_diameter};
-    Vec3 f = TotalDistributedForce_W(loads, site);
-    if (motion) f += TotalMotionForce_W(loads, site, {y.p, y.R.col(2), Vec3::Zero()}, jac);
-    return f;
+  const auto f_at = [&](const Sample& smp, const Primal& y) {
+    return ForceAt(loads, smp, y, nullptr);
   };
-  // The stage matrix A0 at a primal state with strain xi (see the file comment).
-  auto stage = [&](const Sample& smp, const Primal& y, const Vec6& xi) {
-    const Vec3 K = xi.head<3>(), G = xi.tail<3>();
-    const Mat3 Kh = hat(K), Gh = hat(G), mh = hat(y.m), nh = hat(y.n);
-    const Mat6 C = smp.compliance.asDiagonal();
-    const Eigen::Matrix<double, 3, 6> Ct = C.topRows<3>();
-    const Eigen::Matrix<double, 3, 6> Cb = C.bottomRows<3>();
-    Stage st;
-    Mat12& A = st.a0;
-    A.setZero();
-    A.block<3, 3>(0, 0) = -Kh;
-    A.block<3, 6>(0, 6) = Ct;
-    A.block<3, 3>(3, 0) = -Gh;
-    A.block<3, 3>(3, 3) = -Kh;
-    A.block<3, 6>(3, 6) = Cb;
-    A.block<3, 6>(6, 6) = mh * Ct + nh * Cb;
-    A.block<3, 3>(6, 6) -= Kh;
-    A.block<3, 3>(6, 9) -= Gh;
-    MotionJacobian jac;
-    A.block<3, 3>(9, 0) = -hat(y.R.transpose() * f_at(smp, y, motion ? &jac : nullptr));
-    if (motion) {
-      // A pose-dependent force moves with the section: δp = R₀ u and δt = R₀ (θ × e₃), and its
-      // change δf_W enters δn' as −R₀ᵀ δf_W.
-      const Mat3 Rt = y.R.transpose();
-      A.block<3, 3>(9, 3) -= Rt * jac.position * y.R;
-      A.block<3, 3>(9, 0) += Rt * jac.tangent * y.R * hat(Vec3::UnitZ());
-    }
-    A.block<3, 6>(9, 6) = nh * Ct;
-    A.block<3, 3>(9, 9) -= Kh;
-    st.J = smp.J;
-    const double added = TotalNormalAddedMass(loads, {smp.s, 1.0, smp.rhoA, smp.outer_diameter});
-    st.mass = Vec3(smp.rhoA + added, smp.rhoA + added, smp.rhoA);
-    return st;
+  const auto stage = [&](const Sample& smp, const Primal& y, const Vec6& xi) {
+    const StageTerms t = StageAt(loads, smp, y, xi);
+    return Stage{t.a0, t.J, t.mass};
   };
 
   Primal y{base.p, base.R, base_wrench_B.head<3>(), base_wrench_B.tail<3>()};
@@ -108,8 +131,7 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
     const Sample& c = samples[3 * i + 2];
     node_R_[i] = y.R;
     auto rates = [&](const Sample& smp, const Primal& ys, Vec6* xi) {
-      return rhs::StaticDerivative<double>(smp.rest, smp.compliance, f_at(smp, ys, nullptr), ys,
-                                           xi);
+      return rhs::StaticDerivative<double>(smp.rest, smp.compliance, f_at(smp, ys), ys, xi);
     };
     const Primal k1 = rates(a, y, &xi1);
     const Primal y2 = internal::Axpy(y, 0.5 * h, k1);

@@ -1,0 +1,75 @@
+#pragma once
+// What the module's bindings share: checked base motion, a RodState as NumPy arrays, and the
+// fields of the static and step summaries.
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cosserat/state/rod_state.hpp"
+
+namespace cosserat::python {
+
+namespace py = pybind11;
+
+/// Base motion from Python, checked: finite values (rotations: python::Rotation).
+template <typename Matrix>
+const Matrix& Finite(const Matrix& m, const char* field) {
+  if (!m.allFinite()) throw py::value_error(std::string(field) + ": expected finite numbers");
+  return m;
+}
+
+inline Eigen::MatrixXd Stack(const std::vector<Vec3>& v) {
+  Eigen::MatrixXd out(v.size(), 3);
+  for (size_t i = 0; i < v.size(); ++i) out.row(i) = v[i].transpose();
+  return out;
+}
+inline Eigen::MatrixXd Stack(const std::vector<Vec6>& v) {
+  Eigen::MatrixXd out(v.size(), 6);
+  for (size_t i = 0; i < v.size(); ++i) out.row(i) = v[i].transpose();
+  return out;
+}
+
+/// A RodState as a dict of arrays: s (N), position (N×3), rotation (N×3×3 as a list of 3×3),
+/// strain_B, wrench_B, twist_B (N×6).
+inline py::dict StateDict(const RodState& state) {
+  py::dict d;
+  d["s"] = Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(state.s.data(), state.s.size()));
+  d["position"] = Stack(state.position_W);
+  py::array_t<double> rotation({state.size(), 3, 3});
+  auto r = rotation.mutable_unchecked<3>();
+  for (int i = 0; i < state.size(); ++i)
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) r(i, a, b) = state.rotation_WB[i](a, b);
+  d["rotation"] = rotation;
+  d["strain_B"] = Stack(state.strain);
+  d["wrench_B"] = Stack(state.wrench_B);
+  d["twist_B"] = Stack(state.twist_B);
+  return d;
+}
+
+/// The fields the static and the step summaries share.
+template <typename Summary>
+py::class_<Summary>& BindSummary(py::class_<Summary>& c) {
+  const std::string name = py::str(c.attr("__name__"));
+  return c.def_property_readonly("status", [](const Summary& s) { return ToString(s.status); })
+      .def_property_readonly("converged", &Summary::converged)
+      .def_readonly("iterations", &Summary::iterations)
+      .def_readonly("shots", &Summary::shots)
+      .def_readonly("residual", &Summary::residual)
+      .def_readonly("wall_time_s", &Summary::wall_time_s)
+      .def("__repr__", [name](const Summary& s) {
+        std::ostringstream o;
+        o << std::setprecision(3) << name << "(status=" << ToString(s.status)
+          << ", iterations=" << s.iterations << ", shots=" << s.shots << ", residual=" << s.residual
+          << ", wall_time_s=" << s.wall_time_s << ")";
+        return o.str();
+      });
+}
+
+}  // namespace cosserat::python

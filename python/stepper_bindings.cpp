@@ -1,0 +1,218 @@
+// cosserat.Stepper: the BDF2 dynamics stepper for control loops from Python, with the input it
+// applies, its StepSummary and Snapshot.
+#include "stepper_bindings.hpp"
+
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "binding_support.hpp"
+#include "cosserat/io/problem.hpp"
+#include "cosserat/run/solver_options.hpp"
+#include "cosserat/strong/bdf2_stepper.hpp"
+#include "problem_checks.hpp"
+
+namespace cosserat::python {
+namespace {
+
+/// The dynamics stepper with the input it applies, so that a control loop only says what
+/// changed. As the CLI's run: the equilibrium at t = 0 under the problem's initial loads and
+/// actuation, the steps under its loads and actuation, unless told otherwise.
+class PyStepper {
+ public:
+  PyStepper(const io::Problem& problem, std::optional<double> dt,
+            std::optional<std::string> spatial_scheme)
+      : problem_(Steppable(problem, "the Stepper")),
+        options_(cosserat::run::DynamicsOptions(problem)) {
+    if (problem.boundary != io::Boundary::kCantilever &&
+        problem.boundary != io::Boundary::kFreeFree)
+      throw py::value_error("boundary: the Stepper runs \"cantilever\" or \"free-free\", got \"" +
+                            io::ToString(problem.boundary) + "\"");
+    if (dt) options_.dt = *dt;
+    if (spatial_scheme) {
+      io::ShotScheme scheme;
+      if (!io::FromString(*spatial_scheme, &scheme))
+        throw py::value_error(
+            "spatial_scheme: expected \"rk4-pairs\", \"rk4\" or \"heun\", got \"" +
+            *spatial_scheme + "\"");
+      options_.spatial_scheme = cosserat::run::ToSpatialScheme(scheme);
+    }
+    std::string why;
+    if (!options_.IsValid(&why)) throw py::value_error(why);
+    stepper_.emplace(problem.rod, problem.nodes, options_);
+    initial_loads_ = problem.dynamics.initial_loads.value_or(problem.loads);
+    initial_actuation_ = problem.robot.initial_actuation;
+    first_input_.base_pose = problem.base;
+    first_input_.loads = problem.loads;
+    first_input_.actuation = problem.robot.actuation;
+    input_ = first_input_;
+  }
+
+  StepSummary InitializeAtRest(std::optional<StaticLoads> loads,
+                               std::optional<Actuation> actuation) {
+    StepInput at_rest = input_;
+    at_rest.loads = loads ? Valid(*loads) : initial_loads_;
+    at_rest.actuation = actuation ? Valid(*actuation, problem_) : initial_actuation_;
+    const StepSummary s = stepper_->InitializeAtRest(at_rest);
+    has_state_ = has_state_ || s.converged();
+    return s;
+  }
+
+  /// Every argument is checked before any is applied: a refused call changes nothing.
+  StepSummary Step(std::optional<StaticLoads> loads, std::optional<Vec3> base_position,
+                   std::optional<Mat3> base_rotation, std::optional<Vec6> base_twist_B,
+                   std::optional<Vec6> base_wrench_B, std::optional<Actuation> actuation) {
+    run();  // a state to step from
+    StepInput next = input_;
+    if (loads) next.loads = Valid(*loads);
+    if (actuation) next.actuation = Valid(*actuation, problem_);
+    if (base_position) next.base_pose.p = Finite(*base_position, "base_position");
+    if (base_rotation) next.base_pose.R = Rotation(*base_rotation, "base_rotation");
+    if (base_twist_B) next.base_twist_B = Finite(*base_twist_B, "base_twist_B");
+    if (base_wrench_B) next.base_wrench_B = Finite(*base_wrench_B, "base_wrench_B");
+    input_ = next;
+    return stepper_->Step(input_);
+  }
+
+  /// The stepper, once it has a state to show (a converged initialize_at_rest or a restore).
+  const Bdf2ShootingStepper& run() const {
+    if (!has_state_)
+      throw std::runtime_error("the Stepper has no state yet: call initialize_at_rest() first");
+    return *stepper_;
+  }
+  Bdf2ShootingStepper::Snapshot Save() const { return run().Save(); }
+  void Restore(const Bdf2ShootingStepper::Snapshot& snapshot) {
+    stepper_->Restore(snapshot);  // throws std::invalid_argument (ValueError) if it can't
+    // What the saved run was applying. A snapshot of the state at rest, before any step, holds
+    // the inputs of the equilibrium (the preload): the steps apply the problem's, as after
+    // initialize_at_rest, with the base where the rest state had it.
+    input_ = snapshot.last_input;
+    if (stepper_->time() == 0.0) {
+      const lie::SE3 base = input_.base_pose;
+      input_ = first_input_;
+      input_.base_pose = base;
+    }
+    has_state_ = true;
+  }
+  double time() const { return stepper_->time(); }
+  int shot_steps() const { return stepper_->shot_steps(); }  // planned at construction
+  const StepInput& input() const { return input_; }
+  const Bdf2Options& options() const { return options_; }
+
+ private:
+  io::Problem problem_;  ///< for the actuation's rules (tendons, chambers, jamming segments)
+  Bdf2Options options_;
+  std::optional<Bdf2ShootingStepper> stepper_;
+  StaticLoads initial_loads_;
+  Actuation initial_actuation_;
+  StepInput first_input_;  ///< what the first step applies: the problem's loads and actuation
+  StepInput input_;        ///< what step() applies
+  bool has_state_ = false;
+};
+
+/// What a Stepper shows of its rod: the state, the tip, the support's wrench, energy, momentum.
+void BindStepperOutputs(py::class_<PyStepper>& c) {
+  c.def(
+       "state", [](const PyStepper& s) { return StateDict(s.run().state()); },
+       "The rod now: a dict of s (N, m), position (N×3, m, world), rotation (N×3×3, body to "
+       "world), strain_B, wrench_B ([moment; force], N·m and N) and twist_B ([ω; v], rad/s "
+       "and m/s), N×6 in each section's body frame.")
+      .def(
+          "tip_position", [](const PyStepper& s) { return Vec3(s.run().state().tip_position_W()); },
+          "The tip's position, m, world frame.")
+      .def(
+          "tip_rotation",
+          [](const PyStepper& s) { return Mat3(s.run().state().tip_rotation_WB()); },
+          "The tip section's rotation, body to world.")
+      .def(
+          "tip_twist_B", [](const PyStepper& s) { return Vec6(s.run().state().twist_B.back()); },
+          "The tip's twist [ω; v] (rad/s, m/s) in its body frame.")
+      .def(
+          "base_reaction", [](const PyStepper& s) { return s.run().state().BaseReaction_W(); },
+          "The wrench [moment; force] the support applies at s = 0, world frame.")
+      .def(
+          "energy",
+          [](const PyStepper& s) {
+            const RodEnergy e = s.run().Energy(s.input().loads);
+            py::dict d;
+            d["kinetic"] = e.kinetic;
+            d["elastic"] = e.elastic;
+            d["potential"] = e.potential;
+            d["total"] = e.total();
+            return d;
+          },
+          "Kinetic, elastic and potential energy (J); potential: of the distributed loads step() "
+          "applies.")
+      .def(
+          "momentum",
+          [](const PyStepper& s) {
+            const RodMomentum p = s.run().Momentum();
+            return py::make_tuple(p.linear_W, p.angular_W);
+          },
+          "(linear, angular about the origin), world frame.")
+      .def(
+          "mass", [](const PyStepper& s) { return s.run().Mass(); },
+          "The rod's mass with its tip body, kg.");
+}
+
+/// cosserat.Stepper (BDF2 dynamics for control loops), its StepSummary and Snapshot.
+void BindStepperClass(py::module_& m) {
+  py::class_<StepSummary> step_summary(m, "StepSummary");
+  BindSummary(step_summary)
+      .def_readonly("jacobians", &StepSummary::jacobians)
+      .def_readonly("halvings", &StepSummary::halvings);
+
+  py::class_<Bdf2ShootingStepper::Snapshot>(m, "Snapshot",
+                                            "Everything a Stepper needs to continue a run.");
+
+  py::class_<PyStepper> stepper(
+      m, "Stepper",
+      "BDF2 dynamics of the problem's rod (cantilever or free-free), as the "
+      "CLI runs it: initialize_at_rest() under the problem's initial loads and "
+      "actuation, step() under its loads and actuation unless told otherwise.");
+  stepper
+      .def(py::init<const io::Problem&, std::optional<double>, std::optional<std::string>>(),
+           py::arg("problem"), py::arg("dt") = py::none(), py::arg("spatial_scheme") = py::none(),
+           "The problem's rod, grid, ends and dynamics options; dt (s) and spatial_scheme "
+           "(\"rk4-pairs\", the default, \"rk4\" or \"heun\") override the file's.")
+      .def("initialize_at_rest", &PyStepper::InitializeAtRest, py::arg("loads") = py::none(),
+           py::arg("actuation") = py::none(),
+           "Static equilibrium at t = 0 under `loads` and `actuation` (default: the problem's "
+           "initial loads and initial actuation). What step() applies is not changed.")
+      .def("step", &PyStepper::Step, py::arg("loads") = py::none(),
+           py::arg("base_position") = py::none(), py::arg("base_rotation") = py::none(),
+           py::arg("base_twist_B") = py::none(), py::arg("base_wrench_B") = py::none(),
+           py::arg("actuation") = py::none(),
+           "Advances dt. Values not given keep those of the last step (at first the problem's "
+           "loads, base pose and robot actuation). Cantilever: the base pose and twist [w; v] "
+           "(body frame) at the end of the step, which must agree (the twist is not derived "
+           "from the pose); free-free: the wrench on the s = 0 end (body frame).")
+      .def_property_readonly("time", &PyStepper::time, "Simulated time since the rest state, s.")
+      .def_property_readonly(
+          "dt", [](const PyStepper& s) { return s.options().dt; }, "The step, s.")
+      .def_property_readonly(
+          "shot_steps", &PyStepper::shot_steps,
+          "The steps of the shot in s: the grid's segments less the pairs the default scheme "
+          "forms (docs/dynamics.md, \"Choosing the scheme in s\").")
+      .def_property_readonly(
+          "loads", [](const PyStepper& s) { return s.input().loads; },
+          "A copy of the loads step() applies.")
+      .def_property_readonly(
+          "actuation", [](const PyStepper& s) { return s.input().actuation; },
+          "A copy of the actuation step() applies.")
+      .def("save", &PyStepper::Save,
+           "A Snapshot of the run (state, history and inputs) for restore(); allocates.")
+      .def("restore", &PyStepper::Restore,
+           "Continues the saved run, with the inputs it was applying; a snapshot from another "
+           "rod, grid or end conditions, or taken before initialize_at_rest, is refused.");
+  BindStepperOutputs(stepper);
+}
+
+}  // namespace
+
+void BindStepper(py::module_& m) { BindStepperClass(m); }
+
+}  // namespace cosserat::python

@@ -1,0 +1,56 @@
+// The snapshots of the BDF2 stepper: what identifies the rod a run belongs to, and a saved run
+// restored.
+#include <cstdint>
+#include <stdexcept>
+
+#include "cosserat/strong/bdf2_stepper.hpp"
+
+namespace cosserat {
+
+std::uint64_t Bdf2ShootingStepper::ModelFingerprint() const {
+  // FNV-1a over the bytes of what a run's state depends on.
+  std::uint64_t h = 1469598103934665603ull;
+  auto add = [&h](const void* data, std::size_t bytes) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  };
+  const int ends = static_cast<int>(options_.ends),
+            scheme = static_cast<int>(options_.spatial_scheme);
+  add(&ends, sizeof ends);
+  add(&scheme, sizeof scheme);
+  add(pair_start_.data(), pair_start_.size());  // where the stage slots are (PlanSteps)
+  for (const double s : grid_) {
+    const SectionProperties p = model_.section->At(s, Actuation{});
+    const Vec6 k = p.stiffness.diagonal(), m = p.mass.diagonal();
+    add(&s, sizeof s);
+    add(k.data(), sizeof(double) * 6);
+    add(m.data(), sizeof(double) * 6);
+  }
+  return h;
+}
+
+void Bdf2ShootingStepper::Restore(const Snapshot& s) {
+  // Automatic pieces may have grown since the snapshot: shoot in its pieces again.
+  if (automatic_pieces_ && s.junction_unknowns.size() != run_.junction_unknowns.size() &&
+      s.junction_unknowns.size() % 18 == 0 &&
+      static_cast<int>(s.junction_unknowns.size() / 18) < MaxAutomaticPieces())
+    SetShootingPieces(1 + static_cast<int>(s.junction_unknowns.size() / 18));
+  if (s.strain1.size() != run_.strain1.size() || s.state.size() != run_.state.size() ||
+      s.junction_unknowns.size() != run_.junction_unknowns.size())
+    throw std::invalid_argument(
+        "Snapshot is from a stepper with another grid or another plan of the shot's steps (its "
+        "dt and spatial scheme decide where segments are paired)");
+  if (!s.initialized)
+    throw std::invalid_argument("Snapshot was saved before InitializeAtRest: it holds no run");
+  if (s.model_fingerprint != run_.model_fingerprint)
+    throw std::invalid_argument(
+        "Snapshot is from a stepper of another rod, grid, end conditions or plan of the shot's "
+        "steps (dt, spatial scheme)");
+  run_ = s;                // equal sizes: vectors copy into their existing storage
+  ms_jacobian_c0_ = -1.0;  // the multiple-shooting factors are for another state: renew them
+  history_ready_ = false;
+  stage_strains_current_ = false;
+  initialized_ = true;
+}
+
+}  // namespace cosserat
