@@ -46,6 +46,33 @@ std::string ContinuationHint(const io::Problem& problem, const StaticShootingSum
   return hint.str();
 }
 
+/// After a tendon robot's solve that ended in non-finite numbers: the shot stops where the
+/// tendon strain law (Rucker & Webster 2011: K (ξ − ξ*) + T(ξ) = W at each section) has no
+/// solution it can reach, which happens when a tendon's tension is of the order of the section's
+/// bending stiffness over its offset squared: a straight tendon at offset d bends the rod to
+/// κ = τ d/EI, and at τ d²/EI = 1 the inside of the bend, where it runs, shrinks to zero length
+/// (a helical one on the three-tendon robot fails between 0.76 and 0.91). The hint names the
+/// largest τ r²/EI.
+std::string TendonLawHint(const io::Problem& problem, const Actuation& actuation,
+                          const StaticShootingSummary& summary) {
+  if (summary.status != SolveStatus::kNonFinite || problem.rod.tendons.empty()) return "";
+  const SectionProperties p = problem.rod.section->At(0.0, actuation);
+  const double ei = std::min(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m²
+  double worst = 0.0;
+  std::string name;
+  for (size_t i = 0; i < problem.rod.tendons.size(); ++i) {
+    const double r = problem.rod.tendons[i].route.MaxOffset();
+    const double ratio = actuation.tendon_tension[i] * r * r / ei;
+    if (ratio > worst) worst = ratio, name = problem.rod.tendons[i].name;
+  }
+  std::ostringstream hint;
+  hint << "cosserat: hint: the tendon strain law had no solution along the rod: tendon \"" << name
+       << "\" pulls with tension x offset^2 / EI = " << std::setprecision(3) << worst
+       << " (at 1 the inside of the bend, where a tendon runs, shrinks to zero length); lower "
+          "the tensions or stiffen the backbone\n";
+  return hint.str();
+}
+
 /// A column (boundary "pinned-pinned", "clamped-clamped" or "clamped-pinned"): the loads
 /// followed from the straight, unloaded column (ColumnSolver::SolveFromUnloaded).
 Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOptions& options) {
@@ -221,7 +248,8 @@ Result RunStatics(const io::Problem& problem, const RunOptions& options) {
     result.json["robot"] = robot;
   }
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
-  result.log = StaticSummary(summary, solver.state()) + '\n';
+  result.log = StaticSummary(summary, solver.state()) + '\n' +
+               TendonLawHint(problem, actuation, summary);
   if (!problem.has_robot) result.log += ContinuationHint(problem, summary);
   result.converged = summary.converged();
   return result;

@@ -389,6 +389,8 @@ cosserat_cli_test(NAME modulus_in_mpa ARGS solve "${_cli_dir}/modulus_in_mpa.jso
                   STDERR "warning: the rod is stretched or compressed by .* check the units of the material")
 cosserat_cli_test(NAME soft_rod_coarse_se3 ARGS solve "${_cli_dir}/soft_rod_coarse_se3.json" CODE 1
                   STDERR "load_stepping_failed.*hint: the load steps stopped short.*rod.nodes, now 41")
+cosserat_cli_test(NAME tendon_pulled_too_hard ARGS solve "${_cli_dir}/tendon_pulled_too_hard.json"
+                  CODE 1 STDERR "hint: the tendon strain law had no solution.*tendon \"helical\" pulls with tension x offset\\^2 / EI = 1.5")
 
 # Assemblies of rods and bodies (docs/assemblies.md; robots/stewart_gough*.json also run in the
 # robots/ loop above). The continuum Stewart-Gough robot's inverse kinematics holds the platform

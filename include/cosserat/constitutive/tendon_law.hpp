@@ -22,11 +22,12 @@ namespace cosserat {
 Vec6 TendonWrench(const TendonSample& sample, const double* tension, const Vec6& xi,
                   Mat6* d_xi = nullptr, std::array<Vec6, Actuation::kMaxTendons>* a = nullptr);
 
-/// Solves K (ξ − ξ*) + Σ τ_i a_i(ξ) = W for the strain ξ by simplified Newton from `xi` (in: a
-/// guess, out: the strain, to 1e-12 relative). If H is given, writes H = K + ∂(Σ τ a)/∂ξ at the
-/// solution, so dξ = H⁻¹ dW. Returns
-/// false if it did not converge to round-off within 12 iterations (a tendon path folded back,
-/// |q| → 0).
+/// Solves K (ξ − ξ*) + Σ τ_i a_i(ξ) = W for the strain ξ by Newton from `xi` (in: a guess, out:
+/// the strain, to 1e-12 relative), keeping the first iterate's matrix while it contracts fast
+/// and taking the derivative anew when it does not. If H is given, writes
+/// H = K + ∂(Σ τ a)/∂ξ at the solution, so dξ = H⁻¹ dW. Returns false if it did not converge
+/// within 40 iterations: a tendon path folded back (|q| → 0), which a straight tendon reaches at
+/// τ d²/EI = 1 (the inside of the bend, where it runs, shrinks to zero length).
 bool SolveTendonStrain(const Mat6& stiffness, const Vec6& rest_strain, const TendonSample& sample,
                        const double* tension, const Vec6& W, Vec6* xi, Mat6* H);
 
