@@ -251,6 +251,13 @@ void CheckVtkDirectory(const std::string& directory, const std::string& stem) {
 int RunSolve(const Command& cmd) {
   const std::optional<cosserat::io::Problem> problem = LoadRunnableProblem(cmd.problem_path);
   if (!problem) return kExitBadInput;
+  // Every refusal before the output files are opened (opening truncates them): a refused run
+  // leaves the last result in place.
+  if (cmd.vtk_dir && problem->analysis != cosserat::io::Analysis::kDynamics)
+    throw UsageError{"--vtk writes the frames of a dynamics run; this problem's analysis is \"" +
+                     cosserat::io::ToString(problem->analysis) + "\""};
+  const std::string stem = std::filesystem::path(cmd.problem_path).stem().string();
+  if (cmd.vtk_dir) CheckVtkDirectory(*cmd.vtk_dir, stem);
   std::optional<std::ofstream> out_file, csv_file;
   if (cmd.out_path) out_file = OpenOutput(*cmd.out_path);
   if (cmd.csv_path) csv_file = OpenOutput(*cmd.csv_path);
@@ -259,11 +266,6 @@ int RunSolve(const Command& cmd) {
   cosserat::run::RunOptions options;
   options.nodes_csv = csv_file.has_value();
   options.frames = cmd.vtk_dir.has_value();
-  if (cmd.vtk_dir && problem->analysis != cosserat::io::Analysis::kDynamics)
-    throw UsageError{"--vtk writes the frames of a dynamics run; this problem's analysis is \"" +
-                     cosserat::io::ToString(problem->analysis) + "\""};
-  const std::string stem = std::filesystem::path(cmd.problem_path).stem().string();
-  if (cmd.vtk_dir) CheckVtkDirectory(*cmd.vtk_dir, stem);
   cosserat::run::Result result;
   {
     const bool dynamics = problem->analysis == cosserat::io::Analysis::kDynamics;

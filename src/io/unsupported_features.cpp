@@ -44,6 +44,21 @@ void DriveAndFlowFeatures(const Problem& p, std::vector<std::string>* out) {
     out->push_back("dynamics.base_spin: turns a clamped base (\"boundary\": \"cantilever\")");
 }
 
+/// A rigid body at the tip (dynamics.tip_mass, tip_inertia) is part of the SE(3) stepper's
+/// tip condition only: the quaternion-FD dynamics and the modes would leave it out.
+void TipBodyFeatures(const Problem& p, std::vector<std::string>* out) {
+  if (!(p.dynamics.tip_mass > 0.0 || !p.dynamics.tip_inertia.isZero())) return;
+  const char* field = p.dynamics.tip_mass > 0.0 ? "dynamics.tip_mass" : "dynamics.tip_inertia";
+  if (p.formulation == Formulation::kQuaternionFd && p.analysis == Analysis::kDynamics)
+    out->push_back(std::string(field) +
+                   ": a body at the tip runs on the \"se3-shooting\" formulation's dynamics in "
+                   "this version");
+  if (p.analysis == Analysis::kModes)
+    out->push_back(std::string(field) +
+                   ": the modes leave a body at the tip out in this version (\"analysis\": "
+                   "\"dynamics\" on \"se3-shooting\" runs it)");
+}
+
 /// Whether the rod has no mass per length at some node of its grid.
 bool MasslessSomewhere(const Problem& p) {
   const int n = std::max(p.nodes, 2);
@@ -90,6 +105,7 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
     out.push_back("robot: a robot runs with \"boundary\": \"cantilever\" in statics (got " +
                   detail::Quote(ToString(p.boundary)) + ")");
   DriveAndFlowFeatures(p, &out);
+  TipBodyFeatures(p, &out);
   if (quatfd && p.rod.section && MasslessSomewhere(p))
     out.push_back(
         "rod.material.density: a massless rod (density 0) runs on the \"se3-shooting\" "

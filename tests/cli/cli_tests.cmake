@@ -9,7 +9,7 @@ file(MAKE_DIRECTORY "${_cli_out}")
 
 # cosserat_cli_test(NAME name ARGS a b c CODE n [STDERR regex] [STDOUT regex] [FILES f ...])
 function(cosserat_cli_test)
-  cmake_parse_arguments(T "" "NAME;CODE;STDERR;STDOUT" "ARGS;FILES" ${ARGN})
+  cmake_parse_arguments(T "" "NAME;CODE;STDERR;STDOUT;KEEP" "ARGS;FILES" ${ARGN})
   string(REPLACE ";" "|" _args "${T_ARGS}")
   set(_cmd ${CMAKE_COMMAND} "-DEXE=$<TARGET_FILE:cosserat_cli>" "-DARGS=${_args}"
            "-DEXPECT_CODE=${T_CODE}")
@@ -18,6 +18,9 @@ function(cosserat_cli_test)
   endif()
   if(DEFINED T_STDOUT)
     list(APPEND _cmd "-DEXPECT_STDOUT=${T_STDOUT}")
+  endif()
+  if(DEFINED T_KEEP)
+    list(APPEND _cmd "-DKEEP_FILE=${T_KEEP}")
   endif()
   if(T_FILES)
     string(REPLACE ";" "|" _files "${T_FILES}")
@@ -53,6 +56,11 @@ cosserat_cli_test(NAME solve_dynamics_vtk
 cosserat_cli_test(NAME vtk_needs_dynamics
                   ARGS solve "${_cli_example}" --vtk "${_cli_out}/vtk_statics"
                   CODE 2 STDERR "--vtk writes the frames of a dynamics run; this problem's analysis is \"statics\"")
+# Refused before the output files are opened: an earlier result in --out survives.
+cosserat_cli_test(NAME vtk_statics_keeps_out
+                  ARGS solve "${_cli_example}" --vtk "${_cli_out}/vtk_statics"
+                       --out "${_cli_out}/kept.json"
+                  CODE 2 KEEP "${_cli_out}/kept.json" STDERR "--vtk writes the frames")
 
 # A study file's errors name their fields (docs/sweeps.md).
 cosserat_cli_test(NAME bad_study ARGS sweep "${_cli_dir}/bad_study.json" --out "${_cli_out}/bad_study.csv"
@@ -381,6 +389,8 @@ cosserat_cli_test(NAME bad_bit_friction ARGS validate "${_cli_dir}/bad_bit_frict
 cosserat_cli_test(NAME riser_coarse_grid ARGS solve "${_cli_dir}/riser_coarse_grid.json" CODE 1
                   STDERR "hint: the grid spacing 8.75 m is coarse for environment.contact\\[0\\]'s foundation length.*try rod.nodes >= 119")
 
+cosserat_cli_test(NAME tip_mass_quatfd ARGS validate "${_cli_dir}/tip_mass_quatfd.json" CODE 2
+                  STDERR "dynamics.tip_mass: a body at the tip runs on the \"se3-shooting\" formulation's dynamics")
 # Answers only a slip of units gives run, and the log says what to check (run/scale_warnings.hpp);
 # a soft rod's SE(3) load steps that stop short say what to try.
 cosserat_cli_test(NAME radius_in_mm ARGS solve "${_cli_dir}/radius_in_mm.json" CODE 0

@@ -1,7 +1,9 @@
 # Runs one command and checks its exit code and output. Used by cli_tests.cmake:
 #   cmake -DEXE=<program> -DARGS="a|b|c" -DEXPECT_CODE=2
 #         [-DEXPECT_STDERR=<regex>] [-DEXPECT_STDOUT=<regex>] [-DEXPECT_FILES="f1|f2"]
-#         -P expect.cmake
+#         [-DKEEP_FILE=<path>] -P expect.cmake
+# KEEP_FILE is written before the command and must hold the same text after it (a refused run
+# leaves an earlier result alone).
 # ARGS and EXPECT_FILES use "|" between items, since ";" does not survive add_test.
 if(NOT DEFINED EXE OR NOT DEFINED EXPECT_CODE)
   message(FATAL_ERROR "expect.cmake needs -DEXE and -DEXPECT_CODE")
@@ -12,6 +14,10 @@ if(DEFINED EXPECT_FILES)
   foreach(_f IN LISTS _files)
     file(REMOVE "${_f}")
   endforeach()
+endif()
+
+if(DEFINED KEEP_FILE)
+  file(WRITE "${KEEP_FILE}" "an earlier result\n")
 endif()
 
 execute_process(COMMAND "${EXE}" ${_args}
@@ -32,6 +38,13 @@ foreach(_f IN LISTS _files)
     string(APPEND _failed "expected file ${_f} was not written\n")
   endif()
 endforeach()
+
+if(DEFINED KEEP_FILE)
+  file(READ "${KEEP_FILE}" _kept)
+  if(NOT _kept STREQUAL "an earlier result\n")
+    string(APPEND _failed "${KEEP_FILE} was changed by a refused run\n")
+  endif()
+endif()
 
 if(_failed)
   string(SUBSTRING "${_out}" 0 2000 _out_head)
