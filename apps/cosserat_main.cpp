@@ -24,6 +24,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "cosserat/io/problem.hpp"
 #include "cosserat/io/study.hpp"
 #include "cosserat/io/vtk_series.hpp"
@@ -54,7 +56,7 @@ const char* const kUsage =
     "          .vtp per recorded frame (positions, directors, strains, internal wrench).\n"
     "sweep     run a study (docs/sweeps.md): its problem at every point of its parameters, one\n"
     "          CSV row per point as it finishes; run again on the same file, it resumes.\n"
-    "validate  check the problem file and print every error found.\n"
+    "validate  check the problem (or study) file and print every error found.\n"
     "\n"
     "exit status: 0 converged (or valid), 1 ran but did not converge (the result is still\n"
     "written, its \"status\" says why), 2 bad input or bad usage.\n"
@@ -179,7 +181,24 @@ std::optional<cosserat::io::Problem> LoadRunnableProblem(const std::string& path
   return std::move(parsed.problem);
 }
 
+/// Whether the file is a study ("format": "cosserat-study/1"): validate checks it as one.
+bool IsStudyFile(const std::string& path) {
+  std::ifstream in(path);
+  const nlohmann::json doc = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  return doc.is_object() && doc.value("format", "") == "cosserat-study/1";
+}
+
 int RunValidate(const Command& cmd) {
+  if (IsStudyFile(cmd.problem_path)) {
+    const cosserat::io::StudyParseResult parsed = cosserat::io::LoadStudyFile(cmd.problem_path);
+    if (!parsed.study) {
+      PrintLines(parsed.errors);
+      return kExitBadInput;
+    }
+    std::cout << cmd.problem_path << ": ok (a study of " << parsed.study->PointCount()
+              << " points)\n";
+    return kExitConverged;
+  }
   if (!LoadRunnableProblem(cmd.problem_path)) return kExitBadInput;
   std::cout << cmd.problem_path << ": ok\n";
   return kExitConverged;

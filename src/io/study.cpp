@@ -157,6 +157,11 @@ void ReadOutputs(const ObjectReader& top, Study* study_out) {
                         detail::Describe(value));
         continue;
       }
+      if (name == "index" || name == "status" || name == "wall_time_s") {
+        report.Expected(where, "a name other than the fixed columns index, status and wall_time_s",
+                        detail::Quote(name));
+        continue;
+      }
       try {
         (void)json::json_pointer(value.get<std::string>());
         study.outputs.push_back({name, value.get<std::string>()});
@@ -247,6 +252,14 @@ StudyParseResult ParseStudy(const std::string& text, const std::string& source_n
         const json* path = (*params)[i].contains("path") ? &(*params)[i]["path"] : nullptr;
         if (path && path->is_string() && study.problem.is_object())
           CheckPath(study.problem, where + ".path", p.path, &report);
+        // Two parameters on one place: the later would overwrite the earlier at every point,
+        // and the CSV would show values that were never run.
+        for (std::size_t j = 0; j < study.parameters.size(); ++j)
+          if (!p.path.empty() && study.parameters[j].path == p.path)
+            report.Expected(where + ".path",
+                            "a place no other parameter sets (parameters[" + std::to_string(j) +
+                                "] sets it)",
+                            detail::Quote(p.path));
         study.parameters.push_back(p);
       }
     }

@@ -51,6 +51,18 @@ std::string OutputField(const nlohmann::ordered_json& result, const std::string&
   return Field(v.dump());
 }
 
+/// Where field `column` (0-based) of a CSV row starts: commas inside a quoted field (an output
+/// that is an array or an object, written as its JSON text) do not separate fields.
+std::size_t StartOfField(const std::string& line, std::size_t column) {
+  bool quoted = false;
+  std::size_t field = 0;
+  for (std::size_t i = 0; i < line.size() && field < column; ++i) {
+    if (line[i] == '"') quoted = !quoted;  // a doubled quote toggles twice
+    else if (line[i] == ',' && !quoted && ++field == column) return i + 1;
+  }
+  return field == column ? 0 : line.size();
+}
+
 }  // namespace
 
 std::string SweepPointRow(const io::Study& study, std::uint64_t k) {
@@ -171,11 +183,8 @@ SweepSummary SweepFile::Finish() {
   s.ran = ran_;
   s.complete = rows_.size() == points_;
   if (s.complete) WriteAll(path_, header_, rows_);  // in point order
-  for (const auto& [k, line] : rows_) {
-    std::size_t pos = 0;
-    for (std::size_t c = 0; c < status_column_; ++c) pos = line.find(',', pos) + 1;
-    if (line.compare(pos, 10, "converged,") != 0) ++s.failed;
-  }
+  for (const auto& [k, line] : rows_)
+    if (line.compare(StartOfField(line, status_column_), 10, "converged,") != 0) ++s.failed;
   return s;
 }
 

@@ -66,6 +66,17 @@ cosserat_cli_test(NAME vtk_statics_keeps_out
 cosserat_cli_test(NAME bad_study ARGS sweep "${_cli_dir}/bad_study.json" --out "${_cli_out}/bad_study.csv"
                   CODE 2 STDERR "parameters\\[0\\].path: names \"/rod/nosuch/x\", but the problem has no \"/rod/nosuch\".*parameters\\[1\\].grid.to: an empty range.*parameters\\[2\\].random.high: expected a bound above \"low\"")
 
+# An output that is an array is written as its JSON text, quoted: every point still counts as
+# converged. Two parameters on one place, or an output named like a fixed column, are refused;
+# validate checks a study file as one.
+cosserat_cli_test(NAME sweep_array_output
+                  ARGS sweep "${_cli_dir}/study_array_output.json" --out "${_cli_out}/array.csv"
+                  CODE 0 STDERR "sweep complete, 3 points .* 0 not converged")
+cosserat_cli_test(NAME study_clashes ARGS validate "${_cli_dir}/study_clashes.json"
+                  CODE 2 STDERR "parameters\\[1\\].path: expected a place no other parameter sets \\(parameters\\[0\\] sets it\\).*outputs.status: expected a name other than the fixed columns")
+cosserat_cli_test(NAME validate_study ARGS validate "${_cli_dir}/study_array_output.json"
+                  CODE 0 STDOUT "ok \\(a study of 3 points\\)")
+
 # --threads takes a whole number from 1 to 4096, written in full: "1e9" is not a count (a prefix
 # parse would read 1), and 10⁹ would ask the system for as many threads.
 cosserat_cli_test(NAME sweep_threads_not_a_count
