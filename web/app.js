@@ -103,9 +103,14 @@ function buildControls() {
     input.type = "range";
     input.id = "control-" + c.name;
     input.min = c.min; input.max = c.max; input.step = (c.max - c.min) / 200; input.value = c.value;
-    const show = () => { label.textContent = `${c.label}: ${Number(input.value).toPrecision(3)} ${c.unit}`; };
-    input.addEventListener("input", () => { show(); setControl(c.name, Number(input.value)); });
-    show();
+    // The label shows the value in force: the file's until the slider moves (the slider itself
+    // snaps to its 200 steps), and 0 for a step's round-off residue near zero.
+    const show = (v) => {
+      const shown = Math.abs(v) < 1e-9 * (c.max - c.min) ? 0 : v;
+      label.textContent = `${c.label}: ${Number(shown).toPrecision(3)} ${c.unit}`;
+    };
+    input.addEventListener("input", () => { show(Number(input.value)); setControl(c.name, Number(input.value)); });
+    show(c.value);
     row.append(label, input);
     box.append(row);
   }

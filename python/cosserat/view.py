@@ -36,27 +36,46 @@ VIEW_DAMPING_S = 0.05
 
 
 def _web_dir():
+    """The page's files: COSSERAT_WEB_DIR when set, else web/ of the repository this package
+    was built or installed from; None when neither has index.html."""
     here = os.path.dirname(os.path.abspath(__file__))
-    for root in (os.path.join(here, "..", "..", ".."), os.path.join(here, "..", "..")):
-        web = os.path.abspath(os.path.join(root, "web"))
+    candidates = [os.environ["COSSERAT_WEB_DIR"]] if os.environ.get("COSSERAT_WEB_DIR") else []
+    candidates += [os.path.join(root, "web")
+                   for root in (os.path.join(here, "..", "..", ".."), os.path.join(here, "..", ".."))]
+    for web in candidates:
         if os.path.exists(os.path.join(web, "index.html")):
-            return web
-    return os.environ.get("COSSERAT_WEB_DIR", "web")
+            return os.path.abspath(web)
+    return None
 
 
 def _section_stiffness(rod):
-    """EI and GJ of a circular or tubular section given by radii (None for other shapes)."""
+    """The smaller bending stiffness EI and the torsional stiffness GJ (N·m²) of the section a
+    problem file gives (circle, annulus, rectangle or explicit), None when the file does not say
+    enough (no shape, no modulus)."""
     sec, mat = rod.get("section", {}), rod.get("material", {})
     E = mat.get("youngs_modulus")
-    if not E or sec.get("shape") not in ("circle", "tube"):
+    if not E:
         return None
-    ro = sec.get("radius") or sec.get("outer_radius")
-    ri = sec.get("inner_radius", 0.0) if sec.get("shape") == "tube" else 0.0
-    if not ro:
-        return None
-    I = math.pi * (ro**4 - ri**4) / 4
     G = mat.get("shear_modulus") or E / (2 * (1 + mat.get("poisson_ratio", 0.3)))
-    return E * I, G * 2 * I
+    shape = sec.get("shape") or ("explicit" if "I1" in sec else None)
+    if shape in ("circle", "annulus"):
+        ro = sec.get("radius") or sec.get("outer_radius")
+        ri = sec.get("inner_radius", 0.0) if shape == "annulus" else 0.0
+        if not ro:
+            return None
+        I = math.pi * (ro**4 - ri**4) / 4
+        return E * I, G * 2 * I
+    if shape == "rectangle":
+        w, h = sec.get("width"), sec.get("height")
+        if not (w and h):
+            return None
+        a, b = max(w, h), min(w, h)
+        # Roark's torsion constant of a rectangle: a b³ (1/3 − 0.21 (b/a)(1 − b⁴/(12 a⁴))).
+        J = a * b**3 * (1 / 3 - 0.21 * (b / a) * (1 - b**4 / (12 * a**4)))
+        return E * a * b**3 / 12, G * J
+    if shape == "explicit" and sec.get("I1") and sec.get("I2") and sec.get("J"):
+        return E * min(sec["I1"], sec["I2"]), G * sec["J"]
+    return None
 
 
 # The problem file's actuation names and cosserat.Actuation's attributes for them.
@@ -380,7 +399,8 @@ def make_handler(live, web_dir):
                     with open(os.path.join(web_dir, name), "rb") as f:
                         return self._send(200, f.read(), kind)
                 except OSError:
-                    return self._send(404, {"error": f"{name}: not found (npm install in web/)"})
+                    return self._send(404, {"error": f"{name}: not found in {web_dir} (three.js: "
+                                                     "npm ci in web/)"})
             self._send(404, {"error": f"{self.path}: not found"})
 
         def do_POST(self):
@@ -405,8 +425,17 @@ def main(argv=None):
     ap.add_argument("--port", type=int, default=8765)
     ap.add_argument("--open", action="store_true", help="open the page in the default browser")
     args = ap.parse_args(argv)
+    web = _web_dir()
+    if web is None:
+        raise SystemExit("cosserat view: the page's files (web/index.html) were not found next to "
+                         "the package; set COSSERAT_WEB_DIR to the repository's web/ directory")
     live = LiveRod(args.problem)
-    server = ThreadingHTTPServer(("127.0.0.1", args.port), make_handler(live, _web_dir()))
+    try:
+        server = ThreadingHTTPServer(("127.0.0.1", args.port), make_handler(live, web))
+    except OSError as e:
+        live.running = False
+        raise SystemExit(f"cosserat view: --port {args.port}: {e.strerror} (another view or "
+                         "program uses it; try another --port, or 0 for any free one)")
     url = f"http://127.0.0.1:{server.server_address[1]}/"
     print(f"cosserat view: {url} ({live.mode}{'; ' + live.error if live.error else ''})",
           flush=True)

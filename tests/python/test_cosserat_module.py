@@ -581,6 +581,31 @@ class PythonSide(unittest.TestCase):
         summary = cosserat.StaticSolver(p).solve()
         self.assertTrue(repr(summary).startswith("StaticSummary(status=converged"))
 
+    def test_live_view_damps_every_section_shape(self):
+        # The live view adds 0.05 s of bending and torsion damping when a file has none, from the
+        # section's EI and GJ: circle and annulus π(r_o⁴ − r_i⁴)/4 (J twice that), a rectangle
+        # w h³/12 about its weak axis with Roark's J, an explicit section's smaller I and its J.
+        from cosserat.view import LiveRod, _section_stiffness
+        mat = {"youngs_modulus": 1e9, "shear_modulus": 4e8}
+        ei, gj = _section_stiffness({"section": {"shape": "annulus", "outer_radius": 0.01,
+                                                 "inner_radius": 0.009}, "material": mat})
+        i_annulus = math.pi * (0.01**4 - 0.009**4) / 4
+        self.assertAlmostEqual(ei / (1e9 * i_annulus), 1.0, places=12)
+        self.assertAlmostEqual(gj / (4e8 * 2 * i_annulus), 1.0, places=12)
+        ei, gj = _section_stiffness({"section": {"shape": "rectangle", "width": 0.02,
+                                                 "height": 0.002}, "material": mat})
+        self.assertAlmostEqual(ei / (1e9 * 0.02 * 0.002**3 / 12), 1.0, places=12)
+        j = 0.02 * 0.002**3 * (1 / 3 - 0.21 * 0.1 * (1 - 0.1**4 / 12))
+        self.assertAlmostEqual(gj / (4e8 * j), 1.0, places=12)
+        ei, gj = _section_stiffness({"section": {"area": 1e-4, "I1": 2e-9, "I2": 1e-9,
+                                                 "J": 3e-9}, "material": mat})
+        self.assertEqual((ei, gj), (1e9 * 1e-9, 4e8 * 3e-9))
+        live = LiveRod("robots/jamming_virtual_joints.json")  # an annulus without damping
+        try:
+            self.assertTrue(any("damping" in note for note in live.config()["notes"]))
+        finally:
+            live.running = False
+
     def test_assemblies_are_plotted_and_animated_rod_by_rod(self):
         # The plate on two wires: its frames hold each rod's nodes, which end where the run's
         # result puts them; plot draws both rods and the plate, animate writes every frame.
