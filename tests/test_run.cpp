@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -161,6 +162,25 @@ TEST(Run, ADynamicsResultReportsTheStepsOfTheShot) {
   EXPECT_EQ(cosserat::run::Run(problem).json["shot_steps"], 20);
   problem.dynamics.spatial_scheme = io::ShotScheme::kRk4;
   EXPECT_EQ(cosserat::run::Run(problem).json["shot_steps"], 39);
+}
+
+// The contract: frames every output_interval from t = 0, and the end of the run when it falls
+// between two. 0.025 s at 0.01 s intervals: 0, 0.01, 0.02, 0.025 in both formulations (the
+// quaternion-FD run used to skip the frame at 0.02).
+TEST(Run, FramesComeEveryOutputIntervalAndAtTheEnd) {
+  io::Problem problem = Load("examples/cantilever_release.json");
+  problem.dynamics.duration = 0.025;
+  problem.dynamics.dt = 0.005;
+  problem.dynamics.output_interval = 0.01;
+  for (const io::Formulation f : {io::Formulation::kSe3Shooting, io::Formulation::kQuaternionFd}) {
+    problem.formulation = f;
+    const Result r = cosserat::run::Run(problem);
+    ASSERT_TRUE(r.converged) << r.log;
+    const std::vector<double> t = r.json["trajectory"]["t"].get<std::vector<double>>();
+    const std::vector<double> expected{0.0, 0.01, 0.02, 0.025};
+    ASSERT_EQ(t.size(), expected.size()) << io::ToString(f);
+    for (size_t k = 0; k < t.size(); ++k) EXPECT_NEAR(t[k], expected[k], 1e-12) << io::ToString(f);
+  }
 }
 
 // The bending stress at the clamp of a weightless cantilever under a tip force F (world) is fixed by

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <complex>
 #include <iomanip>
 #include <optional>
 #include <sstream>
@@ -199,6 +200,33 @@ std::string SummaryLine(const io::DynamicRun& run, const RodState& state) {
   return line.str();
 }
 
+/// BDF2 damps a motion it resolves in few steps: per step a mode of angular frequency ω keeps
+/// |ζ| ≈ 1 − (ω dt)⁴/4 of its amplitude (0.93 at ω dt = 1, 0.76 at 2; docs/dynamics.md,
+/// "Numerical damping"). When the rod's first bending mode, as an unloaded cantilever's
+/// (β₁L = 1.8751) or free rod's (4.7300), gets ω dt > 1 (under ~6 steps per period), the run
+/// converges to a rod that has stopped swinging: a warning says so.
+std::string CoarseStepWarning(const io::Problem& problem, double dt) {
+  const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
+  const double ei = std::min(p.stiffness(0, 0), p.stiffness(1, 1)), rho_a = p.mass(5, 5);
+  const double beta_l = problem.boundary == io::Boundary::kFreeFree ? 4.7300 : 1.8751;
+  const double omega = std::pow(beta_l / problem.rod.length, 2) * std::sqrt(ei / rho_a);
+  const double wh = omega * dt;
+  if (!(wh > 1.0)) return "";
+  // The amplification of the undamped mode: the larger root of (3 − 2iωdt) ζ² − 4ζ + 1 = 0.
+  const std::complex<double> a(3.0, -2.0 * wh);
+  const std::complex<double> root = std::sqrt(std::complex<double>(16.0) - 4.0 * a);
+  const double keep = std::max(std::abs((4.0 + root) / (2.0 * a)), std::abs((4.0 - root) / (2.0 * a)));
+  std::ostringstream warning;
+  warning << std::setprecision(3) << "cosserat: warning: dt = " << dt
+          << " s resolves the first bending mode (about " << omega / (2 * M_PI)
+          << " Hz as an unloaded rod) in " << 2 * M_PI / wh
+          << " steps per period: BDF2 keeps " << 100 * keep
+          << " % of its amplitude per step and damps it away (docs/dynamics.md, \"Numerical "
+             "damping\"); a dt below "
+          << 1.0 / omega << " s keeps more than 93 %\n";
+  return warning.str();
+}
+
 }  // namespace
 
 Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
@@ -247,6 +275,7 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
           << static_cast<int>(std::ceil(std::max(exponent, shear_wave) / 0.9)) + 1
           << "} or a larger dt\n";
   }
+  log << CoarseStepWarning(problem, options.dt);
   result.log = log.str();
   result.converged = run.status == SolveStatus::kConverged;
   return result;

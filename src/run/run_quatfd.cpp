@@ -146,7 +146,11 @@ RadauOutcome IntegrateRadau(quatfd::QuatFdModel& model, const io::Problem::Dynam
   // at the steps the error control asks for, where the Rosenbrock integrator's does not, and
   // with stage order 3 it needs fewer steps than SDIRK4 on both benchmarks (BENCHMARKS.md).
   quatfd::RadauIntegrator integrator(model, io_opt);
-  const int intervals = std::max(1, static_cast<int>(std::lround(d.duration / d.output_interval)));
+  // Frames every output_interval, and the end of the run when it falls between two (a frame
+  // within 1e-9 of an interval of the end is the end's).
+  const double ratio = d.duration / d.output_interval;
+  const int whole = static_cast<int>(std::floor(ratio + 1e-9));
+  const int intervals = std::max(1, whole + (ratio - whole > 1e-9 ? 1 : 0));
   const auto loop_start = Clock::now();
   double t = 0.0;
   for (int k = 1; k <= intervals; ++k) {
