@@ -277,8 +277,8 @@ TEST(Bdf2Dynamics, SnapshotRestartsTheSameRun) {
 
 TEST(Bdf2Dynamics, RestoreRefusesSnapshotsItCannotContinue) {
   // A snapshot taken before InitializeAtRest holds no run; one from another rod on the same node
-  // count (or other end conditions) would continue with a foreign history. Both are refused, and
-  // a refused Restore leaves the stepper as it was.
+  // count (or other end conditions, or other tendons) would continue with a foreign history. Both
+  // are refused, and a refused Restore leaves the stepper as it was.
   Bdf2ShootingStepper stepper(Steel(0.5, 0.001), 20);
   const Bdf2ShootingStepper::Snapshot empty = stepper.Save();
   EXPECT_THROW(stepper.Restore(empty), std::invalid_argument);
@@ -289,7 +289,15 @@ TEST(Bdf2Dynamics, RestoreRefusesSnapshotsItCannotContinue) {
   Bdf2Options free_free;
   free_free.ends = EndConditions::kFreeFree;
   Bdf2ShootingStepper other_ends(Steel(0.5, 0.001), 20, free_free);
-  for (Bdf2ShootingStepper* other : {&longer, &thicker, &other_ends}) {
+  // The same rod with a tendon, and with the tendon on another helix: other robots.
+  RodModel tendon_rod = Steel(0.5, 0.001);
+  tendon_rod.tendons = {{"t", TendonRoute::Helical(0.004, 0.5, 0.0)}};
+  Bdf2ShootingStepper with_tendon(tendon_rod, 20);
+  tendon_rod.tendons[0].route.pitch = 0.25;
+  Bdf2ShootingStepper other_helix(tendon_rod, 20);
+  ASSERT_TRUE(with_tendon.InitializeAtRest(in).converged());
+  EXPECT_THROW(other_helix.Restore(with_tendon.Save()), std::invalid_argument);
+  for (Bdf2ShootingStepper* other : {&longer, &thicker, &other_ends, &with_tendon}) {
     ASSERT_TRUE(other->InitializeAtRest(in).converged());
     EXPECT_THROW(stepper.Restore(other->Save()), std::invalid_argument);
   }

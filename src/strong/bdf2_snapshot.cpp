@@ -26,6 +26,22 @@ std::uint64_t Bdf2ShootingStepper::ModelFingerprint() const {
     add(k.data(), sizeof(double) * 6);
     add(m.data(), sizeof(double) * 6);
   }
+  // The actuators: a snapshot of a tendon or chamber robot continues only on the same robot.
+  for (const Tendon& t : model_.tendons) {
+    const int kind = static_cast<int>(t.route.kind);
+    const double numbers[] = {t.route.offset_base.x(), t.route.offset_base.y(),
+                              t.route.offset_tip.x(),  t.route.offset_tip.y(),
+                              t.route.radius,          t.route.pitch,
+                              t.route.phase,           t.anchor};
+    add(&kind, sizeof kind);
+    add(numbers, sizeof numbers);
+  }
+  for (const Chamber& c : model_.chambers) {
+    const double numbers[] = {c.offset.x(), c.offset.y(), c.area, c.start, c.end};
+    add(numbers, sizeof numbers);
+  }
+  const std::size_t counts[] = {model_.tendons.size(), model_.chambers.size()};
+  add(counts, sizeof counts);
   return h;
 }
 

@@ -143,7 +143,9 @@ class Bdf2ShootingStepper {
 
   /// Advances by options().dt to the state under `input`. No heap allocation. When a step
   /// fails even after halving, the status says why and time() and state() are those of the last
-  /// (sub-)step that converged.
+  /// (sub-)step that converged. NaN or Inf in the input is the status non_finite (nothing
+  /// moves); an actuation Actuation::IsValid refuses for this rod (a pushing tendon, a tendon or
+  /// chamber it lacks) throws std::invalid_argument, as InitializeAtRest does.
   StepSummary Step(const StepInput& input);
 
   double time() const { return run_.time; }
@@ -193,7 +195,8 @@ class Bdf2ShootingStepper {
     RodState state;        ///< the last accepted step
     /// What Restore() checks: a run exists (InitializeAtRest was called), and the stepper it
     /// came from had the same rod, grid and end conditions (a hash of the grid, the unactuated
-    /// sections at its nodes, the ends and the spatial scheme).
+    /// sections at its nodes, the tendons' routes and anchors, the chambers, the ends and the
+    /// spatial scheme).
     bool initialized = false;
     std::uint64_t model_fingerprint = 0;
   };
@@ -277,6 +280,8 @@ class Bdf2ShootingStepper {
   /// The sample points of grid_ with their tendon offsets and sections (constructor, Grow()).
   void SampleGrid();
   /// Snapshot::model_fingerprint for the current grid (constructor, Grow()).
+  /// Throws std::invalid_argument for an actuation this rod cannot take (Actuation::Require).
+  void RequireActuation(const Actuation& a) const;
   std::uint64_t ModelFingerprint() const;
   /// Samples every section for actuation_ (SampleGrid() and when the actuation changes).
   void SampleSections();
