@@ -1,6 +1,8 @@
 #include "cosserat/rod/actuation.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace cosserat {
 
@@ -31,6 +33,22 @@ bool Actuation::IsValid(std::string* why, int tendon_count, int chamber_count) c
   for (double p : jamming_pressure)
     if (!usable(p)) return fail("jamming_pressure: expected numbers >= 0 (Pa)");
   return true;
+}
+
+bool Actuation::AllFinite() const {
+  auto finite = [](const auto& values) {
+    for (double v : values)
+      if (!std::isfinite(v)) return false;
+    return true;
+  };
+  return std::isfinite(pressure) && std::isfinite(stiffness_scale) && finite(tendon_tension) &&
+         finite(chamber_pressure) && finite(jamming_pressure);
+}
+
+void Actuation::Require(int tendon_count, int chamber_count) const {
+  std::string why;
+  if (!IsValid(&why, tendon_count, chamber_count))
+    throw std::invalid_argument("actuation." + why);
 }
 
 }  // namespace cosserat

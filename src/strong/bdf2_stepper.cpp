@@ -432,12 +432,17 @@ void Bdf2ShootingStepper::Commit(double h) {
   ++run_.steps_taken;
 }
 
+void Bdf2ShootingStepper::RequireActuation(const Actuation& a) const {
+  a.Require(static_cast<int>(model_.tendons.size()), static_cast<int>(model_.chambers.size()));
+}
+
 StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input,
                                                   const Vec6* base_wrench_B) {
   const auto t0 = std::chrono::steady_clock::now();
   StepSummary summary;
   if (options_.ends == EndConditions::kFreeFree && input.tip_hold != TipHold::kFree)
     throw std::invalid_argument("Bdf2ShootingStepper: a held tip needs cantilever ends");
+  RequireActuation(input.actuation);
   initialized_ = false;  // until this succeeds, Step() refuses to run
   // A new run starts from the constructor's plan: pieces a failed step of an earlier run added
   // would make the same inputs give another run (ApplyActuation adds what this one asks for).
@@ -548,10 +553,11 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
   if (!input.loads.IsValid(nullptr) || !input.base_twist_B.allFinite() ||
       !input.base_wrench_B.allFinite() || !input.base_pose.R.allFinite() ||
       !input.base_pose.p.allFinite() || !input.tip_pose.R.allFinite() ||
-      !input.tip_pose.p.allFinite()) {
+      !input.tip_pose.p.allFinite() || !input.actuation.AllFinite()) {
     summary.status = SolveStatus::kNonFinite;  // NaN or Inf in the input: the state stays put
     return summary;
   }
+  RequireActuation(input.actuation);
   const StepInput start = run_.last_input;
   const bool ok = AttemptInterval(start, input, options_.dt, 0, &summary);
   if (ok) summary.status = SolveStatus::kConverged;

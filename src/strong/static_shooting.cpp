@@ -330,6 +330,8 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
   std::string why;
   if (!options_.IsValid(&why)) throw std::invalid_argument("StaticShootingOptions: " + why);
   if (!model_.IsValid(&why)) throw std::invalid_argument("RodModel: " + why);
+  actuation_.Require(static_cast<int>(model_.tendons.size()),
+                     static_cast<int>(model_.chambers.size()));
   grid_ = ModelGrid(model_, num_nodes);
   const int n = static_cast<int>(grid_.size());
   const std::vector<double> points = SegmentSamplePoints(grid_);
@@ -376,6 +378,8 @@ void StaticShootingSolver::SampleSections() {
 }
 
 void StaticShootingSolver::SetActuation(const Actuation& actuation) {
+  actuation.Require(static_cast<int>(model_.tendons.size()),
+                    static_cast<int>(model_.chambers.size()));
   actuation_ = actuation;
   SampleSections();
   state_is_solution_ = false;  // the stored shot belongs to the old actuation

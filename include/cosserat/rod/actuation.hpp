@@ -37,6 +37,13 @@ struct Actuation {
   bool IsValid(std::string* why, int tendon_count = kMaxTendons,
                int chamber_count = kMaxChambers) const;
 
+  /// Every value finite (no NaN or Inf).
+  bool AllFinite() const;
+
+  /// For the solvers' setters: throws std::invalid_argument naming the field ("actuation.<field>:
+  /// expected ...") when IsValid refuses the actuation for a rod of these tendons and chambers.
+  void Require(int tendon_count, int chamber_count) const;
+
   /// Absolute vacuum as a gauge pressure, Pa: the lowest chamber pressure.
   static constexpr double kVacuumGaugePressure = -101325.0;
 };

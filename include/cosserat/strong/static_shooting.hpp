@@ -86,7 +86,9 @@ class StaticShootingSolver {
 
   /// New actuation (tendon tensions, pressures, jamming states): re-samples the section
   /// properties and the tendon tensions without allocating. The next Solve warm-starts from the
-  /// previous solution, which is still the best guess for a small change.
+  /// previous solution, which is still the best guess for a small change. Throws
+  /// std::invalid_argument for an actuation Actuation::IsValid refuses for this rod (a pushing
+  /// tendon, a tendon or chamber it lacks), as the constructor does.
   void SetActuation(const Actuation& actuation);
   const Actuation& actuation() const { return actuation_; }
 
