@@ -221,6 +221,34 @@ TEST(Tendons, LengthCommandReachesTheTensionThatProducesItAndASlackTendonCarries
   EXPECT_GT(command[1], solver.tendon_lengths()[1]);  // slack: the path is shorter than the cable
 }
 
+// Displacement control far from its start: the three-tendon robot's path lengths at (25, 0, 1.5) N
+// (a 0.8 mm backbone bent to κ ≈ 47 /m) commanded from zero tension. The search must reach the
+// tensions that produce them (tendon b, stretched by the bend, goes slack when commanded at its
+// own path's length plus 1 mm), its trial steps halving where a static solve fails. Lengths to
+// 1e-10 L; the slope dℓ/dτ ≈ 2e-3 m/N recovers the tensions to ~1e-8 N, 1e-6 asserted.
+TEST(Tendons, ALengthCommandFarFromTheStartIsReached) {
+  const io::ParseResult parsed =
+      io::LoadProblemFile(std::string(COSSERAT_SOURCE_DIR) + "/robots/tendon_three_tendon.json");
+  ASSERT_TRUE(parsed.ok());
+  const io::Problem& p = *parsed.problem;
+  StaticShootingSolver solver(p.rod, p.nodes);
+  solver.SetActuation(Tensions({25.0, 0.0, 1.5}));
+  ASSERT_TRUE(solver.Solve(p.base, p.loads).converged());
+  std::array<double, Actuation::kMaxTendons> command{};
+  for (int i = 0; i < 3; ++i) command[i] = solver.tendon_lengths()[i];
+  command[1] += 1e-3;
+  StaticShootingSolver fresh(p.rod, p.nodes);
+  Actuation a;  // from zero tension
+  const TendonLengthSummary s = SolveTendonLengths(fresh, p.base, p.loads, command, &a);
+  ASSERT_TRUE(s.converged()) << ToString(s.status);
+  EXPECT_NEAR(a.tendon_tension[0], 25.0, 1e-6);
+  EXPECT_EQ(a.tendon_tension[1], 0.0);
+  EXPECT_NEAR(a.tendon_tension[2], 1.5, 1e-6);
+  EXPECT_TRUE(s.slack[1]);
+  EXPECT_LT(s.length_error, 1e-10 * p.rod.length);
+  EXPECT_LT(s.residual, 1e-9);  // the final equilibrium's, reported
+}
+
 // A two-segment robot: tendon A anchored at the middle (s = L/2, its segment's end), tendon B
 // at the tip, passing through the first segment. With A pulled and B slack and no external load,
 // the first half is the one-segment robot of length L/2 with A anchored at its tip (the same

@@ -47,10 +47,12 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
     solver.SetActuation(a);
     ++summary.solves;
     const auto s = solver.Solve(base, loads);
+    summary.shots += s.shots;
     if (!s.converged()) {
       summary.status = s.status;
       return false;
     }
+    summary.residual = s.residual;
     g->setZero();
     for (int i = 0; i < count; ++i) (*g)(i) = solver.tendon_lengths()[i] - lengths[i];
     return true;
@@ -88,7 +90,7 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
     for (int k = 0; k < 30 && !moved; ++k, alpha *= 0.5) {
       VecT trial = (tau + alpha * step).cwiseMax(0.0);
       VecT g_trial;
-      if (!mismatch(trial, &g_trial)) return summary;
+      if (!mismatch(trial, &g_trial)) continue;  // too far for the statics: a shorter step
       double worst_trial = 0.0;
       for (int i = 0; i < count; ++i)
         if (trial(i) > 0 || g_trial(i) > 0)
@@ -100,7 +102,12 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
       }
     }
     ++summary.iterations;
-    if (!moved) break;
+    if (!moved) {
+      // The solver holds the last trial's state: back to the accepted tensions' equilibrium.
+      VecT g_back;
+      mismatch(tau, &g_back);
+      break;
+    }
   }
   summary.status = SolveStatus::kMaxIterations;
   return summary;

@@ -222,13 +222,20 @@ Result RunStatics(const io::Problem& problem, const RunOptions& options) {
   std::array<bool, Actuation::kMaxTendons> slack{};
   for (int i = 0; i < Actuation::kMaxTendons; ++i)
     slack[i] = actuation.tendon_tension[i] == 0.0;  // force control: slack means no tension
+  double length_error = -1.0;  // displacement control: the largest |ℓ − ℓ_cmd|, m
   if (problem.robot.tendon_lengths && summary.converged()) {
     // Displacement control: the tensions that give the commanded tendon lengths.
+    const auto t0 = std::chrono::steady_clock::now();
     const TendonLengthSummary t = SolveTendonLengths(solver, problem.base, problem.loads,
                                                      *problem.robot.tendon_lengths, &actuation);
     summary.status = t.status;
     summary.iterations += t.iterations;
+    summary.shots += t.shots;
+    if (t.solves > 0) summary.residual = t.residual;  // the last equilibrium's, not the first
+    summary.wall_time_s +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     slack = t.slack;
+    length_error = t.length_error;
   }
   Result result;
   result.json = io::StaticResultToJson(summary, solver.state());
@@ -241,6 +248,7 @@ Result RunStatics(const io::Problem& problem, const RunOptions& options) {
     robot["tendon_length"] = std::vector<double>(solver.tendon_lengths().begin(),
                                                  solver.tendon_lengths().begin() + count);
     robot["tendon_slack"] = std::vector<bool>(slack.begin(), slack.begin() + count);
+    if (length_error >= 0.0) robot["tendon_length_error"] = length_error;
     if (!problem.rod.chambers.empty())
       robot["chamber_pressure"] =
           std::vector<double>(actuation.chamber_pressure.begin(),

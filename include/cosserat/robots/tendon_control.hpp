@@ -23,6 +23,8 @@ struct TendonLengthSummary {
   SolveStatus status = SolveStatus::kNotRun;
   int iterations = 0;         ///< Newton iterations on the tensions
   int solves = 0;             ///< static solves (each warm-started)
+  int shots = 0;              ///< their shots, in all
+  double residual = 0.0;      ///< the last converged static solve's residual (StaticShootingSummary)
   double length_error = 0.0;  ///< largest |ℓ − ℓ_cmd| over the taut tendons, m
   std::array<bool, Actuation::kMaxTendons> slack{};
   bool converged() const { return status == SolveStatus::kConverged; }
@@ -31,7 +33,9 @@ struct TendonLengthSummary {
 /// Solves for the tensions (written into *actuation, whose other fields are kept and used) so
 /// that the tendon path lengths (StaticShootingSolver::tendon_lengths) equal `lengths` (m) for
 /// the model's tendons. Projected Newton on the tensions with τ ≥ 0; the length sensitivities
-/// come from warm-started re-solves. On return the solver holds the equilibrium.
+/// come from warm-started re-solves; a trial step whose static solve fails is halved like one that
+/// does not reduce the mismatch. On return the solver holds the equilibrium at the last accepted
+/// tensions.
 TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::SE3& base,
                                        const StaticLoads& loads,
                                        const std::array<double, Actuation::kMaxTendons>& lengths,
