@@ -53,7 +53,9 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   k["max_moment_ratio"] = std::isfinite(kink.max_ratio) ? nlohmann::ordered_json(kink.max_ratio)
                                                         : nlohmann::ordered_json(nullptr);
   k["s_max"] = kink.s_max;
-  k["first_kink_s"] = kink.first_kink_s;
+  // Where |m| first reaches M_w (m); null when it never does.
+  k["first_kink_s"] = kink.first_kink_s >= 0 ? nlohmann::ordered_json(kink.first_kink_s)
+                                             : nlohmann::ordered_json(nullptr);
   r["kink"] = k;
   result.json["robot"] = r;
   if (run_options.nodes_csv) result.nodes_csv = detail::NodesCsv(robot.state());
@@ -62,9 +64,12 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   log << "cosserat: eversion " << ToString(solve.status) << growth_note.str()
       << ", L = " << robot.length() << " m, tip at [" << std::setprecision(6) << tip.x() << ", "
       << tip.y() << ", " << tip.z() << "] m, kink: " << ToString(kink.status);
-  if (kink.kinked())
+  if (kink.status == KinkStatus::kCollapsed)
     log << " (|m|/M_w = " << kink.max_ratio << " at s = " << kink.s_max << " m: the tube folds "
         << "there; the shape beyond is not modelled)";
+  else if (kink.kinked())
+    log << " (|m|/M_w = " << kink.max_ratio << " at s = " << kink.s_max << " m: the wall "
+        << "wrinkles there; it folds at 2)";
   log << '\n';
   result.log = log.str();
   result.converged = converged;

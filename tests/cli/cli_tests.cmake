@@ -406,6 +406,9 @@ cosserat_cli_test(NAME tip_mass_quatfd ARGS validate "${_cli_dir}/tip_mass_quatf
 # with the amplitude kept per step (the larger root of (3 − 2iωdt) ζ² − 4ζ + 1 at ω dt = 2.2).
 cosserat_cli_test(NAME dynamics_coarse_dt ARGS solve "${_cli_dir}/dynamics_coarse_dt.json" CODE 0
                   STDERR "warning: dt = 0.05 s resolves the first bending mode \\(about 6.99 Hz.*BDF2 keeps 73.1 %")
+# An eversion robot that never kinks reports where it first did as null, not a sentinel.
+cosserat_cli_test(NAME eversion_no_kink ARGS solve "${_cli_dir}/eversion_no_kink.json" CODE 0
+                  STDOUT "\"status\": \"none\".*\"first_kink_s\": null" STDERR "kink: none")
 # Answers only a slip of units gives run, and the log says what to check (run/scale_warnings.hpp);
 # a soft rod's SE(3) load steps that stop short say what to try.
 cosserat_cli_test(NAME radius_in_mm ARGS solve "${_cli_dir}/radius_in_mm.json" CODE 0
