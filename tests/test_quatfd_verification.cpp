@@ -138,6 +138,31 @@ TEST(QuatFdStatics, ASlenderWireHangsUnderItsWeightAtEveryLength) {
   }
 }
 
+// A steel rod (1 m, r = 5 mm) on 30 000 segments under a small tip load (PL²/EI = 0.05): the
+// vertex forces' round-off, ε EA N, is then ~1e-6 of EI/L², the fixed floor the statics accepted,
+// and the solve failed. With the floor scaled by it, the solve converges and the tip matches the
+// SE(3) solver on 201 nodes. Tolerance: a residual of 1.1e-6 EI/L² left in bending moves the tip
+// by at most 1.1e-6 L/3 ≈ 4e-7 m (measured 3.4e-11 m); a stalled solve (the old tip was 4e-5 m
+// against 0.017 m) misses it by far.
+TEST(QuatFdStatics, AVeryFineGridConvergesAtItsRoundOffFloor) {
+  const cosserat::testing::SteelRod rod{1.0, 0.005};
+  StaticLoads loads;
+  loads.tip_force = Vec3(5.0, 0, 0);
+  QuatFdOptions opt;
+  opt.segments = 30000;
+  QuatFdModel model(rod.model(), lie::SE3(), opt);
+  Eigen::VectorXd q(model.size()), v(model.size());
+  model.RestState(q, v);
+  const QuatFdStaticsSummary s = SolveStatics(&model, loads, q);
+  ASSERT_TRUE(s.converged()) << ToString(s.status) << " residual " << s.residual;
+  RodState state;
+  model.ToRodState(q, v, &state);
+  const Vec3 reference = SolveShooting(rod.model(), loads, 201);
+  std::printf("  30 000 segments: residual %.3g, |tip - SE(3)| = %.3g m\n", s.residual,
+              (state.tip_position_W() - reference).norm());
+  EXPECT_LT((state.tip_position_W() - reference).norm(), 5e-7);
+}
+
 TEST(QuatFdStatics, SecondOrderConvergenceInSegments) {
   SteelRod rod;
   StaticLoads loads;

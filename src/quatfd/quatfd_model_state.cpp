@@ -196,6 +196,12 @@ double QuatFdModel::MaxSegmentForce(const Eigen::Ref<const Eigen::VectorXd>& q) 
   return f_max;
 }
 
+double QuatFdModel::MaxStrainStiffness() const {
+  double c = 0.0;
+  for (const kernels::SegmentConstants& seg : segment_) c = std::max(c, seg.stiffness.maxCoeff());
+  return c;
+}
+
 double QuatFdModel::Mass() const {
   double m = 0;
   for (double mn : mass_) m += mn;

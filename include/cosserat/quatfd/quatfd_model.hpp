@@ -220,6 +220,8 @@ class QuatFdModel {
   /// The largest |C_Γ (Γ − Γ*)| over the segments at rest in state q (N): the scale of the
   /// internal forces (a taut cable's tension).
   double MaxSegmentForce(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  /// The largest entry of the segments' strain stiffness C_Γ (N): EA or κGA.
+  double MaxStrainStiffness() const;
   double force_scale() const { return force_scale_; }
 
  private:
