@@ -23,13 +23,14 @@ def sweep(study, out=None, threads=None):
     current directory) or the path of a study file.
 
     out: the CSV file the rows go to, one per point as it finishes; given an existing file of the
-    same study, it resumes (only the points without a row run). Default: a temporary file.
+    same study, it resumes (only the points without a row run). Default: a temporary file,
+    removed once its rows are read ("csv" is then None).
     threads: default all cores.
 
     Returns {"rows": [one dict per point, in point order: index, each parameter by its path,
     each output by its name, status, wall_time_s], "summary": {points, resumed, ran, failed,
-    complete, wall_time_s}, "csv": the file's path}. Bad study files raise ValueError naming the
-    field.
+    complete, wall_time_s}, "csv": the file's path (None for the temporary one)}. Bad study
+    files raise ValueError naming the field.
     """
     if isinstance(study, dict):
         text, base = _json_text(study), os.getcwd()
@@ -47,12 +48,19 @@ def sweep(study, out=None, threads=None):
                                 or not isinstance(threads, (int, np.integer)) or threads < 1):
         raise ValueError(f"threads: expected a whole number >= 1, got {threads!r}")
     threads = None if threads is None else int(threads)
-    if out is None:
+    temporary = out is None
+    if temporary:
         handle, out = tempfile.mkstemp(prefix="cosserat_sweep_", suffix=".csv")
         os.close(handle)
         os.remove(out)
-    summary = _core.sweep(text, base, os.fspath(out), threads or os.cpu_count() or 1)
-    with open(out, newline="") as f:
-        rows = [{k: (int(v) if k == "index" else _cell(v)) for k, v in row.items()}
-                for row in csv.DictReader(f)]
-    return {"rows": rows, "summary": summary, "csv": os.fspath(out)}
+    try:
+        summary = _core.sweep(text, base, os.fspath(out), threads or os.cpu_count() or 1)
+        with open(out, newline="") as f:
+            rows = [{k: (int(v) if k == "index" else _cell(v)) for k, v in row.items()}
+                    for row in csv.DictReader(f)]
+    finally:
+        if temporary:
+            for leftover in (out, os.fspath(out) + ".tmp"):
+                if os.path.exists(leftover):
+                    os.remove(leftover)
+    return {"rows": rows, "summary": summary, "csv": None if temporary else os.fspath(out)}

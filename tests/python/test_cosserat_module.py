@@ -674,6 +674,7 @@ class Batches(unittest.TestCase):
                  "outputs": {"tip_x": "/tip/position/0"}}
         out = cosserat.sweep(study, threads=np.int64(2))  # a NumPy integer is a whole number
         self.assertTrue(out["summary"]["complete"])
+        self.assertIsNone(out["csv"])  # no out=: the temporary file is gone
         self.assertEqual([r["index"] for r in out["rows"]], [0, 1, 2])
         for row in out["rows"]:
             with open("examples/cantilever.json") as f:
