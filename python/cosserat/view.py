@@ -257,7 +257,12 @@ class LiveRod:
     def _run_dynamics(self):
         problem = self.dynamic
         stepper = _core.Stepper(problem)
-        summary = stepper.initialize_at_rest(problem.loads)
+        # At rest in the shape the file's actuation gives, where the sliders start (a release
+        # from the initial actuation would swing the robot into it as the page opens); from the
+        # initial actuation when that equilibrium is out of the rest solve's reach.
+        summary = stepper.initialize_at_rest(problem.loads, actuation=problem.actuation)
+        if not summary.converged:
+            summary = stepper.initialize_at_rest(problem.loads)
         status = "running" if summary.converged else "initial equilibrium failed"
         loads, act = problem.loads, problem.actuation  # copies, changed by the controls
         n_tendons = len(self.spec.get("robot", {}).get("tendons", []))
