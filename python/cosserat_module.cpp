@@ -112,17 +112,15 @@ class PyStaticSolver {
       throw py::value_error("boundary: StaticSolver solves a cantilever, got \"" +
                             io::ToString(problem.boundary) +
                             "\" (cosserat.solve runs the other ends)");
-    // A rod whose shot grows too fast for one shooting piece: the CLI solves it by multiple
-    // shooting (run_statics.cpp), which this object does not.
-    const double exponent = StaticShootingExponent(problem.rod, problem.loads);
-    if (problem.rod.tendons.empty() && !problem.has_robot && exponent > 10.0) {
-      std::ostringstream why;
-      why << "rod: StaticSolver shoots from the clamp in one piece, and this problem's shot "
-             "grows like e^"
-          << std::setprecision(3) << exponent
-          << " (stiff contact, a foundation or tension); cosserat.solve runs it by multiple "
-             "shooting";
-      throw py::value_error(why.str());
+    // A rod whose single shot grows too fast (stiff contact, a foundation, tension): multiple
+    // shooting in the pieces it chooses, as the CLI solves it (run_statics.cpp).
+    if (problem.rod.tendons.empty() && !problem.has_robot &&
+        StaticShootingExponent(problem.rod, problem.loads) > 10.0) {
+      const StaticShootingOptions single = run::StaticOptions(problem);
+      StaticMultipleShootingOptions options;
+      options.tolerance = single.tolerance;
+      options.max_iterations = single.max_iterations;
+      multiple_.emplace(problem.rod, problem.nodes, options);
     }
   }
 
@@ -134,10 +132,15 @@ class PyStaticSolver {
     if (position) next_base.p = Finite(*position, "base_position");
     if (rotation) next_base.R = Rotation(*rotation, "base_rotation");
     if (actuation) Valid(*actuation, problem_);
+    if (actuation && multiple_)
+      throw py::value_error(
+          "actuation: this rod is solved by multiple shooting (its single shot grows too fast), "
+          "which keeps the problem's actuation");
     loads_ = next_loads;
     base_ = next_base;
     if (actuation) solver_.SetActuation(*actuation);
-    const StaticShootingSummary s = solver_.Solve(base_, loads_);
+    const StaticShootingSummary s =
+        multiple_ ? multiple_->Solve(base_, loads_) : solver_.Solve(base_, loads_);
     last_status_ = s.status;
     return s;
   }
@@ -150,12 +153,15 @@ class PyStaticSolver {
       throw std::runtime_error(std::string("StaticSolver has no solution: the last solve() "
                                            "ended with status ") +
                                ToString(last_status_));
-    return solver_.state();
+    return multiple_ ? multiple_->state() : solver_.state();
   }
+  /// Shooting pieces: 1, or those of multiple shooting's last solve.
+  int pieces() const { return multiple_ ? multiple_->pieces() : 1; }
 
  private:
   io::Problem problem_;  ///< for the actuation's rules (tendons, chambers, jamming segments)
   StaticShootingSolver solver_;
+  std::optional<StaticMultipleShootingSolver> multiple_;  ///< rods one shot cannot follow
   lie::SE3 base_;
   StaticLoads loads_;
   SolveStatus last_status_ = SolveStatus::kNotRun;
@@ -348,6 +354,9 @@ void BindStaticSolver(py::module_& m) {
            py::arg("actuation") = py::none(),
            "Solves for the loads, clamp pose and actuation given; what is not given keeps its "
            "last value, at first the problem's loads, base and robot actuation.")
+      .def_property_readonly("pieces", &PyStaticSolver::pieces,
+                             "Shooting pieces of the last solve: 1, or more for a rod whose "
+                             "single shot grows too fast (stiff contact, a foundation, tension).")
       .def(
           "state", [](const PyStaticSolver& s) { return StateDict(s.state()); },
           "The equilibrium of the last solve(), as Stepper.state(); RuntimeError when it did "

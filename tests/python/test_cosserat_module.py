@@ -356,15 +356,21 @@ class Dynamics(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "environment.fluid.gust"):
             cosserat.BatchStepper(cosserat.parse_problem(json.dumps(spec)), 2)
 
-    def test_static_solver_leaves_multiple_shooting_to_solve(self):
-        # A rod lying on a stiff table shoots like e^25 in one piece: the CLI solves it by
-        # multiple shooting, StaticSolver refuses it by name; a failed solve has no state.
+    def test_static_solver_shoots_in_pieces_where_the_command_does(self):
+        # A rod lying on a stiff table shoots like e^25 in one piece: StaticSolver then uses
+        # multiple shooting, as `cosserat solve` does, and reaches the command's equilibrium
+        # exactly (the same solver, options and loads); a failed solve has no state.
         with open("examples/rod_on_table.json") as f:
             spec = json.load(f)
         spec["formulation"] = "se3-shooting"
-        with self.assertRaisesRegex(ValueError, "multiple shooting"):
-            cosserat.StaticSolver(cosserat.parse_problem(json.dumps(spec)))
-        self.assertTrue(cosserat.solve(spec)["converged"])
+        solver = cosserat.StaticSolver(cosserat.parse_problem(json.dumps(spec)))
+        self.assertTrue(solver.solve().converged)
+        self.assertGreater(solver.pieces, 1)
+        command = cosserat.solve(spec)
+        self.assertTrue(command["converged"])
+        np.testing.assert_array_equal(solver.state()["position"], command["nodes"]["position"])
+        with self.assertRaisesRegex(ValueError, "actuation: this rod is solved by multiple"):
+            solver.solve(actuation=cosserat.Actuation())
         solver = cosserat.StaticSolver(wire())
         loads = cosserat.Loads()
         loads.tip_force = [-1e5, 0, 0]  # 1e5 N on a 1 mm wire: no load path reaches it
