@@ -82,6 +82,20 @@ class PyBatchStepper {
       out.row(i) = batch_->rod(i).state().tip_position_W().transpose();
     return out;
   }
+  /// Whether each rod's last step converged (M bools); a rod that failed stays at the last state
+  /// it reached, behind the others.
+  std::vector<bool> Converged() const {
+    RequireState();
+    std::vector<bool> out(batch_->count());
+    for (int i = 0; i < batch_->count(); ++i) out[i] = batch_->summary(i).converged();
+    return out;
+  }
+  /// Each rod's simulated time, s (M values).
+  std::vector<double> Times() const {
+    std::vector<double> out(batch_->count());
+    for (int i = 0; i < batch_->count(); ++i) out[i] = batch_->rod(i).time();
+    return out;
+  }
   double time() const { return batch_->rod(0).time(); }
   int count() const { return batch_->count(); }
 
@@ -161,6 +175,10 @@ void BindBatchStepper(py::module_& m) {
            "what is not given keeps its last value (at first the problem's). Returns how many "
            "rods converged.")
       .def("tip_positions", &PyBatchStepper::TipPositions, "(M, 3) tip positions, m, world.")
+      .def("converged", &PyBatchStepper::Converged,
+           "Whether each rod's last step converged (a list of M bools); a rod whose step failed "
+           "keeps the last state it reached (times says where).")
+      .def_property_readonly("times", &PyBatchStepper::Times, "Each rod's simulated time, s.")
       .def_property_readonly("time", &PyBatchStepper::time)
       .def_property_readonly("count", &PyBatchStepper::count);
 }

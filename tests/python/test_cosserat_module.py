@@ -639,6 +639,17 @@ class PythonSide(unittest.TestCase):
 class Batches(unittest.TestCase):
     """cosserat.BatchStepper and cosserat.sweep."""
 
+    def test_a_failed_rod_is_named_and_stays_behind(self):
+        # Two peer wires, the second pulled with 10 kN (its step cannot converge): the count says
+        # one converged, converged() says which, and the failed rod keeps its state at t = 0
+        # while the other is one dt on.
+        p = cosserat.load_problem("examples/cantilever_release.json")
+        batch = cosserat.BatchStepper(p, 2, threads=1)
+        self.assertEqual(batch.initialize_at_rest(), 2)
+        self.assertEqual(batch.step(tip_force=np.array([[0.0, 0, 0], [1e4, 0, 0]])), 1)
+        self.assertEqual(batch.converged(), [True, False])
+        self.assertEqual(batch.times, [p.dt, 0.0])
+
     def test_64_rods_step_exactly_as_64_steppers(self):
         # The peer release's wire, 64 rods each with its own tip-force history: every rod's tip
         # is bitwise the one a lone Stepper reaches with the same inputs (the threads only share
