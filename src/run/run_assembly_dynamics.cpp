@@ -157,7 +157,7 @@ Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options
   out["residual"] = residual;
   out["simulated_time_s"] = dyn.time();
   out["wall_time_s"] = wall;
-  out["failed_at_t"] = failed_at < 0 ? json(nullptr) : json(failed_at);
+  if (failed_at >= 0) out["failed_at_t"] = failed_at;  // only when the run failed, as a rod's
   out["trajectory"] = TrajectoryJson(spec.assembly, frames);
   out["assembly"] = FinalState(spec.assembly, dyn);
   if (options.nodes_csv) result.nodes_csv = frames.csv.str();
