@@ -58,6 +58,24 @@ QuatFdStatic SolveQuatFd(const RodModel& rod, const StaticLoads& loads, int segm
   return {state.tip_position_W(), state.tip_rotation_WB()};
 }
 
+/// The quaternion-FD statics of `rod` on `segments` segments from the rest state: the summary
+/// and the state (not asserted: the caller says what it expects).
+struct QuatFdSolve {
+  QuatFdStaticsSummary summary;
+  RodState state;
+};
+QuatFdSolve SolveOnSegments(const RodModel& rod, const StaticLoads& loads, int segments) {
+  QuatFdOptions opt;
+  opt.segments = segments;
+  QuatFdModel model(rod, lie::SE3(), opt);
+  Eigen::VectorXd q(model.size()), v(model.size());
+  model.RestState(q, v);
+  QuatFdSolve out;
+  out.summary = SolveStatics(&model, loads, q);
+  model.ToRodState(q, v, &out.state);
+  return out;
+}
+
 Vec3 SolveShooting(const RodModel& rod, const StaticLoads& loads, int nodes) {
   StaticShootingSolver solver(rod, nodes);
   const auto s = solver.Solve(lie::SE3(), loads);
@@ -116,16 +134,10 @@ TEST(QuatFdStatics, ASlenderWireHangsUnderItsWeightAtEveryLength) {
     const cosserat::testing::SteelRod rod{length, 0.005};
     StaticLoads loads;
     loads.gravity_W = Vec3(0, 0, 9.81);  // along +z, the rod's own direction: hanging
-    QuatFdOptions opt;
-    opt.segments = 100;
-    QuatFdModel model(rod.model(), lie::SE3(), opt);
-    Eigen::VectorXd q(model.size()), v(model.size());
-    model.RestState(q, v);
-    const QuatFdStaticsSummary s = SolveStatics(&model, loads, q);
-    ASSERT_TRUE(s.converged()) << "L " << length << ": " << ToString(s.status) << " residual "
-                               << s.residual;
-    RodState state;
-    model.ToRodState(q, v, &state);
+    const QuatFdSolve fd = SolveOnSegments(rod.model(), loads, 100);
+    ASSERT_TRUE(fd.summary.converged()) << "L " << length << ": " << ToString(fd.summary.status)
+                                        << " residual " << fd.summary.residual;
+    const RodState& state = fd.state;
     const double weight = rod.rhoA() * 9.81 * length;
     const double stretch = rod.material.density * 9.81 * length * length /
                            (2 * rod.material.youngs_modulus);
@@ -148,19 +160,14 @@ TEST(QuatFdStatics, AVeryFineGridConvergesAtItsRoundOffFloor) {
   const cosserat::testing::SteelRod rod{1.0, 0.005};
   StaticLoads loads;
   loads.tip_force = Vec3(5.0, 0, 0);
-  QuatFdOptions opt;
-  opt.segments = 30000;
-  QuatFdModel model(rod.model(), lie::SE3(), opt);
-  Eigen::VectorXd q(model.size()), v(model.size());
-  model.RestState(q, v);
-  const QuatFdStaticsSummary s = SolveStatics(&model, loads, q);
-  ASSERT_TRUE(s.converged()) << ToString(s.status) << " residual " << s.residual;
-  RodState state;
-  model.ToRodState(q, v, &state);
+  const QuatFdSolve fd = SolveOnSegments(rod.model(), loads, 30000);
+  ASSERT_TRUE(fd.summary.converged())
+      << ToString(fd.summary.status) << " residual " << fd.summary.residual;
   const Vec3 reference = SolveShooting(rod.model(), loads, 201);
-  std::printf("  30 000 segments: residual %.3g, |tip - SE(3)| = %.3g m\n", s.residual,
-              (state.tip_position_W() - reference).norm());
-  EXPECT_LT((state.tip_position_W() - reference).norm(), 5e-7);
+  const double off = (fd.state.tip_position_W() - reference).norm();
+  std::printf("  30 000 segments: residual %.3g, |tip - SE(3)| = %.3g m\n", fd.summary.residual,
+              off);
+  EXPECT_LT(off, 5e-7);
 }
 
 TEST(QuatFdStatics, SecondOrderConvergenceInSegments) {

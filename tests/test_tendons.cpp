@@ -33,6 +33,15 @@ struct TendonRod : testing::SteelRod {
   }
 };
 
+/// robots/tendon_three_tendon.json (a 0.8 mm spring-steel backbone, two straight tendons and a
+/// helical one, 8 mm out); an empty problem, and a failed test, if it does not load.
+io::Problem ThreeTendonRobot() {
+  const io::ParseResult parsed =
+      io::LoadProblemFile(std::string(COSSERAT_SOURCE_DIR) + "/robots/tendon_three_tendon.json");
+  EXPECT_TRUE(parsed.ok());
+  return parsed.problem.value_or(io::Problem{});
+}
+
 Actuation Tensions(std::initializer_list<double> tau) {
   Actuation a;
   int i = 0;
@@ -131,10 +140,8 @@ TEST(Tendons, BaseReactionBalancesTheExternalLoadsWhateverTheTension) {
 // relative, as above) and RK4's error in the force balance of sections turning by h κ per step,
 // O((h κ)⁴) (measured 0.03–0.045 (h κ)⁴ at h κ = 0.12 … 0.47; bounded by 0.1 (h κ)⁴).
 TEST(Tendons, AHelicalTendonPulledHardStillBalancesTheWeight) {
-  const io::ParseResult parsed =
-      io::LoadProblemFile(std::string(COSSERAT_SOURCE_DIR) + "/robots/tendon_three_tendon.json");
-  ASSERT_TRUE(parsed.ok());
-  const io::Problem& p = *parsed.problem;
+  const io::Problem p = ThreeTendonRobot();
+  ASSERT_TRUE(p.rod.section);
   StaticShootingSolver solver(p.rod, p.nodes);
   const double mass = p.rod.section->At(0.0, Actuation{}).mass(5, 5) * p.rod.length;
   const Vec3 weight = mass * p.loads.gravity_W;
@@ -227,10 +234,8 @@ TEST(Tendons, LengthCommandReachesTheTensionThatProducesItAndASlackTendonCarries
 // own path's length plus 1 mm), its trial steps halving where a static solve fails. Lengths to
 // 1e-10 L; the slope dℓ/dτ ≈ 2e-3 m/N recovers the tensions to ~1e-8 N, 1e-6 asserted.
 TEST(Tendons, ALengthCommandFarFromTheStartIsReached) {
-  const io::ParseResult parsed =
-      io::LoadProblemFile(std::string(COSSERAT_SOURCE_DIR) + "/robots/tendon_three_tendon.json");
-  ASSERT_TRUE(parsed.ok());
-  const io::Problem& p = *parsed.problem;
+  const io::Problem p = ThreeTendonRobot();
+  ASSERT_TRUE(p.rod.section);
   StaticShootingSolver solver(p.rod, p.nodes);
   solver.SetActuation(Tensions({25.0, 0.0, 1.5}));
   ASSERT_TRUE(solver.Solve(p.base, p.loads).converged());
