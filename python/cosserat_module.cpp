@@ -277,6 +277,17 @@ void BindProblem(py::module_& m) {
       .def_property_readonly("initial_loads", [](const io::Problem& p) {
         return p.dynamics.initial_loads.value_or(p.loads);
       })
+      .def_property_readonly(
+          "section_stiffness",
+          [](const io::Problem& p) {
+            if (p.has_assembly || !p.rod.section)
+              throw py::value_error("assembly: section_stiffness is a single rod's");
+            const SectionProperties s = p.rod.section->At(0.0, p.robot.actuation);
+            return py::make_tuple(std::min(s.stiffness(0, 0), s.stiffness(1, 1)),
+                                  s.stiffness(2, 2));
+          },
+          "(EI, GJ) at s = 0 under the file's actuation, N·m²: the smaller bending stiffness and "
+          "the torsional one, stiffness profiles and pressure included.")
       .def("__repr__", [](const io::Problem& p) {
         std::ostringstream o;
         o << std::setprecision(6) << "Problem(analysis=" << io::ToString(p.analysis)

@@ -144,10 +144,21 @@ class LiveRod:
             return rods[0].get("rod", {}) if rods else {}
         return self.spec.get("rod", {})
 
+    def _stiffness(self):
+        """EI and GJ of the rod that sets the controls' ranges: from the solver's section law
+        (stiffness profiles and pressure included: an inflated tube is far softer than the solid
+        circle its section names) when the file is a valid single rod, else from the section."""
+        if "assembly" not in self.spec:
+            try:
+                return _core.parse_problem(json.dumps(self.spec)).section_stiffness
+            except ValueError:
+                pass
+        return _section_stiffness(self._rod())
+
     def _scale(self):
         rod = self._rod()
         L = rod.get("length", 1.0)
-        stiff = _section_stiffness(rod)
+        stiff = self._stiffness()
         force = 3 * stiff[0] / L**2 if stiff else 1.0
         tip = np.linalg.norm(self.spec.get("loads", {}).get("tip_force", [0, 0, 0]))
         return L, max(force, 2 * tip)
@@ -228,7 +239,7 @@ class LiveRod:
         spec["dynamics"]["duration"] = max(spec["dynamics"]["dt"], 1.0)
         spec["dynamics"].pop("initial_loads", None)
         mat = spec["rod"].setdefault("material", {})
-        stiff = _section_stiffness(spec["rod"])
+        stiff = self._stiffness()
         if "damping" not in mat and stiff:
             mat["damping"] = {"bending": VIEW_DAMPING_S * stiff[0],
                               "torsion": VIEW_DAMPING_S * stiff[1]}
@@ -359,7 +370,7 @@ class LiveRod:
             # Dragging the tip pulls it with a spring of about the cantilever's tip stiffness,
             # 3 EI/L³ (N/m), toward the pointer.
             L, force = self._scale()
-            stiff = _section_stiffness(self._rod())
+            stiff = self._stiffness()
             out["drag_stiffness"] = 3 * stiff[0] / L**3 if stiff else force / L
         return out
 

@@ -611,6 +611,18 @@ class PythonSide(unittest.TestCase):
             self.assertTrue(any("damping" in note for note in live.config()["notes"]))
         finally:
             live.running = False
+            live.thread.join(10)  # not stepping in C++ while the interpreter shuts down
+        # An inflated tube's tip-force range from its profile's EI (3 EI/L² ≈ 1 N), not from the
+        # solid 25 mm circle its section names (±64 N).
+        ei, gj = cosserat.load_problem("robots/eversion_banded_vine.json").section_stiffness
+        live = LiveRod("robots/eversion_banded_vine.json")
+        try:
+            tip = next(c for c in live.config()["controls"] if c["name"] == "tip_force_x")
+            self.assertAlmostEqual(tip["max"], max(3 * ei / 1.2**2, 0.0), places=9)
+            self.assertLess(tip["max"], 2.0)
+        finally:
+            live.running = False
+            live.thread.join(10)
 
     def test_assemblies_are_plotted_and_animated_rod_by_rod(self):
         # The plate on two wires: its frames hold each rod's nodes, which end where the run's
