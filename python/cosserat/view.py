@@ -464,6 +464,7 @@ def main(argv=None):
     finally:
         live.running = False
         server.server_close()
+        live.thread.join(5)  # out of the solver before the interpreter shuts down
 
 
 if __name__ == "__main__":
