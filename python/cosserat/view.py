@@ -128,6 +128,9 @@ class LiveRod:
             self.mode = "dynamics"
         except ValueError:
             self.mode, self.notes = "quasi-static", []
+        if "inverse" in self.spec.get("assembly", {}):
+            self.notes.append("inverse kinematics: the bodies stay at the file's poses, and a "
+                              "force on them changes the rods' lengths, not the pose")
         if self.mode == "dynamics":
             L = self.spec.get("rod", {}).get("length", 1.0)
             self._add("base_x", "base position x", "m", -0.5 * L, 0.5 * L, 0.0)
