@@ -27,6 +27,7 @@ struct Workspace {
         zero(Eigen::VectorXd::Zero(n)) {}
   BandedMatrix A, B;
   Eigen::VectorXd a, dq, zero;
+  Eigen::VectorXd step;  ///< the limited step, for the contact entry check
   double residual = 0;
 };
 
@@ -49,36 +50,37 @@ double StaticBeta(const QuatFdModel& model, const StaticLoads& loads,
   return std::sqrt(moment / model.min_rotational_inertia());
 }
 
+/// The vertex positions of q (world, m), and of q + dq when dq is given.
+std::vector<Vec3> VertexPositions(const QuatFdModel& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                                  const Eigen::VectorXd* dq = nullptr) {
+  std::vector<Vec3> x(model.layout().segments + 1);
+  for (size_t v = 0; v < x.size(); ++v) {
+    x[v] = q.segment<3>(L::X(static_cast<int>(v)));
+    if (dq) x[v] += dq->segment<3>(L::X(static_cast<int>(v)));
+  }
+  return x;
+}
+
 /// Whether the surfaces hold the rod back at q: no vertex, segment or vertex path from `from`
 /// reaches into an obstacle's core (obstacle_core.hpp). Always true without obstacles.
 bool HeldBack(const QuatFdModel& model, const ContactSurfaces& surfaces,
               const Eigen::Ref<const Eigen::VectorXd>& from,
               const Eigen::Ref<const Eigen::VectorXd>& q) {
-  if (!HasObstacleCore(surfaces)) return true;
-  const int N = model.layout().segments;
-  std::vector<Vec3> before(N + 1), after(N + 1);
-  for (int v = 0; v <= N; ++v) {
-    before[v] = from.segment<3>(L::X(v));
-    after[v] = q.segment<3>(L::X(v));
-  }
-  return !ReachesObstacleCore(surfaces, before, after);
+  return !HasObstacleCore(surfaces) ||
+         !ReachesObstacleCore(surfaces, VertexPositions(model, from), VertexPositions(model, q));
 }
 
 /// The fraction of the step dq from q after which the first vertex clear of a contact surface
 /// has entered it by its outer radius (contact_entry.hpp); 1 without surfaces.
 double ContactEntry(const QuatFdModel& model, const Eigen::Ref<const Eigen::VectorXd>& q,
-                    const Eigen::Ref<const Eigen::VectorXd>& dq) {
+                    const Eigen::VectorXd& dq) {
   const ContactSurfaces& surfaces = model.loads().contact;
   if (surfaces.count == 0) return 1.0;
-  const int N = model.layout().segments;
-  std::vector<Vec3> before(N + 1), after(N + 1);
-  std::vector<double> diameter(N + 1);
-  for (int v = 0; v <= N; ++v) {
-    before[v] = q.segment<3>(L::X(v));
-    after[v] = before[v] + dq.segment<3>(L::X(v));
-    diameter[v] = model.VertexSite(v).outer_diameter;
-  }
-  return ContactEntryFraction(surfaces, before, after, diameter);
+  std::vector<double> diameter(model.layout().segments + 1);
+  for (size_t v = 0; v < diameter.size(); ++v)
+    diameter[v] = model.VertexSite(static_cast<int>(v)).outer_diameter;
+  return ContactEntryFraction(surfaces, VertexPositions(model, q), VertexPositions(model, q, &dq),
+                              diameter);
 }
 
 /// The round-off floor of StaticResidual at q: a vertex force is C_Γ times a strain formed from
@@ -125,7 +127,8 @@ bool Newton(const QuatFdModel& model, const QuatFdStaticsOptions& opt, double be
       scale = std::min(scale, 0.25 / std::max(1e-300, w->dq.segment<4>(L::P(s)).norm()));
     for (int v = 0; v <= model.layout().segments; ++v)
       scale = std::min(scale, 0.5 * L / std::max(1e-300, w->dq.segment<3>(L::X(v)).norm()));
-    scale *= ContactEntry(model, q, scale * w->dq);
+    w->step = scale * w->dq;
+    scale *= ContactEntry(model, q, w->step);
     q += scale * w->dq;
     for (int s = 0; s < model.layout().segments; ++s) q.segment<4>(L::P(s)).normalize();
     double step_x = 0.0, step_p = 0.0;

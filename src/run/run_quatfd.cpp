@@ -12,6 +12,7 @@
 #include "cosserat/quatfd/radau.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "contact_report.hpp"
+#include "foundation_hint.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"
 
@@ -39,23 +40,10 @@ std::string TipText(const RodState& state) {
 }
 
 /// After a static solve that failed: when the grid spacing exceeds half a contact surface's
-/// foundation length (4EI/k)^¼, over which the rod settles into it, the grid hardly resolves the
-/// contact (a few vertices carry a patch's load), and the hint says how many nodes would.
-std::string ContactGridHint(const io::Problem& problem, const quatfd::QuatFdModel& model) {
-  const double EI = model.moment_scale() * model.length();
-  const double spacing = model.length() / model.layout().segments;
-  std::ostringstream hint;
-  for (int k = 0; k < problem.loads.contact.count; ++k) {
-    const double foundation = std::pow(4 * EI / problem.loads.contact.surface[k].stiffness, 0.25);
-    if (spacing <= 0.5 * foundation) continue;
-    hint << "cosserat: hint: the grid spacing " << std::setprecision(3) << spacing
-         << " m is coarse for environment.contact[" << k << "]'s foundation length (4EI/k)^(1/4) = "
-         << foundation << " m, over which the rod settles into it: try a spacing of half "
-         << "that, rod.nodes >= " << static_cast<long>(std::ceil(2 * model.length() / foundation)) + 1
-         << "\n";
-    break;
-  }
-  return hint.str();
+/// foundation length, the grid hardly resolves the contact (a few vertices carry a patch's load).
+std::string ContactGridHint(const io::Problem& problem) {
+  return detail::FoundationHint(problem, 0.5, "over which the rod settles into it",
+                                "a spacing of half that, ", "");
 }
 
 }  // namespace
@@ -97,7 +85,7 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
     log << TipText(state);
   }
   log << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms\n";
-  if (!s.converged()) log << ContactGridHint(problem, model);
+  if (!s.converged()) log << ContactGridHint(problem);
   result.log = log.str();
   result.converged = s.converged();
   return result;
@@ -253,7 +241,7 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
     result.node_velocity_W.push_back(state.rotation_WB[i] * state.twist_B[i].tail<3>());
   if (options.nodes_csv) result.nodes_csv = detail::TrajectoryCsv(run, state.s);
   result.log = DynamicsLog(run, radau, d, state);
-  if (!run.initial_state_ok) result.log += ContactGridHint(problem, model);
+  if (!run.initial_state_ok) result.log += ContactGridHint(problem);
   result.converged = run.status == SolveStatus::kConverged;
   return result;
 }

@@ -15,6 +15,7 @@
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "foundation_hint.hpp"
 #include "node_table.hpp"
 
 namespace cosserat::run {
@@ -133,28 +134,13 @@ std::string BoundaryLayerHint(const io::Problem& problem, const RodState& guess)
 }
 
 /// After an SE(3) solve that failed: a contact surface's foundation adds decaying oscillations of
-/// rate √2/ℓ to the shot, ℓ = (4EI/k)^¼ its foundation length, which RK4 on the grid follows only
-/// while √2 h/ℓ stays below its stability limit of about 2.8 (a riser on a sea bed with ℓ = 3 m
-/// fails at h = 7 m and converges at 5.8 m and below). The hint names the nodes for h = ℓ.
-std::string FoundationHint(const io::Problem& problem) {
-  const SectionProperties p = problem.rod.section->At(0.0, Actuation{});
-  const double ei = std::max(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m², as the QFD hint's
-  const double h = problem.rod.length / (problem.nodes - 1);
-  for (int k = 0; k < problem.loads.contact.count; ++k) {
-    const double stiffness = problem.loads.contact.surface[k].stiffness;
-    if (!(stiffness > 0)) continue;
-    const double foundation = std::pow(4 * ei / stiffness, 0.25);
-    if (h <= foundation) continue;
-    std::ostringstream hint;
-    hint << "cosserat: hint: the grid spacing " << std::setprecision(3) << h
-         << " m is coarse for environment.contact[" << k
-         << "]'s foundation length (4EI/k)^(1/4) = " << foundation
-         << " m, which the SE(3) shot resolves at spacings up to about that: try rod.nodes >= "
-         << static_cast<long>(std::ceil(problem.rod.length / foundation)) + 1
-         << ", or \"formulation\": \"quaternion-fd\"\n";
-    return hint.str();
-  }
-  return "";
+/// rate √2/ℓ to the shot, ℓ its foundation length, which RK4 on the grid follows only while
+/// √2 h/ℓ stays below its stability limit of about 2.8 (a riser on a sea bed with ℓ = 3 m fails at
+/// h = 7 m and converges at 5.8 m and below). The hint names the nodes for h = ℓ.
+std::string ShotFoundationHint(const io::Problem& problem) {
+  return detail::FoundationHint(problem, 1.0,
+                                "which the SE(3) shot resolves at spacings up to about that", "",
+                                ", or \"formulation\": \"quaternion-fd\"");
 }
 
 /// A rod held at both ends ("anchored") on the SE(3) path: multiple shooting from the
@@ -200,7 +186,7 @@ Result RunAnchoredStatics(const io::Problem& problem, const RunOptions& options)
       << " shooting pieces), anchor force [" << std::setprecision(6) << f.x() << ", " << f.y()
       << ", " << f.z() << "] N (tension " << f.norm() << " N)\n";
   if (start.converged() && !summary.converged())
-    log << BoundaryLayerHint(problem, guess) << FoundationHint(problem);
+    log << BoundaryLayerHint(problem, guess) << ShotFoundationHint(problem);
   result.log = log.str();
   result.converged = start.converged() && summary.converged();
   return result;

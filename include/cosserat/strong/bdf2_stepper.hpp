@@ -279,9 +279,9 @@ class Bdf2ShootingStepper {
   void SetImplicitCompliance(double c0);
   /// The sample points of grid_ with their tendon offsets and sections (constructor, Grow()).
   void SampleGrid();
-  /// Snapshot::model_fingerprint for the current grid (constructor, Grow()).
   /// Throws std::invalid_argument for an actuation this rod cannot take (Actuation::Require).
   void RequireActuation(const Actuation& a) const;
+  /// Snapshot::model_fingerprint for the current grid (constructor, Grow()).
   std::uint64_t ModelFingerprint() const;
   /// Samples every section for actuation_ (SampleGrid() and when the actuation changes).
   void SampleSections();
