@@ -298,17 +298,14 @@ bool Bdf2ShootingStepper::SolveStepBySecantNewton(const StepInput& input, const 
   // this step's copy replaces it only if the step converges.
   SecantFilter filter = run_.jacobian_filter;
   if (run_.jacobian_c0 != c.c0) {
-    Mat6 exact;
-    r = Residual(input, c, statics, x, &exact);
-    filter.Restart(exact);
-    ++summary->jacobians;
+    r = RestartWithExactJacobian(input, c, statics, x, &filter, summary);
     run_.jacobian_c0 = c.c0;
     fresh = true;
   } else {
     r = Residual(input, c, statics, x);
+    ++summary->shots;
     if (!statics) filter.Advance();
   }
-  ++summary->shots;
   const Mat6& J = filter.jacobian();
   Eigen::PartialPivLU<Mat6> lu(J);
   bool ok = false;
@@ -337,13 +334,8 @@ bool Bdf2ShootingStepper::SolveStepBySecantNewton(const StepInput& input, const 
     }
     if (!accepted && fresh) {
       // An exact Newton step overshot (the shot is strongly nonlinear when its exponent λL is
-      // large): backtrack along it, accepting a sufficient decrease.
-      for (double alpha = 0.5; alpha >= 1.0 / 16 && !accepted; alpha *= 0.5) {
-        dx *= 0.5;
-        r_new = Residual(input, c, statics, x + dx);
-        ++summary->shots;
-        accepted = r_new.allFinite() && r_new.norm() < (1 - 0.5 * alpha) * norm;
-      }
+      // large): backtrack along it.
+      accepted = BacktrackExactStep(input, c, statics, x, norm, &dx, &r_new, summary);
       if (!accepted) break;  // leave it to Levenberg–Marquardt
     }
     if (accepted) {
@@ -356,11 +348,7 @@ bool Bdf2ShootingStepper::SolveStepBySecantNewton(const StepInput& input, const 
       // exact J restarts the filter here too: kept, the rate that had made J fail would be added
       // again at the next step (an out-of-plane kick after a planar swing then needed an exact J
       // in nearly every one of the next ~80 steps).
-      Mat6 exact;
-      r = Residual(input, c, statics, x, &exact);
-      filter.Restart(exact);
-      ++summary->jacobians;
-      ++summary->shots;
+      r = RestartWithExactJacobian(input, c, statics, x, &filter, summary);
       fresh = true;
     }
     lu.compute(J);
@@ -373,6 +361,30 @@ bool Bdf2ShootingStepper::SolveStepBySecantNewton(const StepInput& input, const 
     // tolerance, would otherwise enter the extrapolation of the next steps as noise.
     predictor_term_ = x - lu.solve(r);
     return true;
+  }
+  return false;
+}
+
+Vec6 Bdf2ShootingStepper::RestartWithExactJacobian(const StepInput& input, const Coefficients& c,
+                                                   bool statics, const Vec6& x,
+                                                   SecantFilter* filter, StepSummary* summary) {
+  Mat6 exact;
+  const Vec6 r = Residual(input, c, statics, x, &exact);
+  filter->Restart(exact);
+  ++summary->jacobians;
+  ++summary->shots;
+  return r;
+}
+
+bool Bdf2ShootingStepper::BacktrackExactStep(const StepInput& input, const Coefficients& c,
+                                             bool statics, const Vec6& x, double norm, Vec6* dx,
+                                             Vec6* r_new, StepSummary* summary) {
+  // Armijo's sufficient decrease, ‖r(x + α dx)‖ < (1 − α/2) ‖r(x)‖, for α = 1/2 … 1/16.
+  for (double alpha = 0.5; alpha >= 1.0 / 16; alpha *= 0.5) {
+    *dx *= 0.5;
+    *r_new = Residual(input, c, statics, x + *dx);
+    ++summary->shots;
+    if (r_new->allFinite() && r_new->norm() < (1 - 0.5 * alpha) * norm) return true;
   }
   return false;
 }

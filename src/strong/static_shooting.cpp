@@ -91,10 +91,8 @@ Vec6 TipResidual(const Mat3& R_tip, const Vec6& W_tip_B, const StaticLoads& load
   return (W_tip_B - TipWrenchInBody(TotalTipWrench(loads), R_tip)).cwiseQuotient(scale);
 }
 
-// Integrates from s = 0 to L with RK4 on the grid and returns the dimensionless tip residual.
-// With record, writes the node values; with J, propagates the tangent and writes d r / d x.
-// With tendons (tc not null): the tendon strain law at every stage, and the tendon path lengths
-// by the same RK4 quadrature.
+// What a shot with tendons needs: each stage's tendon routing and the tensions (N); it returns
+// the tendon path lengths (m) and, with a tangent, the tip's sensitivities.
 struct TendonContext {
   const std::vector<StaticShootingSolver::TendonStage>* stages;  // parallel to the samples
   const double* tension;
@@ -209,6 +207,33 @@ Mat6 TipJacobian(const ShotTangent& dy, const StaticLoads& loads, const Vec6& sc
   return scale.cwiseInverse().asDiagonal() * J;
 }
 
+// The strain at the tip (quadrature sample q_tip) from the tip state: the linear law, or the
+// tendon law started from the last stage's strain (NaN when it fails).
+Vec6 TipStrain(const std::vector<Sample>& samples, int q_tip, const ShotState& y,
+               const TendonContext* tc, const Vec6& guess) {
+  const Sample& tip = samples[q_tip];
+  Vec6 xi_tip;
+  rhs::LinearStrain<double>(tip.rest_strain, tip.compliance_diagonal, y.m, y.n, &xi_tip);
+  if (!tc) return xi_tip;
+  xi_tip = guess;
+  if (!SolveTendonStrain((*tc->stages)[q_tip].stiffness, tip.rest_strain,
+                         (*tc->stages)[q_tip].tendons, tc->tension, BodyWrench(y), &xi_tip,
+                         nullptr))
+    xi_tip.setConstant(NAN);
+  return xi_tip;
+}
+
+// Hands the tip tangent dy (node n − 1) to the seed and the tendon context; returns d r / d x.
+Mat6 FinishTipTangent(const ShotTangent& dy, const StaticLoads& loads, const Vec6& scale, int n,
+                      const TendonContext* tc, const TangentSeed* seed) {
+  if (seed && seed->nodes) seed->nodes->back() = dy;
+  if (seed && seed->node_rows) seed->node_rows[n - 1] = ToRows(dy);
+  if (seed && seed->tip) *seed->tip = dy;
+  if (tc && tc->tip_dp) *tc->tip_dp = dy.p;
+  if (tc && tc->tip_dR) *tc->tip_dR = dy.R;
+  return TipJacobian(dy, loads, scale);
+}
+
 // Integrates from s = 0 to L with RK4 on the grid and returns the dimensionless tip residual.
 // With record, writes the node values; with J, propagates the tangent and writes d r / d x.
 // With tendons (tc not null): the tendon strain law at every stage, and the tendon path lengths
@@ -288,28 +313,8 @@ Vec6 ShootWith(const std::vector<double>& grid, const std::vector<Sample>& sampl
     }
     Rk4Update(h, k1, k2, k3, k4, &y);
   }
-  if (record) {
-    const int q_tip = 3 * (n - 2) + 2;
-    const Sample& tip = samples[q_tip];
-    Vec6 xi_tip;
-    rhs::LinearStrain<double>(tip.rest_strain, tip.compliance_diagonal, y.m, y.n, &xi_tip);
-    if (tc) {
-      xi_tip = guess;
-      if (!SolveTendonStrain((*tc->stages)[q_tip].stiffness, tip.rest_strain,
-                             (*tc->stages)[q_tip].tendons, tc->tension, BodyWrench(y), &xi_tip,
-                             nullptr))
-        xi_tip.setConstant(NAN);
-    }
-    record_node(n - 1, xi_tip);
-  }
-  if (J) {
-    if (seed && seed->nodes) seed->nodes->back() = dy;
-    if (seed && seed->node_rows) seed->node_rows[n - 1] = ToRows(dy);
-    if (seed && seed->tip) *seed->tip = dy;
-    *J = TipJacobian(dy, loads, scale);
-    if (tc && tc->tip_dp) *tc->tip_dp = dy.p;
-    if (tc && tc->tip_dR) *tc->tip_dR = dy.R;
-  }
+  if (record) record_node(n - 1, TipStrain(samples, 3 * (n - 2) + 2, y, tc, guess));
+  if (J) *J = FinishTipTangent(dy, loads, scale, n, tc, seed);
   return TipResidual(y.R, BodyWrench(y), loads, scale);
 }
 

@@ -222,6 +222,26 @@ bool StaticShootingSolver::TryQuasiNewton(const lie::SE3& base, const StaticLoad
   return false;
 }
 
+StaticShootingSolver::DirectAttempt StaticShootingSolver::SolveDirectly(
+    const lie::SE3& base, const StaticLoads& start, const StaticLoads& loads, const Vec6& x_start,
+    bool from_previous, Vec6* x, StaticShootingSummary* summary) {
+  DirectAttempt a;
+  if (from_previous && has_jacobian_ && options_.reuse_jacobian) {
+    a.ok = a.state_current = a.via_quasi_newton = TryQuasiNewton(base, loads, x, summary);
+  }
+  if (!a.ok) {
+    *x = from_previous ? x_ : RigidGuess(base, loads);
+    a.ok = TryLevenbergMarquardt(base, loads, options_.tolerance, x, summary);
+  }
+  // A direct solve that lands beyond an obstacle jumped through it: the continuation then.
+  if (a.ok && !HeldBack(base, start, x_start, loads, *x)) {
+    a = DirectAttempt{};
+    *x = x_start;
+    summary->status = SolveStatus::kMaxIterations;  // without load stepping, this is the end
+  }
+  return a;
+}
+
 StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const StaticLoads& loads) {
   const auto t0 = std::chrono::steady_clock::now();
   StaticShootingSummary summary;
@@ -251,26 +271,11 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
       load_change > options_.max_load_increment ? options_.max_load_increment / load_change : 1.0;
 
   Vec6 x = x_start;
-  bool ok = false;
-  bool state_current = false;
-  bool via_quasi_newton = false;
-  if (max_fraction == 1.0) {
-    if (from_previous && has_jacobian_ && options_.reuse_jacobian) {
-      ok = TryQuasiNewton(base, loads, &x, &summary);
-      state_current = ok;
-      via_quasi_newton = ok;
-    }
-    if (!ok) {
-      x = from_previous ? x_ : RigidGuess(base, loads);
-      ok = TryLevenbergMarquardt(base, loads, options_.tolerance, &x, &summary);
-    }
-    // A direct solve that lands beyond an obstacle jumped through it: the continuation then.
-    if (ok && !HeldBack(base, start, x_start, loads, x)) {
-      ok = state_current = via_quasi_newton = false;
-      x = x_start;
-      summary.status = SolveStatus::kMaxIterations;  // without load stepping, this is the end
-    }
-  }
+  DirectAttempt direct;
+  if (max_fraction == 1.0)
+    direct = SolveDirectly(base, start, loads, x_start, from_previous, &x, &summary);
+  bool ok = direct.ok, state_current = direct.state_current;
+  const bool via_quasi_newton = direct.via_quasi_newton;
 
   if (!ok && (options_.load_stepping || max_fraction < 1.0)) {
     // Continuation from the start to the loads, step halving on failure when load stepping is

@@ -241,6 +241,14 @@ class Bdf2ShootingStepper {
   /// the best point reached and *r its residual.
   bool SolveStepBySecantNewton(const StepInput& input, const Coefficients& c, bool statics, Vec6* x,
                                Vec6* r, StepSummary* summary);
+  /// The residual at x with the exact Jacobian, which restarts *filter (one shot, one Jacobian).
+  Vec6 RestartWithExactJacobian(const StepInput& input, const Coefficients& c, bool statics,
+                                const Vec6& x, SecantFilter* filter, StepSummary* summary);
+  /// An exact Newton step dx from x (residual norm `norm`) that overshot: halves it up to four
+  /// times until the residual decreases sufficiently; true with *dx, *r_new the accepted step.
+  bool BacktrackExactStep(const StepInput& input, const Coefficients& c, bool statics,
+                          const Vec6& x, double norm, Vec6* dx, Vec6* r_new,
+                          StepSummary* summary);
   /// SolveStep's fallback: Levenberg–Marquardt with the exact Jacobian from x_start.
   bool SolveStepByLevenbergMarquardt(const StepInput& input, const Coefficients& c, bool statics,
                                      const Vec6& x_start, StepSummary* summary);

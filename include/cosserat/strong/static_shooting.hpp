@@ -187,6 +187,19 @@ class StaticShootingSolver {
   bool TryLevenbergMarquardt(const lie::SE3& base, const StaticLoads& loads, double tolerance,
                              Vec6* x, StaticShootingSummary* summary);
   Vec6 RigidGuess(const lie::SE3& base, const StaticLoads& loads) const;
+  /// How a solve without continuation ended: converged; with the stored shot at its solution;
+  /// by the quasi-Newton warm re-solve.
+  struct DirectAttempt {
+    bool ok = false;
+    bool state_current = false;
+    bool via_quasi_newton = false;
+  };
+  /// The whole load at once, from the start (x_start under start): the quasi-Newton re-solve
+  /// when it continues the previous solution, else Levenberg–Marquardt. A result past an
+  /// obstacle's surface jumped through it and is refused (*x reset to x_start).
+  DirectAttempt SolveDirectly(const lie::SE3& base, const StaticLoads& start,
+                              const StaticLoads& loads, const Vec6& x_start, bool from_previous,
+                              Vec6* x, StaticShootingSummary* summary);
   /// The residual of the stored shot (state_) under other tip loads: only the tip condition.
   Vec6 StoredShotResidual(const StaticLoads& loads) const;
   /// How FollowLoadPath steps: never more than max_fraction of the path at once; halve a step
