@@ -1,13 +1,16 @@
 // Static multiple shooting: the same discrete equilibrium as single shooting where that
-// converges, and a long rod on a stiff Winkler foundation (βL ≈ 44, beyond single shooting)
+// converges (cantilevers and columns), a taut column beyond single shooting against the
+// tensioned-beam solution, and a long rod on a stiff Winkler foundation (βL ≈ 44, beyond single shooting)
 // against Hetényi's beam on an elastic foundation.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
+#include "cosserat/analysis/column.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "support/analytic/tensioned_beam.hpp"
 #include "support/rods.hpp"
 
 namespace cosserat {
@@ -43,6 +46,74 @@ TEST(StaticMultipleShooting, SameEquilibriumAsSingleShooting) {
                 s.load_steps + 1, s.iterations, worst);
     EXPECT_LT(worst, 1e-8 * rod.length) << pieces << " pieces";
   }
+}
+
+// The column ends (a tip guided along the axis): the same equilibrium as ColumnSolver's single
+// shot where that converges, kL = 5 under tension and a side load of 0.3 T with a moment at the
+// tip (deflection ~0.04 L; both converge to 1e-10 in their residuals: 1e-8 L asserted, as
+// above, for one piece: the same discrete equations). RK4 does not keep R orthonormal: the
+// single shot's R drifts by |RᵀR − I| ≈ 2e-7 over the rod here, which the junctions' restarts
+// (on SO(3)) remove, so with 4 pieces the axial positions differ by up to ~1e-7 L (measured
+// 5e-8 L): 2e-7 L asserted. Along the capped load path: a single step to the full load (before
+// the cap) landed 0.37–0.46 L away, on another branch.
+TEST(StaticMultipleShooting, ColumnEndsGiveColumnSolversEquilibrium) {
+  const SteelRod rod{0.5, 1e-3};
+  const double T = 25 * rod.EI() / (rod.length * rod.length);
+  StaticLoads loads;
+  loads.distributed_force_W = Vec3(0.3 * T / rod.length, 0.1 * T / rod.length, 0);
+  loads.tip_force = Vec3(0, 0, T);
+  loads.tip_moment = Vec3(0.05, -0.02, 0.01) * rod.EI() / rod.length;
+  for (ColumnEnds ends :
+       {ColumnEnds::kPinnedPinned, ColumnEnds::kClampedClamped, ColumnEnds::kClampedPinned}) {
+    ColumnSolver single(rod.model(), 41, ends);
+    ASSERT_TRUE(single.SolveFromUnloaded(lie::SE3{}, loads).converged()) << ToString(ends);
+    for (int pieces : {1, 4}) {
+      StaticMultipleShootingOptions opt;
+      opt.pieces = pieces;
+      opt.base_pinned = ends == ColumnEnds::kPinnedPinned;
+      opt.tip_guided = true;
+      opt.tip_clamped = ends == ColumnEnds::kClampedClamped;
+      StaticMultipleShootingSolver multiple(rod.model(), 41, opt);
+      ASSERT_TRUE(multiple.Solve(lie::SE3{}, loads).converged()) << ToString(ends);
+      double worst = 0;
+      for (int i = 0; i < 41; ++i)
+        worst = std::max(worst,
+                         (multiple.state().position_W[i] - single.state().position_W[i]).norm());
+      std::printf("%s, %d pieces: max node distance %.2e m\n", ToString(ends), pieces, worst);
+      EXPECT_LT(worst, (pieces == 1 ? 1e-8 : 2e-7) * rod.length)
+          << ToString(ends) << ", " << pieces << " pieces";
+    }
+  }
+}
+
+// A taut pinned-pinned column at kL = L sqrt(T/EI) = 40, where a single shot amplifies its
+// errors by e^40 (ColumnSolver's Newton lands on a looped equilibrium there), under a side load
+// for a string sag of 1e-4 L: EI y'''' − T y'' = q. The wire is thin (r/L = 1/2000) so that
+// its stretch T/EA = (kL)² (r/2L)² = 1e-4 and shear stay below 1e-3 of the sag, the bound
+// asserted; RK4 resolves the end boundary layers (k h = 1) to ~1e-5.
+TEST(StaticMultipleShooting, ATautColumnBeyondSingleShootingSagsAsATensionedBeam) {
+  const SteelRod rod{0.5, 0.25e-3};
+  const double T = 1600 * rod.EI() / (rod.length * rod.length);
+  const double q = 8 * T * 1e-4 / rod.length;  // N/m
+  StaticLoads loads;
+  loads.distributed_force_W = Vec3(q, 0, 0);
+  loads.tip_force = Vec3(0, 0, T);
+  ASSERT_GT(StaticShootingExponent(rod.model(), loads), 39.0);
+  StaticMultipleShootingOptions opt;
+  opt.base_pinned = opt.tip_guided = true;
+  StaticMultipleShootingSolver solver(rod.model(), 41, opt);
+  const StaticShootingSummary s = solver.Solve(lie::SE3{}, loads);
+  ASSERT_TRUE(s.converged()) << ToString(s.status);
+  EXPECT_GT(solver.pieces(), 1);
+  const double expected = truth::TensionedBeamMidSpanDeflection(q, T, rod.EI(), rod.length);
+  EXPECT_NEAR(solver.state().position_W[20].x() / expected, 1.0, 1e-3);
+  // The guided tip sits on the axis, pulled out by the stretch T L / EA less the sag's
+  // shortening (8/3) δ² / L (both ~1e-4 L; 1e-5 L bounds their second-order remainder and RK4).
+  const Vec3 tip = solver.state().position_W.back();
+  EXPECT_NEAR(tip.x(), 0.0, 1e-12);
+  EXPECT_NEAR(tip.z(),
+              rod.length * (1 + T / rod.EA()) - 8.0 / 3.0 * expected * expected / rod.length,
+              1e-5 * rod.length);
 }
 
 // A 2.5 m steel rod (r 2 mm, EI = 2.51 N·m²) lies along x on a plane with a penalty k = 1e6 N/m

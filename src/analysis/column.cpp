@@ -8,6 +8,7 @@
 
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/loads/total_load.hpp"
+#include "cosserat/strong/load_parameter.hpp"
 
 namespace cosserat {
 
@@ -49,13 +50,14 @@ Eigen::Matrix<double, 3, 6> RotationColumn(const ColumnSolver::StateTangent& T, 
 
 ColumnSolver::ColumnSolver(const RodModel& model, int num_nodes, ColumnEnds ends,
                            const StaticShootingOptions& options, const Actuation& actuation)
-    : shooter_(model, num_nodes, options, actuation), ends_(ends), options_(options) {
+    : shooter_(model, num_nodes, options, actuation),
+      ends_(ends),
+      options_(options),
+      model_(model) {
   const SectionProperties p = model.section->At(0.0, actuation);
   const double EI = std::max(p.stiffness(0, 0), p.stiffness(1, 1));
   const double L = model.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
-  mass_per_length_ = p.mass(3, 3);
-  outer_diameter_ = p.outer_diameter;
   state_.Resize(static_cast<int>(shooter_.grid().size()));
   for (int i = 0; i < state_.size(); ++i) state_.s[i] = shooter_.grid()[i];
 }
@@ -218,22 +220,13 @@ ColumnSummary ColumnSolver::Solve(const lie::SE3& base, const StaticLoads& loads
   return summary;
 }
 
-double ColumnSolver::LoadMeasure(const StaticLoads& loads) const {
-  const double L = length(), EI = scale_(0) * L;
-  const Vec3 distributed = TotalDistributedForce_W(loads, {0.0, 1.0, mass_per_length_, outer_diameter_});
-  const SplitWrench tip = TotalTipWrench(loads);
-  const double force = tip.dead_W.tail<3>().norm() + tip.follower_B.tail<3>().norm();
-  const double moment = tip.dead_W.head<3>().norm() + tip.follower_B.head<3>().norm();
-  return std::max({force * L * L / EI, moment * L / EI, distributed.norm() * L * L * L / EI});
-}
-
 ColumnSummary ColumnSolver::SolveFromUnloaded(const lie::SE3& base, const StaticLoads& loads) {
   ColumnSummary total;
   u_.setZero();  // the straight column without load: every residual is zero, so this solve
   const ColumnSummary unloaded = Solve(base, loads.Scaled(0.0));  // only records its state
   total.shots = unloaded.shots;
   if (!unloaded.converged()) return unloaded;  // a non-finite base pose, say
-  const double measure = LoadMeasure(loads);
+  const double measure = StaticLoadParameter(model_, loads, shooter_.actuation());
   const double max_step =
       measure > options_.max_load_increment ? options_.max_load_increment / measure : 1.0;
   double lambda = 0.0, step = max_step;

@@ -96,21 +96,27 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   return result;
 }
 
-/// A cantilever whose single shot would amplify errors beyond double precision (a stiff
-/// contact foundation, a high tension): multiple shooting in pieces it chooses.
-Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& options) {
+/// A cantilever or column whose single shot would amplify errors beyond double precision (a
+/// stiff contact foundation, a high tension): multiple shooting in pieces it chooses.
+Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& options,
+                                  ColumnEnds ends = ColumnEnds::kClampedFree) {
   const StaticShootingOptions single = StaticOptions(problem);
   StaticMultipleShootingOptions opt;
   opt.tolerance = single.tolerance;
   opt.max_iterations = single.max_iterations;
+  opt.base_pinned = ends == ColumnEnds::kPinnedPinned;
+  opt.tip_guided = ends != ColumnEnds::kClampedFree;
+  opt.tip_clamped = ends == ColumnEnds::kClampedClamped;
   StaticMultipleShootingSolver solver(problem.rod, problem.nodes, opt);
   const StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
   Result result;
   result.json = io::StaticResultToJson(summary, solver.state());
   result.json["shooting_segments"] = solver.pieces();
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
-  result.log = StaticSummary(summary, solver.state()) + " (" + std::to_string(solver.pieces()) +
-               " shooting pieces)\n" + ContinuationHint(problem, summary);
+  const std::string column = ends == ColumnEnds::kClampedFree ? "" : ToString(ends) + std::string(", ");
+  result.log = StaticSummary(summary, solver.state()) + " (" + column +
+               std::to_string(solver.pieces()) + " shooting pieces)\n" +
+               ContinuationHint(problem, summary);
   result.converged = summary.converged();
   return result;
 }
@@ -197,11 +203,14 @@ Result RunAnchoredStatics(const io::Problem& problem, const RunOptions& options)
 Result RunStatics(const io::Problem& problem, const RunOptions& options) {
   if (problem.boundary == io::Boundary::kAnchored) return RunAnchoredStatics(problem, options);
   ColumnEnds ends = ColumnEnds::kClampedFree;
-  if (problem.boundary != io::Boundary::kCantilever && ToColumnEnds(problem.boundary, &ends))
-    return RunColumnStatics(problem, ends, options);
-  if (!problem.has_robot && problem.rod.tendons.empty() &&
+  const bool column =
+      problem.boundary != io::Boundary::kCantilever && ToColumnEnds(problem.boundary, &ends);
+  // Beyond an exponent of 10 a single shot loses the branch (a column at L sqrt(T/EI) = 19
+  // converged, looped, onto an equilibrium far from the straight one) or the precision.
+  if (!problem.has_robot && problem.rod.tendons.empty() && problem.rod.chambers.empty() &&
       StaticShootingExponent(problem.rod, problem.loads) > 10.0)
-    return RunMultipleShootingStatics(problem, options);
+    return RunMultipleShootingStatics(problem, options, ends);
+  if (column) return RunColumnStatics(problem, ends, options);
   Actuation actuation = problem.robot.actuation;
   StaticShootingSolver solver(problem.rod, problem.nodes, StaticOptions(problem), actuation);
   StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);

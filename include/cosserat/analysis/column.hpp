@@ -76,7 +76,7 @@ class ColumnSolver {
   /// λ from 0 to 1, each step warm-started from the last, the step doubled after a success and
   /// halved after a failure (options.min_load_step, options.max_load_steps, as the cantilever
   /// solver's load stepping), and never larger than options.max_load_increment in the
-  /// dimensionless load (LoadMeasure): a full step from the straight column can land Newton on
+  /// dimensionless load (StaticLoadParameter): a full step from the straight column can land Newton on
   /// another branch (a taut wire, PL²/EI = 80, converged to a looped shape). Status
   /// kLoadSteppingFailed when the step falls below the minimum; state() then holds the last
   /// converged step (at least the unloaded column). Past a critical load this follows the
@@ -115,13 +115,9 @@ class ColumnSolver {
   StaticShootingSolver shooter_;
   ColumnEnds ends_;
   StaticShootingOptions options_;
-  /// The size of `loads` as a load parameter: the largest of |F_tip| L²/EI, |M_tip| L/EI and
-  /// |f + ρA g| L³/EI (EI and ρA at s = 0).
-  double LoadMeasure(const StaticLoads& loads) const;
 
   Vec6 scale_;
-  double mass_per_length_ = 0.0;  ///< ρA at s = 0, kg/m
-  double outer_diameter_ = 0.0;   ///< at s = 0, m
+  RodModel model_;
   Vec6 u_ = Vec6::Zero();
   RodState state_;
 };

@@ -20,6 +20,8 @@
 /// the rotation about the base frame's x and y, the torsional moment and the force; the tip
 /// pinned at a point, its residual the position and the moment. The unloaded rest shape does not
 /// meet the tip's point, so such a rod starts from a guess of the whole rod (SolveFrom).
+/// The column ends of analysis/column.hpp (a pinned or clamped base, a tip guided along the
+/// axis): from the unloaded rod, as the cantilever.
 /// No tendons; no stability index (summary.stability_index = −1).
 
 #include <functional>
@@ -49,8 +51,12 @@ struct StaticMultipleShootingOptions {
   double tolerance = 1e-10;
   /// Newton iterations per load level.
   int max_iterations = 30;
-  /// Load levels of the continuation (accepted and rejected) per Solve.
+  /// Load levels of the continuation (accepted and rejected) per Solve, besides the 1 / (the
+  /// largest step) that max_load_increment asks for.
   int max_load_steps = 200;
+  /// With tip_guided (a column), the largest step along the path in StaticLoadParameter units,
+  /// as StaticShootingOptions::max_load_increment; cantilevers step by the whole load first.
+  double max_load_increment = 3.0;
   /// The base pinned at its position instead of clamped: its rotation free but for the twist
   /// about the rod's axis (a clevis), which an isotropic rod pinned at both ends would otherwise
   /// leave undetermined; the base frame's z stays the reference of the held twist.
@@ -63,6 +69,12 @@ struct StaticMultipleShootingOptions {
   /// error instead of the moment.
   bool tip_clamped = false;
   Mat3 tip_rotation_W = Mat3::Identity();
+  /// The tip guided along the base frame's z axis e instead of free: a column's sliding end
+  /// (analysis/column.hpp). Its residual is the lateral offset (base frame x and y, ÷ L), the
+  /// axial force balance e · (R n − F_tip) (÷ EI/L²) and, with tip_clamped, the rotation
+  /// relative to the base's (rad), else the moment balance as a free tip's. The lateral parts
+  /// of the tip force go into the guide. Not with tip_pinned.
+  bool tip_guided = false;
 };
 
 class StaticMultipleShootingSolver {
@@ -111,7 +123,7 @@ class StaticMultipleShootingSolver {
   bool Residual(const lie::SE3& base, const StaticLoads& loads, Eigen::VectorXd* r);
   /// Mismatch of junction k (12, dimensionless) between the arriving state and its restart.
   Eigen::Matrix<double, 12, 1> Mismatch(const Point& arriving, const Point& restart) const;
-  Vec6 TipResidual(const Point& tip, const StaticLoads& loads) const;
+  Vec6 TipResidual(const lie::SE3& base, const Point& tip, const StaticLoads& loads) const;
   /// A junction state moved by the 12 dimensionless unknowns dz (right perturbation of R).
   Point Moved(const Point& y, const Eigen::Ref<const Eigen::VectorXd>& dz) const;
   bool Jacobian(const lie::SE3& base, const StaticLoads& loads, StaticShootingSummary* summary);
@@ -138,6 +150,7 @@ class StaticMultipleShootingSolver {
   std::vector<int> junction_nodes_;  ///< junction k restarts at node junction_nodes_[k]
   Vec6 x_ = Vec6::Zero();            ///< the base wrench, scaled
   std::vector<Point> junctions_;     ///< the restart states
+  double max_step_ = 1.0;  ///< the largest continuation step of this Solve, a fraction of μ
   bool has_solution_ = false;
   lie::SE3 solved_base_;
   StaticLoads solved_loads_;
