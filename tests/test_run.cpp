@@ -164,6 +164,29 @@ TEST(Run, ATautColumnBeyondASingleShotBowsAsATensionedBeam) {
   EXPECT_NEAR(mid / expected, 1.0, 1e-2);
 }
 
+// An SE(3) buckling search that fails before any load (a 100 m pipe in a stiff bore: βL = 120,
+// a single shot overflows) reports no equilibrium: the node fields are null (NaN), not memory
+// nobody wrote (positions of 1e-310 m, a tip "rotation" with two equal rows), and the log says
+// why and what to use instead.
+TEST(Run, ABucklingSearchThatFailsAtOnceReportsNoState) {
+  const io::ParseResult parsed = io::ParseProblem(R"({
+    "format": "cosserat-problem/1", "analysis": "buckling", "formulation": "se3-shooting",
+    "rod": {"length": 100, "nodes": 101,
+            "section": {"shape": "annulus", "outer_radius": 0.0635, "inner_radius": 0.0543},
+            "material": {"youngs_modulus": 200e9, "poisson_ratio": 0.3, "density": 7850}},
+    "base": {"position": [0, 0, -0.0445], "rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]},
+    "loads": {"gravity": [0, 0, -9.81]},
+    "environment": {"contact": [{"shape": "cylinder", "point": [0, 0, 0], "axis": [1, 0, 0],
+                                 "radius": 0.108, "side": "inside", "stiffness": 1e7}]},
+    "buckling": {"load": "tip_force", "direction": [-1, 0, 0], "max": 2e5}})");
+  ASSERT_TRUE(parsed.ok());
+  const Result r = cosserat::run::Run(*parsed.problem);
+  ASSERT_FALSE(r.converged);
+  for (const auto& p : r.json["nodes"]["position"])
+    for (const auto& x : p) EXPECT_TRUE(x.is_null() || std::isnan(x.get<double>())) << p.dump();
+  EXPECT_NE(r.log.find("hint: a single SE(3) shot"), std::string::npos) << r.log;
+}
+
 // A solve that converges onto NaN (a rod of 1e-300 m: the quaternion-FD segment length
 // underflows in its strains) is reported as non_finite, not as a converged result with nulls.
 TEST(Run, ANonFiniteAnswerIsNotConverged) {

@@ -225,7 +225,12 @@ ColumnSummary ColumnSolver::SolveFromUnloaded(const lie::SE3& base, const Static
   u_.setZero();  // the straight column without load: every residual is zero, so this solve
   const ColumnSummary unloaded = Solve(base, loads.Scaled(0.0));  // only records its state
   total.shots = unloaded.shots;
-  if (!unloaded.converged()) return unloaded;  // a non-finite base pose, say
+  if (!unloaded.converged()) {
+    // A non-finite base pose, or contact surfaces that already hold the straight column: its
+    // shot is the state reported (no solve has recorded one yet).
+    Residual(base, loads.Scaled(0.0), u_, nullptr, &state_);
+    return unloaded;
+  }
   const double measure = StaticLoadParameter(model_, loads, shooter_.actuation());
   const double max_step =
       measure > options_.max_load_increment ? options_.max_load_increment / measure : 1.0;

@@ -9,6 +9,7 @@
 #include "cosserat/analysis/quatfd_buckling.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "node_table.hpp"
 
@@ -77,6 +78,22 @@ nlohmann::ordered_json NumberOrNull(double x) {
 
 }  // namespace
 
+/// After an SE(3) buckling search that failed before any load: its statics shoot the rod in
+/// one piece, which a stiff contact foundation or a high tension puts beyond double precision
+/// (the statics analysis shoots such rods in pieces).
+std::string SingleShotHint(const io::Problem& problem, const BucklingSummary& b) {
+  const double exponent = StaticShootingExponent(problem.rod, problem.loads);
+  if (b.status != BucklingStatus::kPathFailed || b.lambda_reached > 0.0 || exponent <= 10.0)
+    return "";
+  std::ostringstream hint;
+  hint << "cosserat: hint: a single SE(3) shot of this rod amplifies errors by about e^"
+       << std::setprecision(3) << exponent
+       << " (contact stiffness or tension; more than double precision holds from e^15 on), and "
+          "the buckling search shoots the rod in one piece; for a cantilever use \"formulation\": "
+          "\"quaternion-fd\"\n";
+  return hint.str();
+}
+
 Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   ColumnEnds ends = ColumnEnds::kClampedFree;
   ToColumnEnds(problem.boundary, &ends);  // UnsupportedFeatures let only these through
@@ -143,7 +160,7 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
          << " reached " << std::setprecision(6) << reached;
   line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3
        << " ms";
-  result.log = line.str() + '\n';
+  result.log = line.str() + '\n' + SingleShotHint(problem, b);
   result.converged = ok;
   return result;
 }

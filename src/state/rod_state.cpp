@@ -1,15 +1,18 @@
 #include "cosserat/state/rod_state.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace cosserat {
 
 void RodState::Resize(int n) {
-  s.resize(n);
-  position_W.resize(n);
-  rotation_WB.resize(n);
-  strain.resize(n);
-  wrench_B.resize(n);
+  // Entries nobody has computed are NaN (written out as null), never uninitialised memory.
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  s.resize(n, nan);
+  position_W.assign(n, Vec3::Constant(nan));
+  rotation_WB.assign(n, Mat3::Constant(nan));
+  strain.assign(n, Vec6::Constant(nan));
+  wrench_B.assign(n, Vec6::Constant(nan));
   twist_B.assign(n, Vec6::Zero());
 }
 
