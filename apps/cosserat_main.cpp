@@ -26,8 +26,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cosserat/io/json_document.hpp"
 #include "cosserat/io/problem.hpp"
 #include "cosserat/io/study.hpp"
+#include "cosserat/io/text_file.hpp"
 #include "cosserat/io/vtk_series.hpp"
 #include "cosserat/run/run.hpp"
 #include "cosserat/run/sweep.hpp"
@@ -95,6 +97,14 @@ bool SameFile(const std::string& a, const std::string& b) {
          std::filesystem::equivalent(a, b, ea);
 }
 
+/// True when both paths name one file, existing or to be written ("o.json" and "./o.json").
+bool SamePath(const std::string& a, const std::string& b) {
+  std::error_code ea, eb;
+  const auto full_a = std::filesystem::absolute(a, ea).lexically_normal();
+  const auto full_b = std::filesystem::absolute(b, eb).lexically_normal();
+  return SameFile(a, b) || (!ea && !eb && full_a == full_b);
+}
+
 /// Sets an option that may be given once.
 void SetOnce(std::optional<std::string>* value, const std::string& option, std::string given) {
   if (*value) throw UsageError{option + " is given twice ('" + **value + "' and '" + given + "')"};
@@ -157,7 +167,7 @@ Command ParseCommandLine(const std::vector<std::string>& args) {
   for (const std::optional<std::string>* out : {&cmd.out_path, &cmd.csv_path})
     if (*out && SameFile(**out, cmd.problem_path))
       throw UsageError{"the output '" + **out + "' is the input file; choose another name"};
-  if (cmd.out_path && cmd.csv_path && *cmd.out_path == *cmd.csv_path)
+  if (cmd.out_path && cmd.csv_path && SamePath(*cmd.out_path, *cmd.csv_path))
     throw UsageError{"--out and --csv name the same file '" + *cmd.out_path + "'"};
   return cmd;
 }
@@ -183,9 +193,12 @@ std::optional<cosserat::io::Problem> LoadRunnableProblem(const std::string& path
 
 /// Whether the file is a study ("format": "cosserat-study/1"): validate checks it as one.
 bool IsStudyFile(const std::string& path) {
-  std::ifstream in(path);
-  const nlohmann::json doc = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  return doc.is_object() && doc.value("format", "") == "cosserat-study/1";
+  std::string text, why;
+  if (!cosserat::io::ReadTextFile(path, &text, &why)) return false;  // the problem reader says why
+  const cosserat::io::detail::JsonDocument doc = cosserat::io::detail::ParseJsonDocument(text, path);
+  if (!doc.value || !doc.value->is_object()) return false;
+  const auto format = doc.value->find("format");
+  return format != doc.value->end() && *format == "cosserat-study/1";
 }
 
 int RunValidate(const Command& cmd) {

@@ -19,6 +19,9 @@ constexpr std::size_t kMaxOverflowRetries = 64;
 /// and the number that overflowed can be reported where they are.
 class DocumentBuilder final : public json::json_sax_t {
  public:
+  /// Nesting this deep is no problem or study file (they nest a few levels).
+  static constexpr std::size_t kMaxDepth = 128;
+  static constexpr int kDepthFailure = -1;  ///< Failure::id of a file nested too deep
   struct Failure {
     int id = 0;                ///< nlohmann exception id: 101.. syntax, 406 number overflow
     std::size_t position = 0;  ///< bytes read when it failed
@@ -98,6 +101,11 @@ class DocumentBuilder final : public json::json_sax_t {
   }
 
   bool Open(json empty_container) {
+    if (stack_.size() >= kMaxDepth) {  // each level keeps its path: deep files cost depth²
+      failure_ = Failure{kDepthFailure, 0, "", "", "arrays and objects nested deeper than " +
+                                                       std::to_string(kMaxDepth) + " levels"};
+      return false;
+    }
     const std::string path = NextPath();
     json* placed = Place(std::move(empty_container), path);
     stack_.push_back({placed, path, ""});
@@ -169,6 +177,8 @@ JsonDocument ParseJsonDocument(const std::string& text, const std::string& sourc
       overflowed[failure.path] = failure.token[0] == '-' ? -inf : inf;
       continue;
     }
+    if (failure.id == DocumentBuilder::kDepthFailure)
+      return {std::nullopt, {source_name + ": invalid JSON: " + failure.message}};
     return {std::nullopt, {source_name + ": invalid JSON " + SyntaxErrorText(failure, text)}};
   }
 }

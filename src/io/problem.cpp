@@ -12,6 +12,7 @@
 
 #include "cosserat/io/json_document.hpp"
 #include "cosserat/io/json_reader.hpp"
+#include "cosserat/io/text_file.hpp"
 #include "cosserat/rod/rest_shape.hpp"
 #include "problem_assembly.hpp"
 #include "problem_environment.hpp"
@@ -491,14 +492,9 @@ ParseResult LoadProblemFile(const std::string& path) {
     r.errors.push_back(path + ": cannot read the file (" + why + ")");
     return r;
   };
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return unreadable("it is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return unreadable(std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return unreadable("read error");
-  return ParseProblem(text.str(), path);
+  std::string text, why;
+  if (!ReadTextFile(path, &text, &why)) return unreadable(why);
+  return ParseProblem(text, path);
 }
 
 }  // namespace cosserat::io

@@ -9,6 +9,7 @@
 #include "cosserat/io/json_document.hpp"
 #include "cosserat/io/json_reader.hpp"
 #include "cosserat/io/problem.hpp"
+#include "cosserat/io/text_file.hpp"
 
 namespace cosserat::io {
 namespace {
@@ -127,12 +128,11 @@ void ReadProblem(const ObjectReader& top, const std::string& base_directory, Stu
   } else if (problem->is_string()) {
     std::filesystem::path path(problem->get<std::string>());
     if (path.is_relative()) path = std::filesystem::path(base_directory) / path;
-    std::ifstream f(path);
-    std::stringstream buffer;
-    buffer << f.rdbuf();
-    detail::JsonDocument pd = detail::ParseJsonDocument(buffer.str(), path.string());
-    if (!f)
-      report.Add("problem", path.string() + ": cannot read the file");
+    std::string text, why;
+    const bool read = ReadTextFile(path.string(), &text, &why);
+    const detail::JsonDocument pd = detail::ParseJsonDocument(text, path.string());
+    if (!read)
+      report.Add("problem", path.string() + ": cannot read the file (" + why + ")");
     else if (!pd.value)
       for (const std::string& e : pd.errors) report.Add("problem", e);
     else
@@ -286,16 +286,14 @@ StudyParseResult ParseStudy(const std::string& text, const std::string& source_n
 }
 
 StudyParseResult LoadStudyFile(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) {
+  std::string text, why;
+  if (!ReadTextFile(path, &text, &why)) {
     StudyParseResult r;
-    r.errors.push_back(path + ": cannot read the file");
+    r.errors.push_back(path + ": cannot read the file (" + why + ")");
     return r;
   }
-  std::stringstream buffer;
-  buffer << f.rdbuf();
   const std::string dir = std::filesystem::path(path).parent_path().string();
-  return ParseStudy(buffer.str(), path, dir.empty() ? "." : dir);
+  return ParseStudy(text, path, dir.empty() ? "." : dir);
 }
 
 }  // namespace cosserat::io

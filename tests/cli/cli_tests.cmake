@@ -97,6 +97,24 @@ cosserat_cli_test(NAME out_given_twice
 cosserat_cli_test(NAME out_and_csv_same_file
                   ARGS solve "${_cli_example}" --out "${_cli_out}/same.txt" --csv "${_cli_out}/same.txt"
                   CODE 2 STDERR "--out and --csv name the same file")
+cosserat_cli_test(NAME out_and_csv_same_file_spelt_apart
+                  ARGS solve "${_cli_example}" --out "${_cli_out}/same.txt" --csv "${_cli_out}/./same.txt"
+                  CODE 2 STDERR "--out and --csv name the same file")
+# Inputs no problem could be: a device read without end, nesting thousands of levels deep (each
+# level kept its path: memory grew as depth², 3.7 GB at 50 000 levels), a directory.
+cosserat_cli_test(NAME validate_endless_input
+                  ARGS validate /dev/zero
+                  CODE 2 STDERR "/dev/zero: cannot read the file .larger than 256 MiB.")
+file(WRITE "${_cli_out}/deep.json" "")
+foreach(_i RANGE 200)
+  file(APPEND "${_cli_out}/deep.json" "[")
+endforeach()
+cosserat_cli_test(NAME validate_deep_nesting
+                  ARGS validate "${_cli_out}/deep.json"
+                  CODE 2 STDERR "invalid JSON: arrays and objects nested deeper than 128 levels")
+cosserat_cli_test(NAME validate_directory
+                  ARGS validate "${_cli_out}"
+                  CODE 2 STDERR "cannot read the file .it is a directory.")
 file(COPY "${_cli_example}" DESTINATION "${_cli_out}/own")
 cosserat_cli_test(NAME out_over_the_input
                   ARGS solve "${_cli_out}/own/cantilever.json" --out "${_cli_out}/own/cantilever.json"
