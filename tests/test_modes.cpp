@@ -171,6 +171,39 @@ TEST(Modes, FormulationsAgreeOnSaggingCantilever) {
   EXPECT_GT(sh.modes[1].frequency_hz / sh.modes[0].frequency_hz, 1.01);
 }
 
+TEST(Modes, EachPlaneOfASaggingWireIsItsOwnMode) {
+  // The 0.5 m wire, horizontal under its own weight (w L³/EI = 0.025): the weight splits each
+  // bending pair of the straight rod by ~5e-5 of its frequency (in and out of the plane of the
+  // sag). A scan that took the pair's two small singular values at one frequency reported one
+  // mode twice (the same shape, MAC 1) and dropped its partner. Every pair must be two modes:
+  // distinct frequencies, shapes orthogonal in displacement (MAC < 0.01: one in the vertical
+  // plane, one across it), each within 0.5 % of Euler–Bernoulli (shear and rotary inertia are
+  // ≤ 0.1 % at mode 6 for r/L = 1/500; the sag's tension ~1e-4).
+  SteelRod rod;
+  lie::SE3 base;
+  base.R << 0, 0, 1, 0, 1, 0, -1, 0, 0;  // body z → world +x
+  StaticLoads loads;
+  loads.gravity_W = Vec3(0, 0, -9.81);
+  const ModalResult sh = ShootingModes(rod.model(), base, loads, 101, 12);
+  ASSERT_TRUE(sh.converged()) << ToString(sh.status);
+  ASSERT_EQ(sh.modes.size(), 12u);
+  for (int pair = 0; pair < 6; ++pair) {
+    const Mode &a = sh.modes[2 * pair], &b = sh.modes[2 * pair + 1];
+    double ab = 0, aa = 0, bb = 0;
+    for (size_t n = 0; n < a.displacement_W.size(); ++n) {
+      ab += a.displacement_W[n].dot(b.displacement_W[n]);
+      aa += a.displacement_W[n].squaredNorm();
+      bb += b.displacement_W[n].squaredNorm();
+    }
+    std::printf("  pair %d: %.6f and %.6f Hz (Euler-Bernoulli %.6f), MAC %.2e\n", pair,
+                a.frequency_hz, b.frequency_hz, rod.EulerBernoulliHz(pair), ab * ab / (aa * bb));
+    EXPECT_GT(b.frequency_hz / a.frequency_hz - 1, 1e-6) << pair;
+    EXPECT_LT(ab * ab / (aa * bb), 0.01) << pair;
+    for (const Mode* m : {&a, &b})
+      EXPECT_NEAR(m->frequency_hz / rod.EulerBernoulliHz(pair), 1.0, 5e-3) << pair;
+  }
+}
+
 TEST(Modes, TorsionalAndAxialFundamentals) {
   // L = 1 m, r = 1 cm steel: the first torsional and axial modes are ω = (π / 2L) sqrt(G/ρ) and
   // (π / 2L) sqrt(E/ρ) (a circle has J = I_p). Both are second-order accurate in quatfd, error

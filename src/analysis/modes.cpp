@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "cosserat/analysis/frequency_shooting.hpp"
+#include "frequency_roots.hpp"
 #include "quatfd_reduction.hpp"
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/lie/quaternion.hpp"
@@ -365,109 +366,6 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
 
 namespace {
 
-/// Singular values of B(ω), ascending.
-Vec6 Sigma(const FrequencyShooting& fs, double omega) {
-  const Eigen::JacobiSVD<Mat6> svd(fs.BoundaryMatrix(omega));
-  return svd.singularValues().reverse();
-}
-
-/// Candidates for the roots of det B(ω) in [lo, hi], sampled at 17 points: a sign change of det B
-/// between neighbours (a simple root) is bisected to 1e-13 ω; a local minimum of σ_min(B) (also
-/// a root of even multiplicity, which does not change the sign) is bracketed by its neighbours
-/// and refined again, down to a bracket of 1e-10 ω. Roots closer than the sampling are
-/// separated at a deeper level. A root may be reported more than once.
-void RefineMinima(const FrequencyShooting& fs, double lo, double hi, int* budget,
-                  std::vector<double>* found) {
-  constexpr int k = 16;
-  double w[k + 1], s[k + 1];
-  bool d[k + 1];
-  for (int j = 0; j <= k; ++j) {
-    w[j] = lo + (hi - lo) * j / k;
-    const Mat6 B = fs.BoundaryMatrix(w[j]);
-    s[j] = Eigen::JacobiSVD<Mat6>(B).singularValues()(5);
-    d[j] = B.determinant() > 0;
-  }
-  *budget -= k + 1;
-  for (int j = 0; j < k; ++j) {
-    if (d[j] == d[j + 1]) continue;
-    double a = w[j], b = w[j + 1];
-    const bool da = d[j];
-    while (b - a > 1e-13 * b && *budget > 0) {
-      const double mid = 0.5 * (a + b);
-      ((fs.BoundaryMatrix(mid).determinant() > 0) == da ? a : b) = mid;
-      --*budget;
-    }
-    found->push_back(0.5 * (a + b));
-  }
-  for (int j = 1; j < k; ++j) {
-    if (!(s[j] <= s[j - 1] && s[j] < s[j + 1])) continue;
-    if (w[j + 1] - w[j - 1] < 1e-10 * w[j] || *budget <= 0)
-      found->push_back(w[j]);
-    else
-      RefineMinima(fs, w[j - 1], w[j + 1], budget, found);
-  }
-}
-
-/// A root of det B(ω) and its null vector (dimensionless).
-struct Root {
-  double omega;
-  Vec6 x;
-};
-
-/// The roots in [lo, hi] not yet in *roots, appended with their multiplicity. RefineMinima's
-/// candidates are clustered within 1e-5 ω; the multiplicity is how many singular values are small
-/// at the cluster (below 5 % of their value 1e-3 ω away on the farther-rising side).
-void AddRoots(const FrequencyShooting& fs, double lo, double hi, int* budget,
-              std::vector<Root>* roots) {
-  std::vector<double> found;
-  RefineMinima(fs, lo, hi, budget, &found);
-  std::sort(found.begin(), found.end());
-  for (size_t a = 0; a < found.size();) {
-    size_t b = a + 1;
-    while (b < found.size() && found[b] - found[a] < 1e-5 * found[a]) ++b;
-    const double wc = found[a];
-    bool known = false;
-    for (const Root& r : *roots) known = known || std::abs(r.omega - wc) < 1e-5 * wc;
-    const Vec6 sc = Sigma(fs, wc), sm = Sigma(fs, wc * (1 - 1e-3)), sp = Sigma(fs, wc * (1 + 1e-3));
-    int mult = 0;
-    for (int k = 0; k < 6 && !known; ++k)
-      if (sc(k) < 0.05 * std::max(sm(k), sp(k))) ++mult;
-    const int members = static_cast<int>(b - a);
-    for (int r = 0; r < mult; ++r) {
-      const double w = r < members ? found[a + r] : found[a];
-      const int vec = r < members ? 0 : r - members + 1;
-      const Eigen::JacobiSVD<Mat6> svd(fs.BoundaryMatrix(w), Eigen::ComputeFullV);
-      roots->push_back({w, svd.matrixV().col(5 - vec)});
-    }
-    a = b;
-  }
-}
-
-/// The first `count` roots of det B(ω) above w_lo (rad/s), ascending: a coarse geometric scan
-/// (ratio `step`) of σ_min(B) and of the sign of det B up to w_hi. A sampled local minimum of
-/// σ_min, or a sign change of det B (a simple root hidden in the flank of a neighbour's dip),
-/// brackets candidates; they are refined, clustered and tested (AddRoots).
-std::vector<Root> FindRoots(const FrequencyShooting& fs, double w_lo, double w_hi, double step,
-                            int count) {
-  std::vector<Root> roots;
-  int budget = 200000;
-  auto det_sign = [&](double w) { return fs.BoundaryMatrix(w).determinant() > 0; };
-  double w0 = w_lo, w1 = w_lo * step;
-  double s0 = Sigma(fs, w0)(0), s1 = Sigma(fs, w1)(0);
-  bool d1 = det_sign(w1);
-  while (static_cast<int>(roots.size()) < count && w1 < w_hi && budget > 0) {
-    const double w2 = w1 * step, s2 = Sigma(fs, w2)(0);
-    const bool d2 = det_sign(w2);
-    budget -= 2;
-    if (s1 <= s0 && s1 < s2) AddRoots(fs, w0, w2, &budget, &roots);
-    if (d1 != d2) AddRoots(fs, w0, w2 * step, &budget, &roots);
-    w0 = w1, s0 = s1, w1 = w2, s1 = s2, d1 = d2;
-  }
-  std::sort(roots.begin(), roots.end(),
-            [](const Root& a, const Root& b) { return a.omega < b.omega; });
-  return roots;
-}
-
 /// The shooting nodes' weights: trapezoid masses and inertias (rotated into the world with the
 /// node frames), the tangents d3.
 NodeWeights ShootingNodeWeights(const RodModel& rod, const std::vector<double>& s,
@@ -522,7 +420,8 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
   const double w_lo = options.omega_min > 0 ? options.omega_min : 0.01 * w_eb;
   const double w_hi = options.omega_max > 0 ? options.omega_max : 1e4 * w_eb;
   const int count = options.modal.count;
-  const std::vector<Root> roots = FindRoots(fs, w_lo, w_hi, 1.0 + options.relative_step, count);
+  const std::vector<detail::Root> roots =
+      detail::FindRoots(fs, w_lo, w_hi, 1.0 + options.relative_step, count);
 
   const NodeWeights weights = ShootingNodeWeights(rod, solver.grid(), fs, actuation);
   for (size_t i = 0; i < roots.size() && static_cast<int>(i) < count; ++i) {
