@@ -187,6 +187,33 @@ TEST(Run, ABucklingSearchThatFailsAtOnceReportsNoState) {
   EXPECT_NE(r.log.find("hint: a single SE(3) shot"), std::string::npos) << r.log;
 }
 
+// A cantilever pressed along its axis 19 times past its buckling load P_cr = π²EI/4L² (1.55 N)
+// with a side force of 1 mN: the straight-ish equilibrium it converges to is unstable (the
+// stable branch, folded over, is not reached from the unloaded rod here). The result says so:
+// stability_index > 0 and a warning, where it was a plain "converged".
+TEST(Run, AnUnstableEquilibriumIsFlagged) {
+  const std::string problem = R"({
+    "format": "cosserat-problem/1",
+    "rod": {"length": 0.5, "nodes": 41, "section": {"shape": "circle", "radius": 0.001},
+            "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9, "density": 8000}},
+    "loads": {"tip_force": [-0.001, 0, FZ]}})";
+  auto run = [&](const std::string& fz) {
+    std::string text = problem;
+    text.replace(text.find("FZ"), 2, fz);
+    const io::ParseResult parsed = io::ParseProblem(text);
+    EXPECT_TRUE(parsed.ok());
+    return cosserat::run::Run(*parsed.problem);
+  };
+  const Result pressed = run("-30");
+  ASSERT_TRUE(pressed.converged) << pressed.log;
+  EXPECT_GT(pressed.json["stability_index"].get<int>(), 0);
+  EXPECT_NE(pressed.log.find("warning: this equilibrium is unstable"), std::string::npos);
+  const Result light = run("-1");  // below P_cr: stable, no warning
+  ASSERT_TRUE(light.converged) << light.log;
+  EXPECT_EQ(light.json["stability_index"].get<int>(), 0);
+  EXPECT_EQ(light.log.find("unstable"), std::string::npos);
+}
+
 // A solve that converges onto NaN (a rod of 1e-300 m: the quaternion-FD segment length
 // underflows in its strains) is reported as non_finite, not as a converged result with nulls.
 TEST(Run, ANonFiniteAnswerIsNotConverged) {

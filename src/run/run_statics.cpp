@@ -34,6 +34,17 @@ std::string StaticSummary(const StaticShootingSummary& s, const RodState& state)
   return line.str();
 }
 
+/// A converged equilibrium with unstable directions: past a critical load, where no stable
+/// equilibrium was reached from the unloaded rod (a column pressed 19 times its buckling load
+/// stays straight, and would not).
+std::string UnstableWarning(const StaticShootingSummary& s) {
+  if (!s.converged() || s.stability_index <= 0) return "";
+  return "cosserat: warning: this equilibrium is unstable (" + std::to_string(s.stability_index) +
+         " unstable direction" + (s.stability_index > 1 ? "s" : "") +
+         "): the loads are past a critical one and no stable equilibrium was reached from the "
+         "unloaded rod; \"analysis\": \"buckling\" finds the critical load\n";
+}
+
 /// After an SE(3) cantilever solve whose load steps stopped short: what to try. A soft rod bent
 /// far by its loads is followed in finer steps on a finer grid (a silicone-soft 1 m rod under
 /// gravity fails at 41 nodes and converges at 201), and the quaternion-FD statics follow the
@@ -254,6 +265,7 @@ Result RunStatics(const io::Problem& problem, const RunOptions& options) {
   result.log = StaticSummary(summary, solver.state()) + '\n' +
                TendonLawHint(problem, actuation, summary);
   if (!problem.has_robot) result.log += ContinuationHint(problem, summary);
+  result.log += UnstableWarning(summary);
   result.converged = summary.converged();
   return result;
 }
