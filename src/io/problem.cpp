@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 #include <utility>
 
@@ -220,6 +221,27 @@ void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
     d->initial_loads = ParseLoads(*loads);
 }
 
+/// Dynamics settings that only the other formulation's integrator reads, or base drives in
+/// another analysis, would be ignored without a word: refused, naming who reads them.
+void CheckFormulationSettings(const ObjectReader& o, const Problem& p) {
+  if (p.analysis != Analysis::kDynamics) {
+    for (const char* drive : {"base_spin", "rotary_table"})
+      if (o.Has(drive))
+        o.report().Add(o.PathOf(drive), "turns the base in \"analysis\": \"dynamics\" only");
+    return;
+  }
+  const bool quatfd = p.formulation == Formulation::kQuaternionFd;
+  const std::initializer_list<const char*> se3_only = {"shooting_segments", "spatial_scheme"};
+  const std::initializer_list<const char*> quatfd_only = {"integrator_tolerance",
+                                                          "integrator_max_steps"};
+  for (const char* key : quatfd ? se3_only : quatfd_only)
+    if (o.Has(key))
+      o.report().Add(o.PathOf(key), std::string("is read by the ") +
+                                        (quatfd ? "\"se3-shooting\"" : "\"quaternion-fd\"") +
+                                        " formulation only (this problem runs " +
+                                        Quote(ToString(p.formulation)) + ")");
+}
+
 void ParseBuckling(const ObjectReader& o, Problem::Buckling* b) {
   o.AllowOnly({"load", "direction", "max", "tendons"});
   const auto load = ReadEnum<BucklingLoad>(o, "load", Presence::kOptional);
@@ -372,6 +394,7 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   if (const auto o = ReadObject(top, "dynamics", Presence::kOptional)) {
     p->has_dynamics = true;
     ParseDynamics(*o, p->nodes, &p->dynamics);
+    CheckFormulationSettings(*o, *p);
     // The quaternion-FD path records a frame every output_interval, each at least a Radau step
     // (the SE(3) path rounds it to whole steps of dt, which are capped above): cap the frames.
     const Problem::Dynamics& d = p->dynamics;

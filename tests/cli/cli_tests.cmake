@@ -167,6 +167,10 @@ cosserat_cli_test(NAME many_errors ARGS validate "${_cli_dir}/many_errors.json" 
                   STDERR "format: .*rod.nodes: .*rod.material: .*loads.tip_force\\[2\\]: ")
 cosserat_cli_test(NAME bad_dynamics ARGS solve "${_cli_dir}/bad_dynamics.json" CODE 2
                   STDERR "dynamics.dt: expected a positive number, got -0.002.*dynamics.output_interval: .*dynamics.shooting_segments: .*dynamics.spatial_scheme: .*dynamics.integrator_tolerance: expected a number in \\(0, 0\\.1\\].*dynamics.integrator_max_steps: expected an integer")
+# Settings only the other formulation reads are refused, not ignored.
+cosserat_cli_test(NAME foreign_formulation_settings
+                  ARGS validate "${_cli_dir}/quatfd_foreign_settings.json" CODE 2
+                  STDERR "dynamics.shooting_segments: is read by the \"se3-shooting\" formulation only.*dynamics.spatial_scheme: is read by the \"se3-shooting\"")
 cosserat_cli_test(NAME not_implemented ARGS solve "${_cli_dir}/modes_free_free.json" CODE 2
                   STDERR "boundary: \"free-free\" is not implemented in this version")
 
