@@ -106,6 +106,14 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
                   detail::Quote(ToString(p.boundary)) + ")");
   DriveAndFlowFeatures(p, &out);
   TipBodyFeatures(p, &out);
+  // A clamped tip holds its rotation: a moment there is the clamp's reaction's business.
+  if (p.boundary == B::kClampedClamped &&
+      (!p.loads.tip_moment.isZero() ||
+       (p.analysis == A::kBuckling && p.buckling.load == BucklingLoad::kTipMoment)))
+    out.push_back(
+        std::string(p.loads.tip_moment.isZero() ? "buckling.load" : "loads.tip_moment") +
+        ": a moment at a clamped tip (\"boundary\": \"clamped-clamped\") acts on the clamp, not "
+        "the rod");
   if (quatfd && p.rod.section && MasslessSomewhere(p))
     out.push_back(
         "rod.material.density: a massless rod (density 0) runs on the \"se3-shooting\" "

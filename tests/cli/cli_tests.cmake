@@ -167,6 +167,8 @@ cosserat_cli_test(NAME many_errors ARGS validate "${_cli_dir}/many_errors.json" 
                   STDERR "format: .*rod.nodes: .*rod.material: .*loads.tip_force\\[2\\]: ")
 cosserat_cli_test(NAME bad_dynamics ARGS solve "${_cli_dir}/bad_dynamics.json" CODE 2
                   STDERR "dynamics.dt: expected a positive number, got -0.002.*dynamics.output_interval: .*dynamics.shooting_segments: .*dynamics.spatial_scheme: .*dynamics.integrator_tolerance: expected a number in \\(0, 0\\.1\\].*dynamics.integrator_max_steps: expected an integer")
+cosserat_cli_test(NAME clamped_tip_moment ARGS validate "${_cli_dir}/clamped_tip_moment.json" CODE 2
+                  STDERR "loads.tip_moment: a moment at a clamped tip")
 # Settings only the other formulation reads are refused, not ignored.
 cosserat_cli_test(NAME foreign_formulation_settings
                   ARGS validate "${_cli_dir}/quatfd_foreign_settings.json" CODE 2
