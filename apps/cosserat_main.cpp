@@ -353,7 +353,7 @@ int RunSweep(const Command& cmd) {
   if (ranks > 1)
     std::cerr << ranks << " MPI ranks";
   else
-    std::cerr << options.threads << " threads";
+    std::cerr << options.threads << (options.threads == 1 ? " thread" : " threads");
   std::cerr << "), " << s.failed << " not converged, " << std::setprecision(3) << s.wall_time_s
             << " s; rows in " << *cmd.out_path << '\n';
   return s.complete && s.failed == 0 ? kExitConverged : kExitNotConverged;

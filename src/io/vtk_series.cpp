@@ -1,5 +1,6 @@
 #include "cosserat/io/vtk_series.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -72,6 +73,26 @@ bool WriteFile(const std::filesystem::path& path, const std::string& text, std::
   return true;
 }
 
+/// Frames `stem`_NNNNNN.vtp numbered `count` and beyond, left by an earlier, longer run into the
+/// same directory: ParaView groups every file of the pattern, so they would join this series.
+/// Only exact names of the pattern are removed.
+void RemoveStaleFrames(const std::string& directory, const std::string& stem, std::size_t count) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::vector<fs::path> stale;  // removed after the listing, not during it
+  for (fs::directory_iterator it(directory, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() != stem.size() + 11 || name.compare(0, stem.size(), stem) != 0 ||
+        name[stem.size()] != '_' || name.compare(name.size() - 4, 4, ".vtp") != 0)
+      continue;
+    const std::string digits = name.substr(stem.size() + 1, 6);
+    if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      continue;
+    if (std::stoul(digits) >= count) stale.push_back(it->path());
+  }
+  for (const fs::path& file : stale) fs::remove(file, ec);
+}
+
 }  // namespace
 
 bool WriteVtkSeries(const std::string& directory, const std::string& stem,
@@ -108,6 +129,7 @@ bool WriteVtkSeries(const std::string& directory, const std::string& stem,
         << "\"/>\n";
   }
   pvd << "  </Collection>\n</VTKFile>\n";
+  RemoveStaleFrames(directory, stem, frames.size());
   return WriteFile(fs::path(directory) / (stem + ".pvd"), pvd.str(), error);
 }
 
