@@ -50,6 +50,10 @@ class CMakeBuild(build_ext):
         target = self.get_ext_fullpath(ext.name)
         os.makedirs(os.path.dirname(target), exist_ok=True)
         shutil.copyfile(built[0], target)
+        # Where the package was built from: the live view serves that repository's web/.
+        with open(os.path.join(os.path.dirname(target), "_source.py"), "w") as f:
+            f.write(f"# Written by setup.py: the repository this package was built from.\n"
+                    f"SOURCE_DIR = {HERE!r}\n")
 
 
 setup(packages=["cosserat"], package_dir={"cosserat": "python/cosserat"},

@@ -42,6 +42,11 @@ def _web_dir():
     candidates = [os.environ["COSSERAT_WEB_DIR"]] if os.environ.get("COSSERAT_WEB_DIR") else []
     candidates += [os.path.join(root, "web")
                    for root in (os.path.join(here, "..", "..", ".."), os.path.join(here, "..", ".."))]
+    try:  # a pip-installed copy: setup.py recorded the repository it was built from
+        from cosserat._source import SOURCE_DIR
+        candidates.append(os.path.join(SOURCE_DIR, "web"))
+    except ImportError:
+        pass
     for web in candidates:
         if os.path.exists(os.path.join(web, "index.html")):
             return os.path.abspath(web)
@@ -378,8 +383,13 @@ class LiveRod:
         return out
 
     def _radius(self):
+        """The drawn tube's radius, m: the section's (outer) radius, else the radius of a circle
+        of its area (a rectangle's w h, an explicit section's area), as the VTK output's."""
         sec = self._rod().get("section", {}) if self.error is None else {}
-        return sec.get("radius") or sec.get("outer_radius") or 0.005
+        if sec.get("radius") or sec.get("outer_radius"):
+            return sec.get("radius") or sec.get("outer_radius")
+        area = sec.get("area") or (sec.get("width", 0) * sec.get("height", 0))
+        return math.sqrt(area / math.pi) if area and area > 0 else 0.005
 
     def snapshot(self):
         with self.lock:

@@ -2,6 +2,7 @@
 with PYTHONPATH at build/python and the repository root as working directory)."""
 import json
 import math
+import os
 import subprocess
 import unittest
 
@@ -623,6 +624,28 @@ class PythonSide(unittest.TestCase):
         finally:
             live.running = False
             live.thread.join(10)
+
+    def test_live_view_draws_a_strip_at_its_equal_area_radius(self):
+        # A 4 mm × 2 mm strip is drawn as a tube of its area's radius sqrt(w h / π) (the VTK
+        # output's), not at a 5 mm default.
+        import tempfile
+        from cosserat.view import LiveRod
+        spec = {"format": "cosserat-problem/1", "analysis": "dynamics",
+                "rod": {"length": 0.2, "nodes": 11,
+                        "section": {"shape": "rectangle", "width": 0.004, "height": 0.002},
+                        "material": {"youngs_modulus": 1e9, "shear_modulus": 4e8,
+                                     "density": 1000}},
+                "dynamics": {"dt": 1e-3, "duration": 1.0}}
+        with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+            json.dump(spec, f)
+        live = LiveRod(f.name)
+        try:
+            self.assertAlmostEqual(live.config()["radius"], math.sqrt(0.004 * 0.002 / math.pi),
+                                   places=15)
+        finally:
+            live.running = False
+            live.thread.join(10)
+            os.unlink(f.name)
 
     def test_assemblies_are_plotted_and_animated_rod_by_rod(self):
         # The plate on two wires: its frames hold each rod's nodes, which end where the run's

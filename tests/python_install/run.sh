@@ -13,10 +13,14 @@ mkdir -p "$WORK"
 cd "$SRC"
 COSSERAT_BUILD_DIR="$BUILD" "$WORK/venv/bin/pip" install --no-build-isolation --no-index \
   --quiet .
-env -u PYTHONPATH "$WORK/venv/bin/python" - "$WORK" <<'PY'
-import sys
+env -u PYTHONPATH -u COSSERAT_WEB_DIR "$WORK/venv/bin/python" - "$WORK" "$SRC" <<'PY'
+import os, sys
 import cosserat
+from cosserat.view import _web_dir
 assert cosserat.__file__.startswith(sys.argv[1]), f"imported {cosserat.__file__}, not the installed module"
 print("installed module:", cosserat.__file__)
+# The live view of an installed copy serves the page of the repository it was built from.
+web = os.path.realpath(os.path.join(sys.argv[2], "web"))
+assert _web_dir() and os.path.realpath(_web_dir()) == web, f"page at {_web_dir()}, not {web}"
 PY
 env -u PYTHONPATH "$WORK/venv/bin/python" tests/python/test_cosserat_module.py
