@@ -415,6 +415,22 @@ TEST(ProblemIo, JammingPressuresMatchTheProfilesSegments) {
                          "kind \"jamming\"");
 }
 
+// One bad coordinate of a tendon is named at its index, and it is the only error: the
+// per-tendon lists still count the tendon the file lists (before: "offset: expected 2 finite
+// numbers, got an array of 2 items", then "actuation.tension: expected one value per tendon
+// (0 in robot.tendons)"). A profile kind that is not a string is a field error, not the JSON
+// library's exception.
+TEST(ProblemIo, ABadTendonCoordinateIsNamedAndAloneInItsErrors) {
+  json j = json::parse(std::ifstream(SourceDir() + "/robots/tendon_three_tendon.json"));
+  j["robot"]["tendons"][0]["offset"][1] = "x";
+  const ParseResult r = Parse(j);
+  EXPECT_ERROR(r, "robot.tendons[0].offset[1]: expected a finite number", "got a string");
+  EXPECT_EQ(r.errors.size(), 1u) << AllErrors(r);
+  j = json::parse(std::ifstream(SourceDir() + "/robots/tendon_three_tendon.json"));
+  j["rod"]["stiffness_profile"] = {{"kind", 1}};
+  EXPECT_ERROR(Parse(j), "rod.stiffness_profile.kind: expected one of");
+}
+
 // A tolerance above 1e-3 of the dimensionless residual can pass the rigid-body guess itself as
 // converged (tolerance 1: the example cantilever's tip 1.4 % off): refused.
 TEST(ProblemIo, ASolverToleranceAboveOneThousandthIsRefused) {
@@ -514,7 +530,7 @@ TEST(ProblemIo, DynamicsTipBody) {
   j["dynamics"]["tip_inertia"] = {1e-6, -1e-6, 0};
   r = Parse(j);
   EXPECT_ERROR(r, "dynamics.tip_mass: expected", "got -1");
-  EXPECT_ERROR(r, "dynamics.tip_inertia: expected three moments of inertia >= 0", "");
+  EXPECT_ERROR(r, "dynamics.tip_inertia[1]: expected a moment of inertia >= 0", "got -1e-06");
 }
 
 TEST(ProblemIo, DynamicsRunsForCantileverAndFreeFree) {

@@ -200,6 +200,19 @@ std::optional<Vec3> ReadVec3(const ObjectReader& o, const std::string& key, Pres
   return CheckVec3(*v, o.PathOf(key), expected, o.report());
 }
 
+std::optional<Vec3> ReadVec3(const ObjectReader& o, const std::string& key, Presence presence,
+                             const NumberRule& rule) {
+  const auto v = ReadVec3(o, key, presence);
+  if (!v) return std::nullopt;
+  bool ok = true;
+  for (int i = 0; i < 3; ++i)
+    if (!rule.accepts((*v)(i))) {
+      o.report().Expected(ElementPath(o.PathOf(key), i), rule.expected, FormatNumber((*v)(i)));
+      ok = false;
+    }
+  return ok ? v : std::nullopt;
+}
+
 std::optional<Mat3> ReadMatrix3(const ObjectReader& o, const std::string& key, Presence presence) {
   const json* v = FindValue(o, key, presence, kMatrix3Expected);
   if (!v) return std::nullopt;

@@ -194,12 +194,9 @@ void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
   }
   d->tip_mass =
       ReadNumber(o, "tip_mass", NonNegativeNumber(), Presence::kOptional).value_or(d->tip_mass);
-  if (const auto inertia = ReadVec3(o, "tip_inertia", Presence::kOptional)) {
-    if ((inertia->array() >= 0).all())
-      d->tip_inertia = *inertia;
-    else
-      o.Reject("tip_inertia", "three moments of inertia >= 0 (kg·m²)");
-  }
+  const NumberRule moment{"a moment of inertia >= 0 (kg·m²)", [](double x) { return x >= 0; }};
+  if (const auto inertia = ReadVec3(o, "tip_inertia", Presence::kOptional, moment))
+    d->tip_inertia = *inertia;
   d->initial = ReadChoice(o, "initial", {"static"}, Presence::kOptional).value_or(d->initial);
   // One piece per grid segment at most (rod.nodes − 1).
   d->shooting_segments =

@@ -93,12 +93,10 @@ RigidBody ParseBody(const ObjectReader& o, std::map<std::string, std::string>* n
   }
   body.force_W = ReadVec3(o, "force", Presence::kOptional).value_or(Vec3::Zero());
   body.moment_W = ReadVec3(o, "moment", Presence::kOptional).value_or(Vec3::Zero());
-  if (const auto inertia = ReadVec3(o, "inertia", Presence::kOptional)) {
-    if ((inertia->array() >= 0).all())
-      body.inertia_B = inertia->asDiagonal();
-    else
-      o.Reject("inertia", "three principal moments of inertia >= 0 (kg·m², body frame)");
-  }
+  const NumberRule moment{"a principal moment of inertia >= 0 (kg·m², body frame)",
+                          [](double x) { return x >= 0; }};
+  if (const auto inertia = ReadVec3(o, "inertia", Presence::kOptional, moment))
+    body.inertia_B = inertia->asDiagonal();
   spec->initial_force.push_back(
       ReadVec3(o, "initial_force", Presence::kOptional).value_or(body.force_W));
   spec->initial_moment.push_back(

@@ -169,7 +169,11 @@ int JammingSegments(const json& top) {
   const json* profile = rod != top.end() && rod->is_object() && rod->contains("stiffness_profile")
                             ? &(*rod)["stiffness_profile"]
                             : nullptr;
-  if (!profile || !profile->is_object() || profile->value("kind", "") != "jamming") return 0;
+  // A kind that is not the string "jamming" (another kind, or not a string: reported at
+  // rod.stiffness_profile.kind) has no switchable segments.
+  if (!profile || !profile->is_object() || !profile->contains("kind") ||
+      (*profile)["kind"] != "jamming")
+    return 0;
   const auto segments = profile->find("segments");
   return segments != profile->end() && segments->is_array() ? static_cast<int>(segments->size())
                                                             : 0;
@@ -231,13 +235,16 @@ std::optional<Vec2> ReadOffset(const ObjectReader& o, const std::string& key) {
     o.report().Missing(o.PathOf(key), "an array [x, y] of 2 numbers (m, body frame)");
     return std::nullopt;
   }
-  if (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number() ||
-      !std::isfinite((*v)[0].get<double>()) || !std::isfinite((*v)[1].get<double>())) {
+  if (!v->is_array() || v->size() != 2) {
     o.report().Expected(o.PathOf(key), "an array [x, y] of 2 finite numbers (m, body frame)",
                         Describe(*v));
     return std::nullopt;
   }
-  return Vec2((*v)[0].get<double>(), (*v)[1].get<double>());
+  // Each coordinate at its own path: offset[1], not the whole pair.
+  const auto x = CheckNumber((*v)[0], ElementPath(o.PathOf(key), 0), AnyFiniteNumber(), o.report());
+  const auto y = CheckNumber((*v)[1], ElementPath(o.PathOf(key), 1), AnyFiniteNumber(), o.report());
+  if (!x || !y) return std::nullopt;
+  return Vec2(*x, *y);
 }
 
 void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
@@ -296,7 +303,11 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
     if (p->robot.kind != RobotKind::kEversion)
       robot.report().Add(robot.PathOf("growth"), "only an \"eversion\" robot grows");
   }
-  const int tendons = static_cast<int>(p->rod.tendons.size());
+  // The tendons the file lists, valid or not (a bad one has its own error; counting only the
+  // valid ones would add a second, wrong one at every per-tendon list).
+  const json* listed = robot.Find("tendons");
+  const int tendons = listed && listed->is_array() ? static_cast<int>(listed->size())
+                                                   : static_cast<int>(p->rod.tendons.size());
   const int jamming = JammingSegments(top);
   if (const auto a = ReadObject(robot, "actuation", Presence::kOptional))
     ParseActuation(*a, tendons, chambers, jamming, &p->robot.actuation, &p->robot.tendon_lengths);

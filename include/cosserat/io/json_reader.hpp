@@ -112,6 +112,9 @@ std::optional<std::string> ReadChoice(const ObjectReader& o, const std::string& 
 
 /// An array of exactly 3 numbers.
 std::optional<Vec3> ReadVec3(const ObjectReader& o, const std::string& key, Presence presence);
+/// A [x, y, z] whose entries all satisfy `rule` (each bad one reported at key[i]).
+std::optional<Vec3> ReadVec3(const ObjectReader& o, const std::string& key, Presence presence,
+                             const NumberRule& rule);
 
 /// Row-major 3x3: an array of 3 rows of 3 numbers.
 std::optional<Mat3> ReadMatrix3(const ObjectReader& o, const std::string& key, Presence presence);
