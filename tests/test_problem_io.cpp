@@ -431,6 +431,29 @@ TEST(ProblemIo, ABadTendonCoordinateIsNamedAndAloneInItsErrors) {
   EXPECT_ERROR(Parse(j), "rod.stiffness_profile.kind: expected one of");
 }
 
+// Errors in the right place: a misspelt "shape" of a contact entry is named with its fix; an axis
+// with an entry near 1e300 is a direction (it overflowed to "a zero vector"); an anchored rod
+// with an error of its own gets no error about the anchor's reach from a length of 0.
+TEST(ProblemIo, ErrorsNameWhatIsWrong) {
+  json j = ValidProblem();
+  j["environment"]["contact"] = json::array({{{"shaep", "plane"}, {"stiffness", 1e5}}});
+  EXPECT_ERROR(Parse(j), "environment.contact[0].shaep: unknown key (did you mean \"shape\"?)");
+  j = ValidProblem();
+  j["environment"]["contact"] = json::array(
+      {{{"shape", "cylinder"}, {"axis", {1e300, 0, 1}}, {"radius", 0.01}, {"side", "outside"},
+        {"point", {1, 1, 0}}, {"stiffness", 1e5}}});
+  const ParseResult r = Parse(j);
+  EXPECT_TRUE(r.ok()) << AllErrors(r);
+  if (r.ok()) EXPECT_NEAR(r.problem->loads.contact.surface[0].direction_W.x(), 1.0, 1e-15);
+  j = ValidProblem();
+  j["boundary"] = "anchored";
+  j["anchor"] = {{"position", {0, 0, 0.4}}};
+  j["rod"]["section"] = {{"shape", "circle"}, {"raduis", 0.001}};
+  const ParseResult bad_rod = Parse(j);
+  EXPECT_ERROR(bad_rod, "rod.section.raduis: unknown key");
+  for (const std::string& e : bad_rod.errors) EXPECT_EQ(e.find("anchor.position"), std::string::npos) << e;
+}
+
 // A tolerance above 1e-3 of the dimensionless residual can pass the rigid-body guess itself as
 // converged (tolerance 1: the example cantilever's tip 1.4 % off): refused.
 TEST(ProblemIo, ASolverToleranceAboveOneThousandthIsRefused) {

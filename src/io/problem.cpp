@@ -71,7 +71,8 @@ void CheckAnchor(const ObjectReader& top, const Problem& p) {
                                      ToString(p.boundary) + "\")");
     return;
   }
-  if (!anchored) return;
+  // Without a valid rod (its errors are reported) there is no length to reach with.
+  if (!anchored || !p.rod.section || !(p.rod.length > 0)) return;
   const double distance = (p.anchor.position - p.base.p).norm(), L = p.rod.length;
   if (distance > 1.5 * L)
     top.report().Expected("anchor.position",
@@ -79,7 +80,9 @@ void CheckAnchor(const ObjectReader& top, const Problem& p) {
                               " m) from base.position: the rod cannot reach farther",
                           FormatNumber(distance) + " m away");
   else if (distance < 1e-6 * L)
-    top.report().Expected("anchor.position", "a point apart from base.position",
+    top.report().Expected("anchor.position",
+                          "a point at least 1e-6 × rod.length (" + FormatNumber(1e-6 * L) +
+                              " m) from base.position",
                           FormatNumber(distance) + " m away");
   // A moving anchor sweeps position + amplitude (1 − cos): its farthest point, + 2 amplitude,
   // must be in reach too.
@@ -250,8 +253,8 @@ void ParseBuckling(const ObjectReader& o, Problem::Buckling* b) {
     o.report().Add(o.PathOf("direction"),
                    "not used by a " + Quote(ToString(b->load)) + " load (leave it out)");
   else if (const auto direction = ReadVec3(o, "direction", Presence::kOptional)) {
-    if (direction->norm() > 0)
-      b->direction = direction->normalized();
+    if (direction->stableNorm() > 0)
+      b->direction = direction->stableNormalized();  // no overflow for entries near 1e300
     else
       o.report().Expected(o.PathOf("direction"), "a non-zero vector", "[0, 0, 0]");
   }

@@ -37,11 +37,11 @@ bool ReadProfileList(const ObjectReader& o, const std::string& key, double* out,
 void ParseFlowProfile(const ObjectReader& o, FluidFlowProfile* p) {
   o.AllowOnly({"axis", "origin", "reference_height", "exponent", "heights", "factors"});
   if (const auto axis = ReadVec3(o, "axis", Presence::kOptional)) {
-    if (!(axis->norm() > 0)) {
+    if (!(axis->stableNorm() > 0)) {
       o.report().Expected(o.PathOf("axis"), "a non-zero vector", "[0, 0, 0]");
       return;
     }
-    p->axis_W = axis->normalized();
+    p->axis_W = axis->stableNormalized();  // [1e300, 0, 1] would overflow normalized()
   }
   p->origin_W = ReadVec3(o, "origin", Presence::kOptional).value_or(Vec3::Zero());
   const bool power = o.Find("exponent") || o.Find("reference_height");
@@ -105,11 +105,11 @@ void ParseFluid(const ObjectReader& o, Fluid* f, FluidGust* gust) {
 std::optional<Vec3> ReadDirection(const ObjectReader& o, const std::string& key) {
   const auto v = ReadVec3(o, key, Presence::kRequired);
   if (!v) return std::nullopt;
-  if (!(v->norm() > 0)) {
+  if (!(v->stableNorm() > 0)) {
     o.report().Expected(o.PathOf(key), "a non-zero vector", "[0, 0, 0]");
     return std::nullopt;
   }
-  return v->normalized();
+  return v->stableNormalized();  // [1e300, 0, 1] would overflow normalized()
 }
 
 // One surface: {"shape": "plane", "point", "normal"} | {"shape": "sphere", "center", "radius"} |
@@ -117,9 +117,15 @@ std::optional<Vec3> ReadDirection(const ObjectReader& o, const std::string& key)
 // "friction", "slip_velocity" and "smoothing".
 void ParseSurface(const ObjectReader& o, ContactSurface* s) {
   const auto shape = ReadChoice(o, "shape", {"plane", "sphere", "cylinder"}, Presence::kRequired);
-  if (!shape) return;
   const std::vector<std::string> common = {"shape",    "stiffness",     "damping",
                                            "friction", "slip_velocity", "smoothing"};
+  if (!shape) {  // the keys of every shape: a misspelt "shape" is then named with its fix
+    std::vector<std::string> any = common;
+    for (const char* key : {"point", "normal", "center", "radius", "axis", "side"})
+      any.push_back(key);
+    o.AllowOnly(any);
+    return;
+  }
   auto allow = [&](std::vector<std::string> keys) {
     keys.insert(keys.end(), common.begin(), common.end());
     o.AllowOnly(keys, "for a \"" + *shape + "\" surface");

@@ -211,7 +211,7 @@ std::string CoarseStepWarning(const io::Problem& problem, double dt) {
   const double beta_l = problem.boundary == io::Boundary::kFreeFree ? 4.7300 : 1.8751;
   const double omega = std::pow(beta_l / problem.rod.length, 2) * std::sqrt(ei / rho_a);
   const double wh = omega * dt;
-  if (!(wh > 1.0)) return "";
+  if (!(wh > 1.0) || !std::isfinite(wh)) return "";  // a massless rod (ρA = 0) has no period
   // The amplification of the undamped mode: the larger root of (3 − 2iωdt) ζ² − 4ζ + 1 = 0.
   const std::complex<double> a(3.0, -2.0 * wh);
   const std::complex<double> root = std::sqrt(std::complex<double>(16.0) - 4.0 * a);
