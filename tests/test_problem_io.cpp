@@ -454,6 +454,16 @@ TEST(ProblemIo, ErrorsNameWhatIsWrong) {
   for (const std::string& e : bad_rod.errors) EXPECT_EQ(e.find("anchor.position"), std::string::npos) << e;
 }
 
+// validate passes exactly what solve runs: an explicit section of area 1e300 m² (E A overflows)
+// is a parse error at rod.section, where solve stopped with a message about off-diagonal
+// entries of the stiffness.
+TEST(ProblemIo, ASectionThatOverflowsIsAnErrorAtTheSection) {
+  json j = ValidProblem();
+  j["rod"]["section"] = {{"shape", "explicit"}, {"area", 1e300}, {"I1", 1e-12}, {"I2", 1e-12},
+                         {"J", 2e-12}};
+  EXPECT_ERROR(Parse(j), "rod.section: its stiffness or mass per length at s = 0 m is not a finite");
+}
+
 // A tolerance above 1e-3 of the dimensionless residual can pass the rigid-body guess itself as
 // converged (tolerance 1: the example cantilever's tip 1.4 % off): refused.
 TEST(ProblemIo, ASolverToleranceAboveOneThousandthIsRefused) {

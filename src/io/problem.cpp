@@ -11,6 +11,7 @@
 #include <sstream>
 #include <utility>
 
+#include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/io/json_document.hpp"
 #include "cosserat/io/json_reader.hpp"
 #include "cosserat/io/text_file.hpp"
@@ -455,6 +456,28 @@ void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
   }
 }
 
+/// The section at every node as the solvers will take it: finite stiffness and mass (an area
+/// of 1e300 m² overflows E A), and principal axes. `validate` then passes only what runs.
+void CheckSectionsAtNodes(const Problem& p, ErrorReport* report) {
+  const int n = std::max(p.nodes, 2);
+  for (int i = 0; i < n; ++i) {
+    const double s = p.rod.length * i / (n - 1);
+    const SectionProperties sp = p.rod.section->At(s, p.robot.actuation);
+    if (!sp.stiffness.allFinite() || !sp.mass.allFinite()) {
+      report->Add("rod.section", "its stiffness or mass per length at s = " + FormatNumber(s) +
+                                     " m is not a finite number (the section's products with "
+                                     "the material overflow a double)");
+      return;
+    }
+    try {
+      PrincipalAxesSectionAt(p.rod, s, p.robot.actuation);
+    } catch (const std::exception& e) {
+      report->Add("rod.section", e.what());
+      return;
+    }
+  }
+}
+
 /// The library's own checks; they should never fire after the ones above.
 void CheckWithLibrary(const Problem& p, ErrorReport* report) {
   std::string why;
@@ -464,6 +487,7 @@ void CheckWithLibrary(const Problem& p, ErrorReport* report) {
     return;
   }
   if (!p.rod.IsValid(&why)) report->Add("rod", why);
+  if (report->empty()) CheckSectionsAtNodes(p, report);
   if (!p.loads.IsValid(&why)) report->Add("loads", why);
   const int tendons = static_cast<int>(p.rod.tendons.size());
   const int chambers = static_cast<int>(p.rod.chambers.size());
