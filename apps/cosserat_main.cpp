@@ -356,6 +356,10 @@ int RunSweep(const Command& cmd) {
     std::cerr << options.threads << (options.threads == 1 ? " thread" : " threads");
   std::cerr << "), " << s.failed << " not converged, " << std::setprecision(3) << s.wall_time_s
             << " s; rows in " << *cmd.out_path << '\n';
+  for (const std::string& output : s.empty_outputs)
+    std::cerr << "cosserat: warning: output " << output
+              << " is empty in every converged point: does the pointer name a field of the "
+                 "result (docs/problem-format.md, \"Result\")?\n";
   return s.complete && s.failed == 0 ? kExitConverged : kExitNotConverged;
 }
 

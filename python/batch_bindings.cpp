@@ -150,6 +150,7 @@ void BindSweep(py::module_& m) {
         d["failed"] = s.failed;
         d["complete"] = s.complete;
         d["wall_time_s"] = s.wall_time_s;
+        d["empty_outputs"] = s.empty_outputs;
         return d;
       },
       py::arg("study_json"), py::arg("base_directory"), py::arg("out"), py::arg("threads"),

@@ -2,6 +2,7 @@
 import csv
 import os
 import tempfile
+import warnings
 
 import numpy as np
 
@@ -29,8 +30,10 @@ def sweep(study, out=None, threads=None):
 
     Returns {"rows": [one dict per point, in point order: index, each parameter by its path,
     each output by its name, status, wall_time_s], "summary": {points, resumed, ran, failed,
-    complete, wall_time_s}, "csv": the file's path (None for the temporary one)}. Bad study
-    files raise ValueError naming the field.
+    complete, wall_time_s, empty_outputs}, "csv": the file's path (None for the temporary one)}.
+    empty_outputs lists the outputs blank in every converged row (a pointer that names nothing
+    in the result, e.g. a typo), which also raise a warning. Bad study files raise ValueError
+    naming the field.
     """
     if isinstance(study, dict):
         text, base = _json_text(study), os.getcwd()
@@ -63,4 +66,7 @@ def sweep(study, out=None, threads=None):
             for leftover in (out, os.fspath(out) + ".tmp"):
                 if os.path.exists(leftover):
                     os.remove(leftover)
+    for output in summary["empty_outputs"]:
+        warnings.warn(f"output {output} is empty in every converged point: does the pointer name "
+                      "a field of the result?", stacklevel=2)
     return {"rows": rows, "summary": summary, "csv": None if temporary else os.fspath(out)}

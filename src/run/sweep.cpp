@@ -4,8 +4,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -102,8 +104,13 @@ namespace {
 std::map<std::uint64_t, std::string> ReadRows(const std::string& path, const std::string& header,
                                               std::uint64_t points) {
   std::map<std::uint64_t, std::string> rows;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return rows;
+  // A directory, a device (/dev/full reads zeros without end) or a FIFO holds no results.
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw std::runtime_error(path + ": not a regular file (the results are a CSV file)");
   std::ifstream f(path, std::ios::binary);
-  if (!f) return rows;
+  if (!f) throw std::runtime_error(path + ": cannot read the file (" + std::strerror(errno) + ")");
   std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
   if (text.empty()) return rows;
   std::size_t end = text.find('\n');
@@ -155,6 +162,8 @@ SweepFile::SweepFile(const io::Study& study, const std::string& path)
   for (std::uint64_t k = 0; k < points_; ++k)
     if (!rows_.count(k)) pending_.push_back(k);
   status_column_ = 1 + study.parameters.size() + study.outputs.size();
+  for (const io::StudyOutput& o : study.outputs)
+    outputs_.push_back("\"" + o.name + "\" (" + o.path + ")");
   fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND);
   if (fd_ < 0) throw std::runtime_error(path_ + ": cannot open for appending");
 }
@@ -183,8 +192,20 @@ SweepSummary SweepFile::Finish() {
   s.ran = ran_;
   s.complete = rows_.size() == points_;
   if (s.complete) WriteAll(path_, header_, rows_);  // in point order
-  for (const auto& [k, line] : rows_)
-    if (line.compare(StartOfField(line, status_column_), 10, "converged,") != 0) ++s.failed;
+  const std::size_t first_output = status_column_ - outputs_.size();
+  std::vector<bool> seen(outputs_.size(), false);
+  bool any_converged = false;
+  for (const auto& [k, line] : rows_) {
+    if (line.compare(StartOfField(line, status_column_), 10, "converged,") != 0) {
+      ++s.failed;
+      continue;
+    }
+    any_converged = true;
+    for (std::size_t j = 0; j < outputs_.size(); ++j)
+      if (!seen[j]) seen[j] = line[StartOfField(line, first_output + j)] != ',';
+  }
+  for (std::size_t j = 0; j < outputs_.size() && any_converged; ++j)
+    if (!seen[j]) s.empty_outputs.push_back(outputs_[j]);
   return s;
 }
 

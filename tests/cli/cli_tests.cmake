@@ -112,6 +112,14 @@ endforeach()
 cosserat_cli_test(NAME validate_deep_nesting
                   ARGS validate "${_cli_out}/deep.json"
                   CODE 2 STDERR "invalid JSON: arrays and objects nested deeper than 128 levels")
+# A study output whose pointer names nothing in the result fills a blank column: the summary
+# says so.
+cosserat_cli_test(NAME sweep_output_never_found
+                  ARGS sweep "${_cli_dir}/study_output_typo.json" --out "${_cli_out}/typo.csv"
+                  CODE 0 STDERR "warning: output \"tip_x\" \\(/tip/positoin/0\\) is empty in every converged point")
+cosserat_cli_test(NAME sweep_out_device
+                  ARGS sweep "${_cli_dir}/../../examples/studies/tendon_workspace.json" --out /dev/full
+                  CODE 2 STDERR "/dev/full: not a regular file")
 cosserat_cli_test(NAME validate_directory
                   ARGS validate "${_cli_out}"
                   CODE 2 STDERR "cannot read the file .it is a directory.")

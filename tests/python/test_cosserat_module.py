@@ -747,6 +747,11 @@ class Batches(unittest.TestCase):
             cosserat.sweep("no_such_study.json")
         with self.assertRaisesRegex(TypeError, "study: expected a dict"):
             cosserat.sweep(42)
+        self.assertEqual(out["summary"]["empty_outputs"], [])
+        # A pointer that names nothing in the result: a blank column, and a warning naming it.
+        with self.assertWarnsRegex(UserWarning, r'"tip_x" \(/tip/positoin/0\) is empty'):
+            typo = cosserat.sweep(dict(study, outputs={"tip_x": "/tip/positoin/0"}))
+        self.assertEqual(typo["summary"]["empty_outputs"], ['"tip_x" (/tip/positoin/0)'])
 
 
 if __name__ == "__main__":

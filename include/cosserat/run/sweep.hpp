@@ -35,6 +35,9 @@ struct SweepSummary {
   std::uint64_t failed = 0;     ///< rows whose status is not "converged"
   bool complete = false;        ///< every point has its row (and the file is in point order)
   double wall_time_s = 0.0;
+  /// Outputs ("name" (pointer)) empty in every converged row, when some row converged: a pointer
+  /// that names nothing in the result (a typo such as /tip/positoin/0) fills a blank column.
+  std::vector<std::string> empty_outputs;
 };
 
 /// Runs the study into `csv_path` (created, or resumed). Throws std::runtime_error when the file
@@ -69,6 +72,7 @@ class SweepFile {
   std::string path_, header_;
   std::uint64_t points_ = 0, resumed_ = 0, ran_ = 0;
   std::size_t status_column_ = 0;
+  std::vector<std::string> outputs_;  ///< "name" (pointer) of each output column, in order
   std::map<std::uint64_t, std::string> rows_;
   std::vector<std::uint64_t> pending_;
   int fd_ = -1;
