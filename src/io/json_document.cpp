@@ -1,6 +1,7 @@
 #include "cosserat/io/json_document.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <utility>
@@ -134,6 +135,31 @@ bool BlankToken(std::string* text, std::size_t end, const std::string& token) {
   return true;
 }
 
+/// `text` with every byte that is not part of well-formed UTF-8 written as \xNN: the parser
+/// quotes the bytes it stopped at, and a message must stay printable (Python raises an empty
+/// ValueError for a message that is not UTF-8).
+std::string EscapeInvalidUtf8(const std::string& text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const std::size_t length = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3
+                                          : (c >> 3) == 0x1E ? 4 : 0;
+    bool whole = length > 0 && i + length <= text.size();
+    for (std::size_t k = 1; whole && k < length; ++k)
+      whole = (static_cast<unsigned char>(text[i + k]) >> 6) == 0x2;
+    if (whole) {
+      out.append(text, i, length);
+      i += length;
+    } else {
+      char hex[5];
+      std::snprintf(hex, sizeof hex, "\\x%02X", c);
+      out += hex;
+      ++i;
+    }
+  }
+  return out;
+}
+
 /// "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ..." ->
 /// "at line 3, column 5: syntax error ...".
 std::string SyntaxErrorText(const DocumentBuilder::Failure& failure, const std::string& text) {
@@ -179,7 +205,8 @@ JsonDocument ParseJsonDocument(const std::string& text, const std::string& sourc
     }
     if (failure.id == DocumentBuilder::kDepthFailure)
       return {std::nullopt, {source_name + ": invalid JSON: " + failure.message}};
-    return {std::nullopt, {source_name + ": invalid JSON " + SyntaxErrorText(failure, text)}};
+    return {std::nullopt,
+            {source_name + ": invalid JSON " + EscapeInvalidUtf8(SyntaxErrorText(failure, text))}};
   }
 }
 

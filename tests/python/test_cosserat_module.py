@@ -91,6 +91,9 @@ class ProblemFiles(unittest.TestCase):
             cosserat.parse_problem(text)
         with self.assertRaisesRegex(ValueError, "no_such_file.json"):
             cosserat.load_problem("no_such_file.json")
+        # A byte that is not UTF-8 is quoted as \xNN: the message is not lost (it was empty).
+        with self.assertRaisesRegex(ValueError, r"invalid JSON at line 1, .*\\xFF"):
+            cosserat.parse_problem(b'{"format": "cosserat\xff"}')
 
     def test_non_finite_loads_are_refused(self):
         loads = cosserat.Loads()
