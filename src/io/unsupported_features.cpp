@@ -59,6 +59,18 @@ void TipBodyFeatures(const Problem& p, std::vector<std::string>* out) {
                    "\"dynamics\" on \"se3-shooting\" runs it)");
 }
 
+/// A clamped tip holds its rotation: a moment there acts on the clamp, not the rod.
+void ClampedTipFeatures(const Problem& p, std::vector<std::string>* out) {
+  if (p.boundary != Boundary::kClampedClamped) return;
+  const bool moment_path =
+      p.analysis == Analysis::kBuckling && p.buckling.load == BucklingLoad::kTipMoment;
+  if (!p.loads.tip_moment.isZero() || moment_path)
+    out->push_back(
+        std::string(p.loads.tip_moment.isZero() ? "buckling.load" : "loads.tip_moment") +
+        ": a moment at a clamped tip (\"boundary\": \"clamped-clamped\") acts on the clamp, not "
+        "the rod");
+}
+
 /// Whether the rod has no mass per length at some node of its grid.
 bool MasslessSomewhere(const Problem& p) {
   const int n = std::max(p.nodes, 2);
@@ -106,14 +118,7 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
                   detail::Quote(ToString(p.boundary)) + ")");
   DriveAndFlowFeatures(p, &out);
   TipBodyFeatures(p, &out);
-  // A clamped tip holds its rotation: a moment there is the clamp's reaction's business.
-  if (p.boundary == B::kClampedClamped &&
-      (!p.loads.tip_moment.isZero() ||
-       (p.analysis == A::kBuckling && p.buckling.load == BucklingLoad::kTipMoment)))
-    out.push_back(
-        std::string(p.loads.tip_moment.isZero() ? "buckling.load" : "loads.tip_moment") +
-        ": a moment at a clamped tip (\"boundary\": \"clamped-clamped\") acts on the clamp, not "
-        "the rod");
+  ClampedTipFeatures(p, &out);
   if (quatfd && p.rod.section && MasslessSomewhere(p))
     out.push_back(
         "rod.material.density: a massless rod (density 0) runs on the \"se3-shooting\" "
