@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cosserat/rod/filled_pipe_section.hpp"
 #include "cosserat/rod/section_profile.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
 #include "problem_profile.hpp"
@@ -27,7 +28,7 @@ struct ShapeKeys {
 const std::vector<ShapeKeys>& SectionShapes() {
   static const std::vector<ShapeKeys> shapes = {
       {"circle", {"radius"}},
-      {"annulus", {"outer_radius", "inner_radius"}},
+      {"annulus", {"outer_radius", "inner_radius", "contents_density"}},
       {"rectangle", {"width", "height"}},
       {"explicit", {"area", "I1", "I2", "J", "shear_coefficient"}},
   };
@@ -196,6 +197,22 @@ int InteriorBreakpoints(std::vector<double> cuts, double length) {
   return count;
 }
 
+/// "contents_density" of an annulus: the fluid filling its bore (FilledPipeSection), kg/m³.
+void FillPipe(const ObjectReader& s, bool has_profile, const std::optional<CrossSection>& section,
+              Problem* problem) {
+  const auto density = ReadNumber(s, "contents_density", NonNegativeNumber(), Presence::kOptional);
+  if (has_profile) {
+    s.report().Add(s.PathOf("contents_density"),
+                   "is read without a rod.stiffness_profile in this version (the bore would "
+                   "follow the profile)");
+    return;
+  }
+  if (!density || !section || !problem->rod.section) return;
+  const double bore = M_PI * section->inner_radius * section->inner_radius;  // m²
+  problem->rod.section =
+      std::make_shared<FilledPipeSection>(problem->rod.section, *density * bore);
+}
+
 void ParseRod(const ObjectReader& rod, Problem* problem) {
   rod.AllowOnly({"length", "nodes", "section", "material", "rest_curvature", "stiffness_profile"});
   const auto length = ReadNumber(rod, "length", PositiveNumber(), Presence::kRequired);
@@ -225,6 +242,8 @@ void ParseRod(const ObjectReader& rod, Problem* problem) {
   }
   if (rest_curvature) problem->rod.rest_strain = ConstantRestCurvature(*rest_curvature);
   problem->nodes = nodes.value_or(problem->nodes);
+  if (section_object && section_object->Has("contents_density"))
+    FillPipe(*section_object, rod.Has("stiffness_profile"), section, problem);
 }
 
 }  // namespace cosserat::io::detail

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "cosserat/rod/filled_pipe_section.hpp"
 #include "cosserat/rod/section_profile.hpp"
 
 namespace cosserat::run::detail {
@@ -27,7 +28,10 @@ double OuterFibreStress(const CrossSection& c, double m1, double m2) {
 void AddBendingStressReport(const io::Problem& problem, Result* result) {
   auto& json = result->json;
   if (!json.contains("nodes") || !json["nodes"].contains("moment_body")) return;
-  const auto* uniform = dynamic_cast<const UniformSection*>(problem.rod.section.get());
+  const SectionProfile* profile = problem.rod.section.get();
+  if (const auto* filled = dynamic_cast<const FilledPipeSection*>(profile))
+    profile = &filled->pipe();  // the contents carry no stress
+  const auto* uniform = dynamic_cast<const UniformSection*>(profile);
   if (uniform == nullptr) return;
   const CrossSection& section = uniform->section();
   const auto& s = json["nodes"]["s"];
