@@ -55,7 +55,8 @@ const char* const kUsage =
     "          to --csv (statics: s,x,y,z,k1,k2,k3; dynamics: t,node,s,x,y,z for every\n"
     "          recorded frame). A one-line summary is printed on stderr. Dynamics with\n"
     "          --vtk also writes a ParaView time series to DIR: DIR/<problem>.pvd and one\n"
-    "          .vtp per recorded frame (positions, directors, strains, internal wrench).\n"
+    "          .vtp per recorded frame (positions, directors, strains, internal wrench);\n"
+    "          statics, modes and buckling write their equilibrium as one frame at t = 0.\n"
     "sweep     run a study (docs/sweeps.md): its problem at every point of its parameters, one\n"
     "          CSV row per point as it finishes; run again on the same file, it resumes.\n"
     "validate  check the problem (or study) file and print every error found.\n"
@@ -285,8 +286,9 @@ int RunSolve(const Command& cmd) {
   if (!problem) return kExitBadInput;
   // Every refusal before the output files are opened (opening truncates them): a refused run
   // leaves the last result in place.
-  if (cmd.vtk_dir && problem->analysis != cosserat::io::Analysis::kDynamics)
-    throw UsageError{"--vtk writes the frames of a dynamics run; this problem's analysis is \"" +
+  if (cmd.vtk_dir && problem->has_assembly &&
+      problem->analysis != cosserat::io::Analysis::kDynamics)
+    throw UsageError{"--vtk writes an assembly's dynamics frames; this assembly's analysis is \"" +
                      cosserat::io::ToString(problem->analysis) + "\""};
   const std::string stem = std::filesystem::path(cmd.problem_path).stem().string();
   if (cmd.vtk_dir) CheckVtkDirectory(*cmd.vtk_dir, stem);
@@ -313,7 +315,8 @@ int RunSolve(const Command& cmd) {
     if (!cosserat::io::WriteVtkSeries(*cmd.vtk_dir, stem, result.frames, result.node_radius,
                                       &error))
       throw std::runtime_error(error);
-    std::cerr << "cosserat: " << result.frames.size() << " frames written to "
+    std::cerr << "cosserat: " << result.frames.size()
+              << (result.frames.size() == 1 ? " frame" : " frames") << " written to "
               << (std::filesystem::path(*cmd.vtk_dir) / (stem + ".pvd")).string() << '\n';
   }
   out.flush();

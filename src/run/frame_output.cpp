@@ -21,6 +21,13 @@ std::vector<double> NodeRadius(const RodModel& model, const std::vector<double>&
   return radius;
 }
 
+void KeepStaticFrame(const io::Problem& problem, const RodState& state, const RunOptions& options,
+                     Result* result) {
+  if (!options.frames || state.size() == 0) return;
+  result->node_radius = {NodeRadius(problem.rod, state.s, problem.robot.actuation)};
+  result->frames = {{0.0, {state}, {}}};
+}
+
 void MoveFrames(const RodModel& model, const Actuation& actuation, io::DynamicRun* run,
                 Result* result) {
   if (run->frame_states.empty()) return;

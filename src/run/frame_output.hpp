@@ -23,6 +23,11 @@ FixedSteps StepsOf(const io::Problem::Dynamics& dynamics);
 std::vector<double> NodeRadius(const RodModel& model, const std::vector<double>& s,
                                const Actuation& actuation);
 
+/// With RunOptions::frames, the one frame of a static answer (statics, and the equilibrium of
+/// modes and buckling): `state` at t = 0, with its node radii, for the VTK series.
+void KeepStaticFrame(const io::Problem& problem, const RodState& state, const RunOptions& options,
+                     Result* result);
+
 /// Moves a single rod's recorded frames (run->frame_states at run->frame_t) into
 /// result->frames, with the rod's node radii.
 void MoveFrames(const RodModel& model, const Actuation& actuation, io::DynamicRun* run,

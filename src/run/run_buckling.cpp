@@ -9,8 +9,9 @@
 #include "cosserat/analysis/quatfd_buckling.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
-#include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/run/solver_options.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
+#include "frame_output.hpp"
 #include "node_table.hpp"
 
 namespace cosserat::run {
@@ -115,6 +116,7 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   statics.wall_time_s = b.wall_time_s;
   Result result;
   result.json = io::StaticResultToJson(statics, analysis.state());
+  detail::KeepStaticFrame(problem, analysis.state(), run_options, &result);
   nlohmann::ordered_json block;
   block["critical_load"] = NumberOrNull(critical);
   block["mode_s_max"] =
@@ -183,6 +185,7 @@ Result RunQuatFdBuckling(const io::Problem& problem, const RunOptions& run_optio
   statics.wall_time_s = b.wall_time_s;
   Result result;
   result.json = io::StaticResultToJson(statics, state);
+  detail::KeepStaticFrame(problem, state, run_options, &result);
   nlohmann::ordered_json block;
   block["critical_load"] = NumberOrNull(b.critical_load);
   block["mode_s_max"] = NumberOrNull(b.mode_s_max);

@@ -8,6 +8,7 @@
 #include "cosserat/robots/eversion_robot.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
 #include "cosserat/run/solver_options.hpp"
+#include "frame_output.hpp"
 #include "node_table.hpp"
 
 namespace cosserat::run {
@@ -43,6 +44,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   }
   Result result;
   result.json = io::StaticResultToJson(solve, robot.state());
+  detail::KeepStaticFrame(problem, robot.state(), run_options, &result);
   nlohmann::ordered_json r;
   r["kind"] = io::ToString(io::RobotKind::kEversion);
   r["pressure"] = pressure;

@@ -8,6 +8,7 @@
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/run/solver_options.hpp"
+#include "frame_output.hpp"
 #include "node_table.hpp"
 
 namespace cosserat::run {
@@ -48,6 +49,7 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
   eq.residual = r.statics_residual;
   const nlohmann::ordered_json statics = io::StaticResultToJson(eq, r.equilibrium);
   Result result;
+  detail::KeepStaticFrame(problem, r.equilibrium, options, &result);
   result.json["status"] = ToString(r.status);
   for (const char* key : {"iterations", "residual"}) result.json[key] = statics[key];
   result.json["wall_time_s"] = r.wall_time_s;

@@ -71,6 +71,7 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   const quatfd::QuatFdStaticsSummary s = SolveQuatFdEquilibrium(problem, &model, &state);
   Result result;
   result.json = io::StaticResultToJson(AsSummary(s), state);
+  detail::KeepStaticFrame(problem, state, options, &result);
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(state);
   std::ostringstream log;
   log << "cosserat: " << ToString(s.status) << " (quaternion-fd), " << s.iterations

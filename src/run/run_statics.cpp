@@ -16,6 +16,7 @@
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "foundation_hint.hpp"
+#include "frame_output.hpp"
 #include "node_table.hpp"
 
 namespace cosserat::run {
@@ -101,6 +102,7 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Result result;
   result.json = io::StaticResultToJson(summary, solver.state());
+  detail::KeepStaticFrame(problem, solver.state(), options, &result);
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
   result.log = StaticSummary(summary, solver.state()) + " (" + ToString(ends) + ")\n";
   result.converged = summary.converged();
@@ -122,6 +124,7 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
   const StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
   Result result;
   result.json = io::StaticResultToJson(summary, solver.state());
+  detail::KeepStaticFrame(problem, solver.state(), options, &result);
   result.json["shooting_segments"] = solver.pieces();
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
   const std::string column = ends == ColumnEnds::kClampedFree ? "" : ToString(ends) + std::string(", ");
@@ -188,6 +191,7 @@ Result RunAnchoredStatics(const io::Problem& problem, const RunOptions& options)
 
   Result result;
   result.json = io::StaticResultToJson(summary, state);
+  detail::KeepStaticFrame(problem, state, options, &result);
   result.json["shooting_segments"] = solver.pieces();
   // The force the tip's anchor exerts on the rod (N, world): the top tension of a cable.
   const Vec3 f = state.rotation_WB.back() * state.wrench_B.back().tail<3>();
@@ -245,6 +249,7 @@ Result RunStatics(const io::Problem& problem, const RunOptions& options) {
   }
   Result result;
   result.json = io::StaticResultToJson(summary, solver.state());
+  detail::KeepStaticFrame(problem, solver.state(), options, &result);
   if (problem.has_robot) {
     const int count = solver.tendon_count();
     nlohmann::ordered_json robot;

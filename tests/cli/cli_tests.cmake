@@ -47,20 +47,27 @@ cosserat_cli_test(NAME solve_dynamics
                   CODE 0 STDOUT "\"trajectory\": {" STDERR "converged, 100 steps"
                   FILES "${_cli_out}/frames.csv")
 
-# A VTK time series of a dynamics run (read back with VTK in tests/vtk/); statics has no frames.
+# A VTK time series of a dynamics run (read back with VTK in tests/vtk/); a single rod's statics
+# is one frame; an assembly's statics is refused.
 cosserat_cli_test(NAME solve_dynamics_vtk
                   ARGS solve "${_cli_dir}/dynamics.json" --out "${_cli_out}/vtk_result.json"
                        --vtk "${_cli_out}/vtk"
                   CODE 0 STDERR "frames written to .*dynamics.pvd"
                   FILES "${_cli_out}/vtk/dynamics.pvd" "${_cli_out}/vtk/dynamics_000000.vtp")
+cosserat_cli_test(NAME solve_statics_vtk
+                  ARGS solve "${_cli_example}" --out "${_cli_out}/vtk_statics.json"
+                       --vtk "${_cli_out}/vtk_statics"
+                  CODE 0 STDERR "1 frame written to .*cantilever.pvd"
+                  FILES "${_cli_out}/vtk_statics/cantilever.pvd"
+                        "${_cli_out}/vtk_statics/cantilever_000000.vtp")
 cosserat_cli_test(NAME vtk_needs_dynamics
-                  ARGS solve "${_cli_example}" --vtk "${_cli_out}/vtk_statics"
-                  CODE 2 STDERR "--vtk writes the frames of a dynamics run; this problem's analysis is \"statics\"")
+                  ARGS solve "${_cli_dir}/../../examples/l_frame.json" --vtk "${_cli_out}/vtk_frame"
+                  CODE 2 STDERR "--vtk writes an assembly's dynamics frames; this assembly's analysis is \"statics\"")
 # Refused before the output files are opened: an earlier result in --out survives.
 cosserat_cli_test(NAME vtk_statics_keeps_out
-                  ARGS solve "${_cli_example}" --vtk "${_cli_out}/vtk_statics"
+                  ARGS solve "${_cli_dir}/../../examples/l_frame.json" --vtk "${_cli_out}/vtk_frame"
                        --out "${_cli_out}/kept.json"
-                  CODE 2 KEEP "${_cli_out}/kept.json" STDERR "--vtk writes the frames")
+                  CODE 2 KEEP "${_cli_out}/kept.json" STDERR "--vtk writes an assembly's")
 
 # A study file's errors name their fields (docs/sweeps.md).
 cosserat_cli_test(NAME bad_study ARGS sweep "${_cli_dir}/bad_study.json" --out "${_cli_out}/bad_study.csv"
