@@ -30,12 +30,16 @@ void ScalarArray(std::ostream& out, const char* name, int nodes, const Value& va
   out << "\n        </DataArray>\n";
 }
 
-void Piece(std::ostream& out, const RodState& st, const std::vector<double>& radius,
+void Piece(std::ostream& out, int rod, const RodState& st, const std::vector<double>& radius,
            const std::vector<Vec3>* contact_force) {
   const int n = st.size();
   out << "    <Piece NumberOfPoints=\"" << n
       << "\" NumberOfVerts=\"0\" NumberOfLines=\"1\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
       << "      <PointData Scalars=\"radius\">\n";
+  // Which rod the point is on (0-based, in the order of assembly.rods): to colour or threshold.
+  out << "        <DataArray type=\"Int32\" Name=\"rod\" format=\"ascii\">\n         ";
+  for (int i = 0; i < n; ++i) out << ' ' << rod;
+  out << "\n        </DataArray>\n";
   ScalarArray(out, "s", n, [&](int i) { return st.s[i]; });
   ScalarArray(out, "radius", n, [&](int i) { return i < int(radius.size()) ? radius[i] : 0.0; });
   for (int j = 0; j < 3; ++j) {
@@ -121,7 +125,8 @@ bool WriteVtkSeries(const std::string& directory, const std::string& stem,
         << "  <PolyData>\n";
     const VtkFrame& frame = frames[k];
     for (std::size_t r = 0; r < frame.rods.size(); ++r)
-      Piece(vtp, frame.rods[r], r < radius.size() ? radius[r] : std::vector<double>{},
+      Piece(vtp, static_cast<int>(r), frame.rods[r],
+            r < radius.size() ? radius[r] : std::vector<double>{},
             r < frame.contact_force.size() ? &frame.contact_force[r] : nullptr);
     vtp << "  </PolyData>\n</VTKFile>\n";
     if (!WriteFile(fs::path(directory) / file, vtp.str(), error)) return false;

@@ -71,6 +71,24 @@ def main(argv):
 
     with tempfile.TemporaryDirectory() as work:
         spec, result, pvd = run(binary, problem, formulation, work)
+        if "assembly" in result:  # each rod's points carry its index, as in assembly.rods
+            datasets = ET.parse(pvd).getroot().find("Collection").findall("DataSet")
+            points, arrays, lines = read_frame(os.path.join(os.path.dirname(pvd),
+                                                            datasets[-1].get("file")))
+            rods = result["assembly"]["rods"]
+            check(lines == len(rods), f"{lines} polylines for {len(rods)} rods")
+            start = 0
+            for r, rod in enumerate(rods):
+                nodes = np.asarray(rod["nodes"]["position"])
+                mine = arrays["rod"][start:start + len(nodes)]
+                check(np.all(mine == r), f"rod {r}'s points are labelled {set(mine.tolist())}")
+                gap = np.abs(points[start:start + len(nodes)] - nodes).max()
+                check(gap < 1e-12, f"rod {r}'s last frame differs from its nodes by {gap} m")
+                start += len(nodes)
+            print(f"assembly: {len(rods)} rods labelled, {len(datasets)} frames")
+            for f in failures:
+                print("FAIL:", f)
+            return 1 if failures else 0
         if "trajectory" not in result:  # statics: the equilibrium, one frame at t = 0
             datasets = ET.parse(pvd).getroot().find("Collection").findall("DataSet")
             check(len(datasets) == 1 and float(datasets[0].get("timestep")) == 0.0,

@@ -5,8 +5,8 @@
 /// .pvd; its Tube filter, sized by the "radius" point data, draws the rods as tubes.
 ///
 /// Point data per node (world frame unless the name says otherwise):
-///   s (m), radius (m: the section's outer radius), d1, d2, d3 (the section's directors, the
-///   columns of R_WB), curvature (body frame K, 1/m), shear_stretch (body frame Γ), force (the
+///   rod (the rod's index in the frame), s (m), radius (m: the section's outer radius), d1, d2,
+///   d3 (the section's directors, the columns of R_WB), curvature (body frame K, 1/m), shear_stretch (body frame Γ), force (the
 ///   internal force R n, N), moment (the internal moment R m, N·m), velocity (R v, m/s), and
 ///   with contact surfaces contact_force (N/m).
 /// Positions and values are written as text with 17 significant digits: read back, they are the
