@@ -98,12 +98,24 @@ bool SameFile(const std::string& a, const std::string& b) {
          std::filesystem::equivalent(a, b, ea);
 }
 
-/// True when both paths name one file, existing or to be written ("o.json" and "./o.json").
+/// Where writing to `path` lands: its symbolic links followed (a dangling one too: writing
+/// creates its target), its directory made canonical.
+std::filesystem::path WriteTarget(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path p = fs::absolute(path, ec);
+  for (int hops = 0; hops < 40 && fs::is_symlink(p, ec); ++hops) {
+    const fs::path target = fs::read_symlink(p, ec);
+    if (ec) break;
+    p = target.is_absolute() ? target : p.parent_path() / target;
+  }
+  return fs::weakly_canonical(p.parent_path(), ec) / p.filename();
+}
+
+/// True when both paths name one file, existing or to be written ("o.json", "./o.json", or a
+/// link to it).
 bool SamePath(const std::string& a, const std::string& b) {
-  std::error_code ea, eb;
-  const auto full_a = std::filesystem::absolute(a, ea).lexically_normal();
-  const auto full_b = std::filesystem::absolute(b, eb).lexically_normal();
-  return SameFile(a, b) || (!ea && !eb && full_a == full_b);
+  return SameFile(a, b) || WriteTarget(a) == WriteTarget(b);
 }
 
 /// Sets an option that may be given once.

@@ -185,6 +185,7 @@ TEST(Run, ABucklingSearchThatFailsAtOnceReportsNoState) {
   for (const auto& p : r.json["nodes"]["position"])
     for (const auto& x : p) EXPECT_TRUE(x.is_null() || std::isnan(x.get<double>())) << p.dump();
   EXPECT_NE(r.log.find("hint: a single SE(3) shot"), std::string::npos) << r.log;
+  EXPECT_TRUE(r.json["residual"].is_null() || std::isnan(r.json["residual"].get<double>()));
 }
 
 // A cantilever pressed along its axis 19 times past its buckling load P_cr = π²EI/4L² (1.55 N)

@@ -135,6 +135,9 @@ void ReadProblem(const ObjectReader& top, const std::string& base_directory, Stu
       report.Add("problem", path.string() + ": cannot read the file (" + why + ")");
     else if (!pd.value)
       for (const std::string& e : pd.errors) report.Add("problem", e);
+    else if (pd.value->is_object() && pd.value->contains("format") &&
+             (*pd.value)["format"] == "cosserat-study/1")
+      report.Expected("problem", "a problem file", path.string() + ", a study file");
     else
       study.problem = *pd.value;
   } else if (problem->is_object()) {

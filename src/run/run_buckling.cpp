@@ -90,8 +90,11 @@ std::string SingleShotHint(const io::Problem& problem, const BucklingSummary& b)
   hint << "cosserat: hint: a single SE(3) shot of this rod amplifies errors by about e^"
        << std::setprecision(3) << exponent
        << " (contact stiffness or tension; more than double precision holds from e^15 on), and "
-          "the buckling search shoots the rod in one piece; for a cantilever use \"formulation\": "
-          "\"quaternion-fd\"\n";
+          "the buckling search shoots the rod in one piece; "
+       << (problem.boundary == io::Boundary::kCantilever
+               ? "\"formulation\": \"quaternion-fd\" searches a cantilever on the whole grid\n"
+               : "a column this stiffly held is beyond this version's buckling search (its "
+                 "statics, in pieces, still run)\n");
   return hint.str();
 }
 
@@ -113,6 +116,8 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
 
   StaticShootingSummary statics;
   statics.status = ok ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
+  // A search that failed before any load has no equilibrium to measure (null, not 0).
+  if (!ok && b.lambda_reached <= 0.0) statics.residual = NAN;
   statics.wall_time_s = b.wall_time_s;
   Result result;
   result.json = io::StaticResultToJson(statics, analysis.state());

@@ -104,6 +104,11 @@ cosserat_cli_test(NAME out_given_twice
 cosserat_cli_test(NAME out_and_csv_same_file
                   ARGS solve "${_cli_example}" --out "${_cli_out}/same.txt" --csv "${_cli_out}/same.txt"
                   CODE 2 STDERR "--out and --csv name the same file")
+file(REMOVE "${_cli_out}/link.json")
+file(CREATE_LINK "${_cli_out}/link_target.json" "${_cli_out}/link.json" SYMBOLIC)
+cosserat_cli_test(NAME out_and_csv_same_file_through_a_link
+                  ARGS solve "${_cli_example}" --out "${_cli_out}/link_target.json" --csv "${_cli_out}/link.json"
+                  CODE 2 STDERR "--out and --csv name the same file")
 cosserat_cli_test(NAME out_and_csv_same_file_spelt_apart
                   ARGS solve "${_cli_example}" --out "${_cli_out}/same.txt" --csv "${_cli_out}/./same.txt"
                   CODE 2 STDERR "--out and --csv name the same file")
@@ -124,6 +129,8 @@ cosserat_cli_test(NAME validate_deep_nesting
 cosserat_cli_test(NAME sweep_output_never_found
                   ARGS sweep "${_cli_dir}/study_output_typo.json" --out "${_cli_out}/typo.csv"
                   CODE 0 STDERR "warning: output \"tip_x\" \\(/tip/positoin/0\\) is empty in every converged point")
+cosserat_cli_test(NAME study_of_a_study ARGS validate "${_cli_dir}/study_of_a_study.json"
+                  CODE 2 STDERR "problem: expected a problem file, got .*study_of_a_study.json, a study file")
 cosserat_cli_test(NAME sweep_out_device
                   ARGS sweep "${_cli_dir}/../../examples/studies/tendon_workspace.json" --out /dev/full
                   CODE 2 STDERR "/dev/full: not a regular file")
