@@ -71,6 +71,47 @@ void ClampedTipFeatures(const Problem& p, std::vector<std::string>* out) {
         "the rod");
 }
 
+/// The boundary each analysis and formulation runs with.
+void BoundaryFeatures(const Problem& p, std::vector<std::string>* out) {
+  using A = Analysis;
+  using B = Boundary;
+  const bool quatfd = p.formulation == Formulation::kQuaternionFd;
+  // Every analysis and formulation runs; the boundary depends on both.
+  if (p.boundary == B::kAnchored && p.analysis == A::kBuckling)
+    out->push_back("boundary: \"anchored\" runs statics, dynamics and modes in this version");
+  else if (p.boundary == B::kAnchored && !quatfd && p.analysis != A::kStatics)
+    out->push_back(
+        "boundary: \"anchored\" runs dynamics and modes on the \"quaternion-fd\" formulation "
+        "in this version (statics on both)");
+  else if (quatfd && p.analysis != A::kBuckling)  // rod.nodes >= 3 is checked by the parser
+    CheckSupported("boundary", p.boundary, {B::kCantilever, B::kAnchored}, out);
+  else if (quatfd)
+    CheckSupported("boundary", p.boundary, {B::kCantilever}, out);
+  else if (p.analysis == A::kDynamics)
+    CheckSupported("boundary", p.boundary, {B::kCantilever, B::kFreeFree}, out);
+  else if (p.analysis == A::kBuckling)
+    CheckSupported("boundary", p.boundary,
+                   {B::kCantilever, B::kPinnedPinned, B::kClampedClamped, B::kClampedPinned}, out);
+  else if (p.analysis == A::kStatics)
+    CheckSupported("boundary", p.boundary,
+                   {B::kCantilever, B::kPinnedPinned, B::kClampedClamped, B::kClampedPinned,
+                    B::kAnchored},
+                   out);
+  else
+    CheckSupported("boundary", p.boundary, {B::kCantilever}, out);
+  // Modes of a rod held at both ends: the quaternion-FD anchored rod has them.
+  const bool held_ends = p.boundary == B::kPinnedPinned || p.boundary == B::kClampedClamped ||
+                         p.boundary == B::kClampedPinned;
+  if (p.analysis == A::kModes && held_ends && !out->empty())
+    out->back() +=
+        "; modes of a rod held at both ends run as \"boundary\": \"anchored\" (with anchor.base "
+        "or anchor.tip \"clamped\" for a clamped end) on \"formulation\": \"quaternion-fd\"";
+  if (!quatfd && p.analysis == A::kStatics && p.boundary != B::kCantilever &&
+      p.boundary != B::kFreeFree && p.has_robot)
+    out->push_back("robot: a robot runs with \"boundary\": \"cantilever\" in statics (got " +
+                   detail::Quote(ToString(p.boundary)) + ")");
+}
+
 /// Whether the rod has no mass per length at some node of its grid.
 bool MasslessSomewhere(const Problem& p) {
   const int n = std::max(p.nodes, 2);
@@ -85,37 +126,10 @@ bool MasslessSomewhere(const Problem& p) {
 
 std::vector<std::string> UnsupportedFeatures(const Problem& p) {
   using A = Analysis;
-  using B = Boundary;
   std::vector<std::string> out;
   const bool quatfd = p.formulation == Formulation::kQuaternionFd;
   if (p.has_assembly) return detail::UnsupportedAssemblyFeatures(p);
-  // Every analysis and formulation runs; the boundary depends on both.
-  if (p.boundary == B::kAnchored && p.analysis == A::kBuckling)
-    out.push_back("boundary: \"anchored\" runs statics, dynamics and modes in this version");
-  else if (p.boundary == B::kAnchored && !quatfd && p.analysis != A::kStatics)
-    out.push_back(
-        "boundary: \"anchored\" runs dynamics and modes on the \"quaternion-fd\" formulation "
-        "in this version (statics on both)");
-  else if (quatfd && p.analysis != A::kBuckling)  // rod.nodes >= 3 is checked by the parser
-    CheckSupported("boundary", p.boundary, {B::kCantilever, B::kAnchored}, &out);
-  else if (quatfd)
-    CheckSupported("boundary", p.boundary, {B::kCantilever}, &out);
-  else if (p.analysis == A::kDynamics)
-    CheckSupported("boundary", p.boundary, {B::kCantilever, B::kFreeFree}, &out);
-  else if (p.analysis == A::kBuckling)
-    CheckSupported("boundary", p.boundary,
-                   {B::kCantilever, B::kPinnedPinned, B::kClampedClamped, B::kClampedPinned}, &out);
-  else if (p.analysis == A::kStatics)
-    CheckSupported("boundary", p.boundary,
-                   {B::kCantilever, B::kPinnedPinned, B::kClampedClamped, B::kClampedPinned,
-                    B::kAnchored},
-                   &out);
-  else
-    CheckSupported("boundary", p.boundary, {B::kCantilever}, &out);
-  if (!quatfd && p.analysis == A::kStatics && p.boundary != B::kCantilever &&
-      p.boundary != B::kFreeFree && p.has_robot)
-    out.push_back("robot: a robot runs with \"boundary\": \"cantilever\" in statics (got " +
-                  detail::Quote(ToString(p.boundary)) + ")");
+  BoundaryFeatures(p, &out);
   DriveAndFlowFeatures(p, &out);
   TipBodyFeatures(p, &out);
   ClampedTipFeatures(p, &out);
