@@ -276,6 +276,47 @@ TEST(Run, AFilledPipeVibratesWithItsContents) {
   }
 }
 
+// The envelope of a run that stays at rest is its equilibrium: a steel wire hanging from its
+// clamp, started in equilibrium, carries T(s) = ρ A g (L − s) at every frame, so both the
+// largest and the smallest tension of every node are that (to the solvers' tolerances, 1e-6 of
+// the top tension), and no bending moment. A released cantilever's envelope bounds its final
+// state.
+TEST(Run, TheLoadEnvelopeOfAHangingWireIsItsWeight) {
+  const std::string base = R"({
+    "format": "cosserat-problem/1", "analysis": "dynamics", "formulation": "FORMULATION",
+    "rod": {"length": 1, "nodes": 21, "section": {"shape": "circle", "radius": 0.001},
+            "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9, "density": 8000}},
+    "base": {"rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]]},
+    "loads": {"gravity": [0, 0, -9.81]},
+    "dynamics": {"dt": 0.001, "duration": 0.05, "output_interval": 0.01}})";
+  const double top = 8000 * M_PI * 1e-6 * 9.81;  // ρ A g L, N
+  for (const char* formulation : {"se3-shooting", "quaternion-fd"}) {
+    std::string text = base;
+    text.replace(text.find("FORMULATION"), 11, formulation);
+    const io::ParseResult parsed = io::ParseProblem(text);
+    ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
+    const Result r = cosserat::run::Run(*parsed.problem);
+    ASSERT_TRUE(r.converged) << r.log;
+    const auto& e = r.json["envelope"];
+    const auto& s = r.json["nodes"]["s"];
+    ASSERT_EQ(e["tension_max"].size(), s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const double expected = top * (1 - s[i].get<double>());
+      EXPECT_NEAR(e["tension_max"][i].get<double>(), expected, 1e-6 * top) << formulation << i;
+      EXPECT_NEAR(e["tension_min"][i].get<double>(), expected, 1e-6 * top) << formulation << i;
+      EXPECT_LT(e["moment_max"][i].get<double>(), 1e-6 * top) << formulation << i;
+    }
+  }
+  const Result release = cosserat::run::Run(
+      *io::LoadProblemFile(std::string(COSSERAT_SOURCE_DIR) + "/examples/cantilever_release.json")
+           .problem);
+  const auto& e = release.json["envelope"];
+  const auto& moment = release.json["nodes"]["moment_body"];
+  for (std::size_t i = 0; i < moment.size(); ++i)
+    EXPECT_GE(e["moment_max"][i].get<double>(),
+              std::hypot(moment[i][0].get<double>(), moment[i][1].get<double>()));
+}
+
 // A solve that converges onto NaN (a rod of 1e-300 m: the quaternion-FD segment length
 // underflows in its strains) is reported as non_finite, not as a converged result with nulls.
 TEST(Run, ANonFiniteAnswerIsNotConverged) {

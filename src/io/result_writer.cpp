@@ -106,6 +106,10 @@ json DynamicResultToJson(const DynamicRun& run, const RodState& final_state) {
     out["trajectory"]["anchor_force"] = std::move(force);
   }
   out["nodes"] = NodesToJson(final_state);
+  if (run.envelope.frames > 0)
+    out["envelope"] = {{"tension_max", run.envelope.tension_max},
+                       {"tension_min", run.envelope.tension_min},
+                       {"moment_max", run.envelope.moment_max}};
   return out;
 }
 

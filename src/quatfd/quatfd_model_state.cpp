@@ -298,6 +298,9 @@ void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,
       TipLoads<double>(q.segment<4>(L::P(N - 1)), &f, &m);
       M = R.transpose() * lie::QuatToRotation(q.segment<4>(L::P(N - 1)).normalized()) * m;
       K = tip_rest_ + tip_compliance_ * M;
+      // A free end carries the tip force itself, n(L) = F_tip (the last segment's force, half a
+      // segment in, also holds the load and inertia lumped at x_N).
+      if (!options_.TipHeld()) Fw = f;
     }
     state->strain[n] << K, G;
     state->wrench_B[n] << M, R.transpose() * Fw;

@@ -71,6 +71,7 @@ void Record(const Bdf2ShootingStepper& stepper, double t, bool all_nodes, io::Dy
   const RodState& state = stepper.state();
   run->frame_t.push_back(t);
   run->frame_tip.push_back(state.tip_position_W());
+  run->envelope.Add(state);
   if (run->report_tip_spin) run->frame_tip_spin.push_back(state.twist_B.back()(2));
   if (all_nodes)
     run->frame_positions.insert(run->frame_positions.end(), state.position_W.begin(),

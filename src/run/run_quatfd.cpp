@@ -216,6 +216,7 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
     model.ToRodState(q, v, &state);
     run.frame_t.push_back(t);
     run.frame_tip.push_back(state.tip_position_W());
+    run.envelope.Add(state);
     if (run.report_anchor_force)
       run.frame_anchor_force.push_back(state.rotation_WB.back() * state.wrench_B.back().tail<3>());
     if (run.report_touchdown) run.frame_touchdown_s.push_back(detail::TouchdownS(problem, state));

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cosserat/io/load_envelope.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/state/rod_state.hpp"
 #include "cosserat/strong/static_shooting.hpp"
@@ -77,6 +78,8 @@ struct DynamicRun {
   std::vector<double> frame_touchdown_s;
   bool report_touchdown = false;
   std::vector<Vec3> frame_positions;  ///< all node positions, frame after frame (may be empty)
+  /// The section forces' envelope over the recorded frames, written as "envelope".
+  LoadEnvelope envelope;
   /// The whole state of each frame, when `record_states` (for the VTK time series).
   std::vector<RodState> frame_states;
   bool record_states = false;
