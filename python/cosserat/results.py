@@ -102,6 +102,8 @@ def solve(problem, nodes=False):
       log         the summary line and any hints
       nodes       result["nodes"] with its lists as NumPy arrays (positions N x 3, m; s, m; ...)
       trajectory  result["trajectory"] likewise (t (s), tip_position (F x 3, m), ...), if any
+      envelope    dynamics: result["envelope"] likewise (tension_max, tension_min (N),
+                  moment_max (N·m), one value per node)
       frames      with nodes=True in dynamics: {"t": (F,), "position": (F, N, 3)} (m, world);
                   of an assembly {"t": (F,), "rods": [(F, N_i, 3) per rod]}
       nodes_csv   with nodes=True: the --csv table as text
@@ -113,6 +115,8 @@ def solve(problem, nodes=False):
         out["nodes"] = _arrays(result["nodes"])
     if isinstance(result.get("trajectory"), dict):
         out["trajectory"] = _arrays(result["trajectory"])
+    if isinstance(result.get("envelope"), dict):
+        out["envelope"] = _arrays(result["envelope"])
     if nodes and out.get("nodes_csv"):
         frames = _frames(out["nodes_csv"])
         if frames is not None:

@@ -561,6 +561,10 @@ class PythonSide(unittest.TestCase):
         np.testing.assert_array_equal(frames["t"], out["trajectory"]["t"])
         np.testing.assert_allclose(frames["position"][:, -1, :], out["trajectory"]["tip_position"],
                                    rtol=0, atol=1e-15)
+        # The envelope, one value per node, bounds the final state's bending moment.
+        moment = np.hypot(out["nodes"]["moment_body"][:, 0], out["nodes"]["moment_body"][:, 1])
+        self.assertEqual(out["envelope"]["moment_max"].shape, (21,))
+        self.assertTrue(np.all(out["envelope"]["moment_max"] >= moment))
         ax = cosserat.plot(out)
         self.assertEqual(len(ax.lines), 3)  # the rod, its base, the tip's path
         with tempfile.TemporaryDirectory() as d:
