@@ -97,24 +97,47 @@ void RemoveStaleFrames(const std::string& directory, const std::string& stem, st
   for (const fs::path& file : stale) fs::remove(file, ec);
 }
 
-}  // namespace
-
-bool WriteVtkSeries(const std::string& directory, const std::string& stem,
-                    const std::vector<VtkFrame>& frames,
-                    const std::vector<std::vector<double>>& radius, std::string* error) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(directory, ec);
-  if (ec) {
-    if (error) *error = directory + ": cannot create the directory (" + ec.message() + ")";
-    return false;
+/// The rigid bodies of a frame as vertices: their origins, with `body` (the index), their axes
+/// d1, d2, d3 (the columns of R_WB) and their velocity.
+void BodiesPiece(std::ostream& out, const VtkFrame& frame) {
+  const int n = static_cast<int>(frame.bodies.size());
+  out << "    <Piece NumberOfPoints=\"" << n
+      << "\" NumberOfVerts=\"" << n << "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+         "NumberOfPolys=\"0\">\n      <PointData>\n";
+  out << "        <DataArray type=\"Int32\" Name=\"body\" format=\"ascii\">\n         ";
+  for (int i = 0; i < n; ++i) out << ' ' << i;
+  out << "\n        </DataArray>\n";
+  for (int j = 0; j < 3; ++j) {
+    const char* names[] = {"d1", "d2", "d3"};
+    VectorArray(out, names[j], n, [&](int i) { return Vec3(frame.bodies[i].R.col(j)); });
   }
+  VectorArray(out, "velocity", n, [&](int i) {
+    return i < static_cast<int>(frame.body_velocity_W.size()) ? frame.body_velocity_W[i]
+                                                              : Vec3::Zero();
+  });
+  out << "      </PointData>\n      <Points>\n";
+  VectorArray(out, "position", n, [&](int i) { return frame.bodies[i].p; });
+  out << "      </Points>\n      <Verts>\n"
+      << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n         ";
+  for (int i = 0; i < n; ++i) out << ' ' << i;
+  out << "\n        </DataArray>\n"
+      << "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n         ";
+  for (int i = 1; i <= n; ++i) out << ' ' << i;
+  out << "\n        </DataArray>\n      </Verts>\n    </Piece>\n";
+}
+
+/// Writes `directory`/`stem`_NNNNNN.vtp for frames k = 0 … count − 1, each holding the pieces
+/// `pieces(k, out)` writes, and `stem`.pvd listing them at times `t(k)`.
+template <typename Time, typename Pieces>
+bool WriteSeries(const std::string& directory, const std::string& stem, std::size_t count,
+                 const Time& t, const Pieces& pieces, std::string* error) {
+  namespace fs = std::filesystem;
   std::ostringstream pvd;
   pvd << std::setprecision(17);
   pvd << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <Collection>\n";
-  for (std::size_t k = 0; k < frames.size(); ++k) {
+  for (std::size_t k = 0; k < count; ++k) {
     char name[64];
     std::snprintf(name, sizeof name, "_%06zu.vtp", k);
     const std::string file = stem + name;
@@ -123,19 +146,40 @@ bool WriteVtkSeries(const std::string& directory, const std::string& stem,
     vtp << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <PolyData>\n";
+    pieces(k, vtp);
+    vtp << "  </PolyData>\n</VTKFile>\n";
+    if (!WriteFile(fs::path(directory) / file, vtp.str(), error)) return false;
+    pvd << "    <DataSet timestep=\"" << t(k) << "\" group=\"\" part=\"0\" file=\"" << file
+        << "\"/>\n";
+  }
+  pvd << "  </Collection>\n</VTKFile>\n";
+  RemoveStaleFrames(directory, stem, count);
+  return WriteFile(fs::path(directory) / (stem + ".pvd"), pvd.str(), error);
+}
+
+}  // namespace
+
+bool WriteVtkSeries(const std::string& directory, const std::string& stem,
+                    const std::vector<VtkFrame>& frames,
+                    const std::vector<std::vector<double>>& radius, std::string* error) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  if (ec) {
+    if (error) *error = directory + ": cannot create the directory (" + ec.message() + ")";
+    return false;
+  }
+  auto t = [&](std::size_t k) { return frames[k].t; };
+  auto rods = [&](std::size_t k, std::ostream& vtp) {
     const VtkFrame& frame = frames[k];
     for (std::size_t r = 0; r < frame.rods.size(); ++r)
       Piece(vtp, static_cast<int>(r), frame.rods[r],
             r < radius.size() ? radius[r] : std::vector<double>{},
             r < frame.contact_force.size() ? &frame.contact_force[r] : nullptr);
-    vtp << "  </PolyData>\n</VTKFile>\n";
-    if (!WriteFile(fs::path(directory) / file, vtp.str(), error)) return false;
-    pvd << "    <DataSet timestep=\"" << frames[k].t << "\" group=\"\" part=\"0\" file=\"" << file
-        << "\"/>\n";
-  }
-  pvd << "  </Collection>\n</VTKFile>\n";
-  RemoveStaleFrames(directory, stem, frames.size());
-  return WriteFile(fs::path(directory) / (stem + ".pvd"), pvd.str(), error);
+  };
+  if (!WriteSeries(directory, stem, frames.size(), t, rods, error)) return false;
+  if (frames.empty() || frames.front().bodies.empty()) return true;
+  auto bodies = [&](std::size_t k, std::ostream& vtp) { BodiesPiece(vtp, frames[k]); };
+  return WriteSeries(directory, stem + "_bodies", frames.size(), t, bodies, error);
 }
 
 }  // namespace cosserat::io

@@ -25,7 +25,9 @@ void KeepStaticFrame(const io::Problem& problem, const RodState& state, const Ru
                      Result* result) {
   if (!options.frames || state.size() == 0) return;
   result->node_radius = {NodeRadius(problem.rod, state.s, problem.robot.actuation)};
-  result->frames = {{0.0, {state}, {}}};
+  io::VtkFrame frame;
+  frame.rods = {state};
+  result->frames = {std::move(frame)};
 }
 
 void MoveFrames(const RodModel& model, const Actuation& actuation, io::DynamicRun* run,
@@ -33,8 +35,12 @@ void MoveFrames(const RodModel& model, const Actuation& actuation, io::DynamicRu
   if (run->frame_states.empty()) return;
   result->node_radius = {NodeRadius(model, run->frame_states.front().s, actuation)};
   result->frames.reserve(run->frame_states.size());
-  for (std::size_t k = 0; k < run->frame_states.size() && k < run->frame_t.size(); ++k)
-    result->frames.push_back({run->frame_t[k], {std::move(run->frame_states[k])}, {}});
+  for (std::size_t k = 0; k < run->frame_states.size() && k < run->frame_t.size(); ++k) {
+    io::VtkFrame frame;
+    frame.t = run->frame_t[k];
+    frame.rods.push_back(std::move(run->frame_states[k]));
+    result->frames.push_back(std::move(frame));
+  }
   run->frame_states.clear();
 }
 

@@ -33,8 +33,13 @@ void Record(const AssemblyDynamics& dyn, const StaticLoads& loads, const RunOpti
             Frames* f, Result* result) {
   f->t.push_back(dyn.time());
   if (options.frames) {
-    io::VtkFrame frame{dyn.time(), {}, {}};
+    io::VtkFrame frame;
+    frame.t = dyn.time();
     for (int i = 0; i < dyn.rod_count(); ++i) frame.rods.push_back(dyn.rod(i).state());
+    for (int b = 0; b < dyn.body_count(); ++b) {
+      frame.bodies.push_back(dyn.body_pose(b));
+      frame.body_velocity_W.push_back(dyn.body_velocity_W(b));
+    }
     result->frames.push_back(std::move(frame));
   }
   const bool nodes = options.nodes_csv;

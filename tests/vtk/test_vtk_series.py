@@ -85,7 +85,18 @@ def main(argv):
                 gap = np.abs(points[start:start + len(nodes)] - nodes).max()
                 check(gap < 1e-12, f"rod {r}'s last frame differs from its nodes by {gap} m")
                 start += len(nodes)
-            print(f"assembly: {len(rods)} rods labelled, {len(datasets)} frames")
+            # The bodies: a series of their own, one vertex each, at the result's final poses.
+            body_pvd = pvd[:-len(".pvd")] + "_bodies.pvd"
+            body_sets = ET.parse(body_pvd).getroot().find("Collection").findall("DataSet")
+            check(len(body_sets) == len(datasets), "the bodies' series has another frame count")
+            bpoints, barrays, _ = read_frame(os.path.join(os.path.dirname(pvd),
+                                                          body_sets[-1].get("file")))
+            for b, body in enumerate(result["assembly"]["bodies"]):
+                gap = np.abs(bpoints[b] - np.asarray(body["position"])).max()
+                check(gap < 1e-12 and barrays["body"][b] == b,
+                      f"body {b} at {bpoints[b]}, the result has {body['position']}")
+            print(f"assembly: {len(rods)} rods labelled, {len(datasets)} frames, "
+                  f"{len(result['assembly']['bodies'])} bodies")
             for f in failures:
                 print("FAIL:", f)
             return 1 if failures else 0

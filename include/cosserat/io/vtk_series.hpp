@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cosserat/lie/se3.hpp"
 #include "cosserat/state/rod_state.hpp"
 
 namespace cosserat::io {
@@ -26,10 +27,14 @@ struct VtkFrame {
   /// With contact surfaces: each rod's contact force per unit length at its nodes (N/m, world),
   /// written as the point data "contact_force"; empty otherwise.
   std::vector<std::vector<Vec3>> contact_force;
+  /// An assembly's rigid bodies: their poses (world) and velocities (m/s, world), written as the
+  /// separate series `stem`_bodies (one vertex per body); empty for a single rod.
+  std::vector<lie::SE3> bodies;
+  std::vector<Vec3> body_velocity_W;
 };
 
 /// Writes `directory`/`stem`_NNNNNN.vtp for every frame and `directory`/`stem`.pvd listing them
-/// (the directory is created if missing). `radius[r]` holds rod r's outer radius at each of its
+/// (the directory is created if missing); with bodies, `stem`_bodies.pvd and its frames too. `radius[r]` holds rod r's outer radius at each of its
 /// nodes (m). Returns false with *error set ("<path>: <why>") when a file cannot be written.
 bool WriteVtkSeries(const std::string& directory, const std::string& stem,
                     const std::vector<VtkFrame>& frames,
