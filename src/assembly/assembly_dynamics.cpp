@@ -267,7 +267,7 @@ AssemblySummary AssemblyDynamics::InitializeAtRest(const StaticLoads& loads) {
   if (held) {
     // The shooting solver of statics (continuation included) gives the poses and the rods'
     // base wrenches; the steppers' equations then differ from its only by round-off.
-    AssemblyStaticsSolver statics(assembly_);
+    AssemblyStaticsSolver statics(assembly_, options_.statics);
     summary = statics.Solve(loads);
     if (!summary.converged()) return summary;
     from = statics.body_poses();

@@ -111,6 +111,11 @@ Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options
   AssemblyDynamicsOptions opt;
   opt.dt = d.dt;
   opt.rod.spatial_scheme = ToSpatialScheme(d.spatial_scheme);
+  // solver.tolerance and max_iterations: the start at rest's statics; a step's balance is never
+  // asked to be tighter than 1e-8 (the rods' own solves are its noise), only looser.
+  opt.statics.tolerance = problem.solver.tolerance;
+  opt.statics.max_iterations = problem.solver.max_iterations;
+  opt.tolerance = std::max(opt.tolerance, problem.solver.tolerance);
   AssemblyDynamics dyn(spec.assembly, opt);
   const int B = dyn.body_count();
   const auto start = Clock::now();

@@ -37,6 +37,8 @@ struct AssemblyDynamicsOptions {
   /// which must be tighter: their error is noise in this balance.
   double tolerance = 1e-8;
   int max_iterations = 20;  ///< Newton iterations per step
+  /// The statics of InitializeAtRest (the start at rest).
+  AssemblyOptions statics;
   /// The rods' steppers: scheme, pieces, first step. Their dt is dt; their halvings are off (a
   /// rod's sub-steps would not be the bodies' steps).
   Bdf2Options rod = [] {
