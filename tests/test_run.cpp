@@ -317,6 +317,27 @@ TEST(Run, TheLoadEnvelopeOfAHangingWireIsItsWeight) {
               std::hypot(moment[i][0].get<double>(), moment[i][1].get<double>()));
 }
 
+// The bending stress is the backbone's: a straight tendon at r_t = 8 mm pulled with 1.5 N bends
+// a 0.8 mm steel backbone to κ = T r_t / EI with no external load, so its outer fibre carries
+// T r_t r / I = 239 MPa, while the section's resultant moment (backbone plus tendon) is zero.
+// It was reported as 0 Pa. To the tendon law's solve (1e-10 relative).
+TEST(Run, ATendonBentBackboneReportsItsBendingStress) {
+  const io::ParseResult parsed = io::ParseProblem(R"({
+    "format": "cosserat-problem/1",
+    "rod": {"length": 0.25, "nodes": 21, "section": {"shape": "circle", "radius": 0.0004},
+            "material": {"youngs_modulus": 210e9, "shear_modulus": 80e9, "density": 7800}},
+    "robot": {"kind": "tendon", "disk_radius": 0.01,
+              "tendons": [{"route": "parallel", "offset": [0.008, 0]}],
+              "actuation": {"tension": [1.5]}}})");
+  ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
+  const Result r = cosserat::run::Run(*parsed.problem);
+  ASSERT_TRUE(r.converged) << r.log;
+  const double I = M_PI * std::pow(0.0004, 4) / 4;
+  const double expected = 1.5 * 0.008 * 0.0004 / I;  // Pa
+  for (const auto& sigma : r.json["nodes"]["bending_stress"])
+    EXPECT_NEAR(sigma.get<double>() / expected, 1.0, 1e-8);
+}
+
 // A solve that converges onto NaN (a rod of 1e-300 m: the quaternion-FD segment length
 // underflows in its strains) is reported as non_finite, not as a converged result with nulls.
 TEST(Run, ANonFiniteAnswerIsNotConverged) {

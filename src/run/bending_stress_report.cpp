@@ -9,7 +9,8 @@ namespace cosserat::run::detail {
 
 namespace {
 
-/// The outer fibre's bending stress (Pa) under the body-frame bending moments m1, m2 (N·m).
+/// The outer fibre's bending stress (Pa) under the body-frame bending moments m1, m2 (N·m) the
+/// section's material carries.
 double OuterFibreStress(const CrossSection& c, double m1, double m2) {
   switch (c.shape) {
     case SectionShape::kCircle:
@@ -34,22 +35,25 @@ void AddBendingStressReport(const io::Problem& problem, Result* result) {
   const auto* uniform = dynamic_cast<const UniformSection*>(profile);
   if (uniform == nullptr) return;
   const CrossSection& section = uniform->section();
+  const double E = uniform->material().youngs_modulus;
   const auto& s = json["nodes"]["s"];
-  const auto& moment = json["nodes"]["moment_body"];
   const auto& curvature = json["nodes"]["curvature"];
   nlohmann::ordered_json stress = nlohmann::ordered_json::array();
   double stress_max = -1.0, stress_s = 0.0, kappa_max = -1.0, kappa_s = 0.0;
-  for (std::size_t i = 0; i < moment.size(); ++i) {
-    const double sigma =
-        OuterFibreStress(section, moment[i][0].get<double>(), moment[i][1].get<double>());
+  for (std::size_t i = 0; i < curvature.size(); ++i) {
+    // The material's own bending moments E I (κ − κ*): with tendons or chambers the section's
+    // resultant moment is not the backbone's (a tendon's pull balances it: zero, under no load,
+    // on a backbone bent to 239 MPa).
+    const Vec6 rest = problem.rod.RestStrainAt(s[i].get<double>());
+    const double d1 = curvature[i][0].get<double>() - rest(0);
+    const double d2 = curvature[i][1].get<double>() - rest(1);
+    const double sigma = OuterFibreStress(section, E * section.I1 * d1, E * section.I2 * d2);
     stress.push_back(sigma);
     if (sigma > stress_max) {
       stress_max = sigma;
       stress_s = s[i].get<double>();
     }
-    const Vec6 rest = problem.rod.RestStrainAt(s[i].get<double>());  // the change of curvature
-    const double kappa = std::hypot(curvature[i][0].get<double>() - rest(0),
-                                    curvature[i][1].get<double>() - rest(1));
+    const double kappa = std::hypot(d1, d2);  // the change of curvature
     if (kappa > kappa_max) {
       kappa_max = kappa;
       kappa_s = s[i].get<double>();
