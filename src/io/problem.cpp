@@ -355,9 +355,12 @@ void CheckFormat(const ObjectReader& top) {
 void ParseAssemblyTopLevel(const ObjectReader& top, Problem* p) {
   for (const std::string& key : SingleRodKeys())
     if (top.Has(key))
-      top.report().Add(key,
-                       "not read with \"assembly\" (each rod of assembly.rods has its own "
-                       "\"rod\" and \"base\")");
+      top.report().Add(key, key == "environment"
+                                ? "not read with \"assembly\": fluid loads and contact act on "
+                                  "single rods only in this version (loads.distributed_force "
+                                  "and gravity act on every rod)"
+                                : "not read with \"assembly\" (each rod of assembly.rods has its "
+                                  "own \"rod\" and \"base\")");
   if (const auto loads = ReadObject(top, "loads", Presence::kOptional)) {
     p->loads = ParseLoads(*loads);
     CheckAssemblyLoads(*loads);

@@ -38,7 +38,8 @@ json SolutionToJson(const Assembly& assembly, bool inverse, AssemblyStaticsSolve
 
 /// d pose / d lengths of body 0 (6 × rods) from a forward solve at the solver's lengths: after
 /// an inverse solve this solve starts at its solution and returns at once. Null if it fails.
-json PoseJacobianJson(const io::Problem& problem, AssemblyStaticsSolver* solver) {
+json PoseJacobianJson(const io::Problem& problem, AssemblyStaticsSolver* solver,
+                      std::string* log) {
   if (problem.assembly.assembly.bodies.empty()) return nullptr;
   if (problem.assembly.inverse()) {
     const std::vector<double> lengths = solver->lengths();
@@ -46,6 +47,12 @@ json PoseJacobianJson(const io::Problem& problem, AssemblyStaticsSolver* solver)
   }
   const Eigen::MatrixXd J = solver->PoseJacobian(0, problem.loads);
   if (J.rows() != 6) return nullptr;
+  if (!J.allFinite()) {  // an optional output: the poses and forces stand without it
+    *log += "cosserat: note: pose_jacobian is not defined here (null): the first body's pose "
+            "does not move smoothly with the rods' lengths (a body held only by pinned tips "
+            "turns freely)\n";
+    return nullptr;
+  }
   json rows = json::array();
   for (int r = 0; r < 6; ++r) {
     json row = json::array();
@@ -104,7 +111,7 @@ Result RunAssembly(const io::Problem& problem, const RunOptions& options) {
   out["assembly"] = SolutionToJson(spec.assembly, spec.inverse(), &solver,
                                    options.nodes_csv ? &result.nodes_csv : nullptr);
   out["assembly"]["pose_jacobian"] =
-      summary.converged() ? PoseJacobianJson(problem, &solver) : json(nullptr);
+      summary.converged() ? PoseJacobianJson(problem, &solver, &result.log) : json(nullptr);
   return result;
 }
 

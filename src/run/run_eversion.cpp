@@ -38,7 +38,8 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
       growth_note << ", first kink at L = " << g.first_kink_length << " m";
   } else {
     const EversionSolveSummary s = robot.Solve(problem.loads);
-    converged = s.ok();
+    // As after growth: the exit code follows the solve (status); a kink is the robot's report.
+    converged = s.solve.converged();
     solve = s.solve;
     kink = s.kink;
   }
