@@ -464,6 +464,16 @@ TEST(ProblemIo, ASectionThatOverflowsIsAnErrorAtTheSection) {
   EXPECT_ERROR(Parse(j), "rod.section: its stiffness or mass per length at s = 0 m is not a finite");
 }
 
+// The inflation pressure given twice, differently (the profile's 3 kPa, the actuation's 6 kPa):
+// the actuation's silently won. Refused; the same value twice is fine.
+TEST(ProblemIo, AnEversionRobotHasOnePressure) {
+  json j = json::parse(std::ifstream(SourceDir() + "/robots/eversion_banded_vine.json"));
+  ASSERT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
+  j["robot"]["actuation"]["pressure"] = 6000;
+  EXPECT_ERROR(Parse(j), "robot.actuation.pressure: expected the pressure "
+                         "rod.stiffness_profile.pressure sets (3000 Pa)");
+}
+
 // A tolerance above 1e-3 of the dimensionless residual can pass the rigid-body guess itself as
 // converged (tolerance 1: the example cantilever's tip 1.4 % off): refused.
 TEST(ProblemIo, ASolverToleranceAboveOneThousandthIsRefused) {

@@ -257,9 +257,11 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
   ReadString(robot, "source", Presence::kOptional);
   const std::optional<double> guide = GuideRadius(robot, top);
 
-  // A profile solved at fixed pressures (rod.stiffness_profile) hands them to the robot, whose
-  // actuation may then change them.
+  // A profile solved at fixed pressures (rod.stiffness_profile) hands them to the robot; its
+  // actuation may change the jamming pressures, and repeat (not contradict) the pressure.
+  std::optional<double> profile_pressure;  // Pa, when rod.stiffness_profile sets one
   if (const auto* fixed = dynamic_cast<const FixedActuationSection*>(p->rod.section.get())) {
+    profile_pressure = fixed->actuation().pressure;
     p->robot.actuation.pressure = fixed->actuation().pressure;
     p->robot.actuation.jamming_pressure = fixed->actuation().jamming_pressure;
     p->robot.initial_actuation = p->robot.actuation;
@@ -309,8 +311,16 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
   const int tendons = listed && listed->is_array() ? static_cast<int>(listed->size())
                                                    : static_cast<int>(p->rod.tendons.size());
   const int jamming = JammingSegments(top);
-  if (const auto a = ReadObject(robot, "actuation", Presence::kOptional))
+  if (const auto a = ReadObject(robot, "actuation", Presence::kOptional)) {
     ParseActuation(*a, tendons, chambers, jamming, &p->robot.actuation, &p->robot.tendon_lengths);
+    // One pressure: the profile's and the actuation's must agree when both are given (the
+    // actuation's silently won).
+    if (profile_pressure && a->Has("pressure") && p->robot.actuation.pressure != *profile_pressure)
+      a->report().Expected(a->PathOf("pressure"),
+                           "the pressure rod.stiffness_profile.pressure sets (" +
+                               FormatNumber(*profile_pressure) + " Pa), or no pressure here",
+                           FormatNumber(p->robot.actuation.pressure) + " Pa");
+  }
   if (const auto a = ReadObject(robot, "initial_actuation", Presence::kOptional))
     ParseActuation(*a, tendons, chambers, jamming, &p->robot.initial_actuation, nullptr);
 }
