@@ -79,6 +79,18 @@ nlohmann::ordered_json NumberOrNull(double x) {
 
 }  // namespace
 
+/// The searched load is added to the file's own value of that load: say so when it is not zero
+/// (a column under gravity searched in gravity reports the increment, not the total).
+std::string OnTopOfTheFilesLoad(const io::Problem& problem) {
+  const StaticLoads& l = problem.loads;
+  const io::BucklingLoad k = problem.buckling.load;
+  const bool own = (k == io::BucklingLoad::kTipForce && !l.tip_force.isZero()) ||
+                   (k == io::BucklingLoad::kTipMoment && !l.tip_moment.isZero()) ||
+                   (k == io::BucklingLoad::kGravity && !l.gravity_W.isZero()) ||
+                   (k == io::BucklingLoad::kDistributedForce && !l.distributed_force_W.isZero());
+  return own ? " on top of loads." + io::ToString(k) : "";
+}
+
 /// After an SE(3) buckling search that failed before any load: its statics shoot the rod in
 /// one piece, which a stiff contact foundation or a high tension puts beyond double precision
 /// (the statics analysis shoots such rods in pieces).
@@ -161,7 +173,8 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   line << "cosserat: buckling " << ToString(b.status) << " (" << ToString(ends) << ")";
   if (b.found())
     line << ", critical " << io::ToString(problem.buckling.load) << " " << std::setprecision(6)
-         << critical << ", mode bends most at s = " << b.mode.s_max_curvature << " m";
+         << critical << OnTopOfTheFilesLoad(problem) << ", mode bends most at s = "
+         << b.mode.s_max_curvature << " m";
   else
     line << ", " << (problem.buckling.load == io::BucklingLoad::kPressure ? "pressure" : "load")
          << " reached " << std::setprecision(6) << reached;
@@ -210,7 +223,8 @@ Result RunQuatFdBuckling(const io::Problem& problem, const RunOptions& run_optio
   line << "cosserat: buckling " << ToString(b.status) << " (cantilever, quaternion-fd)";
   if (b.found())
     line << ", critical " << io::ToString(problem.buckling.load) << " " << std::setprecision(6)
-         << b.critical_load << ", mode bends most at s = " << b.mode_s_max << " m";
+         << b.critical_load << OnTopOfTheFilesLoad(problem) << ", mode bends most at s = "
+         << b.mode_s_max << " m";
   else
     line << ", load reached " << std::setprecision(6) << b.lambda_reached;
   line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3

@@ -280,6 +280,8 @@ cosserat_cli_test(NAME tendon_dynamics ARGS solve "${_cli_dir}/tendon_dynamics.j
 # 3e-5), and a banded cantilever under its weight that buckles at the band [0.3, 0.35] m.
 get_filename_component(_cli_buckling "${CMAKE_CURRENT_LIST_DIR}/../../examples/buckling_column.json"
                        ABSOLUTE)
+cosserat_cli_test(NAME buckling_preloaded ARGS solve "${_cli_dir}/buckling_preloaded.json" CODE 0
+                  STDERR "critical tip_force 4.201.* on top of loads.tip_force")
 cosserat_cli_test(NAME solve_buckling_column ARGS solve "${_cli_buckling}" CODE 0
                   STDOUT "\"critical_load\": 6\\.201[0-9]*,[^}]*\"mode_s_max\": 0\\.25,"
                   STDERR "buckling found \\(pinned-pinned\\), critical tip_force 6\\.201")
