@@ -157,6 +157,20 @@ class PyStaticSolver {
   }
   /// Shooting pieces: 1, or those of multiple shooting's last solve.
   int pieces() const { return multiple_ ? multiple_->pieces() : 1; }
+  /// The tendons' path lengths at the last equilibrium (m), one per tendon.
+  Eigen::VectorXd TendonLengths() const {
+    state();  // refuses without a converged solve
+    const int n = solver_.tendon_count();
+    return Eigen::Map<const Eigen::VectorXd>(solver_.tendon_lengths().data(), n);
+  }
+  /// d(tip pose)/d(tensions) at the last equilibrium: 6 × tendons, [dp (m/N); dθ (rad/N)].
+  Eigen::MatrixXd TensionJacobian() const {
+    state();
+    StaticShootingSolver::TensionJacobian J;
+    if (!solver_.TipJacobianWrtTensions(base_, loads_, &J))
+      throw std::runtime_error("tension_jacobian: this rod has no tendons");
+    return J.leftCols(solver_.tendon_count());
+  }
 
  private:
   io::Problem problem_;  ///< for the actuation's rules (tendons, chambers, jamming segments)
@@ -371,7 +385,14 @@ void BindStaticSolver(py::module_& m) {
       .def(
           "state", [](const PyStaticSolver& s) { return StateDict(s.state()); },
           "The equilibrium of the last solve(), as Stepper.state(); RuntimeError when it did "
-          "not converge.");
+          "not converge.")
+      .def_property_readonly("tendon_lengths", &PyStaticSolver::TendonLengths,
+                             "The tendons' path lengths at the last equilibrium (m), in the "
+                             "robot's tendon order.")
+      .def("tension_jacobian", &PyStaticSolver::TensionJacobian,
+           "d(tip pose)/d(tendon tensions) at the last equilibrium, exact for the discrete "
+           "model: a 6 × tendons array, rows d p(L) (world, m/N) then d θ (tip frame, rad/N) "
+           "with R(L)(τ + dτ) ≈ R(L) Exp(Σ dθ_i dτ_i).");
 }
 
 }  // namespace

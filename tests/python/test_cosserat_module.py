@@ -585,6 +585,35 @@ class PythonSide(unittest.TestCase):
             cosserat.animate(cosserat.solve("examples/cantilever.json"), "x.gif")
 
 
+    def test_static_solver_gives_tendon_lengths_and_the_tension_jacobian(self):
+        # The lengths are the CLI's robot.tendon_length; the Jacobian's position rows match
+        # central differences of the tip in each tension (step 1e-3 N on 1.5 N: truncation
+        # ~1e-7 of the column, the solves' 1e-10 noise / 2e-3 N ~5e-8: 1e-5 relative bounds both).
+        p = cosserat.load_problem("robots/tendon_three_tendon.json")
+        s = cosserat.StaticSolver(p)
+        self.assertEqual(s.solve().status, "converged")
+        cli = cosserat.solve("robots/tendon_three_tendon.json")["result"]["robot"]["tendon_length"]
+        np.testing.assert_allclose(s.tendon_lengths, cli, rtol=0, atol=1e-15)
+        # Every tendon taut (differences both ways), then the Jacobian there.
+        tension = np.array([1.5, 0.5, 0.5])
+        a = p.actuation
+        a.tendon_tension = list(tension) + [0.0] * (len(a.tendon_tension) - 3)
+        self.assertEqual(s.solve(actuation=a).status, "converged")
+        J = s.tension_jacobian()
+        self.assertEqual(J.shape, (6, 3))
+        h = 1e-3
+        for i in range(3):
+            tips = []
+            for sign in (1, -1):
+                a = p.actuation
+                t = tension.copy()
+                t[i] += sign * h
+                a.tendon_tension = list(t) + [0.0] * (len(a.tendon_tension) - 3)
+                self.assertEqual(s.solve(actuation=a).status, "converged")
+                tips.append(s.state()["position"][-1])
+            fd = (tips[0] - tips[1]) / (2 * h)
+            np.testing.assert_allclose(J[:3, i], fd, rtol=1e-5, atol=1e-5 * np.abs(J[:3]).max())
+
     def test_reprs_show_the_values(self):
         # What a notebook prints: the file's values, not object addresses.
         p = cosserat.load_problem("robots/tendon_three_tendon.json")
