@@ -26,6 +26,17 @@ io::Problem Load(const std::string& relative_path) {
 
 long Lines(const std::string& text) { return std::count(text.begin(), text.end(), '\n'); }
 
+// A problem's text with its "FORMULATION" placeholder set, parsed and run.
+Result RunWithFormulation(std::string text, const char* formulation) {
+  text.replace(text.find("FORMULATION"), 11, formulation);
+  const io::ParseResult parsed = io::ParseProblem(text);
+  if (!parsed.ok()) {
+    ADD_FAILURE() << parsed.errors.front();
+    return {};
+  }
+  return cosserat::run::Run(*parsed.problem);
+}
+
 TEST(Run, ResultHoldsTheDocumentTheNodeTableAndTheSummary) {
   const io::Problem problem = Load("examples/cantilever.json");
   const Result plain = cosserat::run::Run(problem);
@@ -233,11 +244,7 @@ TEST(Run, AFilledPipeHangsWithItsApparentWeight) {
   const double A = M_PI * (0.0635 * 0.0635 - 0.0543 * 0.0543);
   const double expected = (7850 - 1200) * A * 9.81 * 1000;  // N, up on the pipe at the hook
   for (const char* formulation : {"se3-shooting", "quaternion-fd"}) {
-    std::string text = base;
-    text.replace(text.find("FORMULATION"), 11, formulation);
-    const io::ParseResult parsed = io::ParseProblem(text);
-    ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
-    const Result r = cosserat::run::Run(*parsed.problem);
+    const Result r = RunWithFormulation(base, formulation);
     ASSERT_TRUE(r.converged) << r.log;
     const double hook = r.json["base_wrench"]["force"][2].get<double>();
     std::printf("%s: hook load %.6f kN, apparent weight %.6f kN\n", formulation, hook / 1e3,
@@ -264,11 +271,8 @@ TEST(Run, AFilledPipeVibratesWithItsContents) {
     double f[2];
     for (int filled = 0; filled < 2; ++filled) {
       std::string text = base;
-      text.replace(text.find("FORMULATION"), 11, formulation);
       text.replace(text.find(" CONTENTS"), 9, filled ? ", \"contents_density\": 1000" : "");
-      const io::ParseResult parsed = io::ParseProblem(text);
-      ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
-      const Result r = cosserat::run::Run(*parsed.problem);
+      const Result r = RunWithFormulation(text, formulation);
       ASSERT_TRUE(r.converged) << r.log;
       f[filled] = r.json["modes"]["frequencies_hz"][0].get<double>();
     }
@@ -291,11 +295,7 @@ TEST(Run, TheLoadEnvelopeOfAHangingWireIsItsWeight) {
     "dynamics": {"dt": 0.001, "duration": 0.05, "output_interval": 0.01}})";
   const double top = 8000 * M_PI * 1e-6 * 9.81;  // ρ A g L, N
   for (const char* formulation : {"se3-shooting", "quaternion-fd"}) {
-    std::string text = base;
-    text.replace(text.find("FORMULATION"), 11, formulation);
-    const io::ParseResult parsed = io::ParseProblem(text);
-    ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
-    const Result r = cosserat::run::Run(*parsed.problem);
+    const Result r = RunWithFormulation(base, formulation);
     ASSERT_TRUE(r.converged) << r.log;
     const auto& e = r.json["envelope"];
     const auto& s = r.json["nodes"]["s"];
