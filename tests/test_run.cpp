@@ -338,6 +338,23 @@ TEST(Run, ATendonBentBackboneReportsItsBendingStress) {
     EXPECT_NEAR(sigma.get<double>() / expected, 1.0, 1e-8);
 }
 
+// A 10 kg plate on four 1 mm wires (625 times the most compliant rod's EI/L²) stalled at a
+// balance of 2.6e-10 to 5e-10 of round-off under the default tolerance 1e-10 and ended
+// load_stepping_failed. With the round-off floor it converges, and the wires share the weight as
+// on a rigid plate over equal wires: T_i = W/4 (1 + e_x x_i/a² + e_y y_i/b²), corners (x_i, y_i)
+// = (∓0.4, ∓0.25) m about their centre, the mass e = (0.1, −0.05) m from it. The plate tilts
+// by ~3e-5 rad, which moves the lever arms by as much: 1e-4 bounds the difference.
+TEST(Run, APlateOnTautWiresConvergesAndSharesItsWeightLinearly) {
+  const Result r = cosserat::run::Run(Load("tests/cli/plate_on_four_wires.json"));
+  ASSERT_TRUE(r.converged) << r.log;
+  const double W = 10 * 9.81, x[] = {-0.4, 0.4, 0.4, -0.4}, y[] = {-0.25, -0.25, 0.25, 0.25};
+  for (int i = 0; i < 4; ++i) {
+    const double tension = r.json["assembly"]["rods"][i]["base_wrench"]["force"][2].get<double>();
+    const double expected = W / 4 * (1 + 0.1 * x[i] / 0.16 - 0.05 * y[i] / 0.0625);
+    EXPECT_NEAR(tension / expected, 1.0, 1e-4) << i;
+  }
+}
+
 // A solve that converges onto NaN (a rod of 1e-300 m: the quaternion-FD segment length
 // underflows in its strains) is reported as non_finite, not as a converged result with nulls.
 TEST(Run, ANonFiniteAnswerIsNotConverged) {

@@ -73,6 +73,10 @@ class AssemblyStaticsSolver {
 
  private:
   enum class Mode { kForward, kInverse };
+  /// The convergence threshold under `loads`: options.tolerance, or the round-off floor of the
+  /// balance when that is larger (forces far above the most compliant rod's EI/L², e.g. a plate
+  /// on taut wires: 625 times it leaves a balance of ~5e-10 that no step can reduce).
+  double Tolerance(const StaticLoads& loads) const;
   template <typename T>
   using Point = RodShot::Point<T>;
   /// Per rod: its shot, scales (moment EI/L, force EI/L²), and the last shot's tip.
