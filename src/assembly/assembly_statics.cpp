@@ -534,7 +534,8 @@ AssemblySummary AssemblyStaticsSolver::Solve(const StaticLoads& loads,
     } else {
       converged = true;
     }
-    converged = converged && Follow(at, &summary) == 1.0;
+    summary.load_fraction = converged ? Follow(at, &summary) : 0.0;
+    converged = converged && summary.load_fraction == 1.0;
     body_load_factor_ = 1.0;
   }
   Conclude(converged, loads, start, t0, &summary);
@@ -565,7 +566,8 @@ AssemblySummary AssemblyStaticsSolver::SolveLengths(const StaticLoads& loads,
       }
       return mu == 1.0 ? loads : StaticLoads::Blend(start_loads, loads, mu);
     };
-    converged = Follow(at, &summary) == 1.0;
+    summary.load_fraction = Follow(at, &summary);
+    converged = summary.load_fraction == 1.0;
   }
   // A root with a rod of zero or negative length (the mirror image of the robot through its
   // base, for a pose below it) solves the equations but is no robot: out of reach.

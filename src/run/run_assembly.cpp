@@ -83,6 +83,9 @@ std::string Summary(const io::Problem& problem, const AssemblySummary& s,
     line << "] m";
   }
   line << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms";
+  if (s.status == SolveStatus::kLoadSteppingFailed)
+    line << "; the continuation reached " << std::setprecision(3) << s.load_fraction
+         << " of the loads: the state and residual written are that level's";
   return line.str();
 }
 
@@ -107,6 +110,7 @@ Result RunAssembly(const io::Problem& problem, const RunOptions& options) {
   out["jacobians"] = summary.jacobians;
   out["load_steps"] = summary.load_steps;
   out["residual"] = summary.residual;
+  if (summary.status == SolveStatus::kLoadSteppingFailed) out["load_reached"] = summary.load_fraction;
   out["wall_time_s"] = summary.wall_time_s;
   out["assembly"] = SolutionToJson(spec.assembly, spec.inverse(), &solver,
                                    options.nodes_csv ? &result.nodes_csv : nullptr);

@@ -197,6 +197,8 @@ cosserat_cli_test(NAME foreign_formulation_settings
                   STDERR "dynamics.shooting_segments: is read by the \"se3-shooting\" formulation only.*dynamics.spatial_scheme: is read by the \"se3-shooting\"")
 cosserat_cli_test(NAME modes_of_a_held_rod ARGS validate "${_cli_dir}/modes_pinned_pinned.json" CODE 2
                   STDERR "modes of a rod held at both ends run as \"boundary\": \"anchored\"")
+cosserat_cli_test(NAME assembly_stops_short ARGS solve "${_cli_dir}/l_frame_stops_short.json"
+                  CODE 1 STDERR "load_stepping_failed .*the continuation reached 0[.][0-9]+ of the loads")
 cosserat_cli_test(NAME truss_pose_jacobian_undefined ARGS solve "${_cli_dir}/truss_pinned.json"
                   CODE 0 STDERR "pose_jacobian is not defined here")
 cosserat_cli_test(NAME not_implemented ARGS solve "${_cli_dir}/modes_free_free.json" CODE 2

@@ -39,8 +39,11 @@ struct AssemblySummary {
   int iterations = 0;
   int jacobians = 0;   ///< exact Jacobians evaluated (the other iterations reuse the last one)
   int load_steps = 0;  ///< continuation levels beyond the direct solve
-  double residual = 0.0;
+  double residual = 0.0;  ///< at the last load level reached (load_fraction of the loads)
   double wall_time_s = 0.0;
+  /// The fraction of the way from the start to the loads (and lengths or poses) that the
+  /// continuation reached: 1 when converged; the state is that level's.
+  double load_fraction = 1.0;
   bool converged() const { return status == SolveStatus::kConverged; }
 };
 
