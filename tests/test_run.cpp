@@ -355,6 +355,26 @@ TEST(Run, APlateOnTautWiresConvergesAndSharesItsWeightLinearly) {
   }
 }
 
+// A statics whose load steps stop short says how far they got: a silicone rod (E 1 MPa, 1 m,
+// r 5 mm) under gravity at 41 nodes stops before the whole weight; the result's load_reached
+// lies in (0, 1) and the hint names it.
+TEST(Run, StaticsThatStopShortSayHowFarTheLoadsGot) {
+  const io::ParseResult parsed = io::ParseProblem(R"({
+    "format": "cosserat-problem/1",
+    "rod": {"length": 1.0, "nodes": 41, "section": {"shape": "circle", "radius": 0.005},
+            "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.5, "density": 1100}},
+    "base": {"rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]},
+    "loads": {"gravity": [0, 0, -9.81]}})");
+  ASSERT_TRUE(parsed.ok());
+  const Result r = cosserat::run::Run(*parsed.problem);
+  ASSERT_FALSE(r.converged);
+  ASSERT_EQ(r.json["status"], "load_stepping_failed");
+  const double reached = r.json["load_reached"].get<double>();
+  EXPECT_GT(reached, 0.0);
+  EXPECT_LT(reached, 1.0);
+  EXPECT_NE(r.log.find("stopped short of the full load, at"), std::string::npos) << r.log;
+}
+
 // A solve that converges onto NaN (a rod of 1e-300 m: the quaternion-FD segment length
 // underflows in its strains) is reported as non_finite, not as a converged result with nulls.
 TEST(Run, ANonFiniteAnswerIsNotConverged) {

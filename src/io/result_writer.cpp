@@ -69,6 +69,7 @@ json StaticResultToJson(const StaticShootingSummary& summary, const RodState& st
   out["load_steps"] = summary.load_steps;
   out["residual"] = summary.residual;
   if (summary.stability_index >= 0) out["stability_index"] = summary.stability_index;
+  if (std::isfinite(summary.load_fraction)) out["load_reached"] = summary.load_fraction;
   out["wall_time_s"] = summary.wall_time_s;
   if (state.size() > 0) AddTipAndBaseWrench(state, &out);
   out["nodes"] = NodesToJson(state);

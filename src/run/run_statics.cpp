@@ -53,7 +53,10 @@ std::string UnstableWarning(const StaticShootingSummary& s) {
 std::string ContinuationHint(const io::Problem& problem, const StaticShootingSummary& summary) {
   if (summary.status != SolveStatus::kLoadSteppingFailed) return "";
   std::ostringstream hint;
-  hint << "cosserat: hint: the load steps stopped short of the full load (the shape written is "
+  hint << "cosserat: hint: the load steps stopped short of the full load";
+  if (std::isfinite(summary.load_fraction))
+    hint << ", at " << std::setprecision(3) << summary.load_fraction << " of it";
+  hint << " (the shape written is "
           "the last load level reached): a finer grid (rod.nodes, now "
        << problem.nodes << ") or \"formulation\": \"quaternion-fd\" may follow the loads to the end\n";
   return hint.str();

@@ -456,6 +456,7 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
     // The continuation stopped short of the full load. The residual reported is that state's
     // under the loads asked for, as single shooting reports it (the last level's own is ~0).
     summary.status = SolveStatus::kLoadSteppingFailed;
+    summary.load_fraction = mu;
     if (Residual(base, loads, &r_)) summary.residual = r_.norm();
   }
   summary.wall_time_s =

@@ -59,7 +59,8 @@ bool StaticShootingSolver::HeldBack(const lie::SE3& base, const StaticLoads& loa
 bool StaticShootingSolver::FollowLoadPath(const lie::SE3& base, const StaticLoads& start,
                                           const StaticLoads& loads, const Vec6& x_start,
                                           const LoadPath& path, Vec6* x, int* steps,
-                                          StaticShootingSummary* summary) {
+                                          StaticShootingSummary* summary,
+                                          double* reached_fraction) {
   Vec6 x_a = x_start, x_prev = x_start;
   double mu = 0.0, mu_prev = 0.0, dmu = path.max_fraction;
   *steps = 0;
@@ -93,6 +94,7 @@ bool StaticShootingSolver::FollowLoadPath(const lie::SE3& base, const StaticLoad
     }
   }
   *x = x_a;
+  if (reached_fraction) *reached_fraction = mu;
   return reached;
 }
 
@@ -284,7 +286,10 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
     path.max_fraction = max_fraction;
     path.halve_on_failure = options_.load_stepping;
     path.max_steps = options_.max_load_steps;
-    ok = FollowLoadPath(base, start, loads, x_start, path, &x, &summary.load_steps, &summary);
+    double reached = 0.0;
+    ok = FollowLoadPath(base, start, loads, x_start, path, &x, &summary.load_steps, &summary,
+                        &reached);
+    if (!ok) summary.load_fraction = reached;
     state_current = false;
     if (!ok && summary.status != SolveStatus::kNonFinite)
       summary.status =

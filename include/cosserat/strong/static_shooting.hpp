@@ -13,6 +13,7 @@
 
 #include <array>
 #include <chrono>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,9 @@ struct StaticShootingSummary {
   /// convergence).
   int stability_index = -1;
   int stable_path_steps = 0;  ///< load steps of the stable path search (0: not needed)
+  /// The fraction of the loads a continuation that stopped short reached (the state is that
+  /// level's); NaN when no continuation stopped short, or the solver does not say.
+  double load_fraction = std::numeric_limits<double>::quiet_NaN();
   bool converged() const { return status == SolveStatus::kConverged; }
 };
 
@@ -217,7 +221,7 @@ class StaticShootingSolver {
   /// steps to *steps; true when μ = 1 was reached.
   bool FollowLoadPath(const lie::SE3& base, const StaticLoads& start, const StaticLoads& loads,
                       const Vec6& x_start, const LoadPath& path, Vec6* x, int* steps,
-                      StaticShootingSummary* summary);
+                      StaticShootingSummary* summary, double* reached_fraction = nullptr);
   /// The node positions of the shot at x under `loads` (world, m; records state_).
   std::vector<Vec3> ShotPositions(const lie::SE3& base, const StaticLoads& loads, const Vec6& x);
   /// False when the step from the shot (x_from, loads_from) to (x, loads) passes a node into an
