@@ -277,15 +277,11 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
   if (max_fraction == 1.0)
     direct = SolveDirectly(base, start, loads, x_start, from_previous, &x, &summary);
   bool ok = direct.ok, state_current = direct.state_current;
-  const bool via_quasi_newton = direct.via_quasi_newton;
-
   if (!ok && (options_.load_stepping || max_fraction < 1.0)) {
     // Continuation from the start to the loads, step halving on failure when load stepping is
     // on, never above max_fraction.
-    LoadPath path;
-    path.max_fraction = max_fraction;
-    path.halve_on_failure = options_.load_stepping;
-    path.max_steps = options_.max_load_steps;
+    const LoadPath path{max_fraction, options_.load_stepping, /*require_stable=*/false,
+                        options_.max_load_steps};
     double reached = 0.0;
     ok = FollowLoadPath(base, start, loads, x_start, path, &x, &summary.load_steps, &summary,
                         &reached);
@@ -304,7 +300,7 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
   // instead, from Levenberg–Marquardt's last Jacobian shot (taken at the solution). A
   // quasi-Newton warm re-solve is not checked: it continues the previous solution by steps that
   // halve the residual, and takes no tangent shot (17 µs; a check would add one, ≈ 53 µs).
-  if (ok && options_.stable_branch && !via_quasi_newton) {
+  if (ok && options_.stable_branch && !direct.via_quasi_newton) {
     if (KeepStableBranch(base, loads, max_fraction, &x, &summary)) state_current = false;
   }
 
