@@ -297,7 +297,7 @@ void BindProblem(py::module_& m) {
             if (p.has_assembly || !p.rod.section)
               throw py::value_error("assembly: section_stiffness is a single rod's");
             const SectionProperties s = p.rod.section->At(0.0, p.robot.actuation);
-            return py::make_tuple(std::min(s.stiffness(0, 0), s.stiffness(1, 1)),
+            return py::make_tuple(s.min_bending_stiffness(),
                                   s.stiffness(2, 2));
           },
           "(EI, GJ) at s = 0 under the file's actuation, N·m²: the smaller bending stiffness and "

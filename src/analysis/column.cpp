@@ -55,7 +55,7 @@ ColumnSolver::ColumnSolver(const RodModel& model, int num_nodes, ColumnEnds ends
       options_(options),
       model_(model) {
   const SectionProperties p = model.section->At(0.0, actuation);
-  const double EI = std::max(p.stiffness(0, 0), p.stiffness(1, 1));
+  const double EI = p.max_bending_stiffness();
   const double L = model.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
   state_.Resize(static_cast<int>(shooter_.grid().size()));

@@ -96,7 +96,7 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
   const int n = static_cast<int>(grid_.size());
   if (n < 2) throw std::invalid_argument("FrequencyShooting: the grid needs at least 2 nodes");
   const SectionProperties s0 = PrincipalAxesSectionAt(rod, 0.0, actuation);
-  EI_ = std::max(s0.stiffness(0, 0), s0.stiffness(1, 1));
+  EI_ = s0.max_bending_stiffness();
   rhoA0_ = s0.mass(5, 5);
   const double L = rod.length;
   scale_ << EI_ / L, EI_ / L, EI_ / L, EI_ / (L * L), EI_ / (L * L), EI_ / (L * L);

@@ -81,7 +81,7 @@ AssemblyDynamics::AssemblyDynamics(const Assembly& assembly,
                                   ").base_joint: dynamics needs a clamped base");
     rods_.push_back(std::make_unique<Bdf2ShootingStepper>(a.model, a.nodes, rod_options));
     const SectionProperties p = a.model.section->At(0.0, Actuation{});
-    const double EI = std::max(p.stiffness(0, 0), p.stiffness(1, 1)), L = a.model.length;
+    const double EI = p.max_bending_stiffness(), L = a.model.length;
     for (int b : {a.body, a.base_body}) {
       if (b < 0) continue;
       bodies_[b].force_scale = std::max(bodies_[b].force_scale, EI / (L * L));

@@ -33,7 +33,7 @@ RodShot::RodShot(const RodModel& model, int nodes) : model_length_(model.length)
     smp.s = s;
   }
   const SectionProperties p = model.section->At(0.0, Actuation{});
-  bending_stiffness_ = std::max(p.stiffness(0, 0), p.stiffness(1, 1));
+  bending_stiffness_ = p.max_bending_stiffness();
 }
 
 void RodShot::SetLoads(const StaticLoads& loads) {

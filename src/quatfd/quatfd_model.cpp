@@ -268,7 +268,7 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
     tip_h_ = s_[N] - s_[N - 1];
   }
   const SectionProperties s0 = PrincipalAxesSectionAt(rod, 0.0, actuation);
-  const double EI = std::max(s0.stiffness(0, 0), s0.stiffness(1, 1));
+  const double EI = s0.max_bending_stiffness();
   moment_scale_ = EI / length();
   force_scale_ = EI / (length() * length());
   set_loads(StaticLoads{});  // unloaded until the caller sets loads

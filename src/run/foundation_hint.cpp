@@ -11,7 +11,7 @@ std::string FoundationHint(const io::Problem& problem, double spacings_per_lengt
                            const std::string& why, const std::string& advice,
                            const std::string& more) {
   const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
-  const double ei = std::max(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m²
+  const double ei = p.max_bending_stiffness();  // N·m²
   const double h = problem.rod.length / (problem.nodes - 1);
   for (int k = 0; k < problem.loads.contact.count; ++k) {
     const double stiffness = problem.loads.contact.surface[k].stiffness;

@@ -208,7 +208,7 @@ std::string SummaryLine(const io::DynamicRun& run, const RodState& state) {
 /// converges to a rod that has stopped swinging: a warning says so.
 std::string CoarseStepWarning(const io::Problem& problem, double dt) {
   const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
-  const double ei = std::min(p.stiffness(0, 0), p.stiffness(1, 1)), rho_a = p.mass(5, 5);
+  const double ei = p.min_bending_stiffness(), rho_a = p.mass(5, 5);
   const double beta_l = problem.boundary == io::Boundary::kFreeFree ? 4.7300 : 1.8751;
   const double omega = std::pow(beta_l / problem.rod.length, 2) * std::sqrt(ei / rho_a);
   const double wh = omega * dt;

@@ -73,7 +73,7 @@ std::string TendonLawHint(const io::Problem& problem, const Actuation& actuation
                           const StaticShootingSummary& summary) {
   if (summary.status != SolveStatus::kNonFinite || problem.rod.tendons.empty()) return "";
   const SectionProperties p = problem.rod.section->At(0.0, actuation);
-  const double ei = std::min(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m²
+  const double ei = p.min_bending_stiffness();  // N·m²
   double worst = 0.0;
   std::string name;
   for (size_t i = 0; i < problem.rod.tendons.size(); ++i) {
@@ -144,7 +144,7 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
 /// at k h = 4.5 and converges at k h = 2.2 and below). The hint names the nodes for k h = 2.
 std::string BoundaryLayerHint(const io::Problem& problem, const RodState& guess) {
   const SectionProperties p = problem.rod.section->At(0.0, Actuation{});
-  const double ei = std::min(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m²
+  const double ei = p.min_bending_stiffness();  // N·m²
   const double k = std::sqrt(guess.MaxForce() / ei), h = problem.rod.length / (problem.nodes - 1);
   if (k * h <= 2.0) return "";
   std::ostringstream hint;

@@ -9,7 +9,7 @@ namespace cosserat {
 double StaticLoadParameter(const RodModel& rod, const StaticLoads& loads,
                            const Actuation& actuation) {
   const SectionProperties p = rod.section->At(0.0, actuation);
-  const double EI = std::max(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m²
+  const double EI = p.max_bending_stiffness();  // N·m²
   const double L = rod.length;
   const Vec3 distributed =
       TotalDistributedForce_W(loads, LoadSite{0.0, 1.0, p.mass(3, 3), p.outer_diameter});

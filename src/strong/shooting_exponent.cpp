@@ -12,7 +12,7 @@ double SingleShootingExponent(const RodModel& rod, double dt, const Actuation& a
   double sum = 0.0;
   for (int i = 0; i < kPieces; ++i) {
     const SectionProperties p = rod.section->At((i + 0.5) * h, actuation);
-    const double ei = std::min(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m²
+    const double ei = p.min_bending_stiffness();  // N·m²
     const double rho_a = p.mass(3, 3);                                 // kg/m
     sum += std::pow(c0 * c0 * rho_a / ei, 0.25) * h;
   }

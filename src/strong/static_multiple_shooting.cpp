@@ -45,7 +45,7 @@ constexpr double kSoftening = 1e3;
 
 double StaticShootingExponent(const RodModel& rod, const StaticLoads& loads) {
   const SectionProperties p = rod.section->At(0.0, Actuation{});
-  const double ei = std::min(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m²
+  const double ei = p.min_bending_stiffness();  // N·m²
   const double L = rod.length;
   double exponent = 0.0;
   for (int i = 0; i < loads.contact.count; ++i)
@@ -91,7 +91,7 @@ StaticMultipleShootingSolver::StaticMultipleShootingSolver(
     smp.outer_diameter = law.outer_diameter;
   }
   const SectionProperties base_section = model_.section->At(0.0, Actuation{});
-  const double EI = std::max(base_section.stiffness(0, 0), base_section.stiffness(1, 1));
+  const double EI = base_section.max_bending_stiffness();
   const double L = model_.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
   state_.Resize(n);
@@ -481,7 +481,7 @@ StaticShootingSummary StaticMultipleShootingSolver::SolveFrom(const lie::SE3& ba
   // The exponent of a single shot under the guess's largest force (a held cable's tension is
   // not bounded by its loads), or of the loads and contact surfaces when larger.
   const SectionProperties p = model_.section->At(0.0, Actuation{});
-  const double ei = std::min(p.stiffness(0, 0), p.stiffness(1, 1));  // N·m²
+  const double ei = p.min_bending_stiffness();  // N·m²
   const double force = guess.MaxForce();  // N
   const double exponent =
       std::max(std::sqrt(force / ei) * model_.length, StaticShootingExponent(model_, loads));
@@ -492,7 +492,7 @@ StaticShootingSummary StaticMultipleShootingSolver::SolveFrom(const lie::SE3& ba
   // (step 1e-9) at round-off. Its end moments are about sqrt(T EI) (a boundary layer of length
   // sqrt(EI/T)).
   const double L = model_.length;
-  const double ei_max = std::max(p.stiffness(0, 0), p.stiffness(1, 1));  // as the constructor's
+  const double ei_max = p.max_bending_stiffness();  // as the constructor's
   scale_.head<3>().setConstant(std::max(ei_max / L, std::sqrt(force * ei)));
   scale_.tail<3>().setConstant(std::max(ei_max / (L * L), force));
   // Each start in the guess's own frame there; the base's rotation from the node after it when

@@ -349,7 +349,7 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
   SampleSections();
 
   const SectionProperties base_section = model_.section->At(0.0, actuation);
-  const double EI = std::max(base_section.stiffness(0, 0), base_section.stiffness(1, 1));
+  const double EI = base_section.max_bending_stiffness();
   const double L = model_.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
   state_.Resize(n);

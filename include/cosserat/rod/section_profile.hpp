@@ -7,6 +7,7 @@
 /// body x and y, torsion, shear along x and y, stretch. K = diag(E I1, E I2, G J, κ G A, κ G A,
 /// E A) for a principal-axes section (N·m², N·m², N·m², N, N, N).
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +24,10 @@ struct SectionProperties {
   Mat6 mass = Mat6::Identity();  ///< M(s) per unit length: diag(ρI1, ρI2, ρ(I1+I2), ρA, ρA, ρA)
   Mat6 damping = Mat6::Zero();  ///< D(s), Kelvin–Voigt, units of K times s
   double outer_diameter = 0.0;  ///< m: what the section displaces in a fluid and touches with
+
+  /// The smaller and the larger of the bending stiffnesses E I1, E I2 (N·m²).
+  double min_bending_stiffness() const { return std::min(stiffness(0, 0), stiffness(1, 1)); }
+  double max_bending_stiffness() const { return std::max(stiffness(0, 0), stiffness(1, 1)); }
 };
 
 /// Sectional properties of the (unactuated) uniform section.
