@@ -350,12 +350,13 @@ std::vector<Vec3> StaticMultipleShootingSolver::Positions(const lie::SE3& base,
 
 double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
                                                 const std::function<StaticLoads(double)>& at,
-                                                int* levels, StaticShootingSummary* summary) {
+                                                double max_step, int* levels,
+                                                StaticShootingSummary* summary) {
   // The accepted solution at mu and the one before it at mu_before (for the secant predictor).
   Vec6 x_accepted = x_, x_before = x_;
   std::vector<Point> accepted = junctions_, before = junctions_;
-  double mu = 0.0, mu_before = -1.0, step = max_step_;
-  const int budget = options_.max_load_steps + static_cast<int>(std::ceil(1.0 / max_step_));
+  double mu = 0.0, mu_before = -1.0, step = max_step;
+  const int budget = options_.max_load_steps + static_cast<int>(std::ceil(1.0 / max_step));
   // A level that passes a node into an obstacle's core jumped through it (obstacle_core.hpp):
   // refused like a failed one, so the steps shrink until the surfaces hold the rod back.
   const ContactSurfaces surfaces = at(1.0).contact;
@@ -384,7 +385,7 @@ double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
       before = accepted;
       x_accepted = x_;
       accepted = junctions_;
-      step = std::min(2.0 * step, max_step_);
+      step = std::min(2.0 * step, max_step);
     } else {
       x_ = x_accepted;
       junctions_ = accepted;
@@ -409,9 +410,9 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
   // from the straight column lands on another branch (a clamped-clamped column at
   // L sqrt(T/EI) = 5 under a side load of 0.3 T converged 0.37 L away from the straight one's).
   const double measure = StaticLoadParameter(model_, loads);
-  max_step_ = options_.tip_guided && measure > options_.max_load_increment
-                  ? options_.max_load_increment / measure
-                  : 1.0;
+  const double max_step = options_.tip_guided && measure > options_.max_load_increment
+                              ? options_.max_load_increment / measure
+                              : 1.0;
   // Continuation in the loads from the last solution at this base, else from the unloaded rod.
   StaticLoads start = loads.Scaled(0.0);
   summary.warm_started = has_solution_ && solved_base_.p == base.p && solved_base_.R == base.R;
@@ -426,7 +427,7 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
   auto along_loads = [&](double mu) {
     return mu == 1.0 ? loads : StaticLoads::Blend(start, loads, mu);
   };
-  double mu = FollowPath(base, along_loads, &levels, &summary);
+  double mu = FollowPath(base, along_loads, max_step, &levels, &summary);
   std::function<StaticLoads(double)> at = along_loads;
   if (mu < 1.0 && loads.contact.count > 0) {
     // Stiff surfaces: a rod coming down onto them follows the loads on surfaces softened
@@ -438,14 +439,14 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
     StartUnloaded(base);
     const double mu_soft = FollowPath(
         base, [&](double m) { return m == 1.0 ? soft : StaticLoads::Blend(start, soft, m); },
-        &levels, &summary);
+        max_step, &levels, &summary);
     at = [&](double m) {
       StaticLoads l = loads;
       for (int i = 0; i < l.contact.count; ++i)
         l.contact.surface[i].stiffness *= std::pow(kSoftening, m - 1.0);
       return l;
     };
-    mu = mu_soft == 1.0 ? FollowPath(base, at, &levels, &summary) : 0.0;
+    mu = mu_soft == 1.0 ? FollowPath(base, at, max_step, &levels, &summary) : 0.0;
     if (mu_soft < 1.0) at = [&](double) { return soft; };
   }
   summary.load_steps = levels - 1;

@@ -130,9 +130,10 @@ class StaticMultipleShootingSolver {
   bool Newton(const lie::SE3& base, const StaticLoads& loads, StaticShootingSummary* summary);
   /// Natural continuation along at(μ), μ: 0 → 1, from the current unknowns (a solution at
   /// μ = 0), with a secant predictor; a step doubles after a success and halves after a failure.
-  /// Returns the last μ reached, the unknowns at it; counts the levels tried in *levels.
-  double FollowPath(const lie::SE3& base, const std::function<StaticLoads(double)>& at, int* levels,
-                    StaticShootingSummary* summary);
+  /// No step exceeds max_step (a fraction of the path). Returns the last μ reached, the unknowns
+  /// at it; counts the levels tried in *levels.
+  double FollowPath(const lie::SE3& base, const std::function<StaticLoads(double)>& at,
+                    double max_step, int* levels, StaticShootingSummary* summary);
   /// The node positions (world, m) the current unknowns give under `loads` (records state_).
   std::vector<Vec3> Positions(const lie::SE3& base, const StaticLoads& loads);
   /// b moved on by t times its change from a (the secant predictor of the continuation).
@@ -150,7 +151,6 @@ class StaticMultipleShootingSolver {
   std::vector<int> junction_nodes_;  ///< junction k restarts at node junction_nodes_[k]
   Vec6 x_ = Vec6::Zero();            ///< the base wrench, scaled
   std::vector<Point> junctions_;     ///< the restart states
-  double max_step_ = 1.0;  ///< the largest continuation step of this Solve, a fraction of μ
   bool has_solution_ = false;
   lie::SE3 solved_base_;
   StaticLoads solved_loads_;
