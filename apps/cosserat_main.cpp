@@ -208,7 +208,8 @@ std::optional<cosserat::io::Problem> LoadRunnableProblem(const std::string& path
 bool IsStudyFile(const std::string& path) {
   std::string text, why;
   if (!cosserat::io::ReadTextFile(path, &text, &why)) return false;  // the problem reader says why
-  const cosserat::io::detail::JsonDocument doc = cosserat::io::detail::ParseJsonDocument(text, path);
+  const cosserat::io::detail::JsonDocument doc =
+      cosserat::io::detail::ParseJsonDocument(text, path);
   if (!doc.value || !doc.value->is_object()) return false;
   const auto format = doc.value->find("format");
   return format != doc.value->end() && *format == "cosserat-study/1";
@@ -344,8 +345,9 @@ int RunSweep(const Command& cmd) {
     return kExitBadInput;
   }
   cosserat::run::SweepOptions options;
-  options.threads = cmd.threads > 0 ? cmd.threads
-                                    : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  options.threads = cmd.threads > 0
+                        ? cmd.threads
+                        : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   ProgressLine progress("point", "");
   options.progress = [&progress](std::uint64_t done, std::uint64_t total) {
     progress(static_cast<double>(done), static_cast<double>(total));

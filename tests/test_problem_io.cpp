@@ -451,7 +451,8 @@ TEST(ProblemIo, ErrorsNameWhatIsWrong) {
   j["rod"]["section"] = {{"shape", "circle"}, {"raduis", 0.001}};
   const ParseResult bad_rod = Parse(j);
   EXPECT_ERROR(bad_rod, "rod.section.raduis: unknown key");
-  for (const std::string& e : bad_rod.errors) EXPECT_EQ(e.find("anchor.position"), std::string::npos) << e;
+  for (const std::string& e : bad_rod.errors)
+    EXPECT_EQ(e.find("anchor.position"), std::string::npos) << e;
 }
 
 // validate passes exactly what solve runs: an explicit section of area 1e300 m² (E A overflows)
@@ -461,7 +462,8 @@ TEST(ProblemIo, ASectionThatOverflowsIsAnErrorAtTheSection) {
   json j = ValidProblem();
   j["rod"]["section"] = {{"shape", "explicit"}, {"area", 1e300}, {"I1", 1e-12}, {"I2", 1e-12},
                          {"J", 2e-12}};
-  EXPECT_ERROR(Parse(j), "rod.section: its stiffness or mass per length at s = 0 m is not a finite");
+  EXPECT_ERROR(Parse(j),
+               "rod.section: its stiffness or mass per length at s = 0 m is not a finite");
 }
 
 // The inflation pressure given twice, differently (the profile's 3 kPa, the actuation's 6 kPa):
@@ -1147,7 +1149,8 @@ TEST(ResultWriter, CsvNumbersReadBackExactly) {
   std::getline(lines, row);
   std::vector<double> read;
   std::istringstream fields(row);
-  for (std::string f; std::getline(fields, f, ',');) read.push_back(std::strtod(f.c_str(), nullptr));
+  for (std::string f; std::getline(fields, f, ',');)
+    read.push_back(std::strtod(f.c_str(), nullptr));
   ASSERT_EQ(read.size(), 7u);
   EXPECT_EQ(read[1], values[0]);
   EXPECT_EQ(read[2], values[1]);

@@ -1,7 +1,7 @@
 // Static multiple shooting: the same discrete equilibrium as single shooting where that
 // converges (cantilevers and columns), a taut column beyond single shooting against the
-// tensioned-beam solution, and a long rod on a stiff Winkler foundation (βL ≈ 44, beyond single shooting)
-// against Hetényi's beam on an elastic foundation.
+// tensioned-beam solution, and a long rod on a stiff Winkler foundation (βL ≈ 44, beyond single
+// shooting) against Hetényi's beam on an elastic foundation.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -129,11 +129,12 @@ void ReadProblem(const ObjectReader& top, const std::string& base_directory, Stu
     std::filesystem::path path(problem->get<std::string>());
     if (path.is_relative()) path = std::filesystem::path(base_directory) / path;
     std::string text, why;
-    const bool read = ReadTextFile(path.string(), &text, &why);
-    const detail::JsonDocument pd = detail::ParseJsonDocument(text, path.string());
-    if (!read)
+    if (!ReadTextFile(path.string(), &text, &why)) {
       report.Add("problem", path.string() + ": cannot read the file (" + why + ")");
-    else if (!pd.value)
+      return;
+    }
+    const detail::JsonDocument pd = detail::ParseJsonDocument(text, path.string());
+    if (!pd.value)
       for (const std::string& e : pd.errors) report.Add("problem", e);
     else if (pd.value->is_object() && pd.value->contains("format") &&
              (*pd.value)["format"] == "cosserat-study/1")

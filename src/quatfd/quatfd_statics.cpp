@@ -51,7 +51,8 @@ double StaticBeta(const QuatFdModel& model, const StaticLoads& loads,
 }
 
 /// The vertex positions of q (world, m), and of q + dq when dq is given.
-std::vector<Vec3> VertexPositions(const QuatFdModel& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+std::vector<Vec3> VertexPositions(const QuatFdModel& model,
+                                  const Eigen::Ref<const Eigen::VectorXd>& q,
                                   const Eigen::VectorXd* dq = nullptr) {
   std::vector<Vec3> x(model.layout().segments + 1);
   for (size_t v = 0; v < x.size(); ++v) {

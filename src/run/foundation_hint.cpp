@@ -23,7 +23,8 @@ std::string FoundationHint(const io::Problem& problem, double spacings_per_lengt
          << " m is coarse for environment.contact[" << k
          << "]'s foundation length (4EI/k)^(1/4) = " << foundation << " m, " << why << ": try "
          << advice << "rod.nodes >= "
-         << static_cast<long>(std::ceil(problem.rod.length / (spacings_per_length * foundation))) + 1
+         << static_cast<long>(std::ceil(problem.rod.length / (spacings_per_length * foundation))) +
+                1
          << more << "\n";
     return hint.str();
   }

@@ -110,7 +110,8 @@ Result RunAssembly(const io::Problem& problem, const RunOptions& options) {
   out["jacobians"] = summary.jacobians;
   out["load_steps"] = summary.load_steps;
   out["residual"] = summary.residual;
-  if (summary.status == SolveStatus::kLoadSteppingFailed) out["load_reached"] = summary.load_fraction;
+  if (summary.status == SolveStatus::kLoadSteppingFailed)
+    out["load_reached"] = summary.load_fraction;
   out["wall_time_s"] = summary.wall_time_s;
   out["assembly"] = SolutionToJson(spec.assembly, spec.inverse(), &solver,
                                    options.nodes_csv ? &result.nodes_csv : nullptr);

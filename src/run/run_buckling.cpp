@@ -77,8 +77,6 @@ nlohmann::ordered_json NumberOrNull(double x) {
   return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
 }
 
-}  // namespace
-
 /// The searched load is added to the file's own value of that load: say so when it is not zero
 /// (a column under gravity searched in gravity reports the increment, not the total).
 std::string OnTopOfTheFilesLoad(const io::Problem& problem) {
@@ -109,6 +107,8 @@ std::string SingleShotHint(const io::Problem& problem, const BucklingSummary& b)
                  "statics, in pieces, still run)\n");
   return hint.str();
 }
+
+}  // namespace
 
 Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   ColumnEnds ends = ColumnEnds::kClampedFree;

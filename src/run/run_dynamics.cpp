@@ -216,7 +216,8 @@ std::string CoarseStepWarning(const io::Problem& problem, double dt) {
   // The amplification of the undamped mode: the larger root of (3 − 2iωdt) ζ² − 4ζ + 1 = 0.
   const std::complex<double> a(3.0, -2.0 * wh);
   const std::complex<double> root = std::sqrt(std::complex<double>(16.0) - 4.0 * a);
-  const double keep = std::max(std::abs((4.0 + root) / (2.0 * a)), std::abs((4.0 - root) / (2.0 * a)));
+  const double keep =
+      std::max(std::abs((4.0 + root) / (2.0 * a)), std::abs((4.0 - root) / (2.0 * a)));
   std::ostringstream warning;
   warning << std::setprecision(3) << "cosserat: warning: dt = " << dt
           << " s resolves the first bending mode (about " << omega / (2 * M_PI)
@@ -239,7 +240,8 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   result.json = io::DynamicResultToJson(run, stepper.state());
   detail::MoveFrames(problem.rod, problem.robot.actuation, &run, &result);
   for (int i = 0; i < stepper.state().size(); ++i)
-    result.node_velocity_W.push_back(stepper.state().rotation_WB[i] * stepper.state().twist_B[i].tail<3>());
+    result.node_velocity_W.push_back(stepper.state().rotation_WB[i] *
+                                     stepper.state().twist_B[i].tail<3>());
   if (run_options.nodes_csv) result.nodes_csv = detail::TrajectoryCsv(run, stepper.state().s);
   std::ostringstream log;
   log << SummaryLine(run, stepper.state()) << '\n';

@@ -58,7 +58,8 @@ std::string ContinuationHint(const io::Problem& problem, const StaticShootingSum
     hint << ", at " << std::setprecision(3) << summary.load_fraction << " of it";
   hint << " (the shape written is "
           "the last load level reached): a finer grid (rod.nodes, now "
-       << problem.nodes << ") or \"formulation\": \"quaternion-fd\" may follow the loads to the end\n";
+       << problem.nodes
+       << ") or \"formulation\": \"quaternion-fd\" may follow the loads to the end\n";
   return hint.str();
 }
 
@@ -130,7 +131,8 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
   detail::KeepStaticFrame(problem, solver.state(), options, &result);
   result.json["shooting_segments"] = solver.pieces();
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
-  const std::string column = ends == ColumnEnds::kClampedFree ? "" : ToString(ends) + std::string(", ");
+  const std::string column =
+      ends == ColumnEnds::kClampedFree ? "" : ToString(ends) + std::string(", ");
   result.log = StaticSummary(summary, solver.state()) + " (" + column +
                std::to_string(solver.pieces()) + " shooting pieces)\n" +
                ContinuationHint(problem, summary);

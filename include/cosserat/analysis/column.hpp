@@ -76,8 +76,8 @@ class ColumnSolver {
   /// λ from 0 to 1, each step warm-started from the last, the step doubled after a success and
   /// halved after a failure (options.min_load_step, options.max_load_steps, as the cantilever
   /// solver's load stepping), and never larger than options.max_load_increment in the
-  /// dimensionless load (StaticLoadParameter): a full step from the straight column can land Newton on
-  /// another branch (a taut wire, PL²/EI = 80, converged to a looped shape). Status
+  /// dimensionless load (StaticLoadParameter): a full step from the straight column can land Newton
+  /// on another branch (a taut wire, PL²/EI = 80, converged to a looped shape). Status
   /// kLoadSteppingFailed when the step falls below the minimum; state() then holds the last
   /// converged step (at least the unloaded column). Past a critical load this follows the
   /// straight branch wherever it is an equilibrium (a symmetric column), stable or not:

@@ -6,9 +6,9 @@
 ///
 /// Point data per node (world frame unless the name says otherwise):
 ///   rod (the rod's index in the frame), s (m), radius (m: the section's outer radius), d1, d2,
-///   d3 (the section's directors, the columns of R_WB), curvature (body frame K, 1/m), shear_stretch (body frame Γ), force (the
-///   internal force R n, N), moment (the internal moment R m, N·m), velocity (R v, m/s), and
-///   with contact surfaces contact_force (N/m).
+///   d3 (the section's directors, the columns of R_WB), curvature (body frame K, 1/m),
+///   shear_stretch (body frame Γ), force (the internal force R n, N), moment (the internal
+///   moment R m, N·m), velocity (R v, m/s), and with contact surfaces contact_force (N/m).
 /// Positions and values are written as text with 17 significant digits: read back, they are the
 /// doubles that were written.
 
@@ -34,8 +34,9 @@ struct VtkFrame {
 };
 
 /// Writes `directory`/`stem`_NNNNNN.vtp for every frame and `directory`/`stem`.pvd listing them
-/// (the directory is created if missing); with bodies, `stem`_bodies.pvd and its frames too. `radius[r]` holds rod r's outer radius at each of its
-/// nodes (m). Returns false with *error set ("<path>: <why>") when a file cannot be written.
+/// (the directory is created if missing); with bodies, `stem`_bodies.pvd and its frames too.
+/// `radius[r]` holds rod r's outer radius at each of its nodes (m). Returns false with *error set
+/// ("<path>: <why>") when a file cannot be written.
 bool WriteVtkSeries(const std::string& directory, const std::string& stem,
                     const std::vector<VtkFrame>& frames,
                     const std::vector<std::vector<double>>& radius, std::string* error);

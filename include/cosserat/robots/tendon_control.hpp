@@ -24,7 +24,7 @@ struct TendonLengthSummary {
   int iterations = 0;         ///< Newton iterations on the tensions
   int solves = 0;             ///< static solves (each warm-started)
   int shots = 0;              ///< their shots, in all
-  double residual = 0.0;      ///< the last converged static solve's residual (StaticShootingSummary)
+  double residual = 0.0;  ///< the last converged static solve's residual (StaticShootingSummary)
   double length_error = 0.0;  ///< largest |ℓ − ℓ_cmd| over the taut tendons, m
   std::array<bool, Actuation::kMaxTendons> slack{};
   bool converged() const { return status == SolveStatus::kConverged; }
