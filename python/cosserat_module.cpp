@@ -365,7 +365,11 @@ void BindSolve(py::module_& m) {
 
 /// cosserat.StaticSolver and its StaticSummary.
 void BindStaticSolver(py::module_& m) {
-  py::class_<StaticShootingSummary> static_summary(m, "StaticSummary");
+  py::class_<StaticShootingSummary> static_summary(
+      m, "StaticSummary",
+      "How a StaticSolver solve went: status, Newton iterations, shots, residual, wall time "
+      "(s), load steps of the continuation and the stability index (unstable directions: 0 "
+      "stable, > 0 unstable, -1 not checked).");
   BindSummary(static_summary)
       .def_readonly("load_steps", &StaticShootingSummary::load_steps)
       .def_readonly("stability_index", &StaticShootingSummary::stability_index);

@@ -11,6 +11,7 @@
 
 #include "binding_support.hpp"
 #include "cosserat/io/problem.hpp"
+#include "cosserat/run/initial_equilibrium.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "problem_checks.hpp"
@@ -56,7 +57,8 @@ class PyStepper {
     StepInput at_rest = input_;
     at_rest.loads = loads ? Valid(*loads) : initial_loads_;
     at_rest.actuation = actuation ? Valid(*actuation, problem_) : initial_actuation_;
-    const StepSummary s = stepper_->InitializeAtRest(at_rest);
+    const StepSummary s =
+        cosserat::run::InitializeAtStaticEquilibrium(problem_, at_rest, &*stepper_);
     has_state_ = has_state_ || s.converged();
     return s;
   }
@@ -160,10 +162,16 @@ void BindStepperOutputs(py::class_<PyStepper>& c) {
 
 /// cosserat.Stepper (BDF2 dynamics for control loops), its StepSummary and Snapshot.
 void BindStepperClass(py::module_& m) {
-  py::class_<StepSummary> step_summary(m, "StepSummary");
+  py::class_<StepSummary> step_summary(
+      m, "StepSummary",
+      "How a Stepper call went: status, Newton iterations, shots of the rod, residual, wall "
+      "time (s), exact Jacobians, the deepest step halving and the multiple-shooting pieces.");
   BindSummary(step_summary)
       .def_readonly("jacobians", &StepSummary::jacobians)
-      .def_readonly("halvings", &StepSummary::halvings);
+      .def_readonly("halvings", &StepSummary::halvings)
+      .def_readonly("shooting_segments", &StepSummary::shooting_segments,
+                    "pieces the rod was shot in (chosen from dt and the tension unless the "
+                    "problem sets dynamics.shooting_segments)");
 
   py::class_<Bdf2ShootingStepper::Snapshot>(m, "Snapshot",
                                             "Everything a Stepper needs to continue a run.");
@@ -181,7 +189,9 @@ void BindStepperClass(py::module_& m) {
       .def("initialize_at_rest", &PyStepper::InitializeAtRest, py::arg("loads") = py::none(),
            py::arg("actuation") = py::none(),
            "Static equilibrium at t = 0 under `loads` and `actuation` (default: the problem's "
-           "initial loads and initial actuation). What step() applies is not changed.")
+           "initial loads and initial actuation), found as the CLI finds it: the statics "
+           "solver's equilibrium (continuation in the load, pieces for a taut rod) refined on "
+           "the stepper's own equations. What step() applies is not changed.")
       .def("step", &PyStepper::Step, py::arg("loads") = py::none(),
            py::arg("base_position") = py::none(), py::arg("base_rotation") = py::none(),
            py::arg("base_twist_B") = py::none(), py::arg("base_wrench_B") = py::none(),

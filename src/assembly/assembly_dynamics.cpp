@@ -152,7 +152,15 @@ bool AssemblyDynamics::Balance(const StaticLoads& loads, const Coefficients& c, 
     const StepInput in = RodInput(static_cast<int>(i), loads);
     StepSummary s;
     if (statics) {
-      s = rods_[i]->InitializeAtRest(in, &base_wrench_guess_[i]);
+      if (statics_states_.empty()) {
+        s = rods_[i]->InitializeAtRest(in, &base_wrench_guess_[i]);
+      } else {
+        // From the rod's last equilibrium (the poses move little between the balances of a
+        // solve), or the statics solver's before the first.
+        const RodState last = rods_[i]->state();
+        s = rods_[i]->InitializeAtRest(
+            in, last.wrench_B.front().allFinite() ? last : statics_states_[i]);
+      }
     } else {
       rods_[i]->Restore(accepted_[i]);
       s = rods_[i]->Step(in);
@@ -264,6 +272,7 @@ AssemblySummary AssemblyDynamics::InitializeAtRest(const StaticLoads& loads) {
   for (const RigidBody& b : assembly_.bodies) from.push_back(b.pose);
   const bool held = std::any_of(assembly_.rods.begin(), assembly_.rods.end(),
                                 [](const AssemblyRod& a) { return a.base_body < 0; });
+  statics_states_.clear();
   if (held) {
     // The shooting solver of statics (continuation included) gives the poses and the rods'
     // base wrenches; the steppers' equations then differ from its only by round-off.
@@ -274,6 +283,7 @@ AssemblySummary AssemblyDynamics::InitializeAtRest(const StaticLoads& loads) {
     for (size_t i = 0; i < rods_.size(); ++i) {
       const RodState& s = statics.rod_state(static_cast<int>(i));
       base_wrench_guess_[i] = s.wrench_B.front();
+      statics_states_.push_back(s);
     }
   }
   summary.status = SolveStatus::kMaxIterations;

@@ -13,6 +13,7 @@
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/robots/rotary_table_drive.hpp"
+#include "cosserat/run/initial_equilibrium.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
@@ -39,30 +40,6 @@ StepInput ClampedInput(const io::Problem& problem, const StaticLoads& loads,
   input.base_twist_B = Vec6::Zero();
   input.loads = loads;
   return input;
-}
-
-/// The base wrench W(0) (base body frame) of the clamped rod's equilibrium under `loads`, from
-/// the statics solver with its continuation in the load (multiple shooting where a single shot
-/// cannot: a stiff contact foundation, a high tension). False if that does not converge either.
-bool StaticBaseWrench(const io::Problem& problem, const StaticLoads& loads,
-                      const Actuation& actuation, Vec6* base_wrench_B) {
-  const StaticShootingOptions single = StaticOptions(problem);
-  // As the statics runner chooses: multiple shooting for plain rods only (it takes no actuation,
-  // tendons or chambers).
-  if (!problem.has_robot && problem.rod.tendons.empty() && problem.rod.chambers.empty() &&
-      StaticShootingExponent(problem.rod, loads) > 10.0) {
-    StaticMultipleShootingOptions opt;
-    opt.tolerance = single.tolerance;
-    opt.max_iterations = single.max_iterations;
-    StaticMultipleShootingSolver solver(problem.rod, problem.nodes, opt);
-    if (!solver.Solve(problem.base, loads).converged()) return false;
-    *base_wrench_B = solver.state().wrench_B.front();
-    return true;
-  }
-  StaticShootingSolver solver(problem.rod, problem.nodes, single, actuation);
-  if (!solver.Solve(problem.base, loads).converged()) return false;
-  *base_wrench_B = solver.base_wrench_B();
-  return true;
 }
 
 /// Adds the stepper's current state as the frame at time t; node positions only when
@@ -150,24 +127,7 @@ io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
   const StaticLoads& initial_loads = d.initial_loads.value_or(problem.loads);
   const StepInput initial =
       ClampedInput(problem, initial_loads, problem.robot.initial_actuation);
-  StepSummary init = stepper->InitializeAtRest(initial);
-  Vec6 base_wrench_B;
-  bool statics = false;
-  if (!init.converged() && problem.boundary == io::Boundary::kCantilever) {
-    try {
-      statics =
-          StaticBaseWrench(problem, initial_loads, problem.robot.initial_actuation, &base_wrench_B);
-    } catch (const std::invalid_argument&) {
-      statics = false;  // a rod the statics solvers do not take: the first failure stands
-    }
-  }
-  if (statics) {
-    // The rigid-body guess was too far off (a large preload, a contact foundation): start again
-    // from the statics solver's equilibrium (the failed attempt's work counted, not its residual).
-    run.iterations += init.iterations;
-    run.shots += init.shots;
-    init = stepper->InitializeAtRest(initial, &base_wrench_B);
-  }
+  StepSummary init = InitializeAtStaticEquilibrium(problem, initial, stepper);
   AddCounts(init, &run);
   run.initial_state_ok = init.converged();
   run.status = init.status;

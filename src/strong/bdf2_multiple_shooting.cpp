@@ -46,10 +46,13 @@ constexpr double kDifferenceStep = 1e-7;
 // Halvings of a fresh Newton step that does not reduce the residual before the step fails.
 constexpr int kBacktracks = 4;
 
+// Statics: chord steps from a full Newton step that raised the residual, before backtracking.
+constexpr int kChordSteps = 4;
+
 }  // namespace
 
 bool Bdf2ShootingStepper::RenewJunctionJacobian(const StepInput& input, const Coefficients& c,
-                                                StepSummary* summary) {
+                                                bool statics, StepSummary* summary) {
   const int junctions = static_cast<int>(junction_nodes_.size());
   const Eigen::Index nz = junction_z_.size();
   ms_lu_.SetZero();
@@ -62,7 +65,7 @@ bool Bdf2ShootingStepper::RenewJunctionJacobian(const StepInput& input, const Co
     const int cols = piece == 0 ? 6 : 18;
     // The piece's end residual: the tip residual, or its junction's mismatch.
     auto shoot = [&](const Vec6& x, Eigen::VectorXd* out) {
-      const Vec6 tip = ShootPiece(input, c, piece, x);
+      const Vec6 tip = ShootPiece(input, c, statics, piece, x);
       if (last)
         out->head<6>() = tip;
       else
@@ -103,27 +106,24 @@ bool Bdf2ShootingStepper::RenewJunctionJacobian(const StepInput& input, const Co
 }
 
 bool Bdf2ShootingStepper::SolveStepMultiple(const StepInput& input, const Coefficients& c, double h,
-                                            StepSummary* summary) {
+                                            bool statics, StepSummary* summary) {
   const Eigen::Index nz = junction_z_.size();
-  // Residual [junction mismatches; tip (6)] at the unknowns X = [x (6); z].
   auto evaluate = [&](const Eigen::VectorXd& X, Eigen::VectorXd* R) {
-    junction_z_ = X.tail(nz);
-    R->tail<6>() = Residual(input, c, false, X.head<6>());
-    R->head(nz) = junction_mismatch_;
-    ++summary->shots;
-    return R->allFinite();
+    return MultipleResidual(input, c, statics, X, R, summary);
   };
 
   junctions_active_ = true;
   // First guess: x extrapolated like single shooting's; the junction states moving on by the
-  // change of the last step (run_.junction_unknowns is that change).
-  ms_x_.head<6>() = run_.unknowns.Predict(h);
+  // change of the last step (run_.junction_unknowns is that change). In statics: the given x
+  // and the junctions at the guess in run_.state, with factors of their own.
+  ms_x_.head<6>() = statics ? run_.unknowns.latest() : run_.unknowns.Predict(h);
   ms_x_.tail(nz) = run_.junction_unknowns;
+  if (statics) ms_x_.tail(nz).setZero();
   bool ok = false;
   if (evaluate(ms_x_, &ms_r_)) {
     double norm = ms_r_.norm();
     bool fresh = false;  // the factors were renewed at ms_x_
-    bool have_factors = ms_jacobian_c0_ == c.c0;
+    bool have_factors = !statics && ms_jacobian_c0_ == c.c0;
     for (int it = 0; it <= options_.max_iterations; ++it) {
       if (norm < options_.tolerance) {
         ok = true;
@@ -133,7 +133,7 @@ bool Bdf2ShootingStepper::SolveStepMultiple(const StepInput& input, const Coeffi
       if (!have_factors) {
         // Renewing shoots the pieces from perturbed starts and leaves the trial state there, but
         // norm ≥ tolerance, so a full shot follows before any acceptance.
-        if (!RenewJunctionJacobian(input, c, summary)) break;
+        if (!RenewJunctionJacobian(input, c, statics, summary)) break;
         have_factors = fresh = true;
       }
       ms_dx_ = -ms_r_;
@@ -149,6 +149,11 @@ bool Bdf2ShootingStepper::SolveStepMultiple(const StepInput& input, const Coeffi
         new_norm = ms_r_new_.norm();
         ++summary->iterations;
         reduced = finite && new_norm < norm;
+        if (!reduced && finite && statics && fresh && cut == 0) {
+          // A held rod in tension (ChordStepsBelow): chord steps on from the full step decide.
+          reduced = ChordStepsBelow(input, c, norm, summary);
+          if (reduced) new_norm = ms_r_new_.norm();
+        }
       }
       if (reduced) {
         std::swap(ms_x_, ms_x_new_);
@@ -164,7 +169,7 @@ bool Bdf2ShootingStepper::SolveStepMultiple(const StepInput& input, const Coeffi
         have_factors = false;  // ms_r_ is still the residual at ms_x_: renew there
       }
     }
-    if (!have_factors) ms_jacobian_c0_ = -1.0;  // the factors are stale
+    if (!have_factors || statics) ms_jacobian_c0_ = -1.0;  // the factors are stale
   }
   junctions_active_ = false;
   summary->residual = ms_r_.norm();
@@ -175,8 +180,39 @@ bool Bdf2ShootingStepper::SolveStepMultiple(const StepInput& input, const Coeffi
   }
   solved_unknowns_ = ms_x_.head<6>();
   predictor_term_ = solved_unknowns_;
+  // The junctions of the next step move from this state: in statics it becomes run_.state.
   run_.junction_unknowns = ms_x_.tail(nz);
+  if (statics) run_.junction_unknowns.setZero();
   return true;
+}
+
+bool Bdf2ShootingStepper::MultipleResidual(const StepInput& input, const Coefficients& c,
+                                           bool statics, const Eigen::VectorXd& X,
+                                           Eigen::VectorXd* R, StepSummary* summary) {
+  const Eigen::Index nz = junction_z_.size();
+  junction_z_ = X.tail(nz);
+  R->tail<6>() = Residual(input, c, statics, X.head<6>());
+  R->head(nz) = junction_mismatch_;
+  ++summary->shots;
+  return R->allFinite();
+}
+
+bool Bdf2ShootingStepper::ChordStepsBelow(const StepInput& input, const Coefficients& c,
+                                          double norm, StepSummary* summary) {
+  Eigen::VectorXd x_on = ms_x_new_, r_on = ms_r_new_, dx_on;
+  for (int k = 0; k < kChordSteps; ++k) {
+    dx_on = -r_on;
+    ms_lu_.Solve(dx_on);
+    x_on += dx_on;
+    ++summary->iterations;
+    if (!MultipleResidual(input, c, true, x_on, &r_on, summary)) return false;
+    if (r_on.norm() < norm) {
+      ms_x_new_ = x_on;
+      ms_r_new_ = r_on;
+      return true;
+    }
+  }
+  return false;
 }
 
 // The restart state of junction k, its mismatch against the state arriving there, and both

@@ -561,9 +561,9 @@ Vec6 Bdf2ShootingStepper::Residual(const StepInput& in, const Coefficients& c, b
   return shot.Finish(J);
 }
 
-Vec6 Bdf2ShootingStepper::ShootPiece(const StepInput& in, const Coefficients& c, int piece,
-                                     const Vec6& x) {
-  Shot shot(this, in, c, false, false);
+Vec6 Bdf2ShootingStepper::ShootPiece(const StepInput& in, const Coefficients& c, bool statics,
+                                     int piece, const Vec6& x) {
+  Shot shot(this, in, c, statics, false);
   const int junctions = static_cast<int>(junction_nodes_.size());
   const int first = piece == 0 ? 0 : junction_nodes_[piece - 1];
   const int last = piece < junctions ? junction_nodes_[piece] : static_cast<int>(grid_.size()) - 1;
@@ -573,7 +573,7 @@ Vec6 Bdf2ShootingStepper::ShootPiece(const StepInput& in, const Coefficients& c,
     shot.StartFreeFree(x);
   else
     shot.StartCantilever(x);
-  PrepareHistory(c);
+  if (!statics) PrepareHistory(c);
   shot.RunSegments(first, last);
   if (piece < junctions) {
     shot.EndAtJunction(piece);

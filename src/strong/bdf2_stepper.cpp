@@ -275,7 +275,7 @@ void Bdf2ShootingStepper::SetImplicitCompliance(double c0) {
 
 bool Bdf2ShootingStepper::SolveStep(const StepInput& input, const Coefficients& c, double h,
                                     bool statics, StepSummary* summary) {
-  if (!statics && !junction_nodes_.empty()) return SolveStepMultiple(input, c, h, summary);
+  if (!statics && !junction_nodes_.empty()) return SolveStepMultiple(input, c, h, false, summary);
   Vec6 x = statics ? run_.unknowns.latest() : run_.unknowns.Predict(h);
   Vec6 r;
   if (SolveStepBySecantNewton(input, c, statics, &x, &r, summary)) return true;
@@ -446,75 +446,6 @@ void Bdf2ShootingStepper::Commit(double h) {
 
 void Bdf2ShootingStepper::RequireActuation(const Actuation& a) const {
   a.Require(static_cast<int>(model_.tendons.size()), static_cast<int>(model_.chambers.size()));
-}
-
-StepSummary Bdf2ShootingStepper::InitializeAtRest(const StepInput& input,
-                                                  const Vec6* base_wrench_B) {
-  const auto t0 = std::chrono::steady_clock::now();
-  StepSummary summary;
-  if (options_.ends == EndConditions::kFreeFree && input.tip_hold != TipHold::kFree)
-    throw std::invalid_argument("Bdf2ShootingStepper: a held tip needs cantilever ends");
-  RequireActuation(input.actuation);
-  initialized_ = false;  // until this succeeds, Step() refuses to run
-  // A new run starts from the constructor's plan: pieces a failed step of an earlier run added
-  // would make the same inputs give another run (ApplyActuation adds what this one asks for).
-  if (automatic_pieces_ && ShootingPieces() != initial_pieces_) SetShootingPieces(initial_pieces_);
-  run_.base1 = run_.base2 = input.base_pose;
-  run_.steps_taken = 0;
-  run_.jacobian_c0 = -1.0;  // the first solve computes the exact Jacobian
-  ApplyActuation(input.actuation);
-  const Coefficients c{};
-  bool ok = false;
-  if (options_.ends == EndConditions::kFreeFree) {
-    // Nothing to solve: W(0) is given, V = 0. The rod is at rest only if the loads balance.
-    run_.unknowns.Reset(Vec6::Zero());
-    const Vec6 r = Residual(input, c, true, Vec6::Zero());
-    ++summary.shots;
-    summary.residual = r.norm();
-    ok = summary.residual < options_.tolerance;
-    if (!ok) summary.status = SolveStatus::kMaxIterations;  // not an equilibrium
-  } else {
-    // A rigid-body guess is good enough for moderate preloads; large ones are the statics
-    // solver's job (continuation). The tip frame of the guess is the clamp's: a follower force
-    // turns with it.
-    const SplitWrench tip = TotalTipWrench(input.loads, options_.tip_mass);
-    const Vec3 total = model_.length * TotalDistributedForce_W(input.loads, samples_[1].Site()) +
-                       tip.dead_W.tail<3>() + input.base_pose.R * tip.follower_B.tail<3>();
-    Vec6 W;
-    W << Vec3::Zero(), input.base_pose.R.transpose() * total;
-    if (base_wrench_B) W = *base_wrench_B;
-    run_.unknowns.Reset(W.cwiseQuotient(scale_));
-    ok = SolveStep(input, c, 0.0, true, &summary);
-    if (ok) run_.unknowns.Reset(solved_unknowns_);
-  }
-  if (!ok) {
-    summary.wall_time_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return summary;
-  }
-  // At rest: both history levels equal the equilibrium, twists zero.
-  std::copy(strain_now_.begin(), strain_now_.end(), run_.strain1.begin());
-  std::copy(strain_now_.begin(), strain_now_.end(), run_.strain2.begin());
-  std::copy(position_now_.begin(), position_now_.end(), run_.position1.begin());
-  std::copy(rotation_now_.begin(), rotation_now_.end(), run_.rotation1.begin());
-  std::swap(run_.state, trial_);
-  for (auto* v : {&run_.twist1, &run_.twist2}) std::fill(v->begin(), v->end(), Vec6::Zero());
-  for (auto* v : {&run_.velocity_W1, &run_.velocity_W2})
-    std::fill(v->begin(), v->end(), Vec3::Zero());
-  run_.tip_strain1 = run_.tip_strain2 = tip_strain_now_;
-  run_.tip_twist1 = run_.tip_twist2 = Vec6::Zero();
-  run_.last_input = input;
-  run_.last_input.base_twist_B.setZero();
-  history_ready_ = false;
-  run_.time = 0.0;
-  run_.last_dt = 0.0;
-  run_.steps_taken = 0;
-  run_.initialized = true;
-  initialized_ = true;
-  summary.status = SolveStatus::kConverged;
-  summary.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return summary;
 }
 
 Bdf2ShootingStepper::Coefficients Bdf2ShootingStepper::Weights(double h, double h_prev,

@@ -121,6 +121,9 @@ class AssemblyDynamics {
   std::vector<std::unique_ptr<Bdf2ShootingStepper>> rods_;
   std::vector<Bdf2ShootingStepper::Snapshot> accepted_;  ///< each rod's last accepted step
   std::vector<Vec6> base_wrench_guess_;  ///< each rod's W(0), for its static solves
+  /// Each rod's equilibrium from the statics solver (empty when no rod is held by the ground):
+  /// the start of its static solves, whose junctions it places when the rod is shot in pieces.
+  std::vector<RodState> statics_states_;
   std::vector<Body> bodies_;
   double time_ = 0.0, last_dt_ = 0.0;
   bool initialized_ = false;

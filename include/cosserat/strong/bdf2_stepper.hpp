@@ -141,6 +141,15 @@ class Bdf2ShootingStepper {
   /// that carries the loads as a rigid body.
   StepSummary InitializeAtRest(const StepInput& input, const Vec6* base_wrench_B = nullptr);
 
+  /// As above (cantilever), from an equilibrium found elsewhere on this grid, such as a statics
+  /// solver's state with the same nodes: its base wrench starts the solve, and its nodes start
+  /// the junctions of multiple shooting. With automatic pieces the stepper shoots this statics
+  /// in pieces when the state's tension makes one shot from the base ill-conditioned (the
+  /// exponent of SingleShootingExponent with the state above 10): a taut wire, a hanging pipe,
+  /// a payload on a wire, where a single shot from a rigid-body guess may settle on a looped
+  /// equilibrium. Throws std::invalid_argument if `equilibrium` is not on this grid.
+  StepSummary InitializeAtRest(const StepInput& input, const RodState& equilibrium);
+
   /// Advances by options().dt to the state under `input`. No heap allocation. When a step
   /// fails even after halving, the status says why and time() and state() are those of the last
   /// (sub-)step that converged. NaN or Inf in the input is the status non_finite (nothing
@@ -252,9 +261,34 @@ class Bdf2ShootingStepper {
   /// SolveStep's fallback: Levenberg–Marquardt with the exact Jacobian from x_start.
   bool SolveStepByLevenbergMarquardt(const StepInput& input, const Coefficients& c, bool statics,
                                      const Vec6& x_start, StepSummary* summary);
-  /// SolveStep for shooting_segments > 1 (bdf2_multiple_shooting.cpp), dynamics only.
-  bool SolveStepMultiple(const StepInput& input, const Coefficients& c, double h,
+  /// SolveStep for shooting_segments > 1 (bdf2_multiple_shooting.cpp). In statics the junctions
+  /// start from run_.state, which the caller has set to a guess of the equilibrium.
+  bool SolveStepMultiple(const StepInput& input, const Coefficients& c, double h, bool statics,
                          StepSummary* summary);
+  /// Multiple shooting's residual [junction mismatches; tip (6)] at the unknowns X = [x (6); z];
+  /// false if not finite.
+  bool MultipleResidual(const StepInput& input, const Coefficients& c, bool statics,
+                        const Eigen::VectorXd& X, Eigen::VectorXd* R, StepSummary* summary);
+  /// Statics in pieces: up to kChordSteps chord steps with the current factors from ms_x_new_
+  /// (a full Newton step that raised the residual); true, with ms_x_new_ and ms_r_new_ moved
+  /// there, once one brings the residual below `norm`. A rod held in tension needs them: its
+  /// tip position residual (over L) is tiny against the junctions' rotation rows a good step
+  /// disturbs (1.7e-6 → 1.8e-4 for a steel wire whose held tip moved 1 µm).
+  bool ChordStepsBelow(const StepInput& input, const Coefficients& c, double norm,
+                       StepSummary* summary);
+  /// Both InitializeAtRest: `equilibrium`, when given, has been checked to be on the grid.
+  StepSummary InitializeAtRestFrom(const StepInput& input, const Vec6* base_wrench_B,
+                                   const RodState* equilibrium);
+  /// InitializeAtRest's solve (cantilever: from base_wrench_B or the rigid-body guess, in pieces
+  /// from `equilibrium` when given and its tension asks for them; free-free: the check that the
+  /// loads balance). True when it converged; the trial state holds the equilibrium.
+  bool SolveRestEquilibrium(const StepInput& input, const Vec6* base_wrench_B,
+                            const RodState* equilibrium, StepSummary* summary);
+  /// After SolveRestEquilibrium: the trial state becomes the run's, with both history levels at
+  /// it and every twist zero, at t = 0.
+  void StartHistoryAtRest(const StepInput& input);
+  /// With automatic pieces: as many as the tension of run_.state asks for at dt, if more.
+  void AddPiecesForTension();
   /// With junctions_active_: restart the shot at junction k (node junction_nodes_[k]) from the
   /// state given by the junction unknowns, after recording the mismatch of the arriving state.
   /// Templated on the integration state, which is private to bdf2_shot.cpp.
@@ -271,11 +305,13 @@ class Bdf2ShootingStepper {
   /// restart of junction piece − 1 otherwise, with junction_z_). A piece before the last writes
   /// the mismatch of the junction it ends at to junction_mismatch_ and returns zero; the last
   /// piece returns the tip residual. The trial state of the piece's nodes is overwritten.
-  Vec6 ShootPiece(const StepInput& input, const Coefficients& c, int piece, const Vec6& x);
+  Vec6 ShootPiece(const StepInput& input, const Coefficients& c, bool statics, int piece,
+                  const Vec6& x);
   /// Multiple shooting: the block-banded Jacobian of the residual (junction mismatches, then the
   /// tip) in the unknowns [x; z] at ms_x_, piece by piece, factorised into ms_lu_. False when
   /// a shot is not finite or the Jacobian is singular.
-  bool RenewJunctionJacobian(const StepInput& input, const Coefficients& c, StepSummary* summary);
+  bool RenewJunctionJacobian(const StepInput& input, const Coefficients& c, bool statics,
+                             StepSummary* summary);
   /// junction_nodes_ for the current grid (constructor, Grow()).
   void PlaceJunctions();
   /// Shoot in `pieces` pieces from now on: the junctions and the multiple-shooting workspace

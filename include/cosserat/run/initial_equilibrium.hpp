@@ -1,0 +1,22 @@
+#pragma once
+/// \file
+/// The equilibrium a dynamics run of the SE(3) stepper starts from, as the CLI and the Python
+/// Stepper find it.
+
+#include "cosserat/io/problem.hpp"
+#include "cosserat/strong/bdf2_stepper.hpp"
+
+namespace cosserat::run {
+
+/// Puts `stepper` (built for `problem`'s rod and nodes) at rest under `input`'s loads and
+/// actuation. A cantilever starts from the statics solver's equilibrium: its continuation in
+/// the load keeps to the branch the loads grow along, where the stepper's own Newton solve from
+/// a rigid-body guess may settle on a looped one (a wire bent by FL²/EI ≈ 13), and its pieces
+/// resolve a rod one shot from the clamp cannot (a payload hanging on a wire, a taut riser);
+/// the stepper refines it on its own equations. The stepper's own solve runs where the statics
+/// solvers fail or do not take the rod, and for free-free ends. The summary counts the work of
+/// every attempt; its residual is the last one's.
+StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const StepInput& input,
+                                          Bdf2ShootingStepper* stepper);
+
+}  // namespace cosserat::run

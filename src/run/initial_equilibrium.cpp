@@ -1,0 +1,79 @@
+#include "cosserat/run/initial_equilibrium.hpp"
+
+#include <optional>
+#include <stdexcept>
+
+#include "cosserat/run/solver_options.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+
+namespace cosserat::run {
+namespace {
+
+/// The loads of the clamped rod's statics: the file's, with the tip mass's weight as a dead tip
+/// force. A tip force that follows the section cannot take it: the weight is then left out, and
+/// the equilibrium is only the stepper's first guess.
+StaticLoads WithTipMassWeight(const io::Problem& problem, StaticLoads loads) {
+  if (problem.dynamics.tip_mass > 0 && loads.tip_force_frame == LoadFrame::kWorld)
+    loads.tip_force += problem.dynamics.tip_mass * loads.gravity_W;
+  return loads;
+}
+
+/// Whether one shot from the clamp resolves the rod's statics (StaticShootingExponent ≤ 10), as
+/// the statics runner decides: beyond that a stiff contact foundation or a high tension needs
+/// multiple shooting, and a single shot from a rigid-body guess may settle on a looped shape.
+bool SingleShotResolves(const io::Problem& problem, const StaticLoads& loads) {
+  return StaticShootingExponent(problem.rod, WithTipMassWeight(problem, loads)) <= 10.0;
+}
+
+/// The clamped rod's equilibrium under `input` (its base pose, loads and actuation; the tip mass's weight included) from the statics
+/// solver with its continuation in the load, in pieces where one shot cannot resolve it (plain
+/// rods: the statics runner takes no actuation, tendons or chambers in pieces). Empty if that
+/// does not converge either.
+std::optional<RodState> StaticEquilibrium(const io::Problem& problem, const StepInput& input) {
+  const StaticShootingOptions single = StaticOptions(problem);
+  const StaticLoads statics_loads = WithTipMassWeight(problem, input.loads);
+  if (!problem.has_robot && problem.rod.tendons.empty() && problem.rod.chambers.empty() &&
+      !SingleShotResolves(problem, input.loads)) {
+    StaticMultipleShootingOptions opt;
+    opt.tolerance = single.tolerance;
+    opt.max_iterations = single.max_iterations;
+    StaticMultipleShootingSolver solver(problem.rod, problem.nodes, opt);
+    if (!solver.Solve(input.base_pose, statics_loads).converged()) return std::nullopt;
+    return solver.state();
+  }
+  StaticShootingSolver solver(problem.rod, problem.nodes, single, input.actuation);
+  if (!solver.Solve(input.base_pose, statics_loads).converged()) return std::nullopt;
+  return solver.state();
+}
+
+/// StaticEquilibrium, with a rod the statics solvers refuse as no equilibrium.
+std::optional<RodState> TryStaticEquilibrium(const io::Problem& problem, const StepInput& input) {
+  try {
+    return StaticEquilibrium(problem, input);
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
+StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const StepInput& input,
+                                          Bdf2ShootingStepper* stepper) {
+  if (problem.boundary != io::Boundary::kCantilever) return stepper->InitializeAtRest(input);
+  StepSummary counted;
+  if (const std::optional<RodState> equilibrium =
+          TryStaticEquilibrium(problem, input)) {
+    const StepSummary from_statics = stepper->InitializeAtRest(input, *equilibrium);
+    if (from_statics.converged()) return from_statics;
+    counted = from_statics;
+  }
+  StepSummary own = stepper->InitializeAtRest(input);
+  own.iterations += counted.iterations;
+  own.shots += counted.shots;
+  own.jacobians += counted.jacobians;
+  own.wall_time_s += counted.wall_time_s;
+  return own;
+}
+
+}  // namespace cosserat::run
