@@ -275,6 +275,21 @@ TEST(Bdf2Dynamics, SnapshotRestartsTheSameRun) {
   EXPECT_EQ((stepper.state().tip_position_W() - first).norm(), 0.0);  // deterministic
 }
 
+// A base "rotation" 2·I used to step a rod stretched twice over, converged: refused by
+// InitializeAtRest and by Step, which leaves the state as it was.
+TEST(Bdf2Dynamics, RefusesABaseThatIsNotARotation) {
+  Bdf2ShootingStepper stepper(Steel(0.5, 0.001), 20);
+  StepInput bad;
+  bad.base_pose.R = 2.0 * Mat3::Identity();
+  EXPECT_THROW(stepper.InitializeAtRest(bad), std::invalid_argument);
+  StepInput in;
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  const Vec3 tip = stepper.state().tip_position_W();
+  EXPECT_THROW(stepper.Step(bad), std::invalid_argument);
+  EXPECT_EQ(stepper.time(), 0.0);
+  EXPECT_EQ((stepper.state().tip_position_W() - tip).norm(), 0.0);
+}
+
 TEST(Bdf2Dynamics, RestoreRefusesSnapshotsItCannotContinue) {
   // A snapshot taken before InitializeAtRest holds no run; one from another rod on the same node
   // count (or other end conditions, or other tendons) would continue with a foreign history. Both

@@ -169,6 +169,20 @@ TEST(StaticShooting, NonFiniteInputIsAStatusNotAConvergedAnswer) {
   EXPECT_TRUE(summary.warm_started);
 }
 
+// A "rotation" that is not one (2·I) used to integrate a rod stretched twice over and call it
+// converged (tip at z = 2L): refused, as a matrix off by 1e-5 is; one typed to 7 digits is not.
+TEST(StaticShooting, RefusesABaseThatIsNotARotation) {
+  StaticShootingSolver solver(SteelRod(), 41);
+  lie::SE3 base;
+  base.R = 2.0 * Mat3::Identity();
+  EXPECT_THROW(solver.Solve(base, StaticLoads{}), std::invalid_argument);
+  base.R = Mat3::Identity();
+  base.R(0, 1) = 1e-5;
+  EXPECT_THROW(solver.Solve(base, StaticLoads{}), std::invalid_argument);
+  base.R(0, 1) = 1e-7;
+  EXPECT_TRUE(solver.Solve(base, StaticLoads{}).converged());
+}
+
 TEST(StaticShooting, RejectsBadModelAndOptions) {
   RodModel bad = SteelRod();
   bad.length = -0.5;

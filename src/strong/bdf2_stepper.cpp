@@ -12,6 +12,7 @@
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/constitutive/tendon_law.hpp"
 #include "cosserat/loads/total_load.hpp"
+#include "cosserat/lie/nearest_rotation.hpp"
 #include "cosserat/rod/grid.hpp"
 #include "cosserat/strong/frame_tangent.hpp"
 #include "cosserat/strong/secant_filter.hpp"
@@ -448,6 +449,12 @@ void Bdf2ShootingStepper::RequireActuation(const Actuation& a) const {
   a.Require(static_cast<int>(model_.tendons.size()), static_cast<int>(model_.chambers.size()));
 }
 
+void Bdf2ShootingStepper::RequirePoses(const StepInput& input) const {
+  lie::RequireRotation(input.base_pose.R, "Bdf2ShootingStepper: StepInput.base_pose.R");
+  if (input.tip_hold != TipHold::kFree)
+    lie::RequireRotation(input.tip_pose.R, "Bdf2ShootingStepper: StepInput.tip_pose.R");
+}
+
 Bdf2ShootingStepper::Coefficients Bdf2ShootingStepper::Weights(double h, double h_prev,
                                                                Bdf2Options::FirstStep first) {
   return Bdf2Weights(h, h_prev, first);
@@ -501,6 +508,7 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
     return summary;
   }
   RequireActuation(input.actuation);
+  RequirePoses(input);
   const StepInput start = run_.last_input;
   const bool ok = AttemptInterval(start, input, options_.dt, 0, &summary);
   if (ok) summary.status = SolveStatus::kConverged;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cosserat/constitutive/section_law.hpp"
+#include "cosserat/lie/nearest_rotation.hpp"
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/loads/total_load.hpp"
@@ -404,6 +405,7 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
     summary.status = SolveStatus::kNonFinite;
     return summary;
   }
+  lie::RequireRotation(base.R, "StaticMultipleShootingSolver::Solve: base.R");
   const int pieces = PiecesFor(StaticShootingExponent(model_, loads));
   if (pieces != this->pieces()) SetPieces(pieces);
   // A column's path in steps of at most max_load_increment (as ColumnSolver's): a full step

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "cosserat/lie/nearest_rotation.hpp"
 #include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/strong/shot_newton.hpp"
@@ -252,6 +253,7 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
     summary.residual = NAN;
     return summary;
   }
+  lie::RequireRotation(base.R, "StaticShootingSolver::Solve: base.R");
 
   // Start from a known solution: the previous one at the same base, else the unloaded rod
   // (W ≡ 0 is exact at zero load, whatever the rest shape).

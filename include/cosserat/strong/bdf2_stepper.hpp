@@ -154,7 +154,8 @@ class Bdf2ShootingStepper {
   /// fails even after halving, the status says why and time() and state() are those of the last
   /// (sub-)step that converged. NaN or Inf in the input is the status non_finite (nothing
   /// moves); an actuation Actuation::IsValid refuses for this rod (a pushing tendon, a tendon or
-  /// chamber it lacks) throws std::invalid_argument, as InitializeAtRest does.
+  /// chamber it lacks), or a base (or held tip) rotation that is not one within 1e-6
+  /// (lie::RequireRotation), throws std::invalid_argument, as InitializeAtRest does.
   StepSummary Step(const StepInput& input);
 
   double time() const { return run_.time; }
@@ -325,6 +326,8 @@ class Bdf2ShootingStepper {
   void SampleGrid();
   /// Throws std::invalid_argument for an actuation this rod cannot take (Actuation::Require).
   void RequireActuation(const Actuation& a) const;
+  /// Throws std::invalid_argument when the base pose's R (or a held tip's) is not a rotation.
+  void RequirePoses(const StepInput& input) const;
   /// Snapshot::model_fingerprint for the current grid (constructor, Grow()).
   std::uint64_t ModelFingerprint() const;
   /// Samples every section for actuation_ (SampleGrid() and when the actuation changes).
