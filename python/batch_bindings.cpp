@@ -12,6 +12,7 @@
 
 #include "cosserat/io/problem.hpp"
 #include "cosserat/io/study.hpp"
+#include "cosserat/run/initial_equilibrium.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/run/sweep.hpp"
 #include "cosserat/strong/batch_stepper.hpp"
@@ -28,7 +29,8 @@ namespace {
 class PyBatchStepper {
  public:
   PyBatchStepper(const io::Problem& problem, int count, std::optional<int> threads)
-      : options_(cosserat::run::DynamicsOptions(Steppable(problem, "the BatchStepper"))),
+      : problem_(Steppable(problem, "the BatchStepper")),
+        options_(cosserat::run::DynamicsOptions(problem_)),
         tendons_(static_cast<int>(problem.rod.tendons.size())) {
     if (problem.boundary != io::Boundary::kCantilever)
       throw py::value_error("boundary: the BatchStepper runs \"cantilever\", got \"" +
@@ -48,9 +50,13 @@ class PyBatchStepper {
     inputs_.assign(count, input);
   }
 
+  /// As the Stepper starts: from the statics solver's equilibrium, else the rods' own solve.
   int InitializeAtRest() {
+    const std::optional<RodState> equilibrium =
+        cosserat::run::StaticEquilibriumToStartFrom(problem_, initial_);
     py::gil_scoped_release release;
-    const int converged = batch_->InitializeAtRest(initial_);
+    int converged = equilibrium ? batch_->InitializeAtRest(initial_, *equilibrium) : 0;
+    if (converged != batch_->count()) converged = batch_->InitializeAtRest(initial_);
     initialized_ = converged == batch_->count();
     return converged;
   }
@@ -116,6 +122,7 @@ class PyBatchStepper {
     if (!a.allFinite()) throw py::value_error(std::string(name) + ": expected finite numbers");
   }
 
+  io::Problem problem_;  ///< for the statics the rods start from
   Bdf2Options options_;
   int tendons_;
   std::optional<BatchStepper> batch_;

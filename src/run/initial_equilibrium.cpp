@@ -47,23 +47,23 @@ std::optional<RodState> StaticEquilibrium(const io::Problem& problem, const Step
   return solver.state();
 }
 
-/// StaticEquilibrium, with a rod the statics solvers refuse as no equilibrium.
-std::optional<RodState> TryStaticEquilibrium(const io::Problem& problem, const StepInput& input) {
+}  // namespace
+
+std::optional<RodState> StaticEquilibriumToStartFrom(const io::Problem& problem,
+                                                     const StepInput& input) {
   try {
     return StaticEquilibrium(problem, input);
   } catch (const std::invalid_argument&) {
-    return std::nullopt;
+    return std::nullopt;  // a rod the statics solvers do not take
   }
 }
-
-}  // namespace
 
 StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const StepInput& input,
                                           Bdf2ShootingStepper* stepper) {
   if (problem.boundary != io::Boundary::kCantilever) return stepper->InitializeAtRest(input);
   StepSummary counted;
   if (const std::optional<RodState> equilibrium =
-          TryStaticEquilibrium(problem, input)) {
+          StaticEquilibriumToStartFrom(problem, input)) {
     const StepSummary from_statics = stepper->InitializeAtRest(input, *equilibrium);
     if (from_statics.converged()) return from_statics;
     counted = from_statics;

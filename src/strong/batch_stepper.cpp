@@ -23,6 +23,14 @@ int BatchStepper::InitializeAtRest(const StepInput& input) {
   return converged;
 }
 
+int BatchStepper::InitializeAtRest(const StepInput& input, const RodState& equilibrium) {
+  auto job = [&](std::size_t i) { summaries_[i] = rods_[i]->InitializeAtRest(input, equilibrium); };
+  team_.For(rods_.size(), job);
+  int converged = 0;
+  for (const StepSummary& s : summaries_) converged += s.converged();
+  return converged;
+}
+
 int BatchStepper::Step(const StepInput* inputs) {
   auto job = [&](std::size_t i) { summaries_[i] = rods_[i]->Step(inputs[i]); };
   team_.For(rods_.size(), job);

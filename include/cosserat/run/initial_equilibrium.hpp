@@ -3,6 +3,8 @@
 /// The equilibrium a dynamics run of the SE(3) stepper starts from, as the CLI and the Python
 /// Stepper find it.
 
+#include <optional>
+
 #include "cosserat/io/problem.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 
@@ -18,5 +20,11 @@ namespace cosserat::run {
 /// every attempt; its residual is the last one's.
 StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const StepInput& input,
                                           Bdf2ShootingStepper* stepper);
+
+/// The statics solver's equilibrium of `problem`'s cantilever under `input` (its base pose, loads
+/// and actuation, the tip mass's weight added) that InitializeAtStaticEquilibrium starts from:
+/// empty when the statics solvers do not converge or do not take the rod.
+std::optional<RodState> StaticEquilibriumToStartFrom(const io::Problem& problem,
+                                                     const StepInput& input);
 
 }  // namespace cosserat::run

@@ -21,6 +21,9 @@ class BatchStepper {
 
   /// Every rod at rest under `input` (the same for all). Returns how many converged.
   int InitializeAtRest(const StepInput& input);
+  /// The same from an equilibrium found elsewhere on the rods' grid
+  /// (Bdf2ShootingStepper::InitializeAtRest with a state).
+  int InitializeAtRest(const StepInput& input, const RodState& equilibrium);
   /// Steps rod i under inputs[i] (count of them). Returns how many converged; summary(i) says
   /// how each went.
   int Step(const StepInput* inputs);
