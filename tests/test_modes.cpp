@@ -204,6 +204,42 @@ TEST(Modes, EachPlaneOfASaggingWireIsItsOwnMode) {
   }
 }
 
+TEST(Modes, ThinHangingWiresKeepTheirLowestModesOnQuatFd) {
+  // A steel wire 1 m long hanging from a clamp. Its shear and rotation modes sit at
+  // ω² ≈ κGA/ρI, ~1e15 times its first: the dense eigen-solve resolved ω² only to ε ω²_max, and
+  // the two planes of the round wire came out 0.61002 and 0.61559 Hz (r = 0.05 mm), the
+  // cable-like section I = 1e-18 m⁴ gave negative frequencies, both "converged". Against the
+  // other formulation (shooting resolves the low modes directly) at r = 0.05 mm: within 1e-3
+  // (the quatfd grid's O(h²) error at 100 segments is ~2e-4), the planes equal to 1e-9. The
+  // cable against the hanging chain, ω_n = (j₀,ₙ/2) √(g/L) (j₀,₁ = 2.404826, j₀,₂ = 5.520078):
+  // its bending stiffness (boundary layer √(EI/T) ≈ 1.4 mm) and the grid: within 1e-3.
+  lie::SE3 base;
+  base.R << 1, 0, 0, 0, -1, 0, 0, 0, -1;  // hanging: body z → world −z
+  StaticLoads loads;
+  loads.gravity_W = Vec3(0, 0, -9.81);
+  testing::SteelRod wire{1.0, 5e-5};
+  const ModalResult fd = QuatFdModes(wire.model(), base, loads, 100, 4, false);
+  const ModalResult sh = ShootingModes(wire.model(), base, loads, 101, 4);
+  ASSERT_TRUE(fd.converged()) << ToString(fd.status);
+  ASSERT_TRUE(sh.converged()) << ToString(sh.status);
+  for (int k = 0; k < 4; ++k)
+    EXPECT_NEAR(fd.modes[k].frequency_hz / sh.modes[k].frequency_hz, 1.0, 1e-3) << k;
+  for (int pair = 0; pair < 2; ++pair)
+    EXPECT_NEAR(fd.modes[2 * pair + 1].frequency_hz / fd.modes[2 * pair].frequency_hz, 1.0, 1e-9);
+
+  // The wire's area (r = 0.636 mm) with I1 = I2 = 1e-18 m⁴: a cable, EI = 2e-7 N·m².
+  const RodModel cable =
+      RodModel::Uniform(1.0, CrossSection::Explicit(1.27e-6, 1e-18, 1e-18, 2e-18),
+                        Material::FromShearModulus(200e9, 80e9, 8000));
+  const ModalResult chain = QuatFdModes(cable, base, loads, 100, 4, false);
+  ASSERT_TRUE(chain.converged()) << ToString(chain.status);
+  const double j0[] = {2.404826, 5.520078};
+  for (int k = 0; k < 4; ++k)
+    EXPECT_NEAR(chain.modes[k].frequency_hz / (j0[k / 2] / 2 * std::sqrt(9.81) / (2 * kPi)), 1.0,
+                1e-3)
+        << k;
+}
+
 TEST(Modes, TorsionalAndAxialFundamentals) {
   // L = 1 m, r = 1 cm steel: the first torsional and axial modes are ω = (π / 2L) sqrt(G/ρ) and
   // (π / 2L) sqrt(E/ρ) (a circle has J = I_p). Both are second-order accurate in quatfd, error

@@ -202,6 +202,36 @@ bool IsSymmetric(const Eigen::MatrixXd& S) {
 /// ω² with the reduced shape (empty without shapes), ascending.
 using Spectrum = std::vector<std::pair<double, Eigen::VectorXd>>;
 
+/// The direct spectrum of H = M^−½ K M^−½ resolves ω² only to ~ε ω²_max, and a slender rod's
+/// shear and rotation modes (ω² ≈ κGA/ρI, 1e15 times a thin hanging wire's first) swamp its
+/// lowest ones: the two planes of a round wire came out 0.9 % apart, and a cable-like section
+/// gave negative frequencies. Where that costs the lowest mode more than 1e-9 of its ω², the
+/// spectrum comes from H⁻¹ = M^½ K⁻¹ M^½ instead, if H is positive definite: its Cholesky
+/// factor is accurate relative to H's diagonal (Demmel & Veselić 1992), so the largest
+/// eigenvalues 1/ω² of H⁻¹ keep their digits. False (eig untouched) where the direct one does.
+bool InverseSpectrum(const Eigen::MatrixXd& H, const Reduction& red,
+                     const Eigen::VectorXd& inv_sqrt_m, const Eigen::VectorXd& direct, bool shapes,
+                     Spectrum* eig) {
+  const int m = static_cast<int>(H.rows());
+  if (m == 0) return false;
+  const double w2_max = direct.cwiseAbs().maxCoeff();
+  if (!(2.2e-16 * w2_max > 1e-9 * std::abs(direct(0)))) return false;
+  const Eigen::LLT<Eigen::MatrixXd> llt(H);
+  if (llt.info() != Eigen::Success) return false;  // not positive definite: the direct verdict
+  Eigen::MatrixXd G = llt.solve(Eigen::MatrixXd::Identity(m, m));
+  G = 0.5 * (G + G.transpose()).eval();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(
+      G, shapes ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+  for (int i = m - 1; i >= 0; --i) {  // the largest 1/ω² first: ω² ascending
+    const double mu = es.eigenvalues()(i);
+    if (!(mu > 0)) break;  // below the resolution of H⁻¹: ω² beyond what is asked for
+    eig->emplace_back(1.0 / mu, shapes ? Eigen::VectorXd(MassTimes(red, inv_sqrt_m, -0.5,
+                                                                   es.eigenvectors().col(i)))
+                                       : Eigen::VectorXd());
+  }
+  return true;
+}
+
 /// The symmetric problem K φ = ω² M φ with the reduced mass M (diagonal, or with 3×3 vertex blocks
 /// of an added mass), as that of M^−½ K M^−½. When damped, also
 /// the first-order form of λ² M + λ C + K = 0 in the undamped modal coordinates (Ψ orthonormal,
@@ -230,6 +260,7 @@ Spectrum SymmetricSpectrum(const Eigen::MatrixXd& S, const Reduction& red,
     companion->bottomRightCorner(m, m) = -(Psi.transpose() * Cm * Psi);
   }
   Spectrum eig;
+  if (InverseSpectrum(H, red, inv_sqrt_m, es.eigenvalues(), shapes, &eig)) return eig;
   for (int i = 0; i < m; ++i)
     eig.emplace_back(es.eigenvalues()(i),
                      shapes ? Eigen::VectorXd(MassTimes(red, inv_sqrt_m, -0.5,
