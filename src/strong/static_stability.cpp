@@ -23,9 +23,12 @@
 //
 // H is symmetric only for conservative loads. A dead moment in the world frame is not (in 3-D it
 // does work only along its axis), which makes H(σ) non-symmetric by ½[m]× in the rotation block
-// wherever the rod carries a bending moment: that part is antisymmetric, and the count uses the
-// symmetric part ½(H + Hᵀ). Follower tip loads are not conservative at all (Beck's column loses
-// stability by flutter, which statics cannot see): the index is not defined, −1.
+// wherever the rod carries a bending moment. Counting the symmetric part ½(H + Hᵀ) is then no
+// criterion: it called a cantilever under a dead tip moment ML/EI = 3 unstable where the full
+// spectrum of its linearisation (quaternion-FD modes) is real and positive. Tip moments, like
+// follower tip loads (Beck's column loses stability by flutter, which statics cannot see), leave
+// the index not defined, −1. (The count still takes ½(H + Hᵀ): for conservative loads, H to
+// round-off.)
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
@@ -95,7 +98,9 @@ int StaticShootingSolver::StabilityIndex(const lie::SE3& base, const StaticLoads
 // Jacobian shot (directions: the scaled unknowns) serves as well as the unit directions.
 int StaticShootingSolver::StabilityIndexFromShot(const StaticLoads& loads, const RodState& record,
                                                  const std::vector<StateTangent>& nodes) const {
-  if (!TotalTipWrench(loads).follower_B.isZero(0.0)) return -1;  // not conservative
+  const SplitWrench tip = TotalTipWrench(loads);
+  if (!tip.follower_B.isZero(0.0) || !tip.dead_W.head<3>().isZero(0.0))
+    return -1;  // not conservative
   // Drag is not the gradient of a potential; contact in statics is (a penalty on the position
   // alone, no damping or friction at rest), and the tangent shot carries its stiffness.
   if (HasDrag(loads)) return -1;
