@@ -435,6 +435,24 @@ TEST(Run, APlateOnTautWiresSwingsAsAParallelogramPendulum) {
   EXPECT_NEAR((crossings[2] - crossings[0]) / (2 * M_PI * std::sqrt(L_e / 9.81)), 1.0, 1e-2);
 }
 
+// A diverged solve's iterate (a 105 m cable of EI = 0.1 N·m² on a 0.5 m grid: a tip 30 km off)
+// is stretched by millions of percent: the log's hint names the grid, and no warning blames the
+// units for it (the stretch warning is for converged answers).
+TEST(Run, ADivergedSolveIsNotBlamedOnTheUnits) {
+  const io::ParseResult parsed = io::ParseProblem(R"({
+    "format": "cosserat-problem/1", "analysis": "statics",
+    "rod": {"length": 105.0, "nodes": 201,
+            "section": {"area": 0.001, "I1": 1e-12, "I2": 1e-12, "J": 2e-12},
+            "material": {"youngs_modulus": 1e11, "poisson_ratio": 0.3, "density": 7850}},
+    "boundary": "anchored", "anchor": {"position": [100.0, 0, 20.0]},
+    "loads": {"gravity": [0, 0, -9.81]}})");
+  ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
+  const Result r = cosserat::run::Run(*parsed.problem);
+  ASSERT_FALSE(r.converged);
+  EXPECT_NE(r.log.find("coarse for the bending boundary layers"), std::string::npos) << r.log;
+  EXPECT_EQ(r.log.find("check the units"), std::string::npos) << r.log;
+}
+
 // A statics whose load steps stop short says how far they got: a silicone rod (E 1 MPa, 1 m,
 // r 5 mm) under gravity at 41 nodes stops before the whole weight; the result's load_reached
 // lies in (0, 1) and the hint names it.

@@ -49,6 +49,11 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
           << " m across: not a slender rod, which rod theory assumes; check rod.length and the "
              "section's sizes (m)\n";
   }
+  // A solve that did not converge leaves an iterate, whose stretch says nothing of the units.
+  if (!result->converged) {
+    result->log += log.str();
+    return;
+  }
   const nlohmann::ordered_json& j = result->json;
   double at_s = 0.0, worst = 0.0;
   if (j.contains("nodes")) worst = LargestStretch(j["nodes"], &at_s);

@@ -3,8 +3,9 @@
 /// Warnings for answers that only a slip of units gives: a "rod" shorter than twice its
 /// diameter (a radius in mm on a rod in m, or length and radius swapped), and a rod stretched or
 /// compressed between two nodes by more than half its length (a modulus in MPa where Pa is
-/// meant makes a steel rod as soft as a gel). Either is a valid input, so the run goes on and
-/// its log says what looks wrong and which fields to check.
+/// meant makes a steel rod as soft as a gel) in a converged answer (a diverged iterate's stretch
+/// says nothing of the units). Either is a valid input, so the run goes on and its log says
+/// what looks wrong and which fields to check.
 
 #include "cosserat/io/problem.hpp"
 #include "cosserat/run/result.hpp"
