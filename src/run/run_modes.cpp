@@ -8,6 +8,7 @@
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/run/solver_options.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"
 
@@ -90,6 +91,15 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
       << "), " << r.modes.size() << " modes:";
   for (const Mode& m : r.modes) log << ' ' << std::setprecision(6) << m.frequency_hz;
   log << " Hz, " << std::setprecision(3) << r.wall_time_s * 1e3 << " ms\n";
+  // SE(3) modes shoot the rod in one piece from the clamp, statics and frequency scan alike;
+  // a tension or a foundation beyond what one shot resolves is the other formulation's.
+  const double exponent = quatfd ? 0.0 : StaticShootingExponent(problem.rod, problem.loads);
+  if (r.status == ModalStatus::kStaticsFailed && exponent > 10.0)
+    log << "cosserat: hint: SE(3) modes shoot the rod in one piece from the clamp (statics and "
+           "frequency scan), and its loads give L sqrt(T/EI) (or L (k/4EI)^(1/4) for a "
+           "foundation) = "
+        << exponent << ", beyond the ~10 one shot resolves: use \"formulation\": "
+                       "\"quaternion-fd\"\n";
   result.log = log.str();
   result.converged = r.converged();
   return result;

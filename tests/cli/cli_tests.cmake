@@ -463,6 +463,9 @@ cosserat_cli_test(NAME dynamics_coarse_dt ARGS solve "${_cli_dir}/dynamics_coars
 # An eversion robot that never kinks reports where it first did as null, not a sentinel.
 cosserat_cli_test(NAME eversion_no_kink ARGS solve "${_cli_dir}/eversion_no_kink.json" CODE 0
                   STDOUT "\"status\": \"none\".*\"first_kink_s\": null" STDERR "kink: none")
+# SE(3) modes of a rod one shot cannot resolve (a thin hanging cable) say which formulation can.
+cosserat_cli_test(NAME modes_hanging_cable_se3 ARGS solve "${_cli_dir}/modes_hanging_cable_se3.json"
+                  CODE 1 STDERR "statics_failed.*hint: SE\\(3\\) modes shoot the rod in one piece.*= 70.6.*quaternion-fd")
 # Answers only a slip of units gives run, and the log says what to check (run/scale_warnings.hpp);
 # a soft rod's SE(3) load steps that stop short say what to try.
 cosserat_cli_test(NAME radius_in_mm ARGS solve "${_cli_dir}/radius_in_mm.json" CODE 0
