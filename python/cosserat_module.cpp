@@ -59,8 +59,12 @@ const char* ToString(LoadFrame frame) { return frame == LoadFrame::kWorld ? "wor
 /// N numbers (zero-filled).
 template <size_t N>
 auto ArrayGetter(std::array<double, N> Actuation::*field) {
-  return [field](const Actuation& a) {
-    return std::vector<double>((a.*field).begin(), (a.*field).end());
+  // A writable NumPy view of the field that keeps its Actuation alive: `a.tendon_tension[0] = 2`
+  // sets the tension, as the C++ idiom does (a copy made that a silent no-op).
+  return [field](py::object self) {
+    Actuation& a = self.cast<Actuation&>();
+    return py::array_t<double>({static_cast<py::ssize_t>(N)}, {sizeof(double)},
+                               (a.*field).data(), self);
   };
 }
 template <size_t N>

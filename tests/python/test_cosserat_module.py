@@ -157,6 +157,11 @@ class Statics(unittest.TestCase):
         ei = 210e9 * math.pi * 0.0004**4 / 4
         curvature = np.linalg.norm(solver.state()["strain_B"][:, :3], axis=1)
         np.testing.assert_allclose(curvature, 2.0 * 0.008 / ei, rtol=1e-9)
+        # Written in place, as the C++ idiom reads (the array is a view of the Actuation).
+        actuation.tendon_tension[0] = 1.0
+        self.assertTrue(solver.solve(cosserat.Loads(), actuation=actuation).converged)
+        curvature = np.linalg.norm(solver.state()["strain_B"][:, :3], axis=1)
+        np.testing.assert_allclose(curvature, 1.0 * 0.008 / ei, rtol=1e-9)
         with self.assertRaisesRegex(ValueError, "tendon_tension"):
             actuation.tendon_tension = [1.0] * 9
         actuation.tendon_tension = [-1.0]
