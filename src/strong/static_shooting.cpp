@@ -339,12 +339,12 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
                      static_cast<int>(model_.chambers.size()));
   grid_ = ModelGrid(model_, num_nodes);
   const int n = static_cast<int>(grid_.size());
-  const std::vector<double> points = SegmentSamplePoints(grid_);
-  samples_.resize(points.size());
+  sample_points_ = SegmentSamplePoints(grid_);
+  samples_.resize(sample_points_.size());
   if (!model_.tendons.empty()) {
-    tendon_stages_.resize(points.size());
-    for (size_t q = 0; q < points.size(); ++q)
-      tendon_stages_[q].tendons = SampleTendons(model_.tendons, points[q], model_.length);
+    tendon_stages_.resize(sample_points_.size());
+    for (size_t q = 0; q < sample_points_.size(); ++q)
+      tendon_stages_[q].tendons = SampleTendons(model_.tendons, sample_points_[q], model_.length);
   }
   SampleSections();
 
@@ -368,9 +368,8 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
 }
 
 void StaticShootingSolver::SampleSections() {
-  const std::vector<double> points = SegmentSamplePoints(grid_);
-  for (size_t q = 0; q < points.size(); ++q) {
-    const double s = points[q];
+  for (size_t q = 0; q < sample_points_.size(); ++q) {
+    const double s = sample_points_[q];
     const SectionLaw law = SectionLaw::At(model_, s, actuation_);
     Sample& smp = samples_[q];
     smp.compliance_diagonal = law.stiffness.cwiseInverse();

@@ -246,6 +246,7 @@ class StaticShootingSolver {
   StaticShootingOptions options_;
   Actuation actuation_;
   std::vector<double> grid_;
+  std::vector<double> sample_points_;  ///< s of samples_ (m): SampleSections allocates nothing
   std::vector<Sample> samples_;
   std::vector<TendonStage> tendon_stages_;  ///< parallel to samples_; empty without tendons
   std::array<double, Actuation::kMaxTendons> tendon_length_{};
