@@ -10,6 +10,7 @@ pleasant from Python:
   animate(out, path)  an MP4 (ffmpeg) or GIF (Pillow) of a dynamics run's frames
   sweep(study)        a study (docs/sweeps.md) on all cores; its rows as a list of dicts
   BatchStepper        M rods stepped together on all cores, inputs and outputs as (M, ...) arrays
+  StaticSolver, Stepper, BatchStepper take a problem as solve does (Problem, dict or path)
 
 Units are SI; positions, forces and rotations are in the world frame unless a name ends in _B
 (the section's body frame: x, y across the section, z along the rod). docs/python.md has the
@@ -21,3 +22,4 @@ from ._core import __version__  # noqa: F401
 from .plotting import animate, plot  # noqa: F401
 from .results import solve  # noqa: F401  (accepts dicts and paths; adds NumPy arrays)
 from .studies import sweep  # noqa: F401
+from .solvers import BatchStepper, StaticSolver, Stepper  # noqa: F401  (problems as solve takes)

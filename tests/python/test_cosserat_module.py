@@ -264,6 +264,25 @@ class Dynamics(unittest.TestCase):
         np.testing.assert_array_equal(stepper.tip_position(), command)
         np.testing.assert_array_equal(stepper.actuation.tendon_tension, p.actuation.tendon_tension)
 
+    def test_solvers_take_a_problem_as_solve_does(self):
+        # A file path and a dict give the same Stepper as the parsed Problem: the same steps,
+        # bit for bit; anything else is a TypeError naming the argument.
+        path = "examples/cantilever_release.json"
+        with open(path) as f:
+            as_dict = json.load(f)
+        tips = []
+        for given in (cosserat.load_problem(path), path, as_dict):
+            stepper = cosserat.Stepper(given)
+            self.assertTrue(stepper.initialize_at_rest().converged)
+            for _ in range(5):
+                self.assertTrue(stepper.step().converged)
+            tips.append(stepper.tip_position())
+        np.testing.assert_array_equal(tips[0], tips[1])
+        np.testing.assert_array_equal(tips[0], tips[2])
+        self.assertTrue(cosserat.StaticSolver("examples/cantilever.json").solve().converged)
+        with self.assertRaisesRegex(TypeError, "problem: expected"):
+            cosserat.Stepper(3)
+
     def test_base_twist_reaches_the_rod(self):
         # The cantilever's base twist is imposed: the rod's s = 0 node moves with it.
         stepper = cosserat.Stepper(wire("dynamics"))
