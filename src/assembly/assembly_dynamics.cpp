@@ -16,9 +16,11 @@ namespace {
 using Coefficients = Bdf2ShootingStepper::Coefficients;
 
 // Forward-difference step of the Jacobian, in the scaled unknowns (positions over the body's
-// length scale, rotations in rad): well above the rods' solve noise (their tolerance, 1e-11 by
-// default, makes the balance noisy at that level) and small against the nonlinearity.
-constexpr double kDifferenceStep = 1e-6;
+// length scale, rotations in rad): above the rods' solve noise (their tolerance, 1e-11 by
+// default, makes the balance noisy at that level: ~1e-3 of a difference) and small against the
+// nonlinearity. Axially a rod is stiff: 1e-6 L moved a 4 mm steel wire's tension by 2.5 N of its
+// 25, and its own Newton solve from the last equilibrium then failed.
+constexpr double kDifferenceStep = 1e-8;
 // A Newton step below this (positions over the length scale, rotations in rad) ends a solve
 // whose balance is within kNoiseAllowance of the tolerance: the rods' noise, not the poses.
 constexpr double kPoseResolution = 1e-10;
