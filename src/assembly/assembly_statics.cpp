@@ -368,7 +368,12 @@ bool AssemblyStaticsSolver::TryStep(const StaticLoads& loads, double norm) {
     Residual(loads, &r_trial_);
     ok = r_trial_.allFinite() && r_trial_.norm() < norm;
   }
-  if (!ok) Load(saved_);
+  if (!ok) {
+    // Back to the state before the step, and to its shots: the rods' tips are what the
+    // Jacobian reads (a step that blew up left them NaN, and the next Jacobian with them).
+    Load(saved_);
+    ShootAll();
+  }
   return ok;
 }
 
