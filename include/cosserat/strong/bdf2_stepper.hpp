@@ -136,9 +136,10 @@ class Bdf2ShootingStepper {
   Bdf2ShootingStepper(const RodModel& model, int num_nodes, const Bdf2Options& options = {});
 
   /// Puts the rod at rest in static equilibrium under `input` (its base twist is ignored) at
-  /// time t = 0, with a history that says it has been at rest. Allocates nothing. Cantilever:
-  /// the solve starts from `base_wrench_B` (W(0), body frame) when given, else from the wrench
-  /// that carries the loads as a rigid body.
+  /// time t = 0, with a history that says it has been at rest. Cantilever: the solve starts
+  /// from `base_wrench_B` (W(0), body frame) when given, else from the wrench that carries the
+  /// loads as a rigid body. With automatic pieces, the equilibrium's tension may ask for more
+  /// pieces for the steps (SingleShootingExponent with the state); only then does it allocate.
   StepSummary InitializeAtRest(const StepInput& input, const Vec6* base_wrench_B = nullptr);
 
   /// As above (cantilever), from an equilibrium found elsewhere on this grid, such as a statics
