@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "cosserat/assembly/assembly_statics.hpp"
+#include "cosserat/assembly/rod_shot.hpp"
+#include "cosserat/strong/frame_tangent.hpp"
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/robots/stewart_gough.hpp"
 #include "cosserat/strong/static_shooting.hpp"
@@ -271,6 +273,47 @@ lie::SE3 Pose(const Vec3& p, const Vec3& rotation) {
 // Inverse kinematics of a pose, then forward kinematics of the lengths it found, from the
 // unloaded robot: the pose comes back within 1e-6 m and 1e-6 rad (the acceptance; both solves
 // converge to 1e-10 of their scales, so the pose returns to ~1e-10 m).
+// The exact tip tangent of a rod's shot against central differences of the shot, on an iterate
+// far from equilibrium: a 1 m steel wire, 11 nodes, under 25 N of tension and a base moment that
+// curls it through more than a turn. RK4 then leaves the tip's R off a rotation (|RᵀR − I| was
+// 0.1 in a plate's load steps), and the tip's wrench is converted with R⁻¹: its tangent must be
+// too, or the derivative of the tip force R n_B comes out proportional to the tension (it was
+// 160 × the force scale where the differences give 0; the plate's Newton solves stalled). The
+// differences' error (h = 1e-7 of O(1) unknowns, the shot's second derivatives ~1e3) is ~1e-5
+// of the largest entry; 1e-4 of it.
+TEST(Assembly, TheTipTangentOfAHardBentShotMatchesCentralDifferences) {
+  const RodModel wire = testing::SteelRod{1.0, 0.001}.model();
+  RodShot shot(wire, 11);
+  const double EI = 200e9 * M_PI * 1e-12 / 4;
+  RodShot::Point<double> start{Vec3::Zero(), Mat3::Identity(), Vec3(8.0 * EI, 2.0 * EI, 0.0),
+                               Vec3(0.5, 0.2, 25.0)};
+  const RodShot::Point<double> tip = shot.Shoot<double>(start, 1.0);
+  ASSERT_GT((tip.R.transpose() * tip.R - Mat3::Identity()).norm(), 1e-3);  // the hard case
+  rhs::StaticTangent along;
+  along.p.setZero();
+  for (internal::Mat36& c : along.R) c.setZero();
+  along.m.setZero();
+  along.n.setZero();
+  along.m.leftCols<3>() = EI * Mat3::Identity();   // the base moment, in units of EI/L
+  along.n.rightCols<3>() = EI * Mat3::Identity();  // the base force, in units of EI/L²
+  rhs::StaticTangent exact;
+  shot.ShootTangent(start, along, 1.0, &exact);
+  const double h = 1e-7;
+  Eigen::Matrix<double, 6, 6> differences, analytic;
+  for (int k = 0; k < 6; ++k) {
+    RodShot::Point<double> plus = start, minus = start;
+    (k < 3 ? plus.m(k) : plus.n(k - 3)) += h * EI;
+    (k < 3 ? minus.m(k) : minus.n(k - 3)) -= h * EI;
+    const RodShot::Point<double> a = shot.Shoot<double>(plus, 1.0), b = shot.Shoot<double>(minus, 1.0);
+    differences.col(k) << (a.m - b.m) / (2 * h), (a.R * a.n - b.R * b.n) / (2 * h);
+  }
+  analytic.topRows<3>() = exact.m;
+  analytic.bottomRows<3>() = internal::RotateTangent(tip.R, exact.R, tip.n, exact.n);  // d(R n)
+  EXPECT_LT((analytic - differences).cwiseAbs().maxCoeff(),
+            1e-4 * differences.cwiseAbs().maxCoeff())
+      << "analytic\n" << analytic << "\ndifferences\n" << differences;
+}
+
 TEST(Assembly, StewartGoughInverseKinematicsIsSelfConsistent) {
   const lie::SE3 target = Pose(Vec3(0.01, 0.02, 0.46), Vec3(0.1, -0.05, 0.2));
   AssemblyStaticsSolver inverse(StewartGough(0.0));

@@ -459,6 +459,30 @@ TEST(Run, ADivergedSolveIsNotBlamedOnTheUnits) {
   EXPECT_EQ(r.log.find("check the units"), std::string::npos) << r.log;
 }
 
+// The same plate pushed sideways by 0.01 N at its centre of mass: the wires lean, each with the
+// lateral stiffness T/L_e of a tensioned beam clamped at the top and free of moment at the
+// plate (L_e = L − tanh(κL)/κ, κ = √(T/EI)), and the tension-weighted centre of the wires is
+// the centre of mass, so the plate moves x = F / Σ T_i/L_e,i without turning. Its load steps
+// used to stall (a tip tangent converted with Rᵀ where the shot's R had drifted, and then round-
+// off in the taut wires' tension). 1 %: the wires' different L_e turn the plate by ~1e-6 rad.
+TEST(Run, APlatePushedSidewaysOnTautWiresMovesAsTheirLateralStiffnessSays) {
+  io::Problem problem = Load("tests/cli/plate_on_four_wires.json");
+  ASSERT_EQ(problem.assembly.assembly.bodies.size(), 1u);
+  problem.assembly.assembly.bodies[0].force_W = Vec3(0.01, 0, 0);
+  const Result r = cosserat::run::Run(problem);
+  ASSERT_TRUE(r.converged) << r.log;
+  const double W = 10 * 9.81, EI = 200e9 * M_PI * 1e-12 / 4;
+  const double x[] = {-0.4, 0.4, 0.4, -0.4}, y[] = {-0.25, -0.25, 0.25, 0.25};
+  double stiffness = 0.0;  // N/m
+  for (int i = 0; i < 4; ++i) {
+    const double T = W / 4 * (1 + 0.1 * x[i] / 0.16 - 0.05 * y[i] / 0.0625);
+    const double kappa = std::sqrt(T / EI);
+    stiffness += T / (1.0 - std::tanh(kappa) / kappa);
+  }
+  const double moved = r.json["assembly"]["bodies"][0]["position"][0].get<double>() - 0.1;
+  EXPECT_NEAR(moved / (0.01 / stiffness), 1.0, 1e-2);
+}
+
 // A statics whose load steps stop short says how far they got: a silicone rod (E 1 MPa, 1 m,
 // r 5 mm) under gravity at 41 nodes stops before the whole weight; the result's load_reached
 // lies in (0, 1) and the hint names it.

@@ -60,9 +60,8 @@ CarriedTangent Axpy(const CarriedTangent& y, double a, const CarriedTangent& d) 
   return out;
 }
 
-/// The body-frame tangent (dm_B, dn_B) of the carried tangent at the carried state (p, R, J, n):
-/// n_B = Rᵀ n, m_B = Rᵀ (J − p × n). At the tip, where the wrench is converted with R⁻¹, this is
-/// exact to R's distance from a rotation (RK4's truncation, ~1e-9).
+/// The body-frame tangent (dm_B, dn_B) of the carried tangent at a stage's carried state
+/// (p, R, J, n): n_B = Rᵀ n, m_B = Rᵀ (J − p × n), as AtStage converts.
 StaticTangent BodyTangent(const Vec3& p, const Mat3& R, const Vec3& J, const Vec3& n,
                           const CarriedTangent& dc) {
   StaticTangent d;
@@ -71,6 +70,24 @@ StaticTangent BodyTangent(const Vec3& p, const Mat3& R, const Vec3& J, const Vec
   d.n = TransposeTimesFixed(dc.R, n) + R.transpose() * dc.n;
   d.m = TransposeTimesFixed(dc.R, J - p.cross(n)) +
         R.transpose() * (dc.m + Cross(n, dc.p) - Cross(p, dc.n));
+  return d;
+}
+
+/// The same at the tip, where FromCarried converts with R⁻¹: n_B = R⁻¹ n, m_B = R⁻¹ u with
+/// u = J − p × n, so dn_B = R⁻¹ (dn − dR n_B) and dm_B = R⁻¹ (du − dR m_B). RK4 leaves R off a
+/// rotation by its truncation, which far from equilibrium is not small (|RᵀR − I| = 0.1 on a
+/// taut wire bent hard by a first Newton step); with Rᵀ here, the derivative of the tip force
+/// R n_B came out proportional to the tension where it is zero, and Newton stalled.
+StaticTangent EndTangent(const Vec3& p, const Mat3& R, const Vec3& J, const Vec3& n,
+                         const CarriedTangent& dc) {
+  const Mat3 R_inv = R.inverse();
+  const Vec3 n_B = R_inv * n, m_B = R_inv * (J - p.cross(n));
+  const Mat36 zero = Mat36::Zero();
+  StaticTangent d;
+  d.p = dc.p;
+  d.R = dc.R;
+  d.n = R_inv * (dc.n - RotateTangent(R, dc.R, n_B, zero));
+  d.m = R_inv * (dc.m + Cross(n, dc.p) - Cross(p, dc.n) - RotateTangent(R, dc.R, m_B, zero));
   return d;
 }
 
@@ -124,7 +141,7 @@ RodShot::Point<double> RodShot::ShootTangent(const Point<double>& start,
     for (int r = 0; r < 3; ++r) dc.R[r] += a * (t[0].R[r] + t[3].R[r]) + b * (t[1].R[r] + t[2].R[r]);
     dc.m += a * (t[0].m + t[3].m) + b * (t[1].m + t[2].m);
   }
-  *tip_tangent = BodyTangent(c.p, c.R, c.J, c.n, dc);
+  *tip_tangent = EndTangent(c.p, c.R, c.J, c.n, dc);
   return FromCarried(c);
 }
 

@@ -78,8 +78,10 @@ class AssemblyStaticsSolver {
   enum class Mode { kForward, kInverse };
   /// The convergence threshold under `loads`: options.tolerance, or the round-off floor of the
   /// balance when that is larger (forces far above the most compliant rod's EI/L², e.g. a plate
-  /// on taut wires: 625 times it leaves a balance of ~5e-10 that no step can reduce).
-  double Tolerance(const StaticLoads& loads) const;
+  /// on taut wires: 625 times it leaves a balance of ~5e-10 that no step can reduce). With
+  /// `stall_floor`, also the residual below which a solve that stops progressing has converged
+  /// as far as its stiffest rods' axial resolution allows (~10 ε ΣEA).
+  double Tolerance(const StaticLoads& loads, double* stall_floor = nullptr) const;
   template <typename T>
   using Point = RodShot::Point<T>;
   /// Per rod: its shot, scales (moment EI/L, force EI/L²), and the last shot's tip.
@@ -125,6 +127,10 @@ class AssemblyStaticsSolver {
   double Follow(const At& at, AssemblySummary* summary);
   void Apply(const Eigen::VectorXd& dz, double scale);
   bool LevenbergMarquardt(const StaticLoads& loads, AssemblySummary* summary);
+  /// After a full Newton step dz_ (factors lu_) that did not lower the residual below `norm`:
+  /// that step and up to kChordSteps chord steps; true, with the state there and r_trial_ its
+  /// residual, once one does, else the state is put back.
+  bool ChordStepsBelow(const StaticLoads& loads, double norm);
   /// A point of the solve (its unknowns), to go back to.
   struct Iterate {
     Eigen::VectorXd x;

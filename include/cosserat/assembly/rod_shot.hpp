@@ -77,8 +77,9 @@ class RodShot {
   template <typename T>
   static Carried<T> ToCarried(const Point<T>& y);
   /// The body-frame wrench at the ends: m_B = R⁻¹ (J − p × n_W), n_B = R⁻¹ n_W with the inverse,
-  /// not the transpose: RK4 leaves R a rotation only to its truncation (~1e-9), and R n_B must
-  /// give back n_W to round-off for the balance.
+  /// not the transpose: RK4 leaves R a rotation only to its truncation (~1e-9 near an
+  /// equilibrium, up to ~0.1 on a hard-bent iterate), and R n_B must give back n_W to round-off
+  /// for the balance.
   template <typename T>
   static Point<T> FromCarried(const Carried<T>& c);
   /// The same with Rᵀ, for the strain at a stage (where the difference is truncation).
