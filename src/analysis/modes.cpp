@@ -312,6 +312,21 @@ bool DampedModes(const Eigen::MatrixXd& companion, int count, std::vector<Damped
   return unstable;
 }
 
+/// Damped modes, λ² M + λ C + K = 0, through a first-order form: the one SymmetricSpectrum left
+/// in *companion, or the plain companion matrix [[0, I], [Ar, Br]] when the stiffness is not
+/// symmetric. True when a damped mode grows.
+bool DampedSpectrum(bool symmetric, const Eigen::MatrixXd& Ar, const Eigen::MatrixXd& Br,
+                    int count, Eigen::MatrixXd* companion, std::vector<DampedMode>* out) {
+  if (!symmetric) {
+    const Eigen::Index m = Ar.rows();
+    *companion = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+    companion->topRightCorner(m, m).setIdentity();
+    companion->bottomLeftCorner(m, m) = Ar;
+    companion->bottomRightCorner(m, m) = Br;
+  }
+  return DampedModes(*companion, count, out);
+}
+
 }  // namespace
 
 ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
@@ -345,7 +360,6 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   BandedMatrix A, B;
   model->Jacobian(q, v, &A, &B);
   const Reduction red = Reduce(*model, q);
-  const int m = static_cast<int>(red.mass.size());
   const Eigen::MatrixXd Ar = red.P * (A.ToDense() * red.T);
   const Eigen::MatrixXd Br = red.P * (B.ToDense() * red.T);
 
@@ -381,17 +395,9 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
     result.modes.push_back(std::move(mode));
   }
 
-  // Damped: λ² M + λ C + K = 0 through a first-order form (the plain companion matrix
-  // [[0, I], [Ar, Br]] when the stiffness is not symmetric).
-  if (damped) {
-    if (!result.symmetric) {
-      companion = Eigen::MatrixXd::Zero(2 * m, 2 * m);
-      companion.topRightCorner(m, m).setIdentity();
-      companion.bottomLeftCorner(m, m) = Ar;
-      companion.bottomRightCorner(m, m) = Br;
-    }
-    if (DampedModes(companion, options.count, &result.damped)) unstable = true;
-  }
+  if (damped && DampedSpectrum(result.symmetric, Ar, Br, options.count, &companion,
+                                &result.damped))
+    unstable = true;
   // Fewer real modes than asked for: any complex pair is below the last one there could be.
   if (static_cast<int>(result.modes.size()) < options.count && std::isfinite(lowest_complex))
     unstable = true;

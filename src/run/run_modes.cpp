@@ -2,6 +2,7 @@
 
 #include <iomanip>
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include "cosserat/analysis/modes.hpp"
@@ -19,6 +20,24 @@ nlohmann::ordered_json Vectors(const std::vector<Vec3>& v) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const Vec3& x : v) out.push_back({x.x(), x.y(), x.z()});
   return out;
+}
+
+/// SE(3) modes shoot the rod in one piece from the clamp, statics and frequency scan alike: a
+/// tension or a foundation beyond what one shot resolves is the other formulation's.
+std::string SingleShotHint(const io::Problem& problem, const ModalResult& r) {
+  if (problem.formulation == io::Formulation::kQuaternionFd ||
+      r.status != ModalStatus::kStaticsFailed)
+    return "";
+  const double exponent = StaticShootingExponent(problem.rod, problem.loads);
+  if (!(exponent > 10.0)) return "";
+  std::ostringstream hint;
+  hint << std::setprecision(3)
+       << "cosserat: hint: SE(3) modes shoot the rod in one piece from the clamp (statics and "
+          "frequency scan), and its loads give L sqrt(T/EI) (or L (k/4EI)^(1/4) for a "
+          "foundation) = "
+       << exponent << ", beyond the ~10 one shot resolves: use \"formulation\": "
+                      "\"quaternion-fd\"\n";
+  return hint.str();
 }
 
 }  // namespace
@@ -91,16 +110,7 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
       << "), " << r.modes.size() << " modes:";
   for (const Mode& m : r.modes) log << ' ' << std::setprecision(6) << m.frequency_hz;
   log << " Hz, " << std::setprecision(3) << r.wall_time_s * 1e3 << " ms\n";
-  // SE(3) modes shoot the rod in one piece from the clamp, statics and frequency scan alike;
-  // a tension or a foundation beyond what one shot resolves is the other formulation's.
-  const double exponent = quatfd ? 0.0 : StaticShootingExponent(problem.rod, problem.loads);
-  if (r.status == ModalStatus::kStaticsFailed && exponent > 10.0)
-    log << "cosserat: hint: SE(3) modes shoot the rod in one piece from the clamp (statics and "
-           "frequency scan), and its loads give L sqrt(T/EI) (or L (k/4EI)^(1/4) for a "
-           "foundation) = "
-        << exponent << ", beyond the ~10 one shot resolves: use \"formulation\": "
-                       "\"quaternion-fd\"\n";
-  result.log = log.str();
+  result.log = log.str() + SingleShotHint(problem, r);
   result.converged = r.converged();
   return result;
 }
