@@ -459,18 +459,14 @@ TEST(Run, ADivergedSolveIsNotBlamedOnTheUnits) {
   EXPECT_EQ(r.log.find("check the units"), std::string::npos) << r.log;
 }
 
-// The same plate pushed sideways by 0.01 N at its centre of mass: the wires lean, each with the
+// The same plate pushed sideways by 0.01 and 0.5 N at its centre of mass: the wires lean, each with the
 // lateral stiffness T/L_e of a tensioned beam clamped at the top and free of moment at the
 // plate (L_e = L − tanh(κL)/κ, κ = √(T/EI)), and the tension-weighted centre of the wires is
 // the centre of mass, so the plate moves x = F / Σ T_i/L_e,i without turning. Its load steps
-// used to stall (a tip tangent converted with Rᵀ where the shot's R had drifted, and then round-
-// off in the taut wires' tension). 1 %: the wires' different L_e turn the plate by ~1e-6 rad.
+// used to stall (a tip tangent converted with Rᵀ where the shot's R had drifted, round-off in the
+// taut wires' tension, and at 0.5 N a push before the wires were taut). 1 %: the wires'
+// different L_e turn the plate by ~1e-4 rad.
 TEST(Run, APlatePushedSidewaysOnTautWiresMovesAsTheirLateralStiffnessSays) {
-  io::Problem problem = Load("tests/cli/plate_on_four_wires.json");
-  ASSERT_EQ(problem.assembly.assembly.bodies.size(), 1u);
-  problem.assembly.assembly.bodies[0].force_W = Vec3(0.01, 0, 0);
-  const Result r = cosserat::run::Run(problem);
-  ASSERT_TRUE(r.converged) << r.log;
   const double W = 10 * 9.81, EI = 200e9 * M_PI * 1e-12 / 4;
   const double x[] = {-0.4, 0.4, 0.4, -0.4}, y[] = {-0.25, -0.25, 0.25, 0.25};
   double stiffness = 0.0;  // N/m
@@ -479,8 +475,15 @@ TEST(Run, APlatePushedSidewaysOnTautWiresMovesAsTheirLateralStiffnessSays) {
     const double kappa = std::sqrt(T / EI);
     stiffness += T / (1.0 - std::tanh(kappa) / kappa);
   }
-  const double moved = r.json["assembly"]["bodies"][0]["position"][0].get<double>() - 0.1;
-  EXPECT_NEAR(moved / (0.01 / stiffness), 1.0, 1e-2);
+  for (const double force : {0.01, 0.5}) {  // N; 0.5 N moves it 4.7 mm, still linear
+    io::Problem problem = Load("tests/cli/plate_on_four_wires.json");
+    ASSERT_EQ(problem.assembly.assembly.bodies.size(), 1u);
+    problem.assembly.assembly.bodies[0].force_W = Vec3(force, 0, 0);
+    const Result r = cosserat::run::Run(problem);
+    ASSERT_TRUE(r.converged) << force << ": " << r.log;
+    const double moved = r.json["assembly"]["bodies"][0]["position"][0].get<double>() - 0.1;
+    EXPECT_NEAR(moved / (force / stiffness), 1.0, 1e-2) << force;
+  }
 }
 
 // A statics whose load steps stop short says how far they got: a silicone rod (E 1 MPa, 1 m,

@@ -446,6 +446,12 @@ void AssemblyStaticsSolver::RecordStates() {
   }
 }
 
+bool AssemblyStaticsSolver::HasBodyForces() const {
+  return std::any_of(assembly_.bodies.begin(), assembly_.bodies.end(), [](const RigidBody& b) {
+    return b.force_W.squaredNorm() > 0 || b.moment_W.squaredNorm() > 0;
+  });
+}
+
 template <typename At>
 double AssemblyStaticsSolver::Follow(const At& at, AssemblySummary* summary) {
   double mu = 0.0, step = 1.0;
@@ -495,10 +501,15 @@ AssemblySummary AssemblyStaticsSolver::Solve(const StaticLoads& loads,
   bool converged = LevenbergMarquardt(loads, &summary);
   if (!converged) {
     Load(start);
+    // From the unloaded structure, the weights come first and the bodies' applied forces and
+    // moments after them: slack wires have no lateral stiffness, and a plate pushed sideways
+    // while its wires took up their load wandered off to a branch above their clamps.
+    const bool forces_last = !has_solution_ && HasBodyForces();
     auto at = [&](double mu) {
       for (int i = 0; i < rod_count(); ++i)
         lengths_[i] = start.lengths[i] + mu * (target[i] - start.lengths[i]);
-      body_load_factor_ = start_body_loads + mu * (1.0 - start_body_loads);
+      body_load_factor_ =
+          forces_last ? 0.0 : start_body_loads + mu * (1.0 - start_body_loads);
       return mu == 1.0 ? loads : StaticLoads::Blend(start_loads, loads, mu);
     };
     if (!has_solution_) {  // the unloaded structure at the start lengths first
@@ -508,6 +519,13 @@ AssemblySummary AssemblyStaticsSolver::Solve(const StaticLoads& loads,
       converged = true;
     }
     summary.load_fraction = converged ? Follow(at, &summary) : 0.0;
+    if (forces_last && summary.load_fraction == 1.0) {
+      auto forces = [&](double mu) {
+        body_load_factor_ = mu;
+        return loads;
+      };
+      summary.load_fraction = Follow(forces, &summary);
+    }
     converged = converged && summary.load_fraction == 1.0;
     body_load_factor_ = 1.0;
   }

@@ -127,6 +127,8 @@ class AssemblyStaticsSolver {
   double Follow(const At& at, AssemblySummary* summary);
   void Apply(const Eigen::VectorXd& dz, double scale);
   bool LevenbergMarquardt(const StaticLoads& loads, AssemblySummary* summary);
+  /// Whether some body has an applied force or moment (besides its weight).
+  bool HasBodyForces() const;
   /// After a full Newton step dz_ (factors lu_) that did not lower the residual below `norm`:
   /// that step and up to kChordSteps chord steps; true, with the state there and r_trial_ its
   /// residual, once one does, else the state is put back.
