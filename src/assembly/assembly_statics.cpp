@@ -446,6 +446,22 @@ void AssemblyStaticsSolver::RecordStates() {
   }
 }
 
+bool AssemblyStaticsSolver::JumpedFrom(const Iterate& from) const {
+  // A body that turns by more than ~30° or moves by more than a quarter of the shortest rod in
+  // one solve has left the branch the loads follow: a plate on taut wires, pushed sideways,
+  // came back "converged" turned 125° and above its wires' clamps. Smaller load steps follow a
+  // real large motion.
+  if (mode_ != Mode::kForward) return false;  // the poses are given
+  constexpr double kMaxTurn = 0.5;   // rad
+  constexpr double kMaxMove = 0.25;  // of the shortest rod
+  const double reach = kMaxMove * *std::min_element(lengths_.begin(), lengths_.end());
+  for (size_t b = 0; b < poses_.size(); ++b) {
+    const double turn = lie::SO3Log(Mat3(from.poses[b].R.transpose() * poses_[b].R)).norm();
+    if (turn > kMaxTurn || (poses_[b].p - from.poses[b].p).norm() > reach) return true;
+  }
+  return false;
+}
+
 bool AssemblyStaticsSolver::HasBodyForces() const {
   return std::any_of(assembly_.bodies.begin(), assembly_.bodies.end(), [](const RigidBody& b) {
     return b.force_W.squaredNorm() > 0 || b.moment_W.squaredNorm() > 0;
@@ -462,7 +478,7 @@ double AssemblyStaticsSolver::Follow(const At& at, AssemblySummary* summary) {
     const double trial = std::min(1.0, mu + step);
     ++levels;
     const StaticLoads loads = at(trial);
-    if (LevenbergMarquardt(loads, summary)) {
+    if (LevenbergMarquardt(loads, summary) && !JumpedFrom(accepted)) {
       mu = trial;
       step *= 2.0;
     } else {
@@ -498,7 +514,7 @@ AssemblySummary AssemblyStaticsSolver::Solve(const StaticLoads& loads,
   Store(&start);
   // Directly at the target first.
   lengths_ = target;
-  bool converged = LevenbergMarquardt(loads, &summary);
+  bool converged = LevenbergMarquardt(loads, &summary) && !JumpedFrom(start);
   if (!converged) {
     Load(start);
     // From the unloaded structure, the weights come first and the bodies' applied forces and

@@ -141,6 +141,9 @@ class AssemblyStaticsSolver {
   };
   void Store(Iterate* u) const;
   void Load(const Iterate& u);
+  /// Forward solves: whether a body's pose moved from `from` further than one solve of a load
+  /// step should take it (a jump to another branch).
+  bool JumpedFrom(const Iterate& from) const;
   /// Ends a solve: a solution becomes the next start; a failure goes back to `start` when there
   /// was a solution before; the summary's status and time.
   void Conclude(bool converged, const StaticLoads& loads, const Iterate& start,
