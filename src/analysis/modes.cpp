@@ -209,10 +209,11 @@ using Spectrum = std::vector<std::pair<double, Eigen::VectorXd>>;
 /// gave negative frequencies. Where that costs the lowest mode more than 1e-9 of its ω², the
 /// spectrum comes from H⁻¹ = M^½ K⁻¹ M^½ instead, if H is positive definite: its Cholesky
 /// factor is accurate relative to H's diagonal (Demmel & Veselić 1992), so the largest
-/// eigenvalues 1/ω² of H⁻¹ keep their digits. False (eig untouched) where the direct one does.
-bool InverseSpectrum(const Eigen::MatrixXd& H, const Reduction& red,
-                     const Eigen::VectorXd& inv_sqrt_m, const Eigen::VectorXd& direct, bool shapes,
-                     Spectrum* eig) {
+/// eigenvalues 1/ω² of H⁻¹ keep their digits. True with the ω² it resolves (ascending, those
+/// above 1e3 ε of the largest 1/ω² left out) and, with `vectors`, H's orthonormal eigenvectors
+/// for them; false where the direct spectrum serves.
+bool InverseSpectrum(const Eigen::MatrixXd& H, const Eigen::VectorXd& direct, bool vectors,
+                     Eigen::VectorXd* w2, Eigen::MatrixXd* psi) {
   const int m = static_cast<int>(H.rows());
   if (m == 0) return false;
   const double w2_max = direct.cwiseAbs().maxCoeff();
@@ -222,13 +223,15 @@ bool InverseSpectrum(const Eigen::MatrixXd& H, const Reduction& red,
   Eigen::MatrixXd G = llt.solve(Eigen::MatrixXd::Identity(m, m));
   G = 0.5 * (G + G.transpose()).eval();
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(
-      G, shapes ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
-  for (int i = m - 1; i >= 0; --i) {  // the largest 1/ω² first: ω² ascending
-    const double mu = es.eigenvalues()(i);
-    if (!(mu > 0)) break;  // below the resolution of H⁻¹: ω² beyond what is asked for
-    eig->emplace_back(1.0 / mu, shapes ? Eigen::VectorXd(MassTimes(red, inv_sqrt_m, -0.5,
-                                                                   es.eigenvectors().col(i)))
-                                       : Eigen::VectorXd());
+      G, vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+  const Eigen::VectorXd& mu = es.eigenvalues();  // ascending: the lowest ω² last
+  int k = 0;
+  while (k < m && mu(m - 1 - k) > 1e3 * 2.2e-16 * mu(m - 1)) ++k;
+  w2->resize(k);
+  if (vectors) psi->resize(m, k);
+  for (int j = 0; j < k; ++j) {
+    (*w2)(j) = 1.0 / mu(m - 1 - j);
+    if (vectors) psi->col(j) = es.eigenvectors().col(m - 1 - j);
   }
   return true;
 }
@@ -242,31 +245,32 @@ bool InverseSpectrum(const Eigen::MatrixXd& H, const Reduction& red,
 Spectrum SymmetricSpectrum(const Eigen::MatrixXd& S, const Reduction& red,
                            const Eigen::MatrixXd& Br, bool shapes, bool damped,
                            Eigen::MatrixXd* companion) {
-  const int m = static_cast<int>(red.mass.size());
   const Eigen::VectorXd inv_sqrt_m = red.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd Ssym = 0.5 * (S + S.transpose());
   const Eigen::MatrixXd H =
       TimesMass(red, inv_sqrt_m, -0.5, MassTimes(red, inv_sqrt_m, -0.5, Ssym));
+  const bool vectors = shapes || damped;
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(
-      H, shapes || damped ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+      H, vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+  Eigen::VectorXd w2 = es.eigenvalues();
+  Eigen::MatrixXd Psi;
+  if (!InverseSpectrum(H, es.eigenvalues(), vectors, &w2, &Psi) && vectors)
+    Psi = es.eigenvectors();
+  const Eigen::Index k = w2.size();
   if (damped) {
     const Eigen::VectorXd sqrt_m = red.mass.cwiseSqrt();
     const Eigen::MatrixXd Cm =
         -TimesMass(red, inv_sqrt_m, -0.5, MassTimes(red, sqrt_m, 0.5, Br));
-    const Eigen::MatrixXd& Psi = es.eigenvectors();
-    const Eigen::VectorXd Om = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-    *companion = Eigen::MatrixXd::Zero(2 * m, 2 * m);
-    companion->topRightCorner(m, m) = Om.asDiagonal();
-    companion->bottomLeftCorner(m, m) = -Eigen::MatrixXd(Om.asDiagonal());
-    companion->bottomRightCorner(m, m) = -(Psi.transpose() * Cm * Psi);
+    const Eigen::VectorXd Om = w2.cwiseMax(0.0).cwiseSqrt();
+    *companion = Eigen::MatrixXd::Zero(2 * k, 2 * k);
+    companion->topRightCorner(k, k) = Om.asDiagonal();
+    companion->bottomLeftCorner(k, k) = -Eigen::MatrixXd(Om.asDiagonal());
+    companion->bottomRightCorner(k, k) = -(Psi.transpose() * Cm * Psi);
   }
   Spectrum eig;
-  if (InverseSpectrum(H, red, inv_sqrt_m, es.eigenvalues(), shapes, &eig)) return eig;
-  for (int i = 0; i < m; ++i)
-    eig.emplace_back(es.eigenvalues()(i),
-                     shapes ? Eigen::VectorXd(MassTimes(red, inv_sqrt_m, -0.5,
-                                                        es.eigenvectors().col(i)))
-                            : Eigen::VectorXd());
+  for (Eigen::Index i = 0; i < k; ++i)
+    eig.emplace_back(w2(i), shapes ? Eigen::VectorXd(MassTimes(red, inv_sqrt_m, -0.5, Psi.col(i)))
+                                   : Eigen::VectorXd());
   return eig;
 }
 
