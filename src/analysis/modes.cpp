@@ -211,15 +211,22 @@ using Spectrum = std::vector<std::pair<double, Eigen::VectorXd>>;
 /// factor is accurate relative to H's diagonal (Demmel & Veselić 1992), so the largest
 /// eigenvalues 1/ω² of H⁻¹ keep their digits. True with the ω² it resolves (ascending, those
 /// above 1e3 ε of the largest 1/ω² left out) and, with `vectors`, H's orthonormal eigenvectors
-/// for them; false where the direct spectrum serves.
+/// for them; false where the direct spectrum serves, with *indefinite set when that is because H
+/// is not positive definite.
 bool InverseSpectrum(const Eigen::MatrixXd& H, const Eigen::VectorXd& direct, bool vectors,
-                     Eigen::VectorXd* w2, Eigen::MatrixXd* psi) {
+                     Eigen::VectorXd* w2, Eigen::MatrixXd* psi, bool* indefinite) {
   const int m = static_cast<int>(H.rows());
   if (m == 0) return false;
   const double w2_max = direct.cwiseAbs().maxCoeff();
   if (!(2.2e-16 * w2_max > 1e-9 * std::abs(direct(0)))) return false;
   const Eigen::LLT<Eigen::MatrixXd> llt(H);
-  if (llt.info() != Eigen::Success) return false;  // not positive definite: the direct verdict
+  if (llt.info() != Eigen::Success) {
+    // Not positive definite: an unstable direction the direct spectrum cannot resolve from
+    // round-off (a 2 m wire standing past its self-weight buckling length: ω² = −2.9 against
+    // ω²_max ~1e17), but the factorisation, exact relative to the diagonal, does.
+    *indefinite = true;
+    return false;
+  }
   Eigen::MatrixXd G = llt.solve(Eigen::MatrixXd::Identity(m, m));
   G = 0.5 * (G + G.transpose()).eval();
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(
@@ -242,9 +249,10 @@ bool InverseSpectrum(const Eigen::MatrixXd& H, const Eigen::VectorXd& direct, bo
 /// Ω² = eigenvalues) with z = [Ω η; η̇]: ż = [[0, Ω], [−Ω, −Ψᵀ M^−½ C M^−½ Ψ]] z. Its norm is
 /// ω_max and it is nearly normal, so the damping ratios of the low modes keep their digits (the
 /// plain companion matrix of M⁻¹K, of norm ω_max², loses them). Br = ∂f/∂v reduced (C = −M Br).
+/// *indefinite is set when the inverse spectrum finds K not positive definite (InverseSpectrum).
 Spectrum SymmetricSpectrum(const Eigen::MatrixXd& S, const Reduction& red,
                            const Eigen::MatrixXd& Br, bool shapes, bool damped,
-                           Eigen::MatrixXd* companion) {
+                           Eigen::MatrixXd* companion, bool* indefinite) {
   const Eigen::VectorXd inv_sqrt_m = red.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd Ssym = 0.5 * (S + S.transpose());
   const Eigen::MatrixXd H =
@@ -254,7 +262,7 @@ Spectrum SymmetricSpectrum(const Eigen::MatrixXd& S, const Reduction& red,
       H, vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
   Eigen::VectorXd w2 = es.eigenvalues();
   Eigen::MatrixXd Psi;
-  if (!InverseSpectrum(H, es.eigenvalues(), vectors, &w2, &Psi) && vectors)
+  if (!InverseSpectrum(H, es.eigenvalues(), vectors, &w2, &Psi, indefinite) && vectors)
     Psi = es.eigenvectors();
   const Eigen::Index k = w2.size();
   if (damped) {
@@ -275,19 +283,42 @@ Spectrum SymmetricSpectrum(const Eigen::MatrixXd& S, const Reduction& red,
 }
 
 /// The real eigenvalues −λ of Ar (ω² = −λ), ascending. A pair with an imaginary part (flutter: no
-/// real mode) is left out; *lowest_complex becomes the smallest |λ| of those.
+/// real mode) is left out; *lowest_complex becomes the smallest |λ| of those. As in the
+/// symmetric case, a slender rod's spectrum spans more than double precision resolves at its
+/// low end (Beck's column of a 1 mm rod at 41 nodes read "unstable" at a fifth of its flutter
+/// load, its lowest modes lost): there the eigenvalues come from Ar⁻¹, whose largest ones are
+/// the lowest modes, those below 1e3 ε of the largest left out.
 Spectrum GeneralSpectrum(const Eigen::MatrixXd& Ar, bool shapes, double* lowest_complex) {
-  const int m = static_cast<int>(Ar.rows());
-  Spectrum eig;
   const Eigen::EigenSolver<Eigen::MatrixXd> es(Ar, shapes);
-  for (int i = 0; i < m; ++i) {
-    const std::complex<double> l = es.eigenvalues()(i);
+  Eigen::VectorXcd lambda = es.eigenvalues();
+  Eigen::MatrixXcd vectors;
+  if (shapes) vectors = es.eigenvectors();
+  const double l_max = lambda.cwiseAbs().maxCoeff(), l_min = lambda.cwiseAbs().minCoeff();
+  if (2.2e-16 * l_max > 1e-9 * l_min) {
+    const Eigen::MatrixXd inverse = Ar.partialPivLu().inverse();
+    if (inverse.allFinite()) {
+      const Eigen::EigenSolver<Eigen::MatrixXd> inv(inverse, shapes);
+      const double nu_max = inv.eigenvalues().cwiseAbs().maxCoeff();
+      std::vector<Eigen::Index> kept;
+      for (Eigen::Index i = 0; i < inverse.rows(); ++i)
+        if (std::abs(inv.eigenvalues()(i)) > 1e3 * 2.2e-16 * nu_max) kept.push_back(i);
+      lambda.resize(static_cast<Eigen::Index>(kept.size()));
+      if (shapes) vectors.resize(inverse.rows(), static_cast<Eigen::Index>(kept.size()));
+      for (size_t j = 0; j < kept.size(); ++j) {
+        lambda(j) = 1.0 / inv.eigenvalues()(kept[j]);
+        if (shapes) vectors.col(j) = inv.eigenvectors().col(kept[j]);
+      }
+    }
+  }
+  Spectrum eig;
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) {
+    const std::complex<double> l = lambda(i);
     if (std::abs(l.imag()) > 1e-6 * std::abs(l)) {
       *lowest_complex = std::min(*lowest_complex, std::abs(l));
       continue;
     }
     eig.emplace_back(-l.real(),
-                     shapes ? Eigen::VectorXd(es.eigenvectors().col(i).real()) : Eigen::VectorXd());
+                     shapes ? Eigen::VectorXd(vectors.col(i).real()) : Eigen::VectorXd());
   }
   std::sort(eig.begin(), eig.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   return eig;
@@ -377,11 +408,12 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   double lowest_complex = std::numeric_limits<double>::infinity();
   const bool damped = options.damped && Br.cwiseAbs().maxCoeff() > 0;
   Eigen::MatrixXd companion;  // first-order form of λ² M + λ C + K = 0 when damped
-  const Spectrum eig = result.symmetric
-                           ? SymmetricSpectrum(S, red, Br, options.shapes, damped, &companion)
-                           : GeneralSpectrum(Ar, options.shapes, &lowest_complex);
+  bool unstable = false;  // also: an indefinite stiffness the direct spectrum cannot resolve
+  const Spectrum eig =
+      result.symmetric
+          ? SymmetricSpectrum(S, red, Br, options.shapes, damped, &companion, &unstable)
+          : GeneralSpectrum(Ar, options.shapes, &lowest_complex);
   const double w2_max = eig.empty() ? 0.0 : std::abs(eig.back().first);
-  bool unstable = false;
   const NodeWeights weights = QuatFdNodeWeights(*model, q);
   for (int i = 0;
        i < static_cast<int>(eig.size()) && static_cast<int>(result.modes.size()) < options.count;
