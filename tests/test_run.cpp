@@ -390,6 +390,20 @@ TEST(Run, APayloadOnAWireStartsInEquilibriumAndSwingsAsAPendulum) {
   }
   ASSERT_GE(crossings.size(), 3u);
   EXPECT_NEAR((crossings[2] - crossings[0]) / (2 * M_PI * std::sqrt(L_e / 9.81)), 1.0, 1e-2);
+
+  // The energy, the payload's included: at 2.5 s (1.27 periods, near the bottom of the swing)
+  // as after the first step, to 1 % of the swing's ½ k x₀² = ½ (T/L_e) x₀² (BDF2 takes ~4e-4 of
+  // it over two periods; without the payload's share the total moved by all of it).
+  auto total = [](const Result& run) {
+    const auto& e = run.json["energy"];
+    return e["kinetic"].get<double>() + e["elastic"].get<double>() + e["potential"].get<double>();
+  };
+  io::Problem first_step = *parsed.problem;
+  first_step.dynamics.duration = first_step.dynamics.dt;
+  const Result start = cosserat::run::Run(first_step);
+  ASSERT_TRUE(start.converged) << start.log;
+  const double x0 = 2.0 / T * L_e, swing = 0.5 * T / L_e * x0 * x0;
+  EXPECT_NEAR(total(r), total(start), 1e-2 * swing);
 }
 
 // The same on four wires: a plate on taut wires pushed aside by 0.5 N swings as a parallelogram

@@ -42,6 +42,17 @@ StepInput ClampedInput(const io::Problem& problem, const StaticLoads& loads,
   return input;
 }
 
+/// The tip body's share of the energy (`dynamics.tip_mass`, `tip_inertia`), which the rod's
+/// integrals leave out: ½ m |v|² + ½ ωᵀ J ω, and −m g·p its weight's potential (J).
+void AddTipBodyEnergy(const io::Problem& problem, const RodState& state, RodEnergy* energy) {
+  const double m = problem.dynamics.tip_mass;
+  const Vec6& twist = state.twist_B.back();  // [ω; v], tip body frame
+  const Vec3 w = twist.head<3>();
+  energy->kinetic += 0.5 * m * twist.tail<3>().squaredNorm() +
+                     0.5 * w.dot(problem.dynamics.tip_inertia.cwiseProduct(w));
+  energy->potential -= m * problem.loads.gravity_W.dot(state.tip_position_W());
+}
+
 /// Adds the stepper's current state as the frame at time t; node positions only when
 /// `all_nodes`.
 void Record(const Bdf2ShootingStepper& stepper, double t, bool all_nodes, io::DynamicRun* run) {
@@ -137,6 +148,7 @@ io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
     Record(*stepper, 0.0, all_nodes, &run);
     StepToTheEnd(problem, steps, stride, all_nodes, options.progress, stepper, &run);
     run.energy = stepper->Energy(problem.loads);
+    AddTipBodyEnergy(problem, stepper->state(), &run.energy);
   }
   run.wall_time_s = SecondsSince(start);
   return run;
