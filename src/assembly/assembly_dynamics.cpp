@@ -167,7 +167,11 @@ bool AssemblyDynamics::Balance(const StaticLoads& loads, const Coefficients& c, 
       rods_[i]->Restore(accepted_[i]);
       s = rods_[i]->Step(in);
     }
-    if (!s.converged()) return false;
+    if (!s.converged()) {
+      failed_rod_ = static_cast<int>(i);
+      failed_rod_summary_ = s;
+      return false;
+    }
   }
   const int B = static_cast<int>(bodies_.size());
   r->resize(6 * B);
@@ -270,6 +274,7 @@ AssemblySummary AssemblyDynamics::InitializeAtRest(const StaticLoads& loads) {
   const auto t0 = std::chrono::steady_clock::now();
   AssemblySummary summary;
   initialized_ = false;
+  failed_rod_ = -1;
   std::vector<lie::SE3> from;
   for (const RigidBody& b : assembly_.bodies) from.push_back(b.pose);
   const bool held = std::any_of(assembly_.rods.begin(), assembly_.rods.end(),
@@ -305,6 +310,7 @@ AssemblySummary AssemblyDynamics::Step(const StaticLoads& loads) {
   const auto t0 = std::chrono::steady_clock::now();
   AssemblySummary summary;
   if (!initialized_) return summary;  // kNotRun
+  failed_rod_ = -1;
   const double h = options_.dt;
   const Coefficients c = Bdf2ShootingStepper::Weights(h, last_dt_, options_.rod.first_step);
   // Start from the poses the last velocities reach.

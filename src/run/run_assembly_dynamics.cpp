@@ -75,7 +75,14 @@ std::string SummaryLine(const Assembly& assembly, const AssemblySummary& init, S
                         int taken, double failed_at, double wall, const AssemblyDynamics& dyn) {
   std::ostringstream line;
   line << "cosserat: " << ToString(status) << " (assembly dynamics)";
-  if (!init.converged()) {
+  if (!init.converged() && dyn.failed_rod() >= 0) {
+    // The statics converged; a rod's own solve at the bodies' poses did not.
+    const StepSummary& rod = dyn.failed_rod_summary();
+    line << ", the initial equilibrium did not converge: rod \""
+         << assembly.rods[dyn.failed_rod()].name << "\"'s own solve at the bodies' poses ended "
+         << ToString(rod.status) << " (residual " << std::setprecision(3) << rod.residual
+         << "); more nodes on that rod may resolve it";
+  } else if (!init.converged()) {
     line << ", the initial equilibrium did not converge (residual " << std::setprecision(3)
          << init.residual << ")";
   } else {

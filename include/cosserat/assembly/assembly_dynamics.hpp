@@ -79,6 +79,10 @@ class AssemblyDynamics {
   const Vec3& body_angular_velocity_B(int b) const { return bodies_[b].now.omega_B; }
   const Bdf2ShootingStepper& rod(int i) const { return *rods_[i]; }
   int rod_count() const { return static_cast<int>(rods_.size()); }
+  /// The rod whose own solve failed last (its stepper, at the bodies' trial poses), −1 if none
+  /// since the last InitializeAtRest or Step began, with that solve's summary.
+  int failed_rod() const { return failed_rod_; }
+  const StepSummary& failed_rod_summary() const { return failed_rod_summary_; }
   int body_count() const { return static_cast<int>(bodies_.size()); }
 
   AssemblyMomentum Momentum() const;
@@ -119,6 +123,8 @@ class AssemblyDynamics {
   Assembly assembly_;
   AssemblyDynamicsOptions options_;
   std::vector<std::unique_ptr<Bdf2ShootingStepper>> rods_;
+  int failed_rod_ = -1;
+  StepSummary failed_rod_summary_;
   std::vector<Bdf2ShootingStepper::Snapshot> accepted_;  ///< each rod's last accepted step
   std::vector<Vec6> base_wrench_guess_;  ///< each rod's W(0), for its static solves
   /// Each rod's equilibrium from the statics solver (empty when no rod is held by the ground):
