@@ -313,9 +313,9 @@ TEST(Modes, QuatFdFindsBecksFlutterAndOnlyIt) {
       }
     }
     loads.tip_force = Vec3(0, 0, -21.0 * rod.EI() / (rod.length * rod.length));
-    EXPECT_EQ(QuatFdModes(rod.model(), lie::SE3(), loads, 40, 4, false).status,
-              ModalStatus::kUnstable)
-        << radius;
+    const ModalResult past = QuatFdModes(rod.model(), lie::SE3(), loads, 40, 4, false);
+    EXPECT_EQ(past.status, ModalStatus::kUnstable) << radius;
+    EXPECT_EQ(past.instability.rfind("flutter", 0), 0u) << past.instability;  // says which
   }
 }
 
@@ -331,6 +331,11 @@ TEST(Modes, QuatFdFindsAStandingWirePastItsSelfWeightBucklingUnstable) {
     const ModalResult fd = QuatFdModes(wire, lie::SE3(), loads, 40, 4, false);
     EXPECT_EQ(fd.status, length < 1.71 ? ModalStatus::kConverged : ModalStatus::kUnstable)
         << length << ": " << ToString(fd.status);
+    // The reason names the divergence and its ω² (the first frequency, −0.27 Hz, squared).
+    if (length > 1.71)
+      EXPECT_NE(fd.instability.find("divergence: the stiffness is indefinite, ω² = -2.9"),
+                std::string::npos)
+          << fd.instability;
   }
 }
 

@@ -9,6 +9,9 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <string>
+#include <sstream>
+#include <iomanip>
 #include <limits>
 #include <stdexcept>
 
@@ -125,6 +128,25 @@ void Classify(const std::vector<Vec3>& tangent_W, const std::vector<double>& mas
   const double scale = 1.0 / signed_biggest;
   for (Vec3& d : mode->displacement_W) d *= scale;
   for (Vec3& r : mode->rotation_W) r *= scale;
+}
+
+/// Why an ω² < 0 (rad²/s²) makes the equilibrium unstable: the direction grows at √(−ω²) /s.
+std::string DivergenceReason(double w2) {
+  std::ostringstream why;
+  why << std::setprecision(4) << "divergence: the stiffness is indefinite";
+  if (w2 < 0) why << ", ω² = " << w2 << " rad²/s² (growing at " << std::sqrt(-w2) << " /s)";
+  return why.str();
+}
+
+/// Why a complex pair λ = −ω² of |λ| = `magnitude` (rad²/s²) makes the equilibrium unstable. A
+/// pair counts below the modes returned only: one among a discretisation's highest modes (a dead
+/// tip moment couples its near-double shear pairs, ω ~ 1e5 rad/s growing at ~30 /s on a
+/// 100-segment rod) says nothing of the rod.
+std::string FlutterReason(double magnitude) {
+  std::ostringstream why;
+  why << std::setprecision(4) << "flutter: a complex pair of eigenvalues near "
+      << std::sqrt(magnitude) / (2 * M_PI) << " Hz";
+  return why.str();
 }
 
 /// ω from ω² (a negative ω² gives −sqrt(−ω²), the growth rate of an unstable direction).
@@ -402,17 +424,20 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   // mass's block adds nothing to Ar); ω² and reduced eigenvectors, ascending.
   const Eigen::MatrixXd S = -MassTimes(red, red.mass, 1.0, Ar);
   result.symmetric = IsSymmetric(S);
-  // A complex pair (flutter) counts below the modes returned: one among a discretisation's
-  // highest modes (a dead tip moment couples its near-double shear pairs, ω ~ 1e5 rad/s growing
-  // at ~30 /s on a 100-segment rod) says nothing of the rod.
+  // Flutter counts below the modes returned only (GeneralSpectrum).
   double lowest_complex = std::numeric_limits<double>::infinity();
   const bool damped = options.damped && Br.cwiseAbs().maxCoeff() > 0;
   Eigen::MatrixXd companion;  // first-order form of λ² M + λ C + K = 0 when damped
-  bool unstable = false;  // also: an indefinite stiffness the direct spectrum cannot resolve
+  bool indefinite = false;  // a stiffness the direct spectrum cannot resolve, not definite
   const Spectrum eig =
       result.symmetric
-          ? SymmetricSpectrum(S, red, Br, options.shapes, damped, &companion, &unstable)
+          ? SymmetricSpectrum(S, red, Br, options.shapes, damped, &companion, &indefinite)
           : GeneralSpectrum(Ar, options.shapes, &lowest_complex);
+  bool unstable = false;
+  auto mark = [&](std::string why) {  // the first reason found is the one reported
+    if (!unstable) result.instability = std::move(why);
+    unstable = true;
+  };
   const double w2_max = eig.empty() ? 0.0 : std::abs(eig.back().first);
   const NodeWeights weights = QuatFdNodeWeights(*model, q);
   for (int i = 0;
@@ -420,8 +445,8 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
        ++i) {
     Mode mode;
     const double w2 = eig[i].first;
-    if (lowest_complex <= std::abs(w2)) unstable = true;
-    if (w2 < -1e3 * 2.2e-16 * w2_max) unstable = true;
+    if (lowest_complex <= std::abs(w2)) mark(FlutterReason(lowest_complex));
+    if (w2 < -1e3 * 2.2e-16 * w2_max) mark(DivergenceReason(w2));
     mode.omega = SignedSqrt(w2);
     mode.frequency_hz = mode.omega / kTwoPi;
     if (options.shapes) {
@@ -431,12 +456,14 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
     result.modes.push_back(std::move(mode));
   }
 
+  // The factorisation found the stiffness indefinite where the spectrum's low end is round-off.
+  if (indefinite) mark(DivergenceReason(eig.empty() ? 0.0 : eig.front().first));
   if (damped && DampedSpectrum(result.symmetric, Ar, Br, options.count, &companion,
                                 &result.damped))
-    unstable = true;
+    mark("a damped mode grows (Re λ > 0)");
   // Fewer real modes than asked for: any complex pair is below the last one there could be.
   if (static_cast<int>(result.modes.size()) < options.count && std::isfinite(lowest_complex))
-    unstable = true;
+    mark(FlutterReason(lowest_complex));
   if (unstable) return finish(ModalStatus::kUnstable);
   if (static_cast<int>(result.modes.size()) < options.count)
     return finish(ModalStatus::kTooFewModes);
@@ -519,8 +546,11 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
   // The scan finds real frequencies only: an unstable direction of the equilibrium (a rod pressed
   // on a convex obstacle harder than it bends back) has an imaginary one it cannot see, so the
   // equilibrium's Morse index decides (−1, not defined for drag or follower loads: stable).
-  if (solver.StabilityIndex(base, loads, solver.base_wrench_B()) > 0)
+  if (const int index = solver.StabilityIndex(base, loads, solver.base_wrench_B()); index > 0) {
+    result.instability = "divergence: the equilibrium has " + std::to_string(index) +
+                         " unstable direction" + (index > 1 ? "s" : "") + " (its Morse index)";
     return finish(ModalStatus::kUnstable);
+  }
   return finish(ModalStatus::kConverged);
 }
 

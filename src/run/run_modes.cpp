@@ -110,6 +110,8 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
       << "), " << r.modes.size() << " modes:";
   for (const Mode& m : r.modes) log << ' ' << std::setprecision(6) << m.frequency_hz;
   log << " Hz, " << std::setprecision(3) << r.wall_time_s * 1e3 << " ms\n";
+  if (r.status == ModalStatus::kUnstable && !r.instability.empty())
+    log << "cosserat: unstable: " << r.instability << "\n";
   result.log = log.str() + SingleShotHint(problem, r);
   result.converged = r.converged();
   return result;

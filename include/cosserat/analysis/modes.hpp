@@ -87,6 +87,8 @@ struct ModalResult {
   std::vector<double> s;    ///< node arc lengths of the shapes, m
   RodState equilibrium;     ///< the static equilibrium linearised about (last iterate if failed)
   std::vector<Mode> modes;  ///< the lowest `count`, by frequency
+  /// With ModalStatus::kUnstable: why (divergence, with ω² or the Morse index; or flutter).
+  std::string instability;
   std::vector<DampedMode> damped;  ///< the lowest `count` underdamped pairs by |λ| (quatfd only)
   /// quatfd: whether the stiffness was symmetric (conservative loads) and the symmetric solver
   /// was used. Shooting: always false.
