@@ -304,7 +304,8 @@ TEST(Assembly, TheTipTangentOfAHardBentShotMatchesCentralDifferences) {
     RodShot::Point<double> plus = start, minus = start;
     (k < 3 ? plus.m(k) : plus.n(k - 3)) += h * EI;
     (k < 3 ? minus.m(k) : minus.n(k - 3)) -= h * EI;
-    const RodShot::Point<double> a = shot.Shoot<double>(plus, 1.0), b = shot.Shoot<double>(minus, 1.0);
+    const RodShot::Point<double> a = shot.Shoot<double>(plus, 1.0);
+    const RodShot::Point<double> b = shot.Shoot<double>(minus, 1.0);
     differences.col(k) << (a.m - b.m) / (2 * h), (a.R * a.n - b.R * b.n) / (2 * h);
   }
   analytic.topRows<3>() = exact.m;
