@@ -16,27 +16,15 @@ BatchStepper::BatchStepper(const RodModel& model, int nodes, const Bdf2Options& 
 }
 
 int BatchStepper::InitializeAtRest(const StepInput& input) {
-  auto job = [&](std::size_t i) { summaries_[i] = rods_[i]->InitializeAtRest(input); };
-  team_.For(rods_.size(), job);
-  int converged = 0;
-  for (const StepSummary& s : summaries_) converged += s.converged();
-  return converged;
+  return EachRod([&](std::size_t i) { return rods_[i]->InitializeAtRest(input); });
 }
 
 int BatchStepper::InitializeAtRest(const StepInput& input, const RodState& equilibrium) {
-  auto job = [&](std::size_t i) { summaries_[i] = rods_[i]->InitializeAtRest(input, equilibrium); };
-  team_.For(rods_.size(), job);
-  int converged = 0;
-  for (const StepSummary& s : summaries_) converged += s.converged();
-  return converged;
+  return EachRod([&](std::size_t i) { return rods_[i]->InitializeAtRest(input, equilibrium); });
 }
 
 int BatchStepper::Step(const StepInput* inputs) {
-  auto job = [&](std::size_t i) { summaries_[i] = rods_[i]->Step(inputs[i]); };
-  team_.For(rods_.size(), job);
-  int converged = 0;
-  for (const StepSummary& s : summaries_) converged += s.converged();
-  return converged;
+  return EachRod([&](std::size_t i) { return rods_[i]->Step(inputs[i]); });
 }
 
 }  // namespace cosserat

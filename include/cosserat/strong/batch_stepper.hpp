@@ -33,6 +33,17 @@ class BatchStepper {
   const StepSummary& summary(int i) const { return summaries_[i]; }
 
  private:
+  /// Runs solve(i) → StepSummary for every rod on the team, keeps the summaries and returns how
+  /// many converged.
+  template <typename Solve>
+  int EachRod(const Solve& solve) {
+    auto job = [&](std::size_t i) { summaries_[i] = solve(i); };
+    team_.For(rods_.size(), job);
+    int converged = 0;
+    for (const StepSummary& s : summaries_) converged += s.converged();
+    return converged;
+  }
+
   std::vector<std::unique_ptr<Bdf2ShootingStepper>> rods_;
   std::vector<StepSummary> summaries_;
   ThreadTeam team_;
