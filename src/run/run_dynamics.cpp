@@ -7,7 +7,6 @@
 #include <iomanip>
 #include <optional>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 
 #include "cosserat/io/result_writer.hpp"
@@ -16,8 +15,6 @@
 #include "cosserat/run/initial_equilibrium.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
-#include "cosserat/strong/static_multiple_shooting.hpp"
-#include "cosserat/strong/static_shooting.hpp"
 #include "cosserat/strong/shooting_exponent.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"

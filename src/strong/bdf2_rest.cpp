@@ -81,7 +81,7 @@ bool Bdf2ShootingStepper::SolveRestEquilibrium(const StepInput& input, const Vec
     const Vec6 r = Residual(input, c, true, Vec6::Zero());
     ++summary.shots;
     summary.residual = r.norm();
-    ok = summary.residual < Tolerance(Vec6::Zero());
+    ok = summary.residual < options_.tolerance;
     if (!ok) summary.status = SolveStatus::kMaxIterations;  // not an equilibrium
   } else {
     // A rigid-body guess is good enough for moderate preloads; large ones are the statics
