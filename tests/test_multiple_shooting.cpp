@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "../bench/peer_rod.hpp"
+#include "cosserat/lie/nearest_rotation.hpp"
 #include "cosserat/rod/section_profile.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/shooting_exponent.hpp"
@@ -74,6 +75,48 @@ TEST(MultipleShooting, SameSolutionAsSingleShooting) {
                                : scheme == SpatialScheme::kHeun ? 2e-6
                                                                 : 2e-7);
   }
+}
+
+// A steel wire (L = 1 m, r = 1 mm) clamped at the origin along +z, pulled at its tip by 3.9 N
+// along z and 0.05 N across (L √(T/EI) = 5), then pinned where that left it and solved at rest
+// in four pieces from the single shot's equilibrium. The junctions restart from the frames of
+// the state they are taken from; frames off SO(3) by 1e-7 (what explicit RK stages leave in a
+// stiffer rod's tension boundary layer) stretched each piece by that much, which the junctions'
+// rotation mismatch, the skew part of Log, cannot see: the tension moved by 0.035 N (9e-3).
+// The restarts are on SO(3) now, so both starts must give one solution: a held tip fixes the
+// tension only to EA times the solve's tolerance on its position (1e-10 L: 6e-5 N; measured
+// 2.5e-7 N apart). Against the single shot, which carries RK4's drift δ of the frames (here
+// 9e-10) through the junctions instead, the tension differs by up to EA δ more (measured
+// 1.5e-4 N).
+TEST(MultipleShooting, TheRestSolutionDoesNotDependOnTheFramesItStartsFrom) {
+  const testing::SteelRod wire{1.0, 0.001};
+  auto tension = [](const RodState& s) { return s.wrench_B.front()(5); };
+  Bdf2ShootingStepper pulled(wire.model(), 41);
+  StepInput in;
+  in.loads.tip_force = Vec3(0.05, 0, 3.9);
+  ASSERT_TRUE(pulled.InitializeAtRest(in).converged());
+  const RodState exact = pulled.state();
+  double drift = 0;
+  for (const Mat3& R : exact.rotation_WB) drift = std::max(drift, lie::OrthonormalityError(R));
+  RodState stretched = exact;
+  for (Mat3& R : stretched.rotation_WB) R *= 1 + 1e-7;
+  StepInput held;
+  held.tip_hold = TipHold::kPinned;
+  held.tip_pose.p = exact.tip_position_W();
+  Bdf2Options opt;
+  opt.shooting_segments = 4;
+  const double noise = wire.EA() * opt.tolerance;  // N
+  double T[2];
+  for (int k = 0; k < 2; ++k) {
+    Bdf2ShootingStepper pieces(wire.model(), 41, opt);
+    ASSERT_TRUE(pieces.InitializeAtRest(held, k == 0 ? exact : stretched).converged());
+    T[k] = tension(pieces.state());
+    std::printf("at rest in 4 pieces from %s frames: tension %.12f N (single shot %.12f N, "
+                "its frames' drift %.2e)\n",
+                k == 0 ? "the RK" : "stretched", T[k], tension(exact), drift);
+    EXPECT_NEAR(T[k], tension(exact), wire.EA() * drift + noise);
+  }
+  EXPECT_NEAR(T[0], T[1], noise);
 }
 
 // A free rod at rest in free space, released into uniform gravity at t = 0: it translates

@@ -224,7 +224,14 @@ State Bdf2ShootingStepper::JunctionRestart(int k) const {
   const auto z = junction_z_.segment<18>(18 * k);
   State restart;
   restart.p = ref.position_W[i] + model_.length * z.segment<3>(0);
-  restart.R = ref.rotation_WB[i] * lie::SO3Exp(Vec3(z.segment<3>(3)));
+  // The stored frame is the product of explicit RK stages, orthonormal only to their error
+  // (~1e-7 in a tension boundary layer); a piece restarted from it would carry that error as a
+  // stretch its mismatch (the skew part of Log) cannot see, and the solution would depend on the
+  // state the junctions were taken from (a taut 1 mm steel wire's tension by 1 % for frames
+  // 1e-7 off). One Björck step, R (3I − RᵀR)/2, makes it orthonormal to O(error²).
+  const Mat3& R0 = ref.rotation_WB[i];
+  const Mat3 R_ref = 0.5 * R0 * (3.0 * Mat3::Identity() - R0.transpose() * R0);
+  restart.R = R_ref * lie::SO3Exp(Vec3(z.segment<3>(3)));
   restart.m = ref.wrench_B[i].head<3>() + scale_.head<3>().cwiseProduct(z.segment<3>(6));
   restart.n = ref.rotation_WB[i] * ref.wrench_B[i].tail<3>() +
               scale_.tail<3>().cwiseProduct(z.segment<3>(9));

@@ -282,10 +282,13 @@ class Bdf2ShootingStepper {
   StepSummary InitializeAtRestFrom(const StepInput& input, const Vec6* base_wrench_B,
                                    const RodState* equilibrium);
   /// InitializeAtRest's solve (cantilever: from base_wrench_B or the rigid-body guess, in pieces
-  /// from `equilibrium` when given and its tension asks for them; free-free: the check that the
-  /// loads balance). True when it converged; the trial state holds the equilibrium.
+  /// from `equilibrium` when given and its tension asks for them, in more when they fail;
+  /// free-free: the check that the loads balance). True when it converged; the trial state holds
+  /// the equilibrium.
   bool SolveRestEquilibrium(const StepInput& input, const Vec6* base_wrench_B,
                             const RodState* equilibrium, StepSummary* summary);
+  /// The unknowns at W (base wrench, N and N·m) and run_.state at `equilibrium`, twists zero.
+  void StartFromEquilibrium(const RodState& equilibrium, const Vec6& W);
   /// After SolveRestEquilibrium: the trial state becomes the run's, with both history levels at
   /// it and every twist zero, at t = 0.
   void StartHistoryAtRest(const StepInput& input);
