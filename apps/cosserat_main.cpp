@@ -33,6 +33,7 @@
 #include "cosserat/io/vtk_series.hpp"
 #include "cosserat/run/run.hpp"
 #include "cosserat/run/sweep.hpp"
+#include "output_file.hpp"
 #include "sweep_mpi.hpp"
 
 namespace {
@@ -273,13 +274,6 @@ class ProgressLine {
   Clock::time_point start_, last_;
 };
 
-/// Opens an output file before the solve, so a bad path fails fast.
-std::ofstream OpenOutput(const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write '" + path + "' (" + std::strerror(errno) + ")");
-  return out;
-}
-
 /// The --vtk directory, made before the run, and its series file writable: a bad directory
 /// fails fast instead of after the simulation.
 void CheckVtkDirectory(const std::string& directory, const std::string& stem) {
@@ -297,18 +291,18 @@ void CheckVtkDirectory(const std::string& directory, const std::string& stem) {
 int RunSolve(const Command& cmd) {
   const std::optional<cosserat::io::Problem> problem = LoadRunnableProblem(cmd.problem_path);
   if (!problem) return kExitBadInput;
-  // Every refusal before the output files are opened (opening truncates them): a refused run
-  // leaves the last result in place.
+  // The outputs replace their targets only when the result is written (OutputFile): a refused,
+  // failed or killed run leaves the last result in place.
   if (cmd.vtk_dir && problem->has_assembly &&
       problem->analysis != cosserat::io::Analysis::kDynamics)
     throw UsageError{"--vtk writes an assembly's dynamics frames; this assembly's analysis is \"" +
                      cosserat::io::ToString(problem->analysis) + "\""};
   const std::string stem = std::filesystem::path(cmd.problem_path).stem().string();
   if (cmd.vtk_dir) CheckVtkDirectory(*cmd.vtk_dir, stem);
-  std::optional<std::ofstream> out_file, csv_file;
-  if (cmd.out_path) out_file = OpenOutput(*cmd.out_path);
-  if (cmd.csv_path) csv_file = OpenOutput(*cmd.csv_path);
-  std::ostream& out = out_file ? static_cast<std::ostream&>(*out_file) : std::cout;
+  std::optional<cosserat::apps::OutputFile> out_file, csv_file;
+  if (cmd.out_path) out_file.emplace(*cmd.out_path);
+  if (cmd.csv_path) csv_file.emplace(*cmd.csv_path);
+  std::ostream& out = out_file ? static_cast<std::ostream&>(out_file->stream()) : std::cout;
 
   cosserat::run::RunOptions options;
   options.nodes_csv = csv_file.has_value();
@@ -321,7 +315,7 @@ int RunSolve(const Command& cmd) {
     result = cosserat::run::Run(*problem, options);
   }
   out << result.json.dump(2) << '\n';
-  if (csv_file) *csv_file << result.nodes_csv;
+  if (csv_file) csv_file->stream() << result.nodes_csv;
   std::cerr << result.log;
   if (cmd.vtk_dir) {
     std::string error;
@@ -332,9 +326,10 @@ int RunSolve(const Command& cmd) {
               << (result.frames.size() == 1 ? " frame" : " frames") << " written to "
               << (std::filesystem::path(*cmd.vtk_dir) / (stem + ".pvd")).string() << '\n';
   }
-  out.flush();
-  if (!out || (csv_file && !csv_file->flush()))
-    throw std::runtime_error("writing the result failed");
+  if (out_file) out_file->Commit();
+  if (csv_file) csv_file->Commit();
+  std::cout.flush();
+  if (!out_file && !std::cout) throw std::runtime_error("writing the result failed");
   return result.converged ? kExitConverged : kExitNotConverged;
 }
 

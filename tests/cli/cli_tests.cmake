@@ -69,6 +69,13 @@ cosserat_cli_test(NAME vtk_statics_keeps_out
                        --out "${_cli_out}/kept.json"
                   CODE 2 KEEP "${_cli_out}/kept.json" STDERR "--vtk writes an assembly's")
 
+# The outputs replace their targets only once the result is written: a run whose --csv cannot
+# be written, or that throws during the run, leaves an earlier --out as it was.
+cosserat_cli_test(NAME bad_csv_keeps_out
+                  ARGS solve "${_cli_example}" --out "${_cli_out}/kept_csv.json"
+                       --csv "${_cli_out}/no_such_dir/nodes.csv"
+                  CODE 2 KEEP "${_cli_out}/kept_csv.json" STDERR "cannot write .*nodes.csv")
+
 # A study file's errors name their fields (docs/sweeps.md).
 cosserat_cli_test(NAME bad_study ARGS sweep "${_cli_dir}/bad_study.json" --out "${_cli_out}/bad_study.csv"
                   CODE 2 STDERR "parameters\\[0\\].path: names \"/rod/nosuch/x\", but the problem has no \"/rod/nosuch\".*parameters\\[1\\].grid.to: an empty range.*parameters\\[2\\].random.high: expected a bound above \"low\"")
