@@ -1,7 +1,8 @@
 // Studies and sweeps (io/study.hpp, run/sweep.hpp): a study's points, its bad files named by
 // field, and `cosserat sweep`'s rows: the arc of a tendon-bent backbone at every tension, the
 // same rows on one and on two threads, a study stopped part-way and resumed running every point
-// exactly once, a torn last line run again, and a failing point kept as a row with its status.
+// exactly once, a torn last line run again, a failing point kept as a row with its status, and
+// the rows of another grid or another problem refused rather than resumed.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -267,6 +268,41 @@ TEST(Sweep, AFileOfAnotherStudyIsNotOverwritten) {
   std::string first;
   std::getline(f, first);
   EXPECT_EQ(first, "index,something,else");
+}
+
+// A file that has this study's columns but another study's points (another grid) or rows of
+// another problem (its rod 0.3 m long, recorded beside the file) is refused before any row is
+// written, naming what differs; the rows stay as they were.
+TEST(Sweep, RowsOfAnotherGridOrProblemAreNotResumed) {
+  const std::string grid = R"([{"path": "/robot/actuation/tension/0", "grid": {"from": 0, "to": 2,
+                               "count": 3}}])";
+  const std::string path = Temp("resumed.csv");
+  std::remove(path.c_str());
+  std::remove((path + ".problem.json").c_str());
+  run::SweepOptions o;
+  o.max_new_points = 2;
+  run::RunSweep(Parse(TendonStudy(grid)), path, o);
+  const std::map<long, std::string> before = Rows(path);
+  ASSERT_EQ(before.size(), 2u);
+  auto refusal = [&](const io::Study& s) {
+    try {
+      run::RunSweep(s, path);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("not refused");
+  };
+  std::string other_grid = grid;
+  other_grid.replace(other_grid.find("\"to\": 2"), 7, "\"to\": 1");
+  EXPECT_NE(refusal(Parse(TendonStudy(other_grid))).find("point 1 has /robot/actuation/tension/0 = "
+                                                          "1, this study's point has 0.5"),
+            std::string::npos);
+  std::string longer = TendonStudy(grid);
+  longer.replace(longer.find("\"length\": 0.25"), 14, "\"length\": 0.30");
+  EXPECT_NE(refusal(Parse(longer)).find("differs at /rod/length"), std::string::npos);
+  EXPECT_EQ(Rows(path), before);
+  // The same study resumes.
+  EXPECT_EQ(run::RunSweep(Parse(TendonStudy(grid)), path).resumed, 2u);
 }
 
 }  // namespace

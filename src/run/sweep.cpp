@@ -131,6 +131,55 @@ std::map<std::uint64_t, std::string> ReadRows(const std::string& path, const std
   return rows;
 }
 
+/// Each resumed row's parameter values must be this study's at its point: a file of another
+/// study with the same columns (another grid, other draws) is refused, not mixed in.
+void CheckResumedPoints(const std::string& path, const io::Study& study,
+                        const std::map<std::uint64_t, std::string>& rows) {
+  for (const auto& [k, line] : rows) {
+    const std::vector<double> point = study.Point(k);
+    for (std::size_t j = 0; j < point.size(); ++j) {
+      const std::size_t start = StartOfField(line, j + 1);
+      const std::size_t end = std::min(line.find(',', start), line.size());
+      const std::string found = line.substr(start, end - start), wanted = Number(point[j]);
+      if (found != wanted)
+        throw std::runtime_error(path + ": its row of point " + std::to_string(k) + " has " +
+                                 study.parameters[j].path + " = " + found +
+                                 ", this study's point has " + wanted +
+                                 " (another study's results? remove the file or name another "
+                                 "--out)");
+    }
+  }
+}
+
+/// The problem the rows were computed from, beside the CSV (`<csv>.problem.json`): a resumed
+/// study whose base problem changed since (another robot, another load; its description aside)
+/// is refused, naming the first place they differ. A file without one is resumed as is.
+void CheckAndRecordProblem(const std::string& csv_path, const io::Study& study, bool resuming) {
+  const std::string path = csv_path + ".problem.json";
+  std::error_code ec;
+  if (resuming && std::filesystem::exists(path, ec)) {
+    std::ifstream f(path, std::ios::binary);
+    json recorded = json::parse(f, nullptr, false), now = study.problem;
+    if (recorded.is_object()) recorded.erase("description");  // words, not the problem
+    if (now.is_object()) now.erase("description");
+    if (!recorded.is_discarded() && recorded != now) {
+      const json patch = json::diff(recorded, now);
+      const std::string where =
+          patch.empty() ? std::string("/") : patch.front().value("path", std::string("/"));
+      throw std::runtime_error(csv_path + ": its rows were computed from another problem (" +
+                               path + " differs at " + (where.empty() ? "/" : where) +
+                               "); remove both files or name another --out");
+    }
+  }
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    f << study.problem.dump(1) << '\n';
+    if (!f) throw std::runtime_error(tmp + ": cannot write");
+  }
+  std::filesystem::rename(tmp, path);
+}
+
 /// Writes the header and the rows to `path` through a temporary file and a rename, so that the
 /// file is whole at every moment.
 void WriteAll(const std::string& path, const std::string& header,
@@ -157,6 +206,8 @@ std::string SweepHeader(const io::Study& study) {
 SweepFile::SweepFile(const io::Study& study, const std::string& path)
     : path_(path), header_(SweepHeader(study)), points_(study.PointCount()) {
   rows_ = ReadRows(path_, header_, points_);
+  CheckResumedPoints(path_, study, rows_);
+  CheckAndRecordProblem(path_, study, !rows_.empty());
   resumed_ = rows_.size();
   WriteAll(path_, header_, rows_);  // drops a torn line; the file now ends with a whole row
   for (std::uint64_t k = 0; k < points_; ++k)
