@@ -332,6 +332,32 @@ TEST(Buckling, SoftBandLocalisesTheMode) {
   }
 }
 
+// A column the file's own loads already press past Euler's load: the pinned–pinned column under
+// a fixed 8 P_E. The straight path passes P_E and 4 P_E (double roots: det J keeps its sign) and
+// a search on top of it found 9 P_E − 8 P_E as "the" critical load. The fixed loads are scanned
+// first: the share of them at which J turns singular is 1/8 (Euler's load, to the model's
+// first-order shear and shortening shift and the dip's refinement, 1e-3 relative). Under half of
+// P_E fixed, the search still finds the other half on top, as EulerCriticalLoadsAt41Nodes does.
+TEST(Buckling, APreloadPastEulersLoadIsReportedNotAHigherLoad) {
+  SlenderRod rod;
+  const double P = EulerLoad(ColumnEnds::kPinnedPinned, rod.EI(), rod.length);
+  auto search = [&](double preload) {
+    LoadPath path = LoadPath::TipForce(Vec3(0, 0, -1));
+    path.fixed.tip_force = Vec3(0, 0, -preload);
+    BucklingOptions options;
+    options.lambda_max = 2 * P;
+    BucklingAnalysis a(rod.model(), 41, ColumnEnds::kPinnedPinned, lie::SE3{}, path, options);
+    return a.FindCriticalLoad();
+  };
+  const BucklingSummary past = search(8 * P);
+  ASSERT_EQ(past.status, BucklingStatus::kPreloadPastCritical) << ToString(past.status);
+  EXPECT_TRUE(std::isnan(past.critical_load));
+  EXPECT_NEAR(8 * past.preload_critical_fraction, 1.0, 1e-3);
+  const BucklingSummary below = search(0.5 * P);
+  ASSERT_TRUE(below.found()) << ToString(below.status);
+  EXPECT_NEAR((0.5 * P + below.critical_load) / P, 1.0, 5e-3);
+}
+
 // A follower (tangential) tip force on a cantilever is Beck's column: it loses stability by
 // flutter (at 20.05 EI/L²), never by divergence, so statics finds no critical load.
 TEST(Buckling, FollowerLoadHasNoStaticCriticalLoad) {

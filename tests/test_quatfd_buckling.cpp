@@ -167,6 +167,31 @@ TEST(QuatFdBuckling, SelfWeightBucklingIsGreenhills) {
   EXPECT_NEAR(q.critical_load / s.critical_load, 1.0, 1e-3);
 }
 
+// A cantilever the file's own loads press past Euler's load (a fixed 5 P_E; the next load is
+// 9 P_E): its stiffness at λ = 0 already has the two negative eigenvalues of the first,
+// double root, and the search once reported "found" at 0 on top of it. Under half of P_E fixed
+// the search finds the other half (to the 5e-3 of CantileverEulerLoadAt40Segments).
+TEST(QuatFdBuckling, APreloadPastEulersLoadIsReportedNotAHigherLoad) {
+  const double P = EulerCantilever();
+  auto search = [&](double preload) {
+    quatfd::QuatFdOptions mo;
+    mo.segments = 40;
+    QuatFdBucklingOptions options;
+    options.lambda_max = 1.5 * P;
+    options.scan_steps = 15;
+    LoadPath path = LoadPath::TipForce(Vec3(0, 0, -1));
+    path.fixed.tip_force = Vec3(0, 0, -preload);
+    QuatFdBuckling b(SteelColumn(), lie::SE3{}, path, mo, options);
+    return b.FindCriticalLoad();
+  };
+  const QuatFdBucklingSummary past = search(5 * P);
+  ASSERT_EQ(past.status, BucklingStatus::kPreloadPastCritical) << ToString(past.status);
+  EXPECT_EQ(past.preload_unstable_directions, 2);
+  const QuatFdBucklingSummary below = search(0.5 * P);
+  ASSERT_TRUE(below.found()) << ToString(below.status);
+  EXPECT_NEAR((0.5 * P + below.critical_load) / P, 1.0, 5e-3);
+}
+
 TEST(QuatFdBuckling, BadInputNamesTheField) {
   quatfd::QuatFdOptions mo;
   mo.segments = 8;

@@ -78,6 +78,8 @@ const char* ToString(BucklingStatus status) {
       return "not_found";
     case BucklingStatus::kPathFailed:
       return "path_failed";
+    case BucklingStatus::kPreloadPastCritical:
+      return "preload_past_critical";
   }
   return "unknown";
 }
@@ -311,6 +313,32 @@ BucklingSummary BucklingAnalysis::FindCriticalLoad() {
     return out;
   };
 
+  if (path_.fixed != path_.fixed.Scaled(0.0)) {
+    // A preload: the straight path under it may already have passed a critical point (a
+    // column pressed by 8 Euler loads has; a scan on top of it found the third).
+    column_.set_unknowns(Vec6::Zero());
+    ++out.solves;
+    const LoadPath saved = path_;
+    path_.fixed = saved.fixed.Scaled(0.0);
+    path_.fixed.tip_force_frame = saved.fixed.tip_force_frame;
+    path_.fixed.tip_moment_frame = saved.fixed.tip_moment_frame;
+    const bool unloaded = SolveAt(0.0).converged();
+    path_ = saved;
+    double sigma_unloaded = 0, sign = 0;
+    if (unloaded) Singularity(0.0, &sigma_unloaded, &sign, nullptr, nullptr);
+    const double fraction = unloaded ? PreloadCriticalFraction(sigma_unloaded, &out) : NAN;
+    if (fraction < 1.0) {
+      out.preload_critical_fraction = fraction;
+      out.scan_lambda.clear();
+      out.scan_sigma_min.clear();
+      column_.set_unknowns(Vec6::Zero());
+      SolveFixedLoads(&out.solves);  // state(): the (unstable) preloaded equilibrium
+      return finish(BucklingStatus::kPreloadPastCritical);
+    }
+    out.scan_lambda.clear();
+    out.scan_sigma_min.clear();
+    column_.ForgetState();  // a failing solve below must not report the scan's last state
+  }
   column_.set_unknowns(Vec6::Zero());
   if (!SolveFixedLoads(&out.solves)) return finish(BucklingStatus::kPathFailed);
   PathPoint cur{0.0, column_.unknowns(), 0, 0};
@@ -347,6 +375,37 @@ BucklingSummary BucklingAnalysis::FindCriticalLoad() {
   // The pre-buckled equilibrium at λ_cr, its null vector and the mode.
   SetCriticalPoint(mid.lambda, mid.u, sigma0, &out);
   return finish(BucklingStatus::kFound);
+}
+
+double BucklingAnalysis::PreloadCriticalFraction(double sigma0, BucklingSummary* out) {
+  // The unloaded equilibrium is in column_; the scan runs over μ, the fixed loads' share.
+  const LoadPath saved = path_;
+  auto evaluate = [&](double mu, const Vec6& guess, PathPoint* p) {
+    path_.fixed = saved.fixed.Scaled(mu);
+    path_.fixed.tip_force_frame = saved.fixed.tip_force_frame;
+    path_.fixed.tip_moment_frame = saved.fixed.tip_moment_frame;
+    column_.set_unknowns(guess);
+    ++out->solves;
+    const bool ok = SolveAt(0.0).converged();
+    if (ok) {
+      p->lambda = mu;
+      p->u = column_.unknowns();
+      Singularity(0.0, &p->sigma, &p->det_sign, nullptr, nullptr);
+    }
+    return ok;
+  };
+  BucklingOptions shares = options_;
+  shares.lambda_max = 1.0;
+  shares.progress = nullptr;
+  PathPoint start{0.0, column_.unknowns(), sigma0, 0};
+  Singularity(0.0, &start.sigma, &start.det_sign, nullptr, nullptr);
+  std::vector<PathPoint> pts{start};
+  PathPoint lo{}, hi{}, mid{};
+  const ScanEnd end = ScanPath(evaluate, shares, sigma0, &pts, out, &lo, &hi, &mid);
+  path_ = saved;
+  if (end == ScanEnd::kSignChange) return 0.5 * (lo.lambda + hi.lambda);
+  if (end == ScanEnd::kDip) return mid.lambda;
+  return NAN;
 }
 
 BucklingMode BucklingAnalysis::ExtractMode(double lambda, const Vec6& v, bool double_root) const {

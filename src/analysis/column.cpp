@@ -58,6 +58,11 @@ ColumnSolver::ColumnSolver(const RodModel& model, int num_nodes, ColumnEnds ends
   const double EI = p.max_bending_stiffness();
   const double L = model.length;
   scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
+  ForgetState();
+}
+
+void ColumnSolver::ForgetState() {
+  state_ = RodState{};
   state_.Resize(static_cast<int>(shooter_.grid().size()));
   for (int i = 0; i < state_.size(); ++i) state_.s[i] = shooter_.grid()[i];
 }

@@ -248,8 +248,16 @@ QuatFdBucklingSummary QuatFdBuckling::FindCriticalLoad() {
     q_ = b.q_lo;
     return finish(BucklingStatus::kPathFailed);
   }
-  b.mu_lo = StiffnessEigenvalues(0.0, b.q_lo)(0);
+  const Eigen::VectorXd e0 = StiffnessEigenvalues(0.0, b.q_lo);
+  b.mu_lo = e0(0);
   b.mu0 = b.mu_lo;
+  if (b.mu_lo <= 0) {
+    // The fixed loads alone leave the equilibrium unstable: a critical load on top of them
+    // would be a higher one (a cantilever pressed by 5 Euler loads gave "found" at 0).
+    q_ = b.q_lo;
+    out.preload_unstable_directions = static_cast<int>((e0.array() <= 0).count());
+    return finish(BucklingStatus::kPreloadPastCritical);
+  }
   out.scan_lambda.push_back(b.lo);
   out.scan_min_eigenvalue.push_back(b.mu_lo);
   // The scan: steps of λ_max/scan_steps, halved after a failed solve (up to 10 times in a row)

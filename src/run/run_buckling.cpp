@@ -153,6 +153,8 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   block["boundary"] = ToString(ends);
   block["load_reached"] = reached;
   block["static_solves"] = b.solves;
+  if (b.status == BucklingStatus::kPreloadPastCritical)
+    block["preload_critical_fraction"] = b.preload_critical_fraction;
   if (b.found()) {
     nlohmann::ordered_json mode;
     mode["double"] = b.mode.double_root;
@@ -175,6 +177,11 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
     line << ", critical " << io::ToString(problem.buckling.load) << " " << std::setprecision(6)
          << critical << OnTopOfTheFilesLoad(problem) << ", mode bends most at s = "
          << b.mode.s_max_curvature << " m";
+  else if (b.status == BucklingStatus::kPreloadPastCritical)
+    line << ": the file's loads alone reach a critical point at " << std::setprecision(3)
+         << b.preload_critical_fraction
+         << " of them, so the equilibrium they load is past buckling and no load on top of them "
+            "is its critical load (search from zero with them as the buckling load)";
   else
     line << ", " << (problem.buckling.load == io::BucklingLoad::kPressure ? "pressure" : "load")
          << " reached " << std::setprecision(6) << reached;
@@ -216,6 +223,8 @@ Result RunQuatFdBuckling(const io::Problem& problem, const RunOptions& run_optio
   block["load_reached"] = b.lambda_reached;
   block["static_solves"] = b.solves;
   block["multiplicity"] = b.multiplicity;
+  if (b.status == BucklingStatus::kPreloadPastCritical)
+    block["preload_unstable_directions"] = b.preload_unstable_directions;
   result.json["buckling"] = block;
   if (run_options.nodes_csv) result.nodes_csv = detail::NodesCsv(state);
 
@@ -225,6 +234,11 @@ Result RunQuatFdBuckling(const io::Problem& problem, const RunOptions& run_optio
     line << ", critical " << io::ToString(problem.buckling.load) << " " << std::setprecision(6)
          << b.critical_load << OnTopOfTheFilesLoad(problem) << ", mode bends most at s = "
          << b.mode_s_max << " m";
+  else if (b.status == BucklingStatus::kPreloadPastCritical)
+    line << ": the file's loads alone leave the equilibrium unstable ("
+         << b.preload_unstable_directions
+         << " unstable directions), so no load on top of them is its critical load (search from "
+            "zero with them as the buckling load)";
   else
     line << ", load reached " << std::setprecision(6) << b.lambda_reached;
   line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3

@@ -86,6 +86,10 @@ enum class BucklingStatus {
   kNotFound,    ///< the path reached lambda_max with J regular all along.
   kPathFailed,  ///< a static solve failed even after 10 step halvings (a fold of the path, or a
                 ///< solver failure); critical_load is NaN, lambda_reached says how far it got.
+  /// The fixed loads alone pass a singular point of J (at preload_critical_fraction of them): the
+  /// equilibrium they load is past a critical point, and no load on top of them is its critical
+  /// load (the scan would find a higher one). critical_load is NaN.
+  kPreloadPastCritical,
 };
 
 /// "found", "not_found", "path_failed", "not_run".
@@ -101,6 +105,8 @@ struct BucklingSummary {
   std::vector<double> scan_sigma_min;  ///< … and σ_min(J) there
   int solves = 0;                      ///< static solves
   double wall_time_s = 0;
+  /// With kPreloadPastCritical: the fraction of the fixed loads at which J turned singular.
+  double preload_critical_fraction = NAN;
   bool found() const { return status == BucklingStatus::kFound; }
 };
 
@@ -135,6 +141,10 @@ class BucklingAnalysis {
   /// The equilibrium at λ = 0 from the unloaded rod, the fixed loads applied in 1, 4, 16 or 64
   /// equal steps until all converge (false if none does); counts the solves.
   bool SolveFixedLoads(int* solves);
+  /// The fixed loads scaled from 0 to 1 (λ = 0), scanned as the load path is: the fraction at
+  /// which J turns singular, if below 1; NaN when it stays regular or the scan fails (the
+  /// solve of the whole fixed loads then decides).
+  double PreloadCriticalFraction(double sigma0, BucklingSummary* out);
   /// λ_cr, the pre-buckled equilibrium there (solved from `guess`), its null vector and the
   /// mode, into the members and *out; sigma0 = σ_min(J) at λ = 0.
   void SetCriticalPoint(double lambda, const Vec6& guess, double sigma0, BucklingSummary* out);

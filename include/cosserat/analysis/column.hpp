@@ -101,6 +101,8 @@ class ColumnSolver {
   void set_unknowns(const Vec6& u) { u_ = u; }
   /// The state of the last converged Solve.
   const RodState& state() const { return state_; }
+  /// state() back to what construction leaves: the grid, every other entry NaN (nothing solved).
+  void ForgetState();
   ColumnEnds ends() const { return ends_; }
   double length() const { return shooter_.length(); }
   const std::vector<double>& grid() const { return shooter_.grid(); }

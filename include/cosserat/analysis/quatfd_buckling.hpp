@@ -70,6 +70,9 @@ struct QuatFdBucklingSummary {
   std::vector<double> scan_min_eigenvalue;  ///< … and μ(λ) (dimensionless, units EI/L)
   int solves = 0;                           ///< static solves
   double wall_time_s = 0;
+  /// With kPreloadPastCritical: the stiffness eigenvalues below zero at λ = 0 (its unstable
+  /// directions under the fixed loads alone).
+  int preload_unstable_directions = 0;
   bool found() const { return status == BucklingStatus::kFound; }
 };
 
