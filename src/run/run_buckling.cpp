@@ -108,6 +108,27 @@ std::string SingleShotHint(const io::Problem& problem, const BucklingSummary& b)
   return hint.str();
 }
 
+/// The one-line summary of an SE(3) search: what it found, or how far it got.
+std::string SummaryLine(const io::Problem& problem, ColumnEnds ends, const BucklingSummary& b) {
+  std::ostringstream line;
+  line << "cosserat: buckling " << ToString(b.status) << " (" << ToString(ends) << ")";
+  if (b.found())
+    line << ", critical " << io::ToString(problem.buckling.load) << " " << std::setprecision(6)
+         << ReportedLoad(problem, b.critical_load) << OnTopOfTheFilesLoad(problem)
+         << ", mode bends most at s = " << b.mode.s_max_curvature << " m";
+  else if (b.status == BucklingStatus::kPreloadPastCritical)
+    line << ": the file's loads alone reach a critical point at " << std::setprecision(3)
+         << b.preload_critical_fraction
+         << " of them, so the equilibrium they load is past buckling and no load on top of them "
+            "is its critical load (search from zero with them as the buckling load)";
+  else
+    line << ", " << (problem.buckling.load == io::BucklingLoad::kPressure ? "pressure" : "load")
+         << " reached " << std::setprecision(6) << ReportedLoad(problem, b.lambda_reached);
+  line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3
+       << " ms";
+  return line.str() + '\n';
+}
+
 }  // namespace
 
 Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
@@ -171,23 +192,7 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   result.json["buckling"] = block;
   if (run_options.nodes_csv) result.nodes_csv = detail::NodesCsv(analysis.state());
 
-  std::ostringstream line;
-  line << "cosserat: buckling " << ToString(b.status) << " (" << ToString(ends) << ")";
-  if (b.found())
-    line << ", critical " << io::ToString(problem.buckling.load) << " " << std::setprecision(6)
-         << critical << OnTopOfTheFilesLoad(problem) << ", mode bends most at s = "
-         << b.mode.s_max_curvature << " m";
-  else if (b.status == BucklingStatus::kPreloadPastCritical)
-    line << ": the file's loads alone reach a critical point at " << std::setprecision(3)
-         << b.preload_critical_fraction
-         << " of them, so the equilibrium they load is past buckling and no load on top of them "
-            "is its critical load (search from zero with them as the buckling load)";
-  else
-    line << ", " << (problem.buckling.load == io::BucklingLoad::kPressure ? "pressure" : "load")
-         << " reached " << std::setprecision(6) << reached;
-  line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3
-       << " ms";
-  result.log = line.str() + '\n' + SingleShotHint(problem, b);
+  result.log = SummaryLine(problem, ends, b) + SingleShotHint(problem, b);
   result.converged = ok;
   return result;
 }
