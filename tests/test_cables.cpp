@@ -159,6 +159,35 @@ TEST(HeldCable, AMooringLineInWaterIsTheElasticCatenary) {
   ExpectCatenary(m, s.state, 5e-3);
 }
 
+// The same line as a hose lighter than the water it displaces (ρ = 500 kg/m³ in 1 025): the net
+// load w = (ρ − ρ_w) A g points up, and the line hangs upwards, the catenary of the mirrored
+// problem (z → −z: the fairlead 50 m below, the load down). Started from the catenary in gravity
+// it converged to the mirror image of that shape, compressed throughout (an equilibrium, and
+// unstable) with the same |H|; so the test asserts the tension at the anchors as well as the
+// shape. Tolerances as for the line above.
+TEST(HeldCable, ABuoyantLineHangsUpwardsAsTheMirroredCatenary) {
+  MooringLine m = InWater(1e-10);
+  m.c.rho = 500.0;
+  const double w_up = (1025.0 - m.c.rho) * m.c.A * kG;  // N/m, upwards
+  m.cat = truth::SolveElasticCatenary(m.fairlead.x(), -m.fairlead.z(), m.c.L0, w_up, m.c.EA());
+  const HeldSolution s = SolveHeld(m.c, m.fairlead, m.loads, 400);
+  ASSERT_TRUE(s.summary.converged()) << ToString(s.summary.status);
+  const RodState& st = s.state;
+  const Vec6 base = st.BaseReaction_W();
+  const double H = -base(3), axial_tip = st.wrench_B.back()(5);
+  std::printf("buoyant line: H %.6f N (truth %.6f), tip axial force %.6f N (truth %.6f)\n", H,
+              m.cat.H, axial_tip, m.cat.Tension(m.c.L0));
+  EXPECT_NEAR(H, m.cat.H, 5e-3 * m.cat.H);
+  EXPECT_NEAR(axial_tip, m.cat.Tension(m.c.L0), 5e-3 * m.cat.Tension(m.c.L0));
+  double worst = 0;
+  for (size_t n = 0; n < st.s.size(); ++n) {
+    const Vec3& x = st.position_W[n];
+    worst = std::max(worst, std::hypot(x.x() - m.cat.X(st.s[n]), x.z() + m.cat.Z(st.s[n])));
+  }
+  std::printf("buoyant line: largest distance of a vertex from the curve %.3e m\n", worst);
+  EXPECT_LT(worst, 5e-3 * m.fairlead.x());
+}
+
 // The same line with kL = 1000 (EI chosen from the catenary's H) on the SE(3) path, by multiple
 // shooting from the quaternion-FD equilibrium, on 1000 segments (kh = 1, where RK4 resolves the
 // bending boundary layers; at kh ≳ 2.8 it cannot, see RunStatics' hint). The bending now moves

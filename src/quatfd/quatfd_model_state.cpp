@@ -109,11 +109,19 @@ void QuatFdModel::HeldShape(Eigen::Ref<Eigen::VectorXd> q) const {
   const int N = layout_.segments;
   const Vec3 A = base_.p, B = options_.tip_position_W, chord = B - A;
   const double c = chord.norm(), length = this->length();
-  const double g = loads_.gravity_W.norm();
+  // The line hangs in the net distributed load: its weight less the fluid's buoyancy plus any
+  // uniform force. A hose lighter than the water it displaces hangs upwards; started from the
+  // catenary in gravity, it converged to the mirrored shape, compressed (an equilibrium, and
+  // unstable). Where the net load cancels (neutral buoyancy), in gravity.
+  Vec3 net = Vec3::Zero();
+  for (const Vec3& f : vertex_force_W_) net += f;
+  const double weight = Mass() * loads_.gravity_W.norm();
+  const Vec3 down = net.norm() > 1e-9 * weight ? net : Vec3(loads_.gravity_W);
+  const double g = down.norm();
   std::vector<Vec3> x(N + 1);
   HangingPlane plane{Vec3::Zero(), Vec3::Zero(), 0.0, 0.0};
   if (g > 0) {
-    plane.up = -loads_.gravity_W / g;
+    plane.up = -down / g;
     plane.h = chord.dot(plane.up);
     const Vec3 across = chord - plane.h * plane.up;
     plane.l = across.norm();

@@ -11,6 +11,7 @@
 #include "cosserat/quatfd/quatfd_statics.hpp"
 #include "cosserat/quatfd/radau.hpp"
 #include "cosserat/run/solver_options.hpp"
+#include "anchor_force.hpp"
 #include "contact_report.hpp"
 #include "foundation_hint.hpp"
 #include "frame_output.hpp"
@@ -80,8 +81,7 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
     // The force the tip's anchor exerts on the rod (N, world): the top tension of a cable.
     const Vec3 f = state.rotation_WB.back() * state.wrench_B.back().tail<3>();
     result.json["anchor_force"] = {f.x(), f.y(), f.z()};
-    log << "anchor force [" << std::setprecision(6) << f.x() << ", " << f.y() << ", " << f.z()
-        << "] N (tension " << f.norm() << " N)";
+    log << detail::AnchorForceText(state);
   } else {
     log << TipText(state);
   }

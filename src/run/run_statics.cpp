@@ -15,6 +15,7 @@
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
+#include "anchor_force.hpp"
 #include "foundation_hint.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"
@@ -208,9 +209,8 @@ Result RunAnchoredStatics(const io::Problem& problem, const RunOptions& options)
            "grid, did not converge ("
         << ToString(start.status) << ", residual " << std::setprecision(3) << start.residual
         << "); try \"formulation\": \"quaternion-fd\" for its diagnosis\n";
-  log << StaticSummary(summary, state) << " (" << solver.pieces()
-      << " shooting pieces), anchor force [" << std::setprecision(6) << f.x() << ", " << f.y()
-      << ", " << f.z() << "] N (tension " << f.norm() << " N)\n";
+  log << StaticSummary(summary, state) << " (" << solver.pieces() << " shooting pieces), "
+      << detail::AnchorForceText(state) << '\n';
   if (start.converged() && !summary.converged())
     log << BoundaryLayerHint(problem, guess) << ShotFoundationHint(problem);
   result.log = log.str();

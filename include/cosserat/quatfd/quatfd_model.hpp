@@ -137,8 +137,9 @@ class QuatFdModel {
   /// The rest shape (the discrete configuration with Γ = Γ*, K = K*) from the base pose, at rest.
   /// With a pinned tip, a shape through both ends instead, the start of a static solve
   /// (HeldShape): the chord, stretched uniformly, when the ends are at least the rod's length
-  /// apart; else the inextensible catenary of the rod's length hanging in the gravity of the loads
-  /// set (a parabola bowed along the base frame's x when there is no gravity across the chord).
+  /// apart; else the inextensible catenary of the rod's length hanging in the net distributed load
+  /// of the loads set (weight less buoyancy, plus a uniform force; in gravity where that cancels),
+  /// or a parabola bowed along the base frame's x when there is no load across the chord.
   void RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const;
 
   /// a = f(q, v) = q̈ (Lang & Linn 2009, eq. 4). Prescribed vertices get a = 0.
