@@ -198,6 +198,34 @@ std::string CoarseStepWarning(const io::Problem& problem, double dt) {
   return warning.str();
 }
 
+/// Automatic pieces bound each piece's gain; what they cannot fix is a grid too coarse for the
+/// step: per segment, the bending exponent h λ and the shear wave's h c0 sqrt(ρA/GA) need to stay
+/// below about 1 (docs/dynamics.md, "Grid and step"). Above it the steps can fail: a hint after
+/// a failed run from 0.9 on. A shear wave above 1 per segment can also make converged steps
+/// unstable: an undamped soft rod (shear 1.36, bending 2.12 per segment) gained energy sixfold a
+/// step while every step converged, and failed at the twelfth; with shear at 0.91 or 0.68 (and
+/// bending 1.4–1.5) its energy only fell, and drill strings run at bending 3. So a warning
+/// whatever the outcome when the shear wave's exceeds 1.
+std::string CoarseGridText(const io::Problem& problem, double dt, bool converged) {
+  const double exponent = SingleShootingExponent(problem.rod, dt, problem.robot.actuation);
+  const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
+  const double shear_wave = 1.5 / dt * problem.rod.length *
+                            std::sqrt(p.mass(3, 3) / p.stiffness.diagonal().segment<2>(3).minCoeff());
+  const double per_segment = std::max(exponent, shear_wave) / (problem.nodes - 1);
+  const bool warn = shear_wave / (problem.nodes - 1) > 1.0;
+  if (!std::isfinite(per_segment) || !(warn || (!converged && per_segment > 0.9))) return "";
+  std::ostringstream text;
+  text << "cosserat: " << (warn ? "warning" : "hint") << ": at dt = " << dt
+       << " s the grid is coarse for the step: its exponent per segment is "
+       << std::setprecision(3) << per_segment << " (bending " << exponent / (problem.nodes - 1)
+       << ", shear " << shear_wave / (problem.nodes - 1) << "; above about 1 the steps can "
+       << (warn ? "gain energy or fail" : "fail")
+       << "; docs/dynamics.md, \"Grid and step\"); \"rod\": {\"nodes\": "
+       << static_cast<int>(std::ceil(std::max(exponent, shear_wave) / 0.9)) + 1
+       << "} or a larger dt\n";
+  return text.str();
+}
+
 }  // namespace
 
 Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
@@ -226,26 +254,8 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
           << " it stops\"); \"dynamics\": {\"shooting_segments\": "
           << std::min(SuggestedShootingSegments(exponent), problem.nodes - 1)
           << "} shoots it in pieces\n";
-  } else if (run.initial_state_ok && run.status != SolveStatus::kConverged &&
-             options.shooting_segments == 0) {
-    // Automatic pieces bound each piece's gain; what they cannot fix is a grid too coarse for
-    // the step: per segment, the bending exponent h λ and the shear wave's h c0 sqrt(ρA/GA)
-    // need to stay below about 1 (docs/dynamics.md, "Grid and step").
-    const double exponent =
-        SingleShootingExponent(problem.rod, options.dt, problem.robot.actuation);
-    const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
-    const double shear_wave =
-        1.5 / options.dt * problem.rod.length *
-        std::sqrt(p.mass(3, 3) / p.stiffness.diagonal().segment<2>(3).minCoeff());
-    const double per_segment = std::max(exponent, shear_wave) / (problem.nodes - 1);
-    if (per_segment > 0.9)
-      log << "cosserat: hint: at dt = " << options.dt << " s the grid is coarse for the step: "
-          << "its exponent per segment is " << std::setprecision(3) << per_segment << " (bending "
-          << exponent / (problem.nodes - 1) << ", shear " << shear_wave / (problem.nodes - 1)
-          << "; above about 1 the steps can fail; docs/dynamics.md, \"Grid and step\"); "
-          << "\"rod\": {\"nodes\": "
-          << static_cast<int>(std::ceil(std::max(exponent, shear_wave) / 0.9)) + 1
-          << "} or a larger dt\n";
+  } else if (run.initial_state_ok && options.shooting_segments == 0) {
+    log << CoarseGridText(problem, options.dt, run.status == SolveStatus::kConverged);
   }
   log << CoarseStepWarning(problem, options.dt);
   result.log = log.str();
