@@ -159,6 +159,12 @@ TEST(Study, BadStudiesNameTheField) {
       R"([{"path": "/rod/length", "grid": {"from": 0.1, "to": 0.2, "count": 1000000}},
           {"path": "/robot/actuation/tension/0", "grid": {"from": 0, "to": 1, "count": 1000000}}])"));
   EXPECT_TRUE(HasError(e, "parameters: expected at most 10000000 points in all"));
+  // An output named like a parameter's column: two CSV columns of one name.
+  e = Errors(std::string(R"({"format": "cosserat-study/1", "problem": )") + kTendonRobot +
+             R"(, "parameters": [{"path": "/rod/length", "values": [0.25]}],
+                 "outputs": {"/rod/length": "/tip/position/0"}})");
+  EXPECT_TRUE(HasError(e, "outputs[\"/rod/length\"]: expected a name other than a parameter's "
+                          "column (parameters[0] is named so)"));
 }
 
 // Each row's tip is the arc's: the tendon's moment T r bends the backbone to κ = T r/EI and its

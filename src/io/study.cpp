@@ -1,9 +1,10 @@
 #include "cosserat/io/study.hpp"
 
-#include <limits>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "cosserat/io/json_document.hpp"
@@ -163,6 +164,17 @@ void ReadOutputs(const ObjectReader& top, Study* study_out) {
       }
       if (name == "index" || name == "status" || name == "wall_time_s") {
         report.Expected(where, "a name other than the fixed columns index, status and wall_time_s",
+                        detail::Quote(name));
+        continue;
+      }
+      // A parameter's column is named by its path: an output of that name would give the CSV
+      // two columns of one name, and the row dict of cosserat.sweep one key for both.
+      const auto clash = std::find_if(study.parameters.begin(), study.parameters.end(),
+                                      [&](const StudyParameter& p) { return p.path == name; });
+      if (clash != study.parameters.end()) {
+        report.Expected(where,
+                        "a name other than a parameter's column (parameters[" +
+                            std::to_string(clash - study.parameters.begin()) + "] is named so)",
                         detail::Quote(name));
         continue;
       }
