@@ -536,6 +536,36 @@ TEST(ProblemIo, AnAnchorMotionOutOfReachIsRefused) {
       << AllErrors(r);
 }
 
+// A forcing period must be one the run can follow: on the SE(3) path at least two steps of dt (a
+// gust of 1e-300 s sampled an aliased load and converged on it); on the quaternion-FD path at
+// most 1e4 periods over the run (1 µs over 1 s ran for minutes). Both are named by field.
+TEST(ProblemIo, AForcingPeriodTheStepsCannotFollowIsRefused) {
+  json j = ValidProblem();
+  j["analysis"] = "dynamics";
+  j["formulation"] = "quaternion-fd";
+  j["boundary"] = "anchored";
+  j["anchor"] = {{"position", {0.4, 0, 0}},
+                 {"motion", {{"amplitude", {0.1, 0, 0}}, {"period", 1e-6}}}};
+  j["dynamics"] = {{"dt", 0.001}, {"duration", 1.0}};
+  ParseResult r = Parse(j);
+  EXPECT_TRUE(HasError(r, {"anchor.motion.period: expected a period giving at most 1e4 periods "
+                           "over dynamics.duration (1 s), got 1e-06"}))
+      << AllErrors(r);
+  j["anchor"]["motion"]["period"] = 2e-4;  // 5 000 periods: followed
+  EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
+  j = ValidProblem();
+  j["analysis"] = "dynamics";
+  j["environment"] = {{"fluid", {{"density", 1000}, {"velocity", {0.1, 0, 0}},
+                                 {"gust", {{"amplitude", 0.2}, {"period", 1e-300}}}}}};
+  j["dynamics"] = {{"dt", 0.005}, {"duration", 1.0}};
+  r = Parse(j);
+  EXPECT_TRUE(HasError(r, {"environment.fluid.gust.period: expected a period of at least two "
+                           "steps (2 dynamics.dt = 0.01 s)"}))
+      << AllErrors(r);
+  j["environment"]["fluid"]["gust"]["period"] = 0.01;
+  EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
+}
+
 TEST(ProblemIo, DynamicsParsesAndRuns) {
   json j = ValidProblem();
   j["analysis"] = "dynamics";

@@ -482,6 +482,28 @@ void CheckSectionsAtNodes(const Problem& p, ErrorReport* report) {
 }
 
 /// The library's own checks; they should never fire after the ones above.
+/// A forcing period in dynamics (a gust, an anchor's motion): at least two steps of dt, which
+/// the SE(3) steps need to see it at all (below, they sample an aliased load and converge on
+/// it); on the quaternion-FD path, whose steps adapt, at most 1e4 periods over the run (a period
+/// of 1 µs over 1 s ran for minutes).
+void CheckForcingPeriod(const Problem& p, const std::string& where, double period,
+                        ErrorReport* report) {
+  const Problem::Dynamics& d = p.dynamics;
+  constexpr double kMaxPeriods = 1e4;
+  if (p.formulation == Formulation::kQuaternionFd) {
+    if (d.duration / period > kMaxPeriods)
+      report->Expected(where,
+                       "a period giving at most 1e4 periods over dynamics.duration (" +
+                           FormatNumber(d.duration) + " s)",
+                       FormatNumber(period));
+  } else if (period < 2 * d.dt) {
+    report->Expected(where,
+                     "a period of at least two steps (2 dynamics.dt = " + FormatNumber(2 * d.dt) +
+                         " s), which the steps can resolve",
+                     FormatNumber(period));
+  }
+}
+
 void CheckWithLibrary(const Problem& p, ErrorReport* report) {
   std::string why;
   if (p.has_assembly) {
@@ -498,6 +520,10 @@ void CheckWithLibrary(const Problem& p, ErrorReport* report) {
   if (!p.robot.initial_actuation.IsValid(&why, tendons, chambers))
     report->Add("robot.initial_actuation", why);
   if (report->empty()) CheckStartsOutsideSurfaces(p, report);
+  if (p.analysis == Analysis::kDynamics && p.gust.amplitude != 0.0)
+    CheckForcingPeriod(p, "environment.fluid.gust.period", p.gust.period, report);
+  if (p.analysis == Analysis::kDynamics && !p.anchor.motion_amplitude.isZero())
+    CheckForcingPeriod(p, "anchor.motion.period", p.anchor.motion_period, report);
 }
 
 }  // namespace
