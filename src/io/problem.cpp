@@ -520,6 +520,16 @@ void CheckWithLibrary(const Problem& p, ErrorReport* report) {
   if (!p.robot.initial_actuation.IsValid(&why, tendons, chambers))
     report->Add("robot.initial_actuation", why);
   if (report->empty()) CheckStartsOutsideSurfaces(p, report);
+  if (p.analysis == Analysis::kModes) {
+    const bool qfd = p.formulation == Formulation::kQuaternionFd;
+    const int most = qfd ? kMaxQuatFdModeNodes : kMaxSe3ModeNodes;
+    if (p.nodes > most)
+      report->Expected("rod.nodes",
+                       std::string("at most ") + std::to_string(most) + " nodes for modes on the " +
+                           (qfd ? "quaternion-fd formulation (its spectrum is dense)"
+                                : "se3-shooting formulation"),
+                       std::to_string(p.nodes));
+  }
   if (p.analysis == Analysis::kDynamics && p.gust.amplitude != 0.0)
     CheckForcingPeriod(p, "environment.fluid.gust.period", p.gust.period, report);
   if (p.analysis == Analysis::kDynamics && !p.anchor.motion_amplitude.isZero())
