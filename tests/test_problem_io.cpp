@@ -477,13 +477,18 @@ TEST(ProblemIo, AnEversionRobotHasOnePressure) {
 }
 
 // A tolerance above 1e-3 of the dimensionless residual can pass the rigid-body guess itself as
-// converged (tolerance 1: the example cantilever's tip 1.4 % off): refused.
-TEST(ProblemIo, ASolverToleranceAboveOneThousandthIsRefused) {
+// converged (tolerance 1: the example cantilever's tip 1.4 % off): refused. So is one below what
+// double precision resolves (1e-20 stalled and threw a 2.8e-17 iterate away).
+TEST(ProblemIo, ASolverToleranceOutsideWhatTheResidualResolvesIsRefused) {
   json j = ValidProblem();
-  j["solver"] = {{"tolerance", 1e-3}};
-  EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
-  j["solver"] = {{"tolerance", 1.0}};
-  EXPECT_ERROR(Parse(j), "solver.tolerance: expected a number in (0, 1e-3]");
+  for (double ok : {1e-3, 1e-15}) {
+    j["solver"] = {{"tolerance", ok}};
+    EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
+  }
+  for (double bad : {1.0, 1e-20}) {
+    j["solver"] = {{"tolerance", bad}};
+    EXPECT_ERROR(Parse(j), "solver.tolerance: expected a number in [1e-15, 1e-3]");
+  }
 }
 
 // One error in an eversion robot's inflated profile is one line: the robot's checks of its
