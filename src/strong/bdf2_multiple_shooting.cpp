@@ -55,7 +55,7 @@ bool Bdf2ShootingStepper::RenewJunctionJacobian(const StepInput& input, const Co
                                                 bool statics, StepSummary* summary) {
   const int junctions = static_cast<int>(junction_nodes_.size());
   const Eigen::Index nz = junction_z_.size();
-  ms_lu_.SetZero();
+  run_.junction_factors.SetZero();
   junction_z_ = ms_x_.tail(nz);
   for (int piece = 0; piece <= junctions; ++piece) {
     const bool last = piece == junctions;
@@ -84,7 +84,7 @@ bool Bdf2ShootingStepper::RenewJunctionJacobian(const StepInput& input, const Co
       unknown = saved;
       if (!finite) return false;
       for (int r = 0; r < rows; ++r)
-        ms_lu_(row0 + r, col) = (ms_piece_new_(r) - ms_piece_base_(r)) / step;
+        run_.junction_factors(row0 + r, col) = (ms_piece_new_(r) - ms_piece_base_(r)) / step;
     }
     summary->shots += cols + 1;
     if (last) break;
@@ -92,16 +92,16 @@ bool Bdf2ShootingStepper::RenewJunctionJacobian(const StepInput& input, const Co
     // the unknowns are, except for the rotation d = Log(Exp(z)ᵀ A) (A = R_refᵀ R_arriving):
     // Exp(z + δ) = Exp(z) Exp(J_r(z) δ) gives ∂d/∂z = −J_l(d)⁻¹ J_r(z).
     const Eigen::Index zc = 6 + 18 * piece;
-    for (int r = 0; r < 18; ++r) ms_lu_(row0 + r, zc + r) = -1.0;
+    for (int r = 0; r < 18; ++r) run_.junction_factors(row0 + r, zc + r) = -1.0;
     const Vec3 z_rot = junction_z_.segment<3>(18 * piece + 3);
     const Vec3 d_rot = ms_piece_base_.segment<3>(3);
     const Mat3 block = -lie::SO3LeftJacobianInverse(d_rot) * lie::SO3RightJacobian(z_rot);
     for (int r = 0; r < 3; ++r)
-      for (int k = 0; k < 3; ++k) ms_lu_(row0 + 3 + r, zc + 3 + k) = block(r, k);
+      for (int k = 0; k < 3; ++k) run_.junction_factors(row0 + 3 + r, zc + 3 + k) = block(r, k);
   }
   ++summary->jacobians;
-  if (!ms_lu_.Factorize()) return false;
-  ms_jacobian_c0_ = c.c0;
+  if (!run_.junction_factors.Factorize()) return false;
+  run_.junction_factors_c0 = c.c0;
   return true;
 }
 
@@ -123,7 +123,7 @@ bool Bdf2ShootingStepper::SolveStepMultiple(const StepInput& input, const Coeffi
   if (evaluate(ms_x_, &ms_r_)) {
     double norm = ms_r_.norm();
     bool fresh = false;  // the factors were renewed at ms_x_
-    bool have_factors = !statics && ms_jacobian_c0_ == c.c0;
+    bool have_factors = !statics && run_.junction_factors_c0 == c.c0;
     for (int it = 0; it <= options_.max_iterations; ++it) {
       if (norm < Tolerance(ms_x_.head<6>())) {
         ok = true;
@@ -137,7 +137,7 @@ bool Bdf2ShootingStepper::SolveStepMultiple(const StepInput& input, const Coeffi
         have_factors = fresh = true;
       }
       ms_dx_ = -ms_r_;
-      ms_lu_.Solve(ms_dx_);
+      run_.junction_factors.Solve(ms_dx_);
       // With fresh factors, a Newton step that does not reduce the residual is shortened
       // (halved up to kBacktracks times) before the step is given up: far from the solution
       // (a poor first guess on a very soft rod) the full step overshoots.
@@ -169,7 +169,7 @@ bool Bdf2ShootingStepper::SolveStepMultiple(const StepInput& input, const Coeffi
         have_factors = false;  // ms_r_ is still the residual at ms_x_: renew there
       }
     }
-    if (!have_factors || statics) ms_jacobian_c0_ = -1.0;  // the factors are stale
+    if (!have_factors || statics) run_.junction_factors_c0 = -1.0;  // the factors are stale
   }
   junctions_active_ = false;
   summary->residual = ms_r_.norm();
@@ -202,7 +202,7 @@ bool Bdf2ShootingStepper::ChordStepsBelow(const StepInput& input, const Coeffici
   Eigen::VectorXd x_on = ms_x_new_, r_on = ms_r_new_, dx_on;
   for (int k = 0; k < kChordSteps; ++k) {
     dx_on = -r_on;
-    ms_lu_.Solve(dx_on);
+    run_.junction_factors.Solve(dx_on);
     x_on += dx_on;
     ++summary->iterations;
     if (!MultipleResidual(input, c, true, x_on, &r_on, summary)) return false;

@@ -62,8 +62,7 @@ void Bdf2ShootingStepper::Restore(const Snapshot& s) {
     throw std::invalid_argument(
         "Snapshot is from a stepper of another rod, grid, end conditions or plan of the shot's "
         "steps (dt, spatial scheme)");
-  run_ = s;                // equal sizes: vectors copy into their existing storage
-  ms_jacobian_c0_ = -1.0;  // the multiple-shooting factors are for another state: renew them
+  run_ = s;  // equal sizes: vectors copy into their existing storage (the factors included)
   history_ready_ = false;
   stage_strains_current_ = false;
   initialized_ = true;

@@ -196,8 +196,8 @@ void Bdf2ShootingStepper::SetShootingPieces(int pieces) {
   ms_piece_new_.setZero(18);
   // Junction k's rows reach back to the start of its piece (12 columns before the row block:
   // 29 sub-diagonals) and forward to its own unknowns (23 super-diagonals).
-  ms_lu_.Resize(unknowns, 29, 23);
-  ms_jacobian_c0_ = -1.0;  // no Jacobian for these unknowns yet
+  run_.junction_factors.Resize(unknowns, 29, 23);
+  run_.junction_factors_c0 = -1.0;  // no Jacobian for these unknowns yet
 }
 
 void Bdf2ShootingStepper::PlaceJunctions() {
@@ -211,7 +211,7 @@ void Bdf2ShootingStepper::PlaceJunctions() {
     while (step < target) step += StepStartsAt(++node);
     junction_nodes_[k - 1] = node;
   }
-  ms_jacobian_c0_ = -1.0;  // the junctions moved: the factors are stale
+  run_.junction_factors_c0 = -1.0;  // the junctions moved: the factors are stale
 }
 
 void Bdf2ShootingStepper::SampleGrid() {

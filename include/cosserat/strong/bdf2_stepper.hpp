@@ -202,6 +202,12 @@ class Bdf2ShootingStepper {
     /// Multiple shooting: the junction unknowns of the last step (its change of the junction
     /// states, the next step's first guess); empty for single shooting.
     Eigen::VectorXd junction_unknowns;
+    /// Multiple shooting: the LU factors of the Jacobian the next step starts from (rows
+    /// [mismatch of junction 0, 1, …; tip], columns [x; z of junction 0, 1, …]; block-banded, 29
+    /// sub- and 23 super-diagonals, O(pieces) to factor), and the c0 they are for (−1: none). In
+    /// the snapshot, so that a restored run repeats the original bit for bit.
+    BandedMatrix junction_factors;
+    double junction_factors_c0 = -1.0;
     StepInput last_input;  ///< input of the last accepted (sub-)step, for sub-step blending
     RodState state;        ///< the last accepted step
     /// What Restore() checks: a run exists (InitializeAtRest was called), and the stepper it
@@ -413,10 +419,6 @@ class Bdf2ShootingStepper {
   Eigen::VectorXd junction_mismatch_;  ///< arriving − restart state, same units, per junction
   Eigen::VectorXd ms_x_, ms_x_new_, ms_r_, ms_r_new_, ms_dx_;
   Eigen::VectorXd ms_piece_base_, ms_piece_new_;  ///< one piece's end residual, for the Jacobian
-  /// The LU factors of the Jacobian: rows [mismatch of junction 0, 1, …; tip], columns
-  /// [x; z of junction 0, 1, …]; block-banded (29 sub-, 23 super-diagonals), O(pieces) to factor.
-  BandedMatrix ms_lu_;
-  double ms_jacobian_c0_ = -1.0;  ///< c0 the factors are for; −1: none
   bool initialized_ = false;
   bool automatic_pieces_ = false;  ///< Bdf2Options::shooting_segments was 0
   int initial_pieces_ = 1;  ///< the constructor's plan, which every InitializeAtRest starts from
