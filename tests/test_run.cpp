@@ -229,6 +229,33 @@ TEST(Run, AnUnstableEquilibriumIsFlagged) {
   EXPECT_EQ(light.log.find("unstable"), std::string::npos);
 }
 
+// A silicone rod (r = 5 mm, E = 1 MPa) standing upright under its own weight: Greenhill's
+// critical length (7.837 EI/q)^⅓ = 0.166 m, the second (55.98 EI/q)^⅓ = 0.319 m (Timoshenko &
+// Gere 1961). At 0.15 m it is stable; at 0.3 m the straight equilibrium both formulations find
+// has the first, double root behind it: two unstable directions. The quaternion-FD statics
+// said a plain "converged" there; now both report stability_index 2 and warn.
+TEST(Run, AnUprightRodPastGreenhillsLengthIsFlaggedInBothFormulations) {
+  auto run = [](const char* formulation, double length) {
+    const std::string text = std::string(R"({"format": "cosserat-problem/1", "formulation": ")") +
+                             formulation + R"(", "rod": {"length": )" + std::to_string(length) +
+                             R"(, "nodes": 41, "section": {"shape": "circle", "radius": 0.005},
+        "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.5, "density": 1100}},
+        "loads": {"gravity": [0, 0, -9.81]}})";
+    const io::ParseResult parsed = io::ParseProblem(text);
+    EXPECT_TRUE(parsed.ok());
+    return cosserat::run::Run(*parsed.problem);
+  };
+  for (const char* formulation : {"se3-shooting", "quaternion-fd"}) {
+    const Result below = run(formulation, 0.15), past = run(formulation, 0.3);
+    ASSERT_TRUE(below.converged && past.converged) << formulation;
+    EXPECT_EQ(below.json["stability_index"].get<int>(), 0) << formulation;
+    EXPECT_EQ(past.json["stability_index"].get<int>(), 2) << formulation;
+    EXPECT_NE(past.log.find("warning: this equilibrium is unstable (2 unstable directions)"),
+              std::string::npos)
+        << formulation << ": " << past.log;
+  }
+}
+
 // A drill pipe (5 in: r_o 63.5 mm, r_i 54.3 mm) hanging 1000 m in 1.2 SG mud and full of it.
 // Pipe and mud weigh (ρ A + ρ_m A_i) g per metre and the mud outside buoys the outer area
 // ρ_m A_o g: the hook load is the apparent weight (ρ − ρ_m) A g L, exactly, whatever the shape

@@ -16,6 +16,8 @@
 #include "foundation_hint.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"
+#include "quatfd_stability.hpp"
+#include "stability_warning.hpp"
 
 namespace cosserat::run {
 namespace {
@@ -80,21 +82,26 @@ quatfd::QuatFdModel MakeQuatFdModel(const io::Problem& problem) {
 }
 
 quatfd::QuatFdStaticsSummary SolveQuatFdEquilibrium(const io::Problem& problem,
-                                                    quatfd::QuatFdModel* model, RodState* state) {
+                                                    quatfd::QuatFdModel* model, RodState* state,
+                                                    Eigen::VectorXd* q_out) {
   Eigen::VectorXd q(model->size()), v(model->size());
   model->RestState(q, v);
   const quatfd::QuatFdStaticsSummary s =
       quatfd::SolveStatics(model, problem.loads, q, QuatFdStaticOptions(problem));
   model->ToRodState(q, v, state);
+  if (q_out) *q_out = q;
   return s;
 }
 
 Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   quatfd::QuatFdModel model = MakeQuatFdModel(problem);
   RodState state;
-  const quatfd::QuatFdStaticsSummary s = SolveQuatFdEquilibrium(problem, &model, &state);
+  Eigen::VectorXd q;
+  const quatfd::QuatFdStaticsSummary s = SolveQuatFdEquilibrium(problem, &model, &state, &q);
+  StaticShootingSummary summary = AsSummary(s);
+  if (s.converged()) summary.stability_index = detail::QuatFdStabilityIndex(problem, q, state);
   Result result;
-  result.json = io::StaticResultToJson(AsSummary(s), state);
+  result.json = io::StaticResultToJson(summary, state);
   detail::KeepStaticFrame(problem, state, options, &result);
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(state);
   std::ostringstream log;
@@ -110,7 +117,8 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   }
   log << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms\n";
   if (!s.converged()) log << ContactGridHint(problem);
-  if (s.converged()) log << ClampedEndGridWarning(problem, state);
+  if (s.converged()) log << ClampedEndGridWarning(problem, state) 
+                         << detail::UnstableWarning(summary);
   result.log = log.str();
   result.converged = s.converged();
   return result;

@@ -17,6 +17,7 @@
 #include "cosserat/strong/static_shooting.hpp"
 #include "anchor_force.hpp"
 #include "foundation_hint.hpp"
+#include "stability_warning.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"
 
@@ -34,17 +35,6 @@ std::string StaticSummary(const StaticShootingSummary& s, const RodState& state)
   }
   line << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms";
   return line.str();
-}
-
-/// A converged equilibrium with unstable directions: past a critical load, where no stable
-/// equilibrium was reached from the unloaded rod (a column pressed 19 times its buckling load
-/// stays straight, and would not).
-std::string UnstableWarning(const StaticShootingSummary& s) {
-  if (!s.converged() || s.stability_index <= 0) return "";
-  return "cosserat: warning: this equilibrium is unstable (" + std::to_string(s.stability_index) +
-         " unstable direction" + (s.stability_index > 1 ? "s" : "") +
-         "): the loads are past a critical one and no stable equilibrium was reached from the "
-         "unloaded rod; \"analysis\": \"buckling\" finds the critical load\n";
 }
 
 /// After an SE(3) cantilever solve whose load steps stopped short: what to try. A soft rod bent
@@ -275,7 +265,7 @@ Result RunStatics(const io::Problem& problem, const RunOptions& options) {
   result.log = StaticSummary(summary, solver.state()) + '\n' +
                TendonLawHint(problem, actuation, summary);
   if (!problem.has_robot) result.log += ContinuationHint(problem, summary);
-  result.log += UnstableWarning(summary);
+  result.log += detail::UnstableWarning(summary);
   result.converged = summary.converged();
   return result;
 }

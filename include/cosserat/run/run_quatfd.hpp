@@ -17,9 +17,10 @@ quatfd::QuatFdModel MakeQuatFdModel(const io::Problem& problem);
 
 /// The static equilibrium of `model` under the problem's loads from its start (RestState), node
 /// values into *state: the quaternion-FD statics, and the start of the SE(3) solve of a rod held
-/// at both ends.
+/// at both ends. With q_out, also the model's state vector.
 quatfd::QuatFdStaticsSummary SolveQuatFdEquilibrium(const io::Problem& problem,
-                                                    quatfd::QuatFdModel* model, RodState* state);
+                                                    quatfd::QuatFdModel* model, RodState* state,
+                                                    Eigen::VectorXd* q_out = nullptr);
 
 /// Statics of the cantilever. Converged when the solve converged.
 Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options);
