@@ -96,6 +96,9 @@ json DynamicResultToJson(const DynamicRun& run, const RodState& final_state) {
   out["energy"] = {{"kinetic", run.energy.kinetic},
                    {"elastic", run.energy.elastic},
                    {"potential", run.energy.potential}};
+  // The start's total under the same loads: the run's energy balance (quaternion FD: not kept).
+  if (std::isfinite(run.initial_total_energy))
+    out["energy"]["initial_total"] = run.initial_total_energy;
   json tip = json::array();
   for (const Vec3& p : run.frame_tip) tip.push_back(ToJson(p));
   out["trajectory"] = {{"t", run.frame_t}, {"tip_position", std::move(tip)}};

@@ -60,6 +60,10 @@ struct DynamicRun {
   double simulated_time_s = 0;      ///< time of the final state
   std::vector<double> step_time_s;  ///< wall time of each Step() call, the failed one included
   RodEnergy energy;                 ///< of the final state, under the loads for t > 0
+  /// The total energy of the initial state under the loads for t > 0 (J; NaN: not run), and the
+  /// largest kinetic energy over the recorded frames (J): what the log's energy note compares.
+  double initial_total_energy = std::numeric_limits<double>::quiet_NaN();
+  double peak_kinetic_energy = 0.0;
   // Recorded frames: t = 0, every output interval, and the final state.
   std::vector<double> frame_t;
   std::vector<Vec3> frame_tip;        ///< tip position of each frame
