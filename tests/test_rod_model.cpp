@@ -67,7 +67,9 @@ TEST(Actuation, ValidityNamesTheField) {
   a.tendon_tension[1] = 2.0;
   EXPECT_TRUE(a.IsValid(&why, 2));
   EXPECT_FALSE(a.IsValid(&why, 1));  // a tension on a tendon the rod does not have
-  EXPECT_EQ(why, "tendon_tension: a tension on tendon 1, but the rod has 1 tendons");
+  EXPECT_EQ(why,
+            "tendon_tension[1]: a tension on the tendon at index 1 (from 0), but the rod has 1 "
+            "tendon");
   a.tendon_tension[1] = -1.0;  // a tendon cannot push
   EXPECT_FALSE(a.IsValid(&why, 2));
   EXPECT_EQ(why.rfind("tendon_tension:", 0), 0u) << why;

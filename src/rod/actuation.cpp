@@ -19,16 +19,19 @@ bool Actuation::IsValid(std::string* why, int tendon_count, int chamber_count) c
     if (!usable(tendon_tension[i]))
       return fail("tendon_tension: expected finite tensions >= 0 (N)");
     if (i >= tendon_count && tendon_tension[i] != 0)
-      return fail("tendon_tension: a tension on tendon " + std::to_string(i) +
-                  ", but the rod has " + std::to_string(tendon_count) + " tendons");
+      return fail("tendon_tension[" + std::to_string(i) + "]: a tension on the tendon at index " +
+                  std::to_string(i) + " (from 0), but the rod has " + std::to_string(tendon_count) +
+                  (tendon_count == 1 ? " tendon" : " tendons"));
   }
   for (int j = 0; j < kMaxChambers; ++j) {
     const double p = chamber_pressure[j];
     if (!(std::isfinite(p) && p >= kVacuumGaugePressure))
       return fail("chamber_pressure: expected finite gauge pressures >= -101325 (Pa)");
     if (j >= chamber_count && p != 0)
-      return fail("chamber_pressure: a pressure in chamber " + std::to_string(j) +
-                  ", but the rod has " + std::to_string(chamber_count) + " chambers");
+      return fail("chamber_pressure[" + std::to_string(j) +
+                  "]: a pressure in the chamber at index " + std::to_string(j) +
+                  " (from 0), but the rod has " +
+                  std::to_string(chamber_count) + (chamber_count == 1 ? " chamber" : " chambers"));
   }
   for (double p : jamming_pressure)
     if (!usable(p)) return fail("jamming_pressure: expected numbers >= 0 (Pa)");
