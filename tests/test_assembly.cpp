@@ -337,13 +337,19 @@ TEST(Assembly, StewartGoughInverseKinematicsIsSelfConsistent) {
 
 // A pose below the base plate is out of the robot's reach: the equations' root there is the
 // robot's mirror image, every rod of negative length (six lengths near −0.45 m), which is no
-// answer.
+// answer. So is a pose on the base plate itself.
 TEST(Assembly, AStewartGoughPoseBelowTheBaseIsOutOfReach) {
   AssemblyStaticsSolver inverse(StewartGough(0.0));
   const AssemblySummary s =
       inverse.SolveLengths(StaticLoads{}, {Pose(Vec3(0, 0.02, -0.45), Vec3(0, 0, 0.1))});
   EXPECT_EQ(s.status, SolveStatus::kOutOfReach) << ToString(s.status);
   EXPECT_FALSE(s.converged());
+  // On the base plate every rod would have zero length: the solve stalls with lengths of
+  // ±1e-13 m, which once came out as load_stepping_failed "at 1 of the loads".
+  AssemblyStaticsSolver on_plate(StewartGough(0.0));
+  const AssemblySummary p =
+      on_plate.SolveLengths(StaticLoads{}, {Pose(Vec3(0, 0, 0), Vec3(0, 0, 0.1))});
+  EXPECT_EQ(p.status, SolveStatus::kOutOfReach) << ToString(p.status);
 }
 
 /// The force and the moment about the origin (world) that the loads leave unbalanced by the six

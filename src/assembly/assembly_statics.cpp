@@ -577,11 +577,14 @@ AssemblySummary AssemblyStaticsSolver::SolveLengths(const StaticLoads& loads,
     converged = summary.load_fraction == 1.0;
   }
   // A root with a rod of zero or negative length (the mirror image of the robot through its
-  // base, for a pose below it) solves the equations but is no robot: out of reach.
-  const bool reachable =
-      std::all_of(lengths_.begin(), lengths_.end(), [](double l) { return l > 0.0; });
+  // base, for a pose below it) solves the equations but is no robot: out of reach. So is a
+  // solve that stalled with rods shrunk to nothing (the platform placed on the base plate: every
+  // length 1e-13 m, the residual stuck), which no continuation can bring back.
+  bool reachable = true;
+  for (size_t i = 0; i < lengths_.size(); ++i)
+    reachable = reachable && lengths_[i] > 1e-9 * assembly_.rods[i].model.length;
   Conclude(converged && reachable, loads, start, t0, &summary);
-  if (converged && !reachable) summary.status = SolveStatus::kOutOfReach;
+  if (!reachable) summary.status = SolveStatus::kOutOfReach;
   return summary;
 }
 
