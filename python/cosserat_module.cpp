@@ -21,6 +21,7 @@
 #include "cosserat/io/problem.hpp"
 #include "problem_checks.hpp"
 #include "cosserat/run/run.hpp"
+#include "cosserat/run/run_dynamics.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
@@ -330,6 +331,14 @@ void BindProblem(py::module_& m) {
 
 /// cosserat.solve: any problem run as `cosserat solve` runs it.
 void BindSolve(py::module_& m) {
+  m.def(
+      "_dynamics_start_warnings",
+      [](const io::Problem& problem, std::optional<double> dt) {
+        return run::DynamicsStartWarnings(problem, dt.value_or(problem.dynamics.dt));
+      },
+      py::arg("problem"), py::arg("dt") = py::none(),
+      "The warnings the CLI logs before a dynamics run at dt (default: the problem's), one "
+      "line each; the steppers raise them as warnings.");
   m.def(
       "solve",
       [](const io::Problem& problem, bool nodes) {

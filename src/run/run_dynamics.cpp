@@ -272,6 +272,12 @@ std::string EnergyNote(const io::Problem& problem, const io::DynamicRun& run) {
 
 }  // namespace
 
+std::string DynamicsStartWarnings(const io::Problem& problem, double dt) {
+  std::string out = CoarseStepWarning(problem, dt);
+  if (problem.dynamics.shooting_segments == 0) out += CoarseGridText(problem, dt, true);
+  return out;
+}
+
 Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   const Bdf2Options options = DynamicsOptions(problem);
   Bdf2ShootingStepper stepper(problem.rod, problem.nodes, options);
