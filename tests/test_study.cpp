@@ -307,8 +307,16 @@ TEST(Sweep, RowsOfAnotherGridOrProblemAreNotResumed) {
   longer.replace(longer.find("\"length\": 0.25"), 14, "\"length\": 0.30");
   EXPECT_NE(refusal(Parse(longer)).find("differs at /rod/length"), std::string::npos);
   EXPECT_EQ(Rows(path), before);
-  // The same study resumes.
-  EXPECT_EQ(run::RunSweep(Parse(TendonStudy(grid)), path).resumed, 2u);
+  // Without the record of their problem the rows could be anyone's.
+  const std::string record = path + ".problem.json", kept = path + ".kept";
+  std::filesystem::rename(record, kept);
+  EXPECT_NE(refusal(Parse(TendonStudy(grid))).find("its rows' problem is not recorded"),
+            std::string::npos);
+  std::filesystem::rename(kept, record);
+  // The base value at a swept path does not count (each point sets it): the study resumes.
+  std::string other_base = TendonStudy(grid);
+  other_base.replace(other_base.find("\"tension\": [0.0]"), 16, "\"tension\": [9.0]");
+  EXPECT_EQ(run::RunSweep(Parse(other_base), path).resumed, 2u);
 }
 
 }  // namespace

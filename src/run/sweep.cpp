@@ -152,18 +152,31 @@ void CheckResumedPoints(const std::string& path, const io::Study& study,
 }
 
 /// The problem the rows were computed from, beside the CSV (`<csv>.problem.json`): a resumed
-/// study whose base problem changed since (another robot, another load; its description aside)
-/// is refused, naming the first place they differ. A file without one is resumed as is.
+/// study whose base problem changed since (another robot, another load) is refused, naming the
+/// first place they differ; so is one whose record is missing, empty or unreadable (rows from an
+/// earlier version, or a record removed: their problem is unknown). Neither the description nor
+/// the values at the swept paths count (each point sets those).
 void CheckAndRecordProblem(const std::string& csv_path, const io::Study& study, bool resuming) {
   const std::string path = csv_path + ".problem.json";
-  std::error_code ec;
-  if (resuming && std::filesystem::exists(path, ec)) {
+  auto comparable = [&](json doc) {
+    if (!doc.is_object()) return doc;
+    doc.erase("description");
+    for (const io::StudyParameter& p : study.parameters) {
+      const json::json_pointer at(p.path);
+      if (doc.contains(at)) doc[at] = nullptr;
+    }
+    return doc;
+  };
+  if (resuming) {
     std::ifstream f(path, std::ios::binary);
-    json recorded = json::parse(f, nullptr, false), now = study.problem;
-    if (recorded.is_object()) recorded.erase("description");  // words, not the problem
-    if (now.is_object()) now.erase("description");
-    if (!recorded.is_discarded() && recorded != now) {
-      const json patch = json::diff(recorded, now);
+    const json recorded = f ? json::parse(f, nullptr, false) : json(json::value_t::discarded);
+    if (recorded.is_discarded() || !recorded.is_object())
+      throw std::runtime_error(csv_path + ": its rows' problem is not recorded (" + path +
+                               " is missing or unreadable), so they may be another problem's; "
+                               "remove the file or name another --out");
+    const json was = comparable(recorded), now = comparable(study.problem);
+    if (was != now) {
+      const json patch = json::diff(was, now);
       const std::string where =
           patch.empty() ? std::string("/") : patch.front().value("path", std::string("/"));
       throw std::runtime_error(csv_path + ": its rows were computed from another problem (" +
