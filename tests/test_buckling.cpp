@@ -356,6 +356,36 @@ TEST(Buckling, APreloadPastEulersLoadIsReportedNotAHigherLoad) {
   const BucklingSummary below = search(0.5 * P);
   ASSERT_TRUE(below.found()) << ToString(below.status);
   EXPECT_NEAR((0.5 * P + below.critical_load) / P, 1.0, 5e-3);
+  // Just past and just below: the preload's scan runs a quarter beyond it, so a critical point
+  // at 0.99 of it still shows as a dip; 1 % below, the 1 % on top is found.
+  EXPECT_EQ(search(1.01 * P).status, BucklingStatus::kPreloadPastCritical);
+  const BucklingSummary close = search(0.99 * P);
+  ASSERT_TRUE(close.found()) << ToString(close.status);
+  EXPECT_NEAR((0.99 * P + close.critical_load) / P, 1.0, 5e-3);
+}
+
+// Critical loads far below the scan's step: the cantilever's Euler load searched up to 100 P_E
+// (a first step of 100 P_E / scan_steps would hold it, where no dip of σ_min can show, and the
+// scan found the second load, 9 P_E), and the same rod standing under 4 times Greenhill's
+// critical gravity g_cr = 7.837 EI/(ρA L³) (Timoshenko & Gere 1961; the second is 7.14 g_cr),
+// searched in shares of that preload. The scan's first steps are 64 times shorter: Euler's load
+// to 5e-3 as at 1.5 P_E, and the preload's share at the critical point, 1/4, to 1e-2 (the dip's
+// refinement and the model's shear and shortening).
+TEST(Buckling, CriticalLoadsFarBelowTheScanStepAreFound) {
+  SlenderRod rod;
+  const double P = EulerLoad(ColumnEnds::kClampedFree, rod.EI(), rod.length);
+  const BucklingSummary far = Critical(rod.model(), 41, ColumnEnds::kClampedFree, 100 * P);
+  ASSERT_TRUE(far.found()) << ToString(far.status);
+  EXPECT_NEAR(far.critical_load / P, 1.0, 5e-3);
+  const double g_cr = 7.837 * rod.EI() / (rod.rhoA() * std::pow(rod.length, 3));
+  LoadPath path = LoadPath::TipForce(Vec3(0, 0, -1));
+  path.fixed.gravity_W = Vec3(0, 0, -4 * g_cr);
+  BucklingOptions options;
+  options.lambda_max = P;
+  BucklingAnalysis standing(rod.model(), 41, ColumnEnds::kClampedFree, lie::SE3{}, path, options);
+  const BucklingSummary s = standing.FindCriticalLoad();
+  ASSERT_EQ(s.status, BucklingStatus::kPreloadPastCritical) << ToString(s.status);
+  EXPECT_NEAR(4 * s.preload_critical_fraction, 1.0, 1e-2);
 }
 
 // A follower (tangential) tip force on a cantilever is Beck's column: it loses stability by

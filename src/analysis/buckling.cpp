@@ -180,8 +180,11 @@ template <class Evaluate>
 ScanEnd ScanPath(const Evaluate& evaluate, const BucklingOptions& options, double sigma0,
                  std::vector<PathPoint>* pts, BucklingSummary* out, PathPoint* lo, PathPoint* hi,
                  PathPoint* mid) {
+  // The first steps start 64 times shorter and double: a critical load far below λ_max/scan_steps
+  // (a 5 m cantilever's 0.0155 N searched to 5 N in steps of 0.125 N) would otherwise lie inside
+  // the first step, where no dip of σ_min can show, and the scan found the second one.
   const double h_nominal = options.lambda_max / options.scan_steps;
-  double h = h_nominal;
+  double h = h_nominal / 64;
   int halvings = 0;
   while (pts->back().lambda < options.lambda_max) {
     const PathPoint& last = pts->back();
@@ -195,7 +198,7 @@ ScanEnd ScanPath(const Evaluate& evaluate, const BucklingOptions& options, doubl
       continue;
     }
     halvings = 0;
-    h = h_nominal;
+    h = std::min(h_nominal, 2 * h);
     out->scan_lambda.push_back(p.lambda);
     out->scan_sigma_min.push_back(p.sigma);
     pts->push_back(p);
@@ -394,8 +397,10 @@ double BucklingAnalysis::PreloadCriticalFraction(double sigma0, BucklingSummary*
     }
     return ok;
   };
+  // Scanned a quarter past the whole preload, so that a critical point just below it (1.01 P_E
+  // pressing a column) has points on both sides to show as a dip.
   BucklingOptions shares = options_;
-  shares.lambda_max = 1.0;
+  shares.lambda_max = 1.25;
   shares.progress = nullptr;
   PathPoint start{0.0, column_.unknowns(), sigma0, 0};
   Singularity(0.0, &start.sigma, &start.det_sign, nullptr, nullptr);
