@@ -590,6 +590,23 @@ TEST(ProblemIo, ModesOnAGridTooFineForTheSpectrumAreRefused) {
   }
 }
 
+// initial_loads replaces loads: given with a preload alone it drops gravity from the start, which
+// a user rarely means; the parse marks it (the run's log warns). An explicit "gravity", even
+// zero (a release into gravity), or loads without gravity leave it unmarked.
+TEST(ProblemIo, InitialLoadsWithoutGravityAreMarked) {
+  json j = ValidProblem();
+  j["analysis"] = "dynamics";
+  j["loads"] = {{"gravity", {0, 0, -9.81}}};
+  j["dynamics"] = {{"dt", 0.002}, {"duration", 0.1},
+                   {"initial_loads", {{"tip_force", {-0.2, 0, 0}}}}};
+  EXPECT_TRUE(Parse(j).problem->dynamics.initial_loads_without_gravity);
+  j["dynamics"]["initial_loads"]["gravity"] = {0, 0, 0};
+  EXPECT_FALSE(Parse(j).problem->dynamics.initial_loads_without_gravity);
+  j["dynamics"]["initial_loads"].erase("gravity");
+  j["loads"] = json::object();
+  EXPECT_FALSE(Parse(j).problem->dynamics.initial_loads_without_gravity);
+}
+
 TEST(ProblemIo, DynamicsParsesAndRuns) {
   json j = ValidProblem();
   j["analysis"] = "dynamics";

@@ -431,6 +431,11 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   if (buckling) CheckBucklingActuation(top, *p);
   // The environment is the world: it acts under the initial loads of a dynamics run too.
   if (p->dynamics.initial_loads) {
+    const json* given = top.Find("dynamics");
+    p->dynamics.initial_loads_without_gravity =
+        given && given->is_object() && given->contains("initial_loads") &&
+        (*given)["initial_loads"].is_object() && !(*given)["initial_loads"].contains("gravity") &&
+        !p->loads.gravity_W.isZero(0.0);
     p->dynamics.initial_loads->fluid = p->loads.fluid;
     p->dynamics.initial_loads->contact = p->loads.contact;
   }

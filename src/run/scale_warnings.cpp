@@ -49,6 +49,10 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
           << " m across: not a slender rod, which rod theory assumes; check rod.length and the "
              "section's sizes (m)\n";
   }
+  if (problem.analysis == io::Analysis::kDynamics && problem.dynamics.initial_loads_without_gravity)
+    log << "cosserat: warning: dynamics.initial_loads has no \"gravity\" while loads has: it "
+           "replaces loads, so the run starts from the equilibrium without gravity; repeat "
+           "loads.gravity there, or write \"gravity\": [0, 0, 0] if that start is meant\n";
   // A solve that did not converge leaves an iterate, whose stretch says nothing of the units.
   if (!result->converged) {
     result->log += log.str();

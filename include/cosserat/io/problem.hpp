@@ -67,6 +67,9 @@ struct Problem {
     double output_interval = 0.002;
     std::string initial = "static";
     std::optional<StaticLoads> initial_loads;  ///< empty: start from equilibrium under `loads`
+    /// initial_loads is given without a "gravity" key while `loads` has gravity: it replaces
+    /// `loads`, so the start is without gravity (the run's log says so; often a slip).
+    bool initial_loads_without_gravity = false;
     double tip_mass = 0.0;                     ///< kg, a rigid body at the tip (dynamics only)
     Vec3 tip_inertia = Vec3::Zero();           ///< kg·m², its principal moments, tip body frame
     /// rad/s: the clamp turns about its own axis (base body z) at this rate from t = 0 (a
