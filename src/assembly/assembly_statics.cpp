@@ -576,10 +576,8 @@ AssemblySummary AssemblyStaticsSolver::SolveLengths(const StaticLoads& loads,
     summary.load_fraction = Follow(at, &summary);
     converged = summary.load_fraction == 1.0;
   }
-  // A root with a rod of zero or negative length (the mirror image of the robot through its
-  // base, for a pose below it) solves the equations but is no robot: out of reach. So is a
-  // solve that stalled with rods shrunk to nothing (the platform placed on the base plate: every
-  // length 1e-13 m, the residual stuck), which no continuation can bring back.
+  // A root with a rod of zero or negative length (the robot's mirror image through its base) is
+  // no robot: out of reach. So is a stall with rods shrunk to nothing (a pose on the base plate).
   bool reachable = true;
   for (size_t i = 0; i < lengths_.size(); ++i)
     reachable = reachable && lengths_[i] > 1e-9 * assembly_.rods[i].model.length;
