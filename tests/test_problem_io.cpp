@@ -432,8 +432,9 @@ TEST(ProblemIo, ABadTendonCoordinateIsNamedAndAloneInItsErrors) {
 }
 
 // Errors in the right place: a misspelt "shape" of a contact entry is named with its fix; an axis
-// with an entry near 1e300 is a direction (it overflowed to "a zero vector"); an anchored rod
-// with an error of its own gets no error about the anchor's reach from a length of 0.
+// with an entry near 1e300 is a direction (it overflowed to "a zero vector"); a smoothing of 0 is
+// refused; an anchored rod with an error of its own gets no error about the anchor's reach from a
+// length of 0.
 TEST(ProblemIo, ErrorsNameWhatIsWrong) {
   json j = ValidProblem();
   j["environment"]["contact"] = json::array({{{"shaep", "plane"}, {"stiffness", 1e5}}});
@@ -445,6 +446,9 @@ TEST(ProblemIo, ErrorsNameWhatIsWrong) {
   const ParseResult r = Parse(j);
   EXPECT_TRUE(r.ok()) << AllErrors(r);
   if (r.ok()) EXPECT_NEAR(r.problem->loads.contact.surface[0].direction_W.x(), 1.0, 1e-15);
+  // A smoothing of 0 silently meant the default width; a sharp contact is refused instead.
+  j["environment"]["contact"][0]["smoothing"] = 0.0;
+  EXPECT_ERROR(Parse(j), "environment.contact[0].smoothing: expected a positive width (m)");
   j = ValidProblem();
   j["boundary"] = "anchored";
   j["anchor"] = {{"position", {0, 0, 0.4}}};

@@ -151,7 +151,11 @@ void ParseSurface(const ObjectReader& o, ContactSurface* s) {
   }
   s->stiffness = ReadNumber(o, "stiffness", PositiveNumber(), Presence::kRequired).value_or(0.0);
   s->damping = ReadNumber(o, "damping", NonNegativeNumber(), Presence::kOptional).value_or(0.0);
-  s->smoothing = ReadNumber(o, "smoothing", NonNegativeNumber(), Presence::kOptional).value_or(0.0);
+  // Left out: 1e-3 of the rod's outer diameter. An explicit 0 used to mean that too, silently;
+  // a sharp contact has no derivative for Newton, so a width must be positive.
+  const NumberRule width{"a positive width (m); left out, 1e-3 of the rod's outer diameter",
+                         [](double x) { return x > 0; }};
+  s->smoothing = ReadNumber(o, "smoothing", width, Presence::kOptional).value_or(0.0);
   s->friction = ReadNumber(o, "friction", NonNegativeNumber(), Presence::kOptional).value_or(0.0);
   s->slip_velocity =
       ReadNumber(o, "slip_velocity", PositiveNumber(), Presence::kOptional).value_or(1e-4);
