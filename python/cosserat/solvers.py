@@ -20,6 +20,45 @@ class StaticSolver(_core.StaticSolver):
         super().__init__(_as_problem(problem))
 
 
+_LOAD_KEYS = ("gravity", "distributed_force", "tip_force", "tip_moment", "tip_force_frame",
+              "tip_moment_frame")
+_ACTUATION_KEYS = {"tension": "tendon_tension", "chamber_pressure": "chamber_pressure",
+                   "jamming_pressure": "jamming_pressure", "pressure": "pressure"}
+
+
+def _loads_from(value, environment):
+    """A Loads from a dict with the problem file's `loads` keys (absent ones at their defaults,
+    as in a file) in the environment of `environment` (a copy of the stepper's loads: the fluid,
+    contact and bit friction stay); a Loads or None as given."""
+    if not isinstance(value, dict):
+        return value
+    loads = environment  # a copy: its fluid, contact and bit stay; the keyed loads start over
+    for key, default in (("gravity", [0, 0, 0]), ("distributed_force", [0, 0, 0]),
+                         ("tip_force", [0, 0, 0]), ("tip_moment", [0, 0, 0]),
+                         ("tip_force_frame", "world"), ("tip_moment_frame", "world")):
+        setattr(loads, key, default)
+    for key, entry in value.items():
+        if key not in _LOAD_KEYS:
+            raise ValueError(f"loads.{key}: unknown key (a step's loads take "
+                             f"{', '.join(_LOAD_KEYS)}; the environment stays the problem's)")
+        setattr(loads, key, entry)
+    return loads
+
+
+def _actuation_from(value):
+    """An Actuation from a dict with the problem file's actuation keys (tension, chamber_pressure,
+    jamming_pressure, pressure); an Actuation or None as given."""
+    if not isinstance(value, dict):
+        return value
+    actuation = _core.Actuation()
+    for key, entry in value.items():
+        if key not in _ACTUATION_KEYS:
+            raise ValueError(f"actuation.{key}: unknown key (a step's actuation takes "
+                             f"{', '.join(_ACTUATION_KEYS)})")
+        setattr(actuation, _ACTUATION_KEYS[key], entry)
+    return actuation
+
+
 class Stepper(_core.Stepper):
     __doc__ = _core.Stepper.__doc__
 
@@ -27,6 +66,20 @@ class Stepper(_core.Stepper):
         problem = _as_problem(problem)
         super().__init__(problem, dt, spatial_scheme)
         _warn_before_stepping(problem, dt)
+
+    def initialize_at_rest(self, loads=None, actuation=None):
+        return super().initialize_at_rest(_loads_from(loads, self.loads),
+                                          _actuation_from(actuation))
+
+    def step(self, loads=None, base_position=None, base_rotation=None, base_twist_B=None,
+             base_wrench_B=None, actuation=None):
+        return super().step(_loads_from(loads, self.loads), base_position, base_rotation,
+                            base_twist_B, base_wrench_B, _actuation_from(actuation))
+
+    initialize_at_rest.__doc__ = (_core.Stepper.initialize_at_rest.__doc__ or "") + (
+        " loads and actuation may also be dicts with the problem file's keys.")
+    step.__doc__ = (_core.Stepper.step.__doc__ or "") + (
+        " loads and actuation may also be dicts with the problem file's keys.")
 
 
 class BatchStepper(_core.BatchStepper):

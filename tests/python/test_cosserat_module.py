@@ -270,6 +270,26 @@ class Dynamics(unittest.TestCase):
             warnings.simplefilter("error")
             cosserat.Stepper(soft, dt=0.002)
 
+    def test_a_step_takes_loads_and_actuation_as_dicts(self):
+        # The same inputs as objects or as dicts with the problem file's keys: the same run, bit
+        # for bit. A misspelt key is named.
+        p = cosserat.load_problem("tests/cli/tendon_dynamics.json")
+        a, b = cosserat.Stepper(p), cosserat.Stepper(p)
+        self.assertTrue(a.initialize_at_rest().converged and b.initialize_at_rest().converged)
+        loads = cosserat.Loads()
+        loads.gravity, loads.tip_force = [0, 0, -9.81], [0.1, 0, 0]
+        act = cosserat.Actuation()
+        act.tendon_tension = [1.0, 0.5, 0.0]
+        for _ in range(20):
+            self.assertTrue(a.step(loads, actuation=act).converged)
+            self.assertTrue(b.step({"gravity": [0, 0, -9.81], "tip_force": [0.1, 0, 0]},
+                                   actuation={"tension": [1.0, 0.5, 0.0]}).converged)
+        np.testing.assert_array_equal(a.tip_position(), b.tip_position())
+        with self.assertRaisesRegex(ValueError, r"loads\.gravty: unknown key"):
+            b.step({"gravty": [0, 0, -9.81]})
+        with self.assertRaisesRegex(ValueError, r"actuation\.tensions: unknown key"):
+            b.step(actuation={"tensions": [1.0]})
+
     def test_stepper_runs_a_problem_as_the_command_does(self):
         # A tendon robot released from zero tension (its initial actuation) to the robot's
         # tensions: the Stepper, left to its defaults, applies the same inputs as `cosserat
