@@ -228,7 +228,8 @@ State Bdf2ShootingStepper::JunctionRestart(int k) const {
   // (~1e-7 in a tension boundary layer); a piece restarted from it would carry that error as a
   // stretch its mismatch (the skew part of Log) cannot see, and the solution would depend on the
   // state the junctions were taken from (a taut 1 mm steel wire's tension by 1 % for frames
-  // 1e-7 off). One Björck step, R (3I − RᵀR)/2, makes it orthonormal to O(error²).
+  // 1e-7 off). One step of Björck & Bowie 1971, R (3I − RᵀR)/2, makes it orthonormal to
+  // O(error²).
   const Mat3& R0 = ref.rotation_WB[i];
   const Mat3 R_ref = 0.5 * R0 * (3.0 * Mat3::Identity() - R0.transpose() * R0);
   restart.R = R_ref * lie::SO3Exp(Vec3(z.segment<3>(3)));
