@@ -275,9 +275,7 @@ bool BucklingAnalysis::SolveFixedLoads(int* solves) {
     column_.set_unknowns(Vec6::Zero());
     ok = true;
     for (int k = 1; k <= pieces && ok; ++k) {
-      path_.fixed = saved.fixed.Scaled(static_cast<double>(k) / pieces);
-      path_.fixed.tip_force_frame = saved.fixed.tip_force_frame;
-      path_.fixed.tip_moment_frame = saved.fixed.tip_moment_frame;
+      path_.fixed = saved.fixed.Scaled(static_cast<double>(k) / pieces);  // frames kept
       ++*solves;
       ok = SolveAt(0.0).converged();
     }
@@ -319,17 +317,7 @@ BucklingSummary BucklingAnalysis::FindCriticalLoad() {
   if (path_.fixed != path_.fixed.Scaled(0.0)) {
     // A preload: the straight path under it may already have passed a critical point (a
     // column pressed by 8 Euler loads has; a scan on top of it found the third).
-    column_.set_unknowns(Vec6::Zero());
-    ++out.solves;
-    const LoadPath saved = path_;
-    path_.fixed = saved.fixed.Scaled(0.0);
-    path_.fixed.tip_force_frame = saved.fixed.tip_force_frame;
-    path_.fixed.tip_moment_frame = saved.fixed.tip_moment_frame;
-    const bool unloaded = SolveAt(0.0).converged();
-    path_ = saved;
-    double sigma_unloaded = 0, sign = 0;
-    if (unloaded) Singularity(0.0, &sigma_unloaded, &sign, nullptr, nullptr);
-    const double fraction = unloaded ? PreloadCriticalFraction(sigma_unloaded, &out) : NAN;
+    const double fraction = PreloadCriticalFraction(&out);
     if (fraction < 1.0) {
       out.preload_critical_fraction = fraction;
       out.scan_lambda.clear();
@@ -380,13 +368,12 @@ BucklingSummary BucklingAnalysis::FindCriticalLoad() {
   return finish(BucklingStatus::kFound);
 }
 
-double BucklingAnalysis::PreloadCriticalFraction(double sigma0, BucklingSummary* out) {
-  // The unloaded equilibrium is in column_; the scan runs over μ, the fixed loads' share.
+double BucklingAnalysis::PreloadCriticalFraction(BucklingSummary* out) {
+  // The scan runs over μ, the fixed loads' share (Scaled keeps their frames), from the unloaded
+  // rod.
   const LoadPath saved = path_;
   auto evaluate = [&](double mu, const Vec6& guess, PathPoint* p) {
     path_.fixed = saved.fixed.Scaled(mu);
-    path_.fixed.tip_force_frame = saved.fixed.tip_force_frame;
-    path_.fixed.tip_moment_frame = saved.fixed.tip_moment_frame;
     column_.set_unknowns(guess);
     ++out->solves;
     const bool ok = SolveAt(0.0).converged();
@@ -402,11 +389,14 @@ double BucklingAnalysis::PreloadCriticalFraction(double sigma0, BucklingSummary*
   BucklingOptions shares = options_;
   shares.lambda_max = 1.25;
   shares.progress = nullptr;
-  PathPoint start{0.0, column_.unknowns(), sigma0, 0};
-  Singularity(0.0, &start.sigma, &start.det_sign, nullptr, nullptr);
+  PathPoint start{};
+  if (!evaluate(0.0, Vec6::Zero(), &start)) {
+    path_ = saved;
+    return NAN;
+  }
   std::vector<PathPoint> pts{start};
   PathPoint lo{}, hi{}, mid{};
-  const ScanEnd end = ScanPath(evaluate, shares, sigma0, &pts, out, &lo, &hi, &mid);
+  const ScanEnd end = ScanPath(evaluate, shares, start.sigma, &pts, out, &lo, &hi, &mid);
   path_ = saved;
   if (end == ScanEnd::kSignChange) return 0.5 * (lo.lambda + hi.lambda);
   if (end == ScanEnd::kDip) return mid.lambda;

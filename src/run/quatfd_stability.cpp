@@ -22,9 +22,7 @@ int QuatFdStabilityIndex(const io::Problem& problem, const Eigen::VectorXd& q,
   if (!compressed) return 0;
   LoadPath path;
   path.fixed = loads;
-  path.per_unit = loads.Scaled(0.0);
-  path.per_unit.tip_force_frame = loads.tip_force_frame;
-  path.per_unit.tip_moment_frame = loads.tip_moment_frame;
+  path.per_unit = loads.Scaled(0.0);  // its frames the fixed loads'
   QuatFdBuckling stiffness(problem.rod, problem.base, path, QuatFdModelOptions(problem));
   // Eigenvalues in units of EI/L; the stiffness is a difference quotient good to ~1e-6 of
   // that, so a root within 1e-6 of zero is marginal and not counted.

@@ -141,10 +141,11 @@ class BucklingAnalysis {
   /// The equilibrium at λ = 0 from the unloaded rod, the fixed loads applied in 1, 4, 16 or 64
   /// equal steps until all converge (false if none does); counts the solves.
   bool SolveFixedLoads(int* solves);
-  /// The fixed loads scaled from 0 to 1 (λ = 0), scanned as the load path is: the fraction at
-  /// which J turns singular, if below 1; NaN when it stays regular or the scan fails (the
-  /// solve of the whole fixed loads then decides).
-  double PreloadCriticalFraction(double sigma0, BucklingSummary* out);
+  /// The fixed loads scaled from 0 to 1.25 of themselves (λ = 0), scanned from the unloaded rod
+  /// as the load path is: the first share at which J turns singular (below 1: the preload is
+  /// past it); NaN when J stays regular or a solve fails (the solve of the whole fixed loads
+  /// then decides).
+  double PreloadCriticalFraction(BucklingSummary* out);
   /// λ_cr, the pre-buckled equilibrium there (solved from `guess`), its null vector and the
   /// mode, into the members and *out; sigma0 = σ_min(J) at λ = 0.
   void SetCriticalPoint(double lambda, const Vec6& guess, double sigma0, BucklingSummary* out);
