@@ -51,6 +51,31 @@ void AddTipBodyEnergy(const io::Problem& problem, const RodState& state, RodEner
   energy->potential -= m * problem.loads.gravity_W.dot(state.tip_position_W());
 }
 
+/// The energy of the stepper's state under the problem's loads, the tip body's included (J).
+RodEnergy RunEnergy(const io::Problem& problem, const Bdf2ShootingStepper& stepper) {
+  RodEnergy e = stepper.Energy(problem.loads);
+  AddTipBodyEnergy(problem, stepper.state(), &e);
+  return e;
+}
+
+/// Whether the energy the result reports is conserved by the equations: no Kelvin–Voigt damping,
+/// loads that neither depend on the motion (drag, contact) nor change (gusts, a spinning or driven
+/// base, bit friction), no actuators, and no tip force or moment (their work is not in it: a
+/// partial release "lost" 175 % of its kinetic energy).
+bool ConservesEnergy(const io::Problem& problem) {
+  const io::Problem::Dynamics& d = problem.dynamics;
+  if (!problem.loads.tip_force.isZero(0.0) || !problem.loads.tip_moment.isZero(0.0) ||
+      HasMotionLoads(problem.loads) || problem.gust.present() || d.base_spin != 0.0 ||
+      d.rotary_table.present() || problem.loads.bit.present() || problem.has_robot ||
+      !problem.rod.tendons.empty() || !problem.rod.chambers.empty())
+    return false;
+  const double L = problem.rod.length;
+  for (int i = 0; i <= 20; ++i)
+    if (!problem.rod.section->At(L * i / 20.0, problem.robot.actuation).damping.isZero(0.0))
+      return false;
+  return true;
+}
+
 /// Adds the stepper's current state as the frame at time t; node positions only when
 /// `all_nodes`.
 void Record(const Bdf2ShootingStepper& stepper, double t, bool all_nodes, io::DynamicRun* run) {
@@ -84,6 +109,7 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
   std::optional<RotaryTableDrive> table;
   if (problem.dynamics.rotary_table.present())
     table.emplace(problem.dynamics.rotary_table, problem.base);
+  const bool track_energy = ConservesEnergy(problem);
   const auto loop_start = Clock::now();
   for (int k = 1; k <= steps; ++k) {
     if (problem.gust.present())  // the flow of the step's end (BDF2 is implicit)
@@ -104,9 +130,9 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
     run->shooting_segments = std::max(run->shooting_segments, s.shooting_segments);
     if (k % stride == 0) {
       Record(*stepper, k * dt, all_nodes, run);
-      RodEnergy e = stepper->Energy(problem.loads);
-      AddTipBodyEnergy(problem, stepper->state(), &e);
-      run->peak_kinetic_energy = std::max(run->peak_kinetic_energy, e.kinetic);
+      if (track_energy)  // for EnergyNote only
+        run->peak_kinetic_energy =
+            std::max(run->peak_kinetic_energy, RunEnergy(problem, *stepper).kinetic);
     }
     if (progress) progress(k * dt, problem.dynamics.duration);
   }
@@ -149,12 +175,9 @@ io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
     run.failed_at_t = 0.0;
   } else {
     Record(*stepper, 0.0, all_nodes, &run);
-    RodEnergy start_energy = stepper->Energy(problem.loads);
-    AddTipBodyEnergy(problem, stepper->state(), &start_energy);
-    run.initial_total_energy = start_energy.total();
+    run.initial_total_energy = RunEnergy(problem, *stepper).total();
     StepToTheEnd(problem, steps, stride, all_nodes, options.progress, stepper, &run);
-    run.energy = stepper->Energy(problem.loads);
-    AddTipBodyEnergy(problem, stepper->state(), &run.energy);
+    run.energy = RunEnergy(problem, *stepper);
   }
   run.wall_time_s = SecondsSince(start);
   return run;
@@ -233,24 +256,6 @@ std::string CoarseGridText(const io::Problem& problem, double dt, bool converged
        << static_cast<int>(std::ceil(std::max(exponent, shear_wave) / 0.9)) + 1
        << "} or a larger dt\n";
   return text.str();
-}
-
-/// Whether the energy the result reports is conserved by the equations: no Kelvin–Voigt damping,
-/// loads that neither depend on the motion (drag, contact) nor change (gusts, a spinning or driven
-/// base, bit friction), no actuators, and no tip force or moment (their work is not in it: a
-/// partial release "lost" 175 % of its kinetic energy).
-bool ConservesEnergy(const io::Problem& problem) {
-  const io::Problem::Dynamics& d = problem.dynamics;
-  if (!problem.loads.tip_force.isZero(0.0) || !problem.loads.tip_moment.isZero(0.0) ||
-      HasMotionLoads(problem.loads) || problem.gust.present() || d.base_spin != 0.0 ||
-      d.rotary_table.present() || problem.loads.bit.present() || problem.has_robot ||
-      !problem.rod.tendons.empty() || !problem.rod.chambers.empty())
-    return false;
-  const double L = problem.rod.length;
-  for (int i = 0; i <= 20; ++i)
-    if (!problem.rod.section->At(L * i / 20.0, problem.robot.actuation).damping.isZero(0.0))
-      return false;
-  return true;
 }
 
 /// After a converged run of a rod whose equations conserve energy: BDF2 still dissipates what
