@@ -131,6 +131,19 @@ std::map<std::uint64_t, std::string> ReadRows(const std::string& path, const std
   return rows;
 }
 
+/// Writes what `write` puts out to `path` through a temporary file and a rename, so that the
+/// file is whole at every moment.
+template <typename Write>
+void WriteWhole(const std::string& path, const Write& write) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    write(f);
+    if (!f) throw std::runtime_error(tmp + ": cannot write");
+  }
+  std::filesystem::rename(tmp, path);
+}
+
 /// Each resumed row's parameter values must be this study's at its point: a file of another
 /// study with the same columns (another grid, other draws) is refused, not mixed in.
 void CheckResumedPoints(const std::string& path, const io::Study& study,
@@ -184,27 +197,16 @@ void CheckAndRecordProblem(const std::string& csv_path, const io::Study& study, 
                                "); remove both files or name another --out");
     }
   }
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f << study.problem.dump(1) << '\n';
-    if (!f) throw std::runtime_error(tmp + ": cannot write");
-  }
-  std::filesystem::rename(tmp, path);
+  WriteWhole(path, [&](std::ostream& f) { f << study.problem.dump(1) << '\n'; });
 }
 
-/// Writes the header and the rows to `path` through a temporary file and a rename, so that the
-/// file is whole at every moment.
+/// Writes the header and the rows to `path`, whole at every moment (WriteWhole).
 void WriteAll(const std::string& path, const std::string& header,
               const std::map<std::uint64_t, std::string>& rows) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+  WriteWhole(path, [&](std::ostream& f) {
     f << header << '\n';
     for (const auto& [k, line] : rows) f << line << '\n';
-    if (!f) throw std::runtime_error(tmp + ": cannot write");
-  }
-  std::filesystem::rename(tmp, path);
+  });
 }
 
 }  // namespace
