@@ -413,8 +413,7 @@ bool AssemblyStaticsSolver::LevenbergMarquardt(const StaticLoads& loads,
         A_.diagonal() += damping * (A_.diagonal().array() + 1e-12).matrix();
         dz_ = A_.ldlt().solve(-(J_.transpose() * r_));
       }
-      accepted = TryStep(loads, norm);
-      if (!accepted && damping == 0.0) accepted = ChordStepsBelow(loads, norm);
+      accepted = TryStep(loads, norm, damping == 0.0);
       if (accepted) {
         damping = damping < 3e-8 ? 0.0 : damping / 3.0;
       } else {

@@ -9,48 +9,30 @@ namespace cosserat {
 
 namespace {
 
-// Chord steps tried after a full Newton step that raised the residual (ChordStepsBelow).
+// Chord steps tried after a full Newton step that raised the residual (TryStep).
 constexpr int kChordSteps = 4;
 
 }  // namespace
 
-bool AssemblyStaticsSolver::TryStep(const StaticLoads& loads, double norm) {
+bool AssemblyStaticsSolver::TryStep(const StaticLoads& loads, double norm, bool chord_steps) {
+  // Chord steps: taut rods held at both ends: a tip position residual (over L) is tiny against
+  // the moment rows a good Newton step disturbs, so the full step can raise the norm where the
+  // chord steps after it bring it below (a plate on 1 mm wires, off its centre of mass, pushed
+  // sideways: its load steps stalled at 2e-6 under damped steps that each gained 1e-3).
   Store(&saved_);
   Apply(dz_, 1.0);
   bool ok = dz_.allFinite() && ShootAll();
-  if (ok) {
-    Residual(loads, &r_trial_);
-    ok = r_trial_.allFinite() && r_trial_.norm() < norm;
-  }
-  if (!ok) {
-    // Back to the state before the step, and to its shots: the rods' tips are what the
-    // Jacobian reads (a step that blew up left them NaN, and the next Jacobian with them).
-    Load(saved_);
-    ShootAll();
-  }
-  return ok;
-}
-
-bool AssemblyStaticsSolver::ChordStepsBelow(const StaticLoads& loads, double norm) {
-  // Taut rods held at both ends: a tip position residual (over L) is tiny against the moment
-  // rows a good Newton step disturbs, so the full step can raise the norm where the chord steps
-  // after it bring it below (a plate on 1 mm wires, off its centre of mass, pushed sideways:
-  // its load steps stalled at 2e-6 under damped steps that each gained 1e-3).
-  Store(&saved_);
-  Apply(dz_, 1.0);
-  bool ok = dz_.allFinite() && ShootAll();
-  for (int k = 0; ok && k < kChordSteps; ++k) {
+  for (int k = 0; ok; ++k) {
     Residual(loads, &r_trial_);
     if (!r_trial_.allFinite()) break;
     if (r_trial_.norm() < norm) return true;
+    if (k == (chord_steps ? kChordSteps : 0)) break;
     dz_ = lu_.solve(-r_trial_);
     Apply(dz_, 1.0);
     ok = dz_.allFinite() && ShootAll();
   }
-  if (ok) {
-    Residual(loads, &r_trial_);
-    if (r_trial_.allFinite() && r_trial_.norm() < norm) return true;
-  }
+  // Back to the state before the step, and to its shots: the rods' tips are what the Jacobian
+  // reads (a step that blew up left them NaN, and the next Jacobian with them).
   Load(saved_);
   ShootAll();
   return false;

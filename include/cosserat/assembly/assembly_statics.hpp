@@ -129,10 +129,6 @@ class AssemblyStaticsSolver {
   bool LevenbergMarquardt(const StaticLoads& loads, AssemblySummary* summary);
   /// Whether some body has an applied force or moment (besides its weight).
   bool HasBodyForces() const;
-  /// After a full Newton step dz_ (factors lu_) that did not lower the residual below `norm`:
-  /// that step and up to kChordSteps chord steps; true, with the state there and r_trial_ its
-  /// residual, once one does, else the state is put back.
-  bool ChordStepsBelow(const StaticLoads& loads, double norm);
   /// A point of the solve (its unknowns), to go back to.
   struct Iterate {
     Eigen::VectorXd x;
@@ -148,8 +144,10 @@ class AssemblyStaticsSolver {
   /// was a solution before; the summary's status and time.
   void Conclude(bool converged, const StaticLoads& loads, const Iterate& start,
                 std::chrono::steady_clock::time_point t0, AssemblySummary* summary);
-  /// Applies dz_; keeps it when the residual (into r_trial_) falls below `norm`, else restores.
-  bool TryStep(const StaticLoads& loads, double norm);
+  /// Applies dz_ and, with `chord_steps` (dz_ a full Newton step, factors lu_), while the
+  /// residual (into r_trial_) is not below `norm`, a few chord steps after it; true, with the
+  /// state there, once one is below, else the state and its shots are put back.
+  bool TryStep(const StaticLoads& loads, double norm, bool chord_steps = false);
   void RecordStates();
 
   Assembly assembly_;
