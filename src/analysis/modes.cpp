@@ -9,11 +9,11 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
-#include <string>
-#include <sstream>
 #include <iomanip>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "cosserat/analysis/frequency_shooting.hpp"
 #include "frequency_roots.hpp"
@@ -87,6 +87,18 @@ using detail::Reduce;
 using detail::Reduction;
 using detail::TimesMass;
 constexpr double kTwoPi = 6.283185307179586;
+
+// Round-off in a spectrum: an eigenvalue carries about ε of the largest one's magnitude.
+constexpr double kEpsilon = 2.2e-16;
+/// Whether the spectrum's low end (magnitude `smallest`) loses more than 1e-9 of itself to the
+/// round-off of its high end (`largest`): its lowest modes must then come from the inverse.
+bool LowEndUnresolved(double largest, double smallest) {
+  return kEpsilon * largest > 1e-9 * smallest;
+}
+/// Whether a magnitude stands clear of the round-off of the spectrum's largest (1e3 ε of it).
+bool AboveRoundOff(double magnitude, double largest) {
+  return magnitude > 1e3 * kEpsilon * largest;
+}
 
 /// Fills the kinetic-energy shares and the kind of a mode from its node shape, the tangent t_n
 /// (world, unit), the mass per node (kg) and the rotational inertia per node (kg·m², body
@@ -240,7 +252,7 @@ bool InverseSpectrum(const Eigen::MatrixXd& H, const Eigen::VectorXd& direct, bo
   const int m = static_cast<int>(H.rows());
   if (m == 0) return false;
   const double w2_max = direct.cwiseAbs().maxCoeff();
-  if (!(2.2e-16 * w2_max > 1e-9 * std::abs(direct(0)))) return false;
+  if (!LowEndUnresolved(w2_max, std::abs(direct(0)))) return false;
   const Eigen::LLT<Eigen::MatrixXd> llt(H);
   if (llt.info() != Eigen::Success) {
     // Not positive definite: an unstable direction the direct spectrum cannot resolve from
@@ -255,7 +267,7 @@ bool InverseSpectrum(const Eigen::MatrixXd& H, const Eigen::VectorXd& direct, bo
       G, vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
   const Eigen::VectorXd& mu = es.eigenvalues();  // ascending: the lowest ω² last
   int k = 0;
-  while (k < m && mu(m - 1 - k) > 1e3 * 2.2e-16 * mu(m - 1)) ++k;
+  while (k < m && AboveRoundOff(mu(m - 1 - k), mu(m - 1))) ++k;
   w2->resize(k);
   if (vectors) psi->resize(m, k);
   for (int j = 0; j < k; ++j) {
@@ -316,14 +328,14 @@ Spectrum GeneralSpectrum(const Eigen::MatrixXd& Ar, bool shapes, double* lowest_
   Eigen::MatrixXcd vectors;
   if (shapes) vectors = es.eigenvectors();
   const double l_max = lambda.cwiseAbs().maxCoeff(), l_min = lambda.cwiseAbs().minCoeff();
-  if (2.2e-16 * l_max > 1e-9 * l_min) {
+  if (LowEndUnresolved(l_max, l_min)) {
     const Eigen::MatrixXd inverse = Ar.partialPivLu().inverse();
     if (inverse.allFinite()) {
       const Eigen::EigenSolver<Eigen::MatrixXd> inv(inverse, shapes);
       const double nu_max = inv.eigenvalues().cwiseAbs().maxCoeff();
       std::vector<Eigen::Index> kept;
       for (Eigen::Index i = 0; i < inverse.rows(); ++i)
-        if (std::abs(inv.eigenvalues()(i)) > 1e3 * 2.2e-16 * nu_max) kept.push_back(i);
+        if (AboveRoundOff(std::abs(inv.eigenvalues()(i)), nu_max)) kept.push_back(i);
       lambda.resize(static_cast<Eigen::Index>(kept.size()));
       if (shapes) vectors.resize(inverse.rows(), static_cast<Eigen::Index>(kept.size()));
       for (size_t j = 0; j < kept.size(); ++j) {
@@ -446,7 +458,7 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
     Mode mode;
     const double w2 = eig[i].first;
     if (lowest_complex <= std::abs(w2)) mark(FlutterReason(lowest_complex));
-    if (w2 < -1e3 * 2.2e-16 * w2_max) mark(DivergenceReason(w2));
+    if (AboveRoundOff(-w2, w2_max)) mark(DivergenceReason(w2));
     mode.omega = SignedSqrt(w2);
     mode.frequency_hz = mode.omega / kTwoPi;
     if (options.shapes) {

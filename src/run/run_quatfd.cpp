@@ -117,8 +117,8 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   }
   log << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms\n";
   if (!s.converged()) log << ContactGridHint(problem);
-  if (s.converged()) log << ClampedEndGridWarning(problem, state) 
-                         << detail::UnstableWarning(summary);
+  if (s.converged())
+    log << ClampedEndGridWarning(problem, state) << detail::UnstableWarning(summary);
   result.log = log.str();
   result.converged = s.converged();
   return result;
