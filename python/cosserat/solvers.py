@@ -26,13 +26,13 @@ _ACTUATION_KEYS = {"tension": "tendon_tension", "chamber_pressure": "chamber_pre
                    "jamming_pressure": "jamming_pressure", "pressure": "pressure"}
 
 
-def _loads_from(value, environment):
+def _loads_from(value, stepper):
     """A Loads from a dict with the problem file's `loads` keys (absent ones at their defaults,
-    as in a file) in the environment of `environment` (a copy of the stepper's loads: the fluid,
-    contact and bit friction stay); a Loads or None as given."""
+    as in a file) in the stepper's environment (of a copy of its loads, the fluid, contact and
+    bit friction stay); a Loads or None as given, without that copy (step() is a hot path)."""
     if not isinstance(value, dict):
         return value
-    loads = environment  # a copy: its fluid, contact and bit stay; the keyed loads start over
+    loads = stepper.loads  # a copy: its fluid, contact and bit stay; the keyed loads start over
     for key, default in (("gravity", [0, 0, 0]), ("distributed_force", [0, 0, 0]),
                          ("tip_force", [0, 0, 0]), ("tip_moment", [0, 0, 0]),
                          ("tip_force_frame", "world"), ("tip_moment_frame", "world")):
@@ -68,12 +68,12 @@ class Stepper(_core.Stepper):
         _warn_before_stepping(problem, dt)
 
     def initialize_at_rest(self, loads=None, actuation=None):
-        return super().initialize_at_rest(_loads_from(loads, self.loads),
+        return super().initialize_at_rest(_loads_from(loads, self),
                                           _actuation_from(actuation))
 
     def step(self, loads=None, base_position=None, base_rotation=None, base_twist_B=None,
              base_wrench_B=None, actuation=None):
-        return super().step(_loads_from(loads, self.loads), base_position, base_rotation,
+        return super().step(_loads_from(loads, self), base_position, base_rotation,
                             base_twist_B, base_wrench_B, _actuation_from(actuation))
 
     initialize_at_rest.__doc__ = (_core.Stepper.initialize_at_rest.__doc__ or "") + (
