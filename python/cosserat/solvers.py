@@ -20,8 +20,10 @@ class StaticSolver(_core.StaticSolver):
         super().__init__(_as_problem(problem))
 
 
-_LOAD_KEYS = ("gravity", "distributed_force", "tip_force", "tip_moment", "tip_force_frame",
-              "tip_moment_frame")
+# The problem file's `loads` keys a step takes, at their defaults.
+_LOAD_DEFAULTS = {"gravity": [0, 0, 0], "distributed_force": [0, 0, 0], "tip_force": [0, 0, 0],
+                  "tip_moment": [0, 0, 0], "tip_force_frame": "world",
+                  "tip_moment_frame": "world"}
 _ACTUATION_KEYS = {"tension": "tendon_tension", "chamber_pressure": "chamber_pressure",
                    "jamming_pressure": "jamming_pressure", "pressure": "pressure"}
 
@@ -33,14 +35,12 @@ def _loads_from(value, stepper):
     if not isinstance(value, dict):
         return value
     loads = stepper.loads  # a copy: its fluid, contact and bit stay; the keyed loads start over
-    for key, default in (("gravity", [0, 0, 0]), ("distributed_force", [0, 0, 0]),
-                         ("tip_force", [0, 0, 0]), ("tip_moment", [0, 0, 0]),
-                         ("tip_force_frame", "world"), ("tip_moment_frame", "world")):
+    for key, default in _LOAD_DEFAULTS.items():
         setattr(loads, key, default)
     for key, entry in value.items():
-        if key not in _LOAD_KEYS:
+        if key not in _LOAD_DEFAULTS:
             raise ValueError(f"loads.{key}: unknown key (a step's loads take "
-                             f"{', '.join(_LOAD_KEYS)}; the environment stays the problem's)")
+                             f"{', '.join(_LOAD_DEFAULTS)}; the environment stays the problem's)")
         setattr(loads, key, entry)
     return loads
 
