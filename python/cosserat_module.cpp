@@ -41,11 +41,14 @@ using cosserat::python::Valid;
 namespace {
 
 /// Parse errors become one ValueError naming every field at fault, as the CLI prints them.
-io::Problem Checked(io::ParseResult parsed) {
-  if (parsed.ok()) return *parsed.problem;
+[[noreturn]] void ThrowErrors(const std::vector<std::string>& errors) {
   std::string message;
-  for (const std::string& e : parsed.errors) message += (message.empty() ? "" : "\n") + e;
+  for (const std::string& e : errors) message += (message.empty() ? "" : "\n") + e;
   throw py::value_error(message);
+}
+io::Problem Checked(io::ParseResult parsed) {
+  if (!parsed.ok()) ThrowErrors(parsed.errors);
+  return *parsed.problem;
 }
 
 LoadFrame FrameFromString(const std::string& name, const char* field) {
@@ -327,6 +330,16 @@ void BindProblem(py::module_& m) {
       "parse_problem",
       [](const std::string& text) { return Checked(io::ParseProblem(text, "<python>")); },
       py::arg("json_text"), "Validates a problem given as JSON text.");
+  m.def(
+      "_parse_actuation",
+      [](const io::Problem& problem, const std::string& text) {
+        io::ActuationParse parsed =
+            io::ParseActuationObject(nlohmann::json::parse(text), problem);
+        if (!parsed.actuation) ThrowErrors(parsed.errors);
+        return *parsed.actuation;
+      },
+      py::arg("problem"), py::arg("json_text"),
+      "An Actuation from JSON text with robot.actuation's keys, by the problem file's rules.");
 }
 
 /// cosserat.solve: any problem run as `cosserat solve` runs it.

@@ -3,7 +3,7 @@ problem-file keys, or a file path."""
 import warnings
 
 from . import _core
-from .results import _as_problem
+from .results import _as_problem, _json_text
 
 
 def _warn_before_stepping(problem, dt):
@@ -24,8 +24,6 @@ class StaticSolver(_core.StaticSolver):
 _LOAD_DEFAULTS = {"gravity": [0, 0, 0], "distributed_force": [0, 0, 0], "tip_force": [0, 0, 0],
                   "tip_moment": [0, 0, 0], "tip_force_frame": "world",
                   "tip_moment_frame": "world"}
-_ACTUATION_KEYS = {"tension": "tendon_tension", "chamber_pressure": "chamber_pressure",
-                   "jamming_pressure": "jamming_pressure", "pressure": "pressure"}
 
 
 def _loads_from(value, stepper):
@@ -45,18 +43,13 @@ def _loads_from(value, stepper):
     return loads
 
 
-def _actuation_from(value):
-    """An Actuation from a dict with the problem file's actuation keys (tension, chamber_pressure,
-    jamming_pressure, pressure); an Actuation or None as given."""
+def _actuation_from(value, problem):
+    """An Actuation from a dict with the keys of the problem file's robot.actuation (tension,
+    chamber_pressure, jamming_pressure, pressure), checked by the file's rules for `problem` (one
+    value per tendon, chamber or jamming segment); an Actuation or None as given."""
     if not isinstance(value, dict):
         return value
-    actuation = _core.Actuation()
-    for key, entry in value.items():
-        if key not in _ACTUATION_KEYS:
-            raise ValueError(f"actuation.{key}: unknown key (a step's actuation takes "
-                             f"{', '.join(_ACTUATION_KEYS)})")
-        setattr(actuation, _ACTUATION_KEYS[key], entry)
-    return actuation
+    return _core._parse_actuation(problem, _json_text(value))
 
 
 class Stepper(_core.Stepper):
@@ -65,16 +58,17 @@ class Stepper(_core.Stepper):
     def __init__(self, problem, dt=None, spatial_scheme=None):
         problem = _as_problem(problem)
         super().__init__(problem, dt, spatial_scheme)
+        self._problem = problem  # the rules a dict actuation is checked by
         _warn_before_stepping(problem, dt)
 
     def initialize_at_rest(self, loads=None, actuation=None):
         return super().initialize_at_rest(_loads_from(loads, self),
-                                          _actuation_from(actuation))
+                                          _actuation_from(actuation, self._problem))
 
     def step(self, loads=None, base_position=None, base_rotation=None, base_twist_B=None,
              base_wrench_B=None, actuation=None):
         return super().step(_loads_from(loads, self), base_position, base_rotation,
-                            base_twist_B, base_wrench_B, _actuation_from(actuation))
+                            base_twist_B, base_wrench_B, _actuation_from(actuation, self._problem))
 
     initialize_at_rest.__doc__ = (_core.Stepper.initialize_at_rest.__doc__ or "") + (
         " loads and actuation may also be dicts with the problem file's keys.")

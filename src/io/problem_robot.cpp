@@ -326,3 +326,27 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
 }
 
 }  // namespace cosserat::io::detail
+
+namespace cosserat::io {
+
+ActuationParse ParseActuationObject(const nlohmann::json& object, const Problem& problem,
+                                    const std::string& path) {
+  detail::ErrorReport report;
+  ActuationParse out;
+  if (!object.is_object()) {
+    report.Expected(path, "an object with the keys of robot.actuation", detail::Describe(object));
+  } else {
+    const auto* jamming = dynamic_cast<const JammingSection*>(problem.rod.section.get());
+    Actuation a;
+    detail::ParseActuation(detail::ObjectReader(object, path, &report),
+                           static_cast<int>(problem.rod.tendons.size()),
+                           static_cast<int>(problem.rod.chambers.size()),
+                           jamming ? static_cast<int>(jamming->segments().size()) : 0, &a,
+                           nullptr);
+    if (report.empty()) out.actuation = a;
+  }
+  out.errors = report.TakeLines();
+  return out;
+}
+
+}  // namespace cosserat::io

@@ -289,6 +289,12 @@ class Dynamics(unittest.TestCase):
             b.step({"gravty": [0, 0, -9.81]})
         with self.assertRaisesRegex(ValueError, r"actuation\.tensions: unknown key"):
             b.step(actuation={"tensions": [1.0]})
+        # As in a file, one tension per tendon: a short list is refused, not zero-filled.
+        with self.assertRaisesRegex(ValueError, r"actuation\.tension: expected one value per "
+                                                r"tendon \(3 in robot\.tendons\)"):
+            b.step(actuation={"tension": [1.0]})
+        with self.assertRaisesRegex(ValueError, r"actuation\.length: unknown key"):
+            b.initialize_at_rest(actuation={"length": [0.1, 0.1, 0.1]})
 
     def test_stepper_runs_a_problem_as_the_command_does(self):
         # A tendon robot released from zero tension (its initial actuation) to the robot's

@@ -157,6 +157,17 @@ ParseResult ParseProblemDocument(const nlohmann::json& document);
 /// Reads a file and parses it; an unreadable file gives one error naming the path.
 ParseResult LoadProblemFile(const std::string& path);
 
+/// An actuation given as a JSON object with the keys of a problem file's robot.actuation
+/// ("tension", "pressure", "chamber_pressure", "jamming_pressure"; not "length"), checked by the
+/// file's rules against `problem`'s tendons, chambers and jamming segments: a controller's input
+/// for one step. Errors name their field under `path`.
+struct ActuationParse {
+  std::optional<Actuation> actuation;  ///< set exactly when there are no errors
+  std::vector<std::string> errors;
+};
+ActuationParse ParseActuationObject(const nlohmann::json& object, const Problem& problem,
+                                    const std::string& path = "actuation");
+
 /// The most time steps (round(duration / dt)) a dynamics problem may ask for.
 inline constexpr int kMaxDynamicsSteps = 10000000;
 /// The most frames a quaternion-FD run may record (round(duration / output_interval)): each is
