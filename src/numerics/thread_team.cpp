@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <system_error>
+#include <utility>
 
 namespace cosserat {
 
@@ -25,7 +26,14 @@ ThreadTeam::~ThreadTeam() {
 }
 
 void ThreadTeam::Drain() {
-  for (std::size_t i = next_++; i < n_; i = next_++) job_(context_, i);
+  for (std::size_t i = next_++; i < n_; i = next_++) {
+    try {
+      job_(context_, i);
+    } catch (...) {  // kept for the caller: an exception must not leave a worker thread
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!error_) error_ = std::current_exception();
+    }
+  }
 }
 
 void ThreadTeam::Work() {
@@ -59,6 +67,7 @@ void ThreadTeam::Run(std::size_t n, void (*job)(void*, std::size_t), void* conte
   Drain();
   std::unique_lock<std::mutex> lock(mutex_);
   done_.wait(lock, [&] { return busy_ == 0; });
+  if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
 }
 
 }  // namespace cosserat

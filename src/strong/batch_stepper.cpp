@@ -16,14 +16,18 @@ BatchStepper::BatchStepper(const RodModel& model, int nodes, const Bdf2Options& 
 }
 
 int BatchStepper::InitializeAtRest(const StepInput& input) {
+  rods_[0]->RequireValidInput(input);  // one model: what one rod refuses, all do
   return EachRod([&](std::size_t i) { return rods_[i]->InitializeAtRest(input); });
 }
 
 int BatchStepper::InitializeAtRest(const StepInput& input, const RodState& equilibrium) {
+  rods_[0]->RequireValidInput(input);
   return EachRod([&](std::size_t i) { return rods_[i]->InitializeAtRest(input, equilibrium); });
 }
 
 int BatchStepper::Step(const StepInput* inputs) {
+  // Every input is checked before any rod moves: a refused call changes nothing.
+  for (std::size_t i = 0; i < rods_.size(); ++i) rods_[i]->RequireValidInput(inputs[i]);
   return EachRod([&](std::size_t i) { return rods_[i]->Step(inputs[i]); });
 }
 

@@ -516,8 +516,7 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
     summary.status = SolveStatus::kNonFinite;  // NaN or Inf in the input: the state stays put
     return summary;
   }
-  RequireActuation(input.actuation);
-  RequirePoses(input);
+  RequireValidInput(input);
   const StepInput start = run_.last_input;
   const bool ok = AttemptInterval(start, input, options_.dt, 0, &summary);
   if (ok) summary.status = SolveStatus::kConverged;

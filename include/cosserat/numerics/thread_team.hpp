@@ -8,6 +8,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
+#include <exception>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -23,7 +24,8 @@ class ThreadTeam {
   ThreadTeam(const ThreadTeam&) = delete;
   ThreadTeam& operator=(const ThreadTeam&) = delete;
 
-  /// Runs job(context, i) for every i in [0, n) and returns when all are done.
+  /// Runs job(context, i) for every i in [0, n) and returns when all are done. An exception a
+  /// job throws (on any thread) is rethrown here once all are done, the first one if several.
   void Run(std::size_t n, void (*job)(void* context, std::size_t i), void* context);
 
   /// The same for a callable `f(i)`, without allocating.
@@ -49,6 +51,7 @@ class ThreadTeam {
   void (*job_)(void*, std::size_t) = nullptr;
   void* context_ = nullptr;
   std::atomic<std::size_t> next_{0};
+  std::exception_ptr error_;  ///< the first exception a job of the current call threw
 };
 
 }  // namespace cosserat

@@ -25,7 +25,8 @@ class BatchStepper {
   /// (Bdf2ShootingStepper::InitializeAtRest with a state).
   int InitializeAtRest(const StepInput& input, const RodState& equilibrium);
   /// Steps rod i under inputs[i] (count of them). Returns how many converged; summary(i) says
-  /// how each went.
+  /// how each went. Throws std::invalid_argument, before any rod moves, for an input a rod's
+  /// Step would refuse (Bdf2ShootingStepper::RequireValidInput); InitializeAtRest likewise.
   int Step(const StepInput* inputs);
 
   int count() const { return static_cast<int>(rods_.size()); }

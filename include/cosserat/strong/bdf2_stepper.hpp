@@ -158,6 +158,12 @@ class Bdf2ShootingStepper {
   /// chamber it lacks), or a base (or held tip) rotation that is not one within 1e-6
   /// (lie::RequireRotation), throws std::invalid_argument, as InitializeAtRest does.
   StepSummary Step(const StepInput& input);
+  /// Throws std::invalid_argument for the inputs Step refuses (its actuation or poses); NaN and
+  /// Inf pass (Step reports them as a status). For callers that check a batch before any step.
+  void RequireValidInput(const StepInput& input) const {
+    RequireActuation(input.actuation);
+    RequirePoses(input);
+  }
 
   double time() const { return run_.time; }
   const RodState& state() const { return run_.state; }
