@@ -47,10 +47,12 @@ class PyBatchStepper {
     input.base_pose = problem.base;
     input.loads = problem.loads;
     input.actuation = problem.robot.actuation;
-    inputs_.assign(count, input);
+    first_inputs_.assign(count, input);
+    inputs_ = first_inputs_;
   }
 
-  /// As the Stepper starts: from the statics solver's equilibrium, else the rods' own solve.
+  /// As the Stepper starts: from the statics solver's equilibrium, else the rods' own solve;
+  /// the steps after it apply the problem's loads and actuation (as after construction).
   int InitializeAtRest() {
     const std::optional<RodState> equilibrium =
         cosserat::run::StaticEquilibriumToStartFrom(problem_, initial_);
@@ -58,6 +60,7 @@ class PyBatchStepper {
     int converged = equilibrium ? batch_->InitializeAtRest(initial_, *equilibrium) : 0;
     if (converged != batch_->count()) converged = batch_->InitializeAtRest(initial_);
     initialized_ = converged == batch_->count();
+    if (initialized_) inputs_ = first_inputs_;  // an episode reset: the file's inputs again
     return converged;
   }
 
@@ -127,6 +130,7 @@ class PyBatchStepper {
   int tendons_;
   std::optional<BatchStepper> batch_;
   StepInput initial_;
+  std::vector<StepInput> first_inputs_;  ///< what the first steps apply: the file's
   std::vector<StepInput> inputs_;
   bool initialized_ = false;
 };

@@ -54,11 +54,14 @@ class PyStepper {
 
   StepSummary InitializeAtRest(std::optional<StaticLoads> loads,
                                std::optional<Actuation> actuation) {
-    StepInput at_rest = input_;
+    // An episode reset: the rest and the steps after it start from the problem's inputs (its
+    // base pose, no base motion), whatever the last run applied.
+    StepInput at_rest = first_input_;
     at_rest.loads = loads ? Valid(*loads) : initial_loads_;
     at_rest.actuation = actuation ? Valid(*actuation, problem_) : initial_actuation_;
     const StepSummary s =
         cosserat::run::InitializeAtStaticEquilibrium(problem_, at_rest, &*stepper_);
+    if (s.converged()) input_ = first_input_;
     has_state_ = has_state_ || s.converged();
     return s;
   }
@@ -138,7 +141,11 @@ void BindStepperOutputs(py::class_<PyStepper>& c) {
       .def(
           "energy",
           [](const PyStepper& s) {
-            const RodEnergy e = s.run().Energy(s.input().loads);
+            RodEnergy e = s.run().Energy(s.input().loads);
+            const RodEnergy tip = TipBodyEnergy(s.options().tip_mass, s.options().tip_inertia_B,
+                                                s.input().loads.gravity_W, s.run().state());
+            e.kinetic += tip.kinetic;
+            e.potential += tip.potential;
             py::dict d;
             d["kinetic"] = e.kinetic;
             d["elastic"] = e.elastic;
@@ -146,17 +153,20 @@ void BindStepperOutputs(py::class_<PyStepper>& c) {
             d["total"] = e.total();
             return d;
           },
-          "Kinetic, elastic and potential energy (J); potential: of the distributed loads step() "
-          "applies.")
+          "Kinetic, elastic and potential energy (J), the tip body's (dynamics.tip_mass) "
+          "included; potential: of the distributed loads step() applies.")
       .def(
           "momentum",
           [](const PyStepper& s) {
             const RodMomentum p = s.run().Momentum();
-            return py::make_tuple(p.linear_W, p.angular_W);
+            const RodMomentum tip =
+                TipBodyMomentum(s.options().tip_mass, s.options().tip_inertia_B, s.run().state());
+            return py::make_tuple(Vec3(p.linear_W + tip.linear_W),
+                                  Vec3(p.angular_W + tip.angular_W));
           },
-          "(linear, angular about the origin), world frame.")
+          "(linear, angular about the origin), world frame, the tip body's included.")
       .def(
-          "mass", [](const PyStepper& s) { return s.run().Mass(); },
+          "mass", [](const PyStepper& s) { return s.run().Mass() + s.options().tip_mass; },
           "The rod's mass with its tip body, kg.");
 }
 

@@ -41,14 +41,12 @@ StepInput ClampedInput(const io::Problem& problem, const StaticLoads& loads,
 }
 
 /// The tip body's share of the energy (`dynamics.tip_mass`, `tip_inertia`), which the rod's
-/// integrals leave out: ½ m |v|² + ½ ωᵀ J ω, and −m g·p its weight's potential (J).
+/// integrals leave out (J).
 void AddTipBodyEnergy(const io::Problem& problem, const RodState& state, RodEnergy* energy) {
-  const double m = problem.dynamics.tip_mass;
-  const Vec6& twist = state.twist_B.back();  // [ω; v], tip body frame
-  const Vec3 w = twist.head<3>();
-  energy->kinetic += 0.5 * m * twist.tail<3>().squaredNorm() +
-                     0.5 * w.dot(problem.dynamics.tip_inertia.cwiseProduct(w));
-  energy->potential -= m * problem.loads.gravity_W.dot(state.tip_position_W());
+  const RodEnergy tip = TipBodyEnergy(problem.dynamics.tip_mass, problem.dynamics.tip_inertia,
+                                      problem.loads.gravity_W, state);
+  energy->kinetic += tip.kinetic;
+  energy->potential += tip.potential;
 }
 
 /// The energy of the stepper's state under the problem's loads, the tip body's included (J).

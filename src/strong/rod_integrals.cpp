@@ -44,4 +44,24 @@ Vec3 CentreOfMass_W(const RodQuadrature& points) {
   return first / Mass(points);
 }
 
+RodEnergy TipBodyEnergy(double mass, const Vec3& inertia_B, const Vec3& gravity_W,
+                        const RodState& state) {
+  const Vec6& twist = state.twist_B.back();  // [ω; v], tip frame
+  const Vec3 w = twist.head<3>();
+  RodEnergy e;
+  e.kinetic = 0.5 * mass * twist.tail<3>().squaredNorm() + 0.5 * w.dot(inertia_B.cwiseProduct(w));
+  e.potential = -mass * gravity_W.dot(state.tip_position_W());
+  return e;
+}
+
+RodMomentum TipBodyMomentum(double mass, const Vec3& inertia_B, const RodState& state) {
+  const Vec6& twist = state.twist_B.back();
+  const Mat3 R = state.tip_rotation_WB();
+  RodMomentum p;
+  p.linear_W = mass * (R * twist.tail<3>());
+  p.angular_W = state.tip_position_W().cross(p.linear_W) +
+                R * inertia_B.cwiseProduct(twist.head<3>());
+  return p;
+}
+
 }  // namespace cosserat

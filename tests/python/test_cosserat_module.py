@@ -310,6 +310,46 @@ class Dynamics(unittest.TestCase):
         np.testing.assert_array_equal(stepper.tip_position(), command)
         np.testing.assert_array_equal(stepper.actuation.tendon_tension, p.actuation.tendon_tension)
 
+    def test_initialize_at_rest_resets_the_inputs_as_well_as_the_state(self):
+        # An episode with other tensions and a moved, moving clamp, then initialize_at_rest():
+        # the next episode, given nothing, repeats a fresh Stepper's run bit for bit (it rested
+        # and stepped with the last episode's base and tensions before).
+        p = cosserat.load_problem("tests/cli/tendon_dynamics.json")
+        fresh, used = cosserat.Stepper(p), cosserat.Stepper(p)
+        self.assertTrue(used.initialize_at_rest().converged)
+        for _ in range(5):
+            self.assertTrue(used.step(actuation={"tension": [0, 2, 0]}, base_position=[0, 0, 0.01],
+                                      base_twist_B=[0, 0, 0, 0, 0, 0.01]).converged)
+        for s in (fresh, used):
+            self.assertTrue(s.initialize_at_rest().converged)
+            for _ in range(5):
+                self.assertTrue(s.step().converged)
+        np.testing.assert_array_equal(used.tip_position(), fresh.tip_position())
+        b = cosserat.BatchStepper(p, 2, threads=1)
+        self.assertEqual(b.initialize_at_rest(), 2)
+        b.step(tension=[[0, 2, 0], [0, 2, 0]])
+        self.assertEqual(b.initialize_at_rest(), 2)
+        for _ in range(5):
+            self.assertEqual(b.step(), 2)
+        np.testing.assert_array_equal(b.tip_positions()[0], fresh.tip_position())
+
+    def test_stepper_energy_and_mass_include_the_tip_body(self):
+        # The release with a 20 g payload: the Stepper runs what `cosserat solve` runs, so its
+        # energy is the result's (which counts the payload) to round-off, and its mass is the
+        # rod's ρAL plus the payload.
+        with open("examples/cantilever_release.json") as f:
+            p = json.load(f)
+        p["dynamics"].update(duration=0.1, tip_mass=0.02, tip_inertia=[1e-6, 1e-6, 2e-7])
+        result = cosserat.solve(p)["result"]["energy"]
+        stepper = cosserat.Stepper(p)
+        self.assertTrue(stepper.initialize_at_rest().converged)
+        for _ in range(50):
+            self.assertTrue(stepper.step().converged)
+        e = stepper.energy()
+        for key in ("kinetic", "elastic", "potential"):
+            self.assertAlmostEqual(e[key], result[key], delta=1e-12 * abs(result["potential"]))
+        self.assertAlmostEqual(stepper.mass(), 8000 * np.pi * 1e-6 * 0.5 + 0.02, delta=1e-12)
+
     def test_solvers_take_a_problem_as_solve_does(self):
         # A file path and a dict give the same Stepper as the parsed Problem: the same steps,
         # bit for bit; anything else is a TypeError naming the argument.

@@ -10,6 +10,7 @@
 
 #include "cosserat/lie/types.hpp"
 #include "cosserat/loads/static_loads.hpp"
+#include "cosserat/state/rod_state.hpp"
 #include "cosserat/strong/cosserat_rhs.hpp"
 
 namespace cosserat {
@@ -48,5 +49,13 @@ RodMomentum Momentum(const RodQuadrature& points);
 double Mass(const RodQuadrature& points);
 /// ∫ ρA p ds / ∫ ρA ds, m (world).
 Vec3 CentreOfMass_W(const RodQuadrature& points);
+
+/// A rigid body carried by the tip section (Bdf2Options::tip_mass, kg, and tip_inertia_B, its
+/// principal inertia in the tip frame, kg·m²), which the rod's integrals leave out: kinetic
+/// ½ m |v|² + ½ ωᵀ J ω from the tip's twist, and its weight's potential −m g·p(L) (J).
+RodEnergy TipBodyEnergy(double mass, const Vec3& inertia_B, const Vec3& gravity_W,
+                        const RodState& state);
+/// Its momentum: m R v and p(L) × m R v + R J ω (world frame, about the origin).
+RodMomentum TipBodyMomentum(double mass, const Vec3& inertia_B, const RodState& state);
 
 }  // namespace cosserat
