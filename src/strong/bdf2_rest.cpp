@@ -50,6 +50,7 @@ StepSummary Bdf2ShootingStepper::InitializeAtRestFrom(const StepInput& input,
   if (automatic_pieces_ && ShootingPieces() != initial_pieces_) SetShootingPieces(initial_pieces_);
   run_.base1 = run_.base2 = input.base_pose;
   run_.steps_taken = 0;
+  run_.whole_steps = 0;
   run_.jacobian_c0 = -1.0;  // the first solve computes the exact Jacobian
   ApplyActuation(input.actuation);
   const bool ok = SolveRestEquilibrium(input, base_wrench_B, equilibrium, &summary);
@@ -143,6 +144,7 @@ void Bdf2ShootingStepper::StartHistoryAtRest(const StepInput& input) {
   run_.time = 0.0;
   run_.last_dt = 0.0;
   run_.steps_taken = 0;
+  run_.whole_steps = 0;
   run_.initialized = true;
   initialized_ = true;
 }

@@ -135,6 +135,24 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   SetShootingPieces(pieces);
 }
 
+int Bdf2ShootingStepper::ChosenPieces() const {
+  const double exponent = SingleShootingExponent(model_, options_.dt, actuation_, run_.state);
+  return std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent),
+                  MaxAutomaticPieces());
+}
+
+void Bdf2ShootingStepper::DropUnneededPieces() {
+  // 100 whole steps: a failure's pieces are kept through the transient that asked for them
+  // (0.2 s at dt = 2 ms), and a drop that fails costs one attempt in 100 steps.
+  constexpr int kWholeStepsBeforeFewerPieces = 100;
+  if (!automatic_pieces_ || ShootingPieces() == 1 ||
+      ++run_.whole_steps < kWholeStepsBeforeFewerPieces)
+    return;
+  run_.whole_steps = 0;
+  const int fewer = std::max(ChosenPieces(), ShootingPieces() / 2);
+  if (fewer < ShootingPieces()) SetShootingPieces(fewer);
+}
+
 int Bdf2ShootingStepper::MaxAutomaticPieces() const {
   return std::max(1, std::min(32, shot_steps()));
 }
@@ -183,6 +201,7 @@ void Bdf2ShootingStepper::PlanSteps(int keep) {
 }
 
 void Bdf2ShootingStepper::SetShootingPieces(int pieces) {
+  run_.whole_steps = 0;
   const int junctions = pieces - 1;
   const int unknowns = 6 + 18 * junctions;
   junction_nodes_.resize(junctions);
@@ -255,7 +274,8 @@ void Bdf2ShootingStepper::ApplyActuation(const Actuation& a) {
   if (!section_changed) return;
   SampleSections();
   // A softer section raises the shot's exponent: with automatic pieces, shoot in as many as it
-  // asks for now, rather than after a failed step (never fewer: a run's pieces only grow).
+  // asks for now, rather than after a failed step (fewer only after whole steps:
+  // DropUnneededPieces).
   if (automatic_pieces_) {
     const double exponent = SingleShootingExponent(model_, options_.dt, actuation_);
     const int wanted =
@@ -518,8 +538,13 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
   }
   RequireValidInput(input);
   const StepInput start = run_.last_input;
+  const int pieces = ShootingPieces();
   const bool ok = AttemptInterval(start, input, options_.dt, 0, &summary);
   if (ok) summary.status = SolveStatus::kConverged;
+  if (ok && summary.halvings == 0 && ShootingPieces() == pieces)
+    DropUnneededPieces();
+  else
+    run_.whole_steps = 0;
   summary.shooting_segments = ShootingPieces();
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

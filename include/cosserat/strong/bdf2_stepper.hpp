@@ -151,7 +151,9 @@ class Bdf2ShootingStepper {
   /// equilibrium. Throws std::invalid_argument if `equilibrium` is not on this grid.
   StepSummary InitializeAtRest(const StepInput& input, const RodState& equilibrium);
 
-  /// Advances by options().dt to the state under `input`. No heap allocation. When a step
+  /// Advances by options().dt to the state under `input`. No heap allocation, except in a
+  /// step that changes the automatic multiple-shooting pieces (adds them on a failure, drops
+  /// them after 100 steps taken whole: DropUnneededPieces). When a step
   /// fails even after halving, the status says why and time() and state() are those of the last
   /// (sub-)step that converged. NaN or Inf in the input is the status non_finite (nothing
   /// moves); an actuation Actuation::IsValid refuses for this rod (a pushing tendon, a tendon or
@@ -174,6 +176,10 @@ class Bdf2ShootingStepper {
     return static_cast<int>(grid_.size()) - 1 -
            static_cast<int>(std::count(pair_start_.begin(), pair_start_.end(), 1));
   }
+  /// The automatic choice of multiple-shooting pieces for the rod now: one piece when the shot's exponent (dt, actuation,
+  /// the state's tension) is at most 10, else SuggestedShootingSegments, at most
+  /// MaxAutomaticPieces().
+  int ChosenPieces() const;
   /// The current state at the stage points of the spatial scheme with its quadrature weights:
   /// what the free functions of rod_integrals.hpp (energy, momentum, mass) integrate.
   RodQuadrature QuadraturePoints() const;
@@ -196,6 +202,8 @@ class Bdf2ShootingStepper {
     SecantFilter jacobian_filter;         ///< the shooting Jacobian, tracked across steps
     double jacobian_c0 = -1.0;            ///< the c0 the Jacobian was computed for; −1: none
     int steps_taken = 0;
+    /// Steps taken whole (no halving, no added piece) since the automatic pieces last changed.
+    int whole_steps = 0;
     // Accepted values at the stages of each step of the shot (index step_slot_[i] + j for the
     // step from node i), one and two steps back, and at the tip node.
     std::vector<Vec6> strain1, strain2, twist1, twist2;
@@ -335,6 +343,10 @@ class Bdf2ShootingStepper {
   /// (constructor, and when automatic pieces grow).
   void SetShootingPieces(int pieces);
   int ShootingPieces() const { return static_cast<int>(junction_nodes_.size()) + 1; }
+  /// After kWholeStepsBeforeFewerPieces steps taken whole, pieces a failure added above
+  /// ChosenPieces() are halved back towards it (a spike in the input must not leave every later
+  /// step several times dearer). Allocates, as adding pieces does.
+  void DropUnneededPieces();
   /// The most pieces the automatic choice goes to: 32, and no more than the grid's segments.
   int MaxAutomaticPieces() const;
   void SetImplicitCompliance(double c0);
