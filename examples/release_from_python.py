@@ -9,6 +9,7 @@ Prints the real-time ratio of the stepping loop (Python call overhead included) 
 range of swing; with --plot writes the tip's x(t) (needs python3-matplotlib).
 """
 import argparse
+import os
 import time
 
 import numpy as np
@@ -21,7 +22,8 @@ parser.add_argument("--heun", action="store_true", help="Heun in s instead of RK
 parser.add_argument("--plot", help="write the tip's x(t) to this PNG")
 args = parser.parse_args()
 
-problem = cosserat.load_problem("examples/cantilever_release.json")
+problem = cosserat.load_problem(os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                              "cantilever_release.json"))
 stepper = cosserat.Stepper(problem, spatial_scheme="heun" if args.heun else None)
 summary = stepper.initialize_at_rest()  # under the problem's initial_loads: tip weight on
 if not summary.converged:
@@ -54,5 +56,6 @@ if args.plot:
     ax.set_ylabel("tip x (mm)")
     ax.set_title("Released cantilever (examples/cantilever_release.json)")
     fig.tight_layout()
+    os.makedirs(os.path.dirname(os.path.abspath(args.plot)), exist_ok=True)
     fig.savefig(args.plot, dpi=120)
     print(f"wrote {args.plot}")

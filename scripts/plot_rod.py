@@ -12,6 +12,7 @@ Uses Debian's python3-matplotlib (run it with /usr/bin/python3).
 """
 import json
 import math
+import os
 import sys
 
 import matplotlib
@@ -194,6 +195,7 @@ def main(argv):
         plot_trajectory(strips, trajectory)
     fig.suptitle(title(result))
     fig.tight_layout()
+    os.makedirs(os.path.dirname(os.path.abspath(argv[2])), exist_ok=True)
     fig.savefig(argv[2], dpi=120)
     print(f"plot written to {argv[2]}")
     return 0

@@ -87,6 +87,7 @@ def animate(out, path, fps=25, every=1):
         raise ValueError(f"path: expected a .gif or .mp4 file, got {os.fspath(path)!r}")
     plt = _pyplot()
     from matplotlib import animation
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     if extension in _VIDEO and not animation.FFMpegWriter.isAvailable():
         raise RuntimeError("animate: MP4 needs ffmpeg (apt install ffmpeg); a .gif path "
                            "uses Pillow instead")

@@ -116,6 +116,7 @@ class LiveRod:
         self.state = {"frame": 0, "status": "starting", "rods": [], "tip": None,
                       "real_time_ratio": None, "t": 0.0, "control_version": 0}
         self.notes = []
+        self.thread = None  # a problem that does not load shows its error and runs nothing
         try:
             with open(path) as f:
                 self.spec = json.load(f)
@@ -143,6 +144,13 @@ class LiveRod:
         self.running = True
         self.thread = threading.Thread(target=self._run, daemon=True)
         self.thread.start()
+
+    def stop(self):
+        """Ends the simulation thread, waiting (5 s at most) until it is out of the solver: the
+        interpreter must not shut down under a running C++ solve."""
+        self.running = False
+        if self.thread is not None:
+            self.thread.join(5)
 
     # -- the problem ------------------------------------------------------------------------
     def _rod(self):
@@ -458,11 +466,15 @@ def main(argv=None):
     if web is None:
         raise SystemExit("cosserat view: the page's files (web/index.html) were not found next to "
                          "the package; set COSSERAT_WEB_DIR to the repository's web/ directory")
+    three = os.path.join(web, "node_modules", "three", "build", "three.min.js")
+    if not os.path.exists(three):
+        raise SystemExit(f"cosserat view: {three} is missing: the page draws with three.js; run "
+                         f"`npm ci` in {web} (scripts/test.sh does)")
     live = LiveRod(args.problem)
     try:
         server = ThreadingHTTPServer(("127.0.0.1", args.port), make_handler(live, web))
     except OSError as e:
-        live.running = False
+        live.stop()
         raise SystemExit(f"cosserat view: --port {args.port}: {e.strerror} (another view or "
                          "program uses it; try another --port, or 0 for any free one)")
     url = f"http://127.0.0.1:{server.server_address[1]}/"
@@ -475,9 +487,8 @@ def main(argv=None):
     except KeyboardInterrupt:
         pass
     finally:
-        live.running = False
         server.server_close()
-        live.thread.join(5)  # out of the solver before the interpreter shuts down
+        live.stop()
 
 
 if __name__ == "__main__":

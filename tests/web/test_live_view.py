@@ -14,11 +14,13 @@ On the default problem (examples/cantilever.json, stepped in real time):
     x must exceed +0.05 m within 3 s), and the page measures the slider-to-frame latency;
   - dragging the tip with the mouse moves it (over 1 cm for a 150 px drag);
   - a value past a slider's limit gets a message on the page, and the page keeps drawing.
-With a malformed problem file the page shows the error naming the field.
+With a malformed problem file the page shows the error naming the field, and Ctrl-C ends it
+cleanly; a port in use or a web/ without three.js is refused at start (exit 1, a message).
 """
 import argparse
 import json
 import os
+import signal
 import socket
 import subprocess
 import sys
@@ -46,7 +48,10 @@ def free_port():
 def start_server(problem):
     port = free_port()
     proc = subprocess.Popen([sys.executable, "-m", "cosserat.view", problem, "--port", str(port)],
-                            cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+                            cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                            # Ctrl-C reaches it as at a terminal (a shell's background job
+                            # would have it ignored)
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     url = f"http://127.0.0.1:{port}/"
     for _ in range(100):
         try:
@@ -168,9 +173,34 @@ def main():
             error = wait_for("the error on the page",
                              lambda: driver.find_element(By.ID, "error").text)
             check("rod.length" in error, f"a malformed file's error is on the page: {error[:80]!r}")
+            # Ctrl-C on it: a clean exit (it has no simulation thread to stop).
+            server.send_signal(signal.SIGINT)
+            out = server.communicate(timeout=20)[0]
+            check(server.returncode == 0 and "Traceback" not in out,
+                  f"Ctrl-C on a view of a bad file exits 0 (got {server.returncode}: {out[-80:]!r})")
         finally:
             server.kill()
             driver.quit()
+        # Refusals at start, exit status 1 and a message, never an abort: a port in use (with
+        # a quasi-static problem, whose solver thread must be stopped first), and a web/
+        # without three.js (the page would stay blank).
+        with socket.socket() as taken:
+            taken.bind(("127.0.0.1", 0))
+            taken.listen()
+            port = str(taken.getsockname()[1])
+            run = subprocess.run([sys.executable, "-m", "cosserat.view", "examples/stay_cable.json",
+                                  "--port", port], cwd=ROOT, capture_output=True, text=True)
+        check(run.returncode == 1 and "in use" in run.stderr,
+              f"a port in use: exit 1 and a message (got {run.returncode}: {run.stderr[-80:]!r})")
+        for name in ("index.html", "app.js"):
+            with open(os.path.join(ROOT, "web", name), "rb") as src:
+                with open(os.path.join(d, name), "wb") as dst:
+                    dst.write(src.read())
+        run = subprocess.run([sys.executable, "-m", "cosserat.view", "examples/cantilever.json",
+                              "--port", "0"], cwd=ROOT, capture_output=True, text=True,
+                             env=dict(os.environ, COSSERAT_WEB_DIR=d))
+        check(run.returncode == 1 and "npm ci" in run.stderr,
+              f"no three.js: exit 1 naming npm ci (got {run.returncode}: {run.stderr[-80:]!r})")
     print("FAILED: " + "; ".join(failures) if failures else "all checks passed")
     return 1 if failures else 0
 
