@@ -319,6 +319,31 @@ TEST(Modes, QuatFdFindsBecksFlutterAndOnlyIt) {
   }
 }
 
+TEST(Modes, ShootingSeesBecksFlutterAndNoFalseFrequency) {
+  // Frequency shooting finds real frequencies only. Past Beck's 20.05 EI/L² the first two
+  // merge into a complex pair; det B then dips near their real part without vanishing, and that
+  // dip was listed as a single "frequency" (8.70 Hz at 21, where the quaternion-FD pair is at
+  // 8.86 Hz) in a "converged" run. Below flutter (19.9) every root of this isotropic rod is a
+  // pair, one per bending plane; past it (20.2, 21) the run is unstable and says flutter.
+  SteelRod rod;
+  rod.r = 0.002;
+  StaticLoads loads;
+  loads.tip_force_frame = LoadFrame::kBody;
+  for (const double lambda : {19.9, 20.2, 21.0}) {
+    loads.tip_force = Vec3(0, 0, -lambda * rod.EI() / (rod.length * rod.length));
+    const ModalResult r = ShootingModes(rod.model(), lie::SE3(), loads, 81, 4);
+    if (lambda < 20.05) {
+      ASSERT_TRUE(r.converged()) << lambda << ": " << ToString(r.status);
+      ASSERT_EQ(r.modes.size(), 4u);
+      for (int k = 0; k < 4; k += 2)  // pairs to the scan's refinement, 1e-10 ω
+        EXPECT_NEAR(r.modes[k].omega / r.modes[k + 1].omega, 1.0, 1e-9) << lambda << " " << k;
+    } else {
+      EXPECT_EQ(r.status, ModalStatus::kUnstable) << lambda << ": " << ToString(r.status);
+      EXPECT_EQ(r.instability.rfind("flutter", 0), 0u) << r.instability;
+    }
+  }
+}
+
 TEST(Modes, QuatFdFindsAStandingWirePastItsSelfWeightBucklingUnstable) {
   // A 1 mm steel wire standing up from a clamp buckles under its own weight at
   // L³ = 7.837 EI/(ρ A g) (Greenhill), 1.71 m. At 1.5 m it stands (converged); at 2 m its first

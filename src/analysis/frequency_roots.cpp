@@ -111,7 +111,7 @@ double NeighbouringRoot(const FrequencyShooting& fs, const std::vector<double>& 
 /// roots is near another simple root (5e-5 ω apart: the two bending planes of a loaded rod),
 /// found by deflation, or is a multiple root, whose further null vectors are then its modes.
 void AddRoots(const FrequencyShooting& fs, double lo, double hi, int* budget,
-              std::vector<Root>* roots) {
+              std::vector<Root>* roots, std::vector<double>* dips) {
   std::vector<Candidate> found;
   RefineMinima(fs, lo, hi, budget, &found);
   std::sort(found.begin(), found.end(),
@@ -125,7 +125,8 @@ void AddRoots(const FrequencyShooting& fs, double lo, double hi, int* budget,
     std::vector<double> here;
     for (size_t q = a; q < b && here.empty(); ++q)
       if (found[q].exact) here.push_back(found[q].omega);
-    if (here.empty()) here.push_back(found[a].omega);
+    const bool exact = !here.empty();
+    if (!exact) here.push_back(found[a].omega);
     const double wc = here.front();
     a = b;
     bool known = false;
@@ -146,6 +147,14 @@ void AddRoots(const FrequencyShooting& fs, double lo, double hi, int* budget,
       if (!std::isfinite(neighbour)) break;
       here.push_back(neighbour);
     }
+    // A minimum of σ_min with no sign change of det B is a root only where B is singular: a
+    // root of even multiplicity is zero there to round-off (~1e-7 of σ 1e-3 ω away, refined to
+    // 1e-10 ω). A dip that stays above 1e-4 of its flanks is no root: past flutter under a
+    // follower load, where a pair of roots has left the real axis, it marks their real part.
+    if (!exact && null == 0) {
+      if (dips) dips->push_back(wc);
+      continue;
+    }
     const int simple = static_cast<int>(here.size());
     const int mult = std::max(simple, null);
     for (int r = 0; r < mult; ++r) {
@@ -160,7 +169,7 @@ void AddRoots(const FrequencyShooting& fs, double lo, double hi, int* budget,
 }  // namespace
 
 std::vector<Root> FindRoots(const FrequencyShooting& fs, double w_lo, double w_hi, double step,
-                            int count) {
+                            int count, std::vector<double>* dips) {
   std::vector<Root> roots;
   int budget = 200000;
   auto det_sign = [&](double w) { return fs.BoundaryMatrix(w).determinant() > 0; };
@@ -171,8 +180,8 @@ std::vector<Root> FindRoots(const FrequencyShooting& fs, double w_lo, double w_h
     const double w2 = w1 * step, s2 = Sigma(fs, w2)(0);
     const bool d2 = det_sign(w2);
     budget -= 2;
-    if (s1 <= s0 && s1 < s2) AddRoots(fs, w0, w2, &budget, &roots);
-    if (d1 != d2) AddRoots(fs, w0, w2 * step, &budget, &roots);
+    if (s1 <= s0 && s1 < s2) AddRoots(fs, w0, w2, &budget, &roots, dips);
+    if (d1 != d2) AddRoots(fs, w0, w2 * step, &budget, &roots, dips);
     w0 = w1, s0 = s1, w1 = w2, s1 = s2, d1 = d2;
   }
   std::sort(roots.begin(), roots.end(),

@@ -21,8 +21,10 @@ struct Root {
 /// σ_min, or a sign change of det B (a simple root hidden in the flank of a neighbour's dip),
 /// brackets candidates; they are refined, clustered and tested. A root of multiplicity m is
 /// listed m times, with independent null vectors. Fewer than `count` when the scan reaches w_hi
-/// or its budget of 200 000 boundary matrices.
+/// or its budget of 200 000 boundary matrices. `dips`, when given, receives the minima of σ_min
+/// where B is not singular: no root, but the real part of a pair of roots off the real axis,
+/// as past flutter under a follower load.
 std::vector<Root> FindRoots(const FrequencyShooting& fs, double w_lo, double w_hi, double step,
-                            int count);
+                            int count, std::vector<double>* dips = nullptr);
 
 }  // namespace cosserat::detail

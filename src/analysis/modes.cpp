@@ -540,8 +540,9 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
   const double w_lo = options.omega_min > 0 ? options.omega_min : 0.01 * w_eb;
   const double w_hi = options.omega_max > 0 ? options.omega_max : 1e4 * w_eb;
   const int count = options.modal.count;
+  std::vector<double> dips;
   const std::vector<detail::Root> roots =
-      detail::FindRoots(fs, w_lo, w_hi, 1.0 + options.relative_step, count);
+      detail::FindRoots(fs, w_lo, w_hi, 1.0 + options.relative_step, count, &dips);
 
   const NodeWeights weights = ShootingNodeWeights(rod, solver.grid(), fs, actuation);
   for (size_t i = 0; i < roots.size() && static_cast<int>(i) < count; ++i) {
@@ -553,6 +554,20 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
       Classify(weights.tangent_W, weights.mass, weights.inertia_W, L, &mode);
     }
     result.modes.push_back(std::move(mode));
+  }
+  // Under a load that is not conservative (a follower force, a dead tip moment) two frequencies
+  // can meet and leave the real axis as a complex pair, one growing (flutter: Beck's column
+  // past 20.05 EI/L²). The scan sees only the dip of det B they leave behind.
+  const SplitWrench tip = TotalTipWrench(loads);
+  if (!dips.empty() && (!tip.follower_B.isZero(0.0) || !tip.dead_W.head<3>().isZero(0.0))) {
+    std::ostringstream why;
+    why << "flutter: near " << dips.front() / kTwoPi
+        << " Hz two frequencies have met and left the real axis under a load that is not "
+           "conservative (a follower force, a tip moment): a pair that grows in time. Frequency "
+           "shooting finds real frequencies only; \"formulation\": \"quaternion-fd\" gives "
+           "the complex pair";
+    result.instability = why.str();
+    return finish(ModalStatus::kUnstable);
   }
   if (static_cast<int>(result.modes.size()) < count) return finish(ModalStatus::kTooFewModes);
   // The scan finds real frequencies only: an unstable direction of the equilibrium (a rod pressed
