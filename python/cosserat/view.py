@@ -83,6 +83,23 @@ def _section_stiffness(rod):
     return None
 
 
+def _section_area(rod):
+    """The section's area (m²) from the problem file's shape, None when it does not say."""
+    sec = rod.get("section", {})
+    shape = sec.get("shape") or ("explicit" if "area" in sec else None)
+    if shape in ("circle", "annulus"):
+        ro = sec.get("radius") or sec.get("outer_radius") or 0.0
+        ri = sec.get("inner_radius", 0.0) if shape == "annulus" else 0.0
+        return math.pi * (ro**2 - ri**2) or None
+    if shape == "rectangle":
+        return (sec.get("width") or 0.0) * (sec.get("height") or 0.0) or None
+    return sec.get("area") if shape == "explicit" else None
+
+
+# Boundaries that hold the tip: a tip force there moves nothing, a uniform load does.
+HELD_TIP_BOUNDARIES = ("pinned-pinned", "clamped-clamped", "clamped-pinned")
+
+
 # The problem file's actuation names and cosserat.Actuation's attributes for them.
 ACTUATION_ATTRIBUTE = {"tension": "tendon_tension", "chamber_pressure": "chamber_pressure",
                        "jamming_pressure": "jamming_pressure", "pressure": "pressure"}
@@ -188,9 +205,20 @@ class LiveRod:
                 self._add(f"body_force_{axis}", f"{body.get('name', 'body')} force {axis}", "N",
                           -force, force, f[k])
             return
-        tip = self.spec.get("loads", {}).get("tip_force", [0, 0, 0])
-        for k, axis in enumerate("xyz"):
-            self._add(f"tip_force_{axis}", f"tip force {axis}", "N", -force, force, tip[k])
+        loads = self.spec.get("loads", {})
+        if self._tip_held():  # a uniform load: ± the tip-force scale per metre, or 2× the weight
+            rod = self._rod()
+            area, rho = _section_area(rod), rod.get("material", {}).get("density", 0.0)
+            weight = rho * (area or 0.0) * np.linalg.norm(loads.get("gravity", [0, 0, 0]))
+            q = loads.get("distributed_force", [0, 0, 0])
+            limit = max(force / L, 2 * weight, 2 * np.linalg.norm(q))
+            for k, axis in enumerate("xyz"):
+                self._add(f"distributed_force_{axis}", f"uniform load {axis}", "N/m", -limit,
+                          limit, q[k])
+        else:
+            tip = loads.get("tip_force", [0, 0, 0])
+            for k, axis in enumerate("xyz"):
+                self._add(f"tip_force_{axis}", f"tip force {axis}", "N", -force, force, tip[k])
         robot = self.spec.get("robot", {})
         act = robot.get("actuation", {})
         for i, t in enumerate(robot.get("tendons", [])):
@@ -232,10 +260,18 @@ class LiveRod:
         return None
 
     # -- stepping ---------------------------------------------------------------------------
+    def _tip_held(self):
+        """Whether the rod's tip is held (an anchor or a held-tip boundary)."""
+        return "assembly" not in self.spec and (
+            "anchor" in self.spec or self.spec.get("boundary") in HELD_TIP_BOUNDARIES)
+
     def _loads(self, v):
         loads = copy.deepcopy(self.spec.get("loads", {}))
-        loads["tip_force"] = [v["tip_force_x"], v["tip_force_y"], v["tip_force_z"]]
-        loads.setdefault("tip_force_frame", "world")
+        if "tip_force_x" in v:
+            loads["tip_force"] = [v["tip_force_x"], v["tip_force_y"], v["tip_force_z"]]
+            loads.setdefault("tip_force_frame", "world")
+        else:
+            loads["distributed_force"] = [v[f"distributed_force_{a}"] for a in "xyz"]
         return loads
 
     def _actuated(self, spec, v):
@@ -306,7 +342,10 @@ class LiveRod:
             with self.lock:
                 v = dict(self.values)
                 version = self.control_version
-            loads.tip_force = [v["tip_force_x"], v["tip_force_y"], v["tip_force_z"]]
+            if "tip_force_x" in v:
+                loads.tip_force = [v["tip_force_x"], v["tip_force_y"], v["tip_force_z"]]
+            else:
+                loads.distributed_force = [v[f"distributed_force_{a}"] for a in "xyz"]
             for key, value in _control_actuation(v, n_tendons, n_chambers, n_jam).items():
                 attribute = ACTUATION_ATTRIBUTE[key]
                 if isinstance(value, list):  # the Actuation's arrays are longer: set their head
