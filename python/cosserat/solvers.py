@@ -17,7 +17,16 @@ class StaticSolver(_core.StaticSolver):
     __doc__ = _core.StaticSolver.__doc__
 
     def __init__(self, problem):
-        super().__init__(_as_problem(problem))
+        problem = _as_problem(problem)
+        super().__init__(problem)
+        self._problem = problem  # its environment and actuation rules, for dict inputs
+
+    def solve(self, loads=None, base_position=None, base_rotation=None, actuation=None):
+        return super().solve(_loads_from(loads, self._problem), base_position, base_rotation,
+                             _actuation_from(actuation, self._problem))
+
+    solve.__doc__ = (_core.StaticSolver.solve.__doc__ or "") + (
+        " loads and actuation may also be dicts with the problem file's keys.")
 
 
 # The problem file's `loads` keys a step takes, at their defaults.
@@ -26,13 +35,14 @@ _LOAD_DEFAULTS = {"gravity": [0, 0, 0], "distributed_force": [0, 0, 0], "tip_for
                   "tip_moment_frame": "world"}
 
 
-def _loads_from(value, stepper):
+def _loads_from(value, holder):
     """A Loads from a dict with the problem file's `loads` keys (absent ones at their defaults,
-    as in a file) in the stepper's environment (of a copy of its loads, the fluid, contact and
-    bit friction stay); a Loads or None as given, without that copy (step() is a hot path)."""
+    as in a file) in the environment of holder.loads (a Stepper's or a Problem's: of a copy, the
+    fluid, contact and bit friction stay); a Loads or None as given, without that copy (step()
+    is a hot path)."""
     if not isinstance(value, dict):
         return value
-    loads = stepper.loads  # a copy: its fluid, contact and bit stay; the keyed loads start over
+    loads = holder.loads  # a copy: its fluid, contact and bit stay; the keyed loads start over
     for key, default in _LOAD_DEFAULTS.items():
         setattr(loads, key, default)
     for key, entry in value.items():

@@ -295,6 +295,14 @@ class Dynamics(unittest.TestCase):
             b.step(actuation={"tension": [1.0]})
         with self.assertRaisesRegex(ValueError, r"actuation\.length: unknown key"):
             b.initialize_at_rest(actuation={"length": [0.1, 0.1, 0.1]})
+        # The static solver takes the same dicts: the same equilibrium as with objects.
+        objects, dicts = cosserat.StaticSolver(p), cosserat.StaticSolver(p)
+        self.assertTrue(objects.solve(loads, actuation=act).converged)
+        self.assertTrue(dicts.solve({"gravity": [0, 0, -9.81], "tip_force": [0.1, 0, 0]},
+                                    actuation={"tension": [1.0, 0.5, 0.0]}).converged)
+        np.testing.assert_array_equal(objects.state()["position"], dicts.state()["position"])
+        with self.assertRaisesRegex(ValueError, r"actuation\.tension: expected one value"):
+            dicts.solve(actuation={"tension": [1.0]})
 
     def test_stepper_runs_a_problem_as_the_command_does(self):
         # A tendon robot released from zero tension (its initial actuation) to the robot's
