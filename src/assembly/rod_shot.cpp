@@ -20,10 +20,12 @@ RodShot::RodShot(const RodModel& model, int nodes) : model_length_(model.length)
   const std::vector<double> grid = ModelGrid(model, nodes);
   sigma_.resize(grid.size());
   for (size_t i = 0; i < grid.size(); ++i) sigma_[i] = grid[i] / model.length;
-  samples_.resize(2 * grid.size() - 1);
+  // Each segment's own start, middle and end (from inside the segment, as the cantilever
+  // solvers sample): a stiffness profile's end on a node belongs to the segment it bounds.
+  const std::vector<double> points = SegmentSamplePoints(grid);
+  samples_.resize(points.size());
   for (size_t q = 0; q < samples_.size(); ++q) {
-    const size_t i = q / 2;
-    const double s = q % 2 == 0 ? grid[i] : 0.5 * (grid[i] + grid[i + 1]);
+    const double s = points[q];
     const SectionLaw law = SectionLaw::At(model, s, Actuation{});
     Sample& smp = samples_[q];
     smp.rest_strain = law.rest_strain;
@@ -110,8 +112,8 @@ RodShot::Point<double> RodShot::ShootTangent(const Point<double>& start,
   const double stage_step[4] = {0.0, 0.5, 0.5, 1.0};
   for (int i = 0; i + 1 < nodes(); ++i) {
     const double h = sigma_[i + 1] - sigma_[i];
-    const Sample* smp[4] = {&samples_[2 * i], &samples_[2 * i + 1], &samples_[2 * i + 1],
-                            &samples_[2 * i + 2]};
+    const Sample* smp[4] = {&samples_[3 * i], &samples_[3 * i + 1], &samples_[3 * i + 1],
+                            &samples_[3 * i + 2]};
     Carried<double> k[4];
     CarriedTangent t[4];
     for (int j = 0; j < 4; ++j) {
@@ -151,8 +153,9 @@ void RodShot::Record(const Point<double>& start, double length, RodState* state)
   auto record = [&](int i, const Carried<double>& at) {
     const Point<double> y = FromCarried(at);
     Vec6 xi;
-    rhs::LinearStrain<double>(samples_[2 * i].rest_strain, samples_[2 * i].compliance, y.m, y.n,
-                              &xi);
+    // Node i's section: the start of segment i, the tip's the end of the last segment.
+    const Sample& smp = samples_[i + 1 < nodes() ? 3 * i : 3 * i - 1];
+    rhs::LinearStrain<double>(smp.rest_strain, smp.compliance, y.m, y.n, &xi);
     state->s[i] = sigma_[i] * length;
     state->position_W[i] = y.p;
     state->rotation_WB[i] = y.R;

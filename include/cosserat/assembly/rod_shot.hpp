@@ -94,7 +94,7 @@ class RodShot {
   Carried<T> Step(int i, const Carried<T>& c, const T& length) const;
 
   std::vector<double> sigma_;    ///< node fractions s/L₀, 0 … 1
-  std::vector<Sample> samples_;  ///< node i at 2i, midpoint i + 1/2 at 2i + 1
+  std::vector<Sample> samples_;  ///< segment i: start 3i, middle 3i + 1, end 3i + 2 (inside)
   double model_length_ = 0.0, bending_stiffness_ = 0.0;
 };
 
@@ -149,7 +149,7 @@ COSSERAT_RHS_INLINE RodShot::Carried<T> RodShot::Step(int i, const Carried<T>& c
     return Carried<T>{y.p + a * k.p, y.R + a * k.R, y.J + a * k.J, y.n + a * k.n};
   };
   const double h = sigma_[i + 1] - sigma_[i];
-  const Sample &s0 = samples_[2 * i], &sm = samples_[2 * i + 1], &s1 = samples_[2 * i + 2];
+  const Sample &s0 = samples_[3 * i], &sm = samples_[3 * i + 1], &s1 = samples_[3 * i + 2];
   const Carried<T> k1 = Rate(s0, c0, length);
   const Carried<T> k2 = Rate(sm, axpy(c0, 0.5 * h, k1), length);
   const Carried<T> k3 = Rate(sm, axpy(c0, 0.5 * h, k2), length);
