@@ -5,6 +5,7 @@
 
 #include "bending_stress_report.hpp"
 #include "contact_report.hpp"
+#include "grid_resolution.hpp"
 #include "scale_warnings.hpp"
 #include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/run/run_assembly.hpp"
@@ -75,6 +76,7 @@ void ObstacleHint(const io::Problem& problem, Result* result) {
 Result Run(const io::Problem& problem, const RunOptions& options) {
   Result result = Dispatch(problem, options);
   RefuseNonFiniteAnswers(&result);
+  detail::CheckGridResolution(problem, &result);
   ObstacleHint(problem, &result);
   detail::AddContactReport(problem, &result);
   detail::AddFrameContactForces(problem, &result);
