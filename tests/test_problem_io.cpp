@@ -1365,6 +1365,16 @@ TEST(ProblemIoRobot, BadChambersAreNamedByTheirPath) {
   j["robot"] = json::parse(R"({ "kind": "pneumatic",
     "chambers": [ { "offset": [0, 0], "area": 1e-7, "from": 0.1, "to": 0.2 } ] })");
   EXPECT_ERROR(Parse(j), "rod.nodes: expected at least 4");
+
+  // An inflation "pressure" on a rod whose section does not depend on it did nothing, silently
+  // (a pneumatic finger given "pressure" for "chamber_pressure"); 0 is harmless.
+  j = ValidProblem();
+  j["robot"] = json::parse(R"({ "kind": "pneumatic",
+    "chambers": [ { "offset": [0, 0], "area": 1e-7 } ], "actuation": { "pressure": 1e5 } })");
+  EXPECT_ERROR(Parse(j), "robot.actuation.pressure: expected a rod.stiffness_profile that "
+                         "depends on it", "\"chamber_pressure\"");
+  j["robot"]["actuation"]["pressure"] = 0;
+  EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
 }
 
 }  // namespace
