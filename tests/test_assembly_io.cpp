@@ -243,6 +243,24 @@ TEST(AssemblyIo, NamesAreUnique) {
   EXPECT_ERROR(r, "assembly.bodies[1].name: expected a name no other body has");
 }
 
+TEST(AssemblyIo, StaticsNeedsEveryBodyJoinedToTheWorld) {
+  // The plate carries the right rod hanging from it (its base on the plate) and nothing holds
+  // the plate: it floats. Statics under gravity ended load_stepping_failed, "reached 0"; it is
+  // refused by name. Dynamics runs it (a free assembly), and a rod from the world to the plate
+  // grounds it (and the hanging rod with it).
+  json j = GuidedBeam();
+  j["assembly"]["rods"][0]["tip"] = json::parse(R"({ "joint": "free" })");
+  j["assembly"]["rods"][0]["base"] = json::parse(R"({ "position": [0, 0, 0.5], "body": "plate" })");
+  j["assembly"]["rods"][1]["tip"] = json::parse(R"({ "joint": "free" })");
+  j["assembly"]["rods"][1]["base"] = json::parse(R"({ "position": [0, 0, 0.5], "body": "plate" })");
+  EXPECT_ERROR(Parse(j), "assembly.bodies[0]: no chain of rods joins \"plate\" to the world");
+  j["analysis"] = "dynamics";
+  EXPECT_FALSE(HasError(Parse(j).errors, {"no chain of rods"})) << AllErrors(Parse(j));
+  j["analysis"] = "statics";
+  j["assembly"]["rods"][0] = GuidedBeam()["assembly"]["rods"][0];
+  EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
+}
+
 TEST(AssemblyIo, AFreeTipJoinsNoBodyAndAJoinedTipNamesOne) {
   json j = GuidedBeam();
   j["assembly"]["rods"][0]["tip"]["joint"] = "free";

@@ -287,6 +287,31 @@ void ParseAssembly(const ObjectReader& o, Problem* p) {
       o.report().Add(ElementPath(o.PathOf("bodies"), b),
                      "no rod holds " + Quote(a.bodies[b].name) +
                          " (no rod names it in tip.body or base.body; it would fall freely)");
+  // Statics needs every body joined to the world by a chain of rods (a rod joins its base's body,
+  // or the world, to its tip's body): a body that only carries rods hanging from it, or bodies
+  // joined only to each other, float, and the load steps found nothing.
+  if (p->analysis == Analysis::kStatics) {
+    std::vector<bool> grounded(a.bodies.size(), false);
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (const AssemblyRod& rod : a.rods) {
+        if (rod.body < 0) continue;
+        const bool base = rod.base_body < 0 || grounded[rod.base_body];
+        if (base != grounded[rod.body]) {
+          if (rod.base_body >= 0) grounded[rod.base_body] = true;
+          grounded[rod.body] = true;
+          changed = true;
+        }
+      }
+    }
+    for (std::size_t b = 0; b < a.bodies.size(); ++b)
+      if (held[b] > 0 && !grounded[b])
+        o.report().Add(ElementPath(o.PathOf("bodies"), b),
+                       "no chain of rods joins " + Quote(a.bodies[b].name) +
+                           " to the world (a rod from the world, or from a body that is, must "
+                           "end on it or on a body joined to it): in statics it floats "
+                           "(dynamics runs a free assembly)");
+  }
 
   if (o.Has("lengths") && o.Has("inverse"))
     o.report().Add(o.PathOf("lengths"),
