@@ -117,6 +117,18 @@ Result RunAssembly(const io::Problem& problem, const RunOptions& options) {
                                    options.nodes_csv ? &result.nodes_csv : nullptr);
   out["assembly"]["pose_jacobian"] =
       summary.converged() ? PoseJacobianJson(problem, &solver, &result.log) : json(nullptr);
+  // After PoseJacobianJson the solver holds the forward solution at the result's lengths (for an
+  // inverse, its own equilibrium).
+  const int index = summary.converged() ? solver.BodyStabilityIndex(problem.loads) : -1;
+  if (index >= 0) out["assembly"]["stability_index"] = index;
+  if (index > 0)
+    result.log += "cosserat: warning: the bodies' equilibrium is unstable (" +
+                  std::to_string(index) + " direction" + (index > 1 ? "s" : "") +
+                  " in which their condensed stiffness pushes them on): " +
+                  (problem.assembly.inverse()
+                       ? "these lengths hold the poses only in an unstable equilibrium"
+                       : "the loads are past a critical one") +
+                  " (docs/assemblies.md, \"Stability\")\n";
   return result;
 }
 

@@ -67,6 +67,20 @@ class AssemblyStaticsSolver {
   /// solution's Jacobian by the implicit function theorem. Empty without a solution.
   Eigen::MatrixXd PoseJacobian(int body, const StaticLoads& loads);
 
+  /// The bodies' condensed stiffness at the last converged forward solution: the change of
+  /// their balance residuals per change of their poses with every rod kept in equilibrium (the
+  /// Schur complement of the rods' block of the solve's Jacobian), scaled as the solve's
+  /// unknowns and residuals (6 bodies × 6 bodies). Empty without a solution.
+  Eigen::MatrixXd CondensedBodyStiffness(const StaticLoads& loads);
+  /// The unstable directions of the bodies at the last converged forward solution: the
+  /// eigenvalues of CondensedBodyStiffness with a positive real part (above 1e-8 of the
+  /// largest), a restoring stiffness being negative in the balance residual. It counts what the
+  /// bodies' motion can release with every rod in equilibrium; a rod unstable with its ends
+  /// held (past a conjugate point) adds directions it does not see (Haynsworth 1968). −1 when not
+  /// defined: no solution, no bodies, or a body carrying an applied moment (a dead moment is not
+  /// conservative in 3-D).
+  int BodyStabilityIndex(const StaticLoads& loads);
+
   const std::vector<lie::SE3>& body_poses() const { return poses_; }
   const std::vector<double>& lengths() const { return lengths_; }
   /// The node states of rod i at the last solve (s from 0 to its length), recorded on the first
