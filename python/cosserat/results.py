@@ -49,6 +49,9 @@ def _as_problem(problem):
         return problem
     if isinstance(problem, dict):
         return _core.parse_problem(_json_text(problem))
+    if isinstance(problem, str) and problem.lstrip().startswith("{"):
+        raise ValueError("problem: got JSON text, expected a file path; pass the dict "
+                         "(json.loads(text)) or cosserat.parse_problem(text)")
     if isinstance(problem, (str, os.PathLike)):
         return _core.load_problem(os.fspath(problem))
     raise TypeError("problem: expected a cosserat.Problem, a dict with the problem-file keys "

@@ -249,6 +249,8 @@ class LiveRod:
             return f"{name}: no such control (the controls are " + \
                 ", ".join(c["name"] for c in self.controls) + ")"
         try:
+            if isinstance(value, bool):  # JSON true would read as 1.0
+                raise TypeError
             value = float(value)
         except (TypeError, ValueError):
             return f"{name}: expected a number, got {value!r}"

@@ -95,6 +95,9 @@ class ProblemFiles(unittest.TestCase):
         # A byte that is not UTF-8 is quoted as \xNN: the message is not lost (it was empty).
         with self.assertRaisesRegex(ValueError, r"invalid JSON at line 1, .*\\xFF"):
             cosserat.parse_problem(b'{"format": "cosserat\xff"}')
+        # JSON text where a path is expected: said so, not echoed back as a missing file name.
+        with self.assertRaisesRegex(ValueError, "got JSON text, expected a file path"):
+            cosserat.solve(text)
 
     def test_non_finite_loads_are_refused(self):
         loads = cosserat.Loads()
@@ -384,6 +387,23 @@ class Dynamics(unittest.TestCase):
         twist = np.array([0.0, 0.1, 0.0, 0.01, 0.0, 0.0])
         self.assertTrue(stepper.step(base_twist_B=twist).converged)
         np.testing.assert_array_equal(stepper.state()["twist_B"][0], twist)
+
+    def test_moving_the_clamp_without_its_twist_warns_once(self):
+        # The twist is an input, not derived from the pose: a clamp moved with none given drags
+        # the rod. Said once; the same pose again, or a twist given, says nothing.
+        stepper = cosserat.Stepper(wire("dynamics"))
+        self.assertTrue(stepper.initialize_at_rest().converged)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            stepper.step(base_position=[0, 0, 0])  # where it is
+        with self.assertWarnsRegex(RuntimeWarning, "no base_twist_B was given"):
+            stepper.step(base_position=[0, 0, 1e-4])
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            stepper.step(base_position=[0, 0, 2e-4])  # once
+            other = cosserat.Stepper(wire("dynamics"))
+            self.assertTrue(other.initialize_at_rest().converged)
+            other.step(base_position=[0, 0, 1e-4], base_twist_B=[0, 0, 0, 0, 0, 0.05])
 
     def test_out_of_order_and_foreign_snapshots_are_refused(self):
         stepper = cosserat.Stepper(wire("dynamics"))
