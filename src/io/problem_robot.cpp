@@ -163,6 +163,21 @@ void ParseActuation(const ObjectReader& a, int tendons, int chambers, int jammin
                        std::to_string(jamming_segments) + " in rod.stiffness_profile.segments)");
 }
 
+/// A pressure acts through the section (an inflated tube, a pressure-dependent modulus, a
+/// jamming tube): on a rod whose section ignores it, it silently did nothing (a pneumatic finger
+/// written with "pressure" where its chambers' "chamber_pressure" was meant). Reported.
+void CheckPressureIsRead(const ObjectReader& a, const Problem& p) {
+  if (!a.Has("pressure") || p.robot.actuation.pressure == 0.0 || !p.rod.section) return;
+  Actuation unpressurised = p.robot.actuation;
+  unpressurised.pressure = 0.0;
+  const double s = 0.5 * p.rod.length;
+  if (p.rod.section->At(s, p.robot.actuation).stiffness ==
+      p.rod.section->At(s, unpressurised).stiffness)
+    a.Reject("pressure",
+             "a rod.stiffness_profile that depends on it (\"pressure_modulus\", \"inflated\" or "
+             "\"jamming\"; the chambers' pressures are \"chamber_pressure\"), or no pressure");
+}
+
 /// The switchable segments of a "jamming" rod.stiffness_profile (0 for any other).
 int JammingSegments(const json& top) {
   const auto rod = top.find("rod");
@@ -313,21 +328,7 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
   const int jamming = JammingSegments(top);
   if (const auto a = ReadObject(robot, "actuation", Presence::kOptional)) {
     ParseActuation(*a, tendons, chambers, jamming, &p->robot.actuation, &p->robot.tendon_lengths);
-    // A pressure acts through the section (an inflated tube, a pressure-dependent modulus, a
-    // jamming tube): on a rod whose section ignores it, it silently did nothing (a pneumatic
-    // finger written with "pressure" where its chambers' "chamber_pressure" was meant).
-    if (!profile_pressure && a->Has("pressure") && p->robot.actuation.pressure != 0.0 &&
-        p->rod.section) {
-      Actuation unpressurised = p->robot.actuation;
-      unpressurised.pressure = 0.0;
-      const double s = 0.5 * p->rod.length;
-      if (p->rod.section->At(s, p->robot.actuation).stiffness ==
-          p->rod.section->At(s, unpressurised).stiffness)
-        a->Reject("pressure",
-                  "a rod.stiffness_profile that depends on it (\"pressure_modulus\", "
-                  "\"inflated\" or \"jamming\"; the chambers' pressures are "
-                  "\"chamber_pressure\"), or no pressure");
-    }
+    if (!profile_pressure) CheckPressureIsRead(*a, *p);
     // One pressure: the profile's and the actuation's must agree when both are given (the
     // actuation's silently won).
     if (profile_pressure && a->Has("pressure") && p->robot.actuation.pressure != *profile_pressure)

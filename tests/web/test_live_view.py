@@ -177,7 +177,8 @@ def main():
             server.send_signal(signal.SIGINT)
             out = server.communicate(timeout=20)[0]
             check(server.returncode == 0 and "Traceback" not in out,
-                  f"Ctrl-C on a view of a bad file exits 0 (got {server.returncode}: {out[-80:]!r})")
+                  f"Ctrl-C on a view of a bad file exits 0 "
+                  f"(got {server.returncode}: {out[-80:]!r})")
         finally:
             server.kill()
             driver.quit()

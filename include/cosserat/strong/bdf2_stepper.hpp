@@ -176,9 +176,9 @@ class Bdf2ShootingStepper {
     return static_cast<int>(grid_.size()) - 1 -
            static_cast<int>(std::count(pair_start_.begin(), pair_start_.end(), 1));
   }
-  /// The automatic choice of multiple-shooting pieces for the rod now: one piece when the shot's exponent (dt, actuation,
-  /// the state's tension) is at most 10, else SuggestedShootingSegments, at most
-  /// MaxAutomaticPieces().
+  /// The automatic choice of multiple-shooting pieces for the rod now: one piece when the
+  /// shot's exponent (dt, actuation, the state's tension) is at most 10, else
+  /// SuggestedShootingSegments, at most MaxAutomaticPieces().
   int ChosenPieces() const;
   /// The current state at the stage points of the spatial scheme with its quadrature weights:
   /// what the free functions of rod_integrals.hpp (energy, momentum, mass) integrate.
