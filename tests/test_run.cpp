@@ -229,6 +229,33 @@ TEST(Run, AnUnstableEquilibriumIsFlagged) {
   EXPECT_EQ(light.log.find("unstable"), std::string::npos);
 }
 
+// A pinned column (L = 1 m, r = 1 mm) under a compressive tip force and a lateral load of
+// 1e-3 P_E per metre. At 1.1 P_E the solve converged on the equilibrium bent 1.3 mm against the
+// lateral load, the unstable one (the stable elastica bows 0.28 L), with no word; columns have no
+// stability index, so a near-straight column past the Euler load of its ends is flagged. At
+// 0.9 P_E it stands, bent with the load: nothing to say.
+TEST(Run, ANearlyStraightColumnPastItsEulerLoadIsFlagged) {
+  auto run = [](double ratio) {
+    const double EI = 200e9 * M_PI * 1e-12 / 4, P = M_PI * M_PI * EI;
+    const std::string text = R"({"format": "cosserat-problem/1", "boundary": "pinned-pinned",
+        "rod": {"length": 1, "nodes": 41, "section": {"shape": "circle", "radius": 0.001},
+                "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9, "density": 8000}},
+        "loads": {"tip_force": [0, 0, )" + std::to_string(-ratio * P) +
+                             R"(], "distributed_force": [)" + std::to_string(1e-3 * P) +
+                             R"(, 0, 0]}})";
+    const io::ParseResult parsed = io::ParseProblem(text);
+    EXPECT_TRUE(parsed.ok());
+    return cosserat::run::Run(*parsed.problem);
+  };
+  const Result past = run(1.1);
+  ASSERT_TRUE(past.converged) << past.log;
+  EXPECT_NE(past.log.find("1.1 times the Euler load of its ends"), std::string::npos) << past.log;
+  EXPECT_NE(past.log.find("this equilibrium is unstable"), std::string::npos) << past.log;
+  const Result below = run(0.9);
+  ASSERT_TRUE(below.converged) << below.log;
+  EXPECT_EQ(below.log.find("unstable"), std::string::npos) << below.log;
+}
+
 // A silicone rod (r = 5 mm, E = 1 MPa) standing upright under its own weight: Greenhill's
 // critical length (7.837 EI/q)^⅓ = 0.166 m, the second (55.98 EI/q)^⅓ = 0.319 m (Timoshenko &
 // Gere 1961). At 0.15 m it is stable; at 0.3 m the straight equilibrium both formulations find

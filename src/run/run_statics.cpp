@@ -101,6 +101,8 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
   result.log = StaticSummary(summary, solver.state()) + " (" + ToString(ends) + ")\n";
   result.converged = summary.converged();
+  if (result.converged)
+    result.log += detail::ColumnPastEulerWarning(ends, problem.rod, solver.state());
   return result;
 }
 

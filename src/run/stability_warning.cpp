@@ -1,5 +1,11 @@
 #include "stability_warning.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
 namespace cosserat::run::detail {
 
 std::string UnstableWarning(const StaticShootingSummary& s) {
@@ -8,6 +14,38 @@ std::string UnstableWarning(const StaticShootingSummary& s) {
          " unstable direction" + (s.stability_index > 1 ? "s" : "") +
          "): the loads or the actuation are past a critical point, and no stable equilibrium was "
          "reached from the unloaded rod; \"analysis\": \"buckling\" finds the critical load\n";
+}
+
+std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const RodState& state) {
+  const double factor = ends == ColumnEnds::kPinnedPinned    ? 9.8696
+                        : ends == ColumnEnds::kClampedPinned ? 20.19
+                        : ends == ColumnEnds::kClampedClamped ? 39.478
+                                                              : 0.0;
+  const int n = state.size();
+  if (factor == 0.0 || n < 2 || !rod.section) return "";
+  const double L = rod.length;
+  const double EI = rod.section->At(0.5 * L, Actuation{}).min_bending_stiffness();
+  const double euler = factor * EI / (L * L);
+  // The least compression along the column: past the Euler load everywhere, it is more pressed
+  // than the uniformly pressed column at that load (Sturm's comparison), and a heavy column
+  // pressed past P_E only near its foot is not flagged (its own critical load is higher).
+  double compression = std::numeric_limits<double>::infinity(), off_chord = 0.0;
+  const Vec3 a = state.position_W.front(), chord = (state.position_W.back() - a).normalized();
+  for (int i = 0; i < n; ++i) {
+    compression = std::min(compression, -state.wrench_B[i](5));  // n_B along the tangent
+    const Vec3 d = state.position_W[i] - a;
+    off_chord = std::max(off_chord, (d - d.dot(chord) * chord).norm());
+  }
+  if (!(compression > 1.01 * euler) || off_chord > 0.05 * L) return "";
+  std::ostringstream text;
+  text << std::setprecision(3) << "cosserat: warning: the column is compressed by "
+       << compression << " N, " << compression / euler << " times the Euler load of its ends ("
+       << euler << " N), yet stands nearly straight (" << off_chord / L
+       << " L off its chord): this equilibrium is unstable, the stable one bows out";
+  if (ends == ColumnEnds::kPinnedPinned)  // the elastica's amplitude, to first order
+    text << " by about " << 0.9 * std::sqrt(compression / euler - 1) << " L";
+  text << " (\"analysis\": \"buckling\" finds the critical load)\n";
+  return text.str();
 }
 
 }  // namespace cosserat::run::detail

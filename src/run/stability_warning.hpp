@@ -4,6 +4,9 @@
 
 #include <string>
 
+#include "cosserat/analysis/column.hpp"
+#include "cosserat/rod/rod_model.hpp"
+#include "cosserat/state/rod_state.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat::run::detail {
@@ -12,5 +15,13 @@ namespace cosserat::run::detail {
 /// s.stability_index > 0 (past a critical load, no stable equilibrium reached from the unloaded
 /// rod: a column pressed 19 times its buckling load stays straight, and would not); else empty.
 std::string UnstableWarning(const StaticShootingSummary& s);
+
+/// A column (pinned or clamped at both ends) that stands nearly straight (no node off its chord
+/// by 5 % of the length) while compressed everywhere beyond 1.01 times the Euler load of its
+/// ends (π², 20.19 or 4π² EI/L² for pinned–pinned, clamped–pinned, clamped–clamped; Timoshenko
+/// & Gere 1961; EI at mid-length) is on the unstable branch: the stable one bows out (pinned
+/// ends: by about 0.9 √(P/P_E − 1) L, the elastica's amplitude to first order). The warning says
+/// so; empty otherwise. Columns have no stability index.
+std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const RodState& state);
 
 }  // namespace cosserat::run::detail
