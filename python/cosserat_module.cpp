@@ -20,6 +20,7 @@
 #include "stepper_bindings.hpp"
 #include "cosserat/io/problem.hpp"
 #include "problem_checks.hpp"
+#include "cosserat/run/grid_resolution.hpp"
 #include "cosserat/run/run.hpp"
 #include "cosserat/run/run_dynamics.hpp"
 #include "cosserat/run/solver_options.hpp"
@@ -147,10 +148,26 @@ class PyStaticSolver {
     loads_ = next_loads;
     base_ = next_base;
     if (actuation) solver_.SetActuation(*actuation);
-    const StaticShootingSummary s =
+    StaticShootingSummary s =
         multiple_ ? multiple_->Solve(base_, loads_) : solver_.Solve(base_, loads_);
+    if (s.converged()) CheckGrid(&s);
     last_status_ = s.status;
     return s;
+  }
+  /// The CLI's check of the grid against the solved shape (run/grid_resolution.hpp): a shot that
+  /// ran away is non_finite, a coarse grid a RuntimeWarning.
+  void CheckGrid(StaticShootingSummary* s) const {
+    const RodState& state = multiple_ ? multiple_->state() : solver_.state();
+    std::vector<Vec3> curvature;
+    for (const Vec6& xi : state.strain) curvature.push_back(xi.head<3>());
+    const run::GridResolution g =
+        run::CheckGrid(state.s, state.position_W, curvature, problem_.rod.length);
+    if (g.ran_away) s->status = SolveStatus::kNonFinite;
+    if (g.log.empty()) return;
+    std::string text = g.log.substr(0, g.log.size() - 1);  // without its newline
+    for (const char* prefix : {"cosserat: warning: ", "cosserat: "})
+      if (text.rfind(prefix, 0) == 0) text.erase(0, std::string(prefix).size());
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 1) < 0) throw py::error_already_set();
   }
   /// The equilibrium of the last solve(); refused when it did not converge (the solver's state
   /// is then a load step's, not an equilibrium of what was asked).

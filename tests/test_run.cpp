@@ -15,6 +15,7 @@
 #include "cosserat/io/text_file.hpp"
 #include "nlohmann/json.hpp"
 #include "cosserat/lie/types.hpp"
+#include "cosserat/run/grid_resolution.hpp"
 #include "cosserat/run/run.hpp"
 
 namespace cosserat::run {
@@ -227,6 +228,33 @@ TEST(Run, AnUnstableEquilibriumIsFlagged) {
   ASSERT_TRUE(light.converged) << light.log;
   EXPECT_EQ(light.json["stability_index"].get<int>(), 0);
   EXPECT_EQ(light.log.find("unstable"), std::string::npos);
+}
+
+// The grid check reads the shape, and only what RK4 in s gets wrong: a straight rod stretched
+// 13-fold (a gel under a large pull) is a long segment but no runaway (it was non_finite), a
+// straight rod twisted 3 rad per segment moves no point (it was "off by 64 %"), and an arc
+// at 0.75 rad of bending per segment warns with RK4's 8e-3 (κ h)⁴ (0.253 % of L).
+TEST(Run, TheGridCheckJudgesBendingNotStretchOrTwist) {
+  const int n = 21;
+  const double L = 1.0, h = L / (n - 1);
+  std::vector<double> s(n);
+  std::vector<Vec3> straight(n), stretched(n), arc(n), none(n, Vec3::Zero()), twist(n), bend(n);
+  for (int i = 0; i < n; ++i) {
+    s[i] = i * h;
+    straight[i] = Vec3(0, 0, s[i]);
+    stretched[i] = Vec3(0, 0, 13.0 * s[i]);
+    twist[i] = Vec3(0, 0, 3.0 / h);
+    bend[i] = Vec3(0, 0.75 / h, 0);
+    const double k = 0.75 / h;
+    arc[i] = Vec3((1 - std::cos(k * s[i])) / k, 0, std::sin(k * s[i]) / k);
+  }
+  EXPECT_FALSE(run::CheckGrid(s, stretched, none, L).ran_away);
+  EXPECT_TRUE(run::CheckGrid(s, stretched, none, L).log.empty());
+  EXPECT_TRUE(run::CheckGrid(s, straight, twist, L).log.empty());
+  const run::GridResolution coarse = run::CheckGrid(s, arc, bend, L);
+  EXPECT_FALSE(coarse.ran_away);
+  EXPECT_NE(coarse.log.find("0.75 rad per segment"), std::string::npos) << coarse.log;
+  EXPECT_NE(coarse.log.find("about 0.253 %"), std::string::npos) << coarse.log;
 }
 
 // A pinned column (L = 1 m, r = 1 mm) under a compressive tip force and a lateral load of

@@ -1,4 +1,4 @@
-#include "grid_resolution.hpp"
+#include "cosserat/run/grid_resolution.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,15 +7,42 @@
 
 #include "cosserat/state/solve_status.hpp"
 
-namespace cosserat::run::detail {
-namespace {
+namespace cosserat::run {
 
-/// Row i of an N × 3 array of the result's nodes as a vector.
-Vec3 Row(const nlohmann::ordered_json& rows, size_t i) {
-  return Vec3(rows[i][0].get<double>(), rows[i][1].get<double>(), rows[i][2].get<double>());
+GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& position,
+                         const std::vector<Vec3>& curvature, double length) {
+  GridResolution out;
+  double worst = 0.0, worst_s = 0.0, worst_k = 0.0;  // bending κ h (rad), where, κ (1/m)
+  auto bending = [](const Vec3& k) { return std::hypot(k.x(), k.y()); };
+  for (size_t i = 0; i + 1 < s.size(); ++i) {
+    const double h = s[i + 1] - s[i];
+    const double bend = std::max(bending(curvature[i]), bending(curvature[i + 1]));
+    if (bend * h > worst) worst = bend * h, worst_s = s[i], worst_k = bend;
+    const double turn = std::max(curvature[i].norm(), curvature[i + 1].norm()) * h;
+    const double segment = (position[i + 1] - position[i]).norm();
+    if (segment <= 10.0 * h || turn <= 1.0) continue;
+    std::ostringstream log;
+    log << std::setprecision(3) << "cosserat: the solve converged, but its shot ran away: the "
+        << "segment at s = " << s[i] << " m spans " << segment << " m for " << h
+        << " m of rod, while the curvature turns the section by " << turn
+        << " rad on it, which RK4 in s cannot follow: status non_finite; check the loads' and "
+           "the actuation's units, or give rod.nodes ≥ "
+        << static_cast<long>(std::ceil(4.0 * turn / h * length)) + 1 << '\n';
+    out.ran_away = true;
+    out.log = log.str();
+    return out;
+  }
+  if (worst <= 0.5) return out;
+  std::ostringstream log;
+  log << std::setprecision(3) << "cosserat: warning: the grid resolves the shape coarsely: "
+      << "the bending turns the section by " << worst << " rad per segment near s = " << worst_s
+      << " m, where a constant-curvature arc's tip is off by about "
+      << 100 * 8e-3 * std::pow(worst, 4) << " % of the length (RK4 in s, fourth order in κ h); "
+      << "rod.nodes ≥ " << static_cast<long>(std::ceil(4.0 * worst_k * length)) + 1
+      << " keeps it below 0.25 rad\n";
+  out.log = log.str();
+  return out;
 }
-
-}  // namespace
 
 void CheckGridResolution(const io::Problem& problem, Result* result) {
   if (!result->converged || problem.formulation != io::Formulation::kSe3Shooting ||
@@ -23,35 +50,19 @@ void CheckGridResolution(const io::Problem& problem, Result* result) {
     return;
   const nlohmann::ordered_json& nodes = result->json["nodes"];
   if (!nodes.contains("s") || !nodes.contains("position") || !nodes.contains("curvature")) return;
-  const nlohmann::ordered_json &s = nodes["s"], &p = nodes["position"], &k = nodes["curvature"];
-  double worst = 0.0, worst_s = 0.0, worst_k = 0.0;  // κ h (rad), where, κ (1/m)
-  for (size_t i = 0; i + 1 < s.size(); ++i) {
-    const double h = s[i + 1].get<double>() - s[i].get<double>();
-    const double kappa = std::max(Row(k, i).norm(), Row(k, i + 1).norm());
-    if (kappa * h > worst) worst = kappa * h, worst_s = s[i].get<double>(), worst_k = kappa;
-    const double segment = (Row(p, i + 1) - Row(p, i)).norm();
-    if (segment <= 10.0 * h) continue;
-    std::ostringstream log;
-    log << std::setprecision(3) << "cosserat: the solve converged, but its shot ran away: the "
-        << "segment at s = " << s[i].get<double>() << " m spans " << segment << " m for " << h
-        << " m of rod (its curvature, " << kappa << " 1/m, turns the section by " << kappa * h
-        << " rad per segment, which RK4 in s cannot follow): status non_finite; check the "
-           "loads' and the actuation's units, or give rod.nodes ≥ "
-        << static_cast<long>(std::ceil(4.0 * kappa * problem.rod.length)) + 1 << '\n';
-    result->converged = false;
-    result->json["status"] = ToString(SolveStatus::kNonFinite);
-    result->log += log.str();
-    return;
-  }
-  if (worst <= 0.5) return;
-  std::ostringstream log;
-  log << std::setprecision(3) << "cosserat: warning: the grid resolves the shape coarsely: "
-      << "the curvature turns the section by " << worst << " rad per segment near s = "
-      << worst_s << " m, where a constant-curvature arc's tip is off by about "
-      << 100 * 8e-3 * std::pow(worst, 4) << " % of the length (RK4 in s, fourth order in κ h); "
-      << "rod.nodes ≥ " << static_cast<long>(std::ceil(4.0 * worst_k * problem.rod.length)) + 1
-      << " keeps it below 0.25 rad\n";
-  result->log += log.str();
+  auto rows = [](const nlohmann::ordered_json& a) {
+    std::vector<Vec3> out;
+    for (const auto& r : a)
+      out.emplace_back(r[0].get<double>(), r[1].get<double>(), r[2].get<double>());
+    return out;
+  };
+  const GridResolution g = CheckGrid(nodes["s"].get<std::vector<double>>(),
+                                     rows(nodes["position"]), rows(nodes["curvature"]),
+                                     problem.rod.length);
+  result->log += g.log;
+  if (!g.ran_away) return;
+  result->converged = false;
+  result->json["status"] = ToString(SolveStatus::kNonFinite);
 }
 
-}  // namespace cosserat::run::detail
+}  // namespace cosserat::run

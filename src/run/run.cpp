@@ -1,11 +1,12 @@
 #include "cosserat/run/run.hpp"
 
+#include "cosserat/run/grid_resolution.hpp"
+
 #include <cmath>
 #include <string>
 
 #include "bending_stress_report.hpp"
 #include "contact_report.hpp"
-#include "grid_resolution.hpp"
 #include "scale_warnings.hpp"
 #include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/run/run_assembly.hpp"
@@ -76,7 +77,7 @@ void ObstacleHint(const io::Problem& problem, Result* result) {
 Result Run(const io::Problem& problem, const RunOptions& options) {
   Result result = Dispatch(problem, options);
   RefuseNonFiniteAnswers(&result);
-  detail::CheckGridResolution(problem, &result);
+  CheckGridResolution(problem, &result);
   ObstacleHint(problem, &result);
   detail::AddContactReport(problem, &result);
   detail::AddFrameContactForces(problem, &result);

@@ -485,10 +485,10 @@ cosserat_cli_test(NAME modulus_in_mpa ARGS solve "${_cli_dir}/modulus_in_mpa.jso
 # (1e9 Pa in a gel rod's chamber, 90 rad per segment, "converged" with its tip at 1e255 m) is
 # non_finite.
 cosserat_cli_test(NAME arc_on_a_coarse_grid ARGS solve "${_cli_dir}/arc_on_a_coarse_grid.json"
-                  CODE 0 STDERR "warning: the grid resolves the shape coarsely: the curvature turns the section by 0.75 rad per segment.*about 0.253 % of the length.*rod.nodes ≥ 25")
+                  CODE 0 STDERR "warning: the grid resolves the shape coarsely: the bending turns the section by 0.75 rad per segment.*about 0.253 % of the length.*rod.nodes ≥ 25")
 cosserat_cli_test(NAME chamber_pressure_runaway
                   ARGS solve "${_cli_dir}/chamber_pressure_runaway.json" CODE 1
-                  STDOUT "\"status\": \"non_finite\"" STDERR "its shot ran away.*90 rad per segment.*status non_finite")
+                  STDOUT "\"status\": \"non_finite\"" STDERR "its shot ran away.*turns the section by 90 rad on it.*status non_finite")
 cosserat_cli_test(NAME soft_rod_coarse_se3 ARGS solve "${_cli_dir}/soft_rod_coarse_se3.json" CODE 1
                   STDERR "load_stepping_failed.*hint: the load steps stopped short.*rod.nodes, now 41")
 cosserat_cli_test(NAME tendon_pulled_too_hard ARGS solve "${_cli_dir}/tendon_pulled_too_hard.json"

@@ -99,6 +99,16 @@ class ProblemFiles(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "got JSON text, expected a file path"):
             cosserat.solve(text)
 
+    def test_the_static_solver_checks_its_grid_as_the_command_does(self):
+        # A shot that ran away (a gel rod's chamber at 1e9 Pa: "converged", tip at 1e255 m) is
+        # non_finite, and a coarse grid for the bend warns, as from cosserat.solve.
+        runaway = cosserat.StaticSolver("tests/cli/chamber_pressure_runaway.json")
+        with self.assertWarnsRegex(RuntimeWarning, "its shot ran away"):
+            self.assertEqual(runaway.solve().status, "non_finite")
+        coarse = cosserat.StaticSolver("tests/cli/arc_on_a_coarse_grid.json")
+        with self.assertWarnsRegex(RuntimeWarning, "grid resolves the shape coarsely"):
+            self.assertTrue(coarse.solve().converged)
+
     def test_non_finite_loads_are_refused(self):
         loads = cosserat.Loads()
         loads.tip_force = [math.nan, 0, 0]
