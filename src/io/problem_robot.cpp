@@ -166,13 +166,12 @@ void ParseActuation(const ObjectReader& a, int tendons, int chambers, int jammin
 /// A pressure acts through the section (an inflated tube, a pressure-dependent modulus, a
 /// jamming tube): on a rod whose section ignores it, it silently did nothing (a pneumatic finger
 /// written with "pressure" where its chambers' "chamber_pressure" was meant). Reported.
-void CheckPressureIsRead(const ObjectReader& a, const Problem& p) {
-  if (!a.Has("pressure") || p.robot.actuation.pressure == 0.0 || !p.rod.section) return;
-  Actuation unpressurised = p.robot.actuation;
+void CheckPressureIsRead(const ObjectReader& a, const RodModel& rod, const Actuation& actuation) {
+  if (!a.Has("pressure") || actuation.pressure == 0.0 || !rod.section) return;
+  Actuation unpressurised = actuation;
   unpressurised.pressure = 0.0;
-  const double s = 0.5 * p.rod.length;
-  if (p.rod.section->At(s, p.robot.actuation).stiffness ==
-      p.rod.section->At(s, unpressurised).stiffness)
+  const double s = 0.5 * rod.length;
+  if (rod.section->At(s, actuation).stiffness == rod.section->At(s, unpressurised).stiffness)
     a.Reject("pressure",
              "a rod.stiffness_profile that depends on it (\"pressure_modulus\", \"inflated\" or "
              "\"jamming\"; the chambers' pressures are \"chamber_pressure\"), or no pressure");
@@ -328,7 +327,7 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
   const int jamming = JammingSegments(top);
   if (const auto a = ReadObject(robot, "actuation", Presence::kOptional)) {
     ParseActuation(*a, tendons, chambers, jamming, &p->robot.actuation, &p->robot.tendon_lengths);
-    if (!profile_pressure) CheckPressureIsRead(*a, *p);
+    if (!profile_pressure) CheckPressureIsRead(*a, p->rod, p->robot.actuation);
     // One pressure: the profile's and the actuation's must agree when both are given (the
     // actuation's silently won).
     if (profile_pressure && a->Has("pressure") && p->robot.actuation.pressure != *profile_pressure)
@@ -353,12 +352,17 @@ ActuationParse ParseActuationObject(const nlohmann::json& object, const Problem&
     report.Expected(path, "an object with the keys of robot.actuation", detail::Describe(object));
   } else {
     const auto* jamming = dynamic_cast<const JammingSection*>(problem.rod.section.get());
+    // Left out, the pressures the section reads stay the problem's (its stiffness profile's, as
+    // in a file); tensions and chamber pressures are zero, as in a file.
     Actuation a;
-    detail::ParseActuation(detail::ObjectReader(object, path, &report),
-                           static_cast<int>(problem.rod.tendons.size()),
+    a.pressure = problem.robot.actuation.pressure;
+    a.jamming_pressure = problem.robot.actuation.jamming_pressure;
+    const detail::ObjectReader reader(object, path, &report);
+    detail::ParseActuation(reader, static_cast<int>(problem.rod.tendons.size()),
                            static_cast<int>(problem.rod.chambers.size()),
                            jamming ? static_cast<int>(jamming->segments().size()) : 0, &a,
                            nullptr);
+    detail::CheckPressureIsRead(reader, problem.rod, a);
     if (report.empty()) out.actuation = a;
   }
   out.errors = report.TakeLines();

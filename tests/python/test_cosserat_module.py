@@ -316,6 +316,18 @@ class Dynamics(unittest.TestCase):
         np.testing.assert_array_equal(objects.state()["position"], dicts.state()["position"])
         with self.assertRaisesRegex(ValueError, r"actuation\.tension: expected one value"):
             dicts.solve(actuation={"tension": [1.0]})
+        # Left out, the pressures the section reads stay the problem's (the jamming robot kept
+        # jammed, not silently released to a tip 0.4 m off); a pressure no section reads is
+        # refused, as in a file.
+        jammed = cosserat.StaticSolver("robots/jamming_virtual_joints.json")
+        self.assertTrue(jammed.solve().converged)
+        tip = jammed.state()["position"][-1]
+        self.assertTrue(jammed.solve(actuation={"tension": [1.0]}).converged)
+        np.testing.assert_array_equal(jammed.state()["position"][-1], tip)
+        with self.assertRaisesRegex(ValueError, r"actuation\.pressure: expected a "
+                                                r"rod\.stiffness_profile that depends on it"):
+            cosserat.StaticSolver("robots/pneumatic_finger.json").solve(
+                actuation={"pressure": 1.5e5})
 
     def test_stepper_runs_a_problem_as_the_command_does(self):
         # A tendon robot released from zero tension (its initial actuation) to the robot's

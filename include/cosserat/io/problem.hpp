@@ -160,7 +160,9 @@ ParseResult LoadProblemFile(const std::string& path);
 /// An actuation given as a JSON object with the keys of a problem file's robot.actuation
 /// ("tension", "pressure", "chamber_pressure", "jamming_pressure"; not "length"), checked by the
 /// file's rules against `problem`'s tendons, chambers and jamming segments: a controller's input
-/// for one step. Errors name their field under `path`.
+/// for one step. Left out, the pressures the section reads ("pressure", "jamming_pressure") stay
+/// the problem's, and tensions and chamber pressures are zero. Errors name their field under
+/// `path`.
 struct ActuationParse {
   std::optional<Actuation> actuation;  ///< set exactly when there are no errors
   std::vector<std::string> errors;
