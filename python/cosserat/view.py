@@ -96,8 +96,9 @@ def _section_area(rod):
     return sec.get("area") if shape == "explicit" else None
 
 
-# Boundaries that hold the tip: a tip force there moves nothing, a uniform load does.
-HELD_TIP_BOUNDARIES = ("pinned-pinned", "clamped-clamped", "clamped-pinned")
+# Columns: the tip is held sideways, so only a tip force's axial part moves the rod and a
+# uniform load is offered beside it.
+COLUMN_BOUNDARIES = ("pinned-pinned", "clamped-clamped", "clamped-pinned")
 
 
 # The problem file's actuation names and cosserat.Actuation's attributes for them.
@@ -206,7 +207,13 @@ class LiveRod:
                           -force, force, f[k])
             return
         loads = self.spec.get("loads", {})
-        if self._tip_held():  # a uniform load: ± the tip-force scale per metre, or 2× the weight
+        anchored = "anchor" in self.spec  # the tip held in place: a tip force moves nothing
+        if not anchored:
+            tip = loads.get("tip_force", [0, 0, 0])
+            for k, axis in enumerate("xyz"):
+                self._add(f"tip_force_{axis}", f"tip force {axis}", "N", -force, force, tip[k])
+        if anchored or self.spec.get("boundary") in COLUMN_BOUNDARIES:
+            # A uniform load: ± the tip-force scale per metre, or twice the weight or the file's.
             rod = self._rod()
             area, rho = _section_area(rod), rod.get("material", {}).get("density", 0.0)
             weight = rho * (area or 0.0) * np.linalg.norm(loads.get("gravity", [0, 0, 0]))
@@ -215,10 +222,6 @@ class LiveRod:
             for k, axis in enumerate("xyz"):
                 self._add(f"distributed_force_{axis}", f"uniform load {axis}", "N/m", -limit,
                           limit, q[k])
-        else:
-            tip = loads.get("tip_force", [0, 0, 0])
-            for k, axis in enumerate("xyz"):
-                self._add(f"tip_force_{axis}", f"tip force {axis}", "N", -force, force, tip[k])
         robot = self.spec.get("robot", {})
         act = robot.get("actuation", {})
         for i, t in enumerate(robot.get("tendons", [])):
@@ -262,17 +265,12 @@ class LiveRod:
         return None
 
     # -- stepping ---------------------------------------------------------------------------
-    def _tip_held(self):
-        """Whether the rod's tip is held (an anchor or a held-tip boundary)."""
-        return "assembly" not in self.spec and (
-            "anchor" in self.spec or self.spec.get("boundary") in HELD_TIP_BOUNDARIES)
-
     def _loads(self, v):
         loads = copy.deepcopy(self.spec.get("loads", {}))
         if "tip_force_x" in v:
             loads["tip_force"] = [v["tip_force_x"], v["tip_force_y"], v["tip_force_z"]]
             loads.setdefault("tip_force_frame", "world")
-        else:
+        if "distributed_force_x" in v:
             loads["distributed_force"] = [v[f"distributed_force_{a}"] for a in "xyz"]
         return loads
 
@@ -346,7 +344,7 @@ class LiveRod:
                 version = self.control_version
             if "tip_force_x" in v:
                 loads.tip_force = [v["tip_force_x"], v["tip_force_y"], v["tip_force_z"]]
-            else:
+            if "distributed_force_x" in v:
                 loads.distributed_force = [v[f"distributed_force_{a}"] for a in "xyz"]
             for key, value in _control_actuation(v, n_tendons, n_chambers, n_jam).items():
                 attribute = ACTUATION_ATTRIBUTE[key]
