@@ -111,6 +111,7 @@ def solve(problem, nodes=False):
                   of an assembly {"t": (F,), "rods": [(F, N_i, 3) per rod]}
       nodes_csv   with nodes=True: the --csv table as text
       contact_force, contact_total_force   with contact surfaces (N/m per node; N)
+      rods        an assembly's statics: per rod, its name, s (N_i,) and position (N_i x 3), m
     """
     out = _core.solve(_as_problem(problem), nodes)
     result = out["result"]
@@ -120,6 +121,10 @@ def solve(problem, nodes=False):
         out["trajectory"] = _arrays(result["trajectory"])
     if isinstance(result.get("envelope"), dict):
         out["envelope"] = _arrays(result["envelope"])
+    rods = result.get("assembly", {}).get("rods") if isinstance(result.get("assembly"), dict) \
+        else None
+    if isinstance(rods, list) and all(isinstance(r.get("nodes"), dict) for r in rods):
+        out["rods"] = [dict(_arrays(r["nodes"]), name=r.get("name")) for r in rods]
     if nodes and out.get("nodes_csv"):
         frames = _frames(out["nodes_csv"])
         if frames is not None:

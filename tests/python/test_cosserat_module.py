@@ -99,6 +99,16 @@ class ProblemFiles(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "got JSON text, expected a file path"):
             cosserat.solve(text)
 
+    def test_assembly_statics_give_each_rod_as_arrays(self):
+        # The guided beam: per rod, its name, s and positions as NumPy arrays, the result's own
+        # numbers, starting at the file's bases (x = -0.05 and 0.05 m).
+        out = cosserat.solve("examples/guided_beam.json")
+        self.assertEqual([r["name"] for r in out["rods"]], ["left", "right"])
+        for rod, doc, x in zip(out["rods"], out["result"]["assembly"]["rods"], (-0.05, 0.05)):
+            self.assertEqual(rod["position"].shape, (len(doc["nodes"]["s"]), 3))
+            np.testing.assert_array_equal(rod["position"], np.asarray(doc["nodes"]["position"]))
+            np.testing.assert_array_equal(rod["position"][0], [x, 0, 0])
+
     def test_the_static_solver_checks_its_grid_as_the_command_does(self):
         # A shot that ran away (a gel rod's chamber at 1e9 Pa: "converged", tip at 1e255 m) is
         # non_finite, and a coarse grid for the bend warns, as from cosserat.solve.
