@@ -364,6 +364,23 @@ TEST(Modes, ShootingKeepsBothBendingPlanesUnderASmallLateralLoad) {
   }
 }
 
+TEST(Modes, ShootingListsEachPlaneOnceWhenThePairsAreSplitBy3e5) {
+  // A 2 × 2.00006 mm steel rectangle: each bending pair split by 3e-5 (h ratio), more than the
+  // 1e-5 within which a cluster's extra small singular values are listed as roots. Each
+  // neighbour also makes a singular value small at the other's ω, and counting those listed
+  // both halves twice (113.365 113.365 113.368 113.368, the fourth pair pushed out); each plane
+  // once now: pairs split by 3e-5 (to 5e-6, the scan's refinement) and the fourth pair at
+  // Euler–Bernoulli's (10.9955/1.8751)² of the first (1e-3: shear and the grid).
+  const Material m = Material::FromShearModulus(200e9, 80e9, 8000);
+  const RodModel rod = RodModel::Uniform(0.5, CrossSection::Rectangle(0.002, 0.00200006), m);
+  const ModalResult r = ShootingModes(rod, lie::SE3(), {}, 41, 8);
+  ASSERT_TRUE(r.converged()) << ToString(r.status);
+  ASSERT_EQ(r.modes.size(), 8u);
+  for (int k = 0; k < 8; k += 2)
+    EXPECT_NEAR(r.modes[k + 1].omega / r.modes[k].omega - 1, 3e-5, 5e-6) << k;
+  EXPECT_NEAR(r.modes[6].omega / r.modes[0].omega, std::pow(10.9955 / 1.8751, 2), 1e-3 * 34.4);
+}
+
 TEST(Modes, ShootingCallsNoRoundOffDipFlutter) {
   // High up the scan one shot amplifies round-off by e^{λL}: a 0.5 m, 1 mm steel cantilever
   // under a 0.01 N lateral follower force asked for 25 frequencies shows a dip of det B near

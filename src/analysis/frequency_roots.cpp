@@ -155,12 +155,20 @@ void AddRoots(const FrequencyShooting& fs, double lo, double hi, int* budget,
       if (dips) dips->push_back(wc);
       continue;
     }
-    // Still more small singular values than roots: the rest lie within 1e-5 ω, closer than the
-    // neighbour search separates from sign flicker (a cantilever's two bending planes under a
-    // 0.01 N lateral tip force, 1e-6 ω apart, one of each pair was lost and the list skipped
-    // to the next pair); they are listed at ω with the further null vectors.
+    // Still more small singular values than roots: those no other candidate or known root
+    // within 5e-5 ω explains (a neighbour there also makes a singular value small here) lie
+    // within 1e-5 ω, closer than the neighbour search separates from sign flicker: a
+    // cantilever's two bending planes under a 0.01 N lateral tip force, 1e-6 ω apart, lost one
+    // of each pair and the list skipped to the next pair. They are listed at ω with the further
+    // null vectors.
+    int explained = 0;
+    auto near = [&](double w) {
+      return std::abs(w - wc) > 1e-5 * wc && std::abs(w - wc) <= 5e-5 * wc;
+    };
+    for (const Candidate& c : found) explained += near(c.omega) ? 1 : 0;
+    for (const Root& r : *roots) explained += near(r.omega) ? 1 : 0;
     const int simple = static_cast<int>(here.size());
-    const int mult = std::max({simple, null, small});
+    const int mult = std::max({simple, null, explained > 0 ? 0 : small});
     for (int r = 0; r < mult; ++r) {
       const double w = r < simple ? here[r] : wc;
       const int vec = r < simple ? 0 : r - simple + 1;
