@@ -86,6 +86,12 @@ std::string Summary(const io::Problem& problem, const AssemblySummary& s,
   if (s.status == SolveStatus::kLoadSteppingFailed)
     line << "; the continuation reached " << std::setprecision(3) << s.load_fraction
          << " of the loads: the state and residual written are that level's";
+  // Not even the first load step: a body free to move against its load has no equilibrium.
+  if (s.status == SolveStatus::kLoadSteppingFailed && s.load_fraction == 0.0)
+    line << "\ncosserat: hint: no part of the loads found an equilibrium, as when a body can "
+            "move freely against them (a mechanism: a moment about the line through pinned "
+            "tips, a turn about a torsion-free tip's axis, a body on one pinned rod); hold it "
+            "against that motion with more rods or clamped tips";
   return line.str();
 }
 

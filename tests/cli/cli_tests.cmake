@@ -501,6 +501,10 @@ cosserat_cli_test(NAME tendon_pulled_too_hard ARGS solve "${_cli_dir}/tendon_pul
 # turned 0.1 rad about z within the rounding (the C++ round trip, tests/test_assembly_io.cpp,
 # reaches 1e-10 m at full precision).
 set(_cli_robots "${CMAKE_CURRENT_LIST_DIR}/../../robots")
+# A mechanism (one rod pinned to a plate loaded by a moment about the pin) finds no equilibrium
+# for any part of its load: the log says what to look for.
+cosserat_cli_test(NAME assembly_mechanism ARGS solve "${_cli_dir}/assembly_mechanism.json" CODE 1
+                  STDERR "reached 0 of the loads.*hint: no part of the loads found an equilibrium.*mechanism")
 cosserat_cli_test(NAME assembly_stewart_gough_inverse ARGS solve "${_cli_robots}/stewart_gough.json"
                   CODE 0 STDOUT "\"pose_jacobian\": \\[[^]]*[0-9]"
                   STDERR "converged \\(assembly, inverse\\), [0-9]+ iterations.*platform at \\[0, 0\\.02, 0\\.45\\] m, rotation vector \\[0, 0, 0\\.1\\] rad, lengths \\[0\\.4[0-9]+, 0\\.4[0-9]+, 0\\.4[0-9]+, 0\\.4[0-9]+, 0\\.4[0-9]+, 0\\.4[0-9]+\\] m")
