@@ -71,6 +71,8 @@ class Stepper(_core.Stepper):
         problem = _as_problem(problem)
         super().__init__(problem, dt, spatial_scheme)
         self._problem = problem  # the rules a dict actuation is checked by
+        # Until a base_twist_B is given or the warning below is out: the clamp's last pose.
+        self._clamp = [np.asarray(problem.base_position), np.asarray(problem.base_rotation)]
         _warn_before_stepping(problem, dt)
 
     def initialize_at_rest(self, loads=None, actuation=None):
@@ -79,28 +81,26 @@ class Stepper(_core.Stepper):
 
     def step(self, loads=None, base_position=None, base_rotation=None, base_twist_B=None,
              base_wrench_B=None, actuation=None):
-        if base_twist_B is not None:
-            self._twist_given = True
-        elif (base_position is not None or base_rotation is not None) and \
-                not getattr(self, "_twist_given", False):
-            self._warn_if_base_moves(base_position, base_rotation)
+        if self._clamp is not None:
+            self._check_clamp_twist(base_position, base_rotation, base_twist_B)
         return super().step(_loads_from(loads, self), base_position, base_rotation,
                             base_twist_B, base_wrench_B, _actuation_from(actuation, self._problem))
 
-    def _warn_if_base_moves(self, base_position, base_rotation):
+    def _check_clamp_twist(self, base_position, base_rotation, base_twist_B):
         """A clamp moved with no base_twist_B ever given: the step takes the twist as an input
         (zero), not from the change of pose, so the rod is dragged, not carried. Warned once."""
-        state = self.state()
-        moved = (base_position is not None and
-                 not np.allclose(base_position, state["position"][0], rtol=0, atol=1e-12)) or \
-                (base_rotation is not None and
-                 not np.allclose(base_rotation, state["rotation"][0], rtol=0, atol=1e-12))
-        if moved:
-            self._twist_given = True  # once
+        if base_twist_B is not None:
+            self._clamp = None
+            return
+        for k, given in enumerate((base_position, base_rotation)):
+            if given is None or np.array_equal(given, self._clamp[k]):
+                continue
+            self._clamp = None
             warnings.warn("base_position/base_rotation move the clamp but no base_twist_B was "
                           "given: the step takes the base's twist as an input (zero here), not "
                           "from the change of pose; pass the clamp's [angular; linear] velocity "
                           "in its own frame as base_twist_B", RuntimeWarning, stacklevel=3)
+            return
 
     initialize_at_rest.__doc__ = (_core.Stepper.initialize_at_rest.__doc__ or "") + (
         " loads and actuation may also be dicts with the problem file's keys.")
