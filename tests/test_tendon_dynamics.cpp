@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <optional>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -57,15 +58,20 @@ TEST(TendonDynamics, TensionStepWithDampingSettlesToTheStaticSolution) {
   }
 }
 
+/// robots/tendon_three_tendon.json, parsed (the file is the repository's: it must parse).
+io::Problem ThreeTendonRobot() {
+  const io::ParseResult parsed =
+      io::LoadProblemFile(std::string(COSSERAT_SOURCE_DIR) + "/robots/tendon_three_tendon.json");
+  if (!parsed.ok()) throw std::runtime_error(parsed.errors.front());
+  return *parsed.problem;
+}
+
 // A controller's episode reset: InitializeAtRest starts a new run, and the same inputs must give
 // the same run, bit for bit, whatever an earlier run did. The three-tendon robot under random
 // tension jumps adds shooting pieces when a step fails (the stepper's own escalation); a reset
 // that kept them shot the second run in other pieces and moved its tip by ~5e-7 m.
 TEST(TendonDynamics, InitializeAtRestStartsTheSameRunAgain) {
-  const io::ParseResult parsed =
-      io::LoadProblemFile(std::string(COSSERAT_SOURCE_DIR) + "/robots/tendon_three_tendon.json");
-  ASSERT_TRUE(parsed.ok());
-  const io::Problem& p = *parsed.problem;
+  const io::Problem p = ThreeTendonRobot();
   Bdf2ShootingStepper stepper(p.rod, p.nodes, run::DynamicsOptions(p));
   std::mt19937 random(1);
   std::uniform_real_distribution<double> tension(0.0, 3.0);
@@ -98,10 +104,7 @@ TEST(TendonDynamics, InitializeAtRestStartsTheSameRunAgain) {
 // it (a step in one piece costs 4–7× less than in 20 here), and a run restored half-way repeats the
 // original bit for bit, drops included.
 TEST(TendonDynamics, PiecesAddedForASpikeAreDroppedAfterWholeSteps) {
-  const io::ParseResult parsed =
-      io::LoadProblemFile(std::string(COSSERAT_SOURCE_DIR) + "/robots/tendon_three_tendon.json");
-  ASSERT_TRUE(parsed.ok());
-  const io::Problem& p = *parsed.problem;
+  const io::Problem p = ThreeTendonRobot();
   Bdf2ShootingStepper stepper(p.rod, p.nodes, run::DynamicsOptions(p));
   StepInput in;
   in.loads = p.loads;
