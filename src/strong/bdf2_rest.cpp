@@ -151,9 +151,7 @@ void Bdf2ShootingStepper::StartHistoryAtRest(const StepInput& input) {
 
 void Bdf2ShootingStepper::AddPiecesForTension() {
   if (!automatic_pieces_) return;
-  const double exponent = SingleShootingExponent(model_, options_.dt, actuation_, run_.state);
-  const int wanted =
-      std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent), MaxAutomaticPieces());
+  const int wanted = ChosenPieces();
   if (wanted > ShootingPieces()) SetShootingPieces(wanted);
 }
 

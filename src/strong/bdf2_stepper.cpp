@@ -123,9 +123,7 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   automatic_pieces_ = options_.shooting_segments == 0;
   int pieces = options_.shooting_segments;
   if (automatic_pieces_) {
-    const double exponent = SingleShootingExponent(model_, options_.dt);
-    pieces =
-        std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent), MaxAutomaticPieces());
+    pieces = PiecesFor(SingleShootingExponent(model_, options_.dt));
   }
   if (pieces > n - 1)  // PlanSteps() leaves as many steps as pieces
     throw std::invalid_argument("Bdf2Options: shooting_segments (" + std::to_string(pieces) +
@@ -135,10 +133,13 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
   SetShootingPieces(pieces);
 }
 
-int Bdf2ShootingStepper::ChosenPieces() const {
-  const double exponent = SingleShootingExponent(model_, options_.dt, actuation_, run_.state);
+int Bdf2ShootingStepper::PiecesFor(double exponent) const {
   return std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent),
                   MaxAutomaticPieces());
+}
+
+int Bdf2ShootingStepper::ChosenPieces() const {
+  return PiecesFor(SingleShootingExponent(model_, options_.dt, actuation_, run_.state));
 }
 
 void Bdf2ShootingStepper::DropUnneededPieces() {
@@ -277,9 +278,7 @@ void Bdf2ShootingStepper::ApplyActuation(const Actuation& a) {
   // asks for now, rather than after a failed step (fewer only after whole steps:
   // DropUnneededPieces).
   if (automatic_pieces_) {
-    const double exponent = SingleShootingExponent(model_, options_.dt, actuation_);
-    const int wanted =
-        std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent), MaxAutomaticPieces());
+    const int wanted = PiecesFor(SingleShootingExponent(model_, options_.dt, actuation_));
     if (wanted > ShootingPieces()) SetShootingPieces(wanted);
   }
 }

@@ -176,9 +176,8 @@ class Bdf2ShootingStepper {
     return static_cast<int>(grid_.size()) - 1 -
            static_cast<int>(std::count(pair_start_.begin(), pair_start_.end(), 1));
   }
-  /// The automatic choice of multiple-shooting pieces for the rod now: one piece when the
-  /// shot's exponent (dt, actuation, the state's tension) is at most 10, else
-  /// SuggestedShootingSegments, at most MaxAutomaticPieces().
+  /// The automatic choice of multiple-shooting pieces for the rod now: PiecesFor the shot's
+  /// exponent with dt, the actuation and the state's tension.
   int ChosenPieces() const;
   /// The current state at the stage points of the spatial scheme with its quadrature weights:
   /// what the free functions of rod_integrals.hpp (energy, momentum, mass) integrate.
@@ -349,6 +348,9 @@ class Bdf2ShootingStepper {
   void DropUnneededPieces();
   /// The most pieces the automatic choice goes to: 32, and no more than the grid's segments.
   int MaxAutomaticPieces() const;
+  /// The automatic choice for a shot's exponent: one piece up to 10, else
+  /// SuggestedShootingSegments, at most MaxAutomaticPieces().
+  int PiecesFor(double exponent) const;
   void SetImplicitCompliance(double c0);
   /// The sample points of grid_ with their tendon offsets and sections (constructor, Grow()).
   void SampleGrid();
