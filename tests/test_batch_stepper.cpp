@@ -94,6 +94,89 @@ TEST(BatchStepper, AnInputOneRodRefusesIsThrownBeforeAnyRodMoves) {
   EXPECT_EQ(batch.Step(inputs.data()), 4);
 }
 
+/// M rods of the 0.5 m steel rod (21 nodes, dt 2 ms) at rest under gravity along −x.
+struct RestingBatch {
+  testing::SteelRod rod{0.5, 0.001};
+  Bdf2Options options = [] {
+    Bdf2Options o;
+    o.dt = 2e-3;
+    return o;
+  }();
+  StepInput rest = [] {
+    StepInput r;
+    r.loads.gravity_W = Vec3(-9.81, 0, 0);
+    return r;
+  }();
+  BatchStepper batch;
+  explicit RestingBatch(int count) : batch(rod.model(), 21, options, count, 2) {}
+
+  /// Steps k0 … k0 + steps − 1 under TipForce; every rod's tip after the last.
+  std::vector<Vec3> Run(int k0, int steps) {
+    std::vector<StepInput> inputs(batch.count(), rest);
+    for (int k = k0; k < k0 + steps; ++k) {
+      for (int i = 0; i < batch.count(); ++i) inputs[i].loads.tip_force = TipForce(i, k);
+      EXPECT_EQ(batch.Step(inputs.data()), batch.count());
+    }
+    std::vector<Vec3> tips;
+    for (int i = 0; i < batch.count(); ++i) tips.push_back(batch.rod(i).state().tip_position_W());
+    return tips;
+  }
+};
+
+TEST(BatchStepper, ARestoredBatchRepeatsItsRunBitForBit) {
+  // Saved after 10 steps, the next 15 are the truth; restored, the same 15 must repeat them
+  // exactly (the snapshot is the whole run: history, Jacobian factors, automatic pieces).
+  RestingBatch b(4);
+  ASSERT_EQ(b.batch.InitializeAtRest(b.rest), 4);
+  b.Run(0, 10);
+  const std::vector<Bdf2ShootingStepper::Snapshot> saved = b.batch.Save();
+  const std::vector<Vec3> first = b.Run(10, 15);
+  b.batch.Restore(saved);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(b.batch.rod(i).time(), saved[i].time) << i;
+  const std::vector<Vec3> again = b.Run(10, 15);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(first[i], again[i]) << i;
+}
+
+TEST(BatchStepper, RodsRolledOutFromALoneSteppersSnapshotContinueItsRun) {
+  // A sampling controller's rollouts: every rod from one measured state. Rod i under rod i's
+  // inputs must reach exactly what the lone stepper, never interrupted, reaches under them.
+  RestingBatch b(3);
+  std::vector<Bdf2ShootingStepper> lone(3, Bdf2ShootingStepper(b.rod.model(), 21, b.options));
+  StepInput input = b.rest;
+  for (auto& s : lone) ASSERT_TRUE(s.InitializeAtRest(b.rest).converged());
+  for (int k = 0; k < 12; ++k) {  // the measured past: rod 0's inputs, in every lone stepper
+    input.loads.tip_force = TipForce(0, k);
+    for (auto& s : lone) ASSERT_TRUE(s.Step(input).converged());
+  }
+  b.batch.RestoreAll(lone[0].Save());
+  for (int k = 12; k < 30; ++k)
+    for (int i = 0; i < 3; ++i) {
+      input.loads.tip_force = TipForce(i, k);
+      ASSERT_TRUE(lone[i].Step(input).converged());
+    }
+  const std::vector<Vec3> rolled = b.Run(12, 18);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(rolled[i], lone[i].state().tip_position_W()) << i;
+}
+
+TEST(BatchStepper, ASnapshotOneRodRefusesChangesNoRod) {
+  // A wrong count, or one snapshot of another grid among good ones: std::invalid_argument and
+  // every rod where it was (time and tip).
+  RestingBatch b(3);
+  ASSERT_EQ(b.batch.InitializeAtRest(b.rest), 3);
+  std::vector<Bdf2ShootingStepper::Snapshot> saved = b.batch.Save();
+  const std::vector<Vec3> tips = b.Run(0, 5);
+  EXPECT_THROW(b.batch.Restore({saved[0], saved[1]}), std::invalid_argument);
+  Bdf2ShootingStepper other_grid(b.rod.model(), 31, b.options);
+  ASSERT_TRUE(other_grid.InitializeAtRest(b.rest).converged());
+  saved[2] = other_grid.Save();
+  EXPECT_THROW(b.batch.Restore(saved), std::invalid_argument);
+  EXPECT_THROW(b.batch.RestoreAll(saved[2]), std::invalid_argument);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(b.batch.rod(i).time(), 5 * b.options.dt, 1e-15) << i;
+    EXPECT_EQ(b.batch.rod(i).state().tip_position_W(), tips[i]) << i;
+  }
+}
+
 TEST(BatchStepper, NoThreadsIsAnError) {
   const testing::SteelRod rod{0.5, 0.001};
   EXPECT_THROW(BatchStepper(rod.model(), 21, Bdf2Options{}, 4, 0), std::invalid_argument);

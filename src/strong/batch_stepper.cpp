@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 namespace cosserat {
 
@@ -29,6 +30,28 @@ int BatchStepper::Step(const StepInput* inputs) {
   // Every input is checked before any rod moves: a refused call changes nothing.
   for (std::size_t i = 0; i < rods_.size(); ++i) rods_[i]->RequireValidInput(inputs[i]);
   return EachRod([&](std::size_t i) { return rods_[i]->Step(inputs[i]); });
+}
+
+std::vector<Bdf2ShootingStepper::Snapshot> BatchStepper::Save() const {
+  std::vector<Bdf2ShootingStepper::Snapshot> out;
+  out.reserve(rods_.size());
+  for (const auto& rod : rods_) out.push_back(rod->Save());
+  return out;
+}
+
+void BatchStepper::Restore(const std::vector<Bdf2ShootingStepper::Snapshot>& snapshots) {
+  if (snapshots.size() != rods_.size())
+    throw std::invalid_argument("BatchStepper::Restore: expected " +
+                                std::to_string(rods_.size()) + " snapshots, got " +
+                                std::to_string(snapshots.size()));
+  // One model: a snapshot rod 0 accepts, every rod accepts.
+  for (const auto& s : snapshots) rods_[0]->RequireRestorable(s);
+  for (std::size_t i = 0; i < rods_.size(); ++i) rods_[i]->Restore(snapshots[i]);
+}
+
+void BatchStepper::RestoreAll(const Bdf2ShootingStepper::Snapshot& snapshot) {
+  rods_[0]->RequireRestorable(snapshot);
+  for (const auto& rod : rods_) rod->Restore(snapshot);
 }
 
 }  // namespace cosserat

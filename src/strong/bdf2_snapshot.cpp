@@ -45,14 +45,16 @@ std::uint64_t Bdf2ShootingStepper::ModelFingerprint() const {
   return h;
 }
 
-void Bdf2ShootingStepper::Restore(const Snapshot& s) {
-  // Automatic pieces may have grown since the snapshot: shoot in its pieces again.
-  if (automatic_pieces_ && s.junction_unknowns.size() != run_.junction_unknowns.size() &&
-      s.junction_unknowns.size() % 18 == 0 &&
-      static_cast<int>(s.junction_unknowns.size() / 18) < MaxAutomaticPieces())
-    SetShootingPieces(1 + static_cast<int>(s.junction_unknowns.size() / 18));
+bool Bdf2ShootingStepper::PiecesCanFollow(const Snapshot& s) const {
+  return automatic_pieces_ && s.junction_unknowns.size() % 18 == 0 &&
+         static_cast<int>(s.junction_unknowns.size() / 18) < MaxAutomaticPieces();
+}
+
+void Bdf2ShootingStepper::RequireRestorable(const Snapshot& s) const {
+  const bool pieces_fit =
+      s.junction_unknowns.size() == run_.junction_unknowns.size() || PiecesCanFollow(s);
   if (s.strain1.size() != run_.strain1.size() || s.state.size() != run_.state.size() ||
-      s.junction_unknowns.size() != run_.junction_unknowns.size())
+      !pieces_fit)
     throw std::invalid_argument(
         "Snapshot is from a stepper with another grid or another plan of the shot's steps (its "
         "dt and spatial scheme decide where segments are paired)");
@@ -62,6 +64,13 @@ void Bdf2ShootingStepper::Restore(const Snapshot& s) {
     throw std::invalid_argument(
         "Snapshot is from a stepper of another rod, grid, end conditions or plan of the shot's "
         "steps (dt, spatial scheme)");
+}
+
+void Bdf2ShootingStepper::Restore(const Snapshot& s) {
+  RequireRestorable(s);
+  // Automatic pieces may have changed since the snapshot: shoot in its pieces again.
+  if (s.junction_unknowns.size() != run_.junction_unknowns.size())
+    SetShootingPieces(1 + static_cast<int>(s.junction_unknowns.size() / 18));
   run_ = s;  // equal sizes: vectors copy into their existing storage (the factors included)
   history_ready_ = false;
   stage_strains_current_ = false;

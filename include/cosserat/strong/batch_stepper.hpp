@@ -29,6 +29,16 @@ class BatchStepper {
   /// Step would refuse (Bdf2ShootingStepper::RequireValidInput); InitializeAtRest likewise.
   int Step(const StepInput* inputs);
 
+  /// Every rod's run (Bdf2ShootingStepper::Save); allocates.
+  std::vector<Bdf2ShootingStepper::Snapshot> Save() const;
+  /// Rod i continues from snapshots[i] (count() of them). Throws std::invalid_argument, before
+  /// any rod changes, for a wrong count or a snapshot a rod would refuse
+  /// (Bdf2ShootingStepper::Restore).
+  void Restore(const std::vector<Bdf2ShootingStepper::Snapshot>& snapshots);
+  /// Every rod continues from one run, for instance a lone stepper's measured state that a
+  /// sampling controller rolls out under count() input sequences; the same checks.
+  void RestoreAll(const Bdf2ShootingStepper::Snapshot& snapshot);
+
   int count() const { return static_cast<int>(rods_.size()); }
   const Bdf2ShootingStepper& rod(int i) const { return *rods_[i]; }
   const StepSummary& summary(int i) const { return summaries_[i]; }

@@ -239,6 +239,8 @@ class Bdf2ShootingStepper {
 
   Snapshot Save() const { return run_; }
   void Restore(const Snapshot& snapshot);
+  /// Throws what Restore(snapshot) would throw, and changes nothing.
+  void RequireRestorable(const Snapshot& snapshot) const;
 
   // Per-stage section data (cosserat_rhs.hpp); public for the implementation's helpers.
   using Sample = rhs::SectionSample;
@@ -348,6 +350,8 @@ class Bdf2ShootingStepper {
   void DropUnneededPieces();
   /// The most pieces the automatic choice goes to: 32, and no more than the grid's segments.
   int MaxAutomaticPieces() const;
+  /// Whether automatic pieces can take the snapshot's number of pieces (Restore()).
+  bool PiecesCanFollow(const Snapshot& snapshot) const;
   /// The automatic choice for a shot's exponent: one piece up to 10, else
   /// SuggestedShootingSegments, at most MaxAutomaticPieces().
   int PiecesFor(double exponent) const;
