@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <variant>
 #include <vector>
 
 #include "cosserat/io/problem.hpp"
@@ -16,6 +17,7 @@
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/run/sweep.hpp"
 #include "cosserat/strong/batch_stepper.hpp"
+#include "binding_support.hpp"
 #include "problem_checks.hpp"
 
 namespace py = pybind11;
@@ -82,6 +84,38 @@ class PyBatchStepper {
     }
     py::gil_scoped_release release;
     return batch_->Step(inputs_.data());
+  }
+
+  std::vector<Bdf2ShootingStepper::Snapshot> Save() const {
+    RequireState();
+    return batch_->Save();
+  }
+  /// Rod i from snapshots[i], or every rod from one snapshot (a Stepper's, for rollouts from a
+  /// measured state); each then applies the inputs its run was applying (InputToContinue).
+  void Restore(const std::variant<Bdf2ShootingStepper::Snapshot,
+                                  std::vector<Bdf2ShootingStepper::Snapshot>>& snapshots) {
+    if (const auto* one = std::get_if<Bdf2ShootingStepper::Snapshot>(&snapshots)) {
+      batch_->RestoreAll(*one);  // throws std::invalid_argument (ValueError), changing nothing
+      inputs_.assign(batch_->count(), InputToContinue(*one, first_inputs_[0]));
+    } else {
+      const auto& each = std::get<std::vector<Bdf2ShootingStepper::Snapshot>>(snapshots);
+      batch_->Restore(each);
+      for (int i = 0; i < batch_->count(); ++i)
+        inputs_[i] = InputToContinue(each[i], first_inputs_[i]);
+    }
+    initialized_ = true;
+  }
+
+  /// (M, N, 3) node positions, m, world.
+  py::array_t<double> Positions() const {
+    RequireState();
+    const int M = batch_->count(), N = batch_->rod(0).state().size();
+    py::array_t<double> out({M, N, 3});
+    auto a = out.mutable_unchecked<3>();
+    for (int i = 0; i < M; ++i)
+      for (int j = 0; j < N; ++j)
+        for (int k = 0; k < 3; ++k) a(i, j, k) = batch_->rod(i).state().position_W[j](k);
+    return out;
   }
 
   Eigen::MatrixXd TipPositions() const {
@@ -187,6 +221,14 @@ void BindBatchStepper(py::module_& m) {
            "what is not given keeps its last value (at first the problem's). Returns how many "
            "rods converged.")
       .def("tip_positions", &PyBatchStepper::TipPositions, "(M, 3) tip positions, m, world.")
+      .def("positions", &PyBatchStepper::Positions, "(M, N, 3) node positions, m, world.")
+      .def("save", &PyBatchStepper::Save,
+           "A list of M Snapshots (each rod's run, as Stepper.save()) for restore(); allocates.")
+      .def("restore", &PyBatchStepper::Restore, py::arg("snapshots"),
+           "Rod i continues from snapshots[i] (a list of M), or every rod from one Snapshot (a "
+           "Stepper's of the same problem: M rollouts from one measured state), each with the "
+           "inputs its run was applying. A wrong count or a snapshot from another rod, grid or "
+           "plan of steps raises ValueError and changes nothing.")
       .def("converged", &PyBatchStepper::Converged,
            "Whether each rod's last step converged (a list of M bools); a rod whose step failed "
            "keeps the last state it reached (times says where).")

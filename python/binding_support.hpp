@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cosserat/state/rod_state.hpp"
+#include "cosserat/strong/bdf2_stepper.hpp"
 
 namespace cosserat::python {
 
@@ -33,6 +34,17 @@ inline Eigen::MatrixXd Stack(const std::vector<Vec6>& v) {
   Eigen::MatrixXd out(v.size(), 6);
   for (size_t i = 0; i < v.size(); ++i) out.row(i) = v[i].transpose();
   return out;
+}
+
+/// What a restored run applies next: the saved run's inputs. A snapshot of the state at rest,
+/// before any step, holds the inputs of the equilibrium (the preload): the steps apply the
+/// problem's (`first`), as after initialize_at_rest, with the base where the rest state had it.
+inline StepInput InputToContinue(const Bdf2ShootingStepper::Snapshot& snapshot,
+                                 const StepInput& first) {
+  if (snapshot.time != 0.0) return snapshot.last_input;
+  StepInput input = first;
+  input.base_pose = snapshot.last_input.base_pose;
+  return input;
 }
 
 /// A RodState as a dict of arrays: s (N), position (N×3), rotation (N×3×3 as a list of 3×3),

@@ -91,15 +91,7 @@ class PyStepper {
   Bdf2ShootingStepper::Snapshot Save() const { return run().Save(); }
   void Restore(const Bdf2ShootingStepper::Snapshot& snapshot) {
     stepper_->Restore(snapshot);  // throws std::invalid_argument (ValueError) if it can't
-    // What the saved run was applying. A snapshot of the state at rest, before any step, holds
-    // the inputs of the equilibrium (the preload): the steps apply the problem's, as after
-    // initialize_at_rest, with the base where the rest state had it.
-    input_ = snapshot.last_input;
-    if (stepper_->time() == 0.0) {
-      const lie::SE3 base = input_.base_pose;
-      input_ = first_input_;
-      input_.base_pose = base;
-    }
+    input_ = InputToContinue(snapshot, first_input_);
     has_state_ = true;
   }
   double time() const { return stepper_->time(); }

@@ -925,6 +925,59 @@ class Batches(unittest.TestCase):
         self.assertEqual(fresh.initialize_at_rest(), 2)
         self.assertEqual(fresh.tip_positions().shape, (2, 3))
 
+    def test_rollouts_from_a_steppers_snapshot_continue_its_run(self):
+        # A sampling controller: the measured rod (a Stepper pushed by 0.02 N for 8 steps) is
+        # copied into 3 rods, and rod i rolled out under its own force must reach exactly what
+        # the Stepper, never interrupted, reaches under it. step() with nothing given keeps the
+        # measured run's force, as the Stepper does.
+        p = cosserat.load_problem("examples/cantilever_release.json")
+        measured = cosserat.Stepper(p)
+        self.assertTrue(measured.initialize_at_rest().converged)
+        loads = measured.loads
+        loads.tip_force = np.array([0.0, 0.02, 0.0])
+        for _ in range(8):
+            self.assertTrue(measured.step(loads=loads).converged)
+        snapshot = measured.save()
+        batch = cosserat.BatchStepper(p, 3, threads=2)
+        batch.restore(snapshot)
+        self.assertEqual(batch.times, [measured.time] * 3)
+        self.assertEqual(batch.step(), 3)
+        forces = np.array([[0.0, 0.02 * i, -0.01 * i] for i in range(3)])
+        self.assertEqual(batch.step(tip_force=forces), 3)
+        for i in range(3):
+            lone = cosserat.Stepper(p)
+            lone.restore(snapshot)
+            self.assertTrue(lone.step().converged)
+            loads.tip_force = forces[i]
+            self.assertTrue(lone.step(loads=loads).converged)
+            np.testing.assert_array_equal(batch.tip_positions()[i], lone.tip_position())
+        # positions(): every node, the tip last.
+        nodes = batch.positions()
+        self.assertEqual(nodes.shape, (3, p.nodes, 3))
+        np.testing.assert_array_equal(nodes[:, -1, :], batch.tip_positions())
+        # save() and restore() of the batch repeat its run bit for bit.
+        saved = batch.save()
+        self.assertEqual(len(saved), 3)
+        first = [batch.step(tip_force=forces), batch.tip_positions()]
+        batch.restore(saved)
+        again = [batch.step(tip_force=forces), batch.tip_positions()]
+        self.assertEqual(first[0], again[0])
+        np.testing.assert_array_equal(first[1], again[1])
+        # A wrong count, or a snapshot of another grid: ValueError, and no rod moves.
+        before = batch.tip_positions()
+        with self.assertRaisesRegex(ValueError, "expected 3 snapshots, got 2"):
+            batch.restore(saved[:2])
+        with open("examples/cantilever_release.json") as f:
+            spec = json.load(f)
+        spec["rod"]["nodes"] += 10
+        other = cosserat.Stepper(spec)
+        self.assertTrue(other.initialize_at_rest().converged)
+        with self.assertRaisesRegex(ValueError, "another grid"):
+            batch.restore(saved[:2] + [other.save()])
+        np.testing.assert_array_equal(batch.tip_positions(), before)
+        with self.assertRaisesRegex(RuntimeError, "initialize_at_rest"):
+            cosserat.BatchStepper(p, 2, threads=1).save()
+
     def test_sweep_rows_are_the_solves_of_their_points(self):
         # Each row of a small study is what solving its point alone gives.
         study = {"format": "cosserat-study/1", "problem": "examples/cantilever.json",
