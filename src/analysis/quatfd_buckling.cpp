@@ -29,6 +29,7 @@ bool QuatFdBucklingOptions::IsValid(std::string* why) const {
   if (!(lambda_tolerance > 0 && lambda_tolerance < 0.1))
     return fail("lambda_tolerance: expected in (0, 0.1)");
   if (!(fd_step > 0 && fd_step <= 1e-2)) return fail("fd_step: expected in (0, 1e-2]");
+  if (!(max_turn > 0)) return fail("max_turn: expected > 0");
   return statics.IsValid(why);
 }
 
@@ -42,6 +43,10 @@ QuatFdBuckling::QuatFdBuckling(const RodModel& rod, const lie::SE3& base, const 
     throw std::invalid_argument(
         "base_end: quaternion-FD buckling needs a clamped base (the model's tip is free, and a "
         "pinned-free rod is a mechanism)");
+  // Added mass is inertia: it scales accelerations, not the static stiffness, which the model's
+  // ∂(acceleration)/∂q times the structural mass alone recovers.
+  path_.fixed.fluid.added_mass = 0.0;
+  path_.per_unit.fluid.added_mass = 0.0;
   const StaticLoads probe = path_.LoadsAt(1.0);
   if (IsFollower(probe) || IsFollower(path_.fixed))
     throw std::invalid_argument(
@@ -64,10 +69,32 @@ QuatFdBuckling::QuatFdBuckling(const RodModel& rod, const lie::SE3& base, const 
   model_.RestState(q_, v);
 }
 
-bool QuatFdBuckling::SolveAt(double lambda, const Eigen::VectorXd& start, Eigen::VectorXd* q) {
+bool QuatFdBuckling::SolveAt(double lambda, const Eigen::VectorXd& start, Eigen::VectorXd* q,
+                             bool on_path) {
   *q = start;
   ++solves_;
-  return quatfd::SolveStatics(&model_, path_.LoadsAt(lambda), *q, options_.statics).converged();
+  if (!quatfd::SolveStatics(&model_, path_.LoadsAt(lambda), *q, options_.statics).converged())
+    return false;
+  if (!on_path) return true;
+  // An equilibrium that no segment turns to by less than max_turn from the start is another
+  // branch, not the next point of the path (a rod bent by a lateral preload, jumping to its
+  // mirror image near the Euler load): refused, so that the step is halved.
+  double turn = 0.0;
+  for (int seg = 0; seg < model_.layout().segments; ++seg) {
+    const Vec4 a = start.segment<4>(Layout::P(seg)), b = q->segment<4>(Layout::P(seg));
+    const double c = std::min(1.0, std::abs(a.dot(b)) / (a.norm() * b.norm()));
+    turn = std::max(turn, 2.0 * std::acos(c));
+  }
+  return turn <= options_.max_turn;
+}
+
+bool QuatFdBuckling::TurnsBack(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+                               const Eigen::VectorXd& c) const {
+  double along = 0.0;  // (x_c − x_b)·(x_b − x_a) over the free vertices, m²
+  for (const int n : free_vertices_)
+    along += (c.segment<3>(Layout::X(n)) - b.segment<3>(Layout::X(n)))
+                 .dot(b.segment<3>(Layout::X(n)) - a.segment<3>(Layout::X(n)));
+  return along < 0.0;
 }
 
 Eigen::MatrixXd QuatFdBuckling::StiffnessFiniteDifference(const Eigen::VectorXd& q) {
@@ -244,7 +271,7 @@ QuatFdBucklingSummary QuatFdBuckling::FindCriticalLoad() {
   Eigen::VectorXd v(model_.size()), q_try(model_.size());
   b.q_lo.resize(model_.size());
   model_.RestState(b.q_lo, v);
-  if (!SolveAt(0.0, b.q_lo, &b.q_lo)) {
+  if (!SolveAt(0.0, b.q_lo, &b.q_lo, /*on_path=*/false)) {  // from the rest shape
     q_ = b.q_lo;
     return finish(BucklingStatus::kPathFailed);
   }
@@ -262,12 +289,16 @@ QuatFdBucklingSummary QuatFdBuckling::FindCriticalLoad() {
   out.scan_min_eigenvalue.push_back(b.mu_lo);
   // The scan: steps of λ_max/scan_steps, halved after a failed solve (up to 10 times in a row)
   // and grown back after a success, until the least eigenvalue is <= 0.
+  // A solve whose vertices move against the path's last step jumped to another branch (a rod
+  // bent by a lateral preload, landing near its unstable straight shape past the Euler load):
+  // it counts as failed too, so that the scan follows the path it is on.
   const double h_nominal = options_.lambda_max / options_.scan_steps;
   double h = h_nominal;
   int halvings = 0;
+  Eigen::VectorXd q_before = b.q_lo;  // the path's point before b.q_lo
   while (b.lo < options_.lambda_max) {
     const double lambda = std::min(options_.lambda_max, b.lo + h);
-    if (!SolveAt(lambda, b.q_lo, &q_try)) {
+    if (!SolveAt(lambda, b.q_lo, &q_try) || TurnsBack(q_before, b.q_lo, q_try)) {
       if (++halvings > 10) {
         q_ = b.q_lo;
         out.lambda_reached = b.lo;
@@ -285,10 +316,12 @@ QuatFdBucklingSummary QuatFdBuckling::FindCriticalLoad() {
       b.multiplicity = b.NearZero(e);
       break;
     }
+    q_before = b.q_lo;
     b.lo = lambda;
     b.mu_lo = e(0);
     b.q_lo = q_try;
     h = std::min(h_nominal, 2 * h);
+    halvings = 0;
   }
   out.lambda_reached = b.lo;
   if (std::isnan(b.hi)) {

@@ -47,6 +47,9 @@ struct QuatFdBucklingOptions {
   /// The stiffness from the model's exact banded ∂f/∂q (default), or by central differences of
   /// the forces (fd_step; the cross-check).
   bool finite_difference_stiffness = false;
+  /// The most any segment may turn between two points of the path, rad: a solve that turns one
+  /// further jumped to another branch, and its step is halved.
+  double max_turn = 0.3;
   quatfd::QuatFdStaticsOptions statics;
 
   /// On failure writes "<field>: <why>".
@@ -105,7 +108,13 @@ class QuatFdBuckling {
   const quatfd::QuatFdModel& model() const { return model_; }
 
  private:
-  bool SolveAt(double lambda, const Eigen::VectorXd& start, Eigen::VectorXd* q);
+  /// Statics at λ from `start`; on the path (the default), a solve that turns a segment by more
+  /// than max_turn counts as failed.
+  bool SolveAt(double lambda, const Eigen::VectorXd& start, Eigen::VectorXd* q,
+               bool on_path = true);
+  /// Whether the step from b to c moves the free vertices against the step from a to b.
+  bool TurnsBack(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+                 const Eigen::VectorXd& c) const;
   struct Bracket;
   /// Narrows the bracket of the stability loss to lambda_tolerance (FindCriticalLoad).
   void RefineBracket(Bracket* bracket);

@@ -82,9 +82,10 @@ inline PostBuckledCantilever PostBuckledCantileverAtModulus(double k) {
 constexpr PostBuckledCantilever kPostBuckled60DegreesPrinted = {1.152, 60 * kPi / 180, 0.593,
                                                                 0.741};
 
-/// The same at a given load ratio P/P_cr ≥ 1 (bisection on k in [0, 0.999]).
+/// The same at a given load ratio P/P_cr ≥ 1 (bisection on k in [0, 1 − 1e-12]: ratios up to
+/// about 89, a tip angle within 2e-4° of 180°).
 inline PostBuckledCantilever PostBuckledCantileverAtLoad(double ratio) {
-  double lo = 0, hi = 0.999;
+  double lo = 0, hi = 1 - 1e-12;
   for (int i = 0; i < 100; ++i) {
     const double mid = 0.5 * (lo + hi);
     (PostBuckledCantileverAtModulus(mid).load_ratio < ratio ? lo : hi) = mid;
