@@ -148,6 +148,17 @@ bool Newton(const QuatFdModel& model, const QuatFdStaticsOptions& opt, double be
   return w->residual < opt.tolerance;
 }
 
+/// Whether the move from b to c takes the vertices against the move from a to b.
+bool TurnsBack(const QuatFdModel& model, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+               const Eigen::VectorXd& c) {
+  double along = 0.0;  // m²
+  for (int n = 0; n <= model.layout().segments; ++n) {
+    const int i = L::X(n);
+    along += (c.segment<3>(i) - b.segment<3>(i)).dot(b.segment<3>(i) - a.segment<3>(i));
+  }
+  return along < 0.0;
+}
+
 }  // namespace
 
 bool QuatFdStaticsOptions::IsValid(std::string* why) const {
@@ -161,6 +172,7 @@ bool QuatFdStaticsOptions::IsValid(std::string* why) const {
   if (max_iterations < 1) return fail("max_iterations: expected at least 1");
   if (!(min_load_step > 0 && min_load_step <= 1)) return fail("min_load_step: expected in (0, 1]");
   if (max_load_steps < 1) return fail("max_load_steps: expected at least 1");
+  if (!(max_load_step > 0 && max_load_step <= 1)) return fail("max_load_step: expected in (0, 1]");
   return true;
 }
 
@@ -204,7 +216,7 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   model->set_loads(loads);
   const Eigen::VectorXd q_start = q;
   // A direct solve that lands beyond an obstacle jumped through it: the continuation then.
-  if (Newton(*model, options, beta, q, &w, &summary) &&
+  if (options.direct_solve && Newton(*model, options, beta, q, &w, &summary) &&
       HeldBack(*model, loads.contact, q_start, q))
     return finish(SolveStatus::kConverged);
   if (!options.load_stepping) return finish(SolveStatus::kMaxIterations);
@@ -214,8 +226,9 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   // load steps run out.
   Eigen::VectorXd q_ok(n), v(n);
   model->RestState(q_ok, v);
+  Eigen::VectorXd q_before = q_ok;  // the path's point before q_ok
   const auto follow = [&](const std::function<StaticLoads(double)>& at) {
-    double lambda = 0.0, step = 0.25;
+    double lambda = 0.0, step = std::min(0.25, options.max_load_step);
     while (lambda < 1.0) {
       if (summary.load_steps >= options.max_load_steps || step < options.min_load_step)
         return false;
@@ -224,10 +237,12 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
       model->set_loads(at(target));
       q = q_ok;
       if (Newton(*model, options, beta, q, &w, &summary) &&
-          HeldBack(*model, loads.contact, q_ok, q)) {
+          HeldBack(*model, loads.contact, q_ok, q) &&
+          !(options.keep_path_direction && TurnsBack(*model, q_before, q_ok, q))) {
         lambda = target;
+        q_before = q_ok;
         q_ok = q;
-        step *= 2.0;
+        step = std::min(2.0 * step, options.max_load_step);
       } else {
         step *= 0.5;
       }

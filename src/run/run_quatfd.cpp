@@ -93,13 +93,46 @@ quatfd::QuatFdStaticsSummary SolveQuatFdEquilibrium(const io::Problem& problem,
   return s;
 }
 
+namespace {
+
+/// The continuation from the rest shape, for a direct solve that landed on an unstable
+/// equilibrium: a column pressed past its Euler load, left straight against the lateral load
+/// that bends it, where the loaded path leads to the bent, stable shape. Kept when it is less
+/// unstable; the counts of both solves' iterations add up.
+void FollowLoadedPathIfUnstable(const io::Problem& problem, quatfd::QuatFdModel* model,
+                                quatfd::QuatFdStaticsSummary* s, StaticShootingSummary* summary,
+                                RodState* state, Eigen::VectorXd* q) {
+  quatfd::QuatFdStaticsOptions options = QuatFdStaticOptions(problem);
+  if (summary->stability_index <= 0 || !options.load_stepping) return;
+  options.direct_solve = false;
+  options.max_load_step = 1.0 / 16.0;  // small enough to see the path turn where it bends
+  options.keep_path_direction = true;
+  Eigen::VectorXd q_path(model->size()), v = Eigen::VectorXd::Zero(model->size());
+  model->RestState(q_path, v);
+  quatfd::QuatFdStaticsSummary path = quatfd::SolveStatics(model, problem.loads, q_path, options);
+  path.iterations += s->iterations;
+  if (!path.converged()) return;
+  RodState path_state;
+  model->ToRodState(q_path, v, &path_state);
+  const int index = detail::QuatFdStabilityIndex(problem, q_path, path_state);
+  if (index >= summary->stability_index) return;
+  *s = path;
+  *summary = AsSummary(path);
+  summary->stability_index = index;
+  *state = path_state;
+  *q = q_path;
+}
+
+}  // namespace
+
 Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   quatfd::QuatFdModel model = MakeQuatFdModel(problem);
   RodState state;
   Eigen::VectorXd q;
-  const quatfd::QuatFdStaticsSummary s = SolveQuatFdEquilibrium(problem, &model, &state, &q);
+  quatfd::QuatFdStaticsSummary s = SolveQuatFdEquilibrium(problem, &model, &state, &q);
   StaticShootingSummary summary = AsSummary(s);
   if (s.converged()) summary.stability_index = detail::QuatFdStabilityIndex(problem, q, state);
+  FollowLoadedPathIfUnstable(problem, &model, &s, &summary, &state, &q);
   Result result;
   result.json = io::StaticResultToJson(summary, state);
   detail::KeepStaticFrame(problem, state, options, &result);

@@ -29,6 +29,14 @@ struct QuatFdStaticsOptions {
   double floor_tolerance = 1e-6;
   int max_iterations = 50;  ///< Newton iterations per load step
   bool load_stepping = true;
+  /// Newton at the full load first (false: straight to the continuation from the rest state,
+  /// which follows the loaded path where a direct solve can land on another equilibrium).
+  bool direct_solve = true;
+  /// The continuation's largest increment (fraction of the full load); and whether a solve that
+  /// moves the vertices against the last increment's move counts as failed (a jump to another
+  /// branch, such as a column's straight shape past its Euler load), so that it is halved.
+  double max_load_step = 1.0;
+  bool keep_path_direction = false;
   double min_load_step = 1.0 / 4096.0;  ///< smallest load increment (fraction of the full load)
   int max_load_steps = 400;
 
