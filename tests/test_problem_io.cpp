@@ -374,6 +374,18 @@ TEST(ProblemIo, LaterAnalysesParseButAreGated) {
   ASSERT_EQ(follower.size(), 2u);
   EXPECT_EQ(follower[1].rfind("loads.tip_force_frame: ", 0), 0u) << follower[1];
   j["loads"].erase("tip_force_frame");
+  // A moment of fixed direction is not conservative in 3-D (Ziegler 1977): refused as the load
+  // searched for and as a preload.
+  j["buckling"]["load"] = "tip_moment";
+  const std::vector<std::string> moment = UnsupportedFeatures(*Parse(j).problem);
+  ASSERT_EQ(moment.size(), 2u);
+  EXPECT_EQ(moment[1].rfind("buckling.load: \"tip_moment\"", 0), 0u) << moment[1];
+  j["buckling"]["load"] = "tip_force";
+  j["loads"]["tip_moment"] = {0, 0, 0.01};
+  const std::vector<std::string> preload = UnsupportedFeatures(*Parse(j).problem);
+  ASSERT_EQ(preload.size(), 2u);
+  EXPECT_EQ(preload[1].rfind("loads.tip_moment: ", 0), 0u) << preload[1];
+  j["loads"].erase("tip_moment");
   // Buckling runs on se3-shooting, with the column end conditions.
   j["formulation"] = "se3-shooting";
   EXPECT_TRUE(UnsupportedFeatures(*Parse(j).problem).empty());

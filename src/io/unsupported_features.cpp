@@ -147,6 +147,17 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
       out.push_back(
           "loads.tip_moment_frame: \"body\" (a follower moment) is not conservative; buckling "
           "on the \"quaternion-fd\" formulation needs \"world\"");
+    // A moment of fixed direction on a free end is not conservative in 3-D either (Ziegler
+    // 1977): the stiffness then says nothing about its stability.
+    if (p.buckling.load == BucklingLoad::kTipMoment)
+      out.push_back(
+          "buckling.load: \"tip_moment\" (a moment of fixed direction) is not conservative in "
+          "3-D; buckling under it runs on the \"se3-shooting\" formulation");
+    else if (!p.loads.tip_moment.isZero(0.0))
+      out.push_back(
+          "loads.tip_moment: a tip moment of fixed direction is not conservative in 3-D; "
+          "buckling on the \"quaternion-fd\" formulation needs it zero (\"se3-shooting\" "
+          "takes it)");
   }
   if (p.analysis == A::kBuckling && quatfd &&
       (p.buckling.load == BucklingLoad::kTendonTension ||

@@ -89,6 +89,22 @@ std::string OnTopOfTheFilesLoad(const io::Problem& problem) {
   return own ? " on top of loads." + io::ToString(k) : "";
 }
 
+/// After a search that found no critical load: the file's loads push the rod across its axis
+/// (an imperfection), so it bends smoothly along the path and has no bifurcation to find.
+std::string ImperfectionNote(const io::Problem& problem, BucklingStatus status) {
+  if (status != BucklingStatus::kNotFound && status != BucklingStatus::kPathFailed) return "";
+  const StaticLoads& l = problem.loads;
+  const Vec3 axis = problem.base.R.col(2);  // the rod's tangent at s = 0, world
+  auto across = [&](const Vec3& f) { return f.cross(axis).norm() > 1e-12 * f.norm(); };
+  const bool drag = l.fluid.present() && across(l.fluid.velocity_W);
+  if (!(across(l.tip_force) || across(l.distributed_force_W) || across(l.gravity_W) || drag))
+    return "";
+  return "cosserat: note: the file's loads push the rod across its axis, an imperfection: it "
+         "bends smoothly as the load grows, with no bifurcation to find (a limit point, if any, "
+         "is what the search reports); \"analysis\": \"statics\" gives the deflection under a "
+         "load\n";
+}
+
 /// After an SE(3) buckling search that failed before any load: its statics shoot the rod in
 /// one piece, which a stiff contact foundation or a high tension puts beyond double precision
 /// (the statics analysis shoots such rods in pieces).
@@ -192,7 +208,8 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   result.json["buckling"] = block;
   if (run_options.nodes_csv) result.nodes_csv = detail::NodesCsv(analysis.state());
 
-  result.log = SummaryLine(problem, ends, b) + SingleShotHint(problem, b);
+  result.log = SummaryLine(problem, ends, b) + SingleShotHint(problem, b) +
+               ImperfectionNote(problem, b.status);
   result.converged = ok;
   return result;
 }
@@ -248,7 +265,7 @@ Result RunQuatFdBuckling(const io::Problem& problem, const RunOptions& run_optio
     line << ", load reached " << std::setprecision(6) << b.lambda_reached;
   line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3
        << " ms";
-  result.log = line.str() + '\n';
+  result.log = line.str() + '\n' + ImperfectionNote(problem, b.status);
   result.converged = ok;
   return result;
 }
