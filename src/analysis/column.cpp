@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cosserat/lie/so3.hpp"
+#include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/strong/load_parameter.hpp"
 
@@ -249,10 +250,20 @@ ColumnSummary ColumnSolver::SolveFromUnloaded(const lie::SE3& base, const Static
     }
     ++attempts;
     const double next = step == 1.0 - lambda ? 1.0 : lambda + step;
+    const Vec6 u_accepted = u_;
+    const RodState accepted = state_;
     const ColumnSummary s = Solve(base, loads.Scaled(next));
     total.iterations += s.iterations;
     total.shots += s.shots;
     total.residual = s.residual;
+    // A step that takes the rod through a contact surface jumped it (obstacle_core.hpp).
+    if (s.converged() &&
+        ReachesObstacleCore(loads.contact, accepted.position_W, state_.position_W)) {
+      u_ = u_accepted;
+      state_ = accepted;
+      step *= 0.5;
+      continue;
+    }
     if (s.converged()) {
       lambda = next;
       ++total.load_steps;

@@ -8,9 +8,18 @@ namespace {
 using Shape = ContactSurface::Shape;
 
 bool HasCore(const ContactSurface& s) {
-  // (A surface of zero stiffness pushes on nothing: a rod may pass it.)
-  return s.stiffness > 0.0 &&
-         (s.shape == Shape::kSphere || (s.shape == Shape::kCylinder && !s.inside));
+  return s.stiffness > 0.0;  // a surface of zero stiffness pushes on nothing: a rod may pass it
+}
+
+/// A plane's or a bore's core is its far side: the centreline beyond the surface itself, where
+/// the rod presses in by more than its radius.
+bool FarSideCore(const ContactSurface& s) {
+  return s.shape == Shape::kPlane || (s.shape == Shape::kCylinder && s.inside);
+}
+
+bool Beyond(const ContactSurface& s, const Vec3& p) {
+  Vec3 normal;
+  return s.Distance(p, &normal) < 0.0;
 }
 
 /// The core's measure of a point: its vector from the sphere's centre, or from the cylinder's
@@ -30,6 +39,8 @@ double DistanceToOrigin(const Vec3& a, const Vec3& b) {
 }
 
 bool SegmentReaches(const ContactSurface& s, const Vec3& a, const Vec3& b) {
+  // The near side of a plane or a bore is convex: a segment leaves it only where an end does.
+  if (FarSideCore(s)) return Beyond(s, a) || Beyond(s, b);
   return DistanceToOrigin(FromCore(s, a), FromCore(s, b)) < 0.5 * s.radius;
 }
 

@@ -59,17 +59,18 @@ void RefuseNonFiniteAnswers(Result* result) {
   }
 }
 
-/// A continuation that failed beside a sphere or post may have been held back by the statics'
+/// A continuation that failed beside a contact surface may have been held back by the statics'
 /// obstacle rule (obstacle_core.hpp): say so.
 void ObstacleHint(const io::Problem& problem, Result* result) {
   if (result->converged || !HasObstacleCore(problem.loads.contact) ||
       result->json.value("status", "") != ToString(SolveStatus::kLoadSteppingFailed))
     return;
   result->log +=
-      "cosserat: hint: load steps that would take the rod into a sphere's or post's core (within "
-      "half its radius of the centre or axis) are refused: the surface's stiffness may be too "
-      "low for the load, or (quaternion-fd, where contact acts at the nodes) the obstacle "
-      "smaller than the node spacing\n";
+      "cosserat: hint: load steps that would take the rod through a contact surface (its "
+      "centreline within half the radius of a sphere's centre or a post's axis, or beyond a "
+      "plane or a bore's wall) are refused: the surface's stiffness may be too low for the "
+      "load, or (quaternion-fd, where contact acts at the nodes) the obstacle smaller than the "
+      "node spacing\n";
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "cosserat/run/run_statics.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "cosserat/run/run_quatfd.hpp"
 #include "cosserat/robots/tendon_control.hpp"
 #include "cosserat/run/solver_options.hpp"
+#include "cosserat/strong/shooting_exponent.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "anchor_force.hpp"
@@ -101,7 +103,9 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
   result.log = StaticSummary(summary, solver.state()) + " (" + ToString(ends) + ")\n";
   result.converged = summary.converged();
-  if (result.converged)
+  // Contact surfaces hold a column laterally (a bore, a seabed): its critical load is higher
+  // than the free column's, which the warning compares with.
+  if (result.converged && problem.loads.contact.count == 0)
     result.log += detail::ColumnPastEulerWarning(ends, problem.rod, solver.state());
   return result;
 }
@@ -109,9 +113,10 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
 /// A cantilever or column whose single shot would amplify errors beyond double precision (a
 /// stiff contact foundation, a high tension): multiple shooting in pieces it chooses.
 Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& options,
-                                  ColumnEnds ends = ColumnEnds::kClampedFree) {
+                                  ColumnEnds ends = ColumnEnds::kClampedFree, int pieces = 0) {
   const StaticShootingOptions single = StaticOptions(problem);
   StaticMultipleShootingOptions opt;
+  opt.pieces = pieces;
   opt.tolerance = single.tolerance;
   opt.max_iterations = single.max_iterations;
   opt.base_pinned = ends == ColumnEnds::kPinnedPinned;
@@ -210,19 +215,8 @@ Result RunAnchoredStatics(const io::Problem& problem, const RunOptions& options)
   return result;
 }
 
-}  // namespace
-
-Result RunStatics(const io::Problem& problem, const RunOptions& options) {
-  if (problem.boundary == io::Boundary::kAnchored) return RunAnchoredStatics(problem, options);
-  ColumnEnds ends = ColumnEnds::kClampedFree;
-  const bool column =
-      problem.boundary != io::Boundary::kCantilever && ToColumnEnds(problem.boundary, &ends);
-  // Beyond an exponent of 10 a single shot loses the branch (a column at L sqrt(T/EI) = 19
-  // converged, looped, onto an equilibrium far from the straight one) or the precision.
-  if (!problem.has_robot && problem.rod.tendons.empty() && problem.rod.chambers.empty() &&
-      StaticShootingExponent(problem.rod, problem.loads) > 10.0)
-    return RunMultipleShootingStatics(problem, options, ends);
-  if (column) return RunColumnStatics(problem, ends, options);
+/// A cantilever, robots included, in one shot from the clamp.
+Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& options) {
   Actuation actuation = problem.robot.actuation;
   StaticShootingSolver solver(problem.rod, problem.nodes, StaticOptions(problem), actuation);
   StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
@@ -270,6 +264,35 @@ Result RunStatics(const io::Problem& problem, const RunOptions& options) {
   result.log += detail::UnstableWarning(summary);
   result.converged = summary.converged();
   return result;
+}
+
+}  // namespace
+
+Result RunStatics(const io::Problem& problem, const RunOptions& options) {
+  if (problem.boundary == io::Boundary::kAnchored) return RunAnchoredStatics(problem, options);
+  ColumnEnds ends = ColumnEnds::kClampedFree;
+  const bool column =
+      problem.boundary != io::Boundary::kCantilever && ToColumnEnds(problem.boundary, &ends);
+  const bool pieces_possible =
+      !problem.has_robot && problem.rod.tendons.empty() && problem.rod.chambers.empty();
+  const double exponent = StaticShootingExponent(problem.rod, problem.loads);
+  // Beyond an exponent of 10 a single shot loses the branch (a column at L sqrt(T/EI) = 19
+  // converged, looped, onto an equilibrium far from the straight one) or the precision.
+  if (pieces_possible && exponent > 10.0)
+    return RunMultipleShootingStatics(problem, options, ends);
+  Result single = column ? RunColumnStatics(problem, ends, options)
+                         : RunSingleShotStatics(problem, options);
+  if (single.converged || !pieces_possible) return single;
+  // The single shot failed below that exponent (a rod on a foundation near it, a column in a
+  // bore): the rod in pieces, at least two, as the dynamics stepper adds pieces before it gives
+  // up. The single shot's result stands if they fail too.
+  const int pieces = std::min(problem.nodes - 1, std::max(2, SuggestedShootingSegments(exponent)));
+  Result split = RunMultipleShootingStatics(problem, options, ends, pieces);
+  if (!split.converged) return single;
+  split.log += "cosserat: note: one shot from the clamp did not converge (" +
+               single.json.value("status", std::string()) + "); the rod was shot in " +
+               std::to_string(pieces) + " pieces\n";
+  return split;
 }
 
 }  // namespace cosserat::run

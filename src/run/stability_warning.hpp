@@ -21,7 +21,8 @@ std::string UnstableWarning(const StaticShootingSummary& s);
 /// ends (π², 20.19 or 4π² EI/L² for pinned–pinned, clamped–pinned, clamped–clamped; Timoshenko
 /// & Gere 1961; EI at mid-length) is on the unstable branch: the stable one bows out (pinned
 /// ends: by about 0.9 √(P/P_E − 1) L, the elastica's amplitude to first order). The warning says
-/// so; empty otherwise. Columns have no stability index.
+/// so; empty otherwise. Columns have no stability index. Not for columns on contact surfaces,
+/// which hold them laterally (the caller's rule).
 std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const RodState& state);
 
 }  // namespace cosserat::run::detail

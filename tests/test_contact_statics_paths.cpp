@@ -1,0 +1,105 @@
+// SE(3) statics on contact surfaces it used to leave through: a rod lying on a table or in a
+// bore, against the closed form of the penalty law (contact.hpp: k φ = w per metre, φ = δ − ε/2
+// once the penetration δ passes the smoothing ε), and the geometric truth that the centreline
+// stays on the surface's free side.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "cosserat/io/problem.hpp"
+#include "cosserat/run/run.hpp"
+#include "nlohmann/json.hpp"
+
+namespace cosserat::run {
+namespace {
+
+Result RunText(const std::string& text) {
+  const io::ParseResult parsed = io::ParseProblem(text);
+  EXPECT_TRUE(parsed.ok()) << (parsed.errors.empty() ? "" : parsed.errors.front());
+  return Run(*parsed.problem);
+}
+
+std::string Number(double x) {
+  std::ostringstream out;
+  out.precision(17);
+  out << x;
+  return out.str();
+}
+
+/// Weight per metre of a steel rod (ρ = 8000) of radius r, N/m.
+double Weight(double r) { return 8000 * M_PI * r * r * 9.81; }
+
+std::string SteelRod(double length, int nodes, double r) {
+  return R"("rod": {"length": )" + std::to_string(length) + R"(, "nodes": )" +
+         std::to_string(nodes) + R"(, "section": {"shape": "circle", "radius": )" +
+         std::to_string(r) + R"(}, "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9,
+         "density": 8000}})";
+}
+
+// A 4.4 m rod (r = 5 mm) clamped level on the bottom of a bore (R = 2 cm, k = 1e4) at the depth
+// where it lies: the straight rod, pressed in uniformly by δ = w/k + ε/2, is an equilibrium
+// with no wrench at the clamp. The single shot ((k/4EI)^¼ L = 9.9) had "converged" to the rod
+// folded back 2.3 m and 0.23 m out of the bore; shot in pieces it is the straight rod.
+TEST(ContactStaticsPaths, ARodLyingInABoreIsTheStraightRod) {
+  const double r = 0.005, k = 1e4, eps = 1e-5;
+  const double depth = 0.02 - r + Weight(r) / k + eps / 2;  // the axis below the bore's, m
+  const Result out = RunText(R"({"format": "cosserat-problem/1", )" + SteelRod(4.4, 101, r) +
+                             R"(, "base": {"position": [0, 0, )" + Number(-depth) +
+                             R"(], "rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]},
+      "loads": {"gravity": [0, 0, -9.81]},
+      "environment": {"contact": [{"shape": "cylinder", "point": [0, 0, 0], "axis": [1, 0, 0],
+          "radius": 0.02, "side": "inside", "stiffness": 1e4, "smoothing": 1e-5}]}})");
+  ASSERT_TRUE(out.converged) << out.log;
+  // Exact but for round-off: 1e-9 m of the straight line, and no moment at the clamp beyond
+  // what the solve tolerance leaves (an offset Δ there costs 2 EI β² Δ ≈ 1e3 Δ N·m).
+  const auto& tip = out.json["tip"]["position"];
+  EXPECT_NEAR(tip[0].get<double>(), 4.4, 1e-9);
+  EXPECT_NEAR(tip[2].get<double>(), -depth, 1e-8);
+  for (const auto& m : out.json["base_wrench"]["moment"]) EXPECT_NEAR(m.get<double>(), 0, 1e-6);
+}
+
+// examples/rod_on_table.json clamped touching the table (k = 2500, ε by default 1e-3 of the
+// diameter): the tip lies on it at z = r − w/k − ε/2. The single shot failed at the first load
+// step and wrote an iterate 0.89 m above the table.
+TEST(ContactStaticsPaths, ARodClampedOnATableLiesOnIt) {
+  const double r = 0.002, k = 2500, eps = 1e-3 * 2 * r;
+  const Result out = RunText(R"({"format": "cosserat-problem/1", )" + SteelRod(2.5, 251, r) +
+                             R"(, "base": {"position": [0, 0, 0.002],
+          "rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]},
+      "loads": {"gravity": [0, 0, -9.81]},
+      "environment": {"contact": [{"shape": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+          "stiffness": 2500}]}})");
+  ASSERT_TRUE(out.converged) << out.log;
+  // The far end lies flat: the clamp's offset from lying (≈ 4e-4 m) dies out as e^{-βx} with
+  // β = (k/4EI)^¼ = 4 1/m, to 5e-5 of it at the tip (2e-8 m, doubled by the free end's
+  // reflection); 2e-7 m holds that, against the 0.89 m iterate of the failure.
+  EXPECT_NEAR(out.json["tip"]["position"][2].get<double>(), r - Weight(r) / k - eps / 2, 2e-7);
+  EXPECT_NE(out.log.find("shot in 2 pieces"), std::string::npos) << out.log;
+}
+
+// A pinned column (4.4 m, r = 5 mm) in the same bore, its ends 2 mm above the bottom, pressed by
+// 60 N: well below the critical loads of a column on that support (2√(EI k) = 1981 N), so it
+// lies on the bottom. The continuation had jumped the rod 0.32 m through the wall, converged,
+// and warned it was past the free column's Euler load (50 N), which a supported column is not.
+TEST(ContactStaticsPaths, APressedColumnStaysInTheBore) {
+  const double r = 0.005, k = 1e4;
+  const Result out = RunText(R"({"format": "cosserat-problem/1", )" + SteelRod(4.4, 201, r) +
+                             R"(, "boundary": "pinned-pinned",
+      "base": {"position": [0, 0, -0.0136214], "rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]},
+      "loads": {"gravity": [0, 0, -9.81], "tip_force": [-60, 0, 0]},
+      "environment": {"contact": [{"shape": "cylinder", "point": [0, 0, 0], "axis": [1, 0, 0],
+          "radius": 0.02, "side": "inside", "stiffness": 1e4, "smoothing": 1e-5}]}})");
+  ASSERT_TRUE(out.converged) << out.log;
+  // Within the bore, less the rod's radius, by at most twice the weight's penetration w/k (the
+  // compression amplifies the sag into the wall by 1/(1 − 60/1981), and the lifted ends bend it).
+  double farthest = 0;
+  for (const auto& p : out.json["nodes"]["position"])
+    farthest = std::max(farthest, std::hypot(p[1].get<double>(), p[2].get<double>()));
+  EXPECT_LT(farthest, 0.02 - r + 2 * Weight(r) / k);
+  EXPECT_EQ(out.log.find("Euler load"), std::string::npos) << out.log;
+}
+
+}  // namespace
+}  // namespace cosserat::run
