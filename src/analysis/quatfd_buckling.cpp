@@ -289,9 +289,7 @@ QuatFdBucklingSummary QuatFdBuckling::FindCriticalLoad() {
   out.scan_min_eigenvalue.push_back(b.mu_lo);
   // The scan: steps of λ_max/scan_steps, halved after a failed solve (up to 10 times in a row)
   // and grown back after a success, until the least eigenvalue is <= 0.
-  // A solve whose vertices move against the path's last step jumped to another branch (a rod
-  // bent by a lateral preload, landing near its unstable straight shape past the Euler load):
-  // it counts as failed too, so that the scan follows the path it is on.
+  // (A solve that TurnsBack jumped to another branch: failed too, so the scan keeps its path.)
   const double h_nominal = options_.lambda_max / options_.scan_steps;
   double h = h_nominal;
   int halvings = 0;

@@ -200,8 +200,7 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("QuatFdStaticsOptions: " + why);
   QuatFdStaticsSummary summary;
-  const int n = model->size();
-  Workspace w(n);
+  Workspace w(model->size());
   const double beta = StaticBeta(*model, loads, q);
   auto finish = [&](SolveStatus status) {
     model->set_loads(loads);
@@ -224,7 +223,7 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   // Continuation in λ along at(λ) from a solution q_ok at λ = 0: grow the increment after a
   // success, halve it after a failure. False when the increment falls below its floor or the
   // load steps run out.
-  Eigen::VectorXd q_ok(n), v(n);
+  Eigen::VectorXd q_ok(model->size()), v(model->size());
   model->RestState(q_ok, v);
   Eigen::VectorXd q_before = q_ok;  // the path's point before q_ok
   const auto follow = [&](const std::function<StaticLoads(double)>& at) {
