@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -175,6 +176,33 @@ TEST(BatchStepper, ASnapshotOneRodRefusesChangesNoRod) {
     EXPECT_NEAR(b.batch.rod(i).time(), 5 * b.options.dt, 1e-15) << i;
     EXPECT_EQ(b.batch.rod(i).state().tip_position_W(), tips[i]) << i;
   }
+}
+
+TEST(BatchStepper, ANonFiniteInputIsThatRodsStatusAlone) {
+  // NaN in one rod's tip force, or in another's tendon tension: those two rods report
+  // non_finite and stay where they were, the others step (the batch used to throw for the
+  // tension, and no rod moved). A NaN base position at rest is non_finite too (it was
+  // "converged", with a NaN tip), and leaves the run before it as it was.
+  RestingBatch b(4);
+  ASSERT_EQ(b.batch.InitializeAtRest(b.rest), 4);
+  std::vector<StepInput> inputs(4, b.rest);
+  inputs[1].loads.tip_force.x() = std::numeric_limits<double>::quiet_NaN();
+  inputs[2].actuation.tendon_tension[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(b.batch.Step(inputs.data()), 2);
+  for (int i = 0; i < 4; ++i) {
+    const bool bad = i == 1 || i == 2;
+    EXPECT_EQ(b.batch.summary(i).status, bad ? SolveStatus::kNonFinite : SolveStatus::kConverged);
+    EXPECT_EQ(b.batch.rod(i).time(), bad ? 0.0 : b.options.dt) << i;
+  }
+  StepInput nan_base = b.rest;
+  nan_base.base_pose.p.x() = std::numeric_limits<double>::quiet_NaN();
+  Bdf2ShootingStepper lone(b.rod.model(), 21, b.options);
+  ASSERT_TRUE(lone.InitializeAtRest(b.rest).converged());
+  ASSERT_TRUE(lone.Step(b.rest).converged());
+  EXPECT_EQ(lone.InitializeAtRest(nan_base).status, SolveStatus::kNonFinite);
+  EXPECT_EQ(lone.time(), b.options.dt);
+  EXPECT_TRUE(lone.Step(b.rest).converged());
+  EXPECT_EQ(b.batch.InitializeAtRest(nan_base), 0);
 }
 
 TEST(BatchStepper, NoThreadsIsAnError) {

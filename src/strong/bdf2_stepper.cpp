@@ -477,6 +477,17 @@ void Bdf2ShootingStepper::RequireActuation(const Actuation& a) const {
   a.Require(static_cast<int>(model_.tendons.size()), static_cast<int>(model_.chambers.size()));
 }
 
+bool Bdf2ShootingStepper::InputIsFinite(const StepInput& input) const {
+  // Only what these ends use: a free tip's pose and a clamped base's wrench are not read.
+  const bool tip_held = input.tip_hold != TipHold::kFree;
+  const bool base_free = options_.ends == EndConditions::kFreeFree;
+  return input.loads.IsValid(nullptr) && input.base_twist_B.allFinite() &&
+         (!base_free || input.base_wrench_B.allFinite()) && input.base_pose.R.allFinite() &&
+         input.base_pose.p.allFinite() &&
+         (!tip_held || (input.tip_pose.R.allFinite() && input.tip_pose.p.allFinite())) &&
+         input.actuation.AllFinite();
+}
+
 void Bdf2ShootingStepper::RequirePoses(const StepInput& input) const {
   lie::RequireRotation(input.base_pose.R, "Bdf2ShootingStepper: StepInput.base_pose.R");
   if (input.tip_hold != TipHold::kFree)
@@ -528,10 +539,7 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
   // Try the whole step; on failure, two half steps, recursively up to max_halvings deep. Sub-steps
   // commit as they go, so a failure part-way leaves the last converged sub-step. (With shooting,
   // smaller steps raise the shot's exponent λL ∝ dt^(-1/2), so halving helps less than usual.)
-  if (!input.loads.IsValid(nullptr) || !input.base_twist_B.allFinite() ||
-      !input.base_wrench_B.allFinite() || !input.base_pose.R.allFinite() ||
-      !input.base_pose.p.allFinite() || !input.tip_pose.R.allFinite() ||
-      !input.tip_pose.p.allFinite() || !input.actuation.AllFinite()) {
+  if (!InputIsFinite(input)) {
     summary.status = SolveStatus::kNonFinite;  // NaN or Inf in the input: the state stays put
     return summary;
   }

@@ -107,7 +107,10 @@ struct StepInput {
   /// Cantilever: g(0, t), the base pose in the world. Free-free: used only by InitializeAtRest
   /// (the pose of the s = 0 end at t = 0); afterwards the pose is part of the state.
   lie::SE3 base_pose;
-  Vec6 base_twist_B = Vec6::Zero();   ///< cantilever: V(0, t) = [ω; v], body frame (rad/s; m/s)
+  /// Cantilever: V(0, t) = [ω; v], body frame (rad/s; m/s). An input, not derived from the
+  /// change of base_pose: a clamp that moves must give its twist too, or the rod's base node is
+  /// dragged along with zero velocity (every step still converges, to the wrong motion).
+  Vec6 base_twist_B = Vec6::Zero();
   Vec6 base_wrench_B = Vec6::Zero();  ///< free-free: wrench applied to the s = 0 end, body frame
   TipHold tip_hold = TipHold::kFree;  ///< cantilever only
   lie::SE3 tip_pose;                  ///< the frame a held tip is joined to, world
@@ -140,6 +143,7 @@ class Bdf2ShootingStepper {
   /// from `base_wrench_B` (W(0), body frame) when given, else from the wrench that carries the
   /// loads as a rigid body. With automatic pieces, the equilibrium's tension may ask for more
   /// pieces for the steps (SingleShootingExponent with the state); only then does it allocate.
+  /// NaN or Inf in the input (InputIsFinite) is the status non_finite, and changes nothing.
   StepSummary InitializeAtRest(const StepInput& input, const Vec6* base_wrench_B = nullptr);
 
   /// As above (cantilever), from an equilibrium found elsewhere on this grid, such as a statics
@@ -155,17 +159,20 @@ class Bdf2ShootingStepper {
   /// step that changes the automatic multiple-shooting pieces (adds them on a failure, drops
   /// them after 100 steps taken whole: DropUnneededPieces). When a step
   /// fails even after halving, the status says why and time() and state() are those of the last
-  /// (sub-)step that converged. NaN or Inf in the input is the status non_finite (nothing
-  /// moves); an actuation Actuation::IsValid refuses for this rod (a pushing tendon, a tendon or
+  /// (sub-)step that converged. NaN or Inf in the input (InputIsFinite) is the status non_finite
+  /// (nothing moves); an actuation Actuation::IsValid refuses for this rod (a pushing tendon, a tendon or
   /// chamber it lacks), or a base (or held tip) rotation that is not one within 1e-6
   /// (lie::RequireRotation), throws std::invalid_argument, as InitializeAtRest does.
   StepSummary Step(const StepInput& input);
   /// Throws std::invalid_argument for the inputs Step refuses (its actuation or poses); NaN and
   /// Inf pass (Step reports them as a status). For callers that check a batch before any step.
   void RequireValidInput(const StepInput& input) const {
-    RequireActuation(input.actuation);
-    RequirePoses(input);
+    if (input.actuation.AllFinite()) RequireActuation(input.actuation);
+    if (InputIsFinite(input)) RequirePoses(input);
   }
+  /// Whether the input's fields these ends read (a held tip's pose, a free base's wrench) are
+  /// finite: else Step and InitializeAtRest return non_finite and change nothing.
+  bool InputIsFinite(const StepInput& input) const;
 
   double time() const { return run_.time; }
   const RodState& state() const { return run_.state; }
