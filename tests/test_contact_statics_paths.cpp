@@ -101,5 +101,21 @@ TEST(ContactStaticsPaths, APressedColumnStaysInTheBore) {
   EXPECT_EQ(out.log.find("Euler load"), std::string::npos) << out.log;
 }
 
+// examples/finger_on_sphere.json: a finger pressed on a frictionless sphere slips off sideways,
+// one unstable direction (the SE(3) statics' index, and a negative ω² in the modes). No node
+// is compressed, and the quaternion-FD statics had called it stable (index 0) on that ground.
+TEST(ContactStaticsPaths, AFingerOnASphereIsUnstableInBothFormulations) {
+  const io::ParseResult parsed = io::LoadProblemFile(std::string(COSSERAT_SOURCE_DIR) +
+                                                     "/examples/finger_on_sphere.json");
+  ASSERT_TRUE(parsed.ok());
+  for (const auto formulation : {io::Formulation::kQuaternionFd, io::Formulation::kSe3Shooting}) {
+    io::Problem problem = *parsed.problem;
+    problem.formulation = formulation;
+    const Result out = cosserat::run::Run(problem);
+    ASSERT_TRUE(out.converged) << out.log;
+    EXPECT_EQ(out.json["stability_index"].get<int>(), 1) << out.log;
+  }
+}
+
 }  // namespace
 }  // namespace cosserat::run

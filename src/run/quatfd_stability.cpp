@@ -19,7 +19,9 @@ int QuatFdStabilityIndex(const io::Problem& problem, const Eigen::VectorXd& q,
     return -1;
   const bool compressed = std::any_of(state.wrench_B.begin(), state.wrench_B.end(),
                                       [](const Vec6& w) { return w(5) < 0; });
-  if (!compressed) return 0;
+  // Without compression a rod's own stiffness is positive; a convex surface it rests on (a
+  // sphere, a post) can still make the equilibrium unstable.
+  if (!compressed && loads.contact.count == 0) return 0;
   LoadPath path;
   path.fixed = loads;
   path.per_unit = loads.Scaled(0.0);  // its frames the fixed loads'
