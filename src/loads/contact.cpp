@@ -100,9 +100,12 @@ Vec3 PenaltyContact::MotionForce_W(const LoadSite& site, const SectionMotion& mo
     const double k = s.stiffness * site.length, c = s.damping * site.length;
     const double vn = n.dot(motion.velocity_W);
     const double magnitude = k * phi - c * psi * vn;  // along n
+    // A surface only pushes: where the rod leaves faster than the spring pushes it out, the
+    // damper does not pull it back (the force and its derivatives are zero there).
+    if (magnitude <= 0.0) continue;
     total += magnitude * n;
     if (!J) {
-      if (s.friction > 0 && magnitude > 0)
+      if (s.friction > 0)
         AddFriction(s, n, Mat3::Zero(), magnitude, Vec3::Zero(), Vec3::Zero(), motion.velocity_W,
                     &total, nullptr);
       continue;
@@ -113,7 +116,7 @@ Vec3 PenaltyContact::MotionForce_W(const LoadSite& site, const SectionMotion& mo
         -(k * psi - c * dpsi * vn) * n - c * psi * (dn.transpose() * motion.velocity_W);
     J->position += n * d_magnitude_dp.transpose() + magnitude * dn;
     J->velocity += -c * psi * n * n.transpose();
-    if (s.friction > 0 && magnitude > 0)
+    if (s.friction > 0)
       AddFriction(s, n, dn, magnitude, d_magnitude_dp, -c * psi * n, motion.velocity_W, &total, J);
   }
   return total;

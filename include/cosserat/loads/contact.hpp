@@ -7,7 +7,8 @@
 /// with φ the penetration smoothed over a width ε (a C¹ ramp: φ(δ) = δ²/(2ε) for 0 < δ < ε,
 /// δ − ε/2 beyond; ε = the surface's `smoothing`, 1e-3 of the rod's outer diameter by default), so
 /// that Newton's method sees a continuous stiffness. Damping −c ψ (v·n) n acts on the approach
-/// velocity while in contact (ψ = min(δ/ε, 1)). Coulomb friction opposes the slip velocity
+/// velocity while in contact (ψ = min(δ/ε, 1)); the sum never pulls (a rod leaving faster than
+/// the spring pushes it out feels no force). Coulomb friction opposes the slip velocity
 /// v_s = (I − n nᵀ) v with the magnitude μ N, regularised near zero slip:
 /// f_f = −μ N v_s / sqrt(|v_s|² + v_ε²), N = max(normal force, 0), v_ε the surface's
 /// slip_velocity. Below v_ε the rod creeps instead of sticking: under a tangential load T < μN it
