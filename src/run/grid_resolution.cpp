@@ -45,8 +45,11 @@ GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& 
 }
 
 void CheckGridResolution(const io::Problem& problem, Result* result) {
+  // Statics, and the equilibrium the modes are about (the result's nodes).
+  const bool equilibrium =
+      problem.analysis == io::Analysis::kStatics || problem.analysis == io::Analysis::kModes;
   if (!result->converged || problem.formulation != io::Formulation::kSe3Shooting ||
-      problem.analysis != io::Analysis::kStatics || !result->json.contains("nodes"))
+      !equilibrium || !result->json.contains("nodes"))
     return;
   const nlohmann::ordered_json& nodes = result->json["nodes"];
   if (!nodes.contains("s") || !nodes.contains("position") || !nodes.contains("curvature")) return;

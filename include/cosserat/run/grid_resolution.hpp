@@ -31,8 +31,8 @@ struct GridResolution {
 GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& position,
                          const std::vector<Vec3>& curvature, double length);
 
-/// The same for a converged SE(3) statics result, from its nodes: a runaway makes it
-/// non_finite.
+/// The same for a converged SE(3) statics or modes result, from its nodes (for modes, the
+/// equilibrium they are about): a runaway makes it non_finite.
 void CheckGridResolution(const io::Problem& problem, Result* result);
 
 }  // namespace cosserat::run
