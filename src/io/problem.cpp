@@ -465,6 +465,19 @@ void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
                   "the rod starts inside this surface: at s = " + FormatNumber(s_deepest) +
                       " m its centreline is " + FormatNumber(-deepest) + " m past it");
   }
+  // A bore no wider than the rod cannot hold it anywhere.
+  double r_o = 0.0;  // the rod's largest outer radius, m
+  for (int i = 0; i < kPoints && p.rod.section; ++i)
+    r_o = std::max(r_o, 0.5 * p.rod.section->At(p.rod.length * i / (kPoints - 1),
+                                                 p.robot.actuation).outer_diameter);
+  for (int k = 0; k < contact.count; ++k) {
+    const ContactSurface& c = contact.surface[k];
+    if (c.shape == ContactSurface::Shape::kCylinder && c.inside && c.radius <= r_o)
+      report->Add("environment.contact[" + std::to_string(k) + "].radius",
+                  "a bore of radius " + FormatNumber(c.radius) +
+                      " m is no wider than the rod (outer radius " + FormatNumber(r_o) +
+                      " m): it cannot hold it");
+  }
 }
 
 /// The section at every node as the solvers will take it: finite stiffness and mass (an area

@@ -112,15 +112,18 @@ void BoundaryFeatures(const Problem& p, std::vector<std::string>* out) {
                    detail::Quote(ToString(p.boundary)) + ")");
 }
 
-/// Whether the rod has no mass per length at some node of its grid.
-bool MasslessSomewhere(const Problem& p) {
+/// How many nodes of the rod's grid have no mass per length.
+int MasslessNodes(const Problem& p) {
   const int n = std::max(p.nodes, 2);
+  int massless = 0;
   for (int i = 0; i < n; ++i) {
     const double s = p.rod.length * i / (n - 1);
-    if (!(p.rod.section->At(s, p.robot.actuation).mass(5, 5) > 0.0)) return true;
+    massless += !(p.rod.section->At(s, p.robot.actuation).mass(5, 5) > 0.0);
   }
-  return false;
+  return massless;
 }
+bool MasslessSomewhere(const Problem& p) { return MasslessNodes(p) > 0; }
+bool MasslessEverywhere(const Problem& p) { return MasslessNodes(p) == std::max(p.nodes, 2); }
 
 }  // namespace
 
@@ -137,6 +140,9 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
     out.push_back(
         "rod.material.density: a massless rod (density 0) runs on the \"se3-shooting\" "
         "formulation only; the \"quaternion-fd\" model divides its forces by the nodes' masses");
+  else if (p.analysis == A::kModes && p.rod.section && MasslessEverywhere(p))
+    out.push_back("rod.material.density: a massless rod (density 0) has no natural frequencies; "
+                  "modes need a positive density");
   if (p.analysis == A::kBuckling && quatfd) {
     // The quaternion-FD stiffness is the Hessian of a potential: conservative tip loads only.
     if (p.loads.tip_force_frame == LoadFrame::kBody)
