@@ -756,5 +756,40 @@ TEST(HeldCable, ASaggingCableVibratesAsIrvinePredictsAboveTheCrossover) {
   EXPECT_NEAR(m.symmetric, m.symmetric_truth, 1e-2 * m.symmetric_truth);
 }
 
+// A 1 km top-tensioned riser (10.75" × 20.6 mm steel, mud-filled, in sea water) whose top
+// tension is short of its apparent weight: the bottom is compressed by w_a L − T_top ≈ 100 kN,
+// far past π²EI/L² (a few newtons over 1 km). Statics cannot judge the straight riser's
+// stability; the note says where it is compressed, by what (the force balance of the hanging
+// riser, to 1 %: the node nearest the bottom carries a little less than the full length's
+// weight), and points at modes. A riser in tension gets no note.
+TEST(HeldCable, ACompressedRiserIsNotedForItsModes) {
+  auto riser = [](double anchor_height) {
+    const io::ParseResult parsed = io::ParseProblem(R"({"format": "cosserat-problem/1",
+        "formulation": "quaternion-fd", "boundary": "anchored",
+        "rod": {"length": 999.8571426224415, "nodes": 101,
+            "section": {"shape": "annulus", "outer_radius": 0.13655, "inner_radius": 0.11595,
+                        "contents_density": 1200},
+            "material": {"youngs_modulus": 207e9, "poisson_ratio": 0.3, "density": 7850}},
+        "anchor": {"position": [0, 0, )" + std::to_string(anchor_height) + R"(]},
+        "loads": {"gravity": [0, 0, -9.81]}, "environment": {"fluid": {"density": 1025}}})");
+    EXPECT_TRUE(parsed.ok());
+    return run::Run(*parsed.problem);
+  };
+  const double ro = 0.13655, ri = 0.11595, L = 999.8571426224415;
+  const double w = 9.81 * M_PI * (7850 * (ro * ro - ri * ri) + 1200 * ri * ri - 1025 * ro * ro);
+  const run::Result short_of_weight = riser(1000.0);
+  ASSERT_TRUE(short_of_weight.converged) << short_of_weight.log;
+  const double top = short_of_weight.json["anchor_force"][2].get<double>();
+  const std::string& log = short_of_weight.log;
+  const size_t at = log.find("compressed by up to ");
+  ASSERT_NE(at, std::string::npos) << log;
+  const double noted = std::stod(log.substr(at + 20));
+  EXPECT_NEAR(noted / (w * L - top), 1.0, 1e-2) << log;
+  EXPECT_NE(log.find("\"analysis\": \"modes\""), std::string::npos) << log;
+  const run::Result pulled = riser(1001.0);  // 1 m more stretch: ≈ 3e6 N more top tension
+  ASSERT_TRUE(pulled.converged) << pulled.log;
+  EXPECT_EQ(pulled.log.find("compressed"), std::string::npos) << pulled.log;
+}
+
 }  // namespace
 }  // namespace cosserat

@@ -152,6 +152,8 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   if (!s.converged()) log << ContactGridHint(problem);
   if (s.converged())
     log << ClampedEndGridWarning(problem, state) << detail::UnstableWarning(summary);
+  if (s.converged() && problem.boundary == io::Boundary::kAnchored)
+    log << detail::AnchoredCompressionNote(problem.rod, state);
   result.log = log.str();
   result.converged = s.converged();
   return result;

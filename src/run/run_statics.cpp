@@ -210,6 +210,8 @@ Result RunAnchoredStatics(const io::Problem& problem, const RunOptions& options)
       << detail::AnchorForceText(state) << '\n';
   if (start.converged() && !summary.converged())
     log << BoundaryLayerHint(problem, guess) << ShotFoundationHint(problem);
+  if (start.converged() && summary.converged())
+    log << detail::AnchoredCompressionNote(problem.rod, state);
   result.log = log.str();
   result.converged = start.converged() && summary.converged();
   return result;

@@ -48,4 +48,23 @@ std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const R
   return text.str();
 }
 
+std::string AnchoredCompressionNote(const RodModel& rod, const RodState& state) {
+  if (state.size() < 2 || !rod.section) return "";
+  const double L = rod.length;
+  const double EI = rod.section->At(0.5 * L, Actuation{}).min_bending_stiffness();
+  double compression = 0.0, s_max = 0.0;  // N, the largest, and where (m)
+  for (int i = 0; i < state.size(); ++i)
+    if (-state.wrench_B[i](5) > compression) {
+      compression = -state.wrench_B[i](5);
+      s_max = state.s[i];
+    }
+  if (!(compression > M_PI * M_PI * EI / (L * L))) return "";
+  std::ostringstream text;
+  text << std::setprecision(3) << "cosserat: note: the rod is compressed by up to "
+       << compression << " N (at s = " << s_max
+       << " m), which may buckle it between its anchors; statics does not judge that, "
+          "\"analysis\": \"modes\" does (a negative ω² is an unstable mode)\n";
+  return text.str();
+}
+
 }  // namespace cosserat::run::detail

@@ -25,4 +25,10 @@ std::string UnstableWarning(const StaticShootingSummary& s);
 /// which hold them laterally (the caller's rule).
 std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const RodState& state);
 
+/// A rod held at both ends ("anchored") compressed somewhere by more than π²EI/L² (below that
+/// no part of it can buckle, whatever the ends): its statics have no stability index, so a note
+/// says where and points at "modes", whose negative ω² judges it (a riser short of top
+/// tension). Empty otherwise (EI at mid-length).
+std::string AnchoredCompressionNote(const RodModel& rod, const RodState& state);
+
 }  // namespace cosserat::run::detail
