@@ -1,9 +1,13 @@
 #include "problem_environment.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "cosserat/io/problem.hpp"
+#include "cosserat/rod/rest_shape.hpp"
 
 namespace cosserat::io::detail {
 namespace {
@@ -187,6 +191,45 @@ void ParseEnvironment(const ObjectReader& o, Fluid* fluid, FluidGust* gust,
   o.AllowOnly({"fluid", "contact"});
   if (const auto f = ReadObject(o, "fluid", Presence::kOptional)) ParseFluid(*f, fluid, gust);
   ParseContact(o, contact);
+}
+
+/// The unloaded rod must not start with its centreline past a contact surface (a penetration
+/// deeper than its outer radius): the penalty would push it on through, or out with an enormous
+/// force. Checked on 201 points of the rest centreline; a shallower start is allowed (the
+/// surface pushes it out).
+void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
+  const ContactSurfaces& contact = p.loads.contact;
+  if (contact.count == 0) return;
+  constexpr int kPoints = 201;
+  const std::vector<Vec3> centreline = RestCentreline_W(p.rod, p.base, kPoints);
+  for (int k = 0; k < contact.count; ++k) {
+    double deepest = 0.0, s_deepest = 0.0;  // the most negative distance, m, and where
+    for (int i = 0; i < kPoints; ++i) {
+      Vec3 normal;
+      const double distance = contact.surface[k].Distance(centreline[i], &normal);
+      if (distance < deepest) {
+        deepest = distance;
+        s_deepest = p.rod.length * i / (kPoints - 1);
+      }
+    }
+    if (deepest < 0.0)
+      report->Add("environment.contact[" + std::to_string(k) + "]",
+                  "the rod starts inside this surface: at s = " + FormatNumber(s_deepest) +
+                      " m its centreline is " + FormatNumber(-deepest) + " m past it");
+  }
+  // A bore no wider than the rod cannot hold it anywhere.
+  double r_o = 0.0;  // the rod's largest outer radius, m
+  for (int i = 0; i < kPoints && p.rod.section; ++i)
+    r_o = std::max(r_o, 0.5 * p.rod.section->At(p.rod.length * i / (kPoints - 1),
+                                                 p.robot.actuation).outer_diameter);
+  for (int k = 0; k < contact.count; ++k) {
+    const ContactSurface& c = contact.surface[k];
+    if (c.shape == ContactSurface::Shape::kCylinder && c.inside && c.radius <= r_o)
+      report->Add("environment.contact[" + std::to_string(k) + "].radius",
+                  "a bore of radius " + FormatNumber(c.radius) +
+                      " m is no wider than the rod (outer radius " + FormatNumber(r_o) +
+                      " m): it cannot hold it");
+  }
 }
 
 }  // namespace cosserat::io::detail
