@@ -30,7 +30,7 @@ const std::vector<ShapeKeys>& SectionShapes() {
       {"circle", {"radius"}},
       {"annulus", {"outer_radius", "inner_radius", "contents_density"}},
       {"rectangle", {"width", "height"}},
-      {"explicit", {"area", "I1", "I2", "J", "shear_coefficient"}},
+      {"explicit", {"area", "I1", "I2", "J", "shear_coefficient", "outer_diameter"}},
   };
   return shapes;
 }
@@ -77,8 +77,18 @@ std::optional<CrossSection> ParseExplicitSection(const ObjectReader& s) {
   const auto I2 = ReadNumber(s, "I2", PositiveNumber(), Presence::kRequired);
   const auto J = ReadNumber(s, "J", PositiveNumber(), Presence::kRequired);
   const auto kappa = ReadNumber(s, "shear_coefficient", PositiveNumber(), Presence::kOptional);
-  if (!area || !I1 || !I2 || !J || (s.Has("shear_coefficient") && !kappa)) return std::nullopt;
-  return CrossSection::Explicit(*area, *I1, *I2, *J, kappa.value_or(1.0));
+  const auto d_o = ReadNumber(s, "outer_diameter", PositiveNumber(), Presence::kOptional);
+  if (!area || !I1 || !I2 || !J || (s.Has("shear_coefficient") && !kappa) ||
+      (s.Has("outer_diameter") && !d_o))
+    return std::nullopt;
+  // The area must fit in the outline's disc (a pipe's steel is less than its full disc).
+  if (d_o && *area > M_PI * *d_o * *d_o / 4 * (1 + 1e-12)) {
+    s.Reject("outer_diameter", "a diameter whose disc holds the area " + FormatNumber(*area) +
+                                   " m² (at least " +
+                                   FormatNumber(std::sqrt(4 * *area / M_PI)) + " m)");
+    return std::nullopt;
+  }
+  return CrossSection::Explicit(*area, *I1, *I2, *J, kappa.value_or(1.0), d_o.value_or(0.0));
 }
 
 /// A section built from valid dimensions can still be degenerate: a radius of 1e-300 m has an

@@ -48,8 +48,9 @@ CrossSection CrossSection::Rectangle(double width, double height) {
 }
 
 CrossSection CrossSection::Explicit(double area, double I1, double I2, double torsion_constant,
-                                    double shear_coefficient) {
+                                    double shear_coefficient, double outer_diameter) {
   CrossSection c;
+  c.outer_radius = 0.5 * outer_diameter;
   c.shape = SectionShape::kExplicit;
   c.area = area;
   c.I1 = I1;
@@ -99,8 +100,10 @@ double CrossSection::OuterDiameter() const {
     case SectionShape::kCircle:
     case SectionShape::kAnnulus:
       return 2.0 * outer_radius;
-    case SectionShape::kRectangle:
     case SectionShape::kExplicit:
+      if (outer_radius > 0.0) return 2.0 * outer_radius;
+      break;
+    case SectionShape::kRectangle:
       break;
   }
   return std::sqrt(4.0 * area / M_PI);
