@@ -295,6 +295,30 @@ TEST(Run, AnExplicitSectionWithItsOuterDiameterIsThePipe) {
   EXPECT_GT((annulus - Vec3(0, 0, 10)).norm(), 0.05);  // it does bend: 0.093 m
 }
 
+// A search to 1e4 N for the cantilever of examples/cantilever.json (P_cr = π²EI/4L² = 1.5503 N):
+// its first step was max/2560 = 3.9 N, past the double root, which then showed neither a sign
+// change of det J nor a dip: "found" 13.95 N (the second root, 9 P_cr). The first step now
+// scales with EI/L². A search to 1e9 P_cr had not ended at all; one to 5e-324 N looped forever.
+TEST(Run, ABucklingSearchFarBeyondTheCriticalLoadStillFindsTheFirst) {
+  auto search = [](const std::string& max) {
+    const io::ParseResult parsed = io::ParseProblem(R"({"format": "cosserat-problem/1",
+        "analysis": "buckling", "rod": {"length": 0.5, "nodes": 41,
+        "section": {"shape": "circle", "radius": 0.001},
+        "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9, "density": 8000}},
+        "buckling": {"load": "tip_force", "direction": [0, 0, -1], "max": )" + max + "}}");
+    EXPECT_TRUE(parsed.ok());
+    return cosserat::run::Run(*parsed.problem);
+  };
+  const double euler = M_PI * M_PI * 200e9 * M_PI * 1e-12 / 4 / (4 * 0.25);
+  for (const char* max : {"1e4", "2.1e9"}) {
+    const Result r = search(max);
+    ASSERT_EQ(r.json["buckling"]["status"], "found") << max << ": " << r.log;
+    // The grid's error at 41 nodes (O(h²), 2e-4) and shear (r/L)² bound the difference.
+    EXPECT_NEAR(r.json["buckling"]["critical_load"].get<double>() / euler, 1.0, 1e-3) << max;
+  }
+  EXPECT_EQ(search("5e-324").json["buckling"]["status"], "path_failed");
+}
+
 // The modes of a rod coiled 12.5 rad per segment (rest curvature 1000 1/m on a 12.5 mm grid)
 // are about an equilibrium whose shot ran away (its tip at 1e116 m): non_finite, as its statics
 // are, not "converged" with frequencies of 34 kHz.

@@ -184,11 +184,12 @@ ScanEnd ScanPath(const Evaluate& evaluate, const BucklingOptions& options, doubl
   // (a 5 m cantilever's 0.0155 N searched to 5 N in steps of 0.125 N) would otherwise lie inside
   // the first step, where no dip of σ_min can show, and the scan found the second one.
   const double h_nominal = options.lambda_max / options.scan_steps;
-  double h = h_nominal / 64;
+  double h = options.first_step > 0 ? std::min(options.first_step, h_nominal) : h_nominal / 64;
   int halvings = 0;
   while (pts->back().lambda < options.lambda_max) {
     const PathPoint& last = pts->back();
     const double lambda = std::min(options.lambda_max, last.lambda + h);
+    if (!(lambda > last.lambda)) return ScanEnd::kPathFailed;  // a step below λ's resolution
     const Vec6 guess =
         pts->size() >= 2 ? Interpolate((*pts)[pts->size() - 2], last, lambda) : Vec6(last.u);
     PathPoint p;

@@ -287,16 +287,17 @@ QuatFdBucklingSummary QuatFdBuckling::FindCriticalLoad() {
   }
   out.scan_lambda.push_back(b.lo);
   out.scan_min_eigenvalue.push_back(b.mu_lo);
-  // The scan: steps of λ_max/scan_steps, halved after a failed solve (up to 10 times in a row)
-  // and grown back after a success, until the least eigenvalue is <= 0.
-  // (A solve that TurnsBack jumped to another branch: failed too, so the scan keeps its path.)
+  // The scan: steps of λ_max/scan_steps, halved after a failed solve (up to 10 times in a row;
+  // one that TurnsBack jumped branches) and grown back after a success, until μ <= 0.
   const double h_nominal = options_.lambda_max / options_.scan_steps;
   double h = h_nominal;
   int halvings = 0;
   Eigen::VectorXd q_before = b.q_lo;  // the path's point before b.q_lo
   while (b.lo < options_.lambda_max) {
     const double lambda = std::min(options_.lambda_max, b.lo + h);
-    if (!SolveAt(lambda, b.q_lo, &q_try) || TurnsBack(q_before, b.q_lo, q_try)) {
+    // (A step below λ's resolution fails as well: 11 of them are a failed path.)
+    if (!(lambda > b.lo) || !SolveAt(lambda, b.q_lo, &q_try) ||
+        TurnsBack(q_before, b.q_lo, q_try)) {
       if (++halvings > 10) {
         q_ = b.q_lo;
         out.lambda_reached = b.lo;
