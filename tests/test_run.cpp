@@ -319,6 +319,31 @@ TEST(Run, ABucklingSearchFarBeyondTheCriticalLoadStillFindsTheFirst) {
   EXPECT_EQ(search("5e-324").json["buckling"]["status"], "path_failed");
 }
 
+// examples/cantilever.json pulled by 10 kN: at 41 nodes the bending turns a section by 3.6 rad
+// per segment near the clamp, and the "converged" base force was 5 191 N against the 10 000 N
+// (and 0.12 N of weight) it must balance. Status under_resolved (exit 1), naming the nodes
+// that resolve it; with those, the base balances the loads (to 1e-4: the tolerance's share of a
+// 10 kN load on a rod stretched 1.6 %).
+TEST(Run, AShapeTheGridCannotFollowIsUnderResolved) {
+  auto pull = [](int nodes) {
+    const io::ParseResult parsed = io::ParseProblem(R"({"format": "cosserat-problem/1",
+        "rod": {"length": 0.5, "nodes": )" + std::to_string(nodes) + R"(,
+        "section": {"shape": "circle", "radius": 0.001},
+        "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9, "density": 8000}},
+        "loads": {"gravity": [-9.81, 0, 0], "tip_force": [-10000, 0, 0]}})");
+    EXPECT_TRUE(parsed.ok());
+    return cosserat::run::Run(*parsed.problem);
+  };
+  const Result coarse = pull(41);
+  EXPECT_FALSE(coarse.converged);
+  EXPECT_EQ(coarse.json["status"], "under_resolved") << coarse.log;
+  EXPECT_NE(coarse.log.find("rod.nodes ≥ 571"), std::string::npos) << coarse.log;
+  const Result fine = pull(571);
+  ASSERT_TRUE(fine.converged) << fine.log;
+  const double weight = 8000 * M_PI * 1e-6 * 0.5 * 9.81;
+  EXPECT_NEAR(fine.json["base_wrench"]["force"][0].get<double>() / (10000 + weight), 1.0, 1e-4);
+}
+
 // The modes of a rod coiled 12.5 rad per segment (rest curvature 1000 1/m on a 12.5 mm grid)
 // are about an equilibrium whose shot ran away (its tip at 1e116 m): non_finite, as its statics
 // are, not "converged" with frequencies of 34 kHz.

@@ -33,8 +33,12 @@ GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& 
     return out;
   }
   if (worst <= 0.5) return out;
+  out.under_resolved = worst > 1.5;
   std::ostringstream log;
-  log << std::setprecision(3) << "cosserat: warning: the grid resolves the shape coarsely: "
+  log << std::setprecision(3)
+      << (out.under_resolved ? "cosserat: the grid is too coarse for this shape (status "
+                               "under_resolved): "
+                             : "cosserat: warning: the grid resolves the shape coarsely: ")
       << "the bending turns the section by " << worst << " rad per segment near s = " << worst_s
       << " m, where a constant-curvature arc's tip is off by about "
       << 100 * 8e-3 * std::pow(worst, 4) << " % of the length (RK4 in s, fourth order in κ h); "
@@ -63,9 +67,10 @@ void CheckGridResolution(const io::Problem& problem, Result* result) {
                                      rows(nodes["position"]), rows(nodes["curvature"]),
                                      problem.rod.length);
   result->log += g.log;
-  if (!g.ran_away) return;
+  if (!g.ran_away && !g.under_resolved) return;
   result->converged = false;
-  result->json["status"] = ToString(SolveStatus::kNonFinite);
+  result->json["status"] =
+      ToString(g.ran_away ? SolveStatus::kNonFinite : SolveStatus::kUnderResolved);
 }
 
 }  // namespace cosserat::run

@@ -16,6 +16,8 @@ const char* ToString(SolveStatus status) {
       return "non_finite";
     case SolveStatus::kOutOfReach:
       return "out_of_reach";
+    case SolveStatus::kUnderResolved:
+      return "under_resolved";
   }
   return "unknown";
 }

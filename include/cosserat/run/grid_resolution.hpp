@@ -21,6 +21,9 @@ namespace cosserat::run {
 /// alone lengthens a segment legitimately).
 struct GridResolution {
   bool ran_away = false;
+  /// The bending turns a section by more than 1.5 rad on a segment: an arc's tip off by more
+  /// than about 4 % of the length, and the loads' balance with it (status under_resolved).
+  bool under_resolved = false;
   std::string log;  ///< the runaway's explanation, or the coarse-grid warning, or empty
 };
 
@@ -32,7 +35,8 @@ GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& 
                          const std::vector<Vec3>& curvature, double length);
 
 /// The same for a converged SE(3) statics or modes result, from its nodes (for modes, the
-/// equilibrium they are about): a runaway makes it non_finite.
+/// equilibrium they are about): a runaway makes it non_finite, a grid under_resolved makes it
+/// under_resolved (exit 1).
 void CheckGridResolution(const io::Problem& problem, Result* result);
 
 }  // namespace cosserat::run

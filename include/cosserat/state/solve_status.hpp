@@ -13,10 +13,12 @@ enum class SolveStatus {
   kNonFinite,           ///< the integration produced NaN or Inf at every attempt.
   kOutOfReach,          ///< the equations have a root, but one no body can take: an inverse
                         ///< pose that needs a rod of zero or negative length.
+  kUnderResolved,       ///< converged, but on a grid too coarse for the shape to mean much:
+                        ///< the section turns by more than 1.5 rad per segment.
 };
 
 /// "converged", "max_iterations", "load_stepping_failed", "non_finite", "out_of_reach",
-/// "not_run".
+/// "under_resolved", "not_run".
 const char* ToString(SolveStatus status);
 
 }  // namespace cosserat
