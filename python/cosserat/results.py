@@ -75,9 +75,9 @@ def _arrays(block):
 def _frames(nodes_csv):
     """The --csv table of a dynamics run as {"t": (F,), "position": (F, N, 3)}; of an assembly
     (columns t,rod,s,x,y,z) as {"t": (F,), "rods": [(F, N_i, 3) per rod]}; None for a table
-    without times."""
+    without times, or without a frame (a run whose start did not converge)."""
     lines = nodes_csv.strip().splitlines()
-    if not lines or not (lines[0].startswith("t,node") or lines[0].startswith("t,rod")):
+    if len(lines) < 2 or not (lines[0].startswith("t,node") or lines[0].startswith("t,rod")):
         return None
     rows = np.asarray([[float(v) for v in line.split(",")] for line in lines[1:]])
     times = np.unique(rows[:, 0])

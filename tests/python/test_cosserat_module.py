@@ -753,6 +753,15 @@ class PythonSide(unittest.TestCase):
             self.assertEqual(int(probe.stdout.strip()), 11)
         with self.assertRaisesRegex(ValueError, "nodes=True"):
             cosserat.animate(cosserat.solve("examples/cantilever.json"), "x.gif")
+        # A run whose start cannot converge (a 1e300 N preload) records no frame: a result that
+        # says so, as without nodes=True (it raised IndexError on the header-only table).
+        with open("examples/cantilever_release.json") as f:
+            spec = json.load(f)
+        spec["dynamics"]["duration"] = 0.02
+        spec["dynamics"]["initial_loads"]["tip_force"] = [1e300, 0, 0]
+        failed = cosserat.solve(spec, nodes=True)
+        self.assertFalse(failed["converged"])
+        self.assertNotIn("frames", failed)
 
 
     def test_static_solver_gives_tendon_lengths_and_the_tension_jacobian(self):
