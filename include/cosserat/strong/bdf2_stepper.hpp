@@ -167,8 +167,8 @@ class Bdf2ShootingStepper {
   /// them after 100 steps taken whole: DropUnneededPieces). When a step
   /// fails even after halving, the status says why and time() and state() are those of the last
   /// (sub-)step that converged. NaN or Inf in the input (InputIsFinite) is the status non_finite
-  /// (nothing moves); an actuation Actuation::IsValid refuses for this rod (a pushing tendon, a tendon or
-  /// chamber it lacks), or a base (or held tip) rotation that is not one within 1e-6
+  /// (nothing moves); an actuation Actuation::IsValid refuses for this rod (a pushing tendon, a
+  /// tendon or chamber it lacks), or a base (or held tip) rotation that is not one within 1e-6
   /// (lie::RequireRotation), throws std::invalid_argument, as InitializeAtRest does.
   StepSummary Step(const StepInput& input);
   /// Throws std::invalid_argument for the inputs Step refuses (its actuation or poses); NaN and
