@@ -140,9 +140,11 @@ def main(argv):
         ortho = max(np.abs(np.einsum("ij,ij->i", a, b) - (1.0 if a is b else 0.0)).max()
                     for a, b in ((d1, d1), (d2, d2), (d3, d3), (d1, d2), (d2, d3), (d1, d3)))
         check(ortho < 1e-2, f"directors not orthonormal: {ortho}")
+        # The result writes the rotation nearest the tip frame (M = U P → U): they differ by
+        # U (P − I), P − I ≈ (MᵀM − I)/2, whose entries are within √3/2 of ortho.
         tip_R = np.asarray(result["tip"]["rotation"])
         tip_directors = np.column_stack([d1[-1], d2[-1], d3[-1]])
-        check(np.abs(tip_directors - tip_R).max() < 1e-12,
+        check(np.abs(tip_directors - tip_R).max() < ortho + 1e-12,
               f"tip directors {tip_directors} against the result's tip rotation {tip_R}")
         rod = spec["rod"]
         r = rod["section"]["radius"]
