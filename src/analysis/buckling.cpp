@@ -8,6 +8,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cosserat/strong/load_parameter.hpp"
+
 namespace cosserat {
 
 LoadPath LoadPath::TipForce(const Vec3& direction, LoadFrame frame) {
@@ -177,14 +179,19 @@ bool RefineDip(const Evaluate& evaluate, double lambda_tolerance, PathPoint* a, 
 /// or at a local minimum of σ_min, refined by RefineDip, below singular_threshold sigma0 ([*lo,
 /// *hi] and its least point *mid).
 template <class Evaluate>
-ScanEnd ScanPath(const Evaluate& evaluate, const BucklingOptions& options, double sigma0,
-                 std::vector<PathPoint>* pts, BucklingSummary* out, PathPoint* lo, PathPoint* hi,
-                 PathPoint* mid) {
-  // The first steps start 64 times shorter and double: a critical load far below λ_max/scan_steps
-  // (a 5 m cantilever's 0.0155 N searched to 5 N in steps of 0.125 N) would otherwise lie inside
-  // the first step, where no dip of σ_min can show, and the scan found the second one.
+ScanEnd ScanPath(const Evaluate& evaluate, const BucklingOptions& options, double load_parameter,
+                 double sigma0, std::vector<PathPoint>* pts, BucklingSummary* out,
+                 PathPoint* lo, PathPoint* hi, PathPoint* mid) {
+  // The first steps start short and double: a critical load inside the first step shows no dip
+  // of σ_min, and a double root there no sign change of det J, so the scan found a later one (a
+  // 5 m cantilever's 0.0155 N searched to 5 N in steps of 0.125 N; a cantilever searched to
+  // 1e4 N from a first step of 3.9 N, 2.5 P_cr). So the first step is 64 times shorter than
+  // λ_max/scan_steps, and no longer than λ of 1e-4 in StaticLoadParameter (load_parameter per
+  // unit λ: P L²/EI for a tip force), far below any first critical load of the bare rod (2.47
+  // for a tip force, 7.84 for gravity).
   const double h_nominal = options.lambda_max / options.scan_steps;
-  double h = options.first_step > 0 ? std::min(options.first_step, h_nominal) : h_nominal / 64;
+  double h = h_nominal / 64;
+  if (load_parameter > 0) h = std::min(h, 1e-4 / load_parameter);
   int halvings = 0;
   while (pts->back().lambda < options.lambda_max) {
     const PathPoint& last = pts->back();
@@ -356,7 +363,8 @@ BucklingSummary BucklingAnalysis::FindCriticalLoad() {
     return true;
   };
   PathPoint lo{}, hi{}, mid{};
-  const ScanEnd end = ScanPath(evaluate, options_, sigma0, &pts, &out, &lo, &hi, &mid);
+  const double unit = StaticLoadParameter(model_, path_.per_unit, path_.fixed_actuation);
+  const ScanEnd end = ScanPath(evaluate, options_, unit, sigma0, &pts, &out, &lo, &hi, &mid);
   if (end == ScanEnd::kPathFailed || end == ScanEnd::kNotFound) {
     out.lambda_reached = pts.back().lambda;
     return finish(end == ScanEnd::kNotFound ? BucklingStatus::kNotFound
@@ -402,7 +410,8 @@ double BucklingAnalysis::PreloadCriticalFraction(BucklingSummary* out) {
   }
   std::vector<PathPoint> pts{start};
   PathPoint lo{}, hi{}, mid{};
-  const ScanEnd end = ScanPath(evaluate, shares, start.sigma, &pts, out, &lo, &hi, &mid);
+  const double unit = StaticLoadParameter(model_, saved.fixed, saved.fixed_actuation);
+  const ScanEnd end = ScanPath(evaluate, shares, unit, start.sigma, &pts, out, &lo, &hi, &mid);
   path_ = saved;
   if (end == ScanEnd::kSignChange) return 0.5 * (lo.lambda + hi.lambda);
   if (end == ScanEnd::kDip) return mid.lambda;

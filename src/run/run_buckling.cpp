@@ -89,28 +89,6 @@ std::string OnTopOfTheFilesLoad(const io::Problem& problem) {
   return own ? " on top of loads." + io::ToString(k) : "";
 }
 
-/// The SE(3) scan's first step: 1e-4 of the load that scales the rod's bending (EI/L² for a tip
-/// force, EI/L for a moment, EI/L³ per metre, EI/(ρA L³) of acceleration), far below any first
-/// critical load on the bare rod (2.47 of it for a tip force, 7.84 for gravity), so that a
-/// double root lies past several scan points; 0 (the default) for actuation paths.
-double FirstScanStep(const io::Problem& problem) {
-  const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
-  const double EI = p.min_bending_stiffness(), L = problem.rod.length, rhoA = p.mass(5, 5);
-  using io::BucklingLoad;
-  switch (problem.buckling.load) {
-    case BucklingLoad::kTipForce:
-      return 1e-4 * EI / (L * L);
-    case BucklingLoad::kTipMoment:
-      return 1e-4 * EI / L;
-    case BucklingLoad::kDistributedForce:
-      return 1e-4 * EI / (L * L * L);
-    case BucklingLoad::kGravity:
-      return rhoA > 0 ? 1e-4 * EI / (rhoA * L * L * L) : 0.0;
-    default:
-      return 0.0;
-  }
-}
-
 /// After a search that found no critical load: the file's loads push the rod across its axis
 /// (an imperfection), so it bends smoothly along the path and has no bifurcation to find.
 std::string ImperfectionNote(const io::Problem& problem, BucklingStatus status) {
@@ -174,7 +152,6 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   ToColumnEnds(problem.boundary, &ends);  // UnsupportedFeatures let only these through
   BucklingOptions options;
   options.lambda_max = problem.buckling.max;
-  options.first_step = FirstScanStep(problem);
   options.solver = StaticOptions(problem);
   options.progress = run_options.progress;  // the load reached, of the search's maximum
   LoadPath path = MakePath(problem);

@@ -53,10 +53,6 @@ struct BucklingOptions {
   /// The scan takes this many equal steps from 0 to lambda_max (a step that fails to converge is
   /// halved, at most 10 times). Two critical loads closer than a step apart may be seen as one.
   int scan_steps = 40;
-  /// The scan's first step (λ units), doubled after each success up to λ_max/scan_steps; 0:
-  /// λ_max/scan_steps/64. A first step past the first critical load hides it when that is a
-  /// double root (det J changes sign twice and σ_min shows no dip): give one well below it.
-  double first_step = 0.0;
   /// Refinement stops when the bracket is narrower than this fraction of λ_cr.
   double lambda_tolerance = 1e-11;
   /// A minimum of σ_min(J) counts as a singular point when σ_min there is below this fraction of
