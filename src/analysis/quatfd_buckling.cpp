@@ -88,14 +88,6 @@ bool QuatFdBuckling::SolveAt(double lambda, const Eigen::VectorXd& start, Eigen:
   return turn <= options_.max_turn;
 }
 
-bool QuatFdBuckling::TurnsBack(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
-                               const Eigen::VectorXd& c) const {
-  double along = 0.0;  // (x_c − x_b)·(x_b − x_a) over the free vertices, m²
-  for (const int n : free_vertices_)
-    along += (c.segment<3>(Layout::X(n)) - b.segment<3>(Layout::X(n)))
-                 .dot(b.segment<3>(Layout::X(n)) - a.segment<3>(Layout::X(n)));
-  return along < 0.0;
-}
 
 Eigen::MatrixXd QuatFdBuckling::StiffnessFiniteDifference(const Eigen::VectorXd& q) {
   const int N = model_.layout().segments;
@@ -288,7 +280,7 @@ QuatFdBucklingSummary QuatFdBuckling::FindCriticalLoad() {
   out.scan_lambda.push_back(b.lo);
   out.scan_min_eigenvalue.push_back(b.mu_lo);
   // The scan: steps of λ_max/scan_steps, halved after a failed solve (up to 10 times in a row;
-  // one that TurnsBack jumped branches) and grown back after a success, until μ <= 0.
+  // one that quatfd::TurnsBack jumped branches) and grown back after a success, until μ <= 0.
   const double h_nominal = options_.lambda_max / options_.scan_steps;
   double h = h_nominal;
   int halvings = 0;
@@ -297,7 +289,7 @@ QuatFdBucklingSummary QuatFdBuckling::FindCriticalLoad() {
     const double lambda = std::min(options_.lambda_max, b.lo + h);
     // (A step below λ's resolution fails as well: 11 of them are a failed path.)
     if (!(lambda > b.lo) || !SolveAt(lambda, b.q_lo, &q_try) ||
-        TurnsBack(q_before, b.q_lo, q_try)) {
+        quatfd::TurnsBack(model_, q_before, b.q_lo, q_try)) {
       if (++halvings > 10) {
         q_ = b.q_lo;
         out.lambda_reached = b.lo;

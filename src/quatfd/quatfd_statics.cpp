@@ -148,18 +148,17 @@ bool Newton(const QuatFdModel& model, const QuatFdStaticsOptions& opt, double be
   return w->residual < opt.tolerance;
 }
 
-/// Whether the move from b to c takes the vertices against the move from a to b.
+}  // namespace
+
 bool TurnsBack(const QuatFdModel& model, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
                const Eigen::VectorXd& c) {
-  double along = 0.0;  // m²
+  double along = 0.0;  // m²; fixed vertices do not move and add nothing
   for (int n = 0; n <= model.layout().segments; ++n) {
     const int i = L::X(n);
     along += (c.segment<3>(i) - b.segment<3>(i)).dot(b.segment<3>(i) - a.segment<3>(i));
   }
   return along < 0.0;
 }
-
-}  // namespace
 
 bool QuatFdStaticsOptions::IsValid(std::string* why) const {
   auto fail = [&](const char* msg) {
@@ -225,8 +224,9 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   // load steps run out.
   Eigen::VectorXd q_ok(model->size()), v(model->size());
   model->RestState(q_ok, v);
-  Eigen::VectorXd q_before = q_ok;  // the path's point before q_ok
+  Eigen::VectorXd q_before(model->size());  // the path's point before q_ok
   const auto follow = [&](const std::function<StaticLoads(double)>& at) {
+    q_before = q_ok;  // each path starts without a direction
     double lambda = 0.0, step = std::min(0.25, options.max_load_step);
     while (lambda < 1.0) {
       if (summary.load_steps >= options.max_load_steps || step < options.min_load_step)

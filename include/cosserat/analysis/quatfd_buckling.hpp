@@ -112,11 +112,6 @@ class QuatFdBuckling {
   /// than max_turn counts as failed.
   bool SolveAt(double lambda, const Eigen::VectorXd& start, Eigen::VectorXd* q,
                bool on_path = true);
-  /// Whether the step from b to c moves the free vertices against the step from a to b: a jump
-  /// to another branch (a rod bent by a side preload, landing near its unstable straight shape
-  /// past the Euler load).
-  bool TurnsBack(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
-                 const Eigen::VectorXd& c) const;
   struct Bracket;
   /// Narrows the bracket of the stability loss to lambda_tolerance (FindCriticalLoad).
   void RefineBracket(Bracket* bracket);

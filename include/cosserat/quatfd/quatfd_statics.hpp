@@ -63,4 +63,10 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
 /// loads.
 double StaticResidual(const QuatFdModel& model, const Eigen::Ref<const Eigen::VectorXd>& q);
 
+/// Whether the move from state b to c takes the model's vertices against the move from a to b
+/// (Σ (x_c − x_b)·(x_b − a) < 0 over the vertices): along a load path, a jump to another branch
+/// (a rod bent by a side load landing near its unstable straight shape past the Euler load).
+bool TurnsBack(const QuatFdModel& model, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+               const Eigen::VectorXd& c);
+
 }  // namespace cosserat::quatfd
