@@ -43,11 +43,12 @@ StepSummary Bdf2ShootingStepper::InitializeAtRestFrom(const StepInput& input,
   StepSummary summary;
   if (options_.ends == EndConditions::kFreeFree && input.tip_hold != TipHold::kFree)
     throw std::invalid_argument("Bdf2ShootingStepper: a held tip needs cantilever ends");
-  RequireValidInput(input);
   if (!InputIsFinite(input)) {  // NaN or Inf: no rest state, and the last run stays as it was
     summary.status = SolveStatus::kNonFinite;
     return summary;
   }
+  RequireActuation(input.actuation);  // RequireValidInput, finiteness known
+  RequirePoses(input);
   initialized_ = false;  // until this succeeds, Step() refuses to run
   // A new run starts from the constructor's plan: pieces a failed step of an earlier run added
   // would make the same inputs give another run (ApplyActuation adds what this one asks for).

@@ -543,7 +543,8 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
     summary.status = SolveStatus::kNonFinite;  // NaN or Inf in the input: the state stays put
     return summary;
   }
-  RequireValidInput(input);
+  RequireActuation(input.actuation);  // RequireValidInput, finiteness known
+  RequirePoses(input);
   const StepInput start = run_.last_input;
   const int pieces = ShootingPieces();
   const bool ok = AttemptInterval(start, input, options_.dt, 0, &summary);
