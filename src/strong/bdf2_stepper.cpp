@@ -134,8 +134,7 @@ Bdf2ShootingStepper::Bdf2ShootingStepper(const RodModel& model, int num_nodes,
 }
 
 int Bdf2ShootingStepper::PiecesFor(double exponent) const {
-  return std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent),
-                  MaxAutomaticPieces());
+  return AutomaticShootingPieces(exponent, MaxAutomaticPieces());
 }
 
 int Bdf2ShootingStepper::ChosenPieces() const {

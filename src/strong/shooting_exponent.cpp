@@ -50,4 +50,8 @@ int SuggestedShootingSegments(double exponent) {
   return std::max(1, static_cast<int>(std::ceil(exponent / 5.0)));
 }
 
+int AutomaticShootingPieces(double exponent, int max_pieces) {
+  return std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent), max_pieces);
+}
+
 }  // namespace cosserat

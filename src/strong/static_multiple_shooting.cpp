@@ -518,8 +518,7 @@ StaticShootingSummary StaticMultipleShootingSolver::SolveFrom(const lie::SE3& ba
 
 int StaticMultipleShootingSolver::PiecesFor(double exponent) const {
   if (options_.pieces > 0) return options_.pieces;
-  return std::min(exponent <= 10.0 ? 1 : SuggestedShootingSegments(exponent),
-                  static_cast<int>(grid_.size()) - 1);
+  return AutomaticShootingPieces(exponent, static_cast<int>(grid_.size()) - 1);
 }
 
 void StaticMultipleShootingSolver::Finish(const lie::SE3& base, const StaticLoads& last,

@@ -27,4 +27,8 @@ double SingleShootingExponent(const RodModel& rod, double dt, const Actuation& a
 /// The multiple-shooting pieces that bring each piece's exponent to about 5, at least 1.
 int SuggestedShootingSegments(double exponent);
 
+/// The automatic choice of the solvers that pick their own pieces: one while a single shot's
+/// exponent is at most 10, else SuggestedShootingSegments, at most max_pieces.
+int AutomaticShootingPieces(double exponent, int max_pieces);
+
 }  // namespace cosserat
