@@ -161,14 +161,15 @@ void AddRoots(const FrequencyShooting& fs, double lo, double hi, int* budget,
     // cantilever's two bending planes under a 0.01 N lateral tip force, 1e-6 ω apart, lost one
     // of each pair and the list skipped to the next pair. They are listed at ω with the further
     // null vectors.
-    int explained = 0;
     auto near = [&](double w) {
       return std::abs(w - wc) > 1e-5 * wc && std::abs(w - wc) <= 5e-5 * wc;
     };
-    for (const Candidate& c : found) explained += near(c.omega) ? 1 : 0;
-    for (const Root& r : *roots) explained += near(r.omega) ? 1 : 0;
+    const bool explained =
+        std::any_of(found.begin(), found.end(),
+                    [&](const Candidate& c) { return near(c.omega); }) ||
+        std::any_of(roots->begin(), roots->end(), [&](const Root& r) { return near(r.omega); });
     const int simple = static_cast<int>(here.size());
-    const int mult = std::max({simple, null, explained > 0 ? 0 : small});
+    const int mult = std::max({simple, null, explained ? 0 : small});
     for (int r = 0; r < mult; ++r) {
       const double w = r < simple ? here[r] : wc;
       const int vec = r < simple ? 0 : r - simple + 1;

@@ -219,12 +219,11 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
     return finish(SolveStatus::kConverged);
   if (!options.load_stepping) return finish(SolveStatus::kMaxIterations);
 
-  // Continuation in λ along at(λ) from a solution q_ok at λ = 0: grow the increment after a
-  // success, halve it after a failure. False when the increment falls below its floor or the
-  // load steps run out.
-  Eigen::VectorXd q_ok(model->size()), v(model->size());
+  // Continuation in λ along at(λ) from a solution q_ok at λ = 0 (q_before: the point before it):
+  // grow the increment after a success, halve it after a failure. False when the increment
+  // falls below its floor or the load steps run out.
+  Eigen::VectorXd q_ok(model->size()), v(model->size()), q_before(model->size());
   model->RestState(q_ok, v);
-  Eigen::VectorXd q_before(model->size());  // the path's point before q_ok
   const auto follow = [&](const std::function<StaticLoads(double)>& at) {
     q_before = q_ok;  // each path starts without a direction
     double lambda = 0.0, step = std::min(0.25, options.max_load_step);
