@@ -1,7 +1,6 @@
 #include "cosserat/analysis/buckling.hpp"
 
 #include <Eigen/LU>
-#include <Eigen/QR>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <chrono>
@@ -105,12 +104,13 @@ BucklingAnalysis::BucklingAnalysis(const RodModel& model, int num_nodes, ColumnE
         std::to_string(p_end) + " Pa)");
 }
 
-Vec6 BucklingAnalysis::ResidualAt(double lambda, const Vec6& u, Mat6* J) {
+Vec6 BucklingAnalysis::ResidualAt(double lambda, const Vec6& u, Mat6* J, RodState* record,
+                                   std::vector<ColumnSolver::StateTangent>* tangents) {
   if (path_.has_actuation() && lambda != applied_lambda_) {
     column_.SetActuation(path_.ActuationAt(lambda));
     applied_lambda_ = lambda;
   }
-  return column_.Residual(base_, path_.LoadsAt(lambda), u, J);
+  return column_.Residual(base_, path_.LoadsAt(lambda), u, J, record, tangents);
 }
 
 ColumnSummary BucklingAnalysis::SolveAt(double lambda) {
@@ -128,7 +128,14 @@ struct PathPoint {
   Vec6 u;
   double sigma;
   double det_sign;
+  int index = -1;  ///< unstable directions of the equilibrium (−1: not defined)
 };
+
+// The index rose from a to b: between them the path crossed at least one critical point, however
+// many (two roots within a step leave det J's sign alone) and however multiple.
+bool IndexRose(const PathPoint& a, const PathPoint& b) {
+  return a.index >= 0 && b.index > a.index;
+}
 
 // Linear inter- or extrapolation of the unknowns to lambda.
 Vec6 Interpolate(const PathPoint& a, const PathPoint& b, double lambda) {
@@ -138,6 +145,7 @@ Vec6 Interpolate(const PathPoint& a, const PathPoint& b, double lambda) {
 
 /// How the scan along λ ended.
 enum class ScanEnd {
+  kIndexRise,   ///< the stability index rose between two path points
   kSignChange,  ///< det J changed sign between two path points
   kDip,         ///< σ_min dipped below singular_threshold σ_min(0)
   kNotFound,    ///< λ_max reached without either
@@ -213,6 +221,11 @@ ScanEnd ScanPath(const Evaluate& evaluate, const BucklingOptions& options, doubl
     if (options.progress) options.progress(p.lambda, options.lambda_max);
     const std::vector<PathPoint>& q = *pts;
     const size_t k = q.size() - 1;
+    if (IndexRose(q[k - 1], q[k])) {
+      *lo = q[k - 1];
+      *hi = q[k];
+      return ScanEnd::kIndexRise;
+    }
     if (q[k].det_sign * q[k - 1].det_sign < 0) {
       *lo = q[k - 1];
       *hi = q[k];
@@ -237,16 +250,18 @@ ScanEnd ScanPath(const Evaluate& evaluate, const BucklingOptions& options, doubl
   return ScanEnd::kNotFound;
 }
 
-/// Bisection of [*lo, *hi] on the sign of det J down to lambda_tolerance; false when a solve
-/// fails (*lo is then the last point below the sign change).
+/// Bisection of [*lo, *hi] down to lambda_tolerance on the sign of det J, or with by_index on
+/// whether the index has risen above *lo's (the first critical point of the bracket, where det J
+/// may keep its sign); false when a solve fails (*lo is then the last point below).
 template <class Evaluate>
-bool BisectDetSign(const Evaluate& evaluate, double lambda_tolerance, PathPoint* lo,
-                   PathPoint* hi) {
+bool Bisect(const Evaluate& evaluate, double lambda_tolerance, bool by_index, PathPoint* lo,
+            PathPoint* hi) {
   while (hi->lambda - lo->lambda > lambda_tolerance * hi->lambda) {
     const double l = 0.5 * (lo->lambda + hi->lambda);
     PathPoint p;
     if (!evaluate(l, Interpolate(*lo, *hi, l), &p)) return false;
-    (p.det_sign * lo->det_sign > 0 ? *lo : *hi) = p;
+    const bool past = by_index ? IndexRose(*lo, p) : p.det_sign * lo->det_sign < 0;
+    (past ? *hi : *lo) = p;
   }
   return true;
 }
@@ -269,19 +284,22 @@ Vec6 NullVector(const Eigen::JacobiSVD<Mat6>& svd, bool double_root) {
 }  // namespace
 
 void BucklingAnalysis::Singularity(double lambda, double* sigma_min, double* det_sign,
-                                   Vec6* null_vector, double* sigma_second) {
+                                   int* index) {
   Mat6 J;
-  ResidualAt(lambda, column_.unknowns(), &J);
-  const Eigen::JacobiSVD<Mat6> svd(J, Eigen::ComputeFullV);
-  *sigma_min = svd.singularValues()(5);
-  if (sigma_second) *sigma_second = svd.singularValues()(4);
-  if (null_vector) *null_vector = svd.matrixV().col(5);
+  RodState record;
+  std::vector<ColumnSolver::StateTangent> tangents;
+  ResidualAt(lambda, column_.unknowns(), &J, &record, &tangents);
+  *index = column_.StabilityIndexFromShot(base_, path_.LoadsAt(lambda), column_.unknowns(),
+                                          record, tangents);
+  *sigma_min = Eigen::JacobiSVD<Mat6>(J).singularValues()(5);
   const double det = Eigen::PartialPivLU<Mat6>(J).determinant();
   *det_sign = det > 0 ? 1.0 : (det < 0 ? -1.0 : 0.0);
 }
 
-bool BucklingAnalysis::SolveFixedLoads(int* solves) {
-  // From the unloaded rod, with the fixed loads applied in 1, 4, 16 or 64 equal steps.
+bool BucklingAnalysis::SolveFixedLoads(bool require_stable, int* solves) {
+  // From the unloaded rod, with the fixed loads applied in 1, 4, 16 or 64 equal steps. A step too
+  // large can land on another equilibrium (a pipe lying in a bore, loaded by its weight at once,
+  // converged on an unstable one), which the stability index tells.
   bool ok = false;
   const LoadPath saved = path_;
   for (int pieces = 1; pieces <= 64 && !ok; pieces *= 4) {
@@ -292,9 +310,15 @@ bool BucklingAnalysis::SolveFixedLoads(int* solves) {
       ++*solves;
       ok = SolveAt(0.0).converged();
     }
+    if (ok && require_stable) {
+      double sigma, det_sign;
+      int index;
+      Singularity(0.0, &sigma, &det_sign, &index);
+      ok = index <= 0;  // stable, or not defined
+    }
   }
   path_ = saved;
-  return ok;
+  return ok || (require_stable && SolveFixedLoads(false, solves));
 }
 
 void BucklingAnalysis::SetCriticalPoint(double lambda, const Vec6& guess, double sigma0,
@@ -336,7 +360,7 @@ BucklingSummary BucklingAnalysis::FindCriticalLoad() {
       out.scan_lambda.clear();
       out.scan_sigma_min.clear();
       column_.set_unknowns(Vec6::Zero());
-      SolveFixedLoads(&out.solves);  // state(): the (unstable) preloaded equilibrium
+      SolveFixedLoads(false, &out.solves);  // state(): the (unstable) preloaded equilibrium
       return finish(BucklingStatus::kPreloadPastCritical);
     }
     out.scan_lambda.clear();
@@ -344,22 +368,22 @@ BucklingSummary BucklingAnalysis::FindCriticalLoad() {
     column_.ForgetState();  // a failing solve below must not report the scan's last state
   }
   column_.set_unknowns(Vec6::Zero());
-  if (!SolveFixedLoads(&out.solves)) return finish(BucklingStatus::kPathFailed);
+  if (!SolveFixedLoads(true, &out.solves)) return finish(BucklingStatus::kPathFailed);
   PathPoint cur{0.0, column_.unknowns(), 0, 0};
-  Singularity(0.0, &cur.sigma, &cur.det_sign, nullptr, nullptr);
+  Singularity(0.0, &cur.sigma, &cur.det_sign, &cur.index);
   const double sigma0 = cur.sigma;
   out.scan_lambda.push_back(0.0);
   out.scan_sigma_min.push_back(cur.sigma);
   std::vector<PathPoint> pts{cur};
 
-  // Evaluates the path at lambda from a guess: solve, then σ_min and det sign.
+  // Evaluates the path at lambda from a guess: solve, then σ_min, det sign and index.
   auto evaluate = [&](double lambda, const Vec6& guess, PathPoint* p) {
     column_.set_unknowns(guess);
     ++out.solves;
     if (!SolveAt(lambda).converged()) return false;
     p->lambda = lambda;
     p->u = column_.unknowns();
-    Singularity(lambda, &p->sigma, &p->det_sign, nullptr, nullptr);
+    Singularity(lambda, &p->sigma, &p->det_sign, &p->index);
     return true;
   };
   PathPoint lo{}, hi{}, mid{};
@@ -370,8 +394,8 @@ BucklingSummary BucklingAnalysis::FindCriticalLoad() {
     return finish(end == ScanEnd::kNotFound ? BucklingStatus::kNotFound
                                             : BucklingStatus::kPathFailed);
   }
-  if (end == ScanEnd::kSignChange) {
-    if (!BisectDetSign(evaluate, options_.lambda_tolerance, &lo, &hi)) {
+  if (end == ScanEnd::kSignChange || end == ScanEnd::kIndexRise) {
+    if (!Bisect(evaluate, options_.lambda_tolerance, end == ScanEnd::kIndexRise, &lo, &hi)) {
       out.lambda_reached = lo.lambda;
       return finish(BucklingStatus::kPathFailed);
     }
@@ -394,7 +418,7 @@ double BucklingAnalysis::PreloadCriticalFraction(BucklingSummary* out) {
     if (ok) {
       p->lambda = mu;
       p->u = column_.unknowns();
-      Singularity(0.0, &p->sigma, &p->det_sign, nullptr, nullptr);
+      Singularity(0.0, &p->sigma, &p->det_sign, &p->index);
     }
     return ok;
   };
@@ -412,10 +436,15 @@ double BucklingAnalysis::PreloadCriticalFraction(BucklingSummary* out) {
   PathPoint lo{}, hi{}, mid{};
   const double unit = StaticLoadParameter(model_, saved.fixed, saved.fixed_actuation);
   const ScanEnd end = ScanPath(evaluate, shares, unit, start.sigma, &pts, out, &lo, &hi, &mid);
+  double fraction = NAN;
+  if (end == ScanEnd::kDip) fraction = mid.lambda;
+  if (end == ScanEnd::kSignChange || end == ScanEnd::kIndexRise) {
+    // Refined (to 1e-6 of the preload) only to tell a bracket that straddles the whole preload.
+    if (Bisect(evaluate, 1e-6, end == ScanEnd::kIndexRise, &lo, &hi))
+      fraction = 0.5 * (lo.lambda + hi.lambda);
+  }
   path_ = saved;
-  if (end == ScanEnd::kSignChange) return 0.5 * (lo.lambda + hi.lambda);
-  if (end == ScanEnd::kDip) return mid.lambda;
-  return NAN;
+  return fraction;
 }
 
 BucklingMode BucklingAnalysis::ExtractMode(double lambda, const Vec6& v, bool double_root) const {
@@ -474,112 +503,6 @@ BucklingMode BucklingAnalysis::ExtractMode(double lambda, const Vec6& v, bool do
     }
   }
   return mode;
-}
-
-bool BucklingAnalysis::BorderedNewton(double eta, Vec6* u, double* lambda) {
-  // Newton on z = (u, λ/λ_cr): r(u, λ) = 0, v · (u − u_cr) = η. Minimum-norm steps.
-  const double lc = lambda_cr_;
-  const double tol = options_.solver.tolerance;
-  const Vec6& v = v_cr_;
-  for (int it = 0; it <= options_.solver.max_iterations; ++it) {
-    Mat6 J;
-    const Vec6 r = ResidualAt(*lambda, *u, &J);
-    Eigen::Matrix<double, 7, 1> F;
-    F << r, v.dot(*u - u_cr_) - eta;
-    if (!F.allFinite()) return false;
-    if (F.norm() < tol) return true;
-    if (it == options_.solver.max_iterations) return false;
-    const double h = 1e-6 * lc;
-    const Vec6 r_lambda =
-        (ResidualAt(*lambda + h, *u, nullptr) - ResidualAt(*lambda - h, *u, nullptr)) / (2 * h) *
-        lc;
-    Eigen::Matrix<double, 7, 7> A = Eigen::Matrix<double, 7, 7>::Zero();
-    A.topLeftCorner<6, 6>() = J;
-    A.topRightCorner<6, 1>() = r_lambda;
-    A.bottomLeftCorner<1, 6>() = v.transpose();
-    Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, 7, 7>> cod;
-    cod.setThreshold(1e-10);
-    cod.compute(A);
-    const Eigen::Matrix<double, 7, 1> dz = -cod.solve(F);
-    double t = 1.0;
-    bool accepted = false;
-    for (int k = 0; k < 12 && !accepted; ++k, t *= 0.5) {
-      const Vec6 u_try = *u + t * dz.head<6>();
-      const double l_try = *lambda + t * dz(6) * lc;
-      Eigen::Matrix<double, 7, 1> F_try;
-      F_try << ResidualAt(l_try, u_try, nullptr), v.dot(u_try - u_cr_) - eta;
-      if (F_try.allFinite() && F_try.norm() < (1 - 1e-4 * t) * F.norm()) {
-        *u = u_try;
-        *lambda = l_try;
-        accepted = true;
-      }
-    }
-    if (!accepted) return false;
-  }
-  return false;
-}
-
-ColumnSummary BucklingAnalysis::SolvePostBuckled(double lambda_target) {
-  ColumnSummary fail;
-  fail.status = SolveStatus::kMaxIterations;
-  if (!found_ || !(lambda_target > lambda_cr_)) return fail;
-  const double lc = lambda_cr_;
-  const Vec6& v = v_cr_;
-
-  struct BranchPoint {
-    double eta, lambda;
-    Vec6 u;
-  };
-  std::vector<BranchPoint> branch{{0.0, lc, u_cr_}};
-  double d_eta = 0.02;
-  while (branch.back().lambda < lambda_target) {
-    if (branch.size() > 2000 || d_eta < 1e-6) return fail;
-    const BranchPoint& b = branch.back();
-    const double eta = b.eta + d_eta;
-    Vec6 u;
-    double lambda;
-    if (branch.size() >= 2) {  // secant predictor in η
-      const BranchPoint& a = branch[branch.size() - 2];
-      const double w = (eta - b.eta) / (b.eta - a.eta);
-      u = b.u + w * (b.u - a.u);
-      lambda = b.lambda + w * (b.lambda - a.lambda);
-    } else {
-      u = b.u + d_eta * v;
-      lambda = b.lambda;
-    }
-    if (!BorderedNewton(eta, &u, &lambda)) {
-      d_eta *= 0.5;
-      continue;
-    }
-    // Next step: about a quarter of the remaining way in λ, within [d_eta / 2, 2 d_eta] ∩ (0, 0.1].
-    const double slope = std::abs(lambda - b.lambda) / d_eta;
-    const double want = slope > 0 ? 0.25 * (lambda_target - lc) / slope : 2 * d_eta;
-    branch.push_back({eta, lambda, u});
-    d_eta = std::clamp(want, 0.5 * d_eta, std::min(2 * d_eta, 0.1));
-  }
-  // Regula falsi (Illinois) on η for λ(η) = λ_target between the last two branch points.
-  BranchPoint a = branch[branch.size() - 2], b = branch.back();
-  double fa = a.lambda - lambda_target, fb = b.lambda - lambda_target;
-  BranchPoint c = b;
-  for (int it = 0; it < 60 && std::abs(c.lambda - lambda_target) > 1e-13 * lc; ++it) {
-    const double eta = b.eta - fb * (b.eta - a.eta) / (fb - fa);
-    const double w = (eta - a.eta) / (b.eta - a.eta);
-    Vec6 u = a.u + w * (b.u - a.u);
-    double lambda = a.lambda + w * (b.lambda - a.lambda);
-    if (!BorderedNewton(eta, &u, &lambda)) return fail;
-    c = {eta, lambda, u};
-    const double fc = lambda - lambda_target;
-    if (fc * fb < 0) {
-      a = b;
-      fa = fb;
-    } else {
-      fa *= 0.5;
-    }
-    b = c;
-    fb = fc;
-  }
-  column_.set_unknowns(c.u);
-  return SolveAt(lambda_target);
 }
 
 }  // namespace cosserat

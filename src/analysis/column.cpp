@@ -10,6 +10,7 @@
 #include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/strong/load_parameter.hpp"
+#include "cosserat/strong/morse_index.hpp"
 
 namespace cosserat {
 
@@ -93,14 +94,14 @@ void ColumnSolver::Start(const lie::SE3& base, const Vec6& u, lie::SE3* start, V
 }
 
 Vec6 ColumnSolver::Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& u, Mat6* J,
-                            RodState* record) const {
+                            RodState* record, std::vector<StateTangent>* tangents) const {
   lie::SE3 start;
   Vec6 W0;
   StateTangent dstart;
   Start(base, u, &start, &W0, &dstart);
   RodState local;
   RodState* rec = record ? record : &local;
-  const StateTangent T = shooter_.ShootTangent(start, loads, W0, dstart, rec);
+  const StateTangent T = shooter_.ShootTangent(start, loads, W0, dstart, rec, tangents);
   const Mat3& R = rec->rotation_WB.back();
   const Vec3& p = rec->position_W.back();
   const Vec3 m = rec->wrench_B.back().head<3>();
@@ -290,6 +291,32 @@ std::vector<Eigen::Matrix<double, 18, 1>> ColumnSolver::Perturbation(const lie::
   std::vector<Eigen::Matrix<double, 18, 1>> out(tangents.size());
   for (size_t i = 0; i < tangents.size(); ++i) out[i] = tangents[i] * du;
   return out;
+}
+
+int ColumnSolver::StabilityIndexFromShot(const lie::SE3& base, const StaticLoads& loads,
+                                         const Vec6& u, const RodState& record,
+                                         const std::vector<StateTangent>& tangents) const {
+  const SplitWrench tip = TotalTipWrench(loads);
+  if (!tip.follower_B.isZero(0.0) || !tip.dead_W.head<3>().isZero(0.0) || HasDrag(loads))
+    return -1;  // not conservative (StaticShootingSolver::StabilityIndex)
+  // A pinned base holding a torque: the base rotations then do work against it like a dead
+  // moment, and the Jacobi fields they start are no longer a Lagrangian subspace. 1e-8 EI/L is
+  // far below any torque that matters and far above the solve's rounding of m₃(0) = 0.
+  if (ends_ == ColumnEnds::kPinnedPinned && std::abs(u(2)) > 1e-8) return -1;
+  // The admissible tip variations η(L) = [δθ_B; δp_B]: a guided tip keeps its lateral position,
+  // moving only along the base axis, R(L)ᵀ R_WB e₃ in the tip body frame; a clamped tip also
+  // keeps its rotation, δθ_B = 0.
+  TipVariations Z = TipVariations::Identity(6, 6);
+  if (ends_ != ColumnEnds::kClampedFree) {
+    const Vec3 axial = record.rotation_WB.back().transpose() * base.R.col(2);
+    const bool free_rotation = ends_ != ColumnEnds::kClampedClamped;
+    Z = TipVariations::Zero(6, free_rotation ? 4 : 1);
+    if (free_rotation) Z.topLeftCorner<3, 3>().setIdentity();
+    Z.col(Z.cols() - 1).tail<3>() = axial;
+  }
+  // No threshold (unlike the cantilever statics', which must not count the flat circle of
+  // post-buckled equilibria of a round rod): a bisection on the index then meets det J's root.
+  return MorseIndexOfShot(record, tangents, Z, length(), 0.0);
 }
 
 }  // namespace cosserat

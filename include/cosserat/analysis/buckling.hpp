@@ -133,14 +133,17 @@ class BucklingAnalysis {
 
  private:
   ColumnSummary SolveAt(double lambda);
-  Vec6 ResidualAt(double lambda, const Vec6& u, Mat6* J);
-  /// σ_min(J) and sign(det J) at the equilibrium last solved.
-  void Singularity(double lambda, double* sigma_min, double* det_sign, Vec6* null_vector,
-                   double* sigma_second);
+  Vec6 ResidualAt(double lambda, const Vec6& u, Mat6* J, RodState* record = nullptr,
+                  std::vector<ColumnSolver::StateTangent>* tangents = nullptr);
+  /// σ_min(J), sign(det J) and the stability index (−1: not defined) at the equilibrium last
+  /// solved, from one tangent shot.
+  void Singularity(double lambda, double* sigma_min, double* det_sign, int* index);
   BucklingMode ExtractMode(double lambda, const Vec6& v, bool double_root) const;
   /// The equilibrium at λ = 0 from the unloaded rod, the fixed loads applied in 1, 4, 16 or 64
-  /// equal steps until all converge (false if none does); counts the solves.
-  bool SolveFixedLoads(int* solves);
+  /// equal steps until all converge (false if none does) and, with require_stable, land on an
+  /// equilibrium whose stability index is not positive (if none does, the first that converges);
+  /// counts the solves.
+  bool SolveFixedLoads(bool require_stable, int* solves);
   /// The fixed loads scaled from 0 to 1.25 of themselves (λ = 0), scanned from the unloaded rod
   /// as the load path is: the first share at which J turns singular (below 1: the preload is
   /// past it); NaN when J stays regular or a solve fails (the solve of the whole fixed loads

@@ -85,9 +85,18 @@ class ColumnSolver {
   ColumnSummary SolveFromUnloaded(const lie::SE3& base, const StaticLoads& loads);
 
   /// The dimensionless residual at the unknowns u; with J, its exact Jacobian d r / d u (tangent
-  /// propagation); with record, the node states of the shot.
+  /// propagation); with record, the node states of the shot; with tangents, the shot's tangent
+  /// along u at every node.
   Vec6 Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& u, Mat6* J = nullptr,
-                RodState* record = nullptr) const;
+                RodState* record = nullptr, std::vector<StateTangent>* tangents = nullptr) const;
+  /// The number of unstable directions of the equilibrium at u (the Morse index, MorseIndexOfShot
+  /// with the column's base and tip conditions): 0 stable. Counts a double root (a rod symmetric
+  /// about its axis buckling in any plane) twice. −1 where it is not defined: a follower tip
+  /// force, a tip moment, drag, a torque held by a pinned base (none is conservative). From a
+  /// shot of Residual with record and tangents at u (no shot of its own).
+  int StabilityIndexFromShot(const lie::SE3& base, const StaticLoads& loads, const Vec6& u,
+                             const RodState& record,
+                             const std::vector<StateTangent>& tangents) const;
 
   /// The first-order change of the configuration along s for a change du of the unknowns at u:
   /// element i is the shot's StateTangent at node i times du (rows as in StateTangent). Used for

@@ -1,0 +1,170 @@
+// The Morse index of a rod equilibrium found by shooting, by a Sturm count along s.
+//
+// Jacobi fields. Vary the shot's unknowns (those that satisfy the base end conditions): the
+// shot's tangent gives, at every node s, the variation of the pose, η(s) = [δθ_B; δp_B]
+// (R⁻¹δR = δθ_B^, δp_B = Rᵀ δp_W; rad, m), and of the wrench, δW_B(s) (N·m, N), for 6
+// independent directions: U(s) = ∂η/∂u, and the wrench block.
+//
+// The rod [0, σ] held at 0 by its base conditions and loaded at σ by the dead wrench it carries
+// at equilibrium has the potential V_σ(η(σ)) (the rest of the rod relaxed). Its gradient in the
+// pairing dV = m_B·δθ_B + n_B·δp_B is the tip residual r = W_B(σ) − [Rᵀ M_W; Rᵀ F_W], and its
+// Hessian at the equilibrium (r = 0), H(σ) = ∂r/∂η = V(σ) U(σ)⁻¹ with
+// V = [δm − m × δθ; δn − n × δθ] (δ(Rᵀ F_W) = n_B × δθ_B for a dead force), is the stiffness of
+// [0, σ] seen at σ. Near a clamped base it is ≈ K/σ: positive definite. Its eigenvalues fall as σ
+// grows (the Riccati equation of the Jacobi fields, for a positive definite K — the Legendre
+// condition); one passes to −∞ and comes back from +∞ exactly where U is singular (a conjugate
+// point, or a focal point of a pinned base: the problem on [0, σ] held fixed at σ is singular).
+// The index with the real tip conditions is then
+//     (conjugate points in (0, L)) + (negative eigenvalues of H(L) on the admissible η(L)),
+// the Morse index theorem. At a conjugate point one eigenvalue of H wraps from −∞ to +∞, so the
+// count of its negative eigenvalues drops; but it also drops where an eigenvalue rises through
+// zero, which the eigenvalues of H are free to do (they fall monotonically only near a pole: a
+// pinned beam sagging under its weight has one that does, near the pin). So a change of that
+// count only says where to look. There the conjugate points are counted by the multi-dimensional
+// Prüfer angles (Atkinson 1964; Reid 1980): (U, V) spans a Lagrangian subspace (Uᵀ V symmetric),
+// W = (U + iV)(U − iV)⁻¹ is unitary, and W has the eigenvalue −1 exactly where U is singular.
+// With K positive definite the eigenvalues e^{iφ} of W pass −1 only one way (φ decreasing), so
+// the passes between two nodes are (ΔΨ − ΔΦ) / 2π, with Ψ the sum of the principal angles
+// φ ∈ (−π, π] and ΔΦ = 2 Δarg det(U + iV) their continuous change. A double root (a circular
+// section buckles in two planes at once; det U and det J touch zero without changing sign) is two
+// passes.
+//
+// A guided or clamped tip. Its constraints (the lateral position in the world; a clamped tip's
+// rotation) carry reactions; treating the whole tip wrench as dead in the world frame, as V does,
+// makes V_σ the Lagrangian, stationary at the equilibrium, whose Hessian restricted to the
+// admissible variations is the second variation of the constrained problem. The lateral
+// constraint is linear in p_W (no curvature term); the rotation constraint of a clamped tip
+// leaves no rotation to vary. So the tip term counts the negative eigenvalues of Zᵀ H(L) Z, Z an
+// orthonormal basis of the admissible η(L) (in the units of NegativeEigenvalues).
+#include "cosserat/strong/morse_index.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/QR>
+#include <cmath>
+#include <complex>
+
+namespace cosserat {
+
+namespace {
+
+// Negative eigenvalues (below −zero, N·m) of the symmetric part of H = V U⁻¹ on the admissible
+// tip variations, in units where rotations (rad) and displacements (m) are comparable through the
+// length scale `ell` (congruence keeps the count): H' = D⁻¹ H D⁻¹ maps y = [δθ; δp/ell] to
+// [δm; ell δn], in N·m, and the admissible y are D · span(tip), orthonormalised.
+int NegativeEigenvalues(const Mat6& U, const Mat6& V, const TipVariations& tip, double ell,
+                        double zero) {
+  Vec6 d;
+  d << Vec3::Constant(1.0), Vec3::Constant(1.0 / ell);
+  const Eigen::PartialPivLU<Mat6> lu(d.asDiagonal() * U);
+  // H' = (D⁻¹ V)(D U)⁻¹, solved as a transpose: (D U)ᵀ H'ᵀ = (D⁻¹ V)ᵀ.
+  const Mat6 Vs = d.cwiseInverse().asDiagonal() * V;
+  const Mat6 Ht = lu.transpose().solve(Vs.transpose());
+  const Mat6 Hs = 0.5 * (Ht + Ht.transpose());
+  if (!Hs.allFinite()) return -1;
+  const Eigen::HouseholderQR<TipVariations> qr(d.asDiagonal() * tip);
+  const TipVariations Z = qr.householderQ() * TipVariations::Identity(6, tip.cols());
+  const Eigen::MatrixXd Hz = Z.transpose() * Hs * Z;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Hz, Eigen::EigenvaluesOnly);
+  int negative = 0;
+  for (int k = 0; k < Hz.rows(); ++k) negative += eig.eigenvalues()(k) < -zero;
+  return negative;
+}
+
+// The count on all of η without the threshold, cheaply, for the interior nodes: Uᵀ H U = Uᵀ V,
+// so the symmetric part of Uᵀ V is congruent to that of H (symmetrising commutes with
+// congruence) and has its inertia (Sylvester), read off the pivots of an LDLᵀ factorisation
+// (6 × 6, no inverse). Falls back to the eigenvalues if the diagonal pivoting breaks down (a
+// zero pivot).
+int NegativeEigenvaluesFast(const Mat6& U, const Mat6& V) {
+  const Mat6 S0 = U.transpose() * V;
+  const Mat6 S = 0.5 * (S0 + S0.transpose());
+  if (!S.allFinite()) return -1;
+  const Eigen::LDLT<Mat6> ldlt(S);
+  const Vec6 D = ldlt.vectorD();
+  const double tiny = 1e-13 * S.cwiseAbs().maxCoeff();
+  if (ldlt.info() == Eigen::Success && D.allFinite() && D.cwiseAbs().minCoeff() > tiny) {
+    int negative = 0;
+    for (int k = 0; k < 6; ++k) negative += D(k) < 0;
+    return negative;
+  }
+  const Eigen::SelfAdjointEigenSolver<Mat6> eig(S, Eigen::EigenvaluesOnly);
+  int negative = 0;
+  for (int k = 0; k < 6; ++k) negative += eig.eigenvalues()(k) < 0;
+  return negative;
+}
+
+// The Prüfer angles' passes of −1 between the frames (U0, V0) and (U1, V1) of two neighbouring
+// nodes, in the units of NegativeEigenvalues, with V also divided by one stiffness (N·m, from
+// the first frame) so that W's angles move by far less than π between nodes. Negative when the
+// angles moved too far for the count to be sure.
+int PrueferPasses(const Mat6& U0, const Mat6& V0, const Mat6& U1, const Mat6& V1, double ell) {
+  Vec6 d;
+  d << Vec3::Constant(1.0), Vec3::Constant(1.0 / ell);
+  const Mat6 Us0 = d.asDiagonal() * U0, Vs0 = d.cwiseInverse().asDiagonal() * V0;
+  const double c = Us0.norm() > 0 && Vs0.norm() > 0 ? Vs0.norm() / Us0.norm() : 1.0;
+  using CMat6 = Eigen::Matrix<std::complex<double>, 6, 6>;
+  const std::complex<double> i(0.0, 1.0);
+  auto angles = [&](const Mat6& U, const Mat6& V, std::complex<double>* det) {
+    const CMat6 P = (d.asDiagonal() * U).cast<std::complex<double>>() +
+                    i * (d.cwiseInverse().asDiagonal() * V / c).cast<std::complex<double>>();
+    const Eigen::PartialPivLU<CMat6> lu(P);
+    *det = lu.determinant();
+    const CMat6 W = P * P.conjugate().partialPivLu().inverse();
+    const Eigen::ComplexEigenSolver<CMat6> eig(W, false);
+    double sum = 0;
+    for (int k = 0; k < 6; ++k) sum += std::arg(eig.eigenvalues()(k));
+    return sum;
+  };
+  std::complex<double> det0, det1;
+  const double psi0 = angles(U0, V0, &det0), psi1 = angles(U1, V1, &det1);
+  const double dphi = 2.0 * std::arg(det1 / det0);
+  const double passes = (psi1 - psi0 - dphi) / (2.0 * M_PI);
+  const double whole = std::round(passes);
+  if (!std::isfinite(passes) || std::abs(passes - whole) > 0.25 || whole < 0) return -1;
+  return static_cast<int>(whole);
+}
+
+}  // namespace
+
+int MorseIndexOfShot(const RodState& record, const std::vector<ShotTangent>& nodes,
+                     const TipVariations& tip, double length, double zero) {
+  constexpr int kP = 0, kR = 3, kM = 12, kN = 15;  // rows of a ShotTangent
+  const int n = static_cast<int>(nodes.size());
+  int conjugate = 0, previous = 0, negative = 0;
+  Mat6 U_previous, V_previous;
+  for (int i = 1; i < n; ++i) {
+    const Mat3& R = record.rotation_WB[i];
+    const Vec3 m = record.wrench_B[i].head<3>(), f = record.wrench_B[i].tail<3>();
+    const ShotTangent& T = nodes[i];
+    Mat6 U, V;
+    for (int c = 0; c < 6; ++c) {
+      // A = Rᵀ dR is skew to first order: δθ_B = vee(A), from its antisymmetric part.
+      Mat3 A;
+      for (int j = 0; j < 3; ++j) A.col(j) = R.transpose() * T.block<3, 1>(kR + 3 * j, c);
+      const Vec3 dtheta(0.5 * (A(2, 1) - A(1, 2)), 0.5 * (A(0, 2) - A(2, 0)),
+                        0.5 * (A(1, 0) - A(0, 1)));
+      U.col(c) << dtheta, R.transpose() * T.block<3, 1>(kP, c);
+      V.col(c) << T.block<3, 1>(kM, c) - m.cross(dtheta), T.block<3, 1>(kN, c) - f.cross(dtheta);
+    }
+    // The count on all of η (at the tip with the threshold) says where to look for conjugate
+    // points; the tip term counts on the admissible variations.
+    const bool at_tip = i + 1 == n;
+    negative = at_tip ? NegativeEigenvalues(U, V, TipVariations::Identity(6, 6), length, zero)
+                      : NegativeEigenvaluesFast(U, V);
+    if (negative < 0) return -1;  // U singular to rounding at a node: no count
+    if (i > 1 && negative != previous) {
+      const int passes = PrueferPasses(U_previous, V_previous, U, V, length);
+      if (passes < 0) return -1;
+      conjugate += passes;
+    }
+    previous = negative;
+    U_previous = U;
+    V_previous = V;
+    if (at_tip && tip.cols() < 6) negative = NegativeEigenvalues(U, V, tip, length, zero);
+  }
+  return conjugate + negative;
+}
+
+}  // namespace cosserat
