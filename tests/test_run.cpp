@@ -389,9 +389,10 @@ TEST(Run, ModesAboutARunawayEquilibriumAreNotConverged) {
 
 // A pinned column (L = 1 m, r = 1 mm) under a compressive tip force and a lateral load of
 // 1e-3 P_E per metre. At 1.1 P_E the solve converged on the equilibrium bent 1.3 mm against the
-// lateral load, the unstable one (the stable elastica bows 0.28 L), with no word; columns have no
-// stability index, so a near-straight column past the Euler load of its ends is flagged. At
-// 0.9 P_E it stands, bent with the load: nothing to say.
+// lateral load, the unstable one (the stable elastica bows 0.28 L), with no word. Now its
+// stability index counts the unstable directions (past the Euler load in both planes: 2), and
+// the near-straight column past the Euler load of its ends is flagged. At 0.9 P_E it stands, bent
+// with the load: index 0, nothing to say.
 TEST(Run, ANearlyStraightColumnPastItsEulerLoadIsFlagged) {
   auto run = [](double ratio) {
     const double EI = 200e9 * M_PI * 1e-12 / 4, P = M_PI * M_PI * EI;
@@ -409,9 +410,58 @@ TEST(Run, ANearlyStraightColumnPastItsEulerLoadIsFlagged) {
   ASSERT_TRUE(past.converged) << past.log;
   EXPECT_NE(past.log.find("1.1 times the Euler load of its ends"), std::string::npos) << past.log;
   EXPECT_NE(past.log.find("this equilibrium is unstable"), std::string::npos) << past.log;
+  EXPECT_EQ(past.json["stability_index"].get<int>(), 2) << past.log;
   const Result below = run(0.9);
   ASSERT_TRUE(below.converged) << below.log;
   EXPECT_EQ(below.log.find("unstable"), std::string::npos) << below.log;
+  EXPECT_EQ(below.json["stability_index"].get<int>(), 0) << below.log;
+}
+
+// A 30 m steel pipe (outer radius 0.0635 m, inner 0.054 m, in air) lying in a horizontal bore of
+// radius 0.108 m, pinned where its weight w holds it. The bore holds it sideways like a Winkler
+// foundation of w/d per metre (d: its centreline's distance from the bore's axis; Dawson &
+// Paslay 1984): its lateral modes sin(nπx/L) buckle at P_n = EI a² + (w/d)/a², a = nπ/L, all at
+// least 2 √(EI w/d) = 1.5e5 N, the lowest (n = 2) at 1.595e5 N and the next (n = 3) at
+// 1.674e5 N. Pressed by 1e5 N, 7.5 times the Euler load of the free pinned column, it is stable:
+// index 0 and no warning. Pressed by 1.63e5 N, between the two (2 % from each, against the
+// model's 1e-3 of shear and shortening), it has one unstable direction, and a warning.
+TEST(Run, APipePressedInABoreCountsTheWinklerRootsBelowItsLoad) {
+  const double L = 30, w = 7850 * M_PI * (0.0635 * 0.0635 - 0.054 * 0.054) * 9.81;
+  const double delta = w / 2e4 + 0.5e-3 * 0.127;  // penetration: k φ = w, φ = δ − ε/2
+  const double EI = 200e9 * M_PI / 4 * (std::pow(0.0635, 4) - std::pow(0.054, 4));
+  const double k = w / (0.0445 + delta);
+  auto root = [&](int n) { return EI * std::pow(n * M_PI / L, 2) + k / std::pow(n * M_PI / L, 2); };
+  ASSERT_GT(2 * std::sqrt(EI * k), 1.4e5);
+  ASSERT_LT(root(2) * 1.02, 1.63e5);
+  ASSERT_GT(root(3), 1.63e5 * 1.02);
+  ASSERT_LT(root(2), std::min(root(1), root(3)));
+  std::ostringstream depth;
+  depth.precision(17);
+  depth << 0.0445 + delta;
+  auto run = [&](double P) {
+    const std::string text = R"({"format": "cosserat-problem/1", "boundary": "pinned-pinned",
+        "rod": {"length": 30, "nodes": 121,
+          "section": {"shape": "annulus", "outer_radius": 0.0635, "inner_radius": 0.054},
+          "material": {"youngs_modulus": 200e9, "poisson_ratio": 0.3, "density": 7850}},
+        "base": {"position": [0, 0, 0], "rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]},
+        "loads": {"gravity": [0, 0, -9.81], "tip_force": [)" + std::to_string(-P) + R"(, 0, 0]},
+        "environment": {"contact": [{"shape": "cylinder", "point": [0, 0, )" + depth.str() +
+                             R"(], "axis": [1, 0, 0], "radius": 0.108, "side": "inside",
+          "stiffness": 2e4}]}})";
+    const io::ParseResult parsed = io::ParseProblem(text);
+    EXPECT_TRUE(parsed.ok()) << parsed.errors.front();
+    return cosserat::run::Run(*parsed.problem);
+  };
+  const Result held = run(1e5);
+  ASSERT_TRUE(held.converged) << held.log;
+  ASSERT_TRUE(held.json.contains("stability_index")) << held.log;
+  EXPECT_EQ(held.json["stability_index"].get<int>(), 0) << held.log;
+  EXPECT_EQ(held.log.find("unstable"), std::string::npos) << held.log;
+  const Result past = run(1.63e5);
+  ASSERT_TRUE(past.converged) << past.log;
+  ASSERT_TRUE(past.json.contains("stability_index")) << past.log;
+  EXPECT_EQ(past.json["stability_index"].get<int>(), 1) << past.log;
+  EXPECT_NE(past.log.find("unstable (1 unstable direction)"), std::string::npos) << past.log;
 }
 
 // A silicone rod (r = 5 mm, E = 1 MPa) standing upright under its own weight: Greenhill's

@@ -93,6 +93,13 @@ void ColumnSolver::Start(const lie::SE3& base, const Vec6& u, lie::SE3* start, V
   for (int k = 3; k < 6; ++k) (*dstart)(kN + k - 3, k) = scale_(k);
 }
 
+Vec6 ColumnSolver::UnknownsOf(const lie::SE3& base, const Mat3& R0, const Vec6& W0) const {
+  Vec6 u = W0.cwiseQuotient(scale_);
+  if (ends_ == ColumnEnds::kPinnedPinned)
+    u.head<2>() = lie::SO3Log(Mat3(base.R.transpose() * R0)).head<2>();  // θ₃ = 0 by the pin
+  return u;
+}
+
 Vec6 ColumnSolver::Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& u, Mat6* J,
                             RodState* record, std::vector<StateTangent>* tangents) const {
   lie::SE3 start;

@@ -95,6 +95,14 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   summary.shots = column.shots;
   summary.load_steps = column.load_steps;
   summary.residual = column.residual;
+  if (column.converged()) {  // its unstable directions (−1: not defined)
+    RodState record;
+    std::vector<ColumnSolver::StateTangent> tangents;
+    solver.Residual(problem.base, problem.loads, solver.unknowns(), nullptr, &record, &tangents);
+    summary.stability_index =
+        solver.StabilityIndexFromShot(problem.base, problem.loads, solver.unknowns(), record,
+                                      tangents);
+  }
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Result result;
@@ -103,11 +111,37 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
   result.log = StaticSummary(summary, solver.state()) + " (" + ToString(ends) + ")\n";
   result.converged = summary.converged();
-  // Contact surfaces hold a column laterally (a bore, a seabed): its critical load is higher
-  // than the free column's, which the warning compares with.
-  if (result.converged && problem.loads.contact.count == 0)
-    result.log += detail::ColumnPastEulerWarning(ends, problem.rod, solver.state());
+  // Past a critical load the column follows its straight branch, stable or not. The index
+  // judges it; where it is not defined, the comparison with the Euler load of the free column
+  // does (not on contact surfaces, which hold a column laterally: a bore, a seabed).
+  if (result.converged && summary.stability_index != 0) {
+    const std::string past_euler =
+        problem.loads.contact.count == 0
+            ? detail::ColumnPastEulerWarning(ends, problem.rod, solver.state())
+            : "";
+    result.log += summary.stability_index > 0 && past_euler.empty()
+                      ? detail::UnstableWarning(summary, false)
+                      : past_euler;
+  }
   return result;
+}
+
+/// The stability index of an equilibrium multiple shooting found, from one tangent shot from its
+/// base state (ColumnSolver, any ends), when that shot reproduces it: its residual below 1e-6 (in
+/// units of EI/L, EI/L² and L), so that the Jacobi fields are those of a state within rounding of
+/// it. −1 when the shot amplifies the rounding further (a stiff foundation, a high tension: what
+/// multiple shooting is for) or the index is not defined. No tendons or chambers (the column
+/// solver's shot takes none from the problem's actuation here).
+int IndexBySingleShot(const io::Problem& problem, ColumnEnds ends, const RodState& state) {
+  if (!problem.rod.tendons.empty() || state.size() < 2) return -1;
+  const ColumnSolver column(problem.rod, problem.nodes, ends, StaticOptions(problem),
+                            problem.robot.actuation);
+  const Vec6 u = column.UnknownsOf(problem.base, state.rotation_WB.front(), state.wrench_B.front());
+  RodState record;
+  std::vector<ColumnSolver::StateTangent> tangents;
+  const Vec6 r = column.Residual(problem.base, problem.loads, u, nullptr, &record, &tangents);
+  if (!(r.norm() < 1e-6)) return -1;
+  return column.StabilityIndexFromShot(problem.base, problem.loads, u, record, tangents);
 }
 
 /// A cantilever or column whose single shot would amplify errors beyond double precision (a
@@ -123,7 +157,9 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
   opt.tip_guided = ends != ColumnEnds::kClampedFree;
   opt.tip_clamped = ends == ColumnEnds::kClampedClamped;
   StaticMultipleShootingSolver solver(problem.rod, problem.nodes, opt);
-  const StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
+  StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
+  if (summary.converged())
+    summary.stability_index = IndexBySingleShot(problem, ends, solver.state());
   Result result;
   result.json = io::StaticResultToJson(summary, solver.state());
   detail::KeepStaticFrame(problem, solver.state(), options, &result);
@@ -133,7 +169,7 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
       ends == ColumnEnds::kClampedFree ? "" : ToString(ends) + std::string(", ");
   result.log = StaticSummary(summary, solver.state()) + " (" + column +
                std::to_string(solver.pieces()) + " shooting pieces)\n" +
-               ContinuationHint(problem, summary);
+               ContinuationHint(problem, summary) + detail::UnstableWarning(summary, false);
   result.converged = summary.converged();
   return result;
 }

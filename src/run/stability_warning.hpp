@@ -12,17 +12,20 @@
 namespace cosserat::run::detail {
 
 /// "cosserat: warning: this equilibrium is unstable (k unstable directions): ..." when
-/// s.stability_index > 0 (past a critical load, no stable equilibrium reached from the unloaded
-/// rod: a column pressed 19 times its buckling load stays straight, and would not); else empty.
-std::string UnstableWarning(const StaticShootingSummary& s);
+/// s.stability_index > 0 (past a critical load: a column pressed 19 times its buckling load
+/// stays straight, and would not); else empty. searched_stable: the solver looked for a stable
+/// equilibrium from the unloaded rod and found none (the cantilever's does; the column's
+/// follows its straight branch).
+std::string UnstableWarning(const StaticShootingSummary& s, bool searched_stable = true);
 
 /// A column (pinned or clamped at both ends) that stands nearly straight (no node off its chord
 /// by 5 % of the length) while compressed everywhere beyond 1.01 times the Euler load of its
 /// ends (π², 20.19 or 4π² EI/L² for pinned–pinned, clamped–pinned, clamped–clamped; Timoshenko
 /// & Gere 1961; EI at mid-length) is on the unstable branch: the stable one bows out (pinned
 /// ends: by about 0.9 √(P/P_E − 1) L, the elastica's amplitude to first order). The warning says
-/// so; empty otherwise. Columns have no stability index. Not for columns on contact surfaces,
-/// which hold them laterally (the caller's rule).
+/// so; empty otherwise. For columns whose stability index is not defined (a tip moment, a
+/// follower force, drag), or to say more than the index does. Not for columns on contact
+/// surfaces, which hold them laterally (the caller's rule).
 std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const RodState& state);
 
 /// A rod held at both ends ("anchored") compressed somewhere by more than π²EI/L² (below that

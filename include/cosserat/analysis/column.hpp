@@ -105,6 +105,11 @@ class ColumnSolver {
                                                          const StaticLoads& loads, const Vec6& u,
                                                          const Vec6& du) const;
 
+  /// The unknowns that start the shot at the base state R(0) (world) and W(0) = [m; n] (base
+  /// body frame, N·m; N) found by another solver (multiple shooting): the inverse of the start
+  /// map for these ends (a pinned base's rotations from R_WBᵀ R(0); its bending moment is zero).
+  Vec6 UnknownsOf(const lie::SE3& base, const Mat3& R0, const Vec6& W0) const;
+
   void SetActuation(const Actuation& actuation) { shooter_.SetActuation(actuation); }
   const Vec6& unknowns() const { return u_; }
   void set_unknowns(const Vec6& u) { u_ = u; }
