@@ -318,13 +318,21 @@ Result RunStatics(const io::Problem& problem, const RunOptions& options) {
   // converged, looped, onto an equilibrium far from the straight one) or the precision.
   if (pieces_possible && exponent > 10.0)
     return RunMultipleShootingStatics(problem, options, ends);
+  // A column on contact surfaces: the penalty's smoothing ramp is thin (1e-3 of the diameter), so
+  // the residual's Jacobian jumps as nodes cross it, and the column solver's damped Newton stalls
+  // (a pipe pressed in a bore: 6 000 iterations, 5 s). Multiple shooting, with its stiffness
+  // continuation and Levenberg–Marquardt, took 20 to 60 iterations in two pieces.
+  const int split_pieces =
+      std::min(problem.nodes - 1, std::max(2, SuggestedShootingSegments(exponent)));
+  if (pieces_possible && column && problem.loads.contact.count > 0)
+    return RunMultipleShootingStatics(problem, options, ends, split_pieces);
   Result single = column ? RunColumnStatics(problem, ends, options)
                          : RunSingleShotStatics(problem, options);
   if (single.converged || !pieces_possible) return single;
   // The single shot failed below that exponent (a rod on a foundation near it, a column in a
   // bore): the rod in pieces, at least two, as the dynamics stepper adds pieces before it gives
   // up. The single shot's result stands if they fail too.
-  const int pieces = std::min(problem.nodes - 1, std::max(2, SuggestedShootingSegments(exponent)));
+  const int pieces = split_pieces;
   Result split = RunMultipleShootingStatics(problem, options, ends, pieces);
   if (!split.converged) return single;
   split.log += "cosserat: note: one shot from the clamp did not converge (" +
