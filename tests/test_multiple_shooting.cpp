@@ -409,5 +409,37 @@ TEST(AutomaticPieces, TheSteelPeerRodKeepsOneShot) {
   }
 }
 
+// A one-tick spike of the input (a tip force of 2e4 N on the steel peer rod, ~80 times what
+// bends it by its length) makes the stepper add pieces trying to converge (that step still
+// fails, a status; the state stays the last converged one). Once the input is back, the
+// pieces are halved back to the automatic choice after every kFirstDropWait steps taken whole,
+// so the dear steps after a spike number about kFirstDropWait · log2(pieces), not hundreds.
+TEST(AutomaticPieces, PiecesASpikeAddedAreDroppedSoonAfter) {
+  Bdf2Options opt;
+  opt.dt = 2e-3;
+  Bdf2ShootingStepper stepper(PeerRod(), 40, opt);
+  StepInput in = bench::PeerPreload();
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  in.loads.tip_force.setZero();
+  for (int i = 0; i < 10; ++i) ASSERT_TRUE(stepper.Step(in).converged());
+  StepInput spike = in;
+  spike.loads.tip_force = Vec3(2e4, 0, 0);
+  const StepSummary hit = stepper.Step(spike);  // converged or not, it added pieces
+  std::printf("spike: %s, %d pieces\n", ToString(hit.status), hit.shooting_segments);
+  ASSERT_GT(hit.shooting_segments, 1);
+  const int halvings = static_cast<int>(std::ceil(std::log2(hit.shooting_segments)));
+  int back = -1;
+  for (int i = 0; i < 400 && back < 0; ++i) {
+    const StepSummary s = stepper.Step(in);
+    ASSERT_TRUE(s.converged()) << i;
+    if (s.shooting_segments == 1) back = i + 1;
+  }
+  std::printf("one piece again after %d steps\n", back);
+  ASSERT_GT(back, 0);
+  // Each halving waits kFirstDropWait whole steps; a few steps of the transient may still fail
+  // and add pieces (each failure doubles the wait before the next drop): allow twice the wait.
+  EXPECT_LE(back, 2 * Bdf2ShootingStepper::kFirstDropWait * halvings);
+}
+
 }  // namespace
 }  // namespace cosserat

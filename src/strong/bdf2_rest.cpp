@@ -56,6 +56,8 @@ StepSummary Bdf2ShootingStepper::InitializeAtRestFrom(const StepInput& input,
   run_.base1 = run_.base2 = input.base_pose;
   run_.steps_taken = 0;
   run_.whole_steps = 0;
+  run_.drop_wait = kFirstDropWait;
+  run_.dropped_pieces = false;
   run_.jacobian_c0 = -1.0;  // the first solve computes the exact Jacobian
   ApplyActuation(input.actuation);
   const bool ok = SolveRestEquilibrium(input, base_wrench_B, equilibrium, &summary);

@@ -141,16 +141,22 @@ int Bdf2ShootingStepper::ChosenPieces() const {
   return PiecesFor(SingleShootingExponent(model_, options_.dt, actuation_, run_.state));
 }
 
+// kFirstDropWait: a failure's pieces are kept through 10 steps of the transient that asked for
+// them, then halved, so a spike of one tick in the input costs about 40 dear steps after it, not
+// 300. kLongestDropWait: a state that keeps needing the pieces is tried at most once in 160
+// steps (a failed attempt costs about one step's solve).
 void Bdf2ShootingStepper::DropUnneededPieces() {
-  // 100 whole steps: a failure's pieces are kept through the transient that asked for them
-  // (0.2 s at dt = 2 ms), and a drop that fails costs one attempt in 100 steps.
-  constexpr int kWholeStepsBeforeFewerPieces = 100;
-  if (!automatic_pieces_ || ShootingPieces() == 1 ||
-      ++run_.whole_steps < kWholeStepsBeforeFewerPieces)
-    return;
-  run_.whole_steps = 0;
+  if (!automatic_pieces_ || ShootingPieces() == 1 || ++run_.whole_steps < run_.drop_wait) return;
+  if (run_.dropped_pieces) run_.drop_wait = kFirstDropWait;  // the last drop held a whole wait
   const int fewer = std::max(ChosenPieces(), ShootingPieces() / 2);
+  run_.whole_steps = 0;
+  run_.dropped_pieces = fewer < ShootingPieces();
   if (fewer < ShootingPieces()) SetShootingPieces(fewer);
+}
+
+void Bdf2ShootingStepper::NoteAddedPieces() {
+  if (run_.dropped_pieces) run_.drop_wait = std::min(2 * run_.drop_wait, kLongestDropWait);
+  run_.dropped_pieces = false;
 }
 
 int Bdf2ShootingStepper::MaxAutomaticPieces() const {
@@ -517,6 +523,7 @@ bool Bdf2ShootingStepper::AttemptInterval(const StepInput& from, const StepInput
   // Before halving: more pieces, when the stepper chooses them (a failed attempt commits
   // nothing; the new junctions start from the last accepted state).
   while (automatic_pieces_ && ShootingPieces() < MaxAutomaticPieces()) {
+    NoteAddedPieces();
     SetShootingPieces(std::min(MaxAutomaticPieces(), 2 * ShootingPieces()));
     if (Attempt(to, h, summary)) return true;
   }

@@ -163,8 +163,9 @@ class Bdf2ShootingStepper {
   StepSummary InitializeAtRest(const StepInput& input, const RodState& equilibrium);
 
   /// Advances by options().dt to the state under `input`. No heap allocation, except in a
-  /// step that changes the automatic multiple-shooting pieces (adds them on a failure, drops
-  /// them after 100 steps taken whole: DropUnneededPieces). When a step
+  /// step that changes the automatic multiple-shooting pieces (adds them on a failure, halves
+  /// them back after 10 steps taken whole, or up to 160 when such drops failed before:
+  /// DropUnneededPieces). When a step
   /// fails even after halving, the status says why and time() and state() are those of the last
   /// (sub-)step that converged. NaN or Inf in the input (InputIsFinite) is the status non_finite
   /// (nothing moves); an actuation Actuation::IsValid refuses for this rod (a pushing tendon, a
@@ -205,6 +206,10 @@ class Bdf2ShootingStepper {
   double Mass() const { return cosserat::Mass(QuadraturePoints()); }
   Vec3 CentreOfMass_W() const { return cosserat::CentreOfMass_W(QuadraturePoints()); }
 
+  /// The whole steps taken before the pieces a failure added are first halved back
+  /// (DropUnneededPieces), and the longest such wait, after drops that failed in a row.
+  static constexpr int kFirstDropWait = 10, kLongestDropWait = 160;
+
   /// Everything Step() needs to continue a run. Save() allocates; Restore() into a stepper of the
   /// same model and grid does not, and throws std::invalid_argument for a snapshot taken before
   /// InitializeAtRest or from a stepper of another model, grid or end conditions.
@@ -217,6 +222,11 @@ class Bdf2ShootingStepper {
     int steps_taken = 0;
     /// Steps taken whole (no halving, no added piece) since the automatic pieces last changed.
     int whole_steps = 0;
+    /// The whole steps DropUnneededPieces waits for before it halves the pieces a failure added:
+    /// kFirstDropWait, doubled (up to kLongestDropWait) each time pieces it dropped had to be
+    /// added back, and back to kFirstDropWait once a drop has held for a whole wait.
+    int drop_wait = kFirstDropWait;
+    bool dropped_pieces = false;  ///< the pieces' last change was a drop that has not yet held
     // Accepted values at the stages of each step of the shot (index step_slot_[i] + j for the
     // step from node i), one and two steps back, and at the tip node.
     std::vector<Vec6> strain1, strain2, twist1, twist2;
@@ -358,10 +368,13 @@ class Bdf2ShootingStepper {
   /// (constructor, and when automatic pieces grow).
   void SetShootingPieces(int pieces);
   int ShootingPieces() const { return static_cast<int>(junction_nodes_.size()) + 1; }
-  /// After kWholeStepsBeforeFewerPieces steps taken whole, pieces a failure added above
-  /// ChosenPieces() are halved back towards it (a spike in the input must not leave every later
-  /// step several times dearer). Allocates, as adding pieces does.
+  /// After run_.drop_wait steps taken whole, pieces a failure added above ChosenPieces() are
+  /// halved back towards it (a spike in the input must not leave every later step several times
+  /// dearer for long). Allocates, as adding pieces does.
   void DropUnneededPieces();
+  /// Pieces are about to be added after a failed attempt: a drop that had not held yet was too
+  /// early, so the next one waits twice as long.
+  void NoteAddedPieces();
   /// The most pieces the automatic choice goes to: 32, and no more than the grid's segments.
   int MaxAutomaticPieces() const;
   /// Whether automatic pieces can take the snapshot's number of pieces (Restore()).
