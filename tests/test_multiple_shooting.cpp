@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <cstdio>
 #include <vector>
 
@@ -393,15 +394,24 @@ TEST(AutomaticPieces, ASofteningActuationRechoosesThePieces) {
   EXPECT_EQ(s.shooting_segments, 5);
 }
 
+// The steel peer rod (40 nodes, dt = 2 ms, automatic pieces) at rest under the peers' preload,
+// then released: *in is the input without the preload's tip force.
+std::unique_ptr<Bdf2ShootingStepper> ReleasedPeerRod(StepInput* in) {
+  Bdf2Options opt;
+  opt.dt = 2e-3;
+  auto stepper = std::make_unique<Bdf2ShootingStepper>(PeerRod(), 40, opt);
+  *in = bench::PeerPreload();
+  EXPECT_TRUE(stepper->InitializeAtRest(*in).converged());
+  in->loads.tip_force.setZero();
+  return stepper;
+}
+
 TEST(AutomaticPieces, TheSteelPeerRodKeepsOneShot) {
   // λL ≈ 8.7 at dt = 2 ms: inside single shooting's safe range, so the real-time path keeps its
   // one shot per Newton iteration.
-  Bdf2Options opt;
-  opt.dt = 2e-3;
-  Bdf2ShootingStepper stepper(PeerRod(), 40, opt);
-  StepInput in = bench::PeerPreload();
-  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
-  in.loads.tip_force.setZero();
+  StepInput in;
+  const std::unique_ptr<Bdf2ShootingStepper> released = ReleasedPeerRod(&in);
+  Bdf2ShootingStepper& stepper = *released;
   for (int i = 0; i < 50; ++i) {
     const StepSummary s = stepper.Step(in);
     ASSERT_TRUE(s.converged());
@@ -415,12 +425,9 @@ TEST(AutomaticPieces, TheSteelPeerRodKeepsOneShot) {
 // pieces are halved back to the automatic choice after every kFirstDropWait steps taken whole,
 // so the dear steps after a spike number about kFirstDropWait · log2(pieces), not hundreds.
 TEST(AutomaticPieces, PiecesASpikeAddedAreDroppedSoonAfter) {
-  Bdf2Options opt;
-  opt.dt = 2e-3;
-  Bdf2ShootingStepper stepper(PeerRod(), 40, opt);
-  StepInput in = bench::PeerPreload();
-  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
-  in.loads.tip_force.setZero();
+  StepInput in;
+  const std::unique_ptr<Bdf2ShootingStepper> released = ReleasedPeerRod(&in);
+  Bdf2ShootingStepper& stepper = *released;
   for (int i = 0; i < 10; ++i) ASSERT_TRUE(stepper.Step(in).converged());
   StepInput spike = in;
   spike.loads.tip_force = Vec3(2e4, 0, 0);

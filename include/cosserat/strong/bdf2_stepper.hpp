@@ -73,8 +73,8 @@ struct Bdf2Options {
   /// A step's whole work is bounded by the attempts: a failed one is retried in more pieces
   /// (automatic pieces, up to 32) and then as halves, up to max_halvings deep, each sub-step
   /// with its own attempts; a bad tick then costs ~100× a good one (196 iterations, 0.1 s on
-  /// a tendon robot pushed by 1 kN), and the pieces it adds stay for the next 100 steps taken
-  /// whole. For a hard bound per tick: max_halvings = 0 and shooting_segments fixed (at most
+  /// a tendon robot pushed by 1 kN), and the pieces it adds stay for the next 10 or more steps
+  /// taken whole (DropUnneededPieces). For a hard bound per tick: max_halvings = 0 and shooting_segments fixed (at most
   /// max_iterations solves of one shot plan), with a failed step handled by the caller
   /// (Restore of the last good Snapshot).
   int max_iterations = 20;
