@@ -160,7 +160,7 @@ void Bdf2ShootingStepper::NoteAddedPieces() {
 }
 
 int Bdf2ShootingStepper::MaxAutomaticPieces() const {
-  return std::max(1, std::min(32, shot_steps()));
+  return std::max(1, std::min(kMostAutomaticPieces, shot_steps()));
 }
 
 double Bdf2ShootingStepper::StepRate(const Sample& smp) const {

@@ -71,7 +71,7 @@ struct Bdf2Options {
   double tolerance = 1e-10;
   /// Newton-type iterations per attempt (a hard cap on each attempt: Step() is deterministic).
   /// A step's whole work is bounded by the attempts: a failed one is retried in more pieces
-  /// (automatic pieces, up to 32) and then as halves, up to max_halvings deep, each sub-step
+  /// (automatic pieces, up to 256) and then as halves, up to max_halvings deep, each sub-step
   /// with its own attempts; a bad tick then costs ~100× a good one (196 iterations, 0.1 s on
   /// a tendon robot pushed by 1 kN), and the pieces it adds stay for the next 10 or more steps
   /// taken whole (DropUnneededPieces). For a hard bound per tick: max_halvings = 0 and shooting_segments fixed (at most
@@ -96,7 +96,7 @@ struct Bdf2Options {
   /// Newton only (no Levenberg–Marquardt fallback; a failure halves the step as usual).
   /// 0 (the default): the stepper chooses. It starts with one piece when λL ≤ 10 (single
   /// shooting's safe range) and SuggestedShootingSegments(λL) above (shooting_exponent.hpp), and
-  /// when a step fails it doubles the pieces (up to 32, and the shot's steps) before it halves
+  /// when a step fails it doubles the pieces (up to 256, and the shot's steps) before it halves
   /// the step. StepSummary::shooting_segments reports the pieces of each step.
   int shooting_segments = 0;
   /// Explicit scheme of the shot in s (spatial_scheme.hpp): RK4 across pairs of segments (the
@@ -209,6 +209,10 @@ class Bdf2ShootingStepper {
   /// The whole steps taken before the pieces a failure added are first halved back
   /// (DropUnneededPieces), and the longest such wait, after drops that failed in a row.
   static constexpr int kFirstDropWait = 10, kLongestDropWait = 160;
+  /// The most pieces the automatic choice takes (λL/5 of them; doubled on a failure). The
+  /// junctions' Jacobian is block-banded, so a step's cost grows only linearly with them: a 1 km
+  /// drill string hanging in tension (λL ≈ 480) needs about 96, and failed at 32.
+  static constexpr int kMostAutomaticPieces = 256;
 
   /// Everything Step() needs to continue a run. Save() allocates; Restore() into a stepper of the
   /// same model and grid does not, and throws std::invalid_argument for a snapshot taken before
@@ -375,7 +379,8 @@ class Bdf2ShootingStepper {
   /// Pieces are about to be added after a failed attempt: a drop that had not held yet was too
   /// early, so the next one waits twice as long.
   void NoteAddedPieces();
-  /// The most pieces the automatic choice goes to: 32, and no more than the grid's segments.
+  /// The most pieces the automatic choice goes to: kMostAutomaticPieces, and no more than the
+  /// steps of the shot.
   int MaxAutomaticPieces() const;
   /// Whether automatic pieces can take the snapshot's number of pieces (Restore()).
   bool PiecesCanFollow(const Snapshot& snapshot) const;
