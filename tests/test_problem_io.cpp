@@ -397,8 +397,9 @@ TEST(ProblemIo, LaterAnalysesParseButAreGated) {
 }
 
 // Dimensions that pass their own checks but underflow together are named where they were given:
-// a radius of 1e-300 m has an area of 0, and E = 1e-300 Pa against G = 8e10 Pa a Poisson ratio
-// that rounds to −1.
+// a radius of 1e-300 m has an area of 0, E = 1e-300 Pa against G = 8e10 Pa a Poisson ratio that
+// rounds to −1, and E = 5e-324 Pa with a Poisson ratio a shear modulus of 0 (which was named as
+// if the file had given it).
 TEST(ProblemIo, DegenerateSectionsAndMaterialsAreNamed) {
   json j = ValidProblem();
   j["rod"]["section"]["radius"] = 1e-300;
@@ -409,6 +410,14 @@ TEST(ProblemIo, DegenerateSectionsAndMaterialsAreNamed) {
   r = Parse(j);
   EXPECT_TRUE(HasError(r, {"rod.material: expected youngs_modulus and shear_modulus whose Poisson "
                            "ratio E/(2G) − 1 is above −1"}))
+      << AllErrors(r);
+  j = ValidProblem();
+  j["rod"]["material"].erase("shear_modulus");
+  j["rod"]["material"]["poisson_ratio"] = 0.45;
+  j["rod"]["material"]["youngs_modulus"] = 5e-324;
+  r = Parse(j);
+  EXPECT_TRUE(HasError(r, {"rod.material.youngs_modulus: expected a modulus whose shear modulus "
+                           "E/(2(1 + ν)) is a normal double"}))
       << AllErrors(r);
 }
 

@@ -1,6 +1,7 @@
 #include "problem_rod.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -158,7 +159,14 @@ std::optional<double> ParseShearModulus(const ObjectReader& m, std::optional<dou
   if (has_G == has_nu || !E) return std::nullopt;
   if (has_nu) {
     if (!nu) return std::nullopt;
-    return *E / (2.0 * (1.0 + *nu));
+    const double shear = *E / (2.0 * (1.0 + *nu));
+    if (!(shear >= std::numeric_limits<double>::min())) {  // E/(2(1 + ν)) underflows
+      m.report().Expected(m.PathOf("youngs_modulus"),
+                          "a modulus whose shear modulus E/(2(1 + ν)) is a normal double",
+                          FormatNumber(*E) + " Pa (shear modulus " + FormatNumber(shear) + ")");
+      return std::nullopt;
+    }
+    return shear;
   }
   if (!G) return std::nullopt;
   const double implied_nu = *E / (2.0 * *G) - 1.0;
