@@ -20,9 +20,11 @@
 // count of its negative eigenvalues drops; but it also drops where an eigenvalue rises through
 // zero, which the eigenvalues of H are free to do (they fall monotonically only near a pole: a
 // pinned beam sagging under its weight has one that does, near the pin). So a change of that
-// count only says where to look. There the conjugate points are counted by the multi-dimensional
-// Prüfer angles (Atkinson 1964; Reid 1980): (U, V) spans a Lagrangian subspace (Uᵀ V symmetric),
-// W = (U + iV)(U − iV)⁻¹ is unitary, and W has the eigenvalue −1 exactly where U is singular.
+// count, or of the sign of det U (a pole and a rise through zero in one interval leave the count
+// alone: a pipe in a bore between two close Winkler roots), only says where to look. There the
+// conjugate points are counted by the multi-dimensional Prüfer angles (Atkinson 1964; Reid
+// 1980): (U, V) spans a Lagrangian subspace (Uᵀ V symmetric), W = (U + iV)(U − iV)⁻¹ is
+// unitary, and W has the eigenvalue −1 exactly where U is singular.
 // With K positive definite the eigenvalues e^{iφ} of W pass −1 only one way (φ decreasing), so
 // the passes between two nodes are (ΔΨ − ΔΦ) / 2π, with Ψ the sum of the principal angles
 // φ ∈ (−π, π] and ΔΦ = 2 Δarg det(U + iV) their continuous change. A double root (a circular
@@ -134,6 +136,7 @@ int MorseIndexOfShot(const RodState& record, const std::vector<ShotTangent>& nod
   const int n = static_cast<int>(nodes.size());
   int conjugate = 0, previous = 0, negative = 0;
   Mat6 U_previous, V_previous;
+  bool previous_det_u_positive = true;
   for (int i = 1; i < n; ++i) {
     const Mat3& R = record.rotation_WB[i];
     const Vec3 m = record.wrench_B[i].head<3>(), f = record.wrench_B[i].tail<3>();
@@ -154,12 +157,15 @@ int MorseIndexOfShot(const RodState& record, const std::vector<ShotTangent>& nod
     negative = at_tip ? NegativeEigenvalues(U, V, TipVariations::Identity(6, 6), length, zero)
                       : NegativeEigenvaluesFast(U, V);
     if (negative < 0) return -1;  // U singular to rounding at a node: no count
-    if (i > 1 && negative != previous) {
+    // Where to look: a change of the count, or of det U's sign.
+    const bool det_u_positive = U.determinant() > 0;
+    if (i > 1 && (negative != previous || det_u_positive != previous_det_u_positive)) {
       const int passes = PrueferPasses(U_previous, V_previous, U, V, length);
       if (passes < 0) return -1;
       conjugate += passes;
     }
     previous = negative;
+    previous_det_u_positive = det_u_positive;
     U_previous = U;
     V_previous = V;
     if (at_tip && tip.cols() < 6) negative = NegativeEigenvalues(U, V, tip, length, zero);
