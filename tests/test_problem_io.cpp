@@ -1029,6 +1029,32 @@ TEST(ProblemIoErrors, LaterAnalysisBlocksAreValidatedToo) {
   EXPECT_ERROR(Parse(j), "buckling.max: expected a positive number, got nothing");
 }
 
+// A searched load that cannot act is refused before the search, which ran to its max and said
+// "not found": a tip force across a column's axis (the tip's guide takes it whole; here the
+// default direction, −z, on a column along +x) and gravity on a rod with no mass and no fluid.
+TEST(ProblemIoErrors, ABucklingLoadThatCannotActIsNamed) {
+  json j = ValidProblem();
+  j["analysis"] = "buckling";
+  j["boundary"] = "pinned-pinned";
+  j["base"] = {{"position", {0, 0, 0}}, {"rotation", {{0, 0, 1}, {0, 1, 0}, {-1, 0, 0}}}};
+  j["buckling"] = {{"load", "tip_force"}, {"max", 10.0}};
+  EXPECT_ERROR(Parse(j), "buckling.direction: expected a direction with a part along the column's "
+                         "axis, base.rotation's third column [1, 0, 0]",
+               "got [0, 0, -1] (the default)");
+  j["buckling"]["direction"] = {-1, 0, 0};
+  EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
+  j["boundary"] = "cantilever";  // a free tip: a force across the axis bends it, and is searched
+  j["buckling"]["direction"] = {0, 0, -1};
+  EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
+  j["buckling"] = {{"load", "gravity"}, {"max", 10.0}};
+  EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
+  j["rod"]["material"]["density"] = 0.0;
+  EXPECT_ERROR(Parse(j), "buckling.load: expected a load this problem has (\"gravity\" acts on "
+                         "the rod's mass, or through a fluid's buoyancy)");
+  j["environment"] = {{"fluid", {{"density", 1000.0}}}};  // buoyancy lifts it
+  EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
+}
+
 // Buckling along actuation paths: "tendon_tension" needs a tendon robot (optional weights, one per
 // tendon), "pressure" a pressure-dependent section; neither takes a direction.
 TEST(ProblemIo, BucklingActuationLoadsParse) {
