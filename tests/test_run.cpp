@@ -500,20 +500,29 @@ struct PipeInBore {
 // one shot from the base; between its third and fourth roots a conjugate point and an
 // eigenvalue of the stiffness rising through zero fell between the same two nodes, and a count
 // that looked only where the number of negative eigenvalues changed missed it.
+//
+// At 60 m (roots 1.6 to 7 % apart) one shot from the base may not reproduce the six pieces'
+// solution, and the index is then left out: the log must say that stability is not judged.
 TEST(Run, APipePressedInABoreCountsTheWinklerRootsBelowItsLoad) {
-  for (const PipeInBore pipe : {PipeInBore{30, 2e4}, PipeInBore{20, 1e7}}) {
+  for (const PipeInBore pipe : {PipeInBore{30, 2e4}, PipeInBore{20, 1e7}, PipeInBore{60, 2e5}}) {
     const std::vector<double> P = pipe.Roots();
     std::vector<double> loads{0.5 * P[0]};
-    for (int i = 0; i < 3; ++i) {
-      ASSERT_GT(P[i + 1], 1.04 * P[i]) << pipe.L;
-      loads.push_back(std::sqrt(P[i] * P[i + 1]));
-    }
+    std::vector<int> below{0};
+    for (int i = 0; loads.size() < 4; ++i)
+      if (P[i + 1] > 1.04 * P[i]) {  // 2 % from both
+        loads.push_back(std::sqrt(P[i] * P[i + 1]));
+        below.push_back(i + 1);
+      }
     for (size_t i = 0; i < loads.size(); ++i) {
       const Result r = pipe.Run(loads[i]);
       ASSERT_TRUE(r.converged) << r.log;
+      if (pipe.L == 60 && !r.json.contains("stability_index")) {
+        EXPECT_NE(r.log.find("its stability is not judged"), std::string::npos) << r.log;
+        continue;
+      }
       ASSERT_TRUE(r.json.contains("stability_index")) << pipe.L << " m, " << loads[i] << " N\n"
                                                        << r.log;
-      EXPECT_EQ(r.json["stability_index"].get<int>(), static_cast<int>(i))
+      EXPECT_EQ(r.json["stability_index"].get<int>(), below[i])
           << pipe.L << " m, " << loads[i] << " N";
       EXPECT_EQ(r.log.find("unstable") == std::string::npos, i == 0) << r.log;
     }

@@ -170,6 +170,12 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
   result.log = StaticSummary(summary, solver.state()) + " (" + column +
                std::to_string(solver.pieces()) + " shooting pieces)\n" +
                ContinuationHint(problem, summary) + detail::UnstableWarning(summary, false);
+  if (summary.converged() && summary.stability_index < 0)
+    result.log += detail::UnjudgedCompressionNote(
+        problem.rod, solver.state(),
+        "past the Euler load of a free pinned column, and its stability is not judged: one shot "
+        "from its base does not reproduce the pieces' solution (a stiff contact or a high "
+        "tension), or its loads are not conservative");
   result.converged = summary.converged();
   return result;
 }

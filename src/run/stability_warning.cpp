@@ -50,6 +50,14 @@ std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const R
 }
 
 std::string AnchoredCompressionNote(const RodModel& rod, const RodState& state) {
+  return UnjudgedCompressionNote(rod, state,
+                                 "which may buckle it between its anchors; statics does not judge "
+                                 "that, \"analysis\": \"modes\" does (a negative ω² is an "
+                                 "unstable mode)");
+}
+
+std::string UnjudgedCompressionNote(const RodModel& rod, const RodState& state,
+                                    const std::string& why) {
   if (state.size() < 2 || !rod.section) return "";
   const double L = rod.length;
   const double EI = rod.section->At(0.5 * L, Actuation{}).min_bending_stiffness();
@@ -62,9 +70,7 @@ std::string AnchoredCompressionNote(const RodModel& rod, const RodState& state) 
   if (!(compression > M_PI * M_PI * EI / (L * L))) return "";
   std::ostringstream text;
   text << std::setprecision(3) << "cosserat: note: the rod is compressed by up to "
-       << compression << " N (at s = " << s_max
-       << " m), which may buckle it between its anchors; statics does not judge that, "
-          "\"analysis\": \"modes\" does (a negative ω² is an unstable mode)\n";
+       << compression << " N (at s = " << s_max << " m), " << why << '\n';
   return text.str();
 }
 

@@ -34,4 +34,9 @@ std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const R
 /// tension). Empty otherwise (EI at mid-length).
 std::string AnchoredCompressionNote(const RodModel& rod, const RodState& state);
 
+/// The same note for any rod whose stability the solve could not judge, with `why` after "the
+/// rod is compressed by up to P N (at s = … m), ".
+std::string UnjudgedCompressionNote(const RodModel& rod, const RodState& state,
+                                    const std::string& why);
+
 }  // namespace cosserat::run::detail
