@@ -300,6 +300,45 @@ std::vector<Eigen::Matrix<double, 18, 1>> ColumnSolver::Perturbation(const lie::
   return out;
 }
 
+int ColumnSolver::StabilityIndexInPieces(const lie::SE3& base, const StaticLoads& loads,
+                                         const RodState& solved, int pieces) const {
+  const int n = static_cast<int>(grid().size());
+  if (solved.size() != n || pieces < 1) return -1;
+  const Vec6 u = UnknownsOf(base, solved.rotation_WB.front(), solved.wrench_B.front());
+  lie::SE3 start;
+  Vec6 W0;
+  StateTangent tangent;
+  Start(base, u, &start, &W0, &tangent);
+  RodState record;
+  record.Resize(n);
+  for (int i = 0; i < n; ++i) record.s[i] = grid()[i];
+  std::vector<StateTangent> tangents(n);
+  // Rows of a tangent in comparable units: d p / L, d R, d m / (EI/L), d n / (EI/L²).
+  Eigen::Matrix<double, 18, 1> unit = Eigen::Matrix<double, 18, 1>::Ones();
+  unit.segment<3>(kP).setConstant(1.0 / length());
+  unit.segment<3>(kM).setConstant(1.0 / scale_(0));
+  unit.segment<3>(kN).setConstant(1.0 / scale_(3));
+  const int k_max = std::min(pieces, n - 1);
+  for (int k = 0; k < k_max; ++k) {
+    const int first = static_cast<int>(std::lround(static_cast<double>(k) * (n - 1) / k_max));
+    const int last = static_cast<int>(std::lround(static_cast<double>(k + 1) * (n - 1) / k_max));
+    if (k > 0) {
+      // The fields the last piece ended with, in an orthonormal basis (a positive change of
+      // basis, so that det U keeps its sign), from the solved state at this node.
+      const Eigen::HouseholderQR<StateTangent> qr(unit.asDiagonal() * tangent);
+      Mat6 A = qr.matrixQR().topRows<6>().triangularView<Eigen::Upper>().solve(Mat6::Identity());
+      if (A.determinant() < 0) A.col(0) *= -1.0;
+      tangent = tangent * A;
+      start = lie::SE3{solved.rotation_WB[first], solved.position_W[first]};
+      W0 = solved.wrench_B[first];
+    }
+    tangent = shooter_.ShootTangentBetween(first, last, start, W0, tangent, loads, &record,
+                                           &tangents);
+  }
+  if (!record.position_W.back().allFinite()) return -1;
+  return StabilityIndexFromShot(base, loads, u, record, tangents);
+}
+
 int ColumnSolver::StabilityIndexFromShot(const lie::SE3& base, const StaticLoads& loads,
                                          const Vec6& u, const RodState& record,
                                          const std::vector<StateTangent>& tangents) const {

@@ -126,22 +126,17 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   return result;
 }
 
-/// The stability index of an equilibrium multiple shooting found, from one tangent shot from its
-/// base state (ColumnSolver, any ends), when that shot reproduces it: its residual below 1e-6 (in
-/// units of EI/L, EI/L² and L), so that the Jacobi fields are those of a state within rounding of
-/// it. −1 when the shot amplifies the rounding further (a stiff foundation, a high tension: what
-/// multiple shooting is for) or the index is not defined. No tendons or chambers (the column
-/// solver's shot takes none from the problem's actuation here).
-int IndexBySingleShot(const io::Problem& problem, ColumnEnds ends, const RodState& state) {
+/// The stability index of an equilibrium multiple shooting found in `pieces` pieces: the Jacobi
+/// fields carried piece by piece along it (ColumnSolver::StabilityIndexInPieces, any ends), as
+/// one shot from the base would amplify rounding beyond use there (a stiff contact, a high
+/// tension). −1 where the index is not defined. No tendons or chambers (multiple shooting has
+/// none).
+int IndexInPieces(const io::Problem& problem, ColumnEnds ends, const RodState& state,
+                  int pieces) {
   if (!problem.rod.tendons.empty() || state.size() < 2) return -1;
   const ColumnSolver column(problem.rod, problem.nodes, ends, StaticOptions(problem),
                             problem.robot.actuation);
-  const Vec6 u = column.UnknownsOf(problem.base, state.rotation_WB.front(), state.wrench_B.front());
-  RodState record;
-  std::vector<ColumnSolver::StateTangent> tangents;
-  const Vec6 r = column.Residual(problem.base, problem.loads, u, nullptr, &record, &tangents);
-  if (!(r.norm() < 1e-6)) return -1;
-  return column.StabilityIndexFromShot(problem.base, problem.loads, u, record, tangents);
+  return column.StabilityIndexInPieces(problem.base, problem.loads, state, pieces);
 }
 
 /// A cantilever or column whose single shot would amplify errors beyond double precision (a
@@ -159,7 +154,7 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
   StaticMultipleShootingSolver solver(problem.rod, problem.nodes, opt);
   StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
   if (summary.converged())
-    summary.stability_index = IndexBySingleShot(problem, ends, solver.state());
+    summary.stability_index = IndexInPieces(problem, ends, solver.state(), solver.pieces());
   Result result;
   result.json = io::StaticResultToJson(summary, solver.state());
   detail::KeepStaticFrame(problem, solver.state(), options, &result);
@@ -173,9 +168,8 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
   if (summary.converged() && summary.stability_index < 0)
     result.log += detail::UnjudgedCompressionNote(
         problem.rod, solver.state(),
-        "past the Euler load of a free pinned column, and its stability is not judged: one shot "
-        "from its base does not reproduce the pieces' solution (a stiff contact or a high "
-        "tension), or its loads are not conservative");
+        "past the Euler load of a free pinned column, and its stability is not judged (its loads "
+        "are not conservative: a follower or a tip moment, drag; or a torque held by a pin)");
   result.converged = summary.converged();
   return result;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/constitutive/tendon_law.hpp"
@@ -501,6 +502,35 @@ StaticShootingSolver::StateTangent StaticShootingSolver::ShootTangent(
   if (node_tangents) {
     node_tangents->resize(nodes.size());
     for (size_t i = 0; i < nodes.size(); ++i) (*node_tangents)[i] = ToRows(nodes[i]);
+  }
+  return ToRows(tip_t);
+}
+
+StaticShootingSolver::StateTangent StaticShootingSolver::ShootTangentBetween(
+    int first, int last, const lie::SE3& start, const Vec6& wrench_B,
+    const StateTangent& start_tangent, const StaticLoads& loads, RodState* record,
+    std::vector<StateTangent>* node_tangents) const {
+  if (!tendon_stages_.empty())
+    throw std::logic_error("StaticShootingSolver::ShootTangentBetween: not for rods with tendons");
+  // The piece's grid and its samples (three per segment, from 3 first on).
+  const std::vector<double> grid(grid_.begin() + first, grid_.begin() + last + 1);
+  const std::vector<Sample> samples(samples_.begin() + 3 * first, samples_.begin() + 3 * last);
+  const ShotTangent start_t = FromRows(start_tangent);
+  ShotTangent tip_t;
+  std::vector<ShotTangent> nodes(grid.size());
+  const TangentSeed seed{&start_t, &nodes, &tip_t};
+  RodState piece;
+  piece.Resize(static_cast<int>(grid.size()));
+  Mat6 J;
+  Shoot(grid, samples, scale_, start, loads, wrench_B.cwiseQuotient(scale_), &piece, &J, nullptr,
+        &seed);
+  for (int i = first; i <= last; ++i) {
+    const int j = i - first;
+    record->position_W[i] = piece.position_W[j];
+    record->rotation_WB[i] = piece.rotation_WB[j];
+    record->wrench_B[i] = piece.wrench_B[j];
+    record->strain[i] = piece.strain[j];
+    (*node_tangents)[i] = ToRows(nodes[j]);
   }
   return ToRows(tip_t);
 }

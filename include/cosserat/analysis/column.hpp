@@ -105,6 +105,14 @@ class ColumnSolver {
                                                          const StaticLoads& loads, const Vec6& u,
                                                          const Vec6& du) const;
 
+  /// StabilityIndexFromShot for an equilibrium `solved` found elsewhere on this grid (multiple
+  /// shooting), whose single shot would amplify rounding beyond use: the Jacobi fields are
+  /// carried in `pieces` equal pieces, each shot from the solved state at its first node and
+  /// started from the fields the last one ended with, re-orthonormalised (H = V U⁻¹ and the
+  /// inertia do not depend on the basis). No tendons.
+  int StabilityIndexInPieces(const lie::SE3& base, const StaticLoads& loads, const RodState& solved,
+                             int pieces) const;
+
   /// The unknowns that start the shot at the base state R(0) (world) and W(0) = [m; n] (base
   /// body frame, N·m; N) found by another solver (multiple shooting): the inverse of the start
   /// map for these ends (a pinned base's rotations from R_WBᵀ R(0); its bending moment is zero).

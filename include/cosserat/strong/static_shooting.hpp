@@ -141,6 +141,16 @@ class StaticShootingSolver {
                             const Vec6& base_wrench_B, const StateTangent& start, RodState* record,
                             std::vector<StateTangent>* node_tangents = nullptr) const;
 
+  /// The same shot over the nodes first … last only (first < last), from the state at node first
+  /// (pose `start`, wrench `wrench_B` in its body frame) with the tangent `start_tangent`: writes
+  /// nodes first … last of *record (sized to the grid) and of *node_tangents (sized to the
+  /// grid), and returns the tangent at node last. For Jacobi fields carried piece by piece along
+  /// an equilibrium found by multiple shooting. No tendons (throws std::logic_error).
+  StateTangent ShootTangentBetween(int first, int last, const lie::SE3& start,
+                                   const Vec6& wrench_B, const StateTangent& start_tangent,
+                                   const StaticLoads& loads, RodState* record,
+                                   std::vector<StateTangent>* node_tangents) const;
+
   /// The number of unstable directions of the equilibrium with base wrench W(0) = base_wrench_B
   /// (base body frame, N·m; N) under (base, loads): the Morse index of the second variation of
   /// the potential energy, by a Sturm count of the Jacobi fields along s (conjugate points in
