@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cosserat/analysis/buckling.hpp"
+#include "cosserat/analysis/buckling_in_pieces.hpp"
 #include "cosserat/io/problem.hpp"
 #include "support/analytic/roots.hpp"
 #include "support/rods.hpp"
@@ -190,6 +191,33 @@ TEST(ColumnStability, APipeRestingInABoreIsStableUpToItsCriticalLoad) {
   column.Residual(p.base, loads, column.unknowns(), nullptr, &record, &tangents);
   EXPECT_EQ(column.StabilityIndexFromShot(p.base, loads, column.unknowns(), record, tangents), 0);
   for (const Vec3& x : record.position_W) EXPECT_LT(x.z(), 1e-9);  // resting on the bore
+}
+
+// The same search in pieces (BucklingInPieces: multiple shooting, the index from Jacobi fields
+// carried piece by piece, the mode carried back through the pieces' bases) on a pipe a single
+// shot still follows (30 m on a soft bore, pinned where its weight holds it: the Winkler roots
+// of APipeInABoreBucklesAtTheLowerOfTwoCloseWinklerRoots's kind): the same discrete equations,
+// so the same critical load to the bisections' and solves' tolerances (1e-8 of it) and the same
+// mode (to 1e-5 of its unit amplitude).
+TEST(ColumnStability, TheSearchInPiecesAgreesWithTheSingleShot) {
+  const double w = 7850 * kPi * (0.0635 * 0.0635 - 0.054 * 0.054) * 9.81;
+  const io::Problem p = PipeInBore(30, w / 2e4 + 0.5e-3 * 0.127);
+  BucklingAnalysis single = AnalysisOf(p);
+  const BucklingSummary a = single.FindCriticalLoad();
+  ASSERT_TRUE(a.found()) << ToString(a.status);
+  BucklingOptions options;
+  options.lambda_max = p.buckling.max;
+  LoadPath path = LoadPath::TipForce(p.buckling.direction);
+  path.fixed = p.loads;
+  BucklingInPieces split(p.rod, p.nodes, ColumnEnds::kPinnedPinned, p.base, path, options);
+  const BucklingSummary b = split.FindCriticalLoad();
+  ASSERT_TRUE(b.found()) << ToString(b.status);
+  EXPECT_GT(split.pieces(), 1);
+  EXPECT_NEAR(b.critical_load / a.critical_load, 1.0, 1e-8);
+  double worst = 0;
+  for (size_t i = 0; i < a.mode.displacement_W.size(); ++i)
+    worst = std::max(worst, (a.mode.displacement_W[i] - b.mode.displacement_W[i]).norm());
+  EXPECT_LT(worst, 1e-5);
 }
 
 }  // namespace

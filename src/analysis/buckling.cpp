@@ -85,6 +85,14 @@ const char* ToString(BucklingStatus status) {
   return "unknown";
 }
 
+BucklingSummary FinishSearch(BucklingStatus status, std::chrono::steady_clock::time_point t0,
+                             BucklingSummary* out) {
+  out->status = status;
+  out->wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return *out;
+}
+
 BucklingAnalysis::BucklingAnalysis(const RodModel& model, int num_nodes, ColumnEnds ends,
                                    const lie::SE3& base, const LoadPath& path,
                                    const BucklingOptions& options)
@@ -345,11 +353,7 @@ BucklingSummary BucklingAnalysis::FindCriticalLoad() {
   const auto t0 = std::chrono::steady_clock::now();
   BucklingSummary out;
   found_ = false;
-  auto finish = [&](BucklingStatus status) {
-    out.status = status;
-    out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return out;
-  };
+  auto finish = [&](BucklingStatus status) { return FinishSearch(status, t0, &out); };
 
   if (path_.fixed != path_.fixed.Scaled(0.0)) {
     // A preload: the straight path under it may already have passed a critical point (a
@@ -447,19 +451,17 @@ double BucklingAnalysis::PreloadCriticalFraction(BucklingSummary* out) {
   return fraction;
 }
 
-BucklingMode BucklingAnalysis::ExtractMode(double lambda, const Vec6& v, bool double_root) const {
+BucklingMode ModeFromPerturbation(const RodModel& model, const Actuation& act, const RodState& st,
+                                  const std::vector<Eigen::Matrix<double, 18, 1>>& t,
+                                  const Vec6& v, bool double_root) {
   BucklingMode mode;
   mode.double_root = double_root;
-  const StaticLoads loads = path_.LoadsAt(lambda);
-  const Actuation act = path_.ActuationAt(lambda);
-  const auto t = column_.Perturbation(base_, loads, u_cr_, v);
-  const RodState& st = column_.state();
   const int n = static_cast<int>(t.size());
-  mode.s = column_.grid();
+  mode.s = st.s;
   mode.displacement_W.resize(n);
   mode.rotation_B.resize(n);
   mode.curvature_B.resize(n);
-  const double L = model_.length;
+  const double L = model.length;
   for (int i = 0; i < n; ++i) {
     const auto& ti = t[i];
     mode.displacement_W[i] = ti.segment<3>(0);
@@ -474,7 +476,7 @@ BucklingMode BucklingAnalysis::ExtractMode(double lambda, const Vec6& v, bool do
     Vec3 best = Vec3::Zero();
     for (double side : {-1.0, 1.0}) {
       const double s = std::clamp(mode.s[i] + side * 1e-9 * L, 0.0, L);
-      const Mat6 K = model_.section->At(s, act).stiffness;
+      const Mat6 K = model.section->At(s, act).stiffness;
       const Vec3 dK = K.partialPivLu().solve(dW).head<3>();
       if (dK.head<2>().norm() >= best.head<2>().norm()) best = dK;
     }
@@ -503,6 +505,12 @@ BucklingMode BucklingAnalysis::ExtractMode(double lambda, const Vec6& v, bool do
     }
   }
   return mode;
+}
+
+BucklingMode BucklingAnalysis::ExtractMode(double lambda, const Vec6& v, bool double_root) const {
+  const StaticLoads loads = path_.LoadsAt(lambda);
+  return ModeFromPerturbation(model_, path_.ActuationAt(lambda), column_.state(),
+                              column_.Perturbation(base_, loads, u_cr_, v), v, double_root);
 }
 
 }  // namespace cosserat

@@ -109,6 +109,12 @@ Vec6 ColumnSolver::Residual(const lie::SE3& base, const StaticLoads& loads, cons
   RodState local;
   RodState* rec = record ? record : &local;
   const StateTangent T = shooter_.ShootTangent(start, loads, W0, dstart, rec, tangents);
+  return TipResidual(base, loads, *rec, T, J);
+}
+
+Vec6 ColumnSolver::TipResidual(const lie::SE3& base, const StaticLoads& loads,
+                               const RodState& record, const StateTangent& T, Mat6* J) const {
+  const RodState* rec = &record;
   const Mat3& R = rec->rotation_WB.back();
   const Vec3& p = rec->position_W.back();
   const Vec3 m = rec->wrench_B.back().head<3>();
@@ -300,19 +306,21 @@ std::vector<Eigen::Matrix<double, 18, 1>> ColumnSolver::Perturbation(const lie::
   return out;
 }
 
-int ColumnSolver::StabilityIndexInPieces(const lie::SE3& base, const StaticLoads& loads,
-                                         const RodState& solved, int pieces) const {
+ColumnSolver::PiecewiseFields ColumnSolver::FieldsInPieces(const lie::SE3& base,
+                                                          const StaticLoads& loads,
+                                                          const RodState& solved,
+                                                          int pieces) const {
+  PiecewiseFields f;
   const int n = static_cast<int>(grid().size());
-  if (solved.size() != n || pieces < 1) return -1;
-  const Vec6 u = UnknownsOf(base, solved.rotation_WB.front(), solved.wrench_B.front());
+  if (solved.size() != n || pieces < 1) return f;
+  f.u = UnknownsOf(base, solved.rotation_WB.front(), solved.wrench_B.front());
   lie::SE3 start;
   Vec6 W0;
   StateTangent tangent;
-  Start(base, u, &start, &W0, &tangent);
-  RodState record;
-  record.Resize(n);
-  for (int i = 0; i < n; ++i) record.s[i] = grid()[i];
-  std::vector<StateTangent> tangents(n);
+  Start(base, f.u, &start, &W0, &tangent);
+  f.record.Resize(n);
+  for (int i = 0; i < n; ++i) f.record.s[i] = grid()[i];
+  f.tangents.resize(n);
   // Rows of a tangent in comparable units: d p / L, d R, d m / (EI/L), d n / (EI/L²).
   Eigen::Matrix<double, 18, 1> unit = Eigen::Matrix<double, 18, 1>::Ones();
   unit.segment<3>(kP).setConstant(1.0 / length());
@@ -322,21 +330,29 @@ int ColumnSolver::StabilityIndexInPieces(const lie::SE3& base, const StaticLoads
   for (int k = 0; k < k_max; ++k) {
     const int first = static_cast<int>(std::lround(static_cast<double>(k) * (n - 1) / k_max));
     const int last = static_cast<int>(std::lround(static_cast<double>(k + 1) * (n - 1) / k_max));
+    Mat6 A = Mat6::Identity();
     if (k > 0) {
-      // The fields the last piece ended with, in an orthonormal basis (a positive change of
-      // basis, so that det U keeps its sign), from the solved state at this node.
       const Eigen::HouseholderQR<StateTangent> qr(unit.asDiagonal() * tangent);
-      Mat6 A = qr.matrixQR().topRows<6>().triangularView<Eigen::Upper>().solve(Mat6::Identity());
+      A = qr.matrixQR().topRows<6>().triangularView<Eigen::Upper>().solve(Mat6::Identity());
       if (A.determinant() < 0) A.col(0) *= -1.0;
       tangent = tangent * A;
       start = lie::SE3{solved.rotation_WB[first], solved.position_W[first]};
       W0 = solved.wrench_B[first];
     }
-    tangent = shooter_.ShootTangentBetween(first, last, start, W0, tangent, loads, &record,
-                                           &tangents);
+    f.first_node.push_back(first);
+    f.basis_change.push_back(A);
+    tangent = shooter_.ShootTangentBetween(first, last, start, W0, tangent, loads, &f.record,
+                                           &f.tangents);
   }
-  if (!record.position_W.back().allFinite()) return -1;
-  return StabilityIndexFromShot(base, loads, u, record, tangents);
+  f.finite = f.record.position_W.back().allFinite() && tangent.allFinite();
+  return f;
+}
+
+int ColumnSolver::StabilityIndexInPieces(const lie::SE3& base, const StaticLoads& loads,
+                                         const RodState& solved, int pieces) const {
+  const PiecewiseFields f = FieldsInPieces(base, loads, solved, pieces);
+  if (!f.finite) return -1;
+  return StabilityIndexFromShot(base, loads, f.u, f.record, f.tangents);
 }
 
 int ColumnSolver::StabilityIndexFromShot(const lie::SE3& base, const StaticLoads& loads,

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <memory>
 #include <sstream>
 
 #include "cosserat/analysis/buckling.hpp"
+#include "cosserat/analysis/buckling_in_pieces.hpp"
 #include "cosserat/analysis/quatfd_buckling.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
@@ -139,9 +141,9 @@ std::string CoarseGridNote(const io::Problem& problem, const BucklingSummary& b,
   return note.str();
 }
 
-/// After an SE(3) buckling search that failed before any load: its statics shoot the rod in
-/// one piece, which a stiff contact foundation or a high tension puts beyond double precision
-/// (the statics analysis shoots such rods in pieces).
+/// After an SE(3) buckling search that failed before any load, and could not be searched in
+/// pieces (a tendon or pressure path, a robot): its statics shoot the rod in one piece, which a
+/// stiff contact foundation or a high tension puts beyond double precision.
 std::string SingleShotHint(const io::Problem& problem, const BucklingSummary& b) {
   const double exponent = StaticShootingExponent(problem.rod, problem.loads);
   if (b.status != BucklingStatus::kPathFailed || b.lambda_reached > 0.0 || exponent <= 10.0)
@@ -150,11 +152,9 @@ std::string SingleShotHint(const io::Problem& problem, const BucklingSummary& b)
   hint << "cosserat: hint: a single SE(3) shot of this rod amplifies errors by about e^"
        << std::setprecision(3) << exponent
        << " (contact stiffness or tension; more than double precision holds from e^15 on), and "
-          "the buckling search shoots the rod in one piece; "
-       << (problem.boundary == io::Boundary::kCantilever
-               ? "\"formulation\": \"quaternion-fd\" searches a cantilever on the whole grid\n"
-               : "a column this stiffly held is beyond this version's buckling search (its "
-                 "statics, in pieces, still run)\n");
+          "a search along an actuation (tendon tension, pressure) shoots the rod in one piece: "
+          "this one is beyond this version's buckling search (its statics, in pieces, still "
+          "run)\n";
   return hint.str();
 }
 
@@ -179,6 +179,38 @@ std::string SummaryLine(const io::Problem& problem, ColumnEnds ends, const Buckl
   return line.str() + '\n';
 }
 
+/// A rod one shot cannot follow (a long pipe on a bore, a taut rod) whose single-shot search
+/// failed: the search again, the rod shot in pieces, when its path is of loads only. Replaces
+/// *b and *state (kept alive by *in_pieces) when that got further; returns the note that says
+/// so, or that it failed too.
+std::string SearchInPieces(const io::Problem& problem, const RodModel& model, ColumnEnds ends,
+                           const LoadPath& path, const BucklingOptions& options,
+                           BucklingSummary* b, const RodState** state,
+                           std::unique_ptr<BucklingInPieces>* in_pieces) {
+  const bool loads_only = !path.has_actuation() && model.tendons.empty() &&
+                          model.chambers.empty() && !problem.has_robot;
+  if (b->status != BucklingStatus::kPathFailed || !loads_only ||
+      !(problem.loads.contact.count > 0 ||
+        StaticShootingExponent(problem.rod, problem.loads) > 10.0))
+    return "";
+  *in_pieces =
+      std::make_unique<BucklingInPieces>(model, problem.nodes, ends, problem.base, path, options);
+  const BucklingSummary split = (*in_pieces)->FindCriticalLoad();
+  if (split.status == BucklingStatus::kPathFailed && split.lambda_reached <= b->lambda_reached)
+    return "cosserat: note: one shot from the base could not follow this rod, nor could " +
+           std::to_string((*in_pieces)->pieces()) + " shooting pieces\n";
+  std::ostringstream note;
+  note << "cosserat: note: one shot from the base could not follow this rod (it failed at "
+       << std::setprecision(6) << ReportedLoad(problem, b->lambda_reached)
+       << "); it was searched in " << (*in_pieces)->pieces()
+       << " shooting pieces, its stability counted piece by piece\n";
+  const int single_solves = b->solves;
+  *b = split;
+  b->solves += single_solves;
+  *state = &(*in_pieces)->state();
+  return note.str();
+}
+
 }  // namespace
 
 Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
@@ -191,7 +223,11 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   LoadPath path = MakePath(problem);
   const RodModel model = MakeModel(problem, &path);
   BucklingAnalysis analysis(model, problem.nodes, ends, problem.base, path, options);
-  const BucklingSummary b = analysis.FindCriticalLoad();
+  BucklingSummary b = analysis.FindCriticalLoad();
+  const RodState* state = &analysis.state();
+  std::unique_ptr<BucklingInPieces> in_pieces;
+  const std::string pieces_note =
+      SearchInPieces(problem, model, ends, path, options, &b, &state, &in_pieces);
   const double critical = ReportedLoad(problem, b.critical_load);
   const double reached = ReportedLoad(problem, b.lambda_reached);
   const bool actuation_load = path.has_actuation();
@@ -203,8 +239,8 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   if (!ok && b.lambda_reached <= 0.0) statics.residual = NAN;
   statics.wall_time_s = b.wall_time_s;
   Result result;
-  result.json = io::StaticResultToJson(statics, analysis.state());
-  detail::KeepStaticFrame(problem, analysis.state(), run_options, &result);
+  result.json = io::StaticResultToJson(statics, *state);
+  detail::KeepStaticFrame(problem, *state, run_options, &result);
   nlohmann::ordered_json block;
   block["critical_load"] = NumberOrNull(critical);
   block["mode_s_max"] =
@@ -240,11 +276,11 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
     block["mode"] = mode;
   }
   result.json["buckling"] = block;
-  if (run_options.nodes_csv) result.nodes_csv = detail::NodesCsv(analysis.state());
+  if (run_options.nodes_csv) result.nodes_csv = detail::NodesCsv(*state);
 
-  result.log = SummaryLine(problem, ends, b) + SingleShotHint(problem, b) +
-               ImperfectionNote(problem, b.status) +
-               CoarseGridNote(problem, b, analysis.state());
+  result.log = SummaryLine(problem, ends, b) + pieces_note +
+               (in_pieces ? "" : SingleShotHint(problem, b)) +
+               ImperfectionNote(problem, b.status) + CoarseGridNote(problem, b, *state);
   result.converged = ok;
   return result;
 }

@@ -12,6 +12,7 @@
 /// mode is the null vector of J propagated along s by the shot's tangent.
 
 #include <array>
+#include <chrono>
 #include <functional>
 #include <string>
 #include <vector>
@@ -80,6 +81,16 @@ struct BucklingMode {
   bool double_root = false;          ///< J has a 2-D null space (any plane buckles alike)
 };
 
+/// The mode from the first-order change t[i] of the equilibrium `state` at every node (18 rows as
+/// in ColumnSolver::StateTangent: d p_W, the columns of d R, d m_B, d n_B) along the null vector
+/// v of the tip conditions (unit, in the unknowns): displacement, rotation, curvature (from the
+/// sections' compliance under `actuation`), scaled to max |δp| = 1 m, its largest displacement
+/// component positive, and `unknowns` = ±v alike.
+BucklingMode ModeFromPerturbation(const RodModel& model, const Actuation& actuation,
+                                  const RodState& state,
+                                  const std::vector<Eigen::Matrix<double, 18, 1>>& t,
+                                  const Vec6& v, bool double_root);
+
 enum class BucklingStatus {
   kNotRun,
   kFound,       ///< a singular point of J on [0, lambda_max], refined to lambda_tolerance.
@@ -109,6 +120,10 @@ struct BucklingSummary {
   double preload_critical_fraction = NAN;
   bool found() const { return status == BucklingStatus::kFound; }
 };
+
+/// Ends a search: its status, and the wall time since t0 in *out; returns *out.
+BucklingSummary FinishSearch(BucklingStatus status, std::chrono::steady_clock::time_point t0,
+                             BucklingSummary* out);
 
 /// Buckling of one rod under one load path. Construction allocates the column solver.
 class BucklingAnalysis {

@@ -89,6 +89,11 @@ class ColumnSolver {
   /// along u at every node.
   Vec6 Residual(const lie::SE3& base, const StaticLoads& loads, const Vec6& u, Mat6* J = nullptr,
                 RodState* record = nullptr, std::vector<StateTangent>* tangents = nullptr) const;
+  /// The dimensionless residual of the tip conditions for the shot `record` (node states) and,
+  /// with J, its derivative along the directions of the tangent T at the tip (18 × 6, rows as in
+  /// StateTangent). Residual() is the shot from u followed by this.
+  Vec6 TipResidual(const lie::SE3& base, const StaticLoads& loads, const RodState& record,
+                   const StateTangent& T, Mat6* J = nullptr) const;
   /// The number of unstable directions of the equilibrium at u (the Morse index, MorseIndexOfShot
   /// with the column's base and tip conditions): 0 stable. Counts a double root (a rod symmetric
   /// about its axis buckling in any plane) twice. −1 where it is not defined: a follower tip
@@ -105,11 +110,24 @@ class ColumnSolver {
                                                          const StaticLoads& loads, const Vec6& u,
                                                          const Vec6& du) const;
 
-  /// StabilityIndexFromShot for an equilibrium `solved` found elsewhere on this grid (multiple
-  /// shooting), whose single shot would amplify rounding beyond use: the Jacobi fields are
-  /// carried in `pieces` equal pieces, each shot from the solved state at its first node and
-  /// started from the fields the last one ended with, re-orthonormalised (H = V U⁻¹ and the
-  /// inertia do not depend on the basis). No tendons.
+  /// The Jacobi fields along an equilibrium `solved` found elsewhere on this grid (multiple
+  /// shooting), whose single shot would amplify rounding beyond use, carried in `pieces` equal
+  /// pieces: each shot from the solved state at its first node, started from the fields the
+  /// last one ended with in an orthonormal basis of positive determinant (H = V U⁻¹, the inertia
+  /// and Prüfer's W do not depend on the basis). No tendons.
+  struct PiecewiseFields {
+    Vec6 u = Vec6::Zero();                ///< the unknowns of the solved base state
+    RodState record;                      ///< node states (each piece's own shot)
+    std::vector<StateTangent> tangents;   ///< per node, in its piece's basis
+    std::vector<int> first_node;          ///< of each piece
+    /// Piece k's start fields are piece k − 1's end fields times basis_change[k] (identity for
+    /// k = 0): coefficients c in piece k are basis_change[k] c in piece k − 1.
+    std::vector<Mat6> basis_change;
+    bool finite = false;                  ///< every shot stayed finite
+  };
+  PiecewiseFields FieldsInPieces(const lie::SE3& base, const StaticLoads& loads,
+                                 const RodState& solved, int pieces) const;
+  /// StabilityIndexFromShot on FieldsInPieces; −1 when a shot went non-finite.
   int StabilityIndexInPieces(const lie::SE3& base, const StaticLoads& loads, const RodState& solved,
                              int pieces) const;
 
