@@ -213,6 +213,7 @@ TEST(ColumnStability, TheSearchInPiecesAgreesWithTheSingleShot) {
   const BucklingSummary b = split.FindCriticalLoad();
   ASSERT_TRUE(b.found()) << ToString(b.status);
   EXPECT_GT(split.pieces(), 1);
+  EXPECT_LT(b.critical_load_bracket, 1e-9 * b.critical_load);  // refined, not cut short
   EXPECT_NEAR(b.critical_load / a.critical_load, 1.0, 1e-8);
   double worst = 0;
   for (size_t i = 0; i < a.mode.displacement_W.size(); ++i)

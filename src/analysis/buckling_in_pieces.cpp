@@ -80,9 +80,17 @@ bool BucklingInPieces::Scan(const LoadsAt& loads_at, double t_max, double first_
       hi_state_ = solver_.state();
       hi_index_ = index;
       while (b - a > tolerance * b) {
-        const double m = 0.5 * (a + b);
+        // The midpoint, or, where its solve fails (the root's singular Jacobian nearby), a
+        // quarter of the way from either end.
+        double m = 0.5 * (a + b);
         int im = -1;
-        if (!SolveAt(loads_at(m), &im, out) || im < 0) break;
+        bool solved = SolveAt(loads_at(m), &im, out) && im >= 0;
+        for (double share : {0.25, 0.75}) {
+          if (solved) break;
+          m = a + share * (b - a);
+          solved = SolveAt(loads_at(m), &im, out) && im >= 0;
+        }
+        if (!solved) break;
         if (im > index0) {
           b = m;
           hi_state_ = solver_.state();
@@ -161,6 +169,7 @@ BucklingSummary BucklingInPieces::FindCriticalLoad() {
   // root's multiplicity), and the mode there.
   found_ = true;
   out.critical_load = hi;
+  out.critical_load_bracket = hi - lo;
   out.lambda_reached = hi;
   out.mode = ModeAt(loads_at(hi), hi_state_, hi_index_ - index0 >= 2);
   return finish(BucklingStatus::kFound);

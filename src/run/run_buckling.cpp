@@ -204,6 +204,12 @@ std::string SearchInPieces(const io::Problem& problem, const RodModel& model, Co
        << std::setprecision(6) << ReportedLoad(problem, b->lambda_reached)
        << "); it was searched in " << (*in_pieces)->pieces()
        << " shooting pieces, its stability counted piece by piece\n";
+  if (split.found() && split.critical_load_bracket > 1e-6 * split.critical_load)
+    note << "cosserat: note: the solves near the critical load failed before it was refined: it "
+            "lies between "
+         << std::setprecision(6)
+         << ReportedLoad(problem, split.critical_load - split.critical_load_bracket) << " and "
+         << ReportedLoad(problem, split.critical_load) << "\n";
   const int single_solves = b->solves;
   *b = split;
   b->solves += single_solves;

@@ -109,6 +109,9 @@ const char* ToString(BucklingStatus status);
 struct BucklingSummary {
   BucklingStatus status = BucklingStatus::kNotRun;
   double critical_load = NAN;          ///< λ_cr (load units); NaN unless found
+  /// The width of the bracket the refinement reached below critical_load (load units): below
+  /// lambda_tolerance · λ_cr, unless the solves near the root failed first (BucklingInPieces).
+  double critical_load_bracket = 0;
   double lambda_reached = 0;           ///< the last λ of the path where statics converged
   double sigma_min_ratio = NAN;        ///< σ_min(J(λ_cr)) / σ_min(J(0))
   BucklingMode mode;                   ///< valid when found
