@@ -197,13 +197,15 @@ std::string SearchInPieces(const io::Problem& problem, const RodModel& model, Co
       std::make_unique<BucklingInPieces>(model, problem.nodes, ends, problem.base, path, options);
   const BucklingSummary split = (*in_pieces)->FindCriticalLoad();
   if (split.status == BucklingStatus::kPathFailed && split.lambda_reached <= b->lambda_reached)
-    return "cosserat: note: one shot from the base could not follow this rod, nor could " +
-           std::to_string((*in_pieces)->pieces()) + " shooting pieces\n";
+    return "cosserat: note: the single-shot search could not follow this rod, nor could "
+           "multiple shooting in " +
+           std::to_string((*in_pieces)->pieces()) + " pieces\n";
   std::ostringstream note;
-  note << "cosserat: note: one shot from the base could not follow this rod (it failed at "
+  const int pieces = (*in_pieces)->pieces();
+  note << "cosserat: note: the single-shot search could not follow this rod (it failed at "
        << std::setprecision(6) << ReportedLoad(problem, b->lambda_reached)
-       << "); it was searched in " << (*in_pieces)->pieces()
-       << " shooting pieces, its stability counted piece by piece\n";
+       << "); it was searched again by multiple shooting, in " << pieces
+       << (pieces == 1 ? " piece" : " pieces") << ", its stability counted piece by piece\n";
   if (split.found() && split.critical_load_bracket > 1e-6 * split.critical_load)
     note << "cosserat: note: the solves near the critical load failed before it was refined: it "
             "lies between "

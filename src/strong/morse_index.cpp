@@ -98,34 +98,49 @@ int NegativeEigenvaluesFast(const Mat6& U, const Mat6& V) {
 }
 
 // The Prüfer angles' passes of −1 between the frames (U0, V0) and (U1, V1) of two neighbouring
-// nodes, in the units of NegativeEigenvalues, with V also divided by one stiffness (N·m, from
-// the first frame) so that W's angles move by far less than π between nodes. Negative when the
-// angles moved too far for the count to be sure.
+// nodes, in the units of NegativeEigenvalues (y = D η, D⁻¹ V), with V also divided by a
+// stiffness c > 0 (N·m). Where U is invertible, W = (U + iV/c)(U − iV/c)⁻¹ is the Cayley
+// transform of H/c: its angles are φ_k = 2 atan(μ_k / c), μ_k the eigenvalues of sym(H), and
+// arg det(U + iV/c) = arg det U + Σ atan(μ_k / c). The count needs the continuous change ΔΦ of
+// 2 arg det(U + iV/c) between the nodes, read from the ratio of the determinants, which is
+// unambiguous only while it stays well below π; how fast the angles turn depends on c (the count
+// does not). So c is tried from the ratio of V's and U's sizes outwards, two per decade over 16
+// decades either way, until ΔΦ stays below π/2 and the count is a whole number ≥ 0. −1 when no
+// c gives that.
 int PrueferPasses(const Mat6& U0, const Mat6& V0, const Mat6& U1, const Mat6& V1, double ell) {
   Vec6 d;
   d << Vec3::Constant(1.0), Vec3::Constant(1.0 / ell);
   const Mat6 Us0 = d.asDiagonal() * U0, Vs0 = d.cwiseInverse().asDiagonal() * V0;
-  const double c = Us0.norm() > 0 && Vs0.norm() > 0 ? Vs0.norm() / Us0.norm() : 1.0;
+  const Mat6 Us1 = d.asDiagonal() * U1, Vs1 = d.cwiseInverse().asDiagonal() * V1;
+  // The eigenvalues μ of sym(H) at each node, H = Vs Us⁻¹ (solved as a transpose).
+  auto stiffness_eigenvalues = [](const Mat6& Us, const Mat6& Vs, Vec6* mu) {
+    const Mat6 Ht = Us.transpose().partialPivLu().solve(Vs.transpose());
+    const Mat6 H = 0.5 * (Ht + Ht.transpose());
+    if (!H.allFinite()) return false;
+    *mu = Eigen::SelfAdjointEigenSolver<Mat6>(H, Eigen::EigenvaluesOnly).eigenvalues();
+    return true;
+  };
+  Vec6 mu0, mu1;
+  if (!stiffness_eigenvalues(Us0, Vs0, &mu0) || !stiffness_eigenvalues(Us1, Vs1, &mu1)) return -1;
   using CMat6 = Eigen::Matrix<std::complex<double>, 6, 6>;
   const std::complex<double> i(0.0, 1.0);
-  auto angles = [&](const Mat6& U, const Mat6& V, std::complex<double>* det) {
-    const CMat6 P = (d.asDiagonal() * U).cast<std::complex<double>>() +
-                    i * (d.cwiseInverse().asDiagonal() * V / c).cast<std::complex<double>>();
-    const Eigen::PartialPivLU<CMat6> lu(P);
-    *det = lu.determinant();
-    const CMat6 W = P * P.conjugate().partialPivLu().inverse();
-    const Eigen::ComplexEigenSolver<CMat6> eig(W, false);
-    double sum = 0;
-    for (int k = 0; k < 6; ++k) sum += std::arg(eig.eigenvalues()(k));
-    return sum;
+  auto det = [&](const Mat6& Us, const Mat6& Vs, double c) {
+    const CMat6 P = Us.cast<std::complex<double>>() + i * (Vs / c).cast<std::complex<double>>();
+    return P.partialPivLu().determinant();
   };
-  std::complex<double> det0, det1;
-  const double psi0 = angles(U0, V0, &det0), psi1 = angles(U1, V1, &det1);
-  const double dphi = 2.0 * std::arg(det1 / det0);
-  const double passes = (psi1 - psi0 - dphi) / (2.0 * M_PI);
-  const double whole = std::round(passes);
-  if (!std::isfinite(passes) || std::abs(passes - whole) > 0.25 || whole < 0) return -1;
-  return static_cast<int>(whole);
+  const double c0 = Us0.norm() > 0 && Vs0.norm() > 0 ? Vs0.norm() / Us0.norm() : 1.0;
+  for (int j = 0; j <= 64; ++j) {
+    // c0, then c0 · 10^(±1/2), c0 · 10^(±1), … alternating.
+    const double c = c0 * std::pow(10.0, (j % 2 == 0 ? 1.0 : -1.0) * ((j + 1) / 2) / 2.0);
+    double dpsi = 0.0;
+    for (int k = 0; k < 6; ++k) dpsi += 2.0 * (std::atan(mu1(k) / c) - std::atan(mu0(k) / c));
+    const double dphi = 2.0 * std::arg(det(Us1, Vs1, c) / det(Us0, Vs0, c));
+    if (!std::isfinite(dphi) || std::abs(dphi) > 0.5 * M_PI) continue;
+    const double passes = (dpsi - dphi) / (2.0 * M_PI);
+    const double whole = std::round(passes);
+    if (std::abs(passes - whole) < 0.05 && whole >= 0) return static_cast<int>(whole);
+  }
+  return -1;
 }
 
 }  // namespace
