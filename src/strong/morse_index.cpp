@@ -10,10 +10,11 @@
 // pairing dV = m_B·δθ_B + n_B·δp_B is the tip residual r = W_B(σ) − [Rᵀ M_W; Rᵀ F_W], and its
 // Hessian at the equilibrium (r = 0), H(σ) = ∂r/∂η = V(σ) U(σ)⁻¹ with
 // V = [δm − m × δθ; δn − n × δθ] (δ(Rᵀ F_W) = n_B × δθ_B for a dead force), is the stiffness of
-// [0, σ] seen at σ. Near a clamped base it is ≈ K/σ: positive definite. Its eigenvalues fall as σ
-// grows (the Riccati equation of the Jacobi fields, for a positive definite K — the Legendre
-// condition); one passes to −∞ and comes back from +∞ exactly where U is singular (a conjugate
-// point, or a focal point of a pinned base: the problem on [0, σ] held fixed at σ is singular).
+// [0, σ] seen at σ. Near a clamped base it is ≈ K/σ: positive definite. Where U is singular (a
+// conjugate point, or a focal point of a pinned base: the problem on [0, σ] held fixed at σ is
+// singular) one eigenvalue passes to −∞ and comes back from +∞, always that way round (the
+// Riccati equation of the Jacobi fields is dominated there by −H K⁻¹ H, K positive definite: the
+// Legendre condition).
 // The index with the real tip conditions is then
 //     (conjugate points in (0, L)) + (negative eigenvalues of H(L) on the admissible η(L)),
 // the Morse index theorem. At a conjugate point one eigenvalue of H wraps from −∞ to +∞, so the
