@@ -614,6 +614,27 @@ TEST(Run, APinnedColumnPressedByManyEulerLoadsCountsThemInPieces) {
   }
 }
 
+// A 300 m pipe on a stiff bore (1e6 N/m per m: its weight, 257 N/m, presses it 0.3 mm in) whose
+// statics stop short (load_stepping_failed) was told the bore's stiffness might be too low for
+// the load. The hint names the stiffness only when the rod's load would press it a fifth of its
+// radius in. (Should the statics converge, there is no hint to check.)
+TEST(Run, AStiffBoreIsNotBlamedForAContinuationThatStops) {
+  const io::ParseResult parsed = io::ParseProblem(R"({"format": "cosserat-problem/1",
+    "boundary": "pinned-pinned",
+    "rod": {"length": 300, "nodes": 1201,
+      "section": {"shape": "annulus", "outer_radius": 0.0635, "inner_radius": 0.0545},
+      "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9, "density": 7850}},
+    "base": {"position": [-0.044820428956811535, 0, 0]},
+    "loads": {"gravity": [-9.81, 0, 0]},
+    "environment": {"contact": [{"shape": "cylinder", "point": [0, 0, 0], "axis": [0, 0, 1],
+      "radius": 0.108, "side": "inside", "stiffness": 1e6}]}})");
+  ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
+  const Result r = cosserat::run::Run(*parsed.problem);
+  if (r.converged) return;
+  EXPECT_NE(r.log.find("are refused"), std::string::npos) << r.log;
+  EXPECT_EQ(r.log.find("stiffness may be too low"), std::string::npos) << r.log;
+}
+
 // A silicone rod (r = 5 mm, E = 1 MPa) standing upright under its own weight: Greenhill's
 // critical length (7.837 EI/q)^⅓ = 0.166 m, the second (55.98 EI/q)^⅓ = 0.319 m (Timoshenko &
 // Gere 1961). At 0.15 m it is stable; at 0.3 m the straight equilibrium both formulations find

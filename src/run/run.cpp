@@ -2,13 +2,16 @@
 
 #include "cosserat/run/grid_resolution.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "bending_stress_report.hpp"
 #include "contact_report.hpp"
 #include "scale_warnings.hpp"
 #include "cosserat/loads/obstacle_core.hpp"
+#include "cosserat/loads/total_load.hpp"
 #include "cosserat/run/run_assembly.hpp"
 #include "cosserat/run/run_buckling.hpp"
 #include "cosserat/run/run_dynamics.hpp"
@@ -60,17 +63,31 @@ void RefuseNonFiniteAnswers(Result* result) {
 }
 
 /// A continuation that failed beside a contact surface may have been held back by the statics'
-/// obstacle rule (obstacle_core.hpp): say so.
+/// obstacle rule (obstacle_core.hpp): say so. The surface's stiffness is named as a cause only
+/// when the rod's distributed load alone would press it in by a fifth of its radius or more (a
+/// 300 m pipe sinking 0.3 mm into a bore was told its bore was too soft).
 void ObstacleHint(const io::Problem& problem, Result* result) {
-  if (result->converged || !HasObstacleCore(problem.loads.contact) ||
+  const ContactSurfaces& surfaces = problem.loads.contact;
+  if (result->converged || !HasObstacleCore(surfaces) ||
       result->json.value("status", "") != ToString(SolveStatus::kLoadSteppingFailed))
     return;
-  result->log +=
-      "cosserat: hint: load steps that would take the rod through a contact surface (its "
-      "centreline within half the radius of a sphere's centre or a post's axis, or beyond a "
-      "plane or a bore's wall) are refused: the surface's stiffness may be too low for the "
-      "load, or (quaternion-fd, where contact acts at the nodes) the obstacle smaller than the "
-      "node spacing\n";
+  const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
+  const double pressing =
+      TotalDistributedForce_W(problem.loads, LoadSite{0.0, 1.0, p.mass(3, 3), p.outer_diameter})
+          .norm();  // N/m
+  double softest = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < surfaces.count; ++i)
+    if (surfaces.surface[i].stiffness > 0)
+      softest = std::min(softest, surfaces.surface[i].stiffness);
+  const bool soft = pressing / softest > 0.1 * p.outer_diameter;
+  result->log += std::string(
+                     "cosserat: hint: load steps that would take the rod through a contact "
+                     "surface (its centreline within half the radius of a sphere's centre or a "
+                     "post's axis, or beyond a plane or a bore's wall) are refused") +
+                 (soft ? ": the surface's stiffness may be too low for the load" : "") +
+                 "; (quaternion-fd, where contact acts at the nodes) the obstacle may be smaller "
+                 "than the node spacing, and a grid coarser than the contact's bending length "
+                 "(4 EI/k)^(1/4) follows the rod on it poorly\n";
 }
 
 }  // namespace
