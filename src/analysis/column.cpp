@@ -294,13 +294,9 @@ std::vector<Eigen::Matrix<double, 18, 1>> ColumnSolver::Perturbation(const lie::
                                                                      const StaticLoads& loads,
                                                                      const Vec6& u,
                                                                      const Vec6& du) const {
-  lie::SE3 start;
-  Vec6 W0;
-  StateTangent dstart;
-  Start(base, u, &start, &W0, &dstart);
   std::vector<StateTangent> tangents;
   RodState record;
-  shooter_.ShootTangent(start, loads, W0, dstart, &record, &tangents);
+  Residual(base, loads, u, nullptr, &record, &tangents);
   std::vector<Eigen::Matrix<double, 18, 1>> out(tangents.size());
   for (size_t i = 0; i < tangents.size(); ++i) out[i] = tangents[i] * du;
   return out;

@@ -38,7 +38,7 @@
 // admissible variations is the second variation of the constrained problem. The lateral
 // constraint is linear in p_W (no curvature term); the rotation constraint of a clamped tip
 // leaves no rotation to vary. So the tip term counts the negative eigenvalues of Zᵀ H(L) Z, Z an
-// orthonormal basis of the admissible η(L) (in the units of NegativeEigenvalues).
+// orthonormal basis of the admissible η(L) (in the units of Units).
 #include "cosserat/strong/morse_index.hpp"
 
 #include <Eigen/Cholesky>
@@ -52,21 +52,28 @@ namespace cosserat {
 
 namespace {
 
-// Negative eigenvalues (below −zero, N·m) of the symmetric part of H = V U⁻¹ on the admissible
-// tip variations, in units where rotations (rad) and displacements (m) are comparable through the
-// length scale `ell` (congruence keeps the count): H' = D⁻¹ H D⁻¹ maps y = [δθ; δp/ell] to
-// [δm; ell δn], in N·m, and the admissible y are D · span(tip), orthonormalised.
-int NegativeEigenvalues(const Mat6& U, const Mat6& V, const TipVariations& tip, double ell,
-                        double zero) {
+// The units in which rotations (rad) and displacements (m) are comparable through the length
+// scale `ell`: y = D η = [δθ; δp/ell] (congruence keeps every count), and D⁻¹ V = [δm; ell δn].
+Vec6 Units(double ell) {
   Vec6 d;
   d << Vec3::Constant(1.0), Vec3::Constant(1.0 / ell);
-  const Eigen::PartialPivLU<Mat6> lu(d.asDiagonal() * U);
-  // H' = (D⁻¹ V)(D U)⁻¹, solved as a transpose: (D U)ᵀ H'ᵀ = (D⁻¹ V)ᵀ.
-  const Mat6 Vs = d.cwiseInverse().asDiagonal() * V;
-  const Mat6 Ht = lu.transpose().solve(Vs.transpose());
-  const Mat6 Hs = 0.5 * (Ht + Ht.transpose());
-  if (!Hs.allFinite()) return -1;
-  const Eigen::HouseholderQR<TipVariations> qr(d.asDiagonal() * tip);
+  return d;
+}
+
+// The symmetric part of H' = D⁻¹ H D⁻¹ = (D⁻¹ V)(D U)⁻¹ (N·m), solved as a transpose:
+// (D U)ᵀ H'ᵀ = (D⁻¹ V)ᵀ. False when it is not finite (U singular to rounding).
+bool ScaledStiffness(const Mat6& U, const Mat6& V, double ell, Mat6* Hs) {
+  const Vec6 d = Units(ell);
+  const Mat6 Ht = (d.asDiagonal() * U).transpose().partialPivLu().solve(
+      (d.cwiseInverse().asDiagonal() * V).transpose());
+  *Hs = 0.5 * (Ht + Ht.transpose());
+  return Hs->allFinite();
+}
+
+// Negative eigenvalues (below −zero, N·m) of the scaled stiffness Hs on the admissible tip
+// variations, D · span(tip), orthonormalised.
+int NegativeEigenvalues(const Mat6& Hs, const TipVariations& tip, double ell, double zero) {
+  const Eigen::HouseholderQR<TipVariations> qr(Units(ell).asDiagonal() * tip);
   const TipVariations Z = qr.householderQ() * TipVariations::Identity(6, tip.cols());
   const Eigen::MatrixXd Hz = Z.transpose() * Hs * Z;
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Hz, Eigen::EigenvaluesOnly);
@@ -99,7 +106,7 @@ int NegativeEigenvaluesFast(const Mat6& U, const Mat6& V) {
 }
 
 // The Prüfer angles' passes of −1 between the frames (U0, V0) and (U1, V1) of two neighbouring
-// nodes, in the units of NegativeEigenvalues (y = D η, D⁻¹ V), with V also divided by a
+// nodes, in the units of Units (y = D η, D⁻¹ V), with V also divided by a
 // stiffness c > 0 (N·m). Where U is invertible, W = (U + iV/c)(U − iV/c)⁻¹ is the Cayley
 // transform of H/c: its angles are φ_k = 2 atan(μ_k / c), μ_k the eigenvalues of sym(H), and
 // arg det(U + iV/c) = arg det U + Σ atan(μ_k / c). The count needs the continuous change ΔΦ of
@@ -109,20 +116,14 @@ int NegativeEigenvaluesFast(const Mat6& U, const Mat6& V) {
 // decades either way, until ΔΦ stays below π/2 and the count is a whole number ≥ 0. −1 when no
 // c gives that.
 int PrueferPasses(const Mat6& U0, const Mat6& V0, const Mat6& U1, const Mat6& V1, double ell) {
-  Vec6 d;
-  d << Vec3::Constant(1.0), Vec3::Constant(1.0 / ell);
+  const Vec6 d = Units(ell);
   const Mat6 Us0 = d.asDiagonal() * U0, Vs0 = d.cwiseInverse().asDiagonal() * V0;
   const Mat6 Us1 = d.asDiagonal() * U1, Vs1 = d.cwiseInverse().asDiagonal() * V1;
-  // The eigenvalues μ of sym(H) at each node, H = Vs Us⁻¹ (solved as a transpose).
-  auto stiffness_eigenvalues = [](const Mat6& Us, const Mat6& Vs, Vec6* mu) {
-    const Mat6 Ht = Us.transpose().partialPivLu().solve(Vs.transpose());
-    const Mat6 H = 0.5 * (Ht + Ht.transpose());
-    if (!H.allFinite()) return false;
-    *mu = Eigen::SelfAdjointEigenSolver<Mat6>(H, Eigen::EigenvaluesOnly).eigenvalues();
-    return true;
-  };
-  Vec6 mu0, mu1;
-  if (!stiffness_eigenvalues(Us0, Vs0, &mu0) || !stiffness_eigenvalues(Us1, Vs1, &mu1)) return -1;
+  // The eigenvalues μ of sym(H) at each node.
+  Mat6 H0, H1;
+  if (!ScaledStiffness(U0, V0, ell, &H0) || !ScaledStiffness(U1, V1, ell, &H1)) return -1;
+  const Vec6 mu0 = Eigen::SelfAdjointEigenSolver<Mat6>(H0, Eigen::EigenvaluesOnly).eigenvalues();
+  const Vec6 mu1 = Eigen::SelfAdjointEigenSolver<Mat6>(H1, Eigen::EigenvaluesOnly).eigenvalues();
   using CMat6 = Eigen::Matrix<std::complex<double>, 6, 6>;
   const std::complex<double> i(0.0, 1.0);
   auto det = [&](const Mat6& Us, const Mat6& Vs, double c) {
@@ -170,7 +171,9 @@ int MorseIndexOfShot(const RodState& record, const std::vector<ShotTangent>& nod
     // The count on all of η (at the tip with the threshold) says where to look for conjugate
     // points; the tip term counts on the admissible variations.
     const bool at_tip = i + 1 == n;
-    negative = at_tip ? NegativeEigenvalues(U, V, TipVariations::Identity(6, 6), length, zero)
+    Mat6 Hs;
+    if (at_tip && !ScaledStiffness(U, V, length, &Hs)) return -1;
+    negative = at_tip ? NegativeEigenvalues(Hs, TipVariations::Identity(6, 6), length, zero)
                       : NegativeEigenvaluesFast(U, V);
     if (negative < 0) return -1;  // U singular to rounding at a node: no count
     // Where to look: a change of the count, or of det U's sign.
@@ -184,7 +187,7 @@ int MorseIndexOfShot(const RodState& record, const std::vector<ShotTangent>& nod
     previous_det_u_positive = det_u_positive;
     U_previous = U;
     V_previous = V;
-    if (at_tip && tip.cols() < 6) negative = NegativeEigenvalues(U, V, tip, length, zero);
+    if (at_tip && tip.cols() < 6) negative = NegativeEigenvalues(Hs, tip, length, zero);
   }
   return conjugate + negative;
 }
