@@ -446,6 +446,19 @@ TEST(AutomaticPieces, PiecesASpikeAddedAreDroppedSoonAfter) {
   // Each halving waits kFirstDropWait whole steps; a few steps of the transient may still fail
   // and add pieces (each failure doubles the wait before the next drop): allow twice the wait.
   EXPECT_LE(back, 2 * Bdf2ShootingStepper::kFirstDropWait * halvings);
+  // A second spike long after the first recovers as fast: the drop to one piece held, so the
+  // wait is back to kFirstDropWait, not doubled as if that drop had failed.
+  for (int i = 0; i < 200; ++i) ASSERT_TRUE(stepper.Step(in).converged()) << i;
+  const StepSummary again = stepper.Step(spike);
+  int back_again = -1;
+  for (int i = 0; i < 400 && back_again < 0; ++i) {
+    const StepSummary s = stepper.Step(in);
+    ASSERT_TRUE(s.converged()) << i;
+    if (s.shooting_segments == 1) back_again = i + 1;
+  }
+  std::printf("after a second spike (%d pieces): one piece again after %d steps\n",
+              again.shooting_segments, back_again);
+  EXPECT_EQ(back_again, back);
 }
 
 }  // namespace

@@ -146,10 +146,14 @@ int Bdf2ShootingStepper::ChosenPieces() const {
 // 300. kLongestDropWait: a state that keeps needing the pieces is tried at most once in 160
 // steps (a failed attempt costs about one step's solve).
 void Bdf2ShootingStepper::DropUnneededPieces() {
-  if (!automatic_pieces_ || ShootingPieces() == 1 || ++run_.whole_steps < run_.drop_wait) return;
-  if (run_.dropped_pieces) run_.drop_wait = kFirstDropWait;  // the last drop held a whole wait
-  const int fewer = std::max(ChosenPieces(), ShootingPieces() / 2);
+  // Whole steps count at one piece too: a drop to one piece that holds a whole wait must bring
+  // the wait back, or a spike hundreds of steps later would double it as if the drop had failed.
+  if (!automatic_pieces_ || ++run_.whole_steps < run_.drop_wait) return;
   run_.whole_steps = 0;
+  if (run_.dropped_pieces) run_.drop_wait = kFirstDropWait;  // the last drop held a whole wait
+  run_.dropped_pieces = false;
+  if (ShootingPieces() == 1) return;
+  const int fewer = std::max(ChosenPieces(), ShootingPieces() / 2);
   run_.dropped_pieces = fewer < ShootingPieces();
   if (fewer < ShootingPieces()) SetShootingPieces(fewer);
 }
