@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "cosserat/strong/load_parameter.hpp"
@@ -309,6 +310,7 @@ bool BucklingAnalysis::SolveFixedLoads(bool require_stable, int* solves) {
   // large can land on another equilibrium (a pipe lying in a bore, loaded by its weight at once,
   // converged on an unstable one), which the stability index tells.
   bool ok = false;
+  std::optional<Vec6> unstable;  // the first equilibrium reached that was not stable
   const LoadPath saved = path_;
   for (int pieces = 1; pieces <= 64 && !ok; pieces *= 4) {
     column_.set_unknowns(Vec6::Zero());
@@ -322,11 +324,15 @@ bool BucklingAnalysis::SolveFixedLoads(bool require_stable, int* solves) {
       double sigma, det_sign;
       int index;
       Singularity(0.0, &sigma, &det_sign, &index);
+      if (index > 0 && !unstable) unstable = column_.unknowns();
       ok = index <= 0;  // stable, or not defined
     }
   }
   path_ = saved;
-  return ok || (require_stable && SolveFixedLoads(false, solves));
+  if (ok || !unstable) return ok;
+  column_.set_unknowns(*unstable);  // none stable: the first that converged, as without the check
+  ++*solves;
+  return SolveAt(0.0).converged();
 }
 
 void BucklingAnalysis::SetCriticalPoint(double lambda, const Vec6& guess, double sigma0,

@@ -151,10 +151,10 @@ BucklingSummary BucklingInPieces::FindCriticalLoad() {
     if (failed) return finish(BucklingStatus::kPathFailed);
     out.scan_lambda.clear();
     out.scan_sigma_min.clear();
+    if (!SolveAt(path_.LoadsAt(0.0), &index0, &out) || index0 < 0)
+      return finish(BucklingStatus::kPathFailed);
   }
   auto loads_at = [&](double lambda) { return path_.LoadsAt(lambda); };
-  if (!SolveAt(loads_at(0.0), &index0, &out) || index0 < 0)
-    return finish(BucklingStatus::kPathFailed);
   // The first step as BucklingAnalysis's: 1/64 of a scan step, and no more than 1e-4 in the
   // dimensionless load.
   const double unit = StaticLoadParameter(model_, path_.per_unit, path_.fixed_actuation);
