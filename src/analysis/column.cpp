@@ -354,9 +354,7 @@ int ColumnSolver::StabilityIndexInPieces(const lie::SE3& base, const StaticLoads
 int ColumnSolver::StabilityIndexFromShot(const lie::SE3& base, const StaticLoads& loads,
                                          const Vec6& u, const RodState& record,
                                          const std::vector<StateTangent>& tangents) const {
-  const SplitWrench tip = TotalTipWrench(loads);
-  if (!tip.follower_B.isZero(0.0) || !tip.dead_W.head<3>().isZero(0.0) || HasDrag(loads))
-    return -1;  // not conservative (StaticShootingSolver::StabilityIndex)
+  if (!LoadsAreConservative(loads)) return -1;
   // A pinned base holding a torque: the base rotations then do work against it like a dead
   // moment, and the Jacobi fields they start are no longer a Lagrangian subspace. 1e-8 EI/L is
   // far below any torque that matters and far above the solve's rounding of m₃(0) = 0.

@@ -30,12 +30,9 @@ int StaticShootingSolver::StabilityIndex(const lie::SE3& base, const StaticLoads
 // Jacobian shot (directions: the scaled unknowns) serves as well as the unit directions.
 int StaticShootingSolver::StabilityIndexFromShot(const StaticLoads& loads, const RodState& record,
                                                  const std::vector<StateTangent>& nodes) const {
-  const SplitWrench tip = TotalTipWrench(loads);
-  if (!tip.follower_B.isZero(0.0) || !tip.dead_W.head<3>().isZero(0.0))
-    return -1;  // not conservative
-  // Drag is not the gradient of a potential; contact in statics is (a penalty on the position
-  // alone, no damping or friction at rest), and the tangent shot carries its stiffness.
-  if (HasDrag(loads)) return -1;
+  // Contact in statics is conservative (no damping or friction at rest), and the tangent shot
+  // carries its stiffness.
+  if (!LoadsAreConservative(loads)) return -1;
   // An eigenvalue counts as negative below −1e-8 EI/L. A rod symmetric about its axis has, past
   // buckling, a whole circle of equilibria (the shape turned about the load axis, with the section
   // turned back at the clamp): H(L) is exactly singular along it, and the solve tolerance (1e-10

@@ -69,6 +69,14 @@ inline SplitWrench TotalTipWrench(const StaticLoads& loads, double tip_mass = 0.
   return out;
 }
 
+/// True when the static loads are the gradient of a potential, the condition for a stability
+/// index: no follower tip load and no tip moment (a moment of fixed direction does work only
+/// along its axis in 3-D), and no drag. Contact in statics is a penalty on the position alone.
+inline bool LoadsAreConservative(const StaticLoads& loads) {
+  const SplitWrench tip = TotalTipWrench(loads);
+  return tip.follower_B.isZero(0.0) && tip.dead_W.head<3>().isZero(0.0) && !HasDrag(loads);
+}
+
 /// The tip wrench in the tip body frame R_WB (N·m; N): Rᵀ dead + follower.
 inline Vec6 TipWrenchInBody(const SplitWrench& w, const Mat3& R_WB) {
   Vec6 out;
