@@ -81,6 +81,56 @@ TEST(ColumnStability, IndexCountsTheEulerLoadsBelowTheLoadForEveryPairOfEnds) {
   }
 }
 
+// The k-th critical load parameter P L²/EI (k = 1, 2, …) of the straight inextensible column,
+// as EulerLoadParameters, for any k: clamped–clamped merges its symmetric and antisymmetric
+// families, which alternate.
+double EulerLoadParameter(ColumnEnds ends, int k) {
+  switch (ends) {
+    case ColumnEnds::kPinnedPinned:
+      return k * k * kPi * kPi;
+    case ColumnEnds::kClampedClamped: {
+      const int j = (k + 1) / 2;
+      return k % 2 == 1 ? 4 * j * j * kPi * kPi : 4 * TanRoot(j) * TanRoot(j);
+    }
+    case ColumnEnds::kClampedPinned:
+      return TanRoot(k) * TanRoot(k);
+    case ColumnEnds::kClampedFree:
+      return (2 * k - 1) * (2 * k - 1) * kPi * kPi / 4;
+  }
+  return 0;
+}
+
+// Far past the first Euler loads (13 of them: about 180 P_E for a pinned column) the Jacobi
+// fields turn 14 times along the rod, and between two nodes a circular section's two conjugate
+// points turn the Prüfer angles a whole circle each unless their scale c is chosen with care: an
+// index read with too large a c missed pairs of them. The count must hold from one shot and from
+// fields carried through pieces alike. 201 nodes give 14 per half-wave; the load sits halfway
+// (geometrically) between the 13th and 14th critical loads, which shear and shortening move by
+// about 1e-2 here ((kr)² with k = 14π/L).
+TEST(ColumnStability, IndexCountsManyEulerLoadsFromOneShotAndInPieces) {
+  const testing::SteelRod rod{1.0, 0.005};
+  for (ColumnEnds ends : {ColumnEnds::kPinnedPinned, ColumnEnds::kClampedClamped,
+                          ColumnEnds::kClampedPinned, ColumnEnds::kClampedFree}) {
+    ColumnSolver column(rod.model(), 201, ends);
+    const double ratio =
+        std::sqrt(EulerLoadParameter(ends, 13) * EulerLoadParameter(ends, 14));
+    const double P = ratio * rod.EI() / (rod.length * rod.length);
+    StaticLoads loads;
+    loads.tip_force = Vec3(0, 0, -P);
+    Vec6 u = Vec6::Zero();
+    u(5) = -P / column.scale()(5);
+    RodState record;
+    std::vector<ColumnSolver::StateTangent> tangents;
+    ASSERT_LT(column.Residual(lie::SE3{}, loads, u, nullptr, &record, &tangents).norm(), 1e-10);
+    EXPECT_EQ(column.StabilityIndexFromShot(lie::SE3{}, loads, u, record, tangents), 26)
+        << ToString(ends);
+    for (int pieces : {4, 9}) {
+      EXPECT_EQ(column.StabilityIndexInPieces(lie::SE3{}, loads, record, pieces), 26)
+          << ToString(ends) << " in " << pieces << " pieces";
+    }
+  }
+}
+
 // A 30 m steel pipe sagging under its own weight between its supports is at the minimum of its
 // energy: no unstable direction, for every pair of ends. (Its sag, 2 m between pins, turns one
 // eigenvalue of the tip stiffness of the pinned rod's first metres negative and back, which a

@@ -46,7 +46,9 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <cmath>
+#include <algorithm>
 #include <complex>
+#include <vector>
 
 namespace cosserat {
 
@@ -106,16 +108,22 @@ int NegativeEigenvaluesFast(const Mat6& U, const Mat6& V) {
 }
 
 // The Prüfer angles' passes of −1 between the frames (U0, V0) and (U1, V1) of two neighbouring
-// nodes, in the units of Units (y = D η, D⁻¹ V), with V also divided by a
-// stiffness c > 0 (N·m). Where U is invertible, W = (U + iV/c)(U − iV/c)⁻¹ is the Cayley
-// transform of H/c: its angles are φ_k = 2 atan(μ_k / c), μ_k the eigenvalues of sym(H), and
+// nodes, in the units of Units (y = D η, D⁻¹ V), with V also divided by a stiffness c > 0 (N·m).
+// Where U is invertible, W = (U + iV/c)(U − iV/c)⁻¹ is the Cayley transform of H/c: its angles
+// are φ_k = 2 atan(μ_k / c), μ_k the eigenvalues of sym(H), and
 // arg det(U + iV/c) = arg det U + Σ atan(μ_k / c). The count needs the continuous change ΔΦ of
-// 2 arg det(U + iV/c) between the nodes, read from the ratio of the determinants, which is
-// unambiguous only while it stays well below π; how fast the angles turn depends on c (the count
-// does not). So c is tried from the ratio of V's and U's sizes outwards, two per decade over 16
-// decades either way, until ΔΦ stays below π/2 and the count is a whole number ≥ 0. −1 when no
-// c gives that.
-int PrueferPasses(const Mat6& U0, const Mat6& V0, const Mat6& U1, const Mat6& V1, double ell) {
+// 2 arg det(U + iV/c) between the nodes, but the ratio of the determinants gives it only modulo
+// 2π, and |ΔΦ| < π/2 read from it does not rule out a true ΔΦ of −2π or −4π. How far an angle
+// turns depends on c (the count does not): an eigenvalue that passes its pole between the nodes
+// turns almost a full circle unless c is well below |μ| at both nodes, one that passes zero
+// unless c is well above. Too large a c misses such a pass, too small a c misses a fall through
+// zero; either loses passes, which a simple root shows as the wrong parity (det U changes sign at
+// each simple pass; `odd` says whether it did). So c is tried on a ladder from the ratio of V's
+// and U's sizes, two per decade over 16 decades either way, and in every gap of the |μ| of both
+// nodes; of the readings that are whole numbers ≥ 0 of the right parity with |ΔΦ| < π/2, the
+// largest is the count. −1 when there is none.
+int PrueferPasses(const Mat6& U0, const Mat6& V0, const Mat6& U1, const Mat6& V1, double ell,
+                  bool odd) {
   const Vec6 d = Units(ell);
   const Mat6 Us0 = d.asDiagonal() * U0, Vs0 = d.cwiseInverse().asDiagonal() * V0;
   const Mat6 Us1 = d.asDiagonal() * U1, Vs1 = d.cwiseInverse().asDiagonal() * V1;
@@ -130,19 +138,32 @@ int PrueferPasses(const Mat6& U0, const Mat6& V0, const Mat6& U1, const Mat6& V1
     const CMat6 P = Us.cast<std::complex<double>>() + i * (Vs / c).cast<std::complex<double>>();
     return P.partialPivLu().determinant();
   };
+  std::vector<double> trials;
   const double c0 = Us0.norm() > 0 && Vs0.norm() > 0 ? Vs0.norm() / Us0.norm() : 1.0;
-  for (int j = 0; j <= 64; ++j) {
-    // c0, then c0 · 10^(±1/2), c0 · 10^(±1), … alternating.
-    const double c = c0 * std::pow(10.0, (j % 2 == 0 ? 1.0 : -1.0) * ((j + 1) / 2) / 2.0);
+  for (int j = -32; j <= 32; ++j) trials.push_back(c0 * std::pow(10.0, 0.5 * j));
+  std::vector<double> sizes;
+  for (int k = 0; k < 6; ++k) {
+    if (mu0(k) != 0.0) sizes.push_back(std::abs(mu0(k)));
+    if (mu1(k) != 0.0) sizes.push_back(std::abs(mu1(k)));
+  }
+  std::sort(sizes.begin(), sizes.end());
+  for (std::size_t k = 0; k + 1 < sizes.size(); ++k) {
+    if (sizes[k + 1] > 4.0 * sizes[k]) trials.push_back(std::sqrt(sizes[k] * sizes[k + 1]));
+  }
+  int count = -1;
+  for (const double c : trials) {
+    if (!std::isfinite(c) || c <= 0.0) continue;
     double dpsi = 0.0;
     for (int k = 0; k < 6; ++k) dpsi += 2.0 * (std::atan(mu1(k) / c) - std::atan(mu0(k) / c));
     const double dphi = 2.0 * std::arg(det(Us1, Vs1, c) / det(Us0, Vs0, c));
     if (!std::isfinite(dphi) || std::abs(dphi) > 0.5 * M_PI) continue;
     const double passes = (dpsi - dphi) / (2.0 * M_PI);
     const double whole = std::round(passes);
-    if (std::abs(passes - whole) < 0.05 && whole >= 0) return static_cast<int>(whole);
+    if (std::abs(passes - whole) >= 0.05 || whole < 0) continue;
+    const int n = static_cast<int>(whole);
+    if ((n % 2 == 1) == odd) count = std::max(count, n);
   }
-  return -1;
+  return count;
 }
 
 }  // namespace
@@ -179,7 +200,8 @@ int MorseIndexOfShot(const RodState& record, const std::vector<ShotTangent>& nod
     // Where to look: a change of the count, or of det U's sign.
     const bool det_u_positive = U.determinant() > 0;
     if (i > 1 && (negative != previous || det_u_positive != previous_det_u_positive)) {
-      const int passes = PrueferPasses(U_previous, V_previous, U, V, length);
+      const int passes = PrueferPasses(U_previous, V_previous, U, V, length,
+                                       det_u_positive != previous_det_u_positive);
       if (passes < 0) return -1;
       conjugate += passes;
     }
