@@ -2,9 +2,11 @@
 
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
+#include "statics_in_pieces.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat::run {
@@ -35,12 +37,10 @@ std::optional<RodState> StaticEquilibrium(const io::Problem& problem, const Step
   const StaticLoads statics_loads = WithTipMassWeight(problem, input.loads);
   if (!problem.has_robot && problem.rod.tendons.empty() && problem.rod.chambers.empty() &&
       !SingleShotResolves(problem, input.loads)) {
-    StaticMultipleShootingOptions opt;
-    opt.tolerance = single.tolerance;
-    opt.max_iterations = single.max_iterations;
-    StaticMultipleShootingSolver solver(problem.rod, problem.nodes, opt);
-    if (!solver.Solve(input.base_pose, statics_loads).converged()) return std::nullopt;
-    return solver.state();
+    detail::StaticsInPieces solved = detail::SolveStaticsInPieces(
+        problem, ColumnEnds::kClampedFree, input.base_pose, statics_loads);
+    if (!solved.summary.converged()) return std::nullopt;
+    return std::move(solved.state);
   }
   StaticShootingSolver solver(problem.rod, problem.nodes, single, input.actuation);
   if (!solver.Solve(input.base_pose, statics_loads).converged()) return std::nullopt;

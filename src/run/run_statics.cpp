@@ -18,6 +18,7 @@
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "anchor_force.hpp"
+#include "statics_in_pieces.hpp"
 #include "foundation_hint.hpp"
 #include "stability_warning.hpp"
 #include "frame_output.hpp"
@@ -126,48 +127,26 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   return result;
 }
 
-/// The stability index of an equilibrium multiple shooting found in `pieces` pieces: the Jacobi
-/// fields carried piece by piece along it (ColumnSolver::StabilityIndexInPieces, any ends), as
-/// one shot from the base would amplify rounding beyond use there (a stiff contact, a high
-/// tension). −1 where the index is not defined. No tendons or chambers (multiple shooting has
-/// none).
-int IndexInPieces(const io::Problem& problem, ColumnEnds ends, const RodState& state,
-                  int pieces) {
-  if (!problem.rod.tendons.empty() || state.size() < 2) return -1;
-  const ColumnSolver column(problem.rod, problem.nodes, ends, StaticOptions(problem),
-                            problem.robot.actuation);
-  return column.StabilityIndexInPieces(problem.base, problem.loads, state, pieces);
-}
-
 /// A cantilever or column whose single shot would amplify errors beyond double precision (a
 /// stiff contact foundation, a high tension): multiple shooting in pieces it chooses.
 Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& options,
                                   ColumnEnds ends = ColumnEnds::kClampedFree, int pieces = 0) {
-  const StaticShootingOptions single = StaticOptions(problem);
-  StaticMultipleShootingOptions opt;
-  opt.pieces = pieces;
-  opt.tolerance = single.tolerance;
-  opt.max_iterations = single.max_iterations;
-  opt.base_pinned = ends == ColumnEnds::kPinnedPinned;
-  opt.tip_guided = ends != ColumnEnds::kClampedFree;
-  opt.tip_clamped = ends == ColumnEnds::kClampedClamped;
-  StaticMultipleShootingSolver solver(problem.rod, problem.nodes, opt);
-  StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
-  if (summary.converged())
-    summary.stability_index = IndexInPieces(problem, ends, solver.state(), solver.pieces());
+  const detail::StaticsInPieces solved =
+      detail::SolveStaticsInPieces(problem, ends, problem.base, problem.loads, pieces);
+  const StaticShootingSummary& summary = solved.summary;
   Result result;
-  result.json = io::StaticResultToJson(summary, solver.state());
-  detail::KeepStaticFrame(problem, solver.state(), options, &result);
-  result.json["shooting_segments"] = solver.pieces();
-  if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
+  result.json = io::StaticResultToJson(summary, solved.state);
+  detail::KeepStaticFrame(problem, solved.state, options, &result);
+  result.json["shooting_segments"] = solved.pieces;
+  if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solved.state);
   const std::string column =
       ends == ColumnEnds::kClampedFree ? "" : ToString(ends) + std::string(", ");
-  result.log = StaticSummary(summary, solver.state()) + " (" + column +
-               std::to_string(solver.pieces()) + " shooting pieces)\n" +
+  result.log = StaticSummary(summary, solved.state) + " (" + column +
+               std::to_string(solved.pieces) + " shooting pieces)\n" +
                ContinuationHint(problem, summary) + detail::UnstableWarning(summary, false);
   if (summary.converged() && summary.stability_index < 0)
     result.log += detail::UnjudgedCompressionNote(
-        problem.rod, solver.state(),
+        problem.rod, solved.state,
         "past the Euler load of a free pinned column, and its stability is not judged (its loads "
         "are not conservative: a follower or a tip moment, drag; or a torque held by a pin)");
   result.converged = summary.converged();

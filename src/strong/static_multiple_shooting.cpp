@@ -341,29 +341,44 @@ void StaticMultipleShootingSolver::StartUnloaded(const lie::SE3& base) {
   }
 }
 
-std::vector<Vec3> StaticMultipleShootingSolver::Positions(const lie::SE3& base,
-                                                         const StaticLoads& loads) {
+const RodState& StaticMultipleShootingSolver::Shot(const lie::SE3& base,
+                                                   const StaticLoads& loads) {
   Point y = BaseStart(base, x_);
   for (int k = 0; k <= static_cast<int>(junction_nodes_.size()); ++k)
     y = ShootPiece(k, k == 0 ? y : junctions_[k - 1], loads, true);
-  return state_.position_W;
+  return state_;
 }
+
+namespace {
+
+// The largest angle (rad) between the frames of the same node in two states.
+double LargestTurn(const std::vector<Mat3>& from, const std::vector<Mat3>& to) {
+  double turn = 0.0;
+  for (size_t i = 0; i < from.size() && i < to.size(); ++i)
+    turn = std::max(turn, lie::SO3Log(Mat3(from[i].transpose() * to[i])).norm());
+  return turn;
+}
+
+}  // namespace
 
 double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
                                                 const std::function<StaticLoads(double)>& at,
-                                                double max_step, int* levels,
+                                                double first_step, double max_step, int* levels,
                                                 StaticShootingSummary* summary) {
   // The accepted solution at mu and the one before it at mu_before (for the secant predictor).
   Vec6 x_accepted = x_, x_before = x_;
   std::vector<Point> accepted = junctions_, before = junctions_;
-  double mu = 0.0, mu_before = -1.0, step = max_step;
+  double mu = 0.0, mu_before = -1.0, step = std::min(first_step, max_step);
   const int budget = options_.max_load_steps + static_cast<int>(std::ceil(1.0 / max_step));
   // A level that passes a node into an obstacle's core jumped through it (obstacle_core.hpp):
   // refused like a failed one, so the steps shrink until the surfaces hold the rod back.
   const ContactSurfaces surfaces = at(1.0).contact;
   const bool obstacles = HasObstacleCore(surfaces);
   std::vector<Vec3> at_accepted;
-  if (obstacles) at_accepted = Positions(base, at(0.0));
+  if (obstacles) at_accepted = Shot(base, at(0.0)).position_W;
+  const bool turns = options_.max_turn > 0.0;
+  std::vector<Mat3> frames_accepted;
+  if (turns) frames_accepted = Shot(base, at(0.0)).rotation_WB;
   while (mu < 1.0 && *levels < budget && step >= kMinLoadStep) {
     const double mu_try = std::min(1.0, mu + step);
     ++*levels;
@@ -375,9 +390,14 @@ double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
     }
     bool held = Newton(base, at(mu_try), summary);
     if (held && obstacles) {
-      std::vector<Vec3> now = Positions(base, at(mu_try));
+      std::vector<Vec3> now = Shot(base, at(mu_try)).position_W;
       held = !ReachesObstacleCore(surfaces, at_accepted, now);
       if (held) at_accepted = std::move(now);
+    }
+    if (held && turns) {
+      const std::vector<Mat3>& now = Shot(base, at(mu_try)).rotation_WB;
+      held = LargestTurn(frames_accepted, now) <= options_.max_turn;
+      if (held) frames_accepted = now;
     }
     if (held) {
       mu_before = mu;
@@ -412,9 +432,10 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
   // from the straight column lands on another branch (a clamped-clamped column at
   // L sqrt(T/EI) = 5 under a side load of 0.3 T converged 0.37 L away from the straight one's).
   const double measure = StaticLoadParameter(model_, loads);
-  const double max_step = options_.tip_guided && measure > options_.max_load_increment
-                              ? options_.max_load_increment / measure
-                              : 1.0;
+  const double limited =
+      measure > options_.max_load_increment ? options_.max_load_increment / measure : 1.0;
+  const double max_step = options_.tip_guided ? limited : 1.0;
+  const double first_step = options_.tip_guided || options_.max_turn > 0.0 ? limited : 1.0;
   // Continuation in the loads from the last solution at this base, else from the unloaded rod.
   StaticLoads start = loads.Scaled(0.0);
   summary.warm_started = has_solution_ && solved_base_.p == base.p && solved_base_.R == base.R;
@@ -429,7 +450,7 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
   auto along_loads = [&](double mu) {
     return mu == 1.0 ? loads : StaticLoads::Blend(start, loads, mu);
   };
-  double mu = FollowPath(base, along_loads, max_step, &levels, &summary);
+  double mu = FollowPath(base, along_loads, first_step, max_step, &levels, &summary);
   std::function<StaticLoads(double)> at = along_loads;
   if (mu < 1.0 && loads.contact.count > 0) {
     // Stiff surfaces: a rod coming down onto them follows the loads on surfaces softened
@@ -441,14 +462,14 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
     StartUnloaded(base);
     const double mu_soft = FollowPath(
         base, [&](double m) { return m == 1.0 ? soft : StaticLoads::Blend(start, soft, m); },
-        max_step, &levels, &summary);
+        first_step, max_step, &levels, &summary);
     at = [&](double m) {
       StaticLoads l = loads;
       for (int i = 0; i < l.contact.count; ++i)
         l.contact.surface[i].stiffness *= std::pow(kSoftening, m - 1.0);
       return l;
     };
-    mu = mu_soft == 1.0 ? FollowPath(base, at, max_step, &levels, &summary) : 0.0;
+    mu = mu_soft == 1.0 ? FollowPath(base, at, first_step, max_step, &levels, &summary) : 0.0;
     if (mu_soft < 1.0) at = [&](double) { return soft; };
   }
   summary.load_steps = levels - 1;

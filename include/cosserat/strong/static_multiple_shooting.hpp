@@ -57,6 +57,12 @@ struct StaticMultipleShootingOptions {
   /// With tip_guided (a column), the largest step along the path in StaticLoadParameter units,
   /// as StaticShootingOptions::max_load_increment; cantilevers step by the whole load first.
   double max_load_increment = 3.0;
+  /// Above 0 (rad): a cantilever's path starts with a step of max_load_increment and takes a
+  /// level only if no node's frame turned by more than this from the last one, the steps growing
+  /// while it holds. A whole step from the unloaded rod can land on an equilibrium far from the
+  /// path, unstable: a soft rod held out level under its weight (w L³/EI = 430) looped up over
+  /// its clamp.
+  double max_turn = 0.0;
   /// The base pinned at its position instead of clamped: its rotation free but for the twist
   /// about the rod's axis (a clevis), which an isotropic rod pinned at both ends would otherwise
   /// leave undetermined; the base frame's z stays the reference of the held twist.
@@ -132,10 +138,13 @@ class StaticMultipleShootingSolver {
   /// μ = 0), with a secant predictor; a step doubles after a success and halves after a failure.
   /// No step exceeds max_step (a fraction of the path). Returns the last μ reached, the unknowns
   /// at it; counts the levels tried in *levels.
+  /// The first step is first_step; with options.max_turn a level whose nodes turned more than
+  /// that from the last one's fails like a Newton failure.
   double FollowPath(const lie::SE3& base, const std::function<StaticLoads(double)>& at,
-                    double max_step, int* levels, StaticShootingSummary* summary);
-  /// The node positions (world, m) the current unknowns give under `loads` (records state_).
-  std::vector<Vec3> Positions(const lie::SE3& base, const StaticLoads& loads);
+                    double first_step, double max_step, int* levels,
+                    StaticShootingSummary* summary);
+  /// The node states the current unknowns give under `loads` (records state_).
+  const RodState& Shot(const lie::SE3& base, const StaticLoads& loads);
   /// b moved on by t times its change from a (the secant predictor of the continuation).
   static Point Extrapolated(const Point& a, const Point& b, double t);
   /// The unloaded rod at `base`: the rest shape, exact for zero loads.

@@ -1,0 +1,66 @@
+#include "statics_in_pieces.hpp"
+
+#include "cosserat/run/solver_options.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
+
+namespace cosserat::run::detail {
+namespace {
+
+/// The most a section may turn between two levels of a cantilever's stepped path (rad): a soft
+/// rod held out level under its weight, which ends hanging (π/2 at the clamp), follows its path
+/// in a few tens of levels.
+constexpr double kMostTurnPerLevel = 0.5;
+
+StaticsInPieces SolveOnce(const io::Problem& problem, ColumnEnds ends, const lie::SE3& base,
+                          const StaticLoads& loads, const StaticMultipleShootingOptions& opt) {
+  StaticMultipleShootingSolver solver(problem.rod, problem.nodes, opt);
+  StaticsInPieces out;
+  out.summary = solver.Solve(base, loads);
+  out.state = solver.state();
+  out.pieces = solver.pieces();
+  if (out.summary.converged())
+    out.summary.stability_index = IndexInPieces(problem, ends, base, loads, out.state, out.pieces);
+  return out;
+}
+
+}  // namespace
+
+int IndexInPieces(const io::Problem& problem, ColumnEnds ends, const lie::SE3& base,
+                  const StaticLoads& loads, const RodState& state, int pieces) {
+  if (!problem.rod.tendons.empty() || state.size() < 2) return -1;
+  const ColumnSolver column(problem.rod, problem.nodes, ends, StaticOptions(problem),
+                            problem.robot.actuation);
+  return column.StabilityIndexInPieces(base, loads, state, pieces);
+}
+
+StaticsInPieces SolveStaticsInPieces(const io::Problem& problem, ColumnEnds ends,
+                                     const lie::SE3& base, const StaticLoads& loads,
+                                     int pieces) {
+  const StaticShootingOptions single = StaticOptions(problem);
+  StaticMultipleShootingOptions opt;
+  opt.pieces = pieces;
+  opt.tolerance = single.tolerance;
+  opt.max_iterations = single.max_iterations;
+  opt.base_pinned = ends == ColumnEnds::kPinnedPinned;
+  opt.tip_guided = ends != ColumnEnds::kClampedFree;
+  opt.tip_clamped = ends == ColumnEnds::kClampedClamped;
+  StaticsInPieces first = SolveOnce(problem, ends, base, loads, opt);
+  // A cantilever that a whole step took to an unstable equilibrium (a soft rod held out level
+  // under its weight, looped up over its clamp): its loads followed again in steps that turn
+  // no section far, as the single shot's solve keeps the stable branch
+  // (StaticShootingOptions::stable_branch). The first answer stands unless the path ends
+  // somewhere with fewer unstable directions.
+  if (ends != ColumnEnds::kClampedFree || first.summary.stability_index <= 0) return first;
+  opt.max_turn = kMostTurnPerLevel;
+  StaticsInPieces again = SolveOnce(problem, ends, base, loads, opt);
+  StaticShootingSummary& s = again.summary;
+  s.iterations += first.summary.iterations;
+  s.shots += first.summary.shots;
+  s.load_steps += first.summary.load_steps;
+  s.wall_time_s += first.summary.wall_time_s;
+  const bool better = s.converged() && s.stability_index >= 0 &&
+                      s.stability_index < first.summary.stability_index;
+  return better ? again : first;
+}
+
+}  // namespace cosserat::run::detail

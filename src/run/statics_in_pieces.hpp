@@ -1,0 +1,37 @@
+#pragma once
+/// \file
+/// The statics of a plain rod (no tendons or chambers) by multiple shooting, for the runners:
+/// the equilibrium, its stability index from Jacobi fields carried piece by piece, and for a
+/// cantilever the stable branch when a whole load step landed on an unstable equilibrium.
+
+#include "cosserat/analysis/column.hpp"
+#include "cosserat/io/problem.hpp"
+#include "cosserat/state/rod_state.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+
+namespace cosserat::run::detail {
+
+struct StaticsInPieces {
+  /// Status, counts (of every solve tried) and the stability index (−1: not defined or not
+  /// converged).
+  StaticShootingSummary summary;
+  RodState state;  ///< the equilibrium when converged, else the last load level's state
+  int pieces = 1;
+};
+
+/// The stability index of an equilibrium multiple shooting found in `pieces` pieces under
+/// `loads` at `base`: the Jacobi fields carried piece by piece along it
+/// (ColumnSolver::StabilityIndexInPieces, any ends), as one shot from the base would amplify
+/// rounding beyond use there (a stiff contact, a high tension). −1 where it is not defined.
+int IndexInPieces(const io::Problem& problem, ColumnEnds ends, const lie::SE3& base,
+                  const StaticLoads& loads, const RodState& state, int pieces);
+
+/// The problem's rod with these ends at `base` under `loads`, in `pieces` pieces (0: chosen from
+/// the loads), by continuation from the unloaded rod. A cantilever whose whole load step ends on
+/// an unstable equilibrium is followed again in steps that turn no section by more than 0.5 rad;
+/// that answer is kept if it has fewer unstable directions.
+StaticsInPieces SolveStaticsInPieces(const io::Problem& problem, ColumnEnds ends,
+                                     const lie::SE3& base, const StaticLoads& loads,
+                                     int pieces = 0);
+
+}  // namespace cosserat::run::detail
