@@ -161,7 +161,8 @@ TEST(Run, TheContactTotalBalancesTheTipForceAndTheReaction) {
 // tip 62 m short). The run takes multiple shooting and bows as a tensioned beam,
 // δ = q L²/8T − (q EI/T²)(1 − sech(kL/2)) = 3.01 m: 1 % bounds the geometric nonlinearity
 // (slope 4δ/L = 0.04; its square 2e-3 enters the tension's lateral component) and the stretch
-// (T/EA = 1.4e-4).
+// (T/EA = 1.4e-4). Its load path starts with a step of 3 in the load parameter and grows while
+// the sections turn little: 6 levels (124 when every step stayed at 3).
 TEST(Run, ATautColumnBeyondASingleShotBowsAsATensionedBeam) {
   const io::ParseResult parsed = io::ParseProblem(R"({
     "format": "cosserat-problem/1", "analysis": "statics", "boundary": "pinned-pinned",
@@ -178,6 +179,26 @@ TEST(Run, ATautColumnBeyondASingleShotBowsAsATensionedBeam) {
   const double expected = q * L * L / (8 * T) - q * EI / (T * T) * (1 - 1 / std::cosh(k * L / 2));
   const double mid = r.json["nodes"]["position"][50][0].get<double>();
   EXPECT_NEAR(mid / expected, 1.0, 1e-2);
+  EXPECT_LT(r.json["load_steps"].get<int>(), 20);
+}
+
+// A column pulled far harder (T L²/EI = 1e5: a 100 m drill pipe at 11.5 MN): its first step of 3
+// in the load parameter, 3e-5 of the load, was below the smallest step the continuation takes,
+// and the run stopped at once (load_stepping_failed at 0). It stays straight, stretched by
+// T/EA: the tip at L (1 + T/EA), within 1e-8 m (1e-10 of L, the solve's tolerance; it lands
+// 4e-13 m off).
+TEST(Run, AColumnPulledFarPastItsBendingStiffnessStretchesByTOverEA) {
+  const io::ParseResult parsed = io::ParseProblem(R"({
+    "format": "cosserat-problem/1", "analysis": "statics", "boundary": "pinned-pinned",
+    "rod": {"length": 100, "nodes": 201,
+            "section": {"shape": "annulus", "outer_radius": 0.0635, "inner_radius": 0.0545},
+            "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9, "density": 7850}},
+    "loads": {"tip_force": [0, 0, 1.153e7]}})");
+  ASSERT_TRUE(parsed.ok());
+  const Result r = cosserat::run::Run(*parsed.problem);
+  ASSERT_TRUE(r.converged) << r.log;
+  const double EA = 200e9 * M_PI * (0.0635 * 0.0635 - 0.0545 * 0.0545);
+  EXPECT_NEAR(r.json["tip"]["position"][2].get<double>(), 100 * (1 + 1.153e7 / EA), 1e-8);
 }
 
 // A 100 m pipe (outer radius 0.0635 m, inner 0.0543 m) lying in a stiff bore (1e7 N/m per m,

@@ -44,6 +44,7 @@ StaticsInPieces SolveStaticsInPieces(const io::Problem& problem, ColumnEnds ends
   opt.base_pinned = ends == ColumnEnds::kPinnedPinned;
   opt.tip_guided = ends != ColumnEnds::kClampedFree;
   opt.tip_clamped = ends == ColumnEnds::kClampedClamped;
+  if (opt.tip_guided) opt.max_turn = kMostTurnPerLevel;
   StaticsInPieces first = SolveOnce(problem, ends, base, loads, opt);
   // A cantilever that a whole step took to an unstable equilibrium (a soft rod held out level
   // under its weight, looped up over its clamp): its loads followed again in steps that turn

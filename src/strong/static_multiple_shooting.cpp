@@ -431,11 +431,16 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
   // A column's path in steps of at most max_load_increment (as ColumnSolver's): a full step
   // from the straight column lands on another branch (a clamped-clamped column at
   // L sqrt(T/EI) = 5 under a side load of 0.3 T converged 0.37 L away from the straight one's).
+  // With max_turn, that is the first step, and the turns of the sections bound the rest: a
+  // 1 km riser column at 2 MN under a side load of 1 kN/m took 6 000 Newton iterations in steps
+  // of 3, 50 with max_turn. Never below the smallest step (a rod at T L²/EI = 1e5 took none).
   const double measure = StaticLoadParameter(model_, loads);
-  const double limited =
-      measure > options_.max_load_increment ? options_.max_load_increment / measure : 1.0;
-  const double max_step = options_.tip_guided ? limited : 1.0;
-  const double first_step = options_.tip_guided || options_.max_turn > 0.0 ? limited : 1.0;
+  const double limited = std::max(
+      kMinLoadStep,
+      measure > options_.max_load_increment ? options_.max_load_increment / measure : 1.0);
+  const bool turns = options_.max_turn > 0.0;
+  const double max_step = options_.tip_guided && !turns ? limited : 1.0;
+  const double first_step = options_.tip_guided || turns ? limited : 1.0;
   // Continuation in the loads from the last solution at this base, else from the unloaded rod.
   StaticLoads start = loads.Scaled(0.0);
   summary.warm_started = has_solution_ && solved_base_.p == base.p && solved_base_.R == base.R;

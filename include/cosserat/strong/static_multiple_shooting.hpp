@@ -57,11 +57,11 @@ struct StaticMultipleShootingOptions {
   /// With tip_guided (a column), the largest step along the path in StaticLoadParameter units,
   /// as StaticShootingOptions::max_load_increment; cantilevers step by the whole load first.
   double max_load_increment = 3.0;
-  /// Above 0 (rad): a cantilever's path starts with a step of max_load_increment and takes a
-  /// level only if no node's frame turned by more than this from the last one, the steps growing
-  /// while it holds. A whole step from the unloaded rod can land on an equilibrium far from the
-  /// path, unstable: a soft rod held out level under its weight (w L³/EI = 430) looped up over
-  /// its clamp.
+  /// Above 0 (rad): the path starts with a step of max_load_increment and takes a level only if
+  /// no node's frame turned by more than this from the last one, the steps growing while it
+  /// holds (a column's too: no longer capped at max_load_increment). A cantilever's whole step
+  /// from the unloaded rod can land on an equilibrium far from the path, unstable: a soft rod
+  /// held out level under its weight (w L³/EI = 430) looped up over its clamp.
   double max_turn = 0.0;
   /// The base pinned at its position instead of clamped: its rotation free but for the twist
   /// about the rod's axis (a clevis), which an isotropic rod pinned at both ends would otherwise
