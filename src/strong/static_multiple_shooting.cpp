@@ -376,6 +376,14 @@ double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
   const bool obstacles = HasObstacleCore(surfaces);
   std::vector<Vec3> at_accepted;
   if (obstacles) at_accepted = Shot(base, at(0.0)).position_W;
+  // The secant predictor extrapolates the change from the start, which is only a step along the
+  // path if the start is an equilibrium: the unloaded rod, placed against a contact surface it
+  // presses into (a pipe laid on a bore's wall at the sag its weight will give), is not, and
+  // doubling its way to the first level pushed a 300 m pipe deep into the wall (Newton then failed
+  // from a residual of 1 000 at every step down to the smallest).
+  Eigen::VectorXd r_start(r_.size());
+  const bool start_balanced =
+      Residual(base, at(0.0), &r_start) && r_start.norm() < options_.tolerance;
   const bool turns = options_.max_turn > 0.0;
   std::vector<Mat3> frames_accepted;
   if (turns) frames_accepted = Shot(base, at(0.0)).rotation_WB;
@@ -400,7 +408,7 @@ double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
       if (held) frames_accepted = now;
     }
     if (held) {
-      mu_before = mu;
+      mu_before = mu == 0.0 && !start_balanced ? -1.0 : mu;
       mu = mu_try;
       x_before = x_accepted;
       before = accepted;

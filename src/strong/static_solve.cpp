@@ -66,6 +66,9 @@ bool StaticShootingSolver::FollowLoadPath(const lie::SE3& base, const StaticLoad
   double mu = 0.0, mu_prev = 0.0, dmu = path.max_fraction;
   *steps = 0;
   bool reached = false;
+  // The secant predictor extrapolates from the start only if that is an equilibrium (a rod laid
+  // into a contact surface is not: StaticMultipleShootingSolver::FollowPath).
+  const bool start_balanced = Residual(base, start, x_start).norm() < options_.tolerance;
   while (*steps < path.max_steps) {
     const double mu_try = std::min(1.0, mu + dmu);
     const StaticLoads target = mu_try == 1.0 ? loads : StaticLoads::Blend(start, loads, mu_try);
@@ -79,8 +82,9 @@ bool StaticShootingSolver::FollowLoadPath(const lie::SE3& base, const StaticLoad
         (!path.require_stable || IndexAfterSolve(base, target, guess) == 0) &&
         HeldBack(base, mu == 0.0 ? start : StaticLoads::Blend(start, loads, mu), x_a, target,
                  guess)) {
-      x_prev = x_a;
-      mu_prev = mu;
+      const bool secant = mu > 0.0 || start_balanced;
+      x_prev = secant ? x_a : guess;
+      mu_prev = secant ? mu : mu_try;
       x_a = guess;
       mu = mu_try;
       if (mu == 1.0) {
