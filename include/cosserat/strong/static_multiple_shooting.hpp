@@ -43,11 +43,17 @@ namespace cosserat {
 /// stiffness at s = 0. Dimensionless; 0 without contact or load.
 double StaticShootingExponent(const RodModel& rod, const StaticLoads& loads);
 
+/// A bound on the internal force the loads give a rod (N): the tip force plus L times the
+/// distributed force at s = 0 (its weight, buoyancy and drag included).
+double LoadForceBound(const RodModel& rod, const StaticLoads& loads);
+
 struct StaticMultipleShootingOptions {
   /// Pieces; 0: chosen per Solve from StaticShootingExponent (1 up to an exponent of 10, else
   /// exponent / 5), at most the grid's segments.
   int pieces = 0;
-  /// Convergence: the residual's 2-norm, dimensionless as in StaticShootingOptions.
+  /// Convergence: the residual's 2-norm, dimensionless: positions ÷ L, rotations in rad,
+  /// forces ÷ max(EI/L², F) and moments ÷ max(EI/L, sqrt(F EI)), F the loads' force (the tip
+  /// force plus L times the distributed force) or SolveFrom's guess's largest, when larger.
   double tolerance = 1e-10;
   /// Newton iterations per load level.
   int max_iterations = 30;
@@ -113,6 +119,10 @@ class StaticMultipleShootingSolver {
   /// The state a piece starts from or arrives with: pose, and wrench in the body frame.
   using Point = rhs::StaticPoint<double>;
   void SetPieces(int pieces);
+  /// The scales of the unknowns and residuals for a rod carrying forces up to `force` (N):
+  /// max(EI/L², force) for forces, max(EI/L, sqrt(force EI)) for moments (a boundary layer of
+  /// length sqrt(EI/force)); the base unknowns keep their values in physical units at `base`.
+  void SetScales(const lie::SE3& base, double force);
   /// Integrates piece k from `start` under loads; the arriving state, and with record the node
   /// values of the piece.
   Point ShootPiece(int k, const Point& start, const StaticLoads& loads, bool record);
@@ -133,7 +143,9 @@ class StaticMultipleShootingSolver {
   /// A junction state moved by the 12 dimensionless unknowns dz (right perturbation of R).
   Point Moved(const Point& y, const Eigen::Ref<const Eigen::VectorXd>& dz) const;
   bool Jacobian(const lie::SE3& base, const StaticLoads& loads, StaticShootingSummary* summary);
-  bool Newton(const lie::SE3& base, const StaticLoads& loads, StaticShootingSummary* summary);
+  /// Newton with backtracking until the residual's norm is below `tolerance`.
+  bool Newton(const lie::SE3& base, const StaticLoads& loads, double tolerance,
+              StaticShootingSummary* summary);
   /// Natural continuation along at(μ), μ: 0 → 1, from the current unknowns (a solution at
   /// μ = 0), with a secant predictor; a step doubles after a success and halves after a failure.
   /// No step exceeds max_step (a fraction of the path). Returns the last μ reached, the unknowns
@@ -143,6 +155,9 @@ class StaticMultipleShootingSolver {
   double FollowPath(const lie::SE3& base, const std::function<StaticLoads(double)>& at,
                     double first_step, double max_step, int* levels,
                     StaticShootingSummary* summary);
+  /// The first and the largest step (fractions of the path) of a path from `from` to `to`.
+  void StepsAlong(const StaticLoads& from, const StaticLoads& to, double* first_step,
+                  double* max_step) const;
   /// The node states the current unknowns give under `loads` (records state_).
   const RodState& Shot(const lie::SE3& base, const StaticLoads& loads);
   /// b moved on by t times its change from a (the secant predictor of the continuation).
@@ -154,7 +169,8 @@ class StaticMultipleShootingSolver {
   StaticMultipleShootingOptions options_;
   std::vector<double> grid_;
   std::vector<StaticShootingSolver::Sample> samples_;
-  Vec6 scale_;  ///< W = scale ⊙ x: [EI/L ×3, EI/L² ×3]
+  Vec6 scale_ = Vec6::Ones();  ///< W = scale ⊙ x: [moment ×3, force ×3] (SetScales)
+  double guess_force_ = 0.0;  ///< the largest force of SolveFrom's guess, N (0 before one)
   RodState state_;
 
   std::vector<int> junction_nodes_;  ///< junction k restarts at node junction_nodes_[k]
