@@ -13,11 +13,8 @@ namespace cosserat {
 namespace {
 
 StaticMultipleShootingOptions PiecesOptions(ColumnEnds ends, const BucklingOptions& options) {
-  StaticMultipleShootingOptions o;
+  StaticMultipleShootingOptions o = MultipleShootingOptionsFor(ends);
   o.tolerance = options.solver.tolerance;
-  o.base_pinned = ends == ColumnEnds::kPinnedPinned;
-  o.tip_guided = ends != ColumnEnds::kClampedFree;
-  o.tip_clamped = ends == ColumnEnds::kClampedClamped;
   o.max_load_increment = options.solver.max_load_increment;
   return o;
 }

@@ -28,6 +28,14 @@ const char* ToString(ColumnEnds ends) {
   return "unknown";
 }
 
+StaticMultipleShootingOptions MultipleShootingOptionsFor(ColumnEnds ends) {
+  StaticMultipleShootingOptions o;
+  o.base_pinned = ends == ColumnEnds::kPinnedPinned;
+  o.tip_guided = ends != ColumnEnds::kClampedFree;
+  o.tip_clamped = ends == ColumnEnds::kClampedClamped;
+  return o;
+}
+
 bool ParseColumnEnds(const std::string& name, ColumnEnds* ends) {
   for (ColumnEnds e : {ColumnEnds::kClampedFree, ColumnEnds::kPinnedPinned,
                        ColumnEnds::kClampedClamped, ColumnEnds::kClampedPinned}) {

@@ -37,13 +37,10 @@ StaticsInPieces SolveStaticsInPieces(const io::Problem& problem, ColumnEnds ends
                                      const lie::SE3& base, const StaticLoads& loads,
                                      int pieces) {
   const StaticShootingOptions single = StaticOptions(problem);
-  StaticMultipleShootingOptions opt;
+  StaticMultipleShootingOptions opt = MultipleShootingOptionsFor(ends);
   opt.pieces = pieces;
   opt.tolerance = single.tolerance;
   opt.max_iterations = single.max_iterations;
-  opt.base_pinned = ends == ColumnEnds::kPinnedPinned;
-  opt.tip_guided = ends != ColumnEnds::kClampedFree;
-  opt.tip_clamped = ends == ColumnEnds::kClampedClamped;
   if (opt.tip_guided) opt.max_turn = kMostTurnPerLevel;
   StaticsInPieces first = SolveOnce(problem, ends, base, loads, opt);
   // A cantilever that a whole step took to an unstable equilibrium (a soft rod held out level

@@ -6,13 +6,12 @@
 /// The base pose `base` (R_WB, p_W of s = 0) defines the column axis e = R_WB e₃ and the lateral
 /// directions R_WB e₁, R_WB e₂. Six unknowns u (dimensionless) and six residuals r:
 ///
-/// | ends            | unknowns u                                   | tip residuals r |
-/// |-----------------|----------------------------------------------|---------------------------------|
-/// | clamped–free    | W(0) = [m; n] ⊘ scale                        | W(L) − W_tip (the cantilever)
-/// | | pinned–pinned   | θ₁, θ₂ (rad), m₃(0), n(0) ⊘ scale             | lateral δ, axial force,
-/// m(L)    | | clamped–clamped | W(0) ⊘ scale                                 | lateral δ, axial
-/// force, R(L)    | | clamped–pinned  | W(0) ⊘ scale                                 | lateral δ,
-/// axial force, m(L)    |
+/// | ends            | unknowns u                        | tip residuals r                   |
+/// |-----------------|-----------------------------------|-----------------------------------|
+/// | clamped–free    | W(0) = [m; n] ⊘ scale             | W(L) − W_tip (the cantilever)     |
+/// | pinned–pinned   | θ₁, θ₂ (rad), m₃(0), n(0) ⊘ scale | lateral δ, axial force, m(L)      |
+/// | clamped–clamped | W(0) ⊘ scale                      | lateral δ, axial force, R(L)      |
+/// | clamped–pinned  | W(0) ⊘ scale                      | lateral δ, axial force, m(L)      |
 ///
 /// - A pinned base: R(0) = R_WB Exp([θ₁, θ₂, 0]) turns freely about the two lateral axes, with
 ///   no bending moment, m₁(0) = m₂(0) = 0; its twist is held (θ₃ = 0, the torque m₃(0) is the
@@ -30,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat {
@@ -44,6 +44,10 @@ enum class ColumnEnds {
 
 /// "cantilever", "pinned-pinned", "clamped-clamped", "clamped-pinned" (the problem-format names).
 const char* ToString(ColumnEnds ends);
+
+/// Multiple shooting's options for these ends (StaticMultipleShootingOptions: a pinned base, a
+/// guided tip, a clamped one), the rest at their defaults.
+StaticMultipleShootingOptions MultipleShootingOptionsFor(ColumnEnds ends);
 /// The inverse of ToString; false (and *ends untouched) for any other name.
 bool ParseColumnEnds(const std::string& name, ColumnEnds* ends);
 
