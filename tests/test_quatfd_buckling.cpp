@@ -3,6 +3,7 @@
 // model's critical load.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -103,6 +104,39 @@ TEST(QuatFdBuckling, StiffnessIsSymmetricAndPositiveUnloaded) {
   std::printf("stiffness: analytic vs central differences %.2e (relative to the largest entry)\n",
               diff);
   EXPECT_LT(diff, 1e-8);
+}
+
+// The count of unstable directions by the inertia of the banded stiffness (an LDLᵀ factorisation
+// of H + 1e-6 I in the coordinates ordered along the rod, Sylvester's law) against the count of
+// its eigenvalues below −1e-6, the same matrix's spectrum: the straight column pressed by 0.5 to
+// 60 cantilever Euler loads (2 more unstable directions past each), and a bent equilibrium.
+TEST(QuatFdBuckling, TheInertiaCountsTheNegativeEigenvaluesOfTheSpectrum) {
+  quatfd::QuatFdOptions mo;
+  mo.segments = 40;
+  QuatFdBucklingOptions options;
+  options.lambda_max = 1.0;
+  const LoadPath axial = LoadPath::TipForce(Vec3(0, 0, -1));
+  QuatFdBuckling b(SteelColumn(), lie::SE3{}, axial, mo, options);
+  quatfd::QuatFdModel twin(SteelColumn(), lie::SE3{}, mo);
+  int largest = 0;
+  for (const double ratio : {0.5, 1.5, 7.0, 20.0, 60.0}) {
+    const double lambda = ratio * EulerCantilever();
+    Eigen::VectorXd q = b.q();  // straight, then shortened by the load: still straight
+    ASSERT_TRUE(quatfd::SolveStatics(&twin, axial.LoadsAt(lambda), q).converged());
+    const Eigen::VectorXd e = b.StiffnessEigenvalues(lambda, q);
+    const int spectrum = static_cast<int>((e.array() < -1e-6).count());
+    EXPECT_EQ(b.StiffnessEigenvaluesBelow(lambda, q, 1e-6), spectrum) << ratio;
+    largest = std::max(largest, spectrum);
+  }
+  EXPECT_GE(largest, 8);  // the count was exercised, not only zeros
+  LoadPath side = LoadPath::TipForce(Vec3(0.3, 0, -1));
+  side.fixed.gravity_W = Vec3(0, -9.81, 0);
+  QuatFdBuckling bent(SteelColumn(), lie::SE3{}, side, mo, options);
+  Eigen::VectorXd qb = bent.q();
+  ASSERT_TRUE(quatfd::SolveStatics(&twin, side.LoadsAt(100.0), qb).converged());
+  const Eigen::VectorXd e = bent.StiffnessEigenvalues(100.0, qb);
+  EXPECT_EQ(bent.StiffnessEigenvaluesBelow(100.0, qb, 1e-6),
+            static_cast<int>((e.array() < -1e-6).count()));
 }
 
 // A soft band (α = 0.1 on [0.6, 0.7] L, band ends on vertices) localises the buckle on the

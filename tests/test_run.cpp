@@ -729,6 +729,22 @@ TEST(Run, AnUprightRodPastGreenhillsLengthIsFlaggedInBothFormulations) {
   }
 }
 
+// The same rod at 0.38 m, between Greenhill's second and third critical lengths (0.319 m and
+// (148.5 EI/q)^⅓ = 0.441 m): two double roots behind it, index 4, counted on the quaternion-FD
+// path at 201 nodes by the inertia of its banded stiffness (the count once stopped at 101
+// nodes, where the eigenvalues of the dense stiffness grew too slow).
+TEST(Run, AnUprightRodPastTwoGreenhillLengthsCountsFourOnAFineQuaternionFdGrid) {
+  const io::ParseResult parsed = io::ParseProblem(R"({"format": "cosserat-problem/1",
+      "formulation": "quaternion-fd",
+      "rod": {"length": 0.38, "nodes": 201, "section": {"shape": "circle", "radius": 0.005},
+        "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.5, "density": 1100}},
+      "loads": {"gravity": [0, 0, -9.81]}})");
+  ASSERT_TRUE(parsed.ok());
+  const Result r = cosserat::run::Run(*parsed.problem);
+  ASSERT_TRUE(r.converged) << r.log;
+  EXPECT_EQ(r.json["stability_index"].get<int>(), 4) << r.log;
+}
+
 // A silicone-soft rod (E = 0.1 MPa, 1 m, radius 1 cm) held out level under its weight,
 // w L³/EI = 430: it hangs from its clamp. Its statics go in pieces (its weight puts the single
 // shot's exponent at 21), and a whole load step from the straight rod converged on an unstable

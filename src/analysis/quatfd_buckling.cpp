@@ -1,5 +1,7 @@
 #include "cosserat/analysis/quatfd_buckling.hpp"
 
+#include "banded_inertia.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
@@ -182,6 +184,31 @@ Eigen::VectorXd QuatFdBuckling::StiffnessEigenvalues(double lambda, const Eigen:
       Hs, vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
   if (vectors) *vectors = eig.eigenvectors();
   return eig.eigenvalues();
+}
+
+int QuatFdBuckling::StiffnessEigenvaluesBelow(double lambda, const Eigen::VectorXd& q,
+                                              double below) {
+  const Eigen::MatrixXd H = Stiffness(lambda, q, options_.finite_difference_stiffness);
+  const double size = H.cwiseAbs().maxCoeff();
+  asymmetry_ = size > 0 ? (H - H.transpose()).cwiseAbs().maxCoeff() / size : 0.0;
+  const Eigen::MatrixXd Hs = 0.5 * (H + H.transpose());
+  // The tangent coordinates along the rod: free vertex v at 2v, segment s (between vertices s
+  // and s + 1) at 2s + 1; each couples only with its neighbours.
+  const int nv = static_cast<int>(free_vertices_.size());
+  const int N = model_.layout().segments;
+  std::vector<std::pair<int, int>> keyed;
+  for (int a = 0; a < nv; ++a)
+    for (int k = 0; k < 3; ++k) keyed.emplace_back(2 * free_vertices_[a], 3 * a + k);
+  for (int s = 0; s < N; ++s)
+    for (int k = 0; k < 3; ++k) keyed.emplace_back(2 * s + 1, 3 * nv + 3 * s + k);
+  std::stable_sort(keyed.begin(), keyed.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<int> order;
+  for (const auto& [key, j] : keyed) order.push_back(j);
+  const int count = detail::CountEigenvaluesBelow(Hs, order, below);
+  if (count >= 0) return count;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Hs, Eigen::EigenvaluesOnly);
+  return static_cast<int>((eig.eigenvalues().array() < -below).count());
 }
 
 /// The last stable and the first unstable point of the path: λ, the least eigenvalue μ of the

@@ -28,8 +28,7 @@ int QuatFdStabilityIndex(const io::Problem& problem, const Eigen::VectorXd& q,
   QuatFdBuckling stiffness(problem.rod, problem.base, path, QuatFdModelOptions(problem));
   // Eigenvalues in units of EI/L; the stiffness is a difference quotient good to ~1e-6 of
   // that, so a root within 1e-6 of zero is marginal and not counted.
-  const Eigen::VectorXd e = stiffness.StiffnessEigenvalues(0.0, q);
-  return static_cast<int>((e.array() < -1e-6).count());
+  return stiffness.StiffnessEigenvaluesBelow(0.0, q, 1e-6);
 }
 
 }  // namespace cosserat::run::detail

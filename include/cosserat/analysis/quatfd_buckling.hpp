@@ -98,6 +98,11 @@ class QuatFdBuckling {
   /// vertices; δθ of the segments]).
   Eigen::VectorXd StiffnessEigenvalues(double lambda, const Eigen::VectorXd& q,
                                        Eigen::MatrixXd* vectors = nullptr);
+  /// The number of eigenvalues of the same symmetric stiffness below −below (units EI/L): the
+  /// inertia of its shift by an LDLᵀ factorisation in the tangent coordinates ordered along the
+  /// rod, where it is banded (O(N) instead of the eigenvalues' O(N³)); by the eigenvalues when a
+  /// pivot is too small to trust.
+  int StiffnessEigenvaluesBelow(double lambda, const Eigen::VectorXd& q, double below);
   /// The largest |H − Hᵀ| / |H| of the last stiffness computed (a check: conservative loads
   /// give a symmetric Hessian up to the difference error).
   double last_asymmetry() const { return asymmetry_; }
