@@ -596,6 +596,39 @@ TEST(Run, APipePressedInABoreCountsTheWinklerRootsBelowItsLoad) {
   }
 }
 
+// A drill pipe clamped on the axis of a bore (8.5 in, 1e7 N/m per m), sagging onto its low side
+// and pushed at its tip by 0.2 and 0.3 of the Dawson–Paslay load 2 sqrt(EI w/r_c) (170 kN), far
+// below where it buckles: stable in both formulations. Between two nodes of the lifted span two
+// eigenvalues of the stiffness rose through zero together, which read from the two nodes alone
+// exactly as a double conjugate point; a count that took the larger of its readings said 2
+// unstable directions. Such a segment is now shot again in 16 steps and counted there.
+TEST(Run, ADrillPipeSaggingInABoreBelowItsCriticalLoadIsStableInBothFormulations) {
+  const double EI = 207e9 * M_PI / 4 * (std::pow(0.0635, 4) - std::pow(0.0543, 4));
+  const double w = 7850 * M_PI * (0.0635 * 0.0635 - 0.0543 * 0.0543) * 9.81;
+  const double dawson_paslay = 2 * std::sqrt(EI * w / (0.108 - 0.0635));
+  for (const double length : {60.0, 100.0}) {
+    for (const double share : {0.2, 0.3}) {
+      std::ostringstream text;
+      text.precision(17);
+      text << R"({"format": "cosserat-problem/1", "formulation": "FORMULATION",
+          "rod": {"length": )" << length << R"(, "nodes": 101,
+            "section": {"shape": "annulus", "outer_radius": 0.0635, "inner_radius": 0.0543},
+            "material": {"youngs_modulus": 207e9, "poisson_ratio": 0.3, "density": 7850}},
+          "base": {"rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]},
+          "loads": {"gravity": [0, 0, -9.81], "tip_force": [)" << -share * dawson_paslay
+           << R"(, 0, 0]},
+          "environment": {"contact": [{"shape": "cylinder", "point": [0, 0, 0],
+            "axis": [1, 0, 0], "radius": 0.108, "side": "inside", "stiffness": 1e7}]}})";
+      for (const char* formulation : {"se3-shooting", "quaternion-fd"}) {
+        const Result r = RunWithFormulation(text.str(), formulation);
+        ASSERT_TRUE(r.converged) << formulation << ": " << r.log;
+        EXPECT_EQ(r.json["stability_index"].get<int>(), 0)
+            << formulation << " at " << length << " m, " << share << " of F_DP";
+      }
+    }
+  }
+}
+
 // The same pipe pressed by 1.2e5 N past the free column's Euler load with a dead tip moment of
 // 100 N·m, a load that is not conservative in 3-D: its stability index is not defined, and the
 // log says that stability is not judged rather than nothing.
@@ -745,31 +778,37 @@ TEST(Run, AnUprightRodPastTwoGreenhillLengthsCountsFourOnAFineQuaternionFdGrid) 
   EXPECT_EQ(r.json["stability_index"].get<int>(), 4) << r.log;
 }
 
-// A silicone-soft rod (E = 0.1 MPa, 1 m, radius 1 cm) held out level under its weight,
-// w L³/EI = 430: it hangs from its clamp. Its statics go in pieces (its weight puts the single
-// shot's exponent at 21), and a whole load step from the straight rod converged on an unstable
-// equilibrium looped up over the clamp (8 unstable directions, the tip 0.19 m above where it
-// hangs), which the solve now leaves for the one its load path reaches. The two formulations
-// then agree: the same continuum equations on the same grid, each second order, and 1.7e-4 m
-// apart at 201 nodes (6.5e-4 at 101), so within 1e-3 m.
-TEST(Run, ASoftRodHeldOutLevelHangsFromItsClampInBothFormulations) {
-  const std::string text = R"({"format": "cosserat-problem/1", "formulation": "FORMULATION",
-      "rod": {"length": 1.0, "nodes": 201, "section": {"shape": "circle", "radius": 0.01},
-              "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.5, "density": 1100}},
-      "base": {"rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]},
-      "loads": {"gravity": [0, 0, -9.81]}})";
-  const Result se3 = RunWithFormulation(text, "se3-shooting");
-  const Result fd = RunWithFormulation(text, "quaternion-fd");
-  ASSERT_TRUE(se3.converged && fd.converged) << se3.log << fd.log;
-  EXPECT_EQ(se3.json["stability_index"].get<int>(), 0) << se3.log;
-  EXPECT_EQ(se3.log.find("unstable"), std::string::npos) << se3.log;
-  const auto tip = [](const Result& r) {
-    const auto& p = r.json["tip"]["position"];
-    return Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
-  };
-  EXPECT_LT((tip(se3) - tip(fd)).norm(), 1e-3) << tip(se3).transpose() << " vs "
-                                                << tip(fd).transpose();
-  EXPECT_LT(tip(fd).z(), -1.0);  // hanging, stretched by its weight
+// Silicone-soft rods (E = 0.1 MPa) held out level under their weight hang from their clamps:
+// 1 m of radius 1 cm (w L³/EI = 430) on 201 nodes, and 0.6 m of radius 4 mm on 121. Their
+// statics go in pieces (their weight puts the single shot's exponent past 10). A whole load step
+// from the straight rod converged on an equilibrium looped up over the clamp: the first with 8
+// unstable directions (the tip 0.19 m above where it hangs), the second with its count not
+// formed on the loop and a plain "converged" (the tip 6.5 cm off). The solve now follows the
+// load path instead. The two formulations then agree: the same continuum equations on the same
+// grid, each second order, 1.7e-4 m apart on the first and 3.9e-4 m on the second, so within
+// 1e-3 m.
+TEST(Run, SoftRodsHeldOutLevelHangFromTheirClampsInBothFormulations) {
+  for (const char* rod : {R"("length": 1.0, "nodes": 201, "section": {"shape": "circle",
+                              "radius": 0.01})",
+                          R"("length": 0.6, "nodes": 121, "section": {"shape": "circle",
+                              "radius": 0.004})"}) {
+    const std::string text = std::string(R"({"format": "cosserat-problem/1",
+        "formulation": "FORMULATION", "rod": {)") + rod + R"(,
+          "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.5, "density": 1100}},
+        "base": {"rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]},
+        "loads": {"gravity": [0, 0, -9.81]}})";
+    const Result se3 = RunWithFormulation(text, "se3-shooting");
+    const Result fd = RunWithFormulation(text, "quaternion-fd");
+    ASSERT_TRUE(se3.converged && fd.converged) << se3.log << fd.log;
+    EXPECT_EQ(se3.json["stability_index"].get<int>(), 0) << se3.log;
+    EXPECT_EQ(se3.log.find("unstable"), std::string::npos) << se3.log;
+    const auto tip = [](const Result& r) {
+      const auto& p = r.json["tip"]["position"];
+      return Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+    };
+    EXPECT_LT((tip(se3) - tip(fd)).norm(), 1e-3) << tip(se3).transpose() << " vs "
+                                                  << tip(fd).transpose();
+  }
 }
 
 // An undamped soft cantilever (E = 1 MPa, 0.3 m, 51 nodes) held straight, released into gravity:

@@ -380,7 +380,11 @@ int ColumnSolver::StabilityIndexFromShot(const lie::SE3& base, const StaticLoads
   }
   // No threshold (unlike the cantilever statics', which must not count the flat circle of
   // post-buckled equilibria of a round rod): a bisection on the index then meets det J's root.
-  return MorseIndexOfShot(record, tangents, Z, length(), 0.0);
+  const RefineSegment refine = [&](int i, int parts, RodState* states,
+                                   std::vector<ShotTangent>* sub) {
+    return shooter_.ShootSegmentRefined(i, parts, loads, record, tangents, states, sub);
+  };
+  return MorseIndexOfShot(record, tangents, Z, length(), 0.0, refine);
 }
 
 }  // namespace cosserat

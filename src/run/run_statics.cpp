@@ -11,6 +11,7 @@
 
 #include "cosserat/analysis/column.hpp"
 #include "cosserat/io/result_writer.hpp"
+#include "cosserat/loads/total_load.hpp"
 #include "cosserat/run/run_quatfd.hpp"
 #include "cosserat/robots/tendon_control.hpp"
 #include "cosserat/run/solver_options.hpp"
@@ -48,8 +49,10 @@ std::string ContinuationHint(const io::Problem& problem, const StaticShootingSum
   if (summary.status != SolveStatus::kLoadSteppingFailed) return "";
   std::ostringstream hint;
   hint << "cosserat: hint: the load steps stopped short of the full load";
+  // Three digits, more near the end (0.99998 would print as 1).
   if (std::isfinite(summary.load_fraction))
-    hint << ", at " << std::setprecision(3) << summary.load_fraction << " of it";
+    hint << ", at " << std::setprecision(summary.load_fraction > 0.999 ? 7 : 3)
+         << summary.load_fraction << " of it";
   hint << " (the shape written is "
           "the last load level reached): a finer grid (rod.nodes, now "
        << problem.nodes
@@ -147,8 +150,12 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
   if (summary.converged() && summary.stability_index < 0)
     result.log += detail::UnjudgedCompressionNote(
         problem.rod, solved.state,
-        "past the Euler load of a free pinned column, and its stability is not judged (its loads "
-        "are not conservative: a follower or a tip moment, drag; or a torque held by a pin)");
+        LoadsAreConservative(problem.loads)
+            ? "past the Euler load of a free pinned column, and its stability is not judged (the "
+              "count of its unstable directions could not be formed: a grid too coarse for its "
+              "shape, or a torque held by a pin)"
+            : "past the Euler load of a free pinned column, and its stability is not judged (its "
+              "loads are not conservative: a follower or a tip moment, drag)");
   result.converged = summary.converged();
   return result;
 }

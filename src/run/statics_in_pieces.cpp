@@ -1,5 +1,6 @@
 #include "statics_in_pieces.hpp"
 
+#include "cosserat/loads/total_load.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 
@@ -43,22 +44,32 @@ StaticsInPieces SolveStaticsInPieces(const io::Problem& problem, ColumnEnds ends
   opt.max_iterations = single.max_iterations;
   if (opt.tip_guided) opt.max_turn = kMostTurnPerLevel;
   StaticsInPieces first = SolveOnce(problem, ends, base, loads, opt);
-  // A cantilever that a whole step took to an unstable equilibrium (a soft rod held out level
-  // under its weight, looped up over its clamp): its loads followed again in steps that turn
-  // no section far, as the single shot's solve keeps the stable branch
-  // (StaticShootingOptions::stable_branch). The first answer stands unless the path ends
-  // somewhere with fewer unstable directions.
-  if (ends != ColumnEnds::kClampedFree || first.summary.stability_index <= 0) return first;
+  // A cantilever that a whole step did not take to a stable equilibrium: one unstable (a soft rod
+  // held out level under its weight, looped up over its clamp), one whose count could not be
+  // formed under conservative loads (the same loop on a grid too coarse for it), or none. Its
+  // loads are followed again in steps that turn no section far, as the single shot's solve keeps
+  // the stable branch (StaticShootingOptions::stable_branch). The first answer stands unless the
+  // path converges where it did not, or ends with fewer unstable directions.
+  const int index = first.summary.stability_index;
+  const bool unjudged = index < 0 && LoadsAreConservative(loads);
+  if (ends != ColumnEnds::kClampedFree ||
+      (first.summary.converged() && index == 0) ||
+      (first.summary.converged() && index < 0 && !unjudged))
+    return first;
   opt.max_turn = kMostTurnPerLevel;
   StaticsInPieces again = SolveOnce(problem, ends, base, loads, opt);
-  StaticShootingSummary& s = again.summary;
-  s.iterations += first.summary.iterations;
-  s.shots += first.summary.shots;
-  s.load_steps += first.summary.load_steps;
-  s.wall_time_s += first.summary.wall_time_s;
-  const bool better = s.converged() && s.stability_index >= 0 &&
-                      s.stability_index < first.summary.stability_index;
-  return better ? again : first;
+  const StaticShootingSummary& s = again.summary;
+  const bool better =
+      s.converged() &&
+      (!first.summary.converged() ||
+       (s.stability_index >= 0 && (index < 0 || s.stability_index < index)));
+  StaticsInPieces& kept = better ? again : first;
+  const StaticShootingSummary& other = better ? first.summary : again.summary;
+  kept.summary.iterations += other.iterations;
+  kept.summary.shots += other.shots;
+  kept.summary.load_steps += other.load_steps;
+  kept.summary.wall_time_s += other.wall_time_s;
+  return kept;
 }
 
 }  // namespace cosserat::run::detail

@@ -29,8 +29,10 @@ int IndexInPieces(const io::Problem& problem, ColumnEnds ends, const lie::SE3& b
 /// The problem's rod with these ends at `base` under `loads`, in `pieces` pieces (0: chosen from
 /// the loads), by continuation from the unloaded rod. A column's path starts with a step of 3 in
 /// the load parameter and grows while no section turns by more than 0.5 rad a level. A
-/// cantilever takes the whole load at once; if that ends on an unstable equilibrium it is
-/// followed again in such steps, and that answer is kept if it has fewer unstable directions.
+/// cantilever takes the whole load at once; if that fails, ends on an unstable equilibrium, or
+/// on one whose count could not be formed under conservative loads, it is followed again in such
+/// steps, and that answer is kept if it converges where the first did not or has fewer unstable
+/// directions.
 StaticsInPieces SolveStaticsInPieces(const io::Problem& problem, ColumnEnds ends,
                                      const lie::SE3& base, const StaticLoads& loads,
                                      int pieces = 0);

@@ -113,23 +113,30 @@ int NegativeEigenvaluesFast(const Mat6& U, const Mat6& V) {
 // are φ_k = 2 atan(μ_k / c), μ_k the eigenvalues of sym(H), and
 // arg det(U + iV/c) = arg det U + Σ atan(μ_k / c). The count needs the continuous change ΔΦ of
 // 2 arg det(U + iV/c) between the nodes, but the ratio of the determinants gives it only modulo
-// 2π, and |ΔΦ| < π/2 read from it does not rule out a true ΔΦ of −2π or −4π. How far an angle
+// 2π, and |ΔΦ| < π/2 read from it does not rule out a true ΔΦ of ±2π or ±4π. How far an angle
 // turns depends on c (the count does not): an eigenvalue that passes its pole between the nodes
 // turns almost a full circle unless c is well below |μ| at both nodes, one that passes zero
-// unless c is well above. Too large a c misses such a pass, too small a c misses a fall through
-// zero; either loses passes, which a simple root shows as the wrong parity (det U changes sign at
-// each simple pass; `odd` says whether it did). So c is tried on a ladder from the ratio of V's
-// and U's sizes, two per decade over 16 decades either way, and in every gap of the |μ| of both
-// nodes; of the readings that are whole numbers ≥ 0 of the right parity with |ΔΦ| < π/2, the
-// largest is the count. −1 when there is none.
-int PrueferPasses(const Mat6& U0, const Mat6& V0, const Mat6& U1, const Mat6& V1, double ell,
-                  bool odd) {
+// unless c is well above. So c is tried on a ladder from the ratio of V's and U's sizes outwards
+// (two per decade over 16 decades either way) and in every gap of the |μ| of both nodes, and the
+// readings kept are the whole numbers ≥ 0 with |ΔΦ| < π/2 and the parity of det U's change
+// (`odd`: it changes sign at each simple pass), in the order tried. A lost simple pass shows as
+// the wrong parity, but two lost or two false ones do not, and from the two nodes alone a pair of
+// conjugate points (a round rod's double root) reads exactly as a pair of eigenvalues rising
+// through zero: 2 at small c, 0 at large c, either way. Readings that differ say so.
+struct PrueferReading {
+  int first = -1;          ///< the first reading (from the ladder's start); −1: none
+  bool ambiguous = false;  ///< the readings differ
+};
+
+PrueferReading PrueferPasses(const Mat6& U0, const Mat6& V0, const Mat6& U1, const Mat6& V1,
+                             double ell, bool odd) {
+  PrueferReading out;
   const Vec6 d = Units(ell);
   const Mat6 Us0 = d.asDiagonal() * U0, Vs0 = d.cwiseInverse().asDiagonal() * V0;
   const Mat6 Us1 = d.asDiagonal() * U1, Vs1 = d.cwiseInverse().asDiagonal() * V1;
   // The eigenvalues μ of sym(H) at each node.
   Mat6 H0, H1;
-  if (!ScaledStiffness(U0, V0, ell, &H0) || !ScaledStiffness(U1, V1, ell, &H1)) return -1;
+  if (!ScaledStiffness(U0, V0, ell, &H0) || !ScaledStiffness(U1, V1, ell, &H1)) return out;
   const Vec6 mu0 = Eigen::SelfAdjointEigenSolver<Mat6>(H0, Eigen::EigenvaluesOnly).eigenvalues();
   const Vec6 mu1 = Eigen::SelfAdjointEigenSolver<Mat6>(H1, Eigen::EigenvaluesOnly).eigenvalues();
   using CMat6 = Eigen::Matrix<std::complex<double>, 6, 6>;
@@ -140,7 +147,8 @@ int PrueferPasses(const Mat6& U0, const Mat6& V0, const Mat6& U1, const Mat6& V1
   };
   std::vector<double> trials;
   const double c0 = Us0.norm() > 0 && Vs0.norm() > 0 ? Vs0.norm() / Us0.norm() : 1.0;
-  for (int j = -32; j <= 32; ++j) trials.push_back(c0 * std::pow(10.0, 0.5 * j));
+  for (int j = 0; j <= 64; ++j)  // c0, then c0 · 10^(±1/2), c0 · 10^(±1), … alternating
+    trials.push_back(c0 * std::pow(10.0, (j % 2 == 0 ? 1.0 : -1.0) * ((j + 1) / 2) / 2.0));
   std::vector<double> sizes;
   for (int k = 0; k < 6; ++k) {
     if (mu0(k) != 0.0) sizes.push_back(std::abs(mu0(k)));
@@ -150,7 +158,6 @@ int PrueferPasses(const Mat6& U0, const Mat6& V0, const Mat6& U1, const Mat6& V1
   for (std::size_t k = 0; k + 1 < sizes.size(); ++k) {
     if (sizes[k + 1] > 4.0 * sizes[k]) trials.push_back(std::sqrt(sizes[k] * sizes[k + 1]));
   }
-  int count = -1;
   for (const double c : trials) {
     if (!std::isfinite(c) || c <= 0.0) continue;
     double dpsi = 0.0;
@@ -161,34 +168,76 @@ int PrueferPasses(const Mat6& U0, const Mat6& V0, const Mat6& U1, const Mat6& V1
     const double whole = std::round(passes);
     if (std::abs(passes - whole) >= 0.05 || whole < 0) continue;
     const int n = static_cast<int>(whole);
-    if ((n % 2 == 1) == odd) count = std::max(count, n);
+    if ((n % 2 == 1) != odd) continue;
+    if (out.first < 0) out.first = n;
+    out.ambiguous = out.ambiguous || n != out.first;
   }
-  return count;
+  return out;
+}
+
+// The Jacobi frame at a node: U = [δθ_B; δp_B] and V = [δm − m × δθ; δn − n × δθ] (body frame)
+// of the 6 directions of T, at the node's rotation R and wrench W = [m; n].
+void JacobiFrame(const Mat3& R, const Vec6& W, const ShotTangent& T, Mat6* U, Mat6* V) {
+  constexpr int kP = 0, kR = 3, kM = 12, kN = 15;  // rows of a ShotTangent
+  const Vec3 m = W.head<3>(), f = W.tail<3>();
+  for (int c = 0; c < 6; ++c) {
+    // A = Rᵀ dR is skew to first order: δθ_B = vee(A), from its antisymmetric part.
+    Mat3 A;
+    for (int j = 0; j < 3; ++j) A.col(j) = R.transpose() * T.block<3, 1>(kR + 3 * j, c);
+    const Vec3 dtheta(0.5 * (A(2, 1) - A(1, 2)), 0.5 * (A(0, 2) - A(2, 0)),
+                      0.5 * (A(1, 0) - A(0, 1)));
+    U->col(c) << dtheta, R.transpose() * T.block<3, 1>(kP, c);
+    V->col(c) << T.block<3, 1>(kM, c) - m.cross(dtheta), T.block<3, 1>(kN, c) - f.cross(dtheta);
+  }
+}
+
+// Refinement of an ambiguous segment: its steps.
+constexpr int kRefinedParts = 16;
+
+// The passes in segment i from its refinement: the sub-intervals where the count of negative
+// eigenvalues or det U's sign changes, each read as PrueferPasses reads (its first reading if
+// still ambiguous). −1 when the refinement cannot be made or a sub-interval has no reading.
+int PassesOnRefinement(const RefineSegment& refine, int i, double ell) {
+  RodState states;
+  std::vector<ShotTangent> tangents;
+  if (!refine || !refine(i, kRefinedParts, &states, &tangents) ||
+      static_cast<int>(tangents.size()) != kRefinedParts + 1)
+    return -1;
+  int passes = 0, previous = 0;
+  bool previous_positive = true;
+  Mat6 U_previous, V_previous;
+  for (int k = 0; k <= kRefinedParts; ++k) {
+    Mat6 U, V;
+    JacobiFrame(states.rotation_WB[k], states.wrench_B[k], tangents[k], &U, &V);
+    const int negative = NegativeEigenvaluesFast(U, V);
+    const double det_u = U.determinant();
+    if (negative < 0 || det_u == 0.0) return -1;
+    if (k > 0 && (negative != previous || (det_u > 0) != previous_positive)) {
+      const int n =
+          PrueferPasses(U_previous, V_previous, U, V, ell, (det_u > 0) != previous_positive).first;
+      if (n < 0) return -1;
+      passes += n;
+    }
+    previous = negative;
+    previous_positive = det_u > 0;
+    U_previous = U;
+    V_previous = V;
+  }
+  return passes;
 }
 
 }  // namespace
 
 int MorseIndexOfShot(const RodState& record, const std::vector<ShotTangent>& nodes,
-                     const TipVariations& tip, double length, double zero) {
-  constexpr int kP = 0, kR = 3, kM = 12, kN = 15;  // rows of a ShotTangent
+                     const TipVariations& tip, double length, double zero,
+                     const RefineSegment& refine) {
   const int n = static_cast<int>(nodes.size());
   int conjugate = 0, previous = 0, negative = 0;
   Mat6 U_previous, V_previous;
   bool previous_det_u_positive = true;
   for (int i = 1; i < n; ++i) {
-    const Mat3& R = record.rotation_WB[i];
-    const Vec3 m = record.wrench_B[i].head<3>(), f = record.wrench_B[i].tail<3>();
-    const ShotTangent& T = nodes[i];
     Mat6 U, V;
-    for (int c = 0; c < 6; ++c) {
-      // A = Rᵀ dR is skew to first order: δθ_B = vee(A), from its antisymmetric part.
-      Mat3 A;
-      for (int j = 0; j < 3; ++j) A.col(j) = R.transpose() * T.block<3, 1>(kR + 3 * j, c);
-      const Vec3 dtheta(0.5 * (A(2, 1) - A(1, 2)), 0.5 * (A(0, 2) - A(2, 0)),
-                        0.5 * (A(1, 0) - A(0, 1)));
-      U.col(c) << dtheta, R.transpose() * T.block<3, 1>(kP, c);
-      V.col(c) << T.block<3, 1>(kM, c) - m.cross(dtheta), T.block<3, 1>(kN, c) - f.cross(dtheta);
-    }
+    JacobiFrame(record.rotation_WB[i], record.wrench_B[i], nodes[i], &U, &V);
     // The count on all of η (at the tip with the threshold) says where to look for conjugate
     // points; the tip term counts on the admissible variations.
     const bool at_tip = i + 1 == n;
@@ -197,13 +246,16 @@ int MorseIndexOfShot(const RodState& record, const std::vector<ShotTangent>& nod
     negative = at_tip ? NegativeEigenvalues(Hs, TipVariations::Identity(6, 6), length, zero)
                       : NegativeEigenvaluesFast(U, V);
     if (negative < 0) return -1;  // U singular to rounding at a node: no count
-    // Where to look: a change of the count, or of det U's sign.
-    const bool det_u_positive = U.determinant() > 0;
+    // Where to look: a change of the count, or of det U's sign (exactly zero: no count).
+    const double det_u = U.determinant();
+    if (det_u == 0.0) return -1;
+    const bool det_u_positive = det_u > 0;
     if (i > 1 && (negative != previous || det_u_positive != previous_det_u_positive)) {
-      const int passes = PrueferPasses(U_previous, V_previous, U, V, length,
-                                       det_u_positive != previous_det_u_positive);
-      if (passes < 0) return -1;
-      conjugate += passes;
+      const PrueferReading r = PrueferPasses(U_previous, V_previous, U, V, length,
+                                             det_u_positive != previous_det_u_positive);
+      if (r.first < 0) return -1;
+      const int refined = r.ambiguous ? PassesOnRefinement(refine, i - 1, length) : -1;
+      conjugate += refined >= 0 ? refined : r.first;
     }
     previous = negative;
     previous_det_u_positive = det_u_positive;

@@ -368,16 +368,28 @@ StaticShootingSolver::StaticShootingSolver(const RodModel& model, int num_nodes,
   rest_rotation_B_ = rest.rotation_WB;
 }
 
+namespace {
+
+StaticShootingSolver::Sample SampleOf(const SectionLaw& law, double s) {
+  StaticShootingSolver::Sample smp;
+  smp.compliance_diagonal = law.stiffness.cwiseInverse();
+  smp.rest_strain = law.rest_strain;
+  smp.mass_per_length = law.mass_per_length();
+  smp.s = s;
+  smp.outer_diameter = law.outer_diameter;
+  return smp;
+}
+
+}  // namespace
+
+StaticShootingSolver::Sample StaticShootingSolver::SampleAt(double s) const {
+  return SampleOf(SectionLaw::At(model_, s, actuation_), s);
+}
+
 void StaticShootingSolver::SampleSections() {
   for (size_t q = 0; q < sample_points_.size(); ++q) {
-    const double s = sample_points_[q];
-    const SectionLaw law = SectionLaw::At(model_, s, actuation_);
-    Sample& smp = samples_[q];
-    smp.compliance_diagonal = law.stiffness.cwiseInverse();
-    smp.rest_strain = law.rest_strain;
-    smp.mass_per_length = law.mass_per_length();
-    smp.s = s;
-    smp.outer_diameter = law.outer_diameter;
+    const SectionLaw law = SectionLaw::At(model_, sample_points_[q], actuation_);
+    samples_[q] = SampleOf(law, sample_points_[q]);
     if (!tendon_stages_.empty()) tendon_stages_[q].stiffness = law.stiffness.asDiagonal();
   }
 }
@@ -506,6 +518,43 @@ StaticShootingSolver::StateTangent StaticShootingSolver::ShootTangent(
   return ToRows(tip_t);
 }
 
+StaticShootingSolver::StateTangent StaticShootingSolver::ShootTangentOn(
+    const std::vector<double>& grid, const std::vector<Sample>& samples, const lie::SE3& start,
+    const Vec6& wrench_B, const StateTangent& start_tangent, const StaticLoads& loads,
+    RodState* piece, std::vector<StateTangent>* tangents) const {
+  const ShotTangent start_t = FromRows(start_tangent);
+  ShotTangent tip_t;
+  std::vector<ShotTangent> nodes(grid.size());
+  const TangentSeed seed{&start_t, &nodes, &tip_t};
+  piece->Resize(static_cast<int>(grid.size()));
+  for (size_t j = 0; j < grid.size(); ++j) piece->s[j] = grid[j];
+  Mat6 J;
+  Shoot(grid, samples, scale_, start, loads, wrench_B.cwiseQuotient(scale_), piece, &J, nullptr,
+        &seed);
+  tangents->resize(nodes.size());
+  for (size_t j = 0; j < nodes.size(); ++j) (*tangents)[j] = ToRows(nodes[j]);
+  return ToRows(tip_t);
+}
+
+bool StaticShootingSolver::ShootSegmentRefined(int i, int parts, const StaticLoads& loads,
+                                               const RodState& record,
+                                               const std::vector<StateTangent>& node_tangents,
+                                               RodState* states,
+                                               std::vector<StateTangent>* tangents) const {
+  const int n = static_cast<int>(grid_.size());
+  if (!tendon_stages_.empty() || parts < 1 || i < 0 || i + 1 >= n || record.size() != n ||
+      static_cast<int>(node_tangents.size()) != n)
+    return false;
+  std::vector<double> grid(parts + 1);
+  for (int k = 0; k <= parts; ++k) grid[k] = grid_[i] + (grid_[i + 1] - grid_[i]) * k / parts;
+  grid.back() = grid_[i + 1];
+  std::vector<Sample> samples;
+  for (const double s : SegmentSamplePoints(grid)) samples.push_back(SampleAt(s));
+  ShootTangentOn(grid, samples, lie::SE3{record.rotation_WB[i], record.position_W[i]},
+                 record.wrench_B[i], node_tangents[i], loads, states, tangents);
+  return states->position_W.back().allFinite();
+}
+
 StaticShootingSolver::StateTangent StaticShootingSolver::ShootTangentBetween(
     int first, int last, const lie::SE3& start, const Vec6& wrench_B,
     const StateTangent& start_tangent, const StaticLoads& loads, RodState* record,
@@ -515,24 +564,19 @@ StaticShootingSolver::StateTangent StaticShootingSolver::ShootTangentBetween(
   // The piece's grid and its samples (three per segment, from 3 first on).
   const std::vector<double> grid(grid_.begin() + first, grid_.begin() + last + 1);
   const std::vector<Sample> samples(samples_.begin() + 3 * first, samples_.begin() + 3 * last);
-  const ShotTangent start_t = FromRows(start_tangent);
-  ShotTangent tip_t;
-  std::vector<ShotTangent> nodes(grid.size());
-  const TangentSeed seed{&start_t, &nodes, &tip_t};
   RodState piece;
-  piece.Resize(static_cast<int>(grid.size()));
-  Mat6 J;
-  Shoot(grid, samples, scale_, start, loads, wrench_B.cwiseQuotient(scale_), &piece, &J, nullptr,
-        &seed);
+  std::vector<StateTangent> tangents;
+  const StateTangent tip =
+      ShootTangentOn(grid, samples, start, wrench_B, start_tangent, loads, &piece, &tangents);
   for (int i = first; i <= last; ++i) {
     const int j = i - first;
     record->position_W[i] = piece.position_W[j];
     record->rotation_WB[i] = piece.rotation_WB[j];
     record->wrench_B[i] = piece.wrench_B[j];
     record->strain[i] = piece.strain[j];
-    (*node_tangents)[i] = ToRows(nodes[j]);
+    (*node_tangents)[i] = tangents[j];
   }
-  return ToRows(tip_t);
+  return tip;
 }
 
 }  // namespace cosserat

@@ -39,7 +39,12 @@ int StaticShootingSolver::StabilityIndexFromShot(const StaticLoads& loads, const
   // in units of EI/L) leaves that eigenvalue at ±1e-10 EI/L. An unstable direction weaker than
   // 1e-8 EI/L is one the load is within about 1e-8 of its critical value: marginal either way.
   const double zero = 1e-8 * scale_(0);
-  return MorseIndexOfShot(record, nodes, TipVariations::Identity(6, 6), model_.length, zero);
+  const RefineSegment refine = [&](int i, int parts, RodState* states,
+                                   std::vector<ShotTangent>* tangents) {
+    return ShootSegmentRefined(i, parts, loads, record, nodes, states, tangents);
+  };
+  return MorseIndexOfShot(record, nodes, TipVariations::Identity(6, 6), model_.length, zero,
+                          refine);
 }
 
 }  // namespace cosserat

@@ -6,6 +6,7 @@
 /// variations the end conditions admit (src/strong/morse_index.cpp has the argument).
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "cosserat/state/rod_state.hpp"
@@ -21,6 +22,12 @@ using ShotTangent = Eigen::Matrix<double, 18, 6>;
 /// rotation too.
 using TipVariations = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 
+/// The Jacobi fields inside segment i (from node i to node i + 1): the node states and tangents
+/// at parts + 1 points from s_i to s_{i+1}, both included, shot again from node i's state and
+/// tangent in `parts` steps. False when it cannot be done (a rod with tendons).
+using RefineSegment =
+    std::function<bool(int i, int parts, RodState* states, std::vector<ShotTangent>* tangents)>;
+
 /// The index from a shot whose 6 tangent directions span the Jacobi fields that satisfy the base
 /// end conditions (clamped: the base wrench; pinned: the two free base rotations, the twist
 /// reaction and the force), with `record` its node states and `nodes` its tangents. The tip term
@@ -28,7 +35,11 @@ using TipVariations = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 /// `length` m weigh alike). The whole tip wrench counts as dead in the world frame, so the loads
 /// must be conservative (the caller checks). −1 when the Jacobi fields are singular to rounding
 /// at a node (no count).
+/// With `refine`, a segment whose Prüfer count depends on the scale it is read in (two
+/// conjugate points and two eigenvalues rising through zero look alike from its ends) is
+/// counted again on its refinement.
 int MorseIndexOfShot(const RodState& record, const std::vector<ShotTangent>& nodes,
-                     const TipVariations& tip, double length, double zero);
+                     const TipVariations& tip, double length, double zero,
+                     const RefineSegment& refine = nullptr);
 
 }  // namespace cosserat

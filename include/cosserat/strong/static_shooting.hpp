@@ -151,6 +151,14 @@ class StaticShootingSolver {
                                    const StaticLoads& loads, RodState* record,
                                    std::vector<StateTangent>* node_tangents) const;
 
+  /// Segment i (nodes i → i + 1) shot again in `parts` RK4 steps from node i's state in `record`
+  /// and its tangent in `node_tangents` (those of ShootTangent or ShootTangentBetween): the
+  /// parts + 1 states and tangents from s_i to s_{i+1}. A refinement for the stability count
+  /// (MorseIndexOfShot). False for rods with tendons.
+  bool ShootSegmentRefined(int i, int parts, const StaticLoads& loads, const RodState& record,
+                           const std::vector<StateTangent>& node_tangents, RodState* states,
+                           std::vector<StateTangent>* tangents) const;
+
   /// The number of unstable directions of the equilibrium with base wrench W(0) = base_wrench_B
   /// (base body frame, N·m; N) under (base, loads): the Morse index of the second variation of
   /// the potential energy, by a Sturm count of the Jacobi fields along s (conjugate points in
@@ -251,6 +259,15 @@ class StaticShootingSolver {
   int StabilityIndexFromShot(const StaticLoads& loads, const RodState& record,
                              const std::vector<StateTangent>& nodes) const;
   void SampleSections();
+  /// The sample of the section law at s under the current actuation.
+  Sample SampleAt(double s) const;
+  /// The tangent shot over `grid` with its `samples` from the state (start, wrench_B) and
+  /// tangent start_tangent: the node states into *piece, the node tangents into *tangents; the
+  /// tangent at the end.
+  StateTangent ShootTangentOn(const std::vector<double>& grid, const std::vector<Sample>& samples,
+                              const lie::SE3& start, const Vec6& wrench_B,
+                              const StateTangent& start_tangent, const StaticLoads& loads,
+                              RodState* piece, std::vector<StateTangent>* tangents) const;
 
   RodModel model_;
   StaticShootingOptions options_;
