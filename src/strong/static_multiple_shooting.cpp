@@ -353,7 +353,7 @@ StaticShootingSummary StaticMultipleShootingSolver::SolveFrom(const lie::SE3& ba
   // (step 1e-9) at round-off. Its end moments are about sqrt(T EI) (a boundary layer of length
   // sqrt(EI/T)).
   guess_force_ = force;
-  SetScales(base, force);
+  SetScales(base, std::max(force, LoadForceBound(model_, loads)));
   // Each start in the guess's own frame there; the base's rotation from the node after it when
   // pinned (a state may report the support's frame at a pinned end, not the rod's).
   auto at_node = [&](int i, int frame) {

@@ -89,6 +89,9 @@ double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
   std::vector<Point> accepted = junctions_, before = junctions_;
   double mu = 0.0, mu_before = -1.0, step = std::min(first_step, max_step);
   const int budget = options_.max_load_steps + static_cast<int>(std::ceil(1.0 / max_step));
+  // Halvings go down to the smallest step, or 6 below the first when that is smaller (a riser
+  // at T L²/EI = 5e4 starts at the smallest step and would otherwise have no second try).
+  const double smallest = std::min(kMinLoadStep, step / 64.0);
   // A level that passes a node into an obstacle's core jumped through it (obstacle_core.hpp):
   // refused like a failed one, so the steps shrink until the surfaces hold the rod back.
   const ContactSurfaces surfaces = at(1.0).contact;
@@ -106,7 +109,7 @@ double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
   const bool turns = options_.max_turn > 0.0;
   std::vector<Mat3> frames_accepted;
   if (turns) frames_accepted = Shot(base, at(0.0)).rotation_WB;
-  while (mu < 1.0 && *levels < budget && step >= kMinLoadStep) {
+  for (int taken = 0; mu < 1.0 && taken < budget && step >= smallest; ++taken) {
     const double mu_try = std::min(1.0, mu + step);
     ++*levels;
     if (mu_before >= 0.0) {  // secant predictor along the path: the unknowns' change per μ
@@ -121,15 +124,12 @@ double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
     const double tolerance =
         mu_try == 1.0 ? options_.tolerance : std::max(options_.tolerance, kIntermediateTolerance);
     bool held = Newton(base, at(mu_try), tolerance, summary);
-    if (held && obstacles) {
-      std::vector<Vec3> now = Shot(base, at(mu_try)).position_W;
-      held = !ReachesObstacleCore(surfaces, at_accepted, now);
-      if (held) at_accepted = std::move(now);
-    }
-    if (held && turns) {
-      const std::vector<Mat3>& now = Shot(base, at(mu_try)).rotation_WB;
-      held = LargestTurn(frames_accepted, now) <= options_.max_turn;
-      if (held) frames_accepted = now;
+    if (held && (obstacles || turns)) {
+      const RodState& now = Shot(base, at(mu_try));
+      held = (!obstacles || !ReachesObstacleCore(surfaces, at_accepted, now.position_W)) &&
+             (!turns || LargestTurn(frames_accepted, now.rotation_WB) <= options_.max_turn);
+      if (held && obstacles) at_accepted = now.position_W;
+      if (held && turns) frames_accepted = now.rotation_WB;
     }
     if (held) {
       mu_before = mu == 0.0 && !start_balanced ? -1.0 : mu;
@@ -167,6 +167,37 @@ void StaticMultipleShootingSolver::StepsAlong(const StaticLoads& from, const Sta
   *first_step = options_.tip_guided || turns ? limited : 1.0;
 }
 
+bool StaticMultipleShootingSolver::FollowOntoStiffSurfaces(const lie::SE3& base,
+                                                           const StaticLoads& loads, int* levels,
+                                                           StaticShootingSummary* summary) {
+  // Stiff surfaces: a rod coming down onto them follows the loads on surfaces softened
+  // kSoftening times, then stiffens them geometrically (the touchdown moves little while the
+  // penetration shrinks), from the unloaded rod. If that fails too, the unknowns go back to
+  // where they were (the first path's last level: a state under the loads asked for, scaled).
+  const Vec6 x_reached = x_;
+  const std::vector<Point> junctions_reached = junctions_;
+  StaticLoads soft = loads;
+  for (int i = 0; i < soft.contact.count; ++i) soft.contact.surface[i].stiffness /= kSoftening;
+  const StaticLoads none = loads.Scaled(0.0);
+  StartUnloaded(base);
+  double first_step = 1.0, max_step = 1.0;
+  StepsAlong(none, loads, &first_step, &max_step);
+  const double mu_soft = FollowPath(
+      base, [&](double m) { return m == 1.0 ? soft : StaticLoads::Blend(none, soft, m); },
+      first_step, max_step, levels, summary);
+  auto stiffening = [&](double m) {
+    StaticLoads l = loads;
+    for (int i = 0; i < l.contact.count; ++i)
+      l.contact.surface[i].stiffness *= std::pow(kSoftening, m - 1.0);
+    return l;
+  };
+  if (mu_soft == 1.0 && FollowPath(base, stiffening, first_step, max_step, levels, summary) == 1.0)
+    return true;
+  x_ = x_reached;
+  junctions_ = junctions_reached;
+  return false;
+}
+
 StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
                                                           const StaticLoads& loads) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -195,43 +226,31 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
   else
     StartUnloaded(base);
   StepsAlong(start, loads, &first_step, &max_step);
+  // The start's unknowns: a failed solve leaves them as they were, a warm start for the next.
+  const Vec6 x_start = x_;
+  const std::vector<Point> junctions_start = junctions_;
   int levels = 0;
   auto along_loads = [&](double mu) {
     return mu == 1.0 ? loads : StaticLoads::Blend(start, loads, mu);
   };
   double mu = FollowPath(base, along_loads, first_step, max_step, &levels, &summary);
-  std::function<StaticLoads(double)> at = along_loads;
-  if (mu < 1.0 && loads.contact.count > 0) {
-    // Stiff surfaces: a rod coming down onto them follows the loads on surfaces softened
-    // kSoftening times, then stiffens them geometrically (the touchdown moves little while the
-    // penetration shrinks), from the unloaded rod.
-    StaticLoads soft = loads;
-    for (int i = 0; i < soft.contact.count; ++i) soft.contact.surface[i].stiffness /= kSoftening;
-    start = loads.Scaled(0.0);
-    StartUnloaded(base);
-    StepsAlong(start, loads, &first_step, &max_step);
-    const double mu_soft = FollowPath(
-        base, [&](double m) { return m == 1.0 ? soft : StaticLoads::Blend(start, soft, m); },
-        first_step, max_step, &levels, &summary);
-    at = [&](double m) {
-      StaticLoads l = loads;
-      for (int i = 0; i < l.contact.count; ++i)
-        l.contact.surface[i].stiffness *= std::pow(kSoftening, m - 1.0);
-      return l;
-    };
-    mu = mu_soft == 1.0 ? FollowPath(base, at, first_step, max_step, &levels, &summary) : 0.0;
-    if (mu_soft < 1.0) at = [&](double) { return soft; };
-  }
+  if (mu < 1.0 && loads.contact.count > 0 && !options_.tip_pinned &&
+      FollowOntoStiffSurfaces(base, loads, &levels, &summary))
+    mu = 1.0;
   summary.load_steps = levels - 1;
   const bool converged = mu == 1.0;
   // The state of the last accepted level (the solution when converged).
-  Finish(base, converged ? loads : at(mu), converged, &summary);
+  Finish(base, along_loads(mu), converged, &summary);
   if (!converged && summary.status == SolveStatus::kMaxIterations) {
     // The continuation stopped short of the full load. The residual reported is that state's
     // under the loads asked for, as single shooting reports it (the last level's own is ~0).
     summary.status = SolveStatus::kLoadSteppingFailed;
     summary.load_fraction = mu;
     if (Residual(base, loads, &r_)) summary.residual = r_.norm();
+  }
+  if (!converged) {
+    x_ = x_start;
+    junctions_ = junctions_start;
   }
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -155,6 +155,11 @@ class StaticMultipleShootingSolver {
   double FollowPath(const lie::SE3& base, const std::function<StaticLoads(double)>& at,
                     double first_step, double max_step, int* levels,
                     StaticShootingSummary* summary);
+  /// After a path to loads with contact surfaces stopped short: the loads followed from the
+  /// unloaded rod on softened surfaces, which then stiffen. True when that reaches the loads
+  /// (the unknowns are then their solution); else the unknowns are left as they were.
+  bool FollowOntoStiffSurfaces(const lie::SE3& base, const StaticLoads& loads, int* levels,
+                               StaticShootingSummary* summary);
   /// The first and the largest step (fractions of the path) of a path from `from` to `to`.
   void StepsAlong(const StaticLoads& from, const StaticLoads& to, double* first_step,
                   double* max_step) const;
