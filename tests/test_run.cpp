@@ -156,53 +156,58 @@ TEST(Run, TheContactTotalBalancesTheTipForceAndTheReaction) {
   EXPECT_LT((totals[0] - totals[1]).norm(), 5e-3 * totals[0].norm());
 }
 
-// A top-tensioned riser as a pinned-pinned column: 300 m of 21 in steel pipe at 1 MN under a
-// current's 273 N/m, L sqrt(T/EI) = 19, beyond a single shot (which converged, looped, with the
-// tip 62 m short). The run takes multiple shooting and bows as a tensioned beam,
-// δ = q L²/8T − (q EI/T²)(1 − sech(kL/2)) = 3.01 m: 1 % bounds the geometric nonlinearity
-// (slope 4δ/L = 0.04; its square 2e-3 enters the tension's lateral component) and the stretch
-// (T/EA = 1.4e-4). Its load path starts with a step of 3 in the load parameter and grows while
-// the sections turn little: 6 levels (124 when every step stayed at 3).
-TEST(Run, ATautColumnBeyondASingleShotBowsAsATensionedBeam) {
-  const io::ParseResult parsed = io::ParseProblem(R"({
-    "format": "cosserat-problem/1", "analysis": "statics", "boundary": "pinned-pinned",
-    "rod": {"length": 300, "nodes": 101,
-            "section": {"shape": "annulus", "outer_radius": 0.2667, "inner_radius": 0.2445},
-            "material": {"youngs_modulus": 207e9, "poisson_ratio": 0.3, "density": 7850}},
-    "loads": {"tip_force": [0, 0, 1e6], "distributed_force": [273.3675, 0, 0]}})");
-  ASSERT_TRUE(parsed.ok());
-  const Result r = cosserat::run::Run(*parsed.problem);
+// A pinned-pinned steel riser column of length L (outer and inner radii ro, ri) at tension T
+// under a current's q N/m, run on `nodes` nodes; and its tensioned-beam midspan bow
+// δ = q L²/8T − (q EI/T²)(1 − sech(kL/2)), k = sqrt(T/EI).
+struct TautRiser {
+  double L, ro, ri, T, q;
+  int nodes;
+  Result Run() const {
+    std::ostringstream text;
+    text.precision(17);
+    text << R"({"format": "cosserat-problem/1", "boundary": "pinned-pinned",
+        "rod": {"length": )" << L << R"(, "nodes": )" << nodes << R"(,
+          "section": {"shape": "annulus", "outer_radius": )" << ro << R"(, "inner_radius": )"
+         << ri << R"(},
+          "material": {"youngs_modulus": 207e9, "poisson_ratio": 0.3, "density": 7850}},
+        "loads": {"tip_force": [0, 0, )" << T << R"(], "distributed_force": [)" << q
+         << ", 0, 0]}}";
+    const io::ParseResult parsed = io::ParseProblem(text.str());
+    EXPECT_TRUE(parsed.ok()) << parsed.errors.front();
+    return cosserat::run::Run(*parsed.problem);
+  }
+  double Bow() const {
+    const double EI = 207e9 * M_PI / 4 * (std::pow(ro, 4) - std::pow(ri, 4));
+    const double k = std::sqrt(T / EI);
+    return q * L * L / (8 * T) - q * EI / (T * T) * (1 - 1 / std::cosh(k * L / 2));
+  }
+};
+
+// A top-tensioned riser: 300 m of 21 in steel pipe at 1 MN under a current's 273 N/m,
+// L sqrt(T/EI) = 19, beyond a single shot (which converged, looped, with the tip 62 m short).
+// The run takes multiple shooting and bows as a tensioned beam, 3.01 m: 1 % bounds the
+// geometric nonlinearity (slope 4δ/L = 0.04; its square 2e-3 enters the tension's lateral
+// component) and the stretch (T/EA = 1.4e-4). Its load path starts with a step of 3 in the load
+// parameter and grows while the sections turn little: 6 levels (124 when every step stayed at
+// 3). And 1 km of 0.27 m pipe at 2 MN under 500 N/m: T L²/EI = 4.4e4, so its path's first step
+// was the smallest the continuation takes, and one failed level ended it at once
+// (load_stepping_failed, for every pair of ends). It bows 31.2 m (slope 0.12, whose square
+// bounds the nonlinearity to about 1 %; it lands 0.33 % short), and each pin carries half the
+// current, q L/2 (to 1e-6: the solve's tolerance in units of the 2 MN force scale).
+TEST(Run, TautRiserColumnsBeyondASingleShotBowAsTensionedBeams) {
+  const TautRiser short_riser{300, 0.2667, 0.2445, 1e6, 273.3675, 101};
+  const Result r = short_riser.Run();
   ASSERT_TRUE(r.converged) << r.log;
   EXPECT_GT(r.json["shooting_segments"].get<int>(), 1);
-  const double EI = 207e9 * M_PI / 4 * (std::pow(0.2667, 4) - std::pow(0.2445, 4));
-  const double q = 273.3675, T = 1e6, L = 300, k = std::sqrt(T / EI);
-  const double expected = q * L * L / (8 * T) - q * EI / (T * T) * (1 - 1 / std::cosh(k * L / 2));
-  const double mid = r.json["nodes"]["position"][50][0].get<double>();
-  EXPECT_NEAR(mid / expected, 1.0, 1e-2);
+  EXPECT_NEAR(r.json["nodes"]["position"][50][0].get<double>() / short_riser.Bow(), 1.0, 1e-2);
   EXPECT_LT(r.json["load_steps"].get<int>(), 20);
-}
 
-// A 1 km riser (0.27 m steel pipe) as a pinned-pinned column at 2 MN under a current's 500 N/m:
-// T L²/EI = 4.4e4, so its path's first step (3 in the load parameter) was the smallest step the
-// continuation takes, and one failed level ended it at once (load_stepping_failed, for every
-// pair of ends). It bows as a tensioned beam (as above: 31.2 m, slope 0.12, whose square bounds
-// the geometric nonlinearity to about 1 %; it lands 0.33 % short), and each pin carries half the
-// current, q L/2 (to 1e-6: the solve's tolerance in units of the 2 MN force scale).
-TEST(Run, AKilometreRiserColumnBowsAsATensionedBeam) {
-  const io::ParseResult parsed = io::ParseProblem(R"({
-    "format": "cosserat-problem/1", "analysis": "statics", "boundary": "pinned-pinned",
-    "rod": {"length": 1000, "nodes": 401,
-            "section": {"shape": "annulus", "outer_radius": 0.135, "inner_radius": 0.115},
-            "material": {"youngs_modulus": 207e9, "poisson_ratio": 0.3, "density": 7850}},
-    "loads": {"tip_force": [0, 0, 2e6], "distributed_force": [500, 0, 0]}})");
-  ASSERT_TRUE(parsed.ok());
-  const Result r = cosserat::run::Run(*parsed.problem);
-  ASSERT_TRUE(r.converged) << r.log;
-  const double EI = 207e9 * M_PI / 4 * (std::pow(0.135, 4) - std::pow(0.115, 4));
-  const double q = 500, T = 2e6, L = 1000, k = std::sqrt(T / EI);
-  const double expected = q * L * L / (8 * T) - q * EI / (T * T) * (1 - 1 / std::cosh(k * L / 2));
-  EXPECT_NEAR(r.json["nodes"]["position"][200][0].get<double>() / expected, 1.0, 1e-2);
-  EXPECT_NEAR(std::abs(r.json["base_wrench"]["force"][0].get<double>()) / (q * L / 2), 1.0, 1e-6);
+  const TautRiser long_riser{1000, 0.135, 0.115, 2e6, 500, 401};
+  const Result l = long_riser.Run();
+  ASSERT_TRUE(l.converged) << l.log;
+  EXPECT_NEAR(l.json["nodes"]["position"][200][0].get<double>() / long_riser.Bow(), 1.0, 1e-2);
+  EXPECT_NEAR(std::abs(l.json["base_wrench"]["force"][0].get<double>()) / (500 * 1000 / 2), 1.0,
+              1e-6);
 }
 
 // A column pulled far harder (T L²/EI = 1e5: a 100 m drill pipe at 11.5 MN): its first step of 3
