@@ -353,15 +353,16 @@ ColumnSolver::PiecewiseFields ColumnSolver::FieldsInPieces(const lie::SE3& base,
 }
 
 int ColumnSolver::StabilityIndexInPieces(const lie::SE3& base, const StaticLoads& loads,
-                                         const RodState& solved, int pieces) const {
+                                         const RodState& solved, int pieces, double zero) const {
   const PiecewiseFields f = FieldsInPieces(base, loads, solved, pieces);
   if (!f.finite) return -1;
-  return StabilityIndexFromShot(base, loads, f.u, f.record, f.tangents);
+  return StabilityIndexFromShot(base, loads, f.u, f.record, f.tangents, zero);
 }
 
 int ColumnSolver::StabilityIndexFromShot(const lie::SE3& base, const StaticLoads& loads,
                                          const Vec6& u, const RodState& record,
-                                         const std::vector<StateTangent>& tangents) const {
+                                         const std::vector<StateTangent>& tangents,
+                                         double zero) const {
   if (!LoadsAreConservative(loads)) return -1;
   // A pinned base holding a torque: the base rotations then do work against it like a dead
   // moment, and the Jacobi fields they start are no longer a Lagrangian subspace. 1e-8 EI/L is
@@ -378,13 +379,11 @@ int ColumnSolver::StabilityIndexFromShot(const lie::SE3& base, const StaticLoads
     if (free_rotation) Z.topLeftCorner<3, 3>().setIdentity();
     Z.col(Z.cols() - 1).tail<3>() = axial;
   }
-  // No threshold (unlike the cantilever statics', which must not count the flat circle of
-  // post-buckled equilibria of a round rod): a bisection on the index then meets det J's root.
   const RefineSegment refine = [&](int i, int parts, RodState* states,
                                    std::vector<ShotTangent>* sub) {
     return shooter_.ShootSegmentRefined(i, parts, loads, record, tangents, states, sub);
   };
-  return MorseIndexOfShot(record, tangents, Z, length(), 0.0, refine);
+  return MorseIndexOfShot(record, tangents, Z, length(), zero * scale_(0), refine);
 }
 
 }  // namespace cosserat

@@ -31,7 +31,9 @@ int IndexInPieces(const io::Problem& problem, ColumnEnds ends, const lie::SE3& b
   if (!problem.rod.tendons.empty() || state.size() < 2) return -1;
   const ColumnSolver column(problem.rod, problem.nodes, ends, StaticOptions(problem),
                             problem.robot.actuation);
-  return column.StabilityIndexInPieces(base, loads, state, pieces);
+  // A cantilever counts as its single shot does (ColumnSolver::StabilityIndexFromShot).
+  const double zero = ends == ColumnEnds::kClampedFree ? 1e-8 : 0.0;
+  return column.StabilityIndexInPieces(base, loads, state, pieces, zero);
 }
 
 StaticsInPieces SolveStaticsInPieces(const io::Problem& problem, ColumnEnds ends,

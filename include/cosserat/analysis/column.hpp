@@ -102,10 +102,14 @@ class ColumnSolver {
   /// with the column's base and tip conditions): 0 stable. Counts a double root (a rod symmetric
   /// about its axis buckling in any plane) twice. −1 where it is not defined: a follower tip
   /// force, a tip moment, drag, a torque held by a pinned base (none is conservative). From a
-  /// shot of Residual with record and tangents at u (no shot of its own).
+  /// shot of Residual with record and tangents at u (no shot of its own). The tip term counts
+  /// eigenvalues below −zero (in units of EI/L): none by default, so that a bisection on the
+  /// index meets det J's root; statics pass the cantilever's 1e-8 (past buckling a round rod has
+  /// a circle of equilibria, along which the tip stiffness is singular to the solve's
+  /// tolerance, ±1e-10 EI/L: StaticShootingSolver::StabilityIndexFromShot).
   int StabilityIndexFromShot(const lie::SE3& base, const StaticLoads& loads, const Vec6& u,
-                             const RodState& record,
-                             const std::vector<StateTangent>& tangents) const;
+                             const RodState& record, const std::vector<StateTangent>& tangents,
+                             double zero = 0.0) const;
 
   /// The first-order change of the configuration along s for a change du of the unknowns at u:
   /// element i is the shot's StateTangent at node i times du (rows as in StateTangent). Used for
@@ -133,7 +137,7 @@ class ColumnSolver {
                                  const RodState& solved, int pieces) const;
   /// StabilityIndexFromShot on FieldsInPieces; −1 when a shot went non-finite.
   int StabilityIndexInPieces(const lie::SE3& base, const StaticLoads& loads, const RodState& solved,
-                             int pieces) const;
+                             int pieces, double zero = 0.0) const;
 
   /// The unknowns that start the shot at the base state R(0) (world) and W(0) = [m; n] (base
   /// body frame, N·m; N) found by another solver (multiple shooting): the inverse of the start
