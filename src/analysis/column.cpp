@@ -122,11 +122,10 @@ Vec6 ColumnSolver::Residual(const lie::SE3& base, const StaticLoads& loads, cons
 
 Vec6 ColumnSolver::TipResidual(const lie::SE3& base, const StaticLoads& loads,
                                const RodState& record, const StateTangent& T, Mat6* J) const {
-  const RodState* rec = &record;
-  const Mat3& R = rec->rotation_WB.back();
-  const Vec3& p = rec->position_W.back();
-  const Vec3 m = rec->wrench_B.back().head<3>();
-  const Vec3 n = rec->wrench_B.back().tail<3>();
+  const Mat3& R = record.rotation_WB.back();
+  const Vec3& p = record.position_W.back();
+  const Vec3 m = record.wrench_B.back().head<3>();
+  const Vec3 n = record.wrench_B.back().tail<3>();
   const double L = length();
   const Eigen::Matrix<double, 3, 6> dp = T.middleRows<3>(kP), dm = T.middleRows<3>(kM),
                                     dn = T.middleRows<3>(kN);

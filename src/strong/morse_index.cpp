@@ -48,6 +48,7 @@
 #include <cmath>
 #include <algorithm>
 #include <complex>
+#include <functional>
 #include <vector>
 
 namespace cosserat {
@@ -191,37 +192,60 @@ void JacobiFrame(const Mat3& R, const Vec6& W, const ShotTangent& T, Mat6* U, Ma
   }
 }
 
+// A node of the sweep along s: its Jacobi frame, the number of negative eigenvalues of sym(H)
+// there (`negative`, set by the caller) and the sign of det U.
+struct SweepNode {
+  Mat6 U, V;
+  int negative = 0;
+  bool det_positive = true;
+};
+
+// The node's frame and det U's sign; false where det U is exactly zero (no count).
+bool FrameAt(const Mat3& R, const Vec6& W, const ShotTangent& T, SweepNode* node) {
+  JacobiFrame(R, W, T, &node->U, &node->V);
+  const double det_u = node->U.determinant();
+  node->det_positive = det_u > 0;
+  return det_u != 0.0;
+}
+
+// The conjugate points between two neighbouring nodes of the sweep: looked for only where the
+// count or det U's sign changes; where the readings differ, `refined` counts them on a
+// refinement of the segment (−1: it cannot, and the first reading stands). −1 when there is no
+// reading.
+int PassesBetween(const SweepNode& a, const SweepNode& b, double ell,
+                  const std::function<int()>& refined) {
+  if (a.negative == b.negative && a.det_positive == b.det_positive) return 0;
+  const PrueferReading r =
+      PrueferPasses(a.U, a.V, b.U, b.V, ell, a.det_positive != b.det_positive);
+  if (r.first < 0) return -1;
+  const int on_refinement = r.ambiguous && refined ? refined() : -1;
+  return on_refinement >= 0 ? on_refinement : r.first;
+}
+
 // Refinement of an ambiguous segment: its steps.
 constexpr int kRefinedParts = 16;
 
-// The passes in segment i from its refinement: the sub-intervals where the count of negative
-// eigenvalues or det U's sign changes, each read as PrueferPasses reads (its first reading if
-// still ambiguous). −1 when the refinement cannot be made or a sub-interval has no reading.
+// The passes in segment i from its refinement, each sub-interval read as PassesBetween reads
+// (its first reading if still ambiguous). −1 when the refinement cannot be made or a
+// sub-interval has no reading.
 int PassesOnRefinement(const RefineSegment& refine, int i, double ell) {
   RodState states;
   std::vector<ShotTangent> tangents;
   if (!refine || !refine(i, kRefinedParts, &states, &tangents) ||
       static_cast<int>(tangents.size()) != kRefinedParts + 1)
     return -1;
-  int passes = 0, previous = 0;
-  bool previous_positive = true;
-  Mat6 U_previous, V_previous;
+  int passes = 0;
+  SweepNode previous, node;
   for (int k = 0; k <= kRefinedParts; ++k) {
-    Mat6 U, V;
-    JacobiFrame(states.rotation_WB[k], states.wrench_B[k], tangents[k], &U, &V);
-    const int negative = NegativeEigenvaluesFast(U, V);
-    const double det_u = U.determinant();
-    if (negative < 0 || det_u == 0.0) return -1;
-    if (k > 0 && (negative != previous || (det_u > 0) != previous_positive)) {
-      const int n =
-          PrueferPasses(U_previous, V_previous, U, V, ell, (det_u > 0) != previous_positive).first;
+    if (!FrameAt(states.rotation_WB[k], states.wrench_B[k], tangents[k], &node)) return -1;
+    node.negative = NegativeEigenvaluesFast(node.U, node.V);
+    if (node.negative < 0) return -1;
+    if (k > 0) {
+      const int n = PassesBetween(previous, node, ell, nullptr);
       if (n < 0) return -1;
       passes += n;
     }
-    previous = negative;
-    previous_positive = det_u > 0;
-    U_previous = U;
-    V_previous = V;
+    previous = node;
   }
   return passes;
 }
@@ -232,35 +256,27 @@ int MorseIndexOfShot(const RodState& record, const std::vector<ShotTangent>& nod
                      const TipVariations& tip, double length, double zero,
                      const RefineSegment& refine) {
   const int n = static_cast<int>(nodes.size());
-  int conjugate = 0, previous = 0, negative = 0;
-  Mat6 U_previous, V_previous;
-  bool previous_det_u_positive = true;
+  int conjugate = 0, negative = 0;
+  SweepNode previous, node;
   for (int i = 1; i < n; ++i) {
-    Mat6 U, V;
-    JacobiFrame(record.rotation_WB[i], record.wrench_B[i], nodes[i], &U, &V);
+    // U singular to rounding at a node (det U exactly zero, or no inertia): no count.
+    if (!FrameAt(record.rotation_WB[i], record.wrench_B[i], nodes[i], &node)) return -1;
     // The count on all of η (at the tip with the threshold) says where to look for conjugate
     // points; the tip term counts on the admissible variations.
     const bool at_tip = i + 1 == n;
     Mat6 Hs;
-    if (at_tip && !ScaledStiffness(U, V, length, &Hs)) return -1;
-    negative = at_tip ? NegativeEigenvalues(Hs, TipVariations::Identity(6, 6), length, zero)
-                      : NegativeEigenvaluesFast(U, V);
-    if (negative < 0) return -1;  // U singular to rounding at a node: no count
-    // Where to look: a change of the count, or of det U's sign (exactly zero: no count).
-    const double det_u = U.determinant();
-    if (det_u == 0.0) return -1;
-    const bool det_u_positive = det_u > 0;
-    if (i > 1 && (negative != previous || det_u_positive != previous_det_u_positive)) {
-      const PrueferReading r = PrueferPasses(U_previous, V_previous, U, V, length,
-                                             det_u_positive != previous_det_u_positive);
-      if (r.first < 0) return -1;
-      const int refined = r.ambiguous ? PassesOnRefinement(refine, i - 1, length) : -1;
-      conjugate += refined >= 0 ? refined : r.first;
+    if (at_tip && !ScaledStiffness(node.U, node.V, length, &Hs)) return -1;
+    node.negative = at_tip ? NegativeEigenvalues(Hs, TipVariations::Identity(6, 6), length, zero)
+                           : NegativeEigenvaluesFast(node.U, node.V);
+    if (node.negative < 0) return -1;
+    if (i > 1) {
+      const int passes = PassesBetween(previous, node, length,
+                                       [&] { return PassesOnRefinement(refine, i - 1, length); });
+      if (passes < 0) return -1;
+      conjugate += passes;
     }
-    previous = negative;
-    previous_det_u_positive = det_u_positive;
-    U_previous = U;
-    V_previous = V;
+    previous = node;
+    negative = node.negative;
     if (at_tip && tip.cols() < 6) negative = NegativeEigenvalues(Hs, tip, length, zero);
   }
   return conjugate + negative;

@@ -379,9 +379,7 @@ int StaticMultipleShootingSolver::PiecesFor(double exponent) const {
 
 void StaticMultipleShootingSolver::Finish(const lie::SE3& base, const StaticLoads& last,
                                           bool converged, StaticShootingSummary* summary) {
-  Point y = BaseStart(base, x_);
-  for (int k = 0; k <= static_cast<int>(junction_nodes_.size()); ++k)
-    y = ShootPiece(k, k == 0 ? y : junctions_[k - 1], last, true);
+  Shot(base, last);
   Residual(base, last, &r_);
   summary->residual = r_.norm();
   summary->status = converged ? SolveStatus::kConverged

@@ -96,8 +96,14 @@ double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
   // refused like a failed one, so the steps shrink until the surfaces hold the rod back.
   const ContactSurfaces surfaces = at(1.0).contact;
   const bool obstacles = HasObstacleCore(surfaces);
+  const bool turns = options_.max_turn > 0.0;
   std::vector<Vec3> at_accepted;
-  if (obstacles) at_accepted = Shot(base, at(0.0)).position_W;
+  std::vector<Mat3> frames_accepted;
+  if (obstacles || turns) {
+    const RodState& start = Shot(base, at(0.0));
+    if (obstacles) at_accepted = start.position_W;
+    if (turns) frames_accepted = start.rotation_WB;
+  }
   // The secant predictor extrapolates the change from the start, which is only a step along the
   // path if the start is an equilibrium: the unloaded rod, placed against a contact surface it
   // presses into (a pipe laid on a bore's wall at the sag its weight will give), is not, and
@@ -106,9 +112,6 @@ double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
   Eigen::VectorXd r_start(r_.size());
   const bool start_balanced =
       Residual(base, at(0.0), &r_start) && r_start.norm() < options_.tolerance;
-  const bool turns = options_.max_turn > 0.0;
-  std::vector<Mat3> frames_accepted;
-  if (turns) frames_accepted = Shot(base, at(0.0)).rotation_WB;
   for (int taken = 0; mu < 1.0 && taken < budget && step >= smallest; ++taken) {
     const double mu_try = std::min(1.0, mu + step);
     ++*levels;
