@@ -324,6 +324,10 @@ QuatFdEnergy QuatFdModel::Energy(const Eigen::Ref<const Eigen::VectorXd>& q,
     const Vec3 x = q.segment<3>(L::X(n)), xd = v.segment<3>(L::X(n));
     e.kinetic += 0.5 * mass_[n] * xd.squaredNorm();
     e.potential -= vertex_force_W_[n].dot(x);
+    if (added_mass_.empty()) continue;
+    // The fluid's added mass moves with the vertex's velocity across the centreline.
+    const Vec3& t = VertexChord(q, n).t;
+    e.kinetic += 0.5 * added_mass_[n] * (xd - xd.dot(t) * t).squaredNorm();
   }
   for (int i = 0; i < N; ++i) {
     const Vec4 p = q.segment<4>(L::P(i)), pd = v.segment<4>(L::P(i));

@@ -13,6 +13,9 @@ RodEnergy Energy(const RodQuadrature& points, const StaticLoads& loads) {
     const double w = pt.weight;
     const Vec6 dxi = pt.strain - smp.rest_strain;
     e.kinetic += w * 0.5 * pt.twist_B.dot(smp.mass.cwiseProduct(pt.twist_B));
+    // The fluid's added mass moves with the section's velocity across its tangent d3.
+    const double added = TotalNormalAddedMass(loads, smp.Site());  // kg/m
+    if (added > 0.0) e.kinetic += w * 0.5 * added * pt.twist_B.segment<2>(3).squaredNorm();
     e.elastic += w * 0.5 * dxi.dot(smp.stiffness.cwiseProduct(dxi));
     e.potential += w * TotalDistributedPotential(loads, smp.Site(), pt.position_W);
   }

@@ -108,6 +108,8 @@ struct QuatFdLayout {
 
 /// Energies of a state (J).
 struct QuatFdEnergy {
+  /// kinetic: the rod's, and the fluid's added mass moving with the vertices' velocity across
+  /// the centreline;
   /// potential: of the distributed dead loads (gravity, distributed force);
   /// loads: −work of the dead tip force
   double kinetic = 0, elastic = 0, potential = 0, loads = 0;

@@ -41,7 +41,9 @@ struct RodQuadraturePoint {
 using RodQuadrature = std::vector<RodQuadraturePoint>;
 
 /// ½ Vᵀ M V + ½ (ξ − ξ*)ᵀ K (ξ − ξ*) per unit length, and the potential of the distributed dead
-/// loads of `loads`, integrated (J). The rod only: a tip body's energy is not included.
+/// loads of `loads`, integrated (J). The kinetic part includes ½ m_a |v_n|², the fluid's added
+/// mass m_a (kg/m) moving with v_n, the velocity across d3. The rod only: a tip body's energy is
+/// not included.
 RodEnergy Energy(const RodQuadrature& points, const StaticLoads& loads);
 /// ∫ ρA R v ds and ∫ (p × ρA R v + R J ω) ds (the rod only).
 RodMomentum Momentum(const RodQuadrature& points);
