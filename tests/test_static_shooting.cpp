@@ -119,6 +119,31 @@ TEST(StaticShooting, FailureIsReportedNotHidden) {
   EXPECT_GT(summary.residual, opt.tolerance);
 }
 
+// A tip moment that curls the rod into coils tighter than its grid (41 nodes, κ h ≈ 2.9 rad at
+// the last level): the continuation stops short. The state it leaves is that level's
+// equilibrium: its tip carries the level's moment, μ M, to the intermediate levels' tolerance
+// (1e-6 of EI/L), while the residual reported is the one against the whole load. The state
+// written was once the level's unknowns shot under the whole moment, a shape of no load at all.
+TEST(StaticShooting, LoadStepsThatStopShortLeaveTheLevelTheyReached) {
+  const RodModel model = SteelRod();
+  StaticShootingSolver solver(model, 41);
+  StaticLoads loads;
+  loads.tip_moment = Vec3(0, 100.0, 0);  // N·m: κ = M/EI = 637 /m, coils of 1.6 mm radius
+  loads.tip_force = Vec3(-0.2, 0, 0);     // N, with the weight: the cantilever example's loads
+  loads.gravity_W = Vec3(-9.81, 0, 0);
+  const StaticShootingSummary summary = solver.Solve(lie::SE3{}, loads);
+  ASSERT_EQ(summary.status, SolveStatus::kLoadSteppingFailed);
+  const double mu = summary.load_fraction;
+  ASSERT_GT(mu, 0.0);
+  ASSERT_LT(mu, 1.0);
+  const RodState& state = solver.state();
+  const Vec3 moment_W = state.tip_rotation_WB() * state.wrench_B.back().head<3>();
+  const double unit = EIof(model) / model.length;
+  EXPECT_LT((moment_W - mu * loads.tip_moment).norm(), 1e-6 * unit)
+      << moment_W.transpose() << " at load fraction " << mu;
+  EXPECT_GT(summary.residual, 0.1);  // the whole moment is not balanced
+}
+
 TEST(StaticShooting, FollowerMomentEqualsDeadMomentForPlanarBending) {
   // A moment about y stays about y as the rod bends in the x–z plane, so dead and follower
   // moments give the same circle.

@@ -103,6 +103,14 @@ bool StaticShootingSolver::FollowLoadPath(const lie::SE3& base, const StaticLoad
   return reached;
 }
 
+// Stability (options_.stable_branch): a Newton-type solve converges to whichever equilibrium
+// is nearest its start, and past a critical load the nearest one can be unstable (a column at
+// 1.15 P_cr with a small imperfection: the near-straight state beside the start, deflected
+// against the imperfection). Step control on the size of the correction does not see this —
+// the unstable root is the one near the predictor — so the converged equilibrium is checked
+// instead, from Levenberg–Marquardt's last Jacobian shot (taken at the solution). A
+// quasi-Newton warm re-solve is not checked (Solve): it continues the previous solution by steps
+// that halve the residual, and takes no tangent shot (17 µs; a check would add one, ≈ 53 µs).
 bool StaticShootingSolver::KeepStableBranch(const lie::SE3& base, const StaticLoads& loads,
                                             double max_fraction, Vec6* x,
                                             StaticShootingSummary* summary) {
@@ -279,6 +287,7 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
       load_change > options_.max_load_increment ? options_.max_load_increment / load_change : 1.0;
 
   Vec6 x = x_start;
+  double reached = 1.0;  // the load level x balances (continuation: the last one reached)
   DirectAttempt direct;
   if (max_fraction == 1.0)
     direct = SolveDirectly(base, start, loads, x_start, from_previous, &x, &summary);
@@ -288,7 +297,6 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
     // on, never above max_fraction.
     const LoadPath path{max_fraction, options_.load_stepping, /*require_stable=*/false,
                         options_.max_load_steps};
-    double reached = 0.0;
     ok = FollowLoadPath(base, start, loads, x_start, path, &x, &summary.load_steps, &summary,
                         &reached);
     if (!ok) summary.load_fraction = reached;
@@ -298,14 +306,7 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
           options_.load_stepping ? SolveStatus::kLoadSteppingFailed : SolveStatus::kMaxIterations;
   }
 
-  // Stability (options_.stable_branch): a Newton-type solve converges to whichever equilibrium
-  // is nearest its start, and past a critical load the nearest one can be unstable (a column at
-  // 1.15 P_cr with a small imperfection: the near-straight state beside the start, deflected
-  // against the imperfection). Step control on the size of the correction does not see this —
-  // the unstable root is the one near the predictor — so the converged equilibrium is checked
-  // instead, from Levenberg–Marquardt's last Jacobian shot (taken at the solution). A
-  // quasi-Newton warm re-solve is not checked: it continues the previous solution by steps that
-  // halve the residual, and takes no tangent shot (17 µs; a check would add one, ≈ 53 µs).
+  // Stability (options_.stable_branch; KeepStableBranch says why and when).
   if (ok && options_.stable_branch && !direct.via_quasi_newton) {
     if (KeepStableBranch(base, loads, max_fraction, &x, &summary)) state_current = false;
   }
@@ -313,9 +314,13 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
   if (!state_current) {
     const Vec6 r = Residual(base, loads, x);
     ++summary.shots;
-    summary.residual = r.norm();
+    summary.residual = r.norm();  // against the loads asked for, reached or not
     if (!r.allFinite()) ok = false;
     if (!r.allFinite()) summary.status = SolveStatus::kNonFinite;
+    if (!ok && r.allFinite() && reached < 1.0) {  // the state: that level, in its equilibrium
+      Residual(base, reached == 0.0 ? start : StaticLoads::Blend(start, loads, reached), x);
+      ++summary.shots;
+    }
   }
   if (ok) {
     state_is_solution_ = true;
