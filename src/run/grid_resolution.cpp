@@ -5,12 +5,14 @@
 #include <iomanip>
 #include <sstream>
 
+#include <Eigen/Geometry>
+
 #include "cosserat/state/solve_status.hpp"
 
 namespace cosserat::run {
 
 GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& position,
-                         const std::vector<Vec3>& curvature, double length) {
+                         const std::vector<Vec3>& curvature, double length, bool converged) {
   GridResolution out;
   double worst = 0.0, worst_s = 0.0, worst_k = 0.0;  // bending κ h (rad), where, κ (1/m)
   auto bending = [](const Vec3& k) { return std::hypot(k.x(), k.y()); };
@@ -22,11 +24,13 @@ GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& 
     const double segment = (position[i + 1] - position[i]).norm();
     if (segment <= 10.0 * h || turn <= 1.0) continue;
     std::ostringstream log;
-    log << std::setprecision(3) << "cosserat: the solve converged, but its shot ran away: the "
+    log << std::setprecision(3)
+        << (converged ? "cosserat: the solve converged, but its shot ran away: the "
+                      : "cosserat: at the last load level reached the shot ran away: the ")
         << "segment at s = " << s[i] << " m spans " << segment << " m for " << h
         << " m of rod, while the curvature turns the section by " << turn
-        << " rad on it, which RK4 in s cannot follow: status non_finite; check the loads' and "
-           "the actuation's units, or give rod.nodes ≥ "
+        << " rad on it, which RK4 in s cannot follow" << (converged ? ": status non_finite" : "")
+        << "; check the loads' and the actuation's units, or give rod.nodes ≥ "
         << static_cast<long>(std::ceil(4.0 * turn / h * length)) + 1 << '\n';
     out.ran_away = true;
     out.log = log.str();
@@ -36,12 +40,47 @@ GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& 
   out.under_resolved = worst > 1.5;
   std::ostringstream log;
   log << std::setprecision(3)
+      << (!converged ? "cosserat: at the last load level reached, the grid resolves the shape "
+                       "coarsely: "
+          : out.under_resolved ? "cosserat: the grid is too coarse for this shape (status "
+                                 "under_resolved): "
+                               : "cosserat: warning: the grid resolves the shape coarsely: ")
+      << "the bending turns the section by " << worst << " rad per segment near s = " << worst_s
+      << " m, where a constant-curvature arc's tip is off by about "
+      << 100 * 8e-3 * std::pow(worst, 4) << " % of the length (RK4 in s, fourth order in κ h); "
+      << "rod.nodes ≥ " << static_cast<long>(std::ceil(4.0 * worst_k * length)) + 1
+      << " keeps it below 0.25 rad\n";
+  out.log = log.str();
+  return out;
+}
+
+GridResolution CheckPolygon(const std::vector<double>& s, const std::vector<Vec3>& position,
+                            const std::vector<Vec3>& curvature, double length) {
+  GridResolution out;
+  double worst = 0.0, worst_s = 0.0, worst_k = 0.0;  // turn (rad), where, turn / h (1/m)
+  const size_t n = s.size();
+  for (size_t i = 0; i < n; ++i) {
+    const double h = 0.5 * (s[std::min(i + 1, n - 1)] - s[i > 0 ? i - 1 : 0]) *
+                     (i == 0 || i + 1 == n ? 2.0 : 1.0);
+    // The bending curvature at the vertex (the clamps' included), or the polygon's turn there.
+    double turn = std::hypot(curvature[i].x(), curvature[i].y()) * h;
+    if (i > 0 && i + 1 < n) {
+      const Vec3 a = position[i] - position[i - 1], b = position[i + 1] - position[i];
+      turn = std::max(turn, std::atan2(a.cross(b).norm(), a.dot(b)));
+    }
+    if (turn > worst) worst = turn, worst_s = s[i], worst_k = turn / h;
+  }
+  if (worst <= 0.5) return out;
+  out.under_resolved = worst > 1.5;
+  std::ostringstream log;
+  log << std::setprecision(3)
       << (out.under_resolved ? "cosserat: the grid is too coarse for this shape (status "
                                "under_resolved): "
                              : "cosserat: warning: the grid resolves the shape coarsely: ")
       << "the bending turns the section by " << worst << " rad per segment near s = " << worst_s
-      << " m, where a constant-curvature arc's tip is off by about "
-      << 100 * 8e-3 * std::pow(worst, 4) << " % of the length (RK4 in s, fourth order in κ h); "
+      << " m, where a constant-curvature arc's tip would be off by " << 100 * 0.08 * worst * worst
+      << " % of the length (quaternion FD, second order in κ h; a bend this sharp over a short "
+         "stretch costs far less); "
       << "rod.nodes ≥ " << static_cast<long>(std::ceil(4.0 * worst_k * length)) + 1
       << " keeps it below 0.25 rad\n";
   out.log = log.str();
@@ -52,8 +91,14 @@ void CheckGridResolution(const io::Problem& problem, Result* result) {
   // Statics, and the equilibrium the modes are about (the result's nodes).
   const bool equilibrium =
       problem.analysis == io::Analysis::kStatics || problem.analysis == io::Analysis::kModes;
-  if (!result->converged || problem.formulation != io::Formulation::kSe3Shooting ||
-      !equilibrium || !result->json.contains("nodes"))
+  // A statics stopped short writes the last load level reached: its grid may be why.
+  const std::string status = result->json.value("status", "");
+  const bool stopped_short = !result->converged && status == "load_stepping_failed";
+  // Modes the grid resolves too coarsely (run_modes.cpp) are about an equilibrium, which may
+  // itself have run away.
+  const bool coarse_modes = !result->converged && status == "under_resolved";
+  if ((!result->converged && !stopped_short && !coarse_modes) || !equilibrium ||
+      !result->json.contains("nodes"))
     return;
   const nlohmann::ordered_json& nodes = result->json["nodes"];
   if (!nodes.contains("s") || !nodes.contains("position") || !nodes.contains("curvature")) return;
@@ -63,11 +108,16 @@ void CheckGridResolution(const io::Problem& problem, Result* result) {
       out.emplace_back(r[0].get<double>(), r[1].get<double>(), r[2].get<double>());
     return out;
   };
-  const GridResolution g = CheckGrid(nodes["s"].get<std::vector<double>>(),
-                                     rows(nodes["position"]), rows(nodes["curvature"]),
-                                     problem.rod.length);
+  const bool polygon = problem.formulation == io::Formulation::kQuaternionFd;
+  if (polygon && stopped_short) return;
+  const GridResolution g =
+      polygon ? CheckPolygon(nodes["s"].get<std::vector<double>>(), rows(nodes["position"]),
+                             rows(nodes["curvature"]), problem.rod.length)
+              : CheckGrid(nodes["s"].get<std::vector<double>>(), rows(nodes["position"]),
+                          rows(nodes["curvature"]), problem.rod.length, !stopped_short);
   result->log += g.log;
-  if (!g.ran_away && !g.under_resolved) return;
+  if (stopped_short || (!g.ran_away && !g.under_resolved)) return;
+  if (coarse_modes && !g.ran_away) return;  // under_resolved already
   result->converged = false;
   result->json["status"] =
       ToString(g.ran_away ? SolveStatus::kNonFinite : SolveStatus::kUnderResolved);

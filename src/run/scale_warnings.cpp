@@ -53,8 +53,9 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
     log << "cosserat: warning: dynamics.initial_loads has no \"gravity\" while loads has: it "
            "replaces loads, so the run starts from the equilibrium without gravity; repeat "
            "loads.gravity there, or write \"gravity\": [0, 0, 0] if that start is meant\n";
-  // A solve that did not converge leaves an iterate, whose stretch says nothing of the units.
-  if (!result->converged) {
+  // A solve that did not converge leaves an iterate, whose stretch says nothing of the units
+  // (an equilibrium on a grid too coarse for it is still one).
+  if (!result->converged && result->json.value("status", "") != "under_resolved") {
     result->log += log.str();
     return;
   }

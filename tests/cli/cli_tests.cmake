@@ -475,10 +475,12 @@ cosserat_cli_test(NAME eversion_no_kink ARGS solve "${_cli_dir}/eversion_no_kink
 cosserat_cli_test(NAME modes_hanging_cable_se3 ARGS solve "${_cli_dir}/modes_hanging_cable_se3.json"
                   CODE 1 STDERR "statics_failed.*hint: SE\\(3\\) modes shoot the rod in one piece.*= 70.6.*quaternion-fd")
 # Answers only a slip of units gives run, and the log says what to check (run/scale_warnings.hpp);
-# a soft rod's SE(3) load steps that stop short say what to try.
+# a soft rod's SE(3) load steps that stop short say what to try. The gel-soft rod of
+# modulus_in_mpa hangs 563 m with a 1.65 rad kink between two of its 41 vertices: under_resolved,
+# and the units are still named.
 cosserat_cli_test(NAME radius_in_mm ARGS solve "${_cli_dir}/radius_in_mm.json" CODE 0
                   STDERR "warning: the rod is 1 m long and 10 m across: not a slender rod")
-cosserat_cli_test(NAME modulus_in_mpa ARGS solve "${_cli_dir}/modulus_in_mpa.json" CODE 0
+cosserat_cli_test(NAME modulus_in_mpa ARGS solve "${_cli_dir}/modulus_in_mpa.json" CODE 1
                   STDERR "warning: the rod is stretched or compressed by .* check the units of the material")
 # A grid too coarse for the shape (run/grid_resolution.hpp): a warning with the error it implies
 # (an arc at 0.75 rad per segment: about 0.25 % of L, measured 0.26 %), and a shot that ran away
