@@ -89,6 +89,24 @@ bool BalancedContactTotal(const io::Problem& problem, const nlohmann::ordered_js
   return total->allFinite();
 }
 
+/// Statics, buckling and the equilibrium of modes leave contact friction out (Coulomb friction
+/// of a regularised slip law needs a velocity); a surface given friction there is told so.
+std::string StaticFrictionNote(const io::Problem& problem) {
+  if (problem.analysis == io::Analysis::kDynamics) return "";
+  for (int k = 0; k < problem.loads.contact.count; ++k) {
+    const double mu = problem.loads.contact.surface[k].friction;
+    if (mu > 0.0) {
+      std::ostringstream note;
+      note << "cosserat: note: environment.contact[" << k << "].friction = " << mu
+           << " acts in dynamics only: at rest the surfaces push along their normals alone, so "
+              "the rod slides on them until its own stiffness and supports hold the loads along "
+              "them\n";
+      return note.str();
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 double TouchdownS(const io::Problem& problem, const RodState& state) {
@@ -109,6 +127,7 @@ double TouchdownS(const io::Problem& problem, const RodState& state) {
 
 void AddContactReport(const io::Problem& problem, Result* result) {
   if (problem.loads.contact.count == 0) return;
+  result->log += StaticFrictionNote(problem);
   auto& json = result->json;
   if (!json.contains("nodes") || !json["nodes"].contains("position")) return;
   const auto& s = json["nodes"]["s"];
