@@ -276,8 +276,10 @@ std::string EnergyNote(const io::Problem& problem, const io::DynamicRun& run) {
        << loss << " J over the run, " << 100 * loss / run.peak_kinetic_energy
        << " % of its largest kinetic energy: BDF2's numerical damping of motion that dt = "
        << problem.dynamics.dt
-       << " s resolves in few steps (docs/dynamics.md, \"Numerical damping\"); a smaller dt or "
-          "\"formulation\": \"quaternion-fd\" keeps more\n";
+       << " s resolves in few steps (docs/dynamics.md, \"Numerical damping\"); a smaller dt "
+          "keeps more, and so does \"formulation\": \"quaternion-fd\", whose error control "
+          "follows every oscillation the run excites (slow for a stiff rod without damping: "
+          "the steel release takes ~30 000 steps per simulated second)\n";
   return note.str();
 }
 
