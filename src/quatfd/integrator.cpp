@@ -65,6 +65,8 @@ IntegratorStatus AdaptiveIntegrator::Advance(double t_end, double* t, Eigen::Ref
   const bool continuing = y_.head(n) == q && y_.tail(n) == v;
   y_.head(n) = q;
   y_.tail(n) = v;
+  step_start_ = *t;
+  model_.set_time(*t);
   BeginAdvance(continuing);
   IntegratorStatus status = IntegratorStatus::kOk;
   long attempts = 0;
@@ -77,6 +79,7 @@ IntegratorStatus AdaptiveIntegrator::Advance(double t_end, double* t, Eigen::Ref
     // Land exactly on t_end; a last step within 1e-12 of it is stretched to it.
     const bool last = *t + dt_ * (1 + 1e-12) >= t_end;
     const double h = last ? t_end - *t : dt_;
+    step_start_ = *t;
     Trial trial = TryStep(h);
     if (trial.ok && (!std::isfinite(trial.err) || !y_new_.allFinite())) trial.err = 1e10;
     if (!trial.ok || trial.err > 1.0) {
@@ -91,6 +94,8 @@ IntegratorStatus AdaptiveIntegrator::Advance(double t_end, double* t, Eigen::Ref
     }
     y_.swap(y_new_);
     AcceptStep(model_, options_, h, last, t_end, t, y_, &stats_);
+    step_start_ = *t;
+    model_.set_time(*t);
     const double next = Accepted(h, trial.err);
     if (!last || next < dt_) dt_ = next;
     last_rejected_ = false;

@@ -34,8 +34,9 @@ namespace {
 struct System {
   const QuatFdModel* model;
   long* count;
-  void operator()(const State& y, State& dydt, double /*t*/) const {
+  void operator()(const State& y, State& dydt, double t) const {
     const int n = model->size();
+    model->set_time(t);
     Eigen::Map<const Eigen::VectorXd> yy(y.data(), 2 * n);
     Eigen::Map<Eigen::VectorXd> d(dydt.data(), 2 * n);
     d.head(n) = yy.tail(n);
@@ -75,14 +76,15 @@ Dopri5Integrator::~Dopri5Integrator() = default;
 void Dopri5Integrator::BeginAdvance(bool /*continuing*/) {
   Impl& m = *impl_;
   Eigen::Map<Eigen::VectorXd>(m.y.data(), 2 * n_) = y_;
-  // FSAL: the derivative at the start of the interval (the system is autonomous: t is unused).
-  System{&model_, &stats_.f_evaluations}(m.y, m.dydt, 0.0);
+  // FSAL: the derivative at the start of the interval.
+  System{&model_, &stats_.f_evaluations}(m.y, m.dydt, step_start_);
 }
 
 AdaptiveIntegrator::Trial Dopri5Integrator::TryStep(double h) {
   Impl& m = *impl_;
   const System sys{&model_, &stats_.f_evaluations};
-  m.stepper.do_step(sys, m.y, m.dydt, 0.0, m.y_new, m.dydt_new, h, m.err);
+  m.stepper.do_step(sys, m.y, m.dydt, step_start_, m.y_new, m.dydt_new, h, m.err);
+  model_.set_time(step_start_);
   y_new_ = Eigen::Map<const Eigen::VectorXd>(m.y_new.data(), 2 * n_);
   err_ = Eigen::Map<const Eigen::VectorXd>(m.err.data(), 2 * n_);
   return {true, ErrorNorm(options_, n_, y_, y_new_, err_)};
@@ -97,7 +99,7 @@ double Dopri5Integrator::Accepted(double h, double err) {
   Eigen::Map<Eigen::VectorXd>(m.y.data(), 2 * n_) = y_;  // the new state, projected
   m.dydt = m.dydt_new;
   if (options_.project)  // the FSAL derivative of the projected state
-    System{&model_, &stats_.f_evaluations}(m.y, m.dydt, 0.0);
+    System{&model_, &stats_.f_evaluations}(m.y, m.dydt, step_start_);
   return h * StepFactor(err);
 }
 

@@ -305,8 +305,21 @@ void QuatFdModel::RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::Vec
   q.segment<3>(L::X(N)) = x;
 }
 
+void QuatFdModel::set_gust(const FluidGust& gust) {
+  gust_ = gust;
+  set_time(time_);
+}
+
+void QuatFdModel::set_time(double t) const {
+  if (!gust_.present()) return;
+  time_ = t;
+  gusty_loads_.fluid = gust_.At(loads_.fluid, t);
+}
+
 void QuatFdModel::set_loads(const StaticLoads& loads) {
   loads_ = loads;
+  gusty_loads_ = loads;
+  set_time(time_);
   tip_wrench_ = TotalTipWrench(loads);
   motion_loads_ = HasMotionLoads(loads);
   // The distributed loads lumped on each vertex: its dual length and lumped mass.
@@ -431,7 +444,8 @@ void QuatFdModel::AddMotionLoads(const Eigen::Ref<const Eigen::VectorXd>& q,
     const Vec3& t = chord.t;
     const SectionMotion motion{q.segment<3>(L::X(n)), t, v.segment<3>(L::X(n))};
     const int r = L::X(n);
-    a.segment<3>(r) += TotalMotionForce_W(loads_, VertexSite(n), motion, dfdq ? &J : nullptr);
+    a.segment<3>(r) +=
+        TotalMotionForce_W(motion_loads(), VertexSite(n), motion, dfdq ? &J : nullptr);
     if (!dfdq) continue;
     const Mat3 f_xb = J.tangent * (Mat3::Identity() - t * t.transpose()) / length;
     for (int i = 0; i < 3; ++i) {

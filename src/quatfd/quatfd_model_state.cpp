@@ -239,7 +239,7 @@ Vec3 QuatFdModel::VertexMotionForce_W(const Eigen::Ref<const Eigen::VectorXd>& q
                                       const Eigen::Ref<const Eigen::VectorXd>& v, int n) const {
   if (!motion_loads_) return Vec3::Zero();
   const SectionMotion motion{q.segment<3>(L::X(n)), VertexChord(q, n).t, v.segment<3>(L::X(n))};
-  return TotalMotionForce_W(loads_, VertexSite(n), motion, nullptr);
+  return TotalMotionForce_W(motion_loads(), VertexSite(n), motion, nullptr);
 }
 
 void QuatFdModel::ToRodState(const Eigen::Ref<const Eigen::VectorXd>& q,

@@ -167,30 +167,10 @@ struct RadauOutcome {
   double last_dt = 0.0;  ///< s, the last accepted step
 };
 
-/// Advances to t_end under a gusting flow held constant over intervals of a 40th of the gust's
-/// period, each at its midpoint's velocity (the midpoint rule: the held loads' mean error is
-/// second order in the interval, (2π/40)²/24 ≈ 1e-3 of the gust's amplitude).
-quatfd::IntegratorStatus AdvanceInGusts(quatfd::RadauIntegrator* integrator,
-                                        quatfd::QuatFdModel* model, const StaticLoads& loads,
-                                        const FluidGust& gust, double t_end, double* t,
-                                        Eigen::VectorXd& q, Eigen::VectorXd& v) {
-  const double hold = gust.period / 40.0;
-  StaticLoads now = loads;
-  quatfd::IntegratorStatus status = quatfd::IntegratorStatus::kOk;
-  while (*t < t_end && status == quatfd::IntegratorStatus::kOk) {
-    const double next = std::min(t_end, *t + hold);
-    now.fluid = gust.At(loads.fluid, 0.5 * (*t + next));
-    model->set_loads(now);
-    status = integrator->Advance(next, t, q, v);
-  }
-  return status;
-}
-
 /// Integrates (q, v) from t = 0 to the problem's duration with Radau IIA, calling record(t) at
 /// every output interval, and fills run's step counts, times, status and final energy.
 template <class Record>
 RadauOutcome IntegrateRadau(quatfd::QuatFdModel& model, const io::Problem::Dynamics& d,
-                            const StaticLoads& loads, const FluidGust& gust,
                             Eigen::VectorXd& q, Eigen::VectorXd& v, const Record& record,
                             io::DynamicRun* run) {
   RadauOutcome outcome;
@@ -213,9 +193,7 @@ RadauOutcome IntegrateRadau(quatfd::QuatFdModel& model, const io::Problem::Dynam
     const double t_end = k == intervals ? d.duration : k * d.output_interval;
     const long steps_before = integrator.stats().steps;
     const auto t0 = Clock::now();
-    outcome.status = gust.present()
-                         ? AdvanceInGusts(&integrator, &model, loads, gust, t_end, &t, q, v)
-                         : integrator.Advance(t_end, &t, q, v);
+    outcome.status = integrator.Advance(t_end, &t, q, v);
     const long steps = integrator.stats().steps - steps_before;
     if (steps > 0)
       run->step_time_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count() / steps);
@@ -299,7 +277,8 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
   } else {
     record(0.0);
     model.set_loads(problem.loads);
-    radau = IntegrateRadau(model, d, problem.loads, problem.gust, q, v, record, &run);
+    model.set_gust(problem.gust);  // the drag follows each Radau stage's time
+    radau = IntegrateRadau(model, d, q, v, record, &run);
   }
   run.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
   model.ToRodState(q, v, &state);

@@ -56,8 +56,8 @@ struct Fluid {
 };
 
 /// A gusting flow: the flow velocity times 1 + amplitude sin(2π t / period) (dimensionless; s).
-/// Loads have no clock, so the dynamics runners apply it to the fluid of each step (SE(3)) or of
-/// each hold interval (quaternion FD). period 0: steady.
+/// Loads have no clock: the SE(3) runner applies it to the fluid of each step, the quaternion-FD
+/// model to each integrator stage's time (QuatFdModel::set_time). period 0: steady.
 struct FluidGust {
   double amplitude = 0.0;
   double period = 0.0;

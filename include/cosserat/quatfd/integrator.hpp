@@ -145,6 +145,10 @@ class AdaptiveIntegrator : public QuatFdIntegrator {
   const QuatFdModel& model_;
   IntegratorOptions options_;
   IntegratorStats stats_;
+  /// s, the time of y_ (the trial step's start). Advance sets the model's clock to it before
+  /// BeginAdvance, TryStep and Accepted; a method that evaluates stages at t + c h sets their
+  /// times and puts the clock back (QuatFdModel::set_time: a gusting flow).
+  double step_start_ = 0.0;
   int n_ = 0;                        ///< size of q (and of v)
   double dt_ = 0;                    ///< size of the next trial step, s
   bool last_rejected_ = false;       ///< the last trial step was rejected

@@ -135,6 +135,11 @@ class QuatFdModel {
   /// distributed loads on the vertices (O(segments)).
   void set_loads(const StaticLoads& loads);
   const StaticLoads& loads() const { return loads_; }
+  /// A gusting flow (loads/fluid.hpp) on the fluid of the loads set: the drag then follows the
+  /// time last given to set_time, which the integrators set to each stage's time. Without a
+  /// gust the model has no clock and set_time does nothing.
+  void set_gust(const FluidGust& gust);
+  void set_time(double t) const;
 
   /// The rest shape (the discrete configuration with Γ = Γ*, K = K*) from the base pose, at rest.
   /// With a pinned tip, a shape through both ends instead, the start of a static solve
@@ -333,6 +338,11 @@ class QuatFdModel {
   Vec4 base_quat_;
   Vec4 tip_quat_ = Vec4(1, 0, 0, 0);  ///< a clamped tip's rotation (QuatFdOptions::tip_rotation_W)
   StaticLoads loads_;
+  FluidGust gust_;
+  mutable double time_ = 0.0;         ///< s, set_time's
+  mutable StaticLoads gusty_loads_;   ///< loads_ with the gust's fluid at time_
+  /// The loads the motion-dependent forces read: loads_, or with a gust its fluid at time_.
+  const StaticLoads& motion_loads() const { return gust_.present() ? gusty_loads_ : loads_; }
   SplitWrench tip_wrench_;               ///< loads_ on the tip (dead: world, follower: tip frame)
   bool motion_loads_ = false;            ///< some load of loads_ depends on the motion (drag)
   std::vector<Vec3> vertex_force_W_;     ///< distributed loads lumped on each vertex, world, N

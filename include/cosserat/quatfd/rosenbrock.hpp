@@ -9,7 +9,9 @@
 /// For J = [[0, I], [A, B]] (A = ∂f/∂q, B = ∂f/∂v) the 2n × 2n system reduces to one banded
 /// n × n system (Lang & Linn 2009: solvers "adapted to second order differential equations"):
 ///   (a² I − a B − A) w = a r_v + A r_q,  u = (r_q + w)/a,  a = 1/(γh),
-/// with bandwidth 10; its LU (partial pivoting) is computed once per step.
+/// with bandwidth 10; its LU (partial pivoting) is computed once per step. The model's clock
+/// (a gusting flow) stays at the step's start for all stages: without RODAS's stage times and
+/// ∂f/∂t term, loads that change in time are first order here; the runs use Radau IIA.
 
 #include <Eigen/Core>
 
