@@ -159,7 +159,7 @@ Eigen::Matrix<double, 12, 6> FrequencyShooting::Integrate(double omega,
                                                           const Eigen::Matrix<double, 12, 6>& z0,
                                                           Visit&& visit) const {
   using Z = Eigen::Matrix<double, 12, 6>;
-  const double w2 = omega * omega;
+  const double w2 = sign_ * omega * omega;
   auto rate = [&](const Stage& st, const Z& z) {
     Z d = st.a0 * z;
     d.middleRows<3>(6) -= w2 * st.J.asDiagonal() * z.topRows<3>();

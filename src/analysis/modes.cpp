@@ -16,7 +16,7 @@
 #include <string>
 
 #include "cosserat/analysis/frequency_shooting.hpp"
-#include "frequency_roots.hpp"
+#include "mode_classification.hpp"
 #include "quatfd_reduction.hpp"
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/lie/quaternion.hpp"
@@ -82,7 +82,9 @@ std::vector<double> ModalResult::frequencies_hz() const {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using detail::Classify;
 using detail::MassTimes;
+using detail::NodeWeights;
 using detail::Reduce;
 using detail::Reduction;
 using detail::TimesMass;
@@ -98,48 +100,6 @@ bool LowEndUnresolved(double largest, double smallest) {
 /// Whether a magnitude stands clear of the round-off of the spectrum's largest (1e3 ε of it).
 bool AboveRoundOff(double magnitude, double largest) {
   return magnitude > 1e3 * kEpsilon * largest;
-}
-
-/// Fills the kinetic-energy shares and the kind of a mode from its node shape, the tangent t_n
-/// (world, unit), the mass per node (kg) and the rotational inertia per node (kg·m², body
-/// principal, rotated with R_n), then scales the shape (see Mode::displacement_W).
-void Classify(const std::vector<Vec3>& tangent_W, const std::vector<double>& mass,
-              const std::vector<Mat3>& inertia_W, double length, Mode* mode) {
-  double tr = 0, ax = 0, tw = 0, ti = 0;
-  for (size_t n = 0; n < tangent_W.size(); ++n) {
-    const Vec3& t = tangent_W[n];
-    const Vec3& d = mode->displacement_W[n];
-    const Vec3& r = mode->rotation_W[n];
-    const double da = t.dot(d), ra = t.dot(r);
-    ax += mass[n] * da * da;
-    tr += mass[n] * (d - da * t).squaredNorm();
-    const Vec3 r_axial = ra * t, r_tilt = r - r_axial;
-    tw += r_axial.dot(inertia_W[n] * r_axial);
-    ti += r_tilt.dot(inertia_W[n] * r_tilt);
-  }
-  const double sum = std::max(tr + ax + tw + ti, 1e-300);
-  mode->share_transverse = tr / sum;
-  mode->share_axial = ax / sum;
-  mode->share_twist = tw / sum;
-  mode->share_tilt = ti / sum;
-  const double bending = mode->share_transverse + mode->share_tilt;
-  mode->kind = ModeKind::kBending;
-  if (mode->share_twist > bending && mode->share_twist > mode->share_axial)
-    mode->kind = ModeKind::kTorsion;
-  else if (mode->share_axial > bending)
-    mode->kind = ModeKind::kAxial;
-
-  double biggest = 0, signed_biggest = 0;
-  for (size_t n = 0; n < tangent_W.size(); ++n)
-    for (int k = 0; k < 3; ++k) {
-      const double a = mode->displacement_W[n](k) / length, b = mode->rotation_W[n](k);
-      if (std::abs(a) > biggest) biggest = std::abs(a), signed_biggest = a;
-      if (std::abs(b) > biggest) biggest = std::abs(b), signed_biggest = b;
-    }
-  if (biggest == 0) return;
-  const double scale = 1.0 / signed_biggest;
-  for (Vec3& d : mode->displacement_W) d *= scale;
-  for (Vec3& r : mode->rotation_W) r *= scale;
 }
 
 /// Why an ω² < 0 (rad²/s²) makes the equilibrium unstable: the direction grows at √(−ω²) /s.
@@ -190,14 +150,6 @@ void QuatFdShape(const quatfd::QuatFdModel& model, const Reduction& red, const E
       mode->rotation_W[n] = 0.5 * (seg[n - 1] + seg[n]);
   }
 }
-
-/// What the kinetic-energy shares of a mode weigh, per node: the tangent (world, unit), the
-/// mass (kg) and the rotational inertia (kg·m², world).
-struct NodeWeights {
-  std::vector<Vec3> tangent_W;
-  std::vector<double> mass;
-  std::vector<Mat3> inertia_W;
-};
 
 /// The quatfd vertices' weights: the lumped vertex masses, half of each segment's inertia on
 /// either end vertex (for the shares only), the mean of the neighbouring segments' tangents.
@@ -479,112 +431,6 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   if (unstable) return finish(ModalStatus::kUnstable);
   if (static_cast<int>(result.modes.size()) < options.count)
     return finish(ModalStatus::kTooFewModes);
-  return finish(ModalStatus::kConverged);
-}
-
-// ---- SE(3) shooting --------------------------------------------------------------------------
-
-namespace {
-
-/// The shooting nodes' weights: trapezoid masses and inertias (rotated into the world with the
-/// node frames), the tangents d3.
-NodeWeights ShootingNodeWeights(const RodModel& rod, const std::vector<double>& s,
-                                const FrequencyShooting& fs, const Actuation& actuation) {
-  const int n = static_cast<int>(s.size());
-  NodeWeights nw;
-  nw.mass.resize(n);
-  nw.inertia_W.resize(n);
-  nw.tangent_W.resize(n);
-  for (int i = 0; i < n; ++i) {
-    const double w = 0.5 * ((i > 0 ? s[i] - s[i - 1] : 0.0) + (i + 1 < n ? s[i + 1] - s[i] : 0.0));
-    const SectionProperties sp = PrincipalAxesSectionAt(rod, s[i], actuation);
-    const Mat3& R = fs.rotation_WB()[i];
-    nw.mass[i] = sp.mass(5, 5) * w;
-    nw.inertia_W[i] = R * (sp.mass.diagonal().head<3>() * w).asDiagonal() * R.transpose();
-    nw.tangent_W[i] = R.col(2);
-  }
-  return nw;
-}
-
-}  // namespace
-
-ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::SE3& base,
-                                 const StaticLoads& loads, const ShootingModalOptions& options,
-                                 const Actuation& actuation) {
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument("ShootingModalOptions: " + why);
-  if (!rod.tendons.empty())
-    throw std::invalid_argument("ComputeModesShooting: rods with tendons are not supported");
-  const auto start = Clock::now();
-  ModalResult result;
-  auto finish = [&](ModalStatus status) {
-    result.status = status;
-    result.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
-    return result;
-  };
-  StaticShootingSolver solver(rod, num_nodes, options.statics, actuation);
-  const StaticShootingSummary st = solver.Solve(base, loads);
-  result.statics_status = st.status;
-  result.statics_iterations = st.iterations;
-  result.statics_residual = st.residual;
-  result.s = solver.grid();
-  result.equilibrium = solver.state();
-  if (!st.converged()) return finish(ModalStatus::kStaticsFailed);
-  const FrequencyShooting fs(rod, solver.grid(), base, loads, solver.base_wrench_B(), actuation);
-
-  // The scan's range, by default 0.01 to 10⁴ times the first Euler–Bernoulli cantilever
-  // frequency of the rod's base section.
-  const double L = rod.length;
-  const double w_eb =
-      1.8751 * 1.8751 / (L * L) * std::sqrt(fs.bending_stiffness() / fs.mass_per_length_at_base());
-  const double w_lo = options.omega_min > 0 ? options.omega_min : 0.01 * w_eb;
-  const double w_hi = options.omega_max > 0 ? options.omega_max : 1e4 * w_eb;
-  const int count = options.modal.count;
-  std::vector<double> dips;
-  const std::vector<detail::Root> roots =
-      detail::FindRoots(fs, w_lo, w_hi, 1.0 + options.relative_step, count, &dips);
-
-  const NodeWeights weights = ShootingNodeWeights(rod, solver.grid(), fs, actuation);
-  for (size_t i = 0; i < roots.size() && static_cast<int>(i) < count; ++i) {
-    Mode mode;
-    mode.omega = roots[i].omega;
-    mode.frequency_hz = mode.omega / kTwoPi;
-    if (options.modal.shapes) {
-      fs.Shape(mode.omega, roots[i].x, &mode.displacement_W, &mode.rotation_W);
-      Classify(weights.tangent_W, weights.mass, weights.inertia_W, L, &mode);
-    }
-    result.modes.push_back(std::move(mode));
-  }
-  // Under a load that is not conservative (a follower force, a dead tip moment) two frequencies
-  // can meet and leave the real axis as a complex pair, one growing (flutter: Beck's column
-  // past 20.05 EI/L²). The scan sees only the dip of det B they leave behind.
-  // Only where one shot resolves det B: past λL ≈ 15, λ = (ω² ρA/EI)^¼, round-off dips appear
-  // that no pair makes (a Beck column at 8 % of its flutter load showed one at 1414 Hz, λL = 30,
-  // with 20 modes asked); the real part of a merged low pair sits near λL = √11 (Beck's).
-  const double lambda_scale = std::sqrt(fs.mass_per_length_at_base() / fs.bending_stiffness());
-  dips.erase(std::remove_if(dips.begin(), dips.end(),
-                            [&](double w) { return std::sqrt(w * lambda_scale) * L > 15.0; }),
-             dips.end());
-  const SplitWrench tip = TotalTipWrench(loads);
-  if (!dips.empty() && (!tip.follower_B.isZero(0.0) || !tip.dead_W.head<3>().isZero(0.0))) {
-    std::ostringstream why;
-    why << "flutter: near " << dips.front() / kTwoPi
-        << " Hz two frequencies have met and left the real axis under a load that is not "
-           "conservative (a follower force, a tip moment): a pair that grows in time. Frequency "
-           "shooting finds real frequencies only; \"formulation\": \"quaternion-fd\" gives "
-           "the complex pair";
-    result.instability = why.str();
-    return finish(ModalStatus::kUnstable);
-  }
-  if (static_cast<int>(result.modes.size()) < count) return finish(ModalStatus::kTooFewModes);
-  // The scan finds real frequencies only: an unstable direction of the equilibrium (a rod pressed
-  // on a convex obstacle harder than it bends back) has an imaginary one it cannot see, so the
-  // equilibrium's Morse index decides (−1, not defined for drag or follower loads: stable).
-  if (const int index = solver.StabilityIndex(base, loads, solver.base_wrench_B()); index > 0) {
-    result.instability = "divergence: the equilibrium has " + std::to_string(index) +
-                         " unstable direction" + (index > 1 ? "s" : "") + " (its Morse index)";
-    return finish(ModalStatus::kUnstable);
-  }
   return finish(ModalStatus::kConverged);
 }
 

@@ -48,6 +48,14 @@ class FrequencyShooting {
   void Shape(double omega, const Vec6& x, std::vector<Vec3>* displacement_W,
              std::vector<Vec3>* rotation_W) const;
 
+  /// The same linearisation read at ω² = −σ²: its "frequencies" are the growth rates σ (1/s)
+  /// of the unstable directions, e^{σ t}, of an equilibrium past a critical load.
+  FrequencyShooting GrowthRates() const {
+    FrequencyShooting g = *this;
+    g.sign_ = -1.0;
+    return g;
+  }
+
   const std::vector<double>& grid() const { return grid_; }
   /// Equilibrium rotation R_WB at the nodes.
   const std::vector<Mat3>& rotation_WB() const { return node_R_; }
@@ -74,6 +82,7 @@ class FrequencyShooting {
   Mat3 tip_moment_cross_ = Mat3::Zero(), tip_force_cross_ = Mat3::Zero();  // (R₀ᵀ M_W)^, ...
   Vec6 scale_;
   double EI_ = 0, rhoA0_ = 0;
+  double sign_ = 1.0;  ///< of ω² in A(s) = A0 − ω² A1: −1 for GrowthRates
 };
 
 }  // namespace cosserat
