@@ -305,34 +305,6 @@ void QuatFdModel::RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::Vec
   q.segment<3>(L::X(N)) = x;
 }
 
-void QuatFdModel::set_gust(const FluidGust& gust) {
-  gust_ = gust;
-  set_time(time_);
-}
-
-void QuatFdModel::set_time(double t) const {
-  if (!gust_.present()) return;
-  time_ = t;
-  gusty_loads_.fluid = gust_.At(loads_.fluid, t);
-}
-
-void QuatFdModel::set_loads(const StaticLoads& loads) {
-  loads_ = loads;
-  gusty_loads_ = loads;
-  set_time(time_);
-  tip_wrench_ = TotalTipWrench(loads);
-  motion_loads_ = HasMotionLoads(loads);
-  // The distributed loads lumped on each vertex: its dual length and lumped mass.
-  const int N = layout_.segments;
-  vertex_force_W_.resize(N + 1);
-  for (int n = 0; n <= N; ++n) vertex_force_W_[n] = TotalDistributedForce_W(loads, VertexSite(n));
-  added_mass_.clear();
-  if (loads.fluid.has_added_mass()) {
-    added_mass_.resize(N + 1);
-    for (int n = 0; n <= N; ++n) added_mass_[n] = TotalNormalAddedMass(loads, VertexSite(n));
-  }
-}
-
 QuatFdModel::Chord QuatFdModel::VertexChord(const Eigen::Ref<const Eigen::VectorXd>& q,
                                             int n) const {
   Chord c;
