@@ -37,11 +37,32 @@ double LargestStretch(const nlohmann::ordered_json& nodes, double* at_s) {
   return worst;
 }
 
+/// Loads past what any elastic rod carries: a force over ten times the axial stiffness EA (it
+/// would stretch the rod tenfold), or a moment turning the rod through 1e4 rad (M L/EI). A
+/// force of 1e30 N on a steel wire stopped its load steps at once, and the hint spoke of the grid.
+void ImpossibleLoadWarning(const io::Problem& problem, std::ostringstream* log) {
+  if (problem.has_assembly || !problem.rod.section) return;
+  const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
+  const double L = problem.rod.length, EA = p.stiffness(5, 5), EI = p.min_bending_stiffness();
+  const StaticLoads& loads = problem.loads;
+  const double force = loads.tip_force.norm() + loads.distributed_force_W.norm() * L +
+                       p.mass(5, 5) * L * loads.gravity_W.norm();  // N
+  const double turn = loads.tip_moment.norm() * L / EI;              // rad
+  if (force > 10.0 * EA)
+    *log << "cosserat: warning: the loads add up to " << force << " N, over ten times the rod's "
+         << "axial stiffness EA = " << EA << " N (they would stretch it tenfold): check the "
+         << "units of the loads (N, N/m, m/s²) and of the material (Pa)\n";
+  if (turn > 1e4)
+    *log << "cosserat: warning: the tip moment would turn the rod through M L/EI = " << turn
+         << " rad: check the units of loads.tip_moment (N·m) and of the material (Pa)\n";
+}
+
 }  // namespace
 
 void AddScaleWarnings(const io::Problem& problem, Result* result) {
   std::ostringstream log;
   log << std::setprecision(3);
+  ImpossibleLoadWarning(problem, &log);
   if (!problem.has_assembly && problem.rod.section) {
     const double d = problem.rod.section->At(0.0, problem.robot.actuation).outer_diameter;
     if (d > 0 && problem.rod.length < kSlenderness * d)

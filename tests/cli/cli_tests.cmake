@@ -546,3 +546,6 @@ cosserat_cli_test(NAME assembly_platform_release ARGS solve "${_cli_platform}" C
 # Contact friction given to statics: they leave it out (it needs a slip velocity) and say so.
 cosserat_cli_test(NAME friction_in_statics ARGS solve "${_cli_dir}/friction_in_statics.json"
                   CODE 0 STDERR "contact\\[0\\].friction = 0.5 acts in dynamics only")
+# A force no elastic rod carries (sixteen times EA): the log names the units to check.
+cosserat_cli_test(NAME force_beyond_any_rod ARGS solve "${_cli_dir}/force_beyond_any_rod.json"
+                  CODE 1 STDERR "warning: the loads add up to 1e\\+07 N, over ten times the rod's axial stiffness")
