@@ -245,6 +245,7 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   statics.status = ok ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
   // A search that failed before any load has no equilibrium to measure (null, not 0).
   if (!ok && b.lambda_reached <= 0.0) statics.residual = NAN;
+  statics.iterations = b.solves;  // the search's static solves
   statics.wall_time_s = b.wall_time_s;
   Result result;
   result.json = io::StaticResultToJson(statics, *state);
@@ -308,6 +309,7 @@ Result RunQuatFdBuckling(const io::Problem& problem, const RunOptions& run_optio
   analysis.model().ToRodState(analysis.q(), Eigen::VectorXd::Zero(analysis.model().size()), &state);
   StaticShootingSummary statics;
   statics.status = ok ? SolveStatus::kConverged : SolveStatus::kLoadSteppingFailed;
+  statics.iterations = b.solves;  // the search's static solves
   statics.wall_time_s = b.wall_time_s;
   Result result;
   result.json = io::StaticResultToJson(statics, state);
