@@ -104,6 +104,8 @@ TEST(ContactStaticsPaths, APressedColumnStaysInTheBore) {
 // examples/finger_on_sphere.json: a finger pressed on a frictionless sphere slips off sideways,
 // one unstable direction (the SE(3) statics' index, and a negative ω² in the modes). No node
 // is compressed, and the quaternion-FD statics had called it stable (index 0) on that ground.
+// On a contact surface the statics do not settle beside it (run/settle_beside_instability.hpp):
+// the equilibrium stays, with its warning.
 TEST(ContactStaticsPaths, AFingerOnASphereIsUnstableInBothFormulations) {
   const io::ParseResult parsed = io::LoadProblemFile(std::string(COSSERAT_SOURCE_DIR) +
                                                      "/examples/finger_on_sphere.json");

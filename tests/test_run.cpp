@@ -869,10 +869,12 @@ TEST(Run, AStiffBoreIsNotBlamedForAContinuationThatStops) {
 
 // A silicone rod (r = 5 mm, E = 1 MPa) standing upright under its own weight: Greenhill's
 // critical length (7.837 EI/q)^⅓ = 0.166 m, the second (55.98 EI/q)^⅓ = 0.319 m (Timoshenko &
-// Gere 1961). At 0.15 m it is stable; at 0.3 m the straight equilibrium both formulations find
-// has the first, double root behind it: two unstable directions. The quaternion-FD statics
-// said a plain "converged" there; now both report stability_index 2 and warn.
-TEST(Run, AnUprightRodPastGreenhillsLengthIsFlaggedInBothFormulations) {
+// Gere 1961). At 0.15 m it stands. At 0.3 m the straight equilibrium its loads reach from the
+// unloaded rod has the first, double root behind it, two unstable directions (the quaternion-FD
+// statics once said a plain "converged" there), and the rod falls over: both formulations say
+// so and write the stable equilibrium beside it, which they agree on to the quaternion-FD grid's
+// second-order error (0.49 mm on 41 nodes, 0.13 mm on 81; 1 mm asserted).
+TEST(Run, AnUprightRodPastGreenhillsLengthFallsOverInBothFormulations) {
   auto run = [](const char* formulation, double length) {
     const std::string text = std::string(R"({"format": "cosserat-problem/1", "formulation": ")") +
                              formulation + R"(", "rod": {"length": )" + std::to_string(length) +
@@ -883,31 +885,77 @@ TEST(Run, AnUprightRodPastGreenhillsLengthIsFlaggedInBothFormulations) {
     EXPECT_TRUE(parsed.ok());
     return cosserat::run::Run(*parsed.problem);
   };
+  std::vector<Vec3> fallen;
   for (const char* formulation : {"se3-shooting", "quaternion-fd"}) {
     const Result below = run(formulation, 0.15), past = run(formulation, 0.3);
     ASSERT_TRUE(below.converged && past.converged) << formulation;
     EXPECT_EQ(below.json["stability_index"].get<int>(), 0) << formulation;
-    EXPECT_EQ(past.json["stability_index"].get<int>(), 2) << formulation;
-    EXPECT_NE(past.log.find("warning: this equilibrium is unstable (2 unstable directions)"),
+    EXPECT_EQ(below.log.find("unstable"), std::string::npos) << formulation << below.log;
+    EXPECT_EQ(past.json["stability_index"].get<int>(), 0) << formulation;
+    EXPECT_NE(past.log.find("from the unloaded rod is unstable (2 unstable directions), and the "
+                            "rod settles beside it"),
               std::string::npos)
         << formulation << ": " << past.log;
+    const auto& p = past.json["tip"]["position"];
+    fallen.emplace_back(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+    EXPECT_LT(fallen.back().z(), 0.0) << formulation;  // fallen below its clamp
   }
+  EXPECT_LT((fallen[0] - fallen[1]).norm(), 1e-3)
+      << fallen[0].transpose() << " vs " << fallen[1].transpose();
 }
 
 // The same rod at 0.38 m, between Greenhill's second and third critical lengths (0.319 m and
-// (148.5 EI/q)^⅓ = 0.441 m): two double roots behind it, index 4, counted on the quaternion-FD
-// path at 201 nodes by the inertia of its banded stiffness (the count once stopped at 101
-// nodes, where the eigenvalues of the dense stiffness grew too slow).
+// (148.5 EI/q)^⅓ = 0.441 m): two double roots behind its straight equilibrium, index 4, counted
+// on the quaternion-FD path at 201 nodes by the inertia of its banded stiffness (the count once
+// stopped at 101 nodes, where the eigenvalues of the dense stiffness grew too slow). It falls
+// over to where the SE(3) statics put it (4e-5 m apart measured; 1e-4 m asserted).
 TEST(Run, AnUprightRodPastTwoGreenhillLengthsCountsFourOnAFineQuaternionFdGrid) {
-  const io::ParseResult parsed = io::ParseProblem(R"({"format": "cosserat-problem/1",
-      "formulation": "quaternion-fd",
-      "rod": {"length": 0.38, "nodes": 201, "section": {"shape": "circle", "radius": 0.005},
-        "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.5, "density": 1100}},
-      "loads": {"gravity": [0, 0, -9.81]}})");
-  ASSERT_TRUE(parsed.ok());
-  const Result r = cosserat::run::Run(*parsed.problem);
-  ASSERT_TRUE(r.converged) << r.log;
-  EXPECT_EQ(r.json["stability_index"].get<int>(), 4) << r.log;
+  std::vector<Vec3> fallen;
+  for (const char* formulation : {"quaternion-fd", "se3-shooting"}) {
+    const io::ParseResult parsed = io::ParseProblem(std::string(R"({"format": "cosserat-problem/1",
+        "formulation": ")") + formulation + R"(",
+        "rod": {"length": 0.38, "nodes": 201, "section": {"shape": "circle", "radius": 0.005},
+          "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.5, "density": 1100}},
+        "loads": {"gravity": [0, 0, -9.81]}})");
+    ASSERT_TRUE(parsed.ok());
+    const Result r = cosserat::run::Run(*parsed.problem);
+    ASSERT_TRUE(r.converged) << r.log;
+    EXPECT_NE(r.log.find("is unstable (4 unstable directions)"), std::string::npos) << r.log;
+    EXPECT_EQ(r.json["stability_index"].get<int>(), 0) << r.log;
+    const auto& p = r.json["tip"]["position"];
+    fallen.emplace_back(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+  }
+  EXPECT_LT((fallen[0] - fallen[1]).norm(), 1e-4)
+      << fallen[0].transpose() << " vs " << fallen[1].transpose();
+}
+
+// A soft rod (E 0.5 MPa, 0.5 m, r 3 mm) hanging from its clamp, its tip pushed up by 0.02 N: the
+// compressed length near the tip is past its critical load, and the straight equilibrium both
+// formulations reach has two unstable directions. They settle beside it, the SE(3) statics in
+// pieces (the weight's tension puts its single shot past its exponent), onto the same bent
+// shape: 5e-5 m apart on 101 nodes (the quaternion-FD grid's second-order error; 5e-4 asserted).
+TEST(Run, AHangingRodPushedUpAtItsTipBucklesSidewaysInBothFormulations) {
+  std::vector<Vec3> tips;
+  for (const char* formulation : {"se3-shooting", "quaternion-fd"}) {
+    const io::ParseResult parsed = io::ParseProblem(std::string(R"({"format": "cosserat-problem/1",
+        "formulation": ")") + formulation + R"(",
+        "rod": {"length": 0.5, "nodes": 101, "section": {"shape": "circle", "radius": 0.003},
+          "material": {"youngs_modulus": 5e5, "poisson_ratio": 0.5, "density": 1100}},
+        "base": {"rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]]},
+        "loads": {"gravity": [0, 0, -9.81], "tip_force": [0, 0, 0.02]}})");
+    ASSERT_TRUE(parsed.ok());
+    const Result r = cosserat::run::Run(*parsed.problem);
+    ASSERT_TRUE(r.converged) << r.log;
+    EXPECT_NE(r.log.find("is unstable (2 unstable directions), and the rod settles beside it"),
+              std::string::npos)
+        << r.log;
+    EXPECT_EQ(r.json["stability_index"].get<int>(), 0) << r.log;
+    const auto& p = r.json["tip"]["position"];
+    tips.emplace_back(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+    EXPECT_GT(std::hypot(tips.back().x(), tips.back().y()), 0.05) << formulation;  // bent aside
+  }
+  EXPECT_LT((tips[0] - tips[1]).norm(), 5e-4) << tips[0].transpose() << " vs "
+                                              << tips[1].transpose();
 }
 
 // Silicone-soft rods (E = 0.1 MPa) held out level under their weight hang from their clamps:

@@ -11,6 +11,7 @@
 #include "cosserat/quatfd/quatfd_statics.hpp"
 #include "cosserat/quatfd/radau.hpp"
 #include "cosserat/run/solver_options.hpp"
+#include "settle_beside_instability.hpp"
 #include "anchor_force.hpp"
 #include "contact_report.hpp"
 #include "foundation_hint.hpp"
@@ -133,6 +134,20 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   StaticShootingSummary summary = AsSummary(s);
   if (s.converged()) summary.stability_index = detail::QuatFdStabilityIndex(problem, q, state);
   FollowLoadedPathIfUnstable(problem, &model, &s, &summary, &state, &q);
+  std::string settled_note;
+  if (summary.stability_index > 0 && detail::MaySettle(problem)) {
+    int settled = 0;
+    double imperfection = 0.0;
+    quatfd::QuatFdStaticsSummary s2;
+    if (detail::SettleQuatFd(problem, state, summary.stability_index, &model, &q, &state, &s2,
+                             &settled, &imperfection)) {
+      settled_note = detail::SettledNote(summary.stability_index, imperfection);
+      s2.iterations += s.iterations;
+      s = s2;
+      summary = AsSummary(s);
+      summary.stability_index = settled;
+    }
+  }
   Result result;
   result.json = io::StaticResultToJson(summary, state);
   detail::KeepStaticFrame(problem, state, options, &result);
@@ -151,7 +166,8 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   log << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms\n";
   if (!s.converged()) log << ContactGridHint(problem);
   if (s.converged())
-    log << ClampedEndGridWarning(problem, state) << detail::UnstableWarning(summary);
+    log << settled_note << ClampedEndGridWarning(problem, state)
+        << detail::UnstableWarning(summary);
   if (s.converged() && problem.boundary == io::Boundary::kAnchored)
     log << detail::AnchoredCompressionNote(problem.rod, state);
   result.log = log.str();

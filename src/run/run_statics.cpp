@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "anchor_force.hpp"
+#include "settle_beside_instability.hpp"
 #include "statics_in_pieces.hpp"
 #include "foundation_hint.hpp"
 #include "stability_warning.hpp"
@@ -134,8 +136,22 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
 /// stiff contact foundation, a high tension): multiple shooting in pieces it chooses.
 Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& options,
                                   ColumnEnds ends = ColumnEnds::kClampedFree, int pieces = 0) {
-  const detail::StaticsInPieces solved =
+  detail::StaticsInPieces solved =
       detail::SolveStaticsInPieces(problem, ends, problem.base, problem.loads, pieces);
+  std::string settled_note;
+  if (ends == ColumnEnds::kClampedFree && solved.summary.converged() &&
+      solved.summary.stability_index > 0 && detail::MaySettle(problem)) {
+    detail::StaticsInPieces settled;
+    double imperfection = 0.0;
+    if (detail::SettleInPieces(problem, solved.state, solved.summary.stability_index,
+                               solved.pieces, &settled, &imperfection)) {
+      settled_note = detail::SettledNote(solved.summary.stability_index, imperfection);
+      settled.summary.iterations += solved.summary.iterations;
+      settled.summary.shots += solved.summary.shots;
+      settled.summary.wall_time_s += solved.summary.wall_time_s;
+      solved = settled;
+    }
+  }
   const StaticShootingSummary& summary = solved.summary;
   Result result;
   result.json = io::StaticResultToJson(summary, solved.state);
@@ -145,7 +161,7 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
   const std::string column =
       ends == ColumnEnds::kClampedFree ? "" : ToString(ends) + std::string(", ");
   result.log = StaticSummary(summary, solved.state) + " (" + column +
-               std::to_string(solved.pieces) + " shooting pieces)\n" +
+               std::to_string(solved.pieces) + " shooting pieces)\n" + settled_note +
                ContinuationHint(problem, summary) + detail::UnstableWarning(summary, false);
   if (summary.converged() && summary.stability_index < 0)
     result.log += detail::UnjudgedCompressionNote(
@@ -242,8 +258,27 @@ Result RunAnchoredStatics(const io::Problem& problem, const RunOptions& options)
 /// A cantilever, robots included, in one shot from the clamp.
 Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& options) {
   Actuation actuation = problem.robot.actuation;
-  StaticShootingSolver solver(problem.rod, problem.nodes, StaticOptions(problem), actuation);
-  StaticShootingSummary summary = solver.Solve(problem.base, problem.loads);
+  StaticShootingSolver first(problem.rod, problem.nodes, StaticOptions(problem), actuation);
+  StaticShootingSummary summary = first.Solve(problem.base, problem.loads);
+  // An unstable equilibrium of a symmetric problem: the stable one beside it, when reached.
+  std::optional<StaticShootingSolver> beside;
+  std::string settled_note;
+  if (summary.converged() && summary.stability_index > 0 && detail::MaySettle(problem)) {
+    beside.emplace(problem.rod, problem.nodes, StaticOptions(problem), actuation);
+    StaticShootingSummary settled;
+    double imperfection = 0.0;
+    if (detail::SettleSingleShot(problem, first.state(), summary.stability_index, &*beside,
+                                 &settled, &imperfection)) {
+      settled_note = detail::SettledNote(summary.stability_index, imperfection);
+      settled.iterations += summary.iterations;
+      settled.shots += summary.shots;
+      settled.wall_time_s += summary.wall_time_s;
+      summary = settled;
+    } else {
+      beside.reset();
+    }
+  }
+  StaticShootingSolver& solver = beside ? *beside : first;
   std::array<bool, Actuation::kMaxTendons> slack{};
   for (int i = 0; i < Actuation::kMaxTendons; ++i)
     slack[i] = actuation.tendon_tension[i] == 0.0;  // force control: slack means no tension
@@ -282,7 +317,7 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
     result.json["robot"] = robot;
   }
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
-  result.log = StaticSummary(summary, solver.state()) + '\n' +
+  result.log = StaticSummary(summary, solver.state()) + '\n' + settled_note +
                TendonLawHint(problem, actuation, summary);
   if (!problem.has_robot) result.log += ContinuationHint(problem, summary);
   result.log += detail::UnstableWarning(summary);

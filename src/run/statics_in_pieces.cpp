@@ -36,15 +36,21 @@ int IndexInPieces(const io::Problem& problem, ColumnEnds ends, const lie::SE3& b
   return column.StabilityIndexInPieces(base, loads, state, pieces, zero);
 }
 
-StaticsInPieces SolveStaticsInPieces(const io::Problem& problem, ColumnEnds ends,
-                                     const lie::SE3& base, const StaticLoads& loads,
-                                     int pieces) {
+StaticMultipleShootingOptions PiecesOptions(const io::Problem& problem, ColumnEnds ends,
+                                            int pieces, bool stepped) {
   const StaticShootingOptions single = StaticOptions(problem);
   StaticMultipleShootingOptions opt = MultipleShootingOptionsFor(ends);
   opt.pieces = pieces;
   opt.tolerance = single.tolerance;
   opt.max_iterations = single.max_iterations;
-  if (opt.tip_guided) opt.max_turn = kMostTurnPerLevel;
+  if (opt.tip_guided || stepped) opt.max_turn = kMostTurnPerLevel;
+  return opt;
+}
+
+StaticsInPieces SolveStaticsInPieces(const io::Problem& problem, ColumnEnds ends,
+                                     const lie::SE3& base, const StaticLoads& loads,
+                                     int pieces) {
+  StaticMultipleShootingOptions opt = PiecesOptions(problem, ends, pieces, false);
   StaticsInPieces first = SolveOnce(problem, ends, base, loads, opt);
   // A cantilever that a whole step did not take to a stable equilibrium: one unstable (a soft rod
   // held out level under its weight, looped up over its clamp), one whose count could not be

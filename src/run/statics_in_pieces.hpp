@@ -7,6 +7,7 @@
 #include "cosserat/analysis/column.hpp"
 #include "cosserat/io/problem.hpp"
 #include "cosserat/state/rod_state.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat::run::detail {
@@ -25,6 +26,12 @@ struct StaticsInPieces {
 /// rounding beyond use there (a stiff contact, a high tension). −1 where it is not defined.
 int IndexInPieces(const io::Problem& problem, ColumnEnds ends, const lie::SE3& base,
                   const StaticLoads& loads, const RodState& state, int pieces);
+
+/// The multiple-shooting options of the problem's solver settings for these ends and pieces (0:
+/// chosen from the loads); stepped: its loads followed in levels that turn no section by more
+/// than 0.5 rad (always for a column).
+StaticMultipleShootingOptions PiecesOptions(const io::Problem& problem, ColumnEnds ends,
+                                            int pieces, bool stepped);
 
 /// The problem's rod with these ends at `base` under `loads`, in `pieces` pieces (0: chosen from
 /// the loads), by continuation from the unloaded rod. A column's path starts with a step of 3 in

@@ -1,0 +1,173 @@
+#include "settle_beside_instability.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "cosserat/loads/total_load.hpp"
+#include "cosserat/run/solver_options.hpp"
+#include "quatfd_stability.hpp"
+
+namespace cosserat::run::detail {
+namespace {
+
+/// The imperfection is taken away in steps of at most an eighth, halved on a failed solve down
+/// to 1/256: a stable equilibrium moves smoothly with it.
+constexpr double kFirstStep = 1.0 / 8.0, kSmallestStep = 1.0 / 256.0;
+
+/// Walks μ from 0 to 1 by `solve(μ)` (true on convergence), halving the step on failure.
+template <class Solve>
+bool TakeAway(const Solve& solve) {
+  double mu = 0.0, step = kFirstStep;
+  while (mu < 1.0) {
+    const double next = std::min(1.0, mu + step);
+    if (solve(next)) {
+      mu = next;
+      step = kFirstStep;
+    } else if ((step *= 0.5) < kSmallestStep) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+bool MaySettle(const io::Problem& problem) {
+  return problem.boundary == io::Boundary::kCantilever && !problem.has_robot &&
+         problem.rod.tendons.empty() && problem.loads.contact.count == 0 &&
+         LoadsAreConservative(problem.loads);
+}
+
+StaticLoads ImperfectLoads(const io::Problem& problem, const RodState& straight, double fraction,
+                           double* size) {
+  const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
+  const double L = problem.rod.length;
+  const StaticLoads& loads = problem.loads;
+  const double total = loads.tip_force.norm() + loads.distributed_force_W.norm() * L +
+                       p.mass(5, 5) * L * loads.gravity_W.norm();  // N
+  // Bending about d1 (stiffness(0, 0)) moves the rod along d2: the softer plane's direction.
+  const Mat3& R = problem.base.R;
+  Vec3 across = p.stiffness(0, 0) <= p.stiffness(1, 1) ? R.col(1) : R.col(0);
+  const Vec3 chord = straight.tip_position_W() - straight.position_W.front();
+  if (chord.norm() > 0) {
+    const Vec3 c = chord.normalized();
+    Vec3 normal = across - across.dot(c) * c;
+    if (normal.norm() < 0.1) normal = R.col(0) + R.col(1) - (R.col(0) + R.col(1)).dot(c) * c;
+    across = normal.normalized();
+  }
+  *size = fraction * total / L;
+  StaticLoads imperfect = loads;
+  imperfect.distributed_force_W += *size * across;
+  return imperfect;
+}
+
+bool SettleSingleShot(const io::Problem& problem, const RodState& straight, int index,
+                      StaticShootingSolver* solver, StaticShootingSummary* summary,
+                      double* imperfection) {
+  const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
+  StaticShootingSummary total = solver->Solve(problem.base, imperfect);
+  if (!total.converged()) return false;
+  StaticShootingSummary last = total;
+  const bool reached = TakeAway([&](double mu) {
+    last = solver->Solve(problem.base, StaticLoads::Blend(imperfect, problem.loads, mu));
+    total.iterations += last.iterations;
+    total.shots += last.shots;
+    total.load_steps += last.load_steps;
+    total.wall_time_s += last.wall_time_s;
+    return last.converged();
+  });
+  if (!reached) return false;
+  const int settled =
+      solver->StabilityIndex(problem.base, problem.loads, solver->base_wrench_B());
+  if (settled < 0 || settled >= index) return false;
+  total.status = last.status;
+  total.residual = last.residual;
+  total.stability_index = settled;
+  *summary = total;
+  return true;
+}
+
+bool SettleInPieces(const io::Problem& problem, const RodState& straight, int index, int pieces,
+                    StaticsInPieces* out, double* imperfection) {
+  const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
+  StaticMultipleShootingSolver solver(
+      problem.rod, problem.nodes, PiecesOptions(problem, ColumnEnds::kClampedFree, pieces, true));
+  StaticShootingSummary total = solver.Solve(problem.base, imperfect);
+  if (!total.converged()) return false;
+  StaticShootingSummary last = total;
+  const bool reached = TakeAway([&](double mu) {
+    last = solver.Solve(problem.base, StaticLoads::Blend(imperfect, problem.loads, mu));
+    total.iterations += last.iterations;
+    total.shots += last.shots;
+    total.load_steps += last.load_steps;
+    total.wall_time_s += last.wall_time_s;
+    return last.converged();
+  });
+  if (!reached) return false;
+  const int settled = IndexInPieces(problem, ColumnEnds::kClampedFree, problem.base,
+                                    problem.loads, solver.state(), solver.pieces());
+  if (settled < 0 || settled >= index) return false;
+  total.status = last.status;
+  total.residual = last.residual;
+  total.stability_index = settled;
+  out->summary = total;
+  out->state = solver.state();
+  out->pieces = solver.pieces();
+  return true;
+}
+
+bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int index,
+                  quatfd::QuatFdModel* model, Eigen::VectorXd* q, RodState* state,
+                  quatfd::QuatFdStaticsSummary* summary, int* settled_index,
+                  double* imperfection) {
+  const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
+  quatfd::QuatFdStaticsOptions options = QuatFdStaticOptions(problem);
+  // The loaded path from the unloaded rod, in steps small enough to see it turn (a direct
+  // Newton solve lands on the bent-back state beside the straight one).
+  options.direct_solve = false;
+  options.max_load_step = 1.0 / 16.0;
+  options.keep_path_direction = true;
+  Eigen::VectorXd x(model->size()), v = Eigen::VectorXd::Zero(model->size());
+  model->RestState(x, v);
+  quatfd::QuatFdStaticsSummary total = quatfd::SolveStatics(model, imperfect, x, options);
+  if (!total.converged()) return false;
+  options.load_stepping = false;  // Newton from the last level
+  options.direct_solve = true;
+  quatfd::QuatFdStaticsSummary last = total;
+  const bool reached = TakeAway([&](double mu) {
+    Eigen::VectorXd trial = x;
+    last = quatfd::SolveStatics(model, StaticLoads::Blend(imperfect, problem.loads, mu), trial,
+                                options);
+    total.iterations += last.iterations;
+    total.wall_time_s += last.wall_time_s;
+    if (last.converged()) x = trial;
+    return last.converged();
+  });
+  model->set_loads(problem.loads);
+  if (!reached) return false;
+  RodState settled_state;
+  model->ToRodState(x, v, &settled_state);
+  const int settled = QuatFdStabilityIndex(problem, x, settled_state);
+  if (settled < 0 || settled >= index) return false;
+  total.status = last.status;
+  total.residual = last.residual;
+  *summary = total;
+  *q = x;
+  *state = settled_state;
+  *settled_index = settled;
+  return true;
+}
+
+std::string SettledNote(int straight_index, double imperfection) {
+  std::ostringstream note;
+  note << std::setprecision(3) << "cosserat: note: the equilibrium these loads reach from the "
+       << "unloaded rod is unstable (" << straight_index << " unstable direction"
+       << (straight_index > 1 ? "s" : "") << "), and the rod settles beside it: the one "
+       << "written is the stable equilibrium reached by bending it with a lateral load of "
+       << imperfection << " N/m (2 % of its loads) and taking that away\n";
+  return note.str();
+}
+
+}  // namespace cosserat::run::detail

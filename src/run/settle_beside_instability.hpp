@@ -1,0 +1,61 @@
+#pragma once
+/// \file
+/// A statics whose loads, followed from the unloaded rod, end on an unstable equilibrium of a
+/// symmetric problem (an upright rod past Greenhill's length, a hanging rod pushed up at its tip):
+/// the loaded path stays straight because nothing breaks the symmetry, and the real rod falls
+/// over. The settling bends the rod with a small lateral load (an imperfection, 2 % of its
+/// loads, spread along it, across the chord in its softer bending plane), follows the loads
+/// from the unloaded rod with it, and takes it away again in steps: on the imperfect path there
+/// is no bifurcation, and the equilibrium it reaches is the stable one beside the straight one.
+/// Conservative loads only (the index that judges stability is defined for them alone).
+
+#include <Eigen/Core>
+#include <string>
+
+#include "cosserat/io/problem.hpp"
+#include "cosserat/quatfd/quatfd_model.hpp"
+#include "cosserat/quatfd/quatfd_statics.hpp"
+#include "cosserat/state/rod_state.hpp"
+#include "cosserat/strong/static_shooting.hpp"
+#include "statics_in_pieces.hpp"
+
+namespace cosserat::run::detail {
+
+/// Whether a statics may settle: a plain cantilever (no robot) under conservative loads and
+/// without contact surfaces (a finger pressed on a sphere that slips off is left as the
+/// unstable equilibrium it is, with its warning: on penalty surfaces the path is long and where
+/// the rod slides to is not the loads' question).
+bool MaySettle(const io::Problem& problem);
+
+/// The problem's loads plus the imperfection for the unstable state `straight`: a uniform force
+/// per length of `fraction` of the loads' total (tip force, distributed force times L, weight)
+/// over L, across the chord from base to tip, along the base frame's axis of the softer bending.
+/// *size receives its magnitude (N/m).
+StaticLoads ImperfectLoads(const io::Problem& problem, const RodState& straight, double fraction,
+                           double* size);
+
+/// SE(3) single shot: from the unloaded rod to the imperfect loads, then the imperfection taken
+/// away in steps. True, with `solver` holding the equilibrium and *summary its solve (the
+/// iterations of all steps, stability_index counted), when that equilibrium has fewer unstable
+/// directions than `index`.
+/// *imperfection receives the lateral load's size (N/m).
+bool SettleSingleShot(const io::Problem& problem, const RodState& straight, int index,
+                      StaticShootingSolver* solver, StaticShootingSummary* summary,
+                      double* imperfection);
+
+/// The same for a cantilever in `pieces` multiple-shooting pieces: *out receives the
+/// equilibrium, its solve and its index.
+bool SettleInPieces(const io::Problem& problem, const RodState& straight, int index, int pieces,
+                    StaticsInPieces* out, double* imperfection);
+
+/// The same on the quaternion-FD grid: q (and state) receive the equilibrium, *summary its
+/// solve, *settled_index its unstable directions.
+bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int index,
+                  quatfd::QuatFdModel* model, Eigen::VectorXd* q, RodState* state,
+                  quatfd::QuatFdStaticsSummary* summary, int* settled_index,
+                  double* imperfection);
+
+/// The log's note on a settled statics.
+std::string SettledNote(int straight_index, double imperfection);
+
+}  // namespace cosserat::run::detail
