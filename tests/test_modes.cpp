@@ -494,6 +494,40 @@ TEST(Modes, StiffnessProportionalDampingGivesExactModalDamping) {
   }
 }
 
+// The same law with a τ that overdamps the higher modes: ζ = τ ω / 2 passes 1 at ω = 2/τ. Each
+// mode's damped entry is its own, in the modes' order: ζ = τ ω / 2 where that is below 1, none
+// (NaN) above. The list was once the lowest underdamped pairs by |λ|: past the first
+// overdamped mode it paired each mode with a higher one's ζ.
+TEST(Modes, EachModeKeepsItsOwnDampingAndAnOverdampedOneHasNone) {
+  const double tau = 0.04;  // s: ζ = 1 at ω = 50 rad/s, between the third and fourth pairs
+  Material m = Material::FromPoissonRatio(5e6, 0.5, 1100);
+  const CrossSection c = CrossSection::Circle(0.005);
+  const double kappa = c.ShearCoefficient(m.PoissonRatio());
+  m.damping.bending = tau * m.youngs_modulus * c.I1;
+  m.damping.torsion = tau * m.shear_modulus * c.torsion_constant;
+  m.damping.shear = tau * kappa * m.shear_modulus * c.area;
+  m.damping.extension = tau * m.youngs_modulus * c.area;
+  const RodModel rod = RodModel::Uniform(0.5, c, m);
+  const ModalResult r = QuatFdModes(rod, lie::SE3(), {}, 20, 8, false);
+  ASSERT_TRUE(r.converged()) << ToString(r.status);
+  ASSERT_EQ(r.damped.size(), r.modes.size());
+  int underdamped = 0, overdamped = 0;
+  for (size_t k = 0; k < r.modes.size(); ++k) {
+    const double zeta = tau * r.modes[k].omega / 2;
+    std::printf("  mode %zu: ω %.2f, ζ %.4f (τω/2 %.4f)\n", k, r.modes[k].omega,
+                r.damped[k].damping_ratio, zeta);
+    if (zeta < 0.9) {
+      ++underdamped;
+      EXPECT_NEAR(r.damped[k].damping_ratio / zeta, 1.0, 1e-6) << k;
+    } else if (zeta > 1.1) {
+      ++overdamped;
+      EXPECT_TRUE(std::isnan(r.damped[k].damping_ratio)) << k;
+    }
+  }
+  EXPECT_GT(underdamped, 0);
+  EXPECT_GT(overdamped, 0);
+}
+
 TEST(FrequencyShooting, BoundaryMatrixAtZeroIsTheStaticsJacobian) {
   // At ω = 0 the frequency-domain linearisation is the tangent of the statics shot: compare
   // with StaticShootingSolver::ResidualJacobian (matrix coordinates for R instead of rotation

@@ -333,6 +333,33 @@ bool DampedModes(const Eigen::MatrixXd& companion, int count, std::vector<Damped
   return unstable;
 }
 
+/// The damped pair of each undamped mode, in the modes' order: the unused pair whose |λ| is
+/// nearest the mode's ω, within 2 % (damping proportional to the stiffness keeps |λ| = ω; light
+/// damping of other forms moves it by O(ζ²)). None (an overdamped mode, an unstable one, or one
+/// the damping moved further): NaN frequency and ratio. Once the list of the lowest pairs by |λ|,
+/// which skipped the overdamped modes and so paired a soft rod's tenth bending mode (ζ = 1.1)
+/// with its first axial one.
+std::vector<DampedMode> AlignDamped(const std::vector<Mode>& modes,
+                                    const std::vector<DampedMode>& pairs) {
+  std::vector<DampedMode> aligned;
+  std::vector<bool> used(pairs.size(), false);
+  for (const Mode& mode : modes) {
+    DampedMode d;
+    d.omega_n = mode.omega;
+    d.damped_frequency_hz = d.damping_ratio = std::numeric_limits<double>::quiet_NaN();
+    int best = -1;
+    for (size_t j = 0; j < pairs.size(); ++j) {
+      const double gap = std::abs(pairs[j].omega_n - mode.omega);
+      if (!used[j] && mode.omega > 0 && gap <= 0.02 * mode.omega &&
+          (best < 0 || gap < std::abs(pairs[best].omega_n - mode.omega)))
+        best = static_cast<int>(j);
+    }
+    if (best >= 0) used[best] = true, d = pairs[best];
+    aligned.push_back(d);
+  }
+  return aligned;
+}
+
 /// Damped modes, λ² M + λ C + K = 0, through a first-order form: the one SymmetricSpectrum left
 /// in *companion, or the plain companion matrix [[0, I], [Ar, Br]] when the stiffness is not
 /// symmetric. True when a damped mode grows.
@@ -422,9 +449,14 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
 
   // The factorisation found the stiffness indefinite where the spectrum's low end is round-off.
   if (indefinite) mark(DivergenceReason(eig.empty() ? 0.0 : eig.front().first));
-  if (damped && DampedSpectrum(result.symmetric, Ar, Br, options.count, &companion,
-                                &result.damped))
-    mark("a damped mode grows (Re λ > 0)");
+  if (damped) {
+    // Every pair up to twice the modes asked for (an overdamped mode has none), then one per mode.
+    std::vector<DampedMode> pairs;
+    DampedSpectrum(result.symmetric, Ar, Br, 2 * options.count + 6, &companion, &pairs);
+    result.damped = AlignDamped(result.modes, pairs);
+    for (const DampedMode& d : result.damped)
+      if (d.damping_ratio < -1e-9) mark("a damped mode grows (Re λ > 0)");
+  }
   // Fewer real modes than asked for: any complex pair is below the last one there could be.
   if (static_cast<int>(result.modes.size()) < options.count && std::isfinite(lowest_complex))
     mark(FlutterReason(lowest_complex));

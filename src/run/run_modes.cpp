@@ -174,10 +174,13 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
   for (const Mode& m : r.modes) kinds.push_back(ToString(m.kind));
   modes["kinds"] = kinds;
   if (!r.damped.empty()) {
-    std::vector<double> fd, zeta;
+    // One entry per mode: null where the mode has no damped pair (overdamped, or unstable).
+    nlohmann::ordered_json fd = nlohmann::ordered_json::array(),
+                           zeta = nlohmann::ordered_json::array();
     for (const DampedMode& d : r.damped) {
-      fd.push_back(d.damped_frequency_hz);
-      zeta.push_back(d.damping_ratio);
+      const bool paired = std::isfinite(d.damping_ratio);
+      fd.push_back(paired ? nlohmann::ordered_json(d.damped_frequency_hz) : nullptr);
+      zeta.push_back(paired ? nlohmann::ordered_json(d.damping_ratio) : nullptr);
     }
     modes["damped_frequencies_hz"] = fd;
     modes["damping_ratios"] = zeta;

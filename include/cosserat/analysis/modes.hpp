@@ -89,7 +89,9 @@ struct ModalResult {
   std::vector<Mode> modes;  ///< the lowest `count`, by frequency
   /// With ModalStatus::kUnstable: why (divergence, with ω² or the Morse index; or flutter).
   std::string instability;
-  std::vector<DampedMode> damped;  ///< the lowest `count` underdamped pairs by |λ| (quatfd only)
+  /// quatfd only: the damped pair of each of `modes`, in their order (NaN frequency and ratio
+  /// for a mode without one: overdamped, or unstable).
+  std::vector<DampedMode> damped;
   /// quatfd: whether the stiffness was symmetric (conservative loads) and the symmetric solver
   /// was used. Shooting: always false.
   bool symmetric = false;
