@@ -23,3 +23,10 @@ from .plotting import animate, plot  # noqa: F401
 from .results import solve  # noqa: F401  (accepts dicts and paths; adds NumPy arrays)
 from .studies import sweep  # noqa: F401
 from .solvers import BatchStepper, StaticSolver, Stepper  # noqa: F401  (problems as solve takes)
+
+
+def load_problem(path):
+    """Reads and validates a problem file (a str or os.PathLike path); ValueError names every
+    bad field."""
+    import os
+    return _core.load_problem(os.fspath(path))

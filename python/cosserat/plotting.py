@@ -84,7 +84,8 @@ def animate(out, path, fps=25, every=1):
         raise ValueError(f"fps: expected a number > 0, got {fps!r}")
     extension = os.path.splitext(os.fspath(path))[1].lower()
     if extension not in (".gif",) + _VIDEO:
-        raise ValueError(f"path: expected a .gif or .mp4 file, got {os.fspath(path)!r}")
+        raise ValueError(f"path: expected a {', '.join(('.gif',) + _VIDEO)} file, "
+                         f"got {os.fspath(path)!r}")
     plt = _pyplot()
     from matplotlib import animation
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
@@ -116,8 +117,10 @@ def animate(out, path, fps=25, every=1):
             return (*lines, label)
 
         anim = animation.FuncAnimation(fig, draw, frames=len(t), blit=True)
+        # WebM holds VP8/VP9/AV1 only; the other containers take matplotlib's H.264.
         writer = (animation.PillowWriter(fps=fps) if extension == ".gif"
-                  else animation.FFMpegWriter(fps=fps))
+                  else animation.FFMpegWriter(fps=fps, codec="libvpx-vp9")
+                  if extension == ".webm" else animation.FFMpegWriter(fps=fps))
         anim.save(os.fspath(path), writer=writer)
     finally:
         plt.close(fig)

@@ -3,6 +3,7 @@ with PYTHONPATH at build/python and the repository root as working directory).""
 import json
 import math
 import os
+import pathlib
 import subprocess
 import unittest
 import warnings
@@ -61,7 +62,7 @@ class Environment(unittest.TestCase):
         # The rod on a table: the table and the clamp together carry the rod's weight (the
         # contact force is integrated by the trapezoid rule on 250 segments, which is exact to
         # O(h^2) of the contact region's curvature: 1e-3 of the weight is ample).
-        out = cosserat.solve(cosserat.load_problem("examples/rod_on_table.json"))
+        out = cosserat.solve(cosserat.load_problem(pathlib.Path("examples/rod_on_table.json")))
         self.assertTrue(out["converged"], out["log"])
         forces = out["contact_force"]
         self.assertEqual(forces.shape, (251, 3))
@@ -368,6 +369,10 @@ class Dynamics(unittest.TestCase):
             for _ in range(5):
                 self.assertTrue(s.step().converged)
         np.testing.assert_array_equal(used.tip_position(), fresh.tip_position())
+        # A batch that would not fit in memory is refused before it is allocated (1e9 rods were
+        # allocated until the kernel killed the process).
+        with self.assertRaisesRegex(ValueError, "count: 1000000000 rods of .* GB, more than half"):
+            cosserat.BatchStepper(p, 10**9, threads=1)
         b = cosserat.BatchStepper(p, 2, threads=1)
         self.assertEqual(b.initialize_at_rest(), 2)
         b.step(tension=[[0, 2, 0], [0, 2, 0]])
@@ -751,6 +756,13 @@ class PythonSide(unittest.TestCase):
                                     "v:0", "-show_entries", "stream=nb_read_frames", "-of",
                                     "csv=p=0", mp4], stdout=subprocess.PIPE, text=True, check=True)
             self.assertEqual(int(probe.stdout.strip()), 11)
+            # WebM takes VP9 (it was given H.264, which ffmpeg refuses in that container).
+            webm = d + "/release.webm"
+            self.assertEqual(cosserat.animate(out, webm, every=4), 11)
+            probe = subprocess.run(["ffprobe", "-v", "error", "-select_streams", "v:0",
+                                    "-show_entries", "stream=codec_name", "-of", "csv=p=0", webm],
+                                   stdout=subprocess.PIPE, text=True, check=True)
+            self.assertEqual(probe.stdout.strip(), "vp9")
         with self.assertRaisesRegex(ValueError, "nodes=True"):
             cosserat.animate(cosserat.solve("examples/cantilever.json"), "x.gif")
         # A run whose start cannot converge (a 1e300 N preload) records no frame: a result that
