@@ -20,6 +20,7 @@
 #include "cosserat/run/sweep.hpp"
 #include "cosserat/strong/batch_stepper.hpp"
 #include "binding_support.hpp"
+#include "interrupt.hpp"
 #include "problem_checks.hpp"
 
 namespace py = pybind11;
@@ -200,11 +201,16 @@ void BindSweep(py::module_& m) {
         }
         run::SweepOptions options;
         options.threads = threads;
+        // Ctrl-C stops the sweep after the points under way; their rows stay for a resume.
+        InterruptCheck check;
+        bool interrupted = false;
+        options.keep_going = [&] { return !(interrupted = interrupted || check.Pending()); };
         run::SweepSummary s;
         {
           py::gil_scoped_release release;
           s = run::RunSweep(*parsed.study, out, options);
         }
+        if (interrupted) throw py::error_already_set();
         py::dict d;
         d["points"] = s.points;
         d["resumed"] = s.resumed;

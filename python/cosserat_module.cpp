@@ -17,6 +17,7 @@
 
 #include "batch_bindings.hpp"
 #include "binding_support.hpp"
+#include "interrupt.hpp"
 #include "stepper_bindings.hpp"
 #include "cosserat/io/problem.hpp"
 #include "problem_checks.hpp"
@@ -381,10 +382,13 @@ void BindSolve(py::module_& m) {
         }
         run::RunOptions options;
         options.nodes_csv = nodes;
+        options.progress = python::InterruptibleProgress();  // Ctrl-C stops a dynamics run
         run::Result result;
-        {
+        try {
           py::gil_scoped_release release;  // a long run leaves other Python threads going
           result = run::Run(problem, options);
+        } catch (const python::Interrupted&) {
+          throw py::error_already_set();  // the KeyboardInterrupt Python has set
         }
         py::dict d;
         d["converged"] = result.converged;

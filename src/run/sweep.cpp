@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -284,11 +285,14 @@ SweepSummary RunSweep(const io::Study& study, const std::string& csv_path,
     pending.resize(options.max_new_points);
   const std::uint64_t total = study.PointCount();
   std::mutex progress_mutex;
+  std::atomic<bool> stop{false};
   auto point = [&](std::size_t i) {
+    if (stop.load()) return;
     const std::uint64_t done = file.Append(pending[i], SweepPointRow(study, pending[i]));
-    if (options.progress) {
+    if (options.progress || options.keep_going) {
       std::lock_guard<std::mutex> lock(progress_mutex);
-      options.progress(done, total);
+      if (options.progress) options.progress(done, total);
+      if (options.keep_going && !options.keep_going()) stop = true;
     }
   };
   // No more threads than points, whatever --threads asks for.

@@ -24,6 +24,9 @@ struct SweepOptions {
   /// Called after each point with the points done and their total (a progress line); may be
   /// empty. Called from the worker threads, one at a time.
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;
+  /// Asked after each point, one thread at a time; false stops the sweep after the points under
+  /// way (their rows are kept, and a later run resumes). May be empty (run every point).
+  std::function<bool()> keep_going;
   /// For tests: stop after this many new points (0: run them all).
   std::uint64_t max_new_points = 0;
 };
