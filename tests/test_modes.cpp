@@ -471,10 +471,8 @@ TEST(Modes, TorsionalAndAxialFundamentals) {
   }
 }
 
-TEST(Modes, StiffnessProportionalDampingGivesExactModalDamping) {
-  // D = τ K in every strain (bending, torsion, shear, stretch): about the unloaded straight rest
-  // state C = τ K exactly, so each mode has ζ = τ ω / 2 and ω_n = ω (to round-off).
-  const double tau = 2e-4;
+/// A 0.5 m soft rod (E 5 MPa, ν 0.5, r 5 mm) with Kelvin–Voigt damping D = τ K in every strain.
+RodModel StiffnessProportionallyDampedRod(double tau) {
   Material m = Material::FromPoissonRatio(5e6, 0.5, 1100);
   const CrossSection c = CrossSection::Circle(0.005);
   const double kappa = c.ShearCoefficient(m.PoissonRatio());
@@ -482,7 +480,14 @@ TEST(Modes, StiffnessProportionalDampingGivesExactModalDamping) {
   m.damping.torsion = tau * m.shear_modulus * c.torsion_constant;
   m.damping.shear = tau * kappa * m.shear_modulus * c.area;
   m.damping.extension = tau * m.youngs_modulus * c.area;
-  const RodModel rod = RodModel::Uniform(0.5, c, m);
+  return RodModel::Uniform(0.5, c, m);
+}
+
+TEST(Modes, StiffnessProportionalDampingGivesExactModalDamping) {
+  // D = τ K in every strain (bending, torsion, shear, stretch): about the unloaded straight rest
+  // state C = τ K exactly, so each mode has ζ = τ ω / 2 and ω_n = ω (to round-off).
+  const double tau = 2e-4;
+  const RodModel rod = StiffnessProportionallyDampedRod(tau);
   const ModalResult r = QuatFdModes(rod, lie::SE3(), {}, 20, 4, false);
   ASSERT_TRUE(r.converged()) << ToString(r.status);
   ASSERT_EQ(r.damped.size(), 4u);
@@ -500,14 +505,7 @@ TEST(Modes, StiffnessProportionalDampingGivesExactModalDamping) {
 // overdamped mode it paired each mode with a higher one's ζ.
 TEST(Modes, EachModeKeepsItsOwnDampingAndAnOverdampedOneHasNone) {
   const double tau = 0.04;  // s: ζ = 1 at ω = 50 rad/s, between the third and fourth pairs
-  Material m = Material::FromPoissonRatio(5e6, 0.5, 1100);
-  const CrossSection c = CrossSection::Circle(0.005);
-  const double kappa = c.ShearCoefficient(m.PoissonRatio());
-  m.damping.bending = tau * m.youngs_modulus * c.I1;
-  m.damping.torsion = tau * m.shear_modulus * c.torsion_constant;
-  m.damping.shear = tau * kappa * m.shear_modulus * c.area;
-  m.damping.extension = tau * m.youngs_modulus * c.area;
-  const RodModel rod = RodModel::Uniform(0.5, c, m);
+  const RodModel rod = StiffnessProportionallyDampedRod(tau);
   const ModalResult r = QuatFdModes(rod, lie::SE3(), {}, 20, 8, false);
   ASSERT_TRUE(r.converged()) << ToString(r.status);
   ASSERT_EQ(r.damped.size(), r.modes.size());

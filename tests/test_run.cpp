@@ -874,16 +874,21 @@ TEST(Run, AStiffBoreIsNotBlamedForAContinuationThatStops) {
 // statics once said a plain "converged" there), and the rod falls over: both formulations say
 // so and write the stable equilibrium beside it, which they agree on to the quaternion-FD grid's
 // second-order error (0.49 mm on 41 nodes, 0.13 mm on 81; 1 mm asserted).
+Result RunUprightSiliconeRod(const char* formulation, double length, int nodes) {
+  const std::string text = std::string(R"({"format": "cosserat-problem/1", "formulation": ")") +
+                           formulation + R"(", "rod": {"length": )" + std::to_string(length) +
+                           R"(, "nodes": )" + std::to_string(nodes) +
+                           R"(, "section": {"shape": "circle", "radius": 0.005},
+      "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.5, "density": 1100}},
+      "loads": {"gravity": [0, 0, -9.81]}})";
+  const io::ParseResult parsed = io::ParseProblem(text);
+  EXPECT_TRUE(parsed.ok());
+  return cosserat::run::Run(*parsed.problem);
+}
+
 TEST(Run, AnUprightRodPastGreenhillsLengthFallsOverInBothFormulations) {
   auto run = [](const char* formulation, double length) {
-    const std::string text = std::string(R"({"format": "cosserat-problem/1", "formulation": ")") +
-                             formulation + R"(", "rod": {"length": )" + std::to_string(length) +
-                             R"(, "nodes": 41, "section": {"shape": "circle", "radius": 0.005},
-        "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.5, "density": 1100}},
-        "loads": {"gravity": [0, 0, -9.81]}})";
-    const io::ParseResult parsed = io::ParseProblem(text);
-    EXPECT_TRUE(parsed.ok());
-    return cosserat::run::Run(*parsed.problem);
+    return RunUprightSiliconeRod(formulation, length, 41);
   };
   std::vector<Vec3> fallen;
   for (const char* formulation : {"se3-shooting", "quaternion-fd"}) {
@@ -912,13 +917,7 @@ TEST(Run, AnUprightRodPastGreenhillsLengthFallsOverInBothFormulations) {
 TEST(Run, AnUprightRodPastTwoGreenhillLengthsCountsFourOnAFineQuaternionFdGrid) {
   std::vector<Vec3> fallen;
   for (const char* formulation : {"quaternion-fd", "se3-shooting"}) {
-    const io::ParseResult parsed = io::ParseProblem(std::string(R"({"format": "cosserat-problem/1",
-        "formulation": ")") + formulation + R"(",
-        "rod": {"length": 0.38, "nodes": 201, "section": {"shape": "circle", "radius": 0.005},
-          "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.5, "density": 1100}},
-        "loads": {"gravity": [0, 0, -9.81]}})");
-    ASSERT_TRUE(parsed.ok());
-    const Result r = cosserat::run::Run(*parsed.problem);
+    const Result r = RunUprightSiliconeRod(formulation, 0.38, 201);
     ASSERT_TRUE(r.converged) << r.log;
     EXPECT_NE(r.log.find("is unstable (4 unstable directions)"), std::string::npos) << r.log;
     EXPECT_EQ(r.json["stability_index"].get<int>(), 0) << r.log;

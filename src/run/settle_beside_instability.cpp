@@ -32,6 +32,23 @@ bool TakeAway(const Solve& solve) {
   return true;
 }
 
+/// An SE(3) solver (single shot or in pieces, each continuing from its last solution) taken to
+/// the imperfect loads, then through the take-away; *total sums every solve, *last the final.
+template <class Solver>
+bool FollowAway(const io::Problem& problem, const StaticLoads& imperfect, Solver* solver,
+                StaticShootingSummary* total, StaticShootingSummary* last) {
+  *total = solver->Solve(problem.base, imperfect);
+  if (!total->converged()) return false;
+  return TakeAway([&](double mu) {
+    *last = solver->Solve(problem.base, StaticLoads::Blend(imperfect, problem.loads, mu));
+    total->iterations += last->iterations;
+    total->shots += last->shots;
+    total->load_steps += last->load_steps;
+    total->wall_time_s += last->wall_time_s;
+    return last->converged();
+  });
+}
+
 }  // namespace
 
 bool MaySettle(const io::Problem& problem) {
@@ -67,18 +84,8 @@ bool SettleSingleShot(const io::Problem& problem, const RodState& straight, int 
                       StaticShootingSolver* solver, StaticShootingSummary* summary,
                       double* imperfection) {
   const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
-  StaticShootingSummary total = solver->Solve(problem.base, imperfect);
-  if (!total.converged()) return false;
-  StaticShootingSummary last = total;
-  const bool reached = TakeAway([&](double mu) {
-    last = solver->Solve(problem.base, StaticLoads::Blend(imperfect, problem.loads, mu));
-    total.iterations += last.iterations;
-    total.shots += last.shots;
-    total.load_steps += last.load_steps;
-    total.wall_time_s += last.wall_time_s;
-    return last.converged();
-  });
-  if (!reached) return false;
+  StaticShootingSummary total, last;
+  if (!FollowAway(problem, imperfect, solver, &total, &last)) return false;
   const int settled =
       solver->StabilityIndex(problem.base, problem.loads, solver->base_wrench_B());
   if (settled < 0 || settled >= index) return false;
@@ -94,18 +101,8 @@ bool SettleInPieces(const io::Problem& problem, const RodState& straight, int in
   const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
   StaticMultipleShootingSolver solver(
       problem.rod, problem.nodes, PiecesOptions(problem, ColumnEnds::kClampedFree, pieces, true));
-  StaticShootingSummary total = solver.Solve(problem.base, imperfect);
-  if (!total.converged()) return false;
-  StaticShootingSummary last = total;
-  const bool reached = TakeAway([&](double mu) {
-    last = solver.Solve(problem.base, StaticLoads::Blend(imperfect, problem.loads, mu));
-    total.iterations += last.iterations;
-    total.shots += last.shots;
-    total.load_steps += last.load_steps;
-    total.wall_time_s += last.wall_time_s;
-    return last.converged();
-  });
-  if (!reached) return false;
+  StaticShootingSummary total, last;
+  if (!FollowAway(problem, imperfect, &solver, &total, &last)) return false;
   const int settled = IndexInPieces(problem, ColumnEnds::kClampedFree, problem.base,
                                     problem.loads, solver.state(), solver.pieces());
   if (settled < 0 || settled >= index) return false;
