@@ -375,6 +375,19 @@ bool DampedSpectrum(bool symmetric, const Eigen::MatrixXd& Ar, const Eigen::Matr
   return DampedModes(*companion, count, out);
 }
 
+/// The damped pair of each of `modes` (AlignDamped), from every pair up to twice their count
+/// (an overdamped mode has none). True when one of them grows.
+bool DampedOfModes(bool symmetric, const Eigen::MatrixXd& Ar, const Eigen::MatrixXd& Br,
+                   const std::vector<Mode>& modes, Eigen::MatrixXd* companion,
+                   std::vector<DampedMode>* out) {
+  std::vector<DampedMode> pairs;
+  DampedSpectrum(symmetric, Ar, Br, 2 * static_cast<int>(modes.size()) + 6, companion, &pairs);
+  *out = AlignDamped(modes, pairs);
+  for (const DampedMode& d : *out)
+    if (d.damping_ratio < -1e-9) return true;
+  return false;
+}
+
 }  // namespace
 
 ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
@@ -449,14 +462,8 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
 
   // The factorisation found the stiffness indefinite where the spectrum's low end is round-off.
   if (indefinite) mark(DivergenceReason(eig.empty() ? 0.0 : eig.front().first));
-  if (damped) {
-    // Every pair up to twice the modes asked for (an overdamped mode has none), then one per mode.
-    std::vector<DampedMode> pairs;
-    DampedSpectrum(result.symmetric, Ar, Br, 2 * options.count + 6, &companion, &pairs);
-    result.damped = AlignDamped(result.modes, pairs);
-    for (const DampedMode& d : result.damped)
-      if (d.damping_ratio < -1e-9) mark("a damped mode grows (Re λ > 0)");
-  }
+  if (damped && DampedOfModes(result.symmetric, Ar, Br, result.modes, &companion, &result.damped))
+    mark("a damped mode grows (Re λ > 0)");
   // Fewer real modes than asked for: any complex pair is below the last one there could be.
   if (static_cast<int>(result.modes.size()) < options.count && std::isfinite(lowest_complex))
     mark(FlutterReason(lowest_complex));

@@ -49,9 +49,9 @@ GridResolution CheckPolygon(const std::vector<double>& s, const std::vector<Vec3
                             const std::vector<Vec3>& curvature, double length);
 
 /// The same for a converged statics or modes result (either formulation), from its nodes (for
-/// modes, the equilibrium they are about): a runaway makes it non_finite, a grid under_resolved makes it
-/// under_resolved (exit 1). A statics stopped short (load_stepping_failed) keeps its status and
-/// gets the same lines about its last level.
+/// modes, the equilibrium they are about): a runaway makes it non_finite, a grid under_resolved
+/// makes it under_resolved (exit 1). A statics stopped short (load_stepping_failed) keeps its
+/// status and gets the same lines about its last level.
 void CheckGridResolution(const io::Problem& problem, Result* result);
 
 }  // namespace cosserat::run
