@@ -39,7 +39,12 @@ def _web_dir():
     """The page's files: COSSERAT_WEB_DIR when set, else web/ of the repository this package
     was built or installed from; None when neither has index.html."""
     here = os.path.dirname(os.path.abspath(__file__))
-    candidates = [os.environ["COSSERAT_WEB_DIR"]] if os.environ.get("COSSERAT_WEB_DIR") else []
+    chosen = os.environ.get("COSSERAT_WEB_DIR")
+    if chosen and not os.path.exists(os.path.join(chosen, "index.html")):
+        # A directory the user named is theirs to mend, not to pass over for another copy.
+        raise SystemExit(f"cosserat view: COSSERAT_WEB_DIR={chosen!r} has no index.html: set it "
+                         "to the repository's web/ directory, or unset it")
+    candidates = [chosen] if chosen else []
     candidates += [os.path.join(root, "web")
                    for root in (os.path.join(here, "..", "..", ".."), os.path.join(here, "..", ".."))]
     try:  # a pip-installed copy: setup.py recorded the repository it was built from

@@ -202,6 +202,12 @@ def main():
                              env=dict(os.environ, COSSERAT_WEB_DIR=d))
         check(run.returncode == 1 and "npm ci" in run.stderr,
               f"no three.js: exit 1 naming npm ci (got {run.returncode}: {run.stderr[-80:]!r})")
+        # A COSSERAT_WEB_DIR without the page is named, not passed over for another copy.
+        run = subprocess.run([sys.executable, "-m", "cosserat.view", "examples/cantilever.json",
+                              "--port", "0"], cwd=ROOT, capture_output=True, text=True,
+                             env=dict(os.environ, COSSERAT_WEB_DIR=os.path.join(d, "nowhere")))
+        check(run.returncode == 1 and "COSSERAT_WEB_DIR" in run.stderr,
+              f"a missing web dir: exit 1 naming it (got {run.returncode}: {run.stderr[-80:]!r})")
     print("FAILED: " + "; ".join(failures) if failures else "all checks passed")
     return 1 if failures else 0
 
