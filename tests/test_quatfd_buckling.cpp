@@ -10,6 +10,7 @@
 
 #include "cosserat/analysis/quatfd_buckling.hpp"
 #include "cosserat/rod/section_profile.hpp"
+#include "../src/analysis/banded_inertia.hpp"
 #include "support/analytic/euler_buckling.hpp"
 #include "support/rods.hpp"
 
@@ -110,6 +111,27 @@ TEST(QuatFdBuckling, StiffnessIsSymmetricAndPositiveUnloaded) {
 // of H + 1e-6 I in the coordinates ordered along the rod, Sylvester's law) against the count of
 // its eigenvalues below −1e-6, the same matrix's spectrum: the straight column pressed by 0.5 to
 // 60 cantilever Euler loads (2 more unstable directions past each), and a bent equilibrium.
+// The banded count on its own (the test below cannot tell it from its eigenvalue fallback): the
+// second-difference matrix tridiag(−1, 2 − σ, −1) of size m has the eigenvalues
+// 2 − σ − 2 cos(kπ/(m + 1)), so a known number below zero. Its rows and columns shuffled, the
+// count in the order that makes it tridiagonal again is that number, and never −1 (σ keeps every
+// eigenvalue 1e-3 or more from zero, far above the pivot floor).
+TEST(QuatFdBuckling, TheBandedInertiaCountsAShuffledSecondDifference) {
+  const int m = 60;
+  std::vector<int> shuffled(m);
+  for (int i = 0; i < m; ++i) shuffled[i] = (7 * i + 3) % m;  // 7 is prime to 60: a permutation
+  for (const double sigma : {0.0, 0.5, 1.7, 3.1}) {
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m, m);  // S(p(i), p(j)) = T(i, j)
+    for (int i = 0; i < m; ++i) {
+      S(shuffled[i], shuffled[i]) = 2.0 - sigma;
+      if (i + 1 < m) S(shuffled[i], shuffled[i + 1]) = S(shuffled[i + 1], shuffled[i]) = -1.0;
+    }
+    int expected = 0;
+    for (int k = 1; k <= m; ++k) expected += 2.0 - sigma - 2.0 * std::cos(k * M_PI / (m + 1)) < 0;
+    EXPECT_EQ(detail::CountEigenvaluesBelow(S, shuffled, 0.0), expected) << sigma;
+  }
+}
+
 TEST(QuatFdBuckling, TheInertiaCountsTheNegativeEigenvaluesOfTheSpectrum) {
   quatfd::QuatFdOptions mo;
   mo.segments = 40;
