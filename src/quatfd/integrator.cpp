@@ -79,7 +79,6 @@ IntegratorStatus AdaptiveIntegrator::Advance(double t_end, double* t, Eigen::Ref
     // Land exactly on t_end; a last step within 1e-12 of it is stretched to it.
     const bool last = *t + dt_ * (1 + 1e-12) >= t_end;
     const double h = last ? t_end - *t : dt_;
-    step_start_ = *t;
     Trial trial = TryStep(h);
     if (trial.ok && (!std::isfinite(trial.err) || !y_new_.allFinite())) trial.err = 1e10;
     if (!trial.ok || trial.err > 1.0) {

@@ -84,7 +84,6 @@ AdaptiveIntegrator::Trial Dopri5Integrator::TryStep(double h) {
   Impl& m = *impl_;
   const System sys{&model_, &stats_.f_evaluations};
   m.stepper.do_step(sys, m.y, m.dydt, step_start_, m.y_new, m.dydt_new, h, m.err);
-  model_.set_time(step_start_);
   y_new_ = Eigen::Map<const Eigen::VectorXd>(m.y_new.data(), 2 * n_);
   err_ = Eigen::Map<const Eigen::VectorXd>(m.err.data(), 2 * n_);
   return {true, ErrorNorm(options_, n_, y_, y_new_, err_)};

@@ -241,8 +241,8 @@ void QuatFdModel::set_gust(const FluidGust& gust) {
 }
 
 void QuatFdModel::set_time(double t) const {
+  time_ = t;  // kept without a gust too, for one set later
   if (!gust_.present()) return;
-  time_ = t;
   gusty_loads_.fluid = gust_.At(loads_.fluid, t);
 }
 

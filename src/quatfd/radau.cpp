@@ -127,10 +127,8 @@ RadauIntegrator::NewtonResult RadauIntegrator::Newton(const Eigen::Ref<const Eig
     for (int i = 0; i < 3; ++i) {
       tmp_ = y + Z_[i];
       if (it > 0) UpdateRotation(i, tmp_);
-      model_.set_time(step_start_ + k.c[i] * h);
-      model_.Acceleration(tmp_.head(n), tmp_.tail(n), K_[i]);
+      StageAcceleration(k.c[i], h, tmp_.head(n), tmp_.tail(n), K_[i]);
     }
-    model_.set_time(step_start_);
     stats_.f_evaluations += 3;
     ++newton_.stats.newton_iterations;
     // Velocity residuals G_i = K_i − (A⁻¹ Z_v)_i / h, turned back by each stage's co-rotation

@@ -83,9 +83,7 @@ SdirkIntegrator::StageResult SdirkIntegrator::SolveStage(int i,
   for (int it = 0; it < kMaxIterations; ++it) {
     if (it > 0) tmp_ = y + z_;
     k_[i].head(n) = tmp_.tail(n);
-    model_.set_time(step_start_ + kC[i] * h);
-    model_.Acceleration(tmp_.head(n), tmp_.tail(n), k_[i].tail(n));
-    model_.set_time(step_start_);
+    StageAcceleration(kC[i], h, tmp_.head(n), tmp_.tail(n), k_[i].tail(n));
     ++stats_.f_evaluations;
     ++newton_.stats.newton_iterations;
     auto dv = dz_.tail(n);

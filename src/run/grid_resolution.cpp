@@ -93,10 +93,12 @@ void CheckGridResolution(const io::Problem& problem, Result* result) {
       problem.analysis == io::Analysis::kStatics || problem.analysis == io::Analysis::kModes;
   // A statics stopped short writes the last load level reached: its grid may be why.
   const std::string status = result->json.value("status", "");
-  const bool stopped_short = !result->converged && status == "load_stepping_failed";
+  const bool stopped_short =
+      !result->converged && status == ToString(SolveStatus::kLoadSteppingFailed);
   // Modes the grid resolves too coarsely (run_modes.cpp) are about an equilibrium, which may
   // itself have run away.
-  const bool coarse_modes = !result->converged && status == "under_resolved";
+  const bool coarse_modes =
+      !result->converged && status == ToString(SolveStatus::kUnderResolved);
   if ((!result->converged && !stopped_short && !coarse_modes) || !equilibrium ||
       !result->json.contains("nodes"))
     return;

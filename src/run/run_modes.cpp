@@ -83,12 +83,14 @@ ModesGrid CheckModesGrid(const io::Problem& problem, const ModalResult& r) {
   for (const Vec6& w : r.equilibrium.wrench_B) tension = std::min(tension, w(5));
   double worst = 0.0, worst_k = 0.0, worst_hz = 0.0;
   int worst_mode = 0;
+  std::vector<SectionProperties> sections;  // at 0, L/4, … L: the stiffest wave number of these
+  for (int i = 0; i <= 4; ++i)
+    sections.push_back(problem.rod.section->At(0.25 * i * L, problem.robot.actuation));
   for (size_t m = 0; m < r.modes.size(); ++m) {
     const double omega = 2 * M_PI * r.modes[m].frequency_hz;
     if (!(omega > 0.0)) continue;
     double k = 0.0;  // 1/m
-    for (int i = 0; i <= 4; ++i) {
-      const SectionProperties p = problem.rod.section->At(0.25 * i * L, problem.robot.actuation);
+    for (const SectionProperties& p : sections) {
       const double rhoA = p.mass(5, 5), EI = p.min_bending_stiffness();
       switch (r.modes[m].kind) {
         case ModeKind::kBending:

@@ -103,11 +103,8 @@ namespace {
 void FollowLoadedPathIfUnstable(const io::Problem& problem, quatfd::QuatFdModel* model,
                                 quatfd::QuatFdStaticsSummary* s, StaticShootingSummary* summary,
                                 RodState* state, Eigen::VectorXd* q) {
-  quatfd::QuatFdStaticsOptions options = QuatFdStaticOptions(problem);
+  const quatfd::QuatFdStaticsOptions options = QuatFdLoadedPathOptions(problem);
   if (summary->stability_index <= 0 || !options.load_stepping) return;
-  options.direct_solve = false;
-  options.max_load_step = 1.0 / 16.0;  // small enough to see the path turn where it bends
-  options.keep_path_direction = true;
   Eigen::VectorXd q_path(model->size()), v = Eigen::VectorXd::Zero(model->size());
   model->RestState(q_path, v);
   quatfd::QuatFdStaticsSummary path = quatfd::SolveStatics(model, problem.loads, q_path, options);

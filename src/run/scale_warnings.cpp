@@ -4,6 +4,9 @@
 #include <iomanip>
 #include <sstream>
 
+#include "cosserat/state/solve_status.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
+
 namespace cosserat::run::detail {
 namespace {
 
@@ -44,10 +47,8 @@ void ImpossibleLoadWarning(const io::Problem& problem, std::ostringstream* log) 
   if (problem.has_assembly || !problem.rod.section) return;
   const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
   const double L = problem.rod.length, EA = p.stiffness(5, 5), EI = p.min_bending_stiffness();
-  const StaticLoads& loads = problem.loads;
-  const double force = loads.tip_force.norm() + loads.distributed_force_W.norm() * L +
-                       p.mass(5, 5) * L * loads.gravity_W.norm();  // N
-  const double turn = loads.tip_moment.norm() * L / EI;              // rad
+  const double force = LoadForceBound(problem.rod, problem.loads);  // N
+  const double turn = problem.loads.tip_moment.norm() * L / EI;     // rad
   if (force > 10.0 * EA)
     *log << "cosserat: warning: the loads add up to " << force << " N, over ten times the rod's "
          << "axial stiffness EA = " << EA << " N (they would stretch it tenfold): check the "
@@ -76,7 +77,7 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
            "loads.gravity there, or write \"gravity\": [0, 0, 0] if that start is meant\n";
   // A solve that did not converge leaves an iterate, whose stretch says nothing of the units
   // (an equilibrium on a grid too coarse for it is still one).
-  if (!result->converged && result->json.value("status", "") != "under_resolved") {
+  if (!result->converged && result->json.value("status", "") != ToString(SolveStatus::kUnderResolved)) {
     result->log += log.str();
     return;
   }

@@ -61,9 +61,7 @@ StaticLoads ImperfectLoads(const io::Problem& problem, const RodState& straight,
                            double* size) {
   const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
   const double L = problem.rod.length;
-  const StaticLoads& loads = problem.loads;
-  const double total = loads.tip_force.norm() + loads.distributed_force_W.norm() * L +
-                       p.mass(5, 5) * L * loads.gravity_W.norm();  // N
+  const double total = LoadForceBound(problem.rod, problem.loads);  // N
   // Bending about d1 (stiffness(0, 0)) moves the rod along d2: the softer plane's direction.
   const Mat3& R = problem.base.R;
   Vec3 across = p.stiffness(0, 0) <= p.stiffness(1, 1) ? R.col(1) : R.col(0);
@@ -75,7 +73,7 @@ StaticLoads ImperfectLoads(const io::Problem& problem, const RodState& straight,
     across = normal.normalized();
   }
   *size = fraction * total / L;
-  StaticLoads imperfect = loads;
+  StaticLoads imperfect = problem.loads;
   imperfect.distributed_force_W += *size * across;
   return imperfect;
 }
@@ -120,12 +118,9 @@ bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int inde
                   quatfd::QuatFdStaticsSummary* summary, int* settled_index,
                   double* imperfection) {
   const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
-  quatfd::QuatFdStaticsOptions options = QuatFdStaticOptions(problem);
-  // The loaded path from the unloaded rod, in steps small enough to see it turn (a direct
-  // Newton solve lands on the bent-back state beside the straight one).
-  options.direct_solve = false;
-  options.max_load_step = 1.0 / 16.0;
-  options.keep_path_direction = true;
+  // The loaded path from the unloaded rod (a direct Newton solve lands on the bent-back state
+  // beside the straight one).
+  quatfd::QuatFdStaticsOptions options = QuatFdLoadedPathOptions(problem);
   Eigen::VectorXd x(model->size()), v = Eigen::VectorXd::Zero(model->size());
   model->RestState(x, v);
   quatfd::QuatFdStaticsSummary total = quatfd::SolveStatics(model, imperfect, x, options);

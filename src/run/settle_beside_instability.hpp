@@ -28,8 +28,8 @@ namespace cosserat::run::detail {
 bool MaySettle(const io::Problem& problem);
 
 /// The problem's loads plus the imperfection for the unstable state `straight`: a uniform force
-/// per length of `fraction` of the loads' total (tip force, distributed force times L, weight)
-/// over L, across the chord from base to tip, along the base frame's axis of the softer bending.
+/// per length of `fraction` of the loads' total (LoadForceBound: the tip force, and L times the
+/// distributed loads, weight less buoyancy included) over L, across the chord from base to tip, along the base frame's axis of the softer bending.
 /// *size receives its magnitude (N/m).
 StaticLoads ImperfectLoads(const io::Problem& problem, const RodState& straight, double fraction,
                            double* size);

@@ -20,6 +20,14 @@ quatfd::QuatFdStaticsOptions QuatFdStaticOptions(const io::Problem& problem) {
   return options;
 }
 
+quatfd::QuatFdStaticsOptions QuatFdLoadedPathOptions(const io::Problem& problem) {
+  quatfd::QuatFdStaticsOptions options = QuatFdStaticOptions(problem);
+  options.direct_solve = false;
+  options.max_load_step = 1.0 / 16.0;
+  options.keep_path_direction = true;
+  return options;
+}
+
 quatfd::QuatFdOptions QuatFdModelOptions(const io::Problem& problem) {
   quatfd::QuatFdOptions options;
   options.segments = problem.nodes - 1;

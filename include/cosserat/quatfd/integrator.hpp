@@ -137,6 +137,16 @@ class AdaptiveIntegrator : public QuatFdIntegrator {
   /// y_ holds the new state (projected), last_rejected_ still says whether a rejection preceded.
   virtual double Accepted(double h, double err) = 0;
 
+  /// f(q, v) at the stage time step_start_ + c h (the model's clock, for a gusting flow), the
+  /// clock put back to step_start_ after.
+  void StageAcceleration(double c, double h, const Eigen::Ref<const Eigen::VectorXd>& q,
+                         const Eigen::Ref<const Eigen::VectorXd>& v,
+                         Eigen::Ref<Eigen::VectorXd> out) const {
+    model_.set_time(step_start_ + c * h);
+    model_.Acceleration(q, v, out);
+    model_.set_time(step_start_);
+  }
+
   /// y' = [v; f(q, v)], counted in stats_.
   void F(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> out) {
     FirstOrderRhs(model_, y, out, &stats_);
@@ -145,9 +155,9 @@ class AdaptiveIntegrator : public QuatFdIntegrator {
   const QuatFdModel& model_;
   IntegratorOptions options_;
   IntegratorStats stats_;
-  /// s, the time of y_ (the trial step's start). Advance sets the model's clock to it before
-  /// BeginAdvance, TryStep and Accepted; a method that evaluates stages at t + c h sets their
-  /// times and puts the clock back (QuatFdModel::set_time: a gusting flow).
+  /// s, the time of y_ (the trial step's start). Advance sets it, and the model's clock, where *t
+  /// changes: before BeginAdvance and after each accepted step; stages at t + c h go through
+  /// StageAcceleration (QuatFdModel::set_time: a gusting flow).
   double step_start_ = 0.0;
   int n_ = 0;                        ///< size of q (and of v)
   double dt_ = 0;                    ///< size of the next trial step, s

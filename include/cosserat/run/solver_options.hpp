@@ -20,6 +20,10 @@ StaticShootingOptions StaticOptions(const io::Problem& problem);
 /// The quaternion-FD static solver's options: "solver" (tolerance, max_iterations), with the
 /// round-off floor no tighter than the tolerance.
 quatfd::QuatFdStaticsOptions QuatFdStaticOptions(const io::Problem& problem);
+/// The same for following the loaded path from the rest state: no direct solve first, steps of
+/// at most 1/16 of the load, small enough to see the path turn where the rod bends (a column
+/// past its Euler load), none moving the rod against the last step's move.
+quatfd::QuatFdStaticsOptions QuatFdLoadedPathOptions(const io::Problem& problem);
 
 /// The quaternion-FD model's options: the grid (rod.nodes − 1 segments) and the ends (a clamped
 /// cantilever, or the anchors of "anchored").
