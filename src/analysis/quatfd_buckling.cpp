@@ -131,41 +131,7 @@ Eigen::MatrixXd QuatFdBuckling::StiffnessFiniteDifference(const Eigen::VectorXd&
 }
 
 Eigen::MatrixXd QuatFdBuckling::StiffnessAnalytic(const Eigen::VectorXd& q) {
-  const int N = model_.layout().segments;
-  const int nv = static_cast<int>(free_vertices_.size());
-  const int m = 3 * nv + 3 * N;
-  const double L = model_.length();
-  model_.Jacobian(q, zero_v_, 0.0, 0.0, &dfdq_, &dfdv_, nullptr);
-  const Eigen::MatrixXd A = dfdq_.ToDense();
-  // Columns: ∂f/∂q along each tangent direction (δx = L e_k; δp = ½ p ⊗ [0, e_k]).
-  Eigen::MatrixXd AT(model_.size(), m);
-  for (int a = 0; a < nv; ++a)
-    for (int k = 0; k < 3; ++k) AT.col(3 * a + k) = L * A.col(Layout::X(free_vertices_[a]) + k);
-  for (int s = 0; s < N; ++s) {
-    const Vec4 p = q.segment<4>(Layout::P(s));
-    for (int k = 0; k < 3; ++k) {
-      Vec4 e = Vec4::Zero();
-      e[1 + k] = 1.0;
-      const Vec4 dp = 0.5 * lie::QuatMultiply<double>(p, e);
-      AT.col(3 * nv + 3 * s + k) = A.middleCols<4>(Layout::P(s)) * dp;
-    }
-  }
-  // Rows: forces = m ∂f_x (times L for the δx/L pairing), torques = 2 J Im(p̄ ⊗ ∂f_p).
-  Eigen::MatrixXd H(m, m);
-  const std::vector<double>& mass = model_.vertex_mass();
-  for (int a = 0; a < nv; ++a)
-    H.middleRows<3>(3 * a) =
-        L * mass[free_vertices_[a]] * AT.middleRows<3>(Layout::X(free_vertices_[a]));
-  for (int s = 0; s < N; ++s) {
-    const Vec4 p = q.segment<4>(Layout::P(s)) / q.segment<4>(Layout::P(s)).squaredNorm();
-    const Vec3& J = model_.segment_inertia(s);
-    for (int j = 0; j < m; ++j) {
-      const Vec4 dfp = AT.col(j).segment<4>(Layout::P(s));
-      const Vec3 w = 2.0 * quatfd::kernels::ImConjMul<double>(p, dfp);
-      H.block<3, 1>(3 * nv + 3 * s, j) = J.cwiseProduct(w);
-    }
-  }
-  return -H / model_.moment_scale();
+  return Eigen::MatrixXd(StiffnessAnalyticSparse(q));
 }
 
 Eigen::MatrixXd QuatFdBuckling::Stiffness(double lambda, const Eigen::VectorXd& q,
@@ -188,26 +154,51 @@ Eigen::VectorXd QuatFdBuckling::StiffnessEigenvalues(double lambda, const Eigen:
 
 int QuatFdBuckling::StiffnessEigenvaluesBelow(double lambda, const Eigen::VectorXd& q,
                                               double below) {
-  const Eigen::MatrixXd H = Stiffness(lambda, q, options_.finite_difference_stiffness);
-  const double size = H.cwiseAbs().maxCoeff();
-  asymmetry_ = size > 0 ? (H - H.transpose()).cwiseAbs().maxCoeff() / size : 0.0;
-  const Eigen::MatrixXd Hs = 0.5 * (H + H.transpose());
+  if (options_.finite_difference_stiffness) {  // the cross-check: dense by construction
+    const Eigen::VectorXd e = StiffnessEigenvalues(lambda, q);
+    return static_cast<int>((e.array() < -below).count());
+  }
+  model_.set_loads(path_.LoadsAt(lambda));
+  const Eigen::SparseMatrix<double> H = StiffnessAnalyticSparse(q);
+  const int m = static_cast<int>(H.rows());
   // The tangent coordinates along the rod: free vertex v at 2v, segment s (between vertices s
-  // and s + 1) at 2s + 1; each couples only with its neighbours.
+  // and s + 1) at 2s + 1; each couples only with its neighbours, so in this order the stiffness
+  // is banded.
   const int nv = static_cast<int>(free_vertices_.size());
-  const int N = model_.layout().segments;
-  std::vector<std::pair<int, int>> keyed;
+  std::vector<int> rank(m);
   for (int a = 0; a < nv; ++a)
-    for (int k = 0; k < 3; ++k) keyed.emplace_back(2 * free_vertices_[a], 3 * a + k);
-  for (int s = 0; s < N; ++s)
-    for (int k = 0; k < 3; ++k) keyed.emplace_back(2 * s + 1, 3 * nv + 3 * s + k);
-  std::stable_sort(keyed.begin(), keyed.end(),
-                   [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<int> order;
-  for (const auto& [key, j] : keyed) order.push_back(j);
-  const int count = detail::CountEigenvaluesBelow(Hs, order, below);
-  if (count >= 0) return count;
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Hs, Eigen::EigenvaluesOnly);
+    for (int k = 0; k < 3; ++k) rank[3 * a + k] = 3 * (2 * free_vertices_[a]) + k;
+  for (int s = 0; s < model_.layout().segments; ++s)
+    for (int k = 0; k < 3; ++k) rank[3 * nv + 3 * s + k] = 3 * (2 * s + 1) + k;
+  std::vector<int> order(m), position(m);
+  for (int j = 0; j < m; ++j) order[j] = j;
+  std::sort(order.begin(), order.end(), [&](int x, int y) { return rank[x] < rank[y]; });
+  for (int i = 0; i < m; ++i) position[order[i]] = i;
+  // The symmetric part ½ (H + Hᵀ) in that order, and |H − Hᵀ| / |H|.
+  const Eigen::SparseMatrix<double> Ht = H.transpose();
+  const Eigen::SparseMatrix<double> sym = 0.5 * (H + Ht), skew = H - Ht;
+  double size = 0.0;
+  int b = 0;
+  for (int j = 0; j < m; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(H, j); it; ++it) {
+      size = std::max(size, std::abs(it.value()));
+      b = std::max(b, std::abs(position[it.row()] - position[j]));
+    }
+  double asymmetry = 0.0;
+  for (int j = 0; j < m; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(skew, j); it; ++it)
+      asymmetry = std::max(asymmetry, std::abs(it.value()));
+  asymmetry_ = size > 0 ? asymmetry / size : 0.0;
+  detail::SymmetricBand band{Eigen::MatrixXd::Zero(m, b + 1)};
+  for (int j = 0; j < m; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(sym, j); it; ++it) {
+      const int pi = position[it.row()], pj = position[j];
+      if (pi >= pj) band.lower(pi, pi - pj) = it.value();
+    }
+  const int count = detail::CountEigenvaluesBelow(band, below);
+  if (count >= 0 || m > kMaxDenseStiffness) return count;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(sym),
+                                                           Eigen::EigenvaluesOnly);
   return static_cast<int>((eig.eigenvalues().array() < -below).count());
 }
 

@@ -14,9 +14,7 @@ int QuatFdStabilityIndex(const io::Problem& problem, const Eigen::VectorXd& q,
                             loads.tip_moment.isZero(0.0) && loads.fluid.velocity_W.isZero(0.0) &&
                             !problem.has_robot && problem.rod.tendons.empty() &&
                             problem.rod.chambers.empty();
-  if (problem.boundary != io::Boundary::kCantilever || !conservative ||
-      problem.nodes > kMaxCheckedNodes)
-    return -1;
+  if (problem.boundary != io::Boundary::kCantilever || !conservative) return -1;
   const bool compressed = std::any_of(state.wrench_B.begin(), state.wrench_B.end(),
                                       [](const Vec6& w) { return w(5) < 0; });
   // Without compression a rod's own stiffness is positive; a convex surface it rests on (a

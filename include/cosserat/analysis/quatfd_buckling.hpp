@@ -26,6 +26,7 @@
 /// paths need a new model at every λ and are not supported here (use BucklingAnalysis).
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <string>
 #include <vector>
 
@@ -101,8 +102,12 @@ class QuatFdBuckling {
   /// The number of eigenvalues of the same symmetric stiffness below −below (units EI/L): the
   /// inertia of its shift by an LDLᵀ factorisation in the tangent coordinates ordered along the
   /// rod, where it is banded (O(N) instead of the eigenvalues' O(N³)); by the eigenvalues when a
-  /// pivot is too small to trust.
+  /// pivot is too small to trust, and −1 then if there are more than kMaxDenseStiffness
+  /// coordinates. With finite_difference_stiffness, by the eigenvalues always.
   int StiffnessEigenvaluesBelow(double lambda, const Eigen::VectorXd& q, double below);
+  /// The most tangent coordinates whose stiffness is worth an eigenvalue fallback (401 nodes:
+  /// 0.5 s).
+  static constexpr int kMaxDenseStiffness = 2400;
   /// The largest |H − Hᵀ| / |H| of the last stiffness computed (a check: conservative loads
   /// give a symmetric Hessian up to the difference error).
   double last_asymmetry() const { return asymmetry_; }
@@ -129,6 +134,8 @@ class QuatFdBuckling {
   /// The stiffness matrix H' (dimensionless, tangent coordinates) at q under the loads of λ.
   Eigen::MatrixXd StiffnessFiniteDifference(const Eigen::VectorXd& q);
   Eigen::MatrixXd StiffnessAnalytic(const Eigen::VectorXd& q);
+  /// The same from the banded ∂f/∂q without a dense step: O(N).
+  Eigen::SparseMatrix<double> StiffnessAnalyticSparse(const Eigen::VectorXd& q);
 
   std::vector<int> free_vertices_;  ///< vertices whose position is not prescribed
   Eigen::VectorXd q_, zero_v_, forces_plus_, forces_minus_;
