@@ -159,6 +159,45 @@ TEST(HeldCable, AMooringLineInWaterIsTheElasticCatenary) {
   ExpectCatenary(m, s.state, 5e-3);
 }
 
+// The line's equilibrium does not depend on the frame it is written in. The same line turned
+// rigidly (a y-up world; a tilt of 0.06° that puts a sliver of gravity along y; a turn about an
+// oblique axis), with the base frame turned along or left as the world's (its third axis then
+// across the line: the pinned base holds the twist about the line, not about that axis), and
+// stiff as a riser (EI = 2·10⁴ N·m², kL ≈ 80) as well as slack: each converges, and its anchor
+// force is the turned one of the upright line to 1e-7 (the residual's 1e-10 times the
+// conditioning; measured below 1e-8). Started from the inextensible catenary, with no tension and
+// so no lateral stiffness, several of these failed. The slack line is also the elastic catenary.
+TEST(HeldCable, AMooringLinesEquilibriumDoesNotDependOnItsFrame) {
+  const std::vector<Mat3> turns = {
+      Eigen::AngleAxisd(-M_PI / 2, Vec3::UnitX()).toRotationMatrix(),
+      Eigen::AngleAxisd(std::atan(0.01 / kG), Vec3::UnitX()).toRotationMatrix(),
+      Eigen::AngleAxisd(2.0, Vec3(1, 2, 3).normalized()).toRotationMatrix()};
+  for (const double I : {1e-10, 1e-6}) {
+    const MooringLine m = InWater(I);
+    const Vec3 upright = SolveHeld(m.c, m.fairlead, m.loads, 400).state.BaseReaction_W().tail<3>();
+    for (const Mat3& Q : turns)
+      for (const bool base_turned : {false, true}) {
+        StaticLoads loads = m.loads;
+        loads.gravity_W = Q * m.loads.gravity_W;
+        quatfd::QuatFdModel model(m.c.Model(),
+                                  lie::SE3{base_turned ? Q : Mat3::Identity(), Vec3::Zero()},
+                                  HeldBetween(Q * m.fairlead, 400));
+        Eigen::VectorXd q(model.size()), v(model.size());
+        model.set_loads(loads);
+        model.RestState(q, v);
+        const quatfd::QuatFdStaticsSummary s = quatfd::SolveStatics(&model, loads, q);
+        ASSERT_TRUE(s.converged())
+            << "I " << I << ", turn\n" << Q << "\nbase turned " << base_turned;
+        RodState state;
+        model.ToRodState(q, Eigen::VectorXd::Zero(model.size()), &state);
+        const Vec3 turned = Q.transpose() * state.BaseReaction_W().tail<3>();
+        EXPECT_LT((turned - upright).norm(), 1e-7 * upright.norm())
+            << "I " << I << ": " << turned.transpose() << " vs " << upright.transpose();
+        if (I == 1e-10) EXPECT_NEAR(-turned.x(), m.cat.H, 5e-3 * m.cat.H);
+      }
+  }
+}
+
 // The same line as a hose lighter than the water it displaces (ρ = 500 kg/m³ in 1 025): the net
 // load w = (ρ − ρ_w) A g points up, and the line hangs upwards, the catenary of the mirrored
 // problem (z → −z: the fairlead 50 m below, the load down). Started from the catenary in gravity

@@ -40,10 +40,13 @@ struct HangingPlane {
   double h, l;
 };
 
-/// The inextensible catenary of length L from A through B (Irvine 1981, ch. 1):
-/// y = a cosh((x − x0)/a) + C with L² − h² = (2a sinh(l/2a))², at the arc lengths s.
-void CatenaryPositions(const Vec3& A, const HangingPlane& p, double L, const std::vector<double>& s,
-                       std::vector<Vec3>* x) {
+/// The inextensible catenary of length L through the rise h and run l of a plane (Irvine 1981,
+/// ch. 1): y = a cosh((x − x0)/a) + C with L² − h² = (2a sinh(l/2a))²; sinh(−x0/a) is its slope
+/// at the start.
+struct CatenaryParameters {
+  double a, x0, sinh_start;
+};
+CatenaryParameters Catenary(const HangingPlane& p, double L) {
   const double target = std::sqrt(L * L - p.h * p.h);
   const auto span = [&](double a) { return 2 * a * std::sinh(p.l / (2 * a)); };  // falls with a
   double hi = p.l;
@@ -51,11 +54,31 @@ void CatenaryPositions(const Vec3& A, const HangingPlane& p, double L, const std
   const double a = Invert([&](double y) { return -span(y); }, -target, p.l / 1400.0, hi);
   const double x0 =
       -a * (std::log(L + p.h) - std::log(a) - p.l / a - std::log1p(-std::exp(-p.l / a)));
-  const double sa = std::sinh(-x0 / a), ya = a * std::cosh(-x0 / a);
+  return {a, x0, std::sinh(-x0 / a)};
+}
+
+/// That catenary from A at the arc lengths s.
+void CatenaryPositions(const Vec3& A, const HangingPlane& p, double L, const std::vector<double>& s,
+                       std::vector<Vec3>* x) {
+  const CatenaryParameters c = Catenary(p, L);
+  const double ya = c.a * std::cosh(-c.x0 / c.a);
   for (size_t v = 0; v < s.size(); ++v) {
-    const double xv = x0 + a * std::asinh(s[v] / a + sa);
-    (*x)[v] = A + xv * p.u + (a * std::cosh((xv - x0) / a) - ya) * p.up;
+    const double xv = c.x0 + c.a * std::asinh(s[v] / c.a + c.sinh_start);
+    (*x)[v] = A + xv * p.u + (c.a * std::cosh((xv - c.x0) / c.a) - ya) * p.up;
   }
+}
+
+/// The mean tension of that catenary over its distributed load w (N/m), in m: its tension at s
+/// is w a sqrt(1 + (s/a + sinh(−x0/a))²).
+double CatenaryMeanTensionOverLoad(const HangingPlane& p, double L) {
+  const CatenaryParameters c = Catenary(p, L);
+  const int samples = 64;
+  double sum = 0.0;
+  for (int k = 0; k < samples; ++k) {
+    const double s = (k + 0.5) / samples * L;
+    sum += c.a * std::hypot(1.0, s / c.a + c.sinh_start);
+  }
+  return sum / samples;
 }
 
 /// A line of length L from A lying on a bed (normal up) towards B, then rising to B as a catenary
@@ -128,7 +151,16 @@ void QuatFdModel::HeldShape(Eigen::Ref<Eigen::VectorXd> q) const {
     if (plane.l > 0) plane.u = across / plane.l;
   }
   if (c < length && g > 0 && plane.l > 1e-6 * c) {
-    CatenaryPositions(A, plane, length, s_, &x);
+    // Stretched by the line's mean tension (hanging free) over its axial stiffness: started
+    // inextensible, it carried no tension and so no lateral stiffness, and Newton's first step
+    // went metres astray (a 120 m riser in water: 2.6 m), through compressed shapes where the
+    // stiffness is singular.
+    const double stretch = 1.0 + net.norm() / length *
+                                     CatenaryMeanTensionOverLoad(plane, length) /
+                                     MeanAxialStiffness();
+    std::vector<double> stretched(s_);
+    for (double& si : stretched) si *= stretch;
+    CatenaryPositions(A, plane, length * stretch, stretched, &x);
     // A base on a bed the catenary would hang through (a riser, a mooring): lying on it instead.
     for (int k = 0; k < loads_.contact.count; ++k) {
       const ContactSurface& bed = loads_.contact.surface[k];
@@ -140,7 +172,8 @@ void QuatFdModel::HeldShape(Eigen::Ref<Eigen::VectorXd> q) const {
       bool through = false;
       for (int v = 1; v < N && !through; ++v)
         through = bed.Distance(x[v], &normal) < 0.5 * vertex_diameter_[v];
-      if (through) GroundedCatenaryPositions(A, plane, length, s_, &x);  // else x stays
+      if (through)  // else x stays
+        GroundedCatenaryPositions(A, plane, length * stretch, stretched, &x);
     }
   } else {
     // The chord, stretched uniformly (a taut rod); or, with no gravity across the chord to hang
@@ -152,16 +185,21 @@ void QuatFdModel::HeldShape(Eigen::Ref<Eigen::VectorXd> q) const {
   }
   x[N] = B;
   for (int v = 0; v <= N; ++v) q.segment<3>(L::X(v)) = x[v];
-  // Each segment's frame: the base frame turned by the least rotation onto its chord.
-  const Vec3 e3 = base_.R.col(2);
+  // Each segment's frame: the last one (the base's for the first) turned by the least
+  // rotation from the last chord onto its own, a parallel transport along the shape, so the
+  // start carries no twist. (The base frame turned straight onto each chord twisted the rod
+  // wherever the shape left the planes through the base frame's axis: a catenary hanging in a
+  // gravity with a component across that axis started twisted by up to half a turn.)
   Vec4 previous = base_quat_;
+  Vec3 last = lie::QuatToRotation(previous).col(2);
   for (int i = 0; i < N; ++i) {
     const Vec3 d = (q.segment<3>(L::X(i + 1)) - q.segment<3>(L::X(i))).normalized();
-    const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(e3, d);
-    Vec4 p = lie::QuatMultiply(Vec4(turn.w(), turn.x(), turn.y(), turn.z()), base_quat_);
-    if (p.dot(previous) < 0) p = -p;
+    const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(last, d);
+    Vec4 p = lie::QuatMultiply(Vec4(turn.w(), turn.x(), turn.y(), turn.z()), previous);
+    p.normalize();
     q.segment<4>(L::P(i)) = p;
     previous = p;
+    last = d;
   }
 }
 
@@ -202,6 +240,12 @@ double QuatFdModel::MaxSegmentForce(const Eigen::Ref<const Eigen::VectorXd>& q) 
     f_max = std::max(f_max, F.norm());
   }
   return f_max;
+}
+
+double QuatFdModel::MeanAxialStiffness() const {
+  double sum = 0.0;
+  for (const kernels::SegmentConstants& seg : segment_) sum += seg.stiffness(2, 2);
+  return sum / static_cast<double>(segment_.size());
 }
 
 double QuatFdModel::MaxStrainStiffness() const {

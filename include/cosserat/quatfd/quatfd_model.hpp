@@ -230,6 +230,8 @@ class QuatFdModel {
   double MaxSegmentForce(const Eigen::Ref<const Eigen::VectorXd>& q) const;
   /// The largest entry of the segments' strain stiffness C_Γ (N): EA or κGA.
   double MaxStrainStiffness() const;
+  /// The axial stiffness EA of the segments, averaged (N).
+  double MeanAxialStiffness() const;
   double force_scale() const { return force_scale_; }
 
  private:
