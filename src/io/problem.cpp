@@ -97,6 +97,21 @@ void CheckAnchor(const ObjectReader& top, const Problem& p) {
                           FormatNumber(farthest) + " m away");
 }
 
+/// A load at a held tip goes straight into its anchor: a tip force on an anchored rod (and a
+/// tip moment at a clamped anchor) would load nothing and be silently lost.
+void CheckHeldTipLoads(const ObjectReader& top, const Problem& p) {
+  if (p.boundary != Boundary::kAnchored) return;
+  if (!p.loads.tip_force.isZero(0.0))
+    top.report().Add("loads.tip_force",
+                     "acts at the anchored tip, which the anchor holds in place: the anchor takes "
+                     "it whole and the rod carries none of it (a point load along the line is not "
+                     "supported; see anchor_force for the anchor's reaction)");
+  if (p.anchor.tip_clamped && !p.loads.tip_moment.isZero(0.0))
+    top.report().Add("loads.tip_moment",
+                     "acts at the tip, which \"anchor.tip\": \"clamped\" holds: the clamp takes it "
+                     "whole and the rod carries none of it");
+}
+
 LoadFrame ReadFrame(const ObjectReader& o, const std::string& key) {
   const auto frame = ReadChoice(o, key, {"world", "body"}, Presence::kOptional);
   return frame == std::optional<std::string>("body") ? LoadFrame::kBody : LoadFrame::kWorld;
@@ -305,6 +320,7 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   CheckAnchor(top, *p);
   if (const auto loads = ReadObject(top, "loads", Presence::kOptional))
     p->loads = ParseLoads(*loads);
+  CheckHeldTipLoads(top, *p);
   if (const auto env = ReadObject(top, "environment", Presence::kOptional))
     ParseEnvironment(*env, &p->loads.fluid, &p->gust, &p->loads.contact);
   if (const auto o = ReadObject(top, "dynamics", Presence::kOptional)) {
