@@ -7,7 +7,9 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <variant>
@@ -42,6 +44,25 @@ void CheckMemory(int count, int nodes) {
                           std::to_string(static_cast<long long>(memory / 1e9)) + " GB");
 }
 
+/// One call into a batch at a time: step() and initialize_at_rest() let go of the GIL while the
+/// rods run, and a second Python thread entering the same batch then (another step, a restore, a
+/// read of the positions) corrupted the heap. The later caller gets a RuntimeError instead.
+class Exclusive {
+ public:
+  explicit Exclusive(std::atomic<bool>* busy) : busy_(busy) {
+    if (busy_->exchange(true))
+      throw std::runtime_error(
+          "the BatchStepper is busy in another thread (a step() or initialize_at_rest() is under "
+          "way): use one batch from one thread at a time, or one batch per thread");
+  }
+  ~Exclusive() { busy_->store(false); }
+  Exclusive(const Exclusive&) = delete;
+  Exclusive& operator=(const Exclusive&) = delete;
+
+ private:
+  std::atomic<bool>* busy_;
+};
+
 /// M rods of the problem stepped together on a team of threads (BatchStepper), with inputs and
 /// outputs as (M, ...) arrays: each rod starts from the problem's input, as a Stepper does, and
 /// step() replaces what it is given, rod by rod.
@@ -74,6 +95,7 @@ class PyBatchStepper {
   /// As the Stepper starts: from the statics solver's equilibrium, else the rods' own solve;
   /// the steps after it apply the problem's loads and actuation (as after construction).
   int InitializeAtRest() {
+    const Exclusive one_at_a_time(&busy_);
     const std::optional<RodState> equilibrium =
         cosserat::run::StaticEquilibriumToStartFrom(problem_, initial_);
     py::gil_scoped_release release;
@@ -87,6 +109,7 @@ class PyBatchStepper {
   /// tip_force (M, 3) N, world; tension (M, tendons) N. Returns how many rods converged. Both
   /// are checked before either is applied: a refused call changes nothing.
   int Step(std::optional<Eigen::MatrixXd> tip_force, std::optional<Eigen::MatrixXd> tension) {
+    const Exclusive one_at_a_time(&busy_);
     RequireState();
     const int M = batch_->count();
     if (tip_force) Check(*tip_force, M, 3, "tip_force");
@@ -105,6 +128,7 @@ class PyBatchStepper {
   }
 
   std::vector<Bdf2ShootingStepper::Snapshot> Save() const {
+    const Exclusive one_at_a_time(&busy_);
     RequireState();
     return batch_->Save();
   }
@@ -112,6 +136,7 @@ class PyBatchStepper {
   /// measured state); each then applies the inputs its run was applying (InputToContinue).
   void Restore(const std::variant<Bdf2ShootingStepper::Snapshot,
                                   std::vector<Bdf2ShootingStepper::Snapshot>>& snapshots) {
+    const Exclusive one_at_a_time(&busy_);
     if (const auto* one = std::get_if<Bdf2ShootingStepper::Snapshot>(&snapshots)) {
       batch_->RestoreAll(*one);  // throws std::invalid_argument (ValueError), changing nothing
       inputs_.assign(batch_->count(), InputToContinue(*one, first_inputs_[0]));
@@ -126,6 +151,7 @@ class PyBatchStepper {
 
   /// (M, N, 3) node positions, m, world.
   py::array_t<double> Positions() const {
+    const Exclusive one_at_a_time(&busy_);
     RequireState();
     const int M = batch_->count(), N = batch_->rod(0).state().size();
     py::array_t<double> out({M, N, 3});
@@ -137,6 +163,7 @@ class PyBatchStepper {
   }
 
   Eigen::MatrixXd TipPositions() const {
+    const Exclusive one_at_a_time(&busy_);
     RequireState();
     Eigen::MatrixXd out(batch_->count(), 3);
     for (int i = 0; i < batch_->count(); ++i)
@@ -146,6 +173,7 @@ class PyBatchStepper {
   /// Whether each rod's last step converged (M bools); a rod that failed stays at the last state
   /// it reached, behind the others.
   std::vector<bool> Converged() const {
+    const Exclusive one_at_a_time(&busy_);
     RequireState();
     std::vector<bool> out(batch_->count());
     for (int i = 0; i < batch_->count(); ++i) out[i] = batch_->summary(i).converged();
@@ -153,11 +181,15 @@ class PyBatchStepper {
   }
   /// Each rod's simulated time, s (M values).
   std::vector<double> Times() const {
+    const Exclusive one_at_a_time(&busy_);
     std::vector<double> out(batch_->count());
     for (int i = 0; i < batch_->count(); ++i) out[i] = batch_->rod(i).time();
     return out;
   }
-  double time() const { return batch_->rod(0).time(); }
+  double time() const {
+    const Exclusive one_at_a_time(&busy_);
+    return batch_->rod(0).time();
+  }
   int count() const { return batch_->count(); }
 
  private:
@@ -185,6 +217,7 @@ class PyBatchStepper {
   std::vector<StepInput> first_inputs_;  ///< what the first steps apply: the file's
   std::vector<StepInput> inputs_;
   bool initialized_ = false;
+  mutable std::atomic<bool> busy_{false};  ///< a call is under way (Exclusive)
 };
 
 /// cosserat._core.sweep: a study (io/study.hpp) run into a CSV file (run/sweep.hpp).

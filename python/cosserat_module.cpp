@@ -266,7 +266,8 @@ void BindLoads(py::module_& m) {
       });
 }
 
-/// cosserat.Actuation: tendon tensions, pressures and the stiffness scale.
+/// cosserat._core.Actuation: tendon tensions and pressures (the C++ stiffness_scale, read only by
+/// a section profile written in C++, is left out: no profile Python can build reads it).
 void BindActuation(py::module_& m) {
   py::class_<Actuation>(m, "Actuation",
                         "What the actuators do: tendon tensions (N, in the robot's tendon order), "
@@ -275,7 +276,6 @@ void BindActuation(py::module_& m) {
                         "scale.")
       .def(py::init<>())
       .def_readwrite("pressure", &Actuation::pressure)
-      .def_readwrite("stiffness_scale", &Actuation::stiffness_scale)
       .def_property("tendon_tension", ArrayGetter(&Actuation::tendon_tension),
                     ArraySetter(&Actuation::tendon_tension, "tendon_tension"))
       .def_property("chamber_pressure", ArrayGetter(&Actuation::chamber_pressure),
@@ -289,7 +289,7 @@ void BindActuation(py::module_& m) {
           << Text(a.tendon_tension, Used(a.tendon_tension))
           << ", chamber_pressure=" << Text(a.chamber_pressure, Used(a.chamber_pressure))
           << ", jamming_pressure=" << Text(a.jamming_pressure, Used(a.jamming_pressure))
-          << ", pressure=" << a.pressure << ", stiffness_scale=" << a.stiffness_scale << ")";
+          << ", pressure=" << a.pressure << ")";
         return o.str();
       });
 }
@@ -310,6 +310,14 @@ void BindProblem(py::module_& m) {
       .def_property_readonly("base_rotation", [](const io::Problem& p) { return p.base.R; })
       .def_readwrite("loads", &io::Problem::loads)
       .def_property_readonly("actuation", [](const io::Problem& p) { return p.robot.actuation; })
+      .def_property_readonly(
+          "tendon_count", [](const io::Problem& p) { return p.rod.tendons.size(); },
+          "The tendons of the rod (robot.tendons): the length of actuation.tendon_tension.")
+      .def_property_readonly(
+          "chamber_count", [](const io::Problem& p) { return p.rod.chambers.size(); },
+          "The pressurised chambers of the rod (robot.chambers).")
+      .def_property_readonly("jamming_segment_count", &python::JammingSegments,
+                             "The switchable segments of a layer-jamming rod (0 for any other).")
       .def_property_readonly("initial_actuation",
                              [](const io::Problem& p) { return p.robot.initial_actuation; })
       .def_property_readonly("dt", [](const io::Problem& p) { return p.dynamics.dt; })

@@ -23,6 +23,7 @@ from .plotting import animate, plot  # noqa: F401
 from .results import solve  # noqa: F401  (accepts dicts and paths; adds NumPy arrays)
 from .studies import sweep  # noqa: F401
 from .solvers import BatchStepper, StaticSolver, Stepper  # noqa: F401  (problems as solve takes)
+from .actuation import Actuation  # noqa: F401  (fitted to a solver's problem as a dict is)
 
 
 def load_problem(path):

@@ -5,6 +5,7 @@ import warnings
 import numpy as np
 
 from . import _core
+from .actuation import fit_to_problem
 from .results import _as_problem, _json_text
 
 
@@ -58,9 +59,10 @@ def _loads_from(value, holder):
 def _actuation_from(value, problem):
     """An Actuation from a dict with the keys of the problem file's robot.actuation (tension,
     chamber_pressure, jamming_pressure, pressure), checked by the file's rules for `problem` (one
-    value per tendon, chamber or jamming segment); an Actuation or None as given."""
+    value per tendon, chamber or jamming segment); a cosserat.Actuation fitted to the problem by
+    the same rules (actuation.fit_to_problem); another Actuation or None as given."""
     if not isinstance(value, dict):
-        return value
+        return fit_to_problem(value, problem)
     return _core._parse_actuation(problem, _json_text(value))
 
 

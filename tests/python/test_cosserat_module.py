@@ -177,7 +177,7 @@ class Statics(unittest.TestCase):
         np.testing.assert_allclose(p.actuation.tendon_tension[:3], [1.5, 0.0, 0.5])
         solver = cosserat.StaticSolver(p)
         actuation = cosserat.Actuation()
-        actuation.tendon_tension = [2.0]
+        actuation.tendon_tension = [2.0, 0.0, 0.0]
         self.assertTrue(solver.solve(cosserat.Loads(), actuation=actuation).converged)
         ei = 210e9 * math.pi * 0.0004**4 / 4
         curvature = np.linalg.norm(solver.state()["strain_B"][:, :3], axis=1)
@@ -189,7 +189,7 @@ class Statics(unittest.TestCase):
         np.testing.assert_allclose(curvature, 1.0 * 0.008 / ei, rtol=1e-9)
         with self.assertRaisesRegex(ValueError, "tendon_tension"):
             actuation.tendon_tension = [1.0] * 9
-        actuation.tendon_tension = [-1.0]
+        actuation.tendon_tension = [-1.0, 0.0, 0.0]
         with self.assertRaisesRegex(ValueError, "tendon_tension"):
             solver.solve(cosserat.Loads(), actuation=actuation)
 
@@ -202,7 +202,7 @@ class Statics(unittest.TestCase):
         np.testing.assert_allclose(p.actuation.chamber_pressure[:6], [1.2e5, 0, 0, 0, 8e4, 4e4])
         solver = cosserat.StaticSolver(p)
         actuation = cosserat.Actuation()
-        actuation.chamber_pressure = [1e5]
+        actuation.chamber_pressure = [1e5, 0, 0, 0, 0, 0]
         self.assertTrue(solver.solve(cosserat.Loads(), actuation=actuation).converged)
         ei = 1.5e6 * math.pi * 0.012**4 / 4
         state = solver.state()
@@ -487,7 +487,7 @@ class Dynamics(unittest.TestCase):
         loads = stepper.loads
         loads.tip_force = [0.5, 0, 0]
         bad = cosserat.Actuation()
-        bad.tendon_tension = [float("nan")]
+        bad.tendon_tension = [float("nan"), 0.0, 0.0]
         with self.assertRaisesRegex(ValueError, "actuation.tendon_tension"):
             stepper.step(loads, actuation=bad)
         np.testing.assert_array_equal(stepper.loads.tip_force, p.loads.tip_force)
@@ -561,7 +561,7 @@ class Dynamics(unittest.TestCase):
         p = cosserat.load_problem("robots/tendon_three_tendon.json")
         solver = cosserat.StaticSolver(p)
         for field, value in [("pressure", -1.0), ("tendon_tension", [0, 0, 0, 5.0]),
-                             ("jamming_pressure", [-1.0]), ("stiffness_scale", 0.0)]:
+                             ("jamming_pressure", [-1.0])]:
             a = cosserat.Actuation()
             setattr(a, field, value)
             with self.assertRaisesRegex(ValueError, "actuation." + field):
@@ -579,6 +579,35 @@ class Dynamics(unittest.TestCase):
             cosserat.Stepper(cosserat.load_problem("robots/eversion_banded_vine.json"))
         with self.assertRaisesRegex(ValueError, "robot.kind"):
             cosserat.StaticSolver(cosserat.load_problem("robots/eversion_banded_vine.json"))
+
+    def test_an_actuation_object_is_fitted_to_the_problem_as_a_dict_is(self):
+        # The jamming robot's file inflates its tube (30 kPa: E = 1e6 + 20 p = 1.6 MPa) and jams
+        # segments 1 and 3 (80 kPa). One tendon at 1 N on an 8 mm offset, as an object that sets
+        # only the tension, keeps those pressures as the dict does: curvature T d / EI with
+        # EI = 4.32e-3 N·m² in the compliant segment (1.851 1/m) and 4.32e-3 + 8e7 · 2e-9 in a
+        # jammed one (0.0487 1/m); the zeroed pressures gave 2.962 1/m everywhere. To 1e-3:
+        # the hand values' own rounding.
+        p = cosserat.load_problem("robots/jamming_virtual_joints.json")
+        self.assertEqual((p.tendon_count, p.chamber_count, p.jamming_segment_count), (1, 0, 3))
+        solver = cosserat.StaticSolver(p)
+        self.assertTrue(solver.solve(actuation=cosserat.Actuation(tendon_tension=[1.0])).converged)
+        by_object = solver.state()["strain_B"][[5, 15], 1]
+        np.testing.assert_allclose(by_object, [0.0487, 1.851], rtol=1e-3)
+        self.assertTrue(solver.solve(actuation={"tension": [1.0]}).converged)
+        np.testing.assert_array_equal(solver.state()["strain_B"][[5, 15], 1], by_object)
+        # A pressure set on the object is its own: the tube deflated, the jams released.
+        deflated = cosserat.Actuation(tendon_tension=[1.0], pressure=0.0,
+                                      jamming_pressure=[0.0, 0.0, 0.0])
+        self.assertTrue(solver.solve(actuation=deflated).converged)
+        np.testing.assert_allclose(solver.state()["strain_B"][[5, 15], 1], [2.962, 2.962],
+                                   rtol=1e-3)
+        # Fewer tensions than tendons are refused, as in a dict or a file.
+        three = cosserat.StaticSolver("robots/tendon_three_tendon.json")
+        with self.assertRaisesRegex(ValueError, r"actuation\.tendon_tension: expected one value "
+                                    r"per tendon \(3 in robot\.tendons\), got 1"):
+            three.solve(actuation=cosserat.Actuation(tendon_tension=[1.0]))
+        with self.assertRaisesRegex(TypeError, "unknown field 'tension'"):
+            cosserat.Actuation(tension=[1.0])
 
     def test_static_solver_uses_the_problem_base_and_loads(self):
         # Clamp moved and turned in the file: the solver's default is the file's, as the CLI's.
@@ -911,6 +940,33 @@ class Batches(unittest.TestCase):
         self.assertEqual(batch.step(tip_force=np.array([[0.0, 0, 0], [1e4, 0, 0]])), 1)
         self.assertEqual(batch.converged(), [True, False])
         self.assertEqual(batch.times, [p.dt, 0.0])
+
+    def test_two_threads_on_one_batch_take_turns_or_are_told(self):
+        # step() lets go of the GIL while the rods run; a second thread stepping the same batch
+        # then corrupted the heap (an abort). Now each call either runs whole or raises
+        # RuntimeError naming the busy batch, and the rods' time counts exactly the steps that
+        # ran (a conservation of steps: none lost, none half-done).
+        import threading
+        p = cosserat.load_problem("examples/cantilever_release.json")
+        batch = cosserat.BatchStepper(p, 8, threads=1)
+        self.assertEqual(batch.initialize_at_rest(), 8)
+        ran, refused, other = [0, 0], [], []
+
+        def run(k):
+            for _ in range(150):
+                try:
+                    batch.step()
+                    ran[k] += 1
+                except RuntimeError as e:
+                    (refused if "busy in another thread" in str(e) else other).append(1)
+        threads = [threading.Thread(target=run, args=(k,)) for k in range(2)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        self.assertEqual(other, [])
+        self.assertEqual(sum(ran) + len(refused), 300)
+        np.testing.assert_allclose(batch.times, [sum(ran) * p.dt] * 8, rtol=1e-12)
 
     def test_64_rods_step_exactly_as_64_steppers(self):
         # The peer release's wire, 64 rods each with its own tip-force history: every rod's tip
