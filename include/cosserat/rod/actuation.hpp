@@ -15,7 +15,9 @@ struct Actuation {
   static constexpr int kMaxSegments = 16;
   static constexpr int kMaxChambers = 16;
 
-  /// Scales every stiffness profile's actuation-dependent factor; 1 for the plain rod.
+  /// A stiffness command for section profiles written in C++ that read it (a heated or
+  /// electro-adhesive section whose stiffness a controller sets); none of the built-in profiles
+  /// reads it. The stepper re-samples the sections when it changes. 1 by default.
   double stiffness_scale = 1.0;
   /// Internal (inflation) gauge pressure of an inflated body, Pa. Read by pressure-dependent
   /// profiles (E_eff(p)) and by eversion robots (follower tip force p·A).
