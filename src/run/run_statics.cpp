@@ -109,13 +109,18 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
         solver.StabilityIndexFromShot(problem.base, problem.loads, solver.unknowns(), record,
                                       tangents);
   }
+  std::string unjudged;  // a grid too coarse to count unstable directions on
+  if (column.converged())
+    summary.stability_index =
+        detail::JudgedStabilityIndex(problem, solver.state(), summary.stability_index, &unjudged);
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Result result;
   result.json = io::StaticResultToJson(summary, solver.state());
   detail::KeepStaticFrame(problem, solver.state(), options, &result);
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
-  result.log = StaticSummary(summary, solver.state()) + " (" + ToString(ends) + ")\n";
+  result.log =
+      StaticSummary(summary, solver.state()) + " (" + ToString(ends) + ")\n" + unjudged;
   result.converged = summary.converged();
   // Past a critical load the column follows its straight branch, stable or not. The index
   // judges it; where it is not defined, the comparison with the Euler load of the free column
@@ -138,6 +143,10 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
                                   ColumnEnds ends = ColumnEnds::kClampedFree, int pieces = 0) {
   detail::StaticsInPieces solved =
       detail::SolveStaticsInPieces(problem, ends, problem.base, problem.loads, pieces);
+  std::string unjudged;  // a grid too coarse to count unstable directions on
+  if (solved.summary.converged())
+    solved.summary.stability_index = detail::JudgedStabilityIndex(
+        problem, solved.state, solved.summary.stability_index, &unjudged);
   std::string settled_note;
   if (ends == ColumnEnds::kClampedFree && solved.summary.converged() &&
       solved.summary.stability_index > 0 && detail::MaySettle(problem)) {
@@ -162,8 +171,9 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
       ends == ColumnEnds::kClampedFree ? "" : ToString(ends) + std::string(", ");
   result.log = StaticSummary(summary, solved.state) + " (" + column +
                std::to_string(solved.pieces) + " shooting pieces)\n" + settled_note +
-               ContinuationHint(problem, summary) + detail::UnstableWarning(summary, false);
-  if (summary.converged() && summary.stability_index < 0)
+               ContinuationHint(problem, summary) + detail::UnstableWarning(summary, false) +
+               unjudged;
+  if (summary.converged() && summary.stability_index < 0 && unjudged.empty())
     result.log += detail::UnjudgedCompressionNote(
         problem.rod, solved.state,
         LoadsAreConservative(problem.loads)
@@ -260,6 +270,10 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
   Actuation actuation = problem.robot.actuation;
   StaticShootingSolver first(problem.rod, problem.nodes, StaticOptions(problem), actuation);
   StaticShootingSummary summary = first.Solve(problem.base, problem.loads);
+  std::string unjudged;  // a grid too coarse to count unstable directions on
+  if (summary.converged())
+    summary.stability_index =
+        detail::JudgedStabilityIndex(problem, first.state(), summary.stability_index, &unjudged);
   // An unstable equilibrium of a symmetric problem: the stable one beside it, when reached.
   std::optional<StaticShootingSolver> beside;
   std::string settled_note;
@@ -320,7 +334,7 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
   result.log = StaticSummary(summary, solver.state()) + '\n' + settled_note +
                TendonLawHint(problem, actuation, summary);
   if (!problem.has_robot) result.log += ContinuationHint(problem, summary);
-  result.log += detail::UnstableWarning(summary);
+  result.log += detail::UnstableWarning(summary) + unjudged;
   result.converged = summary.converged();
   return result;
 }

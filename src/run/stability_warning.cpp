@@ -8,6 +8,11 @@
 
 namespace cosserat::run::detail {
 
+namespace {
+/// RK4's stability limit on y' = −k y, the largest k h at which its Jacobi fields are trusted.
+constexpr double kMaxJacobiKh = 2.8;
+}  // namespace
+
 std::string UnstableWarning(const StaticShootingSummary& s, bool searched_stable) {
   if (!s.converged() || s.stability_index <= 0) return "";
   return "cosserat: warning: this equilibrium is unstable (" + std::to_string(s.stability_index) +
@@ -72,6 +77,32 @@ std::string UnjudgedCompressionNote(const RodModel& rod, const RodState& state,
   text << std::setprecision(3) << "cosserat: note: the rod is compressed by up to "
        << compression << " N (at s = " << s_max << " m), " << why << '\n';
   return text.str();
+}
+
+int JudgedStabilityIndex(const io::Problem& problem, const RodState& state, int index,
+                         std::string* note) {
+  if (index < 0 || state.size() < 2 || !problem.rod.section) return index;
+  double worst = 0.0, worst_s = 0.0, worst_k = 0.0;  // k h, where (m), k (1/m)
+  for (int i = 0; i + 1 < state.size(); ++i) {
+    const double force =
+        std::max(std::abs(state.wrench_B[i](5)), std::abs(state.wrench_B[i + 1](5)));  // N
+    const double ei =
+        problem.rod.section->At(state.s[i], problem.robot.actuation).min_bending_stiffness();
+    const double k = ei > 0 ? std::sqrt(force / ei) : 0.0;  // 1/m
+    const double kh = k * (state.s[i + 1] - state.s[i]);
+    if (kh > worst) worst = kh, worst_s = state.s[i], worst_k = k;
+  }
+  if (!(worst > kMaxJacobiKh)) return index;
+  std::ostringstream o;
+  o << std::setprecision(3) << "cosserat: note: the stability of this equilibrium is not judged: "
+    << "at s = " << worst_s << " m the axial force makes the bending length sqrt(EI/|N|) = "
+    << 1.0 / worst_k << " m, and the grid's spacing is " << worst / worst_k
+    << " m (k h = " << worst << "), too coarse for the fields that count unstable directions "
+    << "(k h <= " << kMaxJacobiKh << "); rod.nodes >= "
+    << static_cast<long>(std::ceil(problem.rod.length * worst_k / kMaxJacobiKh)) + 1
+    << " judges it\n";
+  *note = o.str();
+  return -1;
 }
 
 }  // namespace cosserat::run::detail

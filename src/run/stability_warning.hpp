@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cosserat/analysis/column.hpp"
+#include "cosserat/io/problem.hpp"
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/state/rod_state.hpp"
 #include "cosserat/strong/static_shooting.hpp"
@@ -38,5 +39,14 @@ std::string AnchoredCompressionNote(const RodModel& rod, const RodState& state);
 /// rod is compressed by up to P N (at s = … m), ".
 std::string UnjudgedCompressionNote(const RodModel& rod, const RodState& state,
                                     const std::string& why);
+
+/// The SE(3) statics' stability index as the run reports it. The index counts the conjugate
+/// points of Jacobi fields shot by RK4 on the grid, which grow or turn at the rate
+/// k = sqrt(|N|/EI) of the axial force N; past k h = 2.8 (RK4's limit on a decaying exponential)
+/// they no longer do so faithfully, and a 2 km drill string hanging in tension everywhere counted
+/// 2 unstable directions on 101 nodes (k h = 16), 1 on 201 and 0 on 401. There `index` becomes −1
+/// (not judged) and `note` says why and how many nodes judge it; elsewhere `index` as it is.
+int JudgedStabilityIndex(const io::Problem& problem, const RodState& state, int index,
+                         std::string* note);
 
 }  // namespace cosserat::run::detail
