@@ -15,6 +15,10 @@ constexpr double kSlenderness = 2.0;
 /// The largest node-to-node stretch |Δx|/Δs − 1 (either way) a linear elastic rod is trusted
 /// with; beyond it the answer is almost surely a unit slip.
 constexpr double kLargestStretch = 0.5;
+/// A stretch past which the linear law is the model's answer, not a material's: metals yield
+/// near 0.2 %, and rubbers stiffen or soften away from a linear law by 10 %. A steel rope pulled
+/// to an anchor beyond its reach stretched by 33 % (6.7 GPa) without a word.
+constexpr double kLargeStretch = 0.1;
 
 /// The largest |Δx/Δs − 1| between consecutive nodes of a "nodes" block ({"s", "position"}),
 /// and the s where it starts (m); 0 when the block has no such lists.
@@ -96,6 +100,12 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
         << " % of its length near s = " << at_s
         << " m, far beyond a linear elastic law; check the units of the material (Pa, kg/m³) "
            "and of the loads (N, m)\n";
+  else if (worst > kLargeStretch && problem.rod.chambers.empty())  // chambers extend by design
+    log << "cosserat: warning: the rod is stretched or compressed by " << 100 * worst
+        << " % of its length near s = " << at_s
+        << " m: the linear elastic law gives this answer, but no material follows it so far "
+           "(metals yield near 0.2 %); check the loads and the geometry (an anchor farther than "
+           "the rod reaches, a tendon length it cannot take)\n";
   result->log += log.str();
 }
 

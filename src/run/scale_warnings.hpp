@@ -4,7 +4,8 @@
 /// diameter (a radius in mm on a rod in m, or length and radius swapped), and a rod stretched or
 /// compressed between two nodes by more than half its length (a modulus in MPa where Pa is
 /// meant makes a steel rod as soft as a gel) in a converged answer (a diverged iterate's stretch
-/// says nothing of the units), and loads no elastic rod carries (a force over ten times EA, a
+/// says nothing of the units) or by more than a tenth (beyond any material's linear range), and
+/// loads no elastic rod carries (a force over ten times EA, a
 /// moment turning the rod through 1e4 rad). Each is a valid input, so the run goes on and its
 /// log says what looks wrong and which fields to check.
 
