@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cosserat/io/result_writer.hpp"
+#include "cosserat/loads/total_load.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/quatfd_statics.hpp"
 #include "cosserat/quatfd/radau.hpp"
@@ -71,6 +72,28 @@ std::string ClampedEndGridWarning(const io::Problem& problem, const RodState& st
           << static_cast<long>(std::ceil(problem.rod.length / (0.25 * ell))) + 1
           << ", or \"formulation\": \"se3-shooting\"\n";
   return warning.str();
+}
+
+/// After a failed solve of a slack anchored line with no net distributed load (its weight
+/// buoyed off by the fluid, or no gravity): every shape of its length between the anchors
+/// balances, and Newton has no one equilibrium to converge to.
+std::string SlackLineHint(const io::Problem& problem) {
+  if (problem.boundary != io::Boundary::kAnchored || problem.loads.contact.count > 0) return "";
+  const double L = problem.rod.length, chord = (problem.anchor.position - problem.base.p).norm();
+  if (!(chord < (1.0 - 1e-6) * L)) return "";
+  const SectionProperties p = problem.rod.section->At(0.5 * L, problem.robot.actuation);
+  const LoadSite site{0.5 * L, 1.0, p.mass(3, 3), p.outer_diameter};
+  const double net = TotalDistributedForce_W(problem.loads, site).norm();  // N/m
+  const double weight = p.mass(3, 3) * std::max(problem.loads.gravity_W.norm(), 9.81);  // N/m
+  if (net > 1e-3 * weight) return "";
+  std::ostringstream hint;
+  hint << std::setprecision(4) << "cosserat: hint: the line is slack (" << L
+       << " m between anchors " << chord
+       << " m apart) and nothing pulls it sideways: no net load acts along it (its weight "
+          "buoyed off by the fluid, or no gravity), so every shape of its length between the "
+          "anchors balances and none is the answer; give it a net weight (its density against "
+          "the fluid's), a current, or anchors as far apart as its length\n";
+  return hint.str();
 }
 
 }  // namespace
@@ -161,7 +184,7 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
     log << TipText(state);
   }
   log << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms\n";
-  if (!s.converged()) log << ContactGridHint(problem);
+  if (!s.converged()) log << ContactGridHint(problem) << SlackLineHint(problem);
   if (s.converged())
     log << settled_note << ClampedEndGridWarning(problem, state)
         << detail::UnstableWarning(summary);
