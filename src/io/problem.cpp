@@ -73,8 +73,11 @@ void CheckAnchor(const ObjectReader& top, const Problem& p) {
                                      ToString(p.boundary) + "\")");
     return;
   }
-  // Without a valid rod (its errors are reported) there is no length to reach with.
+  // Without a valid rod (its errors are reported) there is no length to reach with; without a
+  // position (its error is reported) no point to reach.
   if (!anchored || !p.rod.section || !(p.rod.length > 0)) return;
+  const nlohmann::json* anchor = top.Find("anchor");
+  if (!anchor || !anchor->is_object() || !anchor->contains("position")) return;
   const double distance = (p.anchor.position - p.base.p).norm(), L = p.rod.length;
   if (distance > 1.5 * L)
     top.report().Expected("anchor.position",
@@ -241,15 +244,11 @@ void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
     d->initial_loads = ParseLoads(*loads);
 }
 
-/// Dynamics settings that only the other formulation's integrator reads, or base drives in
-/// another analysis, would be ignored without a word: refused, naming who reads them.
+/// Dynamics settings that only the other formulation's integrator reads would be ignored
+/// without a word: refused, naming who reads them. (A dynamics block kept in a file run for
+/// another analysis is only checked: its base drive is noted by the run, run.cpp.)
 void CheckFormulationSettings(const ObjectReader& o, const Problem& p) {
-  if (p.analysis != Analysis::kDynamics) {
-    for (const char* drive : {"base_spin", "rotary_table"})
-      if (o.Has(drive))
-        o.report().Add(o.PathOf(drive), "turns the base in \"analysis\": \"dynamics\" only");
-    return;
-  }
+  if (p.analysis != Analysis::kDynamics) return;
   const bool quatfd = p.formulation == Formulation::kQuaternionFd;
   const std::initializer_list<const char*> se3_only = {"shooting_segments", "spatial_scheme"};
   const std::initializer_list<const char*> quatfd_only = {"integrator_tolerance",

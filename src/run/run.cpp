@@ -90,6 +90,22 @@ void ObstacleHint(const io::Problem& problem, Result* result) {
                  "(4 EI/k)^(1/4) follows the rod on it poorly\n";
 }
 
+/// A dynamics block kept in a file run for another analysis is checked and not used (the
+/// format's rule); its base drive is the one setting a reader may think still acts (modes of a
+/// spinning drill string hold no spin), so the log says it does not.
+void UnusedBaseDriveNote(const io::Problem& problem, Result* result) {
+  if (problem.analysis == io::Analysis::kDynamics || !problem.has_dynamics) return;
+  const bool spin = problem.dynamics.base_spin != 0.0;
+  if (!spin && !(problem.dynamics.rotary_table.inertia > 0)) return;
+  result->log += std::string("cosserat: note: dynamics.") +
+                 (spin ? "base_spin" : "rotary_table") +
+                 " turns the base in \"analysis\": \"dynamics\" only; this \"" +
+                 io::ToString(problem.analysis) + "\" holds the base still" +
+                 (problem.analysis == io::Analysis::kModes ? " (no gyroscopic effect of a spin)"
+                                                           : "") +
+                 "\n";
+}
+
 }  // namespace
 
 Result Run(const io::Problem& problem, const RunOptions& options) {
@@ -101,6 +117,7 @@ Result Run(const io::Problem& problem, const RunOptions& options) {
   detail::AddFrameContactForces(problem, &result);
   detail::AddBendingStressReport(problem, &result);
   detail::AddScaleWarnings(problem, &result);
+  UnusedBaseDriveNote(problem, &result);
   return result;
 }
 

@@ -428,6 +428,11 @@ cosserat_cli_test(NAME anchor_beyond_reach ARGS solve "${_cli_dir}/anchor_beyond
 # A slack line with no net weight has no one equilibrium: the failure says why.
 cosserat_cli_test(NAME slack_neutral_line ARGS solve "${_cli_dir}/slack_neutral_line.json"
                   CODE 1 STDERR "hint: the line is slack \\(120 m between anchors 94.34 m apart\\) and nothing pulls it sideways")
+# A dynamics block kept for another analysis is checked, not used; its base drive is noted.
+cosserat_cli_test(NAME modes_keep_base_spin ARGS solve "${_cli_dir}/modes_keep_base_spin.json"
+                  CODE 0 STDERR "note: dynamics.base_spin turns the base in \"analysis\": \"dynamics\" only; this \"modes\" holds the base still")
+cosserat_cli_test(NAME anchor_misspelt_position ARGS validate "${_cli_dir}/anchor_misspelt_position.json"
+                  CODE 2 STDERR "anchor.postion: unknown key.*anchor.position: expected an array of 3 numbers, got nothing \\(required key is missing\\)\n?$")
 # Loads an anchor would take whole are refused, not silently lost.
 cosserat_cli_test(NAME loads_at_a_held_tip ARGS validate "${_cli_dir}/loads_at_a_held_tip.json"
                   CODE 2 STDERR "loads.tip_force: acts at the anchored tip, which the anchor holds in place.*loads.tip_moment: acts at the tip, which \"anchor.tip\": \"clamped\" holds")
