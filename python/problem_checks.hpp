@@ -12,9 +12,16 @@
 
 namespace cosserat::python {
 
+/// Loads checked before they reach a solver (NaN, Inf): a ValueError naming the field.
+inline const StaticLoads& Valid(const StaticLoads& loads) {
+  std::string why;
+  if (!loads.IsValid(&why)) throw pybind11::value_error("loads: " + why);
+  return loads;
+}
+
 /// What the module's objects cannot run, refused by the field that asks for it: assemblies, the
 /// quaternion-FD formulation (solve() runs them), eversion growth and displacement control of
-/// tendons (solve() and the CLI run them).
+/// tendons (solve() and the CLI run them), and loads set on the Problem that no solver runs.
 inline const io::Problem& Runnable(const io::Problem& problem, const char* what) {
   if (problem.has_assembly)
     throw pybind11::value_error(std::string("assembly: ") + what +
@@ -28,6 +35,7 @@ inline const io::Problem& Runnable(const io::Problem& problem, const char* what)
   if (problem.robot.tendon_lengths)
     throw pybind11::value_error(std::string("robot.actuation.length: ") + what +
                           " takes tensions, not tendon lengths (cosserat.solve solves for them)");
+  Valid(problem.loads);  // a Problem's loads set from Python since it was read
   return problem;
 }
 
@@ -46,13 +54,6 @@ inline const io::Problem& Steppable(const io::Problem& problem, const char* what
     refuse("dynamics.rotary_table", "turn the clamp with base_rotation and base_twist_B");
   if (problem.gust.present()) refuse("environment.fluid.gust", "set loads.fluid each step");
   return problem;
-}
-
-/// Loads checked before they reach a solver (NaN, Inf): a ValueError naming the field.
-inline const StaticLoads& Valid(const StaticLoads& loads) {
-  std::string why;
-  if (!loads.IsValid(&why)) throw pybind11::value_error("loads: " + why);
-  return loads;
 }
 
 /// The switchable segments of a layer-jamming rod (0 for any other).

@@ -62,7 +62,10 @@ class PyStepper {
     const StepSummary s =
         cosserat::run::InitializeAtStaticEquilibrium(problem_, at_rest, &*stepper_);
     if (s.converged()) input_ = first_input_;
-    has_state_ = has_state_ || s.converged();
+    // A failed reset leaves no state to show: the last run's would read as this one's (its tip,
+    // its time), and step() could not go on from it anyway.
+    has_state_ = s.converged();
+    failed_reset_ = !s.converged();
     return s;
   }
 
@@ -85,7 +88,11 @@ class PyStepper {
   /// The stepper, once it has a state to show (a converged initialize_at_rest or a restore).
   const Bdf2ShootingStepper& run() const {
     if (!has_state_)
-      throw std::runtime_error("the Stepper has no state yet: call initialize_at_rest() first");
+      throw std::runtime_error(
+          failed_reset_ ? "the Stepper has no state: the last initialize_at_rest() did not "
+                          "converge (its status says why); call it again, or restore() a "
+                          "snapshot"
+                        : "the Stepper has no state yet: call initialize_at_rest() first");
     return *stepper_;
   }
   Bdf2ShootingStepper::Snapshot Save() const { return run().Save(); }
@@ -93,6 +100,7 @@ class PyStepper {
     stepper_->Restore(snapshot);  // throws std::invalid_argument (ValueError) if it can't
     input_ = InputToContinue(snapshot, first_input_);
     has_state_ = true;
+    failed_reset_ = false;
   }
   double time() const { return stepper_->time(); }
   int shot_steps() const { return stepper_->shot_steps(); }  // planned at construction
@@ -108,6 +116,7 @@ class PyStepper {
   StepInput first_input_;  ///< what the first step applies: the problem's loads and actuation
   StepInput input_;        ///< what step() applies
   bool has_state_ = false;
+  bool failed_reset_ = false;  ///< the last initialize_at_rest() did not converge
 };
 
 /// What a Stepper shows of its rod: the state, the tip, the support's wrench, energy, momentum.

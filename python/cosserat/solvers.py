@@ -117,3 +117,14 @@ class BatchStepper(_core.BatchStepper):
         problem = _as_problem(problem)
         super().__init__(problem, count, threads)
         _warn_before_stepping(problem, None)
+
+    def step(self, tip_force=None, tension=None):
+        # The core reads a 1-D array as a column, (3,) as (3, 1): its shape is named as given.
+        for name, value, columns in (("tip_force", tip_force, "3"), ("tension", tension,
+                                                                     "tendons")):
+            if value is not None and np.ndim(value) != 2:
+                raise ValueError(f"{name}: expected shape ({self.count}, {columns}), one row "
+                                 f"per rod, got shape {np.shape(value)}")
+        return super().step(tip_force, tension)
+
+    step.__doc__ = _core.BatchStepper.step.__doc__

@@ -557,6 +557,30 @@ class Dynamics(unittest.TestCase):
         with self.assertRaisesRegex(RuntimeError, "status"):
             solver.state()
 
+    def test_a_problems_bad_loads_and_a_failed_reset_leave_nothing_to_misread(self):
+        # Loads set on a Problem from Python reach every solver made from it checked, as loads
+        # handed to a call are (they once ran to status non_finite, or to 0 converged rods).
+        p = cosserat.load_problem("robots/tendon_three_tendon.json")
+        loads = p.loads
+        loads.tip_force = [math.inf, 0, 0]
+        p.loads = loads
+        for make in (cosserat.StaticSolver, cosserat.Stepper,
+                     lambda q: cosserat.BatchStepper(q, 2, threads=1)):
+            with self.assertRaisesRegex(ValueError, "loads: tip_force"):
+                make(p)
+        # A reset that fails (1e9 N on a 0.8 mm backbone) leaves no state: the last run's tip
+        # and time would read as this one's.
+        stepper = cosserat.Stepper("robots/tendon_three_tendon.json")
+        self.assertTrue(stepper.initialize_at_rest().converged)
+        self.assertTrue(stepper.step().converged)
+        self.assertFalse(stepper.initialize_at_rest(loads={"tip_force": [1e9, 0, 0]}).converged)
+        with self.assertRaisesRegex(RuntimeError, "the last initialize_at_rest\\(\\) did not"):
+            stepper.tip_position()
+        with self.assertRaisesRegex(RuntimeError, "did not converge"):
+            stepper.step()
+        self.assertTrue(stepper.initialize_at_rest().converged)  # and it starts again
+        self.assertTrue(stepper.step().converged)
+
     def test_actuation_follows_the_problem_file_rules(self):
         p = cosserat.load_problem("robots/tendon_three_tendon.json")
         solver = cosserat.StaticSolver(p)
