@@ -450,8 +450,9 @@ void BindStaticSolver(py::module_& m) {
                              "robot's tendon order.")
       .def("tension_jacobian", &PyStaticSolver::TensionJacobian,
            "d(tip pose)/d(tendon tensions) at the last equilibrium, exact for the discrete "
-           "model: a 6 × tendons array, rows d p(L) (world, m/N) then d θ (tip frame, rad/N) "
-           "with R(L)(τ + dτ) ≈ R(L) Exp(Σ dθ_i dτ_i).");
+           "model: a 6 × tendons array, rows d p(L) (world, m/N) then d θ (rad/N) in the tip "
+           "section's own body frame, a right perturbation: R(L)(τ + dτ) ≈ R(L) Exp(Σ dθ_i "
+           "dτ_i).");
 }
 
 }  // namespace

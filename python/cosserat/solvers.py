@@ -46,6 +46,7 @@ def _loads_from(value, holder):
     if not isinstance(value, dict):
         return value
     loads = holder.loads  # a copy: its fluid, contact and bit stay; the keyed loads start over
+    gravity = np.array(loads.gravity)  # m/s², the holder's
     for key, default in _LOAD_DEFAULTS.items():
         setattr(loads, key, default)
     for key, entry in value.items():
@@ -53,6 +54,13 @@ def _loads_from(value, holder):
             raise ValueError(f"loads.{key}: unknown key (a step's loads take "
                              f"{', '.join(_LOAD_DEFAULTS)}; the environment stays the problem's)")
         setattr(loads, key, entry)
+    if "gravity" not in value and np.any(gravity):
+        # As in a file, a load left out is not there; gravity left out of a step's loads is the
+        # one a controller most likely meant to keep (a rod that no longer sags).
+        warnings.warn(f"loads: the dict has no \"gravity\", so these loads have none (the "
+                      f"{type(holder).__name__}'s is {gravity.tolist()} m/s²); give it, or "
+                      "start from .loads and change what differs", RuntimeWarning,
+                      stacklevel=3)
     return loads
 
 

@@ -1,5 +1,6 @@
 """cosserat.sweep: a study (docs/sweeps.md) from Python, with its rows as a list of dicts."""
 import csv
+import json
 import os
 import tempfile
 import warnings
@@ -11,12 +12,20 @@ from .results import _json_text
 
 
 def _cell(text):
+    """A CSV cell as Python: empty → None, a number → float, an array the study wrote as JSON
+    (an output pointer naming a list, "/tip/position") → a NumPy array, else the text."""
     if text == "":
         return None
     try:
         return float(text)
     except ValueError:
-        return text
+        pass
+    if text.startswith("["):
+        try:
+            return np.asarray(json.loads(text), dtype=float)
+        except (ValueError, TypeError):
+            pass
+    return text
 
 
 def sweep(study, out=None, threads=None):
@@ -29,7 +38,8 @@ def sweep(study, out=None, threads=None):
     threads: default all cores.
 
     Returns {"rows": [one dict per point, in point order: index, each parameter by its path,
-    each output by its name, status, wall_time_s], "summary": {points, resumed, ran, failed,
+    each output by its name (a number, or a NumPy array for an output naming a list, as
+    /tip/position), status, wall_time_s], "summary": {points, resumed, ran, failed,
     complete, wall_time_s, empty_outputs}, "csv": the file's path (None for the temporary one)}.
     empty_outputs lists the outputs blank in every converged row (a pointer that names nothing
     in the result, e.g. a typo), which also raise a warning. Bad study files raise ValueError

@@ -311,6 +311,10 @@ class Dynamics(unittest.TestCase):
         np.testing.assert_array_equal(a.tip_position(), b.tip_position())
         with self.assertRaisesRegex(ValueError, r"loads\.gravty: unknown key"):
             b.step({"gravty": [0, 0, -9.81]})
+        # Left out, gravity is not there, as in a file; it is the load a controller most likely
+        # meant to keep, so the step says so.
+        with self.assertWarnsRegex(RuntimeWarning, 'the dict has no "gravity"'):
+            b.step({"tip_force": [0.1, 0, 0]})
         with self.assertRaisesRegex(ValueError, r"actuation\.tensions: unknown key"):
             b.step(actuation={"tensions": [1.0]})
         # As in a file, one tension per tendon: a short list is refused, not zero-filled.
@@ -573,7 +577,8 @@ class Dynamics(unittest.TestCase):
         stepper = cosserat.Stepper("robots/tendon_three_tendon.json")
         self.assertTrue(stepper.initialize_at_rest().converged)
         self.assertTrue(stepper.step().converged)
-        self.assertFalse(stepper.initialize_at_rest(loads={"tip_force": [1e9, 0, 0]}).converged)
+        self.assertFalse(stepper.initialize_at_rest(
+            loads={"gravity": [0, 0, -9.81], "tip_force": [1e9, 0, 0]}).converged)
         with self.assertRaisesRegex(RuntimeError, "the last initialize_at_rest\\(\\) did not"):
             stepper.tip_position()
         with self.assertRaisesRegex(RuntimeError, "did not converge"):
@@ -1118,7 +1123,7 @@ class Batches(unittest.TestCase):
         # Each row of a small study is what solving its point alone gives.
         study = {"format": "cosserat-study/1", "problem": "examples/cantilever.json",
                  "parameters": [{"path": "/loads/tip_force/0", "values": [-0.2, 0.0, 0.3]}],
-                 "outputs": {"tip_x": "/tip/position/0"}}
+                 "outputs": {"tip_x": "/tip/position/0", "tip": "/tip/position"}}
         out = cosserat.sweep(study, threads=np.int64(2))  # a NumPy integer is a whole number
         self.assertTrue(out["summary"]["complete"])
         self.assertIsNone(out["csv"])  # no out=: the temporary file is gone
@@ -1127,8 +1132,10 @@ class Batches(unittest.TestCase):
             with open("examples/cantilever.json") as f:
                 spec = json.load(f)
             spec["loads"]["tip_force"][0] = row["/loads/tip_force/0"]
-            alone = cosserat.solve(spec)["result"]["tip"]["position"][0]
-            self.assertEqual(row["tip_x"], alone)
+            alone = cosserat.solve(spec)["result"]["tip"]["position"]
+            self.assertEqual(row["tip_x"], alone[0])
+            # A list output is an array (the CSV holds it as JSON text).
+            np.testing.assert_array_equal(row["tip"], alone)
             self.assertEqual(row["status"], "converged")
         with self.assertRaisesRegex(ValueError, "parameters\\[0\\].path"):
             cosserat.sweep(dict(study, parameters=[{"path": "/nope/x", "values": [1]}]))
