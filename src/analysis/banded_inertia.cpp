@@ -11,33 +11,46 @@ double SymmetricBand::operator()(int i, int j) const {
   return i - j <= half_bandwidth() ? lower(i, i - j) : 0.0;
 }
 
-int CountEigenvaluesBelow(const SymmetricBand& S, double below) {
+bool BandedLdlt::Factorize(const SymmetricBand& S, double shift, double floor) {
   const int m = S.size(), b = S.half_bandwidth();
-  if (m == 0 || b < 0) return -1;
-  const double size = S.lower.cwiseAbs().maxCoeff();
-  if (!(size > 0) || !std::isfinite(size)) return -1;
-  // L (unit lower triangular) in the same band storage: L(i, j) at band(i, i − j).
-  Eigen::MatrixXd band = Eigen::MatrixXd::Zero(m, b + 1);
-  Eigen::VectorXd d(m);
-  int negative = 0;
+  negative_ = 0;
+  if (m == 0 || b < 0) return false;
+  if (!S.lower.allFinite() || !std::isfinite(shift)) return false;
+  band_ = Eigen::MatrixXd::Zero(m, b + 1);
+  d_.resize(m);
   for (int k = 0; k < m; ++k) {
-    double dk = S.lower(k, 0) + below;
-    for (int j = std::max(0, k - b); j < k; ++j) dk -= band(k, k - j) * band(k, k - j) * d(j);
-    if (!(std::abs(dk) > 1e-10 * size)) return -1;
-    d(k) = dk;
-    negative += dk < 0;
+    double dk = S.lower(k, 0) + shift;
+    for (int j = std::max(0, k - b); j < k; ++j) dk -= band_(k, k - j) * band_(k, k - j) * d_(j);
+    if (!(std::abs(dk) > floor)) return false;
+    d_(k) = dk;
+    negative_ += dk < 0;
     for (int i = k + 1; i <= std::min(m - 1, k + b); ++i) {
       double lik = S.lower(i, i - k);
-      for (int j = std::max(0, i - b); j < k; ++j) lik -= band(i, i - j) * band(k, k - j) * d(j);
-      band(i, i - k) = lik / dk;
+      for (int j = std::max(0, i - b); j < k; ++j) lik -= band_(i, i - j) * band_(k, k - j) * d_(j);
+      band_(i, i - k) = lik / dk;
     }
   }
-  return negative;
+  return true;
 }
 
-int CountEigenvaluesBelow(const Eigen::MatrixXd& S, const std::vector<int>& order, double below) {
+void BandedLdlt::Solve(Eigen::Ref<Eigen::VectorXd> x) const {
+  const int m = static_cast<int>(d_.size()), b = static_cast<int>(band_.cols()) - 1;
+  for (int i = 0; i < m; ++i)  // L y = x
+    for (int j = std::max(0, i - b); j < i; ++j) x(i) -= band_(i, i - j) * x(j);
+  for (int i = 0; i < m; ++i) x(i) /= d_(i);  // D z = y
+  for (int i = m - 1; i >= 0; --i)  // Lᵀ x = z
+    for (int j = i + 1; j <= std::min(m - 1, i + b); ++j) x(i) -= band_(j, j - i) * x(j);
+}
+
+int CountEigenvaluesBelow(const SymmetricBand& S, double below) {
+  const double size = S.lower.cwiseAbs().maxCoeff();
+  if (!(size > 0)) return -1;
+  BandedLdlt ldlt;
+  return ldlt.Factorize(S, below, 1e-10 * size) ? ldlt.negative_pivots() : -1;
+}
+
+SymmetricBand BandInOrder(const Eigen::MatrixXd& S, const std::vector<int>& order) {
   const int m = static_cast<int>(order.size());
-  if (m == 0 || S.rows() != m || S.cols() != m) return -1;
   auto at = [&](int i, int j) { return S(order[i], order[j]); };
   int b = 0;  // the half-bandwidth in this order
   for (int i = 0; i < m; ++i)
@@ -46,7 +59,30 @@ int CountEigenvaluesBelow(const Eigen::MatrixXd& S, const std::vector<int>& orde
   SymmetricBand band{Eigen::MatrixXd::Zero(m, b + 1)};
   for (int i = 0; i < m; ++i)
     for (int j = std::max(0, i - b); j <= i; ++j) band.lower(i, i - j) = at(i, j);
-  return CountEigenvaluesBelow(band, below);
+  return band;
+}
+
+SymmetricBand BandInOrder(const Eigen::SparseMatrix<double>& S, const std::vector<int>& order) {
+  const int m = static_cast<int>(order.size());
+  std::vector<int> position(m);
+  for (int i = 0; i < m; ++i) position[order[i]] = i;
+  int b = 0;
+  for (int j = 0; j < S.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(S, j); it; ++it)
+      if (it.value() != 0.0) b = std::max(b, std::abs(position[it.row()] - position[it.col()]));
+  SymmetricBand band{Eigen::MatrixXd::Zero(m, b + 1)};
+  for (int j = 0; j < S.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(S, j); it; ++it) {
+      const int pi = position[it.row()], pj = position[it.col()];
+      if (pi >= pj) band.lower(pi, pi - pj) = it.value();
+    }
+  return band;
+}
+
+int CountEigenvaluesBelow(const Eigen::MatrixXd& S, const std::vector<int>& order, double below) {
+  const int m = static_cast<int>(order.size());
+  if (m == 0 || S.rows() != m || S.cols() != m) return -1;
+  return CountEigenvaluesBelow(BandInOrder(S, order), below);
 }
 
 }  // namespace cosserat::detail

@@ -1,9 +1,10 @@
 #pragma once
 /// \file
-/// The number of eigenvalues of a symmetric matrix below a threshold without its eigenvalues:
-/// the inertia of a shifted matrix by an LDLᵀ factorisation of its banded form.
+/// A symmetric banded matrix, its LDLᵀ factorisation without pivoting, and from it the number of
+/// its eigenvalues below a threshold (its inertia, by Sylvester's law) without its eigenvalues.
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <vector>
 
 namespace cosserat::detail {
@@ -18,14 +19,41 @@ struct SymmetricBand {
   double operator()(int i, int j) const;
 };
 
+/// S + shift · I = L D Lᵀ, L unit lower triangular in S's band, without pivoting: O(m b²), then
+/// solves in O(m b). Without pivoting it is reliable where it is definite (Demmel & Veselić 1992:
+/// accurate relative to the diagonal), and its pivots' signs count eigenvalues anywhere but near
+/// a singular shift, which Factorize refuses.
+class BandedLdlt {
+ public:
+  /// False when a pivot's magnitude is not above `floor` (the shift is too near an eigenvalue)
+  /// or S is not finite: then neither negative_pivots() nor Solve() is valid.
+  bool Factorize(const SymmetricBand& S, double shift, double floor);
+  /// The pivots below zero: the eigenvalues of S below −shift.
+  int negative_pivots() const { return negative_; }
+  /// x ← (S + shift I)⁻¹ x.
+  void Solve(Eigen::Ref<Eigen::VectorXd> x) const;
+
+ private:
+  Eigen::MatrixXd band_;  ///< L(i, j) at band_(i, i − j), 1 ≤ i − j ≤ b
+  Eigen::VectorXd d_;
+  int negative_ = 0;
+};
+
 /// The number of eigenvalues of S below −below: the negative pivots of an LDLᵀ factorisation of
-/// S + below · I (congruent, so of the same inertia: Sylvester's law), without pivoting:
-/// O(m b²). −1 when a pivot is below 1e-10 of S's largest entry, where the factorisation without
-/// pivoting can no longer be trusted (the caller then counts eigenvalues).
+/// S + below · I (congruent, so of the same inertia). −1 where a pivot is below 1e-10 of S's
+/// largest entry, where the factorisation without pivoting can no longer be trusted to count
+/// (the caller then counts eigenvalues).
 int CountEigenvaluesBelow(const SymmetricBand& S, double below);
 
-/// The same for a dense symmetric S whose rows and columns taken in `order` (a permutation of
-/// 0 … m − 1) make it banded.
+/// S in the order `order` (a permutation of 0 … m − 1) that makes it banded: row i of the band
+/// is row order[i] of S.
+SymmetricBand BandInOrder(const Eigen::MatrixXd& S, const std::vector<int>& order);
+
+/// The same for a sparse symmetric S (its lower triangle read).
+SymmetricBand BandInOrder(const Eigen::SparseMatrix<double>& S, const std::vector<int>& order);
+
+/// The same count for a dense symmetric S whose rows and columns taken in `order` make it
+/// banded.
 int CountEigenvaluesBelow(const Eigen::MatrixXd& S, const std::vector<int>& order, double below);
 
 }  // namespace cosserat::detail

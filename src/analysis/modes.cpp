@@ -18,6 +18,7 @@
 #include "cosserat/analysis/frequency_shooting.hpp"
 #include "mode_classification.hpp"
 #include "quatfd_reduction.hpp"
+#include "sparse_modes.hpp"
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/lie/quaternion.hpp"
 
@@ -54,6 +55,10 @@ const char* ToString(ModalStatus status) {
 bool ModalOptions::IsValid(std::string* why) const {
   if (count < 1) {
     if (why) *why = "count: expected at least 1";
+    return false;
+  }
+  if (sparse_above < 0) {
+    if (why) *why = "sparse_above: expected >= 0";
     return false;
   }
   return true;
@@ -184,6 +189,44 @@ bool IsSymmetric(const Eigen::MatrixXd& S) {
           1e-8 * std::max(std::abs(S(i, j)), std::abs(S(j, i))) + 1e-13 * s_max)
         return false;
   return true;
+}
+
+/// The same for a sparse S (an entry missing on one side is a zero there).
+bool IsSymmetric(const Eigen::SparseMatrix<double>& S) {
+  const Eigen::SparseMatrix<double> St = S.transpose();
+  const Eigen::SparseMatrix<double> D = S - St;
+  double s_max = 0.0;
+  for (int j = 0; j < S.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(S, j); it; ++it)
+      s_max = std::max(s_max, std::abs(it.value()));
+  for (int j = 0; j < D.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(D, j); it; ++it)
+      if (std::abs(it.value()) > 1e-8 * std::max(std::abs(S.coeff(it.row(), it.col())),
+                                                  std::abs(St.coeff(it.row(), it.col()))) +
+                                     1e-13 * s_max)
+        return false;
+  return true;
+}
+
+/// A band matrix as a sparse one (its band's non-zero entries).
+Eigen::SparseMatrix<double> Sparse(const BandedMatrix& A) {
+  std::vector<Eigen::Triplet<double>> entries;
+  const int n = A.rows();
+  for (int j = 0; j < n; ++j)
+    for (int i = std::max(0, j - A.upper()); i <= std::min(n - 1, j + A.lower()); ++i)
+      if (A(i, j) != 0.0) entries.emplace_back(i, j, A(i, j));
+  Eigen::SparseMatrix<double> S(n, n);
+  S.setFromTriplets(entries.begin(), entries.end());
+  return S;
+}
+
+/// Whether a band matrix has a non-zero entry (∂f/∂v: the model's damping).
+bool HasNonZero(const BandedMatrix& A) {
+  const int n = A.rows();
+  for (int j = 0; j < n; ++j)
+    for (int i = std::max(0, j - A.upper()); i <= std::min(n - 1, j + A.lower()); ++i)
+      if (A(i, j) != 0.0) return true;
+  return false;
 }
 
 /// ω² with the reduced shape (empty without shapes), ascending.
@@ -421,22 +464,34 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   BandedMatrix A, B;
   model->Jacobian(q, v, &A, &B);
   const Reduction red = Reduce(*model, q);
-  const Eigen::MatrixXd Ar = red.P * (A.ToDense() * red.T);
-  const Eigen::MatrixXd Br = red.P * (B.ToDense() * red.T);
-
-  // Stiffness S = −M Ar (at an equilibrium, where the forces vanish, the turning of an added
-  // mass's block adds nothing to Ar); ω² and reduced eigenvectors, ascending.
-  const Eigen::MatrixXd S = -MassTimes(red, red.mass, 1.0, Ar);
-  result.symmetric = IsSymmetric(S);
   // Flutter counts below the modes returned only (GeneralSpectrum).
   double lowest_complex = std::numeric_limits<double>::infinity();
-  const bool damped = options.damped && Br.cwiseAbs().maxCoeff() > 0;
+  Eigen::MatrixXd Ar, Br;
   Eigen::MatrixXd companion;  // first-order form of λ² M + λ C + K = 0 when damped
   bool indefinite = false;  // a stiffness the direct spectrum cannot resolve, not definite
-  const Spectrum eig =
-      result.symmetric
-          ? SymmetricSpectrum(S, red, Br, options.shapes, damped, &companion, &indefinite)
-          : GeneralSpectrum(Ar, options.shapes, &lowest_complex);
+  bool damped = false;
+  Spectrum eig;
+  // A large grid without damping to resolve: the lowest modes of the sparse stiffness, when it
+  // is symmetric and definite (LowestModesSparse).
+  if (red.T.cols() > options.sparse_above && !(options.damped && HasNonZero(B))) {
+    const Eigen::SparseMatrix<double> S =
+        -(SparseMassPower(red, 1.0) * (red.P * (Sparse(A) * red.T)));
+    result.symmetric = IsSymmetric(S);
+    if (result.symmetric)
+      result.sparse = LowestModesSparse(S, red, options.count, options.shapes, &eig);
+  }
+  if (eig.empty()) {
+    Ar = red.P * (A.ToDense() * red.T);
+    Br = red.P * (B.ToDense() * red.T);
+    // Stiffness S = −M Ar (at an equilibrium, where the forces vanish, the turning of an added
+    // mass's block adds nothing to Ar); ω² and reduced eigenvectors, ascending.
+    const Eigen::MatrixXd S = -MassTimes(red, red.mass, 1.0, Ar);
+    result.symmetric = IsSymmetric(S);
+    damped = options.damped && Br.cwiseAbs().maxCoeff() > 0;
+    eig = result.symmetric
+              ? SymmetricSpectrum(S, red, Br, options.shapes, damped, &companion, &indefinite)
+              : GeneralSpectrum(Ar, options.shapes, &lowest_complex);
+  }
   bool unstable = false;
   auto mark = [&](std::string why) {  // the first reason found is the one reported
     if (!unstable) result.instability = std::move(why);

@@ -170,31 +170,21 @@ int QuatFdBuckling::StiffnessEigenvaluesBelow(double lambda, const Eigen::Vector
     for (int k = 0; k < 3; ++k) rank[3 * a + k] = 3 * (2 * free_vertices_[a]) + k;
   for (int s = 0; s < model_.layout().segments; ++s)
     for (int k = 0; k < 3; ++k) rank[3 * nv + 3 * s + k] = 3 * (2 * s + 1) + k;
-  std::vector<int> order(m), position(m);
+  std::vector<int> order(m);
   for (int j = 0; j < m; ++j) order[j] = j;
   std::sort(order.begin(), order.end(), [&](int x, int y) { return rank[x] < rank[y]; });
-  for (int i = 0; i < m; ++i) position[order[i]] = i;
   // The symmetric part ½ (H + Hᵀ) in that order, and |H − Hᵀ| / |H|.
   const Eigen::SparseMatrix<double> Ht = H.transpose();
   const Eigen::SparseMatrix<double> sym = 0.5 * (H + Ht), skew = H - Ht;
-  double size = 0.0;
-  int b = 0;
-  for (int j = 0; j < m; ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(H, j); it; ++it) {
+  double size = 0.0, asymmetry = 0.0;
+  for (int j = 0; j < m; ++j) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(H, j); it; ++it)
       size = std::max(size, std::abs(it.value()));
-      b = std::max(b, std::abs(position[it.row()] - position[j]));
-    }
-  double asymmetry = 0.0;
-  for (int j = 0; j < m; ++j)
     for (Eigen::SparseMatrix<double>::InnerIterator it(skew, j); it; ++it)
       asymmetry = std::max(asymmetry, std::abs(it.value()));
+  }
   asymmetry_ = size > 0 ? asymmetry / size : 0.0;
-  detail::SymmetricBand band{Eigen::MatrixXd::Zero(m, b + 1)};
-  for (int j = 0; j < m; ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(sym, j); it; ++it) {
-      const int pi = position[it.row()], pj = position[j];
-      if (pi >= pj) band.lower(pi, pi - pj) = it.value();
-    }
+  const detail::SymmetricBand band = detail::BandInOrder(sym, order);
   const int count = detail::CountEigenvaluesBelow(band, below);
   if (count >= 0 || m > kMaxDenseStiffness) return count;
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(sym),
