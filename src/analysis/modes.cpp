@@ -431,6 +431,44 @@ bool DampedOfModes(bool symmetric, const Eigen::MatrixXd& Ar, const Eigen::Matri
   return false;
 }
 
+/// What the modes are read from: ω² with the reduced shapes (ascending), and for the dense
+/// path the reduced Jacobians, the damped first-order form and what the spectra found.
+struct Spectra {
+  Spectrum eig;
+  Eigen::MatrixXd Ar, Br;     ///< ∂f/∂q, ∂f/∂v reduced (dense path only)
+  Eigen::MatrixXd companion;  ///< first-order form of λ² M + λ C + K = 0 when damped
+  bool damped = false;        ///< damping to resolve
+  bool indefinite = false;    ///< a stiffness the direct spectrum cannot resolve, not definite
+  double lowest_complex = std::numeric_limits<double>::infinity();  ///< flutter (GeneralSpectrum)
+};
+
+/// The spectrum of the linearisation A = ∂f/∂q, B = ∂f/∂v: from the banded factorisation on a
+/// large grid without damping to resolve, when the stiffness is symmetric and definite
+/// (LowestModesSparse); else dense. Sets result->symmetric and result->sparse.
+Spectra ComputeSpectrum(const BandedMatrix& A, const BandedMatrix& B, const Reduction& red,
+                        const ModalOptions& options, ModalResult* result) {
+  Spectra out;
+  if (red.T.cols() > options.sparse_above && !(options.damped && HasNonZero(B))) {
+    const Eigen::SparseMatrix<double> S =
+        -(SparseMassPower(red, 1.0) * (red.P * (Sparse(A) * red.T)));
+    result->symmetric = IsSymmetric(S);
+    if (result->symmetric)
+      result->sparse = LowestModesSparse(S, red, options.count, options.shapes, &out.eig);
+    if (result->sparse) return out;
+  }
+  out.Ar = red.P * (A.ToDense() * red.T);
+  out.Br = red.P * (B.ToDense() * red.T);
+  // Stiffness S = −M Ar (at an equilibrium, where the forces vanish, the turning of an added
+  // mass's block adds nothing to Ar); ω² and reduced eigenvectors, ascending.
+  const Eigen::MatrixXd S = -MassTimes(red, red.mass, 1.0, out.Ar);
+  result->symmetric = IsSymmetric(S);
+  out.damped = options.damped && out.Br.cwiseAbs().maxCoeff() > 0;
+  out.eig = result->symmetric ? SymmetricSpectrum(S, red, out.Br, options.shapes, out.damped,
+                                                  &out.companion, &out.indefinite)
+                              : GeneralSpectrum(out.Ar, options.shapes, &out.lowest_complex);
+  return out;
+}
+
 }  // namespace
 
 ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
@@ -464,34 +502,11 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   BandedMatrix A, B;
   model->Jacobian(q, v, &A, &B);
   const Reduction red = Reduce(*model, q);
-  // Flutter counts below the modes returned only (GeneralSpectrum).
-  double lowest_complex = std::numeric_limits<double>::infinity();
-  Eigen::MatrixXd Ar, Br;
-  Eigen::MatrixXd companion;  // first-order form of λ² M + λ C + K = 0 when damped
-  bool indefinite = false;  // a stiffness the direct spectrum cannot resolve, not definite
-  bool damped = false;
-  Spectrum eig;
-  // A large grid without damping to resolve: the lowest modes of the sparse stiffness, when it
-  // is symmetric and definite (LowestModesSparse).
-  if (red.T.cols() > options.sparse_above && !(options.damped && HasNonZero(B))) {
-    const Eigen::SparseMatrix<double> S =
-        -(SparseMassPower(red, 1.0) * (red.P * (Sparse(A) * red.T)));
-    result.symmetric = IsSymmetric(S);
-    if (result.symmetric)
-      result.sparse = LowestModesSparse(S, red, options.count, options.shapes, &eig);
-  }
-  if (eig.empty()) {
-    Ar = red.P * (A.ToDense() * red.T);
-    Br = red.P * (B.ToDense() * red.T);
-    // Stiffness S = −M Ar (at an equilibrium, where the forces vanish, the turning of an added
-    // mass's block adds nothing to Ar); ω² and reduced eigenvectors, ascending.
-    const Eigen::MatrixXd S = -MassTimes(red, red.mass, 1.0, Ar);
-    result.symmetric = IsSymmetric(S);
-    damped = options.damped && Br.cwiseAbs().maxCoeff() > 0;
-    eig = result.symmetric
-              ? SymmetricSpectrum(S, red, Br, options.shapes, damped, &companion, &indefinite)
-              : GeneralSpectrum(Ar, options.shapes, &lowest_complex);
-  }
+  Spectra sp = ComputeSpectrum(A, B, red, options, &result);
+  const Spectrum& eig = sp.eig;
+  const double lowest_complex = sp.lowest_complex;
+  const bool damped = sp.damped;
+  const bool indefinite = sp.indefinite;
   bool unstable = false;
   auto mark = [&](std::string why) {  // the first reason found is the one reported
     if (!unstable) result.instability = std::move(why);
@@ -517,7 +532,8 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
 
   // The factorisation found the stiffness indefinite where the spectrum's low end is round-off.
   if (indefinite) mark(DivergenceReason(eig.empty() ? 0.0 : eig.front().first));
-  if (damped && DampedOfModes(result.symmetric, Ar, Br, result.modes, &companion, &result.damped))
+  if (damped &&
+      DampedOfModes(result.symmetric, sp.Ar, sp.Br, result.modes, &sp.companion, &result.damped))
     mark("a damped mode grows (Re λ > 0)");
   // Fewer real modes than asked for: any complex pair is below the last one there could be.
   if (static_cast<int>(result.modes.size()) < options.count && std::isfinite(lowest_complex))
