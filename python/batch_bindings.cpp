@@ -102,6 +102,7 @@ class PyBatchStepper {
     int converged = equilibrium ? batch_->InitializeAtRest(initial_, *equilibrium) : 0;
     if (converged != batch_->count()) converged = batch_->InitializeAtRest(initial_);
     initialized_ = converged == batch_->count();
+    failed_reset_ = !initialized_;
     if (initialized_) inputs_ = first_inputs_;  // an episode reset: the file's inputs again
     return converged;
   }
@@ -147,6 +148,7 @@ class PyBatchStepper {
         inputs_[i] = InputToContinue(each[i], first_inputs_[i]);
     }
     initialized_ = true;
+    failed_reset_ = false;
   }
 
   /// (M, N, 3) node positions, m, world.
@@ -182,12 +184,14 @@ class PyBatchStepper {
   /// Each rod's simulated time, s (M values).
   std::vector<double> Times() const {
     const Exclusive one_at_a_time(&busy_);
+    if (failed_reset_) RequireState();  // raises: the last run's times are not this one's
     std::vector<double> out(batch_->count());
     for (int i = 0; i < batch_->count(); ++i) out[i] = batch_->rod(i).time();
     return out;
   }
   double time() const {
     const Exclusive one_at_a_time(&busy_);
+    if (failed_reset_) RequireState();
     return batch_->rod(0).time();
   }
   int count() const { return batch_->count(); }
@@ -218,6 +222,7 @@ class PyBatchStepper {
   std::vector<StepInput> inputs_;
   bool initialized_ = false;
   mutable std::atomic<bool> busy_{false};  ///< a call is under way (Exclusive)
+  bool failed_reset_ = false;  ///< the last initialize_at_rest() left a rod unconverged
 };
 
 /// cosserat._core.sweep: a study (io/study.hpp) run into a CSV file (run/sweep.hpp).

@@ -272,8 +272,7 @@ void BindActuation(py::module_& m) {
   py::class_<Actuation>(m, "Actuation",
                         "What the actuators do: tendon tensions (N, in the robot's tendon order), "
                         "chamber pressures (Pa, gauge, in the robot's chamber order), "
-                        "inflation pressure (Pa), jamming pressure per segment (Pa), stiffness "
-                        "scale.")
+                        "inflation pressure (Pa), jamming pressure per segment (Pa).")
       .def(py::init<>())
       .def_readwrite("pressure", &Actuation::pressure)
       .def_property("tendon_tension", ArrayGetter(&Actuation::tendon_tension),

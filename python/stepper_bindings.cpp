@@ -102,7 +102,10 @@ class PyStepper {
     has_state_ = true;
     failed_reset_ = false;
   }
-  double time() const { return stepper_->time(); }
+  double time() const {
+    if (failed_reset_) run();  // raises: the last run's time is not this one's
+    return stepper_->time();
+  }
   int shot_steps() const { return stepper_->shot_steps(); }  // planned at construction
   const StepInput& input() const { return input_; }
   const Bdf2Options& options() const { return options_; }

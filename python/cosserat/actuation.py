@@ -1,13 +1,30 @@
-"""cosserat.Actuation: what the actuators do, remembering which fields were set, so that a
+"""cosserat.Actuation: what the actuators do, remembering which fields were given, so that a
 solver fits it to its problem as it fits a dict with the file's robot.actuation keys."""
 from . import _core
 
-# The list fields, each with the problem's count of what it acts on and the file key it
-# answers to.
-_LISTS = {"tendon_tension": ("tendon_count", "tendons", "robot.tendons"),
-          "chamber_pressure": ("chamber_count", "chambers", "robot.chambers"),
-          "jamming_pressure": ("jamming_segment_count", "segments",
+# The list fields, each with the problem's count of what it acts on, its noun and where the
+# file lists those.
+_LISTS = {"tendon_tension": ("tendon_count", "tendon", "robot.tendons"),
+          "chamber_pressure": ("chamber_count", "chamber", "robot.chambers"),
+          "jamming_pressure": ("jamming_segment_count", "segment",
                                "rod.stiffness_profile.segments")}
+_FIELDS = ("pressure",) + tuple(_LISTS)
+
+
+def _list_field(name):
+    """A list field as the core's view, recorded as given when set (with its length) or when
+    its view is taken (its length then unknown: it may be edited in place)."""
+    core = getattr(_core.Actuation, name)
+
+    def get(self):
+        self.__dict__["_given"].setdefault(name, None)
+        return core.__get__(self)
+
+    def set_(self, value):
+        core.__set__(self, value)
+        self.__dict__["_given"][name] = len(value)
+
+    return property(get, set_, doc=core.__doc__)
 
 
 class Actuation(_core.Actuation):
@@ -16,44 +33,70 @@ class Actuation(_core.Actuation):
     per switchable segment). Fields may be given as keywords: Actuation(tendon_tension=[1, 0, 0]).
 
     Handed to a solver it follows the problem file's rules, as a dict does: a list set has one
-    value per tendon, chamber or segment; the pressures the rod's section reads (its inflation
-    and jamming pressures), never set, stay the problem's. The arrays are views: writing
+    value per tendon, chamber or segment; the pressures the rod's section reads (inflation and
+    jamming pressures), neither set nor edited through their arrays, stay the problem's (in the
+    copy the solver takes: this object is not changed). The arrays are views: writing
     act.tendon_tension[0] = 2 sets the tension."""
+
+    tendon_tension = _list_field("tendon_tension")
+    chamber_pressure = _list_field("chamber_pressure")
+    jamming_pressure = _list_field("jamming_pressure")
 
     def __init__(self, **fields):
         super().__init__()
         self.__dict__["_given"] = {}
         for name, value in fields.items():
-            if not hasattr(_core.Actuation, name):
-                raise TypeError(f"Actuation: unknown field {name!r} (fields: pressure, "
-                                f"{', '.join(_LISTS)})")
             setattr(self, name, value)
 
     def __setattr__(self, name, value):
+        if name not in _FIELDS:
+            raise AttributeError(f"Actuation has no field {name!r} (fields: "
+                                 f"{', '.join(_FIELDS)})")
         super().__setattr__(name, value)
-        given = self.__dict__.setdefault("_given", {})
-        given[name] = len(value) if name in _LISTS else None
-        self.__dict__["_fitted_to"] = None  # to be fitted again
+        if name == "pressure":
+            self.__dict__["_given"]["pressure"] = None
+
+    def __reduce__(self):
+        given = self.__dict__["_given"]
+        return (_rebuild, ({name: list(getattr(_core.Actuation, name).__get__(self))
+                            if name in _LISTS else self.pressure for name in _FIELDS},
+                           dict(given)))
+
+
+def _rebuild(values, given):
+    """An Actuation from __reduce__: its values, and which of them were given."""
+    a = Actuation()
+    for name, value in values.items():
+        (getattr(_core.Actuation, name).__set__ if name in _LISTS else
+         _core.Actuation.pressure.__set__)(a, value)
+    a.__dict__["_given"] = dict(given)
+    return a
 
 
 def fit_to_problem(actuation, problem):
-    """An Actuation made in Python fitted to `problem` the first time it meets it (and again
-    after a field is set): a list shorter than what it acts on is refused with a ValueError
-    naming the field; the section's pressures never set take the problem's. Others (a Stepper's
-    or a Problem's copies, which hold a whole state) pass as they are."""
-    if not isinstance(actuation, Actuation) or actuation.__dict__.get("_fitted_to") is problem:
+    """An Actuation made in Python, fitted to `problem` as a dict with the file's keys is: a list
+    set with another count than what it acts on is refused with a ValueError naming the field;
+    the section's pressures never given take the problem's, in a copy (the object is left as
+    it is). Others (a Stepper's or a Problem's, which hold a whole state) pass as they are."""
+    if not isinstance(actuation, Actuation):
         return actuation
-    given = actuation.__dict__.get("_given", {})
+    given = actuation.__dict__["_given"]
     for field, (count_name, noun, source) in _LISTS.items():
-        if field in given:
-            count = getattr(problem, count_name)
-            if given[field] < count:
-                raise ValueError(f"actuation.{field}: expected one value per {noun[:-1]} "
-                                 f"({count} in {source}), got {given[field]}")
+        length, count = given.get(field), getattr(problem, count_name)
+        # With none to act on, the core's check names the value that would act on nothing.
+        if length is not None and count > 0 and length != count:
+            raise ValueError(f"actuation.{field}: expected one value per {noun} "
+                             f"({count} in {source}), got {length}")
     file_actuation = problem.actuation
-    if "pressure" not in given:
-        _core.Actuation.pressure.__set__(actuation, file_actuation.pressure)
-    if "jamming_pressure" not in given:
-        _core.Actuation.jamming_pressure.__set__(actuation, file_actuation.jamming_pressure)
-    actuation.__dict__["_fitted_to"] = problem
-    return actuation
+    keep_pressure = "pressure" not in given and file_actuation.pressure != 0
+    keep_jamming = "jamming_pressure" not in given and any(file_actuation.jamming_pressure)
+    if not (keep_pressure or keep_jamming):
+        return actuation
+    fitted = _core.Actuation()
+    for name in _FIELDS:
+        source = file_actuation if (name == "pressure" and keep_pressure) or (
+            name == "jamming_pressure" and keep_jamming) else actuation
+        value = (getattr(_core.Actuation, name).__get__(source) if name in _LISTS
+                 else source.pressure)
+        getattr(_core.Actuation, name).__set__(fitted, value)
+    return fitted

@@ -104,6 +104,10 @@ void CheckAnchor(const ObjectReader& top, const Problem& p) {
 /// tip moment at a clamped anchor) would load nothing and be silently lost.
 void CheckHeldTipLoads(const ObjectReader& top, const Problem& p) {
   if (p.boundary != Boundary::kAnchored) return;
+  if (p.dynamics.initial_loads && !p.dynamics.initial_loads->tip_force.isZero(0.0))
+    top.report().Add("dynamics.initial_loads.tip_force",
+                     "acts at the anchored tip, which the anchor holds in place: the anchor takes "
+                     "it whole and the rod carries none of it");
   if (!p.loads.tip_force.isZero(0.0))
     top.report().Add("loads.tip_force",
                      "acts at the anchored tip, which the anchor holds in place: the anchor takes "
@@ -319,7 +323,6 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   CheckAnchor(top, *p);
   if (const auto loads = ReadObject(top, "loads", Presence::kOptional))
     p->loads = ParseLoads(*loads);
-  CheckHeldTipLoads(top, *p);
   if (const auto env = ReadObject(top, "environment", Presence::kOptional))
     ParseEnvironment(*env, &p->loads.fluid, &p->gust, &p->loads.contact);
   if (const auto o = ReadObject(top, "dynamics", Presence::kOptional)) {
@@ -338,6 +341,7 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
               " frames over duration (" + FormatNumber(d.duration) + " s)",
           FormatNumber(d.output_interval) + ", " + FormatNumber(frames) + " frames");
   }
+  CheckHeldTipLoads(top, *p);
   const auto buckling =
       ReadObject(top, "buckling",
                  p->analysis == Analysis::kBuckling ? Presence::kRequired : Presence::kOptional,

@@ -243,9 +243,12 @@ double QuatFdModel::MaxSegmentForce(const Eigen::Ref<const Eigen::VectorXd>& q) 
 }
 
 double QuatFdModel::MeanAxialStiffness() const {
-  double sum = 0.0;
-  for (const kernels::SegmentConstants& seg : segment_) sum += seg.stiffness(2, 2);
-  return sum / static_cast<double>(segment_.size());
+  double length = 0.0, compliance = 0.0;  // m, m/N: the segments in series
+  for (const kernels::SegmentConstants& seg : segment_) {
+    length += seg.ds;
+    compliance += seg.ds / seg.stiffness(2, 2);
+  }
+  return length / compliance;
 }
 
 double QuatFdModel::MaxStrainStiffness() const {

@@ -82,15 +82,19 @@ std::string ClampedEndGridWarning(const io::Problem& problem, const RodState& st
 /// (k = sqrt(T/EI)), a warning names the nodes for k h = 0.5.
 std::string BendingPeakGridWarning(const io::Problem& problem, const RodState& state) {
   if (problem.loads.contact.count == 0 || state.size() < 3) return "";
+  // The bending of the rest shape's curvature away (κ − κ*), which the moment follows.
+  auto bending = [&](int i) {
+    return (state.strain[i].head<2>() - problem.rod.RestStrainAt(state.s[i]).head<2>()).norm();
+  };
   int peak = 0;
   for (int i = 1; i < state.size(); ++i)
-    if (state.strain[i].head<2>().norm() > state.strain[peak].head<2>().norm()) peak = i;
-  if (peak == 0 || peak == state.size() - 1 || state.strain[peak].head<2>().norm() == 0.0)
+    if (bending(i) > bending(peak)) peak = i;
+  if (peak == 0 || peak == state.size() - 1 || bending(peak) == 0.0)
     return "";  // at an end: a clamp's moment, which ClampedEndGridWarning judges
   const double ei = problem.rod.section->At(state.s[peak], problem.robot.actuation)
                         .min_bending_stiffness();  // N·m²
   const double k = std::sqrt(std::abs(state.wrench_B[peak](5)) / ei);  // 1/m
-  const double h = state.s[peak + 1] - state.s[peak];
+  const double h = std::max(state.s[peak + 1] - state.s[peak], state.s[peak] - state.s[peak - 1]);
   if (!(k * h > 1.5)) return "";
   std::ostringstream warning;
   warning << std::setprecision(3) << "cosserat: warning: the rod bends most at s = "
@@ -117,10 +121,11 @@ std::string SlackLineHint(const io::Problem& problem) {
   std::ostringstream hint;
   hint << std::setprecision(4) << "cosserat: hint: the line is slack (" << L
        << " m between anchors " << chord
-       << " m apart) and nothing pulls it sideways: no net load acts along it (its weight "
-          "buoyed off by the fluid, or no gravity), so every shape of its length between the "
-          "anchors balances and none is the answer; give it a net weight (its density against "
-          "the fluid's), a current, or anchors as far apart as its length\n";
+       << " m apart) and nothing pulls it sideways: no net load acts on it (its weight "
+          "buoyed off by the fluid, or no gravity), so it balances in a whole family of shapes "
+          "of its length between the anchors and none is the answer; give it a net weight "
+          "(its density against the fluid's), a current, or anchors as far apart as its "
+          "length\n";
   return hint.str();
 }
 

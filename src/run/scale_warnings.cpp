@@ -103,9 +103,10 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
   else if (worst > kLargeStretch && problem.rod.chambers.empty())  // chambers extend by design
     log << "cosserat: warning: the rod is stretched or compressed by " << 100 * worst
         << " % of its length near s = " << at_s
-        << " m: the linear elastic law gives this answer, but no material follows it so far "
-           "(metals yield near 0.2 %); check the loads and the geometry (an anchor farther than "
-           "the rod reaches, a tendon length it cannot take)\n";
+        << " m: the linear elastic law gives this answer, but few materials follow it so far "
+           "(metals yield near 0.2 %, rubbers leave it by several per cent); check the loads and "
+           "the geometry (an anchor farther than the rod reaches, a tendon length it cannot "
+           "take)\n";
   result->log += log.str();
 }
 

@@ -93,12 +93,20 @@ int JudgedStabilityIndex(const io::Problem& problem, const RodState& state, int 
     if (kh > worst) worst = kh, worst_s = state.s[i], worst_k = k;
   }
   if (!(worst > kMaxJacobiKh)) return index;
+  // Tension everywhere, no surface to rest on, no moment at the tip, no tendon: no direction
+  // lowers the energy (the quaternion-FD count's rule too), whatever the grid.
+  const bool tension = std::all_of(state.wrench_B.begin(), state.wrench_B.end(),
+                                   [](const Vec6& w) { return w(5) >= 0; });
+  if (tension && problem.loads.contact.count == 0 && problem.loads.tip_moment.isZero(0.0) &&
+      !problem.has_robot && problem.rod.tendons.empty())
+    return 0;
   std::ostringstream o;
   o << std::setprecision(3) << "cosserat: note: the stability of this equilibrium is not judged: "
     << "at s = " << worst_s << " m the axial force makes the bending length sqrt(EI/|N|) = "
     << 1.0 / worst_k << " m, and the grid's spacing is " << worst / worst_k
-    << " m (k h = " << worst << "), too coarse for the fields that count unstable directions "
-    << "(k h <= " << kMaxJacobiKh << "); rod.nodes >= "
+    << " m (k h = " << std::setprecision(4) << worst
+    << "), too coarse for the fields that count unstable directions (k h <= " << kMaxJacobiKh
+    << "); rod.nodes >= "
     << static_cast<long>(std::ceil(problem.rod.length * worst_k / kMaxJacobiKh)) + 1
     << " judges it\n";
   *note = o.str();

@@ -44,8 +44,10 @@ std::string UnjudgedCompressionNote(const RodModel& rod, const RodState& state,
 /// points of Jacobi fields shot by RK4 on the grid, which grow or turn at the rate
 /// k = sqrt(|N|/EI) of the axial force N; past k h = 2.8 (RK4's limit on a decaying exponential)
 /// they no longer do so faithfully, and a 2 km drill string hanging in tension everywhere counted
-/// 2 unstable directions on 101 nodes (k h = 16), 1 on 201 and 0 on 401. There `index` becomes −1
-/// (not judged) and `note` says why and how many nodes judge it; elsewhere `index` as it is.
+/// 2 unstable directions on 101 nodes (k h = 16), 1 on 201 and 0 on 401. There a rod in tension
+/// everywhere (no contact surface, tip moment or tendon) is stable, 0; any other's `index`
+/// becomes −1 (not judged) and `note` says why and how many nodes judge it. Elsewhere `index` as
+/// it is.
 int JudgedStabilityIndex(const io::Problem& problem, const RodState& state, int index,
                          std::string* note);
 

@@ -582,6 +582,8 @@ class Dynamics(unittest.TestCase):
         with self.assertRaisesRegex(RuntimeError, "the last initialize_at_rest\\(\\) did not"):
             stepper.tip_position()
         with self.assertRaisesRegex(RuntimeError, "did not converge"):
+            stepper.time
+        with self.assertRaisesRegex(RuntimeError, "did not converge"):
             stepper.step()
         self.assertTrue(stepper.initialize_at_rest().converged)  # and it starts again
         self.assertTrue(stepper.step().converged)
@@ -602,7 +604,8 @@ class Dynamics(unittest.TestCase):
             solver.solve(actuation=a)
         jamming = cosserat.load_problem("robots/jamming_virtual_joints.json")
         a.jamming_pressure = [0.0] * 3 + [1e5]
-        with self.assertRaisesRegex(ValueError, "segment 3, but the rod has 3"):
+        with self.assertRaisesRegex(ValueError, r"one value per segment \(3 in "
+                                    r"rod\.stiffness_profile\.segments\), got 4"):
             cosserat.StaticSolver(jamming).solve(actuation=a)
         with self.assertRaisesRegex(ValueError, "robot.kind"):
             cosserat.Stepper(cosserat.load_problem("robots/eversion_banded_vine.json"))
@@ -630,13 +633,30 @@ class Dynamics(unittest.TestCase):
         self.assertTrue(solver.solve(actuation=deflated).converged)
         np.testing.assert_allclose(solver.state()["strain_B"][[5, 15], 1], [2.962, 2.962],
                                    rtol=1e-3)
-        # Fewer tensions than tendons are refused, as in a dict or a file.
+        # The solver fitted a copy: the object still reads what it was given.
+        only_tension = cosserat.Actuation(tendon_tension=[1.0])
+        self.assertTrue(solver.solve(actuation=only_tension).converged)
+        self.assertEqual(only_tension.pressure, 0.0)
+        # A jamming pressure edited in place through its array is the object's own: segment 1
+        # at 12.3 kPa, less jammed than at 80 kPa (more than twice the curvature), and the
+        # tube's inflation still the problem's (the compliant segment's curvature unchanged).
+        edited = cosserat.Actuation(tendon_tension=[1.0])
+        edited.jamming_pressure[0] = 12345.0
+        self.assertTrue(solver.solve(actuation=edited).converged)
+        kappa = solver.state()["strain_B"][[5, 15], 1]
+        self.assertGreater(kappa[0], 2 * by_object[0])  # less jammed than at 80 kPa
+        self.assertAlmostEqual(kappa[1], by_object[1], delta=1e-3 * by_object[1])
+        # Another count of tensions than tendons is refused, as in a dict or a file; so is a
+        # field the Actuation does not have.
         three = cosserat.StaticSolver("robots/tendon_three_tendon.json")
-        with self.assertRaisesRegex(ValueError, r"actuation\.tendon_tension: expected one value "
-                                    r"per tendon \(3 in robot\.tendons\), got 1"):
-            three.solve(actuation=cosserat.Actuation(tendon_tension=[1.0]))
-        with self.assertRaisesRegex(TypeError, "unknown field 'tension'"):
+        for tensions in ([1.0], [1.0, 0, 0, 0]):
+            with self.assertRaisesRegex(ValueError, r"actuation\.tendon_tension: expected one "
+                                        r"value per tendon \(3 in robot\.tendons\), got"):
+                three.solve(actuation=cosserat.Actuation(tendon_tension=tensions))
+        with self.assertRaisesRegex(AttributeError, "no field 'tension'"):
             cosserat.Actuation(tension=[1.0])
+        with self.assertRaisesRegex(AttributeError, "no field 'tension'"):
+            only_tension.tension = [1.0]
 
     def test_static_solver_uses_the_problem_base_and_loads(self):
         # Clamp moved and turned in the file: the solver's default is the file's, as the CLI's.

@@ -230,7 +230,8 @@ class QuatFdModel {
   double MaxSegmentForce(const Eigen::Ref<const Eigen::VectorXd>& q) const;
   /// The largest entry of the segments' strain stiffness C_Γ (N): EA or κGA.
   double MaxStrainStiffness() const;
-  /// The axial stiffness EA of the segments, averaged (N).
+  /// The axial stiffness EA of the segments in series (N): L / Σ Δs/EA, what stretches a line
+  /// of chain, rope and chain by the mean tension.
   double MeanAxialStiffness() const;
   double force_scale() const { return force_scale_; }
 
