@@ -6,11 +6,6 @@
 
 namespace cosserat::detail {
 
-double SymmetricBand::operator()(int i, int j) const {
-  if (i < j) std::swap(i, j);
-  return i - j <= half_bandwidth() ? lower(i, i - j) : 0.0;
-}
-
 bool BandedLdlt::Factorize(const SymmetricBand& S, double shift, double floor) {
   const int m = S.size(), b = S.half_bandwidth();
   negative_ = 0;

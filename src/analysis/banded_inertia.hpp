@@ -15,8 +15,6 @@ struct SymmetricBand {
   Eigen::MatrixXd lower;  ///< m × (b + 1)
   int size() const { return static_cast<int>(lower.rows()); }
   int half_bandwidth() const { return static_cast<int>(lower.cols()) - 1; }
-  /// Entry (i, j) for any i, j (zero outside the band).
-  double operator()(int i, int j) const;
 };
 
 /// S + shift · I = L D Lᵀ, L unit lower triangular in S's band, without pivoting: O(m b²), then
