@@ -69,7 +69,8 @@ SymmetricBand BandInOrder(const Eigen::SparseMatrix<double>& S, const std::vecto
   for (int j = 0; j < S.outerSize(); ++j)
     for (Eigen::SparseMatrix<double>::InnerIterator it(S, j); it; ++it) {
       const int pi = position[it.row()], pj = position[it.col()];
-      if (pi >= pj) band.lower(pi, pi - pj) = it.value();
+      // Stored zeros may lie outside the band measured above: skipped, not written past it.
+      if (pi >= pj && it.value() != 0.0) band.lower(pi, pi - pj) = it.value();
     }
   return band;
 }

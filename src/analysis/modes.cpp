@@ -57,8 +57,8 @@ bool ModalOptions::IsValid(std::string* why) const {
     if (why) *why = "count: expected at least 1";
     return false;
   }
-  if (sparse_above < 0) {
-    if (why) *why = "sparse_above: expected >= 0";
+  if (sparse_above < 0 || max_dense < 0) {
+    if (why) *why = sparse_above < 0 ? "sparse_above: expected >= 0" : "max_dense: expected >= 0";
     return false;
   }
   return true;
@@ -439,6 +439,7 @@ struct Spectra {
   Eigen::MatrixXd companion;  ///< first-order form of λ² M + λ C + K = 0 when damped
   bool damped = false;        ///< damping to resolve
   bool indefinite = false;    ///< a stiffness the direct spectrum cannot resolve, not definite
+  bool too_large = false;     ///< the dense spectrum was beyond ModalOptions::max_dense
   double lowest_complex = std::numeric_limits<double>::infinity();  ///< flutter (GeneralSpectrum)
 };
 
@@ -455,6 +456,10 @@ Spectra ComputeSpectrum(const BandedMatrix& A, const BandedMatrix& B, const Redu
     if (result->symmetric)
       result->sparse = LowestModesSparse(S, red, options.count, options.shapes, &out.eig);
     if (result->sparse) return out;
+  }
+  if (red.T.cols() > options.max_dense) {
+    out.too_large = true;
+    return out;
   }
   out.Ar = red.P * (A.ToDense() * red.T);
   out.Br = red.P * (B.ToDense() * red.T);
@@ -503,6 +508,16 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   model->Jacobian(q, v, &A, &B);
   const Reduction red = Reduce(*model, q);
   Spectra sp = ComputeSpectrum(A, B, red, options, &result);
+  if (sp.too_large) {
+    result.declined = std::string("the stiffness is ") +
+                      (!result.symmetric ? "not symmetric (follower loads, drag)"
+                       : options.damped && HasNonZero(B)
+                           ? "damped, and the damped modes need the whole spectrum"
+                           : "not positive definite (an unstable equilibrium)") +
+                      ", so its spectrum would be dense, on " + std::to_string(red.T.cols()) +
+                      " coordinates (at most " + std::to_string(options.max_dense) + ")";
+    return finish(ModalStatus::kNotRun);
+  }
   const Spectrum& eig = sp.eig;
   const double lowest_complex = sp.lowest_complex;
   const bool damped = sp.damped;

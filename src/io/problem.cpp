@@ -437,7 +437,7 @@ void CheckWithLibrary(const Problem& p, ErrorReport* report) {
     if (p.nodes > most)
       report->Expected("rod.nodes",
                        std::string("at most ") + std::to_string(most) + " nodes for modes on the " +
-                           (qfd ? "quaternion-fd formulation (its spectrum is dense)"
+                           (qfd ? "quaternion-fd formulation"
                                 : "se3-shooting formulation"),
                        std::to_string(p.nodes));
   }

@@ -18,6 +18,12 @@
 namespace cosserat::run {
 namespace {
 
+/// The most reduced coordinates (six per segment) the quaternion-FD modes take a dense spectrum
+/// on: about 801 nodes, ~5 min and 1.6 GB (ModalOptions::max_dense). A stable undamped rod on a
+/// finer grid takes the banded path instead.
+constexpr int kMaxDenseModeCoordinates = 4800;
+
+
 nlohmann::ordered_json Vectors(const std::vector<Vec3>& v) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const Vec3& x : v) out.push_back({x.x(), x.y(), x.z()});
@@ -135,6 +141,7 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
   const bool quatfd = problem.formulation == io::Formulation::kQuaternionFd;
   ModalOptions mo;
   mo.count = problem.modes.count;
+  mo.max_dense = kMaxDenseModeCoordinates;
   ModalResult r;
   if (quatfd) {
     quatfd::QuatFdModel model(problem.rod, problem.base, QuatFdModelOptions(problem),
@@ -201,9 +208,14 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
   log << "cosserat: " << ToString(r.status) << " (modes, " << io::ToString(problem.formulation)
       << "), " << r.modes.size() << " modes:";
   for (const Mode& m : r.modes) log << ' ' << std::setprecision(6) << m.frequency_hz;
-  log << " Hz, " << std::setprecision(3) << r.wall_time_s * 1e3 << " ms\n";
+  log << (r.modes.empty() ? "" : " Hz") << ", " << std::setprecision(3) << r.wall_time_s * 1e3
+      << " ms\n";
   if (r.status == ModalStatus::kUnstable && !r.instability.empty())
     log << "cosserat: unstable: " << r.instability << "\n";
+  if (!r.declined.empty())
+    log << "cosserat: no modes on this grid: " << r.declined << "; rod.nodes <= "
+        << kMaxDenseModeCoordinates / 6 + 1
+        << " takes the dense spectrum, or \"formulation\": \"se3-shooting\"\n";
   const ModesGrid grid = CheckModesGrid(problem, r);
   result.log = log.str() + grid.log + SingleShotHint(problem, r) + HighModesHint(problem, r);
   result.converged = r.converged() && !grid.under_resolved;

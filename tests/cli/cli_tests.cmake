@@ -428,6 +428,12 @@ cosserat_cli_test(NAME anchor_beyond_reach ARGS solve "${_cli_dir}/anchor_beyond
 # A slack line with no net weight has no one equilibrium: the failure says why.
 cosserat_cli_test(NAME slack_neutral_line ARGS solve "${_cli_dir}/slack_neutral_line.json"
                   CODE 1 STDERR "hint: the line is slack \\(120 m between anchors 94.34 m apart\\) and nothing pulls it sideways")
+# Quaternion-FD modes on fine grids: banded when stable and undamped, refused with a reason
+# where only the dense spectrum would do.
+cosserat_cli_test(NAME stay_cable_fine_modes ARGS solve "${_cli_dir}/stay_cable_fine_modes.json"
+                  CODE 0 STDERR "converged \\(modes, quaternion-fd\\), 8 modes: 0\\.7094")
+cosserat_cli_test(NAME modes_dense_beyond_reach ARGS solve "${_cli_dir}/modes_dense_beyond_reach.json"
+                  CODE 1 STDERR "not_run \\(modes, quaternion-fd\\).*no modes on this grid: the stiffness is not positive definite \\(an unstable equilibrium\\).*rod.nodes <= 801")
 # A dynamics block kept for another analysis is checked, not used; its base drive is noted.
 cosserat_cli_test(NAME modes_keep_base_spin ARGS solve "${_cli_dir}/modes_keep_base_spin.json"
                   CODE 0 STDERR "note: dynamics.base_spin turns the base in \"analysis\": \"dynamics\" only; this \"modes\" holds the base still")

@@ -14,6 +14,7 @@
 ///   about the equilibrium in the frequency domain; the 6×6 tip-boundary matrix B(ω) of the
 ///   cantilever is singular exactly at a natural frequency.
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,10 @@ struct ModalOptions {
   /// found by subspace iteration on its banded factorisation, in time linear in the nodes (a
   /// stay cable on 401 nodes: 24 s dense); the dense spectrum otherwise, and where that fails.
   int sparse_above = 1200;
+  /// quatfd: the most reduced coordinates the dense spectrum is taken on (its cost grows as
+  /// their cube: 4800, about 801 nodes, take ~5 min and 1.6 GB); beyond, where the banded path
+  /// declines, no modes are computed and ModalResult::declined says why.
+  int max_dense = std::numeric_limits<int>::max();
   bool IsValid(std::string* why) const;
 };
 
@@ -94,6 +99,9 @@ struct ModalResult {
   std::vector<Mode> modes;  ///< the lowest `count`, by frequency
   /// With ModalStatus::kUnstable: why (divergence, with ω² or the Morse index; or flutter).
   std::string instability;
+  /// With ModalStatus::kNotRun after a converged equilibrium: why no modes were computed (a
+  /// spectrum the banded path declined, larger than ModalOptions::max_dense).
+  std::string declined;
   /// quatfd only: the damped pair of each of `modes`, in their order (NaN frequency and ratio
   /// for a mode without one: overdamped, or unstable).
   std::vector<DampedMode> damped;
