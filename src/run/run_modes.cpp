@@ -135,26 +135,37 @@ ModesGrid CheckModesGrid(const io::Problem& problem, const ModalResult& r) {
   return out;
 }
 
-}  // namespace
+/// Why no modes came from a converged equilibrium (ModalResult::declined), and what to do.
+std::string DeclinedNote(const ModalResult& r) {
+  if (r.declined.empty()) return "";
+  return "cosserat: no modes on this grid: " + r.declined + "; rod.nodes <= " +
+         std::to_string(kMaxDenseModeCoordinates / 6 + 1) +
+         " takes the dense spectrum, or \"formulation\": \"se3-shooting\"\n";
+}
 
-Result RunModes(const io::Problem& problem, const RunOptions& options) {
-  const bool quatfd = problem.formulation == io::Formulation::kQuaternionFd;
+/// The modes of the problem in its formulation.
+ModalResult ModesOf(const io::Problem& problem) {
   ModalOptions mo;
   mo.count = problem.modes.count;
   mo.max_dense = kMaxDenseModeCoordinates;
-  ModalResult r;
-  if (quatfd) {
+  if (problem.formulation == io::Formulation::kQuaternionFd) {
     quatfd::QuatFdModel model(problem.rod, problem.base, QuatFdModelOptions(problem),
                               problem.robot.actuation);
     model.set_loads(problem.loads);  // the start of a held rod's statics sags along gravity
-    r = ComputeModes(&model, problem.loads, mo, nullptr, nullptr, QuatFdStaticOptions(problem));
-  } else {
-    ShootingModalOptions so;
-    so.modal = mo;
-    so.statics = StaticOptions(problem);
-    r = ComputeModesShooting(problem.rod, problem.nodes, problem.base, problem.loads, so,
-                             problem.robot.actuation);
+    return ComputeModes(&model, problem.loads, mo, nullptr, nullptr,
+                        QuatFdStaticOptions(problem));
   }
+  ShootingModalOptions so;
+  so.modal = mo;
+  so.statics = StaticOptions(problem);
+  return ComputeModesShooting(problem.rod, problem.nodes, problem.base, problem.loads, so,
+                              problem.robot.actuation);
+}
+
+}  // namespace
+
+Result RunModes(const io::Problem& problem, const RunOptions& options) {
+  const ModalResult r = ModesOf(problem);
 
   // The contract's fields of every result (status, iterations, residual, tip, base_wrench,
   // nodes) describe the equilibrium the modes are about; "modes" and the statics' own status
@@ -212,10 +223,7 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
       << " ms\n";
   if (r.status == ModalStatus::kUnstable && !r.instability.empty())
     log << "cosserat: unstable: " << r.instability << "\n";
-  if (!r.declined.empty())
-    log << "cosserat: no modes on this grid: " << r.declined << "; rod.nodes <= "
-        << kMaxDenseModeCoordinates / 6 + 1
-        << " takes the dense spectrum, or \"formulation\": \"se3-shooting\"\n";
+  log << DeclinedNote(r);
   const ModesGrid grid = CheckModesGrid(problem, r);
   result.log = log.str() + grid.log + SingleShotHint(problem, r) + HighModesHint(problem, r);
   result.converged = r.converged() && !grid.under_resolved;
