@@ -104,6 +104,23 @@ std::string StaticFrictionNote(const io::Problem& problem) {
       return note.str();
     }
   }
+  // No friction given, and a current along a plane the rod may rest on (a pipe on a sea bed in
+  // a cross current drifted 155 m sideways in statics, without a word).
+  const Fluid& fluid = problem.loads.fluid;
+  if (!fluid.present() || fluid.velocity_W.isZero(0.0)) return "";
+  for (int k = 0; k < problem.loads.contact.count; ++k) {
+    const ContactSurface& surface = problem.loads.contact.surface[k];
+    if (surface.shape != ContactSurface::Shape::kPlane) continue;
+    const Vec3& n = surface.direction_W;
+    const Vec3 along = fluid.velocity_W - fluid.velocity_W.dot(n) * n;
+    if (along.norm() <= 1e-6 * fluid.velocity_W.norm()) continue;
+    std::ostringstream note;
+    note << "cosserat: note: the current runs along environment.contact[" << k
+         << "], and statics have no friction: what rests on it slides with the drag until the "
+            "rod's supports and stiffness hold it; dynamics with a \"friction\" coefficient "
+            "hold it in place\n";
+    return note.str();
+  }
   return "";
 }
 

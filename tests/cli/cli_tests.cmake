@@ -563,6 +563,9 @@ cosserat_cli_test(NAME assembly_modes ARGS solve "${_cli_dir}/assembly_modes.jso
 get_filename_component(_cli_platform "${CMAKE_CURRENT_LIST_DIR}/../../examples/platform_release.json" ABSOLUTE)
 cosserat_cli_test(NAME assembly_platform_release ARGS solve "${_cli_platform}" CODE 0
                   STDERR "converged \\(assembly dynamics\\), 400 steps, 8 s simulated")
+# A current along a sea bed in statics, where no friction holds what lies on it: noted.
+cosserat_cli_test(NAME current_along_seabed ARGS solve "${_cli_dir}/current_along_seabed.json"
+                  CODE 0 STDERR "note: the current runs along environment.contact\\[0\\], and statics have no friction")
 # Contact friction given to statics: they leave it out (it needs a slip velocity) and say so.
 cosserat_cli_test(NAME friction_in_statics ARGS solve "${_cli_dir}/friction_in_statics.json"
                   CODE 0 STDERR "contact\\[0\\].friction = 0.5 acts in dynamics only")
