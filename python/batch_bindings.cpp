@@ -7,11 +7,12 @@
 
 #include <unistd.h>
 
-#include <atomic>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -43,25 +44,6 @@ void CheckMemory(int count, int nodes) {
                           " GB, more than half of this machine's " +
                           std::to_string(static_cast<long long>(memory / 1e9)) + " GB");
 }
-
-/// One call into a batch at a time: step() and initialize_at_rest() let go of the GIL while the
-/// rods run, and a second Python thread entering the same batch then (another step, a restore, a
-/// read of the positions) corrupted the heap. The later caller gets a RuntimeError instead.
-class Exclusive {
- public:
-  explicit Exclusive(std::atomic<bool>* busy) : busy_(busy) {
-    if (busy_->exchange(true))
-      throw std::runtime_error(
-          "the BatchStepper is busy in another thread (a step() or initialize_at_rest() is under "
-          "way): use one batch from one thread at a time, or one batch per thread");
-  }
-  ~Exclusive() { busy_->store(false); }
-  Exclusive(const Exclusive&) = delete;
-  Exclusive& operator=(const Exclusive&) = delete;
-
- private:
-  std::atomic<bool>* busy_;
-};
 
 /// M rods of the problem stepped together on a team of threads (BatchStepper), with inputs and
 /// outputs as (M, ...) arrays: each rod starts from the problem's input, as a Stepper does, and
@@ -95,108 +77,131 @@ class PyBatchStepper {
   /// As the Stepper starts: from the statics solver's equilibrium, else the rods' own solve;
   /// the steps after it apply the problem's loads and actuation (as after construction).
   int InitializeAtRest() {
-    const Exclusive one_at_a_time(&busy_);
-    const std::optional<RodState> equilibrium =
-        cosserat::run::StaticEquilibriumToStartFrom(problem_, initial_);
-    py::gil_scoped_release release;
-    int converged = equilibrium ? batch_->InitializeAtRest(initial_, *equilibrium) : 0;
-    if (converged != batch_->count()) converged = batch_->InitializeAtRest(initial_);
-    initialized_ = converged == batch_->count();
-    failed_reset_ = !initialized_;
-    if (initialized_) inputs_ = first_inputs_;  // an episode reset: the file's inputs again
-    return converged;
+    return Locked([&] {
+      const std::optional<RodState> equilibrium =
+          cosserat::run::StaticEquilibriumToStartFrom(problem_, initial_);
+      int converged = equilibrium ? batch_->InitializeAtRest(initial_, *equilibrium) : 0;
+      if (converged != batch_->count()) converged = batch_->InitializeAtRest(initial_);
+      initialized_ = converged == batch_->count();
+      failed_reset_ = !initialized_;
+      if (initialized_) inputs_ = first_inputs_;  // an episode reset: the file's inputs again
+      return converged;
+    });
   }
 
   /// tip_force (M, 3) N, world; tension (M, tendons) N. Returns how many rods converged. Both
   /// are checked before either is applied: a refused call changes nothing.
   int Step(std::optional<Eigen::MatrixXd> tip_force, std::optional<Eigen::MatrixXd> tension) {
-    const Exclusive one_at_a_time(&busy_);
-    RequireState();
-    const int M = batch_->count();
+    const int M = batch_->count();  // fixed at construction
     if (tip_force) Check(*tip_force, M, 3, "tip_force");
     if (tension) {
       Check(*tension, M, tendons_, "tension");
       if ((tension->array() < 0).any()) throw py::value_error("tension: a tendon cannot push");
     }
-    if (tip_force)
-      for (int i = 0; i < M; ++i) inputs_[i].loads.tip_force = tip_force->row(i).transpose();
-    if (tension) {
-      for (int i = 0; i < M; ++i)
-        for (int j = 0; j < tendons_; ++j) inputs_[i].actuation.tendon_tension[j] = (*tension)(i, j);
-    }
-    py::gil_scoped_release release;
-    return batch_->Step(inputs_.data());
+    return Locked([&] {
+      RequireState();
+      if (tip_force)
+        for (int i = 0; i < M; ++i) inputs_[i].loads.tip_force = tip_force->row(i).transpose();
+      if (tension)
+        for (int i = 0; i < M; ++i)
+          for (int j = 0; j < tendons_; ++j)
+            inputs_[i].actuation.tendon_tension[j] = (*tension)(i, j);
+      return batch_->Step(inputs_.data());
+    });
   }
 
   std::vector<Bdf2ShootingStepper::Snapshot> Save() const {
-    const Exclusive one_at_a_time(&busy_);
-    RequireState();
-    return batch_->Save();
+    return Locked([&] {
+      RequireState();
+      return batch_->Save();
+    });
   }
   /// Rod i from snapshots[i], or every rod from one snapshot (a Stepper's, for rollouts from a
   /// measured state); each then applies the inputs its run was applying (InputToContinue).
   void Restore(const std::variant<Bdf2ShootingStepper::Snapshot,
                                   std::vector<Bdf2ShootingStepper::Snapshot>>& snapshots) {
-    const Exclusive one_at_a_time(&busy_);
-    if (const auto* one = std::get_if<Bdf2ShootingStepper::Snapshot>(&snapshots)) {
-      batch_->RestoreAll(*one);  // throws std::invalid_argument (ValueError), changing nothing
-      inputs_.assign(batch_->count(), InputToContinue(*one, first_inputs_[0]));
-    } else {
-      const auto& each = std::get<std::vector<Bdf2ShootingStepper::Snapshot>>(snapshots);
-      batch_->Restore(each);
-      for (int i = 0; i < batch_->count(); ++i)
-        inputs_[i] = InputToContinue(each[i], first_inputs_[i]);
-    }
-    initialized_ = true;
-    failed_reset_ = false;
+    Locked([&] {
+      if (const auto* one = std::get_if<Bdf2ShootingStepper::Snapshot>(&snapshots)) {
+        batch_->RestoreAll(*one);  // throws std::invalid_argument (ValueError), changing nothing
+        inputs_.assign(batch_->count(), InputToContinue(*one, first_inputs_[0]));
+      } else {
+        const auto& each = std::get<std::vector<Bdf2ShootingStepper::Snapshot>>(snapshots);
+        batch_->Restore(each);
+        for (int i = 0; i < batch_->count(); ++i)
+          inputs_[i] = InputToContinue(each[i], first_inputs_[i]);
+      }
+      initialized_ = true;
+      failed_reset_ = false;
+      return 0;
+    });
   }
 
   /// (M, N, 3) node positions, m, world.
   py::array_t<double> Positions() const {
-    const Exclusive one_at_a_time(&busy_);
-    RequireState();
     const int M = batch_->count(), N = batch_->rod(0).state().size();
+    std::vector<double> x(static_cast<size_t>(M) * N * 3);  // copied under the lock
+    Locked([&] {
+      RequireState();
+      for (int i = 0; i < M; ++i)
+        for (int j = 0; j < N; ++j)
+          for (int k = 0; k < 3; ++k)
+            x[(static_cast<size_t>(i) * N + j) * 3 + k] = batch_->rod(i).state().position_W[j](k);
+      return 0;
+    });
     py::array_t<double> out({M, N, 3});
-    auto a = out.mutable_unchecked<3>();
-    for (int i = 0; i < M; ++i)
-      for (int j = 0; j < N; ++j)
-        for (int k = 0; k < 3; ++k) a(i, j, k) = batch_->rod(i).state().position_W[j](k);
+    std::copy(x.begin(), x.end(), out.mutable_data());
     return out;
   }
 
   Eigen::MatrixXd TipPositions() const {
-    const Exclusive one_at_a_time(&busy_);
-    RequireState();
-    Eigen::MatrixXd out(batch_->count(), 3);
-    for (int i = 0; i < batch_->count(); ++i)
-      out.row(i) = batch_->rod(i).state().tip_position_W().transpose();
-    return out;
+    return Locked([&] {
+      RequireState();
+      Eigen::MatrixXd out(batch_->count(), 3);
+      for (int i = 0; i < batch_->count(); ++i)
+        out.row(i) = batch_->rod(i).state().tip_position_W().transpose();
+      return out;
+    });
   }
   /// Whether each rod's last step converged (M bools); a rod that failed stays at the last state
   /// it reached, behind the others.
   std::vector<bool> Converged() const {
-    const Exclusive one_at_a_time(&busy_);
-    RequireState();
-    std::vector<bool> out(batch_->count());
-    for (int i = 0; i < batch_->count(); ++i) out[i] = batch_->summary(i).converged();
-    return out;
+    return Locked([&] {
+      RequireState();
+      std::vector<bool> out(batch_->count());
+      for (int i = 0; i < batch_->count(); ++i) out[i] = batch_->summary(i).converged();
+      return out;
+    });
   }
   /// Each rod's simulated time, s (M values).
   std::vector<double> Times() const {
-    const Exclusive one_at_a_time(&busy_);
-    if (failed_reset_) RequireState();  // raises: the last run's times are not this one's
-    std::vector<double> out(batch_->count());
-    for (int i = 0; i < batch_->count(); ++i) out[i] = batch_->rod(i).time();
-    return out;
+    return Locked([&] {
+      if (failed_reset_) RequireState();  // raises: the last run's times are not this one's
+      std::vector<double> out(batch_->count());
+      for (int i = 0; i < batch_->count(); ++i) out[i] = batch_->rod(i).time();
+      return out;
+    });
   }
   double time() const {
-    const Exclusive one_at_a_time(&busy_);
-    if (failed_reset_) RequireState();
-    return batch_->rod(0).time();
+    return Locked([&] {
+      if (failed_reset_) RequireState();
+      return batch_->rod(0).time();
+    });
   }
   int count() const { return batch_->count(); }
 
  private:
+  /// f() with the GIL let go and the batch locked: a call from another Python thread waits its
+  /// turn (a reader during a step, for it to end). step() lets go of the GIL while its rods run,
+  /// and two threads in one batch at once had corrupted the heap. f must not touch Python
+  /// objects; the lock is released before the GIL is taken back, so no two threads wait on each
+  /// other.
+  template <typename F>
+  std::invoke_result_t<F> Locked(F&& f) const {
+    py::gil_scoped_release release;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return f();
+  }
+
   /// Every rod at rest after a converged initialize_at_rest (as the Stepper requires).
   void RequireState() const {
     if (!initialized_)
@@ -221,7 +226,7 @@ class PyBatchStepper {
   std::vector<StepInput> first_inputs_;  ///< what the first steps apply: the file's
   std::vector<StepInput> inputs_;
   bool initialized_ = false;
-  mutable std::atomic<bool> busy_{false};  ///< a call is under way (Exclusive)
+  mutable std::mutex mutex_;  ///< held by the call under way (Locked)
   bool failed_reset_ = false;  ///< the last initialize_at_rest() left a rod unconverged
 };
 
