@@ -121,14 +121,21 @@ TEST(QuatFdBuckling, TheBandedInertiaCountsAShuffledSecondDifference) {
   std::vector<int> shuffled(m);
   for (int i = 0; i < m; ++i) shuffled[i] = (7 * i + 3) % m;  // 7 is prime to 60: a permutation
   for (const double sigma : {0.0, 0.5, 1.7, 3.1}) {
-    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m, m);  // S(p(i), p(j)) = T(i, j)
+    std::vector<Eigen::Triplet<double>> entries;  // S(p(i), p(j)) = T(i, j)
     for (int i = 0; i < m; ++i) {
-      S(shuffled[i], shuffled[i]) = 2.0 - sigma;
-      if (i + 1 < m) S(shuffled[i], shuffled[i + 1]) = S(shuffled[i + 1], shuffled[i]) = -1.0;
+      entries.emplace_back(shuffled[i], shuffled[i], 2.0 - sigma);
+      if (i + 1 < m) {
+        entries.emplace_back(shuffled[i], shuffled[i + 1], -1.0);
+        entries.emplace_back(shuffled[i + 1], shuffled[i], -1.0);
+      }
     }
+    Eigen::SparseMatrix<double> S(m, m);
+    S.setFromTriplets(entries.begin(), entries.end());
     int expected = 0;
     for (int k = 1; k <= m; ++k) expected += 2.0 - sigma - 2.0 * std::cos(k * M_PI / (m + 1)) < 0;
-    EXPECT_EQ(detail::CountEigenvaluesBelow(S, shuffled, 0.0), expected) << sigma;
+    const detail::SymmetricBand band = detail::BandInOrder(S, shuffled);
+    EXPECT_EQ(band.half_bandwidth(), 1) << sigma;  // tridiagonal again in that order
+    EXPECT_EQ(detail::CountEigenvaluesBelow(band, 0.0), expected) << sigma;
   }
 }
 

@@ -44,17 +44,20 @@ int CountEigenvaluesBelow(const SymmetricBand& S, double below) {
   return ldlt.Factorize(S, below, 1e-10 * size) ? ldlt.negative_pivots() : -1;
 }
 
-SymmetricBand BandInOrder(const Eigen::MatrixXd& S, const std::vector<int>& order) {
-  const int m = static_cast<int>(order.size());
-  auto at = [&](int i, int j) { return S(order[i], order[j]); };
-  int b = 0;  // the half-bandwidth in this order
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < i; ++j)
-      if (at(i, j) != 0.0) b = std::max(b, i - j);
-  SymmetricBand band{Eigen::MatrixXd::Zero(m, b + 1)};
-  for (int i = 0; i < m; ++i)
-    for (int j = std::max(0, i - b); j <= i; ++j) band.lower(i, i - j) = at(i, j);
-  return band;
+std::vector<int> AlongTheRod(const std::vector<int>& vertex_column,
+                             const std::vector<int>& segment_column, int m) {
+  std::vector<long> rank(m, -1);
+  for (size_t n = 0; n < vertex_column.size(); ++n)
+    if (vertex_column[n] >= 0)
+      for (int k = 0; k < 3; ++k) rank[vertex_column[n] + k] = 3 * (2 * static_cast<long>(n)) + k;
+  for (size_t nu = 0; nu < segment_column.size(); ++nu)
+    for (int k = 0; k < 3; ++k)
+      rank[segment_column[nu] + k] = 3 * (2 * static_cast<long>(nu) + 1) + k;
+  if (std::find(rank.begin(), rank.end(), -1) != rank.end()) return {};
+  std::vector<int> order(m);
+  for (int i = 0; i < m; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return rank[a] < rank[b]; });
+  return order;
 }
 
 SymmetricBand BandInOrder(const Eigen::SparseMatrix<double>& S, const std::vector<int>& order) {
@@ -73,12 +76,6 @@ SymmetricBand BandInOrder(const Eigen::SparseMatrix<double>& S, const std::vecto
       if (pi >= pj && it.value() != 0.0) band.lower(pi, pi - pj) = it.value();
     }
   return band;
-}
-
-int CountEigenvaluesBelow(const Eigen::MatrixXd& S, const std::vector<int>& order, double below) {
-  const int m = static_cast<int>(order.size());
-  if (m == 0 || S.rows() != m || S.cols() != m) return -1;
-  return CountEigenvaluesBelow(BandInOrder(S, order), below);
 }
 
 }  // namespace cosserat::detail

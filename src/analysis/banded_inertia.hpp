@@ -43,15 +43,16 @@ class BandedLdlt {
 /// (the caller then counts eigenvalues).
 int CountEigenvaluesBelow(const SymmetricBand& S, double below);
 
-/// S in the order `order` (a permutation of 0 … m − 1) that makes it banded: row i of the band
-/// is row order[i] of S.
-SymmetricBand BandInOrder(const Eigen::MatrixXd& S, const std::vector<int>& order);
+/// The order along the rod of m tangent coordinates, three per free vertex and three per
+/// segment (vertex n before segment n before vertex n + 1), in which a quaternion-FD stiffness,
+/// whose coordinates couple only with their neighbours', is banded. vertex_column[n]: the first
+/// of vertex n's (−1 when it is prescribed); segment_column[ν]: segment ν's. Empty when some
+/// coordinate is neither.
+std::vector<int> AlongTheRod(const std::vector<int>& vertex_column,
+                             const std::vector<int>& segment_column, int m);
 
-/// The same for a sparse symmetric S (its lower triangle read).
+/// The sparse symmetric S in the order `order` (a permutation of 0 … m − 1) that makes it
+/// banded: row i of the band is row order[i] of S.
 SymmetricBand BandInOrder(const Eigen::SparseMatrix<double>& S, const std::vector<int>& order);
-
-/// The same count for a dense symmetric S whose rows and columns taken in `order` make it
-/// banded.
-int CountEigenvaluesBelow(const Eigen::MatrixXd& S, const std::vector<int>& order, double below);
 
 }  // namespace cosserat::detail

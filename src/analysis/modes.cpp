@@ -208,27 +208,6 @@ bool IsSymmetric(const Eigen::SparseMatrix<double>& S) {
   return true;
 }
 
-/// A band matrix as a sparse one (its band's non-zero entries).
-Eigen::SparseMatrix<double> Sparse(const BandedMatrix& A) {
-  std::vector<Eigen::Triplet<double>> entries;
-  const int n = A.rows();
-  for (int j = 0; j < n; ++j)
-    for (int i = std::max(0, j - A.upper()); i <= std::min(n - 1, j + A.lower()); ++i)
-      if (A(i, j) != 0.0) entries.emplace_back(i, j, A(i, j));
-  Eigen::SparseMatrix<double> S(n, n);
-  S.setFromTriplets(entries.begin(), entries.end());
-  return S;
-}
-
-/// Whether a band matrix has a non-zero entry (∂f/∂v: the model's damping).
-bool HasNonZero(const BandedMatrix& A) {
-  const int n = A.rows();
-  for (int j = 0; j < n; ++j)
-    for (int i = std::max(0, j - A.upper()); i <= std::min(n - 1, j + A.lower()); ++i)
-      if (A(i, j) != 0.0) return true;
-  return false;
-}
-
 /// ω² with the reduced shape (empty without shapes), ascending.
 using Spectrum = std::vector<std::pair<double, Eigen::VectorXd>>;
 
@@ -440,6 +419,7 @@ struct Spectra {
   bool damped = false;        ///< damping to resolve
   bool indefinite = false;    ///< a stiffness the direct spectrum cannot resolve, not definite
   bool too_large = false;     ///< the dense spectrum was beyond ModalOptions::max_dense
+  bool has_damping = false;   ///< ∂f/∂v has an entry: the model is damped
   double lowest_complex = std::numeric_limits<double>::infinity();  ///< flutter (GeneralSpectrum)
 };
 
@@ -449,9 +429,10 @@ struct Spectra {
 Spectra ComputeSpectrum(const BandedMatrix& A, const BandedMatrix& B, const Reduction& red,
                         const ModalOptions& options, ModalResult* result) {
   Spectra out;
-  if (red.T.cols() > options.sparse_above && !(options.damped && HasNonZero(B))) {
+  out.has_damping = B.ToSparse().nonZeros() > 0;
+  if (red.T.cols() > options.sparse_above && !(options.damped && out.has_damping)) {
     const Eigen::SparseMatrix<double> S =
-        -(SparseMassPower(red, 1.0) * (red.P * (Sparse(A) * red.T)));
+        -(SparseMassPower(red, 1.0) * (red.P * (A.ToSparse() * red.T)));
     result->symmetric = IsSymmetric(S);
     if (result->symmetric)
       result->sparse = LowestModesSparse(S, red, options.count, options.shapes, &out.eig);
@@ -511,7 +492,7 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   if (sp.too_large) {
     result.declined = std::string("the stiffness is ") +
                       (!result.symmetric ? "not symmetric (follower loads, drag)"
-                       : options.damped && HasNonZero(B)
+                       : options.damped && sp.has_damping
                            ? "damped, and the damped modes need the whole spectrum"
                            : "not positive definite (an unstable equilibrium)") +
                       ", so its spectrum would be dense, on " + std::to_string(red.T.cols()) +

@@ -161,18 +161,13 @@ int QuatFdBuckling::StiffnessEigenvaluesBelow(double lambda, const Eigen::Vector
   model_.set_loads(path_.LoadsAt(lambda));
   const Eigen::SparseMatrix<double> H = StiffnessAnalyticSparse(q);
   const int m = static_cast<int>(H.rows());
-  // The tangent coordinates along the rod: free vertex v at 2v, segment s (between vertices s
-  // and s + 1) at 2s + 1; each couples only with its neighbours, so in this order the stiffness
-  // is banded.
-  const int nv = static_cast<int>(free_vertices_.size());
-  std::vector<int> rank(m);
-  for (int a = 0; a < nv; ++a)
-    for (int k = 0; k < 3; ++k) rank[3 * a + k] = 3 * (2 * free_vertices_[a]) + k;
-  for (int s = 0; s < model_.layout().segments; ++s)
-    for (int k = 0; k < 3; ++k) rank[3 * nv + 3 * s + k] = 3 * (2 * s + 1) + k;
-  std::vector<int> order(m);
-  for (int j = 0; j < m; ++j) order[j] = j;
-  std::sort(order.begin(), order.end(), [&](int x, int y) { return rank[x] < rank[y]; });
+  // The tangent coordinates (free vertices' first, then segments') along the rod, where the
+  // stiffness is banded.
+  const int N = model_.layout().segments, nv = static_cast<int>(free_vertices_.size());
+  std::vector<int> vertex_column(N + 1, -1), segment_column(N);
+  for (int a = 0; a < nv; ++a) vertex_column[free_vertices_[a]] = 3 * a;
+  for (int s = 0; s < N; ++s) segment_column[s] = 3 * nv + 3 * s;
+  const std::vector<int> order = detail::AlongTheRod(vertex_column, segment_column, m);
   // The symmetric part ½ (H + Hᵀ) in that order, and |H − Hᵀ| / |H|.
   const Eigen::SparseMatrix<double> Ht = H.transpose();
   const Eigen::SparseMatrix<double> sym = 0.5 * (H + Ht), skew = H - Ht;

@@ -58,27 +58,11 @@ Eigen::SparseMatrix<double> SparseMassPower(const Reduction& red, double e) {
   return M;
 }
 
-std::vector<int> AlongTheRod(const Reduction& red) {
-  const int m = static_cast<int>(red.mass.size());
-  std::vector<long> rank(m, -1);
-  for (size_t n = 0; n < red.vertex_column.size(); ++n)
-    if (red.vertex_column[n] >= 0)
-      for (int k = 0; k < 3; ++k) rank[red.vertex_column[n] + k] = 3 * (2 * static_cast<long>(n)) + k;
-  for (size_t nu = 0; nu < red.segment_column.size(); ++nu)
-    for (int k = 0; k < 3; ++k)
-      rank[red.segment_column[nu] + k] = 3 * (2 * static_cast<long>(nu) + 1) + k;
-  if (std::find(rank.begin(), rank.end(), -1) != rank.end()) return {};
-  std::vector<int> order(m);
-  for (int i = 0; i < m; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return rank[a] < rank[b]; });
-  return order;
-}
-
 bool LowestModesSparse(const Eigen::SparseMatrix<double>& K, const Reduction& red, int count,
                        bool shapes, std::vector<std::pair<double, Eigen::VectorXd>>* eig) {
   eig->clear();
   const int m = static_cast<int>(K.rows());
-  const std::vector<int> order = AlongTheRod(red);
+  const std::vector<int> order = AlongTheRod(red.vertex_column, red.segment_column, m);
   if (count < 1 || m < count || order.empty()) return false;
   const Eigen::SparseMatrix<double> root = SparseMassPower(red, -0.5);  // M^−½
   const Eigen::SparseMatrix<double> Kt = K.transpose();

@@ -15,10 +15,6 @@ namespace cosserat::detail {
 /// as a sparse matrix.
 Eigen::SparseMatrix<double> SparseMassPower(const Reduction& red, double e);
 
-/// The order of the reduced coordinates along the rod (vertex n before segment n before vertex
-/// n + 1), in which the stiffness is banded; empty if some coordinate is neither.
-std::vector<int> AlongTheRod(const Reduction& red);
-
 /// The `count` lowest ω² (rad²/s², ascending) of K φ = ω² M φ for the symmetric reduced
 /// stiffness K, with the reduced shapes φ = M^−½ ψ when `shapes`: subspace iteration with
 /// Rayleigh–Ritz on H⁻¹, H = M^−½ K M^−½ factorised banded (BandedLdlt), whose largest

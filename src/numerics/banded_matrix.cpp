@@ -1,6 +1,7 @@
 #include "cosserat/numerics/banded_matrix.hpp"
 
 #include <algorithm>
+#include <vector>
 #include <cmath>
 #include <utility>
 
@@ -29,6 +30,16 @@ void BandedMatrix::Multiply(const Eigen::Ref<const Eigen::VectorXd>& x,
     const double* col = &data_[kv_ - j + j * ld_];
     for (int i = i0; i <= i1; ++i) y[i] += col[i] * xj;
   }
+}
+
+Eigen::SparseMatrix<double> BandedMatrix::ToSparse() const {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int j = 0; j < n_; ++j)
+    for (int i = std::max(0, j - ku_); i <= std::min(n_ - 1, j + kl_); ++i)
+      if ((*this)(i, j) != 0.0) entries.emplace_back(i, j, (*this)(i, j));
+  Eigen::SparseMatrix<double> A(n_, n_);
+  A.setFromTriplets(entries.begin(), entries.end());
+  return A;
 }
 
 Eigen::MatrixXd BandedMatrix::ToDense() const {

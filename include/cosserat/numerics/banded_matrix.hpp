@@ -6,6 +6,7 @@
 /// place. Cost: factorisation O(n kl (kl + ku)), solve O(n (2 kl + ku)).
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <complex>
 #include <vector>
 
@@ -32,6 +33,8 @@ class BandedMatrix {
   void Multiply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const;
   /// The dense copy (for tests and small checks).
   Eigen::MatrixXd ToDense() const;
+  /// The sparse copy: the band's non-zero entries.
+  Eigen::SparseMatrix<double> ToSparse() const;
 
   /// Factorises in place into P A = L U. Returns false when a pivot is exactly zero (the matrix is
   /// singular); Solve must not be called then.
