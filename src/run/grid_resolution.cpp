@@ -10,6 +10,22 @@
 #include "cosserat/state/solve_status.hpp"
 
 namespace cosserat::run {
+namespace {
+
+/// The coarse-shape line after its lead: where the section turns most per segment (`worst` rad
+/// at s = `worst_s` m, `worst_k` rad/m), what that costs a constant-curvature arc
+/// (`arc_error`, the scheme's own words) and the nodes that keep it below 0.25 rad.
+std::string CoarseShapeLine(const std::string& lead, double worst, double worst_s,
+                            double worst_k, double length, const std::string& arc_error) {
+  std::ostringstream log;
+  log << std::setprecision(3) << lead << "the bending turns the section by " << worst
+      << " rad per segment near s = " << worst_s << " m, where a constant-curvature arc's tip "
+      << arc_error << "; rod.nodes ≥ " << static_cast<long>(std::ceil(4.0 * worst_k * length)) + 1
+      << " keeps it below 0.25 rad\n";
+  return log.str();
+}
+
+}  // namespace
 
 GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& position,
                          const std::vector<Vec3>& curvature, double length, bool converged) {
@@ -38,19 +54,16 @@ GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& 
   }
   if (worst <= 0.5) return out;
   out.under_resolved = worst > 1.5;
-  std::ostringstream log;
-  log << std::setprecision(3)
-      << (!converged ? "cosserat: at the last load level reached, the grid resolves the shape "
-                       "coarsely: "
-          : out.under_resolved ? "cosserat: the grid is too coarse for this shape (status "
-                                 "under_resolved): "
-                               : "cosserat: warning: the grid resolves the shape coarsely: ")
-      << "the bending turns the section by " << worst << " rad per segment near s = " << worst_s
-      << " m, where a constant-curvature arc's tip is off by about "
-      << 100 * 8e-3 * std::pow(worst, 4) << " % of the length (RK4 in s, fourth order in κ h); "
-      << "rod.nodes ≥ " << static_cast<long>(std::ceil(4.0 * worst_k * length)) + 1
-      << " keeps it below 0.25 rad\n";
-  out.log = log.str();
+  std::ostringstream error;
+  error << std::setprecision(3) << "is off by about " << 100 * 8e-3 * std::pow(worst, 4)
+        << " % of the length (RK4 in s, fourth order in κ h)";
+  out.log = CoarseShapeLine(
+      !converged ? "cosserat: at the last load level reached, the grid resolves the shape "
+                   "coarsely: "
+      : out.under_resolved ? "cosserat: the grid is too coarse for this shape (status "
+                             "under_resolved): "
+                           : "cosserat: warning: the grid resolves the shape coarsely: ",
+      worst, worst_s, worst_k, length, error.str());
   return out;
 }
 
@@ -72,18 +85,15 @@ GridResolution CheckPolygon(const std::vector<double>& s, const std::vector<Vec3
   }
   if (worst <= 0.5) return out;
   out.under_resolved = worst > 1.5;
-  std::ostringstream log;
-  log << std::setprecision(3)
-      << (out.under_resolved ? "cosserat: the grid is too coarse for this shape (status "
-                               "under_resolved): "
-                             : "cosserat: warning: the grid resolves the shape coarsely: ")
-      << "the bending turns the section by " << worst << " rad per segment near s = " << worst_s
-      << " m, where a constant-curvature arc's tip would be off by " << 100 * 0.08 * worst * worst
-      << " % of the length (quaternion FD, second order in κ h; a bend this sharp over a short "
-         "stretch costs far less); "
-      << "rod.nodes ≥ " << static_cast<long>(std::ceil(4.0 * worst_k * length)) + 1
-      << " keeps it below 0.25 rad\n";
-  out.log = log.str();
+  std::ostringstream error;
+  error << std::setprecision(3) << "would be off by " << 100 * 0.08 * worst * worst
+        << " % of the length (quaternion FD, second order in κ h; a bend this sharp over a "
+           "short stretch costs far less)";
+  out.log = CoarseShapeLine(out.under_resolved
+                                ? "cosserat: the grid is too coarse for this shape (status "
+                                  "under_resolved): "
+                                : "cosserat: warning: the grid resolves the shape coarsely: ",
+                            worst, worst_s, worst_k, length, error.str());
   return out;
 }
 

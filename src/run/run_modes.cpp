@@ -23,7 +23,6 @@ namespace {
 /// finer grid takes the banded path instead.
 constexpr int kMaxDenseModeCoordinates = 4800;
 
-
 nlohmann::ordered_json Vectors(const std::vector<Vec3>& v) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const Vec3& x : v) out.push_back({x.x(), x.y(), x.z()});
