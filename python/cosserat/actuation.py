@@ -73,28 +73,40 @@ def _rebuild(values, given):
     return a
 
 
-def fit_to_problem(actuation, problem):
-    """An Actuation made in Python, fitted to `problem` as a dict with the file's keys is: a list
-    set with another count than what it acts on is refused with a ValueError naming the field;
-    the section's pressures never given take the problem's, in a copy (the object is left as
-    it is). Others (a Stepper's or a Problem's, which hold a whole state) pass as they are."""
+class ProblemRules:
+    """What fitting an Actuation needs of a problem, read once (a solver's step is a hot path):
+    the counts its lists act on, and the section's pressures in its file."""
+
+    def __init__(self, problem):
+        self.counts = {field: getattr(problem, count_name)
+                       for field, (count_name, _, _) in _LISTS.items()}
+        self.file = problem.actuation  # a copy: a whole state
+        self.has_pressure = self.file.pressure != 0
+        self.has_jamming = bool(any(self.file.jamming_pressure))
+
+
+def fit_to_problem(actuation, rules):
+    """An Actuation made in Python, fitted to a problem (its ProblemRules) as a dict with the
+    file's keys is: a list set with another count than what it acts on is refused with a
+    ValueError naming the field; the section's pressures never given take the problem's, in a
+    copy (the object is left as it is). Others (a Stepper's or a Problem's, which hold a whole
+    state) pass as they are."""
     if not isinstance(actuation, Actuation):
         return actuation
     given = actuation.__dict__["_given"]
-    for field, (count_name, noun, source) in _LISTS.items():
-        length, count = given.get(field), getattr(problem, count_name)
+    for field, (_, noun, source) in _LISTS.items():
+        length, count = given.get(field), rules.counts[field]
         # With none to act on, the core's check names the value that would act on nothing.
         if length is not None and count > 0 and length != count:
             raise ValueError(f"actuation.{field}: expected one value per {noun} "
                              f"({count} in {source}), got {length}")
-    file_actuation = problem.actuation
-    keep_pressure = "pressure" not in given and file_actuation.pressure != 0
-    keep_jamming = "jamming_pressure" not in given and any(file_actuation.jamming_pressure)
+    keep_pressure = rules.has_pressure and "pressure" not in given
+    keep_jamming = rules.has_jamming and "jamming_pressure" not in given
     if not (keep_pressure or keep_jamming):
         return actuation
     fitted = _core.Actuation()
     for name in _FIELDS:
-        source = file_actuation if (name == "pressure" and keep_pressure) or (
+        source = rules.file if (name == "pressure" and keep_pressure) or (
             name == "jamming_pressure" and keep_jamming) else actuation
         value = (getattr(_core.Actuation, name).__get__(source) if name in _LISTS
                  else source.pressure)

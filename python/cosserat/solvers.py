@@ -5,7 +5,7 @@ import warnings
 import numpy as np
 
 from . import _core
-from .actuation import fit_to_problem
+from .actuation import ProblemRules, fit_to_problem
 from .results import _as_problem, _json_text
 
 
@@ -23,10 +23,11 @@ class StaticSolver(_core.StaticSolver):
         problem = _as_problem(problem)
         super().__init__(problem)
         self._problem = problem  # its environment and actuation rules, for dict inputs
+        self._rules = ProblemRules(problem)
 
     def solve(self, loads=None, base_position=None, base_rotation=None, actuation=None):
         return super().solve(_loads_from(loads, self._problem), base_position, base_rotation,
-                             _actuation_from(actuation, self._problem))
+                             _actuation_from(actuation, self._problem, self._rules))
 
     solve.__doc__ = (_core.StaticSolver.solve.__doc__ or "") + (
         " loads and actuation may also be dicts with the problem file's keys.")
@@ -64,13 +65,14 @@ def _loads_from(value, holder):
     return loads
 
 
-def _actuation_from(value, problem):
+def _actuation_from(value, problem, rules):
     """An Actuation from a dict with the keys of the problem file's robot.actuation (tension,
     chamber_pressure, jamming_pressure, pressure), checked by the file's rules for `problem` (one
     value per tendon, chamber or jamming segment); a cosserat.Actuation fitted to the problem by
-    the same rules (actuation.fit_to_problem); another Actuation or None as given."""
+    the same rules (actuation.fit_to_problem, with the problem's `rules` read once); another
+    Actuation or None as given."""
     if not isinstance(value, dict):
-        return fit_to_problem(value, problem)
+        return fit_to_problem(value, rules)
     return _core._parse_actuation(problem, _json_text(value))
 
 
@@ -81,20 +83,22 @@ class Stepper(_core.Stepper):
         problem = _as_problem(problem)
         super().__init__(problem, dt, spatial_scheme)
         self._problem = problem  # the rules a dict actuation is checked by
+        self._rules = ProblemRules(problem)
         # Until a base_twist_B is given or the warning below is out: the clamp's last pose.
         self._clamp = [np.asarray(problem.base_position), np.asarray(problem.base_rotation)]
         _warn_before_stepping(problem, dt)
 
     def initialize_at_rest(self, loads=None, actuation=None):
         return super().initialize_at_rest(_loads_from(loads, self),
-                                          _actuation_from(actuation, self._problem))
+                                          _actuation_from(actuation, self._problem, self._rules))
 
     def step(self, loads=None, base_position=None, base_rotation=None, base_twist_B=None,
              base_wrench_B=None, actuation=None):
         if self._clamp is not None:
             self._check_clamp_twist(base_position, base_rotation, base_twist_B)
         return super().step(_loads_from(loads, self), base_position, base_rotation,
-                            base_twist_B, base_wrench_B, _actuation_from(actuation, self._problem))
+                            base_twist_B, base_wrench_B,
+                            _actuation_from(actuation, self._problem, self._rules))
 
     def _check_clamp_twist(self, base_position, base_rotation, base_twist_B):
         """A clamp moved with no base_twist_B ever given: the step takes the twist as an input
