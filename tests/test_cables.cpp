@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -22,6 +21,7 @@
 #include "cosserat/run/run.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "support/analytic/cable.hpp"
+#include "support/source_json.hpp"
 #include "support/analytic/tensioned_beam.hpp"
 
 namespace cosserat {
@@ -310,8 +310,7 @@ TEST(HeldCable, ARiserOnTheSeaBedTouchesDownWithinTwoBendingLengthsOfTheCatenary
 // over 10 % low (measured 19 %) and the log warns, naming 71 nodes; on 71 (h = 5 m) it is within
 // 1 % (measured 0.2 %) and nothing is said.
 TEST(HeldCable, ARisersTouchdownPeakOnACoarseGridIsWarnedLow) {
-  std::ifstream file(std::string(COSSERAT_SOURCE_DIR) + "/examples/riser_on_seabed.json");
-  const nlohmann::json example = nlohmann::json::parse(file);
+  const nlohmann::json example = testing::SourceJson("examples/riser_on_seabed.json");
   auto run = [&](int nodes) {
     nlohmann::json spec = example;
     spec["rod"]["nodes"] = nodes;

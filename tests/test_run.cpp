@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fstream>
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -16,6 +15,7 @@
 #include "cosserat/io/problem.hpp"
 #include "cosserat/io/text_file.hpp"
 #include "nlohmann/json.hpp"
+#include "support/source_json.hpp"
 #include "cosserat/lie/types.hpp"
 #include "cosserat/run/grid_resolution.hpp"
 #include "cosserat/run/run.hpp"
@@ -419,17 +419,13 @@ TEST(Run, CoilsTighterThanTheGridAreCalledSoInBothFormulations) {
 // says under_resolved, one is more than 5 % off (SE(3) at 3 nodes: 44 %; quaternion FD at 9:
 // 12 %). At 3 nodes SE(3) modes once said "converged" with the second pair 19.5 % low.
 TEST(Run, ModesOnAGridTooCoarseForThemSaySo) {
-  std::string text, why;
-  ASSERT_TRUE(io::ReadTextFile(std::string(COSSERAT_SOURCE_DIR) +
-                                   "/examples/modes_cantilever.json",
-                               &text, &why))
-      << why;
+  const nlohmann::json example = testing::SourceJson("examples/modes_cantilever.json");
   const double r = 0.001, E = 200e9, rho = 8000, L = 0.5;
   const double EI = E * M_PI * std::pow(r, 4) / 4, rhoA = rho * M_PI * r * r;
   int silent = 0, under = 0;
   for (const char* formulation : {"se3-shooting", "quaternion-fd"}) {
     for (int nodes : {3, 5, 9, 17, 33, 101}) {
-      nlohmann::json doc = nlohmann::json::parse(text);
+      nlohmann::json doc = example;
       doc["formulation"] = formulation;
       doc["rod"]["nodes"] = nodes;
       doc["modes"]["count"] = 6;
@@ -968,8 +964,7 @@ TEST(Run, AHangingDrillStringIsNotCalledUnstableOnACoarseGrid) {
   EXPECT_EQ(hanging.log.find("unstable"), std::string::npos) << hanging.log;
   EXPECT_EQ(hanging.log.find("not judged"), std::string::npos) << hanging.log;
 
-  std::ifstream file(std::string(COSSERAT_SOURCE_DIR) + "/examples/rod_on_table.json");
-  nlohmann::json table = nlohmann::json::parse(file);
+  nlohmann::json table = testing::SourceJson("examples/rod_on_table.json");
   table["formulation"] = "se3-shooting";
   table["rod"]["nodes"] = 11;
   table["loads"]["tip_force"] = {2000, 0, 0};
@@ -1100,13 +1095,9 @@ TEST(Run, AnUndampedRunSaysWhatEnergyBdf2TookAway) {
 // its potential energy is 123 J) nor speaks of a rod left at rest in its static equilibrium
 // (the same rod, no preload: a drift of the step solves' size).
 TEST(Run, TheEnergyNoteSpeaksOfMotionWhereverTheRodIs) {
-  std::string text, why;
-  ASSERT_TRUE(io::ReadTextFile(std::string(COSSERAT_SOURCE_DIR) +
-                                   "/examples/cantilever_release.json",
-                               &text, &why))
-      << why;
+  const nlohmann::json example = testing::SourceJson("examples/cantilever_release.json");
   auto run = [&](const Vec3& base, bool preload) {
-    nlohmann::json doc = nlohmann::json::parse(text);
+    nlohmann::json doc = example;
     doc["base"]["position"] = {base.x(), base.y(), base.z()};
     doc["dynamics"]["duration"] = 5.0;
     if (preload) {
