@@ -12,13 +12,16 @@ _FIELDS = ("pressure",) + tuple(_LISTS)
 
 
 def _list_field(name):
-    """A list field as the core's view, recorded as given when set (with its length) or when
-    its view is taken (its length then unknown: it may be edited in place)."""
+    """A list field as the core's view, recorded as given when set (with its length); a view
+    taken before is remembered with its values, so that an edit in place through it counts as
+    given (its length then unknown) and a mere read does not."""
     core = getattr(_core.Actuation, name)
 
     def get(self):
-        self.__dict__["_given"].setdefault(name, None)
-        return core.__get__(self)
+        view = core.__get__(self)
+        if name not in self.__dict__["_given"]:
+            self.__dict__["_viewed"].setdefault(name, view.copy())
+        return view
 
     def set_(self, value):
         core.__set__(self, value)
@@ -45,6 +48,7 @@ class Actuation(_core.Actuation):
     def __init__(self, **fields):
         super().__init__()
         self.__dict__["_given"] = {}
+        self.__dict__["_viewed"] = {}  # list fields read, not set: their values then
         for name, value in fields.items():
             setattr(self, name, value)
 
@@ -56,11 +60,25 @@ class Actuation(_core.Actuation):
         if name == "pressure":
             self.__dict__["_given"]["pressure"] = None
 
+    def given(self):
+        """The fields given: {name: the list's length, or None (pressure, or a list edited in
+        place through its view)}."""
+        given = dict(self.__dict__["_given"])
+        for name, then in self.__dict__["_viewed"].items():
+            if name not in given and (core_list(self, name) != then).any():
+                given[name] = None
+        return given
+
     def __reduce__(self):
-        given = self.__dict__["_given"]
-        return (_rebuild, ({name: list(getattr(_core.Actuation, name).__get__(self))
+        given = self.given()
+        return (_rebuild, ({name: list(core_list(self, name))
                             if name in _LISTS else self.pressure for name in _FIELDS},
                            dict(given)))
+
+
+def core_list(actuation, name):
+    """A list field's values, read past the record of what was given."""
+    return getattr(_core.Actuation, name).__get__(actuation)
 
 
 def _rebuild(values, given):
@@ -70,6 +88,7 @@ def _rebuild(values, given):
         (getattr(_core.Actuation, name).__set__ if name in _LISTS else
          _core.Actuation.pressure.__set__)(a, value)
     a.__dict__["_given"] = dict(given)
+    a.__dict__["_viewed"] = {}
     return a
 
 
@@ -93,7 +112,7 @@ def fit_to_problem(actuation, rules):
     state) pass as they are."""
     if not isinstance(actuation, Actuation):
         return actuation
-    given = actuation.__dict__["_given"]
+    given = actuation.given()
     for field, (_, noun, source) in _LISTS.items():
         length, count = given.get(field), rules.counts[field]
         # With none to act on, the core's check names the value that would act on nothing.
@@ -108,7 +127,6 @@ def fit_to_problem(actuation, rules):
     for name in _FIELDS:
         source = rules.file if (name == "pressure" and keep_pressure) or (
             name == "jamming_pressure" and keep_jamming) else actuation
-        value = (getattr(_core.Actuation, name).__get__(source) if name in _LISTS
-                 else source.pressure)
+        value = core_list(source, name) if name in _LISTS else source.pressure
         getattr(_core.Actuation, name).__set__(fitted, value)
     return fitted

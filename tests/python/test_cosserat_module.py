@@ -4,6 +4,7 @@ import json
 import math
 import os
 import pathlib
+import pickle
 import subprocess
 import unittest
 import warnings
@@ -646,6 +647,14 @@ class Dynamics(unittest.TestCase):
         kappa = solver.state()["strain_B"][[5, 15], 1]
         self.assertGreater(kappa[0], 2 * by_object[0])  # less jammed than at 80 kPa
         self.assertAlmostEqual(kappa[1], by_object[1], delta=1e-3 * by_object[1])
+        # So it stays through a pickle; an array only read (printed, compared) is not given:
+        # the problem's jams stay, to the bit.
+        self.assertEqual(pickle.loads(pickle.dumps(edited)).given()["jamming_pressure"], None)
+        read = cosserat.Actuation(tendon_tension=[1.0])
+        self.assertEqual(float(read.jamming_pressure.sum()), 0.0)
+        self.assertNotIn("jamming_pressure", read.given())
+        self.assertTrue(solver.solve(actuation=read).converged)
+        np.testing.assert_array_equal(solver.state()["strain_B"][[5, 15], 1], by_object)
         # Another count of tensions than tendons is refused, as in a dict or a file; so is a
         # field the Actuation does not have.
         three = cosserat.StaticSolver("robots/tendon_three_tendon.json")
