@@ -41,10 +41,7 @@ bool FollowAway(const io::Problem& problem, const StaticLoads& imperfect, Solver
   if (!total->converged()) return false;
   return TakeAway([&](double mu) {
     *last = solver->Solve(problem.base, StaticLoads::Blend(imperfect, problem.loads, mu));
-    total->iterations += last->iterations;
-    total->shots += last->shots;
-    total->load_steps += last->load_steps;
-    total->wall_time_s += last->wall_time_s;
+    total->CountWorkOf(*last);
     return last->converged();
   });
 }

@@ -73,10 +73,7 @@ StaticsInPieces SolveStaticsInPieces(const io::Problem& problem, ColumnEnds ends
        (s.stability_index >= 0 && (index < 0 || s.stability_index < index)));
   StaticsInPieces& kept = better ? again : first;
   const StaticShootingSummary& other = better ? first.summary : again.summary;
-  kept.summary.iterations += other.iterations;
-  kept.summary.shots += other.shots;
-  kept.summary.load_steps += other.load_steps;
-  kept.summary.wall_time_s += other.wall_time_s;
+  kept.summary.CountWorkOf(other);
   return kept;
 }
 

@@ -74,6 +74,14 @@ struct StaticShootingSummary {
   /// level's); NaN when no continuation stopped short, or the solver does not say.
   double load_fraction = std::numeric_limits<double>::quiet_NaN();
   bool converged() const { return status == SolveStatus::kConverged; }
+  /// Counts another solve's work (iterations, shots, load steps, wall time) in this one's: a
+  /// result found in several solves reports them all.
+  void CountWorkOf(const StaticShootingSummary& other) {
+    iterations += other.iterations;
+    shots += other.shots;
+    load_steps += other.load_steps;
+    wall_time_s += other.wall_time_s;
+  }
 };
 
 /// A cantilever statics solver for one rod model and grid. Construction allocates every buffer;
