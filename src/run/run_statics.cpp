@@ -101,14 +101,8 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   summary.shots = column.shots;
   summary.load_steps = column.load_steps;
   summary.residual = column.residual;
-  if (column.converged()) {  // its unstable directions (−1: not defined)
-    RodState record;
-    std::vector<ColumnSolver::StateTangent> tangents;
-    solver.Residual(problem.base, problem.loads, solver.unknowns(), nullptr, &record, &tangents);
-    summary.stability_index =
-        solver.StabilityIndexFromShot(problem.base, problem.loads, solver.unknowns(), record,
-                                      tangents);
-  }
+  if (column.converged())  // its unstable directions (−1: not defined)
+    summary.stability_index = solver.StabilityIndexAtUnknowns(problem.base, problem.loads);
   std::string unjudged;  // a grid too coarse to count unstable directions on
   if (column.converged())
     summary.stability_index =
@@ -155,9 +149,7 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
     if (detail::SettleInPieces(problem, solved.state, solved.summary.stability_index,
                                solved.pieces, &settled, &imperfection)) {
       settled_note = detail::SettledNote(solved.summary.stability_index, imperfection);
-      settled.summary.iterations += solved.summary.iterations;
-      settled.summary.shots += solved.summary.shots;
-      settled.summary.wall_time_s += solved.summary.wall_time_s;
+      settled.summary.CountWorkOf(solved.summary);
       solved = settled;
     }
   }
@@ -284,9 +276,7 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
     if (detail::SettleSingleShot(problem, first.state(), summary.stability_index, &*beside,
                                  &settled, &imperfection)) {
       settled_note = detail::SettledNote(summary.stability_index, imperfection);
-      settled.iterations += summary.iterations;
-      settled.shots += summary.shots;
-      settled.wall_time_s += summary.wall_time_s;
+      settled.CountWorkOf(summary);
       summary = settled;
     } else {
       beside.reset();

@@ -11,6 +11,20 @@ namespace cosserat::run::detail {
 namespace {
 /// RK4's stability limit on y' = −k y, the largest k h at which its Jacobi fields are trusted.
 constexpr double kMaxJacobiKh = 2.8;
+
+/// The mid-span deflection (in L) of the buckled elastica of a pinned-pinned column, or of a
+/// clamped-clamped one (four of its quarter-waves), pressed by `ratio` times its Euler load:
+/// P = (2K(k)/π)² P_E with k = sin(θ₀/2), and the mid-span k L / K(k) (Timoshenko & Gere 1961);
+/// 0.9 sqrt(ratio − 1) to first order. k by bisection on K(k), which rises from π/2 at k = 0.
+double ElasticaMidSpan(double ratio) {
+  const double K = 0.5 * std::acos(-1.0) * std::sqrt(ratio);
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (std::comp_ellint_1(mid) < K ? lo : hi) = mid;
+  }
+  return lo / K;
+}
 }  // namespace
 
 std::string UnstableWarning(const StaticShootingSummary& s, bool searched_stable) {
@@ -48,8 +62,8 @@ std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const R
        << compression << " N, " << compression / euler << " times the Euler load of its ends ("
        << euler << " N), yet stands nearly straight (" << off_chord / L
        << " L off its chord): this equilibrium is unstable, the stable one bows out";
-  if (ends == ColumnEnds::kPinnedPinned)  // the elastica's amplitude, to first order
-    text << " by about " << 0.9 * std::sqrt(compression / euler - 1) << " L";
+  if (ends == ColumnEnds::kPinnedPinned || ends == ColumnEnds::kClampedClamped)
+    text << " by about " << ElasticaMidSpan(compression / euler) << " L";
   text << " (\"analysis\": \"buckling\" finds the critical load)\n";
   return text.str();
 }

@@ -83,8 +83,10 @@ class ColumnSolver {
   /// dimensionless load (StaticLoadParameter): a full step from the straight column can land Newton
   /// on another branch (a taut wire, PL²/EI = 80, converged to a looped shape). Status
   /// kLoadSteppingFailed when the step falls below the minimum; state() then holds the last
-  /// converged step (at least the unloaded column). Past a critical load this follows the
-  /// straight branch wherever it is an equilibrium (a symmetric column), stable or not:
+  /// converged step (at least the unloaded column). With options.stable_branch, an equilibrium
+  /// found unstable is followed again with every level required stable (an imperfect column
+  /// past P_cr: the bent state beside the near-straight one); where no stable path reaches the
+  /// loads (a symmetric column past P_cr) the straight branch stays, stable or not:
   /// BucklingAnalysis is the tool for stability.
   ColumnSummary SolveFromUnloaded(const lie::SE3& base, const StaticLoads& loads);
 
@@ -110,6 +112,8 @@ class ColumnSolver {
   int StabilityIndexFromShot(const lie::SE3& base, const StaticLoads& loads, const Vec6& u,
                              const RodState& record, const std::vector<StateTangent>& tangents,
                              double zero = 0.0) const;
+  /// StabilityIndexFromShot at the current unknowns (a shot of its own).
+  int StabilityIndexAtUnknowns(const lie::SE3& base, const StaticLoads& loads) const;
 
   /// The first-order change of the configuration along s for a change du of the unknowns at u:
   /// element i is the shot's StateTangent at node i times du (rows as in StateTangent). Used for
@@ -158,6 +162,10 @@ class ColumnSolver {
   const StaticShootingOptions& options() const { return options_; }
 
  private:
+  /// SolveFromUnloaded's continuation; with require_stable a level is accepted only on an
+  /// equilibrium with no unstable direction.
+  ColumnSummary FollowFromUnloaded(const lie::SE3& base, const StaticLoads& loads,
+                                   bool require_stable);
   /// Start state of the shot (R(0), W(0)) and its tangent along u.
   void Start(const lie::SE3& base, const Vec6& u, lie::SE3* start, Vec6* W0,
              StateTangent* dstart) const;
