@@ -98,9 +98,9 @@ GridResolution CheckPolygon(const std::vector<double>& s, const std::vector<Vec3
 }
 
 void CheckGridResolution(const io::Problem& problem, Result* result) {
-  // Statics, and the equilibrium the modes are about (the result's nodes).
-  const bool equilibrium =
-      problem.analysis == io::Analysis::kStatics || problem.analysis == io::Analysis::kModes;
+  // Statics, the equilibrium the modes are about, and the final state of dynamics (the
+  // result's nodes).
+  const bool equilibrium = problem.analysis != io::Analysis::kBuckling;
   // A statics stopped short writes the last load level reached: its grid may be why.
   const std::string status = result->json.value("status", "");
   const bool stopped_short =

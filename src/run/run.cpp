@@ -106,6 +106,17 @@ void UnusedBaseDriveNote(const io::Problem& problem, Result* result) {
                  "\n";
 }
 
+/// The summary line (the log's first) names the status the checks after the solve left: a
+/// converged solve whose shape ran away or that the grid under-resolves said "converged" there.
+void SummaryLineStatus(Result* result) {
+  const std::string status = result->json.value("status", "");
+  const std::string said = std::string("cosserat: ") + ToString(SolveStatus::kConverged);
+  if (status.empty() || status == ToString(SolveStatus::kConverged) ||
+      result->log.rfind(said, 0) != 0)
+    return;
+  result->log.replace(0, said.size(), std::string("cosserat: ") + status);
+}
+
 }  // namespace
 
 Result Run(const io::Problem& problem, const RunOptions& options) {
@@ -118,6 +129,7 @@ Result Run(const io::Problem& problem, const RunOptions& options) {
   detail::AddBendingStressReport(problem, &result);
   detail::AddScaleWarnings(problem, &result);
   UnusedBaseDriveNote(problem, &result);
+  SummaryLineStatus(&result);
   return result;
 }
 
