@@ -121,9 +121,10 @@ ModesGrid CheckModesGrid(const io::Problem& problem, const ModalResult& r) {
   const double kh_one_percent = quatfd ? std::sqrt(0.01 / 0.2) : std::pow(0.01 / 0.011, 0.25);
   std::ostringstream log;
   log << std::setprecision(3)
-      << (out.under_resolved ? "cosserat: the grid is too coarse for these modes (status "
-                               "under_resolved): "
-                             : "cosserat: warning: the grid resolves the modes coarsely: ")
+      << (!out.under_resolved ? "cosserat: warning: the grid resolves the modes coarsely: "
+          : r.converged()       ? "cosserat: the grid is too coarse for these modes (status "
+                                  "under_resolved): "
+                                : "cosserat: the grid is also too coarse for these modes: ")
       << "mode " << worst_mode << " (" << worst_hz << " Hz) has k h = " << worst_k * h
       << " (k its wave number along the rod), where its frequency is off by about "
       << 100 * worst << " % (" << (quatfd ? "quaternion FD, second" : "RK4 in s, fourth")
