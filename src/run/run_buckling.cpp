@@ -110,6 +110,36 @@ std::string ImperfectionNote(const io::Problem& problem, BucklingStatus status) 
          "load\n";
 }
 
+/// After a search that found no critical load for a force along a fixed direction: that direction
+/// is across the rod or pulls it along its axis (the default [0, 0, −1] on a rod clamped level
+/// is across it), so the load never presses it and there is nothing to find. The axis is the
+/// base frame's third column (a follower tip force's direction is in the tip's frame, whose
+/// axis is e₃).
+std::string DirectionNote(const io::Problem& problem, BucklingStatus status) {
+  if (status != BucklingStatus::kNotFound && status != BucklingStatus::kPathFailed) return "";
+  using io::BucklingLoad;
+  const BucklingLoad k = problem.buckling.load;
+  if (k != BucklingLoad::kTipForce && k != BucklingLoad::kGravity &&
+      k != BucklingLoad::kDistributedForce)
+    return "";
+  const bool follower =
+      k == BucklingLoad::kTipForce && problem.loads.tip_force_frame == LoadFrame::kBody;
+  const Vec3 axis = follower ? Vec3::UnitZ() : Vec3(problem.base.R.col(2));
+  const Vec3 d = problem.buckling.direction.normalized();
+  const double along = d.dot(axis);  // −1: presses the rod along its axis
+  if (along < -0.5) return "";
+  std::ostringstream note;
+  note << std::setprecision(3) << "cosserat: note: buckling.direction [" << d.x() << ", "
+       << d.y() << ", " << d.z() << "] "
+       << (along > 0.5 ? "pulls the rod along its axis, which does not buckle it"
+                       : "is mostly across the rod, which bends it without a bifurcation")
+       << " (the rod's axis at its base is [" << axis.x() << ", " << axis.y() << ", " << axis.z()
+       << "]" << (follower ? ", in the tip's frame" : ", base.rotation's third column")
+       << "); a direction of [" << 0.0 - axis.x() << ", " << 0.0 - axis.y() << ", "
+       << 0.0 - axis.z() << "] presses it\n";
+  return note.str();
+}
+
 /// After a found SE(3) search: where the pre-buckled rod is pressed by P, the buckled shape turns
 /// by k h per segment, k = sqrt(P/EI); RK4's error in the critical load grows as (k h)⁴, about
 /// 1.5e-2 (k h)⁴ at most (measured on a pinned column: +5.1e-3 at k h = 0.79, +1.3e-2 at 1.05,
@@ -289,7 +319,8 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
 
   result.log = SummaryLine(problem, ends, b) + pieces_note +
                (in_pieces ? "" : SingleShotHint(problem, b)) +
-               ImperfectionNote(problem, b.status) + CoarseGridNote(problem, b, *state);
+               ImperfectionNote(problem, b.status) + DirectionNote(problem, b.status) +
+               CoarseGridNote(problem, b, *state);
   result.converged = ok;
   return result;
 }
@@ -346,7 +377,8 @@ Result RunQuatFdBuckling(const io::Problem& problem, const RunOptions& run_optio
     line << ", load reached " << std::setprecision(6) << b.lambda_reached;
   line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3
        << " ms";
-  result.log = line.str() + '\n' + ImperfectionNote(problem, b.status);
+  result.log = line.str() + '\n' + ImperfectionNote(problem, b.status) +
+               DirectionNote(problem, b.status);
   result.converged = ok;
   return result;
 }

@@ -572,3 +572,13 @@ cosserat_cli_test(NAME friction_in_statics ARGS solve "${_cli_dir}/friction_in_s
 # A force no elastic rod carries (sixteen times EA): the log names the units to check.
 cosserat_cli_test(NAME force_beyond_any_rod ARGS solve "${_cli_dir}/force_beyond_any_rod.json"
                   CODE 1 STDERR "warning: the loads add up to 1e\\+07 N, over ten times the rod's axial stiffness")
+# A buckling direction across the rod (the default [0, 0, -1] on a level rod) finds nothing; the
+# log names the direction that presses it.
+cosserat_cli_test(NAME buckling_across_the_rod ARGS solve "${_cli_dir}/buckling_across_the_rod.json"
+                  CODE 0 STDERR "buckling not_found \\(cantilever\\).*note: buckling.direction \\[0, 0, -1\\] is mostly across the rod.*axis at its base is \\[1, 0, 0\\].*a direction of \\[-1, 0, 0\\] presses it")
+# The summary line names the status the checks after the solve leave, not "converged".
+cosserat_cli_test(NAME modes_coarse_summary ARGS solve "${_cli_dir}/modes_coarse_summary.json"
+                  CODE 1 STDERR "^cosserat: under_resolved \\(modes, quaternion-fd\\), 8 modes")
+# A dynamics run whose shot ran away is non_finite, as a statics is.
+cosserat_cli_test(NAME tendon_curls_in_dynamics ARGS solve "${_cli_dir}/tendon_curls_in_dynamics.json"
+                  CODE 1 STDERR "^cosserat: non_finite, 5 steps.*its shot ran away.*rod.nodes ≥ 192")
