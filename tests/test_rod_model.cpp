@@ -44,6 +44,24 @@ TEST(CrossSection, CowperShearCoefficients) {
               CrossSection::Circle(1).ShearCoefficient(0.3), 1e-12);
 }
 
+// A negative size squares to a positive area and I, but its diameter (what drag, buoyancy,
+// contact and stress read) turns negative: a rod in a current moved upstream. Refused, named.
+TEST(CrossSection, NegativeSizesAreRefusedByName) {
+  std::string why;
+  EXPECT_TRUE(CrossSection::Circle(1e-3).IsValid(&why));
+  EXPECT_FALSE(CrossSection::Circle(-1e-3).IsValid(&why));
+  EXPECT_NE(why.find("radius"), std::string::npos) << why;
+  EXPECT_FALSE(CrossSection::Annulus(-2e-3, 1e-3).IsValid(&why));
+  EXPECT_NE(why.find("outer_radius"), std::string::npos) << why;
+  EXPECT_FALSE(CrossSection::Rectangle(-1e-3, 2e-3).IsValid(&why));
+  EXPECT_NE(why.find("width"), std::string::npos) << why;
+  EXPECT_FALSE(CrossSection::Rectangle(1e-3, -2e-3).IsValid(&why));
+  EXPECT_NE(why.find("height"), std::string::npos) << why;
+  EXPECT_FALSE(CrossSection::Explicit(1e-4, 1e-9, 1e-9, 2e-9, 1.0, -0.01).IsValid(&why));
+  EXPECT_NE(why.find("outer_diameter"), std::string::npos) << why;
+  EXPECT_TRUE(CrossSection::Explicit(1e-4, 1e-9, 1e-9, 2e-9).IsValid(&why));
+}
+
 TEST(Material, PoissonAndValidation) {
   const Material m = Material::FromPoissonRatio(200e9, 0.25, 7800);
   EXPECT_DOUBLE_EQ(m.shear_modulus, 80e9);

@@ -83,6 +83,16 @@ bool CrossSection::IsValid(std::string* why) const {
     return false;
   };
   auto ok = [](double v) { return std::isfinite(v) && v > 0.0; };
+  // The sizes the fluid, contact and stress read: a negative radius gives positive A and I and
+  // a negative diameter, which turns drag and buoyancy around.
+  if ((shape == SectionShape::kCircle || shape == SectionShape::kAnnulus) && !ok(outer_radius))
+    return bad(shape == SectionShape::kCircle ? "radius" : "outer_radius");
+  if (shape == SectionShape::kRectangle && !ok(width)) return bad("width");
+  if (shape == SectionShape::kRectangle && !ok(height)) return bad("height");
+  if (shape == SectionShape::kExplicit && !(std::isfinite(outer_radius) && outer_radius >= 0.0)) {
+    if (why) *why = "outer_diameter must be a finite number >= 0 (0: the disc of equal area)";
+    return false;
+  }
   if (shape == SectionShape::kAnnulus && !(inner_radius >= 0.0 && inner_radius < outer_radius)) {
     if (why) *why = "inner_radius must be >= 0 and smaller than outer_radius";
     return false;
