@@ -81,8 +81,12 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
            "loads.gravity there, or write \"gravity\": [0, 0, 0] if that start is meant\n";
   // A solve that did not converge leaves an iterate, whose stretch says nothing of the units
   // (an equilibrium on a grid too coarse for it is still one).
+  // Its units warnings come right after the summary line, before the hints on grids and steps,
+  // which the units may make moot.
   if (!result->converged && result->json.value("status", "") != ToString(SolveStatus::kUnderResolved)) {
-    result->log += log.str();
+    const size_t first_line = result->log.find('\n');
+    result->log.insert(first_line == std::string::npos ? result->log.size() : first_line + 1,
+                       log.str());
     return;
   }
   const nlohmann::ordered_json& j = result->json;

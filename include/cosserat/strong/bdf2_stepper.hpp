@@ -76,7 +76,9 @@ struct Bdf2Options {
   /// a tendon robot pushed by 1 kN), and the pieces it adds stay for the next 10 or more steps
   /// taken whole (DropUnneededPieces). For a hard bound per tick: max_halvings = 0 and shooting_segments fixed (at most
   /// max_iterations solves of one shot plan), with a failed step handled by the caller
-  /// (Restore of the last good Snapshot).
+  /// (Restore of the last good Snapshot). A problem file's solver.max_iterations (default 50)
+  /// sets it for the CLI and Python (run::DynamicsOptions); a stepper built from these defaults
+  /// gives up sooner on a hard step than they do.
   int max_iterations = 20;
   /// When an attempt fails, retry as two steps of half the size, up to this depth.
   int max_halvings = 3;
@@ -170,7 +172,9 @@ class Bdf2ShootingStepper {
   /// (sub-)step that converged. NaN or Inf in the input (InputIsFinite) is the status non_finite
   /// (nothing moves); an actuation Actuation::IsValid refuses for this rod (a pushing tendon, a
   /// tendon or chamber it lacks), or a base (or held tip) rotation that is not one within 1e-6
-  /// (lie::RequireRotation), throws std::invalid_argument, as InitializeAtRest does.
+  /// (lie::RequireRotation), throws std::invalid_argument, as InitializeAtRest does. Before
+  /// InitializeAtRest (or Restore) there is no state to step from: status not_run, nothing
+  /// moves, state() stays NaN.
   StepSummary Step(const StepInput& input);
   /// Throws std::invalid_argument for the inputs Step refuses (its actuation or poses); NaN and
   /// Inf pass (Step reports them as a status). For callers that check a batch before any step.
