@@ -151,7 +151,8 @@ class PyStaticSolver {
     if (actuation) solver_.SetActuation(*actuation);
     StaticShootingSummary s =
         multiple_ ? multiple_->Solve(base_, loads_) : solver_.Solve(base_, loads_);
-    if (s.converged()) CheckGrid(&s);
+    const RodState& shot = multiple_ ? multiple_->state() : solver_.state();
+    if (s.converged() || shot.RanAway()) CheckGrid(&s);  // a runaway is said, not only counted
     last_status_ = s.status;
     return s;
   }

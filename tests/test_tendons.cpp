@@ -11,6 +11,7 @@
 #include "cosserat/io/problem.hpp"
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/robots/tendon_control.hpp"
+#include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "support/analytic/tendon.hpp"
 #include "support/rods.hpp"
@@ -72,6 +73,33 @@ TEST(Tendons, StraightTendonBendsTheRodIntoTheArcOfCurvatureTauROverEI) {
     EXPECT_NEAR(solver.state().strain[i](1) / kappa, 1.0, 1e-9) << i;
   }
   EXPECT_GT(solver.state().tip_position_W().x(), 0.5 * radius);  // towards the tendon
+}
+
+// The same tendon curling the rod through 6 turns (κ L = 12π): on 11 nodes each segment turns
+// 3.8 rad, past RK4's limit of 2.8 on a rotation. The shot runs away (|R(3.8i)|¹⁰ ≈ 3e7), yet the
+// residuals vanish (the tendon's pull is internal, a free tip carries nothing), so the solver
+// must look at the state: non_finite, in statics and in a dynamics start alike (which then has
+// nothing to step from). On 401 nodes (κh = 0.094 rad a segment) it converges on the circle:
+// RK4 shrinks a rotation by about (κh)⁶/144 = 4.6e-9 a step, 1.9e-6 of the radius over 400
+// steps (measured 1.9e-6 at the tip); 1e-5 leaves that margin and catches any other error.
+TEST(Tendons, ARodCurledBeyondItsGridIsNonFiniteNotConverged) {
+  TendonRod rod;
+  const double offset = 0.005;
+  const RodModel model = rod.Model({{"t0", TendonRoute::Parallel(Vec2(offset, 0))}}, 1e6);
+  const double tau = truth::TendonTensionForTurn(12 * kPi, rod.EI(), rod.length, offset);
+  StaticShootingSolver coarse(model, 11, {}, Tensions({tau}));
+  EXPECT_EQ(coarse.Solve(lie::SE3{}, StaticLoads{}).status, SolveStatus::kNonFinite);
+  EXPECT_TRUE(coarse.state().RanAway());
+  Bdf2ShootingStepper stepper(model, 11);
+  StepInput input;
+  input.actuation = Tensions({tau});
+  EXPECT_EQ(stepper.InitializeAtRest(input).status, SolveStatus::kNonFinite);
+  EXPECT_EQ(stepper.Step(input).status, SolveStatus::kNotRun);
+  StaticShootingSolver fine(model, 401, {}, Tensions({tau}));
+  ASSERT_TRUE(fine.Solve(lie::SE3{}, StaticLoads{}).converged());
+  const double radius = truth::TendonArcRadius(tau, offset, rod.EI(), rod.EA() * 1e6);
+  for (const Vec3& p : fine.state().position_W)
+    EXPECT_NEAR((p - Vec3(radius, 0, 0)).norm() / radius, 1.0, 1e-5);
 }
 
 // The twist of the tip about its own axis, from the torsion along the rod (rad).

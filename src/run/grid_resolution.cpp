@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "cosserat/analysis/modes.hpp"
 #include "cosserat/state/solve_status.hpp"
 
 namespace cosserat::run {
@@ -109,7 +110,11 @@ void CheckGridResolution(const io::Problem& problem, Result* result) {
   // itself have run away.
   const bool coarse_modes =
       !result->converged && status == ToString(SolveStatus::kUnderResolved);
-  if ((!result->converged && !stopped_short && !coarse_modes) || !equilibrium ||
+  // A solver that found its shot ran away (RodState::RanAway) said non_finite (modes:
+  // statics_failed): say why.
+  const bool diverged = !result->converged && (status == ToString(SolveStatus::kNonFinite) ||
+                                               status == ToString(ModalStatus::kStaticsFailed));
+  if ((!result->converged && !stopped_short && !coarse_modes && !diverged) || !equilibrium ||
       !result->json.contains("nodes"))
     return;
   const nlohmann::ordered_json& nodes = result->json["nodes"];
@@ -127,6 +132,10 @@ void CheckGridResolution(const io::Problem& problem, Result* result) {
                              rows(nodes["curvature"]), problem.rod.length)
               : CheckGrid(nodes["s"].get<std::vector<double>>(), rows(nodes["position"]),
                           rows(nodes["curvature"]), problem.rod.length, !stopped_short);
+  if (diverged) {
+    if (g.ran_away) result->log += g.log;
+    return;
+  }
   result->log += g.log;
   if (stopped_short || (!g.ran_away && !g.under_resolved)) return;
   if (coarse_modes && !g.ran_away) return;  // under_resolved already

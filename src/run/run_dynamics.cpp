@@ -7,16 +7,20 @@
 #include <iomanip>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/robots/rotary_table_drive.hpp"
+#include "cosserat/run/grid_resolution.hpp"
 #include "cosserat/run/initial_equilibrium.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/shooting_exponent.hpp"
+#include "cosserat/strong/static_shooting.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"
 
@@ -283,6 +287,28 @@ std::string EnergyNote(const io::Problem& problem, const io::DynamicRun& run) {
   return note.str();
 }
 
+/// After a start refused as non_finite: the clamped rod's statics under the start's loads, and
+/// if that shot runs away on this grid (RodState::RanAway), the grid check's words for it (the
+/// stepper keeps no state of a start it refused).
+std::string RunawayStartText(const io::Problem& problem) {
+  if (problem.boundary != io::Boundary::kCantilever) return "";
+  const StepInput initial =
+      ClampedInput(problem, problem.dynamics.initial_loads.value_or(problem.loads),
+                   problem.robot.initial_actuation);
+  try {
+    StaticShootingSolver solver(problem.rod, problem.nodes, StaticOptions(problem),
+                                initial.actuation);
+    solver.Solve(initial.base_pose, initial.loads);
+    const RodState& state = solver.state();
+    if (!state.RanAway()) return "";
+    std::vector<Vec3> curvature;
+    for (const Vec6& xi : state.strain) curvature.push_back(xi.head<3>());
+    return CheckGrid(state.s, state.position_W, curvature, problem.rod.length).log;
+  } catch (const std::invalid_argument&) {
+    return "";  // a rod the statics solver does not take
+  }
+}
+
 }  // namespace
 
 std::string DynamicsStartWarnings(const io::Problem& problem, double dt) {
@@ -305,6 +331,8 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   if (run_options.nodes_csv) result.nodes_csv = detail::TrajectoryCsv(run, stepper.state().s);
   std::ostringstream log;
   log << SummaryLine(run, stepper.state()) << '\n';
+  if (!run.initial_state_ok && run.status == SolveStatus::kNonFinite)
+    log << RunawayStartText(problem);
   if (run.initial_state_ok && run.status != SolveStatus::kConverged &&
       options.shooting_segments == 1) {  // an explicit single shot
     // The usual cause of a failed step at small dt (docs/dynamics.md, "Where it stops").

@@ -321,8 +321,10 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
     result.json["robot"] = robot;
   }
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
+  // A shot that ran away on a coarse grid is not the tendon law's failure (the grid check says
+  // what is).
   result.log = StaticSummary(summary, solver.state()) + '\n' + settled_note +
-               TendonLawHint(problem, actuation, summary);
+               (solver.state().RanAway() ? "" : TendonLawHint(problem, actuation, summary));
   if (!problem.has_robot) result.log += ContinuationHint(problem, summary);
   result.log += detail::UnstableWarning(summary) + unjudged;
   result.converged = summary.converged();

@@ -30,4 +30,13 @@ double RodState::MaxForce() const {
   return force;
 }
 
+bool RodState::RanAway() const {
+  for (int i = 0; i + 1 < size(); ++i) {
+    const double h = s[i + 1] - s[i];
+    const double turn = std::max(strain[i].head<3>().norm(), strain[i + 1].head<3>().norm()) * h;
+    if ((position_W[i + 1] - position_W[i]).norm() > 10.0 * h && turn > 1.0) return true;
+  }
+  return false;
+}
+
 }  // namespace cosserat

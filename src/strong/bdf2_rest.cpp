@@ -60,7 +60,11 @@ StepSummary Bdf2ShootingStepper::InitializeAtRestFrom(const StepInput& input,
   run_.dropped_pieces = false;
   run_.jacobian_c0 = -1.0;  // the first solve computes the exact Jacobian
   ApplyActuation(input.actuation);
-  const bool ok = SolveRestEquilibrium(input, base_wrench_B, equilibrium, &summary);
+  bool ok = SolveRestEquilibrium(input, base_wrench_B, equilibrium, &summary);
+  if (ok && trial_.RanAway()) {  // residuals met by a shot that diverged (RodState::RanAway)
+    ok = false;
+    summary.status = SolveStatus::kNonFinite;
+  }
   if (!ok) {
     summary.wall_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -558,7 +558,8 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
   const StepInput start = run_.last_input;
   const int pieces = ShootingPieces();
   const bool ok = AttemptInterval(start, input, options_.dt, 0, &summary);
-  if (ok) summary.status = SolveStatus::kConverged;
+  // A step whose shot diverged (RodState::RanAway) is committed but no answer: non_finite.
+  if (ok) summary.status = state().RanAway() ? SolveStatus::kNonFinite : SolveStatus::kConverged;
   if (ok && summary.halvings == 0 && ShootingPieces() == pieces)
     DropUnneededPieces();
   else

@@ -315,12 +315,15 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
     const Vec6 r = Residual(base, loads, x);
     ++summary.shots;
     summary.residual = r.norm();  // against the loads asked for, reached or not
-    if (!r.allFinite()) ok = false;
-    if (!r.allFinite()) summary.status = SolveStatus::kNonFinite;
+    if (!r.allFinite()) ok = false, summary.status = SolveStatus::kNonFinite;
     if (!ok && r.allFinite() && reached < 1.0) {  // the state: that level, in its equilibrium
       Residual(base, reached == 0.0 ? start : StaticLoads::Blend(start, loads, reached), x);
       ++summary.shots;
     }
+  }
+  if (ok && state_.RanAway()) {  // residuals met by a shot that diverged (RodState::RanAway)
+    ok = false;
+    summary.status = SolveStatus::kNonFinite;
   }
   if (ok) {
     state_is_solution_ = true;

@@ -28,6 +28,11 @@ struct RodState {
   Vec6 BaseReaction_W() const;
   /// The largest internal force |n| over the nodes (N): a held cable's top tension.
   double MaxForce() const;
+  /// Whether a shot along s ran away: some segment spans more than 10 times its length along
+  /// s (a stretch no elastic rod takes) while its curvature turns the section by more than
+  /// 1 rad on it (a bend RK4 in s on that grid cannot follow). Residuals can still vanish there
+  /// (a tendon's pull is internal), so the solvers check the state they converged on.
+  bool RanAway() const;
 };
 
 }  // namespace cosserat
