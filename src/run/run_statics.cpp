@@ -30,10 +30,16 @@
 namespace cosserat::run {
 namespace {
 
-std::string StaticSummary(const StaticShootingSummary& s, const RodState& state) {
+/// The summary line. A solve that stopped with iterations to spare (status max_iterations)
+/// found no step that lowered its residual: said, so that "1 iterations" does not read as a cap.
+std::string StaticSummary(const StaticShootingSummary& s, const RodState& state,
+                          const io::Problem& problem) {
+  const int max_iterations = problem.solver.max_iterations;
   std::ostringstream line;
-  line << "cosserat: " << ToString(s.status) << ", " << s.iterations << " iterations, "
-       << "residual " << std::setprecision(3) << s.residual;
+  line << "cosserat: " << ToString(s.status) << ", " << s.iterations << " iterations";
+  if (s.status == SolveStatus::kMaxIterations && s.iterations < max_iterations)
+    line << " (of " << max_iterations << " allowed: no step lowered the residual further)";
+  line << ", residual " << std::setprecision(3) << s.residual;
   if (state.size() > 0) {
     const Vec3& tip = state.tip_position_W();
     line << ", tip at [" << std::setprecision(6) << tip.x() << ", " << tip.y() << ", " << tip.z()
@@ -113,8 +119,8 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   result.json = io::StaticResultToJson(summary, solver.state());
   detail::KeepStaticFrame(problem, solver.state(), options, &result);
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
-  result.log =
-      StaticSummary(summary, solver.state()) + " (" + ToString(ends) + ")\n" + unjudged;
+  result.log = StaticSummary(summary, solver.state(), problem) + " (" + ToString(ends) + ")\n" +
+               unjudged;
   result.converged = summary.converged();
   // Past a critical load the column follows its straight branch, stable or not. The index
   // judges it; where it is not defined, the comparison with the Euler load of the free column
@@ -161,7 +167,7 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solved.state);
   const std::string column =
       ends == ColumnEnds::kClampedFree ? "" : ToString(ends) + std::string(", ");
-  result.log = StaticSummary(summary, solved.state) + " (" + column +
+  result.log = StaticSummary(summary, solved.state, problem) + " (" + column +
                std::to_string(solved.pieces) + " shooting pieces)\n" + settled_note +
                ContinuationHint(problem, summary) + detail::UnstableWarning(summary, false) +
                unjudged;
@@ -246,7 +252,7 @@ Result RunAnchoredStatics(const io::Problem& problem, const RunOptions& options)
            "grid, did not converge ("
         << ToString(start.status) << ", residual " << std::setprecision(3) << start.residual
         << "); try \"formulation\": \"quaternion-fd\" for its diagnosis\n";
-  log << StaticSummary(summary, state) << " (" << solver.pieces() << " shooting pieces), "
+  log << StaticSummary(summary, state, problem) << " (" << solver.pieces() << " shooting pieces), "
       << detail::AnchorForceText(state) << '\n';
   if (start.converged() && !summary.converged())
     log << BoundaryLayerHint(problem, guess) << ShotFoundationHint(problem);
@@ -323,7 +329,7 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
   // A shot that ran away on a coarse grid is not the tendon law's failure (the grid check says
   // what is).
-  result.log = StaticSummary(summary, solver.state()) + '\n' + settled_note +
+  result.log = StaticSummary(summary, solver.state(), problem) + '\n' + settled_note +
                (solver.state().RanAway() ? "" : TendonLawHint(problem, actuation, summary));
   if (!problem.has_robot) result.log += ContinuationHint(problem, summary);
   result.log += detail::UnstableWarning(summary) + unjudged;

@@ -582,3 +582,6 @@ cosserat_cli_test(NAME modes_coarse_summary ARGS solve "${_cli_dir}/modes_coarse
 # A dynamics run whose shot ran away is non_finite, as a statics is.
 cosserat_cli_test(NAME tendon_curls_in_dynamics ARGS solve "${_cli_dir}/tendon_curls_in_dynamics.json"
                   CODE 1 STDERR "^cosserat: non_finite, the initial equilibrium did not converge.*its shot ran away.*rod.nodes ≥ 192")
+# A Newton solve that stops with iterations to spare says so in its summary line.
+cosserat_cli_test(NAME anchored_wire_stalls ARGS solve "${_cli_dir}/anchored_wire_stalls.json"
+                  CODE 1 STDERR "^cosserat: max_iterations, [0-9]+ iterations \\(of 50 allowed: no step lowered the residual further\\).*hint: the grid spacing 0.275 m is coarse")
