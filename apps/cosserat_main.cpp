@@ -238,7 +238,8 @@ int RunValidate(const Command& cmd) {
 /// four times a second; cleared when the run ends.
 class ProgressLine {
  public:
-  /// `what` names the quantity ("t" in s, or a buckling search's "load"), `unit` its unit.
+  /// `what` names the quantity ("t" in s, a buckling search's "load", the "modes found" of an
+  /// SE(3) modes scan), `unit` its unit.
   ProgressLine(std::string what, std::string unit)
       : active_(isatty(STDERR_FILENO) != 0),
         what_(std::move(what)),
@@ -310,7 +311,8 @@ int RunSolve(const Command& cmd) {
   cosserat::run::Result result;
   {
     const bool dynamics = problem->analysis == cosserat::io::Analysis::kDynamics;
-    ProgressLine progress(dynamics ? "t =" : "load", dynamics ? " s" : "");
+    const bool modes = problem->analysis == cosserat::io::Analysis::kModes;
+    ProgressLine progress(dynamics ? "t =" : modes ? "modes found" : "load", dynamics ? " s" : "");
     options.progress = [&progress](double t, double duration) { progress(t, duration); };
     result = cosserat::run::Run(*problem, options);
   }

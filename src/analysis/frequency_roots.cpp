@@ -182,7 +182,8 @@ void AddRoots(const FrequencyShooting& fs, double lo, double hi, int* budget,
 }  // namespace
 
 std::vector<Root> FindRoots(const FrequencyShooting& fs, double w_lo, double w_hi, double step,
-                            int count, std::vector<double>* dips) {
+                            int count, std::vector<double>* dips,
+                            const std::function<void(double, double)>& progress) {
   std::vector<Root> roots;
   int budget = 200000;
   auto det_sign = [&](double w) { return fs.BoundaryMatrix(w).determinant() > 0; };
@@ -196,6 +197,7 @@ std::vector<Root> FindRoots(const FrequencyShooting& fs, double w_lo, double w_h
     if (s1 <= s0 && s1 < s2) AddRoots(fs, w0, w2, &budget, &roots, dips);
     if (d1 != d2) AddRoots(fs, w0, w2 * step, &budget, &roots, dips);
     w0 = w1, s0 = s1, w1 = w2, s1 = s2, d1 = d2;
+    if (progress) progress(static_cast<double>(roots.size()), count);
   }
   std::sort(roots.begin(), roots.end(),
             [](const Root& a, const Root& b) { return a.omega < b.omega; });

@@ -3,6 +3,7 @@
 // matrix of FrequencyShooting, found by a geometric scan and refined; each with its null vector.
 // Internal to src/analysis.
 
+#include <functional>
 #include <vector>
 
 #include "cosserat/analysis/frequency_shooting.hpp"
@@ -23,8 +24,10 @@ struct Root {
 /// listed m times, with independent null vectors. Fewer than `count` when the scan reaches w_hi
 /// or its budget of 200 000 boundary matrices. `dips`, when given, receives the minima of σ_min
 /// where B is not singular: no root, but the real part of a pair of roots off the real axis,
-/// as past flutter under a follower load.
+/// as past flutter under a follower load. `progress`, when set, is called at each scan step with
+/// the roots found and `count` (it may throw to stop the scan).
 std::vector<Root> FindRoots(const FrequencyShooting& fs, double w_lo, double w_hi, double step,
-                            int count, std::vector<double>* dips = nullptr);
+                            int count, std::vector<double>* dips = nullptr,
+                            const std::function<void(double, double)>& progress = nullptr);
 
 }  // namespace cosserat::detail

@@ -103,7 +103,8 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
   const int count = options.modal.count;
   std::vector<double> dips;
   const std::vector<detail::Root> roots =
-      detail::FindRoots(fs, w_lo, w_hi, 1.0 + options.relative_step, count, &dips);
+      detail::FindRoots(fs, w_lo, w_hi, 1.0 + options.relative_step, count, &dips,
+                        options.progress);
 
   const NodeWeights weights = ShootingNodeWeights(rod, solver.grid(), fs, actuation);
   for (size_t i = 0; i < roots.size() && static_cast<int>(i) < count; ++i) {

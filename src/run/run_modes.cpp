@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 #include <string>
@@ -143,8 +144,10 @@ std::string DeclinedNote(const ModalResult& r) {
          " takes the dense spectrum, or \"formulation\": \"se3-shooting\"\n";
 }
 
-/// The modes of the problem in its formulation.
-ModalResult ModesOf(const io::Problem& problem) {
+/// The modes of the problem in its formulation; `progress` follows the SE(3) scan (modes found,
+/// modes asked).
+ModalResult ModesOf(const io::Problem& problem,
+                    const std::function<void(double, double)>& progress) {
   ModalOptions mo;
   mo.count = problem.modes.count;
   mo.max_dense = kMaxDenseModeCoordinates;
@@ -158,6 +161,7 @@ ModalResult ModesOf(const io::Problem& problem) {
   ShootingModalOptions so;
   so.modal = mo;
   so.statics = StaticOptions(problem);
+  so.progress = progress;
   return ComputeModesShooting(problem.rod, problem.nodes, problem.base, problem.loads, so,
                               problem.robot.actuation);
 }
@@ -165,7 +169,7 @@ ModalResult ModesOf(const io::Problem& problem) {
 }  // namespace
 
 Result RunModes(const io::Problem& problem, const RunOptions& options) {
-  const ModalResult r = ModesOf(problem);
+  const ModalResult r = ModesOf(problem, options.progress);
 
   // The contract's fields of every result (status, iterations, residual, tip, base_wrench,
   // nodes) describe the equilibrium the modes are about; "modes" and the statics' own status

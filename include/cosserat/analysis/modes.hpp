@@ -14,6 +14,7 @@
 ///   about the equilibrium in the frequency domain; the 6×6 tip-boundary matrix B(ω) of the
 ///   cantilever is singular exactly at a natural frequency.
 
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -137,6 +138,9 @@ struct ShootingModalOptions {
   /// the recursive refinement down to 1e-10 ω (closer ones count as one multiple root).
   double relative_step = 0.005;
   StaticShootingOptions statics;
+  /// Called during the scan with the modes found so far and `modal.count` (a progress line; it
+  /// may throw to stop the run, as Ctrl-C from Python does). Empty: not called.
+  std::function<void(double found, double asked)> progress;
   bool IsValid(std::string* why) const;
 };
 

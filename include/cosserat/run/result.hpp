@@ -23,7 +23,8 @@ struct RunOptions {
   bool frames = false;
   /// Called during a long run with how far it got and where it ends: a dynamics run's simulated
   /// time and duration (s), after every step (SE(3), assemblies) or output frame (quaternion
-  /// FD); an SE(3) buckling search's load reached and its maximum. May be empty. The `cosserat`
+  /// FD); an SE(3) buckling search's load reached and its maximum; an SE(3) modes scan's modes
+  /// found and asked. May be empty; may throw to stop the run (Python's Ctrl-C). The `cosserat`
   /// command draws a progress line with it on a terminal.
   std::function<void(double reached, double end)> progress;
 };
