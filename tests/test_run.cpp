@@ -337,7 +337,8 @@ TEST(Run, AnUnstableEquilibriumIsFlagged) {
 // The grid check reads the shape, and only what RK4 in s gets wrong: a straight rod stretched
 // 13-fold (a gel under a large pull) is a long segment but no runaway (it was non_finite), a
 // straight rod twisted 3 rad per segment moves no point (it was "off by 64 %"), and an arc
-// at 0.75 rad of bending per segment warns with RK4's 8e-3 (κ h)⁴ (0.253 % of L).
+// at 0.75 rad of bending per segment warns with RK4's 8e-3 (κ h)⁴ (0.253 % of L). A state of
+// NaN (a failed shot) is no runaway: nothing is said of it.
 TEST(Run, TheGridCheckJudgesBendingNotStretchOrTwist) {
   const int n = 21;
   const double L = 1.0, h = L / (n - 1);
@@ -359,6 +360,9 @@ TEST(Run, TheGridCheckJudgesBendingNotStretchOrTwist) {
   EXPECT_FALSE(coarse.ran_away);
   EXPECT_NE(coarse.log.find("0.75 rad per segment"), std::string::npos) << coarse.log;
   EXPECT_NE(coarse.log.find("about 0.253 %"), std::string::npos) << coarse.log;
+  const std::vector<Vec3> nan(n, Vec3::Constant(std::nan("")));
+  EXPECT_FALSE(run::CheckGrid(s, nan, nan, L).ran_away);
+  EXPECT_TRUE(run::CheckGrid(s, nan, nan, L).log.empty());
 }
 
 // The quaternion-FD polygon is second order: an arc at 0.75 rad per segment warns with

@@ -78,9 +78,9 @@ TEST(Tendons, StraightTendonBendsTheRodIntoTheArcOfCurvatureTauROverEI) {
 // The same tendon curling the rod through 6 turns (κ L = 12π): on 11 nodes each segment turns
 // 3.8 rad, past RK4's limit of 2.8 on a rotation. The shot runs away (|R(3.8i)|¹⁰ ≈ 3e7), yet the
 // residuals vanish (the tendon's pull is internal, a free tip carries nothing), so the solver
-// must look at the state: non_finite, in statics and in a dynamics start alike (which then has
-// nothing to step from). On 401 nodes (κh = 0.094 rad a segment) it converges on the circle:
-// RK4 shrinks a rotation by about (κh)⁶/144 = 4.6e-9 a step, 1.9e-6 of the radius over 400
+// must look at the state: non_finite, in statics, in a dynamics start (which then has nothing
+// to step from) and in a step (not taken). On 401 nodes (κh = 0.094 rad a segment) it converges on the circle:
+// RK4 shrinks a rotation by about (κh)⁶/144 = 4.9e-9 a step, 1.9e-6 of the radius over 400
 // steps (measured 1.9e-6 at the tip); 1e-5 leaves that margin and catches any other error.
 TEST(Tendons, ARodCurledBeyondItsGridIsNonFiniteNotConverged) {
   TendonRod rod;
@@ -95,6 +95,16 @@ TEST(Tendons, ARodCurledBeyondItsGridIsNonFiniteNotConverged) {
   input.actuation = Tensions({tau});
   EXPECT_EQ(stepper.InitializeAtRest(input).status, SolveStatus::kNonFinite);
   EXPECT_EQ(stepper.Step(input).status, SolveStatus::kNotRun);
+  // Started at a quarter turn, then pulled to the 6 turns in one step: the step fails
+  // (non_finite) and the run keeps its last converged (sub-)step, which did not run away.
+  StepInput gentle;
+  gentle.actuation =
+      Tensions({truth::TendonTensionForTurn(0.5 * kPi, rod.EI(), rod.length, offset)});
+  ASSERT_TRUE(stepper.InitializeAtRest(gentle).converged());
+  EXPECT_EQ(stepper.Step(input).status, SolveStatus::kNonFinite);
+  EXPECT_LT(stepper.time(), stepper.options().dt);
+  EXPECT_FALSE(stepper.state().RanAway());
+  EXPECT_LT(stepper.state().tip_position_W().norm(), rod.length);
   StaticShootingSolver fine(model, 401, {}, Tensions({tau}));
   ASSERT_TRUE(fine.Solve(lie::SE3{}, StaticLoads{}).converged());
   const double radius = truth::TendonArcRadius(tau, offset, rod.EI(), rod.EA() * 1e6);

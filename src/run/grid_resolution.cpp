@@ -39,10 +39,10 @@ GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& 
     if (bend * h > worst) worst = bend * h, worst_s = s[i], worst_k = bend;
     const double turn = std::max(curvature[i].norm(), curvature[i + 1].norm()) * h;
     const double segment = (position[i + 1] - position[i]).norm();
-    if (segment <= 10.0 * h || turn <= 1.0) continue;
+    if (!SegmentRanAway(h, segment, turn)) continue;
     std::ostringstream log;
     log << std::setprecision(3)
-        << (converged ? "cosserat: the solve converged, but its shot ran away: the "
+        << (converged ? "cosserat: the residuals vanished, but its shot ran away: the "
                       : "cosserat: at the last load level reached the shot ran away: the ")
         << "segment at s = " << s[i] << " m spans " << segment << " m for " << h
         << " m of rod, while the curvature turns the section by " << turn

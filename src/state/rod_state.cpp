@@ -1,6 +1,7 @@
 #include "cosserat/state/rod_state.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace cosserat {
@@ -31,12 +32,13 @@ double RodState::MaxForce() const {
 }
 
 bool RodState::RanAway() const {
-  // Squared, turn first: a step's hot path (most segments turn far less than 1 rad).
+  // The turn first, squared: a step's hot path (most segments turn far less than 1 rad).
   for (int i = 0; i + 1 < size(); ++i) {
-    const double h2 = (s[i + 1] - s[i]) * (s[i + 1] - s[i]);
+    const double h = s[i + 1] - s[i];
     const double k2 =
         std::max(strain[i].head<3>().squaredNorm(), strain[i + 1].head<3>().squaredNorm());
-    if (k2 * h2 > 1.0 && (position_W[i + 1] - position_W[i]).squaredNorm() > 100.0 * h2)
+    if (k2 * h * h > 1.0 &&
+        SegmentRanAway(h, (position_W[i + 1] - position_W[i]).norm(), std::sqrt(k2) * h))
       return true;
   }
   return false;

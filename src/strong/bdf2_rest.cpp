@@ -49,7 +49,8 @@ StepSummary Bdf2ShootingStepper::InitializeAtRestFrom(const StepInput& input,
   }
   RequireActuation(input.actuation);  // RequireValidInput, finiteness known
   RequirePoses(input);
-  initialized_ = false;  // until this succeeds, Step() refuses to run
+  initialized_ = false;  // until this succeeds, Step() refuses to run and Save() has no run
+  run_.initialized = false;
   // A new run starts from the constructor's plan: pieces a failed step of an earlier run added
   // would make the same inputs give another run (ApplyActuation adds what this one asks for).
   if (automatic_pieces_ && ShootingPieces() != initial_pieces_) SetShootingPieces(initial_pieces_);

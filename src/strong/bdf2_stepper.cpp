@@ -514,6 +514,10 @@ bool Bdf2ShootingStepper::Attempt(const StepInput& input, double h, StepSummary*
   SetImplicitCompliance(c.c0);
   xi_back_ = lie::SE3Log(lie::Compose(lie::Inverse(run_.base1), run_.base2));
   if (SolveStep(input, c, h, false, summary)) {
+    if (trial_.RanAway()) {  // residuals met by a shot that diverged (RodState::RanAway)
+      summary->status = SolveStatus::kNonFinite;
+      return false;
+    }
     Commit(h);
     run_.last_input = input;
     return true;
@@ -524,12 +528,16 @@ bool Bdf2ShootingStepper::Attempt(const StepInput& input, double h, StepSummary*
 bool Bdf2ShootingStepper::AttemptInterval(const StepInput& from, const StepInput& to, double h,
                                           int depth, StepSummary* summary) {
   if (Attempt(to, h, summary)) return true;
+  // A shot that ran away wants a finer grid: more pieces or smaller steps do not give one.
+  auto ran_away = [&] { return summary->status == SolveStatus::kNonFinite && trial_.RanAway(); };
+  if (ran_away()) return false;
   // Before halving: more pieces, when the stepper chooses them (a failed attempt commits
   // nothing; the new junctions start from the last accepted state).
   while (automatic_pieces_ && ShootingPieces() < MaxAutomaticPieces()) {
     NoteAddedPieces();
     SetShootingPieces(std::min(MaxAutomaticPieces(), 2 * ShootingPieces()));
     if (Attempt(to, h, summary)) return true;
+    if (ran_away()) return false;
   }
   if (depth >= options_.max_halvings) return false;
   summary->halvings = std::max(summary->halvings, depth + 1);
@@ -558,8 +566,7 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
   const StepInput start = run_.last_input;
   const int pieces = ShootingPieces();
   const bool ok = AttemptInterval(start, input, options_.dt, 0, &summary);
-  // A step whose shot diverged (RodState::RanAway) is committed but no answer: non_finite.
-  if (ok) summary.status = state().RanAway() ? SolveStatus::kNonFinite : SolveStatus::kConverged;
+  if (ok) summary.status = SolveStatus::kConverged;
   if (ok && summary.halvings == 0 && ShootingPieces() == pieces)
     DropUnneededPieces();
   else

@@ -28,11 +28,17 @@ struct RodState {
   Vec6 BaseReaction_W() const;
   /// The largest internal force |n| over the nodes (N): a held cable's top tension.
   double MaxForce() const;
-  /// Whether a shot along s ran away: some segment spans more than 10 times its length along
-  /// s (a stretch no elastic rod takes) while its curvature turns the section by more than
-  /// 1 rad on it (a bend RK4 in s on that grid cannot follow). Residuals can still vanish there
-  /// (a tendon's pull is internal), so the solvers check the state they converged on.
+  /// Whether a shot along s ran away: some segment does (SegmentRanAway). Residuals can still
+  /// vanish there (a tendon's pull is internal), so the single-shot statics and the BDF2
+  /// stepper check the state they converged on.
   bool RanAway() const;
 };
+
+/// Whether a segment of length h along s (m) ran away in the shot: it spans more than 10 h (a
+/// stretch no elastic rod takes) while its curvature turns the section by more than 1 rad on it
+/// (`turn`, a bend RK4 in s cannot follow on that grid). False for NaN: not a runaway.
+inline bool SegmentRanAway(double h, double span, double turn) {
+  return span > 10.0 * h && turn > 1.0;
+}
 
 }  // namespace cosserat

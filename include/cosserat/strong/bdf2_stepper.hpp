@@ -152,7 +152,10 @@ class Bdf2ShootingStepper {
   /// from `base_wrench_B` (W(0), body frame) when given, else from the wrench that carries the
   /// loads as a rigid body. With automatic pieces, the equilibrium's tension may ask for more
   /// pieces for the steps (SingleShootingExponent with the state); only then does it allocate.
-  /// NaN or Inf in the input (InputIsFinite) is the status non_finite, and changes nothing.
+  /// NaN or Inf in the input (InputIsFinite) is the status non_finite, and changes nothing. A
+  /// start that fails otherwise (no equilibrium, or one whose shot ran away: non_finite, see
+  /// RodState::RanAway) ends the run before it: Step() is not_run until a start converges or a
+  /// Snapshot is restored.
   StepSummary InitializeAtRest(const StepInput& input, const Vec6* base_wrench_B = nullptr);
 
   /// As above (cantilever), from an equilibrium found elsewhere on this grid, such as a statics
@@ -172,9 +175,10 @@ class Bdf2ShootingStepper {
   /// (sub-)step that converged. NaN or Inf in the input (InputIsFinite) is the status non_finite
   /// (nothing moves); an actuation Actuation::IsValid refuses for this rod (a pushing tendon, a
   /// tendon or chamber it lacks), or a base (or held tip) rotation that is not one within 1e-6
-  /// (lie::RequireRotation), throws std::invalid_argument, as InitializeAtRest does. Before
-  /// InitializeAtRest (or Restore) there is no state to step from: status not_run, nothing
-  /// moves, state() stays NaN.
+  /// (lie::RequireRotation), throws std::invalid_argument, as InitializeAtRest does. Before a
+  /// converged InitializeAtRest (or a Restore) there is no run to step: status not_run, nothing
+  /// moves. A step whose shot ran away (RodState::RanAway) is not taken: non_finite, no pieces
+  /// added nor halving tried (only a finer grid follows such a bend).
   StepSummary Step(const StepInput& input);
   /// Throws std::invalid_argument for the inputs Step refuses (its actuation or poses); NaN and
   /// Inf pass (Step reports them as a status). For callers that check a batch before any step.
