@@ -102,6 +102,13 @@ class ProblemRules:
         self.file = problem.actuation  # a copy: a whole state
         self.has_pressure = self.file.pressure != 0
         self.has_jamming = bool(any(self.file.jamming_pressure))
+        # Whether the section reads an inflation pressure, asked of the file's rules once: their
+        # refusal of one (a chambered finger's pressures are chamber_pressure) is kept to say.
+        try:
+            _core._parse_actuation(problem, '{"pressure": 1.0}')
+            self.pressure_refused = None
+        except ValueError as e:
+            self.pressure_refused = str(e)
 
 
 def fit_to_problem(actuation, rules):
@@ -115,10 +122,16 @@ def fit_to_problem(actuation, rules):
     given = actuation.given()
     for field, (_, noun, source) in _LISTS.items():
         length, count = given.get(field), rules.counts[field]
-        # With none to act on, the core's check names the value that would act on nothing.
-        if length is not None and count > 0 and length != count:
+        # With none to act on, the core's check names the value that would act on nothing. A
+        # whole array read back from an Actuation (its capacity, zeros past the count) stands
+        # for its first `count` values.
+        values = core_list(actuation, field)
+        read_back = length == len(values) and not any(values[count:])
+        if length is not None and count > 0 and length != count and not read_back:
             raise ValueError(f"actuation.{field}: expected one value per {noun} "
                              f"({count} in {source}), got {length}")
+    if "pressure" in given and actuation.pressure != 0 and rules.pressure_refused:
+        raise ValueError(rules.pressure_refused.replace("got 1.0", f"got {actuation.pressure}"))
     keep_pressure = rules.has_pressure and "pressure" not in given
     keep_jamming = rules.has_jamming and "jamming_pressure" not in given
     if not (keep_pressure or keep_jamming):

@@ -54,7 +54,12 @@ def _loads_from(value, holder):
         if key not in _LOAD_DEFAULTS:
             raise ValueError(f"loads.{key}: unknown key (a step's loads take "
                              f"{', '.join(_LOAD_DEFAULTS)}; the environment stays the problem's)")
-        setattr(loads, key, entry)
+        try:
+            setattr(loads, key, entry)
+        except TypeError:  # the binding's own message names no field
+            expected = ('"world" or "body"' if key.endswith("_frame")
+                        else "an array of 3 numbers")
+            raise ValueError(f"loads.{key}: expected {expected}, got {entry!r}") from None
     if "gravity" not in value and np.any(gravity):
         # As in a file, a load left out is not there; gravity left out of a step's loads is the
         # one a controller most likely meant to keep (a rod that no longer sags).

@@ -73,7 +73,8 @@ def sweep(study, out=None, threads=None):
                     for row in csv.DictReader(f)]
     finally:
         if temporary:
-            for leftover in (out, os.fspath(out) + ".tmp"):
+            # The rows, their partial file and the problem kept beside them for a resume.
+            for leftover in (out, os.fspath(out) + ".tmp", os.fspath(out) + ".problem.json"):
                 if os.path.exists(leftover):
                     os.remove(leftover)
     for output in summary["empty_outputs"]:

@@ -312,6 +312,11 @@ class Dynamics(unittest.TestCase):
         np.testing.assert_array_equal(a.tip_position(), b.tip_position())
         with self.assertRaisesRegex(ValueError, r"loads\.gravty: unknown key"):
             b.step({"gravty": [0, 0, -9.81]})
+        # A value of the wrong shape is named by its key (the binding's TypeError named none).
+        with self.assertRaisesRegex(ValueError, r"loads\.tip_force: expected an array of 3"):
+            b.step({"gravity": [0, 0, -9.81], "tip_force": [0, 0.01]})
+        with self.assertRaisesRegex(ValueError, r"loads\.gravity: expected an array of 3"):
+            b.step({"gravity": -9.81})
         # Left out, gravity is not there, as in a file; it is the load a controller most likely
         # meant to keep, so the step says so.
         with self.assertWarnsRegex(RuntimeWarning, 'the dict has no "gravity"'):
@@ -662,6 +667,18 @@ class Dynamics(unittest.TestCase):
             with self.assertRaisesRegex(ValueError, r"actuation\.tendon_tension: expected one "
                                         r"value per tendon \(3 in robot\.tendons\), got"):
                 three.solve(actuation=cosserat.Actuation(tendon_tension=tensions))
+        # An array read back (the object's capacity, zeros past the 3 tendons) is the 3 values;
+        # a value past them is not.
+        doubled = cosserat.Actuation(tendon_tension=[1.0, 0, 0])
+        doubled.tendon_tension = doubled.tendon_tension * 2
+        self.assertTrue(three.solve(actuation=doubled).converged)
+        with self.assertRaisesRegex(ValueError, r"tendon_tension: .* got 8"):
+            three.solve(actuation=cosserat.Actuation(tendon_tension=[1.0] + [0] * 6 + [3.0]))
+        # An inflation pressure on a rod whose section reads none (a chambered finger: its
+        # pressures are chamber_pressure) is refused as the dict's is; it had been dropped.
+        finger = cosserat.StaticSolver("robots/pneumatic_finger.json")
+        with self.assertRaisesRegex(ValueError, r"actuation\.pressure: .*got 150000"):
+            finger.solve(actuation=cosserat.Actuation(pressure=1.5e5))
         with self.assertRaisesRegex(AttributeError, "no field 'tension'"):
             cosserat.Actuation(tension=[1.0])
         with self.assertRaisesRegex(AttributeError, "no field 'tension'"):
@@ -1168,9 +1185,14 @@ class Batches(unittest.TestCase):
         study = {"format": "cosserat-study/1", "problem": "examples/cantilever.json",
                  "parameters": [{"path": "/loads/tip_force/0", "values": [-0.2, 0.0, 0.3]}],
                  "outputs": {"tip_x": "/tip/position/0", "tip": "/tip/position"}}
+        import glob
+        import tempfile
+        mine = os.path.join(tempfile.gettempdir(), "cosserat_sweep_*")
+        before = set(glob.glob(mine))
         out = cosserat.sweep(study, threads=np.int64(2))  # a NumPy integer is a whole number
         self.assertTrue(out["summary"]["complete"])
-        self.assertIsNone(out["csv"])  # no out=: the temporary file is gone
+        self.assertIsNone(out["csv"])  # no out=: the temporary files are gone, all of them
+        self.assertEqual(set(glob.glob(mine)) - before, set())
         self.assertEqual([r["index"] for r in out["rows"]], [0, 1, 2])
         for row in out["rows"]:
             with open("examples/cantilever.json") as f:
