@@ -101,6 +101,9 @@ class Stepper(_core.Stepper):
              base_wrench_B=None, actuation=None):
         if self._clamp is not None:
             self._check_clamp_twist(base_position, base_rotation, base_twist_B)
+        if base_wrench_B is not None and self._problem.boundary != "free-free":
+            raise ValueError("base_wrench_B: acts on a free-free rod's s = 0 end; this rod's "
+                             f"base is {self._problem.boundary} (its clamp takes any wrench)")
         return super().step(_loads_from(loads, self), base_position, base_rotation,
                             base_twist_B, base_wrench_B,
                             _actuation_from(actuation, self._problem, self._rules))

@@ -317,6 +317,9 @@ class Dynamics(unittest.TestCase):
             b.step({"gravity": [0, 0, -9.81], "tip_force": [0, 0.01]})
         with self.assertRaisesRegex(ValueError, r"loads\.gravity: expected an array of 3"):
             b.step({"gravity": -9.81})
+        # A base wrench acts on a free-free rod only: on a clamped one it was dropped unsaid.
+        with self.assertRaisesRegex(ValueError, r"base_wrench_B: acts on a free-free rod"):
+            b.step(base_wrench_B=[0, 0, 0, 100.0, 0, 0])
         # Left out, gravity is not there, as in a file; it is the load a controller most likely
         # meant to keep, so the step says so.
         with self.assertWarnsRegex(RuntimeWarning, 'the dict has no "gravity"'):
