@@ -247,31 +247,6 @@ ColumnSummary ColumnSolver::Solve(const lie::SE3& base, const StaticLoads& loads
   return summary;
 }
 
-ColumnSummary ColumnSolver::SolveFromUnloaded(const lie::SE3& base, const StaticLoads& loads) {
-  ColumnSummary total = FollowFromUnloaded(base, loads, false);
-  if (!total.converged() || !options_.stable_branch || StabilityIndexAtUnknowns(base, loads) <= 0)
-    return total;
-  // Past a critical load, natural-parameter continuation lands where Newton is drawn, which can
-  // be the unstable state beside the loaded path (a column at 1.1 P_cr under a small side load:
-  // the near-straight state deflected against the load). The loads are followed again with
-  // every level required stable; along an imperfect path the stable branch is connected to the
-  // unloaded column and small enough steps follow its sharp turn near P_cr. A symmetric column
-  // has no stable path past P_cr and keeps the straight state.
-  const Vec6 u_first = u_;
-  const RodState state_first = state_;
-  const ColumnSummary stable = FollowFromUnloaded(base, loads, true);
-  total.iterations += stable.iterations;
-  total.shots += stable.shots;
-  if (stable.converged()) {
-    total.load_steps += stable.load_steps;
-    total.residual = stable.residual;
-  } else {
-    u_ = u_first;
-    state_ = state_first;
-  }
-  return total;
-}
-
 int ColumnSolver::StabilityIndexAtUnknowns(const lie::SE3& base, const StaticLoads& loads) const {
   RodState record;
   std::vector<StateTangent> tangents;
@@ -279,8 +254,7 @@ int ColumnSolver::StabilityIndexAtUnknowns(const lie::SE3& base, const StaticLoa
   return StabilityIndexFromShot(base, loads, u_, record, tangents);
 }
 
-ColumnSummary ColumnSolver::FollowFromUnloaded(const lie::SE3& base, const StaticLoads& loads,
-                                               bool require_stable) {
+ColumnSummary ColumnSolver::SolveFromUnloaded(const lie::SE3& base, const StaticLoads& loads) {
   ColumnSummary total;
   u_.setZero();  // the straight column without load: every residual is zero, so this solve
   const ColumnSummary unloaded = Solve(base, loads.Scaled(0.0));  // only records its state
@@ -306,16 +280,13 @@ ColumnSummary ColumnSolver::FollowFromUnloaded(const lie::SE3& base, const Stati
     const double next = step == 1.0 - lambda ? 1.0 : lambda + step;
     const Vec6 u_accepted = u_;
     const RodState accepted = state_;
-    const StaticLoads level = loads.Scaled(next);
-    const ColumnSummary s = Solve(base, level);
+    const ColumnSummary s = Solve(base, loads.Scaled(next));
     total.iterations += s.iterations;
     total.shots += s.shots;
     total.residual = s.residual;
-    // A step that takes the rod through a contact surface jumped it (obstacle_core.hpp); on a
-    // stable path, one that lands on an unstable state left the branch.
+    // A step that takes the rod through a contact surface jumped it (obstacle_core.hpp).
     if (s.converged() &&
-        (ReachesObstacleCore(loads.contact, accepted.position_W, state_.position_W) ||
-         (require_stable && StabilityIndexAtUnknowns(base, level) != 0))) {
+        ReachesObstacleCore(loads.contact, accepted.position_W, state_.position_W)) {
       u_ = u_accepted;
       state_ = accepted;
       step *= 0.5;

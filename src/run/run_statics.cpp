@@ -109,6 +109,24 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   summary.residual = column.residual;
   if (column.converged())  // its unstable directions (−1: not defined)
     summary.stability_index = solver.StabilityIndexAtUnknowns(problem.base, problem.loads);
+  // Past a critical load the loads reach the straight state (a symmetric column) or jump to
+  // the one beside a side load's bent path: both unstable. The column settles beside it.
+  std::string settled_note;
+  if (column.converged() && summary.stability_index > 0 && detail::MaySettle(problem)) {
+    const RodState straight = solver.state();
+    const Vec6 straight_unknowns = solver.unknowns();
+    StaticShootingSummary settled;
+    double imperfection = 0.0;
+    if (detail::SettleColumn(problem, straight, summary.stability_index, &solver, &settled,
+                             &imperfection)) {
+      settled_note = detail::SettledNote(summary.stability_index, imperfection);
+      settled.CountWorkOf(summary);
+      summary = settled;
+    } else {  // back to the straight state: Newton from its unknowns records it again
+      solver.set_unknowns(straight_unknowns);
+      solver.Solve(problem.base, problem.loads);
+    }
+  }
   std::string unjudged;  // a grid too coarse to count unstable directions on
   if (column.converged())
     summary.stability_index =
@@ -120,11 +138,11 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   detail::KeepStaticFrame(problem, solver.state(), options, &result);
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
   result.log = StaticSummary(summary, solver.state(), problem) + " (" + ToString(ends) + ")\n" +
-               unjudged;
+               settled_note + unjudged;
   result.converged = summary.converged();
-  // Past a critical load the column follows its straight branch, stable or not. The index
-  // judges it; where it is not defined, the comparison with the Euler load of the free column
-  // does (not on contact surfaces, which hold a column laterally: a bore, a seabed).
+  // An equilibrium left unstable: the index says so; where it is not defined, the comparison
+  // with the Euler load of the free column does (not on contact surfaces, which hold a column
+  // laterally: a bore, a seabed).
   if (result.converged && summary.stability_index != 0) {
     const std::string past_euler =
         problem.loads.contact.count == 0

@@ -49,9 +49,11 @@ bool FollowAway(const io::Problem& problem, const StaticLoads& imperfect, Solver
 }  // namespace
 
 bool MaySettle(const io::Problem& problem) {
-  return problem.boundary == io::Boundary::kCantilever && !problem.has_robot &&
-         problem.rod.tendons.empty() && problem.loads.contact.count == 0 &&
-         LoadsAreConservative(problem.loads);
+  const io::Boundary b = problem.boundary;
+  const bool ends = b == io::Boundary::kCantilever || b == io::Boundary::kPinnedPinned ||
+                    b == io::Boundary::kClampedClamped || b == io::Boundary::kClampedPinned;
+  return ends && !problem.has_robot && problem.rod.tendons.empty() &&
+         problem.loads.contact.count == 0 && LoadsAreConservative(problem.loads);
 }
 
 StaticLoads ImperfectLoads(const io::Problem& problem, const RodState& straight, double fraction,
@@ -68,6 +70,15 @@ StaticLoads ImperfectLoads(const io::Problem& problem, const RodState& straight,
     Vec3 normal = across - across.dot(c) * c;
     if (normal.norm() < 0.1) normal = R.col(0) + R.col(1) - (R.col(0) + R.col(1)).dot(c) * c;
     across = normal.normalized();
+    // The rod's own loads across the chord, where it has them, choose the side it bends to:
+    // the other side holds an equilibrium too (bent against them), stable but not theirs.
+    const Vec3 spread = L * TotalDistributedForce_W(
+                                problem.loads, LoadSite{0.5 * L, 1.0, p.mass(3, 3),
+                                                        p.outer_diameter});
+    const Vec3 tip = problem.loads.tip_force_frame == LoadFrame::kWorld ? problem.loads.tip_force
+                                                                         : Vec3::Zero();
+    const Vec3 lateral = (spread + tip) - (spread + tip).dot(c) * c;
+    if (lateral.norm() > 1e-9 * total) across = lateral.normalized();
   }
   *size = fraction * total / L;
   StaticLoads imperfect = problem.loads;
@@ -146,6 +157,48 @@ bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int inde
   *q = x;
   *state = settled_state;
   *settled_index = settled;
+  return true;
+}
+
+bool SettleColumn(const io::Problem& problem, const RodState& straight, int index,
+                  ColumnSolver* solver, StaticShootingSummary* summary, double* imperfection) {
+  const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
+  // Three legs, each without a bifurcation: the imperfection alone bends the column (a beam
+  // across its span); the loads come in on the bent column, which stays on the side they bend
+  // it to (all at once from the straight column, the steps jump to the state beside the path
+  // past the critical load); the imperfection is taken away.
+  StaticLoads bend_only = problem.loads.Scaled(0.0);
+  bend_only.distributed_force_W = imperfect.distributed_force_W - problem.loads.distributed_force_W;
+  StaticShootingSummary total;
+  auto count = [&](const ColumnSummary& s) {
+    total.iterations += s.iterations;
+    total.shots += s.shots;
+    total.load_steps += s.load_steps;
+    total.status = s.status;
+    total.residual = s.residual;
+    return s.converged();
+  };
+  // A level is taken only on a stable equilibrium: Newton from the last one can still land on
+  // the state beside the path (a flat bar at 1.5 P_E, from 0.06 L with the side load to 0.03 L
+  // against it), which leaves the branch.
+  auto along = [&](const StaticLoads& from, const StaticLoads& to) {
+    return TakeAway([&](double mu) {
+      const StaticLoads level = StaticLoads::Blend(from, to, mu);
+      const Vec6 last = solver->unknowns();
+      if (count(solver->Solve(problem.base, level)) &&
+          solver->StabilityIndexAtUnknowns(problem.base, level) == 0)
+        return true;
+      solver->set_unknowns(last);
+      return false;
+    });
+  };
+  if (!count(solver->SolveFromUnloaded(problem.base, bend_only)) ||
+      !along(bend_only, imperfect) || !along(imperfect, problem.loads))
+    return false;
+  const int settled = solver->StabilityIndexAtUnknowns(problem.base, problem.loads);
+  if (settled < 0 || settled >= index) return false;
+  total.stability_index = settled;
+  *summary = total;
   return true;
 }
 

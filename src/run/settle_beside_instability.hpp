@@ -4,7 +4,8 @@
 /// symmetric problem (an upright rod past Greenhill's length, a hanging rod pushed up at its tip):
 /// the loaded path stays straight because nothing breaks the symmetry, and the real rod falls
 /// over. The settling bends the rod with a small lateral load (an imperfection, 2 % of its
-/// loads, spread along it, across the chord in its softer bending plane), follows the loads
+/// loads, spread along it, across the chord: along the rod's own loads across it, else in its
+/// softer bending plane), follows the loads
 /// from the unloaded rod with it, and takes it away again in steps: on the imperfect path there
 /// is no bifurcation, and the equilibrium it reaches is the stable one beside the straight one.
 /// Conservative loads only (the index that judges stability is defined for them alone).
@@ -12,6 +13,7 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "cosserat/analysis/column.hpp"
 #include "cosserat/io/problem.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/quatfd_statics.hpp"
@@ -21,15 +23,17 @@
 
 namespace cosserat::run::detail {
 
-/// Whether a statics may settle: a plain cantilever (no robot) under conservative loads and
-/// without contact surfaces (a finger pressed on a sphere that slips off is left as the
+/// Whether a statics may settle: a plain cantilever or column (no robot) under conservative
+/// loads and without contact surfaces (a finger pressed on a sphere that slips off is left as the
 /// unstable equilibrium it is, with its warning: on penalty surfaces the path is long and where
 /// the rod slides to is not the loads' question).
 bool MaySettle(const io::Problem& problem);
 
 /// The problem's loads plus the imperfection for the unstable state `straight`: a uniform force
 /// per length of `fraction` of the loads' total (LoadForceBound: the tip force, and L times the
-/// distributed loads, weight less buoyancy included) over L, across the chord from base to tip, along the base frame's axis of the softer bending.
+/// distributed loads, weight less buoyancy included) over L, across the chord from base to tip:
+/// along the loads' own part across it where they have one, else along the base frame's axis of
+/// the softer bending.
 /// *size receives its magnitude (N/m).
 StaticLoads ImperfectLoads(const io::Problem& problem, const RodState& straight, double fraction,
                            double* size);
@@ -54,6 +58,13 @@ bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int inde
                   quatfd::QuatFdModel* model, Eigen::VectorXd* q, RodState* state,
                   quatfd::QuatFdStaticsSummary* summary, int* settled_index,
                   double* imperfection);
+
+/// The same for a column (boundary pinned-pinned, clamped-clamped or clamped-pinned) on its
+/// single-shot solver: from the unloaded column to the imperfect loads, then the imperfection
+/// taken away. True, with `solver` holding the equilibrium and *summary its solve (its work
+/// and stability_index), when that equilibrium has fewer unstable directions than `index`.
+bool SettleColumn(const io::Problem& problem, const RodState& straight, int index,
+                  ColumnSolver* solver, StaticShootingSummary* summary, double* imperfection);
 
 /// The log's note on a settled statics.
 std::string SettledNote(int straight_index, double imperfection);

@@ -83,11 +83,10 @@ class ColumnSolver {
   /// dimensionless load (StaticLoadParameter): a full step from the straight column can land Newton
   /// on another branch (a taut wire, PL²/EI = 80, converged to a looped shape). Status
   /// kLoadSteppingFailed when the step falls below the minimum; state() then holds the last
-  /// converged step (at least the unloaded column). With options.stable_branch, an equilibrium
-  /// found unstable is followed again with every level required stable (an imperfect column
-  /// past P_cr: the bent state beside the near-straight one); where no stable path reaches the
-  /// loads (a symmetric column past P_cr) the straight branch stays, stable or not:
-  /// BucklingAnalysis is the tool for stability.
+  /// converged step (at least the unloaded column). Past a critical load this follows the
+  /// straight branch wherever it is an equilibrium (a symmetric column), stable or not, and
+  /// may jump from a side load's bent path to the state beside it: the run layer settles such
+  /// an answer (settle_beside_instability.hpp); BucklingAnalysis is the tool for stability.
   ColumnSummary SolveFromUnloaded(const lie::SE3& base, const StaticLoads& loads);
 
   /// The dimensionless residual at the unknowns u; with J, its exact Jacobian d r / d u (tangent
@@ -162,10 +161,6 @@ class ColumnSolver {
   const StaticShootingOptions& options() const { return options_; }
 
  private:
-  /// SolveFromUnloaded's continuation; with require_stable a level is accepted only on an
-  /// equilibrium with no unstable direction.
-  ColumnSummary FollowFromUnloaded(const lie::SE3& base, const StaticLoads& loads,
-                                   bool require_stable);
   /// Start state of the shot (R(0), W(0)) and its tangent along u.
   void Start(const lie::SE3& base, const Vec6& u, lie::SE3* start, Vec6* W0,
              StateTangent* dstart) const;
