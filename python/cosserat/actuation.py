@@ -1,5 +1,7 @@
 """cosserat.Actuation: what the actuators do, remembering which fields were given, so that a
 solver fits it to its problem as it fits a dict with the file's robot.actuation keys."""
+import numpy as np
+
 from . import _core
 
 # The list fields, each with the problem's count of what it acts on, its noun and where the
@@ -19,8 +21,9 @@ def _list_field(name):
 
     def get(self):
         view = core.__get__(self)
-        if name not in self.__dict__["_given"]:
-            self.__dict__["_viewed"].setdefault(name, view.copy())
+        viewed = self.__dict__["_viewed"]
+        if name not in self.__dict__["_given"] and name not in viewed:
+            viewed[name] = view.copy()
         return view
 
     def set_(self, value):
@@ -65,18 +68,19 @@ class Actuation(_core.Actuation):
         place through its view)}."""
         given = dict(self.__dict__["_given"])
         for name, then in self.__dict__["_viewed"].items():
-            if name not in given and (core_list(self, name) != then).any():
+            if name not in given and not np.array_equal(_core_list(self, name), then,
+                                                         equal_nan=True):
                 given[name] = None
         return given
 
     def __reduce__(self):
         given = self.given()
-        return (_rebuild, ({name: list(core_list(self, name))
+        return (_rebuild, ({name: list(_core_list(self, name))
                             if name in _LISTS else self.pressure for name in _FIELDS},
                            dict(given)))
 
 
-def core_list(actuation, name):
+def _core_list(actuation, name):
     """A list field's values, read past the record of what was given."""
     return getattr(_core.Actuation, name).__get__(actuation)
 
@@ -125,7 +129,7 @@ def fit_to_problem(actuation, rules):
         # With none to act on, the core's check names the value that would act on nothing. A
         # whole array read back from an Actuation (its capacity, zeros past the count) stands
         # for its first `count` values.
-        values = core_list(actuation, field)
+        values = _core_list(actuation, field)
         read_back = length == len(values) and not any(values[count:])
         if length is not None and count > 0 and length != count and not read_back:
             raise ValueError(f"actuation.{field}: expected one value per {noun} "
@@ -140,6 +144,6 @@ def fit_to_problem(actuation, rules):
     for name in _FIELDS:
         source = rules.file if (name == "pressure" and keep_pressure) or (
             name == "jamming_pressure" and keep_jamming) else actuation
-        value = core_list(source, name) if name in _LISTS else source.pressure
+        value = _core_list(source, name) if name in _LISTS else source.pressure
         getattr(_core.Actuation, name).__set__(fitted, value)
     return fitted

@@ -124,8 +124,13 @@ std::string DirectionNote(const io::Problem& problem, BucklingStatus status) {
     return "";
   const bool follower =
       k == BucklingLoad::kTipForce && problem.loads.tip_force_frame == LoadFrame::kBody;
+  // Components below rounding print as 0 (a base turned by a rotation matrix of cosines).
+  auto clean = [](const Vec3& v) {
+    return Vec3(v.unaryExpr([](double x) { return std::abs(x) < 1e-12 ? 0.0 : x; }));
+  };
   const Vec3 axis = follower ? Vec3::UnitZ() : Vec3(problem.base.R.col(2));
-  const Vec3 d = problem.buckling.direction.normalized();
+  const Vec3 shown = clean(axis);
+  const Vec3 d = clean(problem.buckling.direction.normalized());
   const double along = d.dot(axis);  // −1: presses the rod along its axis
   if (along < -0.5) return "";
   std::ostringstream note;
@@ -133,10 +138,10 @@ std::string DirectionNote(const io::Problem& problem, BucklingStatus status) {
        << d.y() << ", " << d.z() << "] "
        << (along > 0.5 ? "pulls the rod along its axis, which does not buckle it"
                        : "is mostly across the rod, which bends it without a bifurcation")
-       << " (the rod's axis at its base is [" << axis.x() << ", " << axis.y() << ", " << axis.z()
-       << "]" << (follower ? ", in the tip's frame" : ", base.rotation's third column")
-       << "); a direction of [" << 0.0 - axis.x() << ", " << 0.0 - axis.y() << ", "
-       << 0.0 - axis.z() << "] presses it\n";
+       << " (the rod's axis at its base is [" << shown.x() << ", " << shown.y() << ", "
+       << shown.z() << "]" << (follower ? ", in the tip's frame" : ", base.rotation's third column")
+       << "); a direction of [" << 0.0 - shown.x() << ", " << 0.0 - shown.y() << ", "
+       << 0.0 - shown.z() << "] presses it\n";
   return note.str();
 }
 

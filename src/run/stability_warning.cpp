@@ -15,13 +15,23 @@ constexpr double kMaxJacobiKh = 2.8;
 /// The mid-span deflection (in L) of the buckled elastica of a pinned-pinned column, or of a
 /// clamped-clamped one (four of its quarter-waves), pressed by `ratio` times its Euler load:
 /// P = (2K(k)/π)² P_E with k = sin(θ₀/2), and the mid-span k L / K(k) (Timoshenko & Gere 1961);
-/// 0.9 sqrt(ratio − 1) to first order. k by bisection on K(k), which rises from π/2 at k = 0.
+/// 0.9 sqrt(ratio − 1) to first order. k by bisection on K(k), which rises from π/2 at k = 0;
+/// K(k) = π / (2 AGM(1, sqrt(1 − k²))), the arithmetic–geometric mean.
 double ElasticaMidSpan(double ratio) {
-  const double K = 0.5 * std::acos(-1.0) * std::sqrt(ratio);
+  const double pi = std::acos(-1.0), K = 0.5 * pi * std::sqrt(ratio);
+  auto complete_k = [pi](double k) {
+    double a = 1.0, b = std::sqrt(1.0 - k * k);
+    for (int i = 0; i < 40 && a - b > 1e-15 * a; ++i) {
+      const double mean = 0.5 * (a + b);
+      b = std::sqrt(a * b);
+      a = mean;
+    }
+    return pi / (a + b);
+  };
   double lo = 0.0, hi = 1.0;
   for (int i = 0; i < 60; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (std::comp_ellint_1(mid) < K ? lo : hi) = mid;
+    (complete_k(mid) < K ? lo : hi) = mid;
   }
   return lo / K;
 }

@@ -322,8 +322,8 @@ StaticShootingSummary StaticShootingSolver::Solve(const lie::SE3& base, const St
     }
   }
   if (ok && state_.RanAway()) {  // residuals met by a shot that diverged (RodState::RanAway)
-    ok = false;
-    summary.status = SolveStatus::kNonFinite;
+    ok = false, summary.status = SolveStatus::kNonFinite;
+    summary.stability_index = -1;  // no answer to count on
   }
   if (ok) {
     state_is_solution_ = true;

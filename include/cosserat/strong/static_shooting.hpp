@@ -93,8 +93,10 @@ class StaticShootingSolver {
 
   /// Solve with the base pose (R_WB of the clamp, p_W of s = 0) and the loads. Warm-starts from
   /// the previous converged solution, if any. Non-finite loads or base give kNonFinite at once; a
-  /// base.R that is not a rotation within 1e-6 throws std::invalid_argument. The state is valid
-  /// when the status is converged, and holds the last iterate otherwise.
+  /// base.R that is not a rotation within 1e-6 throws std::invalid_argument. A solve whose
+  /// residuals vanish on a shot that ran away (RodState::RanAway: a grid too coarse for the
+  /// bend) is kNonFinite too. The state is valid when the status is converged, and holds the
+  /// last iterate otherwise.
   StaticShootingSummary Solve(const lie::SE3& base, const StaticLoads& loads);
 
   /// New actuation (tendon tensions, pressures, jamming states): re-samples the section
