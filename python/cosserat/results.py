@@ -1,6 +1,7 @@
 """cosserat.solve: any problem, given as a Problem, a dict or a path, with NumPy results."""
 import json
 import os
+import warnings
 
 import numpy as np
 
@@ -92,6 +93,9 @@ def _frames(nodes_csv):
     return {"t": times, "rods": rods}
 
 
+_WARNING = "cosserat: warning: "
+
+
 def solve(problem, nodes=False):
     """Runs a problem exactly as `cosserat solve` does.
 
@@ -102,7 +106,9 @@ def solve(problem, nodes=False):
     Returns a dict:
       converged   bool
       result      the result document as a dict (its lists as Python lists)
-      log         the summary line and any hints
+      log         the summary line and any hints; its warnings ("cosserat: warning: ...", a
+                  result to distrust: a coarse grid, numerical damping, units) are also
+                  raised as RuntimeWarning
       nodes       result["nodes"] with its lists as NumPy arrays (positions N x 3, m; s, m; ...)
       trajectory  result["trajectory"] likewise (t (s), tip_position (F x 3, m), ...), if any
       envelope    dynamics: result["envelope"] likewise (tension_max, tension_min (N),
@@ -114,6 +120,9 @@ def solve(problem, nodes=False):
       rods        an assembly's statics: per rod, its name, s (N_i,) and position (N_i x 3), m
     """
     out = _core.solve(_as_problem(problem), nodes)
+    for line in out["log"].splitlines():
+        if line.startswith(_WARNING):
+            warnings.warn(line[len(_WARNING):], RuntimeWarning, stacklevel=2)
     result = out["result"]
     if isinstance(result.get("nodes"), dict):
         out["nodes"] = _arrays(result["nodes"])
