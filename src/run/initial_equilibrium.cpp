@@ -58,6 +58,18 @@ std::optional<RodState> StaticEquilibriumToStartFrom(const io::Problem& problem,
   }
 }
 
+std::optional<RodState> RunawayStartState(const io::Problem& problem, const StepInput& input) {
+  if (problem.boundary != io::Boundary::kCantilever) return std::nullopt;
+  try {
+    StaticShootingSolver solver(problem.rod, problem.nodes, StaticOptions(problem),
+                                input.actuation);
+    solver.Solve(input.base_pose, WithTipMassWeight(problem, input.loads));
+    if (solver.state().RanAway()) return solver.state();
+  } catch (const std::invalid_argument&) {
+  }  // a rod the statics solver does not take
+  return std::nullopt;
+}
+
 StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const StepInput& input,
                                           Bdf2ShootingStepper* stepper) {
   if (problem.boundary != io::Boundary::kCantilever) return stepper->InitializeAtRest(input);

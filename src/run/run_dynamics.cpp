@@ -7,7 +7,6 @@
 #include <iomanip>
 #include <optional>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,7 +19,6 @@
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/shooting_exponent.hpp"
-#include "cosserat/strong/static_shooting.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"
 
@@ -287,26 +285,17 @@ std::string EnergyNote(const io::Problem& problem, const io::DynamicRun& run) {
   return note.str();
 }
 
-/// After a start refused as non_finite: the clamped rod's statics under the start's loads, and
-/// if that shot runs away on this grid (RodState::RanAway), the grid check's words for it (the
-/// stepper keeps no state of a start it refused).
+/// After a start refused as non_finite: the grid check's words for the statics shot that ran
+/// away, when it did (RunawayStartState).
 std::string RunawayStartText(const io::Problem& problem) {
-  if (problem.boundary != io::Boundary::kCantilever) return "";
   const StepInput initial =
       ClampedInput(problem, problem.dynamics.initial_loads.value_or(problem.loads),
                    problem.robot.initial_actuation);
-  try {
-    StaticShootingSolver solver(problem.rod, problem.nodes, StaticOptions(problem),
-                                initial.actuation);
-    solver.Solve(initial.base_pose, initial.loads);
-    const RodState& state = solver.state();
-    if (!state.RanAway()) return "";
-    std::vector<Vec3> curvature;
-    for (const Vec6& xi : state.strain) curvature.push_back(xi.head<3>());
-    return CheckGrid(state.s, state.position_W, curvature, problem.rod.length).log;
-  } catch (const std::invalid_argument&) {
-    return "";  // a rod the statics solver does not take
-  }
+  const std::optional<RodState> state = RunawayStartState(problem, initial);
+  if (!state) return "";
+  std::vector<Vec3> curvature;
+  for (const Vec6& xi : state->strain) curvature.push_back(xi.head<3>());
+  return CheckGrid(state->s, state->position_W, curvature, problem.rod.length).log;
 }
 
 }  // namespace

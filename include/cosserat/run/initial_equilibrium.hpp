@@ -27,4 +27,9 @@ StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const Step
 std::optional<RodState> StaticEquilibriumToStartFrom(const io::Problem& problem,
                                                      const StepInput& input);
 
+/// After a start refused as non_finite: the single-shot statics of the same cantilever under
+/// `input` (the tip mass's weight added), when its shot ran away (RodState::RanAway); empty
+/// otherwise. The stepper keeps no state of a start it refused, so this is what says why.
+std::optional<RodState> RunawayStartState(const io::Problem& problem, const StepInput& input);
+
 }  // namespace cosserat::run
