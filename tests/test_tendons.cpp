@@ -79,9 +79,10 @@ TEST(Tendons, StraightTendonBendsTheRodIntoTheArcOfCurvatureTauROverEI) {
 // 3.8 rad, past RK4's limit of 2.8 on a rotation. The shot runs away (|R(3.8i)|¹⁰ ≈ 3e7), yet the
 // residuals vanish (the tendon's pull is internal, a free tip carries nothing), so the solver
 // must look at the state: non_finite, in statics, in a dynamics start (which then has nothing
-// to step from) and in a step (not taken). On 401 nodes (κh = 0.094 rad a segment) it converges on the circle:
-// RK4 shrinks a rotation by about (κh)⁶/144 = 4.9e-9 a step, 1.9e-6 of the radius over 400
-// steps (measured 1.9e-6 at the tip); 1e-5 leaves that margin and catches any other error.
+// to step from) and in a step (not taken). On 401 nodes (κh = 0.094 rad a segment) it
+// converges on the circle: RK4 shrinks a rotation by about (κh)⁶/144 = 4.9e-9 a step, 1.9e-6
+// of the radius over 400 steps (measured 1.9e-6 at the tip); 1e-5 leaves that margin and
+// catches any other error.
 TEST(Tendons, ARodCurledBeyondItsGridIsNonFiniteNotConverged) {
   TendonRod rod;
   const double offset = 0.005;
