@@ -330,12 +330,12 @@ class Dynamics(unittest.TestCase):
         np.testing.assert_array_equal(a.tip_position(), b.tip_position())
         with self.assertRaisesRegex(ValueError, r"loads\.gravty: unknown key"):
             b.step({"gravty": [0, 0, -9.81]})
-        # A value of the wrong shape is named by its key (the binding's TypeError named none).
+        # A value of the wrong shape is named by its key, as in a file.
         with self.assertRaisesRegex(ValueError, r"loads\.tip_force: expected an array of 3"):
             b.step({"gravity": [0, 0, -9.81], "tip_force": [0, 0.01]})
         with self.assertRaisesRegex(ValueError, r"loads\.gravity: expected an array of 3"):
             b.step({"gravity": -9.81})
-        # A base wrench acts on a free-free rod only: on a clamped one it was dropped unsaid.
+        # A base wrench acts on a free-free rod's end only: on a clamped one it is refused.
         with self.assertRaisesRegex(ValueError, r"base_wrench_B: acts on a free-free rod"):
             b.step(base_wrench_B=[0, 0, 0, 100.0, 0, 0])
         # Left out, gravity is not there, as in a file; it is the load a controller most likely
@@ -696,7 +696,7 @@ class Dynamics(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, r"tendon_tension: .* got 8"):
             three.solve(actuation=cosserat.Actuation(tendon_tension=[1.0] + [0] * 6 + [3.0]))
         # An inflation pressure on a rod whose section reads none (a chambered finger: its
-        # pressures are chamber_pressure) is refused as the dict's is; it had been dropped.
+        # pressures are chamber_pressure) is refused as the dict's is, not dropped.
         finger = cosserat.StaticSolver("robots/pneumatic_finger.json")
         with self.assertRaisesRegex(ValueError, r"actuation\.pressure: .*got 150000"):
             finger.solve(actuation=cosserat.Actuation(pressure=1.5e5))
