@@ -117,8 +117,7 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
     const Vec6 straight_unknowns = solver.unknowns();
     StaticShootingSummary settled;
     double imperfection = 0.0;
-    if (detail::SettleColumn(problem, straight, summary.stability_index, &solver, &settled,
-                             &imperfection)) {
+    if (detail::SettleColumn(problem, straight, &solver, &settled, &imperfection)) {
       settled_note = detail::SettledNote(summary.stability_index, imperfection);
       settled.CountWorkOf(summary);
       summary = settled;

@@ -160,8 +160,8 @@ bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int inde
   return true;
 }
 
-bool SettleColumn(const io::Problem& problem, const RodState& straight, int index,
-                  ColumnSolver* solver, StaticShootingSummary* summary, double* imperfection) {
+bool SettleColumn(const io::Problem& problem, const RodState& straight, ColumnSolver* solver,
+                  StaticShootingSummary* summary, double* imperfection) {
   const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
   // Three legs, each without a bifurcation: the imperfection alone bends the column (a beam
   // across its span); the loads come in on the bent column, which stays on the side they bend
@@ -195,9 +195,7 @@ bool SettleColumn(const io::Problem& problem, const RodState& straight, int inde
   if (!count(solver->SolveFromUnloaded(problem.base, bend_only)) ||
       !along(bend_only, imperfect) || !along(imperfect, problem.loads))
     return false;
-  const int settled = solver->StabilityIndexAtUnknowns(problem.base, problem.loads);
-  if (settled < 0 || settled >= index) return false;
-  total.stability_index = settled;
+  total.stability_index = 0;  // the last level, the loads', was counted stable on the way
   *summary = total;
   return true;
 }

@@ -61,10 +61,10 @@ bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int inde
 
 /// The same for a column (boundary pinned-pinned, clamped-clamped or clamped-pinned) on its
 /// single-shot solver: from the unloaded column to the imperfect loads, then the imperfection
-/// taken away. True, with `solver` holding the equilibrium and *summary its solve (its work
-/// and stability_index), when that equilibrium has fewer unstable directions than `index`.
-bool SettleColumn(const io::Problem& problem, const RodState& straight, int index,
-                  ColumnSolver* solver, StaticShootingSummary* summary, double* imperfection);
+/// taken away, every level required stable. True, with `solver` holding the stable equilibrium
+/// and *summary its solve (its work, stability_index 0), when the path reaches the loads.
+bool SettleColumn(const io::Problem& problem, const RodState& straight, ColumnSolver* solver,
+                  StaticShootingSummary* summary, double* imperfection);
 
 /// The log's note on a settled statics.
 std::string SettledNote(int straight_index, double imperfection);
