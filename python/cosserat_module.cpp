@@ -160,10 +160,7 @@ class PyStaticSolver {
   /// ran away is non_finite, a coarse grid a RuntimeWarning.
   void CheckGrid(StaticShootingSummary* s) const {
     const RodState& state = multiple_ ? multiple_->state() : solver_.state();
-    std::vector<Vec3> curvature;
-    for (const Vec6& xi : state.strain) curvature.push_back(xi.head<3>());
-    const run::GridResolution g =
-        run::CheckGrid(state.s, state.position_W, curvature, problem_.rod.length);
+    const run::GridResolution g = run::CheckGrid(state, problem_.rod.length);
     if (g.ran_away) s->status = SolveStatus::kNonFinite;
     if (g.log.empty()) return;
     std::string text = g.log.substr(0, g.log.size() - 1);  // without its newline

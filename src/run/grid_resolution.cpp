@@ -68,6 +68,13 @@ GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& 
   return out;
 }
 
+GridResolution CheckGrid(const RodState& state, double length, bool converged) {
+  std::vector<Vec3> curvature;
+  curvature.reserve(state.strain.size());
+  for (const Vec6& xi : state.strain) curvature.push_back(xi.head<3>());
+  return CheckGrid(state.s, state.position_W, curvature, length, converged);
+}
+
 GridResolution CheckPolygon(const std::vector<double>& s, const std::vector<Vec3>& position,
                             const std::vector<Vec3>& curvature, double length) {
   GridResolution out;

@@ -292,10 +292,7 @@ std::string RunawayStartText(const io::Problem& problem) {
       ClampedInput(problem, problem.dynamics.initial_loads.value_or(problem.loads),
                    problem.robot.initial_actuation);
   const std::optional<RodState> state = RunawayStartState(problem, initial);
-  if (!state) return "";
-  std::vector<Vec3> curvature;
-  for (const Vec6& xi : state->strain) curvature.push_back(xi.head<3>());
-  return CheckGrid(state->s, state->position_W, curvature, problem.rod.length).log;
+  return state ? CheckGrid(*state, problem.rod.length).log : "";
 }
 
 }  // namespace

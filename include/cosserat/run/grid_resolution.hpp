@@ -14,6 +14,7 @@
 #include "cosserat/io/problem.hpp"
 #include "cosserat/lie/types.hpp"
 #include "cosserat/run/result.hpp"
+#include "cosserat/state/rod_state.hpp"
 
 namespace cosserat::run {
 
@@ -36,6 +37,8 @@ struct GridResolution {
 GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& position,
                          const std::vector<Vec3>& curvature, double length,
                          bool converged = true);
+/// The same on a solver's state (its s, positions and the curvature part of its strains).
+GridResolution CheckGrid(const RodState& state, double length, bool converged = true);
 
 /// The quaternion-FD grid's: the bending curvature at the vertices times the spacing, or where
 /// larger the turn between the segments meeting at a vertex, atan2(|a × b|, a · b). The scheme
