@@ -4,6 +4,8 @@
 // (Dawson & Paslay 1984: a pipe on the low side of a hole is held laterally by its weight).
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -12,6 +14,8 @@
 #include "cosserat/analysis/buckling.hpp"
 #include "cosserat/analysis/buckling_in_pieces.hpp"
 #include "cosserat/io/problem.hpp"
+#include "cosserat/lie/so3.hpp"
+#include "cosserat/strong/pinned_base.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "support/analytic/roots.hpp"
 #include "support/rods.hpp"
@@ -152,6 +156,59 @@ TEST(ColumnStability, ABuckledRoundCantileverCountsAlikeThroughEitherSolver) {
   std::vector<ColumnSolver::StateTangent> tangents;
   ASSERT_LT(column.Residual(lie::SE3{}, loads, u, nullptr, &record, &tangents).norm(), 1e-8);
   EXPECT_EQ(column.StabilityIndexFromShot(lie::SE3{}, loads, u, record, tangents, 1e-8), 0);
+}
+
+// The pin's twist axis is normal to the rotations the pin allows, R_WB Exp([a, b, 0]), whose
+// body-frame directions are J_r(θ) e₀ and J_r(θ) e₁: to rounding (1e-14) at angles up to 3 rad,
+// and on both sides of t = 1e-2, where its series gives way to the closed form.
+TEST(ColumnStability, ThePinsTwistAxisIsNormalToTheRotationsItAllows) {
+  for (const double t : {0.0, 1e-6, 0.0099999, 0.0100001, 0.3, 1.0, 2.0, 3.0}) {
+    for (const double phi : {0.0, 0.7, 2.5}) {
+      const Vec3 theta(t * std::cos(phi), t * std::sin(phi), 0.0);
+      const Vec3 nu = PinnedTwistAxis(theta(0), theta(1));
+      const Mat3 Jr = lie::SO3RightJacobian(theta);
+      EXPECT_NEAR(nu.dot(Jr.col(0)), 0.0, 1e-14) << t << " " << phi;
+      EXPECT_NEAR(nu.dot(Jr.col(1)), 0.0, 1e-14) << t << " " << phi;
+      EXPECT_NEAR(nu.dot(Jr.col(2)), 1.0, 1e-14) << t << " " << phi;  // ν = J_r⁻ᵀ e₃
+    }
+  }
+}
+
+// A pinned column bent on its stable branch by a side load (2 % of P_E per length L, along y)
+// and pressed from 0.1 to 2.1 P_E, its pins still apart (the elastica's chord is 0.03 L at
+// 2.1 P_E): round, and a flat bar soft across y. Its index must stay 0. On the round column the
+// Jacobian of the column's residual stays regular on the way (det J > 0), and the index can
+// change only where the second variation, and with it J, is singular. The base turns by up to
+// 2 rad here: Jacobi fields started with the pin's torque along the section's axis instead of
+// the pin's twist axis (pinned_base.hpp) are no Lagrangian subspace, and counted the round
+// column unstable from 1.12 P_E and the bar from 1.4 P_E.
+TEST(ColumnStability, APinnedColumnBentOnItsStableBranchCountsStable) {
+  for (const bool round : {true, false}) {
+    const CrossSection c =
+        round ? CrossSection::Circle(0.001) : CrossSection::Rectangle(0.01, 0.001);
+    const RodModel model =
+        RodModel::Uniform(0.5, c, Material::FromShearModulus(200e9, 80e9, 8000));
+    const double PE = kPi * kPi * 200e9 * c.I1 / 0.25;
+    ColumnSolver column(model, 61, ColumnEnds::kPinnedPinned);
+    StaticLoads side;
+    side.distributed_force_W = Vec3(0, 0.02 * PE / 0.5, 0);
+    ASSERT_TRUE(column.SolveFromUnloaded(lie::SE3{}, side).converged());
+    for (double ratio = 0.1; ratio < 2.12; ratio += 0.05) {
+      StaticLoads loads = side;
+      loads.tip_force = Vec3(0, 0, -ratio * PE);
+      ASSERT_TRUE(column.Solve(lie::SE3{}, loads).converged()) << ratio;
+      Mat6 J;
+      RodState record;
+      std::vector<ColumnSolver::StateTangent> tangents;
+      column.Residual(lie::SE3{}, loads, column.unknowns(), &J, &record, &tangents);
+      if (round) EXPECT_GT(J.determinant(), 0.0) << ratio;
+      EXPECT_EQ(column.StabilityIndexFromShot(lie::SE3{}, loads, column.unknowns(), record,
+                                              tangents),
+                0)
+          << (round ? "round " : "bar ") << ratio;
+    }
+    EXPECT_GT(column.state().position_W.back()(2), 0.0);  // the pins still apart
+  }
 }
 
 // A 30 m steel pipe sagging under its own weight between its supports is at the minimum of its

@@ -702,6 +702,15 @@ TEST(Run, AStraightColumnPastItsEulerLoadIsFlaggedWithTheElasticasDeflection) {
     EXPECT_NE(past.log.find(bows.str()), std::string::npos) << past.log;
     EXPECT_EQ(past.json["stability_index"].get<int>(), 2) << past.log;
   }
+  // At 2.5 P_E the planar elastica's pins have passed each other (its chord, 2E(k)/K(k) − 1,
+  // is −0.0952 L), and its count finds it unstable too: the log must not offer it as stable.
+  const Result crossed = PressedPinnedColumn(round, EI, 2.5, 0.0);
+  ASSERT_TRUE(crossed.converged) << crossed.log;
+  std::ostringstream passed;
+  passed << "whose ends would have passed each other (" << std::setprecision(3)
+         << -truth::PostBuckledCantileverAtLoad(2.5).axial << " L)";
+  EXPECT_NE(crossed.log.find(passed.str()), std::string::npos) << crossed.log;
+  EXPECT_EQ(crossed.log.find("the stable one"), std::string::npos) << crossed.log;
   const Result below = PressedPinnedColumn(round, EI, 0.9, 1e-3);
   ASSERT_TRUE(below.converged) << below.log;
   EXPECT_EQ(below.log.find("unstable"), std::string::npos) << below.log;
@@ -724,6 +733,26 @@ TEST(Run, AnImperfectColumnPastItsEulerLoadSettlesOnItsBentBranch) {
   EXPECT_EQ(r.log.find("warning"), std::string::npos) << r.log;
   const double mid = r.json["nodes"]["position"][20][0].get<double>();
   EXPECT_NEAR(mid, PinnedElasticaMidSpan(1.1), 2e-3);
+}
+
+// Deeper on the bent branch, where the pins have turned by 1–1.5 rad: the bar and a round
+// column (r = 1 mm) at 1.5 and 2 P_E settle as at 1.1 P_E, mid-span within 2e-3 L of the
+// elastica's 0.394 and 0.398 L (the side load adds less there: the bent column is stiffer).
+TEST(Run, ImperfectColumnsFarPastTheirEulerLoadSettleOnTheirBentBranch) {
+  const std::string bar = R"({"shape": "rectangle", "width": 0.005, "height": 0.02})";
+  const std::string round = R"({"shape": "circle", "radius": 0.001})";
+  const double EI_bar = 200e9 * 0.02 * std::pow(0.005, 3) / 12, EI_round = 200e9 * M_PI / 4e12;
+  for (const double ratio : {1.5, 2.0}) {
+    for (const bool is_round : {false, true}) {
+      const Result r =
+          PressedPinnedColumn(is_round ? round : bar, is_round ? EI_round : EI_bar, ratio, 1e-3);
+      ASSERT_TRUE(r.converged) << r.log;
+      EXPECT_EQ(r.json["stability_index"].get<int>(), 0) << ratio << r.log;
+      EXPECT_EQ(r.log.find("warning"), std::string::npos) << r.log;
+      const double mid = r.json["nodes"]["position"][20][0].get<double>();
+      EXPECT_NEAR(mid, PinnedElasticaMidSpan(ratio), 2e-3) << ratio << (is_round ? " round" : "");
+    }
+  }
 }
 
 // A steel pipe (outer radius 0.0635 m, inner 0.054 m, in air) lying in a horizontal bore of

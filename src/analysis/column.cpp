@@ -11,6 +11,7 @@
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/strong/load_parameter.hpp"
 #include "cosserat/strong/morse_index.hpp"
+#include "cosserat/strong/pinned_base.hpp"
 
 namespace cosserat {
 
@@ -78,7 +79,7 @@ void ColumnSolver::ForgetState() {
 }
 
 void ColumnSolver::Start(const lie::SE3& base, const Vec6& u, lie::SE3* start, Vec6* W0,
-                         StateTangent* dstart) const {
+                         StateTangent* dstart, bool for_index) const {
   dstart->setZero();
   start->p = base.p;
   if (ends_ == ColumnEnds::kPinnedPinned) {
@@ -92,7 +93,10 @@ void ColumnSolver::Start(const lie::SE3& base, const Vec6& u, lie::SE3* start, V
         dstart->block<3, 1>(kR + 3 * j, k) = start->R * w.cross(Vec3::Unit(j));
     }
     *W0 << 0.0, 0.0, scale_(2) * u(2), scale_.tail<3>().cwiseProduct(u.tail<3>());
-    (*dstart)(kM + 2, 2) = scale_(2);
+    if (for_index)
+      dstart->block<3, 1>(kM, 2) = scale_(2) * PinnedTwistAxis(u(0), u(1));
+    else
+      (*dstart)(kM + 2, 2) = scale_(2);
   } else {
     start->R = base.R;
     *W0 = scale_.cwiseProduct(u);
@@ -320,6 +324,13 @@ ColumnSolver::PiecewiseFields ColumnSolver::FieldsInPieces(const lie::SE3& base,
                                                           const StaticLoads& loads,
                                                           const RodState& solved,
                                                           int pieces) const {
+  return FieldsInPieces(base, loads, solved, pieces, false);
+}
+
+ColumnSolver::PiecewiseFields ColumnSolver::FieldsInPieces(const lie::SE3& base,
+                                                          const StaticLoads& loads,
+                                                          const RodState& solved, int pieces,
+                                                          bool for_index) const {
   PiecewiseFields f;
   const int n = static_cast<int>(grid().size());
   if (solved.size() != n || pieces < 1) return f;
@@ -327,7 +338,7 @@ ColumnSolver::PiecewiseFields ColumnSolver::FieldsInPieces(const lie::SE3& base,
   lie::SE3 start;
   Vec6 W0;
   StateTangent tangent;
-  Start(base, f.u, &start, &W0, &tangent);
+  Start(base, f.u, &start, &W0, &tangent, for_index);
   f.record.Resize(n);
   for (int i = 0; i < n; ++i) f.record.s[i] = grid()[i];
   f.tangents.resize(n);
@@ -360,20 +371,39 @@ ColumnSolver::PiecewiseFields ColumnSolver::FieldsInPieces(const lie::SE3& base,
 
 int ColumnSolver::StabilityIndexInPieces(const lie::SE3& base, const StaticLoads& loads,
                                          const RodState& solved, int pieces, double zero) const {
-  const PiecewiseFields f = FieldsInPieces(base, loads, solved, pieces);
-  if (!f.finite) return -1;
-  return StabilityIndexFromShot(base, loads, f.u, f.record, f.tangents, zero);
+  const PiecewiseFields f = FieldsInPieces(base, loads, solved, pieces, true);
+  if (!f.finite || !IndexIsDefined(loads, f.u)) return -1;
+  return CountIndex(base, loads, f.record, f.tangents, zero);
 }
 
 int ColumnSolver::StabilityIndexFromShot(const lie::SE3& base, const StaticLoads& loads,
                                          const Vec6& u, const RodState& record,
                                          const std::vector<StateTangent>& tangents,
                                          double zero) const {
-  if (!LoadsAreConservative(loads)) return -1;
-  // A pinned base holding a torque: the base rotations then do work against it like a dead
-  // moment, and the Jacobi fields they start are no longer a Lagrangian subspace. 1e-8 EI/L is
-  // far below any torque that matters and far above the solve's rounding of m₃(0) = 0.
-  if (ends_ == ColumnEnds::kPinnedPinned && std::abs(u(2)) > 1e-8) return -1;
+  if (!IndexIsDefined(loads, u)) return -1;
+  if (ends_ != ColumnEnds::kPinnedPinned || (u(0) == 0.0 && u(1) == 0.0))
+    return CountIndex(base, loads, record, tangents, zero);
+  // A pin turned from its base frame: the fields again, started as the index needs (Start).
+  lie::SE3 start;
+  Vec6 W0;
+  StateTangent dstart;
+  Start(base, u, &start, &W0, &dstart, true);
+  RodState shot;
+  std::vector<StateTangent> fields;
+  shooter_.ShootTangent(start, loads, W0, dstart, &shot, &fields);
+  return CountIndex(base, loads, shot, fields, zero);
+}
+
+bool ColumnSolver::IndexIsDefined(const StaticLoads& loads, const Vec6& u) const {
+  if (!LoadsAreConservative(loads)) return false;
+  // A pinned base holding a torque turns it with the base section (Start), a follower moment
+  // that no potential has. 1e-8 EI/L is far below any torque that matters and far above the
+  // solve's rounding of m₃(0) = 0.
+  return ends_ != ColumnEnds::kPinnedPinned || std::abs(u(2)) <= 1e-8;
+}
+
+int ColumnSolver::CountIndex(const lie::SE3& base, const StaticLoads& loads, const RodState& record,
+                             const std::vector<StateTangent>& tangents, double zero) const {
   // The admissible tip variations η(L) = [δθ_B; δp_B]: a guided tip keeps its lateral position,
   // moving only along the base axis, R(L)ᵀ R_WB e₃ in the tip body frame; a clamped tip also
   // keeps its rotation, δθ_B = 0.

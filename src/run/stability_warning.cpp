@@ -12,28 +12,41 @@ namespace {
 /// RK4's stability limit on y' = −k y, the largest k h at which its Jacobi fields are trusted.
 constexpr double kMaxJacobiKh = 2.8;
 
-/// The mid-span deflection (in L) of the buckled elastica of a pinned-pinned column, or of a
-/// clamped-clamped one (four of its quarter-waves), pressed by `ratio` times its Euler load:
-/// P = (2K(k)/π)² P_E with k = sin(θ₀/2), and the mid-span k L / K(k) (Timoshenko & Gere 1961);
-/// 0.9 sqrt(ratio − 1) to first order. k by bisection on K(k), which rises from π/2 at k = 0;
-/// K(k) = π / (2 AGM(1, sqrt(1 − k²))), the arithmetic–geometric mean.
-double ElasticaMidSpan(double ratio) {
+/// The buckled elastica of a pinned-pinned column, or of a clamped-clamped one (four of its
+/// quarter-waves), pressed by `ratio` times its Euler load: P = (2K(k)/π)² P_E with
+/// k = sin(θ₀/2); its mid-span deflection k L / K(k) and its chord (2E(k)/K(k) − 1) L
+/// (Timoshenko & Gere 1961); 0.9 sqrt(ratio − 1) and 1 to first order. k by bisection on K(k),
+/// which rises from π/2 at k = 0, with K and E from the arithmetic–geometric mean:
+/// K = π / (2 a_∞), E = K (1 − Σ 2^(n−1) c_n²), c₀ = k, c_{n+1} = (a_n − b_n)/2.
+struct Elastica {
+  double mid_span = 0.0;  ///< L
+  double chord = 1.0;     ///< L
+};
+
+Elastica ElasticaAt(double ratio) {
   const double pi = std::acos(-1.0), K = 0.5 * pi * std::sqrt(ratio);
-  auto complete_k = [pi](double k) {
-    double a = 1.0, b = std::sqrt(1.0 - k * k);
+  auto integrals = [pi](double k, double* E) {
+    double a = 1.0, b = std::sqrt(1.0 - k * k), c = k, weight = 0.5, sum = weight * c * c;
     for (int i = 0; i < 40 && a - b > 1e-15 * a; ++i) {
+      c = 0.5 * (a - b);
       const double mean = 0.5 * (a + b);
       b = std::sqrt(a * b);
       a = mean;
+      weight *= 2.0;
+      sum += weight * c * c;
     }
-    return pi / (a + b);
+    const double complete_k = pi / (2.0 * a);
+    if (E) *E = complete_k * (1.0 - sum);
+    return complete_k;
   };
   double lo = 0.0, hi = 1.0;
   for (int i = 0; i < 60; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (complete_k(mid) < K ? lo : hi) = mid;
+    (integrals(mid, nullptr) < K ? lo : hi) = mid;
   }
-  return lo / K;
+  double E = 0.0;
+  const double k_of_lo = integrals(lo, &E);
+  return {lo / K, 2.0 * E / k_of_lo - 1.0};
 }
 }  // namespace
 
@@ -71,9 +84,18 @@ std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const R
   text << std::setprecision(3) << "cosserat: warning: the column is compressed by "
        << compression << " N, " << compression / euler << " times the Euler load of its ends ("
        << euler << " N), yet stands nearly straight (" << off_chord / L
-       << " L off its chord): this equilibrium is unstable, the stable one bows out";
-  if (ends == ColumnEnds::kPinnedPinned || ends == ColumnEnds::kClampedClamped)
-    text << " by about " << ElasticaMidSpan(compression / euler) << " L";
+       << " L off its chord): this equilibrium is unstable";
+  const Elastica bow = ElasticaAt(compression / euler);
+  if (ends == ColumnEnds::kPinnedPinned && bow.chord < 0.0) {
+    // Past about 2.18 P_E the pins of the planar elastica have passed each other, and its
+    // count (ColumnSolver::StabilityIndexFromShot) finds it unstable too, out of its plane.
+    text << ", and so is the planar bow, whose ends would have passed each other ("
+         << -bow.chord << " L)";
+  } else {
+    text << ", the stable one bows out";
+    if (ends == ColumnEnds::kPinnedPinned || ends == ColumnEnds::kClampedClamped)
+      text << " by about " << bow.mid_span << " L";
+  }
   text << " (\"analysis\": \"buckling\" finds the critical load)\n";
   return text.str();
 }

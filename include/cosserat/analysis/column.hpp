@@ -161,9 +161,22 @@ class ColumnSolver {
   const StaticShootingOptions& options() const { return options_; }
 
  private:
-  /// Start state of the shot (R(0), W(0)) and its tangent along u.
+  /// Start state of the shot (R(0), W(0)) and its tangent along u. A pinned base holds its
+  /// torque about the base section's axis (body z: the moment it transmits turns with it, as
+  /// Greenhill's shaft needs); with `for_index` the tangent along the torque is instead the
+  /// pin's twist axis ν (pinned_base.hpp), the direction a conservative joint holding the
+  /// rotations R_WB Exp([a, b, 0]) reacts along. The two agree on a straight column and on any
+  /// equilibrium holding no torque, the only ones the index counts.
   void Start(const lie::SE3& base, const Vec6& u, lie::SE3* start, Vec6* W0,
-             StateTangent* dstart) const;
+             StateTangent* dstart, bool for_index = false) const;
+  /// StabilityIndexFromShot's conditions: conservative loads, no torque held by a pinned base.
+  bool IndexIsDefined(const StaticLoads& loads, const Vec6& u) const;
+  /// The index from Jacobi fields started as Start's `for_index` starts them.
+  int CountIndex(const lie::SE3& base, const StaticLoads& loads, const RodState& record,
+                 const std::vector<StateTangent>& tangents, double zero) const;
+  /// FieldsInPieces, with Start's `for_index`.
+  PiecewiseFields FieldsInPieces(const lie::SE3& base, const StaticLoads& loads,
+                                 const RodState& solved, int pieces, bool for_index) const;
 
   StaticShootingSolver shooter_;
   ColumnEnds ends_;
