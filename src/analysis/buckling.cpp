@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 
 #include "cosserat/strong/load_parameter.hpp"
+#include "cosserat/strong/shooting_exponent.hpp"
 
 namespace cosserat {
 
@@ -67,6 +69,7 @@ bool BucklingOptions::IsValid(std::string* why) const {
     return fail("lambda_tolerance must be in (0, 0.1)");
   if (!(singular_threshold > 0 && singular_threshold < 1))
     return fail("singular_threshold must be in (0, 1)");
+  if (!(max_shot_exponent > 0)) return fail("max_shot_exponent must be positive");
   return solver.IsValid(why);
 }
 
@@ -127,7 +130,20 @@ ColumnSummary BucklingAnalysis::SolveAt(double lambda) {
     column_.SetActuation(path_.ActuationAt(lambda));
     applied_lambda_ = lambda;
   }
-  return column_.Solve(base_, path_.LoadsAt(lambda));
+  const Vec6 before = column_.unknowns();
+  ColumnSummary s = column_.Solve(base_, path_.LoadsAt(lambda));
+  // Under tension the shot's Jacobi fields grow like exp(∫ sqrt(T/EI) ds): past the limit the
+  // σ_min, det J and index read from them are rounding (a 300 m string hanging in mud, exponent
+  // 47, "reached a critical point" under its own weight), so the solve counts as failed there.
+  if (s.converged() &&
+      SingleShootingExponent(model_, std::numeric_limits<double>::infinity(),
+                             path_.ActuationAt(lambda), column_.state()) >
+          options_.max_shot_exponent) {
+    column_.set_unknowns(before);
+    beyond_single_shot_ = true;
+    s.status = SolveStatus::kNonFinite;
+  }
+  return s;
 }
 
 namespace {
@@ -359,7 +375,11 @@ BucklingSummary BucklingAnalysis::FindCriticalLoad() {
   const auto t0 = std::chrono::steady_clock::now();
   BucklingSummary out;
   found_ = false;
-  auto finish = [&](BucklingStatus status) { return FinishSearch(status, t0, &out); };
+  beyond_single_shot_ = false;
+  auto finish = [&](BucklingStatus status) {
+    out.beyond_single_shot = status == BucklingStatus::kPathFailed && beyond_single_shot_;
+    return FinishSearch(status, t0, &out);
+  };
 
   if (path_.fixed != path_.fixed.Scaled(0.0)) {
     // A preload: the straight path under it may already have passed a critical point (a

@@ -225,7 +225,7 @@ std::string SearchInPieces(const io::Problem& problem, const RodModel& model, Co
   const bool loads_only = !path.has_actuation() && model.tendons.empty() &&
                           model.chambers.empty() && !problem.has_robot;
   if (b->status != BucklingStatus::kPathFailed || !loads_only ||
-      !(problem.loads.contact.count > 0 ||
+      !(problem.loads.contact.count > 0 || b->beyond_single_shot ||
         StaticShootingExponent(problem.rod, problem.loads) > 10.0))
     return "";
   *in_pieces =
@@ -237,9 +237,19 @@ std::string SearchInPieces(const io::Problem& problem, const RodModel& model, Co
            std::to_string((*in_pieces)->pieces()) + " pieces\n";
   std::ostringstream note;
   const int pieces = (*in_pieces)->pieces();
-  note << "cosserat: note: the single-shot search could not follow this rod (it failed at "
-       << std::setprecision(6) << ReportedLoad(problem, b->lambda_reached)
-       << "); it was searched again by multiple shooting, in " << pieces
+  if (b->beyond_single_shot) {
+    note << "cosserat: note: one shot from the base cannot resolve this rod's tension ";
+    if (b->lambda_reached > 0.0)
+      note << "from a load of " << std::setprecision(6) << ReportedLoad(problem, b->lambda_reached)
+           << " on";
+    else
+      note << "under the file's loads";
+    note << " (the fields that count its stability grow past e^10 along it)";
+  }
+  else
+    note << "cosserat: note: the single-shot search could not follow this rod (it failed at "
+         << std::setprecision(6) << ReportedLoad(problem, b->lambda_reached) << ")";
+  note << "; it was searched again by multiple shooting, in " << pieces
        << (pieces == 1 ? " piece" : " pieces") << ", its stability counted piece by piece\n";
   if (split.found() && split.critical_load_bracket > 1e-6 * split.critical_load)
     note << "cosserat: note: the solves near the critical load failed before it was refined: it "
@@ -248,8 +258,10 @@ std::string SearchInPieces(const io::Problem& problem, const RodModel& model, Co
          << ReportedLoad(problem, split.critical_load - split.critical_load_bracket) << " and "
          << ReportedLoad(problem, split.critical_load) << "\n";
   const int single_solves = b->solves;
+  const double single_time_s = b->wall_time_s;
   *b = split;
   b->solves += single_solves;
+  b->wall_time_s += single_time_s;
   *state = &(*in_pieces)->state();
   return note.str();
 }

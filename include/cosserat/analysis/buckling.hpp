@@ -61,6 +61,11 @@ struct BucklingOptions {
   double singular_threshold = 1e-6;
   /// The static solves: tolerance and Newton iterations per solve.
   StaticShootingOptions solver;
+  /// The largest exponent ∫ sqrt(T/EI) ds of the axial tension T along a solved equilibrium
+  /// (SingleShootingExponent in statics) the search trusts: the single shot's Jacobi fields grow
+  /// like its exponential, and a solve past it counts as failed (the path ends there; a rod in
+  /// such tension is BucklingInPieces's). 10, the static solvers' limit for one shot.
+  double max_shot_exponent = 10.0;
   /// Called after every accepted point of the scan with its λ and lambda_max; may be empty (a
   /// progress line for a long search).
   std::function<void(double lambda, double lambda_max)> progress;
@@ -121,6 +126,8 @@ struct BucklingSummary {
   double wall_time_s = 0;
   /// With kPreloadPastCritical: the fraction of the fixed loads at which J turned singular.
   double preload_critical_fraction = NAN;
+  /// With kPathFailed: the path ended where the rod's tension passed max_shot_exponent.
+  bool beyond_single_shot = false;
   bool found() const { return status == BucklingStatus::kFound; }
 };
 
@@ -181,6 +188,7 @@ class BucklingAnalysis {
   BucklingOptions options_;
   double applied_lambda_ = 0;  ///< λ of the actuation currently set in column_
   bool found_ = false;
+  bool beyond_single_shot_ = false;  ///< a solve of this search passed max_shot_exponent
   double lambda_cr_ = NAN;
   Vec6 u_cr_ = Vec6::Zero();
   Vec6 v_cr_ = Vec6::Zero();
