@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cosserat/io/problem.hpp"
@@ -196,10 +197,26 @@ void ParseEnvironment(const ObjectReader& o, Fluid* fluid, FluidGust* gust,
 /// The unloaded rod must not start with its centreline past a contact surface (a penetration
 /// deeper than its outer radius): the penalty would push it on through, or out with an enormous
 /// force. Checked on 201 points of the rest centreline; a shallower start is allowed (the
-/// surface pushes it out).
+/// surface pushes it out). A line held at both ends starts from a shape hung between them, not
+/// from its rest centreline: there its two held points are checked.
 void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
   const ContactSurfaces& contact = p.loads.contact;
   if (contact.count == 0) return;
+  if (p.boundary == Boundary::kAnchored) {
+    for (int k = 0; k < contact.count; ++k) {
+      const std::string path = "environment.contact[" + std::to_string(k) + "]";
+      Vec3 normal;
+      for (const auto& [name, point] :
+           {std::pair<const char*, Vec3>{"base.position", p.base.p},
+            std::pair<const char*, Vec3>{"anchor.position", p.anchor.position}}) {
+        const double distance = contact.surface[k].Distance(point, &normal);
+        if (distance < 0.0)
+          report->Add(path, std::string("the line is held inside this surface: its ") + name +
+                                " is " + FormatNumber(-distance) + " m past it");
+      }
+    }
+    return;
+  }
   constexpr int kPoints = 201;
   const std::vector<Vec3> centreline = RestCentreline_W(p.rod, p.base, kPoints);
   for (int k = 0; k < contact.count; ++k) {
