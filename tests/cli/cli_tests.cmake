@@ -365,6 +365,9 @@ set_tests_properties(cli.rod_on_table_csv_has_contact_columns PROPERTIES
                      DEPENDS cli.solve_rod_on_table_csv)
 cosserat_cli_test(NAME contact_starts_inside ARGS validate "${_cli_dir}/contact_starts_inside.json"
                   CODE 2 STDERR "environment.contact\\[0\\]: the rod starts inside this surface: at s = 0\\.25 m its centreline is 0\\.05 m past it")
+# An anchored line starts hung between its held points: an anchor below the sea bed is named.
+cosserat_cli_test(NAME anchor_inside_bed ARGS validate "${_cli_dir}/anchor_inside_bed.json"
+                  CODE 2 STDERR "environment.contact\\[0\\]: the line is held inside this surface: its anchor\\.position is 2 m past it")
 
 # The soft silicone cantilever with default settings, in both formulations (the SE(3) stepper
 # choosing its shooting pieces; the quaternion-FD path at 1 ms frames). Both runs must converge
