@@ -83,13 +83,19 @@ struct Command {
 std::string OptionValue(const std::vector<std::string>& args, std::size_t* i,
                         const std::string& option) {
   const std::string& arg = args[*i];
+  const std::string needs = option + (option == "--vtk"       ? " needs a directory"
+                                      : option == "--threads" ? " needs a number of threads"
+                                                              : " needs a file name");
+  std::string value;
   if (arg.size() > option.size() && arg.compare(0, option.size() + 1, option + "=") == 0)
-    return arg.substr(option.size() + 1);
-  if (*i + 1 >= args.size())
-    throw UsageError{option + (option == "--vtk"       ? " needs a directory"
-                               : option == "--threads" ? " needs a number of threads"
-                                                       : " needs a file name")};
-  return args[++*i];
+    value = arg.substr(option.size() + 1);
+  else if (*i + 1 < args.size())
+    value = args[++*i];
+  else
+    throw UsageError{needs};
+  // An empty name (`--csv=`, `--out ""`) is no file: refused before the run, not after it.
+  if (value.empty()) throw UsageError{needs + " (got an empty one)"};
+  return value;
 }
 
 /// True when both paths name one existing file.

@@ -94,8 +94,20 @@ std::string FormatNumber(double x) {
 
 // --- Collecting errors -------------------------------------------------------------------------
 
+namespace {
+
+// A line's part echoed from the file, cut to `limit` characters: a key or a string of
+// megabytes would otherwise come back whole on one line.
+std::string Cut(const std::string& text, std::size_t limit) {
+  if (text.size() <= limit) return text;
+  return text.substr(0, limit) + "... (" + std::to_string(text.size() - limit) +
+         " more characters)";
+}
+
+}  // namespace
+
 void ErrorReport::Add(const std::string& path, const std::string& message) {
-  lines_.push_back(ShownPath(path) + ": " + message);
+  lines_.push_back(Cut(ShownPath(path), 200) + ": " + Cut(message, 2000));
 }
 
 void ErrorReport::Expected(const std::string& path, const std::string& expected,

@@ -176,6 +176,9 @@ cosserat_cli_test(NAME unknown_command ARGS frobnicate CODE 2 STDERR "unknown co
 cosserat_cli_test(NAME unknown_option ARGS solve "${_cli_example}" --fast CODE 2
                   STDERR "unknown option '--fast'")
 cosserat_cli_test(NAME missing_problem ARGS solve CODE 2 STDERR "needs a problem file")
+# An empty output name is refused before the run (else the whole run went first).
+cosserat_cli_test(NAME empty_csv_name ARGS solve "${_cli_example}" "--csv="
+                  CODE 2 STDERR "--csv needs a file name \\(got an empty one\\)")
 cosserat_cli_test(NAME missing_file ARGS validate "${_cli_dir}/does_not_exist.json" CODE 2
                   STDERR "does_not_exist.json: cannot read")
 
