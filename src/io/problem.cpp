@@ -424,6 +424,17 @@ void CheckWithLibrary(const Problem& p, ErrorReport* report) {
   }
   if (!p.rod.IsValid(&why)) report->Add("rod", why);
   if (report->empty()) CheckSectionsAtNodes(p, report);
+  // A point so far from the origin that a double no longer resolves the rod's shape there: at
+  // 1e9 rod lengths it keeps 2e-7 of one, at 1e16 m a metre rod's deflection is lost whole.
+  const double far = 1e9 * p.rod.length;
+  for (const auto& [where, point] :
+       {std::pair<const char*, Vec3>{"base.position", p.base.p},
+        std::pair<const char*, Vec3>{"anchor.position", p.anchor.position}})
+    if (point.cwiseAbs().maxCoeff() > far)
+      report->Expected(where,
+                       "a point within 1e9 rod lengths (" + FormatNumber(far) +
+                           " m) of the origin, where a double still resolves the rod's shape",
+                       FormatNumber(point.cwiseAbs().maxCoeff()) + " m away");
   if (!p.loads.IsValid(&why)) report->Add("loads", why);
   const int tendons = static_cast<int>(p.rod.tendons.size());
   const int chambers = static_cast<int>(p.rod.chambers.size());
