@@ -22,26 +22,35 @@ using json = nlohmann::json;
 const std::vector<std::string> kRobotKinds = {"tendon", "jamming", "eversion", "pneumatic"};
 const std::vector<std::string> kRoutes = {"parallel", "converging", "helical"};
 
-/// The radius within which tendon guides may sit: "disk_radius" if given, else the outer radius
-/// of a circle, annulus or rectangle section; nullopt when neither says (no check).
-std::optional<double> GuideRadius(const ObjectReader& robot, const json& top) {
-  if (robot.Has("disk_radius"))
-    return ReadNumber(robot, "disk_radius", PositiveNumber(), Presence::kOptional);
+/// Where tendon guides may sit: within "disk_radius" if given, else within the section's
+/// outline, a circle or annulus (its outer radius) or a rectangle (its half width and height);
+/// neither when the file says neither (no check).
+struct TendonGuides {
+  std::optional<double> radius;      ///< m
+  std::optional<Vec2> half_extent;   ///< m, along body x and y
+};
+
+TendonGuides GuidesOf(const ObjectReader& robot, const json& top) {
+  TendonGuides out;
+  if (robot.Has("disk_radius")) {
+    out.radius = ReadNumber(robot, "disk_radius", PositiveNumber(), Presence::kOptional);
+    return out;
+  }
   const json* rod = top.contains("rod") ? &top["rod"] : nullptr;
-  if (!rod || !rod->is_object() || !rod->contains("section")) return std::nullopt;
+  if (!rod || !rod->is_object() || !rod->contains("section")) return out;
   const json& s = (*rod)["section"];
-  if (!s.is_object()) return std::nullopt;
+  if (!s.is_object()) return out;
   auto number = [&](const char* key) -> std::optional<double> {
     if (s.contains(key) && s[key].is_number()) return s[key].get<double>();
     return std::nullopt;
   };
-  if (auto r = number("radius")) return r;
-  if (auto r = number("outer_radius")) return r;
-  if (auto w = number("width"), h = number("height"); w && h) return 0.5 * std::hypot(*w, *h);
-  return std::nullopt;
+  if (auto r = number("radius")) out.radius = r;
+  if (auto r = number("outer_radius")) out.radius = r;
+  if (auto w = number("width"), h = number("height"); w && h) out.half_extent = Vec2(*w, *h) / 2;
+  return out;
 }
 
-std::optional<Tendon> ParseTendon(const ObjectReader& t, std::optional<double> guide_radius) {
+std::optional<Tendon> ParseTendon(const ObjectReader& t, const TendonGuides& guides) {
   const std::optional<std::string> route = ReadChoice(t, "route", kRoutes, Presence::kRequired);
   std::vector<std::string> keys = {"name", "route", "anchor"};
   if (route == "parallel") keys.push_back("offset");
@@ -52,27 +61,41 @@ std::optional<Tendon> ParseTendon(const ObjectReader& t, std::optional<double> g
   out.name = ReadString(t, "name", Presence::kOptional).value_or("");
   out.anchor = ReadNumber(t, "anchor", PositiveNumber(), Presence::kOptional).value_or(0.0);
   if (!route) return std::nullopt;
-  // Each offset must lie within the guides' radius.
+  // Each offset (a helix: every point of it) must lie within the guides.
   bool ok = true;
-  auto inside = [&](const std::string& key, double r) {
-    if (guide_radius && r > *guide_radius) {
+  const std::string wider = "; set robot.disk_radius for guide disks wider than the rod)";
+  auto inside = [&](const std::string& key, const Vec2& r, bool helix) {
+    if (guides.radius && r.norm() > *guides.radius) {
       t.report().Expected(t.PathOf(key),
-                          "an offset within the section (|r| <= " + FormatNumber(*guide_radius) +
-                              " m; set robot.disk_radius for guide disks wider than the rod)",
-                          FormatNumber(r) + " m from the axis");
+                          "an offset within the section (|r| <= " + FormatNumber(*guides.radius) +
+                              " m" + wider,
+                          FormatNumber(r.norm()) + " m from the axis");
+      ok = false;
+    } else if (const auto& e = guides.half_extent;
+               e && (helix ? r.norm() > e->minCoeff()
+                           : std::abs(r.x()) > e->x() || std::abs(r.y()) > e->y())) {
+      t.report().Expected(t.PathOf(key),
+                          (helix ? "a helix within the rectangle (radius <= " +
+                                       FormatNumber(e->minCoeff()) + " m"
+                                 : "an offset within the rectangle (|x| <= " +
+                                       FormatNumber(e->x()) + " m, |y| <= " +
+                                       FormatNumber(e->y()) + " m") +
+                              wider,
+                          helix ? FormatNumber(r.norm()) + " m"
+                                : "[" + FormatNumber(r.x()) + ", " + FormatNumber(r.y()) + "]");
       ok = false;
     }
   };
   if (*route == "parallel") {
     const auto r = ReadOffset(t, "offset");
     if (!r) return std::nullopt;
-    inside("offset", r->norm());
+    inside("offset", *r, false);
     out.route = TendonRoute::Parallel(*r);
   } else if (*route == "converging") {
     const auto a = ReadOffset(t, "offset_base"), b = ReadOffset(t, "offset_tip");
     if (!a || !b) return std::nullopt;
-    inside("offset_base", a->norm());
-    inside("offset_tip", b->norm());
+    inside("offset_base", *a, false);
+    inside("offset_tip", *b, false);
     out.route = TendonRoute::Converging(*a, *b);
   } else {
     const auto radius = ReadNumber(t, "radius", PositiveNumber(), Presence::kRequired);
@@ -81,7 +104,7 @@ std::optional<Tendon> ParseTendon(const ObjectReader& t, std::optional<double> g
     const auto pitch = ReadNumber(t, "pitch", nonzero, Presence::kRequired);
     const auto phase = ReadNumber(t, "phase", AnyFiniteNumber(), Presence::kOptional);
     if (!radius || !pitch) return std::nullopt;
-    inside("radius", *radius);
+    inside("radius", Vec2(*radius, 0.0), true);
     out.route = TendonRoute::Helical(*radius, *pitch, phase.value_or(0.0));
   }
   if (!ok) return std::nullopt;
@@ -193,9 +216,9 @@ int JammingSegments(const json& top) {
                                                             : 0;
 }
 
-/// "tendons": each tendon's route, within the guides' radius `guide`, and its anchor within the
+/// "tendons": each tendon's route, within the guides, and its anchor within the
 /// rod.
-void ParseTendons(const ObjectReader& robot, std::optional<double> guide, Problem* p) {
+void ParseTendons(const ObjectReader& robot, const TendonGuides& guide, Problem* p) {
   p->rod.tendons.clear();
   if (const json* t = robot.Find("tendons")) {
     const std::string path = robot.PathOf("tendons");
@@ -269,7 +292,7 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
                       .value_or(RobotKind::kNone);
   ReadString(robot, "description", Presence::kOptional);
   ReadString(robot, "source", Presence::kOptional);
-  const std::optional<double> guide = GuideRadius(robot, top);
+  const TendonGuides guide = GuidesOf(robot, top);
 
   // A profile solved at fixed pressures (rod.stiffness_profile) hands them to the robot; its
   // actuation may change the jamming pressures, and repeat (not contradict) the pressure.

@@ -368,6 +368,9 @@ set_tests_properties(cli.rod_on_table_csv_has_contact_columns PROPERTIES
                      DEPENDS cli.solve_rod_on_table_csv)
 cosserat_cli_test(NAME contact_starts_inside ARGS validate "${_cli_dir}/contact_starts_inside.json"
                   CODE 2 STDERR "environment.contact\\[0\\]: the rod starts inside this surface: at s = 0\\.25 m its centreline is 0\\.05 m past it")
+# Tendons within a rectangle's outline, not its half-diagonal: a parallel offset and a helix.
+cosserat_cli_test(NAME tendon_outside_rectangle ARGS validate "${_cli_dir}/tendon_outside_rectangle.json"
+                  CODE 2 STDERR "robot.tendons\\[0\\].offset: expected an offset within the rectangle \\(\\|x\\| <= 0.01 m, \\|y\\| <= 0.005 m.*got \\[0, 0.009\\].*robot.tendons\\[1\\].radius: expected a helix within the rectangle \\(radius <= 0.005 m")
 # A base so far from the origin that a double loses the rod's deflection is refused, named.
 cosserat_cli_test(NAME base_far_away ARGS validate "${_cli_dir}/base_far_away.json" CODE 2
                   STDERR "base.position: expected a point within 1e9 rod lengths \\(5e\\+08 m\\) of the origin.*got 1e\\+16 m away")
