@@ -237,6 +237,9 @@ void BindLoads(py::module_& m) {
                           "force (N/m), a tip force (N) and moment (N·m), and the fluid "
                           "around the rod (buoyancy, drag, added mass).")
       .def(py::init<>())
+      // copy.copy(p.loads): a Loads of one's own to change (p.loads is the problem's).
+      .def("__copy__", [](const StaticLoads& l) { return l; })
+      .def("__deepcopy__", [](const StaticLoads& l, py::dict) { return l; })
       .def_readwrite("fluid", &StaticLoads::fluid)
       .def_readwrite("gravity", &StaticLoads::gravity_W)
       .def_readwrite("distributed_force", &StaticLoads::distributed_force_W)
@@ -272,6 +275,8 @@ void BindActuation(py::module_& m) {
                         "chamber pressures (Pa, gauge, in the robot's chamber order), "
                         "inflation pressure (Pa), jamming pressure per segment (Pa).")
       .def(py::init<>())
+      .def("__copy__", [](const Actuation& a) { return a; })
+      .def("__deepcopy__", [](const Actuation& a, py::dict) { return a; })
       .def_readwrite("pressure", &Actuation::pressure)
       .def_property("tendon_tension", ArrayGetter(&Actuation::tendon_tension),
                     ArraySetter(&Actuation::tendon_tension, "tendon_tension"))
@@ -306,7 +311,12 @@ void BindProblem(py::module_& m) {
       .def_property_readonly("base_position", [](const io::Problem& p) { return p.base.p; })
       .def_property_readonly("base_rotation", [](const io::Problem& p) { return p.base.R; })
       .def_readwrite("loads", &io::Problem::loads)
-      .def_property_readonly("actuation", [](const io::Problem& p) { return p.robot.actuation; })
+      // The problem's own actuation, as `loads` is: `p.actuation.tendon_tension[0] = 2` edits
+      // it (a copy made that a silent no-op); solve() checks it.
+      .def_property(
+          "actuation", [](io::Problem& p) -> Actuation& { return p.robot.actuation; },
+          [](io::Problem& p, const Actuation& a) { p.robot.actuation = Valid(a, p); },
+          py::return_value_policy::reference_internal)
       .def_property_readonly(
           "tendon_count", [](const io::Problem& p) { return p.rod.tendons.size(); },
           "The tendons of the rod (robot.tendons): the length of actuation.tendon_tension.")
@@ -315,8 +325,11 @@ void BindProblem(py::module_& m) {
           "The pressurised chambers of the rod (robot.chambers).")
       .def_property_readonly("jamming_segment_count", &python::JammingSegments,
                              "The switchable segments of a layer-jamming rod (0 for any other).")
-      .def_property_readonly("initial_actuation",
-                             [](const io::Problem& p) { return p.robot.initial_actuation; })
+      .def_property(
+          "initial_actuation",
+          [](io::Problem& p) -> Actuation& { return p.robot.initial_actuation; },
+          [](io::Problem& p, const Actuation& a) { p.robot.initial_actuation = Valid(a, p); },
+          py::return_value_policy::reference_internal)
       .def_property_readonly("dt", [](const io::Problem& p) { return p.dynamics.dt; })
       .def_property_readonly("duration", [](const io::Problem& p) { return p.dynamics.duration; })
       .def_property_readonly("initial_loads", [](const io::Problem& p) {
@@ -378,7 +391,10 @@ void BindSolve(py::module_& m) {
   m.def(
       "solve",
       [](const io::Problem& problem, bool nodes) {
-        Valid(problem.loads);  // Problem.loads is assignable from Python
+        // Problem.loads and actuation are assignable, and editable in place, from Python.
+        Valid(problem.loads);
+        Valid(problem.robot.actuation, problem);
+        Valid(problem.robot.initial_actuation, problem);
         const std::vector<std::string> unsupported = io::UnsupportedFeatures(problem);
         if (!unsupported.empty()) {
           std::string message;

@@ -75,8 +75,10 @@ class PyStepper {
                    std::optional<Vec6> base_wrench_B, std::optional<Actuation> actuation) {
     run();  // a state to step from
     StepInput next = input_;
-    if (loads) next.loads = Valid(*loads);
-    if (actuation) next.actuation = Valid(*actuation, problem_);
+    // What is not given keeps the last step's, which `loads` and `actuation` may have edited in
+    // place: checked alike.
+    next.loads = Valid(loads ? *loads : input_.loads);
+    next.actuation = Valid(actuation ? *actuation : input_.actuation, problem_);
     if (base_position) next.base_pose.p = Finite(*base_position, "base_position");
     if (base_rotation) next.base_pose.R = Rotation(*base_rotation, "base_rotation");
     if (base_twist_B) next.base_twist_B = Finite(*base_twist_B, "base_twist_B");
@@ -108,6 +110,8 @@ class PyStepper {
   }
   int shot_steps() const { return stepper_->shot_steps(); }  // planned at construction
   const StepInput& input() const { return input_; }
+  StepInput& input() { return input_; }
+  const io::Problem& problem() const { return problem_; }
   const Bdf2Options& options() const { return options_; }
 
  private:
@@ -221,12 +225,18 @@ void BindStepperClass(py::module_& m) {
           "shot_steps", &PyStepper::shot_steps,
           "The steps of the shot in s: the grid's segments less the pairs the default scheme "
           "forms (docs/dynamics.md, \"Choosing the scheme in s\").")
-      .def_property_readonly(
-          "loads", [](const PyStepper& s) { return s.input().loads; },
-          "A copy of the loads step() applies.")
-      .def_property_readonly(
-          "actuation", [](const PyStepper& s) { return s.input().actuation; },
-          "A copy of the actuation step() applies.")
+      .def_property(
+          "loads", [](PyStepper& s) -> StaticLoads& { return s.input().loads; },
+          [](PyStepper& s, const StaticLoads& loads) { s.input().loads = Valid(loads); },
+          py::return_value_policy::reference_internal,
+          "The loads the next step() applies unless given others: edited in place or "
+          "assigned, they are its (checked at that step).")
+      .def_property(
+          "actuation", [](PyStepper& s) -> Actuation& { return s.input().actuation; },
+          [](PyStepper& s, const Actuation& a) { s.input().actuation = Valid(a, s.problem()); },
+          py::return_value_policy::reference_internal,
+          "The actuation the next step() applies unless given another: `s.actuation."
+          "tendon_tension[0] = 2` sets it (checked at that step).")
       .def("save", &PyStepper::Save,
            "A Snapshot of the run (state, history and inputs) for restore(); allocates.")
       .def("restore", &PyStepper::Restore,

@@ -1,5 +1,7 @@
 """cosserat.Actuation: what the actuators do, remembering which fields were given, so that a
 solver fits it to its problem as it fits a dict with the file's robot.actuation keys."""
+import copy
+
 import numpy as np
 
 from . import _core
@@ -103,7 +105,7 @@ class ProblemRules:
     def __init__(self, problem):
         self.counts = {field: getattr(problem, count_name)
                        for field, (count_name, _, _) in _LISTS.items()}
-        self.file = problem.actuation  # a copy: a whole state
+        self.file = copy.copy(problem.actuation)  # a whole state, as the solver took it
         self.has_pressure = self.file.pressure != 0
         self.has_jamming = bool(any(self.file.jamming_pressure))
         # Whether the section reads an inflation pressure, asked of the file's rules once: their

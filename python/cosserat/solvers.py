@@ -1,5 +1,6 @@
 """The core's solver classes, taking a problem as solve() does: a Problem, a dict with the
 problem-file keys, or a file path."""
+import copy
 import warnings
 
 import numpy as np
@@ -46,7 +47,7 @@ def _loads_from(value, holder):
     is a hot path)."""
     if not isinstance(value, dict):
         return value
-    loads = holder.loads  # a copy: its fluid, contact and bit stay; the keyed loads start over
+    loads = copy.copy(holder.loads)  # its fluid, contact and bit stay; the keyed loads start over
     gravity = np.array(loads.gravity)  # m/s², the holder's
     for key, default in _LOAD_DEFAULTS.items():
         setattr(loads, key, default)

@@ -332,7 +332,7 @@ class LiveRod:
         if not summary.converged:
             summary = stepper.initialize_at_rest(problem.loads)
         status = "running" if summary.converged else "initial equilibrium failed"
-        loads, act = problem.loads, problem.actuation  # copies, changed by the controls
+        loads, act = copy.copy(problem.loads), copy.copy(problem.actuation)  # the controls
         n_tendons = len(self.spec.get("robot", {}).get("tendons", []))
         n_chambers = len(self.spec.get("robot", {}).get("chambers", []))
         n_jam = sum(1 for c in self.controls if c["name"].startswith("jamming_"))

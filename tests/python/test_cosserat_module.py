@@ -1,5 +1,6 @@
 """Tests of the `cosserat` Python module against analytic results (run by ctest as python.module,
 with PYTHONPATH at build/python and the repository root as working directory)."""
+import copy
 import json
 import math
 import os
@@ -162,6 +163,23 @@ class ProblemFiles(unittest.TestCase):
             cosserat.Stepper(wire("dynamics", {"boundary": "pinned-pinned"}))
 
 
+    def test_a_problems_actuation_edited_in_place_is_solved(self):
+        # p.actuation is the problem's own, as p.loads is: a tension edited in place is the one
+        # solved, the same result as the same actuation assigned whole (a copy had made the
+        # edit a silent no-op). An edit the rules refuse is named by solve().
+        edited = cosserat.load_problem("robots/tendon_three_tendon.json")
+        edited.actuation.tendon_tension[:3] = [0.2, 0.0, 0.0]
+        assigned = cosserat.load_problem("robots/tendon_three_tendon.json")
+        assigned.actuation = cosserat.Actuation(tendon_tension=[0.2, 0.0, 0.0])
+        a, b = cosserat.solve(edited)["result"], cosserat.solve(assigned)["result"]
+        self.assertEqual(a["robot"]["tendon_tension"], [0.2, 0.0, 0.0])
+        self.assertEqual(a["tip"], b["tip"])
+        self.assertNotEqual(a["tip"], cosserat.solve(cosserat.load_problem(
+            "robots/tendon_three_tendon.json"))["result"]["tip"])  # the file's tensions differ
+        edited.actuation.tendon_tension[1] = float("nan")
+        with self.assertRaisesRegex(ValueError, "actuation.tendon_tension"):
+            cosserat.solve(edited)
+
 class Statics(unittest.TestCase):
     def test_tip_load_matches_the_elastica(self):
         # Bisshopp & Drucker's closed form (tests/reference/elastica_tip_load.json). Tolerance
@@ -312,6 +330,26 @@ class Dynamics(unittest.TestCase):
         with warnings.catch_warnings():
             warnings.simplefilter("error")
             cosserat.Stepper(soft, dt=0.002)
+
+    def test_actuation_and_loads_edited_in_place_are_applied(self):
+        # A stepper's actuation and loads edited in place are what its next step applies: the
+        # same run, bit for bit, as the same values given to step(). An edit the file's rules
+        # refuse (a negative tension) is named at that step, and the step is not taken.
+        p = cosserat.load_problem("tests/cli/tendon_dynamics.json")
+        a, b = cosserat.Stepper(p), cosserat.Stepper(p)
+        self.assertTrue(a.initialize_at_rest().converged and b.initialize_at_rest().converged)
+        a.actuation.tendon_tension[:3] = [1.0, 0.5, 0.0]
+        a.loads.tip_force = [0.1, 0, 0]
+        for _ in range(20):
+            self.assertTrue(a.step().converged)
+            self.assertTrue(b.step({"gravity": list(p.loads.gravity), "tip_force": [0.1, 0, 0]},
+                                   actuation={"tension": [1.0, 0.5, 0.0]}).converged)
+        np.testing.assert_array_equal(a.tip_position(), b.tip_position())
+        a.actuation.tendon_tension[0] = -1.0
+        t = a.time
+        with self.assertRaisesRegex(ValueError, "actuation.tendon_tension"):
+            a.step()
+        self.assertEqual(a.time, t)
 
     def test_a_step_takes_loads_and_actuation_as_dicts(self):
         # The same inputs as objects or as dicts with the problem file's keys: the same run, bit
@@ -515,7 +553,7 @@ class Dynamics(unittest.TestCase):
         p = cosserat.load_problem("robots/tendon_three_tendon.json")
         stepper = cosserat.Stepper(p)
         self.assertTrue(stepper.initialize_at_rest().converged)
-        loads = stepper.loads
+        loads = copy.copy(stepper.loads)  # stepper.loads is what its next step applies
         loads.tip_force = [0.5, 0, 0]
         bad = cosserat.Actuation()
         bad.tendon_tension = [float("nan"), 0.0, 0.0]
