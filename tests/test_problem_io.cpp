@@ -18,6 +18,7 @@
 #include "cosserat/rod/grid.hpp"
 #include "cosserat/rod/section_profile.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
+#include "support/source_json.hpp"
 
 namespace cosserat::io {
 namespace {
@@ -784,6 +785,24 @@ TEST(ProblemIoErrors, AnnulusAndBandRanges) {
   EXPECT_ERROR(r, "rod.stiffness_profile[1].factor: expected a positive number, got -1");
   EXPECT_ERROR(r, "rod.stiffness_profile[2]: expected a band", "got 5");
   EXPECT_ERROR(r, "rod.material.poisson_ratio: expected a number in (-1, 0.5], got 0.7");
+}
+
+// A wrong rod (a negative radius, a negative modulus) is named once: the robot's tendon anchors,
+// tendon offsets and chambers checked against it said the rod was 0 m long or -1 m wide.
+TEST(ProblemIoErrors, AWrongRodIsNamedWithoutFollowOnErrorsInItsRobot) {
+  for (const char* file : {"robots/tendon_two_segment.json", "robots/pneumatic_finger.json"}) {
+    for (const char* wrong : {"radius", "youngs_modulus"}) {
+      json j = testing::SourceJson(file);
+      if (std::string(wrong) == "radius")
+        j["rod"]["section"]["radius"] = -1;
+      else
+        j["rod"]["material"]["youngs_modulus"] = -5;
+      const ParseResult r = Parse(j);
+      ASSERT_EQ(r.errors.size(), 1u) << file << " " << wrong << ": " << r.errors.front() << " / "
+                                     << r.errors.back();
+      EXPECT_NE(r.errors.front().find(wrong), std::string::npos) << r.errors.front();
+    }
+  }
 }
 
 TEST(ProblemIoErrors, BandEndBeyondLengthAndTooFewNodes) {

@@ -25,8 +25,10 @@ Outline SectionOutline(const json& top) {
     return out;
   const json& s = top["rod"]["section"];
   if (!s.is_object()) return out;
+  // Only a size the file got right bounds anything (a wrong one is reported by the section).
   auto number = [&](const char* key) -> std::optional<double> {
-    if (s.contains(key) && s[key].is_number()) return s[key].get<double>();
+    if (s.contains(key) && s[key].is_number() && s[key].get<double>() > 0)
+      return s[key].get<double>();
     return std::nullopt;
   };
   if (auto r = number("radius")) out.radius = r;

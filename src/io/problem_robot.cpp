@@ -40,8 +40,10 @@ TendonGuides GuidesOf(const ObjectReader& robot, const json& top) {
   if (!rod || !rod->is_object() || !rod->contains("section")) return out;
   const json& s = (*rod)["section"];
   if (!s.is_object()) return out;
+  // Only a size the file got right bounds anything (a wrong one is reported by the section).
   auto number = [&](const char* key) -> std::optional<double> {
-    if (s.contains(key) && s[key].is_number()) return s[key].get<double>();
+    if (s.contains(key) && s[key].is_number() && s[key].get<double>() > 0)
+      return s[key].get<double>();
     return std::nullopt;
   };
   if (auto r = number("radius")) out.radius = r;
@@ -234,7 +236,8 @@ void ParseTendons(const ObjectReader& robot, const TendonGuides& guide, Problem*
           continue;
         }
         if (auto tendon = ParseTendon(ObjectReader((*t)[i], tp, &robot.report()), guide)) {
-          if (tendon->anchor > p->rod.length)
+          // A rod reported as wrong has no length here: its anchors are then not judged.
+          if (p->rod.length > 0 && tendon->anchor > p->rod.length)
             robot.report().Expected(tp + ".anchor",
                                     "an arc length within the rod (<= rod.length, " +
                                         FormatNumber(p->rod.length) + " m; 0 or absent: the tip)",
