@@ -1173,6 +1173,10 @@ TEST(ProblemIoErrors, DynamicsTimes) {
   j["dynamics"] = {{"dt", 1e-9}, {"duration", 100.0}};
   EXPECT_ERROR(Parse(j), "dynamics.dt: expected a time step giving at most 10000000 steps",
                "got 1e-09");
+  // A duration far too long for its step is named, not the step the file also gave.
+  j["dynamics"] = {{"dt", 0.002}, {"duration", 1e300}};
+  EXPECT_ERROR(Parse(j), "dynamics.duration: expected a duration giving at most 10000000 steps "
+               "of dt (0.002 s)", "got 1e+300, 5e+302 steps");
   j["dynamics"] = {{"dt", 0.01}, {"duration", 0.1}, {"output_intervall", 0.02}};
   EXPECT_ERROR(Parse(j),
                "dynamics.output_intervall: unknown key (did you mean \"output_interval\"?)");

@@ -217,10 +217,20 @@ void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
                         "a time step no longer than duration (" + FormatNumber(d->duration) + " s)",
                         got_dt);
   } else if (both_usable && std::round(d->duration / d->dt) > kMaxDynamicsSteps) {
-    o.report().Expected(o.PathOf("dt"),
-                        "a time step giving at most " + std::to_string(kMaxDynamicsSteps) +
-                            " steps over duration (" + FormatNumber(d->duration) + " s)",
-                        got_dt + ", " + FormatNumber(std::round(d->duration / d->dt)) + " steps");
+    const std::string steps = FormatNumber(std::round(d->duration / d->dt)) + " steps";
+    // The value the file gave is named; given both, the duration, unless the step is below a
+    // nanosecond (no rod's dynamics needs one).
+    if (o.Has("duration") && (!o.Has("dt") || d->dt > 1e-9))
+      o.report().Expected(o.PathOf("duration"),
+                          "a duration giving at most " + std::to_string(kMaxDynamicsSteps) +
+                              " steps of dt (" + FormatNumber(d->dt) +
+                              (o.Has("dt") ? " s)" : " s, the default)"),
+                          Describe(*o.Find("duration")) + ", " + steps);
+    else
+      o.report().Expected(o.PathOf("dt"),
+                          "a time step giving at most " + std::to_string(kMaxDynamicsSteps) +
+                              " steps over duration (" + FormatNumber(d->duration) + " s)",
+                          got_dt + ", " + steps);
   }
   d->tip_mass =
       ReadNumber(o, "tip_mass", NonNegativeNumber(), Presence::kOptional).value_or(d->tip_mass);
@@ -333,13 +343,19 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
     // (the SE(3) path rounds it to whole steps of dt, which are capped above): cap the frames.
     const Problem::Dynamics& d = p->dynamics;
     const double frames = std::round(d.duration / d.output_interval);
+    const bool name_duration =
+        o->Has("duration") && (!o->Has("output_interval") || d.output_interval > 1e-9);
     if (p->formulation == Formulation::kQuaternionFd && d.output_interval > 0 &&
         frames > kMaxQuatFdFrames)
       o->report().Expected(
-          o->PathOf("output_interval"),
-          "an interval giving at most " + std::to_string(kMaxQuatFdFrames) +
-              " frames over duration (" + FormatNumber(d.duration) + " s)",
-          FormatNumber(d.output_interval) + ", " + FormatNumber(frames) + " frames");
+          o->PathOf(name_duration ? "duration" : "output_interval"),
+          (name_duration ? "a duration giving at most " + std::to_string(kMaxQuatFdFrames) +
+                               " frames of output_interval (" + FormatNumber(d.output_interval) +
+                               " s)"
+                         : "an interval giving at most " + std::to_string(kMaxQuatFdFrames) +
+                               " frames over duration (" + FormatNumber(d.duration) + " s)"),
+          FormatNumber(name_duration ? d.duration : d.output_interval) + ", " +
+              FormatNumber(frames) + " frames");
   }
   CheckHeldTipLoads(top, *p);
   const auto buckling =
