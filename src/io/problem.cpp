@@ -15,6 +15,7 @@
 #include "cosserat/io/json_document.hpp"
 #include "cosserat/io/json_reader.hpp"
 #include "cosserat/io/text_file.hpp"
+#include "cosserat/rod/grid.hpp"
 #include "cosserat/rod/rest_shape.hpp"
 #include "problem_assembly.hpp"
 #include "problem_buckling.hpp"
@@ -389,9 +390,8 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
 /// The section at every node as the solvers will take it: finite stiffness and mass (an area
 /// of 1e300 m² overflows E A), and principal axes. `validate` then passes only what runs.
 void CheckSectionsAtNodes(const Problem& p, ErrorReport* report) {
-  const int n = std::max(p.nodes, 2);
-  for (int i = 0; i < n; ++i) {
-    const double s = p.rod.length * i / (n - 1);
+  // The solvers' own grid: its nodes include every band's ends, where a short band lies.
+  for (const double s : ModelGrid(p.rod, std::max(p.nodes, 2))) {
     const SectionProperties sp = p.rod.section->At(s, p.robot.actuation);
     if (!sp.stiffness.allFinite() || !sp.mass.allFinite()) {
       report->Add("rod.section", "its stiffness or mass per length at s = " + FormatNumber(s) +

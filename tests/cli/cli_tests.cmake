@@ -368,6 +368,10 @@ set_tests_properties(cli.rod_on_table_csv_has_contact_columns PROPERTIES
                      DEPENDS cli.solve_rod_on_table_csv)
 cosserat_cli_test(NAME contact_starts_inside ARGS validate "${_cli_dir}/contact_starts_inside.json"
                   CODE 2 STDERR "environment.contact\\[0\\]: the rod starts inside this surface: at s = 0\\.25 m its centreline is 0\\.05 m past it")
+# A band between the uniform nodes whose stiffness overflows is caught by validate, on the grid
+# the solvers use (its nodes include the band's ends), as an overflow and not as a coupling.
+cosserat_cli_test(NAME band_overflow_between_nodes ARGS validate "${_cli_dir}/band_overflow_between_nodes.json"
+                  CODE 2 STDERR "rod.section: its stiffness or mass per length at s = 0.201 m is not a finite number")
 # Tendons within a rectangle's outline, not its half-diagonal: a parallel offset and a helix.
 cosserat_cli_test(NAME tendon_outside_rectangle ARGS validate "${_cli_dir}/tendon_outside_rectangle.json"
                   CODE 2 STDERR "robot.tendons\\[0\\].offset: expected an offset within the rectangle \\(\\|x\\| <= 0.01 m, \\|y\\| <= 0.005 m.*got \\[0, 0.009\\].*robot.tendons\\[1\\].radius: expected a helix within the rectangle \\(radius <= 0.005 m")
