@@ -109,6 +109,10 @@ json DynamicResultToJson(const DynamicRun& run, const RodState& final_state) {
   for (const Vec3& p : run.frame_tip) tip.push_back(ToJson(p));
   out["trajectory"] = {{"t", run.frame_t}, {"tip_position", std::move(tip)}};
   if (run.report_tip_spin) out["trajectory"]["tip_spin"] = run.frame_tip_spin;
+  if (run.report_table) {
+    out["trajectory"]["table_speed"] = run.frame_table_speed;
+    out["trajectory"]["table_torque"] = run.frame_table_torque;
+  }
   if (run.report_touchdown) out["trajectory"]["touchdown_s"] = run.frame_touchdown_s;
   if (run.report_anchor_force) {
     json force = json::array();

@@ -77,13 +77,18 @@ bool ConservesEnergy(const io::Problem& problem) {
 }
 
 /// Adds the stepper's current state as the frame at time t; node positions only when
-/// `all_nodes`.
-void Record(const Bdf2ShootingStepper& stepper, double t, bool all_nodes, io::DynamicRun* run) {
+/// `all_nodes`; with a motor-driven table, its speed (rad/s) and the string's torque on it.
+void Record(const Bdf2ShootingStepper& stepper, double t, bool all_nodes, io::DynamicRun* run,
+            double table_speed = 0.0) {
   const RodState& state = stepper.state();
   run->frame_t.push_back(t);
   run->frame_tip.push_back(state.tip_position_W());
   run->envelope.Add(state);
   if (run->report_tip_spin) run->frame_tip_spin.push_back(state.twist_B.back()(2));
+  if (run->report_table) {
+    run->frame_table_speed.push_back(table_speed);
+    run->frame_table_torque.push_back(state.wrench_B.front()(2));  // m₃(0), N·m
+  }
   if (all_nodes)
     run->frame_positions.insert(run->frame_positions.end(), state.position_W.begin(),
                                 state.position_W.end());
@@ -129,7 +134,7 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
     if (s.halvings > 0) ++run->halved_steps;
     run->shooting_segments = std::max(run->shooting_segments, s.shooting_segments);
     if (k % stride == 0) {
-      Record(*stepper, k * dt, all_nodes, run);
+      Record(*stepper, k * dt, all_nodes, run, table ? table->speed() : 0.0);
       if (track_energy)  // for EnergyNote only
         run->peak_kinetic_energy =
             std::max(run->peak_kinetic_energy, RunEnergy(problem, *stepper).kinetic);
@@ -143,7 +148,7 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
   run->simulated_time_s = past_nominal ? stepper->time() : nominal;
   // The final state ends the trajectory even when it falls between two output intervals.
   if (run->frame_t.back() != run->simulated_time_s)
-    Record(*stepper, run->simulated_time_s, all_nodes, run);
+    Record(*stepper, run->simulated_time_s, all_nodes, run, table ? table->speed() : 0.0);
 }
 
 /// The whole simulation: initial equilibrium, then round(duration / dt) steps.
@@ -161,6 +166,7 @@ io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
   run.frame_t.reserve(frames);
   run.frame_tip.reserve(frames);
   if (run.report_tip_spin) run.frame_tip_spin.reserve(frames);
+  run.report_table = d.rotary_table.present();
   if (all_nodes) run.frame_positions.reserve(frames * problem.nodes);
 
   const auto start = Clock::now();

@@ -71,6 +71,10 @@ struct DynamicRun {
   /// trajectory's tip_spin when `report_tip_spin` (a drill string).
   std::vector<double> frame_tip_spin;
   bool report_tip_spin = false;
+  /// trajectory's table_speed (rad/s) and table_torque (the string's torque on the table, m₃(0),
+  /// N·m) when `report_table` (a motor-driven rotary table).
+  std::vector<double> frame_table_speed, frame_table_torque;
+  bool report_table = false;
   /// The rod's internal force at the tip of each frame (N, world): for a rod held at an anchor the
   /// force the anchor exerts on it, a riser's top tension in time; written as the trajectory's
   /// anchor_force when `report_anchor_force`.
