@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Plot a `cosserat solve` result: the centreline in two side views and the curvature along s,
 and for a dynamics result (one with a "trajectory") the tip x, y, z against time, with the
-tip's spin (a drill string's trajectory.tip_spin) and the anchor's tension (|trajectory.
+tip's spin (a drill string's trajectory.tip_spin), a motor-driven table's speed and torque, and
+the anchor's tension (|trajectory.
 anchor_force|, a riser's top tension) when the result has them. With the
 problem file, its contact surfaces and the rod's outer surface are drawn in the side views; a
 result with contact also
@@ -125,6 +126,9 @@ def trajectory_strips(trajectory):
     strips = [(f"tip {name} [m]", values) for name, values in zip("xyz", columns)]
     if "tip_spin" in trajectory:
         strips.append(("tip spin [rad/s]", trajectory["tip_spin"]))
+    if "table_speed" in trajectory:
+        strips.append(("table [rad/s]", trajectory["table_speed"]))
+        strips.append(("on table [kN·m]", [m / 1e3 for m in trajectory["table_torque"]]))
     if "anchor_force" in trajectory:
         tension = [math.sqrt(sum(c * c for c in f)) / 1e3 for f in trajectory["anchor_force"]]
         strips.append(("anchor tension [kN]", tension))
