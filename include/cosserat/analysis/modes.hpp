@@ -78,11 +78,11 @@ struct ModalOptions {
   int count = 4;       ///< how many of the lowest modes to return (with multiplicity)
   bool shapes = true;  ///< compute mode shapes
   bool damped = true;  ///< quatfd: also the damped modes when the model has damping
-  /// quatfd: above this many reduced coordinates (six per segment; 1200 is about 201 nodes), a
+  /// quatfd: above this many reduced coordinates (six per segment; 300 is about 51 nodes), a
   /// symmetric, positive definite stiffness without damping to resolve has its lowest modes
   /// found by subspace iteration on its banded factorisation, in time linear in the nodes (a
   /// stay cable on 401 nodes: 24 s dense); the dense spectrum otherwise, and where that fails.
-  int sparse_above = 1200;
+  int sparse_above = 300;
   /// quatfd: the most reduced coordinates the dense spectrum is taken on (its cost grows as
   /// their cube: 4800, about 801 nodes, take ~5 min and 1.6 GB); beyond, where the banded path
   /// declines, no modes are computed and ModalResult::declined says why.
