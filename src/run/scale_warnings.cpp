@@ -62,12 +62,33 @@ void ImpossibleLoadWarning(const io::Problem& problem, std::ostringstream* log) 
          << " rad: check the units of loads.tip_moment (N·m) and of the material (Pa)\n";
 }
 
+/// Values only a slip of units gives: gravity over a hundred times Earth's (mm/s² for m/s²), a
+/// commanded tendon path ten times the rod's length (mm for m). A robot's tendons written in mm
+/// went slack, "converged", without a word.
+void UnitSlipWarnings(const io::Problem& problem, std::ostringstream* log) {
+  const double g = problem.loads.gravity_W.norm();
+  if (g > 1000.0)
+    *log << "cosserat: warning: loads.gravity is " << g << " m/s², over a hundred times "
+         << "Earth's 9.81: check its units (m/s²)\n";
+  if (!problem.robot.tendon_lengths) return;
+  const double L = problem.rod.length;
+  for (std::size_t i = 0; i < problem.rod.tendons.size(); ++i) {
+    const double l = (*problem.robot.tendon_lengths)[i];
+    if (l > 10.0 * L) {
+      *log << "cosserat: warning: robot.actuation.length[" << i << "] is " << l << " m on a " << L
+           << " m rod: check its units (m)\n";
+      return;
+    }
+  }
+}
+
 }  // namespace
 
 void AddScaleWarnings(const io::Problem& problem, Result* result) {
   std::ostringstream log;
   log << std::setprecision(3);
   ImpossibleLoadWarning(problem, &log);
+  UnitSlipWarnings(problem, &log);
   if (!problem.has_assembly && problem.rod.section) {
     const double d = problem.rod.section->At(0.0, problem.robot.actuation).outer_diameter;
     if (d > 0 && problem.rod.length < kSlenderness * d)

@@ -368,6 +368,9 @@ set_tests_properties(cli.rod_on_table_csv_has_contact_columns PROPERTIES
                      DEPENDS cli.solve_rod_on_table_csv)
 cosserat_cli_test(NAME contact_starts_inside ARGS validate "${_cli_dir}/contact_starts_inside.json"
                   CODE 2 STDERR "environment.contact\\[0\\]: the rod starts inside this surface: at s = 0\\.25 m its centreline is 0\\.05 m past it")
+# Tendon lengths and gravity written in mm: each named as a slip of units.
+cosserat_cli_test(NAME tendon_lengths_in_mm ARGS solve "${_cli_dir}/tendon_lengths_in_mm.json" CODE 0
+                  STDERR "warning: loads.gravity is 9.81e\\+03 m/s², over a hundred times Earth's 9.81: check its units.*warning: robot.actuation.length\\[0\\] is 244 m on a 0.25 m rod: check its units \\(m\\)")
 # A band between the uniform nodes whose stiffness overflows is caught by validate, on the grid
 # the solvers use (its nodes include the band's ends), as an overflow and not as a coupling.
 cosserat_cli_test(NAME band_overflow_between_nodes ARGS validate "${_cli_dir}/band_overflow_between_nodes.json"
