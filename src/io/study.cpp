@@ -270,12 +270,26 @@ StudyParseResult ParseStudy(const std::string& text, const std::string& source_n
           CheckPath(study.problem, where + ".path", p.path, &report);
         // Two parameters on one place: the later would overwrite the earlier at every point,
         // and the CSV would show values that were never run.
-        for (std::size_t j = 0; j < study.parameters.size(); ++j)
-          if (!p.path.empty() && study.parameters[j].path == p.path)
-            report.Expected(where + ".path",
-                            "a place no other parameter sets (parameters[" + std::to_string(j) +
-                                "] sets it)",
+        // One inside another ("/robot/actuation/tension" and ".../tension/1"): the outer one sets
+        // the whole value, a number where the inner one looks for an array.
+        auto inside = [](const std::string& inner, const std::string& outer) {
+          return inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 &&
+                 inner[outer.size()] == '/';
+        };
+        for (std::size_t j = 0; j < study.parameters.size(); ++j) {
+          const std::string& other = study.parameters[j].path;
+          if (p.path.empty() || other.empty()) continue;
+          const std::string index = "parameters[" + std::to_string(j) + "]";
+          if (other == p.path)
+            report.Expected(where + ".path", "a place no other parameter sets (" + index +
+                                                 " sets it)",
                             detail::Quote(p.path));
+          else if (inside(p.path, other) || inside(other, p.path))
+            report.Expected(where + ".path",
+                            "a place apart from " + index + "'s " + detail::Quote(other) +
+                                " (one sets the value the other lies in)",
+                            detail::Quote(p.path));
+        }
         study.parameters.push_back(p);
       }
     }

@@ -368,6 +368,9 @@ set_tests_properties(cli.rod_on_table_csv_has_contact_columns PROPERTIES
                      DEPENDS cli.solve_rod_on_table_csv)
 cosserat_cli_test(NAME contact_starts_inside ARGS validate "${_cli_dir}/contact_starts_inside.json"
                   CODE 2 STDERR "environment.contact\\[0\\]: the rod starts inside this surface: at s = 0\\.25 m its centreline is 0\\.05 m past it")
+# A sweep parameter inside another's value is named, not left to the JSON library's words.
+cosserat_cli_test(NAME sweep_nested_paths ARGS validate "${_cli_dir}/sweep_nested_paths.json" CODE 2
+                  STDERR "parameters\\[1\\].path: expected a place apart from parameters\\[0\\]'s \"/robot/actuation/tension\"")
 # Tendon lengths and gravity written in mm: each named as a slip of units.
 cosserat_cli_test(NAME tendon_lengths_in_mm ARGS solve "${_cli_dir}/tendon_lengths_in_mm.json" CODE 0
                   STDERR "warning: loads.gravity is 9.81e\\+03 m/s², over a hundred times Earth's 9.81: check its units.*warning: robot.actuation.length\\[0\\] is 244 m on a 0.25 m rod: check its units \\(m\\)")
