@@ -39,9 +39,14 @@ def _check_json_values(value, path=""):
                         f"got {type(value).__name__}")
 
 
-def _json_text(value):
-    """A dict (a problem or a study) as JSON text, NumPy values included, bad values named."""
-    _check_json_values(value)
+def _json_text(value, root=""):
+    """A dict (a problem or a study; an actuation under `root`) as JSON text, NumPy values
+    included, bad values named."""
+    try:
+        _check_json_values(value, root)
+    except RecursionError:  # a dict nested thousands deep: named, not Python's own error
+        raise ValueError(f"{root or 'problem'}: nested too deeply to be a problem's "
+                         "values") from None
     return json.dumps(value, allow_nan=False,
                       default=lambda v: v.tolist() if hasattr(v, "tolist") else v.item())
 

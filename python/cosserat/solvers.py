@@ -79,7 +79,7 @@ def _actuation_from(value, problem, rules):
     Actuation or None as given."""
     if not isinstance(value, dict):
         return fit_to_problem(value, rules)
-    return _core._parse_actuation(problem, _json_text(value))
+    return _core._parse_actuation(problem, _json_text(value, "actuation"))
 
 
 class Stepper(_core.Stepper):

@@ -662,6 +662,18 @@ class Dynamics(unittest.TestCase):
             setattr(a, field, value)
             with self.assertRaisesRegex(ValueError, "actuation." + field):
                 solver.solve(actuation=a)
+        # A dict's bad values are named under actuation. as an object's are, NaN included; a
+        # problem nested past Python's recursion is a ValueError, not a RecursionError.
+        for bad in ({"tension": [float("nan"), 0, 0]}, {"tension": [-1.0, 0, 0]}):
+            with self.assertRaisesRegex(ValueError, r"^actuation\.tension\[0\]: "):
+                solver.solve(actuation=bad)
+        deep = {}
+        level = deep
+        for _ in range(100000):
+            level["a"] = {}
+            level = level["a"]
+        with self.assertRaisesRegex(ValueError, "problem: nested too deeply"):
+            cosserat.solve(deep)
         # Jamming pressures on segments the rod does not have, as the file's rule.
         a = cosserat.Actuation()
         a.jamming_pressure = [1e5]
