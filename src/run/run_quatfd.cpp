@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <iomanip>
 #include <sstream>
 
@@ -129,6 +130,45 @@ std::string SlackLineHint(const io::Problem& problem) {
   return hint.str();
 }
 
+/// After a failed solve of a slack anchored line hanging almost straight up and down: its
+/// catenary turns at its lowest point with a radius of a = H/w, its parameter (Irvine 1981),
+/// found from 2a sinh(l/2a) = sqrt(L² − h²) (l across, h up the net load's line), and a grid
+/// spacing above a cannot follow the turn (a 110 m line between anchors 100 m up and 1 m
+/// across: a = 8 cm against 0.28 m).
+std::string SteepLineHint(const io::Problem& problem) {
+  if (problem.boundary != io::Boundary::kAnchored || problem.loads.contact.count > 0) return "";
+  const double L = problem.rod.length;
+  const Vec3 chord = problem.anchor.position - problem.base.p;
+  const SectionProperties p = problem.rod.section->At(0.5 * L, problem.robot.actuation);
+  const Vec3 net = TotalDistributedForce_W(
+      problem.loads, LoadSite{0.5 * L, 1.0, p.mass(3, 3), p.outer_diameter});  // N/m
+  if (!(net.norm() > 0.0) || !(chord.norm() < L)) return "";
+  const Vec3 up = -net.normalized();
+  const double h = chord.dot(up), l = (chord - h * up).norm(), sag = std::sqrt(L * L - h * h);
+  if (!(l > 0.0)) return "";
+  auto span = [&](double a) {  // 2a sinh(l/2a), falling from ∞ (a → 0) to l (a → ∞)
+    const double x = l / (2.0 * a);
+    return x > 700.0 ? std::numeric_limits<double>::infinity() : 2.0 * a * std::sinh(x);
+  };
+  double lo = 1e-12 * L, hi = 1e12 * L;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    (span(mid) > sag ? lo : hi) = mid;
+  }
+  const double a = std::sqrt(lo * hi), spacing = L / (problem.nodes - 1);
+  if (!(spacing > a)) return "";
+  std::ostringstream hint;
+  hint << std::setprecision(3) << "cosserat: hint: the line hangs almost straight ("
+       << h << " m along its weight, " << l << " m across, " << L
+       << " m long): its catenary turns at its lowest point with a radius of about H/w = " << a
+       << " m, below the grid spacing " << spacing
+       << " m, which cannot follow the turn, and Newton from that tight loop often stalls; "
+          "a spacing of a/2 (rod.nodes >= "
+       << static_cast<long>(std::ceil(2.0 * L / a)) + 1
+       << ") or anchors farther apart may let it converge\n";
+  return hint.str();
+}
+
 }  // namespace
 
 quatfd::QuatFdModel MakeQuatFdModel(const io::Problem& problem) {
@@ -217,7 +257,8 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
     log << TipText(state);
   }
   log << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms\n";
-  if (!s.converged()) log << ContactGridHint(problem) << SlackLineHint(problem);
+  if (!s.converged())
+    log << ContactGridHint(problem) << SlackLineHint(problem) << SteepLineHint(problem);
   if (s.converged())
     log << settled_note << ClampedEndGridWarning(problem, state)
         << BendingPeakGridWarning(problem, state)

@@ -368,6 +368,10 @@ set_tests_properties(cli.rod_on_table_csv_has_contact_columns PROPERTIES
                      DEPENDS cli.solve_rod_on_table_csv)
 cosserat_cli_test(NAME contact_starts_inside ARGS validate "${_cli_dir}/contact_starts_inside.json"
                   CODE 2 STDERR "environment.contact\\[0\\]: the rod starts inside this surface: at s = 0\\.25 m its centreline is 0\\.05 m past it")
+# A slack line hanging almost vertically fails from its tight catenary loop; the hint gives the
+# loop's radius a (2a sinh(l/2a) = sqrt(L² − h²): 0.0785 m by hand) against the spacing.
+cosserat_cli_test(NAME steep_slack_line ARGS solve "${_cli_dir}/steep_slack_line.json" CODE 1
+                  STDERR "hint: the line hangs almost straight \\(100 m along its weight, 1 m across, 110 m long\\).*H/w = 0.0785 m, below the grid spacing 0.275 m")
 # A sweep parameter inside another's value is named, not left to the JSON library's words.
 cosserat_cli_test(NAME sweep_nested_paths ARGS validate "${_cli_dir}/sweep_nested_paths.json" CODE 2
                   STDERR "parameters\\[1\\].path: expected a place apart from parameters\\[0\\]'s \"/robot/actuation/tension\"")
