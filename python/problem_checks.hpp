@@ -31,7 +31,8 @@ inline const io::Problem& Runnable(const io::Problem& problem, const char* what)
                           io::ToString(problem.formulation) + "\" (cosserat.solve runs it)");
   if (problem.has_robot && problem.robot.kind == io::RobotKind::kEversion)
     throw pybind11::value_error(std::string("robot.kind: ") + what +
-                          " does not grow an eversion robot (cosserat.solve does)");
+                          " does not run an eversion robot (cosserat.solve grows it, or solves "
+                          "its statics at its length)");
   if (problem.robot.tendon_lengths)
     throw pybind11::value_error(std::string("robot.actuation.length: ") + what +
                           " takes tensions, not tendon lengths (cosserat.solve solves for them)");

@@ -176,8 +176,13 @@ void ParseActuation(const ObjectReader& a, int tendons, int chambers, int jammin
       a.Reject("chamber_pressure",
                "one value per chamber (" + std::to_string(chambers) + " in robot.chambers)");
   }
+  // ΔP, the vacuum's depth below the ambient pressure: a gauge reading's magnitude.
+  const NumberRule vacuum_depth{
+      "a pressure difference >= 0 (Pa: the vacuum's depth below ambient, the magnitude of its "
+      "negative gauge reading)",
+      [](double x) { return x >= 0; }};
   if (a.Has("jamming_pressure") &&
-      ReadList(a, "jamming_pressure", Actuation::kMaxSegments, NonNegativeNumber(),
+      ReadList(a, "jamming_pressure", Actuation::kMaxSegments, vacuum_depth,
                act->jamming_pressure.data(), &count) &&
       count != jamming_segments)
     a.Reject("jamming_pressure",
