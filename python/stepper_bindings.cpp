@@ -214,8 +214,11 @@ void BindStepperClass(py::module_& m) {
            py::arg("base_position") = py::none(), py::arg("base_rotation") = py::none(),
            py::arg("base_twist_B") = py::none(), py::arg("base_wrench_B") = py::none(),
            py::arg("actuation") = py::none(),
-           "Advances dt. Values not given keep those of the last step (at first the problem's "
-           "loads, base pose and robot actuation). Cantilever: the base pose and twist [w; v] "
+           "Advances dt. Arguments not given keep the last step's (at first the problem's "
+           "loads, base pose and robot actuation; `loads` and `actuation` as edited in place). "
+           "An actuation given is a whole state: a dict or cosserat.Actuation that leaves out "
+           "the section's pressures (inflation, jamming) takes the problem file's, not the last "
+           "step's. Cantilever: the base pose and twist [w; v] "
            "(body frame) at the end of the step, which must agree (the twist is not derived "
            "from the pose); free-free: the wrench on the s = 0 end (body frame).")
       .def_property_readonly("time", &PyStepper::time, "Simulated time since the rest state, s.")
