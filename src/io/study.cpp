@@ -189,6 +189,31 @@ void ReadOutputs(const ObjectReader& top, Study* study_out) {
   }
 }
 
+/// A parameter's path against the earlier parameters': two on one place (the later would
+/// overwrite the earlier at every point, and the CSV would show values that were never run), or
+/// one inside another ("/robot/actuation/tension" and ".../tension/1": the outer one sets the
+/// whole value, a number where the inner one looks for an array), reported at `where`.
+void CheckPlaceApart(const std::vector<StudyParameter>& earlier, const std::string& path,
+                     const std::string& where, ErrorReport* report) {
+  auto inside = [](const std::string& inner, const std::string& outer) {
+    return inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 &&
+           inner[outer.size()] == '/';
+  };
+  for (std::size_t j = 0; j < earlier.size(); ++j) {
+    const std::string& other = earlier[j].path;
+    if (path.empty() || other.empty()) continue;
+    const std::string index = "parameters[" + std::to_string(j) + "]";
+    if (other == path)
+      report->Expected(where, "a place no other parameter sets (" + index + " sets it)",
+                       detail::Quote(path));
+    else if (inside(path, other) || inside(other, path))
+      report->Expected(where,
+                       "a place apart from " + index + "'s " + detail::Quote(other) +
+                           " (one sets the value the other lies in)",
+                       detail::Quote(path));
+  }
+}
+
 }  // namespace
 
 std::uint64_t Study::PointCount() const {
@@ -268,28 +293,7 @@ StudyParseResult ParseStudy(const std::string& text, const std::string& source_n
         const json* path = (*params)[i].contains("path") ? &(*params)[i]["path"] : nullptr;
         if (path && path->is_string() && study.problem.is_object())
           CheckPath(study.problem, where + ".path", p.path, &report);
-        // Two parameters on one place: the later would overwrite the earlier at every point,
-        // and the CSV would show values that were never run.
-        // One inside another ("/robot/actuation/tension" and ".../tension/1"): the outer one sets
-        // the whole value, a number where the inner one looks for an array.
-        auto inside = [](const std::string& inner, const std::string& outer) {
-          return inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 &&
-                 inner[outer.size()] == '/';
-        };
-        for (std::size_t j = 0; j < study.parameters.size(); ++j) {
-          const std::string& other = study.parameters[j].path;
-          if (p.path.empty() || other.empty()) continue;
-          const std::string index = "parameters[" + std::to_string(j) + "]";
-          if (other == p.path)
-            report.Expected(where + ".path", "a place no other parameter sets (" + index +
-                                                 " sets it)",
-                            detail::Quote(p.path));
-          else if (inside(p.path, other) || inside(other, p.path))
-            report.Expected(where + ".path",
-                            "a place apart from " + index + "'s " + detail::Quote(other) +
-                                " (one sets the value the other lies in)",
-                            detail::Quote(p.path));
-        }
+        CheckPlaceApart(study.parameters, p.path, where + ".path", &report);
         study.parameters.push_back(p);
       }
     }
