@@ -310,9 +310,11 @@ void BindProblem(py::module_& m) {
       .def_property_readonly("length", [](const io::Problem& p) { return p.rod.length; })
       .def_property_readonly("base_position", [](const io::Problem& p) { return p.base.p; })
       .def_property_readonly("base_rotation", [](const io::Problem& p) { return p.base.R; })
+      .def("__copy__", [](const io::Problem& p) { return p; })
+      .def("__deepcopy__", [](const io::Problem& p, py::dict) { return p; })
       .def_readwrite("loads", &io::Problem::loads)
       // The problem's own actuation, as `loads` is: `p.actuation.tendon_tension[0] = 2` edits
-      // it (a copy made that a silent no-op); solve() checks it.
+      // it; solve() checks it. (cosserat/solvers.py fits what is assigned.)
       .def_property(
           "actuation", [](io::Problem& p) -> Actuation& { return p.robot.actuation; },
           [](io::Problem& p, const Actuation& a) { p.robot.actuation = Valid(a, p); },

@@ -19,6 +19,8 @@ inline const StaticLoads& Valid(const StaticLoads& loads) {
   return loads;
 }
 
+inline const Actuation& Valid(const Actuation& a, const io::Problem& problem);  // below
+
 /// What the module's objects cannot run, refused by the field that asks for it: assemblies, the
 /// quaternion-FD formulation (solve() runs them), eversion growth and displacement control of
 /// tendons (solve() and the CLI run them), and loads set on the Problem that no solver runs.
@@ -36,7 +38,10 @@ inline const io::Problem& Runnable(const io::Problem& problem, const char* what)
   if (problem.robot.tendon_lengths)
     throw pybind11::value_error(std::string("robot.actuation.length: ") + what +
                           " takes tensions, not tendon lengths (cosserat.solve solves for them)");
-  Valid(problem.loads);  // a Problem's loads set from Python since it was read
+  // A Problem's loads and actuation set from Python since it was read.
+  Valid(problem.loads);
+  Valid(problem.robot.actuation, problem);
+  Valid(problem.robot.initial_actuation, problem);
   return problem;
 }
 

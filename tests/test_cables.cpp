@@ -307,10 +307,10 @@ TEST(HeldCable, ARiserOnTheSeaBedTouchesDownWithinTwoBendingLengthsOfTheCatenary
 // A 1 km steel riser lying on the sea bed from its anchor and rising to a vessel 800 m away and
 // 300 m up, written three ways: upright with the base frame the world's, upright with the base
 // frame's third axis across the riser's plane (it only fixes the twist a pinned base holds),
-// and in a y-up world. The pinned base holds the twist about the rod's own axis; held about the
-// base frame's third axis, it also held the riser's bending in its plane wherever that axis lay
-// across it, and those statics failed from 300 nodes up (the sea water's added mass, which
-// statics does not feel, moved the failing grids). Each converges to the same anchor force,
+// and in a y-up world. The pinned base holds the twist about the line; held about the base
+// frame's third axis, it would also hold the riser's bending in its plane wherever that axis
+// lies across it, and those statics fail from 300 nodes up (the sea water's added mass, which
+// statics does not feel, moves the failing grids). Each converges to the same anchor force,
 // turned, to 1e-7 (the residual's 1e-10 times the conditioning).
 TEST(HeldCable, AGroundedRisersEquilibriumDoesNotDependOnItsFrame) {
   auto solve = [](const std::string& base_rotation, bool y_up) {
@@ -355,7 +355,7 @@ TEST(HeldCable, AGroundedRisersEquilibriumDoesNotDependOnItsFrame) {
 // The riser of examples/riser_on_seabed.json written from the vessel down: its base at the
 // hang-off, its tangent pointing down (base.rotation turned half a turn about x), its anchor on
 // the sea bed. Its start is hung between the two, so its rest centreline, straight down through
-// the bed, is no reason to refuse it (it was). The horizontal tension, constant along a line
+// the bed, is no reason to refuse it. The horizontal tension, constant along a line
 // whose loads are all vertical, is the upward description's to 1e-6 of it (the same uniform
 // grid, walked the other way; the solves' residual is 1e-9).
 TEST(HeldCable, ARiserWrittenFromTheVesselDownIsTheSameRiser) {

@@ -403,7 +403,8 @@ TEST(DrillString, AQuaternionFdStringInABoreRestsItsEndOnTheWall) {
 // ω0 = 2 rad/s), its first 5 s: the trajectory's table speed and the string's torque on the
 // table satisfy the table's equation J ω̇ = T0 (1 − ω/ω0) + m₃(0), integrated over the frames
 // (every 50 ms, by the trapezoid rule) to 1e-3 of the largest term over the time (measured
-// 4e-4 at 1 s: the rule's error on the stick-slip's torque steps), from rest.
+// 4e-4 at 1 s: the rule's error on the stick-slip's torque steps). A torque of the wrong sign or
+// frame, or a speed a frame off, breaks it by the whole term.
 TEST(DrillString, TheMotorDrivenTablesSpeedAndTorqueKeepItsEquationOfMotion) {
   nlohmann::json problem = testing::SourceJson("examples/drill_string_motor.json");
   problem["dynamics"]["duration"] = 5.0;
@@ -415,7 +416,6 @@ TEST(DrillString, TheMotorDrivenTablesSpeedAndTorqueKeepItsEquationOfMotion) {
   const std::vector<double> t = tr["t"], w = tr["table_speed"], T = tr["table_torque"];
   ASSERT_EQ(w.size(), t.size());
   ASSERT_EQ(T.size(), t.size());
-  EXPECT_EQ(w.front(), 0.0);
   const double J = 2000, T0 = 5200, w0 = 2.0;
   double integral = 0.0, largest = 0.0;
   for (std::size_t k = 0; k < t.size(); ++k) {
@@ -480,9 +480,9 @@ double HangingStringCriticalLoad(double L, double EI, double w) {
 // y-up world: clamped at the table, its bit pinned on the bottom and pushed up. Its weight puts
 // it in a tension whose exponent ∫ sqrt(T/EI) ds is 47, where the Jacobi fields of one shot are
 // rounding: the search goes by multiple shooting, and its critical load is the same on 301, 601
-// and 1201 nodes and within 1e-3 of the beam's (shear and stretch move it by P/κGA ~ 5e-5; one
-// shot had said the weight alone was past critical on 601 nodes). Hanging alone the string is
-// not past critical: in tension everywhere, no direction lowers its energy.
+// and 1201 nodes and within 1e-4 of the beam's (shear and stretch move it by P/κGA ~ 5e-5;
+// measured 2.2e-5). Hanging alone the string is not past critical: in tension everywhere, no
+// direction lowers its energy, and the search, on every grid, finds the load on top of it.
 TEST(DrillString, AHangingStringBucklesUnderTheBeamsWeightOnBitOnEveryGrid) {
   const double A = M_PI * (0.0635 * 0.0635 - 0.054 * 0.054);
   const double EI = 200e9 * M_PI / 4 * (std::pow(0.0635, 4) - std::pow(0.054, 4));
@@ -500,7 +500,7 @@ TEST(DrillString, AHangingStringBucklesUnderTheBeamsWeightOnBitOnEveryGrid) {
     ASSERT_TRUE(parsed.ok());
     const run::Result r = run::Run(*parsed.problem);
     ASSERT_EQ(r.json["buckling"]["status"], "found") << nodes << ": " << r.log;
-    EXPECT_NEAR(r.json["buckling"]["critical_load"].get<double>() / reference, 1.0, 1e-3)
+    EXPECT_NEAR(r.json["buckling"]["critical_load"].get<double>() / reference, 1.0, 1e-4)
         << nodes << ": " << r.log;
   }
 }

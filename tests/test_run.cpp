@@ -1195,9 +1195,9 @@ TEST(Run, AnUndampedRunSaysWhatEnergyBdf2TookAway) {
 
 // A pneumatic finger whose chamber is pressurised at t = 0 (from the initial actuation's 0 to
 // 20 kPa): the switch moves the rest strain, and its work is in no energy term, so the result
-// has no initial_total to balance against (it read 0 J, the unpressurised start's, and a run
-// that lost 60 % to BDF2 seemed to gain energy). Pressurised from the start, the start's total
-// is there.
+// has no initial_total to balance against (the unpressurised start's 0 J would make a run that
+// loses 60 % to BDF2 seem to gain energy). Pressurised from the start, the start's total is
+// there.
 TEST(Run, AnActuationSwitchedAtTheStartLeavesTheEnergyBalanceOut) {
   auto run = [](double initial_pressure) {
     const std::string text = R"({"format": "cosserat-problem/1", "analysis": "dynamics",

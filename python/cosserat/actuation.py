@@ -75,6 +75,12 @@ class Actuation(_core.Actuation):
                 given[name] = None
         return given
 
+    def __copy__(self):  # the core's own copy would drop what was given
+        return _rebuild(*self.__reduce__()[1])
+
+    def __deepcopy__(self, memo):
+        return self.__copy__()
+
     def __reduce__(self):
         given = self.given()
         return (_rebuild, ({name: list(_core_list(self, name))

@@ -21,7 +21,7 @@ class StaticSolver(_core.StaticSolver):
     __doc__ = _core.StaticSolver.__doc__
 
     def __init__(self, problem):
-        problem = _as_problem(problem)
+        problem = copy.copy(_as_problem(problem))  # the solver's own, as the core's copy is
         super().__init__(problem)
         self._problem = problem  # its environment and actuation rules, for dict inputs
         self._rules = ProblemRules(problem)
@@ -86,7 +86,7 @@ class Stepper(_core.Stepper):
     __doc__ = _core.Stepper.__doc__
 
     def __init__(self, problem, dt=None, spatial_scheme=None):
-        problem = _as_problem(problem)
+        problem = copy.copy(_as_problem(problem))  # the stepper's own, as the core's copy is
         super().__init__(problem, dt, spatial_scheme)
         self._problem = problem  # the rules a dict actuation is checked by
         self._rules = ProblemRules(problem)
@@ -149,3 +149,21 @@ class BatchStepper(_core.BatchStepper):
         return super().step(tip_force, tension)
 
     step.__doc__ = _core.BatchStepper.step.__doc__
+
+
+def _fitting_setter(core_property, name):
+    """A Problem's `name` property whose setter fits what it is given to the problem as a solver
+    fits a step's actuation: a dict with the file's keys, or a cosserat.Actuation whose section
+    pressures (inflation, jamming) not given stay the problem's."""
+    def set_fitted(problem, value):
+        if isinstance(value, dict):
+            value = _core._parse_actuation(problem, _json_text(value, name))
+        else:
+            value = fit_to_problem(value, ProblemRules(problem))
+        core_property.__set__(problem, value)
+    return property(core_property.fget, set_fitted, doc=core_property.__doc__)
+
+
+_core.Problem.actuation = _fitting_setter(_core.Problem.actuation, "actuation")
+_core.Problem.initial_actuation = _fitting_setter(_core.Problem.initial_actuation,
+                                                  "initial_actuation")

@@ -131,6 +131,7 @@ ColumnSummary BucklingAnalysis::SolveAt(double lambda) {
     applied_lambda_ = lambda;
   }
   const Vec6 before = column_.unknowns();
+  const RodState state_before = column_.state();  // a refused solve leaves the last one's
   ColumnSummary s = column_.Solve(base_, path_.LoadsAt(lambda));
   // Under tension the shot's Jacobi fields grow like exp(∫ sqrt(T/EI) ds): past the limit the
   // σ_min, det J and index read from them are rounding (a 300 m string hanging in mud, exponent
@@ -140,6 +141,7 @@ ColumnSummary BucklingAnalysis::SolveAt(double lambda) {
                              path_.ActuationAt(lambda), column_.state()) >
           options_.max_shot_exponent) {
     column_.set_unknowns(before);
+    column_.set_state(state_before);
     beyond_single_shot_ = true;
     s.status = SolveStatus::kNonFinite;
   }
@@ -385,6 +387,7 @@ BucklingSummary BucklingAnalysis::FindCriticalLoad() {
     // A preload: the straight path under it may already have passed a critical point (a
     // column pressed by 8 Euler loads has; a scan on top of it found the third).
     const double fraction = PreloadCriticalFraction(&out);
+    beyond_single_shot_ = false;  // the scan past the preload's own share says nothing of the path
     if (fraction < 1.0) {
       out.preload_critical_fraction = fraction;
       out.scan_lambda.clear();

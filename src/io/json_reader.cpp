@@ -96,12 +96,14 @@ std::string FormatNumber(double x) {
 
 namespace {
 
-// A line's part echoed from the file, cut to `limit` characters: a key or a string of
-// megabytes would otherwise come back whole on one line.
+// A line's part echoed from the file, cut to about `limit` bytes (at the start of a UTF-8
+// character, so that the line stays valid text): a key or a string of megabytes would otherwise
+// come back whole on one line.
 std::string Cut(const std::string& text, std::size_t limit) {
   if (text.size() <= limit) return text;
-  return text.substr(0, limit) + "... (" + std::to_string(text.size() - limit) +
-         " more characters)";
+  std::size_t end = limit;
+  while (end > 0 && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80) --end;
+  return text.substr(0, end) + "... (" + std::to_string(text.size() - end) + " more bytes)";
 }
 
 }  // namespace

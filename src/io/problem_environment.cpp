@@ -215,11 +215,10 @@ void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
                                 " is " + FormatNumber(-distance) + " m past it");
       }
     }
-    return;
   }
   constexpr int kPoints = 201;
   const std::vector<Vec3> centreline = RestCentreline_W(p.rod, p.base, kPoints);
-  for (int k = 0; k < contact.count; ++k) {
+  for (int k = 0; k < contact.count && p.boundary != Boundary::kAnchored; ++k) {
     double deepest = 0.0, s_deepest = 0.0;  // the most negative distance, m, and where
     for (int i = 0; i < kPoints; ++i) {
       Vec3 normal;

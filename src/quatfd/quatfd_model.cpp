@@ -9,6 +9,7 @@
 
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/lie/quaternion.hpp"
+#include "cosserat/lie/so3.hpp"
 #include "cosserat/quatfd/quatfd_kernel_jacobians.hpp"
 #include "cosserat/rod/grid.hpp"
 
@@ -219,18 +220,13 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   const int N = options.segments;
   layout_.segments = N;
   base_quat_ = lie::RotationToQuat(base.R);
-  // A pinned base holds the twist about the rod's own axis. A held line need not leave its base
-  // along the base frame's z (a riser from the sea bed written in a y-up world leaves across
-  // it), and the twist measured from that frame would then hold the line's bending about that
-  // z too: the reference is the base frame turned by the least rotation onto the chord.
-  const Vec3 chord = options_.tip_position_W - base.p;
-  if (options_.TipHeld() && options_.base_end == EndCondition::kPinned &&
-      options_.base_twist_held && chord.norm() > 0) {
-    const Eigen::Quaterniond turn =
-        Eigen::Quaterniond::FromTwoVectors(base.R.col(2), chord.normalized());
-    base_quat_ = lie::QuatMultiply(Vec4(turn.w(), turn.x(), turn.y(), turn.z()), base_quat_)
-                     .normalized();
-  }
+  // A pinned base holds the twist about the line. A held line need not leave its base along
+  // the base frame's z (a riser from the sea bed written in a y-up world leaves across it), and
+  // the twist measured from that frame would then hold the line's bending about that z too:
+  // the twist's reference is the base frame turned by the least rotation onto the chord (as on
+  // the SE(3) path, run/run_statics.cpp).
+  if (options_.TipHeld() && options_.base_end == EndCondition::kPinned && options_.base_twist_held)
+    base_quat_ = lie::RotationToQuat(lie::SO3TurnedOnto(base.R, options_.tip_position_W - base.p));
 
   // Segments (stretch and shear, translational and rotary inertia) sampled at their midpoints;
   // each lumps half its mass and length on either vertex.

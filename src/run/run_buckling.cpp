@@ -180,6 +180,15 @@ std::string CoarseGridNote(const io::Problem& problem, const BucklingSummary& b,
 /// pieces (a tendon or pressure path, a robot): its statics shoot the rod in one piece, which a
 /// stiff contact foundation or a high tension puts beyond double precision.
 std::string SingleShotHint(const io::Problem& problem, const BucklingSummary& b) {
+  if (b.status == BucklingStatus::kPathFailed && b.beyond_single_shot) {
+    std::ostringstream hint;
+    hint << "cosserat: hint: one shot from the base cannot resolve this rod's tension from a "
+         << "load of " << std::setprecision(6) << ReportedLoad(problem, b.lambda_reached)
+         << " on (the fields that count its stability grow past e^10 along it), and a search "
+            "along an actuation (tendon tension, pressure) shoots the rod in one piece: this "
+            "one is beyond this version's buckling search\n";
+    return hint.str();
+  }
   const double exponent = StaticShootingExponent(problem.rod, problem.loads);
   if (b.status != BucklingStatus::kPathFailed || b.lambda_reached > 0.0 || exponent <= 10.0)
     return "";
@@ -245,10 +254,10 @@ std::string SearchInPieces(const io::Problem& problem, const RodModel& model, Co
     else
       note << "under the file's loads";
     note << " (the fields that count its stability grow past e^10 along it)";
-  }
-  else
+  } else {
     note << "cosserat: note: the single-shot search could not follow this rod (it failed at "
          << std::setprecision(6) << ReportedLoad(problem, b->lambda_reached) << ")";
+  }
   note << "; it was searched again by multiple shooting, in " << pieces
        << (pieces == 1 ? " piece" : " pieces") << ", its stability counted piece by piece\n";
   if (split.found() && split.critical_load_bracket > 1e-6 * split.critical_load)

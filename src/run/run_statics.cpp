@@ -12,6 +12,7 @@
 
 #include "cosserat/analysis/column.hpp"
 #include "cosserat/io/result_writer.hpp"
+#include "cosserat/lie/so3.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/run/run_quatfd.hpp"
 #include "cosserat/robots/tendon_control.hpp"
@@ -252,7 +253,12 @@ Result RunAnchoredStatics(const io::Problem& problem, const RunOptions& options)
   summary.status = start.status;
   summary.residual = start.residual;
   summary.iterations = start.iterations;
-  if (start.converged()) summary = solver.SolveFrom(problem.base, problem.loads, guess);
+  // A pinned base's twist reference, as the quaternion-FD model takes it: the base frame turned
+  // by the least rotation onto the chord (the start's first frame then has no third exponential
+  // coordinate against it).
+  lie::SE3 base = problem.base;
+  if (opt.base_pinned) base.R = lie::SO3TurnedOnto(base.R, problem.anchor.position - base.p);
+  if (start.converged()) summary = solver.SolveFrom(base, problem.loads, guess);
   const RodState& state = start.converged() ? solver.state() : guess;
 
   Result result;

@@ -162,7 +162,6 @@ class ProblemFiles(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "boundary"):
             cosserat.Stepper(wire("dynamics", {"boundary": "pinned-pinned"}))
 
-
     def test_a_problems_actuation_edited_in_place_is_solved(self):
         # p.actuation is the problem's own, as p.loads is: a tension edited in place is the one
         # solved, the same result as the same actuation assigned whole (a copy had made the
@@ -179,6 +178,18 @@ class ProblemFiles(unittest.TestCase):
         edited.actuation.tendon_tension[1] = float("nan")
         with self.assertRaisesRegex(ValueError, "actuation.tendon_tension"):
             cosserat.solve(edited)
+        # Assigned, an Actuation that sets only tensions keeps the jamming robot's jams (as a
+        # solver fits one); a solver made before an edit keeps the problem it was made with.
+        jam = cosserat.load_problem("robots/jamming_virtual_joints.json")
+        kept = np.array(jam.actuation.jamming_pressure)
+        solver = cosserat.StaticSolver(jam)
+        self.assertTrue(solver.solve().converged)
+        before = solver.state()["position"][-1]
+        jam.actuation = cosserat.Actuation(tendon_tension=[1.0])
+        np.testing.assert_array_equal(jam.actuation.jamming_pressure, kept)
+        self.assertTrue(solver.solve().converged)
+        np.testing.assert_array_equal(solver.state()["position"][-1], before)
+
 
 class Statics(unittest.TestCase):
     def test_tip_load_matches_the_elastica(self):

@@ -103,9 +103,13 @@ class ColumnSolver {
   /// with the column's base and tip conditions): 0 stable. Counts a double root (a rod symmetric
   /// about its axis buckling in any plane) twice. −1 where it is not defined: a follower tip
   /// force, a tip moment, drag, a torque held by a pinned base (none is conservative). From a
-  /// shot of Residual with record and tangents at u (no shot of its own). The tip term counts
+  /// shot of Residual with record and tangents at u; a pinned base turned from its frame is shot
+  /// again, its torque field along the pin's twist axis (Start). The tip term counts
   /// eigenvalues below −zero (in units of EI/L): none by default, so that a bisection on the
-  /// index meets det J's root; statics pass the cantilever's 1e-8 (past buckling a round rod has
+  /// index meets det J's root on a straight column. Once a pin has turned, J linearises the
+  /// torque along the section's axis and the index the conservative joint: their singular
+  /// points can differ (a flat bar bent by a side load: J at 1.40 P_E, the index at 2.19, where
+  /// its pins pass each other). Statics pass the cantilever's 1e-8 (past buckling a round rod has
   /// a circle of equilibria, along which the tip stiffness is singular to the solve's
   /// tolerance, ±1e-10 EI/L: StaticShootingSolver::StabilityIndexFromShot).
   int StabilityIndexFromShot(const lie::SE3& base, const StaticLoads& loads, const Vec6& u,
@@ -152,6 +156,8 @@ class ColumnSolver {
   void set_unknowns(const Vec6& u) { u_ = u; }
   /// The state of the last converged Solve.
   const RodState& state() const { return state_; }
+  /// state() back to one this solver found before (a caller that refuses a solve's answer).
+  void set_state(const RodState& state) { state_ = state; }
   /// state() back to what construction leaves: the grid, every other entry NaN (nothing solved).
   void ForgetState();
   ColumnEnds ends() const { return ends_; }
@@ -165,8 +171,9 @@ class ColumnSolver {
   /// torque about the base section's axis (body z: the moment it transmits turns with it, as
   /// Greenhill's shaft needs); with `for_index` the tangent along the torque is instead the
   /// pin's twist axis ν (pinned_base.hpp), the direction a conservative joint holding the
-  /// rotations R_WB Exp([a, b, 0]) reacts along. The two agree on a straight column and on any
-  /// equilibrium holding no torque, the only ones the index counts.
+  /// rotations R_WB Exp([a, b, 0]) reacts along. The two have the same equilibria where the pin
+  /// holds no torque (the only ones the index counts), and the same fields on a straight column;
+  /// once the pin has turned, their fields differ.
   void Start(const lie::SE3& base, const Vec6& u, lie::SE3* start, Vec6* W0,
              StateTangent* dstart, bool for_index = false) const;
   /// StabilityIndexFromShot's conditions: conservative loads, no torque held by a pinned base.

@@ -151,4 +151,17 @@ inline Matrix3<T> SO3RightJacobianInverse(const Vector3<T>& w) {
 }
 inline Mat3 SO3RightJacobianInverse(const Vec3& w) { return SO3LeftJacobianInverse<double>(-w); }
 
+/// R turned by the least rotation that takes its third column onto the direction d (any length
+/// > 0): a frame's axis laid along d with no turn about it (half a turn about the first column
+/// when d points the other way). R itself when d is zero.
+inline Mat3 SO3TurnedOnto(const Mat3& R, const Vec3& d) {
+  const double n = d.norm();
+  if (!(n > 0.0)) return R;
+  const Vec3 z = R.col(2), e = d / n;
+  const Vec3 axis = z.cross(e);
+  const double s = axis.norm(), c = z.dot(e);
+  if (s < 1e-12) return c > 0.0 ? R : Mat3(R * SO3Exp(Vec3(M_PI, 0.0, 0.0)));
+  return SO3Exp(Vec3(axis / s * std::atan2(s, c))) * R;
+}
+
 }  // namespace cosserat::lie
