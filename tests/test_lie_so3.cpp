@@ -185,5 +185,30 @@ TEST(SO3, TaylorBranchesAreContinuous) {
   }
 }
 
+// SO3TurnedOnto lays a frame's third axis along a direction by the least rotation: the axis
+// lands on d to rounding, and the turn's rotation vector is normal to both (no turn about
+// either), of angle acos(z · d). Antiparallel, half a turn about the frame's first axis; a zero
+// direction leaves the frame. Tolerance 1e-14: a few roundings of unit-sized products.
+TEST(SO3, TurnedOntoLaysTheThirdAxisAlongADirectionByTheLeastRotation) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> g;
+  for (int k = 0; k < 100; ++k) {
+    const Mat3 R = SO3Exp(Vec3(g(rng), g(rng), g(rng)));
+    const Vec3 d = Vec3(g(rng), g(rng), g(rng)) * 3.0;
+    const Mat3 T = SO3TurnedOnto(R, d);
+    EXPECT_LT((T.col(2) - d.normalized()).norm(), 1e-14);
+    const Vec3 turn = SO3Log(Mat3(T * R.transpose()));
+    EXPECT_LT(std::abs(turn.dot(R.col(2))), 1e-14 * (1 + turn.norm()));
+    EXPECT_LT(std::abs(turn.dot(d.normalized())), 1e-14 * (1 + turn.norm()));
+    EXPECT_NEAR(turn.norm(), std::acos(std::clamp(R.col(2).dot(d.normalized()), -1.0, 1.0)),
+                1e-12);
+  }
+  const Mat3 R = SO3Exp(Vec3(0.3, -0.2, 0.5));
+  const Mat3 flipped = SO3TurnedOnto(R, -R.col(2));
+  EXPECT_LT((flipped.col(2) + R.col(2)).norm(), 1e-14);
+  EXPECT_LT((flipped.col(0) - R.col(0)).norm(), 1e-14);
+  EXPECT_EQ(MaxAbs(SO3TurnedOnto(R, Vec3::Zero()) - R), 0.0);
+}
+
 }  // namespace
 }  // namespace cosserat::lie
