@@ -16,6 +16,7 @@
 #include <string>
 
 #include "batch_bindings.hpp"
+#include "bend_radius_bindings.hpp"
 #include "binding_support.hpp"
 #include "interrupt.hpp"
 #include "stepper_bindings.hpp"
@@ -32,6 +33,7 @@
 namespace py = pybind11;
 using namespace cosserat;
 using cosserat::python::BindBatches;
+using cosserat::python::BindBendRadius;
 using cosserat::python::BindStepper;
 using cosserat::python::BindSummary;
 using cosserat::python::Finite;
@@ -484,4 +486,5 @@ PYBIND11_MODULE(_core, m) {
   BindStaticSolver(m);
   BindStepper(m);
   BindBatches(m);
+  BindBendRadius(m);
 }

@@ -24,6 +24,7 @@ from .results import solve  # noqa: F401  (accepts dicts and paths; adds NumPy a
 from .studies import sweep  # noqa: F401
 from .solvers import BatchStepper, StaticSolver, Stepper  # noqa: F401  (problems as solve takes)
 from .actuation import Actuation  # noqa: F401  (fitted to a solver's problem as a dict is)
+from .bend_radius import minimum_bend_radius  # noqa: F401  (an eversion robot's)
 
 
 def load_problem(path):

@@ -874,6 +874,33 @@ class Assemblies(unittest.TestCase):
         self.assertEqual(np.array(forward["result"]["assembly"]["pose_jacobian"]).shape, (6, 6))
 
 
+class BendRadius(unittest.TestCase):
+    def test_the_vine_kinks_at_the_radius_ei_over_its_wrinkling_moment(self):
+        # The vine robot at 0.6 m under gravity, steered by a tip moment about the vertical: it
+        # kinks where the moment reaches the wrinkling moment M_w = pi p r^3 / 2 (Suulker et al.
+        # 2026), so its smallest radius is EI/M_w of the kinking section: the plain tube's at its
+        # base, and with the bands (radius r/2, stiffness 0.36 E_eff I(r/2): M_w and I both fall
+        # by 8) 0.36 times it at the first band (s = 0.3 m). To 1e-5: the kink is bisected to
+        # 1e-6 in the load factor.
+        p = cosserat.load_problem("robots/eversion_banded_vine.json")
+        EI, _ = p.section_stiffness
+        plain = EI / (math.pi * 3000.0 * 0.025 ** 3 / 2)
+        r = cosserat.minimum_bend_radius(p, {"tip_moment": [0, 0, 1.0]}, length=0.6, bands=False)
+        self.assertEqual(r["limit"], "kink")
+        self.assertAlmostEqual(r["min_radius"] / plain, 1.0, delta=1e-5)
+        banded = cosserat.minimum_bend_radius(p, {"tip_moment": [0, 0, 1.0]}, length=0.6)
+        self.assertEqual(banded["limit"], "kink")
+        self.assertAlmostEqual(banded["min_radius"] / (0.36 * plain), 1.0, delta=1e-5)
+        self.assertAlmostEqual(banded["s"], 0.3, delta=1e-9)
+        with self.assertRaisesRegex(ValueError, "robot.kind: the minimum bend radius is an "
+                                    "eversion robot's"):
+            cosserat.minimum_bend_radius("robots/tendon_three_tendon.json", {"tip_force": [1, 0, 0]})
+        with self.assertRaisesRegex(ValueError, "pattern.gravity: unknown key"):
+            cosserat.minimum_bend_radius(p, {"gravity": [0, 0, -9.81]})
+        with self.assertRaisesRegex(ValueError, r"length: expected an everted length in \(0, "):
+            cosserat.minimum_bend_radius(p, {"tip_moment": [0, 0, 1.0]}, length=2.0)
+
+
 class PythonSide(unittest.TestCase):
     """The package's Python side: problems as dicts and paths, NumPy results, plot, animate."""
 

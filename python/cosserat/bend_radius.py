@@ -1,0 +1,35 @@
+"""The minimum bend radius of an eversion (vine) robot, from Python as examples/eversion_bend_radius
+runs it in C++ (docs/eversion.md, "Minimum bend radius")."""
+from . import _core
+from .results import _as_problem
+
+# The load pattern's keys (a problem file's loads keys that a pattern may grow).
+_PATTERN_KEYS = ("distributed_force", "tip_force", "tip_moment", "tip_force_frame",
+                 "tip_moment_frame")
+
+
+def minimum_bend_radius(problem, pattern, length=None, bands=True, angle=None, steps=20):
+    """The smallest radius of curvature (m) the robot's body reaches as the load `pattern` (a
+    cosserat.Loads or a dict with the file's loads keys: a steering tip_moment, a lateral
+    tip_force, ...) grows from 0 to 1 on top of the problem's loads, at the everted `length` (m;
+    default rod.length) and the problem's pressure: up to the kink (the bending moment reaches
+    the wrinkling moment pi p r^3 / 2, limit "kink"), the whole pattern ("actuation") or a failed
+    solve ("no_convergence"). With `angle` (rad, in (0, pi)) instead: the radius when the tip has
+    turned by that angle from the base direction (limit "angle"). bands=False takes the tube
+    without its constrictions. Returns a dict: min_radius (m), s (m, where), load_factor,
+    limit, kink_ratio (the largest bending moment over the wrinkling moment), solves."""
+    problem = _as_problem(problem)
+    if isinstance(pattern, dict):
+        loads = _core.Loads()
+        for key, value in pattern.items():
+            if key not in _PATTERN_KEYS:
+                raise ValueError(f"pattern.{key}: unknown key (a pattern grows "
+                                 f"{', '.join(_PATTERN_KEYS)}; the problem's loads stay)")
+            try:
+                setattr(loads, key, value)
+            except TypeError:  # the binding's own message names no field
+                expected = ('"world" or "body"' if key.endswith("_frame")
+                            else "an array of 3 numbers")
+                raise ValueError(f"pattern.{key}: expected {expected}, got {value!r}") from None
+        pattern = loads
+    return _core._minimum_bend_radius(problem, pattern, length, bands, angle, steps)
