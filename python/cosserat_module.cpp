@@ -300,6 +300,18 @@ void BindActuation(py::module_& m) {
 
 /// cosserat.Problem, read-only views of a validated problem file, and load_problem and
 /// parse_problem, which make one.
+std::string ProblemRepr(const io::Problem& p) {
+  std::ostringstream o;
+  o << std::setprecision(6) << "Problem(analysis=" << io::ToString(p.analysis)
+    << ", formulation=" << io::ToString(p.formulation) << ", boundary=" << io::ToString(p.boundary);
+  if (p.has_assembly)
+    o << ", assembly";
+  else
+    o << ", length=" << p.rod.length << " m, nodes=" << p.nodes;
+  o << ")";
+  return o.str();
+}
+
 void BindProblem(py::module_& m) {
   py::class_<io::Problem>(m, "Problem", "A validated problem file (docs/problem-format.md).")
       .def_property_readonly("analysis",
@@ -350,18 +362,7 @@ void BindProblem(py::module_& m) {
           },
           "(EI, GJ) at s = 0 under the file's actuation, N·m²: the smaller bending stiffness and "
           "the torsional one, stiffness profiles and pressure included.")
-      .def("__repr__", [](const io::Problem& p) {
-        std::ostringstream o;
-        o << std::setprecision(6) << "Problem(analysis=" << io::ToString(p.analysis)
-          << ", formulation=" << io::ToString(p.formulation)
-          << ", boundary=" << io::ToString(p.boundary);
-        if (p.has_assembly)
-          o << ", assembly";
-        else
-          o << ", length=" << p.rod.length << " m, nodes=" << p.nodes;
-        o << ")";
-        return o.str();
-      });
+      .def("__repr__", &ProblemRepr);
 
   m.def(
       "load_problem", [](const std::string& path) { return Checked(io::LoadProblemFile(path)); },
