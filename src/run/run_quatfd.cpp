@@ -244,6 +244,14 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   Result result;
   result.json = io::StaticResultToJson(summary, state);
   detail::KeepStaticFrame(problem, state, options, &result);
+  if (problem.has_robot) {  // a pneumatic robot (tendons run on the SE(3) path): its pressures
+    nlohmann::ordered_json robot;
+    robot["kind"] = io::ToString(problem.robot.kind);
+    const Actuation& a = problem.robot.actuation;
+    robot["chamber_pressure"] = std::vector<double>(
+        a.chamber_pressure.begin(), a.chamber_pressure.begin() + problem.rod.chambers.size());
+    result.json["robot"] = robot;
+  }
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(state);
   std::ostringstream log;
   log << "cosserat: " << ToString(s.status) << " (quaternion-fd), " << s.iterations
