@@ -109,6 +109,17 @@ class Stepper(_core.Stepper):
                             base_twist_B, base_wrench_B,
                             _actuation_from(actuation, self._problem, self._rules))
 
+    @property
+    def actuation(self):
+        """The actuation the next step() applies unless given another: edited in place or
+        assigned (an Actuation or a dict, fitted to the problem as step() fits one), it takes
+        effect there."""
+        return _core.Stepper.actuation.fget(self)
+
+    @actuation.setter
+    def actuation(self, value):
+        _core.Stepper.actuation.fset(self, _actuation_from(value, self._problem, self._rules))
+
     def _check_clamp_twist(self, base_position, base_rotation, base_twist_B):
         """A clamp moved with no base_twist_B ever given: the step takes the twist as an input
         (zero), not from the change of pose, so the rod is dragged, not carried. Warned once."""

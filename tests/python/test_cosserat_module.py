@@ -356,6 +356,13 @@ class Dynamics(unittest.TestCase):
             self.assertTrue(b.step({"gravity": list(p.loads.gravity), "tip_force": [0.1, 0, 0]},
                                    actuation={"tension": [1.0, 0.5, 0.0]}).converged)
         np.testing.assert_array_equal(a.tip_position(), b.tip_position())
+        # Assigned, an actuation is fitted as step() fits one: a dict's tensions, the rest the
+        # problem's; the next step applies it as the same dict given to step().
+        a.actuation = {"tension": [0.2, 0.1, 0.0]}
+        self.assertTrue(a.step().converged)
+        self.assertTrue(b.step({"gravity": list(p.loads.gravity), "tip_force": [0.1, 0, 0]},
+                               actuation={"tension": [0.2, 0.1, 0.0]}).converged)
+        np.testing.assert_array_equal(a.tip_position(), b.tip_position())
         a.actuation.tendon_tension[0] = -1.0
         t = a.time
         with self.assertRaisesRegex(ValueError, "actuation.tendon_tension"):
