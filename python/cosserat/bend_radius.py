@@ -2,6 +2,7 @@
 runs it in C++ (docs/eversion.md, "Minimum bend radius")."""
 from . import _core
 from .results import _as_problem
+from .solvers import _set_keyed_loads
 
 # The load pattern's keys (a problem file's loads keys that a pattern may grow).
 _PATTERN_KEYS = ("distributed_force", "tip_force", "tip_moment", "tip_force_frame",
@@ -21,15 +22,7 @@ def minimum_bend_radius(problem, pattern, length=None, bands=True, angle=None, s
     problem = _as_problem(problem)
     if isinstance(pattern, dict):
         loads = _core.Loads()
-        for key, value in pattern.items():
-            if key not in _PATTERN_KEYS:
-                raise ValueError(f"pattern.{key}: unknown key (a pattern grows "
-                                 f"{', '.join(_PATTERN_KEYS)}; the problem's loads stay)")
-            try:
-                setattr(loads, key, value)
-            except TypeError:  # the binding's own message names no field
-                expected = ('"world" or "body"' if key.endswith("_frame")
-                            else "an array of 3 numbers")
-                raise ValueError(f"pattern.{key}: expected {expected}, got {value!r}") from None
+        _set_keyed_loads(loads, pattern, _PATTERN_KEYS, "pattern",
+                         f"a pattern grows {', '.join(_PATTERN_KEYS)}; the problem's loads stay")
         pattern = loads
     return _core._minimum_bend_radius(problem, pattern, length, bands, angle, steps)

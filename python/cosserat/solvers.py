@@ -40,6 +40,21 @@ _LOAD_DEFAULTS = {"gravity": [0, 0, 0], "distributed_force": [0, 0, 0], "tip_for
                   "tip_moment_frame": "world"}
 
 
+def _set_keyed_loads(loads, value, keys, where, allowed):
+    """Sets on `loads` the entries of the dict `value` (a problem file's loads keys among `keys`),
+    each named `where.key` when refused: an unknown key (with `allowed`, what is taken) or a
+    value of the wrong kind."""
+    for key, entry in value.items():
+        if key not in keys:
+            raise ValueError(f"{where}.{key}: unknown key ({allowed})")
+        try:
+            setattr(loads, key, entry)
+        except TypeError:  # the binding's own message names no field
+            expected = ('"world" or "body"' if key.endswith("_frame")
+                        else "an array of 3 numbers")
+            raise ValueError(f"{where}.{key}: expected {expected}, got {entry!r}") from None
+
+
 def _loads_from(value, holder):
     """A Loads from a dict with the problem file's `loads` keys (absent ones at their defaults,
     as in a file) in the environment of holder.loads (a Stepper's or a Problem's: of a copy, the
@@ -51,16 +66,9 @@ def _loads_from(value, holder):
     gravity = np.array(loads.gravity)  # m/s², the holder's
     for key, default in _LOAD_DEFAULTS.items():
         setattr(loads, key, default)
-    for key, entry in value.items():
-        if key not in _LOAD_DEFAULTS:
-            raise ValueError(f"loads.{key}: unknown key (a step's loads take "
-                             f"{', '.join(_LOAD_DEFAULTS)}; the environment stays the problem's)")
-        try:
-            setattr(loads, key, entry)
-        except TypeError:  # the binding's own message names no field
-            expected = ('"world" or "body"' if key.endswith("_frame")
-                        else "an array of 3 numbers")
-            raise ValueError(f"loads.{key}: expected {expected}, got {entry!r}") from None
+    _set_keyed_loads(loads, value, _LOAD_DEFAULTS, "loads",
+                     f"a step's loads take {', '.join(_LOAD_DEFAULTS)}; the environment stays "
+                     "the problem's")
     if "gravity" not in value and np.any(gravity):
         # As in a file, a load left out is not there; gravity left out of a step's loads is the
         # one a controller most likely meant to keep (a rod that no longer sags).
