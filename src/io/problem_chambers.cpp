@@ -11,32 +11,6 @@ namespace {
 
 using json = nlohmann::json;
 
-/// The outline chambers must stay within, from rod.section: a disc (circle, annulus: the outer
-/// radius) or a rectangle (half width along body x, half height along body y). Empty for an
-/// explicit section (no outline to check against) or a section already reported as wrong.
-struct Outline {
-  std::optional<double> radius;     ///< m
-  std::optional<Vec2> half_extent;  ///< m
-};
-
-Outline SectionOutline(const json& top) {
-  Outline out;
-  if (!top.contains("rod") || !top["rod"].is_object() || !top["rod"].contains("section"))
-    return out;
-  const json& s = top["rod"]["section"];
-  if (!s.is_object()) return out;
-  // Only a size the file got right bounds anything (a wrong one is reported by the section).
-  auto number = [&](const char* key) -> std::optional<double> {
-    if (s.contains(key) && s[key].is_number() && s[key].get<double>() > 0)
-      return s[key].get<double>();
-    return std::nullopt;
-  };
-  if (auto r = number("radius")) out.radius = r;
-  if (auto r = number("outer_radius")) out.radius = r;
-  if (auto w = number("width"), h = number("height"); w && h) out.half_extent = Vec2(*w, *h) / 2;
-  return out;
-}
-
 /// The chamber's disc of area A (radius a = sqrt(A/π)) at `offset` must lie within the outline;
 /// else reported at `<chamber>.offset`.
 void CheckInside(const ObjectReader& c, const Outline& outline, const Vec2& offset, double area) {

@@ -23,36 +23,15 @@ const std::vector<std::string> kRobotKinds = {"tendon", "jamming", "eversion", "
 const std::vector<std::string> kRoutes = {"parallel", "converging", "helical"};
 
 /// Where tendon guides may sit: within "disk_radius" if given, else within the section's
-/// outline, a circle or annulus (its outer radius) or a rectangle (its half width and height);
-/// neither when the file says neither (no check).
-struct TendonGuides {
-  std::optional<double> radius;      ///< m
-  std::optional<Vec2> half_extent;   ///< m, along body x and y
-};
-
-TendonGuides GuidesOf(const ObjectReader& robot, const json& top) {
-  TendonGuides out;
-  if (robot.Has("disk_radius")) {
-    out.radius = ReadNumber(robot, "disk_radius", PositiveNumber(), Presence::kOptional);
-    return out;
-  }
-  const json* rod = top.contains("rod") ? &top["rod"] : nullptr;
-  if (!rod || !rod->is_object() || !rod->contains("section")) return out;
-  const json& s = (*rod)["section"];
-  if (!s.is_object()) return out;
-  // Only a size the file got right bounds anything (a wrong one is reported by the section).
-  auto number = [&](const char* key) -> std::optional<double> {
-    if (s.contains(key) && s[key].is_number() && s[key].get<double>() > 0)
-      return s[key].get<double>();
-    return std::nullopt;
-  };
-  if (auto r = number("radius")) out.radius = r;
-  if (auto r = number("outer_radius")) out.radius = r;
-  if (auto w = number("width"), h = number("height"); w && h) out.half_extent = Vec2(*w, *h) / 2;
+/// outline (SectionOutline); no check when the file says neither.
+Outline GuidesOf(const ObjectReader& robot, const json& top) {
+  if (!robot.Has("disk_radius")) return SectionOutline(top);
+  Outline out;
+  out.radius = ReadNumber(robot, "disk_radius", PositiveNumber(), Presence::kOptional);
   return out;
 }
 
-std::optional<Tendon> ParseTendon(const ObjectReader& t, const TendonGuides& guides) {
+std::optional<Tendon> ParseTendon(const ObjectReader& t, const Outline& guides) {
   const std::optional<std::string> route = ReadChoice(t, "route", kRoutes, Presence::kRequired);
   std::vector<std::string> keys = {"name", "route", "anchor"};
   if (route == "parallel") keys.push_back("offset");
@@ -225,7 +204,7 @@ int JammingSegments(const json& top) {
 
 /// "tendons": each tendon's route, within the guides, and its anchor within the
 /// rod.
-void ParseTendons(const ObjectReader& robot, const TendonGuides& guide, Problem* p) {
+void ParseTendons(const ObjectReader& robot, const Outline& guide, Problem* p) {
   p->rod.tendons.clear();
   if (const json* t = robot.Find("tendons")) {
     const std::string path = robot.PathOf("tendons");
@@ -292,6 +271,24 @@ std::optional<Vec2> ReadOffset(const ObjectReader& o, const std::string& key) {
   return Vec2(*x, *y);
 }
 
+Outline SectionOutline(const json& top) {
+  Outline out;
+  if (!top.contains("rod") || !top["rod"].is_object() || !top["rod"].contains("section"))
+    return out;
+  const json& s = top["rod"]["section"];
+  if (!s.is_object()) return out;
+  // Only a size the file got right bounds anything (a wrong one is reported by the section).
+  auto number = [&](const char* key) -> std::optional<double> {
+    if (s.contains(key) && s[key].is_number() && s[key].get<double>() > 0)
+      return s[key].get<double>();
+    return std::nullopt;
+  };
+  if (auto r = number("radius")) out.radius = r;
+  if (auto r = number("outer_radius")) out.radius = r;
+  if (auto w = number("width"), h = number("height"); w && h) out.half_extent = Vec2(*w, *h) / 2;
+  return out;
+}
+
 void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
   robot.AllowOnly({"kind", "description", "source", "disk_radius", "tendons", "chambers",
                    "actuation", "initial_actuation", "growth"});
@@ -300,7 +297,7 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
                       .value_or(RobotKind::kNone);
   ReadString(robot, "description", Presence::kOptional);
   ReadString(robot, "source", Presence::kOptional);
-  const TendonGuides guide = GuidesOf(robot, top);
+  const Outline guide = GuidesOf(robot, top);
 
   // A profile solved at fixed pressures (rod.stiffness_profile) hands them to the robot; its
   // actuation may change the jamming pressures, and repeat (not contradict) the pressure.

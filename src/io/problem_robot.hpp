@@ -16,6 +16,15 @@ namespace cosserat::io::detail {
 /// nullopt (reported; a missing key too).
 std::optional<Vec2> ReadOffset(const ObjectReader& o, const std::string& key);
 
+/// The outline tendons and chambers must stay within, from rod.section: a disc (circle,
+/// annulus: the outer radius) or a rectangle (half width along body x, half height along body
+/// y). Empty for an explicit section (no outline to check against) or a size reported as wrong.
+struct Outline {
+  std::optional<double> radius;     ///< m
+  std::optional<Vec2> half_extent;  ///< m
+};
+Outline SectionOutline(const nlohmann::json& top);
+
 /// Sets problem->robot and the tendons of problem->rod from `robot`, reporting every error. Call
 /// after the rod is parsed (offsets are checked against its section).
 void ParseRobot(const ObjectReader& robot, const nlohmann::json& top, Problem* problem);
