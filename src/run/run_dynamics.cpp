@@ -184,14 +184,8 @@ io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
     // The start's energy is the balance's only under the actuation the run steps with: a change
     // at t = 0 (a chamber pressurised from the initial actuation) moves the rest strain, and
     // the work it does is in no term.
-    const Actuation& a0 = problem.robot.initial_actuation;
-    const Actuation& a = problem.robot.actuation;
-    const bool same_actuation = a0.stiffness_scale == a.stiffness_scale &&
-                                a0.pressure == a.pressure &&
-                                a0.tendon_tension == a.tendon_tension &&
-                                a0.chamber_pressure == a.chamber_pressure &&
-                                a0.jamming_pressure == a.jamming_pressure;
-    if (same_actuation) run.initial_total_energy = RunEnergy(problem, *stepper).total();
+    if (problem.robot.initial_actuation == problem.robot.actuation)
+      run.initial_total_energy = RunEnergy(problem, *stepper).total();
     StepToTheEnd(problem, steps, stride, all_nodes, options.progress, stepper, &run);
     run.energy = RunEnergy(problem, *stepper);
   }

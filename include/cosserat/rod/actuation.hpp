@@ -42,6 +42,14 @@ struct Actuation {
   /// Every value finite (no NaN or Inf).
   bool AllFinite() const;
 
+  /// Every field equal (the same command).
+  bool operator==(const Actuation& o) const {
+    return stiffness_scale == o.stiffness_scale && pressure == o.pressure &&
+           tendon_tension == o.tendon_tension && chamber_pressure == o.chamber_pressure &&
+           jamming_pressure == o.jamming_pressure;
+  }
+  bool operator!=(const Actuation& o) const { return !(*this == o); }
+
   /// For the solvers' setters: throws std::invalid_argument naming the field ("actuation.<field>:
   /// expected ...") when IsValid refuses the actuation for a rod of these tendons and chambers.
   void Require(int tendon_count, int chamber_count) const;
