@@ -344,19 +344,22 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
     // (the SE(3) path rounds it to whole steps of dt, which are capped above): cap the frames.
     const Problem::Dynamics& d = p->dynamics;
     const double frames = std::round(d.duration / d.output_interval);
-    const bool name_duration =
-        o->Has("duration") && (!o->Has("output_interval") || d.output_interval > 1e-9);
+    const std::string most = "at most " + std::to_string(kMaxQuatFdFrames) + " frames";
+    const std::string got = ", " + FormatNumber(frames) + " frames";
     if (p->formulation == Formulation::kQuaternionFd && d.output_interval > 0 &&
-        frames > kMaxQuatFdFrames)
-      o->report().Expected(
-          o->PathOf(name_duration ? "duration" : "output_interval"),
-          (name_duration ? "a duration giving at most " + std::to_string(kMaxQuatFdFrames) +
-                               " frames of output_interval (" + FormatNumber(d.output_interval) +
-                               " s)"
-                         : "an interval giving at most " + std::to_string(kMaxQuatFdFrames) +
-                               " frames over duration (" + FormatNumber(d.duration) + " s)"),
-          FormatNumber(name_duration ? d.duration : d.output_interval) + ", " +
-              FormatNumber(frames) + " frames");
+        frames > kMaxQuatFdFrames) {
+      // The value the file gave is named, as for dt above.
+      if (o->Has("duration") && (!o->Has("output_interval") || d.output_interval > 1e-9))
+        o->report().Expected(o->PathOf("duration"),
+                             "a duration giving " + most + " of output_interval (" +
+                                 FormatNumber(d.output_interval) + " s)",
+                             FormatNumber(d.duration) + got);
+      else
+        o->report().Expected(o->PathOf("output_interval"),
+                             "an interval giving " + most + " over duration (" +
+                                 FormatNumber(d.duration) + " s)",
+                             FormatNumber(d.output_interval) + got);
+    }
   }
   CheckHeldTipLoads(top, *p);
   const auto buckling =
