@@ -84,6 +84,8 @@ struct JacobianCase {
   LoadFrame force_frame, moment_frame;
   bool off_manifold;
   EndCondition tip = EndCondition::kFree;
+  /// A sheared current with drag and added mass, and a plane some vertices press into.
+  bool environment = false;
 };
 
 class QuatFdJacobian : public ::testing::TestWithParam<JacobianCase> {};
@@ -111,10 +113,43 @@ TEST_P(QuatFdJacobian, MatchesCentralDifferences) {
   loads.tip_force_frame = c.force_frame;
   loads.tip_moment = Vec3(0.001, 0.003, -0.002);
   loads.tip_moment_frame = c.moment_frame;
-  model.set_loads(loads);
-
   Eigen::VectorXd q, v;
   RandomState(model, 11, c.off_manifold, &q, &v);
+  if (c.environment) {
+    loads.fluid.density = 1000;
+    loads.fluid.velocity_W = Vec3(0.3, -0.2, 0.1);
+    loads.fluid.profile.kind = FluidFlowProfile::Kind::kPowerLaw;
+    loads.fluid.profile.origin_W = Vec3(0, 0, -1);
+    loads.fluid.profile.exponent = 0.3;
+    loads.fluid.drag_normal = 1.2;
+    loads.fluid.drag_tangential = 0.1;
+    loads.fluid.added_mass = 1.0;
+    // A plane through the mean of the free vertices, tilted: about half of them press into it.
+    // The penalty's second derivative jumps at the gaps 0 and −ε; each vertex (checked below)
+    // is ten difference steps (1e-5 m) clear of both, so the differences see no kink.
+    ContactSurface& plane = loads.contact.surface[loads.contact.count++];
+    plane.direction_W = Vec3(0.2, 0.3, 1.0).normalized();
+    plane.stiffness = 50.0;
+    plane.damping = 0.5;
+    plane.friction = 0.4;
+    plane.smoothing = 1e-6;
+    Vec3 mean = Vec3::Zero();
+    for (int k = 0; k <= opt.segments; ++k) mean += q.segment<3>(L::X(k)) / (opt.segments + 1);
+    plane.point_W = mean;
+  }
+  model.set_loads(loads);
+  if (c.environment) {
+    const ContactSurface& plane = loads.contact.surface[0];
+    int pressing = 0;
+    for (int k = 0; k <= opt.segments; ++k) {
+      Vec3 normal;
+      const double gap = plane.Distance(q.segment<3>(L::X(k)), &normal) -
+                         0.5 * model.VertexSite(k).outer_diameter;
+      ASSERT_GT(std::abs(gap), 1e-4 + plane.smoothing) << "vertex " << k << " near the ramp";
+      pressing += gap < 0;
+    }
+    ASSERT_GT(pressing, 0);
+  }
   BandedMatrix A, B;
   Eigen::VectorXd a;
   model.Jacobian(q, v, &A, &B, &a);
@@ -189,7 +224,11 @@ INSTANTIATE_TEST_SUITE_P(
                       JacobianCase{Curvature::kBasic, EndCondition::kFree, LoadFrame::kWorld,
                                    LoadFrame::kBody, false},
                       JacobianCase{Curvature::kVariant1, EndCondition::kClamped, LoadFrame::kWorld,
-                                   LoadFrame::kWorld, true, EndCondition::kClamped}));
+                                   LoadFrame::kWorld, true, EndCondition::kClamped},
+                      JacobianCase{Curvature::kVariant1, EndCondition::kClamped, LoadFrame::kWorld,
+                                   LoadFrame::kBody, false, EndCondition::kFree, true},
+                      JacobianCase{Curvature::kBasic, EndCondition::kPinned, LoadFrame::kBody,
+                                   LoadFrame::kWorld, false, EndCondition::kClamped, true}));
 
 TEST(QuatFdModel, RestStateIsStressFreeEquilibrium) {
   for (Curvature k : {Curvature::kBasic, Curvature::kVariant1}) {

@@ -172,8 +172,18 @@ void QuatFdModel::HeldShape(Eigen::Ref<Eigen::VectorXd> q) const {
       bool through = false;
       for (int v = 1; v < N && !through; ++v)
         through = bed.Distance(x[v], &normal) < 0.5 * vertex_diameter_[v];
-      if (through)  // else x stays
-        GroundedCatenaryPositions(A, plane, length * stretch, stretched, &x);
+      if (!through || !GroundedCatenaryPositions(A, plane, length * stretch, stretched, &x))
+        continue;  // x stays
+      // Sunk to where the bed's penalty carries the line's net weight w (N/m): a line laid on
+      // the surface (no penetration) felt no contact stiffness at all, and Newton's first step
+      // dropped its grounded part by kilometres through the bed, held only by bending.
+      const double w = std::max(0.0, -net.dot(plane.up)) / length;
+      for (int v = 1; v < N; ++v) {
+        const double eps = bed.smoothing > 0 ? bed.smoothing : 1e-3 * vertex_diameter_[v];
+        const double gap = bed.Distance(x[v], &normal) - 0.5 * vertex_diameter_[v];
+        if ((x[v] - A).dot(plane.up) <= 1e-9 * length)  // on the bed's part
+          x[v] -= (gap + w / bed.stiffness + 0.5 * eps) * normal;
+      }
     }
   } else {
     // The chord, stretched uniformly (a taut rod); or, with no gravity across the chord to hang

@@ -192,9 +192,15 @@ double StaticResidual(const QuatFdModel& model, const Eigen::Ref<const Eigen::Ve
   return r;
 }
 
-QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
+QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& given,
                                   Eigen::Ref<Eigen::VectorXd> q,
                                   const QuatFdStaticsOptions& options) {
+  // Newton drives the accelerations M⁻¹ f to zero. A fluid's added mass makes M turn with each
+  // vertex's tangent, which adds ∂M⁻¹/∂q · f to the Jacobian: zero at the equilibrium, but far
+  // from it enough to turn a riser's steps on the sea bed astray. At rest the added mass does
+  // nothing, so statics leaves it out; the model gets the given loads back at the end.
+  StaticLoads loads = given;
+  loads.fluid.added_mass = 0.0;
   const auto start = std::chrono::steady_clock::now();
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("QuatFdStaticsOptions: " + why);
@@ -202,7 +208,7 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
   Workspace w(model->size());
   const double beta = StaticBeta(*model, loads, q);
   auto finish = [&](SolveStatus status) {
-    model->set_loads(loads);
+    model->set_loads(given);
     summary.status = status;
     summary.wall_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
