@@ -382,6 +382,11 @@ void StaticMultipleShootingSolver::Finish(const lie::SE3& base, const StaticLoad
   Shot(base, last);
   Residual(base, last, &r_);
   summary->residual = r_.norm();
+  // Residuals met by a shot that ran away (RodState::RanAway) are no equilibrium.
+  if (converged && state_.RanAway()) {
+    summary->status = SolveStatus::kNonFinite;
+    return;
+  }
   summary->status = converged ? SolveStatus::kConverged
                               : (std::isfinite(summary->residual) ? SolveStatus::kMaxIterations
                                                                   : SolveStatus::kNonFinite);

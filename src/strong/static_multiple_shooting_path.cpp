@@ -127,9 +127,12 @@ double StaticMultipleShootingSolver::FollowPath(const lie::SE3& base,
     const double tolerance =
         mu_try == 1.0 ? options_.tolerance : std::max(options_.tolerance, kIntermediateTolerance);
     bool held = Newton(base, at(mu_try), tolerance, summary);
-    if (held && (obstacles || turns)) {
+    if (held) {
+      // A level whose shot ran away met its residuals with frames that are no rotations
+      // (RodState::RanAway): refused like a failed one.
       const RodState& now = Shot(base, at(mu_try));
-      held = (!obstacles || !ReachesObstacleCore(surfaces, at_accepted, now.position_W)) &&
+      held = !now.RanAway() &&
+             (!obstacles || !ReachesObstacleCore(surfaces, at_accepted, now.position_W)) &&
              (!turns || LargestTurn(frames_accepted, now.rotation_WB) <= options_.max_turn);
       if (held && obstacles) at_accepted = now.position_W;
       if (held && turns) frames_accepted = now.rotation_WB;
