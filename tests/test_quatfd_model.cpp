@@ -11,6 +11,8 @@
 #include "cosserat/lie/quaternion.hpp"
 #include "cosserat/numerics/banded_matrix.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
+#include "cosserat/quatfd/quatfd_statics.hpp"
+#include "cosserat/rod/tendon_route.hpp"
 
 namespace cosserat::quatfd {
 namespace {
@@ -296,6 +298,28 @@ TEST(QuatFdModel, BadInputIsAClearError) {
   opt.tip_end = EndCondition::kFree;
   opt.grid = {0, 0.2, 0.1, 0.3, 0.5};
   EXPECT_THROW(QuatFdModel(RubberRod(0.5, false), lie::SE3(), opt), std::invalid_argument);
+  opt.grid.clear();
+  // A tendon's pull is no load of this model: under tension it is refused, naming the tendon,
+  // where it would otherwise leave the rod straight (the SE(3) solvers bend it).
+  RodModel rod = RubberRod(0.5, false);
+  rod.tendons.push_back(Tendon{"t0", TendonRoute::Parallel(Vec2(0.002, 0))});
+  Actuation pulled;
+  pulled.tendon_tension[0] = 1.0;
+  try {
+    QuatFdModel model(rod, lie::SE3(), opt, pulled);
+    FAIL() << "accepted a tendon under tension";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("tendon_tension[0]"), std::string::npos) << e.what();
+  }
+  pulled.tendon_tension[1] = 1.0;  // a second tension on a rod of one tendon
+  EXPECT_THROW(QuatFdModel(rod, lie::SE3(), opt, pulled), std::invalid_argument);
+  // Slack, it carries nothing: the rod is the plain one.
+  const QuatFdModel slack(rod, lie::SE3(), opt);
+  // A state of the wrong size is an error, not a read past its end.
+  Eigen::VectorXd q(10), v(slack.size());
+  EXPECT_THROW(slack.RestState(q, v), std::invalid_argument);
+  QuatFdModel model(RubberRod(0.5, false), lie::SE3(), opt);
+  EXPECT_THROW(SolveStatics(&model, StaticLoads{}, q), std::invalid_argument);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/lie/quaternion.hpp"
@@ -217,6 +218,13 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("QuatFdOptions: " + why);
   s_ = VertexGrid(rod, options);
+  actuation.Require(static_cast<int>(rod.tendons.size()), static_cast<int>(rod.chambers.size()));
+  for (size_t k = 0; k < rod.tendons.size(); ++k)
+    if (actuation.tendon_tension[k] != 0.0)
+      throw std::invalid_argument(
+          "actuation.tendon_tension[" + std::to_string(k) +
+          "]: the quaternion-FD model carries no tendon loads; a tendon's pull is solved by "
+          "StaticShootingSolver and Bdf2ShootingStepper (SE(3))");
   const int N = options.segments;
   layout_.segments = N;
   base_quat_ = lie::RotationToQuat(base.R);
@@ -283,6 +291,10 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
 }
 
 void QuatFdModel::RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const {
+  if (q.size() != size() || v.size() != size())
+    throw std::invalid_argument("QuatFdModel::RestState: q and v need " + std::to_string(size()) +
+                                " entries, not " + std::to_string(q.size()) + " and " +
+                                std::to_string(v.size()));
   const int N = layout_.segments;
   v.setZero();
   if (options_.TipHeld()) {

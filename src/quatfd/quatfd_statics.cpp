@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "cosserat/loads/contact_entry.hpp"
@@ -202,6 +203,9 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& given,
   StaticLoads loads = given;
   loads.fluid.added_mass = 0.0;
   const auto start = std::chrono::steady_clock::now();
+  if (q.size() != model->size())
+    throw std::invalid_argument("quatfd::SolveStatics: q has " + std::to_string(q.size()) +
+                                " entries, the model's state " + std::to_string(model->size()));
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("QuatFdStaticsOptions: " + why);
   QuatFdStaticsSummary summary;

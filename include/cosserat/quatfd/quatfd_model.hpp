@@ -121,7 +121,8 @@ class QuatFdModel {
   /// Samples the rod on MakeGrid's grid with options.segments segments (profile breakpoints
   /// become vertices). `base` is the clamp pose (R_WB, p_W of s = 0): for kClamped both are used,
   /// for kPinned the position, for kFree only the initial state. Throws std::invalid_argument
-  /// naming the field when the rod or the options are invalid.
+  /// naming the field when the rod, the options or the actuation are invalid, and for a tendon
+  /// under tension: this path models chambers' pressures, not tendons.
   QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFdOptions& options,
               const Actuation& actuation = {});
 
@@ -147,6 +148,7 @@ class QuatFdModel {
   /// apart; else the inextensible catenary of the rod's length hanging in the net distributed load
   /// of the loads set (weight less buoyancy, plus a uniform force; in gravity where that cancels),
   /// or a parabola bowed along the base frame's x when there is no load across the chord.
+  /// Throws std::invalid_argument when q or v is not of size().
   void RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const;
 
   /// a = f(q, v) = q̈ (Lang & Linn 2009, eq. 4). Prescribed vertices get a = 0.

@@ -54,7 +54,8 @@ struct QuatFdStaticsSummary {
 
 /// Solves for the equilibrium under `loads` (set into the model). q holds the initial guess (the
 /// rest state when in doubt) and receives the solution (or the last iterate on failure). The
-/// model's own loads are left at `loads`.
+/// model's own loads are left at `loads`. Throws std::invalid_argument when q is not of the
+/// model's size().
 QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& loads,
                                   Eigen::Ref<Eigen::VectorXd> q,
                                   const QuatFdStaticsOptions& options = {});
