@@ -8,6 +8,7 @@
 /// - SI units everywhere.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross(), used by the inline Lie and kernel headers
 
 namespace cosserat {
 
