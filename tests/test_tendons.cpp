@@ -267,6 +267,55 @@ TEST(Tendons, LengthCommandReachesTheTensionThatProducesItAndASlackTendonCarries
   EXPECT_GT(command[1], solver.tendon_lengths()[1]);  // slack: the path is shorter than the cable
 }
 
+// Four parallel tendons at 90° make only three strains, two curvatures and
+// the stretch, so Newton's matrix on their tensions is singular whenever all four are taut: from
+// 0.3 N each, a command reachable with tensions (1.2, 0.5, 0, 0) N and tendon c's cable 2 mm
+// longer than its path once ended after one iteration, its LU step useless. Least-norm steps
+// reach it: c slack, the taut tendons' lengths to the 1e-10 L asked, and where the tensions
+// are not unique (a pretensioned command, (1.2, 0.5, 0.1, 0.1) N) the lengths all the same.
+TEST(Tendons, RedundantTendonsReachALengthCommandFromAnyStart) {
+  // A nitinol backbone (0.25 m, r 0.6 mm), upright, the tendons 6 mm out.
+  const double length = 0.25;
+  RodModel model = RodModel::Uniform(length, CrossSection::Circle(0.0006),
+                                     Material::FromShearModulus(58e9, 21.8e9, 6450));
+  for (int i = 0; i < 4; ++i)
+    model.tendons.push_back({std::string(1, char('a' + i)),
+                             TendonRoute::Parallel(0.006 * Vec2(std::cos(i * kPi / 2),
+                                                                std::sin(i * kPi / 2)))});
+  StaticLoads loads;
+  loads.gravity_W = Vec3(0, 0, -9.81);
+  StaticShootingSolver solver(model, 41);
+  auto command_of = [&](std::initializer_list<double> tau) {
+    solver.SetActuation(Tensions(tau));
+    EXPECT_TRUE(solver.Solve(lie::SE3{}, loads).converged());
+    return solver.tendon_lengths();
+  };
+  using Lengths = std::array<double, Actuation::kMaxTendons>;
+  Lengths slack_c = command_of({1.2, 0.5, 0.0, 0.0});
+  slack_c[2] += 2e-3;
+  const Lengths pretensioned = command_of({1.2, 0.5, 0.1, 0.1});
+  const Lengths* commands[] = {&slack_c, &pretensioned};
+  for (const Lengths* c : commands) {
+    const auto& command = *c;
+    Actuation a = Tensions({0.3, 0.3, 0.3, 0.3});
+    const TendonLengthSummary s = SolveTendonLengths(solver, lie::SE3{}, loads, command, &a);
+    ASSERT_TRUE(s.converged()) << ToString(s.status) << ", length error " << s.length_error;
+    EXPECT_LT(s.length_error, 1e-10 * length);
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_GE(a.tendon_tension[i], 0.0);
+      if (!s.slack[i]) EXPECT_NEAR(solver.tendon_lengths()[i], command[i], 1e-10 * length);
+    }
+    if (c != &slack_c) continue;
+    // With c slack the other three tensions are unique (three strains): the truth's, to the
+    // ~1e-7 N the length tolerance recovers.
+    EXPECT_TRUE(s.slack[2]);
+    EXPECT_EQ(a.tendon_tension[2], 0.0);
+    EXPECT_NEAR(a.tendon_tension[0], 1.2, 1e-6);
+    EXPECT_NEAR(a.tendon_tension[1], 0.5, 1e-6);
+    EXPECT_NEAR(a.tendon_tension[3], 0.0, 1e-6);
+  }
+}
+
 // Displacement control far from its start: the three-tendon robot's path lengths at (25, 0, 1.5) N
 // (a 0.8 mm backbone bent to κ ≈ 47 /m) commanded from zero tension. The search must reach the
 // tensions that produce them (tendon b, stretched by the bend, goes slack when commanded at its

@@ -1,6 +1,6 @@
 #include "cosserat/robots/tendon_control.hpp"
 
-#include <Eigen/LU>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 
@@ -70,9 +70,9 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
       active[i] = tau(i) > 0 || g(i) > 0;
       if (active[i]) worst = std::max(worst, std::abs(g(i)));
     }
+    summary.length_error = worst;
     if (worst < tol) {
       summary.status = SolveStatus::kConverged;
-      summary.length_error = worst;
       for (int i = 0; i < count; ++i) {
         summary.slack[i] = !active[i];
         actuation->tendon_tension[i] = tau(i);
@@ -83,7 +83,14 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
     if (!ActiveSensitivities(mismatch, count, tau, g, active, &D)) return summary;
     VecT rhs = VecT::Zero();
     for (int i = 0; i < count; ++i) rhs(i) = active[i] ? -g(i) : 0.0;
-    const VecT step = D.partialPivLu().solve(rhs);
+    // Least squares of least norm: tendons that bend the rod alike (four parallel ones make
+    // three strains: two curvatures and the stretch) leave D singular, with a family of
+    // tensions for every reachable command; LU's step was then no step at all. Singular
+    // values below 1e-6 of the largest are the forward differences' error, not a way the
+    // tensions move the lengths.
+    Eigen::CompleteOrthogonalDecomposition<MatT> cod(D);
+    cod.setThreshold(1e-6);
+    const VecT step = cod.solve(rhs);
     // Project onto τ ≥ 0; halve the step until the mismatch of the active set decreases.
     double alpha = 1.0;
     bool moved = false;
@@ -109,6 +116,13 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
       break;
     }
   }
+  // Not converged: the tensions and the mismatch of the last accepted step.
+  double worst = 0.0;
+  for (int i = 0; i < count; ++i) {
+    if (tau(i) > 0 || g(i) > 0) worst = std::max(worst, std::abs(g(i)));
+    actuation->tendon_tension[i] = tau(i);
+  }
+  summary.length_error = worst;
   summary.status = SolveStatus::kMaxIterations;
   return summary;
 }

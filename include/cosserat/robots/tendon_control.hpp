@@ -25,7 +25,9 @@ struct TendonLengthSummary {
   int solves = 0;             ///< static solves (each warm-started)
   int shots = 0;              ///< their shots, in all
   double residual = 0.0;  ///< the last converged static solve's residual (StaticShootingSummary)
-  double length_error = 0.0;  ///< largest |ℓ − ℓ_cmd| over the taut tendons, m
+  /// largest |ℓ − ℓ_cmd| over the taut tendons at the tensions returned, m (when not converged
+  /// too, at the last accepted step; 0 when the first static solve failed)
+  double length_error = 0.0;
   std::array<bool, Actuation::kMaxTendons> slack{};
   bool converged() const { return status == SolveStatus::kConverged; }
 };
@@ -35,7 +37,9 @@ struct TendonLengthSummary {
 /// the model's tendons. Projected Newton on the tensions with τ ≥ 0; the length sensitivities
 /// come from warm-started re-solves; a trial step whose static solve fails is halved like one that
 /// does not reduce the mismatch. On return the solver holds the equilibrium at the last accepted
-/// tensions.
+/// tensions, which *actuation holds too. Tendons that bend the rod alike are redundant (four
+/// parallel ones at 90° make only two curvatures and a stretch): every reachable command then has
+/// a family of tensions, and Newton's least-norm steps pick one of them.
 TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::SE3& base,
                                        const StaticLoads& loads,
                                        const std::array<double, Actuation::kMaxTendons>& lengths,
