@@ -105,6 +105,37 @@ GridResolution CheckPolygon(const std::vector<double>& s, const std::vector<Vec3
   return out;
 }
 
+std::string TensionLayerLine(const io::Problem& problem, const nlohmann::ordered_json& nodes) {
+  if (!nodes.contains("s") || !nodes.contains("force_body") || !problem.rod.section) return "";
+  const std::vector<double> s = nodes["s"].get<std::vector<double>>();
+  const auto& force = nodes["force_body"];
+  if (force.size() != s.size()) return "";
+  double worst = 0.0, worst_s = 0.0, worst_tension = 0.0, worst_k = 0.0;  // k h, m, N, 1/m
+  for (size_t i = 0; i + 1 < s.size(); ++i) {
+    const double tension =
+        std::max(force[i][2].get<double>(), force[i + 1][2].get<double>());  // body z: axial
+    if (!(tension > 0.0)) continue;
+    const double mid = 0.5 * (s[i] + s[i + 1]);
+    const double ei =
+        problem.rod.section->At(mid, problem.robot.actuation).min_bending_stiffness();
+    const double k = std::sqrt(tension / ei), kh = k * (s[i + 1] - s[i]);
+    if (kh > worst) worst = kh, worst_s = s[i], worst_tension = tension, worst_k = k;
+  }
+  const double z = worst;
+  const double error = 1.0 - (1 + z + z * z / 2 + z * z * z / 6 + z * z * z * z / 24) / std::exp(z);
+  if (!(error > 0.01)) return "";
+  std::ostringstream line;
+  line << std::setprecision(3) << "cosserat: warning: the grid is coarse for the bending layer of "
+       << "the tension: k h = sqrt(T/EI) h reaches " << worst << " (T = " << worst_tension
+       << " N near s = " << worst_s << " m), where RK4 in s follows e^(k h) only to about "
+       << 100 * error << " %, so the moments and reactions where the bending changes over 1/k = "
+       << 1 / worst_k << " m (at clamps, supports and point loads) may be off by as much; "
+       << "rod.nodes ≥ "
+       << static_cast<long>(std::ceil(worst_k * problem.rod.length)) + 1
+       << " keeps k h below 1\n";
+  return line.str();
+}
+
 void CheckGridResolution(const io::Problem& problem, Result* result) {
   // Statics, the equilibrium the modes are about, and the final state of dynamics (the
   // result's nodes).
@@ -144,6 +175,9 @@ void CheckGridResolution(const io::Problem& problem, Result* result) {
     return;
   }
   result->log += g.log;
+  if (!polygon && !stopped_short && !g.ran_away && !g.under_resolved &&
+      problem.analysis != io::Analysis::kDynamics)
+    result->log += TensionLayerLine(problem, nodes);
   if (stopped_short || (!g.ran_away && !g.under_resolved)) return;
   if (coarse_modes && !g.ran_away) return;  // under_resolved already
   result->converged = false;
