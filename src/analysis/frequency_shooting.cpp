@@ -87,8 +87,9 @@ StageTerms StageAt(const StaticLoads& loads, const Sample& smp, const Primal& y,
 
 FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<double>& grid,
                                      const lie::SE3& base, const StaticLoads& loads,
-                                     const Vec6& base_wrench_B, const Actuation& actuation)
-    : grid_(grid) {
+                                     const Vec6& base_wrench_B, const Actuation& actuation,
+                                     const ShootingEnds& ends)
+    : grid_(grid), ends_(ends) {
   if (!rod.tendons.empty())
     throw std::invalid_argument(
         "FrequencyShooting: rods with tendons are not supported (the tendon strain law is not "
@@ -99,6 +100,7 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
   EI_ = s0.max_bending_stiffness();
   rhoA0_ = s0.mass(5, 5);
   const double L = rod.length;
+  length_ = L;
   scale_ << EI_ / L, EI_ / L, EI_ / L, EI_ / (L * L), EI_ / (L * L), EI_ / (L * L);
 
   const std::vector<double> points = SegmentSamplePoints(grid_);
@@ -147,6 +149,7 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
     internal::Rk4Update(h, k1, k2, k3, k4, &y);
   }
   node_R_[n - 1] = y.R;
+  tip_force_B_ = y.n;
   const Mat3 Rt = y.R.transpose();
   // Only the dead part of the tip wrench turns relative to the tip section.
   const SplitWrench tip = TotalTipWrench(loads);
@@ -182,20 +185,45 @@ Eigen::Matrix<double, 12, 6> FrequencyShooting::Integrate(double omega,
   return z;
 }
 
-Mat6 FrequencyShooting::BoundaryMatrix(double omega) const {
+Eigen::Matrix<double, 12, 6> FrequencyShooting::Start() const {
   Eigen::Matrix<double, 12, 6> z0 = Eigen::Matrix<double, 12, 6>::Zero();
-  z0.bottomRows<6>() = scale_.asDiagonal();
-  const Eigen::Matrix<double, 12, 6> z = Integrate(omega, z0, [](int, const auto&) {});
+  if (!ends_.base_pinned) {
+    z0.bottomRows<6>() = scale_.asDiagonal();  // δW(0); θ(0) = u(0) = 0
+    return z0;
+  }
+  z0(0, 0) = 1.0;  // θ_x(0), rad
+  z0(1, 1) = 1.0;  // θ_y(0)
+  z0(8, 2) = scale_(2);  // δm_z(0), the torque that holds the twist
+  z0.block<3, 3>(9, 3) = scale_.tail<3>().asDiagonal();  // δn(0)
+  return z0;
+}
+
+Mat6 FrequencyShooting::BoundaryMatrix(double omega) const {
+  const Eigen::Matrix<double, 12, 6> z = Integrate(omega, Start(), [](int, const auto&) {});
   Mat6 B;
-  B.topRows<3>() = z.middleRows<3>(6) - tip_moment_cross_ * z.topRows<3>();
-  B.bottomRows<3>() = z.bottomRows<3>() - tip_force_cross_ * z.topRows<3>();
-  return scale_.cwiseInverse().asDiagonal() * B;
+  const auto moments = z.middleRows<3>(6) - tip_moment_cross_ * z.topRows<3>();
+  if (!ends_.tip_guided) {
+    B.topRows<3>() = moments;
+    B.bottomRows<3>() = z.bottomRows<3>() - tip_force_cross_ * z.topRows<3>();
+    return scale_.cwiseInverse().asDiagonal() * B;
+  }
+  // A guided tip: its frame held (clamped, rad) or its moments free (pinned); its displacement
+  // across the axis zero (over L); the axial part of its world force, δn_W = R (δn + θ × n),
+  // fixed by the dead load (over EI/L²).
+  const Mat3& R = node_R_.back();
+  B.topRows<3>() = ends_.tip_clamped ? Eigen::Matrix<double, 3, 6>(R * z.topRows<3>())
+                                     : Eigen::Matrix<double, 3, 6>(moments / scale_(0));
+  const Eigen::Matrix<double, 3, 6> displacement_W = R * z.middleRows<3>(3);
+  B.row(3) = ends_.axes_W.col(0).transpose() * displacement_W / length_;
+  B.row(4) = ends_.axes_W.col(1).transpose() * displacement_W / length_;
+  B.row(5) = ends_.axes_W.col(2).transpose() * R *
+             (z.bottomRows<3>() - hat(tip_force_B_) * z.topRows<3>()) / scale_(3);
+  return B;
 }
 
 void FrequencyShooting::Shape(double omega, const Vec6& x, std::vector<Vec3>* displacement_W,
                               std::vector<Vec3>* rotation_W) const {
-  Eigen::Matrix<double, 12, 6> z0 = Eigen::Matrix<double, 12, 6>::Zero();
-  z0.bottomRows<6>() = scale_.asDiagonal();
+  const Eigen::Matrix<double, 12, 6> z0 = Start();
   const int n = static_cast<int>(grid_.size());
   displacement_W->assign(n, Vec3::Zero());
   rotation_W->assign(n, Vec3::Zero());

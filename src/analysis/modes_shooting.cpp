@@ -1,13 +1,16 @@
-// SE(3) modes by frequency shooting: the roots of det B(ω) about the cantilever's equilibrium.
+// SE(3) modes by frequency shooting: the roots of det B(ω) about the equilibrium of a cantilever
+// or a column.
 #include "cosserat/analysis/modes.hpp"
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "cosserat/analysis/column.hpp"
 #include "cosserat/analysis/frequency_shooting.hpp"
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/strong/static_shooting.hpp"
@@ -67,11 +70,55 @@ void PrependUnstableModes(const FrequencyShooting& fs, const NodeWeights& weight
   if (static_cast<int>(result->modes.size()) > count) result->modes.resize(count);
 }
 
+/// The equilibrium the modes are about, as a cantilever's or a column's solver leaves it: its
+/// linearisation and its count of unstable directions (−1: not defined).
+struct ShootingEquilibrium {
+  StaticShootingSummary statics;
+  RodState state;
+  std::vector<double> grid;
+  std::optional<FrequencyShooting> linear;
+  int stability_index = -1;
+};
+
+ShootingEquilibrium SolveEquilibrium(const RodModel& rod, int num_nodes, const lie::SE3& base,
+                                     const StaticLoads& loads, const StaticShootingOptions& opt,
+                                     const Actuation& actuation, ColumnEnds ends) {
+  ShootingEquilibrium eq;
+  if (ends == ColumnEnds::kClampedFree) {
+    StaticShootingSolver solver(rod, num_nodes, opt, actuation);
+    eq.statics = solver.Solve(base, loads);
+    eq.state = solver.state();
+    eq.grid = solver.grid();
+    if (!eq.statics.converged()) return eq;
+    eq.linear.emplace(rod, eq.grid, base, loads, solver.base_wrench_B(), actuation);
+    eq.stability_index = solver.StabilityIndex(base, loads, solver.base_wrench_B());
+    return eq;
+  }
+  ColumnSolver solver(rod, num_nodes, ends, opt);
+  const ColumnSummary c = solver.SolveFromUnloaded(base, loads);
+  eq.statics.status = c.status;
+  eq.statics.iterations = c.iterations;
+  eq.statics.residual = c.residual;
+  eq.state = solver.state();
+  eq.grid = solver.grid();
+  if (!c.converged()) return eq;
+  ShootingEnds shooting;
+  shooting.base_pinned = ends == ColumnEnds::kPinnedPinned;
+  shooting.tip_guided = true;
+  shooting.tip_clamped = ends == ColumnEnds::kClampedClamped;
+  shooting.axes_W = base.R;
+  lie::SE3 first = base;  // a pinned base's first node has turned with the rod
+  first.R = eq.state.rotation_WB[0];
+  eq.linear.emplace(rod, eq.grid, first, loads, eq.state.wrench_B[0], actuation, shooting);
+  eq.stability_index = solver.StabilityIndexAtUnknowns(base, loads);
+  return eq;
+}
+
 }  // namespace
 
 ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::SE3& base,
                                  const StaticLoads& loads, const ShootingModalOptions& options,
-                                 const Actuation& actuation) {
+                                 const Actuation& actuation, ColumnEnds ends) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("ShootingModalOptions: " + why);
   if (!rod.tendons.empty())
@@ -83,15 +130,15 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
     result.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
     return result;
   };
-  StaticShootingSolver solver(rod, num_nodes, options.statics, actuation);
-  const StaticShootingSummary st = solver.Solve(base, loads);
-  result.statics_status = st.status;
-  result.statics_iterations = st.iterations;
-  result.statics_residual = st.residual;
-  result.s = solver.grid();
-  result.equilibrium = solver.state();
-  if (!st.converged()) return finish(ModalStatus::kStaticsFailed);
-  const FrequencyShooting fs(rod, solver.grid(), base, loads, solver.base_wrench_B(), actuation);
+  const ShootingEquilibrium eq =
+      SolveEquilibrium(rod, num_nodes, base, loads, options.statics, actuation, ends);
+  result.statics_status = eq.statics.status;
+  result.statics_iterations = eq.statics.iterations;
+  result.statics_residual = eq.statics.residual;
+  result.s = eq.grid;
+  result.equilibrium = eq.state;
+  if (!eq.statics.converged()) return finish(ModalStatus::kStaticsFailed);
+  const FrequencyShooting& fs = *eq.linear;
 
   // The scan's range, by default 0.01 to 10⁴ times the first Euler–Bernoulli cantilever
   // frequency of the rod's base section.
@@ -106,7 +153,7 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
       detail::FindRoots(fs, w_lo, w_hi, 1.0 + options.relative_step, count, &dips,
                         options.progress);
 
-  const NodeWeights weights = ShootingNodeWeights(rod, solver.grid(), fs, actuation);
+  const NodeWeights weights = ShootingNodeWeights(rod, eq.grid, fs, actuation);
   for (size_t i = 0; i < roots.size() && static_cast<int>(i) < count; ++i) {
     Mode mode;
     mode.omega = roots[i].omega;
@@ -142,7 +189,7 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
   // The scan finds real frequencies only: an unstable direction of the equilibrium (a rod pressed
   // on a convex obstacle harder than it bends back) has an imaginary one it cannot see, so the
   // equilibrium's Morse index decides (−1, not defined for drag or follower loads: stable).
-  if (const int index = solver.StabilityIndex(base, loads, solver.base_wrench_B()); index > 0) {
+  if (const int index = eq.stability_index; index > 0) {
     result.instability = "divergence: the equilibrium has " + std::to_string(index) +
                          " unstable direction" + (index > 1 ? "s" : "") + " (its Morse index)";
     PrependUnstableModes(fs, weights, w_lo, w_hi, 1.0 + options.relative_step, index, count,

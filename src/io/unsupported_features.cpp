@@ -97,18 +97,21 @@ void BoundaryFeatures(const Problem& p, std::vector<std::string>* out) {
                    {B::kCantilever, B::kPinnedPinned, B::kClampedClamped, B::kClampedPinned,
                     B::kAnchored},
                    out);
-  else
-    CheckSupported("boundary", p.boundary, {B::kCantilever}, out);
-  // Modes of a rod held at both ends: the quaternion-FD anchored rod has them.
+  else  // modes
+    CheckSupported("boundary", p.boundary,
+                   {B::kCantilever, B::kPinnedPinned, B::kClampedClamped, B::kClampedPinned}, out);
+  // Modes of a rod held at both ends on the quaternion-FD path: the anchored rod has them.
   const bool held_ends = p.boundary == B::kPinnedPinned || p.boundary == B::kClampedClamped ||
                          p.boundary == B::kClampedPinned;
-  if (p.analysis == A::kModes && held_ends && !out->empty())
+  if (p.analysis == A::kModes && quatfd && held_ends && !out->empty())
     out->back() +=
         "; modes of a rod held at both ends run as \"boundary\": \"anchored\" (with anchor.base "
-        "or anchor.tip \"clamped\" for a clamped end) on \"formulation\": \"quaternion-fd\"";
-  if (!quatfd && p.analysis == A::kStatics && p.boundary != B::kCantilever &&
-      p.boundary != B::kFreeFree && p.has_robot)
-    out->push_back("robot: a robot runs with \"boundary\": \"cantilever\" in statics (got " +
+        "or anchor.tip \"clamped\" for a clamped end) on \"formulation\": \"quaternion-fd\", "
+        "or as a column on \"se3-shooting\"";
+  if (!quatfd && (p.analysis == A::kStatics || p.analysis == A::kModes) &&
+      p.boundary != B::kCantilever && p.boundary != B::kFreeFree && p.has_robot)
+    out->push_back(std::string("robot: a robot runs with \"boundary\": \"cantilever\" in ") +
+                   (p.analysis == A::kModes ? "modes" : "statics") + " (got " +
                    detail::Quote(ToString(p.boundary)) + ")");
 }
 

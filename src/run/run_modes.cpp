@@ -162,8 +162,10 @@ ModalResult ModesOf(const io::Problem& problem,
   so.modal = mo;
   so.statics = StaticOptions(problem);
   so.progress = progress;
+  ColumnEnds ends = ColumnEnds::kClampedFree;
+  ToColumnEnds(problem.boundary, &ends);  // a column's; UnsupportedFeatures let only these through
   return ComputeModesShooting(problem.rod, problem.nodes, problem.base, problem.loads, so,
-                              problem.robot.actuation);
+                              problem.robot.actuation, ends);
 }
 
 }  // namespace

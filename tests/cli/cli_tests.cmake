@@ -205,7 +205,10 @@ cosserat_cli_test(NAME clamped_tip_moment ARGS validate "${_cli_dir}/clamped_tip
 cosserat_cli_test(NAME foreign_formulation_settings
                   ARGS validate "${_cli_dir}/quatfd_foreign_settings.json" CODE 2
                   STDERR "dynamics.shooting_segments: is read by the \"se3-shooting\" formulation only.*dynamics.spatial_scheme: is read by the \"se3-shooting\"")
-cosserat_cli_test(NAME modes_of_a_held_rod ARGS validate "${_cli_dir}/modes_pinned_pinned.json" CODE 2
+cosserat_cli_test(NAME modes_of_a_column ARGS solve "${_cli_dir}/modes_pinned_pinned.json" CODE 0
+                  STDERR "converged \\(modes, se3-shooting\\), 4 modes")
+cosserat_cli_test(NAME modes_of_a_held_rod_on_quatfd
+                  ARGS validate "${_cli_dir}/modes_pinned_pinned_quatfd.json" CODE 2
                   STDERR "modes of a rod held at both ends run as \"boundary\": \"anchored\"")
 cosserat_cli_test(NAME assembly_stops_short ARGS solve "${_cli_dir}/l_frame_stops_short.json"
                   CODE 1 STDERR "load_stepping_failed .*the continuation reached 0[.][0-9]+ of the loads")

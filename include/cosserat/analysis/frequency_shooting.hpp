@@ -28,19 +28,36 @@
 
 namespace cosserat {
 
+/// The ends a perturbation obeys: the cantilever's (a clamped base, a free tip), or a column's
+/// (a pinned or clamped base; a tip guided along the column's axis, which carries its dead axial
+/// load, pinned or clamped there).
+struct ShootingEnds {
+  /// The base turns about its body x and y (θ(0) = [a, b, 0]) and holds the twist: its unknowns
+  /// are those turns, the torque about the axis and the force, δm(0) = [0, 0, c].
+  bool base_pinned = false;
+  /// The tip moves along the column's axis only: rows e_x·δp = e_y·δp = 0 and e·δn_W = 0, with
+  /// the moments (pinned) or R θ (clamped) as the other three.
+  bool tip_guided = false;
+  bool tip_clamped = false;
+  /// The column's frame, world: its third column the axis (the problem's base.rotation).
+  Mat3 axes_W = Mat3::Identity();
+};
+
 class FrequencyShooting {
  public:
   using Mat12 = Eigen::Matrix<double, 12, 12>;
 
   /// Linearises about the equilibrium whose base wrench W(0) = [m; n] (base body frame, N·m; N)
   /// is `base_wrench_B` (StaticShootingSolver::base_wrench_B() of a converged solve on the same
-  /// grid). Throws std::invalid_argument for rods with tendons.
+  /// grid). Throws std::invalid_argument for rods with tendons. A column's `base` is the frame
+  /// of its first node (a pinned base's is turned) and `base_wrench_B` the wrench there.
   FrequencyShooting(const RodModel& rod, const std::vector<double>& grid, const lie::SE3& base,
                     const StaticLoads& loads, const Vec6& base_wrench_B,
-                    const Actuation& actuation = {});
+                    const Actuation& actuation = {}, const ShootingEnds& ends = {});
 
   /// The dimensionless boundary matrix: S_r⁻¹ B(ω) S_u with S = diag(EI/L ×3, EI/L² ×3), so the
-  /// unknowns and the residual are scaled as in the statics solver.
+  /// unknowns and the residual are scaled as in the statics solver (a pinned base's turns in
+  /// rad; a guided tip's displacements over L, its clamped rotation in rad).
   Mat6 BoundaryMatrix(double omega) const;
 
   /// The node values of the perturbation started from the dimensionless unknown x (δW(0) =
@@ -75,12 +92,17 @@ class FrequencyShooting {
   template <typename Visit>
   Eigen::Matrix<double, 12, 6> Integrate(double omega, const Eigen::Matrix<double, 12, 6>& z0,
                                          Visit&& visit) const;
+  /// The perturbation at s = 0 of each dimensionless unknown (its columns).
+  Eigen::Matrix<double, 12, 6> Start() const;
 
   std::vector<double> grid_;
   std::vector<Stage> stages_;  // 4 per segment: start, mid, mid, end
   std::vector<Mat3> node_R_;
   Mat3 tip_moment_cross_ = Mat3::Zero(), tip_force_cross_ = Mat3::Zero();  // (R₀ᵀ M_W)^, ...
   Vec6 scale_;
+  ShootingEnds ends_;
+  Vec3 tip_force_B_ = Vec3::Zero();  ///< the equilibrium's n(L), body frame, N
+  double length_ = 0;
   double EI_ = 0, rhoA0_ = 0;
   double sign_ = 1.0;  ///< of ω² in A(s) = A0 − ω² A1: −1 for GrowthRates
 };

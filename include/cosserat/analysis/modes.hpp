@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "cosserat/analysis/column.hpp"
 #include "cosserat/lie/se3.hpp"
 #include "cosserat/lie/types.hpp"
 #include "cosserat/loads/static_loads.hpp"
@@ -145,11 +146,14 @@ struct ShootingModalOptions {
 };
 
 /// SE(3)-shooting modes of the cantilever (`rod` clamped at `base`) about its equilibrium under
-/// `loads`, on `num_nodes` grid points with RK4 in s. Undamped only (the section damping is
+/// `loads`, on `num_nodes` grid points with RK4 in s; or, with other `ends`, of the column
+/// (ColumnSolver's equilibrium followed from the unloaded column; its tip guided along base.R's
+/// third column, which carries the tip's axial load). Undamped only (the section damping is
 /// ignored); no tendons (throws std::invalid_argument). Section actuation (pressure, jamming) is
 /// applied through the profile.
 ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::SE3& base,
                                  const StaticLoads& loads, const ShootingModalOptions& options = {},
-                                 const Actuation& actuation = {});
+                                 const Actuation& actuation = {},
+                                 ColumnEnds ends = ColumnEnds::kClampedFree);
 
 }  // namespace cosserat

@@ -7,7 +7,8 @@
 // Sources: Rao, Vibration of Continuous Systems (2007), ch. 11 (Euler–Bernoulli beams: ω_n =
 // (β_n L)² sqrt(E I / (ρ A L⁴)), clamped–free cos βL cosh βL = −1, free–free and clamped–clamped
 // cos βL cosh βL = 1), ch. 8–9 (axial and torsional bars); Blevins, Formulas for Natural
-// Frequency and Mode Shape (1979), table 8-1 (tip mass); Bokaian (1988), J. Sound Vib. 126,
+// Frequency and Mode Shape (1979), table 8-1 (tip mass); Han, Benaroya & Wei (1999), J. Sound
+// Vib. 225, 935–988 (the simply supported Timoshenko beam); Bokaian (1988), J. Sound Vib. 126,
 // 49–65 (beams under compressive axial load; Galef's ω² ≈ ω₀² (1 − P/P_cr) is its
 // approximation). tests/reference/natural_frequencies.json lists the same roots.
 
@@ -31,6 +32,27 @@ inline double CantileverBetaL(int n) {
 /// 4.7300407448…, 7.8532046240…, 10.9956078380…
 inline double FreeFreeBetaL(int n) {
   return Bisect([](double x) { return std::cos(x) - 1 / std::cosh(x); }, n * kPi, (n + 1) * kPi);
+}
+
+/// β_n L of the clamped–pinned beam, n = 1, 2, …: the n-th positive root of tan x = tanh x
+/// (Rao 2007), written sin x cosh x − cos x sinh x = 0 over cosh x; it lies in (nπ, (n + ½)π).
+/// 3.9266023120…, 7.0685827500…, 10.2101761242…
+inline double ClampedPinnedVibrationBetaL(int n) {
+  return Bisect([](double x) { return std::sin(x) - std::cos(x) * std::tanh(x); }, n * kPi,
+                (n + 0.5) * kPi);
+}
+
+/// The n-th bending frequency (rad/s) of a simply supported Timoshenko beam (shear and rotary
+/// inertia; Han, Benaroya & Wei 1999), the lower root ω² of
+///   (j m / κGA) ω⁴ − (m + j k² + EI k² m / κGA) ω² + EI k⁴ = 0,   k = nπ/L,
+/// with per-length mass m = ρA (kg/m), rotary inertia j = ρI (kg·m), bending stiffness EI (N·m²)
+/// and shear stiffness κGA (N).
+inline double SimplySupportedTimoshenkoOmega(int n, double EI, double kGA, double m, double j,
+                                             double L) {
+  const double k = n * kPi / L, k2 = k * k;
+  const double a = j * m / kGA, b = m + j * k2 + EI * k2 * m / kGA, c = EI * k2 * k2;
+  const double w2 = 2 * c / (b + std::sqrt(b * b - 4 * a * c));  // the lower root, stably
+  return std::sqrt(w2);
 }
 
 /// Euler–Bernoulli bending frequency (rad/s) of a uniform beam, ω = (β L)² sqrt(E I/(ρ A L⁴)).
