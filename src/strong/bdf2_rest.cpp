@@ -51,9 +51,10 @@ StepSummary Bdf2ShootingStepper::InitializeAtRestFrom(const StepInput& input,
   RequirePoses(input);
   initialized_ = false;  // until this succeeds, Step() refuses to run and Save() has no run
   run_.initialized = false;
-  // A new run starts from the constructor's plan: pieces a failed step of an earlier run added
+  // A new run starts from the constructor's plan, with its junctions' states and guesses as a
+  // new stepper's: pieces a failed step of an earlier run added, or the junction states it left,
   // would make the same inputs give another run (ApplyActuation adds what this one asks for).
-  if (automatic_pieces_ && ShootingPieces() != initial_pieces_) SetShootingPieces(initial_pieces_);
+  SetShootingPieces(automatic_pieces_ ? initial_pieces_ : ShootingPieces());
   run_.base1 = run_.base2 = input.base_pose;
   run_.steps_taken = 0;
   run_.whole_steps = 0;

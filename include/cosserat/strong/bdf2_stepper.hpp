@@ -191,6 +191,8 @@ class Bdf2ShootingStepper {
   bool InputIsFinite(const StepInput& input) const;
 
   double time() const { return run_.time; }
+  /// The last accepted step's state (the rest state after InitializeAtRest). Before a run
+  /// starts its values are NaN: read it once InitializeAtRest has converged.
   const RodState& state() const { return run_.state; }
   const Bdf2Options& options() const { return options_; }
   const std::vector<double>& grid() const { return grid_; }

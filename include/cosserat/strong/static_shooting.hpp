@@ -179,6 +179,8 @@ class StaticShootingSolver {
   int StabilityIndex(const lie::SE3& base, const StaticLoads& loads,
                      const Vec6& base_wrench_B) const;
 
+  /// The last solve's state (on failure the last iterate's). Before any solve its values are
+  /// NaN.
   const RodState& state() const { return state_; }
   int tendon_count() const { return static_cast<int>(model_.tendons.size()); }
   double length() const { return model_.length; }
