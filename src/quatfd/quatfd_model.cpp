@@ -290,41 +290,6 @@ QuatFdModel::QuatFdModel(const RodModel& rod, const lie::SE3& base, const QuatFd
   set_loads(StaticLoads{});  // unloaded until the caller sets loads
 }
 
-void QuatFdModel::RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const {
-  if (q.size() != size() || v.size() != size())
-    throw std::invalid_argument("QuatFdModel::RestState: q and v need " + std::to_string(size()) +
-                                " entries, not " + std::to_string(q.size()) + " and " +
-                                std::to_string(v.size()));
-  const int N = layout_.segments;
-  v.setZero();
-  if (options_.TipHeld()) {
-    HeldShape(q);
-    return;
-  }
-  // The relative rotation (rotation vector) whose discrete curvature over h is exactly k:
-  // basic |K| = (2/h) sin(θ/2), variant 1 |K| = (4/h) tan(θ/4).
-  const auto rotation_for = [&](const Vec3& k, double h) -> Vec3 {
-    const double kn = k.norm();
-    if (kn == 0.0) return Vec3::Zero();
-    const double theta = options_.curvature == Curvature::kBasic
-                             ? 2.0 * std::asin(std::min(1.0, 0.5 * kn * h))
-                             : 4.0 * std::atan(0.25 * kn * h);
-    return theta / kn * k;
-  };
-  Vec4 p = base_quat_;
-  if (bend_active_[0])
-    p = lie::QuatMultiply(p, lie::QuatFromAxisAngle(rotation_for(bend_[0].rest, bend_[0].h)));
-  Vec3 x = base_.p;
-  for (int i = 0; i < N; ++i) {
-    if (i > 0 && bend_active_[i])
-      p = lie::QuatMultiply(p, lie::QuatFromAxisAngle(rotation_for(bend_[i].rest, bend_[i].h)));
-    q.segment<3>(L::X(i)) = x;
-    q.segment<4>(L::P(i)) = p;
-    x += lie::QuatRotate(p, segment_[i].rest) * segment_[i].ds;
-  }
-  q.segment<3>(L::X(N)) = x;
-}
-
 QuatFdModel::Chord QuatFdModel::VertexChord(const Eigen::Ref<const Eigen::VectorXd>& q,
                                             int n) const {
   Chord c;

@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "cosserat/lie/quaternion.hpp"
 #include "cosserat/loads/contact.hpp"
@@ -102,6 +104,23 @@ bool GroundedCatenaryPositions(const Vec3& A, const HangingPlane& p, double L,
   return true;
 }
 
+/// The part of a line laid on a bed (GroundedCatenaryPositions: at A's height along `up`) sunk to
+/// where the bed's penalty carries its net weight w (N/m): the gap −(w/k + ε/2), past the
+/// smoothing ramp. Laid on the surface, with no penetration, it felt no contact stiffness at all,
+/// and Newton's first step dropped its grounded part by kilometres through the bed, held only
+/// by bending. The ends (held) stay.
+void SinkOntoBed(const ContactSurface& bed, const Vec3& A, const Vec3& up, double w,
+                 const std::vector<double>& diameter, std::vector<Vec3>* x) {
+  const double length_scale = ((*x).back() - A).norm();
+  for (size_t v = 1; v + 1 < x->size(); ++v) {
+    if (((*x)[v] - A).dot(up) > 1e-9 * length_scale) continue;  // risen off the bed
+    Vec3 normal;
+    const double eps = bed.smoothing > 0 ? bed.smoothing : 1e-3 * diameter[v];
+    const double gap = bed.Distance((*x)[v], &normal) - 0.5 * diameter[v];
+    (*x)[v] -= (gap + w / bed.stiffness + 0.5 * eps) * normal;
+  }
+}
+
 /// The chord from A to B, stretched uniformly when it is at least L long; else a parabola of
 /// length L bowed along n (unit, normal to the chord).
 void BowedChordPositions(const Vec3& A, const Vec3& B, const Vec3& n, double L,
@@ -127,6 +146,41 @@ void BowedChordPositions(const Vec3& A, const Vec3& B, const Vec3& n, double L,
 }
 
 }  // namespace
+
+void QuatFdModel::RestState(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const {
+  if (q.size() != size() || v.size() != size())
+    throw std::invalid_argument("QuatFdModel::RestState: q and v need " + std::to_string(size()) +
+                                " entries, not " + std::to_string(q.size()) + " and " +
+                                std::to_string(v.size()));
+  const int N = layout_.segments;
+  v.setZero();
+  if (options_.TipHeld()) {
+    HeldShape(q);
+    return;
+  }
+  // The relative rotation (rotation vector) whose discrete curvature over h is exactly k:
+  // basic |K| = (2/h) sin(θ/2), variant 1 |K| = (4/h) tan(θ/4).
+  const auto rotation_for = [&](const Vec3& k, double h) -> Vec3 {
+    const double kn = k.norm();
+    if (kn == 0.0) return Vec3::Zero();
+    const double theta = options_.curvature == Curvature::kBasic
+                             ? 2.0 * std::asin(std::min(1.0, 0.5 * kn * h))
+                             : 4.0 * std::atan(0.25 * kn * h);
+    return theta / kn * k;
+  };
+  Vec4 p = base_quat_;
+  if (bend_active_[0])
+    p = lie::QuatMultiply(p, lie::QuatFromAxisAngle(rotation_for(bend_[0].rest, bend_[0].h)));
+  Vec3 x = base_.p;
+  for (int i = 0; i < N; ++i) {
+    if (i > 0 && bend_active_[i])
+      p = lie::QuatMultiply(p, lie::QuatFromAxisAngle(rotation_for(bend_[i].rest, bend_[i].h)));
+    q.segment<3>(L::X(i)) = x;
+    q.segment<4>(L::P(i)) = p;
+    x += lie::QuatRotate(p, segment_[i].rest) * segment_[i].ds;
+  }
+  q.segment<3>(L::X(N)) = x;
+}
 
 void QuatFdModel::HeldShape(Eigen::Ref<Eigen::VectorXd> q) const {
   const int N = layout_.segments;
@@ -172,18 +226,9 @@ void QuatFdModel::HeldShape(Eigen::Ref<Eigen::VectorXd> q) const {
       bool through = false;
       for (int v = 1; v < N && !through; ++v)
         through = bed.Distance(x[v], &normal) < 0.5 * vertex_diameter_[v];
-      if (!through || !GroundedCatenaryPositions(A, plane, length * stretch, stretched, &x))
-        continue;  // x stays
-      // Sunk to where the bed's penalty carries the line's net weight w (N/m): a line laid on
-      // the surface (no penetration) felt no contact stiffness at all, and Newton's first step
-      // dropped its grounded part by kilometres through the bed, held only by bending.
-      const double w = std::max(0.0, -net.dot(plane.up)) / length;
-      for (int v = 1; v < N; ++v) {
-        const double eps = bed.smoothing > 0 ? bed.smoothing : 1e-3 * vertex_diameter_[v];
-        const double gap = bed.Distance(x[v], &normal) - 0.5 * vertex_diameter_[v];
-        if ((x[v] - A).dot(plane.up) <= 1e-9 * length)  // on the bed's part
-          x[v] -= (gap + w / bed.stiffness + 0.5 * eps) * normal;
-      }
+      if (through && GroundedCatenaryPositions(A, plane, length * stretch, stretched, &x))
+        SinkOntoBed(bed, A, plane.up, std::max(0.0, -net.dot(plane.up)) / length,
+                    vertex_diameter_, &x);
     }
   } else {
     // The chord, stretched uniformly (a taut rod); or, with no gravity across the chord to hang

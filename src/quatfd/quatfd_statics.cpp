@@ -149,6 +149,26 @@ bool Newton(const QuatFdModel& model, const QuatFdStaticsOptions& opt, double be
   return w->residual < opt.tolerance;
 }
 
+/// The loads as statics solves them. Newton drives the accelerations M⁻¹ f to zero; a fluid's
+/// added mass makes M turn with each vertex's tangent, which adds ∂M⁻¹/∂q · f to the Jacobian:
+/// zero at the equilibrium, but far from it enough to turn a riser's steps on the sea bed
+/// astray. At rest the added mass does nothing, so it is left out.
+StaticLoads AtRest(const StaticLoads& loads) {
+  StaticLoads out = loads;
+  out.fluid.added_mass = 0.0;
+  return out;
+}
+
+/// Throws std::invalid_argument for a q not of the model's size or options out of range.
+void RequireStaticsInputs(const QuatFdModel& model, const Eigen::Ref<Eigen::VectorXd>& q,
+                          const QuatFdStaticsOptions& options) {
+  if (q.size() != model.size())
+    throw std::invalid_argument("quatfd::SolveStatics: q has " + std::to_string(q.size()) +
+                                " entries, the model's state " + std::to_string(model.size()));
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("QuatFdStaticsOptions: " + why);
+}
+
 }  // namespace
 
 bool TurnsBack(const QuatFdModel& model, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
@@ -196,18 +216,9 @@ double StaticResidual(const QuatFdModel& model, const Eigen::Ref<const Eigen::Ve
 QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& given,
                                   Eigen::Ref<Eigen::VectorXd> q,
                                   const QuatFdStaticsOptions& options) {
-  // Newton drives the accelerations M⁻¹ f to zero. A fluid's added mass makes M turn with each
-  // vertex's tangent, which adds ∂M⁻¹/∂q · f to the Jacobian: zero at the equilibrium, but far
-  // from it enough to turn a riser's steps on the sea bed astray. At rest the added mass does
-  // nothing, so statics leaves it out; the model gets the given loads back at the end.
-  StaticLoads loads = given;
-  loads.fluid.added_mass = 0.0;
+  const StaticLoads loads = AtRest(given);  // the model gets the given loads back at the end
   const auto start = std::chrono::steady_clock::now();
-  if (q.size() != model->size())
-    throw std::invalid_argument("quatfd::SolveStatics: q has " + std::to_string(q.size()) +
-                                " entries, the model's state " + std::to_string(model->size()));
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument("QuatFdStaticsOptions: " + why);
+  RequireStaticsInputs(*model, q, options);
   QuatFdStaticsSummary summary;
   Workspace w(model->size());
   const double beta = StaticBeta(*model, loads, q);
@@ -218,8 +229,7 @@ QuatFdStaticsSummary SolveStatics(QuatFdModel* model, const StaticLoads& given,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return summary;
   };
-  std::string load_why;
-  if (!loads.IsValid(&load_why) || !q.allFinite()) return finish(SolveStatus::kNonFinite);
+  if (!loads.IsValid(nullptr) || !q.allFinite()) return finish(SolveStatus::kNonFinite);
 
   model->set_loads(loads);
   const Eigen::VectorXd q_start = q;

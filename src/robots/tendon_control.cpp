@@ -30,6 +30,25 @@ bool ActiveSensitivities(const Mismatch& mismatch, int count, const VecT& tau, c
   return true;
 }
 
+/// The Newton step D⁻¹ rhs as least squares of least norm: tendons that bend the rod alike
+/// (four parallel ones make three strains: two curvatures and the stretch) leave D singular, with
+/// a family of tensions for every reachable command, and an LU step was then no step at all.
+/// Singular values below 1e-6 of the largest are the forward differences' error, not a way the
+/// tensions move the lengths.
+VecT LeastNormStep(const MatT& D, const VecT& rhs) {
+  Eigen::CompleteOrthogonalDecomposition<MatT> cod(D);
+  cod.setThreshold(1e-6);
+  return cod.solve(rhs);
+}
+
+/// The largest |ℓ − ℓ_cmd| (m) over the tendons that are taut (τ > 0) or would be (g > 0).
+double TautMismatch(int count, const VecT& tau, const VecT& g) {
+  double worst = 0.0;
+  for (int i = 0; i < count; ++i)
+    if (tau(i) > 0 || g(i) > 0) worst = std::max(worst, std::abs(g(i)));
+  return worst;
+}
+
 }  // namespace
 
 TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::SE3& base,
@@ -83,14 +102,7 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
     if (!ActiveSensitivities(mismatch, count, tau, g, active, &D)) return summary;
     VecT rhs = VecT::Zero();
     for (int i = 0; i < count; ++i) rhs(i) = active[i] ? -g(i) : 0.0;
-    // Least squares of least norm: tendons that bend the rod alike (four parallel ones make
-    // three strains: two curvatures and the stretch) leave D singular, with a family of
-    // tensions for every reachable command; LU's step was then no step at all. Singular
-    // values below 1e-6 of the largest are the forward differences' error, not a way the
-    // tensions move the lengths.
-    Eigen::CompleteOrthogonalDecomposition<MatT> cod(D);
-    cod.setThreshold(1e-6);
-    const VecT step = cod.solve(rhs);
+    const VecT step = LeastNormStep(D, rhs);
     // Project onto τ ≥ 0; halve the step until the mismatch of the active set decreases.
     double alpha = 1.0;
     bool moved = false;
@@ -117,12 +129,8 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
     }
   }
   // Not converged: the tensions and the mismatch of the last accepted step.
-  double worst = 0.0;
-  for (int i = 0; i < count; ++i) {
-    if (tau(i) > 0 || g(i) > 0) worst = std::max(worst, std::abs(g(i)));
-    actuation->tendon_tension[i] = tau(i);
-  }
-  summary.length_error = worst;
+  summary.length_error = TautMismatch(count, tau, g);
+  for (int i = 0; i < count; ++i) actuation->tendon_tension[i] = tau(i);
   summary.status = SolveStatus::kMaxIterations;
   return summary;
 }
