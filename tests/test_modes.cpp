@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "cosserat/analysis/column.hpp"
 #include "cosserat/analysis/frequency_shooting.hpp"
 #include "cosserat/analysis/modes.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
@@ -679,6 +680,29 @@ TEST(FrequencyShooting, BoundaryMatrixAtZeroIsTheStaticsJacobian) {
   scale << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
   const Vec6 x = solver.base_wrench_B().cwiseQuotient(scale);
   const Mat6 J = solver.ResidualJacobian(lie::SE3(), loads, x);
+  const Mat6 B = fs.BoundaryMatrix(0.0);
+  EXPECT_LT((B - J).norm(), 1e-6 * J.norm()) << "B\n" << B << "\nJ\n" << J;
+}
+
+// The same for a column (clamped base, pinned tip guided along the axis) bent by gravity across
+// it and pressed by a follower force along its tip's tangent: B(0) is ColumnSolver's exact
+// Jacobian, whose axial row takes the follower part out of the force that turns with the tip.
+TEST(FrequencyShooting, AColumnsBoundaryMatrixAtZeroIsTheColumnsJacobian) {
+  SteelRod rod;
+  rod.r = 0.005;
+  const double L = rod.length, EI = rod.EI();
+  StaticLoads loads;
+  loads.gravity_W = Vec3(-9.81e3, 0, 0);
+  loads.tip_force = Vec3(0, 0, -5.0 * EI / (L * L));  // along the tip's tangent, into the column
+  loads.tip_force_frame = LoadFrame::kBody;
+  ColumnSolver column(rod.model(), 41, ColumnEnds::kClampedPinned);
+  ASSERT_TRUE(column.SolveFromUnloaded(lie::SE3(), loads).converged());
+  Mat6 J;
+  column.Residual(lie::SE3(), loads, column.unknowns(), &J);
+  ShootingEnds ends;
+  ends.tip_guided = true;
+  const FrequencyShooting fs(rod.model(), column.grid(), lie::SE3(), loads,
+                             column.state().wrench_B[0], {}, ends);
   const Mat6 B = fs.BoundaryMatrix(0.0);
   EXPECT_LT((B - J).norm(), 1e-6 * J.norm()) << "B\n" << B << "\nJ\n" << J;
 }

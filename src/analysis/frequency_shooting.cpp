@@ -149,10 +149,10 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
     internal::Rk4Update(h, k1, k2, k3, k4, &y);
   }
   node_R_[n - 1] = y.R;
-  tip_force_B_ = y.n;
   const Mat3 Rt = y.R.transpose();
   // Only the dead part of the tip wrench turns relative to the tip section.
   const SplitWrench tip = TotalTipWrench(loads);
+  tip_force_B_ = y.n - tip.follower_B.tail<3>();  // the part of n(L) that turns with the tip
   tip_moment_cross_ = hat(Rt * tip.dead_W.head<3>());
   tip_force_cross_ = hat(Rt * tip.dead_W.tail<3>());
 }
@@ -208,8 +208,9 @@ Mat6 FrequencyShooting::BoundaryMatrix(double omega) const {
     return scale_.cwiseInverse().asDiagonal() * B;
   }
   // A guided tip: its frame held (clamped, rad) or its moments free (pinned); its displacement
-  // across the axis zero (over L); the axial part of its world force, δn_W = R (δn + θ × n),
-  // fixed by the dead load (over EI/L²).
+  // across the axis zero (over L); the axial part of its world force less the load's,
+  // δ(R n − F_W) = R (δn + θ × (n − f)) with f the follower part of the tip force (which turns
+  // with the tip), zero (over EI/L²).
   const Mat3& R = node_R_.back();
   B.topRows<3>() = ends_.tip_clamped ? Eigen::Matrix<double, 3, 6>(R * z.topRows<3>())
                                      : Eigen::Matrix<double, 3, 6>(moments / scale_(0));

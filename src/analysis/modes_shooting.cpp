@@ -94,7 +94,7 @@ ShootingEquilibrium SolveEquilibrium(const RodModel& rod, int num_nodes, const l
     eq.stability_index = solver.StabilityIndex(base, loads, solver.base_wrench_B());
     return eq;
   }
-  ColumnSolver solver(rod, num_nodes, ends, opt);
+  ColumnSolver solver(rod, num_nodes, ends, opt, actuation);
   const ColumnSummary c = solver.SolveFromUnloaded(base, loads);
   eq.statics.status = c.status;
   eq.statics.iterations = c.iterations;

@@ -29,27 +29,15 @@
 #include <string>
 #include <vector>
 
+#include "cosserat/analysis/column_ends.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat {
 
-/// End conditions of a column (base at s = 0, tip at s = L).
-enum class ColumnEnds {
-  kClampedFree,     ///< the cantilever: clamped base, free tip
-  kPinnedPinned,    ///< pinned base, pinned guided tip
-  kClampedClamped,  ///< clamped base, clamped guided tip
-  kClampedPinned,   ///< clamped base, pinned guided tip
-};
-
-/// "cantilever", "pinned-pinned", "clamped-clamped", "clamped-pinned" (the problem-format names).
-const char* ToString(ColumnEnds ends);
-
 /// Multiple shooting's options for these ends (StaticMultipleShootingOptions: a pinned base, a
 /// guided tip, a clamped one), the rest at their defaults.
 StaticMultipleShootingOptions MultipleShootingOptionsFor(ColumnEnds ends);
-/// The inverse of ToString; false (and *ends untouched) for any other name.
-bool ParseColumnEnds(const std::string& name, ColumnEnds* ends);
 
 struct ColumnSummary {
   SolveStatus status = SolveStatus::kNotRun;

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// The SE(3) strong form (FD notes 2025, eqs. 14, 16, 19–20) linearised about a static equilibrium
-/// of the cantilever, in the frequency domain.
+/// of the cantilever or of a column (ShootingEnds), in the frequency domain.
 ///
 /// A perturbation g = g₀ Exp(η̂) with η = [θ; u] (body frame, rad; m) and W = W₀ + δW, harmonic
 /// in time with circular frequency ω (V₀ = 0, so δV = η_t and δV_t = −ω² η), obeys the linear
@@ -11,7 +11,8 @@
 ///   δn' = δn × K + n × δK + θ × (R₀ᵀ f_W) − R₀ᵀ δf_W − ω² ρA u,   δξ = K(s)⁻¹ δW
 /// where δf_W is the change of the loads that depend on the pose (contact, a current's drag at
 /// rest) with δp = R₀ u and δt = R₀ (θ × e₃), and f_W includes them as the static solver does.
-/// with θ(0) = u(0) = 0 at the clamp and δW(0) the 6 unknowns. The tip condition
+/// with θ(0) = u(0) = 0 at the clamp and δW(0) the 6 unknowns (a pinned base: ShootingEnds). The
+/// free tip's condition
 /// W(L) = [R(L)ᵀ M_W; R(L)ᵀ F_W] (world loads; body loads are constant) linearises to
 ///   B(ω) δW(0) = [δm − (R₀ᵀ M_W) × θ;  δn − (R₀ᵀ F_W) × θ](L) = 0,
 /// so det B(ω) = 0 exactly at a natural frequency, and the null vectors give the mode shapes.
@@ -35,8 +36,8 @@ struct ShootingEnds {
   /// The base turns about its body x and y (θ(0) = [a, b, 0]) and holds the twist: its unknowns
   /// are those turns, the torque about the axis and the force, δm(0) = [0, 0, c].
   bool base_pinned = false;
-  /// The tip moves along the column's axis only: rows e_x·δp = e_y·δp = 0 and e·δn_W = 0, with
-  /// the moments (pinned) or R θ (clamped) as the other three.
+  /// The tip moves along the column's axis only: rows e_x·δp = e_y·δp = 0 and
+  /// e·δ(n_W − F_W) = 0, with the moments (pinned) or R θ (clamped) as the other three.
   bool tip_guided = false;
   bool tip_clamped = false;
   /// The column's frame, world: its third column the axis (the problem's base.rotation).
@@ -101,7 +102,8 @@ class FrequencyShooting {
   Mat3 tip_moment_cross_ = Mat3::Zero(), tip_force_cross_ = Mat3::Zero();  // (R₀ᵀ M_W)^, ...
   Vec6 scale_;
   ShootingEnds ends_;
-  Vec3 tip_force_B_ = Vec3::Zero();  ///< the equilibrium's n(L), body frame, N
+  /// The equilibrium's n(L) less the tip force's follower part, body frame, N
+  Vec3 tip_force_B_ = Vec3::Zero();
   double length_ = 0;
   double EI_ = 0, rhoA0_ = 0;
   double sign_ = 1.0;  ///< of ω² in A(s) = A0 − ω² A1: −1 for GrowthRates

@@ -12,14 +12,14 @@
 ///   eigenproblem λ² M + λ C + K = 0 (damped frequencies and damping ratios).
 /// - SE(3) shooting (ComputeModesShooting, frequency_shooting.hpp): the strong form linearised
 ///   about the equilibrium in the frequency domain; the 6×6 tip-boundary matrix B(ω) of the
-///   cantilever is singular exactly at a natural frequency.
+///   cantilever or the column is singular exactly at a natural frequency.
 
 #include <functional>
 #include <limits>
 #include <string>
 #include <vector>
 
-#include "cosserat/analysis/column.hpp"
+#include "cosserat/analysis/column_ends.hpp"
 #include "cosserat/lie/se3.hpp"
 #include "cosserat/lie/types.hpp"
 #include "cosserat/loads/static_loads.hpp"

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
-/// "analysis": "modes": natural frequencies and mode shapes of the cantilever about its static
-/// equilibrium under the problem's loads, on either formulation (docs/modes.md).
+/// "analysis": "modes": natural frequencies and mode shapes about the static equilibrium under
+/// the problem's loads: of the cantilever on either formulation, of a column on the SE(3) path,
+/// of a rod held at both ends ("anchored") on the quaternion-FD path (docs/modes.md).
 
 #include "cosserat/io/problem.hpp"
 #include "cosserat/run/result.hpp"

@@ -1,0 +1,22 @@
+#pragma once
+/// \file
+/// The end conditions of a column, by name: what the column solver, buckling and modes share.
+
+#include <string>
+
+namespace cosserat {
+
+/// End conditions of a column (base at s = 0, tip at s = L).
+enum class ColumnEnds {
+  kClampedFree,     ///< the cantilever: clamped base, free tip
+  kPinnedPinned,    ///< pinned base, pinned guided tip
+  kClampedClamped,  ///< clamped base, clamped guided tip
+  kClampedPinned,   ///< clamped base, pinned guided tip
+};
+
+/// "cantilever", "pinned-pinned", "clamped-clamped", "clamped-pinned" (the problem-format names).
+const char* ToString(ColumnEnds ends);
+/// The inverse of ToString; false (and *ends untouched) for any other name.
+bool ParseColumnEnds(const std::string& name, ColumnEnds* ends);
+
+}  // namespace cosserat
