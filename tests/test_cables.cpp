@@ -19,6 +19,7 @@
 #include "cosserat/quatfd/radau.hpp"
 #include "cosserat/io/problem.hpp"
 #include "cosserat/lie/so3.hpp"
+#include "cosserat/run/grid_resolution.hpp"
 #include "cosserat/run/run.hpp"
 #include "cosserat/state/rod_state.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
@@ -342,11 +343,11 @@ run::Result SolveTheGroundedRiser(int nodes, bool current, const std::string& ba
 // and in a y-up world; in still water and in a current across its plane; on grids coarse and
 // fine for the bed's foundation length (4EI/k)^¼ = 3 m. The pinned base holds the twist about
 // the line; held about the base frame's third axis, it would also hold the riser's bending in
-// its plane wherever that axis lies across it. Started on the bed's surface, where the penalty
-// has no stiffness yet, or with the water's added mass in the accelerations Newton zeroes
-// (tangent-dependent, it turns the steps), Newton failed on some grids and frames as the
-// rounding fell. Each converges to the same anchor force, turned, to 1e-7 (the residual's
-// 1e-10 times the conditioning).
+// its plane wherever that axis lies across it. The start lies sunk into the bed (on its surface
+// the penalty has no stiffness yet), and statics leaves out the water's added mass (which turns
+// Newton's steps through the tangent-dependent mass matrix); without either, Newton fails on
+// some of these grids and frames as the rounding falls. Each converges to the same anchor
+// force, turned, to 1e-7 (the residual's 1e-10 times the conditioning).
 TEST(HeldCable, AGroundedRisersEquilibriumDoesNotDependOnItsFrame) {
   const auto force = [](const run::Result& r) {
     const auto& f = r.json["anchor_force"];
@@ -380,16 +381,34 @@ TEST(FrameRanAway, AnRk4FrameOnACoarseGridIsAFrameAndAGrownOneIsNot) {
   EXPECT_FALSE(FrameRanAway(rk4));
   EXPECT_TRUE(FrameRanAway(2.0 * Mat3::Identity()));
   EXPECT_TRUE(FrameRanAway(0.1 * Mat3::Identity()));
+  // A straight state whose node 3 of 5 carries such a frame: a runaway, though no segment ran
+  // away; the grid check says so, from where, with the nodes to try (the bending, 0.8 rad per
+  // segment here, at 0.25 rad: ⌈4 κ L⌉ + 1 = 14).
+  RodState state;
+  state.Resize(5);
+  for (int i = 0; i < 5; ++i) {
+    state.s[i] = 0.25 * i;
+    state.position_W[i] = Vec3(0, 0, state.s[i]);
+    state.rotation_WB[i] = Mat3::Identity();
+    state.strain[i] << 0, 3.2, 0, 0, 0, 1;
+  }
+  state.rotation_WB[3] = 2.0 * Mat3::Identity();
+  EXPECT_TRUE(state.RanAway());
+  EXPECT_FALSE(state.SegmentsRanAway());
+  const run::GridResolution g = run::CheckGrid(state, 1.0);
+  EXPECT_TRUE(g.ran_away);
+  EXPECT_NE(g.log.find("no rotations from s = 0.75 m"), std::string::npos) << g.log;
+  EXPECT_NE(g.log.find("rod.nodes ≥ 14"), std::string::npos) << g.log;
 }
 
 // A 50 m rope (EI = 0.1 N·m², submerged weight 21 N/m) hanging from a clamp with a 2 kN weight
 // at its end, in a 1 m/s current. On 401 nodes its bending length sqrt(EI/T) = 6 mm is a
 // twentieth of a segment, and RK4 cannot follow the tip's boundary layer: the multiple shots
-// once met their residuals with the last frame grown 340-fold, which turned the 2 kN tip load
-// into 680 kN inside the rope, and reported converged with 31 N at the clamp. An equilibrium
-// carries the submerged weight and the tip load there, 3 051 N, less the drag's vertical part
-// (the current's component along the rope, at its incline of about 6.5°: under 3 %); a state
-// that is none is not converged.
+// can meet their residuals with a last frame grown many times over, whose tip load is then as
+// many times the force inside the rope, with a few newtons at the clamp. An equilibrium carries
+// the submerged weight and the tip load there, 3 051 N, less the drag's vertical part (the
+// current's component along the rope, at its incline of about 6.5°: under 3 %); a state that is
+// none must not be called converged.
 TEST(HangingCable, AShotWhoseFrameRanAwayIsNoEquilibrium) {
   const char* text = R"({"format": "cosserat-problem/1",
       "rod": {"length": 50, "nodes": 401,
@@ -400,7 +419,11 @@ TEST(HangingCable, AShotWhoseFrameRanAwayIsNoEquilibrium) {
       "loads": {"gravity": [0, 0, -9.81], "tip_force": [0, 0, -2000]},
       "environment": {"fluid": {"density": 1025, "velocity": [1, 0, 0], "drag_normal": 1.2}}})";
   const run::Result r = RunProblemText(text, false);
-  if (!r.converged) return;  // an honest failure (load_stepping_failed, measured)
+  if (!r.converged) {  // an honest failure, which names the grid
+    EXPECT_EQ(r.json["status"], "load_stepping_failed") << r.log;
+    EXPECT_NE(r.log.find("rod.nodes"), std::string::npos) << r.log;
+    return;
+  }
   const auto& f = r.json["base_wrench"]["force"];
   const double reaction = std::hypot(f[0].get<double>(), f[2].get<double>());
   const double carried = (7850.0 - 1025.0) * 3.14159e-4 * 9.81 * 50 + 2000.0;
@@ -409,9 +432,9 @@ TEST(HangingCable, AShotWhoseFrameRanAwayIsNoEquilibrium) {
 
 // The same rope ten times stiffer (EI = 10 N·m²): its clamp's bending layer, 1/k = sqrt(EI/T) =
 // 5.7 cm at 3 kN, is under half a segment on 401 nodes (k h = 2.2), where RK4's polynomial
-// follows e^(k h) only to 7 %: the clamp reaction came out 5.6 % low against the quaternion-FD
-// path's, with no word. The run warns there; on 1 601 nodes (k h = 0.54) it is silent and the
-// reaction is the other formulation's to 0.1 % (their grids' errors: 0.03 % measured).
+// follows e^(k h) only to 7 % and the clamp reaction is 5.6 % below the quaternion-FD path's.
+// The run warns there; on 1 601 nodes (k h = 0.54) it is silent and the reaction is the other
+// formulation's to 0.1 % (their grids' errors: 0.03 % measured).
 TEST(HangingCable, AClampLayerTheGridCannotFollowIsWarned) {
   const auto rope = [](const char* formulation, int nodes) {
     std::ostringstream text;

@@ -72,7 +72,38 @@ GridResolution CheckGrid(const RodState& state, double length, bool converged) {
   std::vector<Vec3> curvature;
   curvature.reserve(state.strain.size());
   for (const Vec6& xi : state.strain) curvature.push_back(xi.head<3>());
-  return CheckGrid(state.s, state.position_W, curvature, length, converged);
+  GridResolution out = CheckGrid(state.s, state.position_W, curvature, length, converged);
+  if (out.ran_away) return out;
+  if (const std::string frames = FramesLeftRotationsLine(state, length); !frames.empty()) {
+    out.ran_away = true;
+    out.log = frames;
+  }
+  return out;
+}
+
+std::string FramesLeftRotationsLine(const RodState& state, double length) {
+  if (state.SegmentsRanAway()) return "";  // the segment line says it
+  int first = -1;
+  for (int i = 0; i < state.size() && first < 0; ++i)
+    if (FrameRanAway(state.rotation_WB[i])) first = i;
+  if (first < 0) return "";
+  double worst = 0.0, worst_k = 0.0;  // the largest bending turn per segment (rad), κ (1/m)
+  for (int i = 0; i + 1 < state.size(); ++i) {
+    const double k = std::max(state.strain[i].head<2>().norm(), state.strain[i + 1].head<2>().norm());
+    if (k * (state.s[i + 1] - state.s[i]) > worst) {
+      worst = k * (state.s[i + 1] - state.s[i]);
+      worst_k = k;
+    }
+  }
+  std::ostringstream line;
+  line << std::setprecision(3) << "cosserat: the residuals vanished, but the frames RK4 in s "
+       << "carried along the shot are no rotations from s = " << state.s[first]
+       << " m on (‖R‖² = " << state.rotation_WB[first].squaredNorm() << ", a rotation's 3): "
+       << "the bending turns the section by up to " << worst << " rad per segment, and RK4 "
+       << "shrinks the frames it turns (status non_finite); check the loads' and the "
+       << "actuation's units, or give rod.nodes ≥ "
+       << static_cast<long>(std::ceil(4.0 * worst_k * length)) + 1 << '\n';
+  return line.str();
 }
 
 GridResolution CheckPolygon(const std::vector<double>& s, const std::vector<Vec3>& position,

@@ -14,6 +14,7 @@
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/loads/total_load.hpp"
+#include "cosserat/run/grid_resolution.hpp"
 #include "cosserat/run/run_quatfd.hpp"
 #include "cosserat/robots/tendon_control.hpp"
 #include "cosserat/run/solver_options.hpp"
@@ -187,6 +188,7 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
       ends == ColumnEnds::kClampedFree ? "" : ToString(ends) + std::string(", ");
   result.log = StaticSummary(summary, solved.state, problem) + " (" + column +
                std::to_string(solved.pieces) + " shooting pieces)\n" + settled_note +
+               FramesLeftRotationsLine(solved.state, problem.rod.length) +
                ContinuationHint(problem, summary) + detail::UnstableWarning(summary, false) +
                unjudged;
   if (summary.converged() && summary.stability_index < 0 && unjudged.empty())
@@ -353,7 +355,8 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
   // A shot that ran away on a coarse grid is not the tendon law's failure (the grid check says
   // what is).
   result.log = StaticSummary(summary, solver.state(), problem) + '\n' + settled_note +
-               (solver.state().RanAway() ? "" : TendonLawHint(problem, actuation, summary));
+               (solver.state().RanAway() ? FramesLeftRotationsLine(solver.state(), problem.rod.length)
+                                         : TendonLawHint(problem, actuation, summary));
   if (!problem.has_robot) result.log += ContinuationHint(problem, summary);
   result.log += detail::UnstableWarning(summary) + unjudged;
   result.converged = summary.converged();

@@ -34,6 +34,10 @@ double RodState::MaxForce() const {
 bool RodState::RanAway() const {
   for (const Mat3& R : rotation_WB)
     if (FrameRanAway(R)) return true;
+  return SegmentsRanAway();
+}
+
+bool RodState::SegmentsRanAway() const {
   // The turn first, squared: a step's hot path (most segments turn far less than 1 rad).
   for (int i = 0; i + 1 < size(); ++i) {
     const double h = s[i + 1] - s[i];

@@ -528,8 +528,10 @@ bool Bdf2ShootingStepper::Attempt(const StepInput& input, double h, StepSummary*
 bool Bdf2ShootingStepper::AttemptInterval(const StepInput& from, const StepInput& to, double h,
                                           int depth, StepSummary* summary) {
   if (Attempt(to, h, summary)) return true;
-  // A shot that ran away wants a finer grid: more pieces or smaller steps do not give one.
-  auto ran_away = [&] { return summary->status == SolveStatus::kNonFinite && trial_.RanAway(); };
+  // A segment that ran away needs a finer grid (frames that left the rotations may not).
+  auto ran_away = [&] {
+    return summary->status == SolveStatus::kNonFinite && trial_.SegmentsRanAway();
+  };
   if (ran_away()) return false;
   // Before halving: more pieces, when the stepper chooses them (a failed attempt commits
   // nothing; the new junctions start from the last accepted state).

@@ -37,8 +37,13 @@ struct GridResolution {
 GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& position,
                          const std::vector<Vec3>& curvature, double length,
                          bool converged = true);
-/// The same on a solver's state (its s, positions and the curvature part of its strains).
+/// The same on a solver's state (its s, positions and the curvature part of its strains), which
+/// also finds frames that left the rotations (FramesLeftRotationsLine).
 GridResolution CheckGrid(const RodState& state, double length, bool converged = true);
+/// Where a shot's frames left the rotations (FrameRanAway) while no segment ran away: the line
+/// that says so (status non_finite) and names the nodes that keep the bending below 0.25 rad per
+/// segment; empty otherwise.
+std::string FramesLeftRotationsLine(const RodState& state, double length);
 
 /// The quaternion-FD grid's: the bending curvature at the vertices times the spacing, or where
 /// larger the turn between the segments meeting at a vertex, atan2(|a × b|, a · b). The scheme

@@ -28,19 +28,15 @@ struct RodState {
   Vec6 BaseReaction_W() const;
   /// The largest internal force |n| over the nodes (N): a held cable's top tension.
   double MaxForce() const;
-  /// Whether a shot along s ran away: some segment does (SegmentRanAway), or some node's frame
+  /// Whether a shot along s ran away: some segment does (SegmentsRanAway), or some node's frame
   /// is no longer a rotation (FrameRanAway). Residuals can still vanish there (a tendon's pull
-  /// is internal; a tip frame grown 340-fold turned a 2 kN tip load into 680 kN of internal
-  /// force that met it), so the shooting statics and the BDF2 stepper check the state they
+  /// is internal; a tip frame grown many times over meets a tip load with as many times the
+  /// internal force), so the shooting statics and the BDF2 stepper check the state they
   /// converged on.
   bool RanAway() const;
+  /// Whether some segment ran away (SegmentRanAway): a runaway more pieces cannot mend.
+  bool SegmentsRanAway() const;
 };
-
-/// Whether a frame R carried along s by RK4 has left the rotations: |‖R‖_F² − 3| > 1. RK4's
-/// polynomial in κ̂ h shrinks the plane it turns by |1 + iθ − θ²/2 − iθ³/6 + θ⁴/24| for a turn θ
-/// on a segment: 0.95 at θ = 1.45 rad (‖R‖_F² = 2.81), and past 1 only beyond θ ≈ 2.2 rad,
-/// a bend the grid check already calls under-resolved. False for NaN: not a runaway.
-inline bool FrameRanAway(const Mat3& R) { return std::abs(R.squaredNorm() - 3.0) > 1.0; }
 
 /// Whether a segment of length h along s (m) ran away in the shot: it spans more than 10 h (a
 /// stretch no elastic rod takes) while its curvature turns the section by more than 1 rad on it
@@ -48,5 +44,13 @@ inline bool FrameRanAway(const Mat3& R) { return std::abs(R.squaredNorm() - 3.0)
 inline bool SegmentRanAway(double h, double span, double turn) {
   return span > 10.0 * h && turn > 1.0;
 }
+
+/// Whether a frame R carried along s by RK4 has left the rotations: |‖R‖_F² − 3| > 1. RK4's
+/// polynomial in κ̂ h scales the plane it turns by |1 + iθ − θ²/2 − iθ³/6 + θ⁴/24| for a turn θ on
+/// a segment (0.95 at θ = 1.45 rad, ‖R‖_F² = 2.81), and the factors compound along a shot, whose
+/// frames are made rotations again only at its start (a junction of multiple shooting): one
+/// segment passes the bound beyond θ ≈ 2.06 rad, twenty at 1.2 rad. False for NaN: not a
+/// runaway.
+inline bool FrameRanAway(const Mat3& R) { return std::abs(R.squaredNorm() - 3.0) > 1.0; }
 
 }  // namespace cosserat
