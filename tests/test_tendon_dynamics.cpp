@@ -99,9 +99,9 @@ TEST(TendonDynamics, InitializeAtRestStartsTheSameRunAgain) {
 }
 
 // The same where the run starts in pieces and keeps them: a nitinol backbone (0.25 m, r 0.6 mm,
-// four tendons 6 mm out) at dt = 1 ms shoots in 3 pieces from its start. A reset that kept the
-// junction states the last run left started the next run's steps from them and moved its tip by
-// 3.6e-14 m against a new stepper's; it must be the new stepper's run, bit for bit.
+// four tendons 6 mm out) at dt = 1 ms shoots in 3 pieces from its start. The junction states an
+// earlier run left must not seed the next run's steps (they would move its tip by ~1e-14 m):
+// the run after a reset is a new stepper's, bit for bit.
 TEST(TendonDynamics, InitializeAtRestForgetsTheJunctionsOfTheLastRun) {
   RodModel rod = RodModel::Uniform(0.25, CrossSection::Circle(0.0006),
                                    Material::FromShearModulus(58e9, 21.8e9, 6450));

@@ -267,12 +267,12 @@ TEST(Tendons, LengthCommandReachesTheTensionThatProducesItAndASlackTendonCarries
   EXPECT_GT(command[1], solver.tendon_lengths()[1]);  // slack: the path is shorter than the cable
 }
 
-// Four parallel tendons at 90° make only three strains, two curvatures and
-// the stretch, so Newton's matrix on their tensions is singular whenever all four are taut: from
-// 0.3 N each, a command reachable with tensions (1.2, 0.5, 0, 0) N and tendon c's cable 2 mm
-// longer than its path once ended after one iteration, its LU step useless. Least-norm steps
-// reach it: c slack, the taut tendons' lengths to the 1e-10 L asked, and where the tensions
-// are not unique (a pretensioned command, (1.2, 0.5, 0.1, 0.1) N) the lengths all the same.
+// Four parallel tendons at 90° make only three strains, two curvatures and the stretch, so
+// Newton's matrix on their tensions is singular whenever all four are taut, as they are from
+// 0.3 N each. A command reachable with tensions (1.2, 0.5, 0, 0) N and tendon c's cable 2 mm
+// longer than its path is reached from there: c slack, the taut tendons' lengths to the 1e-10 L
+// asked; and where the tensions are not unique (a pretensioned command, (1.2, 0.5, 0.1, 0.1) N)
+// the lengths all the same.
 TEST(Tendons, RedundantTendonsReachALengthCommandFromAnyStart) {
   // A nitinol backbone (0.25 m, r 0.6 mm), upright, the tendons 6 mm out.
   const double length = 0.25;

@@ -105,19 +105,23 @@ bool GroundedCatenaryPositions(const Vec3& A, const HangingPlane& p, double L,
 }
 
 /// The part of a line laid on a bed (GroundedCatenaryPositions: at A's height along `up`) sunk to
-/// where the bed's penalty carries its net weight w (N/m): the gap −(w/k + ε/2), past the
-/// smoothing ramp. Laid on the surface, with no penetration, it felt no contact stiffness at all,
-/// and Newton's first step dropped its grounded part by kilometres through the bed, held only
-/// by bending. The ends (held) stay.
+/// where the bed's penalty k φ(δ) carries its net weight w (N/m): δ = w/k + ε/2 past the
+/// smoothing ramp, sqrt(2 ε w/k) within it (contact.hpp). On the surface itself, with no
+/// penetration, the line would meet no contact stiffness: its grounded part is then held only by
+/// bending, and Newton's first steps run kilometres through the bed. The ends (held) stay; a bed
+/// without stiffness is left alone.
 void SinkOntoBed(const ContactSurface& bed, const Vec3& A, const Vec3& up, double w,
                  const std::vector<double>& diameter, std::vector<Vec3>* x) {
+  if (!(bed.stiffness > 0.0)) return;
   const double length_scale = ((*x).back() - A).norm();
+  const double settle = w / bed.stiffness;  // k φ(δ) = w: φ(δ) = w/k, m
   for (size_t v = 1; v + 1 < x->size(); ++v) {
     if (((*x)[v] - A).dot(up) > 1e-9 * length_scale) continue;  // risen off the bed
     Vec3 normal;
     const double eps = bed.smoothing > 0 ? bed.smoothing : 1e-3 * diameter[v];
+    const double depth = settle >= 0.5 * eps ? settle + 0.5 * eps : std::sqrt(2.0 * eps * settle);
     const double gap = bed.Distance((*x)[v], &normal) - 0.5 * diameter[v];
-    (*x)[v] -= (gap + w / bed.stiffness + 0.5 * eps) * normal;
+    (*x)[v] -= (gap + depth) * normal;
   }
 }
 

@@ -32,9 +32,9 @@ bool ActiveSensitivities(const Mismatch& mismatch, int count, const VecT& tau, c
 
 /// The Newton step D⁻¹ rhs as least squares of least norm: tendons that bend the rod alike
 /// (four parallel ones make three strains: two curvatures and the stretch) leave D singular, with
-/// a family of tensions for every reachable command, and an LU step was then no step at all.
-/// Singular values below 1e-6 of the largest are the forward differences' error, not a way the
-/// tensions move the lengths.
+/// a family of tensions for every reachable command, where an LU solve gives no useful step.
+/// The decomposition's pivots below 1e-6 of the largest are the forward differences' error,
+/// not a way the tensions move the lengths: D's rank is counted without them.
 VecT LeastNormStep(const MatT& D, const VecT& rhs) {
   Eigen::CompleteOrthogonalDecomposition<MatT> cod(D);
   cod.setThreshold(1e-6);
@@ -80,16 +80,13 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
   VecT tau = VecT::Zero(), g;
   for (int i = 0; i < count; ++i) tau(i) = std::max(0.0, actuation->tendon_tension[i]);
   if (!mismatch(tau, &g)) return summary;
+  bool sensitivities_failed = false;
   for (int it = 0; it < options.max_iterations; ++it) {
     // Active set: taut tendons, and slack ones whose path is longer than commanded (g > 0:
     // pulling shortens the path).
     std::array<bool, Actuation::kMaxTendons> active{};
-    double worst = 0.0;
-    for (int i = 0; i < count; ++i) {
-      active[i] = tau(i) > 0 || g(i) > 0;
-      if (active[i]) worst = std::max(worst, std::abs(g(i)));
-    }
-    summary.length_error = worst;
+    for (int i = 0; i < count; ++i) active[i] = tau(i) > 0 || g(i) > 0;
+    const double worst = summary.length_error = TautMismatch(count, tau, g);
     if (worst < tol) {
       summary.status = SolveStatus::kConverged;
       for (int i = 0; i < count; ++i) {
@@ -99,7 +96,10 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
       return summary;
     }
     MatT D;
-    if (!ActiveSensitivities(mismatch, count, tau, g, active, &D)) return summary;
+    if (!ActiveSensitivities(mismatch, count, tau, g, active, &D)) {
+      sensitivities_failed = true;  // summary.status says why
+      break;
+    }
     VecT rhs = VecT::Zero();
     for (int i = 0; i < count; ++i) rhs(i) = active[i] ? -g(i) : 0.0;
     const VecT step = LeastNormStep(D, rhs);
@@ -110,28 +110,23 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
       VecT trial = (tau + alpha * step).cwiseMax(0.0);
       VecT g_trial;
       if (!mismatch(trial, &g_trial)) continue;  // too far for the statics: a shorter step
-      double worst_trial = 0.0;
-      for (int i = 0; i < count; ++i)
-        if (trial(i) > 0 || g_trial(i) > 0)
-          worst_trial = std::max(worst_trial, std::abs(g_trial(i)));
-      if (worst_trial < worst) {
+      if (TautMismatch(count, trial, g_trial) < worst) {
         tau = trial;
         g = g_trial;
         moved = true;
       }
     }
     ++summary.iterations;
-    if (!moved) {
-      // The solver holds the last trial's state: back to the accepted tensions' equilibrium.
-      VecT g_back;
-      mismatch(tau, &g_back);
-      break;
-    }
+    if (!moved) break;
   }
-  // Not converged: the tensions and the mismatch of the last accepted step.
+  // Not converged. The solver may hold a trial's state: back to the accepted tensions'
+  // equilibrium, whose tensions and mismatch are returned.
+  const SolveStatus why = sensitivities_failed ? summary.status : SolveStatus::kMaxIterations;
+  VecT g_back;
+  mismatch(tau, &g_back);
   summary.length_error = TautMismatch(count, tau, g);
   for (int i = 0; i < count; ++i) actuation->tendon_tension[i] = tau(i);
-  summary.status = SolveStatus::kMaxIterations;
+  summary.status = why;
   return summary;
 }
 
