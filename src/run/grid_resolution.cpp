@@ -89,7 +89,8 @@ std::string FramesLeftRotationsLine(const RodState& state, double length) {
   if (first < 0) return "";
   double worst = 0.0, worst_k = 0.0;  // the largest bending turn per segment (rad), κ (1/m)
   for (int i = 0; i + 1 < state.size(); ++i) {
-    const double k = std::max(state.strain[i].head<2>().norm(), state.strain[i + 1].head<2>().norm());
+    const double k =
+        std::max(state.strain[i].head<2>().norm(), state.strain[i + 1].head<2>().norm());
     if (k * (state.s[i + 1] - state.s[i]) > worst) {
       worst = k * (state.s[i + 1] - state.s[i]);
       worst_k = k;

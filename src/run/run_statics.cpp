@@ -354,9 +354,10 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
   // A shot that ran away on a coarse grid is not the tendon law's failure (the grid check says
   // what is).
-  result.log = StaticSummary(summary, solver.state(), problem) + '\n' + settled_note +
-               (solver.state().RanAway() ? FramesLeftRotationsLine(solver.state(), problem.rod.length)
-                                         : TendonLawHint(problem, actuation, summary));
+  const RodState& state = solver.state();
+  result.log = StaticSummary(summary, state, problem) + '\n' + settled_note +
+               (state.RanAway() ? FramesLeftRotationsLine(state, problem.rod.length)
+                                : TendonLawHint(problem, actuation, summary));
   if (!problem.has_robot) result.log += ContinuationHint(problem, summary);
   result.log += detail::UnstableWarning(summary) + unjudged;
   result.converged = summary.converged();
