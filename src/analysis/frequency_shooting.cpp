@@ -100,7 +100,6 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
   EI_ = s0.max_bending_stiffness();
   rhoA0_ = s0.mass(5, 5);
   const double L = rod.length;
-  length_ = L;
   scale_ << EI_ / L, EI_ / L, EI_ / L, EI_ / (L * L), EI_ / (L * L), EI_ / (L * L);
 
   const std::vector<double> points = SegmentSamplePoints(grid_);
@@ -215,8 +214,9 @@ Mat6 FrequencyShooting::BoundaryMatrix(double omega) const {
   B.topRows<3>() = ends_.tip_clamped ? Eigen::Matrix<double, 3, 6>(R * z.topRows<3>())
                                      : Eigen::Matrix<double, 3, 6>(moments / scale_(0));
   const Eigen::Matrix<double, 3, 6> displacement_W = R * z.middleRows<3>(3);
-  B.row(3) = ends_.axes_W.col(0).transpose() * displacement_W / length_;
-  B.row(4) = ends_.axes_W.col(1).transpose() * displacement_W / length_;
+  const double L = grid_.back() - grid_.front();
+  B.row(3) = ends_.axes_W.col(0).transpose() * displacement_W / L;
+  B.row(4) = ends_.axes_W.col(1).transpose() * displacement_W / L;
   B.row(5) = ends_.axes_W.col(2).transpose() * R *
              (z.bottomRows<3>() - hat(tip_force_B_) * z.topRows<3>()) / scale_(3);
   return B;

@@ -31,12 +31,12 @@ std::string CoarseShapeLine(const std::string& lead, double worst, double worst_
 GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& position,
                          const std::vector<Vec3>& curvature, double length, bool converged) {
   GridResolution out;
-  double worst = 0.0, worst_s = 0.0, worst_k = 0.0;  // bending κ h (rad), where, κ (1/m)
+  double& worst = out.worst_turn;  // bending κ h (rad)
   auto bending = [](const Vec3& k) { return std::hypot(k.x(), k.y()); };
   for (size_t i = 0; i + 1 < s.size(); ++i) {
     const double h = s[i + 1] - s[i];
     const double bend = std::max(bending(curvature[i]), bending(curvature[i + 1]));
-    if (bend * h > worst) worst = bend * h, worst_s = s[i], worst_k = bend;
+    if (bend * h > worst) worst = bend * h, out.worst_s = s[i], out.worst_k = bend;
     const double turn = std::max(curvature[i].norm(), curvature[i + 1].norm()) * h;
     const double segment = (position[i + 1] - position[i]).norm();
     if (!SegmentRanAway(h, segment, turn)) continue;
@@ -64,7 +64,7 @@ GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& 
       : out.under_resolved ? "cosserat: the grid is too coarse for this shape (status "
                              "under_resolved): "
                            : "cosserat: warning: the grid resolves the shape coarsely: ",
-      worst, worst_s, worst_k, length, error.str());
+      worst, out.worst_s, out.worst_k, length, error.str());
   return out;
 }
 
@@ -74,37 +74,27 @@ GridResolution CheckGrid(const RodState& state, double length, bool converged) {
   for (const Vec6& xi : state.strain) curvature.push_back(xi.head<3>());
   GridResolution out = CheckGrid(state.s, state.position_W, curvature, length, converged);
   if (out.ran_away) return out;
-  if (const std::string frames = FramesLeftRotationsLine(state, length); !frames.empty()) {
-    out.ran_away = true;
-    out.log = frames;
-  }
+  int first = -1;  // the first node whose frame left the rotations
+  for (int i = 0; i < state.size() && first < 0; ++i)
+    if (FrameRanAway(state.rotation_WB[i])) first = i;
+  if (first < 0) return out;
+  std::ostringstream lead;
+  lead << std::setprecision(3) << "cosserat: the residuals vanished, but the frames RK4 in s "
+       << "carried along the shot are no rotations from s = " << state.s[first]
+       << " m on (‖R‖² = " << state.rotation_WB[first].squaredNorm()
+       << ", a rotation's 3; status non_finite): ";
+  out.ran_away = true;
+  out.under_resolved = false;
+  out.log = CoarseShapeLine(lead.str(), out.worst_turn, out.worst_s, out.worst_k, length,
+                            "is lost, as RK4 shrinks the frames it turns (check the loads' and "
+                            "the actuation's units)");
   return out;
 }
 
 std::string FramesLeftRotationsLine(const RodState& state, double length) {
-  if (state.SegmentsRanAway()) return "";  // the segment line says it
-  int first = -1;
-  for (int i = 0; i < state.size() && first < 0; ++i)
-    if (FrameRanAway(state.rotation_WB[i])) first = i;
-  if (first < 0) return "";
-  double worst = 0.0, worst_k = 0.0;  // the largest bending turn per segment (rad), κ (1/m)
-  for (int i = 0; i + 1 < state.size(); ++i) {
-    const double k =
-        std::max(state.strain[i].head<2>().norm(), state.strain[i + 1].head<2>().norm());
-    if (k * (state.s[i + 1] - state.s[i]) > worst) {
-      worst = k * (state.s[i + 1] - state.s[i]);
-      worst_k = k;
-    }
-  }
-  std::ostringstream line;
-  line << std::setprecision(3) << "cosserat: the residuals vanished, but the frames RK4 in s "
-       << "carried along the shot are no rotations from s = " << state.s[first]
-       << " m on (‖R‖² = " << state.rotation_WB[first].squaredNorm() << ", a rotation's 3): "
-       << "the bending turns the section by up to " << worst << " rad per segment, and RK4 "
-       << "shrinks the frames it turns (status non_finite); check the loads' and the "
-       << "actuation's units, or give rod.nodes ≥ "
-       << static_cast<long>(std::ceil(4.0 * worst_k * length)) + 1 << '\n';
-  return line.str();
+  if (state.SegmentsRanAway()) return "";  // the nodes' own check says it
+  const GridResolution g = CheckGrid(state, length);
+  return g.ran_away ? g.log : "";
 }
 
 GridResolution CheckPolygon(const std::vector<double>& s, const std::vector<Vec3>& position,

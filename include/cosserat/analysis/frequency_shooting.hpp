@@ -104,7 +104,6 @@ class FrequencyShooting {
   ShootingEnds ends_;
   /// The equilibrium's n(L) less the tip force's follower part, body frame, N
   Vec3 tip_force_B_ = Vec3::Zero();
-  double length_ = 0;
   double EI_ = 0, rhoA0_ = 0;
   double sign_ = 1.0;  ///< of ω² in A(s) = A0 − ω² A1: −1 for GrowthRates
 };

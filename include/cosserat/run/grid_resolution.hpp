@@ -27,6 +27,9 @@ struct GridResolution {
   /// than about 4 % of the length, and the loads' balance with it (status under_resolved).
   bool under_resolved = false;
   std::string log;  ///< the runaway's explanation, or the coarse-grid warning, or empty
+  /// The largest bending turn per segment (rad), where (s of its segment's start, m) and its
+  /// curvature (1/m).
+  double worst_turn = 0.0, worst_s = 0.0, worst_k = 0.0;
 };
 
 /// From the nodes' s (m), positions (m) and curvatures [k1, k2, k3] (1/m, body frame) of a rod
