@@ -1059,6 +1059,48 @@ TEST(HeldCable, ASaggingCableOnAFineGridVibratesAsIrvinePredicts) {
   EXPECT_NEAR(m.symmetric, m.symmetric_truth, 1e-2 * m.symmetric_truth);
 }
 
+// The modes' coarse-grid note for a taut string: the weightless stay cable (examples/stay_cable.json
+// without gravity; EI k⁴ is under 2e-4 of T k² for every mode found) has the frequencies
+// n/(2ℓ) sqrt(T/m), ℓ the anchors' distance, T the anchor force, m its mass per stretched length,
+// times sqrt(1 + EI k²/T) for bending. The central second difference is off by (k h)²/24, so the
+// note's estimate must be within [0.8, 1.25] of the worst error measured (the next term,
+// O((k h)⁴), is 10 % of it at k h = 1.2). At 11 nodes the true 6.5 % is no under_resolved; at 41
+// nodes (0.41 %) the run says nothing. The bending coefficient 0.2 said 27.5 % at 11 nodes.
+TEST(HeldCable, ACoarseGridsNoteForATautStringEstimatesItsError) {
+  nlohmann::json doc = testing::SourceJson("examples/stay_cable.json");
+  doc["loads"] = nlohmann::json::object();
+  const double A = 0.006, rho = 8333, EI = 195e9 * 1e-6, L0 = doc["rod"]["length"];
+  const double span = std::hypot(173.205, 100.0);
+  for (int nodes : {11, 21, 41}) {
+    doc["rod"]["nodes"] = nodes;
+    const io::ParseResult parsed = io::ParseProblem(doc.dump());
+    ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
+    const run::Result r = run::Run(*parsed.problem);
+    ASSERT_EQ(r.json["status"], "converged") << nodes << r.log;
+    const auto& f = r.json["modes"]["frequencies_hz"];
+    const auto& F = r.json["anchor_force"];
+    const double T = std::hypot(F[0].get<double>(), F[1].get<double>(), F[2].get<double>());
+    const double m = rho * A * L0 / span;  // kg/m
+    double worst = 0.0;
+    for (size_t i = 0; i < f.size(); ++i) {
+      const int n = static_cast<int>(i) / 2 + 1;  // the two planes of each n
+      const double k = n * M_PI / span;
+      const double string = truth::TautStringOmega(n, T, m, span) * std::sqrt(1 + EI * k * k / T);
+      worst = std::max(worst, std::abs(2 * M_PI * f[i].get<double>() / string - 1));
+    }
+    const size_t at = r.log.find("off by about ");
+    std::printf("%d nodes: worst %.3g %%; %s", nodes, 100 * worst, r.log.c_str());
+    if (worst < 0.01) {
+      EXPECT_EQ(at, std::string::npos) << r.log;
+      continue;
+    }
+    ASSERT_NE(at, std::string::npos) << r.log;
+    const double noted = std::stod(r.log.substr(at + 13)) / 100;
+    EXPECT_GT(noted, 0.8 * worst) << r.log;
+    EXPECT_LT(noted, 1.25 * worst) << r.log;
+  }
+}
+
 // A 1 km top-tensioned riser (10.75" × 20.6 mm steel, mud-filled, in sea water) whose top
 // tension is short of its apparent weight: the bottom is compressed by w_a L − T_top ≈ 100 kN,
 // far past π²EI/L² (a few newtons over 1 km). Statics cannot judge the straight riser's

@@ -72,7 +72,9 @@ std::string HighModesHint(const io::Problem& problem, const ModalResult& r) {
 /// ω sqrt(ρJ/GJ); the stiffest k over the rod. The frequency error on a grid of spacing h,
 /// measured on a steel cantilever's bending modes (3–33 nodes): SE(3), RK4 in s, about
 /// 0.011 (k h)⁴ (1.8 % at k h = 1.17, 0.17 % at 0.59); quaternion FD about 0.2 (k h)² (6.2 % at
-/// 0.59, 0.42 % at 0.15). Above 1 % a warning; status under_resolved above 10 % on the
+/// 0.59, 0.42 % at 0.15). A string's central second difference is off by (k h)²/24 (0.41 % at
+/// k h = 0.31 on a taut stay cable): on the quaternion-FD grid a bending mode's coefficient is
+/// the two weighted by their shares of ρA ω² (EI k⁴ and T k²). Above 1 % a warning; status under_resolved above 10 % on the
 /// quaternion-FD grid (12 % measured at k h = 0.98) and above k h = 2 in RK4 (est. 18 %): its
 /// error changes sign near there (−1.1 % at k h = 1.96, −19.5 % at 2.35, −44 % at 2.93; on the
 /// imaginary axis RK4 is stable up to 2.83).
@@ -87,7 +89,9 @@ ModesGrid CheckModesGrid(const io::Problem& problem, const ModalResult& r) {
   const double L = problem.rod.length, h = L / (problem.nodes - 1);
   double tension = r.equilibrium.wrench_B.empty() ? 0.0 : INFINITY;  // N, the least along it
   for (const Vec6& w : r.equilibrium.wrench_B) tension = std::min(tension, w(5));
-  double worst = 0.0, worst_k = 0.0, worst_hz = 0.0;
+  // The error coefficients above: RK4's of (k h)⁴, the quaternion-FD grid's of (k h)².
+  constexpr double kRk4 = 0.011, kQuatFdBending = 0.2, kString = 1.0 / 24.0;
+  double worst = 0.0, worst_k = 0.0, worst_hz = 0.0, nodes_needed = 0.0;
   int worst_mode = 0;
   std::vector<SectionProperties> sections;  // at 0, L/4, … L: the stiffest wave number of these
   for (int i = 0; i <= 4; ++i)
@@ -95,31 +99,38 @@ ModesGrid CheckModesGrid(const io::Problem& problem, const ModalResult& r) {
   for (size_t m = 0; m < r.modes.size(); ++m) {
     const double omega = 2 * M_PI * r.modes[m].frequency_hz;
     if (!(omega > 0.0)) continue;
-    double k = 0.0;  // 1/m
     for (const SectionProperties& p : sections) {
       const double rhoA = p.mass(5, 5), EI = p.min_bending_stiffness();
+      double k = 0.0, quatfd_coefficient = kQuatFdBending;  // 1/m; error / (k h)²
       switch (r.modes[m].kind) {
-        case ModeKind::kBending:
-          k = std::max(k, std::sqrt((-tension + std::sqrt(tension * tension +
-                                                          4 * EI * rhoA * omega * omega)) /
-                                    (2 * EI)));
+        case ModeKind::kBending: {
+          k = std::sqrt((-tension + std::sqrt(tension * tension + 4 * EI * rhoA * omega * omega)) /
+                        (2 * EI));
+          const double bending = EI * std::pow(k, 4), stretched = tension * k * k;  // N/m
+          if (bending + stretched > 0.0)
+            quatfd_coefficient =
+                (kQuatFdBending * bending + kString * stretched) / (bending + stretched);
           break;
+        }
         case ModeKind::kAxial:
-          k = std::max(k, omega * std::sqrt(rhoA / p.stiffness(5, 5)));
+          k = omega * std::sqrt(rhoA / p.stiffness(5, 5));
           break;
         case ModeKind::kTorsion:
-          k = std::max(k, omega * std::sqrt(p.mass(2, 2) / p.stiffness(2, 2)));
+          k = omega * std::sqrt(p.mass(2, 2) / p.stiffness(2, 2));
           break;
       }
+      const double kh = k * h;
+      const double error = quatfd ? quatfd_coefficient * kh * kh : kRk4 * std::pow(kh, 4);
+      const double kh_one_percent = quatfd ? std::sqrt(0.01 / quatfd_coefficient)
+                                           : std::pow(0.01 / kRk4, 0.25);
+      nodes_needed = std::max(nodes_needed, std::ceil(k * L / kh_one_percent) + 1);
+      if (error > worst)
+        worst = error, worst_k = k, worst_hz = r.modes[m].frequency_hz,
+        worst_mode = static_cast<int>(m) + 1;
     }
-    const double kh = k * h;
-    const double error = quatfd ? 0.2 * kh * kh : 0.011 * std::pow(kh, 4);
-    if (error > worst) worst = error, worst_k = k, worst_hz = r.modes[m].frequency_hz,
-                       worst_mode = static_cast<int>(m) + 1;
   }
   if (!(worst > 0.01)) return out;
-  out.under_resolved = worst > (quatfd ? 0.1 : 0.011 * 16.0);  // RK4: k h > 2
-  const double kh_one_percent = quatfd ? std::sqrt(0.01 / 0.2) : std::pow(0.01 / 0.011, 0.25);
+  out.under_resolved = worst > (quatfd ? 0.1 : kRk4 * 16.0);  // RK4: k h > 2
   std::ostringstream log;
   log << std::setprecision(3)
       << (!out.under_resolved ? "cosserat: warning: the grid resolves the modes coarsely: "
@@ -129,9 +140,7 @@ ModesGrid CheckModesGrid(const io::Problem& problem, const ModalResult& r) {
       << "mode " << worst_mode << " (" << worst_hz << " Hz) has k h = " << worst_k * h
       << " (k its wave number along the rod), where its frequency is off by about "
       << 100 * worst << " % (" << (quatfd ? "quaternion FD, second" : "RK4 in s, fourth")
-      << " order in k h); rod.nodes ≥ "
-      << static_cast<long>(std::ceil(worst_k * L / kh_one_percent)) + 1
-      << " keeps every mode found within about 1 %\n";
+      << " order in k h); rod.nodes ≥ " << static_cast<long>(nodes_needed) << " keeps every mode found within about 1 %\n";
   out.log = log.str();
   return out;
 }
