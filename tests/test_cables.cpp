@@ -1059,8 +1059,8 @@ TEST(HeldCable, ASaggingCableOnAFineGridVibratesAsIrvinePredicts) {
   EXPECT_NEAR(m.symmetric, m.symmetric_truth, 1e-2 * m.symmetric_truth);
 }
 
-// The modes' coarse-grid note for a taut string: the weightless stay cable (examples/stay_cable.json
-// without gravity; EI k⁴ is under 2e-4 of T k² for every mode found) has the frequencies
+// The modes' coarse-grid note for a taut string: the weightless stay cable
+// (examples/stay_cable.json without gravity; EI k⁴ is under 2e-4 of T k² for every mode found) has the frequencies
 // n/(2ℓ) sqrt(T/m), ℓ the anchors' distance, T the anchor force, m its mass per stretched length,
 // times sqrt(1 + EI k²/T) for bending. The central second difference is off by (k h)²/24, so the
 // note's estimate must be within [0.8, 1.25] of the worst error measured (the next term,

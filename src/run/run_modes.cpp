@@ -74,9 +74,9 @@ std::string HighModesHint(const io::Problem& problem, const ModalResult& r) {
 /// 0.011 (k h)⁴ (1.8 % at k h = 1.17, 0.17 % at 0.59); quaternion FD about 0.2 (k h)² (6.2 % at
 /// 0.59, 0.42 % at 0.15). A string's central second difference is off by (k h)²/24 (0.41 % at
 /// k h = 0.31 on a taut stay cable): on the quaternion-FD grid a bending mode's coefficient is
-/// the two weighted by their shares of ρA ω² (EI k⁴ and T k²). Above 1 % a warning; status under_resolved above 10 % on the
-/// quaternion-FD grid (12 % measured at k h = 0.98) and above k h = 2 in RK4 (est. 18 %): its
-/// error changes sign near there (−1.1 % at k h = 1.96, −19.5 % at 2.35, −44 % at 2.93; on the
+/// the two weighted by their shares of ρA ω² (EI k⁴ and T k²). Above 1 % a warning; status
+/// under_resolved above 10 % on the quaternion-FD grid (12 % measured at k h = 0.98) and above
+/// k h = 2 in RK4 (est. 18 %): its error changes sign near there (−1.1 % at k h = 1.96, −19.5 % at 2.35, −44 % at 2.93; on the
 /// imaginary axis RK4 is stable up to 2.83).
 struct ModesGrid {
   bool under_resolved = false;
@@ -140,7 +140,8 @@ ModesGrid CheckModesGrid(const io::Problem& problem, const ModalResult& r) {
       << "mode " << worst_mode << " (" << worst_hz << " Hz) has k h = " << worst_k * h
       << " (k its wave number along the rod), where its frequency is off by about "
       << 100 * worst << " % (" << (quatfd ? "quaternion FD, second" : "RK4 in s, fourth")
-      << " order in k h); rod.nodes ≥ " << static_cast<long>(nodes_needed) << " keeps every mode found within about 1 %\n";
+      << " order in k h); rod.nodes ≥ " << static_cast<long>(nodes_needed)
+      << " keeps every mode found within about 1 %\n";
   out.log = log.str();
   return out;
 }
