@@ -76,8 +76,8 @@ std::string HighModesHint(const io::Problem& problem, const ModalResult& r) {
 /// k h = 0.31 on a taut stay cable): on the quaternion-FD grid a bending mode's coefficient is
 /// the two weighted by their shares of ρA ω² (EI k⁴ and T k²). Above 1 % a warning; status
 /// under_resolved above 10 % on the quaternion-FD grid (12 % measured at k h = 0.98) and above
-/// k h = 2 in RK4 (est. 18 %): its error changes sign near there (−1.1 % at k h = 1.96, −19.5 % at 2.35, −44 % at 2.93; on the
-/// imaginary axis RK4 is stable up to 2.83).
+/// k h = 2 in RK4 (est. 18 %): its error changes sign near there (−1.1 % at k h = 1.96,
+/// −19.5 % at 2.35, −44 % at 2.93; on the imaginary axis RK4 is stable up to 2.83).
 struct ModesGrid {
   bool under_resolved = false;
   std::string log;
