@@ -114,12 +114,13 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   // Past a critical load the loads reach the straight state (a symmetric column) or jump to
   // the one beside a side load's bent path: both unstable. The column settles beside it.
   std::string settled_note;
+  int bow_index = -1;  // the bow's unstable directions beside an unsettled column
   if (column.converged() && summary.stability_index > 0 && detail::MaySettle(problem)) {
     const RodState straight = solver.state();
     const Vec6 straight_unknowns = solver.unknowns();
     StaticShootingSummary settled;
     double imperfection = 0.0;
-    if (detail::SettleColumn(problem, straight, &solver, &settled, &imperfection)) {
+    if (detail::SettleColumn(problem, straight, &solver, &settled, &imperfection, &bow_index)) {
       settled_note = detail::SettledNote(summary.stability_index, imperfection);
       settled.CountWorkOf(summary);
       summary = settled;
@@ -147,7 +148,7 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   if (result.converged && summary.stability_index != 0) {
     const std::string past_euler =
         problem.loads.contact.count == 0
-            ? detail::ColumnPastEulerWarning(ends, problem.rod, solver.state())
+            ? detail::ColumnPastEulerWarning(ends, problem.rod, solver.state(), bow_index)
             : "";
     result.log += summary.stability_index > 0 && past_euler.empty()
                       ? detail::UnstableWarning(summary, false)

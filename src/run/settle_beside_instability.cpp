@@ -160,9 +160,30 @@ bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int inde
   return true;
 }
 
+bool TurnsFreelyAboutItsChord(const io::Problem& problem, const RodState& straight) {
+  const RodModel& rod = problem.rod;
+  const int n = straight.size();
+  if (n < 2 || !rod.section || rod.rest_strain) return false;
+  for (int i = 0; i < n; ++i) {
+    const Mat6 K = rod.section->At(straight.s[i], problem.robot.actuation).stiffness;
+    if (std::abs(K(0, 0) - K(1, 1)) > 1e-12 * K(0, 0) || K(0, 1) != 0.0) return false;
+  }
+  const StaticLoads& loads = problem.loads;
+  if (loads.fluid.density > 0.0 || !loads.tip_moment.isZero()) return false;
+  const Vec3 chord = (straight.tip_position_W() - straight.position_W.front()).normalized();
+  auto along_chord = [&](const Vec3& v) {  // to rounding of the chord's direction
+    return (v - v.dot(chord) * chord).norm() <= 1e-9 * v.norm();
+  };
+  const bool tip_along = loads.tip_force_frame == LoadFrame::kWorld
+                             ? along_chord(loads.tip_force)
+                             : loads.tip_force.head<2>().isZero();
+  return tip_along && along_chord(loads.gravity_W) && along_chord(loads.distributed_force_W);
+}
+
 bool SettleColumn(const io::Problem& problem, const RodState& straight, ColumnSolver* solver,
-                  StaticShootingSummary* summary, double* imperfection) {
+                  StaticShootingSummary* summary, double* imperfection, int* bow_index) {
   const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
+  *bow_index = -1;
   // Three legs, each without a bifurcation: the imperfection alone bends the column (a beam
   // across its span); the loads come in on the bent column, which stays on the side they bend
   // it to (all at once from the straight column, the steps jump to the state beside the path
@@ -178,23 +199,45 @@ bool SettleColumn(const io::Problem& problem, const RodState& straight, ColumnSo
     total.residual = s.residual;
     return s.converged();
   };
+  // Without the imperfection a column that turns freely about its chord keeps that turn as a
+  // direction of zero stiffness, which the count reads either way: at the loads themselves it
+  // is taken stable when it has one unstable direction at most and none with 1/256 of the
+  // imperfection left (which gives the turn its stiffness).
+  const bool turns = TurnsFreelyAboutItsChord(problem, straight);
+  int last_unstable_bow = -1;
+  auto stable_just_before = [&](const StaticLoads& from) {
+    const Vec6 at_loads = solver->unknowns();
+    const StaticLoads near = StaticLoads::Blend(from, problem.loads, 1.0 - kSmallestStep);
+    const bool stable = count(solver->Solve(problem.base, near)) &&
+                        solver->StabilityIndexAtUnknowns(problem.base, near) == 0;
+    solver->set_unknowns(at_loads);
+    return stable && count(solver->Solve(problem.base, problem.loads));  // records it again
+  };
   // A level is taken only on a stable equilibrium: Newton from the last one can still land on
   // the state beside the path (a flat bar at 1.5 P_E, from 0.06 L with the side load to 0.03 L
   // against it), which leaves the branch.
-  auto along = [&](const StaticLoads& from, const StaticLoads& to) {
+  auto along = [&](const StaticLoads& from, const StaticLoads& to, bool to_the_loads) {
     return TakeAway([&](double mu) {
       const StaticLoads level = StaticLoads::Blend(from, to, mu);
       const Vec6 last = solver->unknowns();
-      if (count(solver->Solve(problem.base, level)) &&
-          solver->StabilityIndexAtUnknowns(problem.base, level) == 0)
-        return true;
+      if (count(solver->Solve(problem.base, level))) {
+        const int index = solver->StabilityIndexAtUnknowns(problem.base, level);
+        if (!to_the_loads && index > 0) last_unstable_bow = index;
+        if (index == 0) return true;
+        if (to_the_loads && mu == 1.0 && turns && index == 1 && stable_just_before(from))
+          return true;
+      }
       solver->set_unknowns(last);
       return false;
     });
   };
-  if (!count(solver->SolveFromUnloaded(problem.base, bend_only)) ||
-      !along(bend_only, imperfect) || !along(imperfect, problem.loads))
+  if (!count(solver->SolveFromUnloaded(problem.base, bend_only))) return false;
+  if (!along(bend_only, imperfect, false)) {
+    *bow_index = last_unstable_bow;  // the loads came in as far as the bow stayed stable
     return false;
+  }
+  *bow_index = 0;
+  if (!along(imperfect, problem.loads, true)) return false;
   total.stability_index = 0;  // the last level, the loads', was counted stable on the way
   *summary = total;
   return true;

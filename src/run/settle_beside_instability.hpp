@@ -59,12 +59,24 @@ bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int inde
                   quatfd::QuatFdStaticsSummary* summary, int* settled_index,
                   double* imperfection);
 
+/// Whether a column's bowed equilibria come in a family turned about its chord: a section that
+/// bends alike about both axes across it (EI₁ = EI₂, uncoupled, at every node), no rest strain,
+/// no fluid and no tip moment, and loads along the chord of `straight` only. Its bow then turns
+/// about the chord, with a uniform spin of the sections that restores clamps and pins, at no
+/// cost: one direction of zero stiffness.
+bool TurnsFreelyAboutItsChord(const io::Problem& problem, const RodState& straight);
+
 /// The same for a column (boundary pinned-pinned, clamped-clamped or clamped-pinned) on its
 /// single-shot solver: from the unloaded column to the imperfect loads, then the imperfection
-/// taken away, every level required stable. True, with `solver` holding the stable equilibrium
-/// and *summary its solve (its work, stability_index 0), when the path reaches the loads.
+/// taken away, every level required stable (at the loads of a column that turns freely about
+/// its chord, up to that turn: stable with 1/256 of the imperfection left, one unstable direction
+/// at most without it). True, with `solver` holding the stable equilibrium and *summary its
+/// solve (its work, stability_index 0), when the path reaches the loads. *bow_index receives the
+/// unstable directions of the last bow counted unstable where the loads could not come in on a
+/// stable one (a round clamped-clamped column's past 1.44 P_cc, out of its plane); 0 when they
+/// did; −1 when no bow was counted unstable (the loads are past a peak the bow holds).
 bool SettleColumn(const io::Problem& problem, const RodState& straight, ColumnSolver* solver,
-                  StaticShootingSummary* summary, double* imperfection);
+                  StaticShootingSummary* summary, double* imperfection, int* bow_index);
 
 /// The log's note on a settled statics.
 std::string SettledNote(int straight_index, double imperfection);

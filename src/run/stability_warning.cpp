@@ -12,6 +12,12 @@ namespace {
 /// RK4's stability limit on y' = −k y, the largest k h at which its Jacobi fields are trusted.
 constexpr double kMaxJacobiKh = 2.8;
 
+/// The bowed clamped–pinned column under a dead axial load, its pin sliding on the axis: the
+/// planar elastica's load rises from the Euler load to this peak, where its tip has turned 111°
+/// and slid 0.454 L towards the clamp, then falls (shot from the clamp, Newton on the load and
+/// the pin's lateral force). Past it no bowed equilibrium near the axis holds the load.
+constexpr double kClampedPinnedPeak = 1.1396;  // of 2.0457 π² EI/L²
+
 /// The buckled elastica of a pinned-pinned column, or of a clamped-clamped one (four of its
 /// quarter-waves), pressed by `ratio` times its Euler load: P = (2K(k)/π)² P_E with
 /// k = sin(θ₀/2); its mid-span deflection k L / K(k) and its chord (2E(k)/K(k) − 1) L
@@ -59,7 +65,8 @@ std::string UnstableWarning(const StaticShootingSummary& s, bool searched_stable
          "; \"analysis\": \"buckling\" finds the critical load\n";
 }
 
-std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const RodState& state) {
+std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const RodState& state,
+                                   int bow_index) {
   const double factor = ends == ColumnEnds::kPinnedPinned    ? 9.8696
                         : ends == ColumnEnds::kClampedPinned ? 20.19
                         : ends == ColumnEnds::kClampedClamped ? 39.478
@@ -91,6 +98,15 @@ std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const R
     // count (ColumnSolver::StabilityIndexFromShot) finds it unstable too, out of its plane.
     text << ", and so is the planar bow, whose ends would have passed each other ("
          << -bow.chord << " L)";
+  } else if (ends == ColumnEnds::kClampedPinned && compression > kClampedPinnedPeak * euler) {
+    text << ", and no bowed one holds it: a bowed clamped-pinned column carries at most "
+         << kClampedPinnedPeak
+         << " times its Euler load (its tip turned 111°, slid 0.45 L), and past it collapses";
+  } else if (bow_index > 0) {
+    text << ", and so is the bow beside it (" << bow_index << " unstable direction"
+         << (bow_index > 1 ? "s" : "")
+         << ", counted under a side load of 2 % of the loads): no stable equilibrium was found "
+            "near its axis";
   } else {
     text << ", the stable one bows out";
     if (ends == ColumnEnds::kPinnedPinned || ends == ColumnEnds::kClampedClamped)

@@ -26,8 +26,12 @@ std::string UnstableWarning(const StaticShootingSummary& s, bool searched_stable
 /// ends: by about 0.9 √(P/P_E − 1) L, the elastica's amplitude to first order). The warning says
 /// so; empty otherwise. For columns whose stability index is not defined (a tip moment, a
 /// follower force, drag), or to say more than the index does. Not for columns on contact
-/// surfaces, which hold them laterally (the caller's rule).
-std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const RodState& state);
+/// surfaces, which hold them laterally (the caller's rule). The bow is not offered where there
+/// is none: past the pins' crossing (pinned–pinned), past the clamped–pinned bow's peak load,
+/// or where `bow_index` (the bow's unstable directions under a side load, SettleColumn; −1:
+/// unknown) counts it unstable too.
+std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const RodState& state,
+                                   int bow_index);
 
 /// A rod held at both ends ("anchored") compressed somewhere by more than π²EI/L² (below that
 /// no part of it can buckle, whatever the ends): its statics have no stability index, so a note

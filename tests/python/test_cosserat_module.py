@@ -88,17 +88,19 @@ class ProblemFiles(unittest.TestCase):
         np.testing.assert_allclose(p.loads.tip_force, [-0.2, 0, 0])
 
     def test_the_logs_warnings_are_python_warnings(self):
-        # A round steel column pressed to twice its Euler load stands straight, unstable: the
-        # log's warning (with the elastica's 0.398 L) is also a RuntimeWarning, as a notebook
-        # shows it; a run with nothing to warn of raises none.
+        # A round steel column pressed to 2.5 times its Euler load stands straight, unstable
+        # (the planar bow's pins would have passed each other by 0.0960 L): the log's warning
+        # is also a RuntimeWarning, as a notebook shows it; a run with nothing to warn of
+        # raises none.
         EI = 200e9 * math.pi * 1e-12 / 4
         column = {"format": "cosserat-problem/1", "boundary": "pinned-pinned",
                   "rod": {"length": 1, "nodes": 41,
                           "section": {"shape": "circle", "radius": 0.001},
                           "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9,
                                        "density": 8000}},
-                  "loads": {"tip_force": [0, 0, -2 * math.pi ** 2 * EI]}}
-        with self.assertWarnsRegex(RuntimeWarning, r"^the column is compressed .* 0\.398 L"):
+                  "loads": {"tip_force": [0, 0, -2.5 * math.pi ** 2 * EI]}}
+        with self.assertWarnsRegex(RuntimeWarning,
+                                   r"^the column is compressed .* passed each other \(0\.096 L\)"):
             out = cosserat.solve(column)
         self.assertIn("cosserat: warning: the column is compressed", out["log"])
         with warnings.catch_warnings():
