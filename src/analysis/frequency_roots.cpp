@@ -129,8 +129,11 @@ void AddRoots(const FrequencyShooting& fs, double lo, double hi, int* budget,
     if (!exact) here.push_back(found[a].omega);
     const double wc = here.front();
     a = b;
-    bool known = false;
-    for (const Root& r : *roots) known = known || std::abs(r.omega - wc) < 1e-5 * wc;
+    bool known = false, beside_known = false;
+    for (const Root& r : *roots) {
+      known = known || std::abs(r.omega - wc) < 1e-5 * wc;
+      beside_known = beside_known || std::abs(r.omega - wc) <= 5e-5 * wc;
+    }
     if (known) continue;
     const Vec6 sc = Sigma(fs, wc), sm = Sigma(fs, wc * (1 - 1e-3)), sp = Sigma(fs, wc * (1 + 1e-3));
     // Small singular values: below 5 % of their value 1e-3 ω away may be a root nearby; below
@@ -152,11 +155,12 @@ void AddRoots(const FrequencyShooting& fs, double lo, double hi, int* budget,
     // 1e-10 ω). A dip that stays above 1e-4 of its flanks is no root: past flutter under a
     // follower load, where a pair of roots has left the real axis, it marks their real part.
     if (!exact && null == 0) {
-      if (dips) dips->push_back(wc);
+      if (dips && !beside_known) dips->push_back(wc);  // else the blur of that root's minimum
       continue;
     }
-    // Still more small singular values than roots: those no other candidate or known root
-    // within 5e-5 ω explains (a neighbour there also makes a singular value small here) lie
+    // Still more small singular values than roots: those no other root (a candidate from a sign
+    // change, or one known) within 5e-5 ω explains (a neighbour there also makes a singular
+    // value small here; a mere minimum there may be this root's own, blurred by round-off) lie
     // within 1e-5 ω, closer than the neighbour search separates from sign flicker: a
     // cantilever's two bending planes under a 0.01 N lateral tip force, 1e-6 ω apart, lost one
     // of each pair and the list skipped to the next pair. They are listed at ω with the further
@@ -166,7 +170,7 @@ void AddRoots(const FrequencyShooting& fs, double lo, double hi, int* budget,
     };
     const bool explained =
         std::any_of(found.begin(), found.end(),
-                    [&](const Candidate& c) { return near(c.omega); }) ||
+                    [&](const Candidate& c) { return c.exact && near(c.omega); }) ||
         std::any_of(roots->begin(), roots->end(), [&](const Root& r) { return near(r.omega); });
     const int simple = static_cast<int>(here.size());
     const int mult = std::max({simple, null, explained ? 0 : small});

@@ -15,6 +15,7 @@
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "frequency_roots.hpp"
+#include "frequency_shot_limit.hpp"
 #include "mode_classification.hpp"
 
 namespace cosserat {
@@ -145,13 +146,22 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
   const double L = rod.length;
   const double w_eb =
       1.8751 * 1.8751 / (L * L) * std::sqrt(fs.bending_stiffness() / fs.mass_per_length_at_base());
+  // Its top, where one shot's round-off blurs the roots (frequency_shot_limit.hpp): roots past
+  // it are not listed, so a lost partner of a pair cannot shift the list.
+  const double w_limit = detail::FrequencyShotLimit(rod, actuation, eq.state);
+  result.shot_limit_hz = w_limit / kTwoPi;
   const double w_lo = options.omega_min > 0 ? options.omega_min : 0.01 * w_eb;
-  const double w_hi = options.omega_max > 0 ? options.omega_max : 1e4 * w_eb;
+  const double w_hi =
+      std::min(options.omega_max > 0 ? options.omega_max : 1e4 * w_eb, w_limit);
   const int count = options.modal.count;
   std::vector<double> dips;
-  const std::vector<detail::Root> roots =
-      detail::FindRoots(fs, w_lo, w_hi, 1.0 + options.relative_step, count, &dips,
-                        options.progress);
+  std::vector<detail::Root> roots;
+  if (w_hi > w_lo)
+    roots = detail::FindRoots(fs, w_lo, w_hi, 1.0 + options.relative_step, count, &dips,
+                              options.progress);
+  roots.erase(std::remove_if(roots.begin(), roots.end(),
+                             [&](const detail::Root& r) { return r.omega > w_limit; }),
+              roots.end());
 
   const NodeWeights weights = ShootingNodeWeights(rod, eq.grid, fs, actuation);
   for (size_t i = 0; i < roots.size() && static_cast<int>(i) < count; ++i) {

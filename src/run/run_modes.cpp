@@ -48,21 +48,19 @@ std::string SingleShotHint(const io::Problem& problem, const ModalResult& r) {
   return hint.str();
 }
 
-/// SE(3) modes found fewer frequencies than asked: above λL ≈ 20, λ = (ω² ρA/EI)^¼, one shot
-/// amplifies round-off by e^{λL} and the scan's roots blur (a 0.5 m, 1 mm steel rod lost partners
-/// of its 9th and 10th pairs, at λL ≈ 24–27). Says where that begins.
+/// SE(3) modes found fewer frequencies than asked: past ModalResult::shot_limit_hz one shot
+/// amplifies round-off beyond what separates a pair's roots (frequency_shot_limit.hpp), and the
+/// scan lists none there. Says where that begins.
 std::string HighModesHint(const io::Problem& problem, const ModalResult& r) {
   if (problem.formulation == io::Formulation::kQuaternionFd ||
       r.status != ModalStatus::kTooFewModes || !problem.rod.section)
     return "";
-  const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
-  const double rhoA = p.mass(3, 3), EI = p.min_bending_stiffness(), L = problem.rod.length;
-  const double f20 = std::pow(20.0 / L, 2) * std::sqrt(EI / rhoA) / (2 * M_PI);
   std::ostringstream hint;
   hint << std::setprecision(3) << "cosserat: hint: SE(3) modes shoot the rod in one piece, "
-       << "which resolves frequencies up to about " << f20
-       << " Hz here (λL = 20, λ = (ω² ρA/EI)^(1/4)); above it the roots blur: ask for fewer "
-          "modes, or use \"formulation\": \"quaternion-fd\"\n";
+       << "which resolves frequencies up to about " << r.shot_limit_hz
+       << " Hz here (where a perturbation grows by e^28 along the rod, ∫ μ ds = 28 with "
+          "μ² = (T + sqrt(T² + 4 EI ρA ω²))/(2 EI)); above it the roots blur and none is listed: "
+          "ask for fewer modes, or use \"formulation\": \"quaternion-fd\"\n";
   return hint.str();
 }
 

@@ -113,6 +113,9 @@ struct ModalResult {
   /// quatfd: whether the modes came from the banded factorisation (ModalOptions::sparse_above)
   /// rather than the dense spectrum.
   bool sparse = false;
+  /// SE(3) shooting: the frequency past which one shot's round-off blurs the roots and none is
+  /// listed (Hz; 0 on quaternion FD, and where the rod's tension alone passes that limit).
+  double shot_limit_hz = 0;
   double wall_time_s = 0;
   bool converged() const { return status == ModalStatus::kConverged; }
   std::vector<double> frequencies_hz() const;
