@@ -344,14 +344,22 @@ KinkReport EversionRobot::CheckKink() const {
   KinkReport rep;
   const double L = solver_length_;
   const double delta = 1e-9 * L;
+  // The membrane wrinkles where bending cancels the wall's axial force per length of its
+  // circumference on the compressed side, N/(2πr) = M/(πr²): M_w = N r/2, with N the wall's
+  // axial force (WallTension). Inflation alone gives N = pπr², the tube's πpr³/2 (Comer & Levy
+  // 1963); a push on the tip lowers it, and a wall pushed slack (N ≤ 0) has none left.
+  auto wrinkling_moment = [&](int i, double r) {
+    double wall = st.wrench_B[i](5);  // N
+    if (design_.pressure_load == PressureLoadModel::kClosedVessel)
+      wall += solved_pressure_ * kPi * r * r;
+    return std::max(0.0, 0.5 * wall * r);
+  };
   for (int i = 0; i < st.size(); ++i) {
     const double s = st.s[i];
     // At a band end the radius jumps: the smaller wrinkling moment of the two sides governs.
     double mw = std::numeric_limits<double>::infinity();
-    if (s > 0)
-      mw = std::min(mw,
-                    InflatedWrinklingMoment(solved_pressure_, RadiusAt(std::max(0.0, s - delta))));
-    if (s < L) mw = std::min(mw, InflatedWrinklingMoment(solved_pressure_, RadiusAt(s + delta)));
+    if (s > 0) mw = std::min(mw, wrinkling_moment(i, RadiusAt(std::max(0.0, s - delta))));
+    if (s < L) mw = std::min(mw, wrinkling_moment(i, RadiusAt(s + delta)));
     const double m = st.wrench_B[i].head<2>().norm();
     double ratio = 0.0;
     if (mw > 0)

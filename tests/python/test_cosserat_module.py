@@ -889,8 +889,10 @@ class BendRadius(unittest.TestCase):
         # kinks where the moment reaches the wrinkling moment M_w = pi p r^3 / 2 (Suulker et al.
         # 2026), so its smallest radius is EI/M_w of the kinking section: the plain tube's at its
         # base, and with the bands (radius r/2, stiffness 0.36 E_eff I(r/2): M_w and I both fall
-        # by 8) 0.36 times it at the first band (s = 0.3 m). To 1e-5: the kink is bisected to
-        # 1e-6 in the load factor.
+        # by 8) 0.36 times it at the first band (s = 0.3 m). To 1e-5 at the base: the kink is
+        # bisected to 1e-6 in the load factor. At the band to 1e-3: there M_w = N r/2 also
+        # counts the weight's share along the drooping tube in the wall force N, 1.5e-4 of the
+        # band's pressure force p pi (r/2)^2 (measured).
         p = cosserat.load_problem("robots/eversion_banded_vine.json")
         EI, _ = p.section_stiffness
         plain = EI / (math.pi * 3000.0 * 0.025 ** 3 / 2)
@@ -899,7 +901,7 @@ class BendRadius(unittest.TestCase):
         self.assertAlmostEqual(r["min_radius"] / plain, 1.0, delta=1e-5)
         banded = cosserat.minimum_bend_radius(p, {"tip_moment": [0, 0, 1.0]}, length=0.6)
         self.assertEqual(banded["limit"], "kink")
-        self.assertAlmostEqual(banded["min_radius"] / (0.36 * plain), 1.0, delta=1e-5)
+        self.assertAlmostEqual(banded["min_radius"] / (0.36 * plain), 1.0, delta=1e-3)
         self.assertAlmostEqual(banded["s"], 0.3, delta=1e-9)
         with self.assertRaisesRegex(ValueError, "robot.kind: the minimum bend radius is an "
                                     "eversion robot's"):

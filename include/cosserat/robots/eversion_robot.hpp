@@ -27,7 +27,8 @@
 /// only the everted part [0, L] of them is in the body.
 ///
 /// Kink check. After every solve the bending moment |m_⊥(s)| = |(m1, m2)| at each grid node is
-/// compared with the wrinkling moment M_w(s) = π p r(s)³ / 2 (Comer & Levy 1963); a kink is
+/// compared with the wrinkling moment M_w(s) = N(s) r(s) / 2, N the wall's axial force
+/// (WallTension: π p r³ / 2 under inflation alone, Comer & Levy 1963; less under a push); a kink is
 /// reported (KinkReport), never silently ignored. The rod model beyond the wrinkling moment is
 /// not valid (the real tube loses stiffness there): a kinked solve is an honest report that the
 /// design fails, not a prediction of the kinked shape.
@@ -198,7 +199,8 @@ class EversionRobot {
   double BendingStiffnessAt(double s) const;
   /// Axial stiffness E_eff(p) · 2π r t, N.
   double AxialStiffness() const;
-  /// M_w(s) = π p r(s)³ / 2, N·m.
+  /// The inflated tube's M_w(s) = π p r(s)³ / 2, N·m, without axial loads (CheckKink uses the
+  /// wall's axial force of the solved state).
   double WrinklingMomentAt(double s) const;
   /// The follower tip force p π r(L)² at the current length, N, pushing outward along d3(L).
   double TipForce() const;
