@@ -249,6 +249,7 @@ std::string CoarseStepWarning(const io::Problem& problem, double dt) {
 /// bending 1.4–1.5) its energy only fell, and drill strings run at bending 3. So a warning
 /// whatever the outcome when the shear wave's exceeds 1.
 std::string CoarseGridText(const io::Problem& problem, double dt, bool converged) {
+  constexpr double kMaxProblemNodes = 1e6;  // rod.nodes' limit (io/problem_rod.cpp)
   const double exponent = SingleShootingExponent(problem.rod, dt, problem.robot.actuation);
   const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
   const double shear_wave = 1.5 / dt * problem.rod.length *
@@ -262,9 +263,13 @@ std::string CoarseGridText(const io::Problem& problem, double dt, bool converged
        << std::setprecision(3) << per_segment << " (bending " << exponent / (problem.nodes - 1)
        << ", shear " << shear_wave / (problem.nodes - 1) << "; above about 1 the steps can "
        << (warn ? "gain energy or fail" : "fail")
-       << "; docs/dynamics.md, \"Grid and step\"); \"rod\": {\"nodes\": "
-       << static_cast<int>(std::ceil(std::max(exponent, shear_wave) / 0.9)) + 1
-       << "} or a larger dt\n";
+       << "; docs/dynamics.md, \"Grid and step\"); ";
+  const double nodes = std::ceil(std::max(exponent, shear_wave) / 0.9) + 1;
+  if (nodes <= kMaxProblemNodes)
+    text << "\"rod\": {\"nodes\": " << static_cast<long>(nodes) << "} or a larger dt\n";
+  else  // past what a problem file takes
+    text << "a larger dt: this one needs " << nodes << " nodes, past the limit of "
+         << kMaxProblemNodes << "\n";
   return text.str();
 }
 
