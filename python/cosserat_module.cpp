@@ -75,14 +75,43 @@ auto ArrayGetter(std::array<double, N> Actuation::*field) {
                                (a.*field).data(), self);
   };
 }
+/// A sequence of numbers, or a TypeError naming the field.
+std::vector<double> Numbers(const py::object& value, const std::string& name) {
+  try {
+    return value.cast<std::vector<double>>();
+  } catch (const py::cast_error&) {
+    throw py::type_error(name + ": expected a list of numbers, got " +
+                         py::repr(value).cast<std::string>());
+  }
+}
+
 template <size_t N>
 auto ArraySetter(std::array<double, N> Actuation::*field, const char* name) {
-  return [field, name](Actuation& a, const std::vector<double>& values) {
+  return [field, name](Actuation& a, const py::object& value) {
+    const std::vector<double> values = Numbers(value, name);
     if (values.size() > N)
       throw py::value_error(std::string(name) + ": expected at most " + std::to_string(N) +
                             " values, got " + std::to_string(values.size()));
     (a.*field).fill(0.0);
     std::copy(values.begin(), values.end(), (a.*field).begin());
+  };
+}
+
+/// A vector field of StaticLoads as a writable NumPy view that keeps its Loads alive
+/// (`p.loads.tip_force[0] = 1` sets it), and back from three numbers.
+auto Vec3Getter(Vec3 StaticLoads::*field) {
+  return [field](py::object self) {
+    StaticLoads& l = self.cast<StaticLoads&>();
+    return py::array_t<double>({py::ssize_t{3}}, {sizeof(double)}, (l.*field).data(), self);
+  };
+}
+auto Vec3Setter(Vec3 StaticLoads::*field, const char* name) {
+  return [field, name](StaticLoads& l, const py::object& value) {
+    const std::vector<double> v = Numbers(value, name);
+    if (v.size() != 3)
+      throw py::value_error(std::string(name) + ": expected 3 numbers, got " +
+                            std::to_string(v.size()));
+    l.*field = Vec3(v[0], v[1], v[2]);
   };
 }
 
@@ -243,10 +272,14 @@ void BindLoads(py::module_& m) {
       .def("__copy__", [](const StaticLoads& l) { return l; })
       .def("__deepcopy__", [](const StaticLoads& l, py::dict) { return l; })
       .def_readwrite("fluid", &StaticLoads::fluid)
-      .def_readwrite("gravity", &StaticLoads::gravity_W)
-      .def_readwrite("distributed_force", &StaticLoads::distributed_force_W)
-      .def_readwrite("tip_force", &StaticLoads::tip_force)
-      .def_readwrite("tip_moment", &StaticLoads::tip_moment)
+      .def_property("gravity", Vec3Getter(&StaticLoads::gravity_W),
+                    Vec3Setter(&StaticLoads::gravity_W, "gravity"))
+      .def_property("distributed_force", Vec3Getter(&StaticLoads::distributed_force_W),
+                    Vec3Setter(&StaticLoads::distributed_force_W, "distributed_force"))
+      .def_property("tip_force", Vec3Getter(&StaticLoads::tip_force),
+                    Vec3Setter(&StaticLoads::tip_force, "tip_force"))
+      .def_property("tip_moment", Vec3Getter(&StaticLoads::tip_moment),
+                    Vec3Setter(&StaticLoads::tip_moment, "tip_moment"))
       .def_property(
           "tip_force_frame", [](const StaticLoads& l) { return ToString(l.tip_force_frame); },
           [](StaticLoads& l, const std::string& f) {

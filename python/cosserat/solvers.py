@@ -49,7 +49,7 @@ def _set_keyed_loads(loads, value, keys, where, allowed):
             raise ValueError(f"{where}.{key}: unknown key ({allowed})")
         try:
             setattr(loads, key, entry)
-        except TypeError:  # the binding's own message names no field
+        except (TypeError, ValueError):  # the binding names the field, not where it sits
             expected = ('"world" or "body"' if key.endswith("_frame")
                         else "an array of 3 numbers")
             raise ValueError(f"{where}.{key}: expected {expected}, got {entry!r}") from None

@@ -357,7 +357,7 @@ class Dynamics(unittest.TestCase):
         a, b = cosserat.Stepper(p), cosserat.Stepper(p)
         self.assertTrue(a.initialize_at_rest().converged and b.initialize_at_rest().converged)
         a.actuation.tendon_tension[:3] = [1.0, 0.5, 0.0]
-        a.loads.tip_force = [0.1, 0, 0]
+        a.loads.tip_force[0] = 0.1  # a view of the stepper's loads (it was read-only)
         for _ in range(20):
             self.assertTrue(a.step().converged)
             self.assertTrue(b.step({"gravity": list(p.loads.gravity), "tip_force": [0.1, 0, 0]},
@@ -375,6 +375,13 @@ class Dynamics(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "actuation.tendon_tension"):
             a.step()
         self.assertEqual(a.time, t)
+        # A vector given the wrong type is named, as a dict's would be.
+        with self.assertRaisesRegex(TypeError, "^tip_force: expected a list of numbers"):
+            a.loads.tip_force = "abc"
+        with self.assertRaisesRegex(ValueError, "^tip_force: expected 3 numbers, got 2"):
+            a.loads.tip_force = [1, 2]
+        with self.assertRaisesRegex(TypeError, "^tendon_tension: expected a list of numbers"):
+            cosserat.Actuation(tendon_tension="abc")
 
     def test_a_step_takes_loads_and_actuation_as_dicts(self):
         # The same inputs as objects or as dicts with the problem file's keys: the same run, bit
