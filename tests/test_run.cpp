@@ -397,7 +397,7 @@ TEST(Run, TheGridCheckJudgesBendingNotStretchOrTwist) {
 
 // The quaternion-FD polygon is second order: an arc at 0.75 rad per segment warns with
 // 0.08 (κ h)² (4.5 % of L), one at 2 rad is under_resolved. A straight rod twisted 3 rad per
-// segment is not bent at all.
+// segment is not bent at all: only its twist is warned of.
 TEST(Run, TheQuaternionFdGridCheckJudgesTheBendOfItsPolygon) {
   const int n = 21;
   const double L = 1.0, h = L / (n - 1);
@@ -411,7 +411,10 @@ TEST(Run, TheQuaternionFdGridCheckJudgesTheBendOfItsPolygon) {
   std::vector<double> s(n);
   std::vector<Vec3> x(n), k(n), straight(n), twist(n, Vec3(0, 0, 3.0 / h));
   for (int i = 0; i < n; ++i) s[i] = i * h, straight[i] = Vec3(0, 0, s[i]);
-  EXPECT_TRUE(run::CheckPolygon(s, straight, twist, L).log.empty());
+  const run::GridResolution twisted = run::CheckPolygon(s, straight, twist, L);
+  EXPECT_FALSE(twisted.under_resolved);
+  EXPECT_EQ(twisted.log.find("bending"), std::string::npos) << twisted.log;
+  EXPECT_NE(twisted.log.find("resolves the twist coarsely"), std::string::npos) << twisted.log;
   arc(0.75, &x, &k);
   const run::GridResolution coarse = run::CheckPolygon(s, x, k, L);
   EXPECT_FALSE(coarse.under_resolved);
@@ -419,6 +422,42 @@ TEST(Run, TheQuaternionFdGridCheckJudgesTheBendOfItsPolygon) {
   EXPECT_NE(coarse.log.find("off by 4.5 %"), std::string::npos) << coarse.log;
   arc(2.0, &x, &k);
   EXPECT_TRUE(run::CheckPolygon(s, x, k, L).under_resolved);
+}
+
+// A steel shaft (1 m, r = 5 mm) twisted by a tip torque T = 10 GJ/L: φ = T L/GJ = 10 rad. The
+// quaternion-FD twist is stiff by about θ²/12 per segment turn θ (grid_resolution.cpp): on 21
+// nodes (0.5 rad per segment) the note's estimate must be within [0.7, 1.3] of the tip's twist
+// error, measured against φ (its next term, O(θ⁴), is 2 % of it; the clamp's half element
+// adds little); on 41 nodes (0.52 % expected) it says nothing.
+TEST(Run, AQuaternionFdShaftTwistedCoarselyIsWarnedWithItsError) {
+  const double G = 80e9, r = 0.005, GJ = G * M_PI * std::pow(r, 4) / 2, phi = 10.0;
+  for (int nodes : {21, 41}) {
+    std::ostringstream text;
+    text.precision(17);
+    text << R"({"format": "cosserat-problem/1", "formulation": "quaternion-fd",
+        "rod": {"length": 1, "nodes": )" << nodes << R"(,
+                "section": {"shape": "circle", "radius": 0.005},
+                "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9, "density": 8000}},
+        "loads": {"tip_moment": [0, 0, )" << phi * GJ << "]}}";
+    const io::ParseResult parsed = io::ParseProblem(text.str());
+    ASSERT_TRUE(parsed.ok());
+    const Result r = cosserat::run::Run(*parsed.problem);
+    ASSERT_TRUE(r.converged) << r.log;
+    const auto& R = r.json["tip"]["rotation"];
+    const double turned = std::atan2(R[1][0].get<double>(), R[0][0].get<double>());
+    const double error = std::abs(std::remainder(turned - phi, 2 * M_PI)) / phi;
+    const size_t at = r.log.find("stiffer in torsion by about ");
+    std::printf("%d nodes: twist %.4g %% short; %s", nodes, 100 * error, r.log.c_str());
+    if (nodes == 41) {
+      EXPECT_EQ(at, std::string::npos) << r.log;
+      EXPECT_LT(error, 0.01);
+      continue;
+    }
+    ASSERT_NE(at, std::string::npos) << r.log;
+    const double noted = std::stod(r.log.substr(at + 28)) / 100;
+    EXPECT_GT(noted, 0.7 * error) << r.log;
+    EXPECT_LT(noted, 1.3 * error) << r.log;
+  }
 }
 
 // A tip moment of 100 N·m on the 0.5 m steel wire of examples/cantilever.json curls it into
