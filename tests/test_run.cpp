@@ -882,6 +882,42 @@ TEST(Run, AClampedPinnedColumnSettlesBelowItsPeakLoadAndIsToldItCollapsesPastIt)
   EXPECT_EQ(past.log.find("the stable one"), std::string::npos) << past.log;
 }
 
+// Quaternion-FD buckling of the steel cantilever column (examples/buckling_column.json as a
+// cantilever): the grid's error is second order and low, about −0.084 (k h)². Where it passes
+// 1e-3 a note estimates it: within [0.8, 1.25] of the error against Euler's π²EI/(4L²) (shear
+// shifts that by ~(r/L)² = 4e-6) on 3, 5 and 9 nodes; the nodes it asks for bring the error
+// below 1e-4; on 65 nodes (5.5e-5) it says nothing.
+TEST(Run, QuaternionFdBucklingOnACoarseGridSaysByHowMuch) {
+  nlohmann::json doc = testing::SourceJson("examples/buckling_column.json");
+  doc.erase("boundary");
+  doc["formulation"] = "quaternion-fd";
+  const double EI = 200e9 * M_PI * 1e-12 / 4, L = 0.5, euler = M_PI * M_PI * EI / (4 * L * L);
+  auto search = [&](int nodes) {
+    doc["rod"]["nodes"] = nodes;
+    const io::ParseResult parsed = io::ParseProblem(doc.dump());
+    EXPECT_TRUE(parsed.ok());
+    const Result r = cosserat::run::Run(*parsed.problem);
+    EXPECT_EQ(r.json["buckling"]["status"], "found") << r.log;
+    return r;
+  };
+  for (int nodes : {3, 5, 9}) {
+    const Result r = search(nodes);
+    const double error = std::abs(r.json["buckling"]["critical_load"].get<double>() / euler - 1);
+    const size_t at = r.log.find("(quaternion FD), about ");
+    ASSERT_NE(at, std::string::npos) << r.log;
+    const double noted = std::stod(r.log.substr(at + 23));
+    EXPECT_GT(noted, 0.8 * error) << r.log;
+    EXPECT_LT(noted, 1.25 * error) << r.log;
+    if (nodes != 3) continue;
+    const size_t asked = r.log.find("\"nodes\": ");
+    ASSERT_NE(asked, std::string::npos) << r.log;
+    const Result finer = search(std::stoi(r.log.substr(asked + 9)));
+    EXPECT_LT(std::abs(finer.json["buckling"]["critical_load"].get<double>() / euler - 1), 1e-4);
+  }
+  const Result fine = search(65);
+  EXPECT_EQ(fine.log.find("coarse"), std::string::npos) << fine.log;
+}
+
 // A steel pipe (outer radius 0.0635 m, inner 0.054 m, in air) lying in a horizontal bore of
 // radius 0.108 m (penalty stiffness k_c N/m per m), pinned where its weight w holds it: the
 // penalty's k_c φ(δ) = w, φ = δ − ε/2 past the smoothing ε = 1e-3 of the diameter, δ²/2ε within

@@ -145,14 +145,30 @@ std::string DirectionNote(const io::Problem& problem, BucklingStatus status) {
   return note.str();
 }
 
-/// After a found SE(3) search: where the pre-buckled rod is pressed by P, the buckled shape turns
-/// by k h per segment, k = sqrt(P/EI); RK4's error in the critical load grows as (k h)⁴, about
-/// 1.5e-2 (k h)⁴ at most (measured on a pinned column: +5.1e-3 at k h = 0.79, +1.3e-2 at 1.05,
-/// +2.8e-2 at π/2). A note from an estimate of 1e-4 on (k h = 0.29), asking for the nodes that
-/// give k h = 0.2 (2.4e-5).
-std::string CoarseGridNote(const io::Problem& problem, const BucklingSummary& b,
-                           const RodState& state) {
-  if (!b.found() || state.size() < 2) return "";
+/// How a buckling search's critical load errs with the grid: about coefficient (k h)^power,
+/// k = sqrt(P/EI) where the pre-buckled rod is pressed by P; a note above `note_above`, asking
+/// for the nodes that give k h = target_kh (an error below `target`).
+struct BucklingGridLaw {
+  double coefficient;
+  int power;
+  double note_above, target_kh;
+  const char* target;
+  const char* scheme;
+  const char* size;  ///< "up to about" for an upper estimate, "about" for the measured law
+};
+/// SE(3), RK4 in s: about 1.5e-2 (k h)⁴ at most (measured on a pinned column: +5.1e-3 at
+/// k h = 0.79, +1.3e-2 at 1.05, +2.8e-2 at π/2); from 1e-4 (k h = 0.29), to k h = 0.2 (2.4e-5).
+constexpr BucklingGridLaw kShootingBucklingGrid{1.5e-2, 4,          1e-4,       0.2,
+                                                "3e-5", "RK4 in s", "up to about"};
+/// Quaternion FD, second order, low: −0.084 (k h)² on a steel cantilever (−5.0 % at k h = 0.77,
+/// −1.28 % at 0.39, −0.081 % at 0.098); from 1e-3 (k h = 0.11), to k h = 0.03 (7.7e-5).
+constexpr BucklingGridLaw kQuatFdBucklingGrid{0.085,  2,      1e-3,           0.03,
+                                              "1e-4", "quaternion FD", "about"};
+
+/// After a found search: the note on a grid coarse for the buckled shape, empty otherwise.
+std::string CoarseGridNote(const io::Problem& problem, bool found, const RodState& state,
+                           const BucklingGridLaw& law) {
+  if (!found || state.size() < 2) return "";
   double worst = 0.0, worst_s = 0.0, worst_k = 0.0;  // k h, where (m), k (1/m)
   for (int i = 0; i + 1 < state.size(); ++i) {
     const double pressed = std::max(-state.wrench_B[i](5), -state.wrench_B[i + 1](5));  // N
@@ -162,17 +178,17 @@ std::string CoarseGridNote(const io::Problem& problem, const BucklingSummary& b,
     const double kh = k * (state.s[i + 1] - state.s[i]);
     if (kh > worst) worst = kh, worst_s = state.s[i], worst_k = k;
   }
-  const double error = 1.5e-2 * std::pow(worst, 4);  // relative, an upper estimate
-  if (!(error > 1e-4)) return "";
+  const double error = law.coefficient * std::pow(worst, law.power);  // relative, an estimate
+  if (!(error > law.note_above)) return "";
   std::ostringstream note;
   note << std::setprecision(3)
        << "cosserat: note: the grid is coarse for the buckled shape: at s = "
        << worst_s << " m the pressed rod bends by k h = " << worst
        << " per segment (k = sqrt(P/EI)), and the critical load's relative error grows as "
-          "(k h)^4, up to about "
+          "(k h)^" << law.power << " (" << law.scheme << "), " << law.size << " "
        << error << " here; \"rod\": {\"nodes\": "
-       << static_cast<long>(std::ceil(problem.rod.length * worst_k / 0.2)) + 1
-       << "} brings it below 3e-5\n";
+       << static_cast<long>(std::ceil(problem.rod.length * worst_k / law.target_kh)) + 1
+       << "} brings it below " << law.target << "\n";
   return note.str();
 }
 
@@ -346,7 +362,7 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   result.log = SummaryLine(problem, ends, b) + pieces_note +
                (in_pieces ? "" : SingleShotHint(problem, b)) +
                ImperfectionNote(problem, b.status) + DirectionNote(problem, b.status) +
-               CoarseGridNote(problem, b, *state);
+               CoarseGridNote(problem, b.found(), *state, kShootingBucklingGrid);
   result.converged = ok;
   return result;
 }
@@ -404,7 +420,8 @@ Result RunQuatFdBuckling(const io::Problem& problem, const RunOptions& run_optio
   line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3
        << " ms";
   result.log = line.str() + '\n' + ImperfectionNote(problem, b.status) +
-               DirectionNote(problem, b.status);
+               DirectionNote(problem, b.status) +
+               CoarseGridNote(problem, b.found(), state, kQuatFdBucklingGrid);
   result.converged = ok;
   return result;
 }
