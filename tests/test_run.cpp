@@ -918,6 +918,29 @@ TEST(Run, QuaternionFdBucklingOnACoarseGridSaysByHowMuch) {
   EXPECT_EQ(fine.log.find("coarse"), std::string::npos) << fine.log;
 }
 
+// An eversion robot grids its body by length as it grows: at rod.nodes' density over its
+// length, and at least 40 nodes per metre. The banded vine (1.2 m, two bands whose ends are
+// nodes) asked for 401 nodes gets them (and more at its band ends); asked for 9 (the fewest
+// its breakpoints allow), it keeps 40 per metre (55 nodes) and says so. Before, rod.nodes was ignored without a word.
+TEST(Run, AnEversionRobotTakesTheGridItIsAskedForAndSaysWhenItRefinesIt) {
+  nlohmann::json doc = testing::SourceJson("robots/eversion_banded_vine.json");
+  auto run = [&](int nodes) {
+    doc["rod"]["nodes"] = nodes;
+    const io::ParseResult parsed = io::ParseProblem(doc.dump());
+    EXPECT_TRUE(parsed.ok());
+    return cosserat::run::Run(*parsed.problem);
+  };
+  const Result fine = run(401);
+  ASSERT_TRUE(fine.converged) << fine.log;
+  EXPECT_GE(fine.json["nodes"]["s"].size(), 401u);
+  EXPECT_EQ(fine.log.find("gridded at"), std::string::npos) << fine.log;
+  const Result coarse = run(9);
+  ASSERT_TRUE(coarse.converged) << coarse.log;
+  EXPECT_EQ(coarse.json["nodes"]["s"].size(), 55u);
+  EXPECT_NE(coarse.log.find("rod.nodes (9) gives 6.67 nodes per metre"), std::string::npos)
+      << coarse.log;
+}
+
 // A steel pipe (outer radius 0.0635 m, inner 0.054 m, in air) lying in a horizontal bore of
 // radius 0.108 m (penalty stiffness k_c N/m per m), pinned where its weight w holds it: the
 // penalty's k_c φ(δ) = w, φ = δ − ε/2 past the smoothing ε = 1e-3 of the diameter, δ²/2ε within

@@ -325,7 +325,7 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
       robot.report().Add(robot.PathOf("tendons"), "an eversion robot has no tendons here");
     if (chambers > 0)
       robot.report().Add(robot.PathOf("chambers"), "an eversion robot has no chambers here");
-    // The robot grids its body by length (EversionOptions), not by rod.nodes.
+    // The robot grids its body by length (EversionOptions), at least this densely.
     const EversionOptions grid;
     if (p->rod.length > grid.MaxLength())
       robot.report().Add("rod.length",

@@ -1,5 +1,6 @@
 #include "cosserat/run/run_eversion.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -19,6 +20,10 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   const EversionRobotDesign design = DesignFromTube(tube, problem.rod.length, problem.base);
   EversionOptions options;
   options.solver = StaticOptions(problem);
+  // The body is gridded by length as it grows: at rod.nodes' density over rod.length, and at
+  // least the robot's default (40 per metre).
+  const double asked_density = (problem.nodes - 1) / problem.rod.length;  // nodes per metre
+  options.nodes_per_metre = std::max(options.nodes_per_metre, asked_density);
   const double pressure = problem.robot.actuation.pressure;
   const double start = problem.robot.growth_initial_length.value_or(problem.rod.length);
   EversionRobot robot(design, start, pressure, options);
@@ -74,6 +79,11 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
     log << " (|m|/M_w = " << kink.max_ratio << " at s = " << kink.s_max << " m: the wall "
         << "wrinkles there; it folds at 2)";
   log << '\n';
+  if (asked_density < EversionOptions{}.nodes_per_metre)
+    log << "cosserat: note: rod.nodes (" << problem.nodes << ") gives "
+        << std::setprecision(3) << asked_density << " nodes per metre; an eversion robot's body "
+        << "is gridded at " << options.nodes_per_metre << " at least (" << robot.state().size()
+        << " nodes here)\n";
   result.log = log.str();
   result.converged = converged;
   return result;
