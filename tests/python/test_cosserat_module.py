@@ -1292,6 +1292,11 @@ class Batches(unittest.TestCase):
 
         interrupted("examples/cantilever_release.json",
                     lambda spec: spec["dynamics"].update(duration=2000.0))
+        # Quaternion-FD dynamics asks after every Radau step, not only at its frames: one
+        # output interval of 100 s (~60 s of steps) once ran to its end first.
+        interrupted("examples/cantilever_release.json",
+                    lambda spec: (spec.update(formulation="quaternion-fd"),
+                                  spec["dynamics"].update(duration=500.0, output_interval=100.0)))
         # So does an SE(3) modes scan (the steel wire on 10 001 nodes: ~40 s to its end).
         interrupted("examples/modes_cantilever.json", lambda spec: spec["rod"].update(nodes=10001))
         study = {"format": "cosserat-study/1", "problem": "examples/cantilever.json",

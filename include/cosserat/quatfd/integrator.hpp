@@ -4,6 +4,7 @@
 /// interface. The state is q, v = q̇ (QuatFdLayout); the ODE is q̇ = v, v̇ = f(q, v).
 
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 
 #include "cosserat/quatfd/quatfd_model.hpp"
@@ -28,6 +29,9 @@ struct IntegratorOptions {
   long max_steps = 50000000;  ///< accepted + rejected steps per Advance call before kMaxSteps
   /// Normalise the quaternions and make ṗ ⊥ p after every accepted step (the model's Project).
   bool project = true;
+  /// Called after every accepted step with its end time (s), when set: a caller's progress or
+  /// interrupt check. It may throw to stop the run; Advance then leaves q and v as they were.
+  std::function<void(double)> after_step;
 
   bool IsValid(std::string* why) const;
 };
