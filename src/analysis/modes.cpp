@@ -419,6 +419,7 @@ struct Spectra {
   bool damped = false;        ///< damping to resolve
   bool indefinite = false;    ///< a stiffness the direct spectrum cannot resolve, not definite
   bool too_large = false;     ///< the dense spectrum was beyond ModalOptions::max_dense
+  int dense_size = 0;         ///< its size: the reduced coordinates, twice them when damped
   bool has_damping = false;   ///< ∂f/∂v has an entry: the model is damped
   double lowest_complex = std::numeric_limits<double>::infinity();  ///< flutter (GeneralSpectrum)
 };
@@ -438,7 +439,9 @@ Spectra ComputeSpectrum(const BandedMatrix& A, const BandedMatrix& B, const Redu
       result->sparse = LowestModesSparse(S, red, options.count, options.shapes, &out.eig);
     if (result->sparse) return out;
   }
-  if (red.T.cols() > options.max_dense) {
+  // Damped modes take the companion problem, twice the coordinates (and the general solver).
+  out.dense_size = static_cast<int>(red.T.cols()) * (options.damped && out.has_damping ? 2 : 1);
+  if (out.dense_size > options.max_dense) {
     out.too_large = true;
     return out;
   }
@@ -490,13 +493,15 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   const Reduction red = Reduce(*model, q);
   Spectra sp = ComputeSpectrum(A, B, red, options, &result);
   if (sp.too_large) {
+    // Damped modes skip the banded path, which then never judged the symmetry.
     result.declined = std::string("the stiffness is ") +
-                      (!result.symmetric ? "not symmetric (follower loads, drag)"
-                       : options.damped && sp.has_damping
+                      (options.damped && sp.has_damping
                            ? "damped, and the damped modes need the whole spectrum"
-                           : "not positive definite (an unstable equilibrium)") +
-                      ", so its spectrum would be dense, on " + std::to_string(red.T.cols()) +
+                       : !result.symmetric ? "not symmetric (follower loads, drag)"
+                                           : "not positive definite (an unstable equilibrium)") +
+                      ", so its spectrum would be dense, on " + std::to_string(sp.dense_size) +
                       " coordinates (at most " + std::to_string(options.max_dense) + ")";
+    result.declined_dense_size = sp.dense_size;
     return finish(ModalStatus::kNotRun);
   }
   const Spectrum& eig = sp.eig;

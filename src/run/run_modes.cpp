@@ -19,8 +19,9 @@
 namespace cosserat::run {
 namespace {
 
-/// The most reduced coordinates (six per segment) the quaternion-FD modes take a dense spectrum
-/// on: about 801 nodes, ~5 min and 1.6 GB (ModalOptions::max_dense). A stable undamped rod on a
+/// The most reduced coordinates (six per segment, twice that for damped modes) the quaternion-FD
+/// modes take a dense spectrum on: about 801 nodes (401 damped), ~5 min and 1.6 GB
+/// (ModalOptions::max_dense). A stable undamped rod on a
 /// finer grid takes the banded path instead.
 constexpr int kMaxDenseModeCoordinates = 4800;
 
@@ -147,8 +148,13 @@ ModesGrid CheckModesGrid(const io::Problem& problem, const ModalResult& r) {
 /// Why no modes came from a converged equilibrium (ModalResult::declined), and what to do.
 std::string DeclinedNote(const ModalResult& r) {
   if (r.declined.empty()) return "";
+  // The dense size grows with the segments: the nodes that keep it within the limit.
+  const long segments = static_cast<long>(r.s.size()) - 1;
+  const long nodes = r.declined_dense_size > 0
+                         ? segments * kMaxDenseModeCoordinates / r.declined_dense_size + 1
+                         : kMaxDenseModeCoordinates / 6 + 1;
   return "cosserat: no modes on this grid: " + r.declined + "; rod.nodes <= " +
-         std::to_string(kMaxDenseModeCoordinates / 6 + 1) +
+         std::to_string(nodes) +
          " takes the dense spectrum, or \"formulation\": \"se3-shooting\"\n";
 }
 

@@ -84,9 +84,10 @@ struct ModalOptions {
   /// found by subspace iteration on its banded factorisation, in time linear in the nodes (a
   /// stay cable on 401 nodes: 24 s dense); the dense spectrum otherwise, and where that fails.
   int sparse_above = 300;
-  /// quatfd: the most reduced coordinates the dense spectrum is taken on (its cost grows as
-  /// their cube: 4800, about 801 nodes, take ~5 min and 1.6 GB); beyond, where the banded path
-  /// declines, no modes are computed and ModalResult::declined says why.
+  /// quatfd: the largest dense spectrum taken, in reduced coordinates, twice them for damped
+  /// modes (its cost grows as their cube: 4800, about 801 nodes undamped or 401 damped, take
+  /// ~5 min and 1.6 GB); beyond, where the banded path declines, no modes are computed and
+  /// ModalResult::declined says why.
   int max_dense = std::numeric_limits<int>::max();
   bool IsValid(std::string* why) const;
 };
@@ -104,6 +105,8 @@ struct ModalResult {
   /// With ModalStatus::kNotRun after a converged equilibrium: why no modes were computed (a
   /// spectrum the banded path declined, larger than ModalOptions::max_dense).
   std::string declined;
+  /// With `declined`: the dense eigenproblem's size it would have taken.
+  int declined_dense_size = 0;
   /// quatfd only: the damped pair of each of `modes`, in their order (NaN frequency and ratio
   /// for a mode without one: overdamped, or unstable).
   std::vector<DampedMode> damped;
