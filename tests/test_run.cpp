@@ -941,6 +941,44 @@ TEST(Run, AnEversionRobotTakesTheGridItIsAskedForAndSaysWhenItRefinesIt) {
       << coarse.log;
 }
 
+// Hetényi's semi-infinite beam on an elastic foundation: a 5 m steel rod (r = 5 mm) lying on a
+// penalty plane (k = 1e5 N/m², ℓ = (4EI/k)^¼ = 0.25 m, βL = 20) under its weight q and a tip
+// load P = 8 N sinks at its tip by q/k + ε/2 + 2Pβ/k (ε the penalty's smoothing, 1e-3 of the
+// diameter). On the quaternion-FD grid the penetration's error is second order in h/ℓ: the
+// warning's estimate must be within [0.8, 1.25] of the tip's (26 and 51 nodes: h/ℓ = 0.8, 0.4);
+// on 201 nodes (0.21 %) it says nothing. The far field, q/k + ε/2, is exact on every grid.
+TEST(Run, AQuaternionFdRodOnAFoundationTheGridDoesNotResolveIsWarned) {
+  const double r = 0.005, EI = 200e9 * M_PI * std::pow(r, 4) / 4, k = 1e5, P = 8.0;
+  const double q = 8000 * M_PI * r * r * 9.81, beta = std::pow(k / (4 * EI), 0.25);
+  const double sunk = q / k + 0.5e-3 * 2 * r + 2 * P * beta / k;  // m
+  for (int nodes : {26, 51, 201}) {
+    const io::ParseResult parsed = io::ParseProblem(R"({"format": "cosserat-problem/1",
+        "formulation": "quaternion-fd",
+        "rod": {"length": 5, "nodes": )" + std::to_string(nodes) + R"(,
+                "section": {"shape": "circle", "radius": 0.005},
+                "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9, "density": 8000}},
+        "base": {"position": [0, 0, 0.005], "rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]},
+        "loads": {"gravity": [0, 0, -9.81], "tip_force": [0, 0, -8]},
+        "environment": {"contact": [{"shape": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+                                     "stiffness": 1e5}]}})");
+    ASSERT_TRUE(parsed.ok());
+    const Result run = cosserat::run::Run(*parsed.problem);
+    ASSERT_TRUE(run.converged) << run.log;
+    const double tip = r - run.json["tip"]["position"][2].get<double>();
+    const double error = std::abs(tip / sunk - 1);
+    const size_t at = run.log.find("penetration may be off by about ");
+    if (nodes == 201) {
+      EXPECT_EQ(at, std::string::npos) << run.log;
+      EXPECT_LT(error, 5e-3);
+      continue;
+    }
+    ASSERT_NE(at, std::string::npos) << run.log;
+    const double noted = std::stod(run.log.substr(at + 32)) / 100;
+    EXPECT_GT(noted, 0.8 * error) << run.log;
+    EXPECT_LT(noted, 1.25 * error) << run.log;
+  }
+}
+
 // A steel pipe (outer radius 0.0635 m, inner 0.054 m, in air) lying in a horizontal bore of
 // radius 0.108 m (penalty stiffness k_c N/m per m), pinned where its weight w holds it: the
 // penalty's k_c φ(δ) = w, φ = δ − ε/2 past the smoothing ε = 1e-3 of the diameter, δ²/2ε within

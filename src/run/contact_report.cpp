@@ -10,6 +10,7 @@
 #include "cosserat/loads/contact.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/rod/grid.hpp"
+#include "foundation_hint.hpp"
 
 namespace cosserat::run::detail {
 
@@ -172,7 +173,14 @@ void AddContactReport(const io::Problem& problem, Result* result) {
     previous = f;
     s_previous = si;
   }
+  // A tip force pressing the tip into a surface (the last interval reaches the tip): a point
+  // load on the foundation, whose layer the grid must resolve (a load spread along the rod, a
+  // riser's weight, costs ~1e-5).
+  const bool point_load_on_surface = start >= 0 && !problem.loads.tip_force.isZero(0.0);
   if (start >= 0) intervals.push_back({start, s_previous});
+  if (point_load_on_surface && result->converged && problem.analysis == io::Analysis::kStatics &&
+      problem.formulation == io::Formulation::kQuaternionFd)
+    result->log += FoundationGridWarning(problem);
   Vec3 balanced;
   if (BalancedContactTotal(problem, json, &balanced)) total = balanced;
   AppendContactColumns(per_node, &result->nodes_csv);
