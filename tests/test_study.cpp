@@ -99,6 +99,20 @@ TEST(Study, PointsAreTheGridProductRepeatedForTheRandomDraws) {
   EXPECT_EQ(s.PointProblem(6)["rod"]["length"].get<double>(), 0.25);
 }
 
+// A grid's ends are its "from" and "to" exactly: 0.001 + (0.01 − 0.001) · 3/3 is
+// 0.010000000000000002 in doubles, which a sweep's CSV then wrote as the last point.
+TEST(Study, AGridEndsExactlyAtItsEnds) {
+  const io::Study s = Parse(R"({"format": "cosserat-study/1", "problem": )" +
+                            std::string(kTendonRobot) + R"(,
+    "parameters": [ {"path": "/robot/actuation/tension/0",
+                     "grid": {"from": 0.001, "to": 0.01, "count": 4}} ],
+    "outputs": {"tip_x": "/tip/position/0"}})");
+  ASSERT_EQ(s.PointCount(), 4u);
+  EXPECT_EQ(s.Point(0)[0], 0.001);
+  EXPECT_EQ(s.Point(3)[0], 0.01);
+  EXPECT_DOUBLE_EQ(s.Point(1)[0], 0.004);
+}
+
 // The normal draws have the asked mean and spread: over 20 000 draws the sample mean is within
 // 4 σ/√n of μ (a false failure once in ~16 000 runs; the draws are fixed by the seed, so never)
 // and the sample deviation within 2 %.
@@ -317,6 +331,33 @@ TEST(Sweep, RowsOfAnotherGridOrProblemAreNotResumed) {
   std::string other_base = TendonStudy(grid);
   other_base.replace(other_base.find("\"tension\": [0.0]"), 16, "\"tension\": [9.0]");
   EXPECT_EQ(run::RunSweep(Parse(other_base), path).resumed, 2u);
+}
+
+// Rows are matched to their points by value: a file that wrote 0.1 as 0.10000000000000001 (every
+// 17 digits, as earlier versions did) resumes; 0.10000000000000002, another double, does not.
+TEST(Sweep, RowsWrittenWithMoreDigitsResume) {
+  const std::string grid = R"([{"path": "/robot/actuation/tension/0", "grid": {"from": 0.1,
+                               "to": 0.3, "count": 3}}])";
+  const std::string path = Temp("digits.csv");
+  std::remove(path.c_str());
+  std::remove((path + ".problem.json").c_str());
+  run::SweepOptions o;
+  o.max_new_points = 1;
+  run::RunSweep(Parse(TendonStudy(grid)), path, o);
+  auto rewrite = [&](const std::string& from, const std::string& to) {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string csv = text.str();
+    const size_t at = csv.find("\n0," + from + ",");
+    ASSERT_NE(at, std::string::npos) << csv;
+    csv.replace(at + 3, from.size(), to);
+    std::ofstream(path) << csv;
+  };
+  rewrite("0.1", "0.10000000000000001");
+  EXPECT_EQ(run::RunSweep(Parse(TendonStudy(grid)), path, o).resumed, 1u);
+  rewrite("0.10000000000000001", "0.10000000000000002");
+  EXPECT_THROW(run::RunSweep(Parse(TendonStudy(grid)), path, o), std::runtime_error);
 }
 
 }  // namespace
