@@ -75,6 +75,18 @@ class Actuation(_core.Actuation):
                 given[name] = None
         return given
 
+    def __repr__(self):
+        # A list at the length it was given (Actuation(tendon_tension=[1, 0, 0]) printed [1]),
+        # else up to its last non-zero value.
+        given = self.given()
+        parts = []
+        for name in _LISTS:
+            values = list(_core_list(self, name))
+            used = max((i + 1 for i, v in enumerate(values) if v != 0), default=0)
+            shown = values[:max(given.get(name) or 0, used)]
+            parts.append(f"{name}=[{', '.join(f'{v:.6g}' for v in shown)}]")
+        return f"Actuation({', '.join(parts)}, pressure={self.pressure:.6g})"
+
     def __copy__(self):  # the core's own copy would drop what was given
         return _rebuild(*self.__reduce__()[1])
 
