@@ -9,6 +9,7 @@
 #include "cosserat/analysis/buckling.hpp"
 #include "cosserat/analysis/buckling_in_pieces.hpp"
 #include "cosserat/analysis/quatfd_buckling.hpp"
+#include "cosserat/loads/total_load.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
 #include "cosserat/run/solver_options.hpp"
@@ -93,6 +94,19 @@ std::string OnTopOfTheFilesLoad(const io::Problem& problem) {
 
 /// After a search that found no critical load: the file's loads push the rod across its axis
 /// (an imperfection), so it bends smoothly along the path and has no bifurcation to find.
+/// After a search that found no critical load along a path that is not conservative (a follower
+/// load, a tip moment): such a rod can also lose its stability by flutter, two frequencies
+/// meeting (Beck's column), which no static search sees; the modes at a load do.
+std::string FlutterNote(const io::Problem& problem, BucklingStatus status) {
+  if (status != BucklingStatus::kNotFound) return "";
+  const LoadPath path = MakePath(problem);
+  if (LoadsAreConservative(path.fixed) && LoadsAreConservative(path.per_unit)) return "";
+  return "cosserat: note: the loads are not conservative (a follower load or a tip moment): the "
+         "rod may also lose its stability by flutter, two of its frequencies meeting, which a "
+         "static search does not see; \"analysis\": \"modes\" at a load reports it as "
+         "unstable\n";
+}
+
 std::string ImperfectionNote(const io::Problem& problem, BucklingStatus status) {
   if (status != BucklingStatus::kNotFound && status != BucklingStatus::kPathFailed) return "";
   // On contact surfaces the loads across the axis press the rod onto them, which can leave a
@@ -362,6 +376,7 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   result.log = SummaryLine(problem, ends, b) + pieces_note +
                (in_pieces ? "" : SingleShotHint(problem, b)) +
                ImperfectionNote(problem, b.status) + DirectionNote(problem, b.status) +
+               FlutterNote(problem, b.status) +
                CoarseGridNote(problem, b.found(), *state, kShootingBucklingGrid);
   result.converged = ok;
   return result;
@@ -420,7 +435,7 @@ Result RunQuatFdBuckling(const io::Problem& problem, const RunOptions& run_optio
   line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3
        << " ms";
   result.log = line.str() + '\n' + ImperfectionNote(problem, b.status) +
-               DirectionNote(problem, b.status) +
+               DirectionNote(problem, b.status) + FlutterNote(problem, b.status) +
                CoarseGridNote(problem, b.found(), state, kQuatFdBucklingGrid);
   result.converged = ok;
   return result;
