@@ -921,7 +921,7 @@ TEST(Run, QuaternionFdBucklingOnACoarseGridSaysByHowMuch) {
 // An eversion robot grids its body by length as it grows: at rod.nodes' density over its
 // length, and at least 40 nodes per metre. The banded vine (1.2 m, two bands whose ends are
 // nodes) asked for 401 nodes gets them (and more at its band ends); asked for 9 (the fewest
-// its breakpoints allow), it keeps 40 per metre (55 nodes) and says so. Before, rod.nodes was ignored without a word.
+// its breakpoints allow), it keeps 40 per metre (55 nodes) and says so.
 TEST(Run, AnEversionRobotTakesTheGridItIsAskedForAndSaysWhenItRefinesIt) {
   nlohmann::json doc = testing::SourceJson("robots/eversion_banded_vine.json");
   auto run = [&](int nodes) {

@@ -493,8 +493,7 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   const Reduction red = Reduce(*model, q);
   Spectra sp = ComputeSpectrum(A, B, red, options, &result);
   if (sp.too_large) {
-    // Damped modes skip the banded path, which then never judged the symmetry.
-    result.declined = std::string("the stiffness is ") +
+    result.declined = std::string("the stiffness is ") +  // damped first: symmetry not judged
                       (options.damped && sp.has_damping
                            ? "damped, and the damped modes need the whole spectrum"
                        : !result.symmetric ? "not symmetric (follower loads, drag)"

@@ -115,6 +115,31 @@ ShootingEquilibrium SolveEquilibrium(const RodModel& rod, int num_nodes, const l
   return eq;
 }
 
+/// Under a load that is not conservative (a follower force, a dead tip moment) two frequencies
+/// can meet and leave the real axis as a complex pair, one growing (flutter: Beck's column past
+/// 20.05 EI/L²). The scan sees only the dip of det B they leave behind: the instability's text
+/// for the lowest such dip, empty when there is none. Only where one shot resolves det B: past
+/// λL ≈ 15, λ = (ω² ρA/EI)^¼, round-off dips appear that no pair makes (a Beck column at 8 % of
+/// its flutter load showed one at 1414 Hz, λL = 30, with 20 modes asked); the real part of a
+/// merged low pair sits near λL = √11 (Beck's).
+std::string FlutterNear(const FrequencyShooting& fs, const StaticLoads& loads, double L,
+                        const std::vector<double>& dips) {
+  const SplitWrench tip = TotalTipWrench(loads);
+  if (tip.follower_B.isZero(0.0) && tip.dead_W.head<3>().isZero(0.0)) return "";
+  const double lambda_scale = std::sqrt(fs.mass_per_length_at_base() / fs.bending_stiffness());
+  for (double w : dips) {
+    if (std::sqrt(w * lambda_scale) * L > 15.0) continue;
+    std::ostringstream why;
+    why << "flutter: near " << w / kTwoPi
+        << " Hz two frequencies have met and left the real axis under a load that is not "
+           "conservative (a follower force, a tip moment): a pair that grows in time. Frequency "
+           "shooting finds real frequencies only; \"formulation\": \"quaternion-fd\" gives "
+           "the complex pair";
+    return why.str();
+  }
+  return "";
+}
+
 }  // namespace
 
 ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::SE3& base,
@@ -174,27 +199,8 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
     }
     result.modes.push_back(std::move(mode));
   }
-  // Under a load that is not conservative (a follower force, a dead tip moment) two frequencies
-  // can meet and leave the real axis as a complex pair, one growing (flutter: Beck's column
-  // past 20.05 EI/L²). The scan sees only the dip of det B they leave behind.
-  // Only where one shot resolves det B: past λL ≈ 15, λ = (ω² ρA/EI)^¼, round-off dips appear
-  // that no pair makes (a Beck column at 8 % of its flutter load showed one at 1414 Hz, λL = 30,
-  // with 20 modes asked); the real part of a merged low pair sits near λL = √11 (Beck's).
-  const double lambda_scale = std::sqrt(fs.mass_per_length_at_base() / fs.bending_stiffness());
-  dips.erase(std::remove_if(dips.begin(), dips.end(),
-                            [&](double w) { return std::sqrt(w * lambda_scale) * L > 15.0; }),
-             dips.end());
-  const SplitWrench tip = TotalTipWrench(loads);
-  if (!dips.empty() && (!tip.follower_B.isZero(0.0) || !tip.dead_W.head<3>().isZero(0.0))) {
-    std::ostringstream why;
-    why << "flutter: near " << dips.front() / kTwoPi
-        << " Hz two frequencies have met and left the real axis under a load that is not "
-           "conservative (a follower force, a tip moment): a pair that grows in time. Frequency "
-           "shooting finds real frequencies only; \"formulation\": \"quaternion-fd\" gives "
-           "the complex pair";
-    result.instability = why.str();
-    return finish(ModalStatus::kUnstable);
-  }
+  result.instability = FlutterNear(fs, loads, L, dips);
+  if (!result.instability.empty()) return finish(ModalStatus::kUnstable);
   if (static_cast<int>(result.modes.size()) < count) return finish(ModalStatus::kTooFewModes);
   // The scan finds real frequencies only: an unstable direction of the equilibrium (a rod pressed
   // on a convex obstacle harder than it bends back) has an imaginary one it cannot see, so the

@@ -471,10 +471,12 @@ cosserat_cli_test(NAME stay_cable_fine_modes ARGS solve "${_cli_dir}/stay_cable_
 cosserat_cli_test(NAME modes_dense_beyond_reach ARGS solve "${_cli_dir}/modes_dense_beyond_reach.json"
                   CODE 1 STDERR "not_run \\(modes, quaternion-fd\\).*no modes on this grid: the stiffness is not positive definite \\(an unstable equilibrium\\).*rod.nodes <= 801")
 # Damped modes take the companion problem, twice the coordinates: refused at 401 nodes' worth.
-cosserat_cli_test(NAME modes_damped_beyond_reach ARGS solve "${_cli_dir}/modes_damped_beyond_reach.json"
-                  CODE 1 STDERR "not_run \\(modes, quaternion-fd\\).*damped, and the damped modes need the whole spectrum, so its spectrum would be dense, on 6000 coordinates.*rod.nodes <= 401")
+cosserat_cli_test(NAME modes_damped_beyond_reach
+                  ARGS solve "${_cli_dir}/modes_damped_beyond_reach.json"
+                  CODE 1 STDERR "not_run \\(modes, quaternion-fd\\).*damped, and the damped modes need the whole spectrum.*on 6000 coordinates.*rod.nodes <= 401")
 # A search along a follower torque finds no static critical load; the log names flutter.
-cosserat_cli_test(NAME buckling_follower_torque ARGS solve "${_cli_dir}/buckling_follower_torque.json"
+cosserat_cli_test(NAME buckling_follower_torque
+                  ARGS solve "${_cli_dir}/buckling_follower_torque.json"
                   CODE 0 STDERR "not_found.*note: the loads are not conservative.*flutter")
 # A dynamics block kept for another analysis is checked, not used; its base drive is noted.
 cosserat_cli_test(NAME modes_keep_base_spin ARGS solve "${_cli_dir}/modes_keep_base_spin.json"

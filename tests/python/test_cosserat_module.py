@@ -1046,7 +1046,8 @@ class PythonSide(unittest.TestCase):
         p = cosserat.load_problem("robots/tendon_three_tendon.json")
         self.assertIn("tendon_tension=[1.5, 0, 0.5]", repr(p.actuation))
         # A list at the length it was given, trailing zeros too (it printed [1]).
-        self.assertIn("tendon_tension=[1, 0, 0]", repr(cosserat.Actuation(tendon_tension=[1, 0, 0])))
+        given = cosserat.Actuation(tendon_tension=[1, 0, 0])
+        self.assertIn("tendon_tension=[1, 0, 0]", repr(given))
         self.assertIn("length=0.25 m", repr(p))
         current = cosserat.load_problem("examples/cantilever_in_current.json")
         self.assertIn("Fluid(density=1025, velocity=[0.8, 0, 0]", repr(current.loads))

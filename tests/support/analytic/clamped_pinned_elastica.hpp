@@ -60,8 +60,10 @@ inline bool SolveClampedPinnedElastica(double k0, double P, double H, ClampedPin
     const std::array<double, 2> r = Shoot(k0, P, H, out);
     if (std::hypot(r[0], r[1]) < 1e-12) return true;
     const double e = 1e-6;
-    const std::array<double, 2> rp = Shoot(k0, P + e, H, nullptr), rm = Shoot(k0, P - e, H, nullptr);
-    const std::array<double, 2> hp = Shoot(k0, P, H + e, nullptr), hm = Shoot(k0, P, H - e, nullptr);
+    const std::array<double, 2> rp = Shoot(k0, P + e, H, nullptr);
+    const std::array<double, 2> rm = Shoot(k0, P - e, H, nullptr);
+    const std::array<double, 2> hp = Shoot(k0, P, H + e, nullptr);
+    const std::array<double, 2> hm = Shoot(k0, P, H - e, nullptr);
     const double a = (rp[0] - rm[0]) / (2 * e), b = (hp[0] - hm[0]) / (2 * e);
     const double c = (rp[1] - rm[1]) / (2 * e), d = (hp[1] - hm[1]) / (2 * e);
     const double det = a * d - b * c;
@@ -105,9 +107,10 @@ inline ClampedPinnedElastica ClampedPinnedElasticaPeak() {
   ClampedPinnedElastica last, best;
   SolveClampedPinnedElastica(0.5, euler, 0.5, &last);  // as in ClampedPinnedElasticaAtLoad
   best = last;
-  for (double k0 = 0.55; k0 < 12 && SolveClampedPinnedElastica(k0, last.load, last.pin_force, &last);
-       k0 += 0.05)
+  for (double k0 = 0.55; k0 < 12; k0 += 0.05) {
+    if (!SolveClampedPinnedElastica(k0, last.load, last.pin_force, &last)) break;
     if (last.load > best.load) best = last;
+  }
   double lo = best.clamp_curvature - 0.05, hi = best.clamp_curvature + 0.05;
   const double g = 0.5 * (std::sqrt(5.0) - 1);
   ClampedPinnedElastica a, b;
