@@ -1,6 +1,7 @@
 #include "contact_report.hpp"
 
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -125,6 +126,22 @@ std::string StaticFrictionNote(const io::Problem& problem) {
   return "";
 }
 
+/// Where the nodes' contact forces, summed by the trapezoid rule, differ from the force the
+/// solve applied by more than 5 %: a patch narrow for the grid, which RK4's stages between the
+/// nodes see and the nodes do not (a finger on a sphere: 10 % at 11 nodes, 4 % at 21, 2.9 % at
+/// 33, 1.3 % at 41: about as h, unevenly, as the nodes fall on the patch). A note with the nodes
+/// that bring it to about 1 % at that rate; else empty.
+std::string SampledContactNote(const Vec3& sampled, const Vec3& applied, std::size_t nodes) {
+  const double off = (sampled - applied).norm() / applied.norm();
+  if (!(off > 0.05) || nodes < 2) return "";
+  std::ostringstream note;
+  note << std::setprecision(3) << "cosserat: note: nodes.contact_force samples the contact at "
+       << "the nodes, and their sum along s is " << 100 * off << " % off contact.total_force, "
+       << "the force the solve applied: the contact patch is narrow for the grid; rod.nodes ≥ "
+       << static_cast<long>(std::ceil((nodes - 1) * off / 0.01)) + 1
+       << " samples it within about 1 %\n";
+  return note.str();
+}
 }  // namespace
 
 double TouchdownS(const io::Problem& problem, const RodState& state) {
@@ -182,7 +199,10 @@ void AddContactReport(const io::Problem& problem, Result* result) {
       problem.formulation == io::Formulation::kQuaternionFd)
     result->log += FoundationGridWarning(problem);
   Vec3 balanced;
-  if (BalancedContactTotal(problem, json, &balanced)) total = balanced;
+  if (BalancedContactTotal(problem, json, &balanced)) {
+    result->log += SampledContactNote(total, balanced, n);
+    total = balanced;
+  }
   AppendContactColumns(per_node, &result->nodes_csv);
   json["nodes"]["contact_force"] = per_node;
   json["contact"] = {{"total_force", {total.x(), total.y(), total.z()}}, {"intervals", intervals}};
