@@ -412,6 +412,8 @@ class Dynamics(unittest.TestCase):
         # meant to keep, so the step says so.
         with self.assertWarnsRegex(RuntimeWarning, 'the dict has no "gravity"'):
             b.step({"tip_force": [0.1, 0, 0]})
+        with self.assertWarnsRegex(RuntimeWarning, "this Loads has no gravity"):
+            b.step(cosserat.Loads())
         with self.assertRaisesRegex(ValueError, r"actuation\.tensions: unknown key"):
             b.step(actuation={"tensions": [1.0]})
         # As in a file, one tension per tendon: a short list is refused, not zero-filled.
