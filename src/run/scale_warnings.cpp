@@ -21,12 +21,13 @@ constexpr double kLargestStretch = 0.5;
 constexpr double kLargeStretch = 0.1;
 
 /// The largest |Δx/Δs − 1| between consecutive nodes of a "nodes" block ({"s", "position"}),
-/// and the s where it starts (m); 0 when the block has no such lists.
-double LargestStretch(const nlohmann::ordered_json& nodes, double* at_s) {
+/// and the s where it starts (m); 0 when the block has no such lists. *everywhere: whether every
+/// segment is stretched within 10 % of it (a uniform stretch, with no place to name).
+double LargestStretch(const nlohmann::ordered_json& nodes, double* at_s, bool* everywhere) {
   if (!nodes.is_object() || !nodes.contains("s") || !nodes.contains("position")) return 0.0;
   const nlohmann::ordered_json& s = nodes["s"];
   const nlohmann::ordered_json& x = nodes["position"];
-  double worst = 0.0;
+  double worst = 0.0, least = INFINITY;
   for (size_t i = 0; i + 1 < s.size() && i + 1 < x.size(); ++i) {
     const double ds = s[i + 1].get<double>() - s[i].get<double>();
     if (!(ds > 0)) continue;
@@ -36,11 +37,14 @@ double LargestStretch(const nlohmann::ordered_json& nodes, double* at_s) {
       dx2 += d * d;
     }
     const double stretch = std::abs(std::sqrt(dx2) / ds - 1.0);
+    least = std::min(least, stretch);
     if (stretch > worst) {
       worst = stretch;
       *at_s = s[i].get<double>();
     }
   }
+  // Within 10 % of the largest at every segment: a uniform stretch has no place to name.
+  if (everywhere) *everywhere = least >= 0.9 * worst;
   return worst;
 }
 
@@ -112,23 +116,28 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
   }
   const nlohmann::ordered_json& j = result->json;
   double at_s = 0.0, worst = 0.0;
-  if (j.contains("nodes")) worst = LargestStretch(j["nodes"], &at_s);
+  bool everywhere = false;
+  if (j.contains("nodes")) worst = LargestStretch(j["nodes"], &at_s, &everywhere);
   if (j.contains("assembly") && j["assembly"].contains("rods"))
     for (const nlohmann::ordered_json& rod : j["assembly"]["rods"])
       if (rod.contains("nodes")) {
         double s = 0.0;
-        const double w = LargestStretch(rod["nodes"], &s);
-        if (w > worst) worst = w, at_s = s;
+        bool whole = false;
+        const double w = LargestStretch(rod["nodes"], &s, &whole);
+        if (w > worst) worst = w, at_s = s, everywhere = whole;
       }
+  std::ostringstream place;
+  place << std::setprecision(3) << "near s = " << at_s << " m";
+  const std::string where = everywhere ? "along the whole rod" : place.str();
   if (worst > kLargestStretch)
     log << "cosserat: warning: the rod is stretched or compressed by " << 100 * worst
-        << " % of its length near s = " << at_s
-        << " m, far beyond a linear elastic law; check the units of the material (Pa, kg/m³) "
+        << " % of its length " << where
+        << ", far beyond a linear elastic law; check the units of the material (Pa, kg/m³) "
            "and of the loads (N, m)\n";
   else if (worst > kLargeStretch && problem.rod.chambers.empty())  // chambers extend by design
     log << "cosserat: warning: the rod is stretched or compressed by " << 100 * worst
-        << " % of its length near s = " << at_s
-        << " m: the linear elastic law gives this answer, but few materials follow it so far "
+        << " % of its length " << where
+        << ": the linear elastic law gives this answer, but few materials follow it so far "
            "(metals yield near 0.2 %, rubbers leave it by several per cent); check the loads and "
            "the geometry (an anchor farther than the rod reaches, a tendon length it cannot "
            "take)\n";
