@@ -128,16 +128,23 @@ std::string UnjudgedCompressionNote(const RodModel& rod, const RodState& state,
   if (state.size() < 2 || !rod.section) return "";
   const double L = rod.length;
   const double EI = rod.section->At(0.5 * L, Actuation{}).min_bending_stiffness();
-  double compression = 0.0, s_max = 0.0;  // N, the largest, and where (m)
-  for (int i = 0; i < state.size(); ++i)
+  double compression = 0.0, least = INFINITY, s_max = 0.0;  // N, the largest, the least; m
+  for (int i = 0; i < state.size(); ++i) {
+    least = std::min(least, -state.wrench_B[i](5));
     if (-state.wrench_B[i](5) > compression) {
       compression = -state.wrench_B[i](5);
       s_max = state.s[i];
     }
+  }
   if (!(compression > M_PI * M_PI * EI / (L * L))) return "";
   std::ostringstream text;
   text << std::setprecision(3) << "cosserat: note: the rod is compressed by up to "
-       << compression << " N (at s = " << s_max << " m), " << why << '\n';
+       << compression << " N (";
+  if (least >= 0.99 * compression)  // uniform: no place to name
+    text << "along the whole rod";
+  else
+    text << "at s = " << s_max << " m";
+  text << "), " << why << '\n';
   return text.str();
 }
 
