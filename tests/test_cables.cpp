@@ -1061,11 +1061,12 @@ TEST(HeldCable, ASaggingCableOnAFineGridVibratesAsIrvinePredicts) {
 
 // The modes' coarse-grid note for a taut string: the weightless stay cable
 // (examples/stay_cable.json without gravity; EI k⁴ is under 2e-4 of T k² for every mode found)
-// has the frequencies n/(2ℓ) sqrt(T/m), ℓ the anchors' distance, T the anchor force, m its mass per stretched length,
-// times sqrt(1 + EI k²/T) for bending. The central second difference is off by (k h)²/24, so the
-// note's estimate must be within [0.8, 1.25] of the worst error measured (the next term,
-// O((k h)⁴), is 10 % of it at k h = 1.2). At 11 nodes the true 6.5 % is no under_resolved; at 41
-// nodes (0.41 %) the run says nothing. The bending coefficient 0.2 said 27.5 % at 11 nodes.
+// has the frequencies n/(2ℓ) sqrt(T/m), ℓ the anchors' distance, T the anchor force, m its mass
+// per stretched length, times sqrt(1 + EI k²/T) for bending. The central second difference is
+// off by (k h)²/24, so the note's estimate must be within [0.8, 1.25] of the worst error
+// measured: the next term, (k h)⁴/80 relative to it, is 2 % at k h = 1.2, and k taken from the
+// low frequency found makes the estimate low by about twice the error (5.7 % against 6.5 % at 11
+// nodes). At 11 nodes the true 6.5 % is no under_resolved; at 41 (0.41 %) the run says nothing.
 TEST(HeldCable, ACoarseGridsNoteForATautStringEstimatesItsError) {
   nlohmann::json doc = testing::SourceJson("examples/stay_cable.json");
   doc["loads"] = nlohmann::json::object();

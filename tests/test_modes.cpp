@@ -154,8 +154,9 @@ TEST(Modes, ColumnsVibrateAsTheirBeamTheorySays) {
 // A taut wire (steel, 1 m, r = 1 mm, pinned–pinned, pulled by 100 N: L sqrt(T/EI) = 25) is the
 // tensioned beam, f_n = n/(2ℓ) sqrt(T/m) sqrt(1 + (nπ)² EI/(T ℓ²)) with ℓ and m of the stretched
 // wire, each n twice (a circle). One shot amplifies round-off by e^{∫ μ ds}, 25 here at ω → 0
-// (frequency_shot_limit.hpp): its fourth pair blurred, one partner was lost and the fifth pair's
-// 185.8 Hz was listed eighth, "converged". Every frequency listed must be its pair's, pairs
+// (frequency_shot_limit.hpp): near 28 a pair's two roots blur into one minimum, and a lost
+// partner would let the next pair's 185.8 Hz take its place in the list. Every frequency listed
+// must be its pair's, pairs
 // whole: within 1e-4 (shear and rotary inertia shift the bending part, at most 1/4 of ω² here,
 // by (nπr/ℓ)² < 1.6e-4), and fewer than asked only with status too_few_modes and the limit
 // below the first pair not listed.
