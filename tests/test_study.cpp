@@ -99,8 +99,8 @@ TEST(Study, PointsAreTheGridProductRepeatedForTheRandomDraws) {
   EXPECT_EQ(s.PointProblem(6)["rod"]["length"].get<double>(), 0.25);
 }
 
-// A grid's ends are its "from" and "to" exactly: 0.001 + (0.01 − 0.001) · 3/3 is
-// 0.010000000000000002 in doubles, which a sweep's CSV then wrote as the last point.
+// A grid's ends are its "from" and "to" exactly (0.001 + (0.01 − 0.001) · 3/3 is
+// 0.010000000000000002 in doubles).
 TEST(Study, AGridEndsExactlyAtItsEnds) {
   const io::Study s = Parse(R"({"format": "cosserat-study/1", "problem": )" +
                             std::string(kTendonRobot) + R"(,
@@ -333,8 +333,9 @@ TEST(Sweep, RowsOfAnotherGridOrProblemAreNotResumed) {
   EXPECT_EQ(run::RunSweep(Parse(other_base), path).resumed, 2u);
 }
 
-// Rows are matched to their points by value: a file that wrote 0.1 as 0.10000000000000001 (every
-// 17 digits, as earlier versions did) resumes; 0.10000000000000002, another double, does not.
+// Rows are matched to their points by value: a file that writes 0.1 as 0.10000000000000001 (17
+// digits) resumes; 0.10000000000000002, another double, does not. So does an interior point of a
+// grid, 0.2 + 0.5 · 2/5, written in 17 digits.
 TEST(Sweep, RowsWrittenWithMoreDigitsResume) {
   const std::string grid = R"([{"path": "/robot/actuation/tension/0", "grid": {"from": 0.1,
                                "to": 0.3, "count": 3}}])";
@@ -358,6 +359,23 @@ TEST(Sweep, RowsWrittenWithMoreDigitsResume) {
   EXPECT_EQ(run::RunSweep(Parse(TendonStudy(grid)), path, o).resumed, 1u);
   rewrite("0.10000000000000001", "0.10000000000000002");
   EXPECT_THROW(run::RunSweep(Parse(TendonStudy(grid)), path, o), std::runtime_error);
+  const std::string six = R"([{"path": "/robot/actuation/tension/0", "grid": {"from": 0.2,
+                              "to": 0.7, "count": 6}}])";
+  std::remove(path.c_str());
+  std::remove((path + ".problem.json").c_str());
+  o.max_new_points = 3;
+  run::RunSweep(Parse(TendonStudy(six)), path, o);
+  char wide[32];
+  std::snprintf(wide, sizeof wide, "%.17g", 0.2 + (0.7 - 0.2) * 2 / 5);
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string csv = text.str();
+  const size_t at = csv.find("\n2,");
+  ASSERT_NE(at, std::string::npos) << csv;
+  csv.replace(at + 3, csv.find(',', at + 3) - (at + 3), wide);
+  std::ofstream(path) << csv;
+  EXPECT_EQ(run::RunSweep(Parse(TendonStudy(six)), path, o).resumed, 3u);
 }
 
 }  // namespace

@@ -46,12 +46,12 @@ void ParseParameter(const ObjectReader& o, StudyParameter* p) {
       if (*count > 1 && *from == *to)
         g->report().Add(g->PathOf("to"), "an empty range: \"from\" equals \"to\" with " +
                                              std::to_string(*count) + " points");
-      // Blended from both ends, so that each end is exactly its value (from + (to − from)
-      // ended 0.01 at 0.010000000000000002).
-      for (int i = 0; i < *count; ++i) {
-        const double t = *count == 1 ? 0.0 : static_cast<double>(i) / (*count - 1);
-        p->values.push_back(i == *count - 1 && *count > 1 ? *to : (1 - t) * *from + t * *to);
-      }
+      // from + (to − from) i / (count − 1), its last point exactly `to` (the formula can miss
+      // it by an ulp).
+      for (int i = 0; i < *count; ++i)
+        p->values.push_back(*count == 1      ? *from
+                            : i == *count - 1 ? *to
+                                              : *from + (*to - *from) * i / (*count - 1));
     }
   }
   if (const json* v = o.Find("values")) {

@@ -27,8 +27,8 @@ namespace {
 
 using json = nlohmann::json;
 
-/// A CSV number that reads back as x, in the fewest of 15–17 significant digits (a wall time of
-/// 0.000355971 s was written 0.00035597100000000001).
+/// A CSV number that reads back as x, in the fewest of 15–17 significant digits (0.000355971,
+/// not 0.00035597100000000001).
 std::string Number(double x) {
   char buf[32];
   for (int digits = 15; digits <= 17; ++digits) {  // the fewest that read back as x
