@@ -126,6 +126,21 @@ std::string StaticFrictionNote(const io::Problem& problem) {
   return "";
 }
 
+/// Whether the problem's tip force (world, or turned with the result's tip frame) pushes against
+/// `push`, the surfaces' force at the tip, by a tenth of its size or more.
+bool PressesTheTipIn(const io::Problem& problem, const nlohmann::ordered_json& json,
+                     const Vec3& push) {
+  Vec3 force = problem.loads.tip_force;  // N
+  if (problem.loads.tip_force_frame == LoadFrame::kBody) {
+    if (!json.contains("tip") || !json["tip"].contains("rotation")) return false;
+    Mat3 R;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) R(i, j) = json["tip"]["rotation"][i][j].get<double>();
+    force = R * force;
+  }
+  return push.norm() > 0.0 && force.dot(push.normalized()) < -0.1 * force.norm();
+}
+
 /// Where the nodes' contact forces, summed by the trapezoid rule, differ from the force the
 /// solve applied by more than 5 %: a patch narrow for the grid, which RK4's stages between the
 /// nodes see and the nodes do not (a finger on a sphere: 10 % at 11 nodes, 4 % at 21, 2.9 % at
@@ -190,10 +205,11 @@ void AddContactReport(const io::Problem& problem, Result* result) {
     previous = f;
     s_previous = si;
   }
-  // A tip force pressing the tip into a surface (the last interval reaches the tip): a point
-  // load on the foundation, whose layer the grid must resolve (a load spread along the rod, a
-  // riser's weight, costs ~1e-5).
-  const bool point_load_on_surface = start >= 0 && !problem.loads.tip_force.isZero(0.0);
+  // A tip force pressing the tip into a surface (the tip touches it, and a tenth of the force or
+  // more pushes against the surface's push there): a point load on the foundation, whose layer
+  // the grid must resolve (a load spread along the rod, a riser's weight, costs ~1e-5; a pull
+  // along the surface nothing).
+  const bool point_load_on_surface = start >= 0 && PressesTheTipIn(problem, json, previous);
   if (start >= 0) intervals.push_back({start, s_previous});
   if (point_load_on_surface && result->converged && problem.analysis == io::Analysis::kStatics &&
       problem.formulation == io::Formulation::kQuaternionFd)

@@ -18,7 +18,7 @@ std::string FoundationHint(const io::Problem& problem, double spacings_per_lengt
                            const std::string& why, const std::string& advice,
                            const std::string& more);
 
-/// After a converged quaternion-FD statics whose tip force presses its tip into a contact surface
+/// After a converged quaternion-FD statics whose tip force presses its touching tip into a surface
 /// (a point load on the foundation; a load spread along the rod settles it far more smoothly:
 /// the seabed riser's anchor force and peak curvature move by 1e-5 from h = 0.17 ℓ to 0.04 ℓ):
 /// the grid's second-order error in how the rod settles into it, about 0.2 (h/ℓ)² of the
