@@ -115,7 +115,8 @@ std::string FramesLeftRotationsLine(const RodState& state, double length) {
 }
 
 GridResolution CheckPolygon(const std::vector<double>& s, const std::vector<Vec3>& position,
-                            const std::vector<Vec3>& curvature, double length) {
+                            const std::vector<Vec3>& curvature, double length,
+                            const std::vector<double>& rest_twist) {
   GridResolution out;
   double worst = 0.0, worst_s = 0.0, worst_k = 0.0;  // turn (rad), where, turn / h (1/m)
   double worst_twist = 0.0, twist_s = 0.0, twist_rate = 0.0;  // rad, m, 1/m
@@ -130,7 +131,8 @@ GridResolution CheckPolygon(const std::vector<double>& s, const std::vector<Vec3
       turn = std::max(turn, std::atan2(a.cross(b).norm(), a.dot(b)));
     }
     if (turn > worst) worst = turn, worst_s = s[i], worst_k = turn / h;
-    const double twist = 4.0 * std::atan(0.25 * std::abs(curvature[i].z()) * h);  // rad
+    const double strain = curvature[i].z() - (i < rest_twist.size() ? rest_twist[i] : 0.0);
+    const double twist = 4.0 * std::atan(0.25 * std::abs(strain) * h);  // rad
     if (twist > worst_twist) worst_twist = twist, twist_s = s[i], twist_rate = twist / h;
   }
   out.log = TwistLine(worst_twist, twist_s, twist_rate, length);
@@ -147,6 +149,15 @@ GridResolution CheckPolygon(const std::vector<double>& s, const std::vector<Vec3
                             worst, worst_s, worst_k, length, error.str());
   return out;
 }
+
+namespace {
+/// The rod's rest twist κ₃* at the result's nodes (1/m).
+std::vector<double> RestTwist(const io::Problem& problem, const nlohmann::ordered_json& nodes) {
+  std::vector<double> out;
+  for (const auto& s : nodes["s"]) out.push_back(problem.rod.RestStrainAt(s.get<double>())(2));
+  return out;
+}
+}  // namespace
 
 std::string TensionLayerLine(const io::Problem& problem, const nlohmann::ordered_json& nodes) {
   if (!nodes.contains("s") || !nodes.contains("force_body") || !problem.rod.section) return "";
@@ -210,7 +221,8 @@ void CheckGridResolution(const io::Problem& problem, Result* result) {
   if (polygon && stopped_short) return;
   const GridResolution g =
       polygon ? CheckPolygon(nodes["s"].get<std::vector<double>>(), rows(nodes["position"]),
-                             rows(nodes["curvature"]), problem.rod.length)
+                             rows(nodes["curvature"]), problem.rod.length,
+                             RestTwist(problem, nodes))
               : CheckGrid(nodes["s"].get<std::vector<double>>(), rows(nodes["position"]),
                           rows(nodes["curvature"]), problem.rod.length, !stopped_short);
   if (diverged) {

@@ -56,8 +56,10 @@ std::string FramesLeftRotationsLine(const RodState& state, double length);
 /// 0.5 rad, under_resolved above 1.5 rad (86° at a vertex). A bend that sharp over a short
 /// stretch costs far less than the arc's figure: a soft cantilever's clamp layer at κ h = 0.99
 /// (51 nodes) leaves its tip 0.19 % of L off, where the arc's figure is 7.8 %.
+/// The twist is judged on the strain, κ₃ less `rest_twist` (1/m at each node; empty: none).
 GridResolution CheckPolygon(const std::vector<double>& s, const std::vector<Vec3>& position,
-                            const std::vector<Vec3>& curvature, double length);
+                            const std::vector<Vec3>& curvature, double length,
+                            const std::vector<double>& rest_twist = {});
 
 /// SE(3) statics: where the rod is in tension T its bending settles over 1/k = sqrt(EI/T) (a layer
 /// at a clamp, a support or a load), which RK4 in s follows per segment as its polynomial
