@@ -30,7 +30,7 @@ struct IntegratorOptions {
   /// Normalise the quaternions and make ṗ ⊥ p after every accepted step (the model's Project).
   bool project = true;
   /// Called after every accepted step with its end time (s), when set: a caller's progress or
-  /// interrupt check. It may throw to stop the run; Advance then leaves q and v as they were.
+  /// interrupt check. It may throw to stop the run: q, v and *t are then that step's end.
   std::function<void(double)> after_step;
 
   bool IsValid(std::string* why) const;
