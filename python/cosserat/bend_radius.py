@@ -14,7 +14,8 @@ def minimum_bend_radius(problem, pattern, length=None, bands=True, angle=None, s
     cosserat.Loads or a dict with the file's loads keys: a steering tip_moment, a lateral
     tip_force, ...) grows from 0 to 1 on top of the problem's loads, at the everted `length` (m;
     default rod.length) and the problem's pressure: up to the kink (the bending moment reaches
-    the wrinkling moment pi p r^3 / 2, limit "kink"), the whole pattern ("actuation") or a failed
+    the wrinkling moment N r / 2 of the wall's axial force N, pi p r^3 / 2 under inflation
+    alone; limit "kink"), the whole pattern ("actuation") or a failed
     solve ("no_convergence"). With `angle` (rad, in (0, pi)) instead: the radius when the tip has
     turned by that angle from the base direction (limit "angle"). bands=False takes the tube
     without its constrictions. Returns a dict: min_radius (m), s (m, where), load_factor,

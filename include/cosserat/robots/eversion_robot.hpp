@@ -28,7 +28,8 @@
 ///
 /// Kink check. After every solve the bending moment |m_⊥(s)| = |(m1, m2)| at each grid node is
 /// compared with the wrinkling moment M_w(s) = N(s) r(s) / 2, N the wall's axial force
-/// (WallTension: π p r³ / 2 under inflation alone, Comer & Levy 1963; less under a push); a kink is
+/// (WallTension; under inflation alone N = p π r², M_w = π p r³ / 2, Comer & Levy 1963; a push
+/// lowers it); a kink is
 /// reported (KinkReport), never silently ignored. The rod model beyond the wrinkling moment is
 /// not valid (the real tube loses stiffness there): a kinked solve is an honest report that the
 /// design fails, not a prediction of the kinked shape.
