@@ -92,21 +92,23 @@ std::string OnTopOfTheFilesLoad(const io::Problem& problem) {
   return own ? " on top of loads." + io::ToString(k) : "";
 }
 
-/// After a search that found no critical load: the file's loads push the rod across its axis
-/// (an imperfection), so it bends smoothly along the path and has no bifurcation to find.
 /// After a search that found no critical load along a path that is not conservative (a follower
-/// load, a tip moment): such a rod can also lose its stability by flutter, two frequencies
+/// load, a tip moment, drag): such a rod can also lose its stability by flutter, two frequencies
 /// meeting (Beck's column), which no static search sees; the modes at a load do.
 std::string FlutterNote(const io::Problem& problem, BucklingStatus status) {
   if (status != BucklingStatus::kNotFound) return "";
   const LoadPath path = MakePath(problem);
   if (LoadsAreConservative(path.fixed) && LoadsAreConservative(path.per_unit)) return "";
-  return "cosserat: note: the loads are not conservative (a follower load or a tip moment): the "
-         "rod may also lose its stability by flutter, two of its frequencies meeting, which a "
-         "static search does not see; \"analysis\": \"modes\" at a load reports it as "
+  const bool drag = HasDrag(path.fixed) || HasDrag(path.per_unit);
+  return std::string("cosserat: note: the loads are not conservative (") +
+         (drag ? "a flow's drag" : "a follower load or a tip moment") +
+         "): the rod may also lose its stability by flutter, two of its frequencies meeting, "
+         "which a static search does not see; \"analysis\": \"modes\" at a load reports it as "
          "unstable\n";
 }
 
+/// After a search that found no critical load: the file's loads push the rod across its axis
+/// (an imperfection), so it bends smoothly along the path and has no bifurcation to find.
 std::string ImperfectionNote(const io::Problem& problem, BucklingStatus status) {
   if (status != BucklingStatus::kNotFound && status != BucklingStatus::kPathFailed) return "";
   // On contact surfaces the loads across the axis press the rod onto them, which can leave a

@@ -222,7 +222,7 @@ bool SettleColumn(const io::Problem& problem, const RodState& straight, ColumnSo
       const Vec6 last = solver->unknowns();
       if (count(solver->Solve(problem.base, level))) {
         const int index = solver->StabilityIndexAtUnknowns(problem.base, level);
-        if (!to_the_loads && index > 0) last_unstable_bow = index;
+        if (!to_the_loads) last_unstable_bow = index > 0 ? index : -1;  // the last level tried
         if (index == 0) return true;
         if (to_the_loads && mu == 1.0 && turns && index == 1 && stable_just_before(from))
           return true;
