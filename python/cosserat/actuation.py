@@ -76,8 +76,8 @@ class Actuation(_core.Actuation):
         return given
 
     def __repr__(self):
-        # A list at the length it was given (Actuation(tendon_tension=[1, 0, 0]) printed [1]),
-        # else up to its last non-zero value.
+        # A list at the length it was given, trailing zeros too, else up to its last non-zero
+        # value.
         given = self.given()
         parts = []
         for name in _LISTS:

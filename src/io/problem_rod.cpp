@@ -17,7 +17,6 @@ namespace {
 
 using json = nlohmann::json;
 
-constexpr int kMaxNodes = 1000000;
 
 // --- rod.section -------------------------------------------------------------------------------
 
@@ -234,7 +233,7 @@ void FillPipe(const ObjectReader& s, bool has_profile, const std::optional<Cross
 void ParseRod(const ObjectReader& rod, Problem* problem) {
   rod.AllowOnly({"length", "nodes", "section", "material", "rest_curvature", "stiffness_profile"});
   const auto length = ReadNumber(rod, "length", PositiveNumber(), Presence::kRequired);
-  const auto nodes = ReadInteger(rod, "nodes", 3, kMaxNodes, Presence::kRequired);
+  const auto nodes = ReadInteger(rod, "nodes", 3, kMaxRodNodes, Presence::kRequired);
   const auto section_object = ReadObject(rod, "section", Presence::kRequired);
   const auto section = section_object ? ParseSection(*section_object) : std::nullopt;
   const auto material_object = ReadObject(rod, "material", Presence::kRequired);

@@ -346,7 +346,7 @@ class Dynamics(unittest.TestCase):
         # At dt = 1e-9 s the shear wave alone asks for (1.5/dt) L sqrt(ρA/κGA)/0.9 ≈ 1e7 nodes,
         # past the file's limit of 10⁶: the advice is a larger dt, not a node count refused.
         with self.assertWarnsRegex(RuntimeWarning, r"a larger dt: this one needs [0-9.e+]+ nodes, "
-                                   r"past the limit of 1e\+06"):
+                                   r"past the limit of 1000000"):
             cosserat.Stepper(soft, dt=1e-9)
 
     def test_actuation_and_loads_edited_in_place_are_applied(self):
@@ -357,7 +357,7 @@ class Dynamics(unittest.TestCase):
         a, b = cosserat.Stepper(p), cosserat.Stepper(p)
         self.assertTrue(a.initialize_at_rest().converged and b.initialize_at_rest().converged)
         a.actuation.tendon_tension[:3] = [1.0, 0.5, 0.0]
-        a.loads.tip_force[0] = 0.1  # a view of the stepper's loads (it was read-only)
+        a.loads.tip_force[0] = 0.1  # a writable view of the stepper's loads
         for _ in range(20):
             self.assertTrue(a.step().converged)
             self.assertTrue(b.step({"gravity": list(p.loads.gravity), "tip_force": [0.1, 0, 0]},
@@ -1047,7 +1047,7 @@ class PythonSide(unittest.TestCase):
         # What a notebook prints: the file's values, not object addresses.
         p = cosserat.load_problem("robots/tendon_three_tendon.json")
         self.assertIn("tendon_tension=[1.5, 0, 0.5]", repr(p.actuation))
-        # A list at the length it was given, trailing zeros too (it printed [1]).
+        # A list at the length it was given, trailing zeros too.
         given = cosserat.Actuation(tendon_tension=[1, 0, 0])
         self.assertIn("tendon_tension=[1, 0, 0]", repr(given))
         self.assertIn("length=0.25 m", repr(p))
@@ -1297,8 +1297,8 @@ class Batches(unittest.TestCase):
 
         interrupted("examples/cantilever_release.json",
                     lambda spec: spec["dynamics"].update(duration=2000.0))
-        # Quaternion-FD dynamics asks after every Radau step, not only at its frames: one
-        # output interval of 100 s (~60 s of steps) once ran to its end first.
+        # Quaternion-FD dynamics asks after every Radau step, not only at its frames: here one
+        # output interval of 100 s holds ~60 s of steps.
         interrupted("examples/cantilever_release.json",
                     lambda spec: (spec.update(formulation="quaternion-fd"),
                                   spec["dynamics"].update(duration=500.0, output_interval=100.0)))

@@ -20,6 +20,9 @@
 
 namespace cosserat::io {
 
+/// The most grid nodes `rod.nodes` takes.
+inline constexpr int kMaxRodNodes = 1000000;
+
 /// The only value of the required top-level "format" key this version reads.
 inline constexpr const char* kProblemFormat = "cosserat-problem/1";
 
