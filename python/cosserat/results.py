@@ -16,17 +16,23 @@ def _path(parent, key):
     return f"{parent}.{key}" if parent else str(key)
 
 
-def _check_json_values(value, path=""):
-    """Raises ValueError for a NaN or an infinity and TypeError for a value JSON cannot hold,
-    naming the field, before the dict is written as JSON (which would write NaN, not JSON)."""
+def _check_json_values(value, path="", within=()):
+    """Raises ValueError for a NaN or an infinity, or for a dict or list that holds itself, and
+    TypeError for a value JSON cannot hold, naming the field, before the dict is written as JSON
+    (which would write NaN, not JSON). `within`: the ids of the containers on the path."""
+    if isinstance(value, (dict, list, tuple)):
+        if id(value) in within:
+            raise ValueError(f"{path or 'problem'}: holds itself (a dict or list inside itself), "
+                             "which no problem file can")
+        within = within + (id(value),)
     if isinstance(value, dict):
         for key, item in value.items():
             if not isinstance(key, str):
                 raise TypeError(f"{path or 'problem'}: keys must be strings, got {key!r}")
-            _check_json_values(item, _path(path, key))
+            _check_json_values(item, _path(path, key), within)
     elif isinstance(value, (list, tuple)):
         for i, item in enumerate(value):
-            _check_json_values(item, _path(path, i))
+            _check_json_values(item, _path(path, i), within)
     elif isinstance(value, np.ndarray):
         _check_json_values(value.tolist(), path)
     elif isinstance(value, (bool, str, int, np.integer, np.bool_)) or value is None:

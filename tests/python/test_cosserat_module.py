@@ -708,6 +708,11 @@ class Dynamics(unittest.TestCase):
             level = level["a"]
         with self.assertRaisesRegex(ValueError, "problem: nested too deeply"):
             cosserat.solve(deep)
+        # A dict that holds itself is named where it does.
+        looped = {"format": "cosserat-problem/1", "rod": {"length": 1.0}}
+        looped["rod"]["section"] = looped
+        with self.assertRaisesRegex(ValueError, r"^rod\.section: holds itself"):
+            cosserat.solve(looped)
         # Jamming pressures on segments the rod does not have, as the file's rule.
         a = cosserat.Actuation()
         a.jamming_pressure = [1e5]
