@@ -73,14 +73,18 @@ TEST(HeldTip, APinnedTipCarriesTheForceAFreeTipWasLoadedWith) {
   EXPECT_LT(s.wrench_B.back().head<3>().norm(), 1e-9);
 }
 
-// The exact Jacobian of a held tip's residual in a moving step, for each hold.
+// The exact Jacobian of a held tip's residual in a moving step, for each hold (a guided tip
+// pressed along its axis by 0.1 N).
 TEST(HeldTip, ShootingJacobianMatchesCentralDifferences) {
   const SteelRod rod{0.5, 0.001};
-  for (TipHold hold : {TipHold::kClamped, TipHold::kTorsionFree, TipHold::kPinned}) {
+  for (TipHold hold : {TipHold::kClamped, TipHold::kTorsionFree, TipHold::kPinned,
+                       TipHold::kGuidedClamped, TipHold::kGuidedPinned}) {
     SCOPED_TRACE(static_cast<int>(hold));
     Bdf2ShootingStepper stepper(rod.model(), 21);
     StepInput in;
     in.loads.gravity_W = Vec3(0, -9.81, 0);
+    if (hold == TipHold::kGuidedClamped || hold == TipHold::kGuidedPinned)
+      in.loads.tip_force = -0.1 * lie::SO3Exp(Vec3(0, 0.05, 0.02)).col(2);
     in.tip_hold = hold;
     in.tip_pose.p = Vec3(0.01, 0, 0.499);
     in.tip_pose.R = lie::SO3Exp(Vec3(0, 0.05, 0.02));

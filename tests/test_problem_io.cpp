@@ -698,20 +698,34 @@ TEST(ProblemIo, DynamicsTipBody) {
   EXPECT_ERROR(r, "dynamics.tip_inertia[1]: expected a moment of inertia >= 0", "got -1e-06");
 }
 
-TEST(ProblemIo, DynamicsRunsForCantileverAndFreeFree) {
+TEST(ProblemIo, DynamicsRunsForCantileverFreeFreeAndClampedColumns) {
   json j = ValidProblem();
   j["analysis"] = "dynamics";
-  j["boundary"] = "free-free";
-  ParseResult r = Parse(j);
-  ASSERT_TRUE(r.ok()) << AllErrors(r);
-  EXPECT_TRUE(UnsupportedFeatures(*r.problem).empty());
+  for (const char* ends : {"free-free", "clamped-clamped", "clamped-pinned"}) {
+    j["boundary"] = ends;
+    const ParseResult r = Parse(j);
+    ASSERT_TRUE(r.ok()) << AllErrors(r);
+    EXPECT_TRUE(UnsupportedFeatures(*r.problem).empty()) << ends;
+  }
   j["boundary"] = "pinned-pinned";
-  r = Parse(j);
+  ParseResult r = Parse(j);
   ASSERT_TRUE(r.ok()) << AllErrors(r);
   const std::vector<std::string> gated = UnsupportedFeatures(*r.problem);
   ASSERT_EQ(gated.size(), 1u);
   EXPECT_EQ(gated[0], R"(boundary: "pinned-pinned" is not implemented in this version )"
-                      R"((supported: "cantilever", "free-free"))");
+                      R"((supported: "cantilever", "free-free", "clamped-clamped", )"
+                      R"("clamped-pinned"))");
+  // A column's guided tip takes a dead tip force only.
+  j["boundary"] = "clamped-pinned";
+  j["loads"]["tip_force_frame"] = "body";
+  j["loads"]["tip_force"] = json::array({0, 0, -1});
+  r = Parse(j);
+  ASSERT_TRUE(r.ok()) << AllErrors(r);
+  const std::vector<std::string> follower = UnsupportedFeatures(*r.problem);
+  ASSERT_EQ(follower.size(), 1u);
+  EXPECT_EQ(follower[0].rfind("loads.tip_force_frame: a column's guided tip", 0), 0u)
+      << follower[0];
+  j.erase("loads");
   // Statics is still cantilever only.
   j["analysis"] = "statics";
   j["boundary"] = "free-free";

@@ -59,6 +59,25 @@ void TipBodyFeatures(const Problem& p, std::vector<std::string>* out) {
                    "\"dynamics\" on \"se3-shooting\" runs it)");
 }
 
+/// A column's tip in dynamics slides along the axis under the loads' dead tip force: a follower
+/// force, a moment at a pinned tip, a body or a bit there have no place in that guide.
+void GuidedTipDynamicsFeatures(const Problem& p, std::vector<std::string>* out) {
+  if (p.analysis != Analysis::kDynamics ||
+      (p.boundary != Boundary::kClampedClamped && p.boundary != Boundary::kClampedPinned))
+    return;
+  const std::string ends = " (\"boundary\": " + detail::Quote(ToString(p.boundary)) + ")";
+  if (p.loads.tip_force_frame == LoadFrame::kBody && !p.loads.tip_force.isZero())
+    out->push_back("loads.tip_force_frame: a column's guided tip in dynamics takes a dead (world) "
+                   "tip force" + ends);
+  if (p.boundary == Boundary::kClampedPinned && !p.loads.tip_moment.isZero())
+    out->push_back("loads.tip_moment: a column's pinned tip in dynamics carries no moment" + ends);
+  if (p.dynamics.tip_mass > 0.0 || !p.dynamics.tip_inertia.isZero())
+    out->push_back("dynamics.tip_mass: a body at a column's guided tip is not modelled" + ends);
+  if (p.loads.bit.present())
+    out->push_back("loads.bit_friction: a drill bit acts at a free tip (\"boundary\": "
+                   "\"cantilever\")");
+}
+
 /// A clamped tip holds its rotation: a moment there acts on the clamp, not the rod.
 void ClampedTipFeatures(const Problem& p, std::vector<std::string>* out) {
   if (p.boundary != Boundary::kClampedClamped) return;
@@ -88,7 +107,8 @@ void BoundaryFeatures(const Problem& p, std::vector<std::string>* out) {
   else if (quatfd)
     CheckSupported("boundary", p.boundary, {B::kCantilever}, out);
   else if (p.analysis == A::kDynamics)
-    CheckSupported("boundary", p.boundary, {B::kCantilever, B::kFreeFree}, out);
+    CheckSupported("boundary", p.boundary,
+                   {B::kCantilever, B::kFreeFree, B::kClampedClamped, B::kClampedPinned}, out);
   else if (p.analysis == A::kBuckling)
     CheckSupported("boundary", p.boundary,
                    {B::kCantilever, B::kPinnedPinned, B::kClampedClamped, B::kClampedPinned}, out);
@@ -108,10 +128,10 @@ void BoundaryFeatures(const Problem& p, std::vector<std::string>* out) {
         "; modes of a rod held at both ends run as \"boundary\": \"anchored\" (with anchor.base "
         "or anchor.tip \"clamped\" for a clamped end) on \"formulation\": \"quaternion-fd\", "
         "or as a column on \"se3-shooting\"";
-  if (!quatfd && (p.analysis == A::kStatics || p.analysis == A::kModes) &&
-      p.boundary != B::kCantilever && p.boundary != B::kFreeFree && p.has_robot)
+  if (!quatfd && p.analysis != A::kBuckling && p.boundary != B::kCantilever &&
+      p.boundary != B::kFreeFree && p.has_robot)
     out->push_back(std::string("robot: a robot runs with \"boundary\": \"cantilever\" in ") +
-                   (p.analysis == A::kModes ? "modes" : "statics") + " (got " +
+                   ToString(p.analysis) + " (got " +
                    detail::Quote(ToString(p.boundary)) + ")");
 }
 
@@ -139,6 +159,7 @@ std::vector<std::string> UnsupportedFeatures(const Problem& p) {
   DriveAndFlowFeatures(p, &out);
   TipBodyFeatures(p, &out);
   ClampedTipFeatures(p, &out);
+  GuidedTipDynamicsFeatures(p, &out);
   if (quatfd && p.rod.section && MasslessSomewhere(p))
     out.push_back(
         "rod.material.density: a massless rod (density 0) runs on the \"se3-shooting\" "

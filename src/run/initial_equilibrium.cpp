@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "cosserat/analysis/column.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "statics_in_pieces.hpp"
@@ -72,10 +73,23 @@ std::optional<RodState> RunawayStartState(const io::Problem& problem, const Step
 
 StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const StepInput& input,
                                           Bdf2ShootingStepper* stepper) {
-  if (problem.boundary != io::Boundary::kCantilever) return stepper->InitializeAtRest(input);
+  const bool column = problem.boundary == io::Boundary::kClampedClamped ||
+                      problem.boundary == io::Boundary::kClampedPinned;
+  if (problem.boundary != io::Boundary::kCantilever && !column)
+    return stepper->InitializeAtRest(input);
   StepSummary counted;
-  if (const std::optional<RodState> equilibrium =
-          StaticEquilibriumToStartFrom(problem, input)) {
+  std::optional<RodState> equilibrium;
+  if (column) {  // the column solver's, followed from the unloaded column as its statics are
+    ColumnEnds ends;
+    ToColumnEnds(problem.boundary, &ends);
+    ColumnSolver solver(problem.rod, problem.nodes, ends, StaticOptions(problem),
+                        input.actuation);
+    if (solver.SolveFromUnloaded(problem.base, input.loads).converged())
+      equilibrium = solver.state();
+  } else {
+    equilibrium = StaticEquilibriumToStartFrom(problem, input);
+  }
+  if (equilibrium) {
     const StepSummary from_statics = stepper->InitializeAtRest(input, *equilibrium);
     if (from_statics.converged()) return from_statics;
     counted = from_statics;

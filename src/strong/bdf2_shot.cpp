@@ -68,6 +68,8 @@ Vec6 TipResidual(const DynState& y, const StaticLoads& loads, const Bdf2Options&
 //   θx ≈ −(R e₃)·(R_h e₂),  θy ≈ (R e₃)·(R_h e₁),  θz ≈ −(R e₂)·(R_h e₁);
 // a joint that leaves a rotation free asks instead for no moment about it (the moment over its
 // scale, body frame). Dot products of frame columns keep the exact Jacobian simple.
+// A guided tip (a column's) slides along e = R_h e₃: rows across it (R_h e₁,₂ · (p − p_h)/L)
+// and the force along it, e · (n_W − F) over the force scale, F the loads' dead tip force.
 Vec6 HeldTipResidual(const DynState& y, const StepInput& in, double length, const Vec6& scale) {
   const Mat3& Rh = in.tip_pose.R;
   Vec6 r;
@@ -75,8 +77,17 @@ Vec6 HeldTipResidual(const DynState& y, const StepInput& in, double length, cons
   r(0) = -y.R.col(2).dot(Rh.col(1));
   r(1) = y.R.col(2).dot(Rh.col(0));
   r(2) = -y.R.col(1).dot(Rh.col(0));
-  if (in.tip_hold == TipHold::kPinned) r.head<3>() = y.m.cwiseQuotient(scale.head<3>());
+  const bool guided =
+      in.tip_hold == TipHold::kGuidedClamped || in.tip_hold == TipHold::kGuidedPinned;
+  if (in.tip_hold == TipHold::kPinned || in.tip_hold == TipHold::kGuidedPinned)
+    r.head<3>() = y.m.cwiseQuotient(scale.head<3>());
   if (in.tip_hold == TipHold::kTorsionFree) r(2) = y.m.z() / scale(2);
+  if (guided) {
+    const Vec3 d = y.p - in.tip_pose.p;
+    r(3) = Rh.col(0).dot(d) / length;
+    r(4) = Rh.col(1).dot(d) / length;
+    r(5) = Rh.col(2).dot(y.n - in.loads.tip_force) / scale(5);
+  }
   return r;
 }
 
@@ -498,9 +509,15 @@ class Bdf2ShootingStepper::Shot {
     J.row(0) = -Rh.col(1).transpose() * dy_.R[2];
     J.row(1) = Rh.col(0).transpose() * dy_.R[2];
     J.row(2) = -Rh.col(0).transpose() * dy_.R[1];
-    if (in_.tip_hold == TipHold::kPinned)
+    const TipHold hold = in_.tip_hold;
+    if (hold == TipHold::kPinned || hold == TipHold::kGuidedPinned)
       J.topRows<3>() = scale.head<3>().cwiseInverse().asDiagonal() * dy_.m;
-    if (in_.tip_hold == TipHold::kTorsionFree) J.row(2) = dy_.m.row(2) / scale(2);
+    if (hold == TipHold::kTorsionFree) J.row(2) = dy_.m.row(2) / scale(2);
+    if (hold == TipHold::kGuidedClamped || hold == TipHold::kGuidedPinned) {
+      J.row(3) = Rh.col(0).transpose() * dy_.p / st_.model_.length;
+      J.row(4) = Rh.col(1).transpose() * dy_.p / st_.model_.length;
+      J.row(5) = Rh.col(2).transpose() * dy_.n / scale(5);  // n is n_W
+    }
     return J;
   }
 

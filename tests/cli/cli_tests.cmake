@@ -482,6 +482,9 @@ cosserat_cli_test(NAME buckling_follower_torque
 # A taut wire's SE(3) modes stop where one shot blurs its pairs, the tension counted.
 cosserat_cli_test(NAME modes_taut_wire_blur ARGS solve "${_cli_dir}/modes_taut_wire_blur.json"
                   CODE 1 STDERR "too_few_modes.*6 modes.*resolves frequencies up to about 135 Hz")
+# A column in dynamics: its tip slides on the axis under the tip force.
+cosserat_cli_test(NAME column_dynamics ARGS solve "${_cli_dir}/column_dynamics.json"
+                  CODE 0 STDERR "converged, 500 steps, 0.1 s simulated")
 # A dynamics block kept for another analysis is checked, not used; its base drive is noted.
 cosserat_cli_test(NAME modes_keep_base_spin ARGS solve "${_cli_dir}/modes_keep_base_spin.json"
                   CODE 0 STDERR "note: dynamics.base_spin turns the base in \"analysis\": \"dynamics\" only; this \"modes\" holds the base still")

@@ -15,8 +15,9 @@ namespace cosserat::run {
 /// the load keeps to the branch the loads grow along, where the stepper's own Newton solve from
 /// a rigid-body guess may settle on a looped one (a wire bent by FL²/EI ≈ 13), and its pieces
 /// resolve a rod one shot from the clamp cannot (a payload hanging on a wire, a taut riser);
-/// the stepper refines it on its own equations. The stepper's own solve runs where the statics
-/// solvers fail or do not take the rod, and for free-free ends. The summary counts the work of
+/// the stepper refines it on its own equations. A column (clamped-clamped, clamped-pinned) starts
+/// from the column solver's, followed from the unloaded column. The stepper's own solve runs
+/// where the statics solvers fail or do not take the rod, and for free-free ends. The summary counts the work of
 /// every attempt; its residual is the last one's.
 StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const StepInput& input,
                                           Bdf2ShootingStepper* stepper);

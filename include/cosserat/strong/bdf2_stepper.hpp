@@ -51,10 +51,13 @@ enum class EndConditions {
 /// replace the wrench condition:
 ///   kClamped      the tip's frame is tip_pose;
 ///   kTorsionFree  the tip's position and tangent (body z) are tip_pose's, no moment about it;
-///   kPinned       the tip's position is tip_pose's, no moment (a ball joint).
+///   kPinned       the tip's position is tip_pose's, no moment (a ball joint);
+///   kGuidedClamped, kGuidedPinned  a column's tip: it slides along the axis tip_pose.R e₃
+///                 through tip_pose.p (its displacement across it held), the force along it the
+///                 loads' dead tip force's, and its frame tip_pose.R (clamped) or no moment.
 /// The holder takes the loads' tip wrench and a tip body (Bdf2Options::tip_mass): they are not
-/// used with a held tip.
-enum class TipHold { kFree, kClamped, kTorsionFree, kPinned };
+/// used with a held tip, but for the guided tips' axial force (dead, world frame).
+enum class TipHold { kFree, kClamped, kTorsionFree, kPinned, kGuidedClamped, kGuidedPinned };
 
 struct Bdf2Options {
   double dt = 2e-3;  ///< time step, s
