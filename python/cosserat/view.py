@@ -287,6 +287,10 @@ class LiveRod:
         act.update(_control_actuation(v, len(robot.get("tendons", [])),
                                       len(robot.get("chambers", [])),
                                       len(act.get("jamming_pressure", []))))
+        # An inflated tube's pressure is its section's too: the file's rule asks both to agree.
+        profile = spec["rod"].get("stiffness_profile")
+        if "inflation" in v and isinstance(profile, dict) and "pressure" in profile:
+            profile["pressure"] = v["inflation"]
         return spec
 
     def _dynamic_problem(self):
@@ -423,8 +427,12 @@ class LiveRod:
             time.sleep(FRAME_S)
 
     def config(self):
+        # Each control at its value now, so a reloaded page or a second tab shows what acts.
+        with self.lock:
+            controls = [dict(c, value=self.values.get(c["name"], c["value"]))
+                        for c in self.controls]
         out = {"problem": os.path.basename(self.path), "mode": self.mode,
-               "controls": self.controls, "notes": self.notes, "error": self.error,
+               "controls": controls, "notes": self.notes, "error": self.error,
                "radius": self._radius()}
         if self.error is None:
             # Dragging the tip pulls it with a spring of about the cantilever's tip stiffness,

@@ -1098,6 +1098,27 @@ class PythonSide(unittest.TestCase):
             live.running = False
             live.thread.join(10)
 
+    def test_live_view_inflates_the_vine_and_shows_the_values_that_act(self):
+        # The vine's inflation slider re-solves it at the pressure set (its section's pressure
+        # follows, as the file's rule asks), and the controls read back as set, not as filed.
+        import time
+        from cosserat.view import LiveRod
+        live = LiveRod("robots/eversion_banded_vine.json")
+        try:
+            self.assertIsNone(live.set_control("inflation", 4000.0))
+            version = live.control_version
+            deadline = time.time() + 30
+            while time.time() < deadline and live.snapshot().get("control_version") != version:
+                time.sleep(0.05)
+            snap = live.snapshot()
+            self.assertEqual(snap.get("control_version"), version)
+            self.assertNotIn("refused", snap["status"])
+            inflation = next(c for c in live.config()["controls"] if c["name"] == "inflation")
+            self.assertEqual(inflation["value"], 4000.0)
+        finally:
+            live.running = False
+            live.thread.join(10)
+
     def test_live_view_draws_a_strip_at_its_equal_area_radius(self):
         # A 4 mm × 2 mm strip is drawn as a tube of its area's radius sqrt(w h / π) (the VTK
         # output's), not at a 5 mm default.
