@@ -105,7 +105,7 @@ TEST(ContactStaticsPaths, APressedColumnStaysInTheBore) {
 // one unstable direction (the SE(3) statics' index, and a negative ω² in the modes). No node
 // is compressed, and the quaternion-FD statics had called it stable (index 0) on that ground.
 // On a contact surface the statics do not settle beside it (run/settle_beside_instability.hpp):
-// the equilibrium stays, with its warning.
+// the equilibrium stays, with its warning, which names sliding off the surface first.
 TEST(ContactStaticsPaths, AFingerOnASphereIsUnstableInBothFormulations) {
   const io::ParseResult parsed = io::LoadProblemFile(std::string(COSSERAT_SOURCE_DIR) +
                                                      "/examples/finger_on_sphere.json");
@@ -116,6 +116,7 @@ TEST(ContactStaticsPaths, AFingerOnASphereIsUnstableInBothFormulations) {
     const Result out = cosserat::run::Run(problem);
     ASSERT_TRUE(out.converged) << out.log;
     EXPECT_EQ(out.json["stability_index"].get<int>(), 1) << out.log;
+    EXPECT_NE(out.log.find("the rod can slide off them"), std::string::npos) << out.log;
   }
 }
 

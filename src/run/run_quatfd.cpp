@@ -271,7 +271,7 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   if (s.converged())
     log << settled_note << ClampedEndGridWarning(problem, state)
         << BendingPeakGridWarning(problem, state)
-        << detail::UnstableWarning(summary);
+        << detail::UnstableWarning(summary, true, problem.loads.contact.count > 0);
   if (s.converged() && problem.boundary == io::Boundary::kAnchored)
     log << detail::AnchoredCompressionNote(problem.rod, state);
   result.log = log.str();

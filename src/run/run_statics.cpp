@@ -360,7 +360,8 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
                (state.RanAway() ? FramesLeftRotationsLine(state, problem.rod.length)
                                 : TendonLawHint(problem, actuation, summary));
   if (!problem.has_robot) result.log += ContinuationHint(problem, summary);
-  result.log += detail::UnstableWarning(summary) + unjudged;
+  const bool on_surfaces = problem.loads.contact.count > 0;
+  result.log += detail::UnstableWarning(summary, true, on_surfaces) + unjudged;
   result.converged = summary.converged();
   return result;
 }

@@ -56,11 +56,19 @@ Elastica ElasticaAt(double ratio) {
 }
 }  // namespace
 
-std::string UnstableWarning(const StaticShootingSummary& s, bool searched_stable) {
+std::string UnstableWarning(const StaticShootingSummary& s, bool searched_stable,
+                            bool on_surfaces) {
   if (!s.converged() || s.stability_index <= 0) return "";
-  return "cosserat: warning: this equilibrium is unstable (" + std::to_string(s.stability_index) +
-         " unstable direction" + (s.stability_index > 1 ? "s" : "") +
-         "): the loads or the actuation are past a critical point" +
+  const std::string head = "cosserat: warning: this equilibrium is unstable (" +
+                           std::to_string(s.stability_index) + " unstable direction" +
+                           (s.stability_index > 1 ? "s" : "") + "): ";
+  if (on_surfaces)  // statics has no friction: what holds the rod sideways is the shape alone
+    return head +
+           "on the frictionless contact surfaces of statics the rod can slide off them (a "
+           "finger pressed on a sphere slips sideways), or the loads are past a critical "
+           "point; dynamics with \"friction\" on the surfaces holds it, and \"analysis\": "
+           "\"buckling\" finds a critical load\n";
+  return head + "the loads or the actuation are past a critical point" +
          (searched_stable ? ", and no stable equilibrium was reached from the unloaded rod" : "") +
          "; \"analysis\": \"buckling\" finds the critical load\n";
 }

@@ -17,7 +17,9 @@ namespace cosserat::run::detail {
 /// stays straight, and would not); else empty. searched_stable: the solver looked for a stable
 /// equilibrium from the unloaded rod and found none (the cantilever's does; the column's
 /// follows its straight branch).
-std::string UnstableWarning(const StaticShootingSummary& s, bool searched_stable = true);
+/// On contact surfaces (`on_surfaces`) it names sliding off them first.
+std::string UnstableWarning(const StaticShootingSummary& s, bool searched_stable = true,
+                            bool on_surfaces = false);
 
 /// A column (pinned or clamped at both ends) that stands nearly straight (no node off its chord
 /// by 5 % of the length) while compressed everywhere beyond 1.01 times the Euler load of its
