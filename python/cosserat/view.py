@@ -363,9 +363,12 @@ class LiveRod:
                     value = head
                 setattr(act, attribute, value)
             # Real time: step until the simulated time catches up with the wall clock, at most
-            # four frames' worth at once (a slow machine then runs slower than real time).
-            target = stepper.time + min(4 * FRAME_S, max(0.0, run_start_sim + time.perf_counter()
-                                                         - run_start_wall - stepper.time))
+            # four frames' worth at once. Time lost beyond that is dropped, not made up later (a
+            # slow machine runs slower than real time, and its ratio says so).
+            behind = run_start_sim + time.perf_counter() - run_start_wall - stepper.time
+            if behind > 4 * FRAME_S:
+                run_start_wall += behind - 4 * FRAME_S
+            target = stepper.time + min(4 * FRAME_S, max(0.0, behind))
             while status == "running" and stepper.time + 0.5 * dt < target:
                 # The base follows its sliders at up to 1 m/s and 3 rad/s, with the twist of
                 # that motion (body frame).
@@ -420,6 +423,11 @@ class LiveRod:
                         rods = [res["nodes"]["position"]]
                     tip = rods[0][-1]
                     status = "converged" if out["converged"] else res.get("status", "failed")
+                    kink = res.get("robot", {}).get("kink", {})
+                    if kink.get("status", "none") != "none":  # the tube's fold, shown
+                        status += (f", {kink['status']} (|m|/M_w = "
+                                   f"{kink.get('max_moment_ratio') or float('inf'):.3g} at "
+                                   f"s = {kink['s_max']:g} m)")
                 except ValueError as e:
                     status = f"refused: {e}"
                 solved = version

@@ -1099,12 +1099,17 @@ class PythonSide(unittest.TestCase):
             live.thread.join(10)
 
     def test_live_view_inflates_the_vine_and_shows_the_values_that_act(self):
-        # The vine's inflation slider re-solves it at the pressure set (its section's pressure
-        # follows, as the file's rule asks), and the controls read back as set, not as filed.
+        # The vine's fold at its band (|m|/M_w = 4.66, as the command line reports) shows in the
+        # view's status; its inflation slider re-solves it at the pressure set (its section's
+        # pressure follows, as the file's rule asks), and the controls read back as set.
         import time
         from cosserat.view import LiveRod
         live = LiveRod("robots/eversion_banded_vine.json")
         try:
+            deadline = time.time() + 30
+            while time.time() < deadline and "converged" not in live.snapshot()["status"]:
+                time.sleep(0.05)
+            self.assertIn("collapsed (|m|/M_w = 4.66 at s = 0.3 m)", live.snapshot()["status"])
             self.assertIsNone(live.set_control("inflation", 4000.0))
             version = live.control_version
             deadline = time.time() + 30
