@@ -311,7 +311,8 @@ std::string EnergyNote(const io::Problem& problem, const io::DynamicRun& run) {
   std::ostringstream note;
   note << std::setprecision(3) << "cosserat: note: the rod is undamped, yet its total energy fell by "
        << loss << " J over the run, " << 100 * loss / run.peak_kinetic_energy
-       << " % of its largest kinetic energy at the output frames: BDF2's numerical damping of motion that dt = "
+       << " % of its largest kinetic energy at the output frames: BDF2's numerical damping of "
+          "motion that dt = "
        << problem.dynamics.dt
        << " s resolves in few steps (docs/dynamics.md, \"Numerical damping\"); a smaller dt "
           "keeps more, but slowly where the run excites motion far faster than its first mode "

@@ -68,8 +68,8 @@ Vec6 TipResidual(const DynState& y, const StaticLoads& loads, const Bdf2Options&
 //   θx ≈ −(R e₃)·(R_h e₂),  θy ≈ (R e₃)·(R_h e₁),  θz ≈ −(R e₂)·(R_h e₁);
 // a joint that leaves a rotation free asks instead for no moment about it (the moment over its
 // scale, body frame). Dot products of frame columns keep the exact Jacobian simple.
-// A guided tip (a column's) slides along e = R_h e₃: rows across it (R_h e₁,₂ · (p − p_h)/L)
-// and the force along it, e · (n_W − F) over the force scale, F the loads' dead tip force.
+// A guided tip (a column's) slides along e = R_h e₃: rows across it, R_h e₁,₂ · (p − p_h)/L,
+// and along it the force e · (n_W − F) over its scale, F the loads' dead tip force.
 Vec6 HeldTipResidual(const DynState& y, const StepInput& in, double length, const Vec6& scale) {
   const Mat3& Rh = in.tip_pose.R;
   Vec6 r;
@@ -77,12 +77,10 @@ Vec6 HeldTipResidual(const DynState& y, const StepInput& in, double length, cons
   r(0) = -y.R.col(2).dot(Rh.col(1));
   r(1) = y.R.col(2).dot(Rh.col(0));
   r(2) = -y.R.col(1).dot(Rh.col(0));
-  const bool guided =
-      in.tip_hold == TipHold::kGuidedClamped || in.tip_hold == TipHold::kGuidedPinned;
   if (in.tip_hold == TipHold::kPinned || in.tip_hold == TipHold::kGuidedPinned)
     r.head<3>() = y.m.cwiseQuotient(scale.head<3>());
   if (in.tip_hold == TipHold::kTorsionFree) r(2) = y.m.z() / scale(2);
-  if (guided) {
+  if (in.tip_hold == TipHold::kGuidedClamped || in.tip_hold == TipHold::kGuidedPinned) {
     const Vec3 d = y.p - in.tip_pose.p;
     r(3) = Rh.col(0).dot(d) / length;
     r(4) = Rh.col(1).dot(d) / length;

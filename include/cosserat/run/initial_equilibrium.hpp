@@ -17,8 +17,8 @@ namespace cosserat::run {
 /// resolve a rod one shot from the clamp cannot (a payload hanging on a wire, a taut riser);
 /// the stepper refines it on its own equations. A column (clamped-clamped, clamped-pinned) starts
 /// from the column solver's, followed from the unloaded column. The stepper's own solve runs
-/// where the statics solvers fail or do not take the rod, and for free-free ends. The summary counts the work of
-/// every attempt; its residual is the last one's.
+/// where the statics solvers fail or do not take the rod, and for free-free ends. The summary
+/// counts the work of every attempt; its residual is the last one's.
 StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const StepInput& input,
                                           Bdf2ShootingStepper* stepper);
 
