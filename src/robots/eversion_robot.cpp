@@ -349,10 +349,7 @@ KinkReport EversionRobot::CheckKink() const {
   // axial force (WallTension). Inflation alone gives N = pπr², the tube's πpr³/2 (Comer & Levy
   // 1963); a push on the tip lowers it, and a wall pushed slack (N ≤ 0) has none left.
   auto wrinkling_moment = [&](int i, double r) {
-    double wall = st.wrench_B[i](5);  // N
-    if (design_.pressure_load == PressureLoadModel::kClosedVessel)
-      wall += solved_pressure_ * kPi * r * r;
-    return std::max(0.0, 0.5 * wall * r);
+    return std::max(0.0, 0.5 * WallTensionAt(i, r) * r);
   };
   for (int i = 0; i < st.size(); ++i) {
     const double s = st.s[i];
@@ -410,12 +407,14 @@ double EversionRobot::FreeAxialStrain() const {
 double EversionRobot::WallTension(int node) const {
   const RodState& st = state();
   if (node < 0 || node >= st.size()) throw std::out_of_range("WallTension: node out of range");
-  double n3 = st.wrench_B[node](5);
-  if (design_.pressure_load == PressureLoadModel::kClosedVessel) {
-    const double s = st.s[node];
-    const double r = RadiusAt(s < solver_length_ ? s : std::max(0.0, s * (1.0 - 1e-12)));
+  const double s = st.s[node];
+  return WallTensionAt(node, RadiusAt(s < solver_length_ ? s : std::max(0.0, s * (1.0 - 1e-12))));
+}
+
+double EversionRobot::WallTensionAt(int node, double r) const {
+  double n3 = state().wrench_B[node](5);  // N
+  if (design_.pressure_load == PressureLoadModel::kClosedVessel)
     n3 += solved_pressure_ * kPi * r * r;
-  }
   return n3;
 }
 

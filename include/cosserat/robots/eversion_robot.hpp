@@ -224,6 +224,8 @@ class EversionRobot {
   const StaticShootingSolver* solver() const { return solver_.get(); }
 
  private:
+  /// WallTension at node i with the section radius r there (m): a band's end has two.
+  double WallTensionAt(int node, double r) const;
   void RebuildSolver(double length);
   /// First-order guess of W(0) (base body frame) at a new length from the current solution.
   Vec6 PredictBaseWrench(double length, const StaticLoads& solver_loads) const;
