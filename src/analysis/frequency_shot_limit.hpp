@@ -16,14 +16,10 @@ namespace cosserat::detail {
 /// The exponent past which the scan's roots are not listed.
 constexpr double kMaxFrequencyShotExponent = 28.0;
 
-/// ∫ μ ds over the equilibrium (trapezoid on its nodes, its axial force wrench_B(5), the least
-/// bending stiffness and ρA of the section there), at ω (rad/s).
-double FrequencyShotExponent(const RodModel& rod, const Actuation& actuation,
-                             const RodState& equilibrium, double omega);
-
-/// The ω (rad/s) where that exponent reaches kMaxFrequencyShotExponent (bisection; it grows
-/// with ω): 0 when the equilibrium's tension already passes it, infinity when no ω does (no
-/// bending stiffness).
+/// The ω (rad/s) where ∫ μ ds over the equilibrium (trapezoid on its nodes, with their axial
+/// force wrench_B(5) and the least bending stiffness and ρA of their sections) reaches
+/// kMaxFrequencyShotExponent (bisection; it grows with ω): 0 when the equilibrium's tension
+/// already passes it, infinity when no ω does (no bending stiffness).
 double FrequencyShotLimit(const RodModel& rod, const Actuation& actuation,
                           const RodState& equilibrium);
 
