@@ -61,12 +61,14 @@ def _loads_from(value, holder):
     fluid, contact and bit friction stay); a Loads or None as given, without that copy (step()
     is a hot path)."""
     if not isinstance(value, dict):
-        # The same slip as a dict without "gravity": cosserat.Loads() starts with none.
-        filed = getattr(holder, "_problem", holder).loads.gravity  # the problem file's, m/s²
-        if value is not None and not np.any(value.gravity) and np.any(filed):
-            warnings.warn(f"loads: this Loads has no gravity (the problem's is "
-                          f"{np.array(filed).tolist()} m/s²); start from .loads and change "
-                          "what differs", RuntimeWarning, stacklevel=3)
+        # The same slip as a dict without "gravity": cosserat.Loads() starts with none. (The
+        # Loads' own gravity first: a step is a hot path.)
+        if value is not None and not np.any(value.gravity):
+            filed = getattr(holder, "_problem", holder).loads.gravity  # the problem's, m/s²
+            if np.any(filed):
+                warnings.warn(f"loads: this Loads has no gravity (the problem's is "
+                              f"{np.array(filed).tolist()} m/s²); start from .loads and change "
+                              "what differs", RuntimeWarning, stacklevel=3)
         return value
     loads = copy.copy(holder.loads)  # its fluid, contact and bit stay; the keyed loads start over
     gravity = np.array(loads.gravity)  # m/s², the holder's

@@ -98,10 +98,14 @@ IntegratorStatus AdaptiveIntegrator::Advance(double t_end, double* t, Eigen::Ref
     const double next = Accepted(h, trial.err);
     if (!last || next < dt_) dt_ = next;
     last_rejected_ = false;
-    if (options_.after_step) {  // q, v and *t agree when it throws
-      q = y_.head(n);
-      v = y_.tail(n);
-      options_.after_step(*t);
+    if (options_.after_step) {
+      try {
+        options_.after_step(*t);
+      } catch (...) {  // q, v and *t agree when it throws
+        q = y_.head(n);
+        v = y_.tail(n);
+        throw;
+      }
     }
   }
   q = y_.head(n);
