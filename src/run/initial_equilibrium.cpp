@@ -73,8 +73,7 @@ std::optional<RodState> RunawayStartState(const io::Problem& problem, const Step
 
 StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const StepInput& input,
                                           Bdf2ShootingStepper* stepper) {
-  const bool column = problem.boundary == io::Boundary::kClampedClamped ||
-                      problem.boundary == io::Boundary::kClampedPinned;
+  const bool column = GuidedTipHold(problem.boundary) != TipHold::kFree;
   if (problem.boundary != io::Boundary::kCantilever && !column)
     return stepper->InitializeAtRest(input);
   StepSummary counted;

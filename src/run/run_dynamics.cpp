@@ -40,12 +40,8 @@ StepInput ClampedInput(const io::Problem& problem, const StaticLoads& loads,
   input.base_twist_B = Vec6::Zero();
   input.loads = loads;
   // A column's tip slides along the base's axis, through the base (ColumnSolver's guide).
-  if (problem.boundary == io::Boundary::kClampedClamped ||
-      problem.boundary == io::Boundary::kClampedPinned) {
-    input.tip_hold = problem.boundary == io::Boundary::kClampedClamped ? TipHold::kGuidedClamped
-                                                                       : TipHold::kGuidedPinned;
-    input.tip_pose = problem.base;
-  }
+  input.tip_hold = GuidedTipHold(problem.boundary);
+  if (input.tip_hold != TipHold::kFree) input.tip_pose = problem.base;
   return input;
 }
 

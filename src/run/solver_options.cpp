@@ -75,6 +75,12 @@ SpatialScheme ToSpatialScheme(io::ShotScheme scheme) {
   return SpatialScheme::kRk4;
 }
 
+TipHold GuidedTipHold(io::Boundary boundary) {
+  return boundary == io::Boundary::kClampedClamped ? TipHold::kGuidedClamped
+         : boundary == io::Boundary::kClampedPinned ? TipHold::kGuidedPinned
+                                                     : TipHold::kFree;
+}
+
 bool ToColumnEnds(io::Boundary boundary, ColumnEnds* ends) {
   switch (boundary) {
     case io::Boundary::kCantilever:

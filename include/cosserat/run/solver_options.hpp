@@ -41,4 +41,8 @@ SpatialScheme ToSpatialScheme(io::ShotScheme scheme);
 /// "free-free" and "anchored".
 bool ToColumnEnds(io::Boundary boundary, ColumnEnds* ends);
 
+/// How the SE(3) stepper holds a column's tip: guided along the axis, clamped or pinned, for
+/// "clamped-clamped" and "clamped-pinned"; kFree for every other boundary.
+TipHold GuidedTipHold(io::Boundary boundary);
+
 }  // namespace cosserat::run
