@@ -63,18 +63,19 @@ LoadFrame FrameFromString(const std::string& name, const char* field) {
 }
 const char* ToString(LoadFrame frame) { return frame == LoadFrame::kWorld ? "world" : "body"; }
 
-/// A fixed-size array field of Actuation as a Python list, and back from a sequence of at most
-/// N numbers (zero-filled).
-template <size_t N>
-auto ArrayGetter(std::array<double, N> Actuation::*field) {
-  // A writable NumPy view of the field that keeps its Actuation alive: `a.tendon_tension[0] = 2`
-  // sets the tension, as the C++ idiom does (a copy made that a silent no-op).
+/// A fixed-size field of doubles (an Actuation's std::array, a StaticLoads' Vec3) as a writable
+/// NumPy view that keeps its owner alive: `a.tendon_tension[0] = 2` and `l.tip_force[0] = 1` set
+/// the field, as the C++ idiom does (a copy made that a silent no-op).
+template <class Owner, class Field>
+auto ViewGetter(Field Owner::*field) {
   return [field](py::object self) {
-    Actuation& a = self.cast<Actuation&>();
-    return py::array_t<double>({static_cast<py::ssize_t>(N)}, {sizeof(double)},
-                               (a.*field).data(), self);
+    Owner& owner = self.cast<Owner&>();
+    return py::array_t<double>({static_cast<py::ssize_t>((owner.*field).size())},
+                               {sizeof(double)}, (owner.*field).data(), self);
   };
 }
+
+/// An Actuation's list field back from a sequence of at most N numbers (zero-filled).
 /// A sequence of numbers, or a TypeError naming the field.
 std::vector<double> Numbers(const py::object& value, const std::string& name) {
   try {
@@ -97,14 +98,7 @@ auto ArraySetter(std::array<double, N> Actuation::*field, const char* name) {
   };
 }
 
-/// A vector field of StaticLoads as a writable NumPy view that keeps its Loads alive
-/// (`p.loads.tip_force[0] = 1` sets it), and back from three numbers.
-auto Vec3Getter(Vec3 StaticLoads::*field) {
-  return [field](py::object self) {
-    StaticLoads& l = self.cast<StaticLoads&>();
-    return py::array_t<double>({py::ssize_t{3}}, {sizeof(double)}, (l.*field).data(), self);
-  };
-}
+/// A StaticLoads' vector field back from three numbers.
 auto Vec3Setter(Vec3 StaticLoads::*field, const char* name) {
   return [field, name](StaticLoads& l, const py::object& value) {
     const std::vector<double> v = Numbers(value, name);
@@ -272,13 +266,13 @@ void BindLoads(py::module_& m) {
       .def("__copy__", [](const StaticLoads& l) { return l; })
       .def("__deepcopy__", [](const StaticLoads& l, py::dict) { return l; })
       .def_readwrite("fluid", &StaticLoads::fluid)
-      .def_property("gravity", Vec3Getter(&StaticLoads::gravity_W),
+      .def_property("gravity", ViewGetter(&StaticLoads::gravity_W),
                     Vec3Setter(&StaticLoads::gravity_W, "gravity"))
-      .def_property("distributed_force", Vec3Getter(&StaticLoads::distributed_force_W),
+      .def_property("distributed_force", ViewGetter(&StaticLoads::distributed_force_W),
                     Vec3Setter(&StaticLoads::distributed_force_W, "distributed_force"))
-      .def_property("tip_force", Vec3Getter(&StaticLoads::tip_force),
+      .def_property("tip_force", ViewGetter(&StaticLoads::tip_force),
                     Vec3Setter(&StaticLoads::tip_force, "tip_force"))
-      .def_property("tip_moment", Vec3Getter(&StaticLoads::tip_moment),
+      .def_property("tip_moment", ViewGetter(&StaticLoads::tip_moment),
                     Vec3Setter(&StaticLoads::tip_moment, "tip_moment"))
       .def_property(
           "tip_force_frame", [](const StaticLoads& l) { return ToString(l.tip_force_frame); },
@@ -313,11 +307,11 @@ void BindActuation(py::module_& m) {
       .def("__copy__", [](const Actuation& a) { return a; })
       .def("__deepcopy__", [](const Actuation& a, py::dict) { return a; })
       .def_readwrite("pressure", &Actuation::pressure)
-      .def_property("tendon_tension", ArrayGetter(&Actuation::tendon_tension),
+      .def_property("tendon_tension", ViewGetter(&Actuation::tendon_tension),
                     ArraySetter(&Actuation::tendon_tension, "tendon_tension"))
-      .def_property("chamber_pressure", ArrayGetter(&Actuation::chamber_pressure),
+      .def_property("chamber_pressure", ViewGetter(&Actuation::chamber_pressure),
                     ArraySetter(&Actuation::chamber_pressure, "chamber_pressure"))
-      .def_property("jamming_pressure", ArrayGetter(&Actuation::jamming_pressure),
+      .def_property("jamming_pressure", ViewGetter(&Actuation::jamming_pressure),
                     ArraySetter(&Actuation::jamming_pressure, "jamming_pressure"))
       .def("__repr__", [](const Actuation& a) {
         // The lists up to their last non-zero value (they hold 8 or 16, zero-filled).
