@@ -345,19 +345,24 @@ TEST(Sweep, RowsWrittenWithMoreDigitsResume) {
   run::SweepOptions o;
   o.max_new_points = 1;
   run::RunSweep(Parse(TendonStudy(grid)), path, o);
-  auto rewrite = [&](const std::string& from, const std::string& to) {
+  // Rewrites the parameter field of row `row` of the file as `to`; returns what it held.
+  auto rewrite = [&](int row, const std::string& to) {
     std::ifstream in(path);
     std::stringstream text;
     text << in.rdbuf();
     std::string csv = text.str();
-    const size_t at = csv.find("\n0," + from + ",");
-    ASSERT_NE(at, std::string::npos) << csv;
-    csv.replace(at + 3, from.size(), to);
+    const std::string lead = "\n" + std::to_string(row) + ",";
+    const size_t at = csv.find(lead);
+    if (at == std::string::npos) return std::string("no row ") + std::to_string(row);
+    const size_t start = at + lead.size(), end = csv.find(',', start);
+    const std::string held = csv.substr(start, end - start);
+    csv.replace(start, end - start, to);
     std::ofstream(path) << csv;
+    return held;
   };
-  rewrite("0.1", "0.10000000000000001");
+  EXPECT_EQ(rewrite(0, "0.10000000000000001"), "0.1");
   EXPECT_EQ(run::RunSweep(Parse(TendonStudy(grid)), path, o).resumed, 1u);
-  rewrite("0.10000000000000001", "0.10000000000000002");
+  EXPECT_EQ(rewrite(0, "0.10000000000000002"), "0.10000000000000001");
   EXPECT_THROW(run::RunSweep(Parse(TendonStudy(grid)), path, o), std::runtime_error);
   const std::string six = R"([{"path": "/robot/actuation/tension/0", "grid": {"from": 0.2,
                               "to": 0.7, "count": 6}}])";
@@ -367,14 +372,7 @@ TEST(Sweep, RowsWrittenWithMoreDigitsResume) {
   run::RunSweep(Parse(TendonStudy(six)), path, o);
   char wide[32];
   std::snprintf(wide, sizeof wide, "%.17g", 0.2 + (0.7 - 0.2) * 2 / 5);
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string csv = text.str();
-  const size_t at = csv.find("\n2,");
-  ASSERT_NE(at, std::string::npos) << csv;
-  csv.replace(at + 3, csv.find(',', at + 3) - (at + 3), wide);
-  std::ofstream(path) << csv;
+  EXPECT_EQ(rewrite(2, wide), "0.4");  // 0.40000000000000002 in 17 digits
   EXPECT_EQ(run::RunSweep(Parse(TendonStudy(six)), path, o).resumed, 3u);
 }
 
