@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "binding_support.hpp"
 #include "cosserat/io/problem.hpp"
@@ -19,6 +20,22 @@
 namespace cosserat::python {
 namespace {
 
+/// A column's loads for one step: a ValueError naming the field a guided tip cannot take.
+void RequireColumnLoads(const StaticLoads& loads, io::Boundary boundary) {
+  std::vector<std::string> refused;
+  io::GuidedTipLoadFeatures(loads, boundary, &refused);
+  if (!refused.empty()) throw py::value_error(refused.front());
+}
+
+/// A column the CLI would run in dynamics: what its dynamics refuse (a body at the guided tip,
+/// a bit, ...) is refused here by the same line.
+void RequireColumnStepper(const io::Problem& problem) {
+  io::Problem in_time = problem;
+  in_time.analysis = io::Analysis::kDynamics;
+  const std::vector<std::string> refused = io::UnsupportedFeatures(in_time);
+  if (!refused.empty()) throw py::value_error(refused.front());
+}
+
 /// The dynamics stepper with the input it applies, so that a control loop only says what
 /// changed. As the CLI's run: the equilibrium at t = 0 under the problem's initial loads and
 /// actuation, the steps under its loads and actuation, unless told otherwise.
@@ -28,10 +45,13 @@ class PyStepper {
             std::optional<std::string> spatial_scheme)
       : problem_(Steppable(problem, "the Stepper")),
         options_(cosserat::run::DynamicsOptions(problem)) {
+    const TipHold column_tip = cosserat::run::GuidedTipHold(problem.boundary);
     if (problem.boundary != io::Boundary::kCantilever &&
-        problem.boundary != io::Boundary::kFreeFree)
-      throw py::value_error("boundary: the Stepper runs \"cantilever\" or \"free-free\", got \"" +
+        problem.boundary != io::Boundary::kFreeFree && column_tip == TipHold::kFree)
+      throw py::value_error("boundary: the Stepper runs \"cantilever\", \"free-free\", "
+                            "\"clamped-clamped\" or \"clamped-pinned\", got \"" +
                             io::ToString(problem.boundary) + "\"");
+    if (column_tip != TipHold::kFree) RequireColumnStepper(problem);
     if (dt) options_.dt = *dt;
     if (spatial_scheme) {
       io::ShotScheme scheme;
@@ -49,6 +69,9 @@ class PyStepper {
     first_input_.base_pose = problem.base;
     first_input_.loads = problem.loads;
     first_input_.actuation = problem.robot.actuation;
+    // A column's tip slides along the clamp's axis, through the clamp (as the CLI runs it).
+    first_input_.tip_hold = column_tip;
+    if (column_tip != TipHold::kFree) first_input_.tip_pose = problem.base;
     input_ = first_input_;
   }
 
@@ -79,6 +102,15 @@ class PyStepper {
     // place: checked alike.
     next.loads = Valid(loads ? *loads : input_.loads);
     next.actuation = Valid(actuation ? *actuation : input_.actuation, problem_);
+    if (next.tip_hold != TipHold::kFree) {
+      RequireColumnLoads(next.loads, problem_.boundary);
+      if (base_position || base_rotation || base_twist_B)
+        throw py::value_error(std::string(base_position   ? "base_position"
+                                          : base_rotation ? "base_rotation"
+                                                          : "base_twist_B") +
+                              ": a column's clamp and the guide of its tip stay where the "
+                              "problem puts them");
+    }
     if (base_position) next.base_pose.p = Finite(*base_position, "base_position");
     if (base_rotation) next.base_pose.R = Rotation(*base_rotation, "base_rotation");
     if (base_twist_B) next.base_twist_B = Finite(*base_twist_B, "base_twist_B");
@@ -99,6 +131,9 @@ class PyStepper {
   }
   Bdf2ShootingStepper::Snapshot Save() const { return run().Save(); }
   void Restore(const Bdf2ShootingStepper::Snapshot& snapshot) {
+    if (snapshot.last_input.tip_hold != first_input_.tip_hold)
+      throw py::value_error("snapshot: taken from a rod with other end conditions (a column's "
+                            "guided tip, or a free one)");
     stepper_->Restore(snapshot);  // throws std::invalid_argument (ValueError) if it can't
     input_ = InputToContinue(snapshot, first_input_);
     has_state_ = true;
@@ -196,9 +231,10 @@ void BindStepperClass(py::module_& m) {
 
   py::class_<PyStepper> stepper(
       m, "Stepper",
-      "BDF2 dynamics of the problem's rod (cantilever or free-free), as the "
-      "CLI runs it: initialize_at_rest() under the problem's initial loads and "
-      "actuation, step() under its loads and actuation unless told otherwise.");
+      "BDF2 dynamics of the problem's rod (cantilever, free-free, or a clamped-clamped or "
+      "clamped-pinned column whose tip slides on the clamp's axis), as the CLI runs it: "
+      "initialize_at_rest() under the problem's initial loads and actuation, step() under its "
+      "loads and actuation unless told otherwise.");
   stepper
       .def(py::init<const io::Problem&, std::optional<double>, std::optional<std::string>>(),
            py::arg("problem"), py::arg("dt") = py::none(), py::arg("spatial_scheme") = py::none(),

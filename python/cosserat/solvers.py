@@ -106,8 +106,10 @@ class Stepper(_core.Stepper):
         super().__init__(problem, dt, spatial_scheme)
         self._problem = problem  # the rules a dict actuation is checked by
         self._rules = ProblemRules(problem)
-        # Until a base_twist_B is given or the warning below is out: the clamp's last pose.
-        self._clamp = [np.asarray(problem.base_position), np.asarray(problem.base_rotation)]
+        # Until a base_twist_B is given or the warning below is out: the clamp's last pose (a
+        # column's clamp does not move: step() refuses a base pose or twist).
+        self._clamp = None if problem.boundary in ("clamped-clamped", "clamped-pinned") else [
+            np.asarray(problem.base_position), np.asarray(problem.base_rotation)]
         _warn_before_stepping(problem, dt)
 
     def initialize_at_rest(self, loads=None, actuation=None):

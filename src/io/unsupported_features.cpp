@@ -66,11 +66,7 @@ void GuidedTipDynamicsFeatures(const Problem& p, std::vector<std::string>* out) 
       (p.boundary != Boundary::kClampedClamped && p.boundary != Boundary::kClampedPinned))
     return;
   const std::string ends = " (\"boundary\": " + detail::Quote(ToString(p.boundary)) + ")";
-  if (p.loads.tip_force_frame == LoadFrame::kBody && !p.loads.tip_force.isZero())
-    out->push_back("loads.tip_force_frame: a column's guided tip in dynamics takes a dead (world) "
-                   "tip force" + ends);
-  if (p.boundary == Boundary::kClampedPinned && !p.loads.tip_moment.isZero())
-    out->push_back("loads.tip_moment: a column's pinned tip in dynamics carries no moment" + ends);
+  GuidedTipLoadFeatures(p.loads, p.boundary, out);
   if (p.dynamics.tip_mass > 0.0 || !p.dynamics.tip_inertia.isZero())
     out->push_back("dynamics.tip_mass: a body at a column's guided tip is not modelled" + ends);
   if (p.loads.bit.present())
@@ -149,6 +145,17 @@ bool MasslessSomewhere(const Problem& p) { return MasslessNodes(p) > 0; }
 bool MasslessEverywhere(const Problem& p) { return MasslessNodes(p) == std::max(p.nodes, 2); }
 
 }  // namespace
+
+void GuidedTipLoadFeatures(const StaticLoads& loads, Boundary boundary,
+                           std::vector<std::string>* out) {
+  if (boundary != Boundary::kClampedClamped && boundary != Boundary::kClampedPinned) return;
+  const std::string ends = " (\"boundary\": " + detail::Quote(ToString(boundary)) + ")";
+  if (loads.tip_force_frame == LoadFrame::kBody && !loads.tip_force.isZero())
+    out->push_back("loads.tip_force_frame: a column's guided tip in dynamics takes a dead (world) "
+                   "tip force" + ends);
+  if (boundary == Boundary::kClampedPinned && !loads.tip_moment.isZero())
+    out->push_back("loads.tip_moment: a column's pinned tip in dynamics carries no moment" + ends);
+}
 
 std::vector<std::string> UnsupportedFeatures(const Problem& p) {
   using A = Analysis;

@@ -457,6 +457,34 @@ class Dynamics(unittest.TestCase):
         np.testing.assert_array_equal(stepper.tip_position(), command)
         np.testing.assert_array_equal(stepper.actuation.tendon_tension, p.actuation.tendon_tension)
 
+    def test_stepper_runs_a_column_as_the_command_does(self):
+        # A clamped-clamped wire at half its Euler load, let go from a side load: the Stepper
+        # holds the tip on the clamp's axis as `cosserat solve` does, so the final shape and
+        # the clamp's wrench are the same numbers (the JSON keeps 17 digits).
+        spec = json.load(open("tests/cli/column_dynamics.json"))
+        command = cosserat.solve(spec)["result"]
+        stepper = cosserat.Stepper(spec)
+        self.assertTrue(stepper.initialize_at_rest().converged)
+        for _ in range(int(round(spec["dynamics"]["duration"] / spec["dynamics"]["dt"]))):
+            self.assertTrue(stepper.step().converged)
+        np.testing.assert_array_equal(stepper.state()["position"], command["nodes"]["position"])
+        np.testing.assert_array_equal(stepper.base_reaction()[3:], command["base_wrench"]["force"])
+        # What the guided tip cannot take is refused by name, as the command refuses it.
+        with self.assertRaisesRegex(ValueError, r"^base_position: a column's clamp"):
+            stepper.step(base_position=[0, 0, 0.01])
+        other = cosserat.Stepper("tests/cli/tendon_dynamics.json")
+        self.assertTrue(other.initialize_at_rest().converged)
+        with self.assertRaisesRegex(ValueError, r"^snapshot: taken from a rod with other end"):
+            stepper.restore(other.save())
+        spec["boundary"] = "clamped-pinned"
+        pinned = cosserat.Stepper(spec)
+        self.assertTrue(pinned.initialize_at_rest().converged)
+        with self.assertRaisesRegex(ValueError, r"^loads\.tip_moment: a column's pinned tip"):
+            pinned.step({"tip_force": [0, 0, -12.4], "tip_moment": [0, 0.1, 0]})
+        spec["dynamics"]["tip_mass"] = 0.01
+        with self.assertRaisesRegex(ValueError, r"^dynamics\.tip_mass: a body at a column's"):
+            cosserat.Stepper(spec)
+
     def test_initialize_at_rest_resets_the_inputs_as_well_as_the_state(self):
         # An episode with other tensions and a moved, moving clamp, then initialize_at_rest():
         # the next episode, given nothing, repeats a fresh Stepper's run bit for bit (it rested

@@ -193,4 +193,10 @@ inline constexpr int kMaxSe3ModeNodes = 100001;
 /// One line each.
 std::vector<std::string> UnsupportedFeatures(const Problem& problem);
 
+/// The loads a column's guided tip cannot take in dynamics ("clamped-clamped",
+/// "clamped-pinned"): a follower tip force, a moment at a pinned tip. One line each; none for
+/// other ends. Part of UnsupportedFeatures, for loads that change from step to step.
+void GuidedTipLoadFeatures(const StaticLoads& loads, Boundary boundary,
+                           std::vector<std::string>* out);
+
 }  // namespace cosserat::io
