@@ -390,10 +390,15 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
   quatfd::QuatFdModel model = MakeQuatFdModel(problem);
   const int n = model.size();
   Eigen::VectorXd q(n), v(n);
+  // A held line's first guess hangs in the loads the model has: the initial ones, which the
+  // equilibrium is solved under (from a guess hanging in the later loads, a cable let go from
+  // a side load did not reach it).
+  const StaticLoads& initial_loads = d.initial_loads.value_or(problem.loads);
+  model.set_loads(initial_loads);
   model.RestState(q, v);
   io::DynamicRun run;
-  const quatfd::QuatFdStaticsSummary init = quatfd::SolveStatics(
-      &model, d.initial_loads.value_or(problem.loads), q, QuatFdStaticOptions(problem));
+  const quatfd::QuatFdStaticsSummary init =
+      quatfd::SolveStatics(&model, initial_loads, q, QuatFdStaticOptions(problem));
   run.iterations = init.iterations;
   run.residual = init.residual;
   run.initial_state_ok = init.converged();
