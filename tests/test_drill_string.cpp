@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
+#include <sstream>
 #include <vector>
 
 #include "cosserat/io/problem.hpp"
@@ -376,6 +378,40 @@ TEST(DrillString, AKilometreStringHangingInTensionRunsWithDefaultPieces) {
   const double area = M_PI * (0.0635 * 0.0635 - 0.054 * 0.054);
   const double weight = (7850 * area * 1000 + 100) * 9.81;  // N
   EXPECT_NEAR(r.json["base_wrench"]["force"][2].get<double>() / weight, 1.0, 1e-8) << r.log;
+}
+
+// A 100 m pipe lying on the low side of a bore inclined 60° from the vertical (wall stiffness
+// 1e6 N/m per m), on the SE(3) path with default settings, in statics and in dynamics (where it
+// starts at rest on the wall and stays there): the clamp carries the weight's component along
+// the bore, w L cos 60°, the soft-string hook load, since a frictionless wall pushes across the
+// axis only. To 1e-6 of it: the solves' tolerance on forces of the order of the weight. The
+// statics' load steps stopped at 0 of the load (each Newton step from the straight pipe sags it
+// through the wall), and the rest solve stalled at 1.4e-10 against 1e-10 before the tolerance
+// counted the round-off the wall's stiffness makes of the positions.
+TEST(DrillString, APipeLyingInAnInclinedBoreCarriesTheSoftStringHookLoad) {
+  const double c = std::cos(M_PI / 3), s = std::sin(M_PI / 3);
+  for (const char* analysis : {"statics", "dynamics"}) {
+    std::ostringstream text;
+    text << std::setprecision(17) << R"({"format": "cosserat-problem/1", "analysis": ")"
+         << analysis << R"(",
+      "rod": {"length": 100, "nodes": 101,
+        "section": {"shape": "annulus", "outer_radius": 0.0635, "inner_radius": 0.0543},
+        "material": {"youngs_modulus": 207e9, "poisson_ratio": 0.3, "density": 7850}},
+      "base": {"position": [0, 0, 0], "rotation": [[)" << c << ", 0, " << s
+         << "], [0, -1, 0], [" << s << ", 0, " << -c << R"(]]},
+      "environment": {"contact": [{"shape": "cylinder", "point": [0, 0, 0], "axis": [)" << s
+         << ", 0, " << -c << R"(], "radius": 0.108, "side": "inside", "stiffness": 1e6}]},
+      "loads": {"gravity": [0, 0, -9.81]},
+      "dynamics": {"dt": 0.01, "duration": 0.2, "output_interval": 0.1}})";
+    const io::ParseResult parsed = io::ParseProblem(text.str());
+    ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
+    const run::Result r = run::Run(*parsed.problem);
+    ASSERT_TRUE(r.converged) << analysis << ": " << r.log;
+    const auto& f = r.json["base_wrench"]["force"];
+    const double along = -(f[0].get<double>() * s - f[2].get<double>() * c);  // up the bore, N
+    const double w = 7850 * M_PI * (0.0635 * 0.0635 - 0.0543 * 0.0543) * 9.81;  // N/m
+    EXPECT_NEAR(along / (w * 100 * c), 1.0, 1e-6) << analysis << ": " << r.log;
+  }
 }
 
 TEST(DrillString, AStringInABoreRestsItsEndOnTheWall) {

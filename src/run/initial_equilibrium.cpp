@@ -7,6 +7,7 @@
 #include "cosserat/analysis/column.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
+#include "quatfd_start.hpp"
 #include "statics_in_pieces.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
@@ -52,11 +53,15 @@ std::optional<RodState> StaticEquilibrium(const io::Problem& problem, const Step
 
 std::optional<RodState> StaticEquilibriumToStartFrom(const io::Problem& problem,
                                                      const StepInput& input) {
+  std::optional<RodState> equilibrium;
   try {
-    return StaticEquilibrium(problem, input);
+    equilibrium = StaticEquilibrium(problem, input);
   } catch (const std::invalid_argument&) {
-    return std::nullopt;  // a rod the statics solvers do not take
-  }
+  }  // a rod the statics solvers do not take
+  // The load steps the SE(3) statics take fail where a wall holds the rod along its length.
+  if (equilibrium || input.loads.contact.count == 0) return equilibrium;
+  return detail::QuatFdEquilibriumOnGrid(problem, input.base_pose,
+                                         WithTipMassWeight(problem, input.loads), input.actuation);
 }
 
 std::optional<RodState> RunawayStartState(const io::Problem& problem, const StepInput& input) {

@@ -1,8 +1,11 @@
 #include "statics_in_pieces.hpp"
 
+#include <optional>
+
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
+#include "quatfd_start.hpp"
 
 namespace cosserat::run::detail {
 namespace {
@@ -21,6 +24,26 @@ StaticsInPieces SolveOnce(const io::Problem& problem, ColumnEnds ends, const lie
   out.pieces = solver.pieces();
   if (out.summary.converged())
     out.summary.stability_index = IndexInPieces(problem, ends, base, loads, out.state, out.pieces);
+  return out;
+}
+
+/// The cantilever refined by Newton in pieces from the quaternion-FD equilibrium on the same
+/// nodes (QuatFdEquilibriumOnGrid); not converged when there is none.
+StaticsInPieces FromQuatFdEquilibrium(const io::Problem& problem, const lie::SE3& base,
+                                      const StaticLoads& loads, int pieces) {
+  StaticsInPieces out;
+  out.summary.status = SolveStatus::kMaxIterations;
+  const std::optional<RodState> guess =
+      QuatFdEquilibriumOnGrid(problem, base, loads, problem.robot.actuation);
+  if (!guess) return out;
+  StaticMultipleShootingSolver solver(
+      problem.rod, problem.nodes, PiecesOptions(problem, ColumnEnds::kClampedFree, pieces, false));
+  out.summary = solver.SolveFrom(base, loads, *guess);
+  out.state = solver.state();
+  out.pieces = solver.pieces();
+  if (out.summary.converged())
+    out.summary.stability_index =
+        IndexInPieces(problem, ColumnEnds::kClampedFree, base, loads, out.state, out.pieces);
   return out;
 }
 
@@ -74,6 +97,14 @@ StaticsInPieces SolveStaticsInPieces(const io::Problem& problem, ColumnEnds ends
   StaticsInPieces& kept = better ? again : first;
   const StaticShootingSummary& other = better ? first.summary : again.summary;
   kept.summary.CountWorkOf(other);
+  if (!kept.summary.converged() && loads.contact.count > 0) {
+    // A rod lying along a stiff surface, which the load steps do not reach (quatfd_start.hpp).
+    StaticsInPieces from_fd = FromQuatFdEquilibrium(problem, base, loads, pieces);
+    if (from_fd.summary.converged()) {
+      from_fd.summary.CountWorkOf(kept.summary);
+      return from_fd;
+    }
+  }
   return kept;
 }
 

@@ -125,7 +125,7 @@ bool Bdf2ShootingStepper::SolveStepMultiple(const StepInput& input, const Coeffi
     bool fresh = false;  // the factors were renewed at ms_x_
     bool have_factors = !statics && run_.junction_factors_c0 == c.c0;
     for (int it = 0; it <= options_.max_iterations; ++it) {
-      if (norm < Tolerance(ms_x_.head<6>())) {
+      if (norm < Tolerance(ms_x_.head<6>(), input)) {
         ok = true;
         break;
       }
@@ -159,7 +159,8 @@ bool Bdf2ShootingStepper::SolveStepMultiple(const StepInput& input, const Coeffi
         std::swap(ms_x_, ms_x_new_);
         std::swap(ms_r_, ms_r_new_);
         // Slow contraction: renew, unless this iterate already converged.
-        if (new_norm > kRenewContraction * norm && new_norm >= Tolerance(ms_x_.head<6>()))
+        if (new_norm > kRenewContraction * norm &&
+            new_norm >= Tolerance(ms_x_.head<6>(), input))
           have_factors = false;
         norm = new_norm;
         fresh = false;

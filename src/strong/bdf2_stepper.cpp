@@ -343,7 +343,7 @@ bool Bdf2ShootingStepper::SolveStepBySecantNewton(const StepInput& input, const 
   for (int it = 0; it < options_.max_iterations; ++it) {
     const double norm = r.norm();
     if (!std::isfinite(norm)) break;
-    if (norm < Tolerance(x)) {
+    if (norm < Tolerance(x, input)) {
       ok = true;
       break;
     }
@@ -429,14 +429,15 @@ bool Bdf2ShootingStepper::SolveStepByLevenbergMarquardt(const StepInput& input,
   };
   Vec6 x_lm = x_start;
   const ShotSolveCounts counts =
-      LevenbergMarquardtShot(shot, Tolerance(x_start), options_.max_iterations, &x_lm, &J_lm);
+      LevenbergMarquardtShot(shot, Tolerance(x_start, input), options_.max_iterations, &x_lm,
+                             &J_lm);
   summary->shots += counts.shots;
   summary->jacobians += counts.jacobians;
   summary->iterations += counts.iterations;
   const Vec6 r_final = Residual(input, c, statics, x_lm);  // leaves the trial state at x_lm
   ++summary->shots;
   summary->residual = r_final.norm();
-  if (!(r_final.allFinite() && summary->residual < Tolerance(x_lm))) {
+  if (!(r_final.allFinite() && summary->residual < Tolerance(x_lm, input))) {
     summary->status = r_final.allFinite() ? SolveStatus::kMaxIterations : SolveStatus::kNonFinite;
     return false;
   }
@@ -472,14 +473,6 @@ void Bdf2ShootingStepper::Commit(double h) {
   run_.time += h;
   run_.last_dt = h;
   ++run_.steps_taken;
-}
-
-double Bdf2ShootingStepper::Tolerance(const Vec6& x) const {
-  // The residual is computed to about 1e3 ε of the unknowns it is shot from (round-off through
-  // the shot's gain): a 10 kg payload on a 0.5 mm wire carries 1e4 times the force scale EI/L²,
-  // and its steps stalled between 1e-10 and 1e-9. Below that the tolerance stands as given.
-  constexpr double kRoundOff = 1e3 * std::numeric_limits<double>::epsilon();
-  return std::max(options_.tolerance, kRoundOff * x.lpNorm<Eigen::Infinity>());
 }
 
 void Bdf2ShootingStepper::RequireActuation(const Actuation& a) const {

@@ -23,8 +23,9 @@ StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const Step
                                           Bdf2ShootingStepper* stepper);
 
 /// The statics solver's equilibrium of `problem`'s cantilever under `input` (its base pose, loads
-/// and actuation, the tip mass's weight added) that InitializeAtStaticEquilibrium starts from:
-/// empty when the statics solvers do not converge or do not take the rod.
+/// and actuation, the tip mass's weight added) that InitializeAtStaticEquilibrium starts from;
+/// with contact surfaces, where the SE(3) statics fail, the quaternion-FD equilibrium on the same
+/// nodes. Empty when none converges or takes the rod.
 std::optional<RodState> StaticEquilibriumToStartFrom(const io::Problem& problem,
                                                      const StepInput& input);
 

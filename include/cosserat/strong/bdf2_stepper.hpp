@@ -405,9 +405,10 @@ class Bdf2ShootingStepper {
   void SampleGrid();
   /// Throws std::invalid_argument for an actuation this rod cannot take (Actuation::Require).
   void RequireActuation(const Actuation& a) const;
-  /// The residual a solve from the unknowns x must reach: options().tolerance, or the round-off
-  /// floor of a shot from x when that is larger (a rod carrying loads far above EI/L²).
-  double Tolerance(const Vec6& x) const;
+  /// The residual a solve from the unknowns x under `input` must reach: options().tolerance, or
+  /// the round-off floor of a shot from x when that is larger (a rod carrying loads far above
+  /// EI/L², or pressed on a stiff contact surface).
+  double Tolerance(const Vec6& x, const StepInput& input) const;
   /// Throws std::invalid_argument when the base pose's R (or a held tip's) is not a rotation.
   void RequirePoses(const StepInput& input) const;
   /// Snapshot::model_fingerprint for the current grid (constructor, Grow()).
