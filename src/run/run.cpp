@@ -8,7 +8,9 @@
 #include <string>
 
 #include "bending_stress_report.hpp"
+#include "clamp_alignment_note.hpp"
 #include "contact_report.hpp"
+#include "drill_string_notes.hpp"
 #include "scale_warnings.hpp"
 #include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/loads/total_load.hpp"
@@ -129,6 +131,7 @@ Result Run(const io::Problem& problem, const RunOptions& options) {
   detail::AddBendingStressReport(problem, &result);
   detail::AddScaleWarnings(problem, &result);
   UnusedBaseDriveNote(problem, &result);
+  result.log += detail::DrillStringNotes(problem) + detail::ClampAlignmentNote(problem);
   SummaryLineStatus(&result);
   return result;
 }

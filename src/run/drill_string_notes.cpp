@@ -1,0 +1,31 @@
+#include "drill_string_notes.hpp"
+
+#include <sstream>
+
+namespace cosserat::run::detail {
+
+std::string DrillStringNotes(const io::Problem& problem) {
+  if (problem.analysis != io::Analysis::kDynamics) return "";
+  std::ostringstream log;
+  log.precision(3);
+  const BitFriction& bit = problem.loads.bit;
+  const double pressing = problem.loads.tip_force.norm();  // N
+  // Without gravity (torsion alone) there is no weight for the bit to take off the clamp.
+  if (bit.present() && !problem.loads.gravity_W.isZero() && pressing < 0.5 * bit.weight_on_bit)
+    log << "cosserat: note: loads.bit_friction.weight_on_bit (" << bit.weight_on_bit
+        << " N) sets the bit's friction torque only, not the string's axial load: the hole's "
+           "bottom pushes on the bit through loads.tip_force (" << pressing
+        << " N here), and the clamp carries the string's weight less that; give tip_force the "
+           "weight on bit, pointing up the hole, for both\n";
+  const bool spins = problem.dynamics.base_spin != 0.0 || problem.dynamics.rotary_table.present();
+  for (int i = 0; spins && i < problem.loads.contact.count; ++i) {
+    if (!(problem.loads.contact.surface[i].friction > 0.0)) continue;
+    log << "cosserat: note: environment.contact[" << i << "].friction acts on the centreline's "
+        << "velocity only: the string's spin makes no friction torque at the wall (μ r N) and "
+           "does not lower the axial drag, so the torque at the clamp leaves the wall's out\n";
+    break;
+  }
+  return log.str();
+}
+
+}  // namespace cosserat::run::detail
