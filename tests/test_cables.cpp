@@ -530,9 +530,10 @@ TEST(HeldCable, ACableOnTheSeaBedHasTheCatenarysTension) {
 // h = 0.25 sqrt(EI/T) (1 201 nodes) within 1 % (measured −0.26 %); at 1.5 (101 nodes) it is 20 %
 // low, and the log must say so.
 TEST(HeldCable, AClampedRisersEndMomentIsTheBeamColumnsAndACoarseGridIsNamed) {
-  auto run = [](int nodes) {
+  auto run = [](int nodes, const std::string& analysis = "statics") {
     const std::string text =
-        R"({"format": "cosserat-problem/1", "analysis": "statics", "formulation": "quaternion-fd",
+        R"({"format": "cosserat-problem/1", "analysis": ")" + analysis +
+        R"(", "formulation": "quaternion-fd",
             "rod": {"length": 299.85007496251876, "nodes": )" +
         std::to_string(nodes) +
         R"(, "section": {"area": 0.005, "I1": 1e-05, "I2": 1e-05, "J": 2e-05},
@@ -568,6 +569,11 @@ TEST(HeldCable, AClampedRisersEndMomentIsTheBeamColumnsAndACoarseGridIsNamed) {
                             "layer at the clamped anchor, sqrt(EI/T) = 2 m"),
             std::string::npos)
       << coarse.log;
+  // The modes about the same equilibrium report its clamp moment, and say so too.
+  const run::Result modes = run(101, "modes");
+  EXPECT_NE(modes.log.find("warning: the grid spacing 3 m is coarse for the bending boundary "),
+            std::string::npos)
+      << modes.log;
 }
 
 // A taut beam-cable (pinned at both ends, held 0.1 % beyond its length, so T ≈ EA/1000) under a

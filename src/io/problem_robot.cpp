@@ -224,7 +224,7 @@ void ParseTendons(const ObjectReader& robot, const Outline& guide, Problem* p) {
           if (p->rod.length > 0 && tendon->anchor > p->rod.length)
             robot.report().Expected(tp + ".anchor",
                                     "an arc length within the rod (<= rod.length, " +
-                                        FormatNumber(p->rod.length) + " m; 0 or absent: the tip)",
+                                        FormatNumber(p->rod.length) + " m; absent: the tip)",
                                     FormatNumber(tendon->anchor) + " m");
           else
             p->rod.tendons.push_back(*tendon);

@@ -16,6 +16,7 @@
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"
+#include "tendon_law_limit.hpp"
 
 namespace cosserat::run {
 
@@ -307,6 +308,25 @@ std::string SearchInPieces(const io::Problem& problem, const RodModel& model, Co
   return note.str();
 }
 
+/// A tendon-tension path that stopped short of `max`: tension alone buckles no rod, and one
+/// path on a thin backbone (EI = 4.2e-3 N·m², tendons 8 mm out) stopped at 38 N added, where
+/// the tendon law meets its limit (tendon_law_limit.hpp). Names how near the tendon was.
+std::string TendonLimitHint(const io::Problem& problem, const LoadPath& path,
+                            const BucklingSummary& b) {
+  if (problem.buckling.load != io::BucklingLoad::kTendonTension ||
+      b.status != BucklingStatus::kPathFailed)
+    return "";
+  const detail::TendonLawLoad worst =
+      detail::LargestTendonLawLoad(problem, path.ActuationAt(b.lambda_reached));
+  std::ostringstream hint;
+  hint << std::setprecision(3) << "cosserat: hint: the tension path stopped at " << b.lambda_reached
+       << " N added, where tendon \"" << worst.name << "\" pulls with tension x offset^2 / EI = "
+       << worst.ratio << ", on the way to the tendon strain law's limit (at 1 the inside of the "
+       << "bend, where the tendon runs, shrinks to zero length; a helical tendon fails from about "
+          "0.76). Tension alone buckles no rod: the path ends at that limit, not at a buckle\n";
+  return hint.str();
+}
+
 }  // namespace
 
 Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
@@ -378,7 +398,7 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
   result.log = SummaryLine(problem, ends, b) + pieces_note +
                (in_pieces ? "" : SingleShotHint(problem, b)) +
                ImperfectionNote(problem, b.status) + DirectionNote(problem, b.status) +
-               FlutterNote(problem, b.status) +
+               FlutterNote(problem, b.status) + TendonLimitHint(problem, path, b) +
                CoarseGridNote(problem, b.found(), *state, kShootingBucklingGrid);
   result.converged = ok;
   return result;

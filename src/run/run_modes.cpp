@@ -11,6 +11,7 @@
 #include "cosserat/analysis/modes.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
+#include "cosserat/run/run_quatfd.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "frame_output.hpp"
@@ -259,6 +260,8 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
     log << "cosserat: unstable: " << r.instability << "\n";
   log << DeclinedNote(r);
   const ModesGrid grid = CheckModesGrid(problem, r);
+  if (problem.formulation == io::Formulation::kQuaternionFd && r.equilibrium.size() > 0)
+    log << ClampedEndGridWarning(problem, r.equilibrium);  // the statics' own warning
   result.log = log.str() + grid.log + SingleShotHint(problem, r) + HighModesHint(problem, r);
   result.converged = r.converged() && !grid.under_resolved;
   if (r.converged() && grid.under_resolved)

@@ -53,29 +53,6 @@ std::string ContactGridHint(const io::Problem& problem) {
                                 "a spacing of half that, ", "");
 }
 
-/// After a converged quaternion-FD solve of a rod anchored with a clamped end: the end moment
-/// comes from the first segments' bending, which a grid coarser than the bending boundary layer
-/// sqrt(EI/T) there under-resolves. On a tensioned riser (sqrt(EI/T) = 2 m) the clamp moment was
-/// 20 % low at h = 1.5 sqrt(EI/T), 6.5 % at 0.75, 0.8 % at 0.25, without a word. From h = 0.5
-/// sqrt(EI/T) on, a warning names the nodes for 0.25.
-std::string ClampedEndGridWarning(const io::Problem& problem, const RodState& state) {
-  if (problem.boundary != io::Boundary::kAnchored ||
-      !(problem.anchor.base_clamped || problem.anchor.tip_clamped))
-    return "";
-  const double ei = problem.rod.section->At(0.0, Actuation{}).min_bending_stiffness();  // N·m²
-  const double ell = std::sqrt(ei / state.MaxForce());  // m
-  const double h = problem.rod.length / (problem.nodes - 1);
-  if (!(h > 0.5 * ell)) return "";
-  std::ostringstream warning;
-  warning << "cosserat: warning: the grid spacing " << std::setprecision(3) << h
-          << " m is coarse for the bending boundary layer at the clamped anchor, sqrt(EI/T) = "
-          << ell << " m: the clamp's moment comes out low (20 % at a spacing of 1.5 sqrt(EI/T), "
-             "1 % near 0.25; docs/cables.md); rod.nodes >= "
-          << static_cast<long>(std::ceil(problem.rod.length / (0.25 * ell))) + 1
-          << ", or \"formulation\": \"se3-shooting\"\n";
-  return warning.str();
-}
-
 /// After a converged solve of a rod on a contact surface: where it bends most (a riser's
 /// touchdown), the curvature decays over the bending length sqrt(EI/T) of the axial force T
 /// there, and a grid spacing h beyond it under-resolves the peak: a riser on the seabed (350 m,
@@ -177,6 +154,26 @@ quatfd::QuatFdModel MakeQuatFdModel(const io::Problem& problem) {
                             problem.robot.actuation);  // chamber pressures (statics)
   model.set_loads(problem.loads);
   return model;
+}
+
+// On a tensioned riser (sqrt(EI/T) = 2 m) the clamp moment was 20 % low at h = 1.5 sqrt(EI/T),
+// 6.5 % at 0.75, 0.8 % at 0.25, without a word. From h = 0.5 sqrt(EI/T) on, a warning names the
+// nodes for 0.25.
+std::string ClampedEndGridWarning(const io::Problem& problem, const RodState& state) {
+  if (problem.boundary != io::Boundary::kAnchored ||
+      !(problem.anchor.base_clamped || problem.anchor.tip_clamped))
+    return "";
+  const double ei = problem.rod.section->At(0.0, Actuation{}).min_bending_stiffness();  // N·m²
+  const double ell = std::sqrt(ei / state.MaxForce());  // m
+  const double h = problem.rod.length / (problem.nodes - 1);
+  if (!(h > 0.5 * ell)) return "";
+  std::ostringstream warning;
+  warning << "cosserat: warning: the grid spacing " << std::setprecision(3) << h
+          << " m is coarse for the bending boundary layer at the clamped anchor, sqrt(EI/T) = "
+          << ell << " m: the clamp's moment comes out low (20 % at a spacing of 1.5 sqrt(EI/T), "
+             "1 % near 0.25; docs/cables.md); rod.nodes >= "
+          << static_cast<long>(std::ceil(problem.rod.length / (0.25 * ell))) + 1 << '\n';
+  return warning.str();
 }
 
 quatfd::QuatFdStaticsSummary SolveQuatFdEquilibrium(const io::Problem& problem,

@@ -28,6 +28,7 @@
 #include "stability_warning.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"
+#include "tendon_law_limit.hpp"
 
 namespace cosserat::run {
 namespace {
@@ -72,26 +73,15 @@ std::string ContinuationHint(const io::Problem& problem, const StaticShootingSum
 
 /// After a tendon robot's solve that ended in non-finite numbers: the shot stops where the
 /// tendon strain law (Rucker & Webster 2011: K (ξ − ξ*) + T(ξ) = W at each section) has no
-/// solution it can reach, which happens when a tendon's tension is of the order of the section's
-/// bending stiffness over its offset squared: a straight tendon at offset d bends the rod to
-/// κ = τ d/EI, and at τ d²/EI = 1 the inside of the bend, where it runs, shrinks to zero length
-/// (a helical one on the three-tendon robot fails between 0.76 and 0.91). The hint names the
-/// largest τ r²/EI.
+/// solution it can reach (tendon_law_limit.hpp). The hint names the largest τ r²/EI.
 std::string TendonLawHint(const io::Problem& problem, const Actuation& actuation,
                           const StaticShootingSummary& summary) {
   if (summary.status != SolveStatus::kNonFinite || problem.rod.tendons.empty()) return "";
-  const SectionProperties p = problem.rod.section->At(0.0, actuation);
-  const double ei = p.min_bending_stiffness();  // N·m²
-  double worst = 0.0;
-  std::string name;
-  for (size_t i = 0; i < problem.rod.tendons.size(); ++i) {
-    const double r = problem.rod.tendons[i].route.MaxOffset();
-    const double ratio = actuation.tendon_tension[i] * r * r / ei;
-    if (ratio > worst) worst = ratio, name = problem.rod.tendons[i].name;
-  }
+  const detail::TendonLawLoad worst = detail::LargestTendonLawLoad(problem, actuation);
   std::ostringstream hint;
-  hint << "cosserat: hint: the tendon strain law had no solution along the rod: tendon \"" << name
-       << "\" pulls with tension x offset^2 / EI = " << std::setprecision(3) << worst
+  hint << "cosserat: hint: the tendon strain law had no solution along the rod: tendon \""
+       << worst.name << "\" pulls with tension x offset^2 / EI = " << std::setprecision(3)
+       << worst.ratio
        << " (at 1 the inside of the bend, where a tendon runs, shrinks to zero length); lower "
           "the tensions or stiffen the backbone\n";
   return hint.str();

@@ -3,6 +3,8 @@
 /// "formulation": "quaternion-fd" (Lang & Linn): statics by Newton on the discrete equilibrium,
 /// dynamics with the Radau IIA integrator. Same result document as the SE(3) path.
 
+#include <string>
+
 #include "cosserat/io/problem.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/quatfd_statics.hpp"
@@ -21,6 +23,12 @@ quatfd::QuatFdModel MakeQuatFdModel(const io::Problem& problem);
 quatfd::QuatFdStaticsSummary SolveQuatFdEquilibrium(const io::Problem& problem,
                                                     quatfd::QuatFdModel* model, RodState* state,
                                                     Eigen::VectorXd* q_out = nullptr);
+
+/// After a converged quaternion-FD equilibrium (statics, or the modes' about it) of a rod
+/// anchored with a clamped end: the end moment comes from the first segments' bending, which a
+/// grid coarser than half the bending boundary layer sqrt(EI/T) there under-resolves. A warning
+/// line naming the nodes for a spacing of 0.25 sqrt(EI/T); empty otherwise.
+std::string ClampedEndGridWarning(const io::Problem& problem, const RodState& state);
 
 /// Statics of the cantilever. Converged when the solve converged.
 Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options);
