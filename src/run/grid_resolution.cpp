@@ -203,6 +203,14 @@ std::string TensionLayerLine(const io::Problem& problem, const nlohmann::ordered
   const double z = worst;
   const double error = 1.0 - (1 + z + z * z / 2 + z * z * z / 6 + z * z * z * z / 24) / std::exp(z);
   if (!(error > 0.01)) return "";
+  // A rod that carries no bending moment (a string hanging straight under its weight) has no
+  // layer to resolve: below 1e-9 of T L the moments are round-off.
+  if (nodes.contains("moment_body")) {
+    double bending = 0.0;  // N·m
+    for (const auto& m : nodes["moment_body"])
+      bending = std::max(bending, std::hypot(m[0].get<double>(), m[1].get<double>()));
+    if (bending < 1e-9 * worst_tension * problem.rod.length) return "";
+  }
   std::ostringstream line;
   line << std::setprecision(3) << "cosserat: warning: the grid is coarse for the bending layer of "
        << "the tension: k h = sqrt(T/EI) h reaches " << worst << " (T = " << worst_tension
