@@ -805,6 +805,10 @@ class Dynamics(unittest.TestCase):
             with self.assertRaisesRegex(ValueError, r"actuation\.tendon_tension: expected one "
                                         r"value per tendon \(3 in robot\.tendons\), got"):
                 three.solve(actuation=cosserat.Actuation(tendon_tension=tensions))
+        # A bad value among them is named by its index, as a dict's is.
+        with self.assertRaisesRegex(ValueError, r"^actuation\.tendon_tension\[1\]: expected a "
+                                    r"finite tension >= 0 \(N\), got -1$"):
+            three.solve(actuation=cosserat.Actuation(tendon_tension=[1.0, -1.0, 0]))
         # An array read back (the object's capacity, zeros past the 3 tendons) is the 3 values;
         # a value past them is not.
         doubled = cosserat.Actuation(tendon_tension=[1.0, 0, 0])
