@@ -1761,6 +1761,32 @@ TEST(Run, ACoilOnACoarseGridIsNotReadAsAStretch) {
   EXPECT_NEAR(std::stod(m[1].str()), expected, 0.6) << r.log;
 }
 
+// A straight tendon 4 mm out bends a weightless 0.25 m steel backbone (r = 0.4 mm) into a circle
+// of κ = T r_t / EI: at κ L = 7.5 rad (T = 31.7 N) it closes more than a full turn and lies
+// on itself, which the model, with no self-contact, lets it pass through; at κ L = 5 rad
+// (T = 21.1 N) its ends stay 0.1 sin(2.5) = 60 mm apart, 75 diameters. The note comes with the
+// first only.
+TEST(Run, ARodThatPassesThroughItselfIsNoted) {
+  const double EI = 210e9 * M_PI * std::pow(0.0004, 4) / 4;  // N·m²
+  for (const double kappa : {30.0, 20.0}) {  // 1/m
+    const double tension = kappa * EI / 0.004;  // N
+    const io::ParseResult parsed = io::ParseProblem(R"({
+      "format": "cosserat-problem/1",
+      "rod": {"length": 0.25, "nodes": 101, "section": {"shape": "circle", "radius": 0.0004},
+              "material": {"youngs_modulus": 210e9, "shear_modulus": 80e9, "density": 7800}},
+      "robot": {"kind": "tendon", "disk_radius": 0.005,
+                "tendons": [{"route": "parallel", "offset": [0.004, 0]}],
+                "actuation": {"tension": [)" + std::to_string(tension) + R"(]}}})");
+    ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
+    const Result r = cosserat::run::Run(*parsed.problem);
+    ASSERT_TRUE(r.converged) << r.log;
+    EXPECT_EQ(r.log.find("the rod passes within its outer diameter (0.0008 m) of itself") !=
+                  std::string::npos,
+              kappa * 0.25 > 2 * M_PI)
+        << "kappa L = " << kappa * 0.25 << "\n" << r.log;
+  }
+}
+
 // A 10 kg plate on four 1 mm wires (625 times the most compliant rod's EI/L²) stalled at a
 // balance of 2.6e-10 to 5e-10 of round-off under the default tolerance 1e-10 and ended
 // load_stepping_failed. With the round-off floor it converges, and the wires share the weight as

@@ -12,6 +12,7 @@
 #include "contact_report.hpp"
 #include "drill_string_notes.hpp"
 #include "scale_warnings.hpp"
+#include "self_crossing_note.hpp"
 #include "cosserat/loads/obstacle_core.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/run/run_assembly.hpp"
@@ -131,7 +132,8 @@ Result Run(const io::Problem& problem, const RunOptions& options) {
   detail::AddBendingStressReport(problem, &result);
   detail::AddScaleWarnings(problem, &result);
   UnusedBaseDriveNote(problem, &result);
-  result.log += detail::DrillStringNotes(problem) + detail::ClampAlignmentNote(problem);
+  result.log += detail::DrillStringNotes(problem) + detail::ClampAlignmentNote(problem) +
+                detail::SelfCrossingNote(problem, result);
   SummaryLineStatus(&result);
   return result;
 }
