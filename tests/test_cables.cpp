@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -1007,6 +1008,49 @@ TEST(HeldCable, ABeamClampedAtBothEndsBendsAsBeamTheorySays) {
     EXPECT_NEAR(mid, deflection, 2e-3 * deflection);
     EXPECT_NEAR(M0, moment, 2e-3 * moment);
   }
+}
+
+// The result names each mode of a held cable in-plane or out-of-plane. A horizontal cable of span
+// 100 m sagging 1 m with Irvine's λ² near 1: the mode at the taut string's first frequency
+// (π/ℓ) sqrt(H/m) swings sideways, the one at Irvine's first symmetric frequency moves in the
+// sag's plane; each is picked as the mode nearest its closed form (the two lie 4 % apart, the
+// grid's errors below 1e-3 of them), so swapped labels fail.
+TEST(HeldCable, ASaggingCablesModesAreNamedInPlaneOrOutOfPlane) {
+  const double span = 100.0, sag = 1.0, m = 1.0, A = 1e-3;
+  const double H0 = m * kG * span * span / (8 * sag);
+  const double EA = 1.0 * H0 / (64 * (sag / span) * (sag / span));
+  const double L0 = span * (1 + 8.0 / 3 * (sag / span) * (sag / span)) / (1 + H0 / EA);
+  std::ostringstream text;
+  text << std::setprecision(17) << R"({"format": "cosserat-problem/1", "analysis": "modes",
+    "formulation": "quaternion-fd",
+    "rod": {"length": )" << L0 << R"(, "nodes": 101,
+            "section": {"area": 1e-3, "I1": 1e-12, "I2": 1e-12, "J": 2e-12},
+            "material": {"youngs_modulus": )" << EA / A << R"(, "poisson_ratio": 0.3,
+                         "density": 1000}},
+    "boundary": "anchored", "anchor": {"position": [100, 0, 0]},
+    "loads": {"gravity": [0, 0, -9.81]}, "modes": {"count": 6}})";
+  const run::Result r = RunProblemText(text.str().c_str(), false);
+  ASSERT_TRUE(r.converged) << r.log;
+  const double H = std::abs(r.json["base_wrench"]["force"][0].get<double>());
+  const double d = -r.json["nodes"]["position"][50][2].get<double>();
+  const double m_line = m * L0 / (span * (1 + 8.0 / 3 * (d / span) * (d / span)));
+  const double lambda2 = truth::IrvineLambdaSquared(m_line, kG, span, H, EA, d);
+  const auto& f = r.json["modes"]["frequencies_hz"];
+  const auto& planes = r.json["modes"]["planes"];
+  ASSERT_EQ(planes.size(), f.size()) << r.log;
+  auto nearest = [&](double omega) {
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < f.size(); ++i)
+      if (std::abs(2 * M_PI * f[i].get<double>() - omega) <
+          std::abs(2 * M_PI * f[best].get<double>() - omega))
+        best = i;
+    return best;
+  };
+  const std::size_t string = nearest(truth::TautStringOmega(1, H, m_line, span));
+  const std::size_t symmetric = nearest(truth::IrvineFirstSymmetricOmega(lambda2, H, m_line, span));
+  EXPECT_EQ(planes[string], "out-of-plane") << "mode " << string;
+  EXPECT_EQ(planes[symmetric], "in-plane") << "mode " << symmetric;
+  EXPECT_NE(string, symmetric);
 }
 
 // --- Modes of a sagging cable ---------------------------------------------------------------

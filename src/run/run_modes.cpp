@@ -15,6 +15,7 @@
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "frame_output.hpp"
+#include "mode_planes.hpp"
 #include "node_table.hpp"
 
 namespace cosserat::run {
@@ -228,6 +229,11 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
   std::vector<std::string> kinds;
   for (const Mode& m : r.modes) kinds.push_back(ToString(m.kind));
   modes["kinds"] = kinds;
+  if (problem.boundary == io::Boundary::kAnchored) {  // a cable's in-plane and sideways modes
+    const std::vector<std::string> planes =
+        detail::ModePlanes(r.equilibrium, r.modes, problem.loads.gravity_W);
+    if (!planes.empty()) modes["planes"] = planes;
+  }
   if (!r.damped.empty()) {
     // One entry per mode: null where the mode has no damped pair (overdamped, or unstable).
     nlohmann::ordered_json fd = nlohmann::ordered_json::array(),
