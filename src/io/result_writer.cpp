@@ -119,6 +119,11 @@ json DynamicResultToJson(const DynamicRun& run, const RodState& final_state) {
     for (const Vec3& f : run.frame_anchor_force) force.push_back(ToJson(f));
     out["trajectory"]["anchor_force"] = std::move(force);
   }
+  if (!run.frame_midspan.empty()) {
+    json midspan = json::array();
+    for (const Vec3& p : run.frame_midspan) midspan.push_back(ToJson(p));
+    out["trajectory"]["midspan_position"] = std::move(midspan);
+  }
   out["nodes"] = NodesToJson(final_state);
   if (run.envelope.frames > 0)
     out["envelope"] = {{"tension_max", run.envelope.tension_max},

@@ -46,6 +46,15 @@ std::string TipText(const RodState& state) {
   return line.str();
 }
 
+/// "mid-span at [x, y, z] m": a rod held at both ends, whose tip is its anchor.
+std::string MidspanText(const RodState& state) {
+  std::ostringstream line;
+  const Vec3& mid = state.position_W[state.size() / 2];
+  line << "mid-span at [" << std::setprecision(6) << mid.x() << ", " << mid.y() << ", " << mid.z()
+       << "] m";
+  return line.str();
+}
+
 /// After a static solve that failed: when the grid spacing exceeds half a contact surface's
 /// foundation length, the grid hardly resolves the contact (a few vertices carry a patch's load).
 std::string ContactGridHint(const io::Problem& problem) {
@@ -370,7 +379,8 @@ std::string DynamicsLog(const io::DynamicRun& run, const RadauOutcome& radau,
   if (run.initial_state_ok) log << ", radau: " << quatfd::ToString(radau.status);
   log << "), " << run.steps << " steps, " << run.halved_steps << " rejected, "
       << std::setprecision(6) << run.simulated_time_s << " s simulated in " << std::setprecision(3)
-      << run.wall_time_s << " s, " << TipText(state) << '\n';
+      << run.wall_time_s << " s, "
+      << (run.frame_midspan.empty() ? TipText(state) : MidspanText(state)) << '\n';
   if (radau.status == quatfd::IntegratorStatus::kMaxSteps)
     log << "cosserat: hint: Radau took dynamics.integrator_max_steps (" << d.integrator_max_steps
         << ") steps within one output interval, the last of " << std::setprecision(3)
@@ -409,8 +419,10 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
     run.frame_t.push_back(t);
     run.frame_tip.push_back(state.tip_position_W());
     run.envelope.Add(state);
-    if (run.report_anchor_force)
+    if (run.report_anchor_force) {
       run.frame_anchor_force.push_back(state.rotation_WB.back() * state.wrench_B.back().tail<3>());
+      run.frame_midspan.push_back(state.position_W[state.size() / 2]);
+    }
     if (run.report_touchdown) run.frame_touchdown_s.push_back(detail::TouchdownS(problem, state));
     if (options.nodes_csv)
       run.frame_positions.insert(run.frame_positions.end(), state.position_W.begin(),

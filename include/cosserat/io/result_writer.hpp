@@ -80,6 +80,9 @@ struct DynamicRun {
   /// anchor_force when `report_anchor_force`.
   std::vector<Vec3> frame_anchor_force;
   bool report_anchor_force = false;
+  /// A rod held at both ends: the position of its node nearest mid-length at each frame (m,
+  /// world), where the tip's is the anchor's. Empty otherwise.
+  std::vector<Vec3> frame_midspan;
   /// The touchdown point of each frame (m of s: the end of the first stretch pressing into a
   /// contact surface, from the base; NaN when none does), written as the trajectory's
   /// touchdown_s when `report_touchdown` (a riser on the sea bed).
