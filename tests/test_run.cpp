@@ -939,6 +939,30 @@ TEST(Run, AnEversionRobotTakesTheGridItIsAskedForAndSaysWhenItRefinesIt) {
       << coarse.log;
 }
 
+// A 0.6 m vine (r = 25 mm, wall 75 µm, E = 1e8 + 1e4 p Pa at p = 3 kPa: EI = 0.479 N·m²) pushed
+// along its axis stands straight either side of its Euler load π²EI/4L² = 3.28 N, which the
+// pressure does not raise (a closed vessel): at half of it the log is silent, at 1.6 times
+// (5.25 N, still under the wall's pπr² = 5.89 N) it warns that the straight body is unstable.
+TEST(Run, AVinePushedPastItsEulerLoadIsWarnedUnstable) {
+  const double EI = (1e8 + 1e4 * 3000) * M_PI * std::pow(0.025, 3) * 7.5e-5;  // N·m²
+  const double euler = M_PI * M_PI * EI / (4 * 0.36);                          // N
+  for (const double share : {0.5, 1.6}) {
+    const io::ParseResult parsed = io::ParseProblem(R"({"format": "cosserat-problem/1",
+      "rod": {"length": 0.6, "nodes": 61, "section": {"shape": "circle", "radius": 0.025},
+              "material": {"youngs_modulus": 1e8, "poisson_ratio": 0.45, "density": 920},
+              "stiffness_profile": {"kind": "inflated", "wall_thickness": 7.5e-5,
+                                    "pressure": 3000, "modulus": {"E0": 1e8, "slope": 1e4}}},
+      "loads": {"tip_force": [0, 0, )" + std::to_string(-share * euler) + R"(]},
+      "robot": {"kind": "eversion", "actuation": {"pressure": 3000}}})");
+    ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
+    const Result r = cosserat::run::Run(*parsed.problem);
+    ASSERT_TRUE(r.converged) << r.log;
+    EXPECT_EQ(r.log.find("warning: this equilibrium is unstable") != std::string::npos,
+              share > 1.0)
+        << share << " of the Euler load\n" << r.log;
+  }
+}
+
 // Hetényi's semi-infinite beam on an elastic foundation: a 5 m steel rod (r = 5 mm) lying on a
 // penalty plane (k = 1e5 N/m², ℓ = (4EI/k)^¼ = 0.25 m, βL = 20) under its weight q and a tip
 // load P = 8 N sinks at its tip by q/k + ε/2 + 2Pβ/k (ε the penalty's smoothing, 1e-3 of the

@@ -317,6 +317,9 @@ GrowthSummary EversionRobot::Grow(double target_length, int steps, const StaticL
   for (int k = 1; k <= steps; ++k) {
     const double L = k == steps ? target_length : L0 + (target_length - L0) * k / steps;
     const EversionSolveSummary step = Solve(L, loads);
+    StaticShootingSummary last = step.solve;
+    last.CountWorkOf(out.last_solve);
+    out.last_solve = last;
     if (!step.solve.converged()) {
       out.status = step.solve.status;
       return out;

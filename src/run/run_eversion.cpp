@@ -36,6 +36,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
     const GrowthSummary g =
         robot.Grow(problem.rod.length, problem.robot.growth_steps, problem.loads);
     converged = g.converged();
+    solve = g.last_solve;
     solve.status = g.status;
     kink = g.worst_kink;
     growth_note << ", grown in " << g.steps << " steps";
@@ -79,6 +80,14 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
     log << " (|m|/M_w = " << kink.max_ratio << " at s = " << kink.s_max << " m: the wall "
         << "wrinkles there; it folds at 2)";
   log << '\n';
+  // A vine pushed along its axis past its Euler load, or grown taller than its own weight lets
+  // it stand, stays straight in the solve and is unstable there.
+  if (solve.converged() && solve.stability_index > 0)
+    log << "cosserat: warning: this equilibrium is unstable (" << solve.stability_index
+        << " unstable direction" << (solve.stability_index > 1 ? "s" : "") << "): the body is "
+        << "past a critical load (a push along it beyond its Euler load, or a height its own "
+        << "weight cannot stand) and would buckle sideways from this shape; the same tube "
+        << "without the robot block runs \"analysis\": \"buckling\"\n";
   if (asked_density < EversionOptions{}.nodes_per_metre)
     log << "cosserat: note: rod.nodes (" << problem.nodes << ") gives "
         << std::setprecision(3) << asked_density << " nodes per metre; an eversion robot's body "

@@ -141,6 +141,9 @@ struct GrowthSummary {
   int first_kink_step = -1;  ///< first step (1-based) whose solve reported a kink; −1: none
   double first_kink_length = -1.0;
   KinkReport worst_kink;  ///< the largest ratio met
+  /// The last step's solve (its status, residual and stability index), counting the work of
+  /// every step (iterations, shots, load steps, wall time).
+  StaticShootingSummary last_solve;
   bool converged() const { return status == SolveStatus::kConverged; }
 };
 
