@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -657,8 +658,8 @@ TEST(HeldCable, AHeldLineReportsItsTouchdownPointInTime) {
 // the plane of the chord and the net load, tilted 26.6° from the vertical; then only gravity
 // acts. The anchor force at t = 0 is that catenary's to 0.5 % (the grid's second-order error on
 // 200 segments, (0.5 m / 100 m)² ≈ 3e-5, and the pins' bending layers, sqrt(EI/H)/L ≈ 1e-3 at
-// most, are below it). From a first guess hanging in the later loads (gravity alone) the start
-// was not found.
+// most, are below it). A first guess hanging in the later loads (gravity alone) does not reach
+// that start.
 TEST(HeldCable, ACableLetGoFromASideLoadStartsOnItsTiltedCatenary) {
   const double A = 1e-3, rho = 7850, EA = 2e11 * A, wz = rho * A * kG, wy = 0.5 * wz;
   std::ostringstream text;
@@ -1096,6 +1097,44 @@ TEST(HeldCable, ACablesMidSpanSwingsAtItsOutOfPlaneFrequency) {
   ASSERT_GE(up.size(), 2u) << swing.log;
   std::printf("cable swing: period %.6f s, modes' 1/f %.6f s\n", up[1] - up[0], 1 / f);
   EXPECT_NEAR((up[1] - up[0]) * f, 1.0, 5e-3);
+}
+
+// A slack steel cable (100 m between points 90 m apart, EI = 20 N·m²: sqrt(EI/T) ≈ 6 cm) clamped
+// at its base along the elastic catenary's own end tangent (H, 0, −V)/T: the clamp follows the
+// line and no note comes. Turned 30° about y off it, the note names the clamp's angle to the
+// line beyond its bending layer, 30° to 1.5° (the catenary turns by w h/T ≈ 0.9° over the
+// grid's 0.5 m between the nodes that measure the line; the layer's own decay there is e^-8).
+TEST(HeldCable, AClampTurnedOffTheLineIsNamedWithItsAngle) {
+  const double A = 1e-3, w = 7850 * A * kG, EA = 2e11 * A;
+  const truth::ElasticCatenary cat = truth::SolveElasticCatenary(90, 0, 100, w, EA);
+  const double angle0 = std::atan2(-cat.V, cat.H);  // the end tangent's angle from x, about -y
+  for (const double turn : {0.0, 30.0}) {  // degrees off the catenary's tangent
+    const double a = angle0 - turn * M_PI / 180;
+    // Third column (cos a, 0, sin a): the tangent; first (−sin a, 0, cos a); second −y.
+    std::ostringstream text;
+    text << std::setprecision(17) << R"({"format": "cosserat-problem/1",
+      "formulation": "quaternion-fd",
+      "rod": {"length": 100, "nodes": 201,
+              "section": {"area": 1e-3, "I1": 1e-10, "I2": 1e-10, "J": 2e-10},
+              "material": {"youngs_modulus": 2e11, "poisson_ratio": 0.3, "density": 7850}},
+      "base": {"position": [0, 0, 0], "rotation": [[)" << -std::sin(a) << ", 0, " << std::cos(a)
+         << "], [0, -1, 0], [" << std::cos(a) << ", 0, " << std::sin(a) << R"(]]},
+      "boundary": "anchored", "anchor": {"position": [90, 0, 0], "base": "clamped"},
+      "loads": {"gravity": [0, 0, -9.81]}})";
+    const run::Result r = RunProblemText(text.str().c_str(), false);
+    ASSERT_TRUE(r.converged) << r.log;
+    const std::size_t at = r.log.find("note: the clamp at s = 0 holds");
+    if (turn == 0.0) {
+      EXPECT_EQ(at, std::string::npos) << r.log;
+      continue;
+    }
+    ASSERT_NE(at, std::string::npos) << r.log;
+    std::smatch m;
+    const std::string rest = r.log.substr(at);
+    ASSERT_TRUE(std::regex_search(rest, m, std::regex("column\\) ([0-9.]+)° from the line")))
+        << r.log;
+    EXPECT_NEAR(std::stod(m[1].str()), turn, 1.5) << r.log;
+  }
 }
 
 // --- Modes of a sagging cable ---------------------------------------------------------------

@@ -1,18 +1,23 @@
 #pragma once
 /// \file
 /// A note on the clamps of a rod held at both ends ("boundary": "anchored") that hold its
-/// tangent far from the chord between the ends. A clamp's rotation defaults to the identity
-/// (its tangent along world z): a stay cable clamped at 30° above the horizontal without a
-/// rotation bent 60° in a layer at each end, and the log spoke only of the grid.
+/// tangent far from the direction the line takes just beyond the clamp's bending layer. A
+/// clamp's rotation defaults to the identity (its tangent along world z): a stay cable clamped
+/// at 30° above the horizontal without a rotation bends 60° within a few sqrt(EI/T) of each end,
+/// where a grid coarser than that layer can only report the bend as too sharp for it.
 
 #include <string>
 
 #include "cosserat/io/problem.hpp"
+#include "cosserat/run/result.hpp"
 
 namespace cosserat::run::detail {
 
-/// "cosserat: note: ..." lines, one per clamped end whose tangent (its rotation's third
-/// column) lies over 20° from the chord; empty otherwise, and for any other boundary.
-std::string ClampAlignmentNote(const io::Problem& problem);
+/// "cosserat: note: ..." lines, one per clamped end of an anchored rod's equilibrium (statics,
+/// or the modes' about it) whose tangent (its rotation's third column) lies over 20° from the
+/// line's direction between 3 and 6 bending lengths sqrt(EI/T) from it (T the end's force).
+/// Empty for other ends and boundaries, and where those lengths pass a quarter of the rod (a
+/// stiff rod's clamps shape it as a beam's).
+std::string ClampAlignmentNote(const io::Problem& problem, const Result& result);
 
 }  // namespace cosserat::run::detail

@@ -132,7 +132,7 @@ Result Run(const io::Problem& problem, const RunOptions& options) {
   detail::AddBendingStressReport(problem, &result);
   detail::AddScaleWarnings(problem, &result);
   UnusedBaseDriveNote(problem, &result);
-  result.log += detail::DrillStringNotes(problem) + detail::ClampAlignmentNote(problem) +
+  result.log += detail::DrillStringNotes(problem) + detail::ClampAlignmentNote(problem, result) +
                 detail::SelfCrossingNote(problem, result);
   SummaryLineStatus(&result);
   return result;

@@ -38,7 +38,8 @@ double SegmentDistance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec
 }  // namespace
 
 std::string SelfCrossingNote(const io::Problem& problem, const Result& result) {
-  if (problem.analysis != io::Analysis::kStatics || problem.has_assembly ||
+  // Only an equilibrium: a shot that ran away or stopped short has no shape to judge.
+  if (problem.analysis != io::Analysis::kStatics || problem.has_assembly || !result.converged ||
       !problem.rod.section || !result.json.contains("nodes"))
     return "";
   const nlohmann::ordered_json& nodes = result.json["nodes"];
@@ -46,8 +47,11 @@ std::string SelfCrossingNote(const io::Problem& problem, const Result& result) {
   const std::vector<double> s = nodes["s"].get<std::vector<double>>();
   if (s.size() < 4 || s.size() > kMostNodes || nodes["position"].size() != s.size()) return "";
   std::vector<Vec3> x;
-  for (const auto& p : nodes["position"])
+  for (const auto& p : nodes["position"]) {
+    if (!p[0].is_number() || !p[1].is_number() || !p[2].is_number()) return "";  // null: NaN
     x.emplace_back(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+    if (!x.back().allFinite()) return "";
+  }
   double d = 0.0;  // the largest outer diameter along the rod, m
   for (double si : s)
     d = std::max(d, problem.rod.section->At(si, problem.robot.actuation).outer_diameter);

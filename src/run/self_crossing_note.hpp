@@ -1,8 +1,8 @@
 #pragma once
 /// \file
 /// A note on a rod that passes through itself. The model has no self-contact: a tendon robot
-/// given tendon lengths it cannot reach coiled three turns through its own backbone and
-/// "converged" without a word, where a real rod would press on itself.
+/// given tendon lengths it cannot reach coils three turns through its own backbone, where a
+/// real rod would press on itself.
 
 #include <string>
 
@@ -11,7 +11,7 @@
 
 namespace cosserat::run::detail {
 
-/// "cosserat: note: ..." when two stretches of the result's nodes (statics) further apart
+/// "cosserat: note: ..." when two stretches of a converged statics result's nodes further apart
 /// along the rod than π times its outer diameter d come within d of each other (segment to
 /// segment, world frame); empty otherwise, for sections with no outer diameter, and for grids
 /// over 2 001 nodes (the check is quadratic in them).

@@ -640,10 +640,10 @@ cosserat_cli_test(NAME anchored_wire_stalls ARGS solve "${_cli_dir}/anchored_wir
 # A drill pipe spun on a bore's wall: what the weight on bit and the wall's friction leave out.
 cosserat_cli_test(NAME drill_pipe_in_a_bore ARGS solve "${_cli_dir}/drill_pipe_in_a_bore.json"
                   CODE 0 STDERR "converged, 5 steps.*note: loads.bit_friction.weight_on_bit \\(5e\\+04 N\\) sets the bit's friction torque only.*note: environment.contact\\[0\\].friction acts on the centreline's velocity only")
-# Clamps left at the default rotation on an inclined cable: the log names the angle to the chord.
+# Clamps left at the default rotation on an inclined cable: the log names their angle to the line.
 cosserat_cli_test(NAME stay_cable_clamped_upright
                   ARGS solve "${_cli_dir}/stay_cable_clamped_upright.json" CODE 1
-                  STDERR "note: the clamp at s = 0 holds the rod's tangent \\[0, 0, 1\\] \\(base.rotation's third column\\) 60° from the chord between the ends, \\[0.866, 0, 0.5\\].*note: the clamp at the anchor holds")
+                  STDERR "note: the clamp at s = 0 holds the rod's tangent \\[0, 0, 1\\] \\(base.rotation's third column\\) 60.4° from the line's direction beyond its bending layer.*note: the clamp at the anchor holds")
 # A buckling search by tendon tension that ends at the tendon law's limit says so.
 cosserat_cli_test(NAME tendon_tension_buckling_limit
                   ARGS solve "${_cli_dir}/tendon_tension_buckling_limit.json" CODE 1
