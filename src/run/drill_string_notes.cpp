@@ -1,5 +1,6 @@
 #include "drill_string_notes.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace cosserat::run::detail {
@@ -9,14 +10,21 @@ std::string DrillStringNotes(const io::Problem& problem) {
   std::ostringstream log;
   log.precision(3);
   const BitFriction& bit = problem.loads.bit;
-  const double pressing = problem.loads.tip_force.norm();  // N
+  // The tip force's push up the hole, along −(the clamp's axis), which the string follows to
+  // the bit: a force pulling the bit off the rock presses nothing. A force in the tip's frame is
+  // taken in the clamp's, as on a straight string.
+  const Vec3 axis = problem.base.R.col(2);
+  const Vec3 force = problem.loads.tip_force_frame == LoadFrame::kBody
+                         ? Vec3(problem.base.R * problem.loads.tip_force)
+                         : problem.loads.tip_force;
+  const double pressing = std::max(0.0, -force.dot(axis));  // N
   // Without gravity (torsion alone) there is no weight for the bit to take off the clamp.
   if (bit.present() && !problem.loads.gravity_W.isZero() && pressing < 0.5 * bit.weight_on_bit)
     log << "cosserat: note: loads.bit_friction.weight_on_bit (" << bit.weight_on_bit
         << " N) sets the bit's friction torque only, not the string's axial load: the hole's "
            "bottom pushes on the bit through loads.tip_force (" << pressing
-        << " N here), and the clamp carries the string's weight less that; give tip_force the "
-           "weight on bit, pointing up the hole, for both\n";
+        << " N up the hole here), and the clamp carries the string's weight less that; give "
+           "tip_force the weight on bit, pointing up the hole, for both\n";
   const bool spins = problem.dynamics.base_spin != 0.0 || problem.dynamics.rotary_table.present();
   for (int i = 0; spins && i < problem.loads.contact.count; ++i) {
     if (!(problem.loads.contact.surface[i].friction > 0.0)) continue;

@@ -30,10 +30,12 @@ bool SingleShotResolves(const io::Problem& problem, const StaticLoads& loads) {
   return StaticShootingExponent(problem.rod, WithTipMassWeight(problem, loads)) <= 10.0;
 }
 
-/// The clamped rod's equilibrium under `input` (its base pose, loads and actuation; the tip mass's weight included) from the statics
-/// solver with its continuation in the load, in pieces where one shot cannot resolve it (plain
-/// rods: the statics runner takes no actuation, tendons or chambers in pieces). Empty if that
-/// does not converge either.
+/// The clamped rod's equilibrium under `input` (its base pose, loads and actuation; the tip
+/// mass's weight included) from the statics solver with its continuation in the load, in pieces
+/// where one shot cannot resolve it (plain rods: the statics runner takes no actuation, tendons
+/// or chambers in pieces), or on contact surfaces from the quaternion-FD equilibrium where the
+/// load steps fail (quatfd_start.hpp; the pieces' solve tries it itself). Empty if none
+/// converges.
 std::optional<RodState> StaticEquilibrium(const io::Problem& problem, const StepInput& input) {
   const StaticShootingOptions single = StaticOptions(problem);
   const StaticLoads statics_loads = WithTipMassWeight(problem, input.loads);
@@ -45,23 +47,21 @@ std::optional<RodState> StaticEquilibrium(const io::Problem& problem, const Step
     return std::move(solved.state);
   }
   StaticShootingSolver solver(problem.rod, problem.nodes, single, input.actuation);
-  if (!solver.Solve(input.base_pose, statics_loads).converged()) return std::nullopt;
-  return solver.state();
+  if (solver.Solve(input.base_pose, statics_loads).converged()) return solver.state();
+  if (input.loads.contact.count == 0) return std::nullopt;
+  return detail::QuatFdEquilibriumOnGrid(problem, input.base_pose, statics_loads,
+                                         input.actuation);
 }
 
 }  // namespace
 
 std::optional<RodState> StaticEquilibriumToStartFrom(const io::Problem& problem,
                                                      const StepInput& input) {
-  std::optional<RodState> equilibrium;
   try {
-    equilibrium = StaticEquilibrium(problem, input);
+    return StaticEquilibrium(problem, input);
   } catch (const std::invalid_argument&) {
-  }  // a rod the statics solvers do not take
-  // The load steps the SE(3) statics take fail where a wall holds the rod along its length.
-  if (equilibrium || input.loads.contact.count == 0) return equilibrium;
-  return detail::QuatFdEquilibriumOnGrid(problem, input.base_pose,
-                                         WithTipMassWeight(problem, input.loads), input.actuation);
+    return std::nullopt;  // a rod the statics solvers do not take
+  }
 }
 
 std::optional<RodState> RunawayStartState(const io::Problem& problem, const StepInput& input) {
