@@ -81,6 +81,7 @@ class PyStepper {
     // base pose, no base motion), whatever the last run applied.
     StepInput at_rest = first_input_;
     at_rest.loads = loads ? Valid(*loads) : initial_loads_;
+    if (at_rest.tip_hold != TipHold::kFree) RequireColumnLoads(at_rest.loads, problem_.boundary);
     at_rest.actuation = actuation ? Valid(*actuation, problem_) : initial_actuation_;
     const StepSummary s =
         cosserat::run::InitializeAtStaticEquilibrium(problem_, at_rest, &*stepper_);

@@ -67,6 +67,11 @@ void GuidedTipDynamicsFeatures(const Problem& p, std::vector<std::string>* out) 
     return;
   const std::string ends = " (\"boundary\": " + detail::Quote(ToString(p.boundary)) + ")";
   GuidedTipLoadFeatures(p.loads, p.boundary, out);
+  if (p.dynamics.initial_loads) {  // the start's loads, named as such
+    std::vector<std::string> initial;
+    GuidedTipLoadFeatures(*p.dynamics.initial_loads, p.boundary, &initial);
+    for (const std::string& line : initial) out->push_back("dynamics.initial_" + line);
+  }
   if (p.dynamics.tip_mass > 0.0 || !p.dynamics.tip_inertia.isZero())
     out->push_back("dynamics.tip_mass: a body at a column's guided tip is not modelled" + ends);
   if (p.loads.bit.present())

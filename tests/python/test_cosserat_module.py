@@ -468,6 +468,8 @@ class Dynamics(unittest.TestCase):
         for _ in range(int(round(spec["dynamics"]["duration"] / spec["dynamics"]["dt"]))):
             self.assertTrue(stepper.step().converged)
         np.testing.assert_array_equal(stepper.state()["position"], command["nodes"]["position"])
+        # The guide holds the tip on the clamp's axis (the tip's x, y to round-off of 0.5 m).
+        np.testing.assert_allclose(stepper.tip_position()[:2], [0, 0], atol=1e-12)
         np.testing.assert_array_equal(stepper.base_reaction()[3:], command["base_wrench"]["force"])
         # What the guided tip cannot take is refused by name, as the command refuses it.
         with self.assertRaisesRegex(ValueError, r"^base_position: a column's clamp"):
@@ -481,6 +483,13 @@ class Dynamics(unittest.TestCase):
         self.assertTrue(pinned.initialize_at_rest().converged)
         with self.assertRaisesRegex(ValueError, r"^loads\.tip_moment: a column's pinned tip"):
             pinned.step({"tip_force": [0, 0, -12.4], "tip_moment": [0, 0.1, 0]})
+        with self.assertRaisesRegex(ValueError, r"^loads\.tip_moment: a column's pinned tip"):
+            pinned.initialize_at_rest({"tip_force": [0, 0, -12.4], "tip_moment": [0, 0.1, 0]})
+        spec["dynamics"]["initial_loads"]["tip_moment"] = [0, 0.1, 0]
+        with self.assertRaisesRegex(ValueError, r"^dynamics\.initial_loads\.tip_moment: a "
+                                                r"column's pinned tip"):
+            cosserat.Stepper(spec)
+        del spec["dynamics"]["initial_loads"]["tip_moment"]
         spec["dynamics"]["tip_mass"] = 0.01
         with self.assertRaisesRegex(ValueError, r"^dynamics\.tip_mass: a body at a column's"):
             cosserat.Stepper(spec)
