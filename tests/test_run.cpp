@@ -1663,8 +1663,8 @@ TEST(Run, AFilledPipeHangsWithItsApparentWeight) {
                 expected / 1e3);
     EXPECT_NEAR(hook / expected, 1.0, 1e-8) << formulation;
     EXPECT_TRUE(r.json.contains("bending")) << "the pipe's stresses are still reported";
-    // Hanging straight, it carries no moment, so no grid can get its moments wrong: the log
-    // warned of the tension's bending layer (k h = 2.6) all the same.
+    // Hanging straight, it carries no moment, so no grid can get its moments wrong: no warning
+    // of the tension's bending layer (k h = 2.6).
     EXPECT_EQ(r.log.find("bending layer of the tension"), std::string::npos) << r.log;
   }
 }
@@ -1757,8 +1757,8 @@ TEST(Run, ATendonBentBackboneReportsItsBendingStress) {
 // 0.84 rad per segment on 41 nodes, five turns, while the tension stretches it by 0.09 %. RK4
 // in s shrinks the frames it turns by |1 + z + z²/2 + z³/6 + z⁴/24| per step (z = i κ h), and
 // the positions with them: by 39 steps the nodes lie 1 − 0.9978³⁹ = 8.2 % closer than the arc
-// between them. That read as an 11 % stretch with advice about anchors and tendon lengths; the
-// grid's warning now names the shrink, to 0.6 points of the amplification factor's: the
+// between them, which is no stretch (no warning of one, with advice about anchors and tendon
+// lengths); the grid's warning names the shrink, to 0.6 points of the amplification factor's: the
 // step's own position error, about (κh)⁴/120 = 0.4 % of a segment, adds to the frames' (measured
 // 0.43 points), and no stretch is reported.
 TEST(Run, ACoilOnACoarseGridIsNotReadAsAStretch) {

@@ -13,8 +13,7 @@ bool Actuation::IsValid(std::string* why, int tendon_count, int chamber_count) c
     return false;
   };
   auto usable = [](double x) { return std::isfinite(x) && x >= 0; };
-  // "<field>[i]: expected <what>, got <value>", naming the entry (a controller's one bad value
-  // among eight was hard to find).
+  // "<field>[i]: expected <what>, got <value>": the entry among up to eight, and its value.
   auto entry = [&](const char* field, int i, const char* what, double value) {
     std::ostringstream text;
     text << field << '[' << i << "]: expected " << what << ", got " << value;

@@ -46,7 +46,8 @@ std::string TwistLine(double twist, double twist_s, double twist_rate, double le
 }  // namespace
 
 GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& position,
-                         const std::vector<Vec3>& curvature, double length, bool converged) {
+                         const std::vector<Vec3>& curvature, double length, bool converged,
+                         const std::vector<double>& stretch) {
   GridResolution out;
   double& worst = out.worst_turn;  // bending κ h (rad)
   auto bending = [](const Vec3& k) { return std::hypot(k.x(), k.y()); };
@@ -86,13 +87,15 @@ GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& 
         << " % of the length (RK4 in s, fourth order in κ h)";
   // Over many turns the loss adds up: RK4 shrinks the frames it turns by |1 + z + ... + z⁴/24|,
   // z = i κ h, each step (0.23 % at 0.84 rad), and the positions with them. Measured on the
-  // nodes: their spacing against the chord sinc(κh/2) h of the arc between them.
+  // nodes: their spacing against the chord sinc(κh/2) h (1 + ε) of the arc between them,
+  // stretched by the axial strain ε.
   double shortest = 1.0, shortest_s = 0.0;
   for (size_t i = 0; i + 1 < s.size(); ++i) {
     const double h = s[i + 1] - s[i];
     const double half = 0.25 * (bending(curvature[i]) + bending(curvature[i + 1])) * h;
     if (!(h > 0.0) || half > 0.5 * M_PI) continue;
-    const double chord = half > 1e-8 ? h * std::sin(half) / half : h;
+    const double strain = stretch.size() == s.size() ? 0.5 * (stretch[i] + stretch[i + 1]) : 0.0;
+    const double chord = (half > 1e-8 ? h * std::sin(half) / half : h) * (1.0 + strain);
     const double ratio = (position[i + 1] - position[i]).norm() / chord;
     if (ratio < shortest) shortest = ratio, shortest_s = s[i];
   }
@@ -204,8 +207,8 @@ std::string TensionLayerLine(const io::Problem& problem, const nlohmann::ordered
   const double error = 1.0 - (1 + z + z * z / 2 + z * z * z / 6 + z * z * z * z / 24) / std::exp(z);
   if (!(error > 0.01)) return "";
   // A rod that carries no bending moment (a string hanging straight under its weight) has no
-  // layer to resolve: below 1e-9 of T L the moments are round-off.
-  if (nodes.contains("moment_body")) {
+  // layer to resolve: below 1e-9 of T L the moments are round-off. Its modes still bend it.
+  if (problem.analysis == io::Analysis::kStatics && nodes.contains("moment_body")) {
     double bending = 0.0;  // N·m
     for (const auto& m : nodes["moment_body"])
       bending = std::max(bending, std::hypot(m[0].get<double>(), m[1].get<double>()));
@@ -222,6 +225,27 @@ std::string TensionLayerLine(const io::Problem& problem, const nlohmann::ordered
        << " keeps k h below 1\n";
   return line.str();
 }
+
+namespace {
+
+/// The axial strain n₃/EA at each node of a "nodes" block with "force_body" (body z), EA of the
+/// section there; empty without them.
+std::vector<double> AxialStrain(const io::Problem& problem, const nlohmann::ordered_json& nodes) {
+  std::vector<double> strain;
+  if (!problem.rod.section || !nodes.contains("force_body") || !nodes.contains("s")) return strain;
+  const auto& s = nodes["s"];
+  const auto& force = nodes["force_body"];
+  if (force.size() != s.size()) return strain;
+  for (size_t i = 0; i < s.size(); ++i) {
+    const double ea =
+        problem.rod.section->At(s[i].get<double>(), problem.robot.actuation).stiffness(5, 5);
+    const double n3 = force[i][2].is_number() ? force[i][2].get<double>() : 0.0;
+    strain.push_back(ea > 0.0 ? n3 / ea : 0.0);
+  }
+  return strain;
+}
+
+}  // namespace
 
 void CheckGridResolution(const io::Problem& problem, Result* result) {
   // Statics, the equilibrium the modes are about, and the final state of dynamics (the
@@ -257,7 +281,8 @@ void CheckGridResolution(const io::Problem& problem, Result* result) {
                              rows(nodes["curvature"]), problem.rod.length,
                              RestTwist(problem, nodes))
               : CheckGrid(nodes["s"].get<std::vector<double>>(), rows(nodes["position"]),
-                          rows(nodes["curvature"]), problem.rod.length, !stopped_short);
+                          rows(nodes["curvature"]), problem.rod.length, !stopped_short,
+                          AxialStrain(problem, nodes));
   if (diverged) {
     if (g.ran_away) result->log += g.log;
     return;

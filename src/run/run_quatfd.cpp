@@ -165,8 +165,8 @@ quatfd::QuatFdModel MakeQuatFdModel(const io::Problem& problem) {
   return model;
 }
 
-// On a tensioned riser (sqrt(EI/T) = 2 m) the clamp moment was 20 % low at h = 1.5 sqrt(EI/T),
-// 6.5 % at 0.75, 0.8 % at 0.25, without a word. From h = 0.5 sqrt(EI/T) on, a warning names the
+// On a tensioned riser (sqrt(EI/T) = 2 m) the clamp moment comes out 20 % low at h = 1.5
+// sqrt(EI/T), 6.5 % at 0.75, 0.8 % at 0.25. From h = 0.5 sqrt(EI/T) on, a warning names the
 // nodes for 0.25.
 std::string ClampedEndGridWarning(const io::Problem& problem, const RodState& state) {
   if (problem.boundary != io::Boundary::kAnchored ||
@@ -398,8 +398,8 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
   const int n = model.size();
   Eigen::VectorXd q(n), v(n);
   // A held line's first guess hangs in the loads the model has: the initial ones, which the
-  // equilibrium is solved under (from a guess hanging in the later loads, a cable let go from
-  // a side load did not reach it).
+  // equilibrium is solved under (a cable let go from a side load is out of reach of a guess
+  // hanging in the later loads).
   const StaticLoads& initial_loads = d.initial_loads.value_or(problem.loads);
   model.set_loads(initial_loads);
   model.RestState(q, v);

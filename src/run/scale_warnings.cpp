@@ -34,7 +34,8 @@ double Bending(const nlohmann::ordered_json& nodes, size_t i) {
 /// shot: the nodes come from an SE(3) shot, whose RK4 in s shrinks the frames it turns, and the
 /// positions with them, where a segment turns by more than 0.5 rad (the grid check names such a
 /// grid): there the nodes' spacing is not the rod's length, and the segment is left out (a tendon
-/// robot coiled at 0.84 rad per segment read as stretched by 11 % where its strain was 0.09 %).
+/// robot coiled at 0.84 rad per segment has nodes 11 % closer than its length at a strain of
+/// 0.09 %).
 /// *everywhere: whether every segment is stretched within 10 % of it (a uniform stretch, with
 /// no place to name).
 double LargestStretch(const nlohmann::ordered_json& nodes, bool shot, double* at_s,

@@ -36,10 +36,11 @@ struct GridResolution {
 /// of length L: the runaway check on the whole turn |κ| h, the warning (above 0.5 rad per
 /// segment) on the bending part sqrt(k1² + k2²) h, with the error it implies and the nodes that
 /// would keep it below 0.25. converged false: the state is the last load level a continuation
-/// reached, and the log says so.
+/// reached, and the log says so. stretch: the axial strain at each node (empty: none), which
+/// the check of RK4's shrinking frames leaves out of the nodes' spacing.
 GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& position,
                          const std::vector<Vec3>& curvature, double length,
-                         bool converged = true);
+                         bool converged = true, const std::vector<double>& stretch = {});
 /// The same on a solver's state (its s, positions and the curvature part of its strains), which
 /// also finds frames that left the rotations (FramesLeftRotationsLine).
 GridResolution CheckGrid(const RodState& state, double length, bool converged = true);
