@@ -415,6 +415,31 @@ TEST(DrillString, APipeLyingInAnInclinedBoreCarriesTheSoftStringHookLoad) {
   }
 }
 
+// The weight on bit sets the bit's friction only; the log says so unless the tip force pushes
+// the bit up the hole with about that much. A 100 m string hanging from a table (26 kN of
+// weight, no fluid) with 5 kN on bit: pushed up by 5 kN, no note; the same force pulling the bit
+// down, off the rock, and none at all, the note.
+TEST(DrillString, TheWeightOnBitNoteFollowsTheTipForcesDirection) {
+  for (const double up : {5e3, -5e3, 0.0}) {  // N along −z, up the hole
+    const io::ParseResult parsed = io::ParseProblem(R"({"format": "cosserat-problem/1",
+      "analysis": "dynamics",
+      "rod": {"length": 100, "nodes": 51,
+        "section": {"shape": "annulus", "outer_radius": 0.0635, "inner_radius": 0.0543},
+        "material": {"youngs_modulus": 207e9, "poisson_ratio": 0.3, "density": 7850}},
+      "base": {"rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]]},
+      "loads": {"gravity": [0, 0, -9.81], "tip_force": [0, 0, )" + std::to_string(up) + R"(],
+        "bit_friction": {"weight_on_bit": 5e3, "radius": 0.1, "static_coefficient": 0.8,
+                         "kinetic_coefficient": 0.5}},
+      "dynamics": {"dt": 0.01, "duration": 0.01, "base_spin": 1.0}})");
+    ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
+    const run::Result r = run::Run(*parsed.problem);
+    EXPECT_EQ(r.log.find("weight_on_bit (5e+03 N) sets the bit's friction torque only") !=
+                  std::string::npos,
+              up <= 0.0)
+        << up << "\n" << r.log;
+  }
+}
+
 TEST(DrillString, AStringInABoreRestsItsEndOnTheWall) {
   const BoreSetUp set;
   StaticMultipleShootingSolver solver(set.rod.model(), 201);
