@@ -1736,16 +1736,25 @@ TEST(Run, TheLoadEnvelopeOfAHangingWireIsItsWeight) {
 // a 0.8 mm steel backbone to κ = T r_t / EI with no external load, so its outer fibre carries
 // T r_t r / I = 239 MPa, while the section's resultant moment (backbone plus tendon) is zero.
 // It was reported as 0 Pa. To the tendon law's solve (1e-10 relative).
-TEST(Run, ATendonBentBackboneReportsItsBendingStress) {
-  const io::ParseResult parsed = io::ParseProblem(R"({
-    "format": "cosserat-problem/1",
-    "rod": {"length": 0.25, "nodes": 21, "section": {"shape": "circle", "radius": 0.0004},
+/// A weightless 0.25 m steel backbone (r = 0.4 mm) on `nodes` nodes, bent by one straight tendon
+/// `offset` m out (spacer disks 10 mm in radius) pulled with `tension` N, run as the command runs
+/// it.
+Result OneTendonBackbone(int nodes, double offset, double tension) {
+  std::ostringstream text;
+  text << std::setprecision(17) << R"({"format": "cosserat-problem/1",
+    "rod": {"length": 0.25, "nodes": )" << nodes << R"(,
+            "section": {"shape": "circle", "radius": 0.0004},
             "material": {"youngs_modulus": 210e9, "shear_modulus": 80e9, "density": 7800}},
     "robot": {"kind": "tendon", "disk_radius": 0.01,
-              "tendons": [{"route": "parallel", "offset": [0.008, 0]}],
-              "actuation": {"tension": [1.5]}}})");
-  ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
-  const Result r = cosserat::run::Run(*parsed.problem);
+              "tendons": [{"route": "parallel", "offset": [)" << offset << R"(, 0]}],
+              "actuation": {"tension": [)" << tension << "]}}}";
+  const io::ParseResult parsed = io::ParseProblem(text.str());
+  EXPECT_TRUE(parsed.ok()) << (parsed.errors.empty() ? "" : parsed.errors.front());
+  return parsed.ok() ? cosserat::run::Run(*parsed.problem) : Result{};
+}
+
+TEST(Run, ATendonBentBackboneReportsItsBendingStress) {
+  const Result r = OneTendonBackbone(21, 0.008, 1.5);
   ASSERT_TRUE(r.converged) << r.log;
   const double I = M_PI * std::pow(0.0004, 4) / 4;
   const double expected = 1.5 * 0.008 * 0.0004 / I;  // Pa
@@ -1810,16 +1819,7 @@ TEST(Run, ACompressedRodsShorterSpacingIsNotBlamedOnRk4) {
 TEST(Run, ARodThatPassesThroughItselfIsNoted) {
   const double EI = 210e9 * M_PI * std::pow(0.0004, 4) / 4;  // N·m²
   for (const double kappa : {30.0, 20.0}) {  // 1/m
-    const double tension = kappa * EI / 0.004;  // N
-    const io::ParseResult parsed = io::ParseProblem(R"({
-      "format": "cosserat-problem/1",
-      "rod": {"length": 0.25, "nodes": 101, "section": {"shape": "circle", "radius": 0.0004},
-              "material": {"youngs_modulus": 210e9, "shear_modulus": 80e9, "density": 7800}},
-      "robot": {"kind": "tendon", "disk_radius": 0.005,
-                "tendons": [{"route": "parallel", "offset": [0.004, 0]}],
-                "actuation": {"tension": [)" + std::to_string(tension) + R"(]}}})");
-    ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
-    const Result r = cosserat::run::Run(*parsed.problem);
+    const Result r = OneTendonBackbone(101, 0.004, kappa * EI / 0.004);
     ASSERT_TRUE(r.converged) << r.log;
     EXPECT_EQ(r.log.find("the rod passes within its outer diameter (0.0008 m) of itself") !=
                   std::string::npos,

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <string>
 
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/robots/eversion_robot.hpp"
@@ -13,6 +14,22 @@
 #include "node_table.hpp"
 
 namespace cosserat::run {
+namespace {
+
+/// A vine pushed along its axis past its Euler load, or grown taller than its own weight lets
+/// it stand, stays straight in the solve and is unstable there: a warning line, else empty.
+std::string UnstableBodyWarning(const StaticShootingSummary& solve) {
+  if (!solve.converged() || solve.stability_index <= 0) return "";
+  std::ostringstream line;
+  line << "cosserat: warning: this equilibrium is unstable (" << solve.stability_index
+       << " unstable direction" << (solve.stability_index > 1 ? "s" : "") << "): the body is "
+       << "past a critical load (a push along it beyond its Euler load, or a height its own "
+       << "weight cannot stand) and would buckle sideways from this shape; the same tube "
+       << "without the robot block runs \"analysis\": \"buckling\"\n";
+  return line.str();
+}
+
+}  // namespace
 
 Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   // The parser guarantees an inflated-tube profile for this kind.
@@ -80,14 +97,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
     log << " (|m|/M_w = " << kink.max_ratio << " at s = " << kink.s_max << " m: the wall "
         << "wrinkles there; it folds at 2)";
   log << '\n';
-  // A vine pushed along its axis past its Euler load, or grown taller than its own weight lets
-  // it stand, stays straight in the solve and is unstable there.
-  if (solve.converged() && solve.stability_index > 0)
-    log << "cosserat: warning: this equilibrium is unstable (" << solve.stability_index
-        << " unstable direction" << (solve.stability_index > 1 ? "s" : "") << "): the body is "
-        << "past a critical load (a push along it beyond its Euler load, or a height its own "
-        << "weight cannot stand) and would buckle sideways from this shape; the same tube "
-        << "without the robot block runs \"analysis\": \"buckling\"\n";
+  log << UnstableBodyWarning(solve);
   if (asked_density < EversionOptions{}.nodes_per_metre)
     log << "cosserat: note: rod.nodes (" << problem.nodes << ") gives "
         << std::setprecision(3) << asked_density << " nodes per metre; an eversion robot's body "
