@@ -931,6 +931,13 @@ TEST(Run, AnEversionRobotTakesTheGridItIsAskedForAndSaysWhenItRefinesIt) {
   const Result fine = run(401);
   ASSERT_TRUE(fine.converged) << fine.log;
   EXPECT_GE(fine.json["nodes"]["s"].size(), 401u);
+  // A grown solve reports its Newton work and its last residual, not placeholders of 0, and the
+  // length it first kinked at is one of its steps' (the file's growth from 0.1 m in 55 steps).
+  EXPECT_GT(fine.json["iterations"].get<int>(), 0);
+  EXPECT_GT(fine.json["residual"].get<double>(), 0.0);
+  const double kinked = fine.json["robot"]["first_kink_length"].get<double>();
+  const double step = (1.2 - 0.1) / 55, k = (kinked - 0.1) / step;
+  EXPECT_NEAR(k, std::round(k), 1e-9) << kinked;
   EXPECT_EQ(fine.log.find("gridded at"), std::string::npos) << fine.log;
   const Result coarse = run(9);
   ASSERT_TRUE(coarse.converged) << coarse.log;

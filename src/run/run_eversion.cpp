@@ -48,6 +48,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   StaticShootingSummary solve;
   KinkReport kink;
   std::ostringstream growth_note;
+  nlohmann::ordered_json first_kink_length;  // grown: the length first kinked at (m), or null
   bool converged;
   if (problem.robot.growth_initial_length) {
     const GrowthSummary g =
@@ -59,6 +60,8 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
     growth_note << ", grown in " << g.steps << " steps";
     if (g.first_kink_step >= 0)
       growth_note << ", first kink at L = " << g.first_kink_length << " m";
+    first_kink_length = g.first_kink_step >= 0 ? nlohmann::ordered_json(g.first_kink_length)
+                                                : nlohmann::ordered_json(nullptr);
   } else {
     const EversionSolveSummary s = robot.Solve(problem.loads);
     // As after growth: the exit code follows the solve (status); a kink is the robot's report.
@@ -83,6 +86,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   k["first_kink_s"] = kink.first_kink_s >= 0 ? nlohmann::ordered_json(kink.first_kink_s)
                                              : nlohmann::ordered_json(nullptr);
   r["kink"] = k;
+  if (problem.robot.growth_initial_length) r["first_kink_length"] = first_kink_length;
   result.json["robot"] = r;
   if (run_options.nodes_csv) result.nodes_csv = detail::NodesCsv(robot.state());
   const Vec3 tip = robot.state().tip_position_W();
