@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "cosserat/rod/stiffness_profiles.hpp"
 #include "cosserat/state/solve_status.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 
@@ -117,6 +118,14 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
           << " m across: not a slender rod, which rod theory assumes; check rod.length and the "
              "section's sizes (m)\n";
   }
+  // The inflated tube's thin-wall laws (I = π r³ t, a wrinkling moment of π p r³/2) drop terms of
+  // order t/r: past a tenth they are off by as much.
+  if (const auto* tube = dynamic_cast<const InflatedTubeSection*>(problem.rod.section.get());
+      tube && tube->wall_thickness() > 0.1 * tube->radius())
+    log << "cosserat: note: rod.stiffness_profile.wall_thickness is "
+        << tube->wall_thickness() / tube->radius() << " of the tube's radius: its thin-wall laws "
+        << "(I = π r³ t, a wrinkling moment of π p r³/2) assume it much smaller and are off by "
+           "about that fraction\n";
   if (problem.analysis == io::Analysis::kDynamics && problem.dynamics.initial_loads_without_gravity)
     log << "cosserat: warning: dynamics.initial_loads has no \"gravity\" while loads has: it "
            "replaces loads, so the run starts from the equilibrium without gravity; repeat "
