@@ -120,7 +120,10 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
   }
   // The inflated tube's thin-wall laws (I = π r³ t, a wrinkling moment of π p r³/2) drop terms of
   // order t/r: past a tenth they are off by as much.
-  if (const auto* tube = dynamic_cast<const InflatedTubeSection*>(problem.rod.section.get());
+  const SectionProfile* profile = problem.rod.section.get();
+  if (const auto* fixed = dynamic_cast<const FixedActuationSection*>(profile))
+    profile = fixed->inner().get();  // the file's pressures around the tube
+  if (const auto* tube = dynamic_cast<const InflatedTubeSection*>(profile);
       tube && tube->wall_thickness() > 0.1 * tube->radius())
     log << "cosserat: note: rod.stiffness_profile.wall_thickness is "
         << tube->wall_thickness() / tube->radius() << " of the tube's radius: its thin-wall laws "
