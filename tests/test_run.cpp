@@ -967,6 +967,31 @@ TEST(Run, AThickWalledInflatedTubeIsNoted) {
   }
 }
 
+// A wire held between anchors farther apart than its length stretches by their ratio, uniformly:
+// steel (E/ρ = 2.5e7 m²/s²) at 2.6 % carries 5 GPa, past any steel's strength, and is warned; at
+// 0.5 % it is not. A rubber cord (E/ρ = 1e3) stretched 5 % is within its linear range's reach
+// (warned from 10 %).
+TEST(Run, AMetalStretchedPastWhatItBearsIsWarned) {
+  auto pulled = [](double E, double density, double stretch) {
+    std::ostringstream text;
+    text << std::setprecision(17) << R"({"format": "cosserat-problem/1",
+      "formulation": "quaternion-fd",
+      "rod": {"length": 10, "nodes": 21, "section": {"shape": "circle", "radius": 0.002},
+              "material": {"youngs_modulus": )" << E << R"(, "poisson_ratio": 0.3,
+                           "density": )" << density << R"(}},
+      "boundary": "anchored", "anchor": {"position": [)" << 10 * (1 + stretch) << R"(, 0, 0]},
+      "base": {"rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]}})";
+    const io::ParseResult parsed = io::ParseProblem(text.str());
+    EXPECT_TRUE(parsed.ok()) << (parsed.errors.empty() ? "" : parsed.errors.front());
+    const Result r = cosserat::run::Run(*parsed.problem);
+    EXPECT_TRUE(r.converged) << r.log;
+    return r.log.find("warning: the rod is stretched or compressed") != std::string::npos;
+  };
+  EXPECT_TRUE(pulled(200e9, 7850, 0.026));
+  EXPECT_FALSE(pulled(200e9, 7850, 0.005));
+  EXPECT_FALSE(pulled(1e6, 1000, 0.05));
+}
+
 // A 0.6 m vine (r = 25 mm, wall 75 µm, E = 1e8 + 1e4 p Pa at p = 3 kPa: EI = 0.479 N·m²) pushed
 // along its axis stands straight either side of its Euler load π²EI/4L² = 3.28 N, which the
 // pressure does not raise (a closed vessel): at half of it the log is silent, at 1.6 times
