@@ -1137,6 +1137,30 @@ TEST(HeldCable, AClampTurnedOffTheLineIsNamedWithItsAngle) {
   }
 }
 
+// A clamp near which the line turns on its own is not held against a direction it lacks: a 20 m
+// steel cable (EI = 60 N·m²) from the origin to a point 4 m across and 16 m up dips to its low
+// point 1.4 m from the base, its bend radius H/w there about the bending length sqrt(EI/T)
+// ≈ 0.6 m. Clamped along the elastic catenary's own end tangent (H, 0, −V)/T it follows the
+// line, and gets no note (the line beyond 3 bending lengths points 108° away, up the far side).
+TEST(HeldCable, AClampAlongASteepSlackLineIsNotNoted) {
+  const double A = 1e-3, w = 7850 * A * kG, EA = 2e11 * A;
+  const truth::ElasticCatenary cat = truth::SolveElasticCatenary(4, 16, 20, w, EA);
+  const double a = std::atan2(-cat.V, cat.H);  // the end tangent's angle from x, about -y
+  std::ostringstream text;
+  text << std::setprecision(17) << R"({"format": "cosserat-problem/1",
+    "formulation": "quaternion-fd",
+    "rod": {"length": 20, "nodes": 201,
+            "section": {"area": 1e-3, "I1": 3e-10, "I2": 3e-10, "J": 6e-10},
+            "material": {"youngs_modulus": 2e11, "poisson_ratio": 0.3, "density": 7850}},
+    "base": {"position": [0, 0, 0], "rotation": [[)" << -std::sin(a) << ", 0, " << std::cos(a)
+       << "], [0, -1, 0], [" << std::cos(a) << ", 0, " << std::sin(a) << R"(]]},
+    "boundary": "anchored", "anchor": {"position": [4, 0, 16], "base": "clamped"},
+    "loads": {"gravity": [0, 0, -9.81]}})";
+  const run::Result r = RunProblemText(text.str().c_str(), false);
+  ASSERT_TRUE(r.converged) << r.log;
+  EXPECT_EQ(r.log.find("note: the clamp at s = 0 holds"), std::string::npos) << r.log;
+}
+
 // --- Modes of a sagging cable ---------------------------------------------------------------
 
 /// A horizontal cable of span 100 m sagging ~1 m (d/ℓ = 0.01) under gravity, with EA set so that

@@ -31,11 +31,15 @@ std::size_t NodeFrom(const std::vector<double>& s, double distance, bool from_ti
 }  // namespace
 
 std::string ClampAlignmentNote(const io::Problem& problem, const Result& result) {
+  // An equilibrium's: statics, or the one the modes are about (a run in time ends elsewhere).
+  const std::string status = result.json.value("status", "");
   if (problem.boundary != io::Boundary::kAnchored || !problem.rod.section ||
-      !result.json.contains("nodes"))
+      problem.analysis == io::Analysis::kDynamics || problem.analysis == io::Analysis::kBuckling ||
+      !(result.converged || status == "under_resolved") || !result.json.contains("nodes"))
     return "";
   const nlohmann::ordered_json& nodes = result.json["nodes"];
-  if (!nodes.contains("s") || !nodes.contains("position") || !nodes.contains("force_body"))
+  if (!nodes.contains("s") || !nodes.contains("position") || !nodes.contains("force_body") ||
+      !nodes.contains("moment_body"))
     return "";
   const std::vector<double> s = nodes["s"].get<std::vector<double>>();
   if (s.size() < 3 || nodes["position"].size() != s.size()) return "";
@@ -57,15 +61,33 @@ std::string ClampAlignmentNote(const io::Problem& problem, const Result& result)
         problem.rod.section->At(s[end], problem.robot.actuation).min_bending_stiffness();
     if (!(T > 0.0) || !(ei > 0.0)) return;
     const double layer = std::sqrt(ei / T);  // m
-    if (6.0 * layer > 0.25 * s.back()) return;
-    std::size_t near = NodeFrom(s, 3.0 * layer, tip), far = NodeFrom(s, 6.0 * layer, tip);
-    if (near == end) near = tip ? end - 1 : end + 1;
-    if (far == near) far = tip ? near - 1 : near + 1;
-    const Vec3 line = tip ? (position(near) - position(far)) : (position(far) - position(near));
-    if (!line.allFinite() || !(line.norm() > 0.0)) return;
-    const Vec3 along = line.normalized(), tangent = R.col(2);
-    const double angle = std::acos(std::clamp(tangent.dot(along), -1.0, 1.0)) * 180.0 / M_PI;
+    if (9.0 * layer > 0.25 * s.back()) return;
+    // The line's direction over [3, 6] and [6, 9] bending lengths from the end (at least a
+    // segment each), pointing along s.
+    auto direction = [&](double from, double to) {
+      std::size_t a = NodeFrom(s, from * layer, tip), b = NodeFrom(s, to * layer, tip);
+      if (a == end) a = tip ? end - 1 : end + 1;
+      if (b == a) b = tip ? a - 1 : a + 1;
+      const Vec3 d = tip ? Vec3(position(a) - position(b)) : Vec3(position(b) - position(a));
+      return d.allFinite() && d.norm() > 0.0 ? Vec3(d.normalized()) : Vec3::Constant(NAN);
+    };
+    const Vec3 along = direction(3.0, 6.0), beyond = direction(6.0, 9.0);
+    // A line that turns by over 10° on that scale (a slack cable's low point near the clamp) has
+    // no direction beyond the layer to hold the clamp against.
+    if (!along.allFinite() || !beyond.allFinite() || along.dot(beyond) < std::cos(M_PI / 18))
+      return;
+    const Vec3 tangent = R.col(2);
+    const double turn = std::acos(std::clamp(tangent.dot(along), -1.0, 1.0));  // rad
+    const double angle = turn * 180.0 / M_PI;
     if (!(angle > kAlignedWithin)) return;
+    // A clamp the line turns away from carries the layer's moment, 2 sqrt(EI T) sin(θ/2), or a
+    // part of it on a grid coarser than the layer (a quarter at h = 8.5 sqrt(EI/T)); a clamp that
+    // follows the line carries round-off (1e-6 of it), though the line may bend on its own within
+    // 6 sqrt(EI/T) of it (a slack cable's low point). Under a twentieth, no note.
+    const auto& m = nodes["moment_body"][end];
+    if (!m[0].is_number() || !m[1].is_number()) return;
+    const double moment = std::hypot(m[0].get<double>(), m[1].get<double>());  // N·m
+    if (moment < 0.05 * 2.0 * std::sqrt(ei * T) * std::sin(0.5 * turn)) return;
     log << "cosserat: note: the clamp at " << (tip ? "the anchor" : "s = 0")
         << " holds the rod's tangent " << Vector(tangent) << " (" << field << "'s third column) "
         << angle << "° from the line's direction beyond its bending layer (sqrt(EI/T) = " << layer
