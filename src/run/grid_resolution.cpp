@@ -95,6 +95,7 @@ GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& 
     const double half = 0.25 * (bending(curvature[i]) + bending(curvature[i + 1])) * h;
     if (!(h > 0.0) || half > 0.5 * M_PI) continue;
     const double strain = stretch.size() == s.size() ? 0.5 * (stretch[i] + stretch[i + 1]) : 0.0;
+    if (!std::isfinite(strain)) continue;  // a stretch not known: no shrink judged there
     const double chord = (half > 1e-8 ? h * std::sin(half) / half : h) * (1.0 + strain);
     const double ratio = (position[i + 1] - position[i]).norm() / chord;
     if (ratio < shortest) shortest = ratio, shortest_s = s[i];
@@ -115,9 +116,14 @@ GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& 
 
 GridResolution CheckGrid(const RodState& state, double length, bool converged) {
   std::vector<Vec3> curvature;
+  std::vector<double> stretch;  // ν₃ − 1: the backbone's own
   curvature.reserve(state.strain.size());
-  for (const Vec6& xi : state.strain) curvature.push_back(xi.head<3>());
-  GridResolution out = CheckGrid(state.s, state.position_W, curvature, length, converged);
+  for (const Vec6& xi : state.strain) {
+    curvature.push_back(xi.head<3>());
+    stretch.push_back(xi(5) - 1.0);
+  }
+  GridResolution out =
+      CheckGrid(state.s, state.position_W, curvature, length, converged, stretch);
   if (out.ran_away) return out;
   int first = -1;  // the first node whose frame left the rotations
   for (int i = 0; i < state.size() && first < 0; ++i)
@@ -228,19 +234,28 @@ std::string TensionLayerLine(const io::Problem& problem, const nlohmann::ordered
 
 namespace {
 
-/// The axial strain n₃/EA at each node of a "nodes" block with "force_body" (body z), EA of the
-/// section there; empty without them.
+/// The backbone's axial strain at each node of a "nodes" block with "force_body" (body z, the
+/// section's whole force): (n₃ − ΣT)/EA, less the tensions T of the tendons that run past the
+/// node, which the backbone carries in compression (their axial part; EA of the section there).
+/// NaN where it is not known (a tendon robot under length control, whose tensions are solved
+/// for); empty without those lists.
 std::vector<double> AxialStrain(const io::Problem& problem, const nlohmann::ordered_json& nodes) {
   std::vector<double> strain;
   if (!problem.rod.section || !nodes.contains("force_body") || !nodes.contains("s")) return strain;
   const auto& s = nodes["s"];
   const auto& force = nodes["force_body"];
   if (force.size() != s.size()) return strain;
+  const Actuation& a = problem.robot.actuation;
   for (size_t i = 0; i < s.size(); ++i) {
-    const double ea =
-        problem.rod.section->At(s[i].get<double>(), problem.robot.actuation).stiffness(5, 5);
-    const double n3 = force[i][2].is_number() ? force[i][2].get<double>() : 0.0;
-    strain.push_back(ea > 0.0 ? n3 / ea : 0.0);
+    const double si = s[i].get<double>();
+    const double ea = problem.rod.section->At(si, a).stiffness(5, 5);
+    double n3 = force[i][2].is_number() ? force[i][2].get<double>() : NAN;
+    for (size_t k = 0; k < problem.rod.tendons.size(); ++k) {
+      const double anchor = problem.rod.tendons[k].anchor;  // 0: the tip
+      if (anchor == 0.0 || si < anchor)
+        n3 -= problem.robot.tendon_lengths ? NAN : a.tendon_tension[k];
+    }
+    strain.push_back(ea > 0.0 ? n3 / ea : NAN);
   }
   return strain;
 }

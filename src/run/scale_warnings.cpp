@@ -5,6 +5,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "cosserat/rod/filled_pipe_section.hpp"
+#include "cosserat/rod/section_profile.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
 #include "cosserat/state/solve_status.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
@@ -104,15 +106,24 @@ void UnitSlipWarnings(const io::Problem& problem, std::ostringstream* log) {
   }
 }
 
+/// The Young's modulus of a rod of one material along its length (Pa), looking through the
+/// file's fixed pressures and a pipe's contents; 0 for other profiles (tapers, tubes, bands).
+double UniformYoungsModulus(const SectionProfile* profile) {
+  if (const auto* fixed = dynamic_cast<const FixedActuationSection*>(profile))
+    profile = fixed->inner().get();
+  if (const auto* filled = dynamic_cast<const FilledPipeSection*>(profile))
+    profile = &filled->pipe();
+  const auto* uniform = dynamic_cast<const UniformSection*>(profile);
+  return uniform ? uniform->material().youngs_modulus : 0.0;
+}
+
 /// The stretch past which the linear law is the model's answer, not the material's: kLargeStretch,
-/// or 1 % for a section as stiff for its mass as a metal: axial waves faster than 2.2 km/s,
-/// EA/ρA = E/ρ over 5e6 m²/s² (steel, aluminium, glass and carbon fibre; rubbers are near
-/// 1e3). A steel stay cable stretched 2.6 % carries 5 GPa, where strand breaks below 2 GPa.
+/// or 1 % for a uniform rod as stiff as a metal (E over 20 GPa: steel, aluminium, glass and
+/// carbon fibre; polymers stay under 5 GPa). A steel stay cable stretched 2.6 % carries 5 GPa,
+/// where strand breaks below 2 GPa.
 double StretchTrusted(const io::Problem& problem) {
   if (problem.has_assembly || !problem.rod.section) return kLargeStretch;
-  const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
-  const double mass = p.mass(3, 3);  // ρA, kg/m
-  return mass > 0.0 && p.stiffness(5, 5) / mass > 5e6 ? 0.01 : kLargeStretch;
+  return UniformYoungsModulus(problem.rod.section.get()) > 20e9 ? 0.01 : kLargeStretch;
 }
 
 }  // namespace
@@ -130,16 +141,19 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
              "section's sizes (m)\n";
   }
   // The inflated tube's thin-wall laws (I = π r³ t, a wrinkling moment of π p r³/2) drop terms of
-  // order t/r: past a tenth they are off by as much.
+  // order t/r: past a 10 % difference from the annulus's I, r the outer radius, it is noted.
   const SectionProfile* profile = problem.rod.section.get();
   if (const auto* fixed = dynamic_cast<const FixedActuationSection*>(profile))
     profile = fixed->inner().get();  // the file's pressures around the tube
-  if (const auto* tube = dynamic_cast<const InflatedTubeSection*>(profile);
-      tube && tube->wall_thickness() > 0.1 * tube->radius())
-    log << "cosserat: note: rod.stiffness_profile.wall_thickness is "
-        << tube->wall_thickness() / tube->radius() << " of the tube's radius: its thin-wall laws "
-        << "(I = π r³ t, a wrinkling moment of π p r³/2) assume it much smaller and are off by "
-           "about that fraction\n";
+  if (const auto* tube = dynamic_cast<const InflatedTubeSection*>(profile)) {
+    const double r = tube->radius(), t = tube->wall_thickness();
+    const double thin = r * r * r * t, annulus = 0.25 * (std::pow(r, 4) - std::pow(r - t, 4));
+    if (thin > 1.1 * annulus)
+      log << "cosserat: note: rod.stiffness_profile.wall_thickness is " << t / r
+          << " of the tube's radius: its thin-wall bending stiffness (I = π r³ t) is "
+          << thin / annulus << " times the annulus's π (r⁴ − (r − t)⁴)/4, and its wrinkling "
+          << "moment π p r³/2 assumes a thin wall too\n";
+  }
   if (problem.analysis == io::Analysis::kDynamics && problem.dynamics.initial_loads_without_gravity)
     log << "cosserat: warning: dynamics.initial_loads has no \"gravity\" while loads has: it "
            "replaces loads, so the run starts from the equilibrium without gravity; repeat "

@@ -38,8 +38,11 @@ double SegmentDistance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec
 }  // namespace
 
 std::string SelfCrossingNote(const io::Problem& problem, const Result& result) {
-  // Only an equilibrium: a shot that ran away or stopped short has no shape to judge.
-  if (problem.analysis != io::Analysis::kStatics || problem.has_assembly || !result.converged ||
+  // Only an equilibrium (one the grid under-resolves too): a shot that ran away or stopped
+  // short has no shape to judge.
+  const bool equilibrium =
+      result.converged || result.json.value("status", "") == "under_resolved";
+  if (problem.analysis != io::Analysis::kStatics || problem.has_assembly || !equilibrium ||
       !problem.rod.section || !result.json.contains("nodes"))
     return "";
   const nlohmann::ordered_json& nodes = result.json["nodes"];

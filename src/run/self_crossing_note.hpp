@@ -11,10 +11,10 @@
 
 namespace cosserat::run::detail {
 
-/// "cosserat: note: ..." when two stretches of a converged statics result's nodes further apart
-/// along the rod than π times its outer diameter d come within d of each other (segment to
-/// segment, world frame); empty otherwise, for sections with no outer diameter, and for grids
-/// over 2 001 nodes (the check is quadratic in them).
+/// "cosserat: note: ..." when two stretches of a statics equilibrium's nodes (converged, or
+/// under-resolved) further apart along the rod than π times its outer diameter d come within d
+/// of each other (segment to segment, world frame); empty otherwise, for sections with no outer
+/// diameter, and for grids over 2 001 nodes (the check is quadratic in them).
 std::string SelfCrossingNote(const io::Problem& problem, const Result& result);
 
 }  // namespace cosserat::run::detail
