@@ -118,14 +118,16 @@ class Stepper(_core.Stepper):
 
     def step(self, loads=None, base_position=None, base_rotation=None, base_twist_B=None,
              base_wrench_B=None, actuation=None):
-        if self._clamp is not None:
-            self._check_clamp_twist(base_position, base_rotation, base_twist_B)
         if base_wrench_B is not None and self._problem.boundary != "free-free":
             raise ValueError("base_wrench_B: acts on a free-free rod's s = 0 end; this rod's "
                              f"base is {self._problem.boundary} (its clamp takes any wrench)")
-        return super().step(_loads_from(loads, self), base_position, base_rotation,
-                            base_twist_B, base_wrench_B,
-                            _actuation_from(actuation, self._problem, self._rules))
+        summary = super().step(_loads_from(loads, self), base_position, base_rotation,
+                               base_twist_B, base_wrench_B,
+                               _actuation_from(actuation, self._problem, self._rules))
+        # Said of a step the core took: a refused call applies nothing, the warning included.
+        if self._clamp is not None:
+            self._check_clamp_twist(base_position, base_rotation, base_twist_B)
+        return summary
 
     @property
     def actuation(self):

@@ -573,6 +573,8 @@ class Dynamics(unittest.TestCase):
         with warnings.catch_warnings():
             warnings.simplefilter("error")
             stepper.step(base_position=[0, 0, 0])  # where it is
+            with self.assertRaises(TypeError):  # refused: nothing applied, the warning included
+                stepper.step(base_position=[0, 1e-4])
         with self.assertWarnsRegex(RuntimeWarning, "no base_twist_B was given"):
             stepper.step(base_position=[0, 0, 1e-4])
         with warnings.catch_warnings():
