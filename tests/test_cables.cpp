@@ -1099,6 +1099,28 @@ TEST(HeldCable, ACablesMidSpanSwingsAtItsOutOfPlaneFrequency) {
   EXPECT_NEAR((up[1] - up[0]) * f, 1.0, 5e-3);
 }
 
+/// A steel cable (A = 1e-3 m², E = 200 GPa, I1 = I2 = `I`) of `length` m on 201 nodes, clamped
+/// at the origin with its tangent at `angle` rad from x (about −y; base frame columns
+/// (−sin a, 0, cos a), −y, (cos a, 0, sin a)), pinned at `anchor` (m, world), in gravity, on the
+/// quaternion-FD path: its statics as the command runs them.
+run::Result ClampedSteelCable(double length, const Vec3& anchor, double I, double angle) {
+  std::ostringstream text;
+  text << std::setprecision(17) << R"({"format": "cosserat-problem/1",
+    "formulation": "quaternion-fd",
+    "rod": {"length": )" << length << R"(, "nodes": 201,
+            "section": {"area": 1e-3, "I1": )" << I << R"(, "I2": )" << I << R"(, "J": )"
+       << 2 * I << R"(},
+            "material": {"youngs_modulus": 2e11, "poisson_ratio": 0.3, "density": 7850}},
+    "base": {"position": [0, 0, 0], "rotation": [[)" << -std::sin(angle) << ", 0, "
+       << std::cos(angle) << "], [0, -1, 0], [" << std::cos(angle) << ", 0, " << std::sin(angle)
+       << R"(]]},
+    "boundary": "anchored",
+    "anchor": {"position": [)" << anchor.x() << ", " << anchor.y() << ", " << anchor.z()
+       << R"(], "base": "clamped"},
+    "loads": {"gravity": [0, 0, -9.81]}})";
+  return RunProblemText(text.str().c_str(), false);
+}
+
 // A slack steel cable (100 m between points 90 m apart, EI = 20 N·m²: sqrt(EI/T) ≈ 6 cm) clamped
 // at its base along the elastic catenary's own end tangent (H, 0, −V)/T: the clamp follows the
 // line and no note comes. Turned 30° about y off it, the note names the clamp's angle to the
@@ -1109,19 +1131,8 @@ TEST(HeldCable, AClampTurnedOffTheLineIsNamedWithItsAngle) {
   const truth::ElasticCatenary cat = truth::SolveElasticCatenary(90, 0, 100, w, EA);
   const double angle0 = std::atan2(-cat.V, cat.H);  // the end tangent's angle from x, about -y
   for (const double turn : {0.0, 30.0}) {  // degrees off the catenary's tangent
-    const double a = angle0 - turn * M_PI / 180;
-    // Third column (cos a, 0, sin a): the tangent; first (−sin a, 0, cos a); second −y.
-    std::ostringstream text;
-    text << std::setprecision(17) << R"({"format": "cosserat-problem/1",
-      "formulation": "quaternion-fd",
-      "rod": {"length": 100, "nodes": 201,
-              "section": {"area": 1e-3, "I1": 1e-10, "I2": 1e-10, "J": 2e-10},
-              "material": {"youngs_modulus": 2e11, "poisson_ratio": 0.3, "density": 7850}},
-      "base": {"position": [0, 0, 0], "rotation": [[)" << -std::sin(a) << ", 0, " << std::cos(a)
-         << "], [0, -1, 0], [" << std::cos(a) << ", 0, " << std::sin(a) << R"(]]},
-      "boundary": "anchored", "anchor": {"position": [90, 0, 0], "base": "clamped"},
-      "loads": {"gravity": [0, 0, -9.81]}})";
-    const run::Result r = RunProblemText(text.str().c_str(), false);
+    const run::Result r =
+        ClampedSteelCable(100, Vec3(90, 0, 0), 1e-10, angle0 - turn * M_PI / 180);
     ASSERT_TRUE(r.converged) << r.log;
     const std::size_t at = r.log.find("note: the clamp at s = 0 holds");
     if (turn == 0.0) {
@@ -1146,17 +1157,7 @@ TEST(HeldCable, AClampAlongASteepSlackLineIsNotNoted) {
   const double A = 1e-3, w = 7850 * A * kG, EA = 2e11 * A;
   const truth::ElasticCatenary cat = truth::SolveElasticCatenary(4, 16, 20, w, EA);
   const double a = std::atan2(-cat.V, cat.H);  // the end tangent's angle from x, about -y
-  std::ostringstream text;
-  text << std::setprecision(17) << R"({"format": "cosserat-problem/1",
-    "formulation": "quaternion-fd",
-    "rod": {"length": 20, "nodes": 201,
-            "section": {"area": 1e-3, "I1": 3e-10, "I2": 3e-10, "J": 6e-10},
-            "material": {"youngs_modulus": 2e11, "poisson_ratio": 0.3, "density": 7850}},
-    "base": {"position": [0, 0, 0], "rotation": [[)" << -std::sin(a) << ", 0, " << std::cos(a)
-       << "], [0, -1, 0], [" << std::cos(a) << ", 0, " << std::sin(a) << R"(]]},
-    "boundary": "anchored", "anchor": {"position": [4, 0, 16], "base": "clamped"},
-    "loads": {"gravity": [0, 0, -9.81]}})";
-  const run::Result r = RunProblemText(text.str().c_str(), false);
+  const run::Result r = ClampedSteelCable(20, Vec3(4, 0, 16), 3e-10, a);
   ASSERT_TRUE(r.converged) << r.log;
   EXPECT_EQ(r.log.find("note: the clamp at s = 0 holds"), std::string::npos) << r.log;
 }
