@@ -441,6 +441,29 @@ TEST(DrillString, TheWeightOnBitNoteFollowsTheTipForcesDirection) {
   }
 }
 
+// A weight on bit in the wrong units (5e9 N on a 0.1 m bit) would twist a 100 m string of 5 in
+// pipe (GJ = 9.5e5 N·m²) through μ_s W R L/GJ = 4.2e4 rad at once: the log says so, whatever
+// the run makes of it; 5e3 N (42 rad, a few turns wound up before the bit slips) is not
+// questioned.
+TEST(DrillString, AWeightOnBitInTheWrongUnitsIsWarned) {
+  for (const double weight : {5e9, 5e3}) {  // N
+    const io::ParseResult parsed = io::ParseProblem(R"({"format": "cosserat-problem/1",
+      "analysis": "dynamics",
+      "rod": {"length": 100, "nodes": 51,
+        "section": {"shape": "annulus", "outer_radius": 0.0635, "inner_radius": 0.0543},
+        "material": {"youngs_modulus": 207e9, "poisson_ratio": 0.3, "density": 7850}},
+      "base": {"rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]]},
+      "loads": {"gravity": [0, 0, -9.81],
+        "bit_friction": {"weight_on_bit": )" + std::to_string(weight) + R"(, "radius": 0.1,
+                         "static_coefficient": 0.8, "kinetic_coefficient": 0.5}},
+      "dynamics": {"dt": 0.01, "duration": 0.01, "base_spin": 1.0}})");
+    ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
+    const run::Result r = run::Run(*parsed.problem);
+    EXPECT_EQ(r.log.find("would twist the string through") != std::string::npos, weight > 1e6)
+        << weight << "\n" << r.log;
+  }
+}
+
 TEST(DrillString, AStringInABoreRestsItsEndOnTheWall) {
   const BoreSetUp set;
   StaticMultipleShootingSolver solver(set.rod.model(), 201);

@@ -69,8 +69,9 @@ double LargestStretch(const nlohmann::ordered_json& nodes, bool shot, double* at
 }
 
 /// Loads past what any elastic rod carries: a force over ten times the axial stiffness EA (it
-/// would stretch the rod tenfold), or a moment turning the rod through 1e4 rad (M L/EI). A
-/// force of 1e30 N on a steel wire stopped its load steps at once, and the hint spoke of the grid.
+/// would stretch the rod tenfold), a moment turning the rod through 1e4 rad (M L/EI), or a drill
+/// bit's static friction torque μ_s W R twisting it through 1e4 rad (τ L/GJ). A force of 1e30 N
+/// on a steel wire stopped its load steps at once, and the hint spoke of the grid.
 void ImpossibleLoadWarning(const io::Problem& problem, std::ostringstream* log) {
   if (problem.has_assembly || !problem.rod.section) return;
   const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
@@ -84,6 +85,15 @@ void ImpossibleLoadWarning(const io::Problem& problem, std::ostringstream* log) 
   if (turn > 1e4)
     *log << "cosserat: warning: the tip moment would turn the rod through M L/EI = " << turn
          << " rad: check the units of loads.tip_moment (N·m) and of the material (Pa)\n";
+  const BitFriction& bit = problem.loads.bit;
+  const double twist =
+      bit.present() ? bit.static_coefficient * bit.weight_on_bit * bit.radius * L / p.stiffness(2, 2)
+                    : 0.0;  // rad
+  if (twist > 1e4)
+    *log << "cosserat: warning: the bit's static friction torque μ_s W R = "
+         << bit.static_coefficient * bit.weight_on_bit * bit.radius << " N·m would twist the "
+         << "string through τ L/GJ = " << twist << " rad: check the units of "
+         << "loads.bit_friction.weight_on_bit (N) and radius (m)\n";
 }
 
 /// Values only a slip of units gives: gravity over a hundred times Earth's (mm/s² for m/s²), a
