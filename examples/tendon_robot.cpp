@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
       shapes << a.tendon_tension[0] << ',' << i << ',' << st.s[i] << ',' << st.position_W[i].x()
              << ',' << st.position_W[i].y() << ',' << st.position_W[i].z() << '\n';
     StaticShootingSolver::TensionJacobian J;
-    solver.TipJacobianWrtTensions(p.base, p.loads, &J);
+    if (!solver.TipJacobianWrtTensions(p.base, p.loads, &J)) continue;  // no equilibrium here
     for (int t = 0; t < solver.tendon_count(); ++t) {
       jac << a.tendon_tension[0] << ',' << t;
       for (int r = 0; r < 6; ++r) jac << ',' << J(r, t);

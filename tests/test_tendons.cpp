@@ -216,6 +216,12 @@ TEST(Tendons, TipJacobianInTheTensionsMatchesFiniteDifferences) {
   StaticShootingSolver::TensionJacobian J;
   ASSERT_TRUE(solver.TipJacobianWrtTensions(lie::SE3{}, loads, &J));
   const Mat3 R0 = solver.state().tip_rotation_WB();
+  // Only the last solve's equilibrium has these tangents: other loads, or no J, are refused.
+  StaticLoads other = loads;
+  other.tip_force.x() += 0.01;
+  EXPECT_THROW(solver.TipJacobianWrtTensions(lie::SE3{}, other, &J), std::invalid_argument);
+  EXPECT_THROW(solver.TipJacobianWrtTensions(lie::SE3{}, loads, nullptr), std::invalid_argument);
+  ASSERT_TRUE(solver.TipJacobianWrtTensions(lie::SE3{}, loads, &J));
 
   // Central differences with δ = 1e-4 N: truncation ~δ² ≈ 1e-8 relative, solver noise at
   // 1e-13 ~1e-9 relative; the Jacobian is exact for the discrete model, so 1e-6 is safe.

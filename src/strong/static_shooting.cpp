@@ -455,9 +455,17 @@ Mat6 StaticShootingSolver::ResidualJacobianKeepingTangents(const lie::SE3& base,
 
 bool StaticShootingSolver::TipJacobianWrtTensions(const lie::SE3& base, const StaticLoads& loads,
                                                   TensionJacobian* J) const {
+  if (J == nullptr)
+    throw std::invalid_argument("StaticShootingSolver::TipJacobianWrtTensions: J is null");
   const int count = static_cast<int>(model_.tendons.size());
   J->setZero();
   if (!state_is_solution_ || count == 0) return false;
+  // The derivative of the last solve's equilibrium: another base or other loads would give the
+  // tangents of a state that is not one (a Jacobian 17 % off, returned as if true).
+  if (!(loads == solved_loads_) || base.p != solved_base_.p || base.R != solved_base_.R)
+    throw std::invalid_argument(
+        "StaticShootingSolver::TipJacobianWrtTensions: base and loads must be those of the last "
+        "converged Solve");
   std::array<double, Actuation::kMaxTendons> lengths{};
   Mat36 dp_x, dp_t;
   RotationTangent dR_x, dR_t;

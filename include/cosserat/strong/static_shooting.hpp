@@ -119,7 +119,8 @@ class StaticShootingSolver {
   /// rotation in the tip body frame. Exact for the discrete model: tangents of the shot in the
   /// tensions and in the unknowns, combined by the implicit function theorem (not finite
   /// differences). Columns past the model's tendons are zero. Allocates nothing. False if there
-  /// is no converged solution (or no tendons); pass the base and loads of that solve.
+  /// is no converged solution (or no tendons); std::invalid_argument for a null J, or a base or
+  /// loads other than that solve's.
   using TensionJacobian = Eigen::Matrix<double, 6, Actuation::kMaxTendons>;
   bool TipJacobianWrtTensions(const lie::SE3& base, const StaticLoads& loads,
                               TensionJacobian* J) const;
