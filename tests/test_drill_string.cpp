@@ -416,24 +416,32 @@ TEST(DrillString, APipeLyingInAnInclinedBoreCarriesTheSoftStringHookLoad) {
   }
 }
 
+/// One step of a 100 m string of 5 in pipe hanging from a table spun at 1 rad/s (no fluid), with
+/// `weight` N on a 0.1 m bit (μ_s 0.8, μ_k 0.5) and `up` N of tip force up the hole (−z), run as
+/// the command runs it: its log is what these tests read.
+run::Result OneStepOfAHangingString(double weight, double up) {
+  std::ostringstream text;
+  text << std::setprecision(17) << R"({"format": "cosserat-problem/1", "analysis": "dynamics",
+    "rod": {"length": 100, "nodes": 51,
+      "section": {"shape": "annulus", "outer_radius": 0.0635, "inner_radius": 0.0543},
+      "material": {"youngs_modulus": 207e9, "poisson_ratio": 0.3, "density": 7850}},
+    "base": {"rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]]},
+    "loads": {"gravity": [0, 0, -9.81], "tip_force": [0, 0, )" << up << R"(],
+      "bit_friction": {"weight_on_bit": )" << weight << R"(, "radius": 0.1,
+                       "static_coefficient": 0.8, "kinetic_coefficient": 0.5}},
+    "dynamics": {"dt": 0.01, "duration": 0.01, "base_spin": 1.0}})";
+  const io::ParseResult parsed = io::ParseProblem(text.str());
+  EXPECT_TRUE(parsed.ok()) << (parsed.errors.empty() ? "" : parsed.errors.front());
+  return parsed.ok() ? run::Run(*parsed.problem) : run::Result{};
+}
+
 // The weight on bit sets the bit's friction only; the log says so unless the tip force pushes
 // the bit up the hole with about that much. A 100 m string hanging from a table (26 kN of
 // weight, no fluid) with 5 kN on bit: pushed up by 5 kN, no note; the same force pulling the bit
 // down, off the rock, and none at all, the note.
 TEST(DrillString, TheWeightOnBitNoteFollowsTheTipForcesDirection) {
   for (const double up : {5e3, -5e3, 0.0}) {  // N along −z, up the hole
-    const io::ParseResult parsed = io::ParseProblem(R"({"format": "cosserat-problem/1",
-      "analysis": "dynamics",
-      "rod": {"length": 100, "nodes": 51,
-        "section": {"shape": "annulus", "outer_radius": 0.0635, "inner_radius": 0.0543},
-        "material": {"youngs_modulus": 207e9, "poisson_ratio": 0.3, "density": 7850}},
-      "base": {"rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]]},
-      "loads": {"gravity": [0, 0, -9.81], "tip_force": [0, 0, )" + std::to_string(up) + R"(],
-        "bit_friction": {"weight_on_bit": 5e3, "radius": 0.1, "static_coefficient": 0.8,
-                         "kinetic_coefficient": 0.5}},
-      "dynamics": {"dt": 0.01, "duration": 0.01, "base_spin": 1.0}})");
-    ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
-    const run::Result r = run::Run(*parsed.problem);
+    const run::Result r = OneStepOfAHangingString(5e3, up);
     EXPECT_EQ(r.log.find("weight_on_bit (5e+03 N) sets the bit's friction torque only") !=
                   std::string::npos,
               up <= 0.0)
@@ -447,18 +455,7 @@ TEST(DrillString, TheWeightOnBitNoteFollowsTheTipForcesDirection) {
 // questioned.
 TEST(DrillString, AWeightOnBitInTheWrongUnitsIsWarned) {
   for (const double weight : {5e9, 5e3}) {  // N
-    const io::ParseResult parsed = io::ParseProblem(R"({"format": "cosserat-problem/1",
-      "analysis": "dynamics",
-      "rod": {"length": 100, "nodes": 51,
-        "section": {"shape": "annulus", "outer_radius": 0.0635, "inner_radius": 0.0543},
-        "material": {"youngs_modulus": 207e9, "poisson_ratio": 0.3, "density": 7850}},
-      "base": {"rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]]},
-      "loads": {"gravity": [0, 0, -9.81],
-        "bit_friction": {"weight_on_bit": )" + std::to_string(weight) + R"(, "radius": 0.1,
-                         "static_coefficient": 0.8, "kinetic_coefficient": 0.5}},
-      "dynamics": {"dt": 0.01, "duration": 0.01, "base_spin": 1.0}})");
-    ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
-    const run::Result r = run::Run(*parsed.problem);
+    const run::Result r = OneStepOfAHangingString(weight, 0.0);
     EXPECT_EQ(r.log.find("would twist the string through") != std::string::npos, weight > 1e6)
         << weight << "\n" << r.log;
   }

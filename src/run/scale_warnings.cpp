@@ -86,12 +86,11 @@ void ImpossibleLoadWarning(const io::Problem& problem, std::ostringstream* log) 
     *log << "cosserat: warning: the tip moment would turn the rod through M L/EI = " << turn
          << " rad: check the units of loads.tip_moment (N·m) and of the material (Pa)\n";
   const BitFriction& bit = problem.loads.bit;
-  const double twist =
-      bit.present() ? bit.static_coefficient * bit.weight_on_bit * bit.radius * L / p.stiffness(2, 2)
-                    : 0.0;  // rad
+  const double torque = bit.static_coefficient * bit.weight_on_bit * bit.radius;  // N·m
+  const double twist = bit.present() ? torque * L / p.stiffness(2, 2) : 0.0;        // rad
   if (twist > 1e4)
-    *log << "cosserat: warning: the bit's static friction torque μ_s W R = "
-         << bit.static_coefficient * bit.weight_on_bit * bit.radius << " N·m would twist the "
+    *log << "cosserat: warning: the bit's static friction torque μ_s W R = " << torque
+         << " N·m would twist the "
          << "string through τ L/GJ = " << twist << " rad: check the units of "
          << "loads.bit_friction.weight_on_bit (N) and radius (m)\n";
 }
