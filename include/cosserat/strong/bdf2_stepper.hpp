@@ -72,14 +72,16 @@ struct Bdf2Options {
   /// Convergence of each step: ‖r‖₂ < tolerance for the tip residual made dimensionless by
   /// EI/L (moments) and EI/L² (forces), as in statics.
   double tolerance = 1e-10;
-  /// Newton-type iterations per attempt (a hard cap on each attempt: Step() is deterministic).
-  /// A step's whole work is bounded by the attempts: a failed one is retried in more pieces
-  /// (automatic pieces, up to 256) and then as halves, up to max_halvings deep, each sub-step
-  /// with its own attempts; a bad tick then costs ~100× a good one (196 iterations, 0.1 s on
-  /// a tendon robot pushed by 1 kN), and the pieces it adds stay for the next 10 or more steps
-  /// taken whole (DropUnneededPieces). For a hard bound per tick: max_halvings = 0 and shooting_segments fixed (at most
-  /// max_iterations solves of one shot plan), with a failed step handled by the caller
-  /// (Restore of the last good Snapshot). A problem file's solver.max_iterations (default 50)
+  /// Newton-type iterations per pass (a hard cap on each pass: Step() is deterministic). An
+  /// attempt is a secant-Newton pass and, if that fails, a Levenberg–Marquardt pass from its
+  /// best point: at most 2 max_iterations + 1 iterations (41 at 20). A step's whole work is
+  /// bounded by the attempts: a failed one is retried in more pieces (automatic pieces, up to
+  /// 256) and then as halves, up to max_halvings deep, each sub-step with its own attempts; a
+  /// bad tick then costs ~100× a good one (196 iterations, 0.1 s on a tendon robot pushed by
+  /// 1 kN), and the pieces it adds stay for the next 10 or more steps taken whole
+  /// (DropUnneededPieces). For a hard bound per tick: max_halvings = 0 and shooting_segments
+  /// fixed (one attempt on one shot plan), with a failed step handled by the caller (Restore of
+  /// the last good Snapshot). A problem file's solver.max_iterations (default 50)
   /// sets it for the CLI and Python (run::DynamicsOptions); a stepper built from these defaults
   /// gives up sooner on a hard step than they do.
   int max_iterations = 20;
