@@ -5,6 +5,8 @@
 #include <sstream>
 #include <vector>
 
+#include "result_rows.hpp"
+
 namespace cosserat::run::detail {
 namespace {
 
@@ -32,10 +34,9 @@ std::size_t NodeFrom(const std::vector<double>& s, double distance, bool from_ti
 
 std::string ClampAlignmentNote(const io::Problem& problem, const Result& result) {
   // An equilibrium's: statics, or the one the modes are about (a run in time ends elsewhere).
-  const std::string status = result.json.value("status", "");
   if (problem.boundary != io::Boundary::kAnchored || !problem.rod.section ||
       problem.analysis == io::Analysis::kDynamics || problem.analysis == io::Analysis::kBuckling ||
-      !(result.converged || status == "under_resolved") || !result.json.contains("nodes"))
+      !HoldsEquilibrium(result) || !result.json.contains("nodes"))
     return "";
   const nlohmann::ordered_json& nodes = result.json["nodes"];
   if (!nodes.contains("s") || !nodes.contains("position") || !nodes.contains("force_body") ||
@@ -43,20 +44,13 @@ std::string ClampAlignmentNote(const io::Problem& problem, const Result& result)
     return "";
   const std::vector<double> s = nodes["s"].get<std::vector<double>>();
   if (s.size() < 3 || nodes["position"].size() != s.size()) return "";
-  auto position = [&](std::size_t i) {
-    const auto& p = nodes["position"][i];
-    return p[0].is_number() && p[1].is_number() && p[2].is_number()
-               ? Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>())
-               : Vec3::Constant(NAN);
-  };
+  auto position = [&](std::size_t i) { return VectorAt(nodes["position"][i]); };
   std::ostringstream log;
   log.precision(3);
   const auto note = [&](bool clamped, const Mat3& R, bool tip, const char* field) {
     if (!clamped) return;
     const std::size_t end = tip ? s.size() - 1 : 0;
-    const auto& f = nodes["force_body"][end];
-    if (!f[0].is_number() || !f[1].is_number() || !f[2].is_number()) return;
-    const double T = Vec3(f[0].get<double>(), f[1].get<double>(), f[2].get<double>()).norm();
+    const double T = VectorAt(nodes["force_body"][end]).norm();  // N; NaN for nulls
     const double ei =
         problem.rod.section->At(s[end], problem.robot.actuation).min_bending_stiffness();
     if (!(T > 0.0) || !(ei > 0.0)) return;
@@ -84,10 +78,9 @@ std::string ClampAlignmentNote(const io::Problem& problem, const Result& result)
     // part of it on a grid coarser than the layer (a quarter at h = 8.5 sqrt(EI/T)); a clamp that
     // follows the line carries round-off (1e-6 of it), though the line may bend on its own within
     // 6 sqrt(EI/T) of it (a slack cable's low point). Under a twentieth, no note.
-    const auto& m = nodes["moment_body"][end];
-    if (!m[0].is_number() || !m[1].is_number()) return;
-    const double moment = std::hypot(m[0].get<double>(), m[1].get<double>());  // N·m
-    if (moment < 0.05 * 2.0 * std::sqrt(ei * T) * std::sin(0.5 * turn)) return;
+    const Vec3 m = VectorAt(nodes["moment_body"][end]);
+    const double moment = std::hypot(m.x(), m.y());  // N·m; NaN for nulls
+    if (!(moment >= 0.05 * 2.0 * std::sqrt(ei * T) * std::sin(0.5 * turn))) return;
     log << "cosserat: note: the clamp at " << (tip ? "the anchor" : "s = 0")
         << " holds the rod's tangent " << Vector(tangent) << " (" << field << "'s third column) "
         << angle << "° from the line's direction beyond its bending layer (sqrt(EI/T) = " << layer

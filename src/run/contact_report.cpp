@@ -12,6 +12,7 @@
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/rod/grid.hpp"
 #include "foundation_hint.hpp"
+#include "result_rows.hpp"
 
 namespace cosserat::run::detail {
 
@@ -41,10 +42,6 @@ Vec3 NodeContactForce_W(const io::Problem& problem, const PenaltyContact& contac
                         const Vec3& p, const Vec3& v) {
   const double d = problem.rod.section->At(s, problem.robot.actuation).outer_diameter;
   return contact.MotionForce_W({s, 1.0, 0.0, d}, {p, Vec3::UnitZ(), v}, nullptr);
-}
-
-Vec3 VectorAt(const nlohmann::ordered_json& j) {
-  return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
 }
 
 /// SE(3) statics: the contact force the solver applied, from the rod's balance. Along the shot
@@ -190,8 +187,7 @@ void AddContactReport(const io::Problem& problem, Result* result) {
   const std::size_t n = s.size();
   for (std::size_t i = 0; i < n; ++i) {
     const double si = s[i].get<double>();
-    const Vec3 p(position[i][0].get<double>(), position[i][1].get<double>(),
-                 position[i][2].get<double>());
+    const Vec3 p = VectorAt(position[i]);
     const Vec3 v = result->node_velocity_W.size() == n ? result->node_velocity_W[i] : Vec3::Zero();
     const Vec3 f = NodeContactForce_W(problem, contact, si, p, v);
     per_node.push_back({f.x(), f.y(), f.z()});

@@ -9,6 +9,7 @@
 
 #include "cosserat/analysis/modes.hpp"
 #include "cosserat/state/solve_status.hpp"
+#include "result_rows.hpp"
 
 namespace cosserat::run {
 namespace {
@@ -283,20 +284,14 @@ void CheckGridResolution(const io::Problem& problem, Result* result) {
     return;
   const nlohmann::ordered_json& nodes = result->json["nodes"];
   if (!nodes.contains("s") || !nodes.contains("position") || !nodes.contains("curvature")) return;
-  auto rows = [](const nlohmann::ordered_json& a) {
-    std::vector<Vec3> out;
-    for (const auto& r : a)
-      out.emplace_back(r[0].get<double>(), r[1].get<double>(), r[2].get<double>());
-    return out;
-  };
   const bool polygon = problem.formulation == io::Formulation::kQuaternionFd;
   if (polygon && stopped_short) return;
+  const std::vector<double> s = nodes["s"].get<std::vector<double>>();
+  const std::vector<Vec3> position = detail::Vectors(nodes["position"]);
+  const std::vector<Vec3> curvature = detail::Vectors(nodes["curvature"]);
   const GridResolution g =
-      polygon ? CheckPolygon(nodes["s"].get<std::vector<double>>(), rows(nodes["position"]),
-                             rows(nodes["curvature"]), problem.rod.length,
-                             RestTwist(problem, nodes))
-              : CheckGrid(nodes["s"].get<std::vector<double>>(), rows(nodes["position"]),
-                          rows(nodes["curvature"]), problem.rod.length, !stopped_short,
+      polygon ? CheckPolygon(s, position, curvature, problem.rod.length, RestTwist(problem, nodes))
+              : CheckGrid(s, position, curvature, problem.rod.length, !stopped_short,
                           AxialStrain(problem, nodes));
   if (diverged) {
     if (g.ran_away) result->log += g.log;

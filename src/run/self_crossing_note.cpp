@@ -5,6 +5,8 @@
 #include <sstream>
 #include <vector>
 
+#include "result_rows.hpp"
+
 namespace cosserat::run::detail {
 namespace {
 
@@ -40,21 +42,17 @@ double SegmentDistance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec
 std::string SelfCrossingNote(const io::Problem& problem, const Result& result) {
   // Only an equilibrium (one the grid under-resolves too): a shot that ran away or stopped
   // short has no shape to judge.
-  const bool equilibrium =
-      result.converged || result.json.value("status", "") == "under_resolved";
-  if (problem.analysis != io::Analysis::kStatics || problem.has_assembly || !equilibrium ||
+  if (problem.analysis != io::Analysis::kStatics || problem.has_assembly ||
+      !HoldsEquilibrium(result) ||
       !problem.rod.section || !result.json.contains("nodes"))
     return "";
   const nlohmann::ordered_json& nodes = result.json["nodes"];
   if (!nodes.contains("s") || !nodes.contains("position")) return "";
   const std::vector<double> s = nodes["s"].get<std::vector<double>>();
   if (s.size() < 4 || s.size() > kMostNodes || nodes["position"].size() != s.size()) return "";
-  std::vector<Vec3> x;
-  for (const auto& p : nodes["position"]) {
-    if (!p[0].is_number() || !p[1].is_number() || !p[2].is_number()) return "";  // null: NaN
-    x.emplace_back(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
-    if (!x.back().allFinite()) return "";
-  }
+  const std::vector<Vec3> x = Vectors(nodes["position"]);
+  for (const Vec3& p : x)
+    if (!p.allFinite()) return "";
   double d = 0.0;  // the largest outer diameter along the rod, m
   for (double si : s)
     d = std::max(d, problem.rod.section->At(si, problem.robot.actuation).outer_diameter);
