@@ -38,22 +38,15 @@ StaticShootingSummary AsSummary(const quatfd::QuatFdStaticsSummary& s) {
   return out;
 }
 
-std::string TipText(const RodState& state) {
+/// "<what> at [x, y, z] m" (world, 6 digits).
+std::string PositionText(const char* what, const Vec3& p) {
   std::ostringstream line;
-  const Vec3& tip = state.tip_position_W();
-  line << "tip at [" << std::setprecision(6) << tip.x() << ", " << tip.y() << ", " << tip.z()
+  line << what << " at [" << std::setprecision(6) << p.x() << ", " << p.y() << ", " << p.z()
        << "] m";
   return line.str();
 }
 
-/// "mid-span at [x, y, z] m": a rod held at both ends, whose tip is its anchor.
-std::string MidspanText(const RodState& state) {
-  std::ostringstream line;
-  const Vec3& mid = state.position_W[state.size() / 2];
-  line << "mid-span at [" << std::setprecision(6) << mid.x() << ", " << mid.y() << ", " << mid.z()
-       << "] m";
-  return line.str();
-}
+std::string TipText(const RodState& state) { return PositionText("tip", state.tip_position_W()); }
 
 /// After a static solve that failed: when the grid spacing exceeds half a contact surface's
 /// foundation length, the grid hardly resolves the contact (a few vertices carry a patch's load).
@@ -380,7 +373,10 @@ std::string DynamicsLog(const io::DynamicRun& run, const RadauOutcome& radau,
   log << "), " << run.steps << " steps, " << run.halved_steps << " rejected, "
       << std::setprecision(6) << run.simulated_time_s << " s simulated in " << std::setprecision(3)
       << run.wall_time_s << " s, "
-      << (run.frame_midspan.empty() ? TipText(state) : MidspanText(state)) << '\n';
+      << (run.frame_midspan.empty()
+              ? TipText(state)
+              : PositionText("mid-span", state.position_W[state.size() / 2]))  // a held rod's
+      << '\n';
   if (radau.status == quatfd::IntegratorStatus::kMaxSteps)
     log << "cosserat: hint: Radau took dynamics.integrator_max_steps (" << d.integrator_max_steps
         << ") steps within one output interval, the last of " << std::setprecision(3)

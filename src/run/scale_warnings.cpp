@@ -115,11 +115,17 @@ void UnitSlipWarnings(const io::Problem& problem, std::ostringstream* log) {
   }
 }
 
-/// The Young's modulus of a rod of one material along its length (Pa), looking through the
-/// file's fixed pressures and a pipe's contents; 0 for other profiles (tapers, tubes, bands).
-double UniformYoungsModulus(const SectionProfile* profile) {
+/// The Young's modulus of a rod of one material along its length (Pa), looking through a pipe's
+/// contents; 0 for other profiles (tapers, tubes, bands).
+/// The profile a problem file describes, inside the fixed pressures the parser wraps it in.
+const SectionProfile* FileProfile(const io::Problem& problem) {
+  const SectionProfile* profile = problem.rod.section.get();
   if (const auto* fixed = dynamic_cast<const FixedActuationSection*>(profile))
     profile = fixed->inner().get();
+  return profile;
+}
+
+double UniformYoungsModulus(const SectionProfile* profile) {
   if (const auto* filled = dynamic_cast<const FilledPipeSection*>(profile))
     profile = &filled->pipe();
   const auto* uniform = dynamic_cast<const UniformSection*>(profile);
@@ -132,7 +138,7 @@ double UniformYoungsModulus(const SectionProfile* profile) {
 /// where strand breaks below 2 GPa.
 double StretchTrusted(const io::Problem& problem) {
   if (problem.has_assembly || !problem.rod.section) return kLargeStretch;
-  return UniformYoungsModulus(problem.rod.section.get()) > 20e9 ? 0.01 : kLargeStretch;
+  return UniformYoungsModulus(FileProfile(problem)) > 20e9 ? 0.01 : kLargeStretch;
 }
 
 }  // namespace
@@ -151,10 +157,7 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
   }
   // The inflated tube's thin-wall laws (I = π r³ t, a wrinkling moment of π p r³/2) drop terms of
   // order t/r: past a 10 % difference from the annulus's I, r the outer radius, it is noted.
-  const SectionProfile* profile = problem.rod.section.get();
-  if (const auto* fixed = dynamic_cast<const FixedActuationSection*>(profile))
-    profile = fixed->inner().get();  // the file's pressures around the tube
-  if (const auto* tube = dynamic_cast<const InflatedTubeSection*>(profile)) {
+  if (const auto* tube = dynamic_cast<const InflatedTubeSection*>(FileProfile(problem))) {
     const double r = tube->radius(), t = tube->wall_thickness();
     const double thin = r * r * r * t, annulus = 0.25 * (std::pow(r, 4) - std::pow(r - t, 4));
     if (thin > 1.1 * annulus)
