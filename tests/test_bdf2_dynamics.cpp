@@ -329,6 +329,17 @@ TEST(Bdf2Dynamics, RestoreRefusesSnapshotsItCannotContinue) {
   EXPECT_THROW(stepper.Restore(empty), std::invalid_argument);
   StepInput in;
   ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  // Once the stepper has a run, an empty snapshot's sizes differ from it too; the reason given
+  // is still that the snapshot holds no run.
+  for (const Bdf2ShootingStepper::Snapshot& no_run : {empty, Bdf2ShootingStepper::Snapshot{}}) {
+    try {
+      stepper.Restore(no_run);
+      ADD_FAILURE() << "an empty snapshot was restored";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("before InitializeAtRest"), std::string::npos)
+          << e.what();
+    }
+  }
   const Bdf2ShootingStepper::Snapshot own = stepper.Save();
   Bdf2ShootingStepper longer(Steel(2.0, 0.001), 20), thicker(Steel(0.5, 0.002), 20);
   Bdf2Options free_free;
@@ -355,6 +366,21 @@ TEST(Bdf2Dynamics, StepBeforeInitializeIsAStatusNotACrash) {
   const StepSummary s = stepper.Step(StepInput{});
   EXPECT_EQ(s.status, SolveStatus::kNotRun);
   EXPECT_EQ(stepper.time(), 0.0);
+}
+
+// A step that would take the clock past the largest double is refused as non_finite, the state
+// and time left as they were: the clock is never Inf beside a converged status.
+TEST(Bdf2Dynamics, AStepPastTheLargestTimeIsNonFinite) {
+  Bdf2Options options;
+  options.dt = 1e308;  // s: finite and positive, so valid; a second step overflows the clock
+  Bdf2ShootingStepper stepper(Steel(0.5, 0.001), 20, options);
+  StepInput in;
+  ASSERT_TRUE(stepper.InitializeAtRest(in).converged());
+  const StepSummary first = stepper.Step(in);
+  ASSERT_TRUE(first.converged()) << ToString(first.status);
+  EXPECT_EQ(stepper.time(), 1e308);
+  EXPECT_EQ(stepper.Step(in).status, SolveStatus::kNonFinite);
+  EXPECT_EQ(stepper.time(), 1e308);
 }
 
 }  // namespace

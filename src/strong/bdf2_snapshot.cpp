@@ -51,6 +51,10 @@ bool Bdf2ShootingStepper::PiecesCanFollow(const Snapshot& s) const {
 }
 
 void Bdf2ShootingStepper::RequireRestorable(const Snapshot& s) const {
+  // First: an empty snapshot (saved before InitializeAtRest, or default-constructed) also has
+  // other sizes, and its reason is that it holds no run.
+  if (!s.initialized)
+    throw std::invalid_argument("Snapshot was saved before InitializeAtRest: it holds no run");
   const bool pieces_fit =
       s.junction_unknowns.size() == run_.junction_unknowns.size() || PiecesCanFollow(s);
   if (s.strain1.size() != run_.strain1.size() || s.state.size() != run_.state.size() ||
@@ -58,8 +62,6 @@ void Bdf2ShootingStepper::RequireRestorable(const Snapshot& s) const {
     throw std::invalid_argument(
         "Snapshot is from a stepper with another grid or another plan of the shot's steps (its "
         "dt and spatial scheme decide where segments are paired)");
-  if (!s.initialized)
-    throw std::invalid_argument("Snapshot was saved before InitializeAtRest: it holds no run");
   if (s.model_fingerprint != run_.model_fingerprint)
     throw std::invalid_argument(
         "Snapshot is from a stepper of another rod, grid, end conditions or plan of the shot's "

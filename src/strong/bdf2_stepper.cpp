@@ -552,8 +552,10 @@ StepSummary Bdf2ShootingStepper::Step(const StepInput& input) {
   // Try the whole step; on failure, two half steps, recursively up to max_halvings deep. Sub-steps
   // commit as they go, so a failure part-way leaves the last converged sub-step. (With shooting,
   // smaller steps raise the shot's exponent λL ∝ dt^(-1/2), so halving helps less than usual.)
-  if (!InputIsFinite(input)) {
-    summary.status = SolveStatus::kNonFinite;  // NaN or Inf in the input: the state stays put
+  // NaN or Inf in the input, or a clock the step would take past the largest double (a dt of
+  // 1e308): the state stays put.
+  if (!InputIsFinite(input) || !std::isfinite(run_.time + options_.dt)) {
+    summary.status = SolveStatus::kNonFinite;
     return summary;
   }
   RequireActuation(input.actuation);  // RequireValidInput, finiteness known
