@@ -18,6 +18,7 @@
 #include "cosserat/analysis/frequency_shooting.hpp"
 #include "mode_classification.hpp"
 #include "quatfd_reduction.hpp"
+#include "damped_modes.hpp"
 #include "sparse_modes.hpp"
 #include "cosserat/constitutive/section_law.hpp"
 #include "cosserat/lie/quaternion.hpp"
@@ -88,6 +89,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using detail::Classify;
+using detail::DampedOfModes;
 using detail::MassTimes;
 using detail::NodeWeights;
 using detail::Reduce;
@@ -330,84 +332,6 @@ Spectrum GeneralSpectrum(const Eigen::MatrixXd& Ar, bool shapes, double* lowest_
   }
   std::sort(eig.begin(), eig.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   return eig;
-}
-
-/// The damped modes from the eigenvalues of a first-order form: the pairs with a positive
-/// imaginary part, by |λ|, at most `count`. True when one grows (Re λ > 1e-9 |λ|).
-bool DampedModes(const Eigen::MatrixXd& companion, int count, std::vector<DampedMode>* out) {
-  const Eigen::EigenSolver<Eigen::MatrixXd> es(companion, false);
-  std::vector<std::complex<double>> pairs;
-  for (int i = 0; i < companion.rows(); ++i) {
-    const std::complex<double> l = es.eigenvalues()(i);
-    if (l.imag() > 1e-9 * std::abs(l)) pairs.push_back(l);
-  }
-  std::sort(pairs.begin(), pairs.end(),
-            [](const auto& a, const auto& b) { return std::abs(a) < std::abs(b); });
-  bool unstable = false;
-  for (size_t i = 0; i < pairs.size() && static_cast<int>(i) < count; ++i) {
-    DampedMode d;
-    d.omega_n = std::abs(pairs[i]);
-    d.damped_frequency_hz = pairs[i].imag() / kTwoPi;
-    d.damping_ratio = -pairs[i].real() / d.omega_n;
-    if (pairs[i].real() > 1e-9 * d.omega_n) unstable = true;
-    out->push_back(d);
-  }
-  return unstable;
-}
-
-/// The damped pair of each undamped mode, in the modes' order: the unused pair whose |λ| is
-/// nearest the mode's ω, within 2 % (damping proportional to the stiffness keeps |λ| = ω; light
-/// damping of other forms moves it by O(ζ²)). None (an overdamped mode, an unstable one, or one
-/// the damping moved further): NaN frequency and ratio. Once the list of the lowest pairs by |λ|,
-/// which skipped the overdamped modes and so paired a soft rod's tenth bending mode (ζ = 1.1)
-/// with its first axial one.
-std::vector<DampedMode> AlignDamped(const std::vector<Mode>& modes,
-                                    const std::vector<DampedMode>& pairs) {
-  std::vector<DampedMode> aligned;
-  std::vector<bool> used(pairs.size(), false);
-  for (const Mode& mode : modes) {
-    DampedMode d;
-    d.omega_n = mode.omega;
-    d.damped_frequency_hz = d.damping_ratio = std::numeric_limits<double>::quiet_NaN();
-    int best = -1;
-    for (size_t j = 0; j < pairs.size(); ++j) {
-      const double gap = std::abs(pairs[j].omega_n - mode.omega);
-      if (!used[j] && mode.omega > 0 && gap <= 0.02 * mode.omega &&
-          (best < 0 || gap < std::abs(pairs[best].omega_n - mode.omega)))
-        best = static_cast<int>(j);
-    }
-    if (best >= 0) used[best] = true, d = pairs[best];
-    aligned.push_back(d);
-  }
-  return aligned;
-}
-
-/// Damped modes, λ² M + λ C + K = 0, through a first-order form: the one SymmetricSpectrum left
-/// in *companion, or the plain companion matrix [[0, I], [Ar, Br]] when the stiffness is not
-/// symmetric. True when a damped mode grows.
-bool DampedSpectrum(bool symmetric, const Eigen::MatrixXd& Ar, const Eigen::MatrixXd& Br,
-                    int count, Eigen::MatrixXd* companion, std::vector<DampedMode>* out) {
-  if (!symmetric) {
-    const Eigen::Index m = Ar.rows();
-    *companion = Eigen::MatrixXd::Zero(2 * m, 2 * m);
-    companion->topRightCorner(m, m).setIdentity();
-    companion->bottomLeftCorner(m, m) = Ar;
-    companion->bottomRightCorner(m, m) = Br;
-  }
-  return DampedModes(*companion, count, out);
-}
-
-/// The damped pair of each of `modes` (AlignDamped), from every pair up to twice their count
-/// (an overdamped mode has none). True when one of them grows.
-bool DampedOfModes(bool symmetric, const Eigen::MatrixXd& Ar, const Eigen::MatrixXd& Br,
-                   const std::vector<Mode>& modes, Eigen::MatrixXd* companion,
-                   std::vector<DampedMode>* out) {
-  std::vector<DampedMode> pairs;
-  DampedSpectrum(symmetric, Ar, Br, 2 * static_cast<int>(modes.size()) + 6, companion, &pairs);
-  *out = AlignDamped(modes, pairs);
-  for (const DampedMode& d : *out)
-    if (d.damping_ratio < -1e-9) return true;
-  return false;
 }
 
 /// What the modes are read from: ω² with the reduced shapes (ascending), and for the dense

@@ -198,6 +198,20 @@ ModalResult ModesOf(const io::Problem& problem,
                               problem.robot.actuation, ends);
 }
 
+/// The SE(3) modes leave the section's Kelvin–Voigt damping out: said when the rod has some.
+std::string UndampedShootingNote(const io::Problem& problem) {
+  if (problem.formulation != io::Formulation::kSe3Shooting || !problem.rod.section) return "";
+  const int samples = 16;
+  for (int i = 0; i <= samples; ++i) {
+    const double s = problem.rod.length * i / samples;
+    if (problem.rod.section->At(s, problem.robot.actuation).damping.cwiseAbs().maxCoeff() > 0)
+      return "cosserat: note: the se3-shooting modes are undamped (rod.material.damping is left "
+             "out); \"formulation\": \"quaternion-fd\" also gives each mode's damped frequency "
+             "and damping ratio\n";
+  }
+  return "";
+}
+
 }  // namespace
 
 Result RunModes(const io::Problem& problem, const RunOptions& options) {
@@ -264,7 +278,7 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
       << " ms\n";
   if (r.status == ModalStatus::kUnstable && !r.instability.empty())
     log << "cosserat: unstable: " << r.instability << "\n";
-  log << DeclinedNote(r);
+  log << DeclinedNote(r) << UndampedShootingNote(problem);
   const ModesGrid grid = CheckModesGrid(problem, r);
   if (problem.formulation == io::Formulation::kQuaternionFd && r.equilibrium.size() > 0)
     log << ClampedEndGridWarning(problem, r.equilibrium);  // the statics' own warning
