@@ -339,18 +339,46 @@ std::string ProblemRepr(const io::Problem& p) {
   return o.str();
 }
 
+/// A single rod's value, None for an assembly.
+py::object SingleRod(const io::Problem& p, py::object value) {
+  return p.has_assembly ? py::none() : std::move(value);
+}
+
+/// The views of a single rod's problem: None for an assembly, whose rods each have their own
+/// (`rods`).
+void BindSingleRodViews(py::class_<io::Problem>* problem) {
+  problem
+      ->def_property_readonly("boundary",
+                              [](const io::Problem& p) {
+                                return SingleRod(p, py::str(io::ToString(p.boundary)));
+                              })
+      .def_property_readonly("nodes",
+                             [](const io::Problem& p) { return SingleRod(p, py::int_(p.nodes)); })
+      .def_property_readonly(
+          "length", [](const io::Problem& p) { return SingleRod(p, py::float_(p.rod.length)); })
+      .def_property_readonly("base_position",
+                             [](const io::Problem& p) { return SingleRod(p, py::cast(p.base.p)); })
+      .def_property_readonly("base_rotation",
+                             [](const io::Problem& p) { return SingleRod(p, py::cast(p.base.R)); })
+      .def_property_readonly(
+          "rods",
+          [](const io::Problem& p) {
+            std::vector<std::string> names;
+            for (const AssemblyRod& r : p.assembly.assembly.rods) names.push_back(r.name);
+            return p.has_assembly ? py::object(py::cast(names)) : py::object(py::none());
+          },
+          "An assembly's rod names (assembly.rods), None for a single rod.");
+}
+
 void BindProblem(py::module_& m) {
-  py::class_<io::Problem>(m, "Problem", "A validated problem file (docs/problem-format.md).")
+  py::class_<io::Problem> problem(m, "Problem",
+                                  "A validated problem file (docs/problem-format.md).");
+  BindSingleRodViews(&problem);
+  problem
       .def_property_readonly("analysis",
                              [](const io::Problem& p) { return io::ToString(p.analysis); })
       .def_property_readonly("formulation",
                              [](const io::Problem& p) { return io::ToString(p.formulation); })
-      .def_property_readonly("boundary",
-                             [](const io::Problem& p) { return io::ToString(p.boundary); })
-      .def_readonly("nodes", &io::Problem::nodes)
-      .def_property_readonly("length", [](const io::Problem& p) { return p.rod.length; })
-      .def_property_readonly("base_position", [](const io::Problem& p) { return p.base.p; })
-      .def_property_readonly("base_rotation", [](const io::Problem& p) { return p.base.R; })
       .def("__copy__", [](const io::Problem& p) { return p; })
       .def("__deepcopy__", [](const io::Problem& p, py::dict) { return p; })
       .def_readwrite("loads", &io::Problem::loads)

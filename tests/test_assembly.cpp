@@ -44,8 +44,8 @@ AssemblyRod ClampedRod(const std::string& name, const RodModel& model, int nodes
 
 /// Two vertical steel rods (0.5 m, r = 1 mm) from (±d/2, 0, 0), their tips clamped to a plate
 /// at height L carrying `force` at its centre.
-Assembly TwoRodsAndAPlate(double d, const Vec3& force) {
-  const SteelRod rod{0.5, 0.001};
+Assembly TwoRodsAndAPlate(double d, const Vec3& force, double radius = 0.001) {
+  const SteelRod rod{0.5, radius};
   Assembly a;
   RigidBody plate;
   plate.name = "plate";
@@ -135,15 +135,20 @@ TEST(Assembly, APortalFrameWithARigidGirderSwaysAtTheEulerLoadOfItsColumns) {
 // in-plane sway load above. So the index is 0 below a quarter of π²EI/L² per column, 1 between
 // a quarter and one, and 2 above (both modes). Margins of 4 % and 2 %: shear, shortening and the
 // plate's turn shift the critical loads by ~1e-3 (above), and the straight column stays an
-// equilibrium on either side.
+// equilibrium on either side. The same on columns of wire (r 0.5 and 0.3 mm, L/r up to 1667),
+// whose bending stiffness is (L/r)² below their axial one in the condensed stiffness.
 TEST(Assembly, APortalFramesStabilityIndexCountsItsTwoSwayModes) {
-  const SteelRod rod{0.5, 0.001};
-  const double euler = M_PI * M_PI * rod.EI() / (rod.length * rod.length);
-  for (const auto& [ratio, index] : std::vector<std::pair<double, int>>{
-           {0.24, 0}, {0.26, 1}, {0.98, 1}, {1.02, 2}}) {
-    AssemblyStaticsSolver solver(TwoRodsAndAPlate(0.1, Vec3(0, 0, -2 * ratio * euler)));
-    ASSERT_TRUE(solver.Solve(StaticLoads{}).converged()) << ratio;
-    EXPECT_EQ(solver.BodyStabilityIndex(StaticLoads{}), index) << ratio;
+  for (const double radius : {0.001, 0.0005, 0.0003}) {
+    const SteelRod rod{0.5, radius};
+    const double euler = M_PI * M_PI * rod.EI() / (rod.length * rod.length);
+    for (const auto& [ratio, index] : std::vector<std::pair<double, int>>{
+             {0.24, 0}, {0.26, 1}, {0.98, 1}, {1.02, 2}}) {
+      AssemblyStaticsSolver solver(
+          TwoRodsAndAPlate(0.1, Vec3(0, 0, -2 * ratio * euler), radius));
+      ASSERT_TRUE(solver.Solve(StaticLoads{}).converged()) << ratio;
+      EXPECT_EQ(solver.BodyStabilityIndex(StaticLoads{}), index)
+          << "r " << radius << " m, P = " << ratio << " π²EI/L² per column";
+    }
   }
 }
 
@@ -187,6 +192,31 @@ TEST(Assembly, ARodCutAtAJunctionIsTheUncutRod) {
               s.iterations, s.load_steps);
   EXPECT_LT((end - end_single).norm(), 1e-9 * whole.length);
   EXPECT_LT((cut - cut_single).norm(), 1e-9 * whole.length);
+}
+
+// The cut cantilever pressed along its axis: its end body carries P = π²EI/(4L²) per unit ratio
+// of the whole 0.5 m rod. Below it the cut rod is stable (index 0); above it both bending planes
+// buckle (2) with no other mode until 9 P_cr. Margins of 5 %: shear and shortening shift P_cr
+// by ~1e-5 (r/L = 1/500). The junction's and the end's stiffnesses span EA/L to EI/L, so the
+// bending modes' eigenvalues lie below a round-off floor set relative to the largest unless the
+// count scales them.
+TEST(Assembly, ACutCantileverPressedPastItsEulerLoadCountsBothPlanes) {
+  const SteelRod whole{0.5, 0.001}, lower{0.3, 0.001}, upper{0.2, 0.001};
+  const double critical = M_PI * M_PI * whole.EI() / (4 * whole.length * whole.length);
+  for (const auto& [ratio, index] :
+       std::vector<std::pair<double, int>>{{0.95, 0}, {1.05, 2}, {1.5, 2}}) {
+    Assembly a;
+    lie::SE3 at_cut, at_tip;
+    at_cut.p = Vec3(0, 0, 0.3);
+    at_tip.p = Vec3(0, 0, 0.5);
+    a.bodies = {Junction("cut", at_cut), Junction("end", at_tip)};
+    a.bodies[1].force_W = Vec3(0, 0, -ratio * critical);
+    a.rods = {ClampedRod("lower", lower.model(), 31, 0),
+              ClampedRod("upper", upper.model(), 21, 1, 0)};
+    AssemblyStaticsSolver solver(a);
+    ASSERT_TRUE(solver.Solve(StaticLoads{}).converged()) << ratio;
+    EXPECT_EQ(solver.BodyStabilityIndex(StaticLoads{}), index) << "P = " << ratio << " P_cr";
+  }
 }
 
 // A stiffness band that ends on a node, or at the tip, belongs to the segments it covers. The

@@ -175,6 +175,32 @@ TEST(AssemblyIo, GuidedBeamExampleDeflectsAsBeamTheory) {
   EXPECT_NEAR(sum, -P, 1e-7 * P);
 }
 
+// examples/l_frame.json: the members' internal forces against statics. P hangs from the beam's
+// end, b = 0.3 m out: the column carries P in compression (force_body z = −P) and the constant
+// bending moment P b; the beam's moment falls linearly from P b at the corner to 0 at its end, its
+// shear is P. Tolerances: the sway (1.5e-4 m) moves the lever arms by 5e-4 of b and tilts the
+// members by ~1e-3 rad; the solve's tolerance, 1e-10 of EI/L², is far below.
+TEST(AssemblyIo, TheLFramesMembersCarryTheirStaticsInternalForces) {
+  const io::Problem p = Load("examples/l_frame.json");
+  const run::Result r = run::Run(p);
+  ASSERT_TRUE(r.converged) << r.log;
+  const double P = 0.00098175, b = 0.3;  // N, m: the file's load and beam
+  const auto& column = r.json["assembly"]["rods"][0]["nodes"];
+  const auto& beam = r.json["assembly"]["rods"][1]["nodes"];
+  for (std::size_t i = 0; i < column["s"].size(); ++i) {
+    const Vec3 m = ReadVec3(column["moment_body"][i]), n = ReadVec3(column["force_body"][i]);
+    EXPECT_NEAR(m.norm(), P * b, 2e-3 * P * b) << "column node " << i;
+    EXPECT_NEAR(n.z(), -P, 1e-5 * P) << "column node " << i;
+  }
+  const std::size_t last = beam["s"].size() - 1;
+  for (std::size_t i = 0; i <= last; ++i) {
+    const double s = beam["s"][i].get<double>();
+    const Vec3 m = ReadVec3(beam["moment_body"][i]), n = ReadVec3(beam["force_body"][i]);
+    EXPECT_NEAR(m.norm(), P * (b - s), 2e-3 * P * b) << "beam node " << i;
+    EXPECT_NEAR(std::hypot(n.x(), n.y()), P, 2e-3 * P) << "beam node " << i;
+  }
+}
+
 // ----- bad input ---------------------------------------------------------------------------------
 
 /// The guided beam as JSON, to break in each test.
@@ -302,10 +328,12 @@ TEST(AssemblyIo, TheSingleRodKeysAndTipLoadsAreRefused) {
   json j = GuidedBeam();
   j["rod"] = j["assembly"]["rods"][0]["rod"];
   j["boundary"] = "cantilever";
+  j["buckling"] = json::object();
   j["loads"] = {{"gravity", {0, 0, -9.81}}, {"tip_force", {1, 0, 0}}};
   const io::ParseResult r = Parse(j);
-  EXPECT_ERROR(r, "rod: not read with \"assembly\"");
-  EXPECT_ERROR(r, "boundary: not read with \"assembly\"");
+  EXPECT_ERROR(r, "rod: not read with \"assembly\" (each rod of assembly.rods has its own");
+  EXPECT_ERROR(r, "boundary: not read with \"assembly\" (assembly.rods[i].tip holds each");
+  EXPECT_ERROR(r, "buckling: not read with \"assembly\": an assembly's buckling and modes");
   EXPECT_ERROR(r, "loads.tip_force: not read with \"assembly\" (load a body instead");
 }
 

@@ -1,6 +1,7 @@
 // The stability of an assembly's bodies at a static solution: their condensed stiffness, the
 // Schur complement of the rods' block in the statics Jacobian (AssemblyStaticsSolver).
 #include <Eigen/Eigenvalues>
+#include <cmath>
 
 #include "cosserat/assembly/assembly_statics.hpp"
 
@@ -29,7 +30,17 @@ int AssemblyStaticsSolver::BodyStabilityIndex(const StaticLoads& loads) {
     if (!body.moment_W.isZero(0.0)) return -1;
   const Eigen::MatrixXd K = CondensedBodyStiffness(loads);
   if (K.size() == 0 || !K.allFinite()) return -1;
-  const Eigen::VectorXcd eig = K.eigenvalues();
+  // Scaled by its diagonal, d K d with d = |diag K|^−½ (a congruence: the signs of a symmetric
+  // K's eigenvalues are kept). Unscaled, a body's stiffnesses span N/m along a slender column
+  // (EA/L) to N·m/rad across it (~EI/L), (L/r)² apart, and a bending mode's eigenvalue lies
+  // below the round-off floor relative to the axial one: a column of wire (L/r = 1667) reads
+  // stable at 1.2 times its Euler load.
+  const Eigen::VectorXd diagonal = K.diagonal().cwiseAbs();
+  const double floor = diagonal.maxCoeff();
+  Eigen::VectorXd d(diagonal.size());
+  for (Eigen::Index i = 0; i < d.size(); ++i)
+    d(i) = 1.0 / std::sqrt(diagonal(i) > 0 ? diagonal(i) : floor > 0 ? floor : 1.0);
+  const Eigen::VectorXcd eig = (d.asDiagonal() * K * d.asDiagonal()).eigenvalues();
   const double largest = eig.cwiseAbs().maxCoeff();
   int unstable = 0;
   for (int k = 0; k < eig.size(); ++k) unstable += eig[k].real() > 1e-8 * largest;

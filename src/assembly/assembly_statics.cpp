@@ -1,11 +1,11 @@
 #include "cosserat/assembly/assembly_statics.hpp"
 
-#include <limits>
 #include <ceres/jet.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -19,8 +19,7 @@ namespace {
 using Jet13 = ceres::Jet<double, 13>;
 using Jet6 = ceres::Jet<double, 6>;  // a body's pose increment [δp; δθ]
 
-// Halvings of the continuation step before a solve gives up.
-constexpr double kMinStep = 1.0 / 1024.0;
+constexpr double kMinStep = 1.0 / 1024.0;  // the smallest continuation step: ten halvings
 // Levenberg–Marquardt: retries with a larger damping before an iteration fails.
 constexpr int kDampingRetries = 12;
 
@@ -561,7 +560,8 @@ AssemblySummary AssemblyStaticsSolver::SolveLengths(const StaticLoads& loads,
   Store(&start);
   poses_ = poses;
   bool converged = LevenbergMarquardt(loads, &summary);
-  if (!converged && has_solution_) {  // follow the poses from the last solution
+  const bool followed = !converged && has_solution_;
+  if (followed) {  // follow the poses from the last solution
     Load(start);
     auto at = [&](double mu) {
       for (size_t b = 0; b < poses_.size(); ++b) {
@@ -582,6 +582,7 @@ AssemblySummary AssemblyStaticsSolver::SolveLengths(const StaticLoads& loads,
     reachable = reachable && lengths_[i] > 1e-9 * assembly_.rods[i].model.length;
   Conclude(converged && reachable, loads, start, t0, &summary);
   if (!reachable) summary.status = SolveStatus::kOutOfReach;
+  else if (!converged && !followed) summary.status = SolveStatus::kMaxIterations;  // no stepping
   return summary;
 }
 

@@ -294,14 +294,20 @@ void CheckFormat(const ObjectReader& top) {
 
 /// A problem of rods and bodies: "assembly" in place of the single rod's keys.
 void ParseAssemblyTopLevel(const ObjectReader& top, Problem* p) {
-  for (const std::string& key : SingleRodKeys())
-    if (top.Has(key))
-      top.report().Add(key, key == "environment"
-                                ? "not read with \"assembly\": fluid loads and contact act on "
-                                  "single rods only in this version (loads.distributed_force "
-                                  "and gravity act on every rod)"
-                                : "not read with \"assembly\" (each rod of assembly.rods has its "
-                                  "own \"rod\" and \"base\")");
+  for (const std::string& key : SingleRodKeys()) {
+    if (!top.Has(key)) continue;
+    const std::string why =
+        key == "environment"
+            ? ": fluid loads and contact act on single rods only in this version "
+              "(loads.distributed_force and gravity act on every rod)"
+        : key == "buckling" || key == "modes"
+            ? ": an assembly's buckling and modes are not computed in this version (its statics "
+              "report the bodies' stability_index)"
+        : key == "boundary" || key == "anchor"
+            ? " (assembly.rods[i].tip holds each rod's tip: its joint and body)"
+            : " (each rod of assembly.rods has its own \"rod\" and \"base\")";
+    top.report().Add(key, "not read with \"assembly\"" + why);
+  }
   if (const auto loads = ReadObject(top, "loads", Presence::kOptional)) {
     p->loads = ParseLoads(*loads);
     CheckAssemblyLoads(*loads);

@@ -12,23 +12,6 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-json NodesToJson(const RodState& state) {
-  json s = json::array(), position = json::array(), curvature = json::array();
-  json moment = json::array(), force = json::array();
-  for (int i = 0; i < state.size(); ++i) {
-    s.push_back(state.s[i]);
-    position.push_back(ToJson(state.position_W[i]));
-    curvature.push_back(ToJson(Vec3(state.strain[i].head<3>())));
-    moment.push_back(ToJson(Vec3(state.wrench_B[i].head<3>())));
-    force.push_back(ToJson(Vec3(state.wrench_B[i].tail<3>())));
-  }
-  return {{"s", s},
-          {"position", position},
-          {"curvature", curvature},
-          {"moment_body", moment},
-          {"force_body", force}};
-}
-
 /// The value below which a fraction q of `sorted` lies (nearest rank); NaN when empty.
 double Percentile(const std::vector<double>& sorted, double q) {
   if (sorted.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -46,6 +29,23 @@ json StepTimeStats(std::vector<double> times_s) {
 }
 
 }  // namespace
+
+json NodesToJson(const RodState& state) {
+  json s = json::array(), position = json::array(), curvature = json::array();
+  json moment = json::array(), force = json::array();
+  for (int i = 0; i < state.size(); ++i) {
+    s.push_back(state.s[i]);
+    position.push_back(ToJson(state.position_W[i]));
+    curvature.push_back(ToJson(Vec3(state.strain[i].head<3>())));
+    moment.push_back(ToJson(Vec3(state.wrench_B[i].head<3>())));
+    force.push_back(ToJson(Vec3(state.wrench_B[i].tail<3>())));
+  }
+  return {{"s", s},
+          {"position", position},
+          {"curvature", curvature},
+          {"moment_body", moment},
+          {"force_body", force}};
+}
 
 json ToJson(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 

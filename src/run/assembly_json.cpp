@@ -15,16 +15,12 @@ json AssemblyJson(const Assembly& assembly, const char* kind, const std::vector<
                       {"rotation", io::ToJson(poses[b].R)}});
   for (std::size_t i = 0; i < rods.size(); ++i) {
     const RodState& state = *rods[i];
-    json s = json::array(), position = json::array();
-    for (int n = 0; n < state.size(); ++n) {
-      s.push_back(state.s[n]);
-      position.push_back(io::ToJson(state.position_W[n]));
-    }
     json rod;
     rod["name"] = assembly.rods[i].name;
     rod["length"] = lengths[i];
     io::AddTipAndBaseWrench(state, &rod);  // base_wrench: [moment about the base point; force]
-    rod["nodes"] = {{"s", s}, {"position", position}};
+    // As a single rod's: the member's internal forces and moments along it too.
+    rod["nodes"] = io::NodesToJson(state);
     rod_blocks.push_back(rod);
   }
   return {{"kind", kind}, {"bodies", bodies}, {"rods", rod_blocks}};

@@ -11,8 +11,8 @@
 namespace cosserat::run::detail {
 
 /// {kind, bodies [{name, position (m), rotation (R_WB, rows)}], rods [{name, length (m), tip,
-/// base_wrench, nodes {s, position}}]} for the bodies at `poses` and rod i in `rods[i]` at
-/// `lengths[i]`.
+/// base_wrench, nodes {s, position, curvature, moment_body, force_body}}]} for the bodies at
+/// `poses` and rod i in `rods[i]` at `lengths[i]`.
 nlohmann::ordered_json AssemblyJson(const Assembly& assembly, const char* kind,
                                     const std::vector<lie::SE3>& poses,
                                     const std::vector<const RodState*>& rods,

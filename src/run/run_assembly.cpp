@@ -86,12 +86,18 @@ std::string Summary(const io::Problem& problem, const AssemblySummary& s,
   if (s.status == SolveStatus::kLoadSteppingFailed)
     line << "; the continuation reached " << std::setprecision(3) << s.load_fraction
          << " of the loads: the state and residual written are that level's";
+  if (problem.assembly.inverse() && !bodies.empty() && s.status == SolveStatus::kMaxIterations)
+    line << "\ncosserat: hint: no rod lengths were found that hold " << bodies[0].name
+         << " at this pose, which may be beyond the robot's reach (the lengths written are the "
+            "last try); approach it in steps from a pose that solves";
   // Not even the first load step: a body free to move against its load has no equilibrium.
   if (s.status == SolveStatus::kLoadSteppingFailed && s.load_fraction == 0.0)
     line << "\ncosserat: hint: no part of the loads found an equilibrium, as when a body can "
             "move freely against them (a mechanism: a moment about the line through pinned "
-            "tips, a turn about a torsion-free tip's axis, a body on one pinned rod); hold it "
-            "against that motion with more rods or clamped tips";
+            "tips, a turn about a torsion-free tip's axis, a body on one pinned rod; hold it "
+            "against that motion with more rods or clamped tips), or when the rods cannot "
+            "reach their attachments on the bodies (check each tip.attachment against the "
+            "rod's length)";
   return line.str();
 }
 

@@ -131,6 +131,15 @@ class ProblemFiles(unittest.TestCase):
             self.assertEqual(rod["position"].shape, (len(doc["nodes"]["s"]), 3))
             np.testing.assert_array_equal(rod["position"], np.asarray(doc["nodes"]["position"]))
             np.testing.assert_array_equal(rod["position"][0], [x, 0, 0])
+        # The problem names its rods; a single rod's length, nodes, ends and base are None, not
+        # a single rod's defaults (0.0 m, 41 nodes, "cantilever") that no file gave.
+        problem = cosserat.load_problem("examples/guided_beam.json")
+        self.assertEqual(problem.rods, ["left", "right"])
+        for key in ("length", "nodes", "boundary", "base_position", "base_rotation"):
+            self.assertIsNone(getattr(problem, key), key)
+        single = cosserat.load_problem("examples/cantilever.json")
+        self.assertIsNone(single.rods)
+        self.assertEqual(single.length, 0.5)
 
     def test_the_static_solver_checks_its_grid_as_the_command_does(self):
         # A shot that ran away (a gel rod's chamber at 1e9 Pa: "converged", tip at 1e255 m) is

@@ -19,6 +19,10 @@ namespace cosserat::io {
 nlohmann::ordered_json ToJson(const Vec3& v);
 nlohmann::ordered_json ToJson(const Mat3& m);
 
+/// The nodes' s (m), position (m, world), curvature (1/m), moment_body (N·m) and force_body (N):
+/// the internal wrench in the section frame, the part (s, L] acting on [0, s].
+nlohmann::ordered_json NodesToJson(const RodState& state);
+
 /// tip {position (m), rotation (R_WB, row-major)} and base_wrench {moment (N·m), force (N)} of a
 /// state: the support's reaction on the rod, world frame, the moment about the base point.
 void AddTipAndBaseWrench(const RodState& state, nlohmann::ordered_json* out);
