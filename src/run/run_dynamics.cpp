@@ -329,6 +329,21 @@ std::string RunawayStartText(const io::Problem& problem) {
   return state ? CheckGrid(*state, problem.rod.length).log : "";
 }
 
+/// After a free-free rod's start failed under initial loads with gravity: at rest it has no
+/// equilibrium in the air, and on a surface none that is unique (it slides along the surface and
+/// turns about its normal at no cost). Starting unloaded lets it fall and settle in time.
+std::string FreeStartHint(const io::Problem& problem) {
+  const StaticLoads& initial = problem.dynamics.initial_loads.value_or(problem.loads);
+  if (problem.boundary != io::Boundary::kFreeFree || initial.gravity_W.isZero(0.0)) return "";
+  return std::string("cosserat: hint: a free-free rod under gravity has ") +
+         (problem.loads.contact.count > 0
+              ? "no unique equilibrium at rest on environment.contact (it slides along the "
+                "surface and turns about its normal at no cost)"
+              : "no equilibrium at rest") +
+         "; \"dynamics\": {\"initial_loads\": {\"gravity\": [0, 0, 0]}} starts it unloaded, "
+         "and it falls and settles in time\n";
+}
+
 /// After a failed step on a surface with friction: the regularised Coulomb law turns over
 /// within slip_velocity, a switch as sharp as μN/v_ε (N·s/m per m) that Newton's iterates on a
 /// step can keep jumping across. A 100 m pipe spun against a bore's wall (μ 0.3) failed its
@@ -371,6 +386,7 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   log << SummaryLine(run, stepper.state()) << '\n';
   if (!run.initial_state_ok && run.status == SolveStatus::kNonFinite)
     log << RunawayStartText(problem);
+  if (!run.initial_state_ok) log << FreeStartHint(problem);
   if (run.initial_state_ok && run.status != SolveStatus::kConverged &&
       options.shooting_segments == 1) {  // an explicit single shot
     // The usual cause of a failed step at small dt (docs/dynamics.md, "Where it stops").

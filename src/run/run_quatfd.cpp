@@ -13,6 +13,7 @@
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/quatfd/quatfd_statics.hpp"
 #include "cosserat/quatfd/radau.hpp"
+#include "cosserat/run/grid_resolution.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "settle_beside_instability.hpp"
 #include "anchor_force.hpp"
@@ -385,6 +386,27 @@ std::string DynamicsLog(const io::DynamicRun& run, const RadauOutcome& radau,
   return log.str();
 }
 
+/// The grid check statics make, on the equilibrium a run starts from. A start the grid cannot
+/// resolve is no start: a 1000 m riser hung from a vessel straight above its well, compressed
+/// 91 % on 200 nodes, took Radau's steps down to 1.4e-6 s, 0.8 ms each, about 14 min per output
+/// frame before the step cap stopped it. Its status (under_resolved, or non_finite for a shape
+/// that ran away) and the check's words; kConverged and nothing where the start holds.
+SolveStatus StartOnTheGrid(const io::Problem& problem, const RodState& start, std::string* log) {
+  io::Problem statics = problem;
+  statics.analysis = io::Analysis::kStatics;
+  StaticShootingSummary summary;
+  summary.status = SolveStatus::kConverged;
+  Result check;
+  check.json = io::StaticResultToJson(summary, start);
+  check.converged = true;
+  CheckGridResolution(statics, &check);
+  if (check.converged) return SolveStatus::kConverged;
+  *log = "cosserat: the equilibrium the run starts from is not resolved, so it is not stepped "
+         "from:\n" + check.log;
+  return check.json["status"] == ToString(SolveStatus::kNonFinite) ? SolveStatus::kNonFinite
+                                                                    : SolveStatus::kUnderResolved;
+}
+
 }  // namespace
 
 Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) {
@@ -410,6 +432,12 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
   run.report_touchdown = run.report_anchor_force && problem.loads.contact.count > 0;
   RodState state;
   model.ToRodState(q, v, &state);
+  std::string start_log;
+  if (run.initial_state_ok) {
+    const SolveStatus start = StartOnTheGrid(problem, state, &start_log);
+    run.initial_state_ok = start == SolveStatus::kConverged;
+    run.status = start;
+  }
   auto record = [&](double t) {
     model.ToRodState(q, v, &state);
     run.frame_t.push_back(t);
@@ -443,8 +471,8 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
   for (int i = 0; i < state.size(); ++i)
     result.node_velocity_W.push_back(state.rotation_WB[i] * state.twist_B[i].tail<3>());
   if (options.nodes_csv) result.nodes_csv = detail::TrajectoryCsv(run, state.s);
-  result.log = DynamicsLog(run, radau, d, state) + RingingNote(problem, run);
-  if (!run.initial_state_ok) result.log += ContactGridHint(problem);
+  result.log = DynamicsLog(run, radau, d, state) + start_log + RingingNote(problem, run);
+  if (!run.initial_state_ok && start_log.empty()) result.log += ContactGridHint(problem);
   result.converged = run.status == SolveStatus::kConverged;
   return result;
 }
