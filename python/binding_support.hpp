@@ -25,6 +25,22 @@ const Matrix& Finite(const Matrix& m, const char* field) {
   return m;
 }
 
+/// A base position from Python by the problem file's rule: finite, and within 1e9 rod lengths of
+/// the origin, where a double still resolves the rod's shape (at 1e16 m a metre rod's deflection
+/// is lost whole, and the shot "converges" on a straight rod).
+inline Vec3 BasePosition(const Vec3& p, double rod_length) {
+  Finite(p, "base_position");
+  const double far = 1e9 * rod_length, away = p.cwiseAbs().maxCoeff();
+  if (away > far) {
+    std::ostringstream m;
+    m << std::setprecision(6) << "base_position: expected a point within 1e9 rod lengths ("
+      << far << " m) of the origin, where a double still resolves the rod's shape, got " << away
+      << " m away";
+    throw py::value_error(m.str());
+  }
+  return p;
+}
+
 inline Eigen::MatrixXd Stack(const std::vector<Vec3>& v) {
   Eigen::MatrixXd out(v.size(), 3);
   for (size_t i = 0; i < v.size(); ++i) out.row(i) = v[i].transpose();

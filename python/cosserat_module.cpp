@@ -164,7 +164,7 @@ class PyStaticSolver {
                               std::optional<Mat3> rotation, std::optional<Actuation> actuation) {
     const StaticLoads next_loads = loads ? Valid(*loads) : loads_;
     lie::SE3 next_base = base_;
-    if (position) next_base.p = Finite(*position, "base_position");
+    if (position) next_base.p = python::BasePosition(*position, problem_.rod.length);
     if (rotation) next_base.R = Rotation(*rotation, "base_rotation");
     if (actuation) Valid(*actuation, problem_);
     if (actuation && multiple_)

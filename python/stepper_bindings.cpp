@@ -112,7 +112,7 @@ class PyStepper {
                               ": a column's clamp and the guide of its tip stay where the "
                               "problem puts them");
     }
-    if (base_position) next.base_pose.p = Finite(*base_position, "base_position");
+    if (base_position) next.base_pose.p = BasePosition(*base_position, problem_.rod.length);
     if (base_rotation) next.base_pose.R = Rotation(*base_rotation, "base_rotation");
     if (base_twist_B) next.base_twist_B = Finite(*base_twist_B, "base_twist_B");
     if (base_wrench_B) next.base_wrench_B = Finite(*base_wrench_B, "base_wrench_B");

@@ -1404,8 +1404,8 @@ TEST(ProblemIoRobot, LengthControlAndItsErrors) {
 TEST(ProblemIoRobot, ChambersAndTheirPressuresMapToTheModel) {
   json j = ValidProblem();
   j["robot"] = json::parse(R"({ "kind": "pneumatic",
-    "chambers": [ { "name": "a", "offset": [0.0004, 0], "area": 2.8e-7 },
-                  { "offset": [0, -0.0004], "area": 2.8e-7, "from": 0.1, "to": 0.3 } ],
+    "chambers": [ { "name": "a", "offset": [0.0005, 0], "area": 2.8e-7 },
+                  { "offset": [0, -0.0005], "area": 2.8e-7, "from": 0.1, "to": 0.3 } ],
     "actuation": { "chamber_pressure": [1e5, -5e4] },
     "initial_actuation": { "chamber_pressure": [2e4, 0] } })");
   const ParseResult r = Parse(j);
@@ -1416,7 +1416,7 @@ TEST(ProblemIoRobot, ChambersAndTheirPressuresMapToTheModel) {
   EXPECT_EQ(p.rod.chambers[0].name, "a");
   EXPECT_EQ(p.rod.chambers[0].start, 0.0);  // the whole rod by default
   EXPECT_EQ(p.rod.chambers[0].end, 0.5);
-  EXPECT_EQ(p.rod.chambers[1].offset, Vec2(0, -0.0004));
+  EXPECT_EQ(p.rod.chambers[1].offset, Vec2(0, -0.0005));
   EXPECT_EQ(p.rod.chambers[1].start, 0.1);
   EXPECT_EQ(p.rod.chambers[1].end, 0.3);
   EXPECT_EQ(p.robot.actuation.chamber_pressure[1], -5e4);  // a partial vacuum

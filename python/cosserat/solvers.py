@@ -61,6 +61,9 @@ def _loads_from(value, holder):
     fluid, contact and bit friction stay); a Loads or None as given, without that copy (step()
     is a hot path)."""
     if not isinstance(value, dict):
+        if value is not None and not isinstance(value, _core.Loads):
+            raise TypeError(f"loads: expected a cosserat.Loads or a dict with the problem "
+                            f"file's loads keys, got {type(value).__name__}")
         # The same slip as a dict without "gravity": cosserat.Loads() starts with none. (The
         # Loads' own gravity first: a step is a hot path.)
         if value is not None and not np.any(value.gravity):

@@ -403,9 +403,16 @@ void CheckSectionsAtNodes(const Problem& p, ErrorReport* report) {
   for (const double s : ModelGrid(p.rod, std::max(p.nodes, 2))) {
     const SectionProperties sp = p.rod.section->At(s, p.robot.actuation);
     if (!sp.stiffness.allFinite() || !sp.mass.allFinite()) {
-      report->Add("rod.section", "its stiffness or mass per length at s = " + FormatNumber(s) +
-                                     " m is not a finite number (the section's products with "
-                                     "the material overflow a double)");
+      // Finite at rest, overflowed under the actuation (a jamming or inflation pressure of
+      // 1e308 Pa): the actuation is what to fix.
+      const bool actuated = p.rod.section->At(s, Actuation{}).stiffness.allFinite();
+      report->Add(actuated ? "robot.actuation" : "rod.section",
+                  std::string(actuated ? "under it the section's" : "its") +
+                      " stiffness or mass per length at s = " + FormatNumber(s) +
+                      " m is not a finite number (" +
+                      (actuated ? "the pressures' products with the section overflow a double)"
+                                : "the section's products with the material overflow a "
+                                  "double)"));
       return;
     }
     try {

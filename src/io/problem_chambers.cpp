@@ -1,8 +1,10 @@
 #include "problem_chambers.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "problem_robot.hpp"
 
@@ -12,8 +14,8 @@ namespace {
 using json = nlohmann::json;
 
 /// The chamber's disc of area A (radius a = sqrt(A/π)) at `offset` must lie within the outline;
-/// else reported at `<chamber>.offset`.
-void CheckInside(const ObjectReader& c, const Outline& outline, const Vec2& offset, double area) {
+/// else reported at `<chamber>.offset`, and false.
+bool CheckInside(const ObjectReader& c, const Outline& outline, const Vec2& offset, double area) {
   const double a = std::sqrt(area / M_PI);
   if (outline.radius && offset.norm() + a > *outline.radius) {
     c.report().Expected(c.PathOf("offset"),
@@ -28,7 +30,10 @@ void CheckInside(const ObjectReader& c, const Outline& outline, const Vec2& offs
                             FormatNumber(outline.half_extent->y()) + " m)",
                         "[" + FormatNumber(offset.x()) + ", " + FormatNumber(offset.y()) +
                             "] with sqrt(area/pi) = " + FormatNumber(a) + " m");
+  } else {
+    return true;
   }
+  return false;
 }
 
 std::optional<Chamber> ParseChamber(const ObjectReader& c, const Outline& outline, double length) {
@@ -54,10 +59,30 @@ std::optional<Chamber> ParseChamber(const ObjectReader& c, const Outline& outlin
     return std::nullopt;
   }
   if (!offset || !area) return std::nullopt;
-  CheckInside(c, outline, *offset, *area);
+  if (!CheckInside(c, outline, *offset, *area)) return std::nullopt;
   out.offset = *offset;
   out.area = *area;
   return out;
+}
+
+/// Two chambers whose spans along the rod overlap must not overlap across the section: their
+/// discs (radius sqrt(area/π)) must lie apart. Reported at the later one's offset.
+void CheckApart(const ObjectReader& robot, const std::string& path,
+                const std::vector<Chamber>& chambers, const std::vector<size_t>& index) {
+  for (size_t j = 0; j < chambers.size(); ++j)
+    for (size_t i = 0; i < j; ++i) {
+      const Chamber &a = chambers[i], &b = chambers[j];
+      if (!(std::max(a.start, b.start) < std::min(a.end, b.end))) continue;
+      const double apart = std::sqrt(a.area / M_PI) + std::sqrt(b.area / M_PI);
+      const double distance = (a.offset - b.offset).norm();
+      if (distance >= apart) continue;
+      robot.report().Expected(ElementPath(path, index[j]) + ".offset",
+                              "a chamber apart from " + ElementPath(path, index[i]) +
+                                  ", which runs beside it (offsets at least sqrt(area/pi) + "
+                                  "sqrt(area/pi) = " + FormatNumber(apart) + " m apart)",
+                              FormatNumber(distance) + " m apart");
+      return;
+    }
 }
 
 }  // namespace
@@ -75,6 +100,7 @@ int ParseChambers(const ObjectReader& robot, const json& top, Problem* p) {
     return 0;
   }
   const Outline outline = SectionOutline(top);
+  std::vector<size_t> index;  // of each parsed chamber in the list
   for (size_t i = 0; i < list->size(); ++i) {
     const std::string cp = ElementPath(path, i);
     if (!(*list)[i].is_object()) {
@@ -84,9 +110,12 @@ int ParseChambers(const ObjectReader& robot, const json& top, Problem* p) {
     }
     // A rod whose length was reported as wrong has none: the ends are then only checked >= 0.
     const double length = p->rod.length > 0 ? p->rod.length : INFINITY;
-    if (auto c = ParseChamber(ObjectReader((*list)[i], cp, &robot.report()), outline, length))
+    if (auto c = ParseChamber(ObjectReader((*list)[i], cp, &robot.report()), outline, length)) {
       p->rod.chambers.push_back(*c);
+      index.push_back(i);
+    }
   }
+  CheckApart(robot, path, p->rod.chambers, index);
   return static_cast<int>(list->size());
 }
 

@@ -270,8 +270,16 @@ StudyParseResult ParseStudy(const std::string& text, const std::string& source_n
     report.Expected("", "an object", detail::Describe(*doc.value));
   } else {
     const ObjectReader top(*doc.value, "", &report);
-    top.AllowOnly({"format", "description", "problem", "parameters", "samples", "seed", "outputs"});
     const json* format = top.Find("format");
+    if (format && *format == "cosserat-problem/1") {
+      // A problem file given to `sweep`: that alone, not each of its keys a study lacks.
+      report.Expected("format", "\"cosserat-study/1\" (a problem file runs with `cosserat "
+                                "solve`, or is a study's \"problem\")",
+                      "\"cosserat-problem/1\"");
+      for (std::string& line : report.TakeLines()) result.errors.push_back(std::move(line));
+      return result;
+    }
+    top.AllowOnly({"format", "description", "problem", "parameters", "samples", "seed", "outputs"});
     if (!format || *format != "cosserat-study/1")
       report.Expected("format", "\"cosserat-study/1\"", format ? detail::Describe(*format) : "nothing");
     detail::ReadString(top, "description", Presence::kOptional);

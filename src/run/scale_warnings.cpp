@@ -99,7 +99,7 @@ void ImpossibleLoadWarning(const io::Problem& problem, std::ostringstream* log) 
 /// commanded tendon path ten times the rod's length (mm for m). A robot's tendons written in mm
 /// went slack, "converged", without a word.
 void UnitSlipWarnings(const io::Problem& problem, std::ostringstream* log) {
-  const double g = problem.loads.gravity_W.norm();
+  const double g = problem.loads.gravity_W.stableNorm();  // finite for components up to 1e308
   if (g > 1000.0)
     *log << "cosserat: warning: loads.gravity is " << g << " m/s², over a hundred times "
          << "Earth's 9.81: check its units (m/s²)\n";

@@ -77,6 +77,9 @@ cosserat_cli_test(NAME bad_csv_keeps_out
                   CODE 2 KEEP "${_cli_out}/kept_csv.json" STDERR "cannot write .*nodes.csv")
 
 # A study file's errors name their fields (docs/sweeps.md).
+# A problem file given to sweep: one line that says so, not the study keys it lacks.
+cosserat_cli_test(NAME sweep_of_a_problem_file ARGS sweep "${_cli_example}" --out "${_cli_out}/p.csv"
+                  CODE 2 STDERR "^format: expected \"cosserat-study/1\" \\(a problem file runs with `cosserat solve`.*got \"cosserat-problem/1\"\n?$")
 cosserat_cli_test(NAME bad_study ARGS sweep "${_cli_dir}/bad_study.json" --out "${_cli_out}/bad_study.csv"
                   CODE 2 STDERR "parameters\\[0\\].path: names \"/rod/nosuch/x\", but the problem has no \"/rod/nosuch\".*parameters\\[1\\].grid.to: an empty range.*parameters\\[2\\].random.high: expected a bound above \"low\"")
 
@@ -287,6 +290,12 @@ cosserat_cli_test(NAME bad_robot ARGS validate "${_cli_dir}/bad_robot.json" CODE
 # and the pressures must match the chambers.
 cosserat_cli_test(NAME bad_chambers ARGS validate "${_cli_dir}/bad_chambers.json" CODE 2
                   STDERR "robot.chambers\\[1\\].offset: expected a chamber within the section.*robot.chambers\\[2\\].area: expected a positive number.*robot.chambers\\[3\\].to: expected from < to.*robot.actuation.chamber_pressure: expected one value per chamber \\(4 in robot.chambers\\)")
+# A finite pressure whose stiffness overflows: the actuation is named, not the section.
+cosserat_cli_test(NAME jamming_pressure_overflow ARGS validate "${_cli_dir}/jamming_pressure_overflow.json" CODE 2
+                  STDERR "^robot.actuation: under it the section's stiffness or mass per length at s = 0 m is not a finite number")
+# Two chambers in one place across the section, over the same span: refused at the later one.
+cosserat_cli_test(NAME overlapping_chambers ARGS validate "${_cli_dir}/overlapping_chambers.json" CODE 2
+                  STDERR "robot.chambers\\[1\\].offset: expected a chamber apart from robot.chambers\\[0\\], which runs beside it")
 # The pneumatic finger without its sphere on the quaternion-FD formulation (robots/ files run on
 # SE(3) shooting above): the chamber reaches both formulations through the section law, and the
 # result reports the robot's pressures as the SE(3) one does.
@@ -485,6 +494,18 @@ cosserat_cli_test(NAME modes_taut_wire_blur ARGS solve "${_cli_dir}/modes_taut_w
 # A column in dynamics: its tip slides on the axis under the tip force.
 cosserat_cli_test(NAME column_dynamics ARGS solve "${_cli_dir}/column_dynamics.json"
                   CODE 0 STDERR "converged, 500 steps, 0.1 s simulated")
+# An inverse pose no rod lengths reach: the direct solve's status, and a hint, not a continuation.
+cosserat_cli_test(NAME stewart_gough_beyond_reach ARGS solve "${_cli_dir}/stewart_gough_beyond_reach.json"
+                  CODE 1 STDERR "max_iterations \\(assembly, inverse\\).*hint: no rod lengths were found that hold platform at this pose")
+# A free rod started at rest on a table: the start fails, and the hint says how to start it.
+cosserat_cli_test(NAME free_rod_on_a_table ARGS solve "${_cli_dir}/free_rod_on_a_table.json"
+                  CODE 1 STDERR "initial equilibrium did not converge.*hint: a free-free rod under gravity has no unique equilibrium at rest on environment.contact.*initial_loads")
+# An assembly swinging through its rest position, where the balance is down to the rods' noise.
+cosserat_cli_test(NAME l_frame_swing ARGS solve "${_cli_dir}/l_frame_swing.json"
+                  CODE 0 STDERR "converged \\(assembly dynamics\\), 600 steps, 4.128 s simulated")
+# The SE(3) modes are undamped: a damped rod is told so, and where the damped ones are.
+cosserat_cli_test(NAME modes_damped_se3 ARGS solve "${_cli_dir}/modes_damped_se3.json"
+                  CODE 0 STDERR "converged \\(modes, se3-shooting\\).*note: the se3-shooting modes are undamped \\(rod.material.damping is left out\\)")
 # A dynamics block kept for another analysis is checked, not used; its base drive is noted.
 cosserat_cli_test(NAME modes_keep_base_spin ARGS solve "${_cli_dir}/modes_keep_base_spin.json"
                   CODE 0 STDERR "note: dynamics.base_spin turns the base in \"analysis\": \"dynamics\" only; this \"modes\" holds the base still")

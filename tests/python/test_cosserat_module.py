@@ -164,6 +164,17 @@ class ProblemFiles(unittest.TestCase):
         stepper.initialize_at_rest()
         with self.assertRaisesRegex(ValueError, "base_position"):
             stepper.step(base_position=[0, math.inf, 0])
+        # A base so far out that a double loses the rod's shape there (the file's rule: within
+        # 1e9 rod lengths of the origin), and loads of the wrong type, are refused by name.
+        for far in ([1e17, 0, 0], [0, 0, -1e300]):
+            with self.assertRaisesRegex(ValueError, "base_position: expected a point within 1e9"):
+                stepper.step(base_position=far)
+            with self.assertRaisesRegex(ValueError, "base_position: expected a point within 1e9"):
+                cosserat.StaticSolver(wire()).solve(base_position=far)
+        with self.assertRaisesRegex(TypeError, "loads: expected a cosserat.Loads or a dict"):
+            cosserat.StaticSolver(wire()).solve(loads=5)
+        with self.assertRaisesRegex(TypeError, "loads: expected a cosserat.Loads or a dict"):
+            stepper.step(loads=5)
 
     def test_other_formulations_and_ends_are_refused(self):
         with self.assertRaisesRegex(ValueError, "formulation"):
