@@ -9,11 +9,12 @@
 namespace cosserat::detail {
 
 /// The damped pair of each of `modes` (ω, ascending) of λ² M + λ C + K = 0, in their order: the
-/// frequency and ratio NaN for a mode without one (overdamped, unstable, or no pair holds the most
-/// of it). `symmetric`: *companion already holds the modal first-order form [[0, Ω], [−Ω, −D]]
-/// SymmetricSpectrum built, whose pairs are matched by shape; else the plain companion matrix
-/// [[0, I], [Ar, Br]] of the reduced Jacobians is built there, and pairs are matched by |λ|.
-/// True when one of the modes' pairs grows (Re λ > 0).
+/// frequency and ratio NaN for a mode without one (overdamped, divergent, or no pair holds more
+/// than half its energy in the mode's cluster). `symmetric`: *companion already holds the modal
+/// first-order form [[0, Ω], [−Ω, −D]] SymmetricSpectrum built, whose pairs are matched by
+/// shape; else the plain companion matrix [[0, I], [Ar, Br]] of the reduced Jacobians is built
+/// there, and pairs are matched by |λ|. True when one of the 2n + 6 lowest pairs grows
+/// (Re λ > 0).
 bool DampedOfModes(bool symmetric, const Eigen::MatrixXd& Ar, const Eigen::MatrixXd& Br,
                    const std::vector<Mode>& modes, Eigen::MatrixXd* companion,
                    std::vector<DampedMode>* out);

@@ -25,6 +25,9 @@ constexpr double kDifferenceStep = 1e-8;
 // whose balance is within kNoiseAllowance of the tolerance: the rods' noise, not the poses.
 constexpr double kPoseResolution = 1e-10;
 constexpr double kNoiseAllowance = 1e4;
+// A Newton step a fresh Jacobian cannot make reduce a balance within kNoiseAllowance of the
+// tolerance ends the solve below this (the scaled unknowns of kPoseResolution): the rods' noise.
+constexpr double kStallStep = 1e-6;
 // Backtracking halvings of a Newton step whose balance grows, before the Jacobian is renewed.
 constexpr int kBacktracks = 4;
 
@@ -261,13 +264,17 @@ bool AssemblyDynamics::Solve(const StaticLoads& loads, const std::vector<lie::SE
       fresh = false;
       continue;
     }
-    // A new Jacobian could not reduce the balance: converged when it is down to the rods' noise
-    // (as for a step below kPoseResolution: an L-frame's end mass swinging through its rest
-    // position stalls at 1.5e-5 there), failed otherwise.
-    if (fresh) return summary->residual < kNoiseAllowance * options_.tolerance;
-    jacobian_c0_ = -1.0;       // an old one: renew it and try again from z
+    // Back at z, the best iterate (the rods and bodies hold the last trial's state).
     SetTrialPoses(z, from, c, statics);
     if (!Balance(loads, c, statics, &r)) return false;
+    // A new Jacobian could not reduce the balance: converged when it is down to the rods' noise
+    // as for a step below kPoseResolution, with a step below kStallStep (an L-frame's end mass
+    // swinging through its rest position stalls at balances up to 8.4e-7, steps up to 4.3e-8);
+    // failed otherwise.
+    if (fresh)
+      return summary->residual < kNoiseAllowance * options_.tolerance &&
+             dz.lpNorm<Eigen::Infinity>() < kStallStep;
+    jacobian_c0_ = -1.0;  // an old one: renew it and try again from z
   }
   summary->residual = r.norm();
   return summary->residual < options_.tolerance;

@@ -35,11 +35,14 @@ int AssemblyStaticsSolver::BodyStabilityIndex(const StaticLoads& loads) {
   // (EA/L) to N·m/rad across it (~EI/L), (L/r)² apart, and a bending mode's eigenvalue lies
   // below the round-off floor relative to the axial one: a column of wire (L/r = 1667) reads
   // stable at 1.2 times its Euler load.
+  // A diagonal entry at round-off of the largest (a neutral direction, a turn about a
+  // torsion-free tip's axis) is scaled as the largest is: scaled by itself, its sign would be
+  // round-off's.
   const Eigen::VectorXd diagonal = K.diagonal().cwiseAbs();
-  const double floor = diagonal.maxCoeff();
+  const double largest_entry = diagonal.maxCoeff() > 0 ? diagonal.maxCoeff() : 1.0;
   Eigen::VectorXd d(diagonal.size());
   for (Eigen::Index i = 0; i < d.size(); ++i)
-    d(i) = 1.0 / std::sqrt(diagonal(i) > 0 ? diagonal(i) : floor > 0 ? floor : 1.0);
+    d(i) = 1.0 / std::sqrt(diagonal(i) > 1e-12 * largest_entry ? diagonal(i) : largest_entry);
   const Eigen::VectorXcd eig = (d.asDiagonal() * K * d.asDiagonal()).eigenvalues();
   const double largest = eig.cwiseAbs().maxCoeff();
   int unstable = 0;

@@ -405,7 +405,8 @@ void CheckSectionsAtNodes(const Problem& p, ErrorReport* report) {
     if (!sp.stiffness.allFinite() || !sp.mass.allFinite()) {
       // Finite at rest, overflowed under the actuation (a jamming or inflation pressure of
       // 1e308 Pa): the actuation is what to fix.
-      const bool actuated = p.rod.section->At(s, Actuation{}).stiffness.allFinite();
+      const SectionProperties rest = p.rod.section->At(s, Actuation{});
+      const bool actuated = rest.stiffness.allFinite() && rest.mass.allFinite();
       report->Add(actuated ? "robot.actuation" : "rod.section",
                   std::string(actuated ? "under it the section's" : "its") +
                       " stiffness or mass per length at s = " + FormatNumber(s) +

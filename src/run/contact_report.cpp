@@ -156,13 +156,19 @@ std::string SampledContactNote(const Vec3& sampled, const Vec3& applied, std::si
   return note.str();
 }
 /// The gap between the rod's surface and the nearest contact surface at a node, m (< 0: pressed
-/// in).
-double Gap(const io::Problem& problem, double s, const Vec3& p) {
+/// in), and whether that surface is convex towards the rod (a sphere, or a cylinder from outside).
+double Gap(const io::Problem& problem, double s, const Vec3& p, bool* convex) {
   const double r_o = 0.5 * problem.rod.section->At(s, problem.robot.actuation).outer_diameter;
   double gap = std::numeric_limits<double>::infinity();
   Vec3 normal;
-  for (int k = 0; k < problem.loads.contact.count; ++k)
-    gap = std::min(gap, problem.loads.contact.surface[k].Distance(p, &normal) - r_o);
+  for (int k = 0; k < problem.loads.contact.count; ++k) {
+    const ContactSurface& surface = problem.loads.contact.surface[k];
+    const double g = surface.Distance(p, &normal) - r_o;
+    if (g >= gap) continue;
+    gap = g;
+    *convex = surface.shape == ContactSurface::Shape::kSphere ||
+              (surface.shape == ContactSurface::Shape::kCylinder && !surface.inside);
+  }
   return gap;
 }
 
@@ -171,21 +177,23 @@ double Gap(const io::Problem& problem, double s, const Vec3& p) {
 /// (r 2 mm) pressed on a 1 mm ball over about 2.5 mm, on 101 nodes (h 5 mm), carries 1.9 % too
 /// much and its tip falls 4.3 % short (quaternion FD; SE(3) on 201 nodes 1.4 % too far). The
 /// patch's width comes from the gap's parabola through its deepest node and their neighbours;
-/// the note names the nodes that put kNodesOnAPatch on it. Empty where no patch is narrow.
+/// the note names the nodes that put kNodesOnAPatch on it. Only on a convex surface, whose own
+/// curve sets the width: on a plane or inside a bore a patch is narrow only under a point load
+/// (a kink), whose width follows the grid. Not at the rod's ends. Empty where no patch is narrow.
 constexpr int kNarrowPatchNodes = 3;
 constexpr int kNodesOnAPatch = 5;
-std::string NarrowPatchNote(const io::Problem& problem, const std::vector<double>& s,
-                            const std::vector<double>& gap, const std::vector<bool>& touching) {
+std::string NarrowPatchNote(const std::vector<double>& s, const std::vector<double>& gap,
+                            const std::vector<bool>& touching, const std::vector<bool>& convex) {
   const int n = static_cast<int>(s.size());
-  for (int first = 0; first < n; ++first) {
-    if (!touching[first] || (first > 0 && touching[first - 1])) continue;
+  for (int first = 1; first + 1 < n; ++first) {
+    if (!touching[first] || touching[first - 1]) continue;
     int last = first;
     while (last + 1 < n && touching[last + 1]) ++last;
-    if (last - first + 1 > kNarrowPatchNodes) continue;
+    if (last - first + 1 > kNarrowPatchNodes || last == n - 1) continue;
     int deepest = first;
     for (int i = first; i <= last; ++i)
       if (gap[i] < gap[deepest]) deepest = i;
-    if (deepest == 0 || deepest == n - 1) continue;  // an end's contact: a point load's
+    if (!convex[deepest]) continue;
     // g(s) ≈ g0 + b x + a x² about the deepest node, x = s − s_deepest.
     const double x1 = s[deepest - 1] - s[deepest], x2 = s[deepest + 1] - s[deepest];
     const double d1 = (gap[deepest - 1] - gap[deepest]) / x1,
@@ -194,14 +202,16 @@ std::string NarrowPatchNote(const io::Problem& problem, const std::vector<double
     const double disc = b * b - 4 * a * gap[deepest];
     if (!(a > 0) || !(disc > 0) || !std::isfinite(disc)) continue;
     const double width = std::sqrt(disc) / a;  // m, between the gap's roots
-    const double h = s.back() / (n - 1);
+    const double h = 0.5 * (s[deepest + 1] - s[deepest - 1]);  // m, the local spacing
+    const long nodes = static_cast<long>(std::ceil(s.back() * kNodesOnAPatch / width)) + 1;
+    if (!(width < kNodesOnAPatch * h) || nodes <= n) continue;  // the grid already holds it
     std::ostringstream note;
     note << std::setprecision(3) << "cosserat: note: the contact at s = " << s[deepest]
          << " m spans " << last - first + 1 << (last == first ? " node" : " nodes")
          << " of the grid (h = " << h << " m) and about " << width
          << " m of the rod: the force it carries and the shape near it depend on where the nodes "
             "fall; rod.nodes ≥ "
-         << static_cast<long>(std::ceil(s.back() * kNodesOnAPatch / width)) + 1 << " puts "
+         << nodes << " puts "
          << kNodesOnAPatch << " on it\n";
     return note.str();
   }
@@ -240,7 +250,7 @@ void AddContactReport(const io::Problem& problem, Result* result) {
   double s_previous = 0.0, start = -1.0;
   const std::size_t n = s.size();
   std::vector<double> grid(n), gaps(n);
-  std::vector<bool> in_contact(n);
+  std::vector<bool> in_contact(n), convex(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double si = s[i].get<double>();
     const Vec3 p = VectorAt(position[i]);
@@ -250,7 +260,9 @@ void AddContactReport(const io::Problem& problem, Result* result) {
     if (i > 0) total += 0.5 * (si - s_previous) * (f + previous);
     const bool touching = !f.isZero(0.0);
     grid[i] = si;
-    gaps[i] = Gap(problem, si, p);
+    bool on_convex = false;
+    gaps[i] = Gap(problem, si, p, &on_convex);
+    convex[i] = on_convex;
     in_contact[i] = touching;
     if (touching && start < 0) start = si;
     if (!touching && start >= 0) {
@@ -271,7 +283,7 @@ void AddContactReport(const io::Problem& problem, Result* result) {
     result->log += FoundationGridWarning(problem);
   // A solve that stopped short applied a part of the loads: its nodes' sum is no sampling.
   const std::string narrow =
-      result->converged ? NarrowPatchNote(problem, grid, gaps, in_contact) : "";
+      result->converged ? NarrowPatchNote(grid, gaps, in_contact, convex) : "";
   result->log += narrow;
   Vec3 balanced;
   if (BalancedContactTotal(problem, json, &balanced)) {

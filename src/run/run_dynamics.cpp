@@ -335,6 +335,13 @@ std::string RunawayStartText(const io::Problem& problem) {
 std::string FreeStartHint(const io::Problem& problem) {
   const StaticLoads& initial = problem.dynamics.initial_loads.value_or(problem.loads);
   if (problem.boundary != io::Boundary::kFreeFree || initial.gravity_W.isZero(0.0)) return "";
+  // The weight in the fluid with the distributed force, per metre at s = 0 (N/m): none where a
+  // fluid or a force carries it (a neutrally buoyant rod), and then not this hint's case.
+  const SectionProperties sp = problem.rod.section->At(0.0, problem.robot.initial_actuation);
+  const double weight = sp.mass(5, 5) * initial.gravity_W.norm();
+  const Vec3 net =
+      TotalDistributedForce_W(initial, LoadSite{0.0, 1.0, sp.mass(5, 5), sp.outer_diameter});
+  if (!(net.norm() > 1e-6 * weight)) return "";
   return std::string("cosserat: hint: a free-free rod under gravity has ") +
          (problem.loads.contact.count > 0
               ? "no unique equilibrium at rest on environment.contact (it slides along the "
@@ -386,7 +393,8 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   log << SummaryLine(run, stepper.state()) << '\n';
   if (!run.initial_state_ok && run.status == SolveStatus::kNonFinite)
     log << RunawayStartText(problem);
-  if (!run.initial_state_ok) log << FreeStartHint(problem);
+  if (!run.initial_state_ok && run.status != SolveStatus::kNonFinite)
+    log << FreeStartHint(problem);
   if (run.initial_state_ok && run.status != SolveStatus::kConverged &&
       options.shooting_segments == 1) {  // an explicit single shot
     // The usual cause of a failed step at small dt (docs/dynamics.md, "Where it stops").

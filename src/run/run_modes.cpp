@@ -201,9 +201,13 @@ ModalResult ModesOf(const io::Problem& problem,
 /// The SE(3) modes leave the section's Kelvin–Voigt damping out: said when the rod has some.
 std::string UndampedShootingNote(const io::Problem& problem) {
   if (problem.formulation != io::Formulation::kSe3Shooting || !problem.rod.section) return "";
-  const int samples = 16;
-  for (int i = 0; i <= samples; ++i) {
-    const double s = problem.rod.length * i / samples;
+  // Every sixteenth of the rod, and both sides of each jump in the section (a damped band).
+  std::vector<double> at;
+  for (int i = 0; i <= 16; ++i) at.push_back(problem.rod.length * i / 16);
+  for (const double b : problem.rod.Breakpoints())
+    for (const double side : {-1e-9, 1e-9}) at.push_back(b + side * problem.rod.length);
+  for (const double s : at) {
+    if (s < 0 || s > problem.rod.length) continue;
     if (problem.rod.section->At(s, problem.robot.actuation).damping.cwiseAbs().maxCoeff() > 0)
       return "cosserat: note: the se3-shooting modes are undamped (rod.material.damping is left "
              "out); \"formulation\": \"quaternion-fd\" also gives each mode's damped frequency "
