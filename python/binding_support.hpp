@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cosserat/io/problem.hpp"
 #include "cosserat/state/rod_state.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 
@@ -25,12 +26,12 @@ const Matrix& Finite(const Matrix& m, const char* field) {
   return m;
 }
 
-/// A base position from Python by the problem file's rule: finite, and within 1e9 rod lengths of
-/// the origin, where a double still resolves the rod's shape (at 1e16 m a metre rod's deflection
-/// is lost whole, and the shot "converges" on a straight rod).
+/// A base position from Python by the problem file's rule: finite, and within
+/// io::kFarthestPointInRodLengths of the origin (beyond, the shot "converges" on a straight rod).
 inline Vec3 BasePosition(const Vec3& p, double rod_length) {
   Finite(p, "base_position");
-  const double far = 1e9 * rod_length, away = p.cwiseAbs().maxCoeff();
+  const double far = io::kFarthestPointInRodLengths * rod_length;
+  const double away = p.cwiseAbs().maxCoeff();
   if (away > far) {
     std::ostringstream m;
     m << std::setprecision(6) << "base_position: expected a point within 1e9 rod lengths ("

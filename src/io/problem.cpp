@@ -457,9 +457,7 @@ void CheckWithLibrary(const Problem& p, ErrorReport* report) {
   }
   if (!p.rod.IsValid(&why)) report->Add("rod", why);
   if (report->empty()) CheckSectionsAtNodes(p, report);
-  // A point so far from the origin that a double no longer resolves the rod's shape there: at
-  // 1e9 rod lengths it keeps 2e-7 of one, at 1e16 m a metre rod's deflection is lost whole.
-  const double far = 1e9 * p.rod.length;
+  const double far = kFarthestPointInRodLengths * p.rod.length;
   for (const auto& [where, point] :
        {std::pair<const char*, Vec3>{"base.position", p.base.p},
         std::pair<const char*, Vec3>{"anchor.position", p.anchor.position}})

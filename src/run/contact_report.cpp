@@ -157,7 +157,7 @@ std::string SampledContactNote(const Vec3& sampled, const Vec3& applied, std::si
 }
 /// The gap between the rod's surface and the nearest contact surface at a node, m (< 0: pressed
 /// in), and whether that surface is convex towards the rod (a sphere, or a cylinder from outside).
-double Gap(const io::Problem& problem, double s, const Vec3& p, bool* convex) {
+double Gap(const io::Problem& problem, double s, const Vec3& p, bool* convex = nullptr) {
   const double r_o = 0.5 * problem.rod.section->At(s, problem.robot.actuation).outer_diameter;
   double gap = std::numeric_limits<double>::infinity();
   Vec3 normal;
@@ -166,8 +166,9 @@ double Gap(const io::Problem& problem, double s, const Vec3& p, bool* convex) {
     const double g = surface.Distance(p, &normal) - r_o;
     if (g >= gap) continue;
     gap = g;
-    *convex = surface.shape == ContactSurface::Shape::kSphere ||
-              (surface.shape == ContactSurface::Shape::kCylinder && !surface.inside);
+    if (convex)
+        *convex = surface.shape == ContactSurface::Shape::kSphere ||
+                (surface.shape == ContactSurface::Shape::kCylinder && !surface.inside);
   }
   return gap;
 }
@@ -223,13 +224,7 @@ std::string NarrowPatchNote(const std::vector<double>& s, const std::vector<doub
 double TouchdownS(const io::Problem& problem, const RodState& state) {
   double touchdown = std::numeric_limits<double>::quiet_NaN();
   for (int i = 0; i < state.size(); ++i) {
-    const double r_o =
-        0.5 * problem.rod.section->At(state.s[i], problem.robot.actuation).outer_diameter;
-    bool touching = false;
-    for (int k = 0; k < problem.loads.contact.count && !touching; ++k) {
-      Vec3 normal;
-      touching = problem.loads.contact.surface[k].Distance(state.position_W[i], &normal) < r_o;
-    }
+    const bool touching = Gap(problem, state.s[i], state.position_W[i]) < 0.0;
     if (touching) touchdown = state.s[i];
     if (!touching && !std::isnan(touchdown)) break;  // the end of the first stretch in contact
   }

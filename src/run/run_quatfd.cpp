@@ -392,14 +392,12 @@ std::string DynamicsLog(const io::DynamicRun& run, const RadauOutcome& radau,
 /// frame before the step cap stopped it. Its status (under_resolved, or non_finite for a shape
 /// that ran away) and the check's words; kConverged and nothing where the start holds.
 SolveStatus StartOnTheGrid(const io::Problem& problem, const RodState& start, std::string* log) {
-  io::Problem statics = problem;
-  statics.analysis = io::Analysis::kStatics;
   StaticShootingSummary summary;
   summary.status = SolveStatus::kConverged;
   Result check;
   check.json = io::StaticResultToJson(summary, start);
   check.converged = true;
-  CheckGridResolution(statics, &check);
+  CheckGridResolution(problem, &check);  // as for a run's final state
   if (check.converged) return SolveStatus::kConverged;
   *log = "cosserat: the equilibrium the run starts from is not resolved, so it is not stepped "
          "from:\n" + check.log;

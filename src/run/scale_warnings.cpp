@@ -115,8 +115,6 @@ void UnitSlipWarnings(const io::Problem& problem, std::ostringstream* log) {
   }
 }
 
-/// The Young's modulus of a rod of one material along its length (Pa), looking through a pipe's
-/// contents; 0 for other profiles (tapers, tubes, bands).
 /// The profile a problem file describes, inside the fixed pressures the parser wraps it in.
 const SectionProfile* FileProfile(const io::Problem& problem) {
   const SectionProfile* profile = problem.rod.section.get();
@@ -125,6 +123,8 @@ const SectionProfile* FileProfile(const io::Problem& problem) {
   return profile;
 }
 
+/// The Young's modulus of a rod of one material along its length (Pa), looking through a pipe's
+/// contents; 0 for other profiles (tapers, tubes, bands).
 double UniformYoungsModulus(const SectionProfile* profile) {
   if (const auto* filled = dynamic_cast<const FilledPipeSection*>(profile))
     profile = &filled->pipe();

@@ -20,6 +20,11 @@
 
 namespace cosserat::io {
 
+/// How far from the world origin a base or an anchor may lie, in rod lengths: where a double
+/// still resolves the rod's shape (at 1e9 lengths it keeps 2e-7 of one; at 1e16 m a metre rod's
+/// deflection is lost whole).
+inline constexpr double kFarthestPointInRodLengths = 1e9;
+
 /// The most grid nodes `rod.nodes` takes.
 inline constexpr int kMaxRodNodes = 1000000;
 
