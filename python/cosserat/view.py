@@ -18,6 +18,7 @@ message for an unknown control or a value outside its range). A problem file tha
 read still serves the page, which shows the error.
 """
 import argparse
+import collections
 import copy
 import json
 import math
@@ -344,9 +345,12 @@ class LiveRod:
         R0 = np.asarray(self.spec.get("base", {}).get("rotation", np.eye(3)), float)
         base_x = angle = 0.0
         dt = stepper.dt
-        wall0, sim0 = time.perf_counter(), 0.0
-        run_start_wall, run_start_sim = wall0, 0.0
-        next_frame = wall0
+        # The real-time ratio over the last two seconds of frames (wall, simulated time): a
+        # window that slides, since one restarted every two seconds would, just after its
+        # restart, divide a whole number of steps by a fraction of a frame.
+        window = collections.deque([(time.perf_counter(), 0.0)])
+        run_start_wall, run_start_sim = window[0][0], 0.0
+        next_frame = run_start_wall
         while self.running:
             with self.lock:
                 v = dict(self.values)
@@ -386,9 +390,10 @@ class LiveRod:
                     break
             pos = np.asarray(stepper.state()["position"]).tolist()
             sim, wall = stepper.time, time.perf_counter()
-            ratio = (sim - sim0) / max(wall - wall0, 1e-9)
-            if wall - wall0 > 2.0:  # the ratio over a window of about two seconds
-                wall0, sim0 = wall, sim
+            window.append((wall, sim))
+            while len(window) > 2 and wall - window[1][0] >= 2.0:
+                window.popleft()
+            ratio = (sim - window[0][1]) / max(wall - window[0][0], 1e-9)
             self._publish([pos], pos[-1], status, sim, ratio, version)
             next_frame += FRAME_S
             delay = next_frame - time.perf_counter()
