@@ -658,6 +658,45 @@ TEST(Run, AShapeTheGridCannotFollowIsUnderResolved) {
   EXPECT_NEAR(fine.json["base_wrench"]["force"][0].get<double>() / (10000 + weight), 1.0, 1e-4);
 }
 
+// A clamp spun at Ω = 1 rad/s on a rubber rod (E = 1 MPa, ν = 0.5, 0.5 m, r = 5 mm) sends a
+// torsion wave down it at c = sqrt(G/ρ) = 18 m/s: until it reflects (2L/c = 55 ms) the clamp's
+// work, T Ω t with T = Ω J sqrt(Gρ) the wave's torque, is all the rod's energy. On 121 nodes
+// (the shear wave's exponent 0.7 per segment at dt = 0.5 ms) the run converges with that energy,
+// less BDF2's damping of the front (2.4 % at 20 ms: 10 % allowed; BDF2 adds none, so 1e-3 above
+// is round-off's room). On 41 nodes (2.2 per segment) steps that all converged grew an
+// oscillation of the grid instead, 1e5 times the clamp's work within 7 steps: the run stops as
+// under_resolved once it is a thousandfold in five steps, and its energy is far past the work.
+TEST(Run, ASpunClampsEnergyIsItsWorkOrTheRunStopsAsUnderResolved) {
+  auto spin = [](int nodes) {
+    const io::ParseResult parsed = io::ParseProblem(R"({"format": "cosserat-problem/1",
+        "analysis": "dynamics",
+        "rod": {"length": 0.5, "nodes": )" + std::to_string(nodes) + R"(,
+        "section": {"shape": "circle", "radius": 0.005},
+        "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.5, "density": 1000}},
+        "dynamics": {"dt": 0.0005, "duration": 0.02, "base_spin": 1.0}})");
+    EXPECT_TRUE(parsed.ok());
+    return cosserat::run::Run(*parsed.problem);
+  };
+  const double G = 1e6 / 3, rho = 1000, J = M_PI * std::pow(0.005, 4) / 2;
+  const double torque = 1.0 * J * std::sqrt(G * rho);  // N·m
+  auto energy = [](const Result& r) {
+    return r.json["energy"]["kinetic"].get<double>() + r.json["energy"]["elastic"].get<double>();
+  };
+  const Result fine = spin(121);
+  ASSERT_TRUE(fine.converged) << fine.log;
+  const double work = torque * 1.0 * 0.02;  // J
+  EXPECT_GT(energy(fine), 0.9 * work);
+  EXPECT_LT(energy(fine), (1 + 1e-3) * work);
+  const Result coarse = spin(41);
+  EXPECT_FALSE(coarse.converged);
+  EXPECT_EQ(coarse.json["status"], "under_resolved") << coarse.log;
+  const double t = coarse.json["failed_at_t"].get<double>();
+  EXPECT_LE(t, 0.005);
+  EXPECT_GT(energy(coarse), 100 * torque * t) << "the grid's oscillation, far past the work";
+  EXPECT_NE(coarse.log.find("an oscillation of the grid at this dt"), std::string::npos)
+      << coarse.log;
+}
+
 // A tip moment M = 6π EI/L curls the steel wire into three whole turns: the tip frame is the
 // base's (a rotation by ML/EI = 6π about y). RK4 in s left the written rotation off SO(3) (det
 // 0.994 at 41 nodes), which a user could not give back as a pose: it is now a rotation to
