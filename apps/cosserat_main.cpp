@@ -369,7 +369,8 @@ int RunSweep(const Command& cmd) {
   progress.Clear();
   if (!root) return kExitConverged;  // rank 0 reports and exits with the study's status
   std::cerr << "cosserat: sweep " << (s.complete ? "complete" : "incomplete") << ", " << s.points
-            << " points (" << s.resumed << " from the file, " << s.ran << " run now on ";
+            << (s.points == 1 ? " point (" : " points (") << s.resumed << " from the file, "
+            << s.ran << " run now on ";
   if (ranks > 1)
     std::cerr << ranks << " MPI ranks";
   else

@@ -283,11 +283,53 @@ TEST(Sweep, AFileOfAnotherStudyIsNotOverwritten) {
     std::ofstream f(path);
     f << "index,something,else\n0,1,2\n";
   }
-  EXPECT_THROW(run::RunSweep(s, path), std::runtime_error);
+  try {
+    run::RunSweep(s, path);
+    ADD_FAILURE() << "not refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("column 2 is something, this study's /rod/length"),
+              std::string::npos)
+        << e.what();
+  }
   std::ifstream f(path);
   std::string first;
   std::getline(f, first);
   EXPECT_EQ(first, "index,something,else");
+}
+
+// The header names the columns, not the fields they hold: a study whose tip_x now reads
+// /tip/position/1 would mix y into a column of x. The fields are recorded beside the file, and
+// such a study is refused, naming the column; an unreadable record too. The same study resumes,
+// and so do rows written before fields were recorded (no record: the header is all there is).
+TEST(Sweep, AColumnThatNowHoldsAnotherFieldIsNotResumed) {
+  const std::string grid = R"([{"path": "/robot/actuation/tension/0", "grid": {"from": 0, "to": 2,
+                               "count": 3}}])";
+  const std::string path = Temp("fields.csv");
+  for (const char* end : {"", ".problem.json", ".outputs.json"})
+    std::remove((path + end).c_str());
+  run::SweepOptions o;
+  o.max_new_points = 2;
+  run::RunSweep(Parse(TendonStudy(grid)), path, o);
+  const std::map<long, std::string> before = Rows(path);
+  ASSERT_EQ(before.size(), 2u);
+  std::string moved = TendonStudy(grid);
+  moved.replace(moved.find("/tip/position/0"), 15, "/tip/position/1");
+  try {
+    run::RunSweep(Parse(moved), path);
+    ADD_FAILURE() << "not refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("its column tip_x holds \"/tip/position/0\", this "
+                                         "study's holds \"/tip/position/1\""),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(Rows(path), before);
+  const std::string record = path + ".outputs.json";
+  std::ofstream(record) << "{\"tip_x\": ";  // torn
+  EXPECT_THROW(run::RunSweep(Parse(TendonStudy(grid)), path), std::runtime_error);
+  std::remove(record.c_str());
+  EXPECT_EQ(run::RunSweep(Parse(TendonStudy(grid)), path).resumed, 2u);
+  EXPECT_THROW(run::RunSweep(Parse(moved), path), std::runtime_error);  // recorded again
 }
 
 // A file that has this study's columns but another study's points (another grid) or rows of

@@ -73,8 +73,9 @@ def sweep(study, out=None, threads=None):
                     for row in csv.DictReader(f)]
     finally:
         if temporary:
-            # The rows, their partial file and the problem kept beside them for a resume.
-            for leftover in (out, os.fspath(out) + ".tmp", os.fspath(out) + ".problem.json"):
+            # The rows, their partial file and the records kept beside them for a resume.
+            for leftover in (out, *(os.fspath(out) + end
+                                    for end in (".tmp", ".problem.json", ".outputs.json"))):
                 if os.path.exists(leftover):
                     os.remove(leftover)
     for output in summary["empty_outputs"]:

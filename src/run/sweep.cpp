@@ -107,6 +107,20 @@ std::string SweepPointRow(const io::Study& study, std::uint64_t k) {
 
 namespace {
 
+/// Where a file's header line first differs from the study's, column by column (as written).
+std::string HeaderDifference(const std::string& found, const std::string& wanted) {
+  std::istringstream a(found), b(wanted);
+  std::string x, y;
+  for (int column = 1;; ++column) {
+    const bool more_a = static_cast<bool>(std::getline(a, x, ','));
+    const bool more_b = static_cast<bool>(std::getline(b, y, ','));
+    if (!more_a && !more_b) return "it differs";
+    if (more_a && more_b && x == y) continue;
+    return "column " + std::to_string(column) + " is " + (more_a ? x : std::string("missing")) +
+           ", this study's " + (more_b ? y : std::string("none"));
+  }
+}
+
 /// The rows already in the file (whole lines after the study's header), by point index.
 std::map<std::uint64_t, std::string> ReadRows(const std::string& path, const std::string& header,
                                               std::uint64_t points) {
@@ -122,7 +136,9 @@ std::map<std::uint64_t, std::string> ReadRows(const std::string& path, const std
   if (text.empty()) return rows;
   std::size_t end = text.find('\n');
   if (end == std::string::npos || text.substr(0, end) != header)
-    throw std::runtime_error(path + ": its header is not this study's (another study's results?)");
+    throw std::runtime_error(path + ": its header is not this study's (" +
+                             HeaderDifference(text.substr(0, end), header) +
+                             "; another study's results?)");
   for (std::size_t start = end + 1; start < text.size(); start = end + 1) {
     end = text.find('\n', start);
     if (end == std::string::npos) break;  // a torn last line: the point runs again
@@ -145,8 +161,10 @@ void WriteWhole(const std::string& path, const Write& write) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f)  // named as the file asked for: the temporary beside it is the tool's own
+      throw std::runtime_error(path + ": cannot write (" + std::strerror(errno) + ")");
     write(f);
-    if (!f) throw std::runtime_error(tmp + ": cannot write");
+    if (!f) throw std::runtime_error(path + ": cannot write");
   }
   std::filesystem::rename(tmp, path);
 }
@@ -210,6 +228,34 @@ void CheckAndRecordProblem(const std::string& csv_path, const io::Study& study, 
   WriteWhole(path, [&](std::ostream& f) { f << study.problem.dump(1) << '\n'; });
 }
 
+/// The result fields the columns hold, beside the CSV (`<csv>.outputs.json`, name → JSON
+/// pointer): the header names the columns only, so a resumed study whose column now reads
+/// another field (tip_x from /tip/position/1) is refused. Rows written before the fields were
+/// recorded resume as their header allows (their record is written then); an unreadable record
+/// is refused.
+void CheckAndRecordOutputs(const std::string& csv_path, const io::Study& study, bool resuming) {
+  const std::string path = csv_path + ".outputs.json";
+  json now = json::object();
+  for (const io::StudyOutput& o : study.outputs) now[o.name] = o.path;
+  std::error_code ec;
+  if (resuming && std::filesystem::exists(path, ec)) {
+    std::ifstream f(path, std::ios::binary);
+    const json was = f ? json::parse(f, nullptr, false) : json(json::value_t::discarded);
+    if (was.is_discarded() || !was.is_object())
+      throw std::runtime_error(csv_path + ": the record of the result fields its columns hold ("
+                               + path + ") is unreadable, so they may be other fields; remove "
+                               "the files or name another --out");
+    for (const auto& [name, pointer] : now.items())
+      if (!was.contains(name) || was[name] != pointer)
+        throw std::runtime_error(
+            csv_path + ": its column " + name + " holds " +
+            (was.contains(name) ? was[name].dump() : std::string("an unrecorded field")) +
+            ", this study's holds \"" + pointer.get<std::string>() +
+            "\" (another study's results? remove the file or name another --out)");
+  }
+  WriteWhole(path, [&](std::ostream& f) { f << now.dump(1) << '\n'; });
+}
+
 /// Writes the header and the rows to `path`, whole at every moment (WriteWhole).
 void WriteAll(const std::string& path, const std::string& header,
               const std::map<std::uint64_t, std::string>& rows) {
@@ -230,9 +276,14 @@ std::string SweepHeader(const io::Study& study) {
 
 SweepFile::SweepFile(const io::Study& study, const std::string& path)
     : path_(path), header_(SweepHeader(study)), points_(study.PointCount()) {
+  const std::filesystem::path directory = std::filesystem::path(path_).parent_path();
+  std::error_code ec;
+  if (!directory.empty() && !std::filesystem::is_directory(directory, ec))
+    throw std::runtime_error(path_ + ": cannot write (no directory " + directory.string() + ")");
   rows_ = ReadRows(path_, header_, points_);
   CheckResumedPoints(path_, study, rows_);
   CheckAndRecordProblem(path_, study, !rows_.empty());
+  CheckAndRecordOutputs(path_, study, !rows_.empty());
   resumed_ = rows_.size();
   WriteAll(path_, header_, rows_);  // drops a torn line; the file now ends with a whole row
   for (std::uint64_t k = 0; k < points_; ++k)
