@@ -1020,6 +1020,10 @@ TEST(ProblemIoErrors, RotationMustBeOrthonormalWithPositiveDeterminant) {
                "got max |R^T R - I| = 3");
   j["base"]["rotation"] = {{1, 0, 0}, {0, 1, 0}, {0, 0, -1}};  // a reflection
   EXPECT_ERROR(Parse(j), "base.rotation: expected a rotation matrix", "determinant -1");
+  // 45° about x typed to five digits: |RᵀR − I| = 2 · 0.70711² − 1 ≈ 9.1e-6, past 1e-6.
+  j["base"]["rotation"] = {{1, 0, 0}, {0, 0.70711, -0.70711}, {0, 0.70711, 0.70711}};
+  EXPECT_ERROR(Parse(j), "base.rotation: expected a rotation matrix",
+               "got max |R^T R - I| = 9.1", "give them to 7 significant digits or more");
   j["base"]["rotation"] = {{1, 0, 0}, {0, "a", 0}, {0, 0}};
   const ParseResult r = Parse(j);
   EXPECT_ERROR(r, "base.rotation[1][1]: expected a finite number, got a string (\"a\")");

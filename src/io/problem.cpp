@@ -328,6 +328,7 @@ void ParseTopLevel(const ObjectReader& top, Problem* p) {
   CheckFormat(top);
   ReadString(top, "description", Presence::kOptional);
   p->analysis = ReadEnum<Analysis>(top, "analysis", Presence::kOptional).value_or(p->analysis);
+  p->analysis_given = top.Has("analysis");
   p->formulation =
       ReadEnum<Formulation>(top, "formulation", Presence::kOptional).value_or(p->formulation);
   if (top.Has("assembly")) return ParseAssemblyTopLevel(top, p);

@@ -109,6 +109,20 @@ void UnusedBaseDriveNote(const io::Problem& problem, Result* result) {
                  "\n";
 }
 
+/// A file without "analysis" is statics; one that holds the block of another analysis was
+/// likely meant to run it, so the log says which ran and what to write.
+void DefaultAnalysisNote(const io::Problem& problem, Result* result) {
+  if (problem.analysis_given) return;
+  const char* block = problem.has_dynamics ? "dynamics"
+                      : problem.has_buckling ? "buckling"
+                      : problem.has_modes    ? "modes"
+                                             : nullptr;
+  if (!block) return;
+  result->log += std::string("cosserat: note: the file gives no \"analysis\", so this is "
+                             "statics (the default) and its \"") +
+                 block + "\" block is not used; \"analysis\": \"" + block + "\" runs it\n";
+}
+
 /// The summary line (the log's first) names the status the checks after the solve left: a
 /// converged solve whose shape ran away or that the grid under-resolves said "converged" there.
 void SummaryLineStatus(Result* result) {
@@ -124,6 +138,7 @@ void SummaryLineStatus(Result* result) {
 
 Result Run(const io::Problem& problem, const RunOptions& options) {
   Result result = Dispatch(problem, options);
+  DefaultAnalysisNote(problem, &result);
   RefuseNonFiniteAnswers(&result);
   CheckGridResolution(problem, &result);
   ObstacleHint(problem, &result);

@@ -396,7 +396,7 @@ cosserat_cli_test(NAME sweep_nested_paths ARGS validate "${_cli_dir}/sweep_neste
                   STDERR "parameters\\[1\\].path: expected a place apart from parameters\\[0\\]'s \"/robot/actuation/tension\"")
 # Tendon lengths and gravity written in mm: each named as a slip of units.
 cosserat_cli_test(NAME tendon_lengths_in_mm ARGS solve "${_cli_dir}/tendon_lengths_in_mm.json" CODE 0
-                  STDERR "warning: loads.gravity is 9.81e\\+03 m/s², over a hundred times Earth's 9.81: check its units.*warning: robot.actuation.length\\[0\\] is 244 m on a 0.25 m rod: check its units \\(m\\)")
+                  STDERR "warning: loads.gravity is 9.81e\\+03 m/s², over 1000 \\(about a hundred times Earth's 9.81\\): check its units.*warning: robot.actuation.length\\[0\\] is 244 m on a 0.25 m rod: check its units \\(m\\)")
 # A band between the uniform nodes whose stiffness overflows is caught by validate, on the grid
 # the solvers use (its nodes include the band's ends), as an overflow and not as a coupling.
 cosserat_cli_test(NAME band_overflow_between_nodes ARGS validate "${_cli_dir}/band_overflow_between_nodes.json"
@@ -509,6 +509,13 @@ cosserat_cli_test(NAME modes_damped_se3 ARGS solve "${_cli_dir}/modes_damped_se3
 # A dynamics block kept for another analysis is checked, not used; its base drive is noted.
 cosserat_cli_test(NAME modes_keep_base_spin ARGS solve "${_cli_dir}/modes_keep_base_spin.json"
                   CODE 0 STDERR "note: dynamics.base_spin turns the base in \"analysis\": \"dynamics\" only; this \"modes\" holds the base still")
+# A length typed in mm: the failed solve's log names the rod's slenderness and the units.
+cosserat_cli_test(NAME wire_length_in_mm ARGS solve "${_cli_dir}/wire_length_in_mm.json"
+                  CODE 1 STDERR "load_stepping_failed.*hint: the rod is 500 m long and 0.002 m across, 2.5e\\+05 times its width: if rod.length or the section's sizes were meant in mm")
+# A file without "analysis" is statics; a dynamics block there is named as not used.
+cosserat_cli_test(NAME dynamics_block_without_analysis
+                  ARGS solve "${_cli_dir}/dynamics_block_without_analysis.json"
+                  CODE 0 STDERR "converged.*note: the file gives no \"analysis\", so this is statics \\(the default\\) and its \"dynamics\" block is not used; \"analysis\": \"dynamics\" runs it")
 cosserat_cli_test(NAME anchor_misspelt_position ARGS validate "${_cli_dir}/anchor_misspelt_position.json"
                   CODE 2 STDERR "anchor.postion: unknown key.*anchor.position: expected an array of 3 numbers, got nothing \\(required key is missing\\)\n?$")
 # Loads an anchor would take whole are refused, not silently lost.

@@ -34,6 +34,7 @@ inline constexpr const char* kProblemFormat = "cosserat-problem/1";
 /// A validated problem. Every field holds a value from the file or its documented default.
 struct Problem {
   Analysis analysis = Analysis::kStatics;
+  bool analysis_given = false;  ///< the file names "analysis" (else statics, the default)
   Formulation formulation = Formulation::kSe3Shooting;
   RodModel rod;    ///< length, section profile, rest strain
   int nodes = 41;  ///< grid points along s, ends included
