@@ -505,7 +505,8 @@ void BindStaticSolver(py::module_& m) {
   py::class_<PyStaticSolver>(m, "StaticSolver",
                              "Static equilibrium of the problem's cantilever (SE(3) shooting); "
                              "re-solves warm-start from the last solution.")
-      .def(py::init<const io::Problem&>(), py::arg("problem"))
+      .def(py::init<const io::Problem&>(), py::arg("problem"),
+           "The problem's rod, grid, ends and solver options; nothing is solved until solve().")
       .def("solve", &PyStaticSolver::Solve, py::arg("loads") = py::none(),
            py::arg("base_position") = py::none(), py::arg("base_rotation") = py::none(),
            py::arg("actuation") = py::none(),

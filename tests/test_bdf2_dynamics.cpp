@@ -322,8 +322,8 @@ TEST(Bdf2Dynamics, RefusesABaseThatIsNotARotation) {
 
 TEST(Bdf2Dynamics, RestoreRefusesSnapshotsItCannotContinue) {
   // A snapshot taken before InitializeAtRest holds no run; one from another rod on the same node
-  // count (or other end conditions, or other tendons) would continue with a foreign history. Both
-  // are refused, and a refused Restore leaves the stepper as it was.
+  // count (or other end conditions, other tendons, other damping) would continue with a foreign
+  // history. Both are refused, and a refused Restore leaves the stepper as it was.
   Bdf2ShootingStepper stepper(Steel(0.5, 0.001), 20);
   const Bdf2ShootingStepper::Snapshot empty = stepper.Save();
   EXPECT_THROW(stepper.Restore(empty), std::invalid_argument);
@@ -345,6 +345,9 @@ TEST(Bdf2Dynamics, RestoreRefusesSnapshotsItCannotContinue) {
   Bdf2Options free_free;
   free_free.ends = EndConditions::kFreeFree;
   Bdf2ShootingStepper other_ends(Steel(0.5, 0.001), 20, free_free);
+  testing::SteelRod damped_rod{0.5, 0.001};
+  damped_rod.material.damping.bending = 1e-3;  // N·m²·s
+  Bdf2ShootingStepper damped(damped_rod.model(), 20);
   // The same rod with a tendon, and with the tendon on another helix: other robots.
   RodModel tendon_rod = Steel(0.5, 0.001);
   tendon_rod.tendons = {{"t", TendonRoute::Helical(0.004, 0.5, 0.0)}};
@@ -353,7 +356,7 @@ TEST(Bdf2Dynamics, RestoreRefusesSnapshotsItCannotContinue) {
   Bdf2ShootingStepper other_helix(tendon_rod, 20);
   ASSERT_TRUE(with_tendon.InitializeAtRest(in).converged());
   EXPECT_THROW(other_helix.Restore(with_tendon.Save()), std::invalid_argument);
-  for (Bdf2ShootingStepper* other : {&longer, &thicker, &other_ends, &with_tendon}) {
+  for (Bdf2ShootingStepper* other : {&longer, &thicker, &other_ends, &with_tendon, &damped}) {
     ASSERT_TRUE(other->InitializeAtRest(in).converged());
     EXPECT_THROW(stepper.Restore(other->Save()), std::invalid_argument);
   }

@@ -130,8 +130,9 @@ def solve(problem, nodes=False):
                   of an assembly {"t": (F,), "rods": [(F, N_i, 3) per rod]}
       nodes_csv   with nodes=True: the --csv table as text
       contact_force, contact_total_force   with contact surfaces (N/m per node; N)
-      rods        an assembly's statics: per rod, its name and its nodes' s (N_i,), position (m),
-                  curvature (1/m), moment_body (N·m) and force_body (N) (N_i x 3 each)
+      rods        an assembly (statics, or the last frame of its dynamics): per rod, its name
+                  and its nodes' s (N_i,), position (m), curvature (1/m), moment_body (N·m)
+                  and force_body (N) (N_i x 3 each)
     """
     out = _core.solve(_as_problem(problem), nodes)
     for line in out["log"].splitlines():

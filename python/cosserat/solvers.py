@@ -143,6 +143,20 @@ class Stepper(_core.Stepper):
     def actuation(self, value):
         _core.Stepper.actuation.fset(self, _actuation_from(value, self._problem, self._rules))
 
+    @property
+    def loads(self):
+        """The loads the next step() applies unless given others: edited in place or assigned
+        (a Loads or a dict with the problem file's loads keys, read as step() reads one), they
+        are its (checked at that step)."""
+        return _core.Stepper.loads.fget(self)
+
+    @loads.setter
+    def loads(self, value):
+        if value is None:
+            raise TypeError("loads: expected a cosserat.Loads or a dict with the problem file's "
+                            "loads keys, got None")
+        _core.Stepper.loads.fset(self, _loads_from(value, self))
+
     def _check_clamp_twist(self, base_position, base_rotation, base_twist_B):
         """A clamp moved with no base_twist_B ever given: the step takes the twist as an input
         (zero), not from the change of pose, so the rod is dragged, not carried. Warned once."""

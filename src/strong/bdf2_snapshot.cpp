@@ -21,10 +21,11 @@ std::uint64_t Bdf2ShootingStepper::ModelFingerprint() const {
   add(pair_start_.data(), pair_start_.size());  // where the stage slots are (PlanSteps)
   for (const double s : grid_) {
     const SectionProperties p = model_.section->At(s, Actuation{});
-    const Vec6 k = p.stiffness.diagonal(), m = p.mass.diagonal();
+    const Vec6 k = p.stiffness.diagonal(), m = p.mass.diagonal(), d = p.damping.diagonal();
     add(&s, sizeof s);
     add(k.data(), sizeof(double) * 6);
     add(m.data(), sizeof(double) * 6);
+    add(d.data(), sizeof(double) * 6);  // Kelvin–Voigt: the same state steps on differently
   }
   // The actuators: a snapshot of a tendon or chamber robot continues only on the same robot.
   for (const Tendon& t : model_.tendons) {

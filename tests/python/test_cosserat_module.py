@@ -390,6 +390,16 @@ class Dynamics(unittest.TestCase):
         self.assertTrue(b.step({"gravity": list(p.loads.gravity), "tip_force": [0.1, 0, 0]},
                                actuation={"tension": [0.2, 0.1, 0.0]}).converged)
         np.testing.assert_array_equal(a.tip_position(), b.tip_position())
+        # Loads assigned as a dict are read as step() reads one.
+        a.loads = {"gravity": list(p.loads.gravity), "tip_force": [0.3, 0, 0]}
+        self.assertTrue(a.step().converged)
+        self.assertTrue(b.step({"gravity": list(p.loads.gravity), "tip_force": [0.3, 0, 0]},
+                               actuation={"tension": [0.2, 0.1, 0.0]}).converged)
+        np.testing.assert_array_equal(a.tip_position(), b.tip_position())
+        with self.assertRaisesRegex(ValueError, "^loads.tip_froce: unknown key"):
+            a.loads = {"tip_froce": [1, 0, 0]}
+        with self.assertRaisesRegex(TypeError, "^loads: expected a cosserat.Loads or a dict"):
+            a.loads = [1, 0, 0]
         a.actuation.tendon_tension[0] = -1.0
         t = a.time
         with self.assertRaisesRegex(ValueError, "actuation.tendon_tension"):

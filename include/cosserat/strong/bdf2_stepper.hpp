@@ -160,7 +160,10 @@ class Bdf2ShootingStepper {
   /// NaN or Inf in the input (InputIsFinite) is the status non_finite, and changes nothing. A
   /// start that fails otherwise (no equilibrium, or one whose shot ran away: non_finite, see
   /// RodState::RanAway) ends the run before it: Step() is not_run until a start converges or a
-  /// Snapshot is restored.
+  /// Snapshot is restored. From the rigid-body guess, under large loads the solve may converge on
+  /// another equilibrium than the one the loads grow along (a 1 m steel wire pushed sideways by
+  /// 2 N, FL²/EI = 13, came back looped, and unstable): a cantilever starts more surely from a
+  /// StaticShootingSolver's state (the overload below), as the CLI starts.
   StepSummary InitializeAtRest(const StepInput& input, const Vec6* base_wrench_B = nullptr);
 
   /// As above (cantilever), from an equilibrium found elsewhere on this grid, such as a statics

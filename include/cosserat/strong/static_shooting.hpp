@@ -85,7 +85,8 @@ struct StaticShootingSummary {
 };
 
 /// A cantilever statics solver for one rod model and grid. Construction allocates every buffer;
-/// Solve() reuses them and warm-starts from the previous solution.
+/// Solve() reuses them and warm-starts from the previous solution (a warm quasi-Newton re-solve
+/// allocates nothing; one that falls back to Levenberg–Marquardt or counts its stability does).
 class StaticShootingSolver {
  public:
   StaticShootingSolver(const RodModel& model, int num_nodes,
