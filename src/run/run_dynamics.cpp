@@ -114,7 +114,7 @@ double ShearWavePerSegment(const io::Problem& problem, double dt) {
 }
 
 /// Past one per segment, the shear wave can grow an oscillation the grid does not carry, in
-/// steps that all converge: a spun clamp on 41 nodes (2.4 per segment) had its kinetic energy
+/// steps that all converge: a spun clamp on 41 nodes (2.2 per segment) had its kinetic energy
 /// grow 6–10-fold a step, 1e5 times the clamp's work within 7 steps. Kinetic energy growing over
 /// fourfold a step, five steps in a row (a thousandfold), is taken for it: the rod's own motion
 /// grows that fast only at a rate σ that dt does not resolve (e^{2σ dt} > 4, σ dt > 0.69).
