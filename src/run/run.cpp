@@ -112,7 +112,7 @@ void UnusedBaseDriveNote(const io::Problem& problem, Result* result) {
 /// A file without "analysis" is statics; one that holds the block of another analysis was
 /// likely meant to run it, so the log says which ran and what to write.
 void DefaultAnalysisNote(const io::Problem& problem, Result* result) {
-  if (problem.analysis_given) return;
+  if (problem.analysis_given || problem.analysis != io::Analysis::kStatics) return;
   const char* block = problem.has_dynamics ? "dynamics"
                       : problem.has_buckling ? "buckling"
                       : problem.has_modes    ? "modes"
