@@ -662,8 +662,9 @@ TEST(Run, AShapeTheGridCannotFollowIsUnderResolved) {
 // torsion wave down it at c = sqrt(G/ρ) = 18 m/s: until it reflects (2L/c = 55 ms) the clamp's
 // work, T Ω t with T = Ω J sqrt(Gρ) the wave's torque, is all the rod's energy. On 121 nodes
 // (the shear wave's exponent 0.7 per segment at dt = 0.5 ms) the run converges with that energy,
-// less BDF2's damping of the front (2.4 % at 20 ms: 10 % allowed; BDF2 adds none, so 1e-3 above
-// is round-off's room). On 41 nodes (2.2 per segment) steps that all converged grew an
+// less BDF2's damping of the front (2.4 % at 20 ms: 10 % allowed) and plus what the abrupt start
+// counts again (an impulse in the first step counts 1.5 times: about dt/2t = 1.25 % of the
+// work, 3 % allowed above it). On 41 nodes (2.2 per segment) steps that all converged grew an
 // oscillation of the grid instead, 1e5 times the clamp's work within 7 steps: the run stops as
 // under_resolved once it is a thousandfold in five steps, and its energy is far past the work.
 TEST(Run, ASpunClampsEnergyIsItsWorkOrTheRunStopsAsUnderResolved) {
@@ -686,7 +687,7 @@ TEST(Run, ASpunClampsEnergyIsItsWorkOrTheRunStopsAsUnderResolved) {
   ASSERT_TRUE(fine.converged) << fine.log;
   const double work = torque * 1.0 * 0.02;  // J
   EXPECT_GT(energy(fine), 0.9 * work);
-  EXPECT_LT(energy(fine), (1 + 1e-3) * work);
+  EXPECT_LT(energy(fine), 1.03 * work);
   const Result coarse = spin(41);
   EXPECT_FALSE(coarse.converged);
   EXPECT_EQ(coarse.json["status"], "under_resolved") << coarse.log;

@@ -124,14 +124,18 @@ void DefaultAnalysisNote(const io::Problem& problem, Result* result) {
 }
 
 /// The summary line (the log's first) names the status the checks after the solve left: a
-/// converged solve whose shape ran away or that the grid under-resolves said "converged" there.
+/// converged solve whose shape ran away or that the grid under-resolves said "converged" there,
+/// and a dynamics run stopped as under_resolved whose final state ran away said that.
 void SummaryLineStatus(Result* result) {
   const std::string status = result->json.value("status", "");
-  const std::string said = std::string("cosserat: ") + ToString(SolveStatus::kConverged);
-  if (status.empty() || status == ToString(SolveStatus::kConverged) ||
-      result->log.rfind(said, 0) != 0)
-    return;
-  result->log.replace(0, said.size(), std::string("cosserat: ") + status);
+  if (status.empty()) return;
+  for (SolveStatus s : {SolveStatus::kConverged, SolveStatus::kUnderResolved}) {
+    const std::string said = std::string("cosserat: ") + ToString(s);
+    if (status != ToString(s) && result->log.rfind(said, 0) == 0) {
+      result->log.replace(0, said.size(), std::string("cosserat: ") + status);
+      return;
+    }
+  }
 }
 
 }  // namespace

@@ -113,28 +113,42 @@ double ShearWavePerSegment(const io::Problem& problem, double dt) {
          std::sqrt(p.mass(3, 3) / p.stiffness.diagonal().segment<2>(3).minCoeff());
 }
 
+/// The nodes that bring both exponents per segment to 0.9 (CoarseGridText): the bending
+/// exponent of one shot at dt and the shear wave's.
+double NodesForTheStep(const io::Problem& problem, double dt) {
+  const double bending = SingleShootingExponent(problem.rod, dt, problem.robot.actuation);
+  const double shear = ShearWavePerSegment(problem, dt) * (problem.nodes - 1);
+  return std::ceil(std::max(bending, shear) / 0.9) + 1;
+}
+
 /// Past one per segment, the shear wave can grow an oscillation the grid does not carry, in
-/// steps that all converge: a spun clamp on 41 nodes (2.2 per segment) had its kinetic energy
-/// grow 6–10-fold a step, 1e5 times the clamp's work within 7 steps. Kinetic energy growing over
-/// fourfold a step, five steps in a row (a thousandfold), is taken for it: the rod's own motion
-/// grows that fast only at a rate σ that dt does not resolve (e^{2σ dt} > 4, σ dt > 0.69).
+/// steps that all converge (a spun clamp on 41 nodes, 2.2 per segment: kinetic energy 6–10-fold
+/// a step, 1e5 times the clamp's work within 7 steps). Kinetic energy growing over fourfold a
+/// step, five steps in a row (a thousandfold), is taken for it: the rod's own motion grows that
+/// fast only at a rate σ that dt does not resolve (e^{2σ dt} > 4, σ dt > 0.69), and loads that
+/// rise from rest grow it so only if they rise as t³ or faster. Steps from kinetic energy under
+/// 1e-12 EI/L (J, sections at s = 0) do not count: a rod at rest holds round-off there.
 class GridOscillationWatch {
  public:
   GridOscillationWatch(const io::Problem& problem, double dt)
-      : active_(ShearWavePerSegment(problem, dt) > 1.0) {}
+      : active_(ShearWavePerSegment(problem, dt) > 1.0) {
+    const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
+    floor_ = 1e-12 * p.min_bending_stiffness() / problem.rod.length;
+  }
   /// After each converged step: true once the kinetic energy has grown as above.
   bool Grew(const io::Problem& problem, const Bdf2ShootingStepper& stepper) {
     if (!active_) return false;
     const double kinetic = RunEnergy(problem, stepper).kinetic;  // J
-    growing_ = last_ > 0.0 && kinetic > 4.0 * last_ ? growing_ + 1 : 0;
+    growing_ = last_ > floor_ && kinetic > 4.0 * last_ ? growing_ + 1 : 0;
     last_ = kinetic;
     return growing_ >= 5;
   }
 
  private:
   bool active_;
-  double last_ = 0.0;  ///< the last step's kinetic energy, J
-  int growing_ = 0;    ///< steps in a row that grew it over fourfold
+  double floor_ = 0.0;  ///< J
+  double last_ = 0.0;   ///< the last step's kinetic energy, J
+  int growing_ = 0;     ///< steps in a row that grew it over fourfold
 };
 
 /// Steps from the initial state to the end (or the first failed step), timing each Step().
@@ -167,13 +181,13 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
       break;
     }
     ++run->steps;
-    if (watch.Grew(problem, *stepper)) {  // the state stepped to is written, and named wrong
+    if (s.halvings > 0) ++run->halved_steps;
+    run->shooting_segments = std::max(run->shooting_segments, s.shooting_segments);
+    if (watch.Grew(problem, *stepper)) {  // its state is the final frame, under_resolved
       run->status = SolveStatus::kUnderResolved;
       run->failed_at_t = k * dt;
       break;
     }
-    if (s.halvings > 0) ++run->halved_steps;
-    run->shooting_segments = std::max(run->shooting_segments, s.shooting_segments);
     if (k % stride == 0) {
       Record(*stepper, k * dt, all_nodes, run, table ? table->speed() : 0.0);
       if (track_energy)  // for EnergyNote only
@@ -315,7 +329,7 @@ std::string CoarseGridText(const io::Problem& problem, double dt, bool converged
        << ", shear " << shear_wave / (problem.nodes - 1) << "; above about 1 the steps can "
        << (warn ? "gain energy or fail" : "fail")
        << "; docs/dynamics.md, \"Grid and step\"); ";
-  const double nodes = std::ceil(std::max(exponent, shear_wave) / 0.9) + 1;
+  const double nodes = NodesForTheStep(problem, dt);
   if (nodes <= io::kMaxRodNodes)
     text << "\"rod\": {\"nodes\": " << static_cast<long>(nodes) << "} or a larger dt\n";
   else  // past what a problem file takes
@@ -436,13 +450,18 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
     log << RunawayStartText(problem);
   if (!run.initial_state_ok && run.status != SolveStatus::kNonFinite)
     log << FreeStartHint(problem);
-  if (run.initial_state_ok && run.status == SolveStatus::kUnderResolved)  // GridOscillationWatch
+  const bool grid_oscillation =
+      run.initial_state_ok && run.status == SolveStatus::kUnderResolved;  // GridOscillationWatch
+  if (grid_oscillation)
     log << "cosserat: the kinetic energy grew over fourfold a step for five steps in a row, to "
         << std::setprecision(3) << run.energy.kinetic << " J at t = " << run.failed_at_t
-        << " s: an oscillation of the grid at this dt (the shear wave's exponent is "
+        << " s: an oscillation of the grid at this dt, as the shear wave's exponent of "
         << ShearWavePerSegment(problem, options.dt)
-        << " per segment, above 1), not the rod's motion; the run stops there\n";
-  if (run.initial_state_ok && run.status != SolveStatus::kConverged &&
+        << " per segment (above 1) allows; the run stops there: \"rod\": {\"nodes\": "
+        << static_cast<long>(std::min<double>(NodesForTheStep(problem, options.dt),
+                                              io::kMaxRodNodes))
+        << "} or a larger dt (docs/dynamics.md, \"Grid and step\")\n";
+  if (run.initial_state_ok && run.status != SolveStatus::kConverged && !grid_oscillation &&
       options.shooting_segments == 1) {  // an explicit single shot
     // The usual cause of a failed step at small dt (docs/dynamics.md, "Where it stops").
     const double exponent =
@@ -457,8 +476,8 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   } else if (run.initial_state_ok && options.shooting_segments == 0) {
     log << CoarseGridText(problem, options.dt, run.status == SolveStatus::kConverged);
   }
-  if (run.initial_state_ok && run.status != SolveStatus::kConverged)
-    log << FrictionSwitchHint(problem);
+  if (run.initial_state_ok && run.status != SolveStatus::kConverged && !grid_oscillation)
+    log << FrictionSwitchHint(problem);  // of failed steps
   log << CoarseStepWarning(problem, options.dt) << EnergyNote(problem, run);
   result.log = log.str();
   result.converged = run.status == SolveStatus::kConverged;
