@@ -269,14 +269,16 @@ void BindStepperClass(py::module_& m) {
           "loads", [](PyStepper& s) -> StaticLoads& { return s.input().loads; },
           [](PyStepper& s, const StaticLoads& loads) { s.input().loads = Valid(loads); },
           py::return_value_policy::reference_internal,
-          "The loads the next step() applies unless given others: edited in place or "
-          "assigned, they are its (checked at that step).")
+          "The loads the next step() applies unless given others: assigned (checked then) or "
+          "edited in place (checked at that step), they are its; initialize_at_rest() resets "
+          "them to the problem's.")
       .def_property(
           "actuation", [](PyStepper& s) -> Actuation& { return s.input().actuation; },
           [](PyStepper& s, const Actuation& a) { s.input().actuation = Valid(a, s.problem()); },
           py::return_value_policy::reference_internal,
           "The actuation the next step() applies unless given another: `s.actuation."
-          "tendon_tension[0] = 2` sets it (checked at that step).")
+          "tendon_tension[0] = 2` sets it (checked at that step); initialize_at_rest() resets "
+          "it to the problem's.")
       .def("save", &PyStepper::Save,
            "A Snapshot of the run (state, history and inputs) for restore(); allocates.")
       .def("restore", &PyStepper::Restore,

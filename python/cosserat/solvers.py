@@ -136,7 +136,7 @@ class Stepper(_core.Stepper):
     def actuation(self):
         """The actuation the next step() applies unless given another: edited in place or
         assigned (an Actuation or a dict, fitted to the problem as step() fits one), it takes
-        effect there."""
+        effect there; initialize_at_rest() resets it to the problem's."""
         return _core.Stepper.actuation.fget(self)
 
     @actuation.setter
@@ -145,9 +145,10 @@ class Stepper(_core.Stepper):
 
     @property
     def loads(self):
-        """The loads the next step() applies unless given others: edited in place or assigned
-        (a Loads or a dict with the problem file's loads keys, read as step() reads one), they
-        are its (checked at that step)."""
+        """The loads the next step() applies unless given others: assigned (a Loads or a dict
+        with the problem file's loads keys, read as step() reads one; checked then) or edited in
+        place (checked at that step), they are its; initialize_at_rest() resets them to the
+        problem's."""
         return _core.Stepper.loads.fget(self)
 
     @loads.setter

@@ -101,8 +101,9 @@ void ImpossibleLoadWarning(const io::Problem& problem, std::ostringstream* log) 
 void UnitSlipWarnings(const io::Problem& problem, std::ostringstream* log) {
   const double g = problem.loads.gravity_W.stableNorm();  // finite for components up to 1e308
   if (g > 1000.0)
-    *log << "cosserat: warning: loads.gravity is " << g << " m/s², over 1000 (about a hundred "
-         << "times Earth's 9.81): check its units (m/s²)\n";
+    *log << "cosserat: warning: loads.gravity is " << g << " m/s², "
+         << std::llround(std::min(g / 9.81, 1e18))
+         << " times Earth's 9.81 (over 1000 m/s²): check its units (m/s²)\n";
   if (!problem.robot.tendon_lengths) return;
   const double L = problem.rod.length;
   for (std::size_t i = 0; i < problem.rod.tendons.size(); ++i) {
@@ -154,9 +155,10 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
       log << "cosserat: warning: the rod is " << problem.rod.length << " m long and " << d
           << " m across: not a slender rod, which rod theory assumes; check rod.length and the "
              "section's sizes (m)\n";
-    // A length typed in mm makes a soft robot 1e4 and a wire 1e5 widths long; drill strings
-    // and risers reach 4e4. Said only after a failed solve, where it may be the cause.
-    if (d > 0 && problem.rod.length > 1e4 * d && !result->converged)
+    // A length typed in mm makes a soft robot over 1e4 and a wire 1e5 widths long; drill
+    // strings, risers and stay cables reach 4e4, but at 5 cm across or more. Said only after a
+    // failed solve, where it may be the cause.
+    if (d > 0 && d < 0.05 && problem.rod.length > 1e4 * d && !result->converged)
       log << "cosserat: hint: the rod is " << problem.rod.length << " m long and " << d
           << " m across, " << problem.rod.length / d << " times its width: if rod.length or "
              "the section's sizes were meant in mm, they are in m here\n";

@@ -107,18 +107,29 @@ std::string SweepPointRow(const io::Study& study, std::uint64_t k) {
 
 namespace {
 
-/// Where a file's header line first differs from the study's, column by column (as written).
-std::string HeaderDifference(const std::string& found, const std::string& wanted) {
-  std::istringstream a(found), b(wanted);
-  std::string x, y;
-  for (int column = 1;; ++column) {
-    const bool more_a = static_cast<bool>(std::getline(a, x, ','));
-    const bool more_b = static_cast<bool>(std::getline(b, y, ','));
-    if (!more_a && !more_b) return "it differs";
-    if (more_a && more_b && x == y) continue;
-    return "column " + std::to_string(column) + " is " + (more_a ? x : std::string("missing")) +
-           ", this study's " + (more_b ? y : std::string("none"));
+/// A CSV line's fields as written (quotes kept; a comma inside quotes does not separate).
+std::vector<std::string> HeaderFields(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"') quoted = !quoted;
+    if (c == ',' && !quoted)
+      fields.emplace_back();
+    else if (c != '\r')
+      fields.back() += c;
   }
+  return fields;
+}
+
+/// Where a file's header line first differs from the study's, column by column.
+std::string HeaderDifference(const std::string& found, const std::string& wanted) {
+  const std::vector<std::string> a = HeaderFields(found), b = HeaderFields(wanted);
+  for (std::size_t i = 0; i < std::max(a.size(), b.size()); ++i) {
+    if (i < a.size() && i < b.size() && a[i] == b[i]) continue;
+    return "column " + std::to_string(i + 1) + " is " + (i < a.size() ? a[i] : "missing") +
+           ", this study's " + (i < b.size() ? b[i] : "none");
+  }
+  return "it differs in its line ending";
 }
 
 /// The rows already in the file (whole lines after the study's header), by point index.
@@ -279,7 +290,8 @@ SweepFile::SweepFile(const io::Study& study, const std::string& path)
   const std::filesystem::path directory = std::filesystem::path(path_).parent_path();
   std::error_code ec;
   if (!directory.empty() && !std::filesystem::is_directory(directory, ec))
-    throw std::runtime_error(path_ + ": cannot write (no directory " + directory.string() + ")");
+    throw std::runtime_error(path_ + ": cannot write (" +
+                             (ec ? ec.message() : "no directory " + directory.string()) + ")");
   rows_ = ReadRows(path_, header_, points_);
   CheckResumedPoints(path_, study, rows_);
   CheckAndRecordProblem(path_, study, !rows_.empty());

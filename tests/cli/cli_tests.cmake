@@ -396,7 +396,7 @@ cosserat_cli_test(NAME sweep_nested_paths ARGS validate "${_cli_dir}/sweep_neste
                   STDERR "parameters\\[1\\].path: expected a place apart from parameters\\[0\\]'s \"/robot/actuation/tension\"")
 # Tendon lengths and gravity written in mm: each named as a slip of units.
 cosserat_cli_test(NAME tendon_lengths_in_mm ARGS solve "${_cli_dir}/tendon_lengths_in_mm.json" CODE 0
-                  STDERR "warning: loads.gravity is 9.81e\\+03 m/s², over 1000 \\(about a hundred times Earth's 9.81\\): check its units.*warning: robot.actuation.length\\[0\\] is 244 m on a 0.25 m rod: check its units \\(m\\)")
+                  STDERR "warning: loads.gravity is 9.81e\\+03 m/s², 1000 times Earth's 9.81 \\(over 1000 m/s²\\): check its units.*warning: robot.actuation.length\\[0\\] is 244 m on a 0.25 m rod: check its units \\(m\\)")
 # A band between the uniform nodes whose stiffness overflows is caught by validate, on the grid
 # the solvers use (its nodes include the band's ends), as an overflow and not as a coupling.
 cosserat_cli_test(NAME band_overflow_between_nodes ARGS validate "${_cli_dir}/band_overflow_between_nodes.json"
