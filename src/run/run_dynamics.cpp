@@ -113,14 +113,6 @@ double ShearWavePerSegment(const io::Problem& problem, double dt) {
          std::sqrt(p.mass(3, 3) / p.stiffness.diagonal().segment<2>(3).minCoeff());
 }
 
-/// The nodes that bring both exponents per segment to 0.9 (CoarseGridText): the bending
-/// exponent of one shot at dt and the shear wave's.
-double NodesForTheStep(const io::Problem& problem, double dt) {
-  const double bending = SingleShootingExponent(problem.rod, dt, problem.robot.actuation);
-  const double shear = ShearWavePerSegment(problem, dt) * (problem.nodes - 1);
-  return std::ceil(std::max(bending, shear) / 0.9) + 1;
-}
-
 /// Past one per segment, the shear wave can grow an oscillation the grid does not carry, in
 /// steps that all converge (a spun clamp on 41 nodes, 2.2 per segment: kinetic energy 6–10-fold
 /// a step, 1e5 times the clamp's work within 7 steps). Kinetic energy growing over fourfold a
@@ -329,7 +321,7 @@ std::string CoarseGridText(const io::Problem& problem, double dt, bool converged
        << ", shear " << shear_wave / (problem.nodes - 1) << "; above about 1 the steps can "
        << (warn ? "gain energy or fail" : "fail")
        << "; docs/dynamics.md, \"Grid and step\"); ";
-  const double nodes = NodesForTheStep(problem, dt);
+  const double nodes = std::ceil(std::max(exponent, shear_wave) / 0.9) + 1;
   if (nodes <= io::kMaxRodNodes)
     text << "\"rod\": {\"nodes\": " << static_cast<long>(nodes) << "} or a larger dt\n";
   else  // past what a problem file takes
@@ -457,10 +449,7 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
         << std::setprecision(3) << run.energy.kinetic << " J at t = " << run.failed_at_t
         << " s: an oscillation of the grid at this dt, as the shear wave's exponent of "
         << ShearWavePerSegment(problem, options.dt)
-        << " per segment (above 1) allows; the run stops there: \"rod\": {\"nodes\": "
-        << static_cast<long>(std::min<double>(NodesForTheStep(problem, options.dt),
-                                              io::kMaxRodNodes))
-        << "} or a larger dt (docs/dynamics.md, \"Grid and step\")\n";
+        << " per segment (above 1) allows; the run stops there\n";
   if (run.initial_state_ok && run.status != SolveStatus::kConverged && !grid_oscillation &&
       options.shooting_segments == 1) {  // an explicit single shot
     // The usual cause of a failed step at small dt (docs/dynamics.md, "Where it stops").
@@ -473,7 +462,8 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
           << " it stops\"); \"dynamics\": {\"shooting_segments\": "
           << std::min(SuggestedShootingSegments(exponent), problem.nodes - 1)
           << "} shoots it in pieces\n";
-  } else if (run.initial_state_ok && options.shooting_segments == 0) {
+  } else if (run.initial_state_ok && (options.shooting_segments == 0 || grid_oscillation)) {
+    // The grid's fix (a watch-stopped run is always past 1 per segment: a warning with it).
     log << CoarseGridText(problem, options.dt, run.status == SolveStatus::kConverged);
   }
   if (run.initial_state_ok && run.status != SolveStatus::kConverged && !grid_oscillation)

@@ -203,6 +203,12 @@ void CheckResumedPoints(const std::string& path, const io::Study& study,
   }
 }
 
+/// A record kept beside the CSV: its JSON, or a discarded value when it cannot be read.
+json ReadRecord(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return f ? json::parse(f, nullptr, false) : json(json::value_t::discarded);
+}
+
 /// The problem the rows were computed from, beside the CSV (`<csv>.problem.json`): a resumed
 /// study whose base problem changed since (another robot, another load) is refused, naming the
 /// first place they differ; so is one whose record is missing, empty or unreadable (rows from an
@@ -220,8 +226,7 @@ void CheckAndRecordProblem(const std::string& csv_path, const io::Study& study, 
     return doc;
   };
   if (resuming) {
-    std::ifstream f(path, std::ios::binary);
-    const json recorded = f ? json::parse(f, nullptr, false) : json(json::value_t::discarded);
+    const json recorded = ReadRecord(path);
     if (recorded.is_discarded() || !recorded.is_object())
       throw std::runtime_error(csv_path + ": its rows' problem is not recorded (" + path +
                                " is missing or unreadable), so they may be another problem's; "
@@ -250,8 +255,7 @@ void CheckAndRecordOutputs(const std::string& csv_path, const io::Study& study, 
   for (const io::StudyOutput& o : study.outputs) now[o.name] = o.path;
   std::error_code ec;
   if (resuming && std::filesystem::exists(path, ec)) {
-    std::ifstream f(path, std::ios::binary);
-    const json was = f ? json::parse(f, nullptr, false) : json(json::value_t::discarded);
+    const json was = ReadRecord(path);
     if (was.is_discarded() || !was.is_object())
       throw std::runtime_error(csv_path + ": the record of the result fields its columns hold ("
                                + path + ") is unreadable, so they may be other fields; remove "
