@@ -48,10 +48,25 @@ Eigen::VectorXd ModalShares(const Eigen::MatrixXd& companion, std::complex<doubl
 /// The lowest `count` pairs of `companion` by |λ|, with their shares when its coordinates are
 /// `modal` (SymmetricSpectrum's form).
 std::vector<DampedPair> DampedPairs(const Eigen::MatrixXd& companion, bool modal, int count) {
-  const Eigen::EigenSolver<Eigen::MatrixXd> es(companion, false);
+  // The plain companion [[0, I], [K, C]] of a rod spans its stiffness's whole range (1e3 to
+  // 4e13 1/s² on a 1 mm wire): the eigensolver's error, ε times that norm, moved a damped
+  // frequency of 4.2 Hz by 2.5 % with the equilibrium's round-off and made a 313 Hz pair grow.
+  // λ = γ μ with γ = sqrt(‖K‖) (Fan, Lin & Van Dooren 2004) solves [[0, I], [K/γ², C/γ]]
+  // instead, whose blocks are of one size.
+  const Eigen::Index m = companion.rows() / 2;
+  double gamma = 1.0;
+  Eigen::MatrixXd scaled;
+  if (!modal) {
+    const double stiffness = companion.bottomLeftCorner(m, m).norm();
+    if (stiffness > 0 && std::isfinite(stiffness)) gamma = std::sqrt(stiffness);
+    scaled = companion / gamma;
+    scaled.topRightCorner(m, m) = companion.topRightCorner(m, m);
+    scaled.bottomLeftCorner(m, m) /= gamma;
+  }
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(modal ? companion : scaled, false);
   std::vector<std::complex<double>> roots;
   for (Eigen::Index i = 0; i < companion.rows(); ++i) {
-    const std::complex<double> l = es.eigenvalues()(i);
+    const std::complex<double> l = gamma * es.eigenvalues()(i);
     if (l.imag() > 1e-9 * std::abs(l)) roots.push_back(l);
   }
   std::sort(roots.begin(), roots.end(),
