@@ -111,16 +111,24 @@ bool Newton(const QuatFdModel& model, const QuatFdStaticsOptions& opt, double be
     if (w->residual < opt.tolerance) return true;
     model.Jacobian(q, w->zero, 0.0, beta, &w->A, &w->B, &w->a);
     ++summary->iterations;
+    // A fixed coordinate's row becomes dq_i = 0, scaled like the row it replaces: a unit row
+    // among a stiff contact's (k = 1e20 N/m², entries ~1e20) is eliminated by the pivoting
+    // into round-off, which moved a clamped base node by 88 mm over the iterations.
     for (int i = 0; i < n; ++i) {
       if (!model.IsFixed(i)) continue;
-      for (int j = std::max(0, i - L::kBandwidth); j <= std::min(n - 1, i + L::kBandwidth); ++j)
+      double row_scale = 0.0;
+      for (int j = std::max(0, i - L::kBandwidth); j <= std::min(n - 1, i + L::kBandwidth); ++j) {
+        row_scale = std::max(row_scale, std::abs(w->A(i, j)));
         w->A(i, j) = 0.0;
-      w->A(i, i) = 1.0;
+      }
+      w->A(i, i) = row_scale > 0.0 ? row_scale : 1.0;
       w->a[i] = 0.0;
     }
     if (!w->A.Factorize()) return false;
     w->dq = -w->a;
     w->A.Solve(w->dq);
+    for (int i = 0; i < n; ++i)
+      if (model.IsFixed(i)) w->dq[i] = 0.0;  // exactly: the end stays where it is held
     if (!w->dq.allFinite()) return false;
     // Limit a step to a rotation increment of about 0.5 rad per quaternion and a displacement of
     // L/2 (full Newton steps far from the solution can flip quaternions).
