@@ -2252,5 +2252,68 @@ TEST(Run, ReportsTheBendingStressTheMomentBalanceGives) {
   EXPECT_NEAR(r.json["nodes"]["bending_stress"][problem.nodes - 1].get<double>(), 0.0, 1e-8 * sigma);
 }
 
+// A steel rod (r = 2 mm, 0.5 m, free-free) dropped flat from H = 5 cm onto a frictionless,
+// undamped floor: all of it falls and lands at once, so energy conservation gives the deepest
+// penetration, q (H + δ) = k δ²/2, q the weight per metre. At k = 1e4 N/m² δ = 3.24 mm, past
+// the radius: the centreline goes beyond the floor, which the log must say; at k = 1e5,
+// δ = 1.00 mm, half the radius, and it must not. (BDF2 at ω dt = 0.01 of the bounce takes 1e-5
+// of its energy; ε = 4 µm of smoothing shifts δ by 2 µm.)
+TEST(Run, ARodDroppedThroughASoftFloorIsWarnedOf) {
+  const auto drop = [](const char* stiffness) {
+    const io::ParseResult parsed = io::ParseProblem(std::string(R"({
+      "format": "cosserat-problem/1", "analysis": "dynamics", "boundary": "free-free",
+      "rod": {"length": 0.5, "nodes": 21, "section": {"shape": "circle", "radius": 0.002},
+              "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9, "density": 8000}},
+      "base": {"position": [0, 0, 0.052], "rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]},
+      "loads": {"gravity": [0, 0, -9.81]},
+      "dynamics": {"dt": 1e-4, "duration": 0.13, "output_interval": 1e-3,
+                   "initial_loads": {"gravity": [0, 0, 0]}},
+      "environment": {"contact": [{"shape": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+                                   "stiffness": )") + stiffness + "}]}}");
+    EXPECT_TRUE(parsed.ok()) << (parsed.errors.empty() ? "" : parsed.errors.front());
+    return cosserat::run::Run(*parsed.problem);
+  };
+  const Result soft = drop("1e4"), firm = drop("1e5");
+  EXPECT_TRUE(soft.converged) << soft.log;
+  EXPECT_TRUE(firm.converged) << firm.log;
+  EXPECT_NE(soft.log.find("went through environment.contact[0] (its centreline beyond the "
+                          "surface"),
+            std::string::npos)
+      << soft.log;
+  EXPECT_EQ(firm.log.find("went through"), std::string::npos) << firm.log;
+}
+
+// The quaternion-FD path checks its recorded frames: a cantilever (0.5 m, r = 2 mm) released
+// onto a sphere (r = 1 cm) below its tip goes through it at k = 1e3 N/m² and stays out at 1e5.
+// The truth is the frames' own geometry: the warning is given exactly when some frame has a node
+// within half the sphere's radius of its centre.
+TEST(Run, AQuaternionFdRodThroughASphereIsWarnedOfWhenItsFramesSayItWent) {
+  for (const char* stiffness : {"1e3", "1e5"}) {
+    const io::ParseResult parsed = io::ParseProblem(std::string(R"({
+      "format": "cosserat-problem/1", "analysis": "dynamics", "formulation": "quaternion-fd",
+      "rod": {"length": 0.5, "nodes": 51, "section": {"shape": "circle", "radius": 0.002},
+              "material": {"youngs_modulus": 2e10, "shear_modulus": 8e9, "density": 8000}},
+      "base": {"position": [0, 0, 0], "rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]},
+      "loads": {"gravity": [0, 0, -9.81]},
+      "dynamics": {"dt": 5e-4, "duration": 0.2, "output_interval": 5e-3,
+                   "initial_loads": {"gravity": [0, 0, 0]}},
+      "environment": {"contact": [{"shape": "sphere", "center": [0.4, 0, -0.03],
+                                   "radius": 0.01, "stiffness": )") + stiffness + "}]}}");
+    ASSERT_TRUE(parsed.ok()) << parsed.errors.front();
+    RunOptions options;
+    options.frames = true;
+    const Result out = cosserat::run::Run(*parsed.problem, options);
+    ASSERT_TRUE(out.converged) << out.log;
+    double nearest = 1.0;  // m, any frame's node to the centre
+    for (const io::VtkFrame& frame : out.frames)
+      for (const Vec3& p : frame.rods[0].position_W)
+        nearest = std::min(nearest, (p - Vec3(0.4, 0, -0.03)).norm());
+    const bool went = nearest < 0.005;
+    EXPECT_EQ(went, std::string(stiffness) == "1e3") << nearest;  // the premise of the case
+    EXPECT_EQ(out.log.find("went through environment.contact[0]") != std::string::npos, went)
+        << stiffness << '\n' << out.log;
+  }
+}
+
 }  // namespace
 }  // namespace cosserat::run

@@ -21,6 +21,7 @@
 #include "cosserat/strong/shooting_exponent.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"
+#include "obstacle_core_watch.hpp"
 
 namespace cosserat::run {
 namespace {
@@ -148,7 +149,8 @@ class GridOscillationWatch {
 /// after a failed step, which may have committed some halved sub-steps.
 void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_nodes,
                   const std::function<void(double, double)>& progress,
-                  Bdf2ShootingStepper* stepper, io::DynamicRun* run) {
+                  Bdf2ShootingStepper* stepper, detail::ObstacleCoreWatch* obstacles,
+                  io::DynamicRun* run) {
   StepInput input = ClampedInput(problem, problem.loads, problem.robot.actuation);
   const double dt = problem.dynamics.dt, spin = problem.dynamics.base_spin;
   input.base_twist_B(2) = spin;
@@ -175,6 +177,7 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
     ++run->steps;
     if (s.halvings > 0) ++run->halved_steps;
     run->shooting_segments = std::max(run->shooting_segments, s.shooting_segments);
+    if (problem.loads.contact.count > 0) obstacles->Observe(k * dt, stepper->state().position_W);
     if (watch.Grew(problem, *stepper)) {  // its state is the final frame, under_resolved
       run->status = SolveStatus::kUnderResolved;
       run->failed_at_t = k * dt;
@@ -200,7 +203,7 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
 
 /// The whole simulation: initial equilibrium, then round(duration / dt) steps.
 io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
-                        Bdf2ShootingStepper* stepper) {
+                        Bdf2ShootingStepper* stepper, detail::ObstacleCoreWatch* obstacles) {
   const io::Problem::Dynamics& d = problem.dynamics;
   const auto [steps, stride] = detail::StepsOf(d);
   const bool all_nodes = options.nodes_csv;
@@ -233,7 +236,7 @@ io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
     // the work it does is in no term.
     if (problem.robot.initial_actuation == problem.robot.actuation)
       run.initial_total_energy = RunEnergy(problem, *stepper).total();
-    StepToTheEnd(problem, steps, stride, all_nodes, options.progress, stepper, &run);
+    StepToTheEnd(problem, steps, stride, all_nodes, options.progress, stepper, obstacles, &run);
     run.energy = RunEnergy(problem, *stepper);
   }
   run.wall_time_s = SecondsSince(start);
@@ -333,12 +336,12 @@ std::string CoarseGridText(const io::Problem& problem, double dt, bool converged
 /// After a converged run of a rod whose equations conserve energy: BDF2 still dissipates what
 /// dt resolves in few steps (docs/dynamics.md, "Numerical damping"), and only the first mode is
 /// checked before the run. A soft rod released at dt = 5 ms loses 43 % of its largest kinetic
-/// energy in 1 s and 56 % in 2 s (0.5 ms: 7.5 % and 37 %: the loss grows as the swing feeds faster
-/// motion). A note says how much went, from 1 % of the largest kinetic
-/// energy on, and from 1e-8 of the elastic and largest kinetic energies: a rod left at rest in
-/// its static equilibrium drifts by about 1e-9 of its elastic energy (the steps' solve
-/// tolerance), which is no motion. (Not of the potential energy, which is measured from the
-/// world's origin: moving the rod 1 km away would hide the note.)
+/// energy in 1 s and 56 % in 2 s (0.5 ms, on 81 nodes as that step needs: 7.5 % and 37 %: the
+/// loss grows as the swing feeds faster motion). A note says how much went, from 1 % of the
+/// largest kinetic energy on, and from 1e-8 of the elastic and largest kinetic energies: a rod
+/// left at rest in its static equilibrium drifts by about 1e-9 of its elastic energy (the
+/// steps' solve tolerance), which is no motion. (Not of the potential energy, which is measured
+/// from the world's origin: moving the rod 1 km away would hide the note.)
 std::string EnergyNote(const io::Problem& problem, const io::DynamicRun& run) {
   if (run.status != SolveStatus::kConverged || !ConservesEnergy(problem)) return "";
   const double loss = run.initial_total_energy - run.energy.total();
@@ -359,7 +362,8 @@ std::string EnergyNote(const io::Problem& problem, const io::DynamicRun& run) {
        << problem.dynamics.dt
        << " s resolves in few steps (docs/dynamics.md, \"Numerical damping\"); a smaller dt "
           "keeps more, but slowly where the run excites motion far faster than its first mode "
-          "(a soft rod swinging for 2 s lost 56 % at 5 ms and still 37 % at 0.5 ms), and "
+          "(a soft rod swinging for 2 s lost 56 % at 5 ms and still 37 % at 0.5 ms, on the "
+          "finer grid that step needs), and "
           "\"formulation\": \"quaternion-fd\" keeps it, its error control following every "
           "oscillation the run excites (slow for a stiff rod without damping: the steel "
           "release takes ~30 000 steps per simulated second)\n";
@@ -427,7 +431,8 @@ std::string DynamicsStartWarnings(const io::Problem& problem, double dt) {
 Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   const Bdf2Options options = DynamicsOptions(problem);
   Bdf2ShootingStepper stepper(problem.rod, problem.nodes, options);
-  io::DynamicRun run = Simulate(problem, run_options, &stepper);
+  detail::ObstacleCoreWatch obstacles(problem.loads.contact);
+  io::DynamicRun run = Simulate(problem, run_options, &stepper, &obstacles);
   run.shot_steps = stepper.shot_steps();
   Result result;
   result.json = io::DynamicResultToJson(run, stepper.state());
@@ -468,7 +473,8 @@ Result RunDynamics(const io::Problem& problem, const RunOptions& run_options) {
   }
   if (run.initial_state_ok && run.status != SolveStatus::kConverged && !grid_oscillation)
     log << FrictionSwitchHint(problem);  // of failed steps
-  log << CoarseStepWarning(problem, options.dt) << EnergyNote(problem, run);
+  log << obstacles.Warning(true) << CoarseStepWarning(problem, options.dt)
+      << EnergyNote(problem, run);
   result.log = log.str();
   result.converged = run.status == SolveStatus::kConverged;
   return result;

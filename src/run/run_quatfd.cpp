@@ -21,6 +21,7 @@
 #include "foundation_hint.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"
+#include "obstacle_core_watch.hpp"
 #include "quatfd_stability.hpp"
 #include "stability_warning.hpp"
 
@@ -436,8 +437,10 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
     run.initial_state_ok = start == SolveStatus::kConverged;
     run.status = start;
   }
+  detail::ObstacleCoreWatch obstacles(problem.loads.contact);
   auto record = [&](double t) {
     model.ToRodState(q, v, &state);
+    if (problem.loads.contact.count > 0) obstacles.Observe(t, state.position_W);
     run.frame_t.push_back(t);
     run.frame_tip.push_back(state.tip_position_W());
     run.envelope.Add(state);
@@ -469,7 +472,8 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
   for (int i = 0; i < state.size(); ++i)
     result.node_velocity_W.push_back(state.rotation_WB[i] * state.twist_B[i].tail<3>());
   if (options.nodes_csv) result.nodes_csv = detail::TrajectoryCsv(run, state.s);
-  result.log = DynamicsLog(run, radau, d, state) + start_log + RingingNote(problem, run);
+  result.log = DynamicsLog(run, radau, d, state) + start_log + RingingNote(problem, run) +
+               obstacles.Warning(false);
   if (!run.initial_state_ok && start_log.empty()) result.log += ContactGridHint(problem);
   result.converged = run.status == SolveStatus::kConverged;
   return result;
