@@ -15,8 +15,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// The reason in words: a missing directory is named (the tool does not make directories for a
+/// file it writes), any other failure is the system's.
 std::runtime_error CannotWrite(const std::string& path) {
-  return std::runtime_error("cannot write '" + path + "' (" + std::strerror(errno) + ")");
+  const std::string reason = std::strerror(errno);
+  const fs::path directory = fs::path(path).parent_path();
+  std::error_code ec;
+  if (errno == ENOENT && !directory.empty() && !fs::exists(directory, ec))
+    return std::runtime_error("cannot write '" + path + "' (no directory '" +
+                              directory.string() + "')");
+  return std::runtime_error("cannot write '" + path + "' (" + reason + ")");
 }
 
 /// The file a chain of symbolic links ends at, followed link by link (a link to a file not

@@ -228,10 +228,18 @@ void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
         s_deepest = p.rod.length * i / (kPoints - 1);
       }
     }
+    // A growing rod is checked at its full length: each growth step lays the new material
+    // straight on from the tip, through a surface ahead (a vine grown at a wall came out 0.16 m
+    // beyond it, "converged"), which the quasi-static growth cannot turn aside.
+    const std::string growing =
+        p.robot.growth_initial_length
+            ? " (a growing rod is checked at its full rod.length: its growth would lay new "
+              "material through the surface)"
+            : "";
     if (deepest < 0.0)
       report->Add("environment.contact[" + std::to_string(k) + "]",
                   "the rod starts inside this surface: at s = " + FormatNumber(s_deepest) +
-                      " m its centreline is " + FormatNumber(-deepest) + " m past it");
+                      " m its centreline is " + FormatNumber(-deepest) + " m past it" + growing);
   }
   // A bore no wider than the rod cannot hold it anywhere.
   double r_o = 0.0;  // the rod's largest outer radius, m

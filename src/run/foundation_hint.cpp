@@ -24,9 +24,20 @@ int CoarseFoundation(const io::Problem& problem, double spacings_per_length, dou
   return -1;
 }
 
-long NodesFor(const io::Problem& problem, double spacings_per_length, double foundation) {
-  return static_cast<long>(std::ceil(problem.rod.length / (spacings_per_length * foundation))) +
-         1;
+/// `advice` and "rod.nodes >= N" for a spacing of `spacings_per_length` foundation lengths;
+/// past the most nodes a problem may have (a stiffness of 1e25 N/m² asked for 9.8e6, 1e300
+/// overflowed), the stiffness to lower instead.
+std::string NodesFor(const io::Problem& problem, int k, double spacings_per_length,
+                     double foundation, const std::string& advice = "") {
+  const double nodes = std::ceil(problem.rod.length / (spacings_per_length * foundation)) + 1;
+  std::ostringstream text;
+  if (nodes <= io::kMaxRodNodes)
+    text << advice << "rod.nodes >= " << static_cast<long>(nodes);
+  else
+    text << "a lower environment.contact[" << k << "].stiffness (the grid it needs, "
+         << std::setprecision(3) << nodes << " nodes, is over the " << io::kMaxRodNodes
+         << " a problem may have)";
+  return text.str();
 }
 }  // namespace
 
@@ -40,7 +51,7 @@ std::string FoundationHint(const io::Problem& problem, double spacings_per_lengt
   hint << "cosserat: hint: the grid spacing " << std::setprecision(3) << h
        << " m is coarse for environment.contact[" << k
        << "]'s foundation length (4EI/k)^(1/4) = " << foundation << " m, " << why << ": try "
-       << advice << "rod.nodes >= " << NodesFor(problem, spacings_per_length, foundation) << more
+       << NodesFor(problem, k, spacings_per_length, foundation, advice) << more
        << "\n";
   return hint.str();
 }
@@ -56,8 +67,8 @@ std::string FoundationGridWarning(const io::Problem& problem) {
           << "]'s foundation length (4EI/k)^(1/4) = " << foundation
           << " m: where the rod settles into the surface its penetration may be off by about "
           << 100 * 0.2 * ratio * ratio << " % and its slope by " << 100 * 0.42 * ratio * ratio
-          << " % (quaternion FD, second order in h/ℓ); rod.nodes >= "
-          << NodesFor(problem, 0.1, foundation) << " brings them below 0.5 %\n";
+          << " % (quaternion FD, second order in h/ℓ); "
+          << NodesFor(problem, k, 0.1, foundation) << " brings them below 0.5 %\n";
   return warning.str();
 }
 

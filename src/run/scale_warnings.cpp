@@ -116,6 +116,20 @@ void UnitSlipWarnings(const io::Problem& problem, std::ostringstream* log) {
   }
 }
 
+/// A contact's smoothing ε is the depth over which the penalty ramps up (contact.hpp), by default
+/// 1e-3 of the diameter d (m): past d the rod sinks into the surface by more than its width
+/// before it is held (ε = 10 m on a 1 cm rod: a loop, "converged").
+void ContactSmoothingWarning(const io::Problem& problem, double d, std::ostringstream* log) {
+  for (int k = 0; k < problem.loads.contact.count; ++k) {
+    const double eps = problem.loads.contact.surface[k].smoothing;
+    if (d > 0 && eps > d)
+      *log << "cosserat: warning: environment.contact[" << k << "].smoothing is " << eps
+           << " m, more than the rod's width (" << d << " m): the penalty ramps up over that "
+              "depth, so the rod sinks into the surface before it is held; the default, 1e-3 of "
+              "the diameter, is a sharp contact\n";
+  }
+}
+
 /// The profile a problem file describes, inside the fixed pressures the parser wraps it in.
 const SectionProfile* FileProfile(const io::Problem& problem) {
   const SectionProfile* profile = problem.rod.section.get();
@@ -155,6 +169,7 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
       log << "cosserat: warning: the rod is " << problem.rod.length << " m long and " << d
           << " m across: not a slender rod, which rod theory assumes; check rod.length and the "
              "section's sizes (m)\n";
+    ContactSmoothingWarning(problem, d, &log);
     // A length typed in mm makes a soft robot over 1e4 and a wire 1e5 widths long; drill
     // strings, risers and stay cables reach 4e4, but at 5 cm across or more. Said only after a
     // failed solve, where it may be the cause.

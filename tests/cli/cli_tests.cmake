@@ -74,7 +74,8 @@ cosserat_cli_test(NAME vtk_statics_keeps_out
 cosserat_cli_test(NAME bad_csv_keeps_out
                   ARGS solve "${_cli_example}" --out "${_cli_out}/kept_csv.json"
                        --csv "${_cli_out}/no_such_dir/nodes.csv"
-                  CODE 2 KEEP "${_cli_out}/kept_csv.json" STDERR "cannot write .*nodes.csv")
+                  CODE 2 KEEP "${_cli_out}/kept_csv.json"
+                  STDERR "cannot write .*nodes.csv. \\(no directory .*no_such_dir.\\)")
 
 # A study file's errors name their fields (docs/sweeps.md).
 # A problem file given to sweep: one line that says so, not the study keys it lacks.
@@ -387,6 +388,23 @@ set_tests_properties(cli.rod_on_table_csv_has_contact_columns PROPERTIES
                      DEPENDS cli.solve_rod_on_table_csv)
 cosserat_cli_test(NAME contact_starts_inside ARGS validate "${_cli_dir}/contact_starts_inside.json"
                   CODE 2 STDERR "environment.contact\\[0\\]: the rod starts inside this surface: at s = 0\\.25 m its centreline is 0\\.05 m past it")
+# A vine grown at a wall its full length reaches into: refused, saying why the growth's start
+# clear of the wall does not count.
+cosserat_cli_test(NAME vine_grown_at_a_wall ARGS validate "${_cli_dir}/vine_grown_at_a_wall.json"
+                  CODE 2 STDERR "at s = 1\\.2 m its centreline is 0\\.3 m past it \\(a growing rod")
+# A stiffness no grid resolves: the hint asks for a lower one, not for more nodes than a problem
+# may have (its count had overflowed to a negative number).
+cosserat_cli_test(NAME floor_stiffer_than_any_grid
+                  ARGS solve "${_cli_dir}/floor_stiffer_than_any_grid.json"
+                       --out "${_cli_out}/stiff.json"
+                  CODE 1
+                  STDERR "lower environment.contact.0..stiffness .the grid it needs, 5.49e.75")
+# A smoothing wider than the rod lets it sink into the floor before it is held: warned by name.
+cosserat_cli_test(NAME contact_smoothing_wider_than_the_rod
+                  ARGS solve "${_cli_dir}/contact_smoothing_wider_than_the_rod.json"
+                       --out "${_cli_out}/smooth.json"
+                  CODE 0
+                  STDERR "environment.contact.0..smoothing is 10 m, more than the rod's width")
 # A slack line hanging almost vertically fails from its tight catenary loop; the hint gives the
 # loop's radius a (2a sinh(l/2a) = sqrt(L² − h²): 0.0785 m by hand) against the spacing.
 cosserat_cli_test(NAME steep_slack_line ARGS solve "${_cli_dir}/steep_slack_line.json" CODE 1
