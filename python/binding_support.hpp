@@ -82,9 +82,10 @@ inline py::dict StateDict(const RodState& state) {
   return d;
 }
 
-/// The fields the static and the step summaries share.
-template <typename Summary>
-py::class_<Summary>& BindSummary(py::class_<Summary>& c) {
+/// The fields the static and the step summaries share; `extra` gives the repr's text for the
+/// summary's own fields (", name=value" each).
+template <typename Summary, typename Extra>
+py::class_<Summary>& BindSummary(py::class_<Summary>& c, Extra extra) {
   const std::string name = py::str(c.attr("__name__"));
   return c.def_property_readonly("status", [](const Summary& s) { return ToString(s.status); })
       .def_property_readonly("converged", &Summary::converged)
@@ -92,11 +93,11 @@ py::class_<Summary>& BindSummary(py::class_<Summary>& c) {
       .def_readonly("shots", &Summary::shots)
       .def_readonly("residual", &Summary::residual)
       .def_readonly("wall_time_s", &Summary::wall_time_s)
-      .def("__repr__", [name](const Summary& s) {
+      .def("__repr__", [name, extra](const Summary& s) {
         std::ostringstream o;
         o << std::setprecision(3) << name << "(status=" << ToString(s.status)
           << ", iterations=" << s.iterations << ", shots=" << s.shots << ", residual=" << s.residual
-          << ", wall_time_s=" << s.wall_time_s << ")";
+          << ", wall_time_s=" << s.wall_time_s << extra(s) << ")";
         return o.str();
       });
 }

@@ -498,7 +498,11 @@ void BindStaticSolver(py::module_& m) {
       "How a StaticSolver solve went: status, Newton iterations, shots, residual, wall time "
       "(s), load steps of the continuation and the stability index (unstable directions: 0 "
       "stable, > 0 unstable, -1 not checked).");
-  BindSummary(static_summary)
+  BindSummary(static_summary,
+              [](const StaticShootingSummary& s) {
+                return ", load_steps=" + std::to_string(s.load_steps) +
+                       ", stability_index=" + std::to_string(s.stability_index);
+              })
       .def_readonly("load_steps", &StaticShootingSummary::load_steps)
       .def_readonly("stability_index", &StaticShootingSummary::stability_index);
 

@@ -220,7 +220,11 @@ void BindStepperClass(py::module_& m) {
       m, "StepSummary",
       "How a Stepper call went: status, Newton iterations, shots of the rod, residual, wall "
       "time (s), exact Jacobians, the deepest step halving and the multiple-shooting pieces.");
-  BindSummary(step_summary)
+  BindSummary(step_summary,
+              [](const StepSummary& s) {
+                return ", halvings=" + std::to_string(s.halvings) +
+                       ", shooting_segments=" + std::to_string(s.shooting_segments);
+              })
       .def_readonly("jacobians", &StepSummary::jacobians)
       .def_readonly("halvings", &StepSummary::halvings)
       .def_readonly("shooting_segments", &StepSummary::shooting_segments,
@@ -251,7 +255,9 @@ void BindStepperClass(py::module_& m) {
            py::arg("base_position") = py::none(), py::arg("base_rotation") = py::none(),
            py::arg("base_twist_B") = py::none(), py::arg("base_wrench_B") = py::none(),
            py::arg("actuation") = py::none(),
-           "Advances dt. Arguments not given keep the last step's (at first the problem's "
+           "Advances dt (a step that fails keeps the halved sub-steps it completed: time "
+           "then stops short; save() before it to retry from its start). Arguments not given "
+           "keep the last step's (at first the problem's "
            "loads, base pose and robot actuation; `loads` and `actuation` as edited in place). "
            "An actuation given is a whole state: a dict or cosserat.Actuation that leaves out "
            "the section's pressures (inflation, jamming) takes the problem file's, not the last "

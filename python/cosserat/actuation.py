@@ -5,6 +5,7 @@ import copy
 import numpy as np
 
 from . import _core
+from ._numbers import refuse_bools
 
 # The list fields, each with the problem's count of what it acts on, its noun and where the
 # file lists those.
@@ -29,6 +30,7 @@ def _list_field(name):
         return view
 
     def set_(self, value):
+        refuse_bools(value, f"actuation.{name}")
         core.__set__(self, value)
         self.__dict__["_given"][name] = len(value)
 
@@ -61,6 +63,7 @@ class Actuation(_core.Actuation):
         if name not in _FIELDS:
             raise AttributeError(f"Actuation has no field {name!r} (fields: "
                                  f"{', '.join(_FIELDS)})")
+        refuse_bools(value, f"actuation.{name}")
         super().__setattr__(name, value)
         if name == "pressure":
             self.__dict__["_given"]["pressure"] = None

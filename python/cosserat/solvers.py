@@ -6,6 +6,7 @@ import warnings
 import numpy as np
 
 from . import _core
+from ._numbers import refuse_bools
 from .actuation import ProblemRules, fit_to_problem
 from .results import _as_problem, _json_text
 
@@ -27,11 +28,22 @@ class StaticSolver(_core.StaticSolver):
         self._rules = ProblemRules(problem)
 
     def solve(self, loads=None, base_position=None, base_rotation=None, actuation=None):
-        return super().solve(_loads_from(loads, self._problem), base_position, base_rotation,
-                             _actuation_from(actuation, self._problem, self._rules))
+        summary = super().solve(_loads_from(loads, self._problem), base_position, base_rotation,
+                                _actuation_from(actuation, self._problem, self._rules))
+        if summary.converged and summary.stability_index > 0:
+            # cosserat.solve() and the CLI settle beside such an equilibrium; a warm solver
+            # stays on the branch it follows (a column pressed past its buckling load straight).
+            warnings.warn(f"the equilibrium is unstable ({summary.stability_index} unstable "
+                          "direction(s)): the loads are past a critical point on the branch "
+                          "this solver follows; cosserat.solve() settles beside it, or ramp the "
+                          "loads with a small side load to follow the stable branch",
+                          RuntimeWarning, stacklevel=2)
+        return summary
 
     solve.__doc__ = (_core.StaticSolver.solve.__doc__ or "") + (
-        " loads and actuation may also be dicts with the problem file's keys.")
+        " loads and actuation may also be dicts with the problem file's keys. An unstable "
+        "equilibrium (summary.stability_index > 0) is returned as solved, with a "
+        "RuntimeWarning: this solver does not settle beside it as cosserat.solve() does.")
 
 
 # The problem file's `loads` keys a step takes, at their defaults.
@@ -47,6 +59,7 @@ def _set_keyed_loads(loads, value, keys, where, allowed):
     for key, entry in value.items():
         if key not in keys:
             raise ValueError(f"{where}.{key}: unknown key ({allowed})")
+        refuse_bools(entry, f"{where}.{key}")
         try:
             setattr(loads, key, entry)
         except (TypeError, ValueError):  # the binding names the field, not where it sits
@@ -105,6 +118,7 @@ class Stepper(_core.Stepper):
     __doc__ = _core.Stepper.__doc__
 
     def __init__(self, problem, dt=None, spatial_scheme=None):
+        refuse_bools(dt, "dt")
         problem = copy.copy(_as_problem(problem))  # the stepper's own, as the core's copy is
         super().__init__(problem, dt, spatial_scheme)
         self._problem = problem  # the rules a dict actuation is checked by
@@ -192,6 +206,7 @@ class BatchStepper(_core.BatchStepper):
         # The core reads a 1-D array as a column, (3,) as (3, 1): its shape is named as given.
         for name, value, columns in (("tip_force", tip_force, "3"), ("tension", tension,
                                                                      "tendons")):
+            refuse_bools(value, name)
             if value is not None and np.ndim(value) != 2:
                 raise ValueError(f"{name}: expected shape ({self.count}, {columns}), one row "
                                  f"per rod, got shape {np.shape(value)}")

@@ -151,6 +151,16 @@ class ProblemFiles(unittest.TestCase):
         with self.assertWarnsRegex(RuntimeWarning, "grid resolves the shape coarsely"):
             self.assertTrue(coarse.solve().converged)
 
+    def test_bools_are_refused_where_numbers_are_read(self):
+        # A file's `true` is no number; neither is Python's True in a step's loads, a dt or an
+        # actuation (it had become 1.0 N, or a 1 s step).
+        with self.assertRaisesRegex(ValueError, r"loads\.tip_force\[0\]: expected a number"):
+            cosserat.Stepper(wire("dynamics")).step({"tip_force": [True, 0, 0]})
+        with self.assertRaisesRegex(ValueError, r"^dt: expected a number"):
+            cosserat.Stepper(wire("dynamics"), dt=True)
+        with self.assertRaisesRegex(ValueError, r"actuation\.tendon_tension\[1\]"):
+            cosserat.Actuation(tendon_tension=[1.0, False])
+
     def test_non_finite_loads_are_refused(self):
         loads = cosserat.Loads()
         loads.tip_force = [math.nan, 0, 0]
@@ -214,6 +224,20 @@ class ProblemFiles(unittest.TestCase):
 
 
 class Statics(unittest.TestCase):
+    def test_a_column_pressed_past_its_buckling_load_is_warned_unstable(self):
+        # The wire as a column under twice Euler's load pi^2 EI / (4 L^2): the warm solver stays
+        # on the straight branch, unstable in both lateral planes, and says so; below, stable.
+        critical = math.pi**2 * EI / (4 * L**2)
+        solver = cosserat.StaticSolver(wire())
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # below the load: no warning at all
+            below = solver.solve({"tip_force": [0, 0, -0.5 * critical]})
+        self.assertEqual(below.stability_index, 0)
+        with self.assertWarnsRegex(RuntimeWarning, r"unstable \(2 unstable direction"):
+            above = solver.solve({"tip_force": [0, 0, -2 * critical]})
+        self.assertEqual(above.stability_index, 2)  # both lateral planes of the round wire
+        self.assertIn("stability_index=2", repr(above))
+
     def test_tip_load_matches_the_elastica(self):
         # Bisshopp & Drucker's closed form (tests/reference/elastica_tip_load.json). Tolerance
         # 2e-5 L: shear and extension of the wire move the tip by O((r/L)^2) = 4e-6 L (measured
