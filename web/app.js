@@ -135,9 +135,17 @@ function setSlider(name, value) {
   input.dispatchEvent(new Event("input"));
 }
 window.cosseratTipOnScreen = tipOnScreen;
+// Where the tip was drawn over the last 0.3 s: a swinging tip (2 m/s is over 1000 px/s) is
+// caught where the eye saw it, not only where the newest frame put it.
+const recentTips = [];
+function rememberTip() {
+  const tip = tipOnScreen(), now = performance.now();
+  if (tip) recentTips.push({ at: now, ...tip });
+  while (recentTips.length && now - recentTips[0].at > 300) recentTips.shift();
+}
 renderer.domElement.addEventListener("pointerdown", (e) => {
-  const tip = tipOnScreen();
-  if (!tip || !config || !config.drag_stiffness || Math.hypot(e.clientX - tip.x, e.clientY - tip.y) > 25) return;
+  const near = recentTips.some((t) => Math.hypot(e.clientX - t.x, e.clientY - t.y) <= 25);
+  if (!lastState || !config || !config.drag_stiffness || !near) return;
   const names = ["tip_force_x", "tip_force_y", "tip_force_z"];
   if (!names.every((n) => document.getElementById("control-" + n))) return;
   const normal = camera.getWorldDirection(new THREE.Vector3());
@@ -177,6 +185,7 @@ async function poll() {
         pending = null;
       }
       lastState = state;
+      rememberTip();
       draw(state);
       readout(state);
     } catch (e) {
