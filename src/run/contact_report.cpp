@@ -144,15 +144,24 @@ bool PressesTheTipIn(const io::Problem& problem, const nlohmann::ordered_json& j
 /// nodes see and the nodes do not (a finger on a sphere: 10 % at 11 nodes, 4 % at 21, 2.9 % at
 /// 33, 1.3 % at 41: about as h, unevenly, as the nodes fall on the patch). A note with the nodes
 /// that bring it to about 1 % at that rate; else empty.
-std::string SampledContactNote(const Vec3& sampled, const Vec3& applied, std::size_t nodes) {
+/// A patch on one or two nodes at an end of the rod (a tip pressed on a surface: 200 % off at any
+/// grid, as the end node's half interval takes the whole patch) is a point contact there, which
+/// no grid samples: the note then says to read the total.
+std::string SampledContactNote(const Vec3& sampled, const Vec3& applied, std::size_t nodes,
+                               bool point_at_an_end) {
   const double off = (sampled - applied).norm() / applied.norm();
   if (!(off > 0.05) || nodes < 2) return "";
   std::ostringstream note;
   note << std::setprecision(3) << "cosserat: note: nodes.contact_force samples the contact at "
        << "the nodes, and their sum along s is " << 100 * off << " % off contact.total_force, "
-       << "the force the solve applied: the contact patch is narrow for the grid; rod.nodes ≥ "
-       << static_cast<long>(std::ceil((nodes - 1) * off / 0.01)) + 1
-       << " samples it within about 1 %\n";
+       << "the force the solve applied: ";
+  if (point_at_an_end)
+    note << "the contact is a point at an end of the rod, which the nodes' values per metre do "
+            "not resolve on any grid; contact.total_force is the force it carries\n";
+  else
+    note << "the contact patch is narrow for the grid; rod.nodes ≥ "
+         << static_cast<long>(std::ceil((nodes - 1) * off / 0.01)) + 1
+         << " samples it within about 1 %\n";
   return note.str();
 }
 /// The gap between the rod's surface and the nearest contact surface at a node, m (< 0: pressed
@@ -282,7 +291,12 @@ void AddContactReport(const io::Problem& problem, Result* result) {
   result->log += narrow;
   Vec3 balanced;
   if (BalancedContactTotal(problem, json, &balanced)) {
-    if (result->converged) result->log += SampledContactNote(total, balanced, n);
+    // The nodes in contact: one or two at an end of the rod and none elsewhere is a point there.
+    const auto touching = std::count(in_contact.begin(), in_contact.end(), true);
+    const bool point_at_an_end =
+        touching > 0 && touching <= 2 &&
+        (in_contact.back() || in_contact.front()) && n > 4;
+    if (result->converged) result->log += SampledContactNote(total, balanced, n, point_at_an_end);
     total = balanced;
   }
   AppendContactColumns(per_node, &result->nodes_csv);
