@@ -78,6 +78,17 @@ auto ViewGetter(Field Owner::*field) {
 /// An Actuation's list field back from a sequence of at most N numbers (zero-filled).
 /// A sequence of numbers, or a TypeError naming the field.
 std::vector<double> Numbers(const py::object& value, const std::string& name) {
+  // A bool is no number (a file's `true` is refused too), which the cast below reads as 1.
+  if (py::isinstance<py::sequence>(value) && !py::isinstance<py::str>(value)) {
+    const py::object numpy_bool = py::module_::import("numpy").attr("bool_");
+    std::size_t i = 0;
+    for (const py::handle item : value) {
+      if (py::isinstance<py::bool_>(item) || py::isinstance(item, numpy_bool))
+        throw py::value_error(name + "[" + std::to_string(i) + "]: expected a number, got " +
+                              py::repr(item).cast<std::string>());
+      ++i;
+    }
+  }
   try {
     return value.cast<std::vector<double>>();
   } catch (const py::cast_error&) {
@@ -260,20 +271,37 @@ void BindLoads(py::module_& m) {
   py::class_<StaticLoads>(m, "Loads",
                           "External loads: gravity (m/s²), a uniform distributed "
                           "force (N/m), a tip force (N) and moment (N·m), and the fluid "
-                          "around the rod (buoyancy, drag, added mass).")
-      .def(py::init<>())
+                          "around the rod (buoyancy, drag, added mass). Fields may be given "
+                          "as keywords: Loads(gravity=[0, 0, -9.81], tip_force=[0, 0.1, 0]).")
+      .def(py::init([](const py::kwargs& fields) {
+             py::object loads = py::cast(StaticLoads{});
+             for (const auto& [key, value] : fields) {
+               const std::string name = py::str(key);
+               if (name.rfind("__", 0) == 0 || !py::hasattr(loads, name.c_str()))
+                 throw py::type_error("Loads: unknown field '" + name +
+                                      "' (fields: gravity, distributed_force, tip_force, "
+                                      "tip_moment, tip_force_frame, tip_moment_frame, fluid)");
+               loads.attr(name.c_str()) = value;
+             }
+             return loads.cast<StaticLoads>();
+           }))
       // copy.copy(p.loads): a Loads of one's own to change (p.loads is the problem's).
       .def("__copy__", [](const StaticLoads& l) { return l; })
       .def("__deepcopy__", [](const StaticLoads& l, py::dict) { return l; })
       .def_readwrite("fluid", &StaticLoads::fluid)
       .def_property("gravity", ViewGetter(&StaticLoads::gravity_W),
-                    Vec3Setter(&StaticLoads::gravity_W, "gravity"))
+                    Vec3Setter(&StaticLoads::gravity_W, "gravity"),
+                    "Gravity, m/s², world frame (a view: editing it in place changes it).")
       .def_property("distributed_force", ViewGetter(&StaticLoads::distributed_force_W),
-                    Vec3Setter(&StaticLoads::distributed_force_W, "distributed_force"))
+                    Vec3Setter(&StaticLoads::distributed_force_W, "distributed_force"),
+                    "A uniform force along the rod, N/m, world frame.")
       .def_property("tip_force", ViewGetter(&StaticLoads::tip_force),
-                    Vec3Setter(&StaticLoads::tip_force, "tip_force"))
+                    Vec3Setter(&StaticLoads::tip_force, "tip_force"),
+                    "The force at the tip, N, in tip_force_frame (\"world\", or \"body\": the "
+                    "tip section's frame, a follower force).")
       .def_property("tip_moment", ViewGetter(&StaticLoads::tip_moment),
-                    Vec3Setter(&StaticLoads::tip_moment, "tip_moment"))
+                    Vec3Setter(&StaticLoads::tip_moment, "tip_moment"),
+                    "The moment at the tip, N·m, in tip_moment_frame (\"world\" or \"body\").")
       .def_property(
           "tip_force_frame", [](const StaticLoads& l) { return ToString(l.tip_force_frame); },
           [](StaticLoads& l, const std::string& f) {
@@ -330,11 +358,12 @@ void BindActuation(py::module_& m) {
 std::string ProblemRepr(const io::Problem& p) {
   std::ostringstream o;
   o << std::setprecision(6) << "Problem(analysis=" << io::ToString(p.analysis)
-    << ", formulation=" << io::ToString(p.formulation) << ", boundary=" << io::ToString(p.boundary);
-  if (p.has_assembly)
+    << ", formulation=" << io::ToString(p.formulation);
+  if (p.has_assembly)  // each rod has its own ends (`rods`)
     o << ", assembly";
   else
-    o << ", length=" << p.rod.length << " m, nodes=" << p.nodes;
+    o << ", boundary=" << io::ToString(p.boundary) << ", length=" << p.rod.length
+      << " m, nodes=" << p.nodes;
   o << ")";
   return o.str();
 }

@@ -40,6 +40,10 @@ class StaticSolver(_core.StaticSolver):
                           RuntimeWarning, stacklevel=2)
         return summary
 
+    def __repr__(self):
+        return (f"StaticSolver(boundary={self._problem.boundary}, length={self._problem.length:g}"
+                f" m, nodes={self._problem.nodes}, pieces={self.pieces})")
+
     solve.__doc__ = (_core.StaticSolver.solve.__doc__ or "") + (
         " loads and actuation may also be dicts with the problem file's keys. An unstable "
         "equilibrium (summary.stability_index > 0) is returned as solved, with a "
@@ -128,6 +132,14 @@ class Stepper(_core.Stepper):
         self._clamp = None if problem.boundary in ("clamped-clamped", "clamped-pinned") else [
             np.asarray(problem.base_position), np.asarray(problem.base_rotation)]
         _warn_before_stepping(problem, dt)
+
+    def __repr__(self):
+        try:
+            time = f"{self.time:g} s"
+        except RuntimeError:  # a reset that did not converge leaves no state
+            time = "no state"
+        return (f"Stepper(boundary={self._problem.boundary}, length={self._problem.length:g} m, "
+                f"nodes={self._problem.nodes}, dt={self.dt:g} s, time={time})")
 
     def initialize_at_rest(self, loads=None, actuation=None):
         return super().initialize_at_rest(_loads_from(loads, self),

@@ -160,6 +160,12 @@ class ProblemFiles(unittest.TestCase):
             cosserat.Stepper(wire("dynamics"), dt=True)
         with self.assertRaisesRegex(ValueError, r"actuation\.tendon_tension\[1\]"):
             cosserat.Actuation(tendon_tension=[1.0, False])
+        loads = cosserat.Loads(gravity=[0, 0, -9.81], tip_force=[0, 0.1, 0])  # keywords
+        self.assertEqual(list(loads.tip_force), [0, 0.1, 0])
+        with self.assertRaisesRegex(ValueError, r"tip_force\[0\]: expected a number"):
+            loads.tip_force = np.array([True, False, False])
+        with self.assertRaisesRegex(TypeError, r"unknown field 'tipforce'"):
+            cosserat.Loads(tipforce=[1, 0, 0])
 
     def test_non_finite_loads_are_refused(self):
         loads = cosserat.Loads()
@@ -1155,8 +1161,13 @@ class PythonSide(unittest.TestCase):
         self.assertIn("length=0.25 m", repr(p))
         current = cosserat.load_problem("examples/cantilever_in_current.json")
         self.assertIn("Fluid(density=1025, velocity=[0.8, 0, 0]", repr(current.loads))
-        summary = cosserat.StaticSolver(p).solve()
+        solver = cosserat.StaticSolver(p)
+        summary = solver.solve()
         self.assertTrue(repr(summary).startswith("StaticSummary(status=converged"))
+        self.assertIn("nodes=", repr(solver))
+        stepper = cosserat.Stepper(wire("dynamics"))
+        self.assertIn("dt=", repr(stepper))
+        self.assertIn("time=0 s", repr(stepper))
 
     def test_live_view_damps_every_section_shape(self):
         # The live view adds 0.05 s of bending and torsion damping when a file has none, from the
