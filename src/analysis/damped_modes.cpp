@@ -45,29 +45,48 @@ Eigen::VectorXd ModalShares(const Eigen::MatrixXd& companion, std::complex<doubl
   return Eigen::VectorXd();
 }
 
-/// The lowest `count` pairs of `companion` by |λ|, with their shares when its coordinates are
-/// `modal` (SymmetricSpectrum's form).
-std::vector<DampedPair> DampedPairs(const Eigen::MatrixXd& companion, bool modal, int count) {
-  // The plain companion [[0, I], [K, C]] of a rod spans its stiffness's whole range (1e3 to
-  // 4e13 1/s² on a 1 mm wire): the eigensolver's error, ε times that norm, moved a damped
-  // frequency of 4.2 Hz by 2.5 % with the equilibrium's round-off and made a 313 Hz pair grow.
-  // λ = γ μ with γ = sqrt(‖K‖) (Fan, Lin & Van Dooren 2004) solves [[0, I], [K/γ², C/γ]]
-  // instead, whose blocks are of one size.
+/// The eigenvalues λ of a plain companion matrix [[0, I], [K, C]], accurate at its low end. A
+/// rod's K spans its stiffness's whole range (1e3 to 4e13 1/s² on a 1 mm wire), and the
+/// eigensolver's error, ε times that norm, moved a damped frequency of 4.2 Hz by 2.5 % with
+/// the equilibrium's round-off (and made a 313 Hz pair grow). With λ = γ μ, γ = sqrt(‖K‖)
+/// (Fan, Lin & Van Dooren 2004), [[0, I], [K', C']] = [[0, I], [K/γ², C/γ]] has blocks of one
+/// size; its low pairs, the ones the modes take, are the largest eigenvalues ν = 1/μ of its
+/// inverse [[−K'⁻¹C', K'⁻¹], [I, 0]], where they keep their relative accuracy (the same rod
+/// turned 90° about its axis gave the first pair to 4e-4 from the scaled matrix, to 1e-9 so). A
+/// singular K (a rod at a critical load) is solved in the scaled form.
+Eigen::VectorXcd CompanionEigenvalues(const Eigen::MatrixXd& companion) {
   const Eigen::Index m = companion.rows() / 2;
-  double gamma = 1.0;
-  Eigen::MatrixXd scaled;
-  if (!modal) {
-    const double stiffness = companion.bottomLeftCorner(m, m).norm();
-    if (stiffness > 0 && std::isfinite(stiffness)) gamma = std::sqrt(stiffness);
-    scaled = companion / gamma;
-    scaled.topRightCorner(m, m) = companion.topRightCorner(m, m);
-    scaled.bottomLeftCorner(m, m) /= gamma;
+  const double stiffness = companion.bottomLeftCorner(m, m).norm();
+  const double gamma = stiffness > 0 && std::isfinite(stiffness) ? std::sqrt(stiffness) : 1.0;
+  const Eigen::MatrixXd K = companion.bottomLeftCorner(m, m) / (gamma * gamma),
+                        C = companion.bottomRightCorner(m, m) / gamma;
+  const Eigen::MatrixXd K_inverse = K.partialPivLu().inverse();
+  if (K_inverse.allFinite()) {
+    Eigen::MatrixXd inverse = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+    inverse.topLeftCorner(m, m) = -K_inverse * C;
+    inverse.topRightCorner(m, m) = K_inverse;
+    inverse.bottomLeftCorner(m, m).setIdentity();
+    const Eigen::EigenSolver<Eigen::MatrixXd> es(inverse, false);
+    return gamma * es.eigenvalues().cwiseInverse();  // ν = 0 (no pair) becomes infinite
   }
-  const Eigen::EigenSolver<Eigen::MatrixXd> es(modal ? companion : scaled, false);
+  Eigen::MatrixXd scaled(2 * m, 2 * m);
+  scaled << Eigen::MatrixXd::Zero(m, m), Eigen::MatrixXd::Identity(m, m), K, C;
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(scaled, false);
+  return gamma * es.eigenvalues();
+}
+
+/// The lowest `count` pairs of `companion` by |λ|, with their shares when its coordinates are
+/// `modal` (SymmetricSpectrum's form, nearly normal: its eigenvalues are taken as they are).
+std::vector<DampedPair> DampedPairs(const Eigen::MatrixXd& companion, bool modal, int count) {
+  const Eigen::VectorXcd lambda = modal
+                                      ? Eigen::VectorXcd(Eigen::EigenSolver<Eigen::MatrixXd>(
+                                                             companion, false)
+                                                             .eigenvalues())
+                                      : CompanionEigenvalues(companion);
   std::vector<std::complex<double>> roots;
-  for (Eigen::Index i = 0; i < companion.rows(); ++i) {
-    const std::complex<double> l = gamma * es.eigenvalues()(i);
-    if (l.imag() > 1e-9 * std::abs(l)) roots.push_back(l);
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) {
+    const std::complex<double> l = lambda(i);
+    if (std::isfinite(std::abs(l)) && l.imag() > 1e-9 * std::abs(l)) roots.push_back(l);
   }
   std::sort(roots.begin(), roots.end(),
             [](const auto& a, const auto& b) { return std::abs(a) < std::abs(b); });
