@@ -671,6 +671,37 @@ TEST(Modes, StiffnessProportionalDampingGivesExactModalDamping) {
   }
 }
 
+// The same law damped hard on a steel wire, ζ = τω/2 = 0.7 on the first pair: every higher mode
+// is overdamped, and each has a slow root near −1/τ, hundreds of equal real roots the
+// eigensolver splits into pairs with Im λ ~ 1e-5 |λ|. Those had taken the first pair's place
+// (all four reported overdamped). The first pair must keep ζ = τω/2 and ω_d = ω √(1 − ζ²)
+// (1e-6, as above), the second, at ζ = 4.4, be overdamped (NaN).
+TEST(Modes, AHeavilyDampedPairIsNotLostAmongOverdampedRoots) {
+  // A steel wire (0.5 m, r = 1 mm) on 40 segments, D = τ K in every strain.
+  const auto wire = [](double tau) {
+    Material m = Material::FromShearModulus(200e9, 80e9, 8000);
+    const CrossSection c = CrossSection::Circle(0.001);
+    m.damping.bending = tau * m.youngs_modulus * c.I1;
+    m.damping.torsion = tau * m.shear_modulus * c.torsion_constant;
+    m.damping.shear = tau * c.ShearCoefficient(m.PoissonRatio()) * m.shear_modulus * c.area;
+    m.damping.extension = tau * m.youngs_modulus * c.area;
+    return RodModel::Uniform(0.5, c, m);
+  };
+  const ModalResult undamped = QuatFdModes(wire(0.0), lie::SE3(), {}, 40, 4, false);
+  ASSERT_TRUE(undamped.converged());
+  const double tau = 2 * 0.7 / undamped.modes[0].omega;  // s
+  const ModalResult r = QuatFdModes(wire(tau), lie::SE3(), {}, 40, 4, false);
+  ASSERT_TRUE(r.converged()) << ToString(r.status);
+  ASSERT_EQ(r.damped.size(), 4u);
+  for (int k = 0; k < 2; ++k) {  // the round rod's two bending planes
+    EXPECT_NEAR(r.damped[k].damping_ratio, 0.7, 1e-6 * 0.7) << k;
+    EXPECT_NEAR(r.damped[k].damped_frequency_hz * 2 * M_PI,
+                r.modes[k].omega * std::sqrt(1 - 0.49), 1e-6 * r.modes[k].omega)
+        << k;
+  }
+  for (int k = 2; k < 4; ++k) EXPECT_TRUE(std::isnan(r.damped[k].damping_ratio)) << k;
+}
+
 // Damping on bending alone (one D for both directions) on a 10 × 10.35 mm rubber bar, whose two
 // bending directions differ by 3.5 % in frequency: each bending mode keeps ζ = ω D / (2 EI) of
 // its own direction (its energy is bending's to O((h/L)²) = 4e-4; 2 % covers the grid's and
