@@ -20,7 +20,7 @@ class ObstacleCoreWatch {
   /// Keeps a copy of the surfaces (each checked on its own, so that the warning names it).
   explicit ObstacleCoreWatch(const ContactSurfaces& surfaces) : surfaces_(surfaces) {}
 
-  /// After a step or a recorded frame at time t (s): the nodes' positions (world, m). The
+  /// At the start and after every step at time t (s): the nodes' positions (world, m). The
   /// straight path of each node from the last call's positions counts too.
   void Observe(double t, const std::vector<Vec3>& positions);
 

@@ -159,6 +159,8 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
     table.emplace(problem.dynamics.rotary_table, problem.base);
   const bool track_energy = ConservesEnergy(problem);
   GridOscillationWatch watch(problem, dt);
+  const bool contact = problem.loads.contact.count > 0;
+  if (contact) obstacles->Observe(0.0, stepper->state().position_W);  // the paths from the start
   const auto loop_start = Clock::now();
   for (int k = 1; k <= steps; ++k) {
     if (problem.gust.present())  // the flow of the step's end (BDF2 is implicit)
@@ -172,12 +174,14 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
     if (!s.converged()) {
       run->status = s.status;
       run->failed_at_t = k * dt;
+      // The halved sub-steps it committed (docs/dynamics.md) are the run's end.
+      if (contact) obstacles->Observe(stepper->time(), stepper->state().position_W);
       break;
     }
     ++run->steps;
     if (s.halvings > 0) ++run->halved_steps;
     run->shooting_segments = std::max(run->shooting_segments, s.shooting_segments);
-    if (problem.loads.contact.count > 0) obstacles->Observe(k * dt, stepper->state().position_W);
+    if (contact) obstacles->Observe(k * dt, stepper->state().position_W);
     if (watch.Grew(problem, *stepper)) {  // its state is the final frame, under_resolved
       run->status = SolveStatus::kUnderResolved;
       run->failed_at_t = k * dt;

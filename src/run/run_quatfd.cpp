@@ -296,17 +296,29 @@ template <class Record>
 RadauOutcome IntegrateRadau(quatfd::QuatFdModel& model, const io::Problem::Dynamics& d,
                             Eigen::VectorXd& q, Eigen::VectorXd& v, const Record& record,
                             const std::function<void(double, double)>& progress,
-                            io::DynamicRun* run) {
+                            detail::ObstacleCoreWatch* obstacles, io::DynamicRun* run) {
   RadauOutcome outcome;
   quatfd::IntegratorOptions io_opt;
   io_opt.initial_dt = d.dt;
   io_opt.rel_tol = io_opt.abs_tol = d.integrator_tolerance;
   io_opt.max_steps = d.integrator_max_steps;
-  if (progress) io_opt.after_step = [&progress, &d](double t) { progress(t, d.duration); };
+  // After every accepted step: the progress, and the vertices' positions for the obstacle watch.
+  const quatfd::RadauIntegrator* stepping = nullptr;
+  std::vector<Vec3> vertices(model.layout().segments + 1);
+  if (progress || obstacles)
+    io_opt.after_step = [&](double t) {
+      if (obstacles && stepping) {
+        for (std::size_t i = 0; i < vertices.size(); ++i)
+          vertices[i] = stepping->state().segment<3>(quatfd::QuatFdLayout::X(static_cast<int>(i)));
+        obstacles->Observe(t, vertices);
+      }
+      if (progress) progress(t, d.duration);
+    };
   // The implicit Radau IIA integrator (docs/quatfd.md): like SDIRK4 its step map stays stable
   // at the steps the error control asks for, where the Rosenbrock integrator's does not, and
   // with stage order 3 it needs fewer steps than SDIRK4 on both benchmarks (BENCHMARKS.md).
   quatfd::RadauIntegrator integrator(model, io_opt);
+  stepping = &integrator;
   // Frames every output_interval, and the end of the run when it falls between two (a frame
   // within 1e-9 of an interval of the end is the end's).
   const double ratio = d.duration / d.output_interval;
@@ -440,7 +452,6 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
   detail::ObstacleCoreWatch obstacles(problem.loads.contact);
   auto record = [&](double t) {
     model.ToRodState(q, v, &state);
-    if (problem.loads.contact.count > 0) obstacles.Observe(t, state.position_W);
     run.frame_t.push_back(t);
     run.frame_tip.push_back(state.tip_position_W());
     run.envelope.Add(state);
@@ -462,7 +473,9 @@ Result RunQuatFdDynamics(const io::Problem& problem, const RunOptions& options) 
     record(0.0);
     model.set_loads(problem.loads);
     model.set_gust(problem.gust);  // the drag follows each Radau stage's time
-    radau = IntegrateRadau(model, d, q, v, record, options.progress, &run);
+    if (problem.loads.contact.count > 0) obstacles.Observe(0.0, state.position_W);  // the start
+    radau = IntegrateRadau(model, d, q, v, record, options.progress,
+                           problem.loads.contact.count > 0 ? &obstacles : nullptr, &run);
   }
   run.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
   model.ToRodState(q, v, &state);

@@ -116,6 +116,9 @@ class AdaptiveIntegrator : public QuatFdIntegrator {
   IntegratorStatus Advance(double t_end, double* t, Eigen::Ref<Eigen::VectorXd> q,
                            Eigen::Ref<Eigen::VectorXd> v) final;
   const IntegratorStats& stats() const final { return stats_; }
+  /// The state [q; v] of the last accepted step: within Advance (from after_step) the step just
+  /// taken, which Advance hands back in (q, v) only when it returns.
+  const Eigen::VectorXd& state() const { return y_; }
 
  protected:
   /// One trial step: ok = false when it could not be computed (a singular iteration matrix, or
