@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace cosserat {
 
@@ -34,15 +35,19 @@ bool StaticLoads::operator==(const StaticLoads& other) const {
 }
 
 bool StaticLoads::IsValid(std::string* why) const {
-  auto fail = [&](const char* name) {
-    if (why) *why = std::string(name) + " must be finite";
-    return false;
+  // The first component that is not finite, named as a file names it: "tip_force[2]".
+  auto finite = [&](const Vec3& v, const char* name) {
+    for (int i = 0; i < 3; ++i) {
+      if (std::isfinite(v(i))) continue;
+      if (why) *why = std::string(name) + "[" + std::to_string(i) + "] must be finite, got " +
+                      std::to_string(v(i));
+      return false;
+    }
+    return true;
   };
-  if (!gravity_W.allFinite()) return fail("gravity");
-  if (!distributed_force_W.allFinite()) return fail("distributed_force");
-  if (!tip_force.allFinite()) return fail("tip_force");
-  if (!tip_moment.allFinite()) return fail("tip_moment");
-  return fluid.IsValid(why) && contact.IsValid(why) && bit.IsValid(why);
+  return finite(gravity_W, "gravity") && finite(distributed_force_W, "distributed_force") &&
+         finite(tip_force, "tip_force") && finite(tip_moment, "tip_moment") &&
+         fluid.IsValid(why) && contact.IsValid(why) && bit.IsValid(why);
 }
 
 }  // namespace cosserat
