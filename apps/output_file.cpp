@@ -18,10 +18,11 @@ namespace fs = std::filesystem;
 /// The reason in words: a missing directory is named (the tool does not make directories for a
 /// file it writes), any other failure is the system's.
 std::runtime_error CannotWrite(const std::string& path) {
-  const std::string reason = std::strerror(errno);
+  const int error = errno;  // before the calls below, which may set it
+  const std::string reason = std::strerror(error);
   const fs::path directory = fs::path(path).parent_path();
   std::error_code ec;
-  if (errno == ENOENT && !directory.empty() && !fs::exists(directory, ec))
+  if (error == ENOENT && !directory.empty() && !fs::exists(directory, ec))
     return std::runtime_error("cannot write '" + path + "' (no directory '" +
                               directory.string() + "')");
   return std::runtime_error("cannot write '" + path + "' (" + reason + ")");

@@ -2285,8 +2285,9 @@ TEST(Run, ReportsTheBendingStressTheMomentBalanceGives) {
 // undamped floor: all of it falls and lands at once, so energy conservation gives the deepest
 // penetration, q (H + δ) = k δ²/2, q the weight per metre. At k = 1e4 N/m² δ = 3.24 mm, past
 // the radius: the centreline goes beyond the floor, which the log must say; at k = 1e5,
-// δ = 1.00 mm, half the radius, and it must not. (BDF2 at ω dt = 0.01 of the bounce takes 1e-5
-// of its energy; ε = 4 µm of smoothing shifts δ by 2 µm.)
+// δ = 1.00 mm, half the radius, and it must not. (BDF2 at ω dt = 0.03 and 0.1 takes 5e-5 and
+// 2e-3 of the bounce's energy, which only makes δ smaller; ε = 4 µm of smoothing shifts it by
+// 2 µm.)
 TEST(Run, ARodDroppedThroughASoftFloorIsWarnedOf) {
   const auto drop = [](const char* stiffness) {
     const io::ParseResult parsed = io::ParseProblem(std::string(R"({
@@ -2312,10 +2313,11 @@ TEST(Run, ARodDroppedThroughASoftFloorIsWarnedOf) {
   EXPECT_EQ(firm.log.find("went through"), std::string::npos) << firm.log;
 }
 
-// The quaternion-FD path checks its recorded frames: a cantilever (0.5 m, r = 2 mm) released
-// onto a sphere (r = 1 cm) below its tip goes through it at k = 1e3 N/m² and stays out at 1e5.
-// The truth is the frames' own geometry: the warning is given exactly when some frame has a node
-// within half the sphere's radius of its centre.
+// On the quaternion-FD path: a cantilever (0.5 m, r = 2 mm) released onto a sphere (r = 1 cm)
+// below its tip goes through it at k = 1e3 N/m² and stays out at 1e5. The truth is the run's
+// own geometry, recorded every 5 ms (the tip, falling under 1 m/s, takes over 10 ms to cross
+// the core's 1 cm): the warning is given exactly when some frame has a node within half the
+// sphere's radius of its centre.
 TEST(Run, AQuaternionFdRodThroughASphereIsWarnedOfWhenItsFramesSayItWent) {
   for (const char* stiffness : {"1e3", "1e5"}) {
     const io::ParseResult parsed = io::ParseProblem(std::string(R"({

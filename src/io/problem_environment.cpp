@@ -220,19 +220,23 @@ void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
   const std::vector<Vec3> centreline = RestCentreline_W(p.rod, p.base, kPoints);
   for (int k = 0; k < contact.count && p.boundary != Boundary::kAnchored; ++k) {
     double deepest = 0.0, s_deepest = 0.0;  // the most negative distance, m, and where
+    double s_first = p.rod.length;         // m, the first point past the surface
     for (int i = 0; i < kPoints; ++i) {
       Vec3 normal;
       const double distance = contact.surface[k].Distance(centreline[i], &normal);
+      const double s = p.rod.length * i / (kPoints - 1);
+      if (distance < 0.0) s_first = std::min(s_first, s);
       if (distance < deepest) {
         deepest = distance;
-        s_deepest = p.rod.length * i / (kPoints - 1);
+        s_deepest = s;
       }
     }
     // A growing rod is checked at its full length: each growth step lays the new material
     // straight on from the tip, through a surface ahead (a vine grown at a wall came out 0.16 m
-    // beyond it, "converged"), which the quasi-static growth cannot turn aside.
+    // beyond it, "converged"), which the quasi-static growth cannot turn aside. Said when the
+    // part it starts with is clear of the surface.
     const std::string growing =
-        p.robot.growth_initial_length
+        p.robot.growth_initial_length && s_first > *p.robot.growth_initial_length
             ? " (a growing rod is checked at its full rod.length: its growth would lay new "
               "material through the surface)"
             : "";

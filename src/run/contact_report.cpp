@@ -291,11 +291,12 @@ void AddContactReport(const io::Problem& problem, Result* result) {
   result->log += narrow;
   Vec3 balanced;
   if (BalancedContactTotal(problem, json, &balanced)) {
-    // The nodes in contact: one or two at an end of the rod and none elsewhere is a point there.
+    // The nodes in contact: the end node, or it and its neighbour, and none elsewhere, at either
+    // end, is a point there.
     const auto touching = std::count(in_contact.begin(), in_contact.end(), true);
-    const bool point_at_an_end =
-        touching > 0 && touching <= 2 &&
-        (in_contact.back() || in_contact.front()) && n > 4;
+    const bool at_base = in_contact[0] && touching == 1 + (in_contact[1] ? 1 : 0);
+    const bool at_tip = in_contact[n - 1] && touching == 1 + (in_contact[n - 2] ? 1 : 0);
+    const bool point_at_an_end = n > 4 && (at_base || at_tip);
     if (result->converged) result->log += SampledContactNote(total, balanced, n, point_at_an_end);
     total = balanced;
   }

@@ -24,15 +24,17 @@ int CoarseFoundation(const io::Problem& problem, double spacings_per_length, dou
   return -1;
 }
 
-/// `advice` and "rod.nodes >= N" for a spacing of `spacings_per_length` foundation lengths;
-/// past the most nodes a problem may have (a stiffness of 1e25 N/m² asked for 9.8e6, 1e300
-/// overflowed), the stiffness to lower instead.
+/// `advice`, "rod.nodes >= N" for a spacing of `spacings_per_length` foundation lengths, and
+/// `more`; past the most nodes a problem may have (a stiffness of 1e25 N/m² asked for 9.8e6,
+/// 1e300 overflowed), the stiffness to lower instead (the other formulation needs such a grid
+/// too).
 std::string NodesFor(const io::Problem& problem, int k, double spacings_per_length,
-                     double foundation, const std::string& advice = "") {
+                     double foundation, const std::string& advice = "",
+                     const std::string& more = "") {
   const double nodes = std::ceil(problem.rod.length / (spacings_per_length * foundation)) + 1;
   std::ostringstream text;
   if (nodes <= io::kMaxRodNodes)
-    text << advice << "rod.nodes >= " << static_cast<long>(nodes);
+    text << advice << "rod.nodes >= " << static_cast<long>(nodes) << more;
   else
     text << "a lower environment.contact[" << k << "].stiffness (the grid it needs, "
          << std::setprecision(3) << nodes << " nodes, is over the " << io::kMaxRodNodes
@@ -51,7 +53,7 @@ std::string FoundationHint(const io::Problem& problem, double spacings_per_lengt
   hint << "cosserat: hint: the grid spacing " << std::setprecision(3) << h
        << " m is coarse for environment.contact[" << k
        << "]'s foundation length (4EI/k)^(1/4) = " << foundation << " m, " << why << ": try "
-       << NodesFor(problem, k, spacings_per_length, foundation, advice) << more
+       << NodesFor(problem, k, spacings_per_length, foundation, advice, more)
        << "\n";
   return hint.str();
 }
