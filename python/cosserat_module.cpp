@@ -76,7 +76,8 @@ auto ViewGetter(Field Owner::*field) {
 }
 
 /// An Actuation's list field back from a sequence of at most N numbers (zero-filled).
-/// A sequence of numbers, or a TypeError naming the field.
+/// A sequence of numbers; a TypeError naming the field for anything else, a ValueError naming
+/// the entry for a bool.
 std::vector<double> Numbers(const py::object& value, const std::string& name) {
   // A bool is no number (a file's `true` is refused too), which the cast below reads as 1.
   if (py::isinstance<py::sequence>(value) && !py::isinstance<py::str>(value)) {
@@ -423,6 +424,9 @@ void BindProblem(py::module_& m) {
       .def_property_readonly(
           "chamber_count", [](const io::Problem& p) { return p.rod.chambers.size(); },
           "The pressurised chambers of the rod (robot.chambers).")
+      .def_property_readonly(
+          "contact_count", [](const io::Problem& p) { return p.loads.contact.count; },
+          "The contact surfaces of the environment (environment.contact).")
       .def_property_readonly("jamming_segment_count", &python::JammingSegments,
                              "The switchable segments of a layer-jamming rod (0 for any other).")
       .def_property(

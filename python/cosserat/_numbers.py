@@ -6,6 +6,8 @@ import numpy as np
 def refuse_bools(value, where):
     """Raises ValueError naming `where` (and the index) when `value`, a number or a nested list,
     tuple or array of them, holds a bool."""
+    if value is None:  # an argument not given (step() is a hot path)
+        return
     if isinstance(value, (bool, np.bool_)):
         raise ValueError(f"{where}: expected a number, got {value!r}")
     if isinstance(value, np.ndarray):

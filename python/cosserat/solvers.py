@@ -28,16 +28,22 @@ class StaticSolver(_core.StaticSolver):
         self._rules = ProblemRules(problem)
 
     def solve(self, loads=None, base_position=None, base_rotation=None, actuation=None):
+        refuse_bools(base_position, "base_position")
+        refuse_bools(base_rotation, "base_rotation")
         summary = super().solve(_loads_from(loads, self._problem), base_position, base_rotation,
                                 _actuation_from(actuation, self._problem, self._rules))
         if summary.converged and summary.stability_index > 0:
-            # cosserat.solve() and the CLI settle beside such an equilibrium; a warm solver
-            # stays on the branch it follows (a column pressed past its buckling load straight).
-            warnings.warn(f"the equilibrium is unstable ({summary.stability_index} unstable "
-                          "direction(s)): the loads are past a critical point on the branch "
-                          "this solver follows; cosserat.solve() settles beside it, or ramp the "
-                          "loads with a small side load to follow the stable branch",
-                          RuntimeWarning, stacklevel=2)
+            head = (f"the equilibrium is unstable ({summary.stability_index} unstable "
+                    "direction(s)): ")
+            if self._problem.contact_count > 0:  # as the command says it: no settling there
+                why = ("on the frictionless contact surfaces of statics the rod can slide off "
+                       "them, or the loads are past a critical point; dynamics with friction "
+                       "on the surfaces holds it")
+            else:  # cosserat.solve() and the command settle beside it; this solver stays
+                why = ("the loads are past a critical point on the branch this solver "
+                       "follows; cosserat.solve() settles beside it, or ramp the loads with a "
+                       "small side load to follow the stable branch")
+            warnings.warn(head + why, RuntimeWarning, stacklevel=2)
         return summary
 
     def __repr__(self):
@@ -147,6 +153,12 @@ class Stepper(_core.Stepper):
 
     def step(self, loads=None, base_position=None, base_rotation=None, base_twist_B=None,
              base_wrench_B=None, actuation=None):
+        if not (base_position is None and base_rotation is None and base_twist_B is None
+                and base_wrench_B is None):  # a base moved (step() is a hot path)
+            for name, value in (("base_position", base_position),
+                                ("base_rotation", base_rotation), ("base_twist_B", base_twist_B),
+                                ("base_wrench_B", base_wrench_B)):
+                refuse_bools(value, name)
         if base_wrench_B is not None and self._problem.boundary != "free-free":
             raise ValueError("base_wrench_B: acts on a free-free rod's s = 0 end; this rod's "
                              f"base is {self._problem.boundary} (its clamp takes any wrench)")

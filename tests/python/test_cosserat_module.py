@@ -158,6 +158,12 @@ class ProblemFiles(unittest.TestCase):
             cosserat.Stepper(wire("dynamics")).step({"tip_force": [True, 0, 0]})
         with self.assertRaisesRegex(ValueError, r"^dt: expected a number"):
             cosserat.Stepper(wire("dynamics"), dt=True)
+        stepper = cosserat.Stepper(wire("dynamics"))
+        stepper.initialize_at_rest()
+        with self.assertRaisesRegex(ValueError, r"^base_position\[1\]: expected a number"):
+            stepper.step(base_position=[0, True, 0])
+        with self.assertRaisesRegex(ValueError, r"^base_position\[0\]: expected a number"):
+            cosserat.StaticSolver(wire()).solve(base_position=[True, 0, 0])
         with self.assertRaisesRegex(ValueError, r"actuation\.tendon_tension\[1\]"):
             cosserat.Actuation(tendon_tension=[1.0, False])
         loads = cosserat.Loads(gravity=[0, 0, -9.81], tip_force=[0, 0.1, 0])  # keywords
@@ -243,6 +249,13 @@ class Statics(unittest.TestCase):
             above = solver.solve({"tip_force": [0, 0, -2 * critical]})
         self.assertEqual(above.stability_index, 2)  # both lateral planes of the round wire
         self.assertIn("stability_index=2", repr(above))
+        # On a frictionless surface nothing settles: a finger pressed on a sphere slips off
+        # sideways (one unstable direction), and the warning says so, as the command's does.
+        with open("examples/finger_on_sphere.json") as f:
+            finger = json.load(f)
+        finger["formulation"] = "se3-shooting"
+        with self.assertWarnsRegex(RuntimeWarning, "the rod can slide off them"):
+            self.assertEqual(cosserat.StaticSolver(finger).solve().stability_index, 1)
 
     def test_tip_load_matches_the_elastica(self):
         # Bisshopp & Drucker's closed form (tests/reference/elastica_tip_load.json). Tolerance
