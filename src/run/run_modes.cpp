@@ -209,9 +209,15 @@ std::string UndampedShootingNote(const io::Problem& problem) {
   for (const double s : at) {
     if (s < 0 || s > problem.rod.length) continue;
     if (problem.rod.section->At(s, problem.robot.actuation).damping.cwiseAbs().maxCoeff() > 0)
-      return "cosserat: note: the se3-shooting modes are undamped (rod.material.damping is left "
-             "out); \"formulation\": \"quaternion-fd\" also gives each mode's damped frequency "
-             "and damping ratio\n";
+      return std::string("cosserat: note: the se3-shooting modes are undamped "
+                         "(rod.material.damping is left out)") +
+             (problem.boundary == io::Boundary::kCantilever ||
+                      problem.boundary == io::Boundary::kAnchored
+                  ? "; \"formulation\": \"quaternion-fd\" also gives each mode's damped "
+                    "frequency and damping ratio"
+                  : "; the quaternion-FD path, which gives damped modes, runs a cantilever or "
+                    "an \"anchored\" line") +
+             "\n";
   }
   return "";
 }
@@ -276,10 +282,19 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
 
   std::ostringstream log;
   log << "cosserat: " << ToString(r.status) << " (modes, " << io::ToString(problem.formulation)
-      << "), " << r.modes.size() << " modes:";
+      << "), " << r.modes.size() << " modes" << (r.modes.empty() ? "" : ":");
   for (const Mode& m : r.modes) log << ' ' << std::setprecision(6) << m.frequency_hz;
-  log << (r.modes.empty() ? "" : " Hz") << ", " << std::setprecision(3) << r.wall_time_s * 1e3
-      << " ms\n";
+  if (!r.modes.empty()) log << " Hz";
+  if (!r.damped.empty()) {  // each mode's ζ, or "overdamped" where it has no pair
+    log << ", damping ratios";
+    for (const DampedMode& d : r.damped) {
+      if (std::isnan(d.damping_ratio))
+        log << " overdamped";
+      else
+        log << ' ' << std::setprecision(4) << d.damping_ratio;
+    }
+  }
+  log << ", " << std::setprecision(3) << r.wall_time_s * 1e3 << " ms\n";
   if (r.status == ModalStatus::kUnstable && !r.instability.empty())
     log << "cosserat: unstable: " << r.instability << "\n";
   log << DeclinedNote(r) << UndampedShootingNote(problem);
