@@ -294,9 +294,9 @@ void AddContactReport(const io::Problem& problem, Result* result) {
     // The nodes in contact: the end node, or it and its neighbour, and none elsewhere, at either
     // end, is a point there.
     const auto touching = std::count(in_contact.begin(), in_contact.end(), true);
-    const bool at_base = in_contact[0] && touching == 1 + (in_contact[1] ? 1 : 0);
-    const bool at_tip = in_contact[n - 1] && touching == 1 + (in_contact[n - 2] ? 1 : 0);
-    const bool point_at_an_end = n > 4 && (at_base || at_tip);
+    const bool point_at_an_end =
+        n > 4 && ((in_contact[0] && touching == 1 + (in_contact[1] ? 1 : 0)) ||
+                  (in_contact[n - 1] && touching == 1 + (in_contact[n - 2] ? 1 : 0)));
     if (result->converged) result->log += SampledContactNote(total, balanced, n, point_at_an_end);
     total = balanced;
   }
