@@ -222,6 +222,26 @@ std::string UndampedShootingNote(const io::Problem& problem) {
   return "";
 }
 
+/// "cosserat: converged (modes, ...), 4 modes: f... Hz, damping ratios ζ..., t ms".
+std::string SummaryLine(const io::Problem& problem, const ModalResult& r) {
+  std::ostringstream log;
+  log << "cosserat: " << ToString(r.status) << " (modes, " << io::ToString(problem.formulation)
+      << "), " << r.modes.size() << " modes" << (r.modes.empty() ? "" : ":");
+  for (const Mode& m : r.modes) log << ' ' << std::setprecision(6) << m.frequency_hz;
+  if (!r.modes.empty()) log << " Hz";
+  if (!r.damped.empty()) {  // each mode's ζ, or "overdamped" where it has no pair
+    log << ", damping ratios";
+    for (const DampedMode& d : r.damped) {
+      if (std::isnan(d.damping_ratio))
+        log << " overdamped";
+      else
+        log << ' ' << std::setprecision(4) << d.damping_ratio;
+    }
+  }
+  log << ", " << std::setprecision(3) << r.wall_time_s * 1e3 << " ms\n";
+  return log.str();
+}
+
 }  // namespace
 
 Result RunModes(const io::Problem& problem, const RunOptions& options) {
@@ -281,20 +301,7 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(r.equilibrium);
 
   std::ostringstream log;
-  log << "cosserat: " << ToString(r.status) << " (modes, " << io::ToString(problem.formulation)
-      << "), " << r.modes.size() << " modes" << (r.modes.empty() ? "" : ":");
-  for (const Mode& m : r.modes) log << ' ' << std::setprecision(6) << m.frequency_hz;
-  if (!r.modes.empty()) log << " Hz";
-  if (!r.damped.empty()) {  // each mode's ζ, or "overdamped" where it has no pair
-    log << ", damping ratios";
-    for (const DampedMode& d : r.damped) {
-      if (std::isnan(d.damping_ratio))
-        log << " overdamped";
-      else
-        log << ' ' << std::setprecision(4) << d.damping_ratio;
-    }
-  }
-  log << ", " << std::setprecision(3) << r.wall_time_s * 1e3 << " ms\n";
+  log << SummaryLine(problem, r);
   if (r.status == ModalStatus::kUnstable && !r.instability.empty())
     log << "cosserat: unstable: " << r.instability << "\n";
   log << DeclinedNote(r) << UndampedShootingNote(problem);
