@@ -29,6 +29,6 @@ from .bend_radius import minimum_bend_radius  # noqa: F401  (an eversion robot's
 
 def load_problem(path):
     """Reads and validates a problem file (a str or os.PathLike path); ValueError names every
-    bad field."""
-    import os
-    return _core.load_problem(os.fspath(path))
+    bad field, and a file that is not there raises FileNotFoundError (a ValueError too)."""
+    from .results import _load_problem_file
+    return _load_problem_file(path)

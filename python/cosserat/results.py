@@ -1,4 +1,5 @@
 """cosserat.solve: any problem, given as a Problem, a dict or a path, with NumPy results."""
+import errno
 import io
 import json
 import os
@@ -57,6 +58,19 @@ def _json_text(value, root=""):
                       default=lambda v: v.tolist() if hasattr(v, "tolist") else v.item())
 
 
+class ProblemFileNotFoundError(FileNotFoundError, ValueError):
+    """A problem file that is not there: a FileNotFoundError, and a ValueError as every other
+    problem that cannot be read is."""
+
+
+def _load_problem_file(path):
+    """The validated problem of the file at `path` (a str or os.PathLike)."""
+    path = os.fspath(path)
+    if not os.path.exists(path):  # "[Errno 2] no such problem file: 'path'", as open() says
+        raise ProblemFileNotFoundError(errno.ENOENT, "no such problem file", path)
+    return _core.load_problem(path)
+
+
 def _as_problem(problem):
     if isinstance(problem, _core.Problem):
         return problem
@@ -66,7 +80,7 @@ def _as_problem(problem):
         raise ValueError("problem: got JSON text, expected a file path; pass the dict "
                          "(json.loads(text)) or cosserat.parse_problem(text)")
     if isinstance(problem, (str, os.PathLike)):
-        return _core.load_problem(os.fspath(problem))
+        return _load_problem_file(problem)
     raise TypeError("problem: expected a cosserat.Problem, a dict with the problem-file keys "
                     f"or a file path, got {type(problem).__name__}")
 

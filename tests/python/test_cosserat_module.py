@@ -151,6 +151,13 @@ class ProblemFiles(unittest.TestCase):
         with self.assertWarnsRegex(RuntimeWarning, "grid resolves the shape coarsely"):
             self.assertTrue(coarse.solve().converged)
 
+    def test_a_missing_file_is_a_file_not_found_error_and_a_value_error(self):
+        for call in (cosserat.load_problem, cosserat.solve, cosserat.StaticSolver):
+            with self.assertRaises(FileNotFoundError) as caught:
+                call("no/such/problem.json")
+            self.assertIsInstance(caught.exception, ValueError)  # as any unreadable problem
+            self.assertEqual(caught.exception.filename, "no/such/problem.json")
+
     def test_bools_are_refused_where_numbers_are_read(self):
         # A file's `true` is no number; neither is Python's True in a step's loads, a dt or an
         # actuation (it had become 1.0 N, or a 1 s step).
