@@ -344,7 +344,8 @@ int RunSolve(const Command& cmd) {
 int RunSweep(const Command& cmd) {
   const cosserat::io::StudyParseResult parsed = cosserat::io::LoadStudyFile(cmd.problem_path);
   if (!parsed.study) {
-    PrintLines(parsed.errors);
+    // Every MPI rank reads the file; one says what is wrong with it (each exits 2).
+    if (cosserat::apps::LaunchedRank() == 0) PrintLines(parsed.errors);
     return kExitBadInput;
   }
   cosserat::run::SweepOptions options;

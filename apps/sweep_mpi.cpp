@@ -20,6 +20,12 @@ int LaunchedRanks() {
   return 1;
 }
 
+int LaunchedRank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
+    if (const char* v = std::getenv(name)) return std::max(0, std::atoi(v));
+  return 0;
+}
+
 #ifndef COSSERAT_HAVE_MPI
 
 bool HaveMpi() { return false; }

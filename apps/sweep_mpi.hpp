@@ -15,6 +15,9 @@ namespace cosserat::apps {
 /// environment), or 1.
 int LaunchedRanks();
 
+/// This process's rank among them (the same environments), or 0.
+int LaunchedRank();
+
 /// True when this build can run a sweep over MPI ranks.
 bool HaveMpi();
 

@@ -9,6 +9,13 @@ rm -rf "$WORK" && mkdir -p "$WORK"
 "$MPIEXEC" --allow-run-as-root --oversubscribe -np 2 "$BIN" sweep "$STUDY" --out "$WORK/ranks.csv" \
   2> "$WORK/ranks.log"
 grep -q "on 2 MPI ranks" "$WORK/ranks.log" || { cat "$WORK/ranks.log"; echo "not run on 2 ranks"; exit 1; }
+# A study file with a mistake: its error once, not once per rank, and exit 2.
+sed '0,/{/s//{"nosuch_key": 1, /' "$STUDY" > "$WORK/bad.json"
+code=0
+"$MPIEXEC" --allow-run-as-root --oversubscribe -np 2 "$BIN" sweep "$WORK/bad.json" \
+  --out "$WORK/bad.csv" 2> "$WORK/bad.log" || code=$?
+[ "$(grep -c "nosuch_key" "$WORK/bad.log")" = 1 ] && [ "$code" = 2 ] ||
+  { cat "$WORK/bad.log"; echo "a bad study: exit $code, its error not printed once"; exit 1; }
 strip() { sed 's/,[^,]*$//' "$1"; }  # drop the last column, wall_time_s
 if diff <(strip "$WORK/one.csv") <(strip "$WORK/ranks.csv") > "$WORK/diff.txt"; then
   echo "2 MPI ranks: $(($(wc -l < "$WORK/ranks.csv") - 1)) rows, identical to one thread's"
