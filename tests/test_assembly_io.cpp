@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -173,6 +174,40 @@ TEST(AssemblyIo, GuidedBeamExampleDeflectsAsBeamTheory) {
   for (int i = 0; i < 2; ++i)
     sum += r.json["assembly"]["rods"][i]["base_wrench"]["force"][0].get<double>();
   EXPECT_NEAR(sum, -P, 1e-7 * P);
+}
+
+// The L-frame's --csv table holds each node's numbers as the result JSON does: every number
+// reads back to the same double, written as the shortest text that does, as a single rod's
+// table writes them (17 digits would write s = 0.01 as 0.010000000000000000).
+TEST(AssemblyIo, TheNodeTableWritesTheResultsNumbersShortest) {
+  run::RunOptions options;
+  options.nodes_csv = true;
+  const run::Result r = run::Run(Load("examples/l_frame.json"), options);
+  ASSERT_TRUE(r.converged) << r.log;
+  std::istringstream table(r.nodes_csv);
+  std::string line;
+  std::getline(table, line);
+  EXPECT_EQ(line, "rod,s,x,y,z");
+  int rows = 0, rod = -1, n = 0;  // n: the node within its rod
+  while (std::getline(table, line)) {
+    std::vector<std::string> cell;
+    std::istringstream fields(line);
+    for (std::string f; std::getline(fields, f, ',');) cell.push_back(f);
+    ASSERT_EQ(cell.size(), 5u) << line;
+    n = std::stoi(cell[0]) == rod ? n + 1 : 0;
+    rod = std::stoi(cell[0]);
+    const auto& nodes = r.json["assembly"]["rods"][rod]["nodes"];
+    // The same double, in no more characters than nlohmann's own shortest text (which adds
+    // ".0" to a whole number).
+    const auto same = [&](const std::string& text, const nlohmann::ordered_json& value) {
+      EXPECT_EQ(std::stod(text), value.get<double>()) << line;
+      EXPECT_LE(text.size(), value.dump().size()) << line;
+    };
+    same(cell[1], nodes["s"][n]);
+    for (int k = 0; k < 3; ++k) same(cell[2 + k], nodes["position"][n][k]);
+    ++rows;
+  }
+  EXPECT_GT(rows, 10);
 }
 
 // examples/l_frame.json: the members' internal forces against statics. P hangs from the beam's

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cosserat/assembly/assembly_statics.hpp"
+#include "cosserat/io/csv_line.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/run/run_assembly_dynamics.hpp"
@@ -22,13 +23,15 @@ json SolutionToJson(const Assembly& assembly, bool inverse, AssemblyStaticsSolve
                     std::string* csv) {
   std::vector<const RodState*> rods;
   std::ostringstream table;
-  table << "rod,s,x,y,z\n" << std::setprecision(17);
+  table << "rod,s,x,y,z\n";
+  io::CsvLine line;  // the shortest round-trip numbers, as a single rod's table
   for (int i = 0; i < solver->rod_count(); ++i) {
     const RodState& state = solver->rod_state(i);
     rods.push_back(&state);
     for (int n = 0; n < state.size(); ++n) {
       const Vec3& p = state.position_W[n];
-      table << i << ',' << state.s[n] << ',' << p.x() << ',' << p.y() << ',' << p.z() << '\n';
+      line << i << state.s[n] << p.x() << p.y() << p.z();
+      line.WriteTo(table);
     }
   }
   if (csv) *csv = table.str();

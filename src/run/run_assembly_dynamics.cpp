@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cosserat/assembly/assembly_dynamics.hpp"
+#include "cosserat/io/csv_line.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/lie/so3.hpp"
 #include "cosserat/run/solver_options.hpp"
@@ -52,11 +53,14 @@ void Record(const AssemblyDynamics& dyn, double t, const StaticLoads& loads,
     f->velocity[b].push_back(io::ToJson(dyn.body_velocity_W(b)));
   }
   if (!nodes) return;
+  io::CsvLine line;  // the shortest round-trip numbers, as a single rod's table
   for (int i = 0; i < dyn.rod_count(); ++i) {
     const RodState& s = dyn.rod(i).state();
-    for (int n = 0; n < s.size(); ++n)
-      f->csv << t << ',' << i << ',' << s.s[n] << ',' << s.position_W[n].x() << ','
-             << s.position_W[n].y() << ',' << s.position_W[n].z() << '\n';
+    for (int n = 0; n < s.size(); ++n) {
+      line << t << i << s.s[n] << s.position_W[n].x() << s.position_W[n].y()
+           << s.position_W[n].z();
+      line.WriteTo(f->csv);
+    }
   }
 }
 
@@ -142,7 +146,7 @@ Result RunAssemblyDynamics(const io::Problem& problem, const RunOptions& options
   frames.position.assign(B, json::array());
   frames.rotation.assign(B, json::array());
   frames.velocity.assign(B, json::array());
-  frames.csv << "t,rod,s,x,y,z\n" << std::setprecision(17);
+  frames.csv << "t,rod,s,x,y,z\n";
   const auto [steps, stride] = detail::StepsOf(d);
   SolveStatus status = init.status;
   int taken = 0, iterations = init.iterations;
