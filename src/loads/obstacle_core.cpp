@@ -54,6 +54,11 @@ bool HasObstacleCore(const ContactSurfaces& surfaces) {
 
 bool ReachesObstacleCore(const ContactSurfaces& surfaces, const std::vector<Vec3>& before,
                          const std::vector<Vec3>& after) {
+  return ObstacleCoreReached(surfaces, before, after) >= 0;
+}
+
+int ObstacleCoreReached(const ContactSurfaces& surfaces, const std::vector<Vec3>& before,
+                        const std::vector<Vec3>& after) {
   const bool paths = before.size() == after.size();
   for (int k = 0; k < surfaces.count; ++k) {
     const ContactSurface& s = surfaces.surface[k];
@@ -62,13 +67,13 @@ bool ReachesObstacleCore(const ContactSurfaces& surfaces, const std::vector<Vec3
       // What was in the core already (a start the caller gave, a surface moved onto the rod)
       // is not refused again: only what enters it.
       const bool node_was_clear = !paths || !SegmentReaches(s, before[i], before[i]);
-      if (node_was_clear && SegmentReaches(s, paths ? before[i] : after[i], after[i])) return true;
+      if (node_was_clear && SegmentReaches(s, paths ? before[i] : after[i], after[i])) return k;
       if (i == 0) continue;
       const bool segment_was_clear = !paths || !SegmentReaches(s, before[i - 1], before[i]);
-      if (segment_was_clear && SegmentReaches(s, after[i - 1], after[i])) return true;
+      if (segment_was_clear && SegmentReaches(s, after[i - 1], after[i])) return k;
     }
   }
-  return false;
+  return -1;
 }
 
 }  // namespace cosserat

@@ -9,16 +9,8 @@ namespace cosserat::run::detail {
 
 void ObstacleCoreWatch::Observe(double t, const std::vector<Vec3>& positions) {
   if (surface_ >= 0) return;  // the first entry is the one reported
-  for (int k = 0; k < surfaces_.count; ++k) {
-    ContactSurfaces one;
-    one.count = 1;
-    one.surface[0] = surfaces_.surface[k];
-    if (ReachesObstacleCore(one, last_, positions)) {
-      surface_ = k;
-      t_ = t;
-      return;
-    }
-  }
+  surface_ = ObstacleCoreReached(surfaces_, last_, positions);
+  if (surface_ >= 0) t_ = t;
   last_ = positions;  // no allocation once the first call has sized it
 }
 

@@ -17,7 +17,7 @@ namespace cosserat::run::detail {
 
 class ObstacleCoreWatch {
  public:
-  /// Keeps a copy of the surfaces (each checked on its own, so that the warning names it).
+  /// Keeps a copy of the surfaces.
   explicit ObstacleCoreWatch(const ContactSurfaces& surfaces) : surfaces_(surfaces) {}
 
   /// At the start and after every step at time t (s): the nodes' positions (world, m). The

@@ -27,4 +27,8 @@ bool HasObstacleCore(const ContactSurfaces& surfaces);
 bool ReachesObstacleCore(const ContactSurfaces& surfaces, const std::vector<Vec3>& before,
                          const std::vector<Vec3>& after);
 
+/// The same test, naming the surface: the index of the first one entered, or −1.
+int ObstacleCoreReached(const ContactSurfaces& surfaces, const std::vector<Vec3>& before,
+                        const std::vector<Vec3>& after);
+
 }  // namespace cosserat
