@@ -10,6 +10,7 @@
 ///   Exp(ξ + dξ) ≈ Exp(J_l(ξ) dξ) Exp(ξ) ≈ Exp(ξ) Exp(J_r(ξ) dξ).
 /// The optional Jacobians J_out_in of Compose, Inverse and Act use right (body-frame)
 /// perturbations of a pose, g ← g Exp(τ): J_Y_X = ∂ Log(Y(X)^{-1} Y(X Exp(τ))) / ∂τ at τ = 0.
+/// As in so3.hpp, the double overloads of the maps are compiled once, in src/lie/se3.cpp.
 
 #include <cmath>
 
@@ -89,7 +90,7 @@ inline Matrix4<T> hat6(const Vector6<T>& xi) {
   X.template topRightCorner<3, 1>() = xi.template tail<3>();
   return X;
 }
-inline Mat4 hat6(const Vec6& xi) { return hat6<double>(xi); }
+Mat4 hat6(const Vec6& xi);
 
 /// Inverse of hat6: [vee(top-left 3×3); top-right column].
 template <typename T>
@@ -98,7 +99,7 @@ inline Vector6<T> vee6(const Matrix4<T>& X) {
   xi << vee<T>(X.template topLeftCorner<3, 3>()), X.template topRightCorner<3, 1>();
   return xi;
 }
-inline Vec6 vee6(const Mat4& X) { return vee6<double>(X); }
+Vec6 vee6(const Mat4& X);
 
 /// Exponential map: Exp(ξ) = exp(hat6(ξ)) = (SO3Exp(ω), J_l(ω) v) for ξ = [ω; v].
 /// E.g. the pose reached from the identity by a constant strain ξ over unit arc length.
@@ -107,7 +108,7 @@ inline SE3T<T> SE3Exp(const Vector6<T>& xi) {
   const Vector3<T> w = xi.template head<3>();
   return {SO3Exp<T>(w), SO3LeftJacobian<T>(w) * xi.template tail<3>()};
 }
-inline SE3 SE3Exp(const Vec6& xi) { return SE3Exp<double>(xi); }
+SE3 SE3Exp(const Vec6& xi);
 
 /// Logarithm map: ξ = [ω; v] with ω = SO3Log(R), |ω| ≤ π, and v = J_l(ω)^{-1} p.
 template <typename T>
@@ -127,7 +128,7 @@ inline Matrix6<T> ad(const Vector6<T>& xi) {
   A << W, Matrix3<T>::Zero(), hat<T>(xi.template tail<3>()), W;
   return A;
 }
-inline Mat6 ad(const Vec6& xi) { return ad<double>(xi); }
+Mat6 ad(const Vec6& xi);
 
 /// Coadjoint on wrenches μ = [m; n]: coad(ξ) = ad(ξ)^T = [[−hat(ω), −hat(v)], [0, −hat(ω)]],
 /// defined by <coad(ξ) μ, η> = <μ, ad(ξ) η> for every twist η. Explicitly
@@ -142,7 +143,7 @@ inline Matrix6<T> coad(const Vector6<T>& xi) {
   A << Wt, -hat<T>(xi.template tail<3>()), Matrix3<T>::Zero(), Wt;
   return A;
 }
-inline Mat6 coad(const Vec6& xi) { return coad<double>(xi); }
+Mat6 coad(const Vec6& xi);
 
 /// Below this θ² (rad²) the Q block uses Taylor series up to θ⁶ (first omitted term below
 /// 3e-17 there). Above it the closed forms have cancellations of O(eps/θ) in the terms of Q, so
@@ -187,14 +188,14 @@ inline Matrix6<T> SE3LeftJacobian(const Vector6<T>& xi) {
   A << J, Matrix3<T>::Zero(), detail::se3_Q<T>(w, v), J;
   return A;
 }
-inline Mat6 SE3LeftJacobian(const Vec6& xi) { return SE3LeftJacobian<double>(xi); }
+Mat6 SE3LeftJacobian(const Vec6& xi);
 
 /// Right Jacobian of SE3Exp: J_r(ξ) = J_l(−ξ) = Ad(Exp(ξ))^{-1} J_l(ξ).
 template <typename T>
 inline Matrix6<T> SE3RightJacobian(const Vector6<T>& xi) {
   return SE3LeftJacobian<T>(-xi);
 }
-inline Mat6 SE3RightJacobian(const Vec6& xi) { return SE3LeftJacobian<double>(-xi); }
+Mat6 SE3RightJacobian(const Vec6& xi);
 
 /// Inverse of the left Jacobian: [[J_l(ω)^{-1}, 0], [−J_l(ω)^{-1} Q J_l(ω)^{-1}, J_l(ω)^{-1}]],
 /// valid for |ω| < 2π. J_l^{-1}(Log g) = ∂ Log(Exp(δ) g) / ∂δ at δ = 0.
@@ -206,7 +207,7 @@ inline Matrix6<T> SE3LeftJacobianInverse(const Vector6<T>& xi) {
   A << Ji, Matrix3<T>::Zero(), -Ji * detail::se3_Q<T>(w, v) * Ji, Ji;
   return A;
 }
-inline Mat6 SE3LeftJacobianInverse(const Vec6& xi) { return SE3LeftJacobianInverse<double>(xi); }
+Mat6 SE3LeftJacobianInverse(const Vec6& xi);
 
 /// Inverse of the right Jacobian: J_r^{-1}(ξ) = J_l^{-1}(−ξ); J_r^{-1}(Log g) = ∂ Log(g Exp(δ)) /
 /// ∂δ.
@@ -214,6 +215,6 @@ template <typename T>
 inline Matrix6<T> SE3RightJacobianInverse(const Vector6<T>& xi) {
   return SE3LeftJacobianInverse<T>(-xi);
 }
-inline Mat6 SE3RightJacobianInverse(const Vec6& xi) { return SE3LeftJacobianInverse<double>(-xi); }
+Mat6 SE3RightJacobianInverse(const Vec6& xi);
 
 }  // namespace cosserat::lie

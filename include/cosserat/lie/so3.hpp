@@ -32,6 +32,8 @@ inline Vector3<T> vee(const Matrix3<T>& W) {
 
 // Every map of this file is a template on the scalar T (double, or ceres::Jet to differentiate
 // through it, as in Sophus and manif), with a double overload that also takes Eigen expressions.
+// hat and vee are inline; the other double overloads are compiled once, in src/lie/so3.cpp, so
+// that a source which includes this header does not instantiate them all.
 inline Mat3 hat(const Vec3& w) { return hat<double>(w); }
 inline Vec3 vee(const Mat3& W) { return vee<double>(W); }
 
@@ -80,7 +82,7 @@ inline Matrix3<T> SO3Exp(const Vector3<T>& w) {
   const Matrix3<T> W = hat<T>(w);
   return Matrix3<T>::Identity() + k.a * W + k.b * W * W;
 }
-inline Mat3 SO3Exp(const Vec3& w) { return SO3Exp<double>(w); }
+Mat3 SO3Exp(const Vec3& w);
 
 /// Logarithm map: rotation vector w (rad) with SO3Exp(w) = R and |w| ∈ [0, π].
 /// At θ = π both ±w are valid; the sign is then arbitrary. For θ < π/2 the axis comes from the
@@ -114,7 +116,7 @@ inline Vector3<T> SO3Log(const Matrix3<T>& R) {
   if (axis.dot(sin_axis) < 0.0) axis = -axis;
   return theta * axis;
 }
-inline Vec3 SO3Log(const Mat3& R) { return SO3Log<double>(R); }
+Vec3 SO3Log(const Mat3& R);
 
 /// Left Jacobian of SO3Exp: J_l(w) = I + b hat(w) + c hat(w)² (see detail::SO3Coeffs).
 /// Exp(w + dw) ≈ Exp(J_l(w) dw) Exp(w): maps a change of w to a rotation increment in the
@@ -125,14 +127,14 @@ inline Matrix3<T> SO3LeftJacobian(const Vector3<T>& w) {
   const Matrix3<T> W = hat<T>(w);
   return Matrix3<T>::Identity() + k.b * W + k.c * W * W;
 }
-inline Mat3 SO3LeftJacobian(const Vec3& w) { return SO3LeftJacobian<double>(w); }
+Mat3 SO3LeftJacobian(const Vec3& w);
 
 /// Right Jacobian of SO3Exp: J_r(w) = J_l(−w) = J_l(w)^T; Exp(w + dw) ≈ Exp(w) Exp(J_r(w) dw).
 template <typename T>
 inline Matrix3<T> SO3RightJacobian(const Vector3<T>& w) {
   return SO3LeftJacobian<T>(-w);
 }
-inline Mat3 SO3RightJacobian(const Vec3& w) { return SO3LeftJacobian<double>(-w); }
+Mat3 SO3RightJacobian(const Vec3& w);
 
 /// Inverse of the left Jacobian: J_l^{-1}(w) = I − hat(w)/2 + d hat(w)², valid for |w| < 2π.
 /// J_l^{-1}(Log R) is the derivative of Log(Exp(δ) R) with respect to δ at δ = 0.
@@ -141,7 +143,7 @@ inline Matrix3<T> SO3LeftJacobianInverse(const Vector3<T>& w) {
   const Matrix3<T> W = hat<T>(w);
   return Matrix3<T>::Identity() - 0.5 * W + detail::so3_inv_coeff<T>(w.squaredNorm()) * W * W;
 }
-inline Mat3 SO3LeftJacobianInverse(const Vec3& w) { return SO3LeftJacobianInverse<double>(w); }
+Mat3 SO3LeftJacobianInverse(const Vec3& w);
 
 /// Inverse of the right Jacobian: J_r^{-1}(w) = J_l^{-1}(−w), valid for |w| < 2π.
 /// J_r^{-1}(Log R) is the derivative of Log(R Exp(δ)) with respect to δ at δ = 0.
@@ -149,19 +151,11 @@ template <typename T>
 inline Matrix3<T> SO3RightJacobianInverse(const Vector3<T>& w) {
   return SO3LeftJacobianInverse<T>(-w);
 }
-inline Mat3 SO3RightJacobianInverse(const Vec3& w) { return SO3LeftJacobianInverse<double>(-w); }
+Mat3 SO3RightJacobianInverse(const Vec3& w);
 
 /// R turned by the least rotation that takes its third column onto the direction d (any length
 /// > 0): a frame's axis laid along d with no turn about it (half a turn about the first column
 /// when d points the other way). R itself when d is zero.
-inline Mat3 SO3TurnedOnto(const Mat3& R, const Vec3& d) {
-  const double n = d.norm();
-  if (!(n > 0.0)) return R;
-  const Vec3 z = R.col(2), e = d / n;
-  const Vec3 axis = z.cross(e);
-  const double s = axis.norm(), c = z.dot(e);
-  if (s < 1e-12) return c > 0.0 ? R : Mat3(R * SO3Exp(Vec3(M_PI, 0.0, 0.0)));
-  return SO3Exp(Vec3(axis / s * std::atan2(s, c))) * R;
-}
+Mat3 SO3TurnedOnto(const Mat3& R, const Vec3& d);
 
 }  // namespace cosserat::lie
