@@ -173,8 +173,9 @@ void ReadOutputs(const ObjectReader& top, Study* study_out) {
       }
       // A parameter's column is named by its path: an output of that name would give the CSV
       // two columns of one name, and the row dict of cosserat.sweep one key for both.
-      const auto clash = std::find_if(study.parameters.begin(), study.parameters.end(),
-                                      [&](const StudyParameter& p) { return p.path == name; });
+      const auto clash = std::find_if(
+          study.parameters.begin(), study.parameters.end(),
+          [&column = name](const StudyParameter& p) { return p.path == column; });
       if (clash != study.parameters.end()) {
         report.Expected(where,
                         "a name other than a parameter's column (parameters[" +
