@@ -300,17 +300,26 @@ TEST(Tendons, RedundantTendonsReachALengthCommandFromAnyStart) {
   Lengths slack_c = command_of({1.2, 0.5, 0.0, 0.0});
   slack_c[2] += 2e-3;
   const Lengths pretensioned = command_of({1.2, 0.5, 0.1, 0.1});
-  const Lengths* commands[] = {&slack_c, &pretensioned};
+  // Pretensioned enough that the family, (1.5, 0.9, 0.6, 0.6) + t (1, −1, 1, −1) for t in
+  // [−0.6, 0.6], holds every start's least-norm answer with all four taut.
+  const Lengths co_contracted = command_of({1.5, 0.9, 0.6, 0.6});
+  const Lengths* commands[] = {&slack_c, &pretensioned, &co_contracted};
   for (const Lengths* c : commands) {
     const auto& command = *c;
     Actuation a = Tensions({0.3, 0.3, 0.3, 0.3});
     const TendonLengthSummary s = SolveTendonLengths(solver, lie::SE3{}, loads, command, &a);
     ASSERT_TRUE(s.converged()) << ToString(s.status) << ", length error " << s.length_error;
     EXPECT_LT(s.length_error, 1e-10 * length);
+    int taut = 0;
     for (int i = 0; i < 4; ++i) {
       EXPECT_GE(a.tendon_tension[i], 0.0);
       if (!s.slack[i]) EXPECT_NEAR(solver.tendon_lengths()[i], command[i], 1e-10 * length);
+      taut += !s.slack[i];
     }
+    // Any three of the four make the three strains independently, so the tensions are free in
+    // one direction, (1, −1, 1, −1), exactly when all four are taut, as the summary says.
+    EXPECT_EQ(s.free_tension_directions, std::max(0, taut - 3)) << taut << " taut";
+    if (c == &co_contracted) EXPECT_EQ(taut, 4);
     if (c != &slack_c) continue;
     // With c slack the other three tensions are unique (three strains): the truth's, to the
     // ~1e-7 N the length tolerance recovers.
@@ -346,6 +355,7 @@ TEST(Tendons, ALengthCommandFarFromTheStartIsReached) {
   EXPECT_TRUE(s.slack[1]);
   EXPECT_LT(s.length_error, 1e-10 * p.rod.length);
   EXPECT_LT(s.residual, 1e-9);  // the final equilibrium's, reported
+  EXPECT_EQ(s.free_tension_directions, 0);  // two tendons 120° apart: two independent bends
 }
 
 // A two-segment robot: tendon A anchored at the middle (s = L/2, its segment's end), tendon B

@@ -41,6 +41,15 @@ VecT LeastNormStep(const MatT& D, const VecT& rhs) {
   return cod.solve(rhs);
 }
 
+/// The number of independent ways the active tensions can change with no change of the lengths
+/// (the null space of D's active block, pivots below 1e-6 of the largest counted as zero, as
+/// in LeastNormStep).
+int FreeTensionDirections(const MatT& D) {
+  Eigen::CompleteOrthogonalDecomposition<MatT> cod(D);
+  cod.setThreshold(1e-6);
+  return static_cast<int>(D.rows() - cod.rank());
+}
+
 /// The largest |ℓ − ℓ_cmd| (m) over the tendons that are taut (τ > 0) or would be (g > 0).
 double TautMismatch(int count, const VecT& tau, const VecT& g) {
   double worst = 0.0;
@@ -93,6 +102,16 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
         summary.slack[i] = !active[i];
         actuation->tendon_tension[i] = tau(i);
       }
+      // Whether the lengths fix the tensions: the sensitivities at the answer (warm re-solves),
+      // then the answer's equilibrium again.
+      MatT D_end;
+      if (std::count(active.begin(), active.end(), true) > 1 &&
+          ActiveSensitivities(mismatch, count, tau, g, active, &D_end)) {
+        summary.free_tension_directions = FreeTensionDirections(D_end);
+      }
+      summary.status = SolveStatus::kConverged;  // a failed sensitivity solve does not undo it
+      VecT g_end;
+      mismatch(tau, &g_end);
       return summary;
     }
     MatT D;

@@ -71,20 +71,15 @@ std::string ContinuationHint(const io::Problem& problem, const StaticShootingSum
   return hint.str();
 }
 
-/// After a tendon robot's solve that ended in non-finite numbers: the shot stops where the
-/// tendon strain law (Rucker & Webster 2011: K (ξ − ξ*) + T(ξ) = W at each section) has no
-/// solution it can reach (tendon_law_limit.hpp). The hint names the largest τ r²/EI.
-std::string TendonLawHint(const io::Problem& problem, const Actuation& actuation,
-                          const StaticShootingSummary& summary) {
-  if (summary.status != SolveStatus::kNonFinite || problem.rod.tendons.empty()) return "";
-  const detail::TendonLawLoad worst = detail::LargestTendonLawLoad(problem, actuation);
-  std::ostringstream hint;
-  hint << "cosserat: hint: the tendon strain law had no solution along the rod: tendon \""
-       << worst.name << "\" pulls with tension x offset^2 / EI = " << std::setprecision(3)
-       << worst.ratio
-       << " (at 1 the inside of the bend, where a tendon runs, shrinks to zero length); lower "
-          "the tensions or stiffen the backbone\n";
-  return hint.str();
+/// After displacement control whose lengths leave the tensions free in `directions` ways
+/// (TendonLengthSummary::free_tension_directions): the tensions are one set of a family.
+std::string TensionFamilyNote(int directions) {
+  if (directions <= 0) return "";
+  return "cosserat: note: the commanded lengths do not fix the tensions: the taut tendons bend "
+         "the rod alike, and their tensions can change in " +
+         std::to_string(directions) +
+         " way(s) with no change of shape; these are one such set (a taut tendon may carry 0 "
+         "N), so give tensions where their split matters (co-contraction, stiffness)\n";
 }
 
 /// A column (boundary "pinned-pinned", "clamped-clamped" or "clamped-pinned"): the loads
@@ -309,6 +304,7 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
   for (int i = 0; i < Actuation::kMaxTendons; ++i)
     slack[i] = actuation.tendon_tension[i] == 0.0;  // force control: slack means no tension
   double length_error = -1.0;  // displacement control: the largest |ℓ − ℓ_cmd|, m
+  int free_tension_directions = 0;  // displacement control: the tensions' family's dimension
   if (problem.robot.tendon_lengths && summary.converged()) {
     // Displacement control: the tensions that give the commanded tendon lengths.
     const auto t0 = std::chrono::steady_clock::now();
@@ -322,6 +318,7 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     slack = t.slack;
     length_error = t.length_error;
+    free_tension_directions = t.free_tension_directions;
   }
   Result result;
   result.json = io::StaticResultToJson(summary, solver.state());
@@ -348,7 +345,8 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
   const RodState& state = solver.state();
   result.log = StaticSummary(summary, state, problem) + '\n' + settled_note +
                (state.RanAway() ? FramesLeftRotationsLine(state, problem.rod.length)
-                                : TendonLawHint(problem, actuation, summary));
+                                : TendonLawHint(problem, actuation, summary.status)) +
+               TensionFamilyNote(free_tension_directions);
   if (!problem.has_robot) result.log += ContinuationHint(problem, summary);
   const bool on_surfaces = problem.loads.contact.count > 0;
   result.log += detail::UnstableWarning(summary, true, on_surfaces) + unjudged;

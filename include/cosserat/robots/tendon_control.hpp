@@ -29,6 +29,11 @@ struct TendonLengthSummary {
   /// too, at the last accepted step; 0 when the first static solve failed)
   double length_error = 0.0;
   std::array<bool, Actuation::kMaxTendons> slack{};
+  /// Converged only: how many independent ways the taut tendons' tensions could change with no
+  /// change of any length (0 when the lengths fix the tensions; 1 for four parallel tendons at
+  /// 90°, whose lengths make only two curvatures and a stretch). The tensions returned are then
+  /// one of a family with the same shape, and a taut tendon may carry 0 N.
+  int free_tension_directions = 0;
   bool converged() const { return status == SolveStatus::kConverged; }
 };
 
