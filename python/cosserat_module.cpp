@@ -25,6 +25,7 @@
 #include "cosserat/run/grid_resolution.hpp"
 #include "cosserat/run/run.hpp"
 #include "cosserat/run/run_dynamics.hpp"
+#include "cosserat/run/run_statics.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/bdf2_stepper.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
@@ -190,6 +191,8 @@ class PyStaticSolver {
         multiple_ ? multiple_->Solve(base_, loads_) : solver_.Solve(base_, loads_);
     const RodState& shot = multiple_ ? multiple_->state() : solver_.state();
     if (s.converged() || shot.RanAway()) CheckGrid(&s);  // a runaway is said, not only counted
+    // A tendon robot's shot that failed short of running away: the CLI's hint, as a warning.
+    if (!shot.RanAway()) Warn(run::TendonLawHint(problem_, solver_.actuation(), s.status));
     last_status_ = s.status;
     return s;
   }
@@ -199,11 +202,15 @@ class PyStaticSolver {
     const RodState& state = multiple_ ? multiple_->state() : solver_.state();
     const run::GridResolution g = run::CheckGrid(state, problem_.rod.length);
     if (g.ran_away) s->status = SolveStatus::kNonFinite;
-    if (g.log.empty()) return;
-    std::string text = g.log.substr(0, g.log.size() - 1);  // without its newline
-    for (const char* prefix : {"cosserat: warning: ", "cosserat: "})
+    Warn(g.log);
+  }
+  /// A line of the CLI's log, as a RuntimeWarning without its "cosserat: ..." prefix.
+  static void Warn(const std::string& log) {
+    if (log.empty()) return;
+    std::string text = log.substr(0, log.find_last_not_of('\n') + 1);
+    for (const char* prefix : {"cosserat: warning: ", "cosserat: hint: ", "cosserat: "})
       if (text.rfind(prefix, 0) == 0) text.erase(0, std::string(prefix).size());
-    if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 1) < 0) throw py::error_already_set();
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 2) < 0) throw py::error_already_set();
   }
   /// The equilibrium of the last solve(); refused when it did not converge (the solver's state
   /// is then a load step's, not an equilibrium of what was asked).

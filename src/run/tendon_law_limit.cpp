@@ -1,5 +1,10 @@
 #include "tendon_law_limit.hpp"
 
+#include <iomanip>
+#include <sstream>
+
+#include "cosserat/run/run_statics.hpp"
+
 namespace cosserat::run::detail {
 
 TendonLawLoad LargestTendonLawLoad(const io::Problem& problem, const Actuation& actuation) {
@@ -16,3 +21,20 @@ TendonLawLoad LargestTendonLawLoad(const io::Problem& problem, const Actuation& 
 }
 
 }  // namespace cosserat::run::detail
+
+namespace cosserat::run {
+
+std::string TendonLawHint(const io::Problem& problem, const Actuation& actuation,
+                          SolveStatus status) {
+  if (status != SolveStatus::kNonFinite || problem.rod.tendons.empty()) return "";
+  const detail::TendonLawLoad worst = detail::LargestTendonLawLoad(problem, actuation);
+  std::ostringstream hint;
+  hint << "cosserat: hint: the tendon strain law had no solution along the rod: tendon \""
+       << worst.name << "\" pulls with tension x offset^2 / EI = " << std::setprecision(3)
+       << worst.ratio
+       << " (at 1 the inside of the bend, where a tendon runs, shrinks to zero length); lower "
+          "the tensions or stiffen the backbone\n";
+  return hint.str();
+}
+
+}  // namespace cosserat::run

@@ -312,6 +312,16 @@ class Statics(unittest.TestCase):
         actuation.tendon_tension = [-1.0, 0.0, 0.0]
         with self.assertRaisesRegex(ValueError, "tendon_tension"):
             solver.solve(cosserat.Loads(), actuation=actuation)
+        # Past the tendon law's limit, τ d²/EI = 1 at 66 N, the inside of the bend would shrink
+        # to nothing and the shot fails: non_finite, with the command's hint as a warning that
+        # names the ratio, 100 × 0.008² / EI = 1.52.
+        actuation.tendon_tension = [100.0, 0.0, 0.0]
+        with self.assertWarnsRegex(RuntimeWarning, r"tendon strain law.* = 1\.52 "):
+            summary = solver.solve(cosserat.Loads(), actuation=actuation)
+        self.assertEqual(summary.status, "non_finite")
+        # Tendon lengths are an inverse solve, which cosserat.solve runs; this solver says so.
+        with self.assertRaisesRegex(ValueError, r"actuation\.length: .*cosserat\.solve\(\)"):
+            solver.solve(actuation={"length": [0.25, 0.25, 0.25]})
 
 
     def test_chamber_pressure_bends_its_segment_only(self):
@@ -500,7 +510,8 @@ class Dynamics(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, r"actuation\.tension: expected one value per "
                                                 r"tendon \(3 in robot\.tendons\)"):
             b.step(actuation={"tension": [1.0]})
-        with self.assertRaisesRegex(ValueError, r"actuation\.length: unknown key"):
+        # Tendon lengths are statics' inverse solve: the message says where it runs.
+        with self.assertRaisesRegex(ValueError, r"actuation\.length: .*cosserat\.solve\(\)"):
             b.initialize_at_rest(actuation={"length": [0.1, 0.1, 0.1]})
         # The static solver takes the same dicts: the same equilibrium as with objects.
         objects, dicts = cosserat.StaticSolver(p), cosserat.StaticSolver(p)

@@ -5,13 +5,23 @@
 /// lengths), or a column's ("pinned-pinned", "clamped-clamped", "clamped-pinned"; plain rods,
 /// loads followed from the unloaded column).
 
+#include <string>
+
 #include "cosserat/io/problem.hpp"
 #include "cosserat/run/result.hpp"
+#include "cosserat/state/solve_status.hpp"
 
 namespace cosserat::run {
 
 /// Solves a statics problem; a tendon robot adds a "robot" block (tensions, lengths, slack) to
 /// Result::json. Converged when the solve converged.
 Result RunStatics(const io::Problem& problem, const RunOptions& options);
+
+/// Why a tendon robot's static solve under `actuation` ended in non-finite numbers, when the
+/// tendon strain law is the likely cause (Rucker & Webster 2011: K (ξ − ξ*) + T(ξ) = W has no
+/// solution the shot can reach at a section): a "cosserat: hint: " line naming the tendon with
+/// the largest tension × offset² / EI. Empty for any other status or a rod without tendons.
+std::string TendonLawHint(const io::Problem& problem, const Actuation& actuation,
+                          SolveStatus status);
 
 }  // namespace cosserat::run
