@@ -41,10 +41,17 @@ VecT LeastNormStep(const MatT& D, const VecT& rhs) {
   return cod.solve(rhs);
 }
 
-/// The number of independent ways the active tensions can change with no change of the lengths
-/// (the null space of D's active block, pivots below 1e-6 of the largest counted as zero, as
-/// in LeastNormStep).
-int FreeTensionDirections(const MatT& D) {
+/// The number of independent ways the active tensions can change at tau with no change of the
+/// lengths: the null space of the sensitivities' active block (warm re-solves), pivots below
+/// 1e-6 of the largest counted as zero, as in LeastNormStep. 0 with one active tendon, or when a
+/// re-solve fails. The solver is left at a perturbed equilibrium.
+template <class Mismatch>
+int FreeTensionDirections(const Mismatch& mismatch, int count, const VecT& tau, const VecT& g,
+                          const std::array<bool, Actuation::kMaxTendons>& active) {
+  MatT D;
+  if (std::count(active.begin(), active.end(), true) < 2 ||
+      !ActiveSensitivities(mismatch, count, tau, g, active, &D))
+    return 0;
   Eigen::CompleteOrthogonalDecomposition<MatT> cod(D);
   cod.setThreshold(1e-6);
   return static_cast<int>(D.rows() - cod.rank());
@@ -102,16 +109,10 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
         summary.slack[i] = !active[i];
         actuation->tendon_tension[i] = tau(i);
       }
-      // Whether the lengths fix the tensions: the sensitivities at the answer (warm re-solves),
-      // then the answer's equilibrium again.
-      MatT D_end;
-      if (std::count(active.begin(), active.end(), true) > 1 &&
-          ActiveSensitivities(mismatch, count, tau, g, active, &D_end)) {
-        summary.free_tension_directions = FreeTensionDirections(D_end);
-      }
+      summary.free_tension_directions = FreeTensionDirections(mismatch, count, tau, g, active);
       summary.status = SolveStatus::kConverged;  // a failed sensitivity solve does not undo it
       VecT g_end;
-      mismatch(tau, &g_end);
+      mismatch(tau, &g_end);  // the answer's equilibrium again
       return summary;
     }
     MatT D;
