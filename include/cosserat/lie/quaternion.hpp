@@ -4,8 +4,8 @@
 /// q and −q are the same rotation. QuatToRotation(q) is the matrix R with QuatRotate(q, x) = R x,
 /// i.e. the same R as SO3Exp(θ a) for q = [cos(θ/2), sin(θ/2) a]. Used by the quaternion
 /// finite-difference model (Lang & Linn 2009). Note that Eigen::Quaterniond stores [x, y, z, w] in
-/// memory. The maps on doubles that are more than a line are compiled once, in
-/// src/lie/quaternion.cpp.
+/// memory. QuatToRotation, RotationToQuat and the axis-angle maps are compiled once, in
+/// src/lie/quaternion.cpp; the short ones (multiply, conjugate, normalise, rotate) stay inline.
 
 #include <Eigen/Geometry>
 #include <cmath>
