@@ -331,6 +331,36 @@ TEST(Tendons, RedundantTendonsReachALengthCommandFromAnyStart) {
   }
 }
 
+// A stiff backbone (steel, r 1.5 mm, 0.25 m) with three parallel tendons 120° apart, 8 mm out:
+// the lengths' sensitivity to a common tension is the stretch, about 3 L/EA = 5e-7 m/N, against
+// the bends' r² L/EI = 1.9e-5 m/N. Any rank threshold must be relative to these: an absolute one
+// of 1e-6 m/N took the stretch for round-off, dropped it from every Newton step and stopped at
+// max_iterations with all three tensions 4.7 N low. The three tendons make the three strains,
+// so (20, 10, 5) N are the only tensions with their lengths. The length tolerance, 1e-10 L =
+// 2.5e-11 m, bounds the common tension's error by 2.5e-11 / 5e-7 = 5e-5 N: 1e-4 asserted.
+TEST(Tendons, AStiffBackbonesStretchIsNotTakenForRoundOff) {
+  const double length = 0.25;
+  RodModel model = RodModel::Uniform(length, CrossSection::Circle(0.0015),
+                                     Material::FromShearModulus(210e9, 80e9, 7800));
+  for (int i = 0; i < 3; ++i)
+    model.tendons.push_back({std::string(1, char('a' + i)),
+                             TendonRoute::Parallel(0.008 * Vec2(std::cos(i * 2 * kPi / 3),
+                                                                std::sin(i * 2 * kPi / 3)))});
+  StaticShootingSolver solver(model, 41);
+  solver.SetActuation(Tensions({20.0, 10.0, 5.0}));
+  ASSERT_TRUE(solver.Solve(lie::SE3{}, StaticLoads{}).converged());
+  std::array<double, Actuation::kMaxTendons> command{};
+  for (int i = 0; i < 3; ++i) command[i] = solver.tendon_lengths()[i];
+  StaticShootingSolver fresh(model, 41);
+  Actuation a;  // from zero tension
+  const TendonLengthSummary s = SolveTendonLengths(fresh, lie::SE3{}, StaticLoads{}, command, &a);
+  ASSERT_TRUE(s.converged()) << ToString(s.status) << ", length error " << s.length_error;
+  EXPECT_NEAR(a.tendon_tension[0], 20.0, 1e-4);
+  EXPECT_NEAR(a.tendon_tension[1], 10.0, 1e-4);
+  EXPECT_NEAR(a.tendon_tension[2], 5.0, 1e-4);
+  EXPECT_EQ(s.free_tension_directions, 0);
+}
+
 // Displacement control far from its start: the three-tendon robot's path lengths at (25, 0, 1.5) N
 // (a 0.8 mm backbone bent to κ ≈ 47 /m) commanded from zero tension. The search must reach the
 // tensions that produce them (tendon b, stretched by the bend, goes slack when commanded at its

@@ -12,21 +12,30 @@ using VecT = Eigen::Matrix<double, Actuation::kMaxTendons, 1>;
 using MatT = Eigen::Matrix<double, Actuation::kMaxTendons, Actuation::kMaxTendons>;
 
 /// The Newton matrix of the active set: dℓ_i/dτ_j (m/N) by forward differences (step 1e-6 of the
-/// tension scale) for active i and j, the identity elsewhere. mismatch(τ, &g) gives the lengths
-/// minus the commands at τ (false if the static solve fails, and then so does this).
+/// tension scale) for active i and j; elsewhere a diagonal of the active block's largest entry,
+/// so that the rank thresholds below are relative to the sensitivities (a stiff backbone's
+/// stretch, n L/EA, is far below 1 m/N). mismatch(τ, &g) gives the lengths minus the commands at
+/// τ (false if the static solve fails, and then so does this).
 template <class Mismatch>
 bool ActiveSensitivities(const Mismatch& mismatch, int count, const VecT& tau, const VecT& g,
                          const std::array<bool, Actuation::kMaxTendons>& active, MatT* D) {
-  *D = MatT::Identity();
+  D->setZero();
   const double scale = std::max(1e-3, tau.head(count).cwiseAbs().maxCoeff());
+  double largest = 0.0;
   for (int j = 0; j < count; ++j) {
     if (!active[j]) continue;
     VecT t2 = tau, g2;
     const double h = 1e-6 * scale;
     t2(j) += h;
     if (!mismatch(t2, &g2)) return false;
-    for (int i = 0; i < count; ++i) (*D)(i, j) = active[i] ? (g2(i) - g(i)) / h : (i == j);
+    for (int i = 0; i < count; ++i) {
+      if (!active[i]) continue;
+      (*D)(i, j) = (g2(i) - g(i)) / h;
+      largest = std::max(largest, std::abs((*D)(i, j)));
+    }
   }
+  for (int k = 0; k < Actuation::kMaxTendons; ++k)
+    if (k >= count || !active[k]) (*D)(k, k) = largest > 0.0 ? largest : 1.0;
   return true;
 }
 
@@ -41,20 +50,27 @@ VecT LeastNormStep(const MatT& D, const VecT& rhs) {
   return cod.solve(rhs);
 }
 
-/// The number of independent ways the active tensions can change at tau with no change of the
-/// lengths: the null space of the sensitivities' active block (warm re-solves), pivots below
-/// 1e-6 of the largest counted as zero, as in LeastNormStep. 0 with one active tendon, or when a
-/// re-solve fails. The solver is left at a perturbed equilibrium.
+/// At an answer tau: the number of independent ways the taut tensions can change with no change
+/// of the lengths (`count`: the null space of the sensitivities' taut block from warm re-solves,
+/// pivots below 1e-6 of the largest counted as zero, as in LeastNormStep; −1 when a re-solve
+/// failed), and whether the solver holds tau's equilibrium again afterwards (`restored`).
+struct FreeDirections {
+  int count = 0;
+  bool restored = true;
+};
 template <class Mismatch>
-int FreeTensionDirections(const Mismatch& mismatch, int count, const VecT& tau, const VecT& g,
-                          const std::array<bool, Actuation::kMaxTendons>& active) {
+FreeDirections FreeTensionDirections(const Mismatch& mismatch, int count, const VecT& tau,
+                                     const VecT& g,
+                                     const std::array<bool, Actuation::kMaxTendons>& taut) {
+  if (std::count(taut.begin(), taut.end(), true) < 2) return {};  // nothing to perturb
   MatT D;
-  if (std::count(active.begin(), active.end(), true) < 2 ||
-      !ActiveSensitivities(mismatch, count, tau, g, active, &D))
-    return 0;
+  const bool measured = ActiveSensitivities(mismatch, count, tau, g, taut, &D);
+  VecT g_again;
+  const bool restored = mismatch(tau, &g_again);
+  if (!measured || !restored) return {-1, restored};
   Eigen::CompleteOrthogonalDecomposition<MatT> cod(D);
   cod.setThreshold(1e-6);
-  return static_cast<int>(D.rows() - cod.rank());
+  return {static_cast<int>(D.rows() - cod.rank()), true};
 }
 
 /// The largest |ℓ − ℓ_cmd| (m) over the tendons that are taut (τ > 0) or would be (g > 0).
@@ -104,15 +120,18 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
     for (int i = 0; i < count; ++i) active[i] = tau(i) > 0 || g(i) > 0;
     const double worst = summary.length_error = TautMismatch(count, tau, g);
     if (worst < tol) {
-      summary.status = SolveStatus::kConverged;
+      // Taut: pulling, or at its commanded length to the tolerance (a tendon at 0 N whose path
+      // is within tol of its cable is taut whichever side round-off puts it).
+      std::array<bool, Actuation::kMaxTendons> taut{};
       for (int i = 0; i < count; ++i) {
-        summary.slack[i] = !active[i];
+        taut[i] = tau(i) > 0 || g(i) > -tol;
+        summary.slack[i] = !taut[i];
         actuation->tendon_tension[i] = tau(i);
       }
-      summary.free_tension_directions = FreeTensionDirections(mismatch, count, tau, g, active);
-      summary.status = SolveStatus::kConverged;  // a failed sensitivity solve does not undo it
-      VecT g_end;
-      mismatch(tau, &g_end);  // the answer's equilibrium again
+      const FreeDirections free = FreeTensionDirections(mismatch, count, tau, g, taut);
+      summary.free_tension_directions = free.count;
+      // A failed sensitivity solve does not undo the answer; a failed re-solve of it does.
+      if (free.restored) summary.status = SolveStatus::kConverged;
       return summary;
     }
     MatT D;

@@ -332,7 +332,10 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
     robot["tendon_length"] = std::vector<double>(solver.tendon_lengths().begin(),
                                                  solver.tendon_lengths().begin() + count);
     robot["tendon_slack"] = std::vector<bool>(slack.begin(), slack.begin() + count);
-    if (length_error >= 0.0) robot["tendon_length_error"] = length_error;
+    if (length_error >= 0.0) {
+      robot["tendon_length_error"] = length_error;
+      if (summary.converged()) robot["free_tension_directions"] = free_tension_directions;
+    }
     if (!problem.rod.chambers.empty())
       robot["chamber_pressure"] =
           std::vector<double>(actuation.chamber_pressure.begin(),
@@ -346,7 +349,7 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
   result.log = StaticSummary(summary, state, problem) + '\n' + settled_note +
                (state.RanAway() ? FramesLeftRotationsLine(state, problem.rod.length)
                                 : TendonLawHint(problem, actuation, summary.status)) +
-               TensionFamilyNote(free_tension_directions);
+               (summary.converged() ? TensionFamilyNote(free_tension_directions) : "");
   if (!problem.has_robot) result.log += ContinuationHint(problem, summary);
   const bool on_surfaces = problem.loads.contact.count > 0;
   result.log += detail::UnstableWarning(summary, true, on_surfaces) + unjudged;

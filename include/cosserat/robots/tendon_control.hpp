@@ -31,8 +31,9 @@ struct TendonLengthSummary {
   std::array<bool, Actuation::kMaxTendons> slack{};
   /// Converged only: how many independent ways the taut tendons' tensions could change with no
   /// change of any length (0 when the lengths fix the tensions; 1 for four parallel tendons at
-  /// 90°, whose lengths make only two curvatures and a stretch). The tensions returned are then
-  /// one of a family with the same shape, and a taut tendon may carry 0 N.
+  /// 90°, whose lengths make only two curvatures and a stretch; −1 when a re-solve for the count
+  /// failed). The tensions returned are then one of a family with the same shape, and a taut
+  /// tendon may carry 0 N. Counting takes one warm re-solve per taut tendon, and one more.
   int free_tension_directions = 0;
   bool converged() const { return status == SolveStatus::kConverged; }
 };
