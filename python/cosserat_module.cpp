@@ -204,12 +204,16 @@ class PyStaticSolver {
     if (g.ran_away) s->status = SolveStatus::kNonFinite;
     Warn(g.log);
   }
-  /// A line of the CLI's log, as a RuntimeWarning without its "cosserat: ..." prefix.
+  /// The CLI's log lines, as one RuntimeWarning without their "cosserat: ..." prefixes.
   static void Warn(const std::string& log) {
-    if (log.empty()) return;
-    std::string text = log.substr(0, log.find_last_not_of('\n') + 1);
-    for (const char* prefix : {"cosserat: warning: ", "cosserat: hint: ", "cosserat: "})
-      if (text.rfind(prefix, 0) == 0) text.erase(0, std::string(prefix).size());
+    std::string text, line;
+    std::istringstream lines(log);
+    while (std::getline(lines, line)) {
+      for (const char* prefix : {"cosserat: warning: ", "cosserat: hint: ", "cosserat: "})
+        if (line.rfind(prefix, 0) == 0) line.erase(0, std::string(prefix).size());
+      if (!line.empty()) text += (text.empty() ? "" : "\n") + line;
+    }
+    if (text.empty()) return;
     if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 2) < 0) throw py::error_already_set();
   }
   /// The equilibrium of the last solve(); refused when it did not converge (the solver's state

@@ -123,8 +123,8 @@ def _actuation_from(value, problem, rules):
         return fit_to_problem(value, rules)
     if "length" in value:  # the file's key, for an inverse solve these solvers do not run
         raise ValueError("actuation.length: tendon lengths are met by an inverse solve, which "
-                         "cosserat.solve() runs (robot.actuation = {\"length\": [...]}); this "
-                         "solver takes tensions")
+                         "cosserat.solve() runs on a statics problem (robot.actuation = "
+                         "{\"length\": [...]}); this solver takes tensions")
     return _core._parse_actuation(problem, _json_text(value, "actuation"))
 
 

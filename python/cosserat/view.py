@@ -51,7 +51,7 @@ def _web_dir():
     try:  # a pip-installed copy: setup.py recorded the repository it was built from
         from cosserat._source import SOURCE_DIR
         candidates.append(os.path.join(SOURCE_DIR, "web"))
-    except ImportError:
+    except (ImportError, SyntaxError):  # none, or written from a path it could not quote
         pass
     for web in candidates:
         if os.path.exists(os.path.join(web, "index.html")):

@@ -20,7 +20,8 @@ Result RunStatics(const io::Problem& problem, const RunOptions& options);
 /// Why a tendon robot's static solve under `actuation` ended in non-finite numbers, when the
 /// tendon strain law is the likely cause (Rucker & Webster 2011: K (ξ − ξ*) + T(ξ) = W has no
 /// solution the shot can reach at a section): a "cosserat: hint: " line naming the tendon with
-/// the largest tension × offset² / EI. Empty for any other status or a rod without tendons.
+/// the largest tension × offset² / EI. Empty for any other status, a rod without tendons, or
+/// that ratio below 0.5 (another cause).
 std::string TendonLawHint(const io::Problem& problem, const Actuation& actuation,
                           SolveStatus status);
 
