@@ -81,6 +81,15 @@ double TautMismatch(int count, const VecT& tau, const VecT& g) {
   return worst;
 }
 
+/// At an answer: the tendons that pull, or sit at their commanded length to the tolerance tol
+/// (m: a tendon at 0 N within tol of its cable is taut whichever side round-off puts it).
+std::array<bool, Actuation::kMaxTendons> TautAt(int count, const VecT& tau, const VecT& g,
+                                                double tol) {
+  std::array<bool, Actuation::kMaxTendons> taut{};
+  for (int i = 0; i < count; ++i) taut[i] = tau(i) > 0 || g(i) > -tol;
+  return taut;
+}
+
 }  // namespace
 
 TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::SE3& base,
@@ -120,11 +129,8 @@ TendonLengthSummary SolveTendonLengths(StaticShootingSolver& solver, const lie::
     for (int i = 0; i < count; ++i) active[i] = tau(i) > 0 || g(i) > 0;
     const double worst = summary.length_error = TautMismatch(count, tau, g);
     if (worst < tol) {
-      // Taut: pulling, or at its commanded length to the tolerance (a tendon at 0 N whose path
-      // is within tol of its cable is taut whichever side round-off puts it).
-      std::array<bool, Actuation::kMaxTendons> taut{};
+      const std::array<bool, Actuation::kMaxTendons> taut = TautAt(count, tau, g, tol);
       for (int i = 0; i < count; ++i) {
-        taut[i] = tau(i) > 0 || g(i) > -tol;
         summary.slack[i] = !taut[i];
         actuation->tendon_tension[i] = tau(i);
       }

@@ -332,10 +332,9 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
     robot["tendon_length"] = std::vector<double>(solver.tendon_lengths().begin(),
                                                  solver.tendon_lengths().begin() + count);
     robot["tendon_slack"] = std::vector<bool>(slack.begin(), slack.begin() + count);
-    if (length_error >= 0.0) {
-      robot["tendon_length_error"] = length_error;
-      if (summary.converged()) robot["free_tension_directions"] = free_tension_directions;
-    }
+    if (length_error >= 0.0) robot["tendon_length_error"] = length_error;
+    if (length_error >= 0.0 && summary.converged())
+      robot["free_tension_directions"] = free_tension_directions;
     if (!problem.rod.chambers.empty())
       robot["chamber_pressure"] =
           std::vector<double>(actuation.chamber_pressure.begin(),
