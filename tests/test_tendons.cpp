@@ -273,6 +273,15 @@ TEST(Tendons, LengthCommandReachesTheTensionThatProducesItAndASlackTendonCarries
   EXPECT_GT(command[1], solver.tendon_lengths()[1]);  // slack: the path is shorter than the cable
 }
 
+// n parallel tendons "a", "b", ... at `offset` (m) from the axis, evenly spaced in angle from +x.
+void AddEvenlySpacedParallelTendons(int n, double offset, RodModel* model) {
+  for (int i = 0; i < n; ++i) {
+    const double angle = 2 * kPi * i / n;
+    const Vec2 at = offset * Vec2(std::cos(angle), std::sin(angle));
+    model->tendons.push_back({std::string(1, char('a' + i)), TendonRoute::Parallel(at)});
+  }
+}
+
 // Four parallel tendons at 90° make only three strains, two curvatures and the stretch, so
 // Newton's matrix on their tensions is singular whenever all four are taut, as they are from
 // 0.3 N each. A command reachable with tensions (1.2, 0.5, 0, 0) N and tendon c's cable 2 mm
@@ -284,10 +293,7 @@ TEST(Tendons, RedundantTendonsReachALengthCommandFromAnyStart) {
   const double length = 0.25;
   RodModel model = RodModel::Uniform(length, CrossSection::Circle(0.0006),
                                      Material::FromShearModulus(58e9, 21.8e9, 6450));
-  for (int i = 0; i < 4; ++i)
-    model.tendons.push_back({std::string(1, char('a' + i)),
-                             TendonRoute::Parallel(0.006 * Vec2(std::cos(i * kPi / 2),
-                                                                std::sin(i * kPi / 2)))});
+  AddEvenlySpacedParallelTendons(4, 0.006, &model);
   StaticLoads loads;
   loads.gravity_W = Vec3(0, 0, -9.81);
   StaticShootingSolver solver(model, 41);
@@ -342,10 +348,7 @@ TEST(Tendons, AStiffBackbonesStretchIsNotTakenForRoundOff) {
   const double length = 0.25;
   RodModel model = RodModel::Uniform(length, CrossSection::Circle(0.0015),
                                      Material::FromShearModulus(210e9, 80e9, 7800));
-  for (int i = 0; i < 3; ++i)
-    model.tendons.push_back({std::string(1, char('a' + i)),
-                             TendonRoute::Parallel(0.008 * Vec2(std::cos(i * 2 * kPi / 3),
-                                                                std::sin(i * 2 * kPi / 3)))});
+  AddEvenlySpacedParallelTendons(3, 0.008, &model);
   StaticShootingSolver solver(model, 41);
   solver.SetActuation(Tensions({20.0, 10.0, 5.0}));
   ASSERT_TRUE(solver.Solve(lie::SE3{}, StaticLoads{}).converged());
