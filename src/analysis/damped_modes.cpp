@@ -186,8 +186,8 @@ std::vector<DampedPair> DampedSpectrum(bool symmetric, const Eigen::MatrixXd& Ar
 }  // namespace
 
 bool DampedOfModes(bool symmetric, const Eigen::MatrixXd& Ar, const Eigen::MatrixXd& Br,
-                   const std::vector<Mode>& modes, Eigen::MatrixXd* companion,
-                   std::vector<DampedMode>* out) {
+                   const std::vector<Mode>& modes, double judged_above,
+                   Eigen::MatrixXd* companion, std::vector<DampedMode>* out) {
   const std::vector<DampedPair> pairs =
       DampedSpectrum(symmetric, Ar, Br, 2 * static_cast<int>(modes.size()) + 6, companion);
   const Eigen::VectorXd modal_omega =
@@ -197,7 +197,7 @@ bool DampedOfModes(bool symmetric, const Eigen::MatrixXd& Ar, const Eigen::Matri
                 : Eigen::VectorXd();
   *out = AlignDamped(modes, pairs, modal_omega);
   for (const DampedPair& p : pairs)  // a growing pair, whichever mode it belongs to
-    if (p.mode.damping_ratio < -1e-9) return true;
+    if (p.mode.omega_n > judged_above && p.mode.damping_ratio < -1e-9) return true;
   return false;
 }
 

@@ -14,9 +14,9 @@ namespace cosserat::detail {
 /// first-order form [[0, Ω], [−Ω, −D]] SymmetricSpectrum built, whose pairs are matched by
 /// shape; else the plain companion matrix [[0, I], [Ar, Br]] of the reduced Jacobians is built
 /// there, and pairs are matched by |λ|. True when one of the 2n + 6 lowest pairs grows
-/// (Re λ > 0).
+/// (Re λ > 0), of those with |λ| above `judged_above` (rad/s; the neutral modes' round-off below).
 bool DampedOfModes(bool symmetric, const Eigen::MatrixXd& Ar, const Eigen::MatrixXd& Br,
-                   const std::vector<Mode>& modes, Eigen::MatrixXd* companion,
+                   const std::vector<Mode>& modes, double judged_above, Eigen::MatrixXd* companion,
                    std::vector<DampedMode>* out);
 
 }  // namespace cosserat::detail

@@ -346,7 +346,41 @@ struct Spectra {
   int dense_size = 0;         ///< its size: the reduced coordinates, twice them when damped
   bool has_damping = false;   ///< ∂f/∂v has an entry: the model is damped
   double lowest_complex = std::numeric_limits<double>::infinity();  ///< flutter (GeneralSpectrum)
+  double norm = 0.0;  ///< ‖Ar‖₁ = ‖M⁻¹K‖₁, rad²/s²: no |ω²| exceeds it
 };
+
+/// The neutral entries of a spectrum (Mode::neutral): its lowest |ω²|, up to six of them, when
+/// they are round-off of zero (within 1e3 ε of `norm`, ‖M⁻¹K‖) and the next |ω²| stands
+/// clear of round-off and more than 1e4 above them. A neutral ω² comes out at either sign, so
+/// the sign test alone called a riser bowed about a vertical chord, free to turn about it,
+/// unstable or (at ω² = +6e-11, in the grid check that divides by ω) under-resolved by 1e9 %.
+/// A pair of unstable planes next to a stable one (a wire standing past its self-weight
+/// buckling: ω² = −2.9 twice, then +146) is far from both bounds. `omega_below` (rad/s): the
+/// gap's geometric middle in ω, under which no damped pair is judged either; 0 when none.
+struct NeutralEntries {
+  std::vector<bool> neutral;
+  double omega_below = 0.0;
+};
+NeutralEntries FindNeutralEntries(const Spectrum& eig, double norm) {
+  NeutralEntries out;
+  out.neutral.assign(eig.size(), false);
+  std::vector<size_t> order(eig.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return std::abs(eig[a].first) < std::abs(eig[b].first);
+  });
+  constexpr size_t kMostNeutral = 6;  // the rigid motions of a body
+  constexpr double kGap = 1e4;        // in ω²: 1e2 in frequency
+  for (size_t m = 1; m < order.size() && m <= kMostNeutral; ++m) {
+    const double below = std::abs(eig[order[m - 1]].first), above = std::abs(eig[order[m]].first);
+    if (AboveRoundOff(below, norm) || !AboveRoundOff(above, norm) || !(above > kGap * below))
+      continue;
+    for (size_t j = 0; j < m; ++j) out.neutral[order[j]] = true;
+    out.omega_below = std::sqrt(std::sqrt(below * above));
+    break;
+  }
+  return out;
+}
 
 /// The spectrum of the linearisation A = ∂f/∂q, B = ∂f/∂v: from the banded factorisation on a
 /// large grid without damping to resolve, when the stiffness is symmetric and definite
@@ -356,11 +390,18 @@ Spectra ComputeSpectrum(const BandedMatrix& A, const BandedMatrix& B, const Redu
   Spectra out;
   out.has_damping = B.ToSparse().nonZeros() > 0;
   if (red.T.cols() > options.sparse_above && !(options.damped && out.has_damping)) {
-    const Eigen::SparseMatrix<double> S =
-        -(SparseMassPower(red, 1.0) * (red.P * (A.ToSparse() * red.T)));
+    const Eigen::SparseMatrix<double> Ar = red.P * (A.ToSparse() * red.T);
+    const Eigen::SparseMatrix<double> S = -(SparseMassPower(red, 1.0) * Ar);
     result->symmetric = IsSymmetric(S);
+    for (int j = 0; j < Ar.outerSize(); ++j) {
+      double column = 0.0;
+      for (Eigen::SparseMatrix<double>::InnerIterator it(Ar, j); it; ++it)
+        column += std::abs(it.value());
+      out.norm = std::max(out.norm, column);
+    }
+    // One more than asked for: the next mode tells a neutral one (FindNeutralEntries).
     if (result->symmetric)
-      result->sparse = LowestModesSparse(S, red, options.count, options.shapes, &out.eig);
+      result->sparse = LowestModesSparse(S, red, options.count + 1, options.shapes, &out.eig);
     if (result->sparse) return out;
   }
   // Damped modes take the companion problem, twice the coordinates (and the general solver).
@@ -371,6 +412,7 @@ Spectra ComputeSpectrum(const BandedMatrix& A, const BandedMatrix& B, const Redu
   }
   out.Ar = red.P * (A.ToDense() * red.T);
   out.Br = red.P * (B.ToDense() * red.T);
+  out.norm = out.Ar.cwiseAbs().colwise().sum().maxCoeff();
   // Stiffness S = −M Ar (at an equilibrium, where the forces vanish, the turning of an added
   // mass's block adds nothing to Ar); ω² and reduced eigenvectors, ascending.
   const Eigen::MatrixXd S = -MassTimes(red, red.mass, 1.0, out.Ar);
@@ -437,15 +479,17 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
     unstable = true;
   };
   const double w2_max = eig.empty() ? 0.0 : std::abs(eig.back().first);
+  const NeutralEntries neutral = FindNeutralEntries(eig, sp.norm);
   const NodeWeights weights = QuatFdNodeWeights(*model, q);
   for (int i = 0;
        i < static_cast<int>(eig.size()) && static_cast<int>(result.modes.size()) < options.count;
        ++i) {
     Mode mode;
     const double w2 = eig[i].first;
-    if (lowest_complex <= std::abs(w2)) mark(FlutterReason(lowest_complex));
-    if (AboveRoundOff(-w2, w2_max)) mark(DivergenceReason(w2));
-    mode.omega = SignedSqrt(w2);
+    mode.neutral = neutral.neutral[i];
+    if (!mode.neutral && lowest_complex <= std::abs(w2)) mark(FlutterReason(lowest_complex));
+    if (!mode.neutral && AboveRoundOff(-w2, w2_max)) mark(DivergenceReason(w2));
+    mode.omega = mode.neutral ? 0.0 : SignedSqrt(w2);
     mode.frequency_hz = mode.omega / kTwoPi;
     if (options.shapes) {
       QuatFdShape(*model, red, q, eig[i].second, &mode);
@@ -455,9 +499,11 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   }
 
   // The factorisation found the stiffness indefinite where the spectrum's low end is round-off.
-  if (indefinite) mark(DivergenceReason(eig.empty() ? 0.0 : eig.front().first));
-  if (damped &&
-      DampedOfModes(result.symmetric, sp.Ar, sp.Br, result.modes, &sp.companion, &result.damped))
+  // (Not when its most negative ω² is a neutral one: then every negative one is.)
+  if (indefinite && !(eig.empty() ? false : neutral.neutral.front()))
+    mark(DivergenceReason(eig.empty() ? 0.0 : eig.front().first));
+  if (damped && DampedOfModes(result.symmetric, sp.Ar, sp.Br, result.modes, neutral.omega_below,
+                              &sp.companion, &result.damped))
     mark("a damped mode grows (Re λ > 0)");
   // Fewer real modes than asked for: any complex pair is below the last one there could be.
   if (static_cast<int>(result.modes.size()) < options.count && std::isfinite(lowest_complex))

@@ -222,6 +222,21 @@ std::string UndampedShootingNote(const io::Problem& problem) {
   return "";
 }
 
+/// Which modes are neutral (Mode::neutral), and what that means.
+std::string NeutralNote(const ModalResult& r) {
+  std::string which;
+  int count = 0;
+  for (size_t m = 0; m < r.modes.size(); ++m)
+    if (r.modes[m].neutral) which += (count++ ? ", " : " ") + std::to_string(m + 1);
+  if (count == 0) return "";
+  return std::string("cosserat: note: mode") + (count > 1 ? "s" : "") + which +
+         (count > 1 ? " are" : " is") +
+         " neutral, listed at 0 Hz: a motion that costs no energy, whose computed ω² is round-off "
+         "of zero (such as a bowed line turning about a chord that gravity runs along, or an "
+         "equilibrium at its critical load); neither the stability nor the grid is judged by "
+         "it\n";
+}
+
 /// "cosserat: converged (modes, ...), 4 modes: f... Hz, damping ratios ζ..., t ms".
 std::string SummaryLine(const io::Problem& problem, const ModalResult& r) {
   std::ostringstream log;
@@ -273,6 +288,9 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
   std::vector<std::string> kinds;
   for (const Mode& m : r.modes) kinds.push_back(ToString(m.kind));
   modes["kinds"] = kinds;
+  std::vector<bool> neutral;
+  for (const Mode& m : r.modes) neutral.push_back(m.neutral);
+  modes["neutral"] = neutral;
   if (problem.boundary == io::Boundary::kAnchored) {  // a cable's in-plane and sideways modes
     const std::vector<std::string> planes =
         detail::ModePlanes(r.equilibrium, r.modes, problem.loads.gravity_W);
@@ -304,7 +322,7 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
   log << SummaryLine(problem, r);
   if (r.status == ModalStatus::kUnstable && !r.instability.empty())
     log << "cosserat: unstable: " << r.instability << "\n";
-  log << DeclinedNote(r) << UndampedShootingNote(problem);
+  log << DeclinedNote(r) << UndampedShootingNote(problem) << NeutralNote(r);
   const ModesGrid grid = CheckModesGrid(problem, r);
   if (problem.formulation == io::Formulation::kQuaternionFd && r.equilibrium.size() > 0)
     log << ClampedEndGridWarning(problem, r.equilibrium);  // the statics' own warning

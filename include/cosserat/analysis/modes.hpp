@@ -47,6 +47,11 @@ struct Mode {
   double omega = 0;         ///< natural circular frequency ω, rad/s
   double frequency_hz = 0;  ///< ω / 2π, Hz
   ModeKind kind = ModeKind::kBending;
+  /// quatfd: a neutral mode, a motion that costs no energy (a bowed line turning about the
+  /// chord that gravity runs along, or an equilibrium at its critical load). Its computed ω² is
+  /// round-off: within 1e3 ε of the stiffness's norm and 1e4 below the next mode's. Listed at
+  /// ω = 0, and neither the stability nor the grid is judged by it.
+  bool neutral = false;
   /// Shares of the kinetic energy (sum 1): translation across / along the tangent, rotation
   /// about the tangent, rotation across it.
   double share_transverse = 0, share_axial = 0, share_twist = 0, share_tilt = 0;
