@@ -369,7 +369,8 @@ TEST(ProblemIo, LaterAnalysesParseButAreGated) {
   // buckling there only under conservative (world-frame) tip loads.
   ASSERT_EQ(gated.size(), 1u);
   EXPECT_EQ(gated[0], R"(boundary: "pinned-pinned" is not implemented in this version )"
-                      R"((supported: "cantilever"))");
+                      R"((supported: "cantilever") for "analysis": "buckling" on "quaternion-fd"; )"
+                      R"("pinned-pinned" runs statics, buckling and modes on "se3-shooting")");
   j["loads"]["tip_force_frame"] = "body";
   const std::vector<std::string> follower = UnsupportedFeatures(*Parse(j).problem);
   ASSERT_EQ(follower.size(), 2u);
@@ -394,7 +395,9 @@ TEST(ProblemIo, LaterAnalysesParseButAreGated) {
   const std::vector<std::string> free = UnsupportedFeatures(*Parse(j).problem);
   ASSERT_EQ(free.size(), 1u);
   EXPECT_EQ(free[0], R"(boundary: "free-free" is not implemented in this version (supported: )"
-                     R"("cantilever", "pinned-pinned", "clamped-clamped", "clamped-pinned"))");
+                     R"("cantilever", "pinned-pinned", "clamped-clamped", "clamped-pinned") )"
+                     R"(for "analysis": "buckling" on "se3-shooting"; "free-free" runs dynamics )"
+                     R"(on "se3-shooting")");
 }
 
 // Dimensions that pass their own checks but underflow together are named where they were given:
@@ -714,7 +717,8 @@ TEST(ProblemIo, DynamicsRunsForCantileverFreeFreeAndClampedColumns) {
   ASSERT_EQ(gated.size(), 1u);
   EXPECT_EQ(gated[0], R"(boundary: "pinned-pinned" is not implemented in this version )"
                       R"((supported: "cantilever", "free-free", "clamped-clamped", )"
-                      R"("clamped-pinned"))");
+                      R"("clamped-pinned") for "analysis": "dynamics" on "se3-shooting"; )"
+                      R"("pinned-pinned" runs statics, buckling and modes on "se3-shooting")");
   // A column's guided tip takes a dead tip force only.
   j["boundary"] = "clamped-pinned";
   j["loads"]["tip_force_frame"] = "body";

@@ -37,6 +37,20 @@ StaticMultipleShootingOptions MultipleShootingOptionsFor(ColumnEnds ends) {
   return o;
 }
 
+double EulerLoadCoefficient(ColumnEnds ends) {
+  switch (ends) {
+    case ColumnEnds::kClampedFree:
+      return 2.4674;  // π²/4
+    case ColumnEnds::kPinnedPinned:
+      return 9.8696;  // π²
+    case ColumnEnds::kClampedPinned:
+      return 20.19;  // 4.4934², the root of tan x = x
+    case ColumnEnds::kClampedClamped:
+      return 39.478;  // 4π²
+  }
+  return 0.0;
+}
+
 bool ParseColumnEnds(const std::string& name, ColumnEnds* ends) {
   for (ColumnEnds e : {ColumnEnds::kClampedFree, ColumnEnds::kPinnedPinned,
                        ColumnEnds::kClampedClamped, ColumnEnds::kClampedPinned}) {

@@ -91,9 +91,39 @@ void ClampedTipFeatures(const Problem& p, std::vector<std::string>* out) {
         "the rod");
 }
 
-/// The boundary each analysis and formulation runs with.
-void BoundaryFeatures(const Problem& p, std::vector<std::string>* out) {
+void BoundaryFeatures(const Problem& p, std::vector<std::string>* out, bool explain = true);
+
+/// Where the problem's boundary runs, by formulation: "; \"pinned-pinned\" runs statics,
+/// buckling and modes on \"se3-shooting\"" (a boundary refused for one analysis works in
+/// another, and the refusal alone read as if it did not exist).
+std::string WhereBoundaryRuns(const Problem& p) {
+  std::string where;
+  for (const Formulation f : {Formulation::kSe3Shooting, Formulation::kQuaternionFd}) {
+    std::vector<std::string> runs;
+    for (const Analysis a :
+         {Analysis::kStatics, Analysis::kDynamics, Analysis::kBuckling, Analysis::kModes}) {
+      Problem q;
+      q.boundary = p.boundary;
+      q.analysis = a;
+      q.formulation = f;
+      std::vector<std::string> refused;
+      BoundaryFeatures(q, &refused, false);
+      if (refused.empty()) runs.push_back(ToString(a));
+    }
+    if (runs.empty()) continue;
+    where += where.empty() ? "; " + detail::Quote(ToString(p.boundary)) + " runs " : ", and ";
+    for (size_t i = 0; i < runs.size(); ++i)
+      where += (i == 0 ? "" : i + 1 == runs.size() ? " and " : ", ") + runs[i];
+    where += std::string(" on ") + detail::Quote(ToString(f));
+  }
+  return where;
+}
+
+/// The boundary each analysis and formulation runs with; with `explain`, a refusal names the
+/// analysis and formulation it is for and where the boundary runs.
+void BoundaryFeatures(const Problem& p, std::vector<std::string>* out, bool explain) {
   using A = Analysis;
+  const size_t before = out->size();
   using B = Boundary;
   const bool quatfd = p.formulation == Formulation::kQuaternionFd;
   // Every analysis and formulation runs; the boundary depends on both.
@@ -121,6 +151,10 @@ void BoundaryFeatures(const Problem& p, std::vector<std::string>* out) {
   else  // modes
     CheckSupported("boundary", p.boundary,
                    {B::kCantilever, B::kPinnedPinned, B::kClampedClamped, B::kClampedPinned}, out);
+  if (explain && out->size() > before &&
+      out->back().find(" is not implemented in this version (supported: ") != std::string::npos)
+    out->back() += " for \"analysis\": " + detail::Quote(ToString(p.analysis)) + " on " +
+                   detail::Quote(ToString(p.formulation)) + WhereBoundaryRuns(p);
   // Modes of a rod held at both ends on the quaternion-FD path: the anchored rod has them.
   const bool held_ends = p.boundary == B::kPinnedPinned || p.boundary == B::kClampedClamped ||
                          p.boundary == B::kClampedPinned;

@@ -66,7 +66,7 @@ GridResolution CheckGrid(const std::vector<double>& s, const std::vector<Vec3>& 
         << "segment at s = " << s[i] << " m spans " << segment << " m for " << h
         << " m of rod, while the curvature turns the section by " << turn
         << " rad on it, which RK4 in s cannot follow" << (converged ? ": status non_finite" : "")
-        << "; check the loads' and the actuation's units";
+        << "; check the units of the loads, the actuation and rod.rest_curvature (rad/m)";
     // The turn of a shot that ran away may be its runaway's, not the shape's: nodes from it
     // only while they stay within 50 times the grid's (a tendon curling a rod 4.8 rad per
     // segment asks for 17 times; a 100 m pipe on a bore's wall asked for 238 193 489, and a
@@ -138,8 +138,8 @@ GridResolution CheckGrid(const RodState& state, double length, bool converged) {
   out.ran_away = true;
   out.under_resolved = false;
   out.log = CoarseShapeLine(lead.str(), out.worst_turn, out.worst_s, out.worst_k, length,
-                            "is lost, as RK4 shrinks the frames it turns (check the loads' and "
-                            "the actuation's units)");
+                            "is lost, as RK4 shrinks the frames it turns (check the units of "
+                            "the loads, the actuation and rod.rest_curvature, rad/m)");
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cosserat/analysis/buckling.hpp"
+#include "cosserat/analysis/column_ends.hpp"
 #include "cosserat/analysis/buckling_in_pieces.hpp"
 #include "cosserat/analysis/quatfd_buckling.hpp"
 #include "cosserat/loads/total_load.hpp"
@@ -14,6 +15,7 @@
 #include "cosserat/rod/stiffness_profiles.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
+#include "column_guide_note.hpp"
 #include "frame_output.hpp"
 #include "node_table.hpp"
 #include "tendon_law_limit.hpp"
@@ -109,8 +111,10 @@ std::string FlutterNote(const io::Problem& problem, BucklingStatus status) {
 }
 
 /// After a search that found no critical load: the file's loads push the rod across its axis
-/// (an imperfection), so it bends smoothly along the path and has no bifurcation to find.
-std::string ImperfectionNote(const io::Problem& problem, BucklingStatus status) {
+/// (an imperfection), so it bends smoothly along the path and has no bifurcation to find. A
+/// column's tip guide takes a tip force across the axis whole: that one bends nothing.
+std::string ImperfectionNote(const io::Problem& problem, ColumnEnds ends,
+                             BucklingStatus status) {
   if (status != BucklingStatus::kNotFound && status != BucklingStatus::kPathFailed) return "";
   // On contact surfaces the loads across the axis press the rod onto them, which can leave a
   // plane of symmetry (a pipe on the low side of a bore buckles sideways): not an imperfection.
@@ -119,12 +123,40 @@ std::string ImperfectionNote(const io::Problem& problem, BucklingStatus status) 
   const Vec3 axis = problem.base.R.col(2);  // the rod's tangent at s = 0, world
   auto across = [&](const Vec3& f) { return f.cross(axis).norm() > 1e-12 * f.norm(); };
   const bool drag = l.fluid.present() && across(l.fluid.velocity_W);
-  if (!(across(l.tip_force) || across(l.distributed_force_W) || across(l.gravity_W) || drag))
+  const bool tip = ends == ColumnEnds::kClampedFree && across(l.tip_force);
+  if (!(tip || across(l.distributed_force_W) || across(l.gravity_W) || drag))
     return "";
   return "cosserat: note: the file's loads push the rod across its axis, an imperfection: it "
          "bends smoothly as the load grows, with no bifurcation to find (a limit point, if any, "
          "is what the search reports); \"analysis\": \"statics\" gives the deflection under a "
          "load\n";
+}
+
+/// After a search that found no critical load for a dead tip force that presses the rod along
+/// its axis: buckling.max below the Euler load of its ends (EI the least along the rod), which
+/// the search then never reaches. The file's other loads move the critical load, so this is a
+/// pointer, not a bound.
+std::string BelowEulerNote(const io::Problem& problem, ColumnEnds ends, BucklingStatus status) {
+  if (status != BucklingStatus::kNotFound ||
+      problem.buckling.load != io::BucklingLoad::kTipForce ||
+      problem.loads.tip_force_frame == LoadFrame::kBody || !problem.rod.section)
+    return "";
+  const Vec3 axis = problem.base.R.col(2);
+  if (problem.buckling.direction.normalized().dot(axis) > -0.5) return "";  // DirectionNote's
+  const double L = problem.rod.length;
+  double ei = INFINITY;  // N m², the least of five points along the rod
+  for (int i = 0; i <= 4; ++i)
+    ei = std::min(ei, problem.rod.section->At(0.25 * i * L, problem.robot.actuation)
+                          .min_bending_stiffness());
+  const double euler = EulerLoadCoefficient(ends) * ei / (L * L);
+  if (!(problem.buckling.max < euler)) return "";
+  std::ostringstream note;
+  note << std::setprecision(4) << "cosserat: note: buckling.max (" << problem.buckling.max
+       << " N) is below the Euler load of a uniform rod with these ends, " << euler << " N ("
+       << EulerLoadCoefficient(ends) << " EI/L², EI the least along the rod, " << ei
+       << " N m²): the search stops at buckling.max before any critical load of that size; "
+          "raise it\n";
+  return note.str();
 }
 
 /// After a search that found no critical load for a force along a fixed direction: that direction
@@ -401,8 +433,11 @@ Result RunBuckling(const io::Problem& problem, const RunOptions& run_options) {
 
   result.log = SummaryLine(problem, ends, b) + pieces_note +
                (in_pieces ? "" : SingleShotHint(problem, b)) +
-               ImperfectionNote(problem, b.status) + DirectionNote(problem, b.status) +
-               FlutterNote(problem, b.status) + TendonLimitHint(problem, path, b) +
+               detail::GuideTakesTipForceNote(problem, ends) +
+               ImperfectionNote(problem, ends, b.status) +
+               DirectionNote(problem, b.status) +
+               BelowEulerNote(problem, ends, b.status) + FlutterNote(problem, b.status) +
+               TendonLimitHint(problem, path, b) +
                CoarseGridNote(problem, b.found(), *state, kShootingBucklingGrid);
   result.converged = ok;
   return result;
@@ -460,8 +495,11 @@ Result RunQuatFdBuckling(const io::Problem& problem, const RunOptions& run_optio
     line << ", load reached " << std::setprecision(6) << b.lambda_reached;
   line << ", " << b.solves << " static solves, " << std::setprecision(3) << b.wall_time_s * 1e3
        << " ms";
-  result.log = line.str() + '\n' + ImperfectionNote(problem, b.status) +
-               DirectionNote(problem, b.status) + FlutterNote(problem, b.status) +
+  result.log = line.str() + '\n' +
+               ImperfectionNote(problem, ColumnEnds::kClampedFree, b.status) +
+               DirectionNote(problem, b.status) +
+               BelowEulerNote(problem, ColumnEnds::kClampedFree, b.status) +
+               FlutterNote(problem, b.status) +
                CoarseGridNote(problem, b.found(), state, kQuatFdBucklingGrid);
   result.converged = ok;
   return result;

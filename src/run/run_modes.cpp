@@ -14,6 +14,7 @@
 #include "cosserat/run/run_quatfd.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
+#include "column_guide_note.hpp"
 #include "frame_output.hpp"
 #include "mode_planes.hpp"
 #include "node_table.hpp"
@@ -323,6 +324,9 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
   if (r.status == ModalStatus::kUnstable && !r.instability.empty())
     log << "cosserat: unstable: " << r.instability << "\n";
   log << DeclinedNote(r) << UndampedShootingNote(problem) << NeutralNote(r);
+  ColumnEnds ends = ColumnEnds::kClampedFree;
+  if (problem.formulation == io::Formulation::kSe3Shooting && ToColumnEnds(problem.boundary, &ends))
+    log << detail::GuideTakesTipForceNote(problem, ends);
   const ModesGrid grid = CheckModesGrid(problem, r);
   if (problem.formulation == io::Formulation::kQuaternionFd && r.equilibrium.size() > 0)
     log << ClampedEndGridWarning(problem, r.equilibrium);  // the statics' own warning

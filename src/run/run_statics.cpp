@@ -22,6 +22,7 @@
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "anchor_force.hpp"
+#include "column_guide_note.hpp"
 #include "settle_beside_instability.hpp"
 #include "statics_in_pieces.hpp"
 #include "foundation_hint.hpp"
@@ -125,7 +126,7 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
   detail::KeepStaticFrame(problem, solver.state(), options, &result);
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(solver.state());
   result.log = StaticSummary(summary, solver.state(), problem) + " (" + ToString(ends) + ")\n" +
-               settled_note + unjudged;
+               settled_note + unjudged + detail::GuideTakesTipForceNote(problem, ends);
   result.converged = summary.converged();
   // An equilibrium left unstable: the index says so; where it is not defined, the comparison
   // with the Euler load of the free column does (not on contact surfaces, which hold a column
@@ -176,7 +177,7 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
                std::to_string(solved.pieces) + " shooting pieces)\n" + settled_note +
                FramesLeftRotationsLine(solved.state, problem.rod.length) +
                ContinuationHint(problem, summary) + detail::UnstableWarning(summary, false) +
-               unjudged;
+               unjudged + detail::GuideTakesTipForceNote(problem, ends);
   if (summary.converged() && summary.stability_index < 0 && unjudged.empty())
     result.log += detail::UnjudgedCompressionNote(
         problem.rod, solved.state,

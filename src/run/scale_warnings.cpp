@@ -156,6 +156,25 @@ double StretchTrusted(const io::Problem& problem) {
   return UniformYoungsModulus(FileProfile(problem)) > 20e9 ? 0.01 : kLargeStretch;
 }
 
+/// After a solve that did not converge, the slips of units that may be its cause: a Young's
+/// modulus below 1e4 Pa (gelatine's order; a steel rod typed in GPa, 200, ran out of load steps
+/// and the hint spoke of the grid), and a rest curvature of over two turns along the rod
+/// (degrees typed for 1/m: 90 on a 1 m rod is 14 turns, which 51 nodes cannot follow).
+void FailedSolveUnitHints(const io::Problem& problem, std::ostringstream* log) {
+  if (problem.has_assembly || !problem.rod.section) return;
+  const double E = UniformYoungsModulus(FileProfile(problem));  // Pa; 0 where not uniform
+  if (E > 0.0 && E < 1e4)
+    *log << "cosserat: hint: rod.material.youngs_modulus is " << E << " Pa, softer than any "
+         << "gel (gelatine is about 1e4 Pa): if it was meant in GPa or MPa, write it in Pa ("
+         << E << "e9 or " << E << "e6)\n";
+  const Vec3 k0 = problem.rod.RestStrainAt(0.0).head<3>();  // 1/m, body frame
+  const double turns = k0.norm() * problem.rod.length / (2 * M_PI);
+  if (turns > 2.0)
+    *log << "cosserat: hint: rod.rest_curvature [" << k0.x() << ", " << k0.y() << ", " << k0.z()
+         << "] turns the unloaded rod through " << turns
+         << " full turns along its length: curvature is in rad/m (1/radius), not degrees\n";
+}
+
 }  // namespace
 
 void AddScaleWarnings(const io::Problem& problem, Result* result) {
@@ -198,6 +217,7 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
   // Its units warnings come right after the summary line, before the hints on grids and steps,
   // which the units may make moot.
   if (!result->converged && result->json.value("status", "") != ToString(SolveStatus::kUnderResolved)) {
+    FailedSolveUnitHints(problem, &log);
     const size_t first_line = result->log.find('\n');
     result->log.insert(first_line == std::string::npos ? result->log.size() : first_line + 1,
                        log.str());

@@ -75,10 +75,7 @@ std::string UnstableWarning(const StaticShootingSummary& s, bool searched_stable
 
 std::string ColumnPastEulerWarning(ColumnEnds ends, const RodModel& rod, const RodState& state,
                                    int bow_index) {
-  const double factor = ends == ColumnEnds::kPinnedPinned    ? 9.8696
-                        : ends == ColumnEnds::kClampedPinned ? 20.19
-                        : ends == ColumnEnds::kClampedClamped ? 39.478
-                                                              : 0.0;
+  const double factor = ends == ColumnEnds::kClampedFree ? 0.0 : EulerLoadCoefficient(ends);
   const int n = state.size();
   if (factor == 0.0 || n < 2 || !rod.section) return "";
   const double L = rod.length;

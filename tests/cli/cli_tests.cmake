@@ -225,7 +225,7 @@ cosserat_cli_test(NAME assembly_stops_short ARGS solve "${_cli_dir}/l_frame_stop
 cosserat_cli_test(NAME truss_pose_jacobian_undefined ARGS solve "${_cli_dir}/truss_pinned.json"
                   CODE 0 STDERR "pose_jacobian is not defined here")
 cosserat_cli_test(NAME not_implemented ARGS solve "${_cli_dir}/modes_free_free.json" CODE 2
-                  STDERR "boundary: \"free-free\" is not implemented in this version")
+                  STDERR "boundary: \"free-free\" is not implemented in this version .* for \"analysis\": \"modes\" on \"se3-shooting\"; \"free-free\" runs dynamics on \"se3-shooting\"")
 
 # Natural frequencies. The straight steel wire of modes.json: Euler-Bernoulli gives
 # 5.5959 Hz twice (two planes); shear and rotary inertia lower it by ~1e-5. The sagging example:
@@ -700,3 +700,17 @@ cosserat_cli_test(NAME four_tendons_given_lengths
                   ARGS solve "${_cli_dir}/four_tendons_given_lengths.json"
                        --out "${_cli_out}/four_tendons.json"
                   CODE 0 STDERR "do not fix the tensions.*can change in 1 way")
+
+# Slips a student makes, each named. A column's tip guide takes a sideways tip force whole; a
+# buckling search stopped below the Euler load π²EI/L² (968.9 N for a 1 m steel rod of radius
+# 5 mm); steel's modulus in GPa; a rest curvature in degrees (90 rad/m is 90/2π = 14.3 turns).
+cosserat_cli_test(NAME column_tip_force_across ARGS solve "${_cli_dir}/column_tip_force_across.json"
+                  CODE 0 STDERR "tip guide slides only along its axis .* takes the 10 N of loads.tip_force across it whole")
+cosserat_cli_test(NAME buckling_max_below_euler
+                  ARGS solve "${_cli_dir}/buckling_max_below_euler.json" CODE 0
+                  STDERR "buckling.max \\(100 N\\) is below the Euler load of a uniform rod with these ends, 968.9 N")
+cosserat_cli_test(NAME youngs_modulus_in_gpa ARGS solve "${_cli_dir}/youngs_modulus_in_gpa.json"
+                  CODE 1 STDERR "youngs_modulus is 200 Pa, softer than any gel")
+cosserat_cli_test(NAME rest_curvature_in_degrees
+                  ARGS solve "${_cli_dir}/rest_curvature_in_degrees.json" CODE 1
+                  STDERR "turns the unloaded rod through 14.3 full turns along its length: curvature is in rad/m")

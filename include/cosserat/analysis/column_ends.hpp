@@ -18,5 +18,8 @@ enum class ColumnEnds {
 const char* ToString(ColumnEnds ends);
 /// The inverse of ToString; false (and *ends untouched) for any other name.
 bool ParseColumnEnds(const std::string& name, ColumnEnds* ends);
+/// The Euler load of a uniform column with these ends is this times EI/L²: π²/(K²) with the
+/// effective length factor K = 2, 1, 0.6992 (clamped-pinned: 20.19, from tan x = x), 0.5.
+double EulerLoadCoefficient(ColumnEnds ends);
 
 }  // namespace cosserat
