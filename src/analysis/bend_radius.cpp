@@ -59,6 +59,10 @@ BendRadiusResult MinimumBendRadius(EversionRobot& robot, const StaticLoads& fixe
   auto finish = [&](double lambda, const char* limit) {
     return Finish(robot, out, lambda, limit, ratio);
   };
+  // The fixed loads alone (its weight at this length) may already kink the tube: then no part
+  // of the pattern bends it further before a kink, and the radius is that of a folded tube.
+  if (!solve(0.0, &ratio)) return finish(0.0, "no_convergence");
+  if (ratio >= 1.0) return finish(0.0, "kinked_by_fixed_loads");
   for (int k = 1; k <= steps; ++k) {
     const double lambda = static_cast<double>(k) / steps;
     if (!solve(lambda, &ratio)) {

@@ -187,6 +187,15 @@ void CheckPressureIsRead(const ObjectReader& a, const RodModel& rod, const Actua
 }
 
 /// The switchable segments of a "jamming" rod.stiffness_profile (0 for any other).
+/// Whether the file's rod.stiffness_profile gives a "pressure" (its wrapper holds 0 Pa when not,
+/// which the robot's actuation then sets without contradicting it).
+bool ProfileStatesPressure(const json& top) {
+  const auto rod = top.find("rod");
+  if (rod == top.end() || !rod->is_object()) return false;
+  const auto profile = rod->find("stiffness_profile");
+  return profile != rod->end() && profile->is_object() && profile->contains("pressure");
+}
+
 int JammingSegments(const json& top) {
   const auto rod = top.find("rod");
   const json* profile = rod != top.end() && rod->is_object() && rod->contains("stiffness_profile")
@@ -303,7 +312,7 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
   // actuation may change the jamming pressures, and repeat (not contradict) the pressure.
   std::optional<double> profile_pressure;  // Pa, when rod.stiffness_profile sets one
   if (const auto* fixed = dynamic_cast<const FixedActuationSection*>(p->rod.section.get())) {
-    profile_pressure = fixed->actuation().pressure;
+    if (ProfileStatesPressure(top)) profile_pressure = fixed->actuation().pressure;
     p->robot.actuation.pressure = fixed->actuation().pressure;
     p->robot.actuation.jamming_pressure = fixed->actuation().jamming_pressure;
     p->robot.initial_actuation = p->robot.actuation;

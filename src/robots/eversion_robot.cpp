@@ -202,14 +202,16 @@ RodModel EversionRobot::ModelAt(double length) const {
   }
   if (!jammed.empty()) model.section = std::make_shared<JammingSection>(profile, std::move(jammed));
   if (design_.pressure_load == PressureLoadModel::kClosedVessel && pressure_ > 0) {
-    // The wall carries the tension p A(s) of the closed vessel: rest stretch p A / EA on top of
-    // the straight rest strain, so the solver's wrench is the net wrench of wall and air.
+    // The wall carries the tension p A(s) of the closed vessel, and its hoop stress p r/t
+    // shortens it by ν p r/(E t) (thin isotropic wall): N_wall = EA ε + 2ν p A, so the rest
+    // stretch (1 − 2ν) p A / EA on top of the straight rest strain makes the solver's wrench the
+    // net wrench of wall and air.
     const Actuation act = actuation();
-    const double p = pressure_;
-    model.rest_strain = [profile, act, p](double s) {
+    const double p = pressure_, nu = profile->poisson_ratio();
+    model.rest_strain = [profile, act, p, nu](double s) {
       Vec6 xi = StraightRestStrain();
       const double r = profile->RadiusAt(s);
-      xi(5) += p * kPi * r * r / profile->At(s, act).stiffness(5, 5);
+      xi(5) += (1.0 - 2.0 * nu) * p * kPi * r * r / profile->At(s, act).stiffness(5, 5);
       return xi;
     };
   }
@@ -347,30 +349,41 @@ KinkReport EversionRobot::CheckKink() const {
   KinkReport rep;
   const double L = solver_length_;
   const double delta = 1e-9 * L;
-  // The membrane wrinkles where bending cancels the wall's axial force per length of its
-  // circumference on the compressed side, N/(2πr) = M/(πr²): M_w = N r/2, with N the wall's
-  // axial force (WallTension). Inflation alone gives N = pπr², the tube's πpr³/2 (Comer & Levy
-  // 1963); a push on the tip lowers it, and a wall pushed slack (N ≤ 0) has none left.
-  auto wrinkling_moment = [&](int i, double r) {
-    return std::max(0.0, 0.5 * WallTensionAt(i, r) * r);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  // The membrane stays taut while its least principal stress resultant is positive everywhere
+  // round the section: N_x N_θ > N_xθ² with, on the compressed side, N_x = N/(2πr) − M/(πr²)
+  // (N the wall's axial force, WallTension; M the bending moment), the hoop N_θ = p r and the
+  // shear N_xθ = T/(2πr²) of the torque T. Scaling M and T by 1/ρ to the onset gives
+  // a ρ² − b ρ − c = 0, a = N p/(2π), b = M p/(π r), c = T²/(4π² r⁴): without torque
+  // ρ = M/M_w, M_w = N r/2 (π p r³/2 from inflation alone: Comer & Levy 1963); without bending
+  // ρ = T/T_w, T_w = √2 π p r³ at N = pπr². A wall with no tension left either way (pushed
+  // slack, N ≤ 0, or uninflated, p = 0) carries no compression and is collapsed (ρ = ∞).
+  auto ratio_at = [&](int i, double r, double* mw) {
+    const double N = WallTensionAt(i, r), p = solved_pressure_;
+    const double M = st.wrench_B[i].head<2>().norm(), T = std::abs(st.wrench_B[i](2));
+    *mw = std::max(0.0, 0.5 * N * r);
+    if (!(N > 0.0 && p > 0.0)) return kInf;
+    const double a = N * p / (2 * kPi), b = M * p / (kPi * r);
+    const double c = T * T / (4 * kPi * kPi * std::pow(r, 4));
+    return (b + std::sqrt(b * b + 4 * a * c)) / (2 * a);
   };
   for (int i = 0; i < st.size(); ++i) {
     const double s = st.s[i];
-    // At a band end the radius jumps: the smaller wrinkling moment of the two sides governs.
-    double mw = std::numeric_limits<double>::infinity();
-    if (s > 0) mw = std::min(mw, wrinkling_moment(i, RadiusAt(std::max(0.0, s - delta))));
-    if (s < L) mw = std::min(mw, wrinkling_moment(i, RadiusAt(s + delta)));
-    const double m = st.wrench_B[i].head<2>().norm();
-    double ratio = 0.0;
-    if (mw > 0)
-      ratio = m / mw;
-    else if (m > 0)
-      ratio = std::numeric_limits<double>::infinity();
+    // At a band end the radius jumps: the side nearer wrinkling governs.
+    double ratio = -1.0, mw = kInf;
+    for (const int side : {-1, 1}) {
+      if (side < 0 ? !(s > 0) : !(s < L)) continue;  // the sides on the body
+      double side_mw = 0.0;
+      const double side_ratio = ratio_at(i, RadiusAt(std::max(0.0, s + side * delta)), &side_mw);
+      if (side_ratio > ratio) ratio = side_ratio, mw = side_mw;
+    }
+    ratio = std::max(ratio, 0.0);
     if (ratio >= 1.0 && rep.first_kink_s < 0) rep.first_kink_s = s;
     if (ratio > rep.max_ratio || i == 0) {
       rep.max_ratio = ratio;
       rep.s_max = s;
-      rep.moment = m;
+      rep.moment = st.wrench_B[i].head<2>().norm();
+      rep.torque = std::abs(st.wrench_B[i](2));
       rep.wrinkling_moment = mw;
     }
   }
@@ -404,7 +417,11 @@ double EversionRobot::TipForce() const {
 }
 
 double EversionRobot::FreeAxialStrain() const {
-  return pressure_ * kPi * design_.radius * design_.radius / AxialStiffness();
+  // The closed vessel's hoop stress shortens the wall by ν p r/(E t); a tip force alone does not.
+  const double hoop = design_.pressure_load == PressureLoadModel::kClosedVessel
+                          ? 2.0 * full_profile_->poisson_ratio()
+                          : 0.0;
+  return (1.0 - hoop) * pressure_ * kPi * design_.radius * design_.radius / AxialStiffness();
 }
 
 double EversionRobot::WallTension(int node) const {

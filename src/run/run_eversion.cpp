@@ -82,6 +82,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   k["max_moment_ratio"] = std::isfinite(kink.max_ratio) ? nlohmann::ordered_json(kink.max_ratio)
                                                         : nlohmann::ordered_json(nullptr);
   k["s_max"] = kink.s_max;
+  k["torque"] = kink.torque;
   // Where |m| first reaches M_w (m); null when it never does.
   k["first_kink_s"] = kink.first_kink_s >= 0 ? nlohmann::ordered_json(kink.first_kink_s)
                                              : nlohmann::ordered_json(nullptr);
@@ -93,13 +94,22 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   std::ostringstream log;
   log << "cosserat: eversion " << ToString(solve.status) << growth_note.str()
       << ", L = " << robot.length() << " m, tip at [" << std::setprecision(6) << tip.x() << ", "
-      << tip.y() << ", " << tip.z() << "] m, kink: " << ToString(kink.status);
-  if (kink.status == KinkStatus::kCollapsed)
-    log << " (|m|/M_w = " << kink.max_ratio << " at s = " << kink.s_max << " m: the tube folds "
-        << "there; the shape beyond is not modelled)";
+      << tip.y() << ", " << tip.z() << "] m, kink"
+      << (problem.robot.growth_initial_length ? " (the worst met while growing)" : "") << ": "
+      << ToString(kink.status);
+  // The ratio is |m|/M_w without torque; a torque's share of the membrane's shear joins it.
+  const char* ratio_name = kink.torque > 1e-6 * kink.moment ? "wrinkling ratio" : "|m|/M_w";
+  if (!std::isfinite(kink.max_ratio))
+    log << " (at s = " << kink.s_max << " m the wall has no tension left: "
+        << (pressure > 0.0 ? "pushed along its axis past the pressure's force, "
+                           : "uninflated (p = 0), ")
+        << "and a film carries no compression)";
+  else if (kink.status == KinkStatus::kCollapsed)
+    log << " (" << ratio_name << " = " << kink.max_ratio << " at s = " << kink.s_max
+        << " m: the tube folds there; the shape beyond is not modelled)";
   else if (kink.kinked())
-    log << " (|m|/M_w = " << kink.max_ratio << " at s = " << kink.s_max << " m: the wall "
-        << "wrinkles there; it folds at 2)";
+    log << " (" << ratio_name << " = " << kink.max_ratio << " at s = " << kink.s_max
+        << " m: the wall wrinkles there; it folds at 2)";
   log << '\n';
   log << UnstableBodyWarning(solve);
   if (asked_density < EversionOptions{}.nodes_per_metre)

@@ -104,6 +104,17 @@ void UnitSlipWarnings(const io::Problem& problem, std::ostringstream* log) {
     *log << "cosserat: warning: loads.gravity is " << g << " m/s², "
          << std::llround(std::min(g / 9.81, 1e18))
          << " times Earth's 9.81 (over 1000 m/s²): check its units (m/s²)\n";
+  // An inflated tube below 100 Pa is a slip (vine robots run at 1–30 kPa: kPa typed as Pa), and
+  // at 0 Pa it is an uninflated film, which the kink check reports collapsed.
+  if (problem.robot.kind == io::RobotKind::kEversion) {
+    const double p = problem.robot.actuation.pressure;  // Pa
+    if (p == 0.0)
+      *log << "cosserat: warning: the eversion robot's pressure is 0 Pa, an uninflated film tube: "
+              "give robot.actuation.pressure or rod.stiffness_profile.pressure (Pa)\n";
+    else if (p < 100.0)
+      *log << "cosserat: warning: the eversion robot's pressure is " << p << " Pa (vine robots "
+           << "run at 1e3–3e4 Pa): check its units (Pa, not kPa)\n";
+  }
   if (!problem.robot.tendon_lengths) return;
   const double L = problem.rod.length;
   for (std::size_t i = 0; i < problem.rod.tendons.size(); ++i) {

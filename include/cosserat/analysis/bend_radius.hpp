@@ -21,7 +21,9 @@ struct BendRadiusResult {
   double min_radius = 0.0;   ///< smallest radius of curvature 1/|κ⊥| on the body at the limit, m
   double s = 0.0;            ///< where it occurs (material arc length from the base), m
   double load_factor = 0.0;  ///< λ at the limit (1: the whole actuation load)
-  std::string limit;         ///< "actuation", "kink", "angle" or "no_convergence"
+  /// "actuation", "kink", "angle", "no_convergence", or "kinked_by_fixed_loads" (the fixed loads
+  /// alone kink the tube: its radius is a folded tube's, not a bend radius; not ok())
+  std::string limit;
   double kink_ratio = 0.0;   ///< max over s of |m⊥|/M_w(s) at the limit (>= 1: kinked)
   int solves = 0;
   bool ok() const { return limit == "actuation" || limit == "kink" || limit == "angle"; }
@@ -29,7 +31,8 @@ struct BendRadiusResult {
 
 /// Grows `actuation` (a load pattern: tip force or moment, any frame, or a distributed force) from
 /// 0 to 1 in `steps` increments on top of `fixed` (gravity, …) at the robot's current length and
-/// pressure, then refines the kink onset if one occurs. The robot ends at the limit state.
+/// pressure, then refines the kink onset if one occurs. The robot ends at the limit state. The
+/// fixed loads alone are solved first: where they kink the tube, the limit says so at λ = 0.
 BendRadiusResult MinimumBendRadius(EversionRobot& robot, const StaticLoads& fixed,
                                    const StaticLoads& actuation, int steps = 20);
 

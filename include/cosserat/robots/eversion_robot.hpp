@@ -13,7 +13,8 @@
 ///     pressure on a closed tube is self-equilibrated, so it stretches the wall (wall tension
 ///     p A(s) along d3 everywhere) but neither bends the tube nor stiffens it in bending (Comer &
 ///     Levy 1963, Fichter 1966). Implemented exactly as a rest-strain shift: the solver's wrench
-///     W is the net wrench of wall + air, with Γ3* = 1 + p A(s)/EA(s); the wall's own wrench is
+///     W is the net wrench of wall + air, with Γ3* = 1 + (1 − 2ν) p A(s)/EA(s) (the hoop stress
+///     p r/t shortens the wall by ν p r/(E t)); the wall's own wrench is
 ///     W + [0; 0; 0; 0; 0; p A(s)] (body frame), i.e. the tip follower force p A_tip on the wall.
 ///   - kTipFollowerOnly: the follower tip force p A_tip alone (a body-frame tip force on the rod),
 ///     without the pressure on the curved side wall. This is the literal "follower tip force"
@@ -118,10 +119,14 @@ const char* ToString(KinkStatus status);
 
 struct KinkReport {
   KinkStatus status = KinkStatus::kNone;
-  double max_ratio = 0.0;  ///< max over nodes of |m_⊥(s)| / M_w(s) (inf if p = 0 and m ≠ 0)
+  /// max over nodes of the factor by which the bending moment and the torque there pass the
+  /// membrane's wrinkling onset: |m_⊥(s)| / M_w(s) without torque; inf where the wall has no
+  /// tension left (pushed slack, or p = 0)
+  double max_ratio = 0.0;
   double s_max = 0.0;      ///< where the ratio is largest, m
   double moment = 0.0;     ///< |m_⊥| there, N·m
-  double wrinkling_moment = 0.0;  ///< M_w there, N·m (the smaller side at a band end)
+  double torque = 0.0;     ///< |m₃| there, N·m
+  double wrinkling_moment = 0.0;  ///< M_w = N r/2 there, N·m (the governing side at a band end)
   double first_kink_s = -1.0;     ///< smallest s with ratio >= 1, m; −1 if none
   bool kinked() const { return status != KinkStatus::kNone; }
 };
@@ -208,8 +213,9 @@ class EversionRobot {
   double WrinklingMomentAt(double s) const;
   /// The follower tip force p π r(L)² at the current length, N, pushing outward along d3(L).
   double TipForce() const;
-  /// Axial strain of the straight, unloaded body in free space: Γ3 − 1 = p π r² / (E_eff 2π r t)
-  /// = p r / (2 E_eff t) (away from bands).
+  /// Axial strain of the straight, unloaded body in free space (away from bands): in the closed
+  /// vessel the thin isotropic wall's (σ_x − ν σ_θ)/E = (1 − 2ν) p r / (2 E_eff t); under the
+  /// tip follower force alone p π r² / (E_eff 2π r t) = p r / (2 E_eff t).
   double FreeAxialStrain() const;
 
   // --- State ---------------------------------------------------------------------------------
