@@ -424,6 +424,16 @@ Spectra ComputeSpectrum(const BandedMatrix& A, const BandedMatrix& B, const Redu
   return out;
 }
 
+/// Why a spectrum larger than ModalOptions::max_dense was declined (ModalResult::declined).
+std::string DeclinedReason(const ModalOptions& options, const Spectra& sp, bool symmetric) {
+  return std::string("the stiffness is ") +  // damped first: symmetry not judged
+         (options.damped && sp.has_damping ? "damped, and the damped modes need the whole spectrum"
+          : !symmetric                     ? "not symmetric (follower loads, drag)"
+                                           : "not positive definite (an unstable equilibrium)") +
+         ", so its spectrum would be dense, on " + std::to_string(sp.dense_size) +
+         " coordinates (at most " + std::to_string(options.max_dense) + ")";
+}
+
 }  // namespace
 
 ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
@@ -459,13 +469,7 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   const Reduction red = Reduce(*model, q);
   Spectra sp = ComputeSpectrum(A, B, red, options, &result);
   if (sp.too_large) {
-    result.declined = std::string("the stiffness is ") +  // damped first: symmetry not judged
-                      (options.damped && sp.has_damping
-                           ? "damped, and the damped modes need the whole spectrum"
-                       : !result.symmetric ? "not symmetric (follower loads, drag)"
-                                           : "not positive definite (an unstable equilibrium)") +
-                      ", so its spectrum would be dense, on " + std::to_string(sp.dense_size) +
-                      " coordinates (at most " + std::to_string(options.max_dense) + ")";
+    result.declined = DeclinedReason(options, sp, result.symmetric);
     result.declined_dense_size = sp.dense_size;
     return finish(ModalStatus::kNotRun);
   }

@@ -29,6 +29,40 @@ std::string UnstableBodyWarning(const StaticShootingSummary& solve) {
   return line.str();
 }
 
+/// The result's robot.kink block.
+nlohmann::ordered_json KinkJson(const KinkReport& kink) {
+  nlohmann::ordered_json k;
+  k["status"] = ToString(kink.status);
+  k["max_moment_ratio"] = std::isfinite(kink.max_ratio) ? nlohmann::ordered_json(kink.max_ratio)
+                                                        : nlohmann::ordered_json(nullptr);
+  k["s_max"] = kink.s_max;
+  k["torque"] = kink.torque;
+  // Where the ratio first reaches 1 (m); null when it never does.
+  k["first_kink_s"] = kink.first_kink_s >= 0 ? nlohmann::ordered_json(kink.first_kink_s)
+                                             : nlohmann::ordered_json(nullptr);
+  return k;
+}
+
+/// The summary line's words on a kink, " (… at s = … m: …)", or empty for none. The ratio is
+/// |m|/M_w without torque; a torque's share of the membrane's shear joins it.
+std::string KinkWords(const KinkReport& kink, double pressure) {
+  std::ostringstream words;
+  words << std::setprecision(6);
+  const char* ratio_name = kink.torque > 1e-6 * kink.moment ? "wrinkling ratio" : "|m|/M_w";
+  if (!std::isfinite(kink.max_ratio))
+    words << " (at s = " << kink.s_max << " m the wall has no tension left: "
+          << (pressure > 0.0 ? "pushed along its axis past the pressure's force, "
+                             : "uninflated (p = 0), ")
+          << "and a film carries no compression)";
+  else if (kink.status == KinkStatus::kCollapsed)
+    words << " (" << ratio_name << " = " << kink.max_ratio << " at s = " << kink.s_max
+          << " m: the tube folds there; the shape beyond is not modelled)";
+  else if (kink.kinked())
+    words << " (" << ratio_name << " = " << kink.max_ratio << " at s = " << kink.s_max
+          << " m: the wall wrinkles there; it folds at 2)";
+  return words.str();
+}
+
 }  // namespace
 
 Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
@@ -77,16 +111,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   r["pressure"] = pressure;
   r["length"] = robot.length();
   r["tip_force"] = robot.TipForce();
-  nlohmann::ordered_json k;
-  k["status"] = ToString(kink.status);
-  k["max_moment_ratio"] = std::isfinite(kink.max_ratio) ? nlohmann::ordered_json(kink.max_ratio)
-                                                        : nlohmann::ordered_json(nullptr);
-  k["s_max"] = kink.s_max;
-  k["torque"] = kink.torque;
-  // Where |m| first reaches M_w (m); null when it never does.
-  k["first_kink_s"] = kink.first_kink_s >= 0 ? nlohmann::ordered_json(kink.first_kink_s)
-                                             : nlohmann::ordered_json(nullptr);
-  r["kink"] = k;
+  r["kink"] = KinkJson(kink);
   if (problem.robot.growth_initial_length) r["first_kink_length"] = first_kink_length;
   result.json["robot"] = r;
   if (run_options.nodes_csv) result.nodes_csv = detail::NodesCsv(robot.state());
@@ -97,20 +122,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
       << tip.y() << ", " << tip.z() << "] m, kink"
       << (problem.robot.growth_initial_length ? " (the worst met while growing)" : "") << ": "
       << ToString(kink.status);
-  // The ratio is |m|/M_w without torque; a torque's share of the membrane's shear joins it.
-  const char* ratio_name = kink.torque > 1e-6 * kink.moment ? "wrinkling ratio" : "|m|/M_w";
-  if (!std::isfinite(kink.max_ratio))
-    log << " (at s = " << kink.s_max << " m the wall has no tension left: "
-        << (pressure > 0.0 ? "pushed along its axis past the pressure's force, "
-                           : "uninflated (p = 0), ")
-        << "and a film carries no compression)";
-  else if (kink.status == KinkStatus::kCollapsed)
-    log << " (" << ratio_name << " = " << kink.max_ratio << " at s = " << kink.s_max
-        << " m: the tube folds there; the shape beyond is not modelled)";
-  else if (kink.kinked())
-    log << " (" << ratio_name << " = " << kink.max_ratio << " at s = " << kink.s_max
-        << " m: the wall wrinkles there; it folds at 2)";
-  log << '\n';
+  log << KinkWords(kink, pressure) << '\n';
   log << UnstableBodyWarning(solve);
   if (asked_density < EversionOptions{}.nodes_per_metre)
     log << "cosserat: note: rod.nodes (" << problem.nodes << ") gives "
