@@ -746,6 +746,13 @@ TEST(ProblemIoErrors, MalformedJsonGivesOneLineWithPosition) {
   ASSERT_EQ(r.errors.size(), 1u) << AllErrors(r);
   EXPECT_FALSE(r.problem.has_value());
   EXPECT_ERROR(r, "bad.json: invalid JSON at line 3, column");
+  EXPECT_EQ(r.errors[0].find("comments"), std::string::npos);  // no comment there
+  // A comment, as one writes in C++ or a JSON5 file, is named (JSON has none).
+  for (const char* comment : {"// the rod", "/* the rod */"}) {
+    const ParseResult c = ParseProblem(
+        std::string("{\n  \"format\": \"cosserat-problem/1\",\n  ") + comment + "\n}", "c.json");
+    EXPECT_ERROR(c, "c.json: invalid JSON at line 3", "JSON has no comments");
+  }
 }
 
 TEST(ProblemIoErrors, EmptyInputAndTrailingGarbage) {
@@ -981,6 +988,22 @@ TEST(ProblemIoErrors, UnknownKeysWithSuggestions) {
   EXPECT_ERROR(r, "loads.Gravity: unknown key (did you mean \"gravity\"?)");
   EXPECT_ERROR(r, "loads.wind: unknown key (allowed: \"gravity\"");
   EXPECT_ERROR(r, "rod.section.width: unknown key for a \"circle\" section");
+}
+
+// Textbooks name end conditions "fixed" (clamped) and "simply supported" (pinned): those names
+// are pointed to ours, which no edit distance would find ("fixed-free" is 8 edits from
+// "cantilever").
+TEST(ProblemIoErrors, TextbookEndConditionsPointToOurs) {
+  const std::pair<const char*, const char*> cases[] = {{"fixed-free", "cantilever"},
+                                                       {"Simply supported", "pinned-pinned"},
+                                                       {"fixed_fixed", "clamped-clamped"},
+                                                       {"propped-cantilever", "clamped-pinned"}};
+  for (const auto& [typed, ours] : cases) {
+    json j = ValidProblem();
+    j["boundary"] = typed;
+    EXPECT_ERROR(Parse(j), "boundary: expected one of",
+                 std::string("did you mean \"") + ours + "\"?");
+  }
 }
 
 TEST(ProblemIoErrors, MissingRequiredKeys) {

@@ -180,6 +180,19 @@ std::string SyntaxErrorText(const DocumentBuilder::Failure& failure, const std::
   return "at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " + what;
 }
 
+/// "; JSON has no comments ..." when the parse stopped at a "//" or "/*" (the text from the
+/// failure's position back to the line's start holds one), else empty.
+std::string CommentHint(const std::string& text, std::size_t position) {
+  const std::size_t end = std::min(position + 1, text.size());
+  const std::size_t line_start = text.rfind('\n', end == 0 ? 0 : end - 1);
+  const std::string line =
+      text.substr(line_start == std::string::npos ? 0 : line_start + 1,
+                  end - (line_start == std::string::npos ? 0 : line_start + 1));
+  if (line.find("//") == std::string::npos && line.find("/*") == std::string::npos) return "";
+  return "; JSON has no comments: put notes in a \"description\" string (the top level and "
+         "robot take one)";
+}
+
 }  // namespace
 
 JsonDocument ParseJsonDocument(const std::string& text, const std::string& source_name) {
@@ -206,7 +219,8 @@ JsonDocument ParseJsonDocument(const std::string& text, const std::string& sourc
     if (failure.id == DocumentBuilder::kDepthFailure)
       return {std::nullopt, {source_name + ": invalid JSON: " + failure.message}};
     return {std::nullopt,
-            {source_name + ": invalid JSON " + EscapeInvalidUtf8(SyntaxErrorText(failure, text))}};
+            {source_name + ": invalid JSON " + EscapeInvalidUtf8(SyntaxErrorText(failure, text)) +
+             CommentHint(text, failure.position)}};
   }
 }
 

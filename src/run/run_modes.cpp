@@ -154,9 +154,12 @@ ModesGrid CheckModesGrid(const io::Problem& problem, const ModalResult& r) {
                                   "under_resolved): "
                                 : "cosserat: the grid is also too coarse for these modes: ")
       << "mode " << worst_mode << " (" << worst_hz << " Hz) has k h = " << worst_k * h
-      << " (k its wave number along the rod), where its frequency is off by about "
-      << 100 * worst << " % (" << (quatfd ? "quaternion FD, second" : "RK4 in s, fourth")
-      << " order in k h); rod.nodes ≥ " << static_cast<long>(nodes_needed)
+      << " (k its wave number along the rod), where its frequency is off by "
+      << (quatfd ? "about " : "up to about ") << 100 * worst << " % ("
+      << (quatfd ? "quaternion FD, second order in k h"
+                 : "RK4 in s, fourth order in k h, an upper estimate: its error turns sign near "
+                   "k h = 2")
+      << "); rod.nodes ≥ " << static_cast<long>(nodes_needed)
       << " keeps every mode found within about 1 %\n";
   out.log = log.str();
   return out;
