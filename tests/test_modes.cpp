@@ -507,6 +507,27 @@ TEST(Modes, QuatFdFindsAStandingWirePastItsSelfWeightBucklingUnstable) {
   }
 }
 
+// An equilibrium near its critical load has a small ω² of a real sign, not round-off: a 1 m
+// steel column of radius 5 mm pressed by 0.997 and 1.003 times its Euler load π²EI/4L² is stable
+// and unstable (its ω² about ±6 rad²/s² on 40 segments, whose grid moves the critical load by
+// 0.085 (k h)², 2e-4), and neither is taken for a neutral mode, whose round-off lies below
+// ε max |(M⁻¹K)_ii| (2e-4 rad²/s² on this rod's 1e12).
+TEST(Modes, AColumnJustPastItsCriticalLoadIsUnstableNotNeutral) {
+  const testing::SteelRod steel{1.0, 0.005};
+  const RodModel rod = steel.model();
+  const double critical = truth::EulerLoadClampedFree(steel.EI(), 1.0);
+  for (const double factor : {0.997, 1.003}) {
+    StaticLoads loads;
+    loads.tip_force = Vec3(0, 0, -factor * critical);
+    const ModalResult fd = QuatFdModes(rod, lie::SE3(), loads, 40, 4, false);
+    EXPECT_EQ(fd.status, factor < 1 ? ModalStatus::kConverged : ModalStatus::kUnstable)
+        << factor << ": " << ToString(fd.status);
+    ASSERT_EQ(fd.modes.size(), 4u);
+    for (const Mode& m : fd.modes) EXPECT_FALSE(m.neutral) << factor << " " << m.frequency_hz;
+    EXPECT_EQ(fd.modes[0].frequency_hz < 0, factor > 1) << fd.modes[0].frequency_hz;
+  }
+}
+
 // A cantilever pressed along its axis by 1.29 Pcr has two unstable directions (the two bending
 // planes), each growing as e^{σ t}. Both formulations list them first, as the negative
 // frequencies −σ/2π (SE(3) by frequency shooting at ω² = −σ², where it once listed only the

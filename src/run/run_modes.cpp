@@ -117,10 +117,14 @@ ModesGrid CheckModesGrid(const io::Problem& problem, const ModalResult& r) {
         case ModeKind::kBending: {
           k = std::sqrt((-tension + std::sqrt(tension * tension + 4 * EI * rhoA * omega * omega)) /
                         (2 * EI));
+          // Each term's error weighted by its size: under compression the two nearly cancel
+          // in ρA ω² at a low mode (a bow swinging slowly about a tilted chord), where their
+          // difference would blow the weight up (272 % for a swing no grid changes), so by
+          // their magnitudes.
           const double bending = EI * std::pow(k, 4), stretched = tension * k * k;  // N/m
-          if (bending + stretched > 0.0)
-            quatfd_coefficient =
-                (kQuatFdBending * bending + kString * stretched) / (bending + stretched);
+          if (bending + std::abs(stretched) > 0.0)
+            quatfd_coefficient = (kQuatFdBending * bending + kString * std::abs(stretched)) /
+                                 (bending + std::abs(stretched));
           break;
         }
         case ModeKind::kAxial:  // wave equations: the string's central difference
@@ -228,17 +232,23 @@ std::string UndampedShootingNote(const io::Problem& problem) {
 
 /// Which modes are neutral (Mode::neutral), and what that means.
 std::string NeutralNote(const ModalResult& r) {
-  std::string which;
+  std::ostringstream which, computed;
+  which << std::setprecision(3);
   int count = 0;
-  for (size_t m = 0; m < r.modes.size(); ++m)
-    if (r.modes[m].neutral) which += (count++ ? ", " : " ") + std::to_string(m + 1);
+  for (size_t m = 0; m < r.modes.size(); ++m) {
+    if (!r.modes[m].neutral) continue;
+    which << (count ? ", " : " ") << m + 1;
+    computed << (count++ ? ", " : "") << std::setprecision(3)
+             << r.modes[m].computed_omega_squared;
+  }
   if (count == 0) return "";
-  return std::string("cosserat: note: mode") + (count > 1 ? "s" : "") + which +
+  return std::string("cosserat: note: mode") + (count > 1 ? "s" : "") + which.str() +
          (count > 1 ? " are" : " is") +
-         " neutral, listed at 0 Hz: a motion that costs no energy, whose computed ω² is round-off "
-         "of zero (such as a bowed line turning about a chord that gravity runs along, or an "
-         "equilibrium at its critical load); neither the stability nor the grid is judged by "
-         "it\n";
+         " neutral, listed at 0 Hz: a motion that costs no energy, whose computed ω² (" +
+         computed.str() +
+         " rad²/s²) is round-off of zero (such as a bowed line turning about a chord that "
+         "gravity runs along, or an equilibrium at its critical load); neither the stability "
+         "nor the grid is judged by it\n";
 }
 
 /// "cosserat: converged (modes, ...), 4 modes: f... Hz, damping ratios ζ..., t ms".
@@ -250,8 +260,11 @@ std::string SummaryLine(const io::Problem& problem, const ModalResult& r) {
   if (!r.modes.empty()) log << " Hz";
   if (!r.damped.empty()) {  // each mode's ζ, or "overdamped" where it has no pair
     log << ", damping ratios";
-    for (const DampedMode& d : r.damped) {
-      if (std::isnan(d.damping_ratio))
+    for (size_t m = 0; m < r.damped.size(); ++m) {
+      const DampedMode& d = r.damped[m];
+      if (m < r.modes.size() && r.modes[m].neutral)
+        log << " neutral";
+      else if (std::isnan(d.damping_ratio))
         log << " overdamped";
       else
         log << ' ' << std::setprecision(4) << d.damping_ratio;

@@ -49,9 +49,10 @@ struct Mode {
   ModeKind kind = ModeKind::kBending;
   /// quatfd: a neutral mode, a motion that costs no energy (a bowed line turning about the
   /// chord that gravity runs along, or an equilibrium at its critical load). Its computed ω² is
-  /// round-off: within 1e3 ε of the stiffness's norm and 1e4 below the next mode's. Listed at
+  /// round-off: below ε times the largest |(M⁻¹K)_ii| and 1e4 below the next mode's. Listed at
   /// ω = 0, and neither the stability nor the grid is judged by it.
   bool neutral = false;
+  double computed_omega_squared = 0;  ///< a neutral mode's ω² as computed (round-off), rad²/s²
   /// Shares of the kinetic energy (sum 1): translation across / along the tangent, rotation
   /// about the tangent, rotation across it.
   double share_transverse = 0, share_axial = 0, share_twist = 0, share_tilt = 0;
