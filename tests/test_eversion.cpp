@@ -234,6 +234,14 @@ TEST(Eversion, AWallWithNoTensionLeftIsCollapsedEvenStraight) {
   const EversionSolveSummary b = flat.Solve(StaticLoads{});
   ASSERT_TRUE(b.solve.converged());
   EXPECT_EQ(b.kink.status, KinkStatus::kCollapsed);
+  // Uninflated but pulled taut (5 N), the wall keeps M_w = N r/2, the limit of p → 0: straight,
+  // no moment, ratio 0.
+  StaticLoads pull;
+  pull.tip_force = Vec3(5.0, 0, 0);
+  const EversionSolveSummary c = flat.Solve(pull);
+  ASSERT_TRUE(c.solve.converged());
+  EXPECT_EQ(c.kink.status, KinkStatus::kNone);
+  EXPECT_NEAR(c.kink.wrinkling_moment, 0.5 * 5.0 * kRadius, 1e-9);
   // Below the pressure's force the straight tube keeps its tension and does not kink.
   push.tip_force *= 0.5;
   EXPECT_EQ(pushed.Solve(push).kink.status, KinkStatus::kNone);

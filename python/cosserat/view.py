@@ -430,7 +430,10 @@ class LiveRod:
                     status = "converged" if out["converged"] else res.get("status", "failed")
                     kink = res.get("robot", {}).get("kink", {})
                     if kink.get("status", "none") != "none":  # the tube's fold, shown
-                        status += (f", {kink['status']} (|m|/M_w = "
+                        # A torque joins the bending moment in the ratio (as the log says).
+                        twisted = kink.get("torque", 0.0) > 1e-6 * kink.get("moment", 0.0)
+                        name = "wrinkling ratio" if twisted else "|m|/M_w"
+                        status += (f", {kink['status']} ({name} = "
                                    f"{kink.get('max_moment_ratio') or float('inf'):.3g} at "
                                    f"s = {kink['s_max']:g} m)")
                 except ValueError as e:

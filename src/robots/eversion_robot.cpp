@@ -356,13 +356,17 @@ KinkReport EversionRobot::CheckKink() const {
   // shear N_xθ = T/(2πr²) of the torque T. Scaling M and T by 1/ρ to the onset gives
   // a ρ² − b ρ − c = 0, a = N p/(2π), b = M p/(π r), c = T²/(4π² r⁴): without torque
   // ρ = M/M_w, M_w = N r/2 (π p r³/2 from inflation alone: Comer & Levy 1963); without bending
-  // ρ = T/T_w, T_w = √2 π p r³ at N = pπr². A wall with no tension left either way (pushed
-  // slack, N ≤ 0, or uninflated, p = 0) carries no compression and is collapsed (ρ = ∞).
+  // ρ = T/T_w, T_w = √2 π p r³ at N = pπr². A wall with no axial tension left (pushed slack,
+  // or uninflated and not pulled: N ≤ 0) carries no compression and is collapsed (ρ = ∞), and
+  // so is an uninflated one (p = 0, no hoop tension) under a torque; an uninflated wall pulled
+  // taut keeps M_w = N r/2, the limit of p → 0.
   auto ratio_at = [&](int i, double r, double* mw) {
     const double N = WallTensionAt(i, r), p = solved_pressure_;
     const double M = st.wrench_B[i].head<2>().norm(), T = std::abs(st.wrench_B[i](2));
     *mw = std::max(0.0, 0.5 * N * r);
-    if (!(N > 0.0 && p > 0.0)) return kInf;
+    if (!(N > 0.0)) return kInf;
+    if (T == 0.0) return M / *mw;
+    if (!(p > 0.0)) return kInf;
     const double a = N * p / (2 * kPi), b = M * p / (kPi * r);
     const double c = T * T / (4 * kPi * kPi * std::pow(r, 4));
     return (b + std::sqrt(b * b + 4 * a * c)) / (2 * a);

@@ -36,6 +36,7 @@ nlohmann::ordered_json KinkJson(const KinkReport& kink) {
   k["max_moment_ratio"] = std::isfinite(kink.max_ratio) ? nlohmann::ordered_json(kink.max_ratio)
                                                         : nlohmann::ordered_json(nullptr);
   k["s_max"] = kink.s_max;
+  k["moment"] = kink.moment;
   k["torque"] = kink.torque;
   // Where the ratio first reaches 1 (m); null when it never does.
   k["first_kink_s"] = kink.first_kink_s >= 0 ? nlohmann::ordered_json(kink.first_kink_s)
@@ -51,8 +52,9 @@ std::string KinkWords(const KinkReport& kink, double pressure) {
   const char* ratio_name = kink.torque > 1e-6 * kink.moment ? "wrinkling ratio" : "|m|/M_w";
   if (!std::isfinite(kink.max_ratio))
     words << " (at s = " << kink.s_max << " m the wall has no tension left: "
-          << (pressure > 0.0 ? "pushed along its axis past the pressure's force, "
-                             : "uninflated (p = 0), ")
+          << (kink.wrinkling_moment > 0.0 ? "uninflated (p = 0) and twisted, "
+              : pressure > 0.0            ? "pushed along its axis past the pressure's force, "
+                                          : "uninflated (p = 0) and not pulled taut, ")
           << "and a film carries no compression)";
   else if (kink.status == KinkStatus::kCollapsed)
     words << " (" << ratio_name << " = " << kink.max_ratio << " at s = " << kink.s_max

@@ -168,22 +168,23 @@ double StretchTrusted(const io::Problem& problem) {
 }
 
 /// After a solve that did not converge, the slips of units that may be its cause: a Young's
-/// modulus below 1e4 Pa (gelatine's order; a steel rod typed in GPa, 200, ran out of load steps
+/// modulus below 1e3 Pa (soft hydrogels' order; a steel rod typed in GPa, 200, ran out of load steps
 /// and the hint spoke of the grid), and a rest curvature of over two turns along the rod
 /// (degrees typed for 1/m: 90 on a 1 m rod is 14 turns, which 51 nodes cannot follow).
 void FailedSolveUnitHints(const io::Problem& problem, std::ostringstream* log) {
   if (problem.has_assembly || !problem.rod.section) return;
   const double E = UniformYoungsModulus(FileProfile(problem));  // Pa; 0 where not uniform
-  if (E > 0.0 && E < 1e4)
-    *log << "cosserat: hint: rod.material.youngs_modulus is " << E << " Pa, softer than any "
-         << "gel (gelatine is about 1e4 Pa): if it was meant in GPa or MPa, write it in Pa ("
-         << E << "e9 or " << E << "e6)\n";
+  if (E > 0.0 && E < 1e3)
+    *log << "cosserat: hint: rod.material.youngs_modulus is " << E << " Pa, below even soft "
+         << "hydrogels' 1e3 Pa: if it was meant in GPa or MPa, write it in Pa (" << E << "e9 or "
+         << E << "e6)\n";
   const Vec3 k0 = problem.rod.RestStrainAt(0.0).head<3>();  // 1/m, body frame
   const double turns = k0.norm() * problem.rod.length / (2 * M_PI);
   if (turns > 2.0)
     *log << "cosserat: hint: rod.rest_curvature [" << k0.x() << ", " << k0.y() << ", " << k0.z()
          << "] turns the unloaded rod through " << turns
-         << " full turns along its length: curvature is in rad/m (1/radius), not degrees\n";
+         << " full turns along its length: if it was meant in degrees, curvature is in rad/m "
+            "(1/radius)\n";
 }
 
 }  // namespace

@@ -711,10 +711,10 @@ cosserat_cli_test(NAME buckling_max_below_euler
                   ARGS solve "${_cli_dir}/buckling_max_below_euler.json" CODE 0
                   STDERR "buckling.max \\(100 N\\) is below the Euler load of a uniform rod with these ends, 968.9 N")
 cosserat_cli_test(NAME youngs_modulus_in_gpa ARGS solve "${_cli_dir}/youngs_modulus_in_gpa.json"
-                  CODE 1 STDERR "youngs_modulus is 200 Pa, softer than any gel")
+                  CODE 1 STDERR "youngs_modulus is 200 Pa, below even soft hydrogels' 1e3 Pa: if it was meant in GPa")
 cosserat_cli_test(NAME rest_curvature_in_degrees
                   ARGS solve "${_cli_dir}/rest_curvature_in_degrees.json" CODE 1
-                  STDERR "turns the unloaded rod through 14.3 full turns along its length: curvature is in rad/m")
+                  STDERR "turns the unloaded rod through 14.3 full turns along its length: if it was meant in degrees")
 
 # A vine robot's pressure: given in robot.actuation alone (its profile sets none) it inflates the
 # tube, 3 kPa, whose tip force is p π r² = 5.890 N; typed in kPa (3 Pa) it is named.

@@ -121,7 +121,7 @@ struct KinkReport {
   KinkStatus status = KinkStatus::kNone;
   /// max over nodes of the factor by which the bending moment and the torque there pass the
   /// membrane's wrinkling onset: |m_⊥(s)| / M_w(s) without torque; inf where the wall has no
-  /// tension left (pushed slack, or p = 0)
+  /// axial tension left (pushed slack, or uninflated and not pulled), or p = 0 under a torque
   double max_ratio = 0.0;
   double s_max = 0.0;      ///< where the ratio is largest, m
   double moment = 0.0;     ///< |m_⊥| there, N·m
