@@ -276,7 +276,8 @@ TEST(Eversion, ATorqueAboutTheTubeWrinklesItsWall) {
 // base + d3 ∫₀ˢ (1 + ε(u)) du with ε = (1 − 2ν) p A(u) / EA (the hoop stress's Poisson
 // contraction: a thin isotropic closed vessel), i.e. s (1 + ε) away from bands and ε/4 in a
 // band that halves the radius (closed vessel); the tip-follower model, with no hoop stress, has
-// ε = p A_tip / EA everywhere. Material keeps its coordinate as the body grows: the same s, the same place.
+// ε = p A_tip / EA everywhere. Material keeps its coordinate as the body grows: the same s, the
+// same place.
 TEST(Eversion, FreeSpaceGrowthStaysStraightAndOnlyStretches) {
   struct Case {
     std::vector<EversionBand> bands;

@@ -168,16 +168,15 @@ double StretchTrusted(const io::Problem& problem) {
 }
 
 /// After a solve that did not converge, the slips of units that may be its cause: a Young's
-/// modulus below 1e3 Pa (soft hydrogels' order; a steel rod typed in GPa, 200, ran out of load steps
-/// and the hint spoke of the grid), and a rest curvature of over two turns along the rod
+/// modulus below 1e3 Pa (the softest hydrogels'; a steel rod typed in GPa, 200, ran out of load
+/// steps and the hint spoke of the grid), and a rest curvature of over two turns along the rod
 /// (degrees typed for 1/m: 90 on a 1 m rod is 14 turns, which 51 nodes cannot follow).
 void FailedSolveUnitHints(const io::Problem& problem, std::ostringstream* log) {
   if (problem.has_assembly || !problem.rod.section) return;
   const double E = UniformYoungsModulus(FileProfile(problem));  // Pa; 0 where not uniform
   if (E > 0.0 && E < 1e3)
-    *log << "cosserat: hint: rod.material.youngs_modulus is " << E << " Pa, below even soft "
-         << "hydrogels' 1e3 Pa: if it was meant in GPa or MPa, write it in Pa (" << E << "e9 or "
-         << E << "e6)\n";
+    *log << "cosserat: hint: rod.material.youngs_modulus is " << E << " Pa: if it was meant "
+         << "in GPa or MPa, write it in Pa (" << E << "e9 or " << E << "e6)\n";
   const Vec3 k0 = problem.rod.RestStrainAt(0.0).head<3>();  // 1/m, body frame
   const double turns = k0.norm() * problem.rod.length / (2 * M_PI);
   if (turns > 2.0)

@@ -711,7 +711,7 @@ cosserat_cli_test(NAME buckling_max_below_euler
                   ARGS solve "${_cli_dir}/buckling_max_below_euler.json" CODE 0
                   STDERR "buckling.max \\(100 N\\) is below the Euler load of a uniform rod with these ends, 968.9 N")
 cosserat_cli_test(NAME youngs_modulus_in_gpa ARGS solve "${_cli_dir}/youngs_modulus_in_gpa.json"
-                  CODE 1 STDERR "youngs_modulus is 200 Pa, below even soft hydrogels' 1e3 Pa: if it was meant in GPa")
+                  CODE 1 STDERR "youngs_modulus is 200 Pa: if it was meant in GPa or MPa, write it in Pa")
 cosserat_cli_test(NAME rest_curvature_in_degrees
                   ARGS solve "${_cli_dir}/rest_curvature_in_degrees.json" CODE 1
                   STDERR "turns the unloaded rod through 14.3 full turns along its length: if it was meant in degrees")
