@@ -107,6 +107,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   }
   Result result;
   result.json = io::StaticResultToJson(solve, robot.state());
+  if (robot.pieces() > 1) result.json["shooting_segments"] = robot.pieces();  // the last solve's
   detail::KeepStaticFrame(problem, robot.state(), run_options, &result);
   nlohmann::ordered_json r;
   r["kind"] = io::ToString(io::RobotKind::kEversion);
@@ -121,7 +122,9 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   std::ostringstream log;
   log << "cosserat: eversion " << ToString(solve.status) << growth_note.str()
       << ", L = " << robot.length() << " m, tip at [" << std::setprecision(6) << tip.x() << ", "
-      << tip.y() << ", " << tip.z() << "] m, kink"
+      << tip.y() << ", " << tip.z() << "] m"
+      << (robot.pieces() > 1 ? " (" + std::to_string(robot.pieces()) + " shooting pieces)" : "")
+      << ", kink"
       << (problem.robot.growth_initial_length ? " (the worst met while growing)" : "") << ": "
       << ToString(kink.status);
   log << KinkWords(kink, pressure) << '\n';

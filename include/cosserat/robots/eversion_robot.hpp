@@ -50,6 +50,7 @@
 #include "cosserat/rod/rod_model.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
 #include "cosserat/state/rod_state.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat {
@@ -229,13 +230,20 @@ class EversionRobot {
   /// Axial force in the wall at node i of the state, N: W3 + p A(s) for kClosedVessel, W3 for
   /// kTipFollowerOnly (where W already is the wall's).
   double WallTension(int node) const;
-  /// The solver of the current length and pressure (null before the first Solve).
+  /// The single-shot solver of the current length and pressure (null before the first Solve).
   const StaticShootingSolver* solver() const { return solver_.get(); }
+  /// Multiple-shooting pieces of the last converged solve: 1 for one shot; more where one shot
+  /// failed and the body was solved in pieces (a long robot on a stiff floor).
+  int pieces() const { return in_pieces_ ? pieces_->pieces() : 1; }
 
  private:
   /// WallTension at node i with the section radius r there (m): a band's end has two.
   double WallTensionAt(int node, double r) const;
   void RebuildSolver(double length);
+  /// After a failed single shot: the body by multiple shooting; on success *summary is its
+  /// (counting the failed work too) and the state is pieces_'s.
+  void SolveInPieces(double length, const StaticLoads& solver_loads,
+                     StaticShootingSummary* summary);
   /// First-order guess of W(0) (base body frame) at a new length from the current solution.
   Vec6 PredictBaseWrench(double length, const StaticLoads& solver_loads) const;
   EversionRobotDesign design_;
@@ -245,6 +253,9 @@ class EversionRobot {
   double pressure_ = 0.0;
   std::array<double, Actuation::kMaxSegments> jamming_pressure_{};  ///< ΔP of each segment, Pa
   std::unique_ptr<StaticShootingSolver> solver_;
+  std::unique_ptr<StaticMultipleShootingSolver> pieces_;  ///< where one shot failed
+  bool in_pieces_ = false;      ///< the state is pieces_'s
+  bool prefer_pieces_ = false;  ///< the last solve needed pieces: the next tries them first
   double solver_length_ = -1.0;
   bool solver_stale_ = true;
   double solved_pressure_ = 0.0;  ///< the pressure of the state
