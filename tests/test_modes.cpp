@@ -509,14 +509,15 @@ TEST(Modes, QuatFdFindsAStandingWirePastItsSelfWeightBucklingUnstable) {
 
 // An equilibrium near its critical load has a small ω² of a real sign, not round-off: a 1 m
 // steel column of radius 5 mm pressed by 0.997 and 1.003 times its Euler load π²EI/4L² is stable
-// and unstable (its ω² about ±6 rad²/s² on 40 segments, whose grid moves the critical load by
-// 0.085 (k h)², 2e-4), and neither is taken for a neutral mode, whose round-off lies below
-// ε max |(M⁻¹K)_ii| (2e-4 rad²/s² on this rod's 1e12).
+// and unstable (its ω² about ±6 rad²/s² on 40 segments, whose grid lowers the critical load by
+// 0.085 (k h)², 2e-4), and so is one at 1.001 (ω² about −2.5), which a window of 1e3 ε ‖M⁻¹K‖₁
+// called neutral; none is taken for a neutral mode, whose round-off lies below
+// ε max |(M⁻¹K)_ii| (3e-4 rad²/s² on this rod's 1.5e12).
 TEST(Modes, AColumnJustPastItsCriticalLoadIsUnstableNotNeutral) {
   const testing::SteelRod steel{1.0, 0.005};
   const RodModel rod = steel.model();
   const double critical = truth::EulerLoadClampedFree(steel.EI(), 1.0);
-  for (const double factor : {0.997, 1.003}) {
+  for (const double factor : {0.997, 1.001, 1.003}) {
     StaticLoads loads;
     loads.tip_force = Vec3(0, 0, -factor * critical);
     const ModalResult fd = QuatFdModes(rod, lie::SE3(), loads, 40, 4, false);
