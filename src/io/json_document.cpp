@@ -184,10 +184,9 @@ std::string SyntaxErrorText(const DocumentBuilder::Failure& failure, const std::
 /// failure's position back to the line's start holds one), else empty.
 std::string CommentHint(const std::string& text, std::size_t position) {
   const std::size_t end = std::min(position + 1, text.size());
-  const std::size_t line_start = text.rfind('\n', end == 0 ? 0 : end - 1);
-  const std::string line =
-      text.substr(line_start == std::string::npos ? 0 : line_start + 1,
-                  end - (line_start == std::string::npos ? 0 : line_start + 1));
+  const std::size_t newline = text.rfind('\n', end == 0 ? 0 : end - 1);
+  const std::size_t begin = newline == std::string::npos ? 0 : newline + 1;
+  const std::string line = text.substr(begin, end - begin);
   if (line.find("//") == std::string::npos && line.find("/*") == std::string::npos) return "";
   return "; JSON has no comments: put notes in a \"description\" string (the top level and "
          "robot take one)";

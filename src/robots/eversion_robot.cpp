@@ -291,10 +291,11 @@ EversionSolveSummary EversionRobot::Solve(double length, const StaticLoads& load
 
   EversionSolveSummary out;
   out.length = length;
-  in_pieces_ = false;
   // Where the last solve needed pieces, the body a little longer needs them too: pieces first,
   // rather than a single shot's failing load steps at every growth step.
-  if (prefer_pieces_) SolveInPieces(length, solver_loads, &out.solve);
+  const bool last_in_pieces = in_pieces_;
+  in_pieces_ = false;
+  if (last_in_pieces) SolveInPieces(length, solver_loads, &out.solve);
   if (!in_pieces_) {
     out.solve = solver_->Solve(design_.base, solver_loads);
     if (!out.solve.converged() && (seeded || out.solve.warm_started)) {
@@ -308,7 +309,6 @@ EversionSolveSummary EversionRobot::Solve(double length, const StaticLoads& load
     out.solve.warm_started = out.solve.warm_started || seeded;
     if (!out.solve.converged()) SolveInPieces(length, solver_loads, &out.solve);
   }
-  prefer_pieces_ = in_pieces_;
   if (out.solve.converged()) {
     have_solution_ = true;
     last_base_wrench_ = in_pieces_ ? state().wrench_B.front() : solver_->base_wrench_B();

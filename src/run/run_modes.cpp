@@ -233,13 +233,12 @@ std::string UndampedShootingNote(const io::Problem& problem) {
 /// Which modes are neutral (Mode::neutral), and what that means.
 std::string NeutralNote(const ModalResult& r) {
   std::ostringstream which, computed;
-  which << std::setprecision(3);
+  computed << std::setprecision(3);
   int count = 0;
   for (size_t m = 0; m < r.modes.size(); ++m) {
     if (!r.modes[m].neutral) continue;
     which << (count ? ", " : " ") << m + 1;
-    computed << (count++ ? ", " : "") << std::setprecision(3)
-             << r.modes[m].computed_omega_squared;
+    computed << (count++ ? ", " : "") << r.modes[m].computed_omega_squared;
   }
   if (count == 0) return "";
   return std::string("cosserat: note: mode") + (count > 1 ? "s" : "") + which.str() +

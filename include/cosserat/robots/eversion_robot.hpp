@@ -254,8 +254,7 @@ class EversionRobot {
   std::array<double, Actuation::kMaxSegments> jamming_pressure_{};  ///< ΔP of each segment, Pa
   std::unique_ptr<StaticShootingSolver> solver_;
   std::unique_ptr<StaticMultipleShootingSolver> pieces_;  ///< where one shot failed
-  bool in_pieces_ = false;      ///< the state is pieces_'s
-  bool prefer_pieces_ = false;  ///< the last solve needed pieces: the next tries them first
+  bool in_pieces_ = false;  ///< the state is pieces_'s (the next solve tries pieces first)
   double solver_length_ = -1.0;
   bool solver_stale_ = true;
   double solved_pressure_ = 0.0;  ///< the pressure of the state
