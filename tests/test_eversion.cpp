@@ -268,11 +268,14 @@ TEST(Eversion, AVineOnAFloorGrowsPastWhatOneShotResolves) {
   const GrowthSummary g = grown.Grow(L, 8, loads);
   ASSERT_TRUE(g.converged()) << ToString(g.status) << " at " << g.length;
   EXPECT_GT(grown.pieces(), 1);
+  EXPECT_TRUE(g.last_solve.warm_started);  // from the shape at 2.25 m, carried onto this grid
   EversionRobot direct(design, L, p);
   ASSERT_TRUE(direct.Solve(loads).solve.converged());
   const RodState &a = grown.state(), &b = direct.state();
   ASSERT_EQ(a.size(), b.size());
-  EXPECT_LT((a.tip_position_W() - b.tip_position_W()).norm(), 1e-9);
+  // Both solve one discrete problem to the solver's tolerance 1e-10, from different starts.
+  for (int i = 0; i < a.size(); ++i)
+    EXPECT_LT((a.position_W[i] - b.position_W[i]).norm(), 1e-9) << "node " << i;
   int far = 0;  // the node 1.5 m from the base
   while (far + 1 < b.size() && b.s[far] < 1.5) ++far;
   const double tip_z = b.tip_position_W().z();

@@ -1,14 +1,18 @@
 // Cross-sections, materials, sectional matrices and the grid.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
+#include "cosserat/lie/so3.hpp"
 #include "cosserat/rod/actuation.hpp"
 #include "cosserat/rod/grid.hpp"
 #include "cosserat/rod/rest_shape.hpp"
 #include "cosserat/rod/rod_model.hpp"
+#include "cosserat/state/resampled_state.hpp"
 #include "cosserat/strong/static_shooting.hpp"
 #include "support/analytic/constant_curvature.hpp"
 
@@ -191,6 +195,52 @@ TEST(RestShape, ConstantCurvatureGivesTheArc) {
   ASSERT_EQ(line.size(), 51u);
   for (int i = 0; i < 51; ++i)
     EXPECT_LT((line[i] - truth::ArcPoint(kappa, 0.01 * i)).norm(), 1e-12) << "point " << i;
+}
+
+// A circular arc of curvature κ about body y: R(s) = Exp(s κ e_y), p(s) = ArcPoint(κ, s). The
+// geodesic between two of its frames stays on that one-parameter subgroup, so the resampled
+// rotations are the arc's own to round-off (1e-14). Positions are chords: off the arc by at most
+// the sagitta h² κ / 8 of a segment h. A wrench linear in s is carried exactly. Past the tip the
+// rod goes on straight along the tip's tangent.
+TEST(ResampledState, CarriesAnArcOntoOtherNodesAndGrowsItStraight) {
+  const double kappa = 2.0, L = 1.0;
+  const int n = 11;
+  const double h = L / (n - 1);
+  auto frame = [kappa](double s) { return lie::SO3Exp(Vec3(0, s * kappa, 0)); };
+  RodState from;
+  from.Resize(n);
+  for (int i = 0; i < n; ++i) {
+    const double s = i * h;
+    from.s[i] = s;
+    from.position_W[i] = truth::ArcPoint(kappa, s);
+    from.rotation_WB[i] = frame(s);
+    from.strain[i] << 0, kappa, 0, 0, 0, 1;
+    from.wrench_B[i] << 0, 1.0 - s, 0, 0, 0, 2.0 * s;
+  }
+  std::vector<double> s;
+  for (int j = 0; j <= 36; ++j) s.push_back(j * 1.2 * L / 36);  // 0 … 1.2 m, past the tip
+  const RodState out = ResampledState(from, s);
+  ASSERT_EQ(out.size(), 37);
+  const double sagitta = h * h * kappa / 8;  // 2.5 mm
+  for (int j = 0; j <= 36; ++j) {
+    const double sj = std::min(s[j], L);
+    EXPECT_LT((out.rotation_WB[j] - frame(sj)).norm(), 1e-14) << s[j];
+    EXPECT_NEAR(out.wrench_B[j](1), 1.0 - sj, 1e-14) << s[j];
+    EXPECT_NEAR(out.wrench_B[j](5), 2.0 * sj, 1e-14) << s[j];
+    if (s[j] <= L) {
+      EXPECT_LE((out.position_W[j] - truth::ArcPoint(kappa, s[j])).norm(), sagitta * (1 + 1e-9))
+          << s[j];
+    } else {
+      const Vec3 straight = truth::ArcPoint(kappa, L) + (s[j] - L) * frame(L).col(2);
+      EXPECT_LT((out.position_W[j] - straight).norm(), 1e-14) << s[j];
+    }
+  }
+  EXPECT_THROW(ResampledState(from, {0.0, 0.5, 0.4}), std::invalid_argument);
+  EXPECT_THROW(ResampledState(from, {-0.1, 0.5}), std::invalid_argument);
+  RodState one;
+  one.Resize(1);
+  one.s[0] = 0;
+  EXPECT_THROW(ResampledState(one, {0.0}), std::invalid_argument);
 }
 
 }  // namespace

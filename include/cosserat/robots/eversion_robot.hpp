@@ -240,9 +240,11 @@ class EversionRobot {
   /// WallTension at node i with the section radius r there (m): a band's end has two.
   double WallTensionAt(int node, double r) const;
   void RebuildSolver(double length);
-  /// After a failed single shot: the body by multiple shooting; on success *summary is its
-  /// (counting the failed work too) and the state is pieces_'s.
-  void SolveInPieces(double length, const StaticLoads& solver_loads,
+  /// After a failed single shot, or first when the last solve was in pieces: the body by
+  /// multiple shooting; on success *summary is its (counting the failed work too) and the state
+  /// is pieces_'s. With from_last, Newton starts from the last solution in pieces, carried onto
+  /// this length's grid, before following the loads from the unloaded body.
+  void SolveInPieces(double length, const StaticLoads& solver_loads, bool from_last,
                      StaticShootingSummary* summary);
   /// First-order guess of W(0) (base body frame) at a new length from the current solution.
   Vec6 PredictBaseWrench(double length, const StaticLoads& solver_loads) const;
