@@ -218,12 +218,16 @@ void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
   }
   constexpr int kPoints = 201;
   const std::vector<Vec3> centreline = RestCentreline_W(p.rod, p.base, kPoints);
+  // A centreline that ends on the surface is not past it: the rest centreline's round-off (a
+  // wall placed at the tip of a 2 m rod read 4.4e-16 m past it) is forgiven up to 1e-12 L.
+  const double round_off = 1e-12 * p.rod.length;  // m
   for (int k = 0; k < contact.count && p.boundary != Boundary::kAnchored; ++k) {
     double deepest = 0.0, s_deepest = 0.0;  // the most negative distance, m, and where
     double s_first = p.rod.length;         // m, the first point past the surface
     for (int i = 0; i < kPoints; ++i) {
       Vec3 normal;
-      const double distance = contact.surface[k].Distance(centreline[i], &normal);
+      double distance = contact.surface[k].Distance(centreline[i], &normal);
+      if (distance < 0.0 && distance > -round_off) distance = 0.0;
       const double s = p.rod.length * i / (kPoints - 1);
       if (distance < 0.0) s_first = std::min(s_first, s);
       if (distance < deepest) {

@@ -388,6 +388,10 @@ set_tests_properties(cli.rod_on_table_csv_has_contact_columns PROPERTIES
                      DEPENDS cli.solve_rod_on_table_csv)
 cosserat_cli_test(NAME contact_starts_inside ARGS validate "${_cli_dir}/contact_starts_inside.json"
                   CODE 2 STDERR "environment.contact\\[0\\]: the rod starts inside this surface: at s = 0\\.25 m its centreline is 0\\.05 m past it")
+# A wall placed at the tip: the rest centreline ends on it (4.4e-16 m past by round-off), which
+# is not starting inside it.
+cosserat_cli_test(NAME contact_wall_at_tip ARGS validate "${_cli_dir}/contact_wall_at_tip.json"
+                  CODE 0 STDOUT "contact_wall_at_tip.json: ok")
 # A vine grown at a wall its full length reaches into: refused, saying why the growth's start
 # clear of the wall does not count.
 cosserat_cli_test(NAME vine_grown_at_a_wall ARGS validate "${_cli_dir}/vine_grown_at_a_wall.json"
