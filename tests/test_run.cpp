@@ -986,6 +986,47 @@ TEST(Run, AnEversionRobotTakesTheGridItIsAskedForAndSaysWhenItRefinesIt) {
       << coarse.log;
 }
 
+// A grown robot's result holds every growth step: robot.growth lists each step's length (the
+// file's L0 + k (L − L0)/steps, L0 = 0.1 m, 55 steps to 1.2 m), tip and wrinkling ratio, the last
+// step's tip the result's; and its VTK series has one frame per step, at t = that length, with
+// the radius of its own nodes: the tube's 25 mm away from the bands (a radius taken from the
+// final grid would put a band's 12.5 mm on other nodes of the shorter bodies).
+TEST(Run, AGrownRobotKeepsEveryGrowthStep) {
+  nlohmann::json doc = testing::SourceJson("robots/eversion_banded_vine.json");
+  doc["rod"]["nodes"] = 9;  // the robot's own 40 per metre
+  const io::ParseResult parsed = io::ParseProblem(doc.dump());
+  ASSERT_TRUE(parsed.ok());
+  RunOptions options;
+  options.frames = true;
+  const Result r = cosserat::run::Run(*parsed.problem, options);
+  ASSERT_TRUE(r.converged) << r.log;
+  const auto& growth = r.json["robot"]["growth"];
+  ASSERT_EQ(growth["length"].size(), 55u);
+  ASSERT_EQ(growth["tip"].size(), 55u);
+  ASSERT_EQ(growth["max_moment_ratio"].size(), 55u);
+  ASSERT_EQ(r.frames.size(), 55u);
+  const std::vector<std::pair<double, double>> bands = {{0.30, 0.32}, {0.60, 0.62}, {0.90, 0.92}};
+  for (int k = 0; k < 55; ++k) {
+    const double length = growth["length"][k].get<double>();
+    EXPECT_NEAR(length, 0.1 + (k + 1) * (1.2 - 0.1) / 55, 1e-12) << k;
+    const io::VtkFrame& frame = r.frames[k];
+    EXPECT_EQ(frame.t, length);
+    ASSERT_EQ(frame.rods.size(), 1u);
+    ASSERT_EQ(frame.radius.size(), 1u);
+    const RodState& body = frame.rods[0];
+    ASSERT_EQ(frame.radius[0].size(), body.s.size()) << k;
+    EXPECT_NEAR(body.s.back(), length, 1e-12) << k;
+    for (int i = 0; i < body.size(); ++i) {
+      bool near_band = false;
+      for (const auto& [a, b] : bands) near_band |= body.s[i] > a - 1e-9 && body.s[i] < b + 1e-9;
+      if (!near_band) EXPECT_EQ(frame.radius[0][i], 0.025) << "step " << k << " s " << body.s[i];
+    }
+    const nlohmann::json& tip = growth["tip"][k];
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(tip[c].get<double>(), body.tip_position_W()[c]);
+  }
+  EXPECT_EQ(growth["tip"][54], r.json["tip"]["position"]);
+}
+
 // The inflated tube's laws are thin-walled (I = π r³ t drops terms of order t/r): a wall of 0.8
 // of the radius is noted with that fraction, a 75 µm one on a 25 mm tube (0.003) is not.
 TEST(Run, AThickWalledInflatedTubeIsNoted) {

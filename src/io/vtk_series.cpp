@@ -173,7 +173,9 @@ bool WriteVtkSeries(const std::string& directory, const std::string& stem,
     const VtkFrame& frame = frames[k];
     for (std::size_t r = 0; r < frame.rods.size(); ++r)
       Piece(vtp, static_cast<int>(r), frame.rods[r],
-            r < radius.size() ? radius[r] : std::vector<double>{},
+            r < frame.radius.size() ? frame.radius[r]
+            : r < radius.size()     ? radius[r]
+                                    : std::vector<double>{},
             r < frame.contact_force.size() ? &frame.contact_force[r] : nullptr);
   };
   if (!WriteSeries(directory, stem, frames.size(), t, rods, error)) return false;

@@ -11,6 +11,7 @@
 #include "cosserat/rod/stiffness_profiles.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "frame_output.hpp"
+#include "growth_record.hpp"
 #include "node_table.hpp"
 
 namespace cosserat::run {
@@ -86,9 +87,13 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   std::ostringstream growth_note;
   nlohmann::ordered_json first_kink_length;  // grown: the length first kinked at (m), or null
   bool converged;
+  detail::GrowthRecord growth(problem, run_options.frames);
   if (problem.robot.growth_initial_length) {
-    const GrowthSummary g =
-        robot.Grow(problem.rod.length, problem.robot.growth_steps, problem.loads);
+    const GrowthSummary g = robot.Grow(
+        problem.rod.length, problem.robot.growth_steps, problem.loads,
+        [&growth](int, const EversionSolveSummary& step, const EversionRobot& r) {
+          growth.Add(r, step);
+        });
     converged = g.converged();
     solve = g.last_solve;
     solve.status = g.status;
@@ -109,13 +114,17 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   result.json = io::StaticResultToJson(solve, robot.state());
   if (robot.pieces() > 1) result.json["shooting_segments"] = robot.pieces();  // the last solve's
   detail::KeepStaticFrame(problem, robot.state(), run_options, &result);
+  growth.MoveFramesInto(&result);  // a grown robot: every step's body
   nlohmann::ordered_json r;
   r["kind"] = io::ToString(io::RobotKind::kEversion);
   r["pressure"] = pressure;
   r["length"] = robot.length();
   r["tip_force"] = robot.TipForce();
   r["kink"] = KinkJson(kink);
-  if (problem.robot.growth_initial_length) r["first_kink_length"] = first_kink_length;
+  if (problem.robot.growth_initial_length) {
+    r["first_kink_length"] = first_kink_length;
+    r["growth"] = growth.Json();
+  }
   result.json["robot"] = r;
   if (run_options.nodes_csv) result.nodes_csv = detail::NodesCsv(robot.state());
   const Vec3 tip = robot.state().tip_position_W();

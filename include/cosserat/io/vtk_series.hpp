@@ -31,11 +31,15 @@ struct VtkFrame {
   /// separate series `stem`_bodies (one vertex per body); empty for a single rod.
   std::vector<lie::SE3> bodies;
   std::vector<Vec3> body_velocity_W;
+  /// Each rod's outer radius at its nodes in this frame (m), where the nodes change between
+  /// frames (a growing body); empty: the series' `radius`.
+  std::vector<std::vector<double>> radius;
 };
 
 /// Writes `directory`/`stem`_NNNNNN.vtp for every frame and `directory`/`stem`.pvd listing them
 /// (the directory is created if missing); with bodies, `stem`_bodies.pvd and its frames too.
-/// `radius[r]` holds rod r's outer radius at each of its nodes (m). Returns false with *error set
+/// `radius[r]` holds rod r's outer radius at each of its nodes (m), unless the frame holds its
+/// own. Returns false with *error set
 /// ("<path>: <why>") when a file cannot be written.
 bool WriteVtkSeries(const std::string& directory, const std::string& stem,
                     const std::vector<VtkFrame>& frames,
