@@ -317,6 +317,7 @@ TEST(Run, ABucklingSearchThatFailsAtOnceReportsNoState) {
 // the post-buckled elastica folded over its clamp (Timoshenko & Gere 1961, §2.7: tip at
 // 0.144719 m across and 0.355272 m below the clamp). Within 1e-4 m: the side force moves it by
 // about 3e-5 of L, shear and stretch P/EA by 5e-5. Below P_cr it stands, stable, nothing said.
+// Far past P_cr, solved in multiple-shooting pieces, it settles on the elastica too.
 TEST(Run, APressedCantileverSettlesOnItsElastica) {
   const std::string problem = R"({
     "format": "cosserat-problem/1",
@@ -346,6 +347,19 @@ TEST(Run, APressedCantileverSettlesOnItsElastica) {
   ASSERT_TRUE(light.converged) << light.log;
   EXPECT_EQ(light.json["stability_index"].get<int>(), 0);
   EXPECT_EQ(light.log.find("unstable"), std::string::npos);
+  // 70 N (45 P_cr): L sqrt(P/EI) = 10.6, past one shot's reach, so the statics run in pieces,
+  // and settle there too. The grid check puts RK4's error at 0.06 % of L (3e-4 m) for the
+  // 0.53 rad per segment at the clamp: 5e-4 m asserted.
+  const Result far = run("-70");
+  ASSERT_TRUE(far.converged) << far.log;
+  EXPECT_TRUE(far.json.contains("shooting_segments")) << far.log;
+  EXPECT_EQ(far.json["stability_index"].get<int>(), 0) << far.log;
+  const truth::PostBuckledCantilever f =
+      truth::PostBuckledCantileverAtLoad(70.0 / (M_PI * M_PI * EI / (4 * L * L)));
+  const auto& far_tip = far.json["tip"]["position"];
+  EXPECT_NEAR(std::hypot(far_tip[0].get<double>(), far_tip[1].get<double>()), f.deflection * L,
+              5e-4);
+  EXPECT_NEAR(far_tip[2].get<double>(), f.axial * L, 5e-4);
 }
 
 // A cantilever pushed sideways at its tip (0.3 N) onto a sphere beside it (R = 10 mm): the

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cosserat/loads/total_load.hpp"
+#include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "quatfd_stability.hpp"
 
@@ -102,13 +103,13 @@ bool SettleSingleShot(const io::Problem& problem, const RodState& straight, int 
   return true;
 }
 
-bool SettleInPieces(const io::Problem& problem, const RodState& straight, int index, int pieces,
-                    StaticsInPieces* out, double* imperfection) {
-  const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
-  StaticMultipleShootingSolver solver(
-      problem.rod, problem.nodes, PiecesOptions(problem, ColumnEnds::kClampedFree, pieces, true));
-  StaticShootingSummary total, last;
-  if (!FollowAway(problem, imperfect, &solver, &total, &last)) return false;
+namespace {
+
+/// The pieces' equilibrium as the settled one when it has fewer unstable directions than
+/// `index`: *out receives it with *total (status and residual of `last`) and its index.
+bool AcceptInPieces(const io::Problem& problem, const StaticMultipleShootingSolver& solver,
+                    int index, StaticShootingSummary total, const StaticShootingSummary& last,
+                    StaticsInPieces* out) {
   const int settled = IndexInPieces(problem, ColumnEnds::kClampedFree, problem.base,
                                     problem.loads, solver.state(), solver.pieces());
   if (settled < 0 || settled >= index) return false;
@@ -119,6 +120,38 @@ bool SettleInPieces(const io::Problem& problem, const RodState& straight, int in
   out->state = solver.state();
   out->pieces = solver.pieces();
   return true;
+}
+
+}  // namespace
+
+bool SettleInPieces(const io::Problem& problem, const RodState& straight, int index, int pieces,
+                    StaticsInPieces* out, double* imperfection) {
+  // Where one shot still resolves the rod (an exponent up to 20 amplifies round-off by 5e8), its
+  // path, which keeps to the stable branch, settles it and the pieces take its equilibrium up:
+  // the pieces' own path grows its steps while the sections turn little, and from the straight
+  // rod far past its critical load it lands on the imperfect straight branch, unstable (a wire
+  // pushed at its tip by 40 times it came back straight, then S-bent with 4 unstable directions).
+  if (StaticShootingExponent(problem.rod, problem.loads) <= 20.0) {
+    StaticShootingSolver single(problem.rod, problem.nodes, StaticOptions(problem),
+                                problem.robot.actuation);
+    StaticShootingSummary by_shot;
+    if (SettleSingleShot(problem, straight, index, &single, &by_shot, imperfection)) {
+      StaticMultipleShootingSolver solver(
+          problem.rod, problem.nodes,
+          PiecesOptions(problem, ColumnEnds::kClampedFree, pieces, false));
+      const StaticShootingSummary last =
+          solver.SolveFrom(problem.base, problem.loads, single.state());
+      by_shot.CountWorkOf(last);
+      if (last.converged() && AcceptInPieces(problem, solver, index, by_shot, last, out))
+        return true;
+    }
+  }
+  const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
+  StaticMultipleShootingSolver solver(
+      problem.rod, problem.nodes, PiecesOptions(problem, ColumnEnds::kClampedFree, pieces, true));
+  StaticShootingSummary total, last;
+  if (!FollowAway(problem, imperfect, &solver, &total, &last)) return false;
+  return AcceptInPieces(problem, solver, index, total, last, out);
 }
 
 bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int index,

@@ -48,7 +48,8 @@ bool SettleSingleShot(const io::Problem& problem, const RodState& straight, int 
                       double* imperfection);
 
 /// The same for a cantilever in `pieces` multiple-shooting pieces: *out receives the
-/// equilibrium, its solve and its index.
+/// equilibrium, its solve and its index. Where one shot still resolves the rod (an exponent up
+/// to 20), the single shot settles it and the pieces take up its equilibrium.
 bool SettleInPieces(const io::Problem& problem, const RodState& straight, int index, int pieces,
                     StaticsInPieces* out, double* imperfection);
 
