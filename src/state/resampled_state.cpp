@@ -32,7 +32,8 @@ RodState ResampledState(const RodState& from, const std::vector<double>& s) {
     auto lerp = [t](const auto& a, const auto& b) { return ((1.0 - t) * a + t * b).eval(); };
     out.position_W[j] = lerp(from.position_W[i], from.position_W[i + 1]);
     const Mat3& Ri = from.rotation_WB[i];
-    out.rotation_WB[j] = Ri * lie::SO3Exp(t * lie::SO3Log(Ri.transpose() * from.rotation_WB[i + 1]));
+    const Vec3 turn = lie::SO3Log(Ri.transpose() * from.rotation_WB[i + 1]);  // rad, body
+    out.rotation_WB[j] = Ri * lie::SO3Exp(Vec3(t * turn));
     out.strain[j] = lerp(from.strain[i], from.strain[i + 1]);
     out.wrench_B[j] = lerp(from.wrench_B[i], from.wrench_B[i + 1]);
     out.twist_B[j] = lerp(from.twist_B[i], from.twist_B[i + 1]);
