@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -229,8 +230,18 @@ int RunValidate(const Command& cmd) {
       PrintLines(parsed.errors);
       return kExitBadInput;
     }
-    std::cout << cmd.problem_path << ": ok (a study of " << parsed.study->PointCount()
-              << " points)\n";
+    const std::uint64_t n = parsed.study->PointCount();
+    std::cout << cmd.problem_path << ": ok (a study of " << n << (n == 1 ? " point" : " points");
+    // Points whose values make an invalid problem run as rows with their reason: said here.
+    const cosserat::io::StudyPointCheck check =
+        cosserat::io::CheckStudyPoints(*parsed.study, 100000);
+    if (check.invalid > 0)
+      std::cout << "; " << check.invalid << " of the " << (check.checked < n ? "first " : "")
+                << check.checked << " are invalid problems, each a row with its reason, the "
+                << "first point " << check.first << " ("
+                << cosserat::io::PointWords(*parsed.study, check.first)
+                << "): " << check.first_error;
+    std::cout << ")\n";
     return kExitConverged;
   }
   if (!LoadRunnableProblem(cmd.problem_path)) return kExitBadInput;
@@ -361,11 +372,19 @@ int RunSweep(const Command& cmd) {
     throw std::runtime_error("started by mpirun with " + std::to_string(ranks) +
                              " ranks, but this build has no MPI: every rank would run the whole "
                              "study (install libopenmpi-dev and build again)");
+  int tasks = 1;
+  if (cosserat::apps::UnjoinedSlurmTasks(&tasks))
+    throw std::runtime_error(
+        "srun started this sweep as task " + std::string(std::getenv("SLURM_PROCID") ?
+        std::getenv("SLURM_PROCID") : "?") + " of " + std::to_string(tasks) + ", but no MPI "
+        "environment joins the tasks: each would run the whole study into " + *cmd.out_path +
+        " (start it with srun --mpi=pmix or pmi2, or mpirun; or one task with --threads)");
   bool root = true;
+  int joined = ranks;  // the ranks MPI joined
   const cosserat::run::SweepSummary s =
       ranks > 1 ? cosserat::apps::RunSweepMpi(*parsed.study, *cmd.out_path,
                                               cmd.threads > 0 ? cmd.threads : 1, options.progress,
-                                              &root)
+                                              &root, &joined)
                 : cosserat::run::RunSweep(*parsed.study, *cmd.out_path, options);
   progress.Clear();
   if (!root) return kExitConverged;  // rank 0 reports and exits with the study's status
@@ -373,7 +392,7 @@ int RunSweep(const Command& cmd) {
             << (s.points == 1 ? " point (" : " points (") << s.resumed << " from the file, "
             << s.ran << " run now on ";
   if (ranks > 1)
-    std::cerr << ranks << " MPI ranks";
+    std::cerr << joined << (joined == 1 ? " MPI rank" : " MPI ranks");
   else
     std::cerr << options.threads << (options.threads == 1 ? " thread" : " threads");
   std::cerr << "), " << s.failed << " not converged, " << std::setprecision(3) << s.wall_time_s

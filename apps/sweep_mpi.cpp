@@ -26,12 +26,19 @@ int LaunchedRank() {
   return 0;
 }
 
+bool UnjoinedSlurmTasks(int* tasks) {
+  const char* ntasks = std::getenv("SLURM_NTASKS");
+  *tasks = ntasks ? std::atoi(ntasks) : 1;
+  return *tasks > 1 && std::getenv("SLURM_STEP_ID") && LaunchedRanks() == 1;
+}
+
 #ifndef COSSERAT_HAVE_MPI
 
 bool HaveMpi() { return false; }
 
 run::SweepSummary RunSweepMpi(const io::Study&, const std::string&, int,
-                              const std::function<void(std::uint64_t, std::uint64_t)>&, bool*) {
+                              const std::function<void(std::uint64_t, std::uint64_t)>&, bool*,
+                              int*) {
   throw std::runtime_error("this build has no MPI (install libopenmpi-dev and build again)");
 }
 
@@ -132,13 +139,14 @@ bool HaveMpi() { return true; }
 
 run::SweepSummary RunSweepMpi(const io::Study& study, const std::string& path, int threads,
                               const std::function<void(std::uint64_t, std::uint64_t)>& progress,
-                              bool* is_root) {
+                              bool* is_root, int* ranks) {
   int provided = 0;
   MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   *is_root = rank == 0;
+  *ranks = size;
   run::SweepSummary summary;
   if (rank != 0) {
     ComputeForRoot(study);

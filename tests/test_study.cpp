@@ -113,6 +113,20 @@ TEST(Study, AGridEndsExactlyAtItsEnds) {
   EXPECT_DOUBLE_EQ(s.Point(1)[0], 0.004);
 }
 
+// A grid's values are numpy.linspace's, to the bit, so that a notebook's filter on a value finds
+// its rows: numpy 1.24 gives linspace(0.3, 1.2, 10) = 0.3, 0.39999999999999997, 0.5, 0.6, 0.7,
+// 0.7999999999999999, 0.8999999999999999, 1.0, 1.0999999999999999, 1.2 (from + i (to − from) / 9
+// gave 0.9999999999999998 at i = 7).
+TEST(Study, AGridHoldsNumpyLinspacesValues) {
+  const io::Study s = Parse(TendonStudy(
+      R"([{"path": "/robot/actuation/tension/0",
+           "grid": {"from": 0.3, "to": 1.2, "count": 10}}])"));
+  const std::vector<double> numpy = {0.3, 0.39999999999999997, 0.5, 0.6, 0.7, 0.7999999999999999,
+                                     0.8999999999999999, 1.0, 1.0999999999999999, 1.2};
+  ASSERT_EQ(s.PointCount(), numpy.size());
+  for (std::size_t i = 0; i < numpy.size(); ++i) EXPECT_EQ(s.Point(i)[0], numpy[i]) << i;
+}
+
 // The normal draws have the asked mean and spread: over 20 000 draws the sample mean is within
 // 4 σ/√n of μ (a false failure once in ~16 000 runs; the draws are fixed by the seed, so never)
 // and the sample deviation within 2 %.
@@ -179,6 +193,43 @@ TEST(Study, BadStudiesNameTheField) {
                  "outputs": {"/rod/length": "/tip/position/0"}})");
   EXPECT_TRUE(HasError(e, "outputs[\"/rod/length\"]: expected a name other than a parameter's "
                           "column (parameters[0] is named so)"));
+  // A column named "" or across two lines; one grid point that drops "to"; draws with nothing
+  // random, which repeat one point.
+  e = Errors(std::string(R"({"format": "cosserat-study/1", "problem": )") + kTendonRobot +
+             R"(, "parameters": [{"path": "/rod/length", "values": [0.25]}],
+                 "outputs": {"": "/tip/position/0", "a\nb": "/tip/position/1"}})");
+  EXPECT_TRUE(HasError(e, "outputs[\"\"]: expected a column name, not empty and on one line"));
+  EXPECT_TRUE(HasError(e, "expected a column name, not empty and on one line, got \"a"));
+  e = Errors(TendonStudy(
+      R"([{"path": "/rod/length", "grid": {"from": 0.2, "to": 0.3, "count": 1}}])"));
+  EXPECT_TRUE(HasError(e, "parameters[0].grid.count: 1 point holds \"from\" only"));
+  EXPECT_TRUE(Errors(TendonStudy(
+      R"([{"path": "/rod/length", "grid": {"from": 0.2, "to": 0.2, "count": 1}}])")).empty());
+  e = Errors(std::string(R"({"format": "cosserat-study/1", "problem": )") + kTendonRobot +
+             R"(, "samples": 3, "parameters": [{"path": "/rod/length", "values": [0.25]}],
+                 "outputs": {"x": "/tip/position/0"}})");
+  EXPECT_TRUE(HasError(e, "samples: expected 1 when no parameter is random"));
+}
+
+// A value invalid at some points only (a negative length in a list) is not the study's mistake:
+// those points run as rows with their reason, wherever they stand in the list, and
+// CheckStudyPoints counts them. A study none of whose points is a problem is refused, naming
+// point 0's values.
+TEST(Study, PointsInvalidHereAndThereAreRowsNotARefusal) {
+  for (const char* values : {"[0.25, -0.1, 0.2]", "[-0.1, 0.25, 0.2]"}) {
+    const io::Study s = Parse(TendonStudy(std::string(R"([{"path": "/rod/length", "values": )") +
+                                          values + "}]"));
+    const io::StudyPointCheck check = io::CheckStudyPoints(s, 100);
+    EXPECT_EQ(check.checked, 3u);
+    EXPECT_EQ(check.invalid, 1u) << values;
+    EXPECT_EQ(s.Point(check.first)[0], -0.1);
+    EXPECT_NE(check.first_error.find("rod.length"), std::string::npos) << check.first_error;
+  }
+  const std::vector<std::string> e =
+      Errors(TendonStudy(R"([{"path": "/rod/length", "values": [-0.1, -0.2]}])"));
+  EXPECT_TRUE(
+      HasError(e, "problem (with point 0's parameters: /rod/length = -0.10000000000000001)"))
+      << (e.empty() ? "" : e.front());
 }
 
 // Each row's tip is the arc's: the tendon's moment T r bends the backbone to κ = T r/EI and its
@@ -274,6 +325,47 @@ TEST(Sweep, AFailingPointIsARowWithItsStatus) {
   EXPECT_NE(rows.at(1).find("invalid: rod.length: expected a positive number"), std::string::npos)
       << rows.at(1);
   EXPECT_NE(rows.at(2).find("converged"), std::string::npos);
+}
+
+// One writer per file: a second sweep started on the same --out while the first runs (two
+// jobs, or srun tasks that no MPI joins) is refused, naming the lock, instead of running the
+// whole study into it too; the lock goes with the first.
+TEST(Sweep, ASecondWriterOnOneFileIsRefused) {
+  const io::Study s = Parse(TendonStudy(R"([{"path": "/rod/length", "values": [0.25]}])"));
+  const std::string path = Temp("locked.csv");
+  std::remove(path.c_str());
+  {
+    run::SweepFile first(s, path);
+    try {
+      run::SweepFile second(s, path);
+      ADD_FAILURE() << "a second writer was let in";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("another sweep is writing it"), std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_NO_THROW(run::SweepFile again(s, path));
+}
+
+// A result's null is written "nan", as the docs say: a buckling search capped at 0.1 N on a
+// 0.3 m wire, whose Euler load π²EI/4L² is 4.3 N, finds no critical load. "/warnings" gives the
+// log's warnings as a JSON list, [] where there are none.
+TEST(Sweep, ANullIsNanAndWarningsAreAColumn) {
+  const io::Study s = Parse(R"({"format": "cosserat-study/1", "problem": {
+      "format": "cosserat-problem/1", "analysis": "buckling",
+      "rod": {"length": 0.3, "nodes": 21, "section": {"shape": "circle", "radius": 0.001},
+              "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9, "density": 8000}},
+      "loads": {"gravity": [0, 0, 0]},
+      "buckling": {"load": "tip_force", "direction": [0, 0, -1], "max": 0.1}},
+    "parameters": [{"path": "/loads/gravity/0", "values": [0, -5000]}],
+    "outputs": {"p": "/buckling/critical_load", "w": "/warnings"}})");
+  const std::string path = Temp("nan.csv");
+  std::remove(path.c_str());
+  run::RunSweep(s, path);
+  const std::map<long, std::string> rows = Rows(path);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows.at(0).find("0,0,nan,[],"), 0u) << rows.at(0);
+  EXPECT_NE(rows.at(1).find("\"[\"\"loads.gravity is 5e+03 m/s²"), std::string::npos) << rows.at(1);
 }
 
 TEST(Sweep, AFileOfAnotherStudyIsNotOverwritten) {

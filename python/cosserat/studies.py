@@ -12,8 +12,9 @@ from .results import _json_text
 
 
 def _cell(text):
-    """A CSV cell as Python: empty → None, a number → float, an array the study wrote as JSON
-    (an output pointer naming a list, "/tip/position") → a NumPy array, else the text."""
+    """A CSV cell as Python: empty → None, a number → float ("nan" for a result's null), an array
+    of numbers the study wrote as JSON (an output pointer naming a list, "/tip/position") → a
+    NumPy array, another JSON list ("/warnings") → a list, else the text."""
     if text == "":
         return None
     try:
@@ -22,9 +23,15 @@ def _cell(text):
         pass
     if text.startswith("["):
         try:
-            return np.asarray(json.loads(text), dtype=float)
+            value = json.loads(text)
+        except ValueError:
+            return text
+        if not value:
+            return []
+        try:
+            return np.asarray(value, dtype=float)
         except (ValueError, TypeError):
-            pass
+            return value
     return text
 
 
@@ -75,7 +82,8 @@ def sweep(study, out=None, threads=None):
         if temporary:
             # The rows, their partial file and the records kept beside them for a resume.
             for leftover in (out, *(os.fspath(out) + end
-                                    for end in (".tmp", ".problem.json", ".outputs.json"))):
+                                    for end in (".tmp", ".lock", ".problem.json",
+                                                ".outputs.json"))):
                 if os.path.exists(leftover):
                     os.remove(leftover)
     for output in summary["empty_outputs"]:

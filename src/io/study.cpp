@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -46,12 +47,15 @@ void ParseParameter(const ObjectReader& o, StudyParameter* p) {
       if (*count > 1 && *from == *to)
         g->report().Add(g->PathOf("to"), "an empty range: \"from\" equals \"to\" with " +
                                              std::to_string(*count) + " points");
-      // from + (to − from) i / (count − 1), its last point exactly `to` (the formula can miss
-      // it by an ulp).
+      if (*count == 1 && *from != *to)
+        g->report().Add(g->PathOf("count"), "1 point holds \"from\" only, not \"to\": give "
+                                            "at least 2 points, or the one value in \"values\"");
+      // As numpy.linspace computes them, so that a grid's values equal a notebook's: from + i
+      // step with step = (to − from)/(count − 1), the last point exactly `to` (the formula can
+      // miss it by an ulp).
+      const double step = *count > 1 ? (*to - *from) / (*count - 1) : 0.0;
       for (int i = 0; i < *count; ++i)
-        p->values.push_back(*count == 1      ? *from
-                            : i == *count - 1 ? *to
-                                              : *from + (*to - *from) * i / (*count - 1));
+        p->values.push_back(i > 0 && i == *count - 1 ? *to : *from + i * step);
     }
   }
   if (const json* v = o.Find("values")) {
@@ -166,6 +170,10 @@ void ReadOutputs(const ObjectReader& top, Study* study_out) {
                         detail::Describe(value));
         continue;
       }
+      if (name.empty() || name.find_first_of("\n\r") != std::string::npos) {
+        report.Expected(where, "a column name, not empty and on one line", detail::Quote(name));
+        continue;
+      }
       if (name == "index" || name == "status" || name == "wall_time_s") {
         report.Expected(where, "a name other than the fixed columns index, status and wall_time_s",
                         detail::Quote(name));
@@ -216,6 +224,37 @@ void CheckPlaceApart(const std::vector<StudyParameter>& earlier, const std::stri
                        "a place apart from " + index + "'s " + detail::Quote(other) +
                            " (one sets the value the other lies in)",
                        detail::Quote(path));
+  }
+}
+
+/// Checks that need the whole study: draws repeated with nothing random, and some point being a
+/// valid problem. A path naming an unknown key fails at every point, a value out of range at its
+/// own points only (they run as rows with their reason): up to 64 points spread over the study
+/// are tried, and when none is valid the first one's errors are said, with its values.
+void CheckPointsMakeProblems(const Study& study, ErrorReport* report_out) {
+  ErrorReport& report = *report_out;
+  if (study.samples > 1 &&
+      std::none_of(study.parameters.begin(), study.parameters.end(),
+                   [](const StudyParameter& p) {
+                     return p.distribution != StudyParameter::Distribution::kNone;
+                   })) {
+    report.Expected("samples", "1 when no parameter is random (the draws would repeat one point)",
+                    std::to_string(study.samples));
+    return;
+  }
+  try {
+    const std::uint64_t n = study.PointCount(), tries = std::min<std::uint64_t>(n, 64);
+    std::vector<std::string> first_errors;
+    for (std::uint64_t j = 0; j < tries; ++j) {
+      const std::uint64_t k = tries > 1 ? j * (n - 1) / (tries - 1) : 0;
+      const ParseResult point = ParseProblemDocument(study.PointProblem(k));
+      if (point.errors.empty()) return;
+      if (j == 0) first_errors = point.errors;
+    }
+    const std::string where = "problem (with point 0's parameters: " + PointWords(study, 0) + ")";
+    for (const std::string& e : first_errors) report.Add(where, e);
+  } catch (const json::exception& e) {  // a path CheckPath let through: still named
+    report.Add("parameters", std::string("cannot be set in the problem (") + e.what() + ")");
   }
 }
 
@@ -318,18 +357,33 @@ StudyParseResult ParseStudy(const std::string& text, const std::string& source_n
                           "point's row in memory)",
                       std::to_string(study.PointCount()) + " points");
   }
-  // The first point must be a valid problem: a path naming an unknown key shows here.
-  if (report.empty() && result.errors.empty()) {
-    try {
-      const ParseResult first = ParseProblemDocument(study.PointProblem(0));
-      for (const std::string& e : first.errors) report.Add("problem (with the parameters)", e);
-    } catch (const json::exception& e) {  // a path CheckPath let through: still named
-      report.Add("parameters", std::string("cannot be set in the problem (") + e.what() + ")");
-    }
-  }
+  if (report.empty() && result.errors.empty()) CheckPointsMakeProblems(study, &report);
   for (std::string& line : report.TakeLines()) result.errors.push_back(std::move(line));
   if (result.errors.empty()) result.study = std::move(study);
   return result;
+}
+
+std::string PointWords(const Study& study, std::uint64_t k) {
+  const std::vector<double> values = study.Point(k);
+  std::ostringstream words;
+  words << std::setprecision(17);
+  for (std::size_t j = 0; j < values.size(); ++j)
+    words << (j ? ", " : "") << study.parameters[j].path << " = " << values[j];
+  return words.str();
+}
+
+StudyPointCheck CheckStudyPoints(const Study& study, std::uint64_t limit) {
+  StudyPointCheck check;
+  check.checked = std::min(limit, study.PointCount());
+  for (std::uint64_t k = 0; k < check.checked; ++k) {
+    const ParseResult point = ParseProblemDocument(study.PointProblem(k));
+    if (point.errors.empty()) continue;
+    if (check.invalid++ == 0) {
+      check.first = k;
+      check.first_error = point.errors.front();
+    }
+  }
+  return check;
 }
 
 StudyParseResult LoadStudyFile(const std::string& path) {

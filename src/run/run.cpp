@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 
 #include "bending_stress_report.hpp"
@@ -138,6 +139,18 @@ void SummaryLineStatus(Result* result) {
   }
 }
 
+/// The log's warnings, also in the result (its last key, "warnings": the text after
+/// "cosserat: warning: " of each, [] when none): a sweep's rows and a notebook's dict keep them.
+void WarningsIntoResult(Result* result) {
+  if (!result->json.is_object()) return;
+  const std::string prefix = "cosserat: warning: ";
+  nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
+  std::istringstream lines(result->log);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind(prefix, 0) == 0) warnings.push_back(line.substr(prefix.size()));
+  result->json["warnings"] = std::move(warnings);
+}
+
 }  // namespace
 
 Result Run(const io::Problem& problem, const RunOptions& options) {
@@ -154,6 +167,7 @@ Result Run(const io::Problem& problem, const RunOptions& options) {
   result.log += detail::DrillStringNotes(problem) + detail::ClampAlignmentNote(problem, result) +
                 detail::SelfCrossingNote(problem, result);
   SummaryLineStatus(&result);
+  WarningsIntoResult(&result);
   return result;
 }
 

@@ -1,6 +1,7 @@
 #include "cosserat/run/sweep.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -56,7 +57,7 @@ std::string OutputField(const nlohmann::ordered_json& result, const std::string&
   if (v.is_number()) return Number(v.get<double>());
   if (v.is_string()) return Field(v.get<std::string>());
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
-  if (v.is_null()) return "";
+  if (v.is_null()) return "nan";  // a number the result could not give (JSON has no NaN)
   return Field(v.dump());
 }
 
@@ -296,6 +297,16 @@ SweepFile::SweepFile(const io::Study& study, const std::string& path)
   if (!directory.empty() && !std::filesystem::is_directory(directory, ec))
     throw std::runtime_error(path_ + ": cannot write (" +
                              (ec ? ec.message() : "no directory " + directory.string()) + ")");
+  // One writer per file: two processes on one --out (srun's tasks that no MPI joins, two jobs)
+  // would each run the whole study into it. An advisory lock on `<csv>.lock`, held until done.
+  const std::string lock = path_ + ".lock";
+  lock_.fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_.fd < 0)
+    throw std::runtime_error(lock + ": cannot open (" + std::strerror(errno) + ")");
+  if (::flock(lock_.fd, LOCK_EX | LOCK_NB) != 0)
+    throw std::runtime_error(path_ + ": another sweep is writing it (" + lock + " is locked); "
+                             "tasks that should share a study must be MPI ranks (mpirun, or "
+                             "srun --mpi=pmix), not separate processes");
   rows_ = ReadRows(path_, header_, points_);
   CheckResumedPoints(path_, study, rows_);
   CheckAndRecordProblem(path_, study, !rows_.empty());
@@ -309,6 +320,10 @@ SweepFile::SweepFile(const io::Study& study, const std::string& path)
     outputs_.push_back("\"" + o.name + "\" (" + o.path + ")");
   fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND);
   if (fd_ < 0) throw std::runtime_error(path_ + ": cannot open for appending");
+}
+
+SweepFile::OwnedFd::~OwnedFd() {
+  if (fd >= 0) ::close(fd);
 }
 
 SweepFile::~SweepFile() {

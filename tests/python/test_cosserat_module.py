@@ -1506,7 +1506,8 @@ class Batches(unittest.TestCase):
         # Each row of a small study is what solving its point alone gives.
         study = {"format": "cosserat-study/1", "problem": "examples/cantilever.json",
                  "parameters": [{"path": "/loads/tip_force/0", "values": [-0.2, 0.0, 0.3]}],
-                 "outputs": {"tip_x": "/tip/position/0", "tip": "/tip/position"}}
+                 "outputs": {"tip_x": "/tip/position/0", "tip": "/tip/position",
+                             "warnings": "/warnings"}}
         import glob
         import tempfile
         mine = os.path.join(tempfile.gettempdir(), "cosserat_sweep_*")
@@ -1525,6 +1526,9 @@ class Batches(unittest.TestCase):
             # A list output is an array (the CSV holds it as JSON text).
             np.testing.assert_array_equal(row["tip"], alone)
             self.assertEqual(row["status"], "converged")
+            # The log's warnings, a list (none for the example's steel cantilever).
+            self.assertEqual(row["warnings"], cosserat.solve(spec)["result"]["warnings"])
+            self.assertEqual(row["warnings"], [])
         with self.assertRaisesRegex(ValueError, "parameters\\[0\\].path"):
             cosserat.sweep(dict(study, parameters=[{"path": "/nope/x", "values": [1]}]))
         for threads in (0, -1, 1.5):

@@ -16,6 +16,12 @@ code=0
   --out "$WORK/bad.csv" 2> "$WORK/bad.log" || code=$?
 [ "$(grep -c "nosuch_key" "$WORK/bad.log")" = 1 ] && [ "$code" = 2 ] ||
   { cat "$WORK/bad.log"; echo "a bad study: exit $code, its error not printed once"; exit 1; }
+# srun's tasks that no MPI environment joins would each run the whole study: refused, exit 2.
+code=0
+SLURM_NTASKS=2 SLURM_STEP_ID=0 SLURM_PROCID=1 "$BIN" sweep "$STUDY" --out "$WORK/slurm.csv" \
+  2> "$WORK/slurm.log" || code=$?
+[ "$code" = 2 ] && grep -q "no MPI environment joins the tasks" "$WORK/slurm.log" ||
+  { cat "$WORK/slurm.log"; echo "unjoined srun tasks: exit $code, not refused"; exit 1; }
 strip() { sed 's/,[^,]*$//' "$1"; }  # drop the last column, wall_time_s
 if diff <(strip "$WORK/one.csv") <(strip "$WORK/ranks.csv") > "$WORK/diff.txt"; then
   echo "2 MPI ranks: $(($(wc -l < "$WORK/ranks.csv") - 1)) rows, identical to one thread's"

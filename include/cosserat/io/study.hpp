@@ -63,10 +63,22 @@ struct StudyParseResult {
 };
 
 /// Parses a study; a relative problem path is read from `base_directory`. Checks every
-/// parameter's path against the base problem (its parent must exist, and the base problem with
-/// the first point's values must be a valid problem), ranges and distributions.
+/// parameter's path against the base problem (its parent must exist, and some point, of up to
+/// 64 spread over the study, must be a valid problem), ranges and distributions.
 StudyParseResult ParseStudy(const std::string& json_text, const std::string& source_name,
                             const std::string& base_directory);
 StudyParseResult LoadStudyFile(const std::string& path);
+
+/// Point k's parameter values in words: "/rod/length = 0.4, /loads/tip_force/2 = -60".
+std::string PointWords(const Study& study, std::uint64_t k);
+
+/// The study's first `limit` points (all when fewer) checked as problems: how many were checked,
+/// how many are invalid (each runs as a row whose status gives the reason), and the first
+/// invalid one's index and first error.
+struct StudyPointCheck {
+  std::uint64_t checked = 0, invalid = 0, first = 0;
+  std::string first_error;
+};
+StudyPointCheck CheckStudyPoints(const Study& study, std::uint64_t limit);
 
 }  // namespace cosserat::io

@@ -78,6 +78,13 @@ class SweepFile {
   std::vector<std::string> outputs_;  ///< "name" (pointer) of each output column, in order
   std::map<std::uint64_t, std::string> rows_;
   std::vector<std::uint64_t> pending_;
+  /// A file descriptor closed with its owner, also when the constructor throws (closing it
+  /// releases a lock held on it).
+  struct OwnedFd {
+    int fd = -1;
+    ~OwnedFd();
+  };
+  OwnedFd lock_;  ///< `<csv>.lock`, flock'ed while this object lives
   int fd_ = -1;
   bool write_failed_ = false;
   std::mutex mutex_;
