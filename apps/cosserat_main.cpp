@@ -256,38 +256,41 @@ int RunValidate(const Command& cmd) {
 class ProgressLine {
  public:
   /// `what` names the quantity ("t" in s, a buckling search's "load", the "modes found" of an
-  /// SE(3) modes scan), `unit` its unit.
+  /// SE(3) modes scan), `unit` its unit. On a terminal the line redraws itself every 0.25 s
+  /// from 2 s on; into a file (a batch job's log) it is a plain line every minute.
   ProgressLine(std::string what, std::string unit)
-      : active_(isatty(STDERR_FILENO) != 0),
+      : tty_(isatty(STDERR_FILENO) != 0),
         what_(std::move(what)),
         unit_(std::move(unit)),
-        start_(Clock::now()) {}
+        start_(Clock::now()),
+        last_(start_) {}
   ~ProgressLine() { Clear(); }
   void Clear() {
-    if (drawn_) std::cerr << "\r\033[K" << std::flush;
+    if (drawn_ && tty_) std::cerr << "\r\033[K" << std::flush;
     drawn_ = false;
   }
   void operator()(double t, double duration) {
-    if (!active_ || !(duration > 0)) return;
+    if (!(duration > 0)) return;
     const auto now = Clock::now();
     const double elapsed = Seconds(now - start_);
-    if (elapsed < 2.0 || (drawn_ && Seconds(now - last_) < 0.25)) return;
+    if (tty_ ? elapsed < 2.0 || (drawn_ && Seconds(now - last_) < 0.25)
+             : Seconds(now - last_) < 60.0)
+      return;
     last_ = now;
     drawn_ = true;
     const double share = std::min(1.0, t / duration);
     std::ostringstream line;
-    line << std::setprecision(4) << "\rcosserat: " << what_ << " " << t << " of " << duration
-         << unit_ << " (" << std::fixed << std::setprecision(0) << 100 * share << " %), "
-         << std::setprecision(1)
-         << elapsed << " s";
+    line << std::setprecision(4) << (tty_ ? "\r" : "") << "cosserat: " << what_ << " " << t
+         << " of " << duration << unit_ << " (" << std::fixed << std::setprecision(0)
+         << 100 * share << " %), " << std::setprecision(1) << elapsed << " s";
     if (share > 0) line << ", about " << elapsed * (1 - share) / share << " s left";
-    std::cerr << line.str() << "\033[K" << std::flush;
+    std::cerr << line.str() << (tty_ ? "\033[K" : "\n") << std::flush;
   }
 
  private:
   using Clock = std::chrono::steady_clock;
   static double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
-  bool active_, drawn_ = false;
+  bool tty_, drawn_ = false;
   std::string what_, unit_;
   Clock::time_point start_, last_;
 };
