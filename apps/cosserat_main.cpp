@@ -400,6 +400,11 @@ int RunSweep(const Command& cmd) {
     std::cerr << options.threads << (options.threads == 1 ? " thread" : " threads");
   std::cerr << "), " << s.failed << " not converged, " << std::setprecision(3) << s.wall_time_s
             << " s; rows in " << *cmd.out_path << '\n';
+  if (s.dropped > 0)
+    std::cerr << "cosserat: warning: " << s.dropped << (s.dropped == 1 ? " line" : " lines")
+              << " of " << *cmd.out_path << " held no row of this study (no point index in "
+              << "front, an index past its " << s.points << " points, or a point's second row) "
+              << "and " << (s.dropped == 1 ? "was" : "were") << " dropped on resume\n";
   for (const std::string& output : s.empty_outputs)
     std::cerr << "cosserat: warning: output " << output
               << " is empty in every converged point: does the pointer name a field of the "

@@ -259,6 +259,7 @@ void BindSweep(py::module_& m) {
         d["resumed"] = s.resumed;
         d["ran"] = s.ran;
         d["failed"] = s.failed;
+        d["dropped"] = s.dropped;
         d["complete"] = s.complete;
         d["wall_time_s"] = s.wall_time_s;
         d["empty_outputs"] = s.empty_outputs;

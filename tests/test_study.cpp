@@ -299,9 +299,18 @@ TEST(Sweep, AStoppedStudyResumesAndRunsEveryPointOnce) {
   run::SweepSummary first = run::RunSweep(s, parts, o);
   EXPECT_FALSE(first.complete);
   EXPECT_EQ(first.ran, 10u);
+  std::string header, first_row;
+  {
+    std::ifstream f(parts);
+    std::getline(f, header);
+    std::getline(f, first_row);
+  }
   {
     std::ofstream f(parts, std::ios::app);
-    f << "29,2,0.1";  // a row cut short, without its line break
+    // Three lines that are no rows of this study, each counted as dropped: text, an index past
+    // its 30 points, a point's second row (the later one is kept: here the same).
+    f << "not a row\n" << "99,2,0.1,0.2,converged,0.001\n" << first_row << '\n';
+    f << "29,2,0.1";  // a row cut short, without its line break: not counted
   }
   o.max_new_points = 0;
   o.threads = 2;
@@ -309,6 +318,7 @@ TEST(Sweep, AStoppedStudyResumesAndRunsEveryPointOnce) {
   EXPECT_TRUE(second.complete);
   EXPECT_EQ(second.resumed, 10u);
   EXPECT_EQ(second.ran, 20u);
+  EXPECT_EQ(second.dropped, 3u);
   EXPECT_EQ(Rows(parts), Rows(whole));
 }
 

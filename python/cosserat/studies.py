@@ -46,8 +46,9 @@ def sweep(study, out=None, threads=None):
 
     Returns {"rows": [one dict per point, in point order: index, each parameter by its path,
     each output by its name (a number, or a NumPy array for an output naming a list, as
-    /tip/position), status, wall_time_s], "summary": {points, resumed, ran, failed,
+    /tip/position), status, wall_time_s], "summary": {points, resumed, ran, failed, dropped,
     complete, wall_time_s, empty_outputs}, "csv": the file's path (None for the temporary one)}.
+    dropped counts the lines of a resumed file that were no rows of this study.
     empty_outputs lists the outputs blank in every converged row (a pointer that names nothing
     in the result, e.g. a typo), which also raise a warning. Bad study files raise ValueError
     naming the field.
@@ -86,6 +87,9 @@ def sweep(study, out=None, threads=None):
                                                 ".outputs.json"))):
                 if os.path.exists(leftover):
                     os.remove(leftover)
+    if summary["dropped"]:
+        warnings.warn(f"{summary['dropped']} lines of {out} held no row of this study and were "
+                      "dropped on resume", stacklevel=2)
     for output in summary["empty_outputs"]:
         warnings.warn(f"output {output} is empty in every converged point: does the pointer name "
                       "a field of the result?", stacklevel=2)

@@ -133,9 +133,10 @@ std::string HeaderDifference(const std::string& found, const std::string& wanted
   return "it differs in its line ending";
 }
 
-/// The rows already in the file (whole lines after the study's header), by point index.
+/// The rows already in the file (whole lines after the study's header), by point index;
+/// *dropped counts the whole lines that are not (SweepSummary::dropped).
 std::map<std::uint64_t, std::string> ReadRows(const std::string& path, const std::string& header,
-                                              std::uint64_t points) {
+                                              std::uint64_t points, std::uint64_t* dropped) {
   std::map<std::uint64_t, std::string> rows;
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return rows;
@@ -156,12 +157,18 @@ std::map<std::uint64_t, std::string> ReadRows(const std::string& path, const std
     if (end == std::string::npos) break;  // a torn last line: the point runs again
     const std::string line = text.substr(start, end - start);
     std::size_t used = 0;
+    bool row = false;
     try {
       const unsigned long long k = std::stoull(line, &used);
-      if (used > 0 && used < line.size() && line[used] == ',' && k < points) rows[k] = line;
+      row = used > 0 && used < line.size() && line[used] == ',' && k < points;
+      if (row && !rows.emplace(k, line).second) {
+        rows[k] = line;  // the later row of a point is its latest
+        row = false;
+      }
     } catch (const std::exception&) {
-      // not a row: dropped
+      // not a row
     }
+    if (!row) ++*dropped;
   }
   return rows;
 }
@@ -307,7 +314,7 @@ SweepFile::SweepFile(const io::Study& study, const std::string& path)
     throw std::runtime_error(path_ + ": another sweep is writing it (" + lock + " is locked); "
                              "tasks that should share a study must be MPI ranks (mpirun, or "
                              "srun --mpi=pmix), not separate processes");
-  rows_ = ReadRows(path_, header_, points_);
+  rows_ = ReadRows(path_, header_, points_, &dropped_);
   CheckResumedPoints(path_, study, rows_);
   CheckAndRecordProblem(path_, study, !rows_.empty());
   CheckAndRecordOutputs(path_, study, !rows_.empty());
@@ -348,6 +355,7 @@ SweepSummary SweepFile::Finish() {
   s.points = points_;
   s.resumed = resumed_;
   s.ran = ran_;
+  s.dropped = dropped_;
   s.complete = rows_.size() == points_;
   if (s.complete) WriteAll(path_, header_, rows_);  // in point order
   const std::size_t first_output = status_column_ - outputs_.size();

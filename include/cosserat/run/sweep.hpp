@@ -36,6 +36,10 @@ struct SweepSummary {
   std::uint64_t resumed = 0;    ///< already in the file
   std::uint64_t ran = 0;        ///< run now
   std::uint64_t failed = 0;     ///< rows whose status is not "converged"
+  /// Lines of a resumed file that are no rows of this study (no index below its point count in
+  /// front, or a point's second row: the last one is kept), dropped; a torn last line, which a
+  /// killed run leaves, is not counted.
+  std::uint64_t dropped = 0;
   bool complete = false;        ///< every point has its row (and the file is in point order)
   double wall_time_s = 0.0;
   /// Outputs ("name" (pointer)) empty in every converged row, when some row converged: a pointer
@@ -78,6 +82,7 @@ class SweepFile {
   std::vector<std::string> outputs_;  ///< "name" (pointer) of each output column, in order
   std::map<std::uint64_t, std::string> rows_;
   std::vector<std::uint64_t> pending_;
+  std::uint64_t dropped_ = 0;
   /// A file descriptor closed with its owner, also when the constructor throws (closing it
   /// releases a lock held on it).
   struct OwnedFd {
