@@ -283,6 +283,37 @@ TEST(Eversion, AVineOnAFloorGrowsPastWhatOneShotResolves) {
   EXPECT_NEAR(b.position_W[far].z(), tip_z, 1e-3 * std::abs(tip_z));
 }
 
+// The pieces take the tube's section at its pressure, as the single shot does: E_eff(p) =
+// 100 MPa + 1e4 p stiffens the 3 kPa tube by 30 % over the bare film. On a floor of k = 1e4 N/m²
+// a 1.3 m body's exponent is 11, so the robot solves it in pieces; the same robot told to keep
+// to one shot (still within double precision there) solves the same discrete equations. Both
+// to the solver's tolerance 1e-10, the single shot's round-off amplified by e^11: node positions
+// agree within 1e-8 m and the base moment within 1e-6 of itself (a clamped beam on a foundation
+// carries M(0) = q sqrt(EI/k): the bare film's EI would be off by 13 %).
+TEST(Eversion, PiecesSolveTheTubeAtItsPressure) {
+  const double p = 3e3, L = 1.3;
+  StaticLoads loads = Gravity();
+  loads.contact.count = 1;
+  ContactSurface& floor = loads.contact.surface[0];
+  floor.point_W = Vec3(0, 0, -kRadius);
+  floor.direction_W = Vec3::UnitZ();
+  floor.stiffness = 1e4;
+  EversionRobot pieces(VineDesign(), L, p);
+  EversionOptions one_shot_options;
+  one_shot_options.pieces_above_exponent = 1e9;
+  EversionRobot one_shot(VineDesign(), L, p, one_shot_options);
+  ASSERT_TRUE(pieces.Solve(loads).solve.converged());
+  ASSERT_TRUE(one_shot.Solve(loads).solve.converged());
+  EXPECT_GT(pieces.pieces(), 1);
+  EXPECT_EQ(one_shot.pieces(), 1);
+  const RodState &a = pieces.state(), &b = one_shot.state();
+  ASSERT_EQ(a.size(), b.size());
+  for (int i = 0; i < a.size(); ++i)
+    EXPECT_LT((a.position_W[i] - b.position_W[i]).norm(), 1e-8) << "node " << i;
+  const double moment = b.wrench_B.front().head<3>().norm();
+  EXPECT_NEAR(a.wrench_B.front().head<3>().norm(), moment, 1e-6 * moment);
+}
+
 // A torque T about the tube shears the membrane, N_xθ = T/(2π r²), against its axial and hoop
 // resultants p r/2 and p r: it wrinkles where N_xθ² = N_x N_θ, T_w = √2 π p r³ (0.208 N·m at
 // 3 kPa on the 25 mm tube). A straight tube twisted by a tip torque carries T uniformly and no

@@ -298,7 +298,8 @@ EversionSolveSummary EversionRobot::Solve(double length, const StaticLoads& load
   // (βL = 10.9) took 1 300 Newton iterations in one shot per growth step, 2 m 10 000.
   const bool last_in_pieces = in_pieces_;
   const bool pieces_first =
-      last_in_pieces || StaticShootingExponent(ModelAt(length), solver_loads) > 10.0;
+      last_in_pieces || StaticShootingExponent(ModelAt(length), solver_loads, actuation()) >
+                            options_.pieces_above_exponent;
   in_pieces_ = false;
   if (pieces_first) SolveInPieces(length, solver_loads, last_in_pieces, &out.solve);
   if (!in_pieces_) {
@@ -339,14 +340,14 @@ void EversionRobot::SolveInPieces(double length, const StaticLoads& solver_loads
   // the unloaded body at every step.
   if (from_last && pieces_) {
     const RodState guess = ResampledState(pieces_->state(), ModelGrid(model, nodes));
-    pieces_ = std::make_unique<StaticMultipleShootingSolver>(model, nodes, options);
+    pieces_ = std::make_unique<StaticMultipleShootingSolver>(model, nodes, options, actuation());
     StaticShootingSummary warm = pieces_->SolveFrom(design_.base, solver_loads, guess);
     warm.warm_started = true;
     *summary = warm;
     in_pieces_ = warm.converged();
     return;  // else the single shot, then pieces from the unloaded body
   }
-  pieces_ = std::make_unique<StaticMultipleShootingSolver>(model, nodes, options);
+  pieces_ = std::make_unique<StaticMultipleShootingSolver>(model, nodes, options, actuation());
   StaticShootingSummary in_pieces = pieces_->Solve(design_.base, solver_loads);
   if (!in_pieces.converged()) return;  // the single shot's summary says why
   in_pieces.CountWorkOf(*summary);

@@ -35,28 +35,30 @@ constexpr int kBacktracks = 12;
 
 }  // namespace
 
-double LoadForceBound(const RodModel& rod, const StaticLoads& loads) {
-  const SectionProperties p = rod.section->At(0.0, Actuation{});
+double LoadForceBound(const RodModel& rod, const StaticLoads& loads, const Actuation& actuation) {
+  const SectionProperties p = rod.section->At(0.0, actuation);
   const LoadSite site{0.0, 1.0, p.mass(3, 3), p.outer_diameter};
   const SplitWrench tip = TotalTipWrench(loads);
   return tip.dead_W.tail<3>().norm() + tip.follower_B.tail<3>().norm() +
          rod.length * TotalDistributedForce_W(loads, site).norm();
 }
 
-double StaticShootingExponent(const RodModel& rod, const StaticLoads& loads) {
-  const SectionProperties p = rod.section->At(0.0, Actuation{});
+double StaticShootingExponent(const RodModel& rod, const StaticLoads& loads,
+                              const Actuation& actuation) {
+  const SectionProperties p = rod.section->At(0.0, actuation);
   const double ei = p.min_bending_stiffness();  // N·m²
   const double L = rod.length;
   double exponent = 0.0;
   for (int i = 0; i < loads.contact.count; ++i)
     exponent =
         std::max(exponent, std::pow(loads.contact.surface[i].stiffness / (4.0 * ei), 0.25) * L);
-  return std::max(exponent, std::sqrt(LoadForceBound(rod, loads) / ei) * L);
+  return std::max(exponent, std::sqrt(LoadForceBound(rod, loads, actuation) / ei) * L);
 }
 
 StaticMultipleShootingSolver::StaticMultipleShootingSolver(
-    const RodModel& model, int num_nodes, const StaticMultipleShootingOptions& options)
-    : model_(model), options_(options) {
+    const RodModel& model, int num_nodes, const StaticMultipleShootingOptions& options,
+    const Actuation& actuation)
+    : model_(model), options_(options), actuation_(actuation) {
   std::string why;
   if (!model_.IsValid(&why)) throw std::invalid_argument("RodModel: " + why);
   if (!model_.tendons.empty() || !model_.chambers.empty())
@@ -78,7 +80,7 @@ StaticMultipleShootingSolver::StaticMultipleShootingSolver(
   const std::vector<double> points = SegmentSamplePoints(grid_);
   samples_.resize(points.size());
   for (size_t q = 0; q < points.size(); ++q) {
-    const SectionLaw law = SectionLaw::At(model_, points[q], Actuation{});
+    const SectionLaw law = SectionLaw::At(model_, points[q], actuation_);
     StaticShootingSolver::Sample& smp = samples_[q];
     smp.compliance_diagonal = law.stiffness.cwiseInverse();
     smp.rest_strain = law.rest_strain;
@@ -94,7 +96,7 @@ StaticMultipleShootingSolver::StaticMultipleShootingSolver(
 
 void StaticMultipleShootingSolver::SetScales(const lie::SE3& base, double force) {
   const Point start = BaseStart(base, x_);
-  const SectionProperties p = model_.section->At(0.0, Actuation{});
+  const SectionProperties p = model_.section->At(0.0, actuation_);
   const double ei = p.min_bending_stiffness(), ei_max = p.max_bending_stiffness();  // N·m²
   const double L = model_.length;
   scale_.head<3>().setConstant(std::max(ei_max / L, std::sqrt(force * ei)));
@@ -341,11 +343,12 @@ StaticShootingSummary StaticMultipleShootingSolver::SolveFrom(const lie::SE3& ba
   }
   // The exponent of a single shot under the guess's largest force (a held cable's tension is
   // not bounded by its loads), or of the loads and contact surfaces when larger.
-  const SectionProperties p = model_.section->At(0.0, Actuation{});
+  const SectionProperties p = model_.section->At(0.0, actuation_);
   const double ei = p.min_bending_stiffness();  // N·m²
   const double force = guess.MaxForce();  // N
   const double exponent =
-      std::max(std::sqrt(force / ei) * model_.length, StaticShootingExponent(model_, loads));
+      std::max(std::sqrt(force / ei) * model_.length,
+               StaticShootingExponent(model_, loads, actuation_));
   const int pieces = PiecesFor(exponent);
   if (pieces != this->pieces()) SetPieces(pieces);
   // Unknowns and residuals in the guess's own scales: a cable's tension T is (kL)² times EI/L²
@@ -353,7 +356,7 @@ StaticShootingSummary StaticMultipleShootingSolver::SolveFrom(const lie::SE3& ba
   // (step 1e-9) at round-off. Its end moments are about sqrt(T EI) (a boundary layer of length
   // sqrt(EI/T)).
   guess_force_ = force;
-  SetScales(base, std::max(force, LoadForceBound(model_, loads)));
+  SetScales(base, std::max(force, LoadForceBound(model_, loads, actuation_)));
   // Each start in the guess's own frame there; the base's rotation from the node after it when
   // pinned (a state may report the support's frame at a pinned end, not the rod's).
   auto at_node = [&](int i, int frame) {

@@ -214,12 +214,12 @@ StaticShootingSummary StaticMultipleShootingSolver::Solve(const lie::SE3& base,
     return summary;
   }
   lie::RequireRotation(base.R, "StaticMultipleShootingSolver::Solve: base.R");
-  const int pieces = PiecesFor(StaticShootingExponent(model_, loads));
+  const int pieces = PiecesFor(StaticShootingExponent(model_, loads, actuation_));
   if (pieces != this->pieces()) SetPieces(pieces);
   // Unknowns and residuals in the loads' force scale, as SolveFrom's in the guess's (and not
   // below it): a 300 m pipe lying in a bore carries 77 kN, 6 000 times EI/L², and its junction
   // forces stalled at a residual of 1.1e-10 in units of EI/L² (their rounding).
-  SetScales(base, std::max(guess_force_, LoadForceBound(model_, loads)));
+  SetScales(base, std::max(guess_force_, LoadForceBound(model_, loads, actuation_)));
   double first_step = 1.0, max_step = 1.0;
   // Continuation in the loads from the last solution at this base, else from the unloaded rod.
   StaticLoads start = loads.Scaled(0.0);

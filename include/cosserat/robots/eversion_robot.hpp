@@ -107,6 +107,9 @@ struct EversionOptions {
   /// The longest body these options grid within kMaxNodes, m.
   double MaxLength() const { return kMaxNodes / nodes_per_metre; }
   StaticShootingOptions solver;
+  /// A single shot's exponent (StaticShootingExponent: a floor's β L, sqrt(T/EI) L) above which
+  /// the body is solved in multiple-shooting pieces first, as a plain rod's statics are.
+  double pieces_above_exponent = 10.0;
 };
 
 /// Where and how badly the body exceeds its wrinkling moment.

@@ -40,12 +40,15 @@ namespace cosserat {
 /// The exponent of a single static shot, for choosing pieces: the larger of β L over the
 /// stiffest contact surface, β = (k / 4EI)^{1/4}, and sqrt(T / EI) L with T bounded by the
 /// loads' total force (tip force plus the distributed force over L), EI the smaller bending
-/// stiffness at s = 0. Dimensionless; 0 without contact or load.
-double StaticShootingExponent(const RodModel& rod, const StaticLoads& loads);
+/// stiffness at s = 0 under `actuation` (an inflated tube's pressure). Dimensionless; 0 without
+/// contact or load.
+double StaticShootingExponent(const RodModel& rod, const StaticLoads& loads,
+                              const Actuation& actuation = {});
 
 /// A bound on the internal force the loads give a rod (N): the tip force plus L times the
-/// distributed force at s = 0 (its weight, buoyancy and drag included).
-double LoadForceBound(const RodModel& rod, const StaticLoads& loads);
+/// distributed force at s = 0 (its weight, buoyancy and drag included), under `actuation`.
+double LoadForceBound(const RodModel& rod, const StaticLoads& loads,
+                      const Actuation& actuation = {});
 
 struct StaticMultipleShootingOptions {
   /// Pieces; 0: chosen per Solve from StaticShootingExponent (1 up to an exponent of 10, else
@@ -92,9 +95,11 @@ struct StaticMultipleShootingOptions {
 class StaticMultipleShootingSolver {
  public:
   /// Throws std::invalid_argument for an invalid model, a rod with tendons, fewer than 3 nodes
-  /// or more pieces than segments.
+  /// or more pieces than segments. The section is taken under `actuation` (an inflated tube's
+  /// pressure, a jamming vacuum), fixed for the solver's life.
   StaticMultipleShootingSolver(const RodModel& model, int num_nodes,
-                               const StaticMultipleShootingOptions& options = {});
+                               const StaticMultipleShootingOptions& options = {},
+                               const Actuation& actuation = {});
 
   /// Equilibrium of the cantilever clamped at `base` under `loads`, by continuation from the
   /// last solution (or the unloaded rod). The state is valid when the status is converged.
@@ -172,6 +177,7 @@ class StaticMultipleShootingSolver {
 
   RodModel model_;
   StaticMultipleShootingOptions options_;
+  Actuation actuation_;
   std::vector<double> grid_;
   std::vector<StaticShootingSolver::Sample> samples_;
   Vec6 scale_ = Vec6::Ones();  ///< W = scale ⊙ x: [moment ×3, force ×3] (SetScales)
