@@ -1079,6 +1079,18 @@ TEST(Run, AWireFoldedBackIsNotReadAsCompressed) {
   ASSERT_TRUE(r.converged) << r.log;
   EXPECT_LT(r.json["tip"]["position"][2].get<double>(), -0.3) << r.log;  // folded back
   EXPECT_EQ(r.log.find("stretched or compressed"), std::string::npos) << r.log;
+  // Quaternion-FD vertices are joined by straight segments |Γ| h long, not arcs: the same wire
+  // bent by an 11 N side force on 11 nodes (0.5 rad per segment, strain 1.7e-5) is no more
+  // compressed than its segments are.
+  const io::ParseResult side = io::ParseProblem(R"({
+    "format": "cosserat-problem/1", "formulation": "quaternion-fd",
+    "rod": {"length": 0.5, "nodes": 11, "section": {"shape": "circle", "radius": 0.001},
+            "material": {"youngs_modulus": 200e9, "shear_modulus": 80e9, "density": 8000}},
+    "loads": {"tip_force": [11, 0, 0], "tip_force_frame": "world"}})");
+  ASSERT_TRUE(side.ok()) << side.errors.front();
+  const Result bent = cosserat::run::Run(*side.problem);
+  ASSERT_TRUE(bent.converged) << bent.log;
+  EXPECT_EQ(bent.log.find("stretched or compressed"), std::string::npos) << bent.log;
 }
 
 // A wire held between anchors farther apart than its length stretches by their ratio, uniformly:

@@ -33,8 +33,9 @@ double Bending(const nlohmann::ordered_json& nodes, size_t i) {
 }
 
 /// The largest |Δx/c − 1| between consecutive nodes of a "nodes" block ({"s", "position"},
-/// "curvature" if given), c the chord of an arc of length Δs at the two nodes' mean bending
-/// curvature, and the s where it starts (m); 0 when the block has no such lists.
+/// "curvature" if given), and the s where it starts (m); 0 when the block has no such lists.
+/// c is Δs, or for a shot the chord of an arc of length Δs at the two nodes' mean bending
+/// curvature.
 /// shot: the nodes come from an SE(3) shot, whose RK4 in s shrinks the frames it turns, and the
 /// positions with them, where a segment turns by more than 0.5 rad (the grid check names such a
 /// grid): there the nodes' spacing is not the rod's length, and the segment is left out (a tendon
@@ -57,10 +58,12 @@ double LargestStretch(const nlohmann::ordered_json& nodes, bool shot, double* at
       const double d = x[i + 1][k].get<double>() - x[i][k].get<double>();
       dx2 += d * d;
     }
-    // A bent segment's nodes lie a chord apart, 2 sin(κh/2)/κ for an arc of curvature κ: 1 %
+    // A shot's nodes lie on a curve, a chord apart, 2 sin(κh/2)/κ for an arc of curvature κ: 1 %
     // short of h at κh = 0.49 rad (a steel wire folded back by an end push read "compressed by
-    // 1.08 %" at a strain of 1e-4). The chord of the segment's mean curvature is the reference.
-    const double half_turn = 0.5 * ds * 0.5 * (Bending(nodes, i) + Bending(nodes, i + 1));
+    // 1.08 %" at a strain of 1e-4). The chord of the segment's mean curvature is its reference.
+    // Quaternion-FD vertices are joined by straight segments |Γ| h long: h is theirs.
+    const double half_turn =
+        shot ? 0.5 * ds * 0.5 * (Bending(nodes, i) + Bending(nodes, i + 1)) : 0.0;  // rad
     const double chord = half_turn > 1e-8 ? ds * std::sin(half_turn) / half_turn : ds;  // m
     const double stretch = std::abs(std::sqrt(dx2) / chord - 1.0);
     least = std::min(least, stretch);
