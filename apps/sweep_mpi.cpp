@@ -14,9 +14,24 @@
 
 namespace cosserat::apps {
 
+namespace {
+
+/// Whether an MPI launcher gave this process a rank: mpirun (OpenMPI, MPICH) or srun's PMI or
+/// PMIx plugin, which exports PMIX_RANK but no size.
+bool HasLaunchedRank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
+    if (std::getenv(name)) return true;
+  return false;
+}
+
+}  // namespace
+
 int LaunchedRanks() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
     if (const char* v = std::getenv(name)) return std::max(1, std::atoi(v));
+  if (HasLaunchedRank())  // srun --mpi=pmix: the step's task count
+    for (const char* name : {"SLURM_STEP_NUM_TASKS", "SLURM_NTASKS"})
+      if (const char* v = std::getenv(name)) return std::max(1, std::atoi(v));
   return 1;
 }
 
@@ -29,7 +44,7 @@ int LaunchedRank() {
 bool UnjoinedSlurmTasks(int* tasks) {
   const char* ntasks = std::getenv("SLURM_NTASKS");
   *tasks = ntasks ? std::atoi(ntasks) : 1;
-  return *tasks > 1 && std::getenv("SLURM_STEP_ID") && LaunchedRanks() == 1;
+  return *tasks > 1 && std::getenv("SLURM_STEP_ID") && !HasLaunchedRank();
 }
 
 #ifndef COSSERAT_HAVE_MPI

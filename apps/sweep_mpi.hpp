@@ -11,8 +11,8 @@
 
 namespace cosserat::apps {
 
-/// The number of ranks this process was started with by mpirun (OpenMPI's, MPICH's or SLURM's
-/// environment), or 1.
+/// The number of ranks this process was started with by mpirun (OpenMPI's, MPICH's or PMI's
+/// size), or by srun with a PMIx rank (the step's SLURM task count), or 1.
 int LaunchedRanks();
 
 /// This process's rank among them (the same environments), or 0.
@@ -22,8 +22,8 @@ int LaunchedRank();
 bool HaveMpi();
 
 /// Whether SLURM started this process as one of several tasks of a step (srun: SLURM_NTASKS
-/// above 1 with a SLURM_STEP_ID) that no MPI environment joins (LaunchedRanks() is 1): every
-/// task would run the whole study. *tasks receives SLURM_NTASKS.
+/// above 1 with a SLURM_STEP_ID) that no MPI environment joins (no OpenMPI, PMI or PMIx rank):
+/// every task would run the whole study. *tasks receives SLURM_NTASKS.
 bool UnjoinedSlurmTasks(int* tasks);
 
 /// Runs the study over MPI: rank 0 owns the file and hands out points, a chunk at a time, to

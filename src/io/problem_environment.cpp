@@ -219,7 +219,7 @@ void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
   constexpr int kPoints = 201;
   const std::vector<Vec3> centreline = RestCentreline_W(p.rod, p.base, kPoints);
   // A centreline that ends on the surface is not past it: the rest centreline's round-off (a
-  // wall placed at the tip of a 2 m rod read 4.4e-16 m past it) is forgiven up to 1e-12 L.
+  // wall placed at the tip of a 0.6 m rod read 4.4e-16 m past it) is forgiven up to 1e-12 L.
   const double round_off = 1e-12 * p.rod.length;  // m
   for (int k = 0; k < contact.count && p.boundary != Boundary::kAnchored; ++k) {
     double deepest = 0.0, s_deepest = 0.0;  // the most negative distance, m, and where

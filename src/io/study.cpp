@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
-#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -365,11 +366,16 @@ StudyParseResult ParseStudy(const std::string& text, const std::string& source_n
 
 std::string PointWords(const Study& study, std::uint64_t k) {
   const std::vector<double> values = study.Point(k);
-  std::ostringstream words;
-  words << std::setprecision(17);
-  for (std::size_t j = 0; j < values.size(); ++j)
-    words << (j ? ", " : "") << study.parameters[j].path << " = " << values[j];
-  return words.str();
+  std::string words;
+  for (std::size_t j = 0; j < values.size(); ++j) {
+    char number[32];  // the fewest of 15–17 digits that read back as the value, as the CSV's
+    for (int digits = 15; digits <= 17; ++digits) {
+      std::snprintf(number, sizeof number, "%.*g", digits, values[j]);
+      if (std::strtod(number, nullptr) == values[j]) break;
+    }
+    words += (j ? ", " : "") + study.parameters[j].path + " = " + number;
+  }
+  return words;
 }
 
 StudyPointCheck CheckStudyPoints(const Study& study, std::uint64_t limit) {

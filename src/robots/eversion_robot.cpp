@@ -293,17 +293,18 @@ EversionSolveSummary EversionRobot::Solve(double length, const StaticLoads& load
 
   EversionSolveSummary out;
   out.length = length;
-  // Pieces first where the last solve needed them (the body a little longer needs them too) or
-  // where a single shot's exponent passes 10, as for a plain rod: a 1.2 m tube on a floor
-  // (βL = 10.9) took 1 300 Newton iterations in one shot per growth step, 2 m 10 000.
+  // Pieces first where the last solve needed them (the body a little longer needs them too),
+  // from its shape, and where a single shot's exponent passes options.pieces_above_exponent (10,
+  // as for a plain rod): a 1.2 m tube on a floor (βL = 10.9) took 1 300 Newton iterations in one
+  // shot per growth step, 2 m 10 000.
   const bool last_in_pieces = in_pieces_;
-  const bool pieces_first =
-      last_in_pieces || StaticShootingExponent(ModelAt(length), solver_loads, actuation()) >
-                            options_.pieces_above_exponent;
+  const bool beyond_one_shot = StaticShootingExponent(ModelAt(length), solver_loads,
+                                                      actuation()) > options_.pieces_above_exponent;
   in_pieces_ = false;
-  if (pieces_first) SolveInPieces(length, solver_loads, last_in_pieces, &out.solve);
+  if (last_in_pieces) SolveInPieces(length, solver_loads, true, &out.solve);  // from the last
+  if (!in_pieces_ && beyond_one_shot) SolveInPieces(length, solver_loads, false, &out.solve);
   if (!in_pieces_) {
-    const StaticShootingSummary failed_in_pieces = out.solve;  // empty unless last_in_pieces
+    const StaticShootingSummary failed_in_pieces = out.solve;  // the work of pieces that failed
     out.solve = solver_->Solve(design_.base, solver_loads);
     out.solve.CountWorkOf(failed_in_pieces);
     if (!out.solve.converged() && (seeded || out.solve.warm_started)) {
@@ -315,7 +316,7 @@ EversionSolveSummary EversionRobot::Solve(double length, const StaticLoads& load
       out.solve.wall_time_s += warm.wall_time_s;
     }
     out.solve.warm_started = out.solve.warm_started || seeded;
-    if (!out.solve.converged() && !(pieces_first && !last_in_pieces))  // not tried cold yet
+    if (!out.solve.converged() && !beyond_one_shot)  // else tried from the unloaded body already
       SolveInPieces(length, solver_loads, false, &out.solve);
   }
   if (out.solve.converged()) {
@@ -345,11 +346,14 @@ void EversionRobot::SolveInPieces(double length, const StaticLoads& solver_loads
     warm.warm_started = true;
     *summary = warm;
     in_pieces_ = warm.converged();
-    return;  // else the single shot, then pieces from the unloaded body
+    return;  // else pieces from the unloaded body, and the single shot
   }
   pieces_ = std::make_unique<StaticMultipleShootingSolver>(model, nodes, options, actuation());
   StaticShootingSummary in_pieces = pieces_->Solve(design_.base, solver_loads);
-  if (!in_pieces.converged()) return;  // the single shot's summary says why
+  if (!in_pieces.converged()) {  // the single shot's summary says why; the work counts
+    summary->CountWorkOf(in_pieces);
+    return;
+  }
   in_pieces.CountWorkOf(*summary);
   *summary = in_pieces;
   in_pieces_ = true;

@@ -16,7 +16,8 @@ void GrowthRecord::Add(const EversionRobot& robot, const EversionSolveSummary& s
   io::VtkFrame frame;
   frame.t = robot.length();  // m: ParaView's time controls play the growth
   frame.rods = {state};
-  frame.radius = {NodeRadius(problem_.rod, state.s, problem_.robot.actuation)};
+  // The body at this length: a band it has everted only in part ends at its tip.
+  frame.radius = {NodeRadius(robot.ModelAt(robot.length()), state.s, robot.actuation())};
   frames_kept_.push_back(std::move(frame));
 }
 

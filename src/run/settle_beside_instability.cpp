@@ -131,6 +131,7 @@ bool SettleInPieces(const io::Problem& problem, const RodState& straight, int in
   // the pieces' own path grows its steps while the sections turn little, and from the straight
   // rod far past its critical load it lands on the imperfect straight branch, unstable (a wire
   // pushed at its tip by 40 times it came back straight, then S-bent with 4 unstable directions).
+  StaticShootingSummary spent;  // a one-shot route that did not settle it
   if (StaticShootingExponent(problem.rod, problem.loads) <= 20.0) {
     StaticShootingSolver single(problem.rod, problem.nodes, StaticOptions(problem),
                                 problem.robot.actuation);
@@ -144,6 +145,7 @@ bool SettleInPieces(const io::Problem& problem, const RodState& straight, int in
       by_shot.CountWorkOf(last);
       if (last.converged() && AcceptInPieces(problem, solver, index, by_shot, last, out))
         return true;
+      spent = by_shot;
     }
   }
   const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
@@ -151,6 +153,7 @@ bool SettleInPieces(const io::Problem& problem, const RodState& straight, int in
       problem.rod, problem.nodes, PiecesOptions(problem, ColumnEnds::kClampedFree, pieces, true));
   StaticShootingSummary total, last;
   if (!FollowAway(problem, imperfect, &solver, &total, &last)) return false;
+  total.CountWorkOf(spent);
   return AcceptInPieces(problem, solver, index, total, last, out);
 }
 

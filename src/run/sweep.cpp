@@ -8,11 +8,13 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -57,7 +59,7 @@ std::string OutputField(const nlohmann::ordered_json& result, const std::string&
   if (v.is_number()) return Number(v.get<double>());
   if (v.is_string()) return Field(v.get<std::string>());
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
-  if (v.is_null()) return "nan";  // a number the result could not give (JSON has no NaN)
+  if (v.is_null()) return "nan";  // JSON's null: no number, or one JSON cannot hold (NaN, inf)
   return Field(v.dump());
 }
 
@@ -197,11 +199,16 @@ void CheckResumedPoints(const std::string& path, const io::Study& study,
     for (std::size_t j = 0; j < point.size(); ++j) {
       const std::size_t start = StartOfField(line, j + 1);
       const std::size_t end = std::min(line.find(',', start), line.size());
-      // By value: a file written with more digits than needed (%.17g) is the same point.
+      // By value: a file written with more digits than needed (%.17g) is the same point, and so
+      // is one a few ulps off (grids before they followed numpy.linspace wrote 0.9999999999999998
+      // where it gives 1).
       const std::string found = line.substr(start, end - start), wanted = Number(point[j]);
       char* parsed_end = nullptr;
       const double value = std::strtod(found.c_str(), &parsed_end);
-      if (parsed_end != found.c_str() + found.size() || found.empty() || value != point[j])
+      const double ulps = 4.0 * std::numeric_limits<double>::epsilon() *
+                          std::max(std::abs(value), std::abs(point[j]));
+      if (parsed_end != found.c_str() + found.size() || found.empty() ||
+          !(std::abs(value - point[j]) <= ulps))
         throw std::runtime_error(path + ": its row of point " + std::to_string(k) + " has " +
                                  study.parameters[j].path + " = " + found +
                                  ", this study's point has " + wanted +

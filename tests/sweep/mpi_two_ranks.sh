@@ -22,6 +22,11 @@ SLURM_NTASKS=2 SLURM_STEP_ID=0 SLURM_PROCID=1 "$BIN" sweep "$STUDY" --out "$WORK
   2> "$WORK/slurm.log" || code=$?
 [ "$code" = 2 ] && grep -q "no MPI environment joins the tasks" "$WORK/slurm.log" ||
   { cat "$WORK/slurm.log"; echo "unjoined srun tasks: exit $code, not refused"; exit 1; }
+# srun --mpi=pmix exports PMIX_RANK but no size: such a task is joined, not refused (here a step
+# of one task, which runs the study alone).
+SLURM_NTASKS=2 SLURM_STEP_NUM_TASKS=1 SLURM_STEP_ID=0 SLURM_PROCID=0 PMIX_RANK=0 "$BIN" sweep \
+  "$STUDY" --out "$WORK/pmix.csv" 2> "$WORK/pmix.log" ||
+  { cat "$WORK/pmix.log"; echo "a PMIx task was refused"; exit 1; }
 strip() { sed 's/,[^,]*$//' "$1"; }  # drop the last column, wall_time_s
 if diff <(strip "$WORK/one.csv") <(strip "$WORK/ranks.csv") > "$WORK/diff.txt"; then
   echo "2 MPI ranks: $(($(wc -l < "$WORK/ranks.csv") - 1)) rows, identical to one thread's"
