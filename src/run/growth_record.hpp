@@ -4,7 +4,6 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "cosserat/io/problem.hpp"
 #include "cosserat/io/vtk_series.hpp"
 #include "cosserat/robots/eversion_robot.hpp"
 #include "cosserat/run/result.hpp"
@@ -13,11 +12,11 @@ namespace cosserat::run::detail {
 
 /// Each converged growth step of an eversion robot: its everted length (m), tip position (world,
 /// m) and largest wrinkling ratio (the kink check's), for the result's robot.growth; and, when
-/// `frames`, its body as a VTK frame whose time is the length (m), with its own node radii (the
-/// grid grows with the body).
+/// `frames`, its body as a VTK frame whose time is the length (m), with the radii of the body at
+/// that length at its nodes (the grid grows with the body).
 class GrowthRecord {
  public:
-  GrowthRecord(const io::Problem& problem, bool frames) : problem_(problem), frames_(frames) {}
+  explicit GrowthRecord(bool frames) : frames_(frames) {}
   /// After a converged step, with the robot holding its equilibrium.
   void Add(const EversionRobot& robot, const EversionSolveSummary& step);
   /// {"length": […], "tip": [[x, y, z], …], "max_moment_ratio": […]}, one entry per step; an
@@ -27,7 +26,6 @@ class GrowthRecord {
   void MoveFramesInto(Result* result);
 
  private:
-  const io::Problem& problem_;
   bool frames_;
   std::vector<double> length_, ratio_;
   std::vector<Vec3> tip_;

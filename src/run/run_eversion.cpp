@@ -87,7 +87,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   std::ostringstream growth_note;
   nlohmann::ordered_json first_kink_length;  // grown: the length first kinked at (m), or null
   bool converged;
-  detail::GrowthRecord growth(problem, run_options.frames);
+  detail::GrowthRecord growth(run_options.frames);
   if (problem.robot.growth_initial_length) {
     const GrowthSummary g = robot.Grow(
         problem.rod.length, problem.robot.growth_steps, problem.loads,
