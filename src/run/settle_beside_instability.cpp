@@ -5,6 +5,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "cosserat/lie/quaternion.hpp"
+#include "cosserat/lie/so3.hpp"
 #include "cosserat/loads/total_load.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/run/solver_options.hpp"
@@ -157,38 +159,100 @@ bool SettleInPieces(const io::Problem& problem, const RodState& straight, int in
   return AcceptInPieces(problem, solver, index, total, last, out);
 }
 
+namespace {
+
+/// The quaternion-FD path of the imperfection: from the unloaded rod to the imperfect loads,
+/// then the imperfection taken away; x receives the state, *total the solves' work.
+bool QuatFdImperfectPath(const io::Problem& problem, const StaticLoads& imperfect,
+                         quatfd::QuatFdModel* model, Eigen::VectorXd* x,
+                         quatfd::QuatFdStaticsSummary* total) {
+  // The loaded path from the unloaded rod (a direct Newton solve lands on the bent-back state
+  // beside the straight one).
+  quatfd::QuatFdStaticsOptions options = QuatFdLoadedPathOptions(problem);
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(model->size());
+  model->RestState(*x, v);
+  *total = quatfd::SolveStatics(model, imperfect, *x, options);
+  if (!total->converged()) return false;
+  options.load_stepping = false;  // Newton from the last level
+  options.direct_solve = true;
+  quatfd::QuatFdStaticsSummary last = *total;
+  const bool reached = TakeAway([&](double mu) {
+    Eigen::VectorXd trial = *x;
+    last = quatfd::SolveStatics(model, StaticLoads::Blend(imperfect, problem.loads, mu), trial,
+                                options);
+    total->iterations += last.iterations;
+    total->wall_time_s += last.wall_time_s;
+    if (last.converged()) *x = trial;
+    return last.converged();
+  });
+  total->status = last.status;
+  total->residual = last.residual;
+  return reached;
+}
+
+/// The SE(3) single shot's settled equilibrium carried onto the quaternion-FD unknowns (its
+/// nodes as the vertices, each segment's quaternion the geodesic midpoint of its end frames) and
+/// taken up there by Newton: far past the critical load the quaternion-FD path of the
+/// imperfection lands near the straight branch (a wire pushed at its tip by 40 times it), while
+/// one shot keeps to the stable one. Where one shot resolves the rod (an exponent up to 20).
+bool QuatFdFromSettledShot(const io::Problem& problem, const RodState& straight, int index,
+                           quatfd::QuatFdModel* model, Eigen::VectorXd* x,
+                           quatfd::QuatFdStaticsSummary* total, double* imperfection) {
+  if (StaticShootingExponent(problem.rod, problem.loads, problem.robot.actuation) > 20.0)
+    return false;
+  StaticShootingSolver single(problem.rod, problem.nodes, StaticOptions(problem),
+                              problem.robot.actuation);
+  StaticShootingSummary by_shot;
+  if (!SettleSingleShot(problem, straight, index, &single, &by_shot, imperfection)) return false;
+  const RodState& shot = single.state();
+  const int segments = model->layout().segments;
+  if (shot.size() != segments + 1) return false;
+  using L = quatfd::QuatFdLayout;
+  Vec4 last = Vec4::Zero();
+  for (int n = 0; n <= segments; ++n) x->segment<3>(L::X(n)) = shot.position_W[n];
+  for (int nu = 0; nu < segments; ++nu) {
+    const Mat3& R = shot.rotation_WB[nu];
+    const Vec3 turn = lie::SO3Log(R.transpose() * shot.rotation_WB[nu + 1]);  // rad, body
+    Vec4 p = lie::RotationToQuat(R * lie::SO3Exp(Vec3(0.5 * turn)));
+    if (p.dot(last) < 0.0) p = -p;  // one hemisphere along the rod
+    x->segment<4>(L::P(nu)) = last = p;
+  }
+  quatfd::QuatFdStaticsOptions options = QuatFdStaticOptions(problem);
+  options.load_stepping = false;
+  options.direct_solve = true;
+  const quatfd::QuatFdStaticsSummary solved =
+      quatfd::SolveStatics(model, problem.loads, *x, options);
+  total->iterations += solved.iterations;
+  total->wall_time_s += solved.wall_time_s + by_shot.wall_time_s;
+  total->status = solved.status;
+  total->residual = solved.residual;
+  return solved.converged();
+}
+
+}  // namespace
+
 bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int index,
                   quatfd::QuatFdModel* model, Eigen::VectorXd* q, RodState* state,
                   quatfd::QuatFdStaticsSummary* summary, int* settled_index,
                   double* imperfection) {
   const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
-  // The loaded path from the unloaded rod (a direct Newton solve lands on the bent-back state
-  // beside the straight one).
-  quatfd::QuatFdStaticsOptions options = QuatFdLoadedPathOptions(problem);
   Eigen::VectorXd x(model->size()), v = Eigen::VectorXd::Zero(model->size());
-  model->RestState(x, v);
-  quatfd::QuatFdStaticsSummary total = quatfd::SolveStatics(model, imperfect, x, options);
-  if (!total.converged()) return false;
-  options.load_stepping = false;  // Newton from the last level
-  options.direct_solve = true;
-  quatfd::QuatFdStaticsSummary last = total;
-  const bool reached = TakeAway([&](double mu) {
-    Eigen::VectorXd trial = x;
-    last = quatfd::SolveStatics(model, StaticLoads::Blend(imperfect, problem.loads, mu), trial,
-                                options);
-    total.iterations += last.iterations;
-    total.wall_time_s += last.wall_time_s;
-    if (last.converged()) x = trial;
-    return last.converged();
-  });
-  model->set_loads(problem.loads);
-  if (!reached) return false;
+  quatfd::QuatFdStaticsSummary total;
   RodState settled_state;
-  model->ToRodState(x, v, &settled_state);
-  const int settled = QuatFdStabilityIndex(problem, x, settled_state);
-  if (settled < 0 || settled >= index) return false;
-  total.status = last.status;
-  total.residual = last.residual;
+  int settled = -1;
+  auto judge = [&] {
+    model->ToRodState(x, v, &settled_state);
+    settled = QuatFdStabilityIndex(problem, x, settled_state);
+    return settled >= 0 && settled < index;
+  };
+  const bool own = QuatFdImperfectPath(problem, imperfect, model, &x, &total);
+  model->set_loads(problem.loads);
+  if (!(own && judge())) {
+    if (!QuatFdFromSettledShot(problem, straight, index, model, &x, &total, imperfection))
+      return false;
+    model->set_loads(problem.loads);
+    if (!judge()) return false;
+  }
   *summary = total;
   *q = x;
   *state = settled_state;

@@ -54,7 +54,8 @@ bool SettleInPieces(const io::Problem& problem, const RodState& straight, int in
                     StaticsInPieces* out, double* imperfection);
 
 /// The same on the quaternion-FD grid: q (and state) receive the equilibrium, *summary its
-/// solve, *settled_index its unstable directions.
+/// solve, *settled_index its unstable directions. Where its own path does not settle it and one
+/// shot resolves the rod, it starts from the SE(3) single shot's settled equilibrium.
 bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int index,
                   quatfd::QuatFdModel* model, Eigen::VectorXd* q, RodState* state,
                   quatfd::QuatFdStaticsSummary* summary, int* settled_index,
