@@ -207,6 +207,8 @@ bool QuatFdFromSettledShot(const io::Problem& problem, const RodState& straight,
   const RodState& shot = single.state();
   const int segments = model->layout().segments;
   if (shot.size() != segments + 1) return false;
+  for (int n = 0; n <= segments; ++n)  // the vertices at the shot's nodes
+    if (std::abs(model->grid()[n] - shot.s[n]) > 1e-12 * problem.rod.length) return false;
   using L = quatfd::QuatFdLayout;
   Vec4 last = Vec4::Zero();
   for (int n = 0; n <= segments; ++n) x->segment<3>(L::X(n)) = shot.position_W[n];
