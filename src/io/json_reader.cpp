@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <iomanip>
 #include <sstream>
 
@@ -90,6 +92,15 @@ std::string FormatNumber(double x) {
   std::ostringstream os;
   os << std::setprecision(6) << x;
   return os.str();
+}
+
+std::string ShortestNumber(double x) {
+  char buf[32];
+  for (int digits = 15; digits <= 17; ++digits) {  // the fewest that read back as x
+    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+    if (std::strtod(buf, nullptr) == x) break;
+  }
+  return buf;
 }
 
 // --- Collecting errors -------------------------------------------------------------------------

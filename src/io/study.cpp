@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -367,14 +365,8 @@ StudyParseResult ParseStudy(const std::string& text, const std::string& source_n
 std::string PointWords(const Study& study, std::uint64_t k) {
   const std::vector<double> values = study.Point(k);
   std::string words;
-  for (std::size_t j = 0; j < values.size(); ++j) {
-    char number[32];  // the fewest of 15–17 digits that read back as the value, as the CSV's
-    for (int digits = 15; digits <= 17; ++digits) {
-      std::snprintf(number, sizeof number, "%.*g", digits, values[j]);
-      if (std::strtod(number, nullptr) == values[j]) break;
-    }
-    words += (j ? ", " : "") + study.parameters[j].path + " = " + number;
-  }
+  for (std::size_t j = 0; j < values.size(); ++j)  // as the CSV writes them
+    words += (j ? ", " : "") + study.parameters[j].path + " = " + detail::ShortestNumber(values[j]);
   return words;
 }
 

@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "cosserat/lie/quaternion.hpp"
-#include "cosserat/lie/so3.hpp"
 #include "cosserat/loads/total_load.hpp"
+#include "cosserat/state/resampled_state.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "quatfd_stability.hpp"
@@ -124,31 +125,36 @@ bool AcceptInPieces(const io::Problem& problem, const StaticMultipleShootingSolv
   return true;
 }
 
+/// Far past the critical load the paths of the imperfection in pieces, or on the quaternion-FD
+/// grid, land near the straight branch (a wire pushed at its tip by 40 times it came back
+/// straight, or S-bent with 4 unstable directions): the pieces grow their steps while the
+/// sections turn little. The single shot's path keeps to the stable branch, and where one shot
+/// still resolves the rod (an exponent up to 20 amplifies round-off by 5e8) its settled
+/// equilibrium is the start the others take up. Empty otherwise; *work receives its solves.
+std::optional<RodState> SettledByOneShot(const io::Problem& problem, const RodState& straight,
+                                         int index, StaticShootingSummary* work,
+                                         double* imperfection) {
+  if (StaticShootingExponent(problem.rod, problem.loads, problem.robot.actuation) > 20.0)
+    return std::nullopt;
+  StaticShootingSolver single(problem.rod, problem.nodes, StaticOptions(problem),
+                              problem.robot.actuation);
+  if (!SettleSingleShot(problem, straight, index, &single, work, imperfection))
+    return std::nullopt;
+  return single.state();
+}
+
 }  // namespace
 
 bool SettleInPieces(const io::Problem& problem, const RodState& straight, int index, int pieces,
                     StaticsInPieces* out, double* imperfection) {
-  // Where one shot still resolves the rod (an exponent up to 20 amplifies round-off by 5e8), its
-  // path, which keeps to the stable branch, settles it and the pieces take its equilibrium up:
-  // the pieces' own path grows its steps while the sections turn little, and from the straight
-  // rod far past its critical load it lands on the imperfect straight branch, unstable (a wire
-  // pushed at its tip by 40 times it came back straight, then S-bent with 4 unstable directions).
   StaticShootingSummary spent;  // a one-shot route that did not settle it
-  if (StaticShootingExponent(problem.rod, problem.loads) <= 20.0) {
-    StaticShootingSolver single(problem.rod, problem.nodes, StaticOptions(problem),
-                                problem.robot.actuation);
-    StaticShootingSummary by_shot;
-    if (SettleSingleShot(problem, straight, index, &single, &by_shot, imperfection)) {
-      StaticMultipleShootingSolver solver(
-          problem.rod, problem.nodes,
-          PiecesOptions(problem, ColumnEnds::kClampedFree, pieces, false));
-      const StaticShootingSummary last =
-          solver.SolveFrom(problem.base, problem.loads, single.state());
-      by_shot.CountWorkOf(last);
-      if (last.converged() && AcceptInPieces(problem, solver, index, by_shot, last, out))
-        return true;
-      spent = by_shot;
-    }
+  if (const auto shot = SettledByOneShot(problem, straight, index, &spent, imperfection)) {
+    StaticMultipleShootingSolver solver(
+        problem.rod, problem.nodes,
+        PiecesOptions(problem, ColumnEnds::kClampedFree, pieces, false));
+    const StaticShootingSummary last = solver.SolveFrom(problem.base, problem.loads, *shot);
+    spent.CountWorkOf(last);
+    if (last.converged() && AcceptInPieces(problem, solver, index, spent, last, out)) return true;
   }
   const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
   StaticMultipleShootingSolver solver(
@@ -190,32 +196,29 @@ bool QuatFdImperfectPath(const io::Problem& problem, const StaticLoads& imperfec
   return reached;
 }
 
-/// The SE(3) single shot's settled equilibrium carried onto the quaternion-FD unknowns (its
-/// nodes as the vertices, each segment's quaternion the geodesic midpoint of its end frames) and
-/// taken up there by Newton: far past the critical load the quaternion-FD path of the
-/// imperfection lands near the straight branch (a wire pushed at its tip by 40 times it), while
-/// one shot keeps to the stable one. Where one shot resolves the rod (an exponent up to 20).
+/// The single shot's settled equilibrium (SettledByOneShot) carried onto the quaternion-FD
+/// unknowns (its nodes as the vertices, each segment's quaternion the geodesic midpoint of its
+/// end frames) and taken up there by Newton.
 bool QuatFdFromSettledShot(const io::Problem& problem, const RodState& straight, int index,
                            quatfd::QuatFdModel* model, Eigen::VectorXd* x,
                            quatfd::QuatFdStaticsSummary* total, double* imperfection) {
-  if (StaticShootingExponent(problem.rod, problem.loads, problem.robot.actuation) > 20.0)
-    return false;
-  StaticShootingSolver single(problem.rod, problem.nodes, StaticOptions(problem),
-                              problem.robot.actuation);
   StaticShootingSummary by_shot;
-  if (!SettleSingleShot(problem, straight, index, &single, &by_shot, imperfection)) return false;
-  const RodState& shot = single.state();
+  const std::optional<RodState> settled =
+      SettledByOneShot(problem, straight, index, &by_shot, imperfection);
+  if (!settled) return false;
+  const RodState& shot = *settled;
   const int segments = model->layout().segments;
   if (shot.size() != segments + 1) return false;
   for (int n = 0; n <= segments; ++n)  // the vertices at the shot's nodes
     if (std::abs(model->grid()[n] - shot.s[n]) > 1e-12 * problem.rod.length) return false;
   using L = quatfd::QuatFdLayout;
+  std::vector<double> midpoints(segments);
+  for (int nu = 0; nu < segments; ++nu) midpoints[nu] = 0.5 * (shot.s[nu] + shot.s[nu + 1]);
+  const RodState mid = ResampledState(shot, midpoints);  // frames on the geodesics between nodes
   Vec4 last = Vec4::Zero();
   for (int n = 0; n <= segments; ++n) x->segment<3>(L::X(n)) = shot.position_W[n];
   for (int nu = 0; nu < segments; ++nu) {
-    const Mat3& R = shot.rotation_WB[nu];
-    const Vec3 turn = lie::SO3Log(R.transpose() * shot.rotation_WB[nu + 1]);  // rad, body
-    Vec4 p = lie::RotationToQuat(R * lie::SO3Exp(Vec3(0.5 * turn)));
+    Vec4 p = lie::RotationToQuat(mid.rotation_WB[nu]);
     if (p.dot(last) < 0.0) p = -p;  // one hemisphere along the rod
     x->segment<4>(L::P(nu)) = last = p;
   }

@@ -21,6 +21,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "cosserat/io/json_reader.hpp"
 #include "cosserat/io/problem.hpp"
 #include "cosserat/numerics/thread_team.hpp"
 #include "cosserat/run/run.hpp"
@@ -30,16 +31,7 @@ namespace {
 
 using json = nlohmann::json;
 
-/// A CSV number that reads back as x, in the fewest of 15–17 significant digits (0.000355971,
-/// not 0.00035597100000000001).
-std::string Number(double x) {
-  char buf[32];
-  for (int digits = 15; digits <= 17; ++digits) {  // the fewest that read back as x
-    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-    if (std::strtod(buf, nullptr) == x) break;
-  }
-  return buf;
-}
+using io::detail::ShortestNumber;  // a CSV number: reads back as the double, in fewest digits
 
 /// A CSV field: quoted when it holds a comma, a quote or a line break.
 std::string Field(const std::string& s) {
@@ -56,7 +48,7 @@ std::string OutputField(const nlohmann::ordered_json& result, const std::string&
   const nlohmann::ordered_json::json_pointer p(pointer);
   if (!result.contains(p)) return "";
   const nlohmann::ordered_json& v = result[p];
-  if (v.is_number()) return Number(v.get<double>());
+  if (v.is_number()) return ShortestNumber(v.get<double>());
   if (v.is_string()) return Field(v.get<std::string>());
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
   if (v.is_null()) return "nan";  // JSON's null: no number, or one JSON cannot hold (NaN, inf)
@@ -81,7 +73,7 @@ std::string SweepPointRow(const io::Study& study, std::uint64_t k) {
   const auto t0 = std::chrono::steady_clock::now();
   std::ostringstream row;
   row << k;
-  for (double v : study.Point(k)) row << ',' << Number(v);
+  for (double v : study.Point(k)) row << ',' << ShortestNumber(v);
   std::string status;
   nlohmann::ordered_json result;
   try {
@@ -104,7 +96,7 @@ std::string SweepPointRow(const io::Study& study, std::uint64_t k) {
   for (const io::StudyOutput& o : study.outputs) row << ',' << OutputField(result, o.path);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  row << ',' << Field(status) << ',' << Number(wall);
+  row << ',' << Field(status) << ',' << ShortestNumber(wall);
   return row.str();
 }
 
@@ -202,7 +194,8 @@ void CheckResumedPoints(const std::string& path, const io::Study& study,
       // By value: a file written with more digits than needed (%.17g) is the same point, and so
       // is one a few ulps off (grids before they followed numpy.linspace wrote 0.9999999999999998
       // where it gives 1).
-      const std::string found = line.substr(start, end - start), wanted = Number(point[j]);
+      const std::string found = line.substr(start, end - start);
+      const std::string wanted = ShortestNumber(point[j]);
       char* parsed_end = nullptr;
       const double value = std::strtod(found.c_str(), &parsed_end);
       const double ulps = 4.0 * std::numeric_limits<double>::epsilon() *

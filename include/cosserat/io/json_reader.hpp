@@ -32,6 +32,10 @@ std::string QuotedList(const std::vector<std::string>& words);
 /// A number the parser computed (not echoed from the file), with six significant digits.
 std::string FormatNumber(double x);
 
+/// x in the fewest of 15–17 significant digits that read back as x (0.000355971, not
+/// 0.00035597100000000001): a study's CSV cells and the points its messages name.
+std::string ShortestNumber(double x);
+
 // --- Collecting errors -------------------------------------------------------------------------
 
 /// The error lines of one parse, in the order found.
