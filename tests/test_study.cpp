@@ -57,9 +57,28 @@ bool HasError(const std::vector<std::string>& errors, const std::string& part) {
   return false;
 }
 
-std::string Temp(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("cosserat_test_study_" + name)).string();
-}
+/// A study's CSV in the temporary directory, with the files a sweep keeps beside it (partial
+/// rows, lock, the records a resume checks): none before the test and none left after it.
+class TempStudy {
+ public:
+  explicit TempStudy(const std::string& name)
+      : path_((std::filesystem::temp_directory_path() / ("cosserat_test_study_" + name))
+                  .string()) {
+    Remove();
+  }
+  ~TempStudy() { Remove(); }
+  TempStudy(const TempStudy&) = delete;
+  TempStudy& operator=(const TempStudy&) = delete;
+  const std::string& path() const { return path_; }
+  /// Removes the CSV and everything recorded beside it.
+  void Remove() const {
+    for (const char* end : {"", ".tmp", ".lock", ".problem.json", ".outputs.json"})
+      std::remove((path_ + end).c_str());
+  }
+
+ private:
+  std::string path_;
+};
 
 /// The rows of a CSV file without their last column (the timing), by index; the header too.
 std::map<long, std::string> Rows(const std::string& path, std::string* header = nullptr) {
@@ -237,8 +256,8 @@ TEST(Study, PointsInvalidHereAndThereAreRowsNotARefusal) {
 TEST(Sweep, EveryRowIsTheArcOfItsTension) {
   const io::Study s = Parse(TendonStudy(
       R"([{"path": "/robot/actuation/tension/0", "grid": {"from": 0, "to": 2, "count": 9}}])"));
-  const std::string path = Temp("arc.csv");
-  std::remove(path.c_str());
+  const TempStudy study("arc.csv");
+  const std::string& path = study.path();
   const run::SweepSummary sum = run::RunSweep(s, path);
   ASSERT_TRUE(sum.complete);
   EXPECT_EQ(sum.failed, 0u);
@@ -269,9 +288,8 @@ TEST(Sweep, OneAndTwoThreadsGiveTheSameRows) {
   const io::Study s = Parse(TendonStudy(
       R"([{"path": "/robot/actuation/tension/0", "grid": {"from": 0, "to": 2, "count": 15}},
           {"path": "/rod/material/youngs_modulus", "values": [2.0e11, 2.1e11, 2.2e11]}])"));
-  const std::string one = Temp("one.csv"), two = Temp("two.csv");
-  std::remove(one.c_str());
-  std::remove(two.c_str());
+  const TempStudy study_one("one.csv"), study_two("two.csv");
+  const std::string &one = study_one.path(), &two = study_two.path();
   run::SweepOptions o;
   o.threads = 1;
   run::RunSweep(s, one, o);
@@ -289,9 +307,8 @@ TEST(Sweep, OneAndTwoThreadsGiveTheSameRows) {
 TEST(Sweep, AStoppedStudyResumesAndRunsEveryPointOnce) {
   const io::Study s = Parse(TendonStudy(
       R"([{"path": "/robot/actuation/tension/0", "grid": {"from": 0, "to": 2, "count": 30}}])"));
-  const std::string whole = Temp("whole.csv"), parts = Temp("parts.csv");
-  std::remove(whole.c_str());
-  std::remove(parts.c_str());
+  const TempStudy study_whole("whole.csv"), study_parts("parts.csv");
+  const std::string &whole = study_whole.path(), &parts = study_parts.path();
   run::RunSweep(s, whole);
   run::SweepOptions o;
   o.max_new_points = 10;
@@ -324,8 +341,8 @@ TEST(Sweep, AStoppedStudyResumesAndRunsEveryPointOnce) {
 TEST(Sweep, AFailingPointIsARowWithItsStatus) {
   const io::Study s = Parse(TendonStudy(
       R"([{"path": "/rod/length", "values": [0.25, -0.1, 0.2]}])"));
-  const std::string path = Temp("failing.csv");
-  std::remove(path.c_str());
+  const TempStudy study("failing.csv");
+  const std::string& path = study.path();
   const run::SweepSummary sum = run::RunSweep(s, path);
   EXPECT_TRUE(sum.complete);
   EXPECT_EQ(sum.failed, 1u);
@@ -341,8 +358,8 @@ TEST(Sweep, AFailingPointIsARowWithItsStatus) {
 // whole study into it too; the lock goes with the first.
 TEST(Sweep, ASecondWriterOnOneFileIsRefused) {
   const io::Study s = Parse(TendonStudy(R"([{"path": "/rod/length", "values": [0.25]}])"));
-  const std::string path = Temp("locked.csv");
-  std::remove(path.c_str());
+  const TempStudy study("locked.csv");
+  const std::string& path = study.path();
   {
     run::SweepFile first(s, path);
     try {
@@ -368,8 +385,8 @@ TEST(Sweep, ANullIsNanAndWarningsAreAColumn) {
       "buckling": {"load": "tip_force", "direction": [0, 0, -1], "max": 0.1}},
     "parameters": [{"path": "/loads/gravity/0", "values": [0, -5000]}],
     "outputs": {"p": "/buckling/critical_load", "w": "/warnings"}})");
-  const std::string path = Temp("nan.csv");
-  std::remove(path.c_str());
+  const TempStudy study("nan.csv");
+  const std::string& path = study.path();
   run::RunSweep(s, path);
   const std::map<long, std::string> rows = Rows(path);
   ASSERT_EQ(rows.size(), 2u);
@@ -379,7 +396,8 @@ TEST(Sweep, ANullIsNanAndWarningsAreAColumn) {
 
 TEST(Sweep, AFileOfAnotherStudyIsNotOverwritten) {
   const io::Study s = Parse(TendonStudy(R"([{"path": "/rod/length", "values": [0.25]}])"));
-  const std::string path = Temp("other.csv");
+  const TempStudy study("other.csv");
+  const std::string& path = study.path();
   {
     std::ofstream f(path);
     f << "index,something,else\n0,1,2\n";
@@ -405,9 +423,8 @@ TEST(Sweep, AFileOfAnotherStudyIsNotOverwritten) {
 TEST(Sweep, AColumnThatNowHoldsAnotherFieldIsNotResumed) {
   const std::string grid = R"([{"path": "/robot/actuation/tension/0", "grid": {"from": 0, "to": 2,
                                "count": 3}}])";
-  const std::string path = Temp("fields.csv");
-  for (const char* end : {"", ".problem.json", ".outputs.json"})
-    std::remove((path + end).c_str());
+  const TempStudy study("fields.csv");
+  const std::string& path = study.path();
   run::SweepOptions o;
   o.max_new_points = 2;
   run::RunSweep(Parse(TendonStudy(grid)), path, o);
@@ -439,9 +456,8 @@ TEST(Sweep, AColumnThatNowHoldsAnotherFieldIsNotResumed) {
 TEST(Sweep, RowsOfAnotherGridOrProblemAreNotResumed) {
   const std::string grid = R"([{"path": "/robot/actuation/tension/0", "grid": {"from": 0, "to": 2,
                                "count": 3}}])";
-  const std::string path = Temp("resumed.csv");
-  std::remove(path.c_str());
-  std::remove((path + ".problem.json").c_str());
+  const TempStudy study("resumed.csv");
+  const std::string& path = study.path();
   run::SweepOptions o;
   o.max_new_points = 2;
   run::RunSweep(Parse(TendonStudy(grid)), path, o);
@@ -484,9 +500,8 @@ TEST(Sweep, RowsOfAnotherGridOrProblemAreNotResumed) {
 TEST(Sweep, RowsWrittenWithMoreDigitsResume) {
   const std::string grid = R"([{"path": "/robot/actuation/tension/0", "grid": {"from": 0.1,
                                "to": 0.3, "count": 3}}])";
-  const std::string path = Temp("digits.csv");
-  std::remove(path.c_str());
-  std::remove((path + ".problem.json").c_str());
+  const TempStudy study("digits.csv");
+  const std::string& path = study.path();
   run::SweepOptions o;
   o.max_new_points = 1;
   run::RunSweep(Parse(TendonStudy(grid)), path, o);
@@ -513,8 +528,7 @@ TEST(Sweep, RowsWrittenWithMoreDigitsResume) {
   EXPECT_THROW(run::RunSweep(Parse(TendonStudy(grid)), path, o), std::runtime_error);
   const std::string six = R"([{"path": "/robot/actuation/tension/0", "grid": {"from": 0.2,
                               "to": 0.7, "count": 6}}])";
-  std::remove(path.c_str());
-  std::remove((path + ".problem.json").c_str());
+  study.Remove();  // a new study in the same file
   o.max_new_points = 3;
   run::RunSweep(Parse(TendonStudy(six)), path, o);
   char wide[32];
