@@ -295,11 +295,14 @@ EversionSolveSummary EversionRobot::Solve(double length, const StaticLoads& load
   out.length = length;
   // Pieces first where the last solve needed them (the body a little longer needs them too),
   // from its shape, and where a single shot's exponent passes options.pieces_above_exponent (10,
-  // as for a plain rod): a 1.2 m tube on a floor (βL = 10.9) took 1 300 Newton iterations in one
-  // shot per growth step, 2 m 10 000.
+  // as for a plain rod; 6 on contact surfaces): a 1.2 m tube on a floor (βL = 10.9) took 1 300
+  // Newton iterations in one shot per growth step, 2 m 10 000.
   const bool last_in_pieces = in_pieces_;
-  const bool beyond_one_shot = StaticShootingExponent(ModelAt(length), solver_loads,
-                                                      actuation()) > options_.pieces_above_exponent;
+  const double pieces_above = solver_loads.contact.count > 0
+                                  ? options_.pieces_on_contact_above_exponent
+                                  : options_.pieces_above_exponent;
+  const bool beyond_one_shot =
+      StaticShootingExponent(ModelAt(length), solver_loads, actuation()) > pieces_above;
   in_pieces_ = false;
   if (last_in_pieces) SolveInPieces(length, solver_loads, true, &out.solve);  // from the last
   if (!in_pieces_ && beyond_one_shot) SolveInPieces(length, solver_loads, false, &out.solve);
