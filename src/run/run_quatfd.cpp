@@ -238,9 +238,13 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
                              &settled, &imperfection)) {
       settled_note = detail::SettledNote(summary.stability_index, imperfection);
       s2.iterations += s.iterations;
+      s2.wall_time_s += s.wall_time_s;
       s = s2;
       summary = AsSummary(s);
       summary.stability_index = settled;
+    } else {  // the settling's work counts
+      summary.iterations += s2.iterations;
+      summary.wall_time_s += s2.wall_time_s;
     }
   }
   Result result;

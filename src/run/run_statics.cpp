@@ -111,6 +111,7 @@ Result RunColumnStatics(const io::Problem& problem, ColumnEnds ends, const RunOp
       settled.CountWorkOf(summary);
       summary = settled;
     } else {  // back to the straight state: Newton from its unknowns records it again
+      summary.CountWorkOf(settled);  // the settling's work counts
       solver.set_unknowns(straight_unknowns);
       solver.Solve(problem.base, problem.loads);
     }
@@ -163,6 +164,8 @@ Result RunMultipleShootingStatics(const io::Problem& problem, const RunOptions& 
       settled_note = detail::SettledNote(solved.summary.stability_index, imperfection);
       settled.summary.CountWorkOf(solved.summary);
       solved = settled;
+    } else {
+      solved.summary.CountWorkOf(settled.summary);  // the settling's work counts
     }
   }
   const StaticShootingSummary& summary = solved.summary;
@@ -297,6 +300,7 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
       settled.CountWorkOf(summary);
       summary = settled;
     } else {
+      summary.CountWorkOf(settled);  // the settling's work counts
       beside.reset();
     }
   }

@@ -94,15 +94,15 @@ bool SettleSingleShot(const io::Problem& problem, const RodState& straight, int 
                       StaticShootingSolver* solver, StaticShootingSummary* summary,
                       double* imperfection) {
   const StaticLoads imperfect = ImperfectLoads(problem, straight, 0.02, imperfection);
-  StaticShootingSummary total, last;
-  if (!FollowAway(problem, imperfect, solver, &total, &last)) return false;
+  StaticShootingSummary last;
+  *summary = StaticShootingSummary{};
+  if (!FollowAway(problem, imperfect, solver, summary, &last)) return false;
   const int settled =
       solver->StabilityIndex(problem.base, problem.loads, solver->base_wrench_B());
   if (settled < 0 || settled >= index) return false;
-  total.status = last.status;
-  total.residual = last.residual;
-  total.stability_index = settled;
-  *summary = total;
+  summary->status = last.status;
+  summary->residual = last.residual;
+  summary->stability_index = settled;
   return true;
 }
 
@@ -160,9 +160,11 @@ bool SettleInPieces(const io::Problem& problem, const RodState& straight, int in
   StaticMultipleShootingSolver solver(
       problem.rod, problem.nodes, PiecesOptions(problem, ColumnEnds::kClampedFree, pieces, true));
   StaticShootingSummary total, last;
-  if (!FollowAway(problem, imperfect, &solver, &total, &last)) return false;
+  const bool reached = FollowAway(problem, imperfect, &solver, &total, &last);
   total.CountWorkOf(spent);
-  return AcceptInPieces(problem, solver, index, total, last, out);
+  if (reached && AcceptInPieces(problem, solver, index, total, last, out)) return true;
+  out->summary = total;  // the work of the routes that did not settle it
+  return false;
 }
 
 namespace {
@@ -205,6 +207,7 @@ bool QuatFdFromSettledShot(const io::Problem& problem, const RodState& straight,
   StaticShootingSummary by_shot;
   const std::optional<RodState> settled =
       SettledByOneShot(problem, straight, index, &by_shot, imperfection);
+  total->wall_time_s += by_shot.wall_time_s;  // its Newton iterations are not the grid's
   if (!settled) return false;
   const RodState& shot = *settled;
   const int segments = model->layout().segments;
@@ -228,7 +231,7 @@ bool QuatFdFromSettledShot(const io::Problem& problem, const RodState& straight,
   const quatfd::QuatFdStaticsSummary solved =
       quatfd::SolveStatics(model, problem.loads, *x, options);
   total->iterations += solved.iterations;
-  total->wall_time_s += solved.wall_time_s + by_shot.wall_time_s;
+  total->wall_time_s += solved.wall_time_s;
   total->status = solved.status;
   total->residual = solved.residual;
   return solved.converged();
@@ -252,13 +255,14 @@ bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int inde
   };
   const bool own = QuatFdImperfectPath(problem, imperfect, model, &x, &total);
   model->set_loads(problem.loads);
+  *summary = total;  // its work, settled or not
   if (!(own && judge())) {
-    if (!QuatFdFromSettledShot(problem, straight, index, model, &x, &total, imperfection))
-      return false;
+    const bool from_shot =
+        QuatFdFromSettledShot(problem, straight, index, model, &x, &total, imperfection);
     model->set_loads(problem.loads);
-    if (!judge()) return false;
+    *summary = total;
+    if (!(from_shot && judge())) return false;
   }
-  *summary = total;
   *q = x;
   *state = settled_state;
   *settled_index = settled;
@@ -336,16 +340,19 @@ bool SettleColumn(const io::Problem& problem, const RodState& straight, ColumnSo
       return false;
     });
   };
-  if (!count(solver->SolveFromUnloaded(problem.base, bend_only))) return false;
-  if (!along(bend_only, imperfect, false)) {
-    *bow_index = last_unstable_bow;  // the loads came in as far as the bow stayed stable
-    return false;
-  }
-  *bow_index = 0;
-  if (!along(imperfect, problem.loads, true)) return false;
-  total.stability_index = 0;  // the last level, the loads', was counted stable on the way
-  *summary = total;
-  return true;
+  auto reached = [&] {
+    if (!count(solver->SolveFromUnloaded(problem.base, bend_only))) return false;
+    if (!along(bend_only, imperfect, false)) {
+      *bow_index = last_unstable_bow;  // the loads came in as far as the bow stayed stable
+      return false;
+    }
+    *bow_index = 0;
+    return along(imperfect, problem.loads, true);
+  };
+  const bool settled = reached();
+  if (settled) total.stability_index = 0;  // the loads' level was counted stable on the way
+  *summary = total;  // its work, settled or not
+  return settled;
 }
 
 std::string SettledNote(int straight_index, double imperfection) {

@@ -41,20 +41,20 @@ StaticLoads ImperfectLoads(const io::Problem& problem, const RodState& straight,
 /// SE(3) single shot: from the unloaded rod to the imperfect loads, then the imperfection taken
 /// away in steps. True, with `solver` holding the equilibrium and *summary its solve (the
 /// iterations of all steps, stability_index counted), when that equilibrium has fewer unstable
-/// directions than `index`.
+/// directions than `index`; false with *summary holding the work spent.
 /// *imperfection receives the lateral load's size (N/m).
 bool SettleSingleShot(const io::Problem& problem, const RodState& straight, int index,
                       StaticShootingSolver* solver, StaticShootingSummary* summary,
                       double* imperfection);
 
 /// The same for a cantilever in `pieces` multiple-shooting pieces: *out receives the
-/// equilibrium, its solve and its index. Where one shot still resolves the rod (an exponent up
+/// equilibrium, its solve and its index (out->summary the work spent when false). Where one shot still resolves the rod (an exponent up
 /// to 20), the single shot settles it and the pieces take up its equilibrium.
 bool SettleInPieces(const io::Problem& problem, const RodState& straight, int index, int pieces,
                     StaticsInPieces* out, double* imperfection);
 
 /// The same on the quaternion-FD grid: q (and state) receive the equilibrium, *summary its
-/// solve, *settled_index its unstable directions. Where its own path does not settle it and one
+/// solve (the work spent when false), *settled_index its unstable directions. Where its own path does not settle it and one
 /// shot resolves the rod, it starts from the SE(3) single shot's settled equilibrium.
 bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int index,
                   quatfd::QuatFdModel* model, Eigen::VectorXd* q, RodState* state,
@@ -73,7 +73,8 @@ bool TurnsFreelyAboutItsChord(const io::Problem& problem, const RodState& straig
 /// taken away, every level required stable (at the loads of a column that turns freely about
 /// its chord, up to that turn: stable with 1/256 of the imperfection left, one unstable direction
 /// at most without it). True, with `solver` holding the stable equilibrium and *summary its
-/// solve (its work, stability_index 0), when the path reaches the loads. *bow_index receives the
+/// solve (its work, stability_index 0), when the path reaches the loads; false with *summary
+/// holding the work spent. *bow_index receives the
 /// unstable directions of the last bow counted unstable where the loads could not come in on a
 /// stable one (a round clamped-clamped column's past 1.44 P_cc, out of its plane); 0 when they
 /// did; −1 when no bow was counted unstable (the loads are past a peak the bow holds).
