@@ -38,6 +38,7 @@ py::dict MinimumBendRadiusOf(const io::Problem& problem, const StaticLoads& patt
   EversionRobotDesign design = DesignFromTube(*tube, problem.rod.length, problem.base);
   if (!bands) design.bands.clear();
   EversionRobot robot(design, L, problem.robot.actuation.pressure);
+  robot.SetTailTension(problem.robot.tail_tension);
   BendRadiusResult r;
   {
     py::gil_scoped_release release;

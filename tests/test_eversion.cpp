@@ -217,6 +217,45 @@ TEST(Eversion, APushOnTheTipLowersTheWrinklingMoment) {
   }
 }
 
+// The tail pulled back through the body to a braked reel takes its tension off the wall: the
+// tip's balance is p A = N_wall + T_tail + F. At T_tail = p A / 2 (growth against a braked reel),
+// in free space every node's wall tension is p A / 2 and the body stretches by
+// ((1 − 2ν) p A − T_tail) / EA (closed forms, to round-off). Under a lateral tip force the
+// wrinkling moment is N r / 2 at the clamp, half the tail-free one, so the ratio is the tip force's
+// base moment over it (the solve's balance: 1e-6 asserted). The tail runs along the axis and bends
+// nothing: the tip's sideways deflection changes only with the wall's strain, F L³ (1 + ε)²/3EI
+// for an Euler–Bernoulli cantilever of material length L (the lever arms and the integration of
+// the slope each stretch by 1 + ε), so by ((1 + ε_T)/(1 + ε_0))² = 1 − 3.8e-3. A bending tail,
+// like a follower tip force, would change it by tens of %. 2e-4 asserted: the shear's 2 % of the
+// deflection scales as (1 + ε) (4e-5), and the small rotations' nonlinearity.
+TEST(Eversion, TheTailTakesItsTensionOffTheWallAndBendsNothing) {
+  const double L = 0.5, p = 3e3, pressure_force = p * kPi * kRadius * kRadius;
+  const double tail = 0.5 * pressure_force;
+  EversionRobot free_tube(VineDesign(), L, p), braked(VineDesign(), L, p);
+  braked.SetTailTension(tail);
+  ASSERT_TRUE(free_tube.Solve(StaticLoads{}).solve.converged());
+  ASSERT_TRUE(braked.Solve(StaticLoads{}).solve.converged());
+  const double ea = braked.AxialStiffness();
+  const double eps_0 = (1 - 2 * 0.45) * pressure_force / ea, eps_t = eps_0 - tail / ea;
+  EXPECT_NEAR(braked.FreeAxialStrain(), eps_t, 1e-15);
+  EXPECT_NEAR(braked.state().tip_position_W().x(), L * (1 + eps_t), 1e-12);
+  for (int i = 0; i < braked.state().size(); ++i)
+    EXPECT_NEAR(braked.WallTension(i), pressure_force - tail, 1e-12 * pressure_force) << i;
+
+  StaticLoads side;  // the body grows along world +x; a lateral tip force along z
+  side.tip_force = Vec3(0, 0, 0.3 * truth::WrinklingMoment(p, kRadius) / L);
+  const EversionSolveSummary a = free_tube.Solve(side), b = braked.Solve(side);
+  ASSERT_TRUE(a.solve.converged() && b.solve.converged());
+  const Vec3 tip_a = free_tube.state().tip_position_W(), tip_b = braked.state().tip_position_W();
+  const double moment = side.tip_force.z() * tip_b.x();  // about the clamp at the origin
+  EXPECT_NEAR(b.kink.max_ratio, moment / (0.5 * (pressure_force - tail) * kRadius),
+              1e-6 * b.kink.max_ratio);
+  EXPECT_NEAR(tip_b.z() / tip_a.z(), std::pow((1 + eps_t) / (1 + eps_0), 2), 2e-4);
+  EXPECT_THROW(braked.SetTailTension(-1.0), std::invalid_argument);
+  EversionRobot follower(VineDesign({}, PressureLoadModel::kTipFollowerOnly), L, p);
+  EXPECT_THROW(follower.SetTailTension(tail), std::invalid_argument);
+}
+
 // A film wall carries no compression. Pushed along its axis past the pressure's force p π r²
 // (1.2 times it, as against a wall ahead of the tip), or not inflated at all, the tube is
 // collapsed even when straight: its wall has no tension left for any moment (ratio ∞). A straight

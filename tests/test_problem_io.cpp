@@ -531,6 +531,22 @@ TEST(ProblemIo, ABadInflatedProfileIsOneError) {
   EXPECT_ERROR(r, "rod.stiffness_profile.wall_thickness: expected a number smaller than");
 }
 
+// An eversion robot's tail tension is a force in newtons, >= 0; no other robot has a tail.
+TEST(ProblemIo, ATailTensionIsAnEversionRobotsAndNotNegative) {
+  json j = json::parse(std::ifstream(SourceDir() + "/robots/eversion_banded_vine.json"));
+  j["robot"]["tail_tension"] = 2.5;
+  const ParseResult ok = Parse(j);
+  ASSERT_TRUE(ok.ok()) << AllErrors(ok);
+  EXPECT_EQ(ok.problem->robot.tail_tension, 2.5);
+  j["robot"]["tail_tension"] = -1;
+  EXPECT_ERROR(Parse(j), "robot.tail_tension: expected a number >= 0");
+  j["robot"]["tail_tension"] = "2 N";
+  EXPECT_ERROR(Parse(j), "robot.tail_tension");
+  json tendon = json::parse(std::ifstream(SourceDir() + "/robots/tendon_two_segment.json"));
+  tendon["robot"]["tail_tension"] = 1.0;
+  EXPECT_ERROR(Parse(tendon), "robot.tail_tension: only an \"eversion\" robot has a tail");
+}
+
 // A massless rod (density 0) is a statics case the SE(3) solvers take; the quaternion-FD model
 // divides forces by the vertex masses, so it is refused there, naming the density, instead of
 // failing or writing NaN frequencies. Modes it has none: refused on SE(3) too (it passed

@@ -300,7 +300,7 @@ Outline SectionOutline(const json& top) {
 
 void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
   robot.AllowOnly({"kind", "description", "source", "disk_radius", "tendons", "chambers",
-                   "actuation", "initial_actuation", "growth"});
+                   "actuation", "initial_actuation", "growth", "tail_tension"});
   p->has_robot = true;
   p->robot.kind = ReadEnum<RobotKind>(robot, "kind", Presence::kRequired, kRobotKinds)
                       .value_or(RobotKind::kNone);
@@ -343,6 +343,12 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
                              FormatNumber(grid.nodes_per_metre) + " nodes per metre, at most " +
                              FormatNumber(EversionOptions::kMaxNodes) + " nodes), got " +
                              FormatNumber(p->rod.length));
+  }
+  if (const auto tail = ReadNumber(robot, "tail_tension", NonNegativeNumber(),
+                                   Presence::kOptional)) {
+    p->robot.tail_tension = *tail;
+    if (p->robot.kind != RobotKind::kEversion)
+      robot.report().Add(robot.PathOf("tail_tension"), "only an \"eversion\" robot has a tail");
   }
   if (const auto g = ReadObject(robot, "growth", Presence::kOptional)) {
     g->AllowOnly({"initial_length", "steps"});

@@ -135,6 +135,14 @@ void EversionRobot::SetPressure(double pressure) {
   pressure_ = pressure;
 }
 
+void EversionRobot::SetTailTension(double tension) {
+  if (!(Finite(tension) && tension >= 0)) Throw("tail_tension", "must be finite and >= 0 (N)");
+  if (tension > 0 && design_.pressure_load != PressureLoadModel::kClosedVessel)
+    Throw("tail_tension", "is modelled in the closed vessel (PressureLoadModel::kClosedVessel)");
+  if (tension != tail_tension_) solver_stale_ = true;
+  tail_tension_ = tension;
+}
+
 Actuation EversionRobot::actuation() const {
   Actuation a;
   a.pressure = pressure_;
@@ -203,17 +211,19 @@ RodModel EversionRobot::ModelAt(double length) const {
     jammed.push_back(c);
   }
   if (!jammed.empty()) model.section = std::make_shared<JammingSection>(profile, std::move(jammed));
-  if (design_.pressure_load == PressureLoadModel::kClosedVessel && pressure_ > 0) {
-    // The wall carries the tension p A(s) of the closed vessel, and its hoop stress p r/t
-    // shortens it by ν p r/(E t) (thin isotropic wall): N_wall = EA ε + 2ν p A, so the rest
-    // stretch (1 − 2ν) p A / EA on top of the straight rest strain makes the solver's wrench the
-    // net wrench of wall and air.
+  if (design_.pressure_load == PressureLoadModel::kClosedVessel &&
+      (pressure_ > 0 || tail_tension_ > 0)) {
+    // The wall carries the tension p A(s) of the closed vessel less the tail's T (which runs
+    // along the axis and bends nothing), and its hoop stress p r/t shortens it by ν p r/(E t)
+    // (thin isotropic wall): N_wall = EA ε + 2ν p A, so the rest stretch
+    // ((1 − 2ν) p A − T) / EA on top of the straight rest strain makes the solver's wrench the
+    // net wrench of wall, air and tail.
     const Actuation act = actuation();
-    const double p = pressure_, nu = profile->poisson_ratio();
-    model.rest_strain = [profile, act, p, nu](double s) {
+    const double p = pressure_, nu = profile->poisson_ratio(), tail = tail_tension_;
+    model.rest_strain = [profile, act, p, nu, tail](double s) {
       Vec6 xi = StraightRestStrain();
       const double r = profile->RadiusAt(s);
-      xi(5) += (1.0 - 2.0 * nu) * p * kPi * r * r / profile->At(s, act).stiffness(5, 5);
+      xi(5) += ((1.0 - 2.0 * nu) * p * kPi * r * r - tail) / profile->At(s, act).stiffness(5, 5);
       return xi;
     };
   }
@@ -290,6 +300,7 @@ EversionSolveSummary EversionRobot::Solve(double length, const StaticLoads& load
   }
   length_ = length;
   solved_pressure_ = pressure_;
+  solved_tail_tension_ = tail_tension_;
 
   EversionSolveSummary out;
   out.length = length;
@@ -478,7 +489,8 @@ double EversionRobot::FreeAxialStrain() const {
   const double hoop = design_.pressure_load == PressureLoadModel::kClosedVessel
                           ? 2.0 * full_profile_->poisson_ratio()
                           : 0.0;
-  return (1.0 - hoop) * pressure_ * kPi * design_.radius * design_.radius / AxialStiffness();
+  return ((1.0 - hoop) * pressure_ * kPi * design_.radius * design_.radius - tail_tension_) /
+         AxialStiffness();
 }
 
 double EversionRobot::WallTension(int node) const {
@@ -491,7 +503,7 @@ double EversionRobot::WallTension(int node) const {
 double EversionRobot::WallTensionAt(int node, double r) const {
   double n3 = state().wrench_B[node](5);  // N
   if (design_.pressure_load == PressureLoadModel::kClosedVessel)
-    n3 += solved_pressure_ * kPi * r * r;
+    n3 += solved_pressure_ * kPi * r * r - solved_tail_tension_;
   return n3;
 }
 

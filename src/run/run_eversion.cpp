@@ -81,6 +81,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   const double pressure = problem.robot.actuation.pressure;
   const double start = problem.robot.growth_initial_length.value_or(problem.rod.length);
   EversionRobot robot(design, start, pressure, options);
+  robot.SetTailTension(problem.robot.tail_tension);
 
   StaticShootingSummary solve;
   KinkReport kink;
@@ -120,6 +121,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   r["pressure"] = pressure;
   r["length"] = robot.length();
   r["tip_force"] = robot.TipForce();
+  r["tail_tension"] = robot.tail_tension();
   r["kink"] = KinkJson(kink);
   if (problem.robot.growth_initial_length) {
     r["first_kink_length"] = first_kink_length;

@@ -1037,6 +1037,35 @@ class Assemblies(unittest.TestCase):
 
 
 class BendRadius(unittest.TestCase):
+    def test_a_braked_tail_halves_the_vines_wrinkling_moment(self):
+        # The tail pulled back to a braked reel carries T = p A / 2 and leaves the wall p A - T,
+        # so the wrinkling moment (p A - T) r / 2 halves and bends nothing: the smallest radius
+        # EI/M_w doubles (to 1e-5, the bisection's), and the plain tube grown under its own
+        # weight first kinks at the first growth step past q L^2 / 2 = M_w, L = sqrt(2 M_w / q):
+        # 0.832 m with the tail, 1.177 m without (0.02 m steps; the sag shortens the base
+        # moment's lever by under 1e-3 of L, clear of the steps).
+        p = cosserat.load_problem("robots/eversion_banded_vine.json")
+        EI, _ = p.section_stiffness
+        pull = math.pi * 3000.0 * 0.025 ** 2  # p A, N
+        plain = EI / (pull * 0.025 / 2)
+        with open("robots/eversion_banded_vine.json") as f:
+            spec = json.load(f)
+        spec["robot"]["tail_tension"] = pull / 2
+        r = cosserat.minimum_bend_radius(spec, {"tip_moment": [0, 0, 1.0]}, length=0.6,
+                                         bands=False)
+        self.assertEqual(r["limit"], "kink")
+        self.assertAlmostEqual(r["min_radius"] / (2 * plain), 1.0, delta=1e-5)
+        del spec["rod"]["stiffness_profile"]["constrictions"]
+        spec["rod"]["length"], spec["robot"]["growth"]["steps"] = 1.5, 70
+        q = 920 * 2 * math.pi * 0.025 * 75e-6 * 9.81  # weight per length, N/m
+        for tail in (pull / 2, 0.0):
+            spec["robot"]["tail_tension"] = tail
+            robot = cosserat.solve(spec)["result"]["robot"]
+            self.assertEqual(robot["tail_tension"], tail)
+            onset = math.sqrt((pull - tail) * 0.025 / q)
+            self.assertGreaterEqual(robot["first_kink_length"], onset)
+            self.assertLess(robot["first_kink_length"], onset + 0.02)
+
     def test_the_vine_kinks_at_the_radius_ei_over_its_wrinkling_moment(self):
         # The vine robot at 0.6 m under gravity, steered by a tip moment about the vertical: it
         # kinks where the moment reaches the wrinkling moment M_w = pi p r^3 / 2 (Suulker et al.

@@ -130,6 +130,8 @@ struct Problem {
     /// Eversion: grow from this length to rod.length in `growth_steps` quasi-static steps.
     std::optional<double> growth_initial_length;
     int growth_steps = 20;
+    /// Eversion: the tension of the tail pulled back through the body to the base, N.
+    double tail_tension = 0.0;
   } robot;
   bool has_robot = false;
 

@@ -171,6 +171,13 @@ class EversionRobot {
   /// A new inflation pressure (Pa, >= 0, else invalid_argument "pressure: ..."). Rebuilds the
   /// solver (allocates); the next Solve warm-starts from the last solution.
   void SetPressure(double pressure);
+  /// The tension of the tail (N, >= 0; default 0): the inner material pulled back through the
+  /// body to a reel at the base. The tip's balance is p A = N_wall + T_tail + F, so the tail
+  /// takes T_tail off the wall's tension (its stretch and wrinkling moment) without bending the
+  /// body (it runs along the axis, as a tendon at zero offset does). Growth against a braked reel
+  /// has T_tail = (p A − F)/2. kClosedVessel only: invalid_argument "tail_tension: ..." for a
+  /// negative or non-finite T_tail, or a positive one with kTipFollowerOnly.
+  void SetTailTension(double tension);
   /// Statics of the body everted to `length` (0 < L <= max_length, else invalid_argument
   /// "length: ...") under `loads` (gravity, distributed force, external tip wrench). The
   /// pressure load is added by the robot (kTipFollowerOnly needs any external tip force in the
@@ -223,20 +230,21 @@ class EversionRobot {
   /// The follower tip force p π r(L)² at the current length, N, pushing outward along d3(L).
   double TipForce() const;
   /// Axial strain of the straight, unloaded body in free space (away from bands): in the closed
-  /// vessel the thin isotropic wall's (σ_x − ν σ_θ)/E = (1 − 2ν) p r / (2 E_eff t); under the
-  /// tip follower force alone p π r² / (E_eff 2π r t) = p r / (2 E_eff t).
+  /// vessel the thin isotropic wall's (σ_x − ν σ_θ)/E = (1 − 2ν) p r / (2 E_eff t), less
+  /// T_tail / EA; under the tip follower force alone p π r² / (E_eff 2π r t) = p r / (2 E_eff t).
   double FreeAxialStrain() const;
 
   // --- State ---------------------------------------------------------------------------------
   double length() const { return length_; }
   double pressure() const { return pressure_; }
+  double tail_tension() const { return tail_tension_; }  ///< N
   const EversionRobotDesign& design() const { return design_; }
   const EversionOptions& options() const { return options_; }
   /// The last solve's state (net wrench of wall + air in wrench_B; see the file comment). Throws
   /// std::logic_error before the first Solve.
   const RodState& state() const;
-  /// Axial force in the wall at node i of the state, N: W3 + p A(s) for kClosedVessel, W3 for
-  /// kTipFollowerOnly (where W already is the wall's).
+  /// Axial force in the wall at node i of the state, N: W3 + p A(s) − T_tail for kClosedVessel,
+  /// W3 for kTipFollowerOnly (where W already is the wall's).
   double WallTension(int node) const;
   /// The single-shot solver of the current length and pressure (null before the first Solve).
   const StaticShootingSolver* solver() const { return solver_.get(); }
@@ -261,13 +269,15 @@ class EversionRobot {
   std::shared_ptr<const InflatedTubeSection> full_profile_;
   double length_ = 0.0;
   double pressure_ = 0.0;
+  double tail_tension_ = 0.0;  ///< N
   std::array<double, Actuation::kMaxSegments> jamming_pressure_{};  ///< ΔP of each segment, Pa
   std::unique_ptr<StaticShootingSolver> solver_;
   std::unique_ptr<StaticMultipleShootingSolver> pieces_;  ///< where one shot failed
   bool in_pieces_ = false;  ///< the state is pieces_'s (the next solve tries pieces first)
   double solver_length_ = -1.0;
   bool solver_stale_ = true;
-  double solved_pressure_ = 0.0;  ///< the pressure of the state
+  double solved_pressure_ = 0.0;      ///< the pressure of the state
+  double solved_tail_tension_ = 0.0;  ///< the tail tension of the state, N
   bool have_solution_ = false;    ///< last_base_wrench_ is a converged W(0)
   Vec6 last_base_wrench_ = Vec6::Zero();
 };
