@@ -167,6 +167,25 @@ double UniformYoungsModulus(const SectionProfile* profile) {
   return uniform ? uniform->material().youngs_modulus : 0.0;
 }
 
+/// A section whose radius of gyration √(I/A) (from EI/EA) is under 1e-4 of its width: its
+/// rotation under shear, ω² ≈ κGA/ρI, then stands beyond 1e17 times a cable's sag modes. A
+/// 0.006 m² stay cable (8.7 cm across) given I = 1e-16 m⁴ for "no bending" (1.5e-6 of its width)
+/// failed its statics on 101 nodes and read unstable on 201, its lowest ω² lost to round-off;
+/// 1e-15 m⁴ (4.7e-6) still solved. A flat strip 1000 times wider than thick is at 3e-4.
+void TinyBendingStiffnessWarning(const io::Problem& problem, std::ostringstream* log) {
+  const SectionProperties p = problem.rod.section->At(0.0, problem.robot.actuation);
+  const double ea = p.stiffness(5, 5), ei = p.min_bending_stiffness(), d = p.outer_diameter;
+  if (!(ea > 0 && ei > 0 && d > 0)) return;
+  const double gyration = std::sqrt(ei / ea);  // m
+  if (gyration >= 1e-4 * d) return;
+  *log << "cosserat: warning: the section's radius of gyration sqrt(I/A) is " << gyration
+       << " m, " << gyration / d << " of its width " << d << " m: a bending stiffness this "
+       << "small leaves its sections' turning under shear (κGA/ρI) too stiff beside the rod's "
+          "bending and sag for double precision, and statics or modes may fail or lose their "
+          "lowest modes; for a rope or strand that hardly bends, give its wires' own I (n π d⁴/64 "
+          "for n wires of diameter d) in rod.section\n";
+}
+
 /// The stretch past which the linear law is the model's answer, not the material's: kLargeStretch,
 /// or 1 % for a uniform rod as stiff as a metal (E over 20 GPa: steel, aluminium, glass and
 /// carbon fibre; polymers stay under 5 GPa). A steel stay cable stretched 2.6 % carries 5 GPa,
@@ -209,6 +228,7 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
           << " m across: not a slender rod, which rod theory assumes; check rod.length and the "
              "section's sizes (m)\n";
     ContactSmoothingWarning(problem, d, &log);
+    TinyBendingStiffnessWarning(problem, &log);
     // A length typed in mm makes a soft robot over 1e4 and a wire 1e5 widths long; drill
     // strings, risers and stay cables reach 4e4, but at 5 cm across or more. Said only after a
     // failed solve, where it may be the cause.
