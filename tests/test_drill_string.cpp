@@ -438,7 +438,8 @@ run::Result OneStepOfAHangingString(double weight, double up) {
 // The weight on bit sets the bit's friction only; the log says so unless the tip force pushes
 // the bit up the hole with about that much. A 100 m string hanging from a table (26 kN of
 // weight, no fluid) with 5 kN on bit: pushed up by 5 kN, no note; the same force pulling the bit
-// down, off the rock, and none at all, the note.
+// down, off the rock, and none at all, the note, which gives the force as it is (it read "0 N up
+// the hole" for a pull down it).
 TEST(DrillString, TheWeightOnBitNoteFollowsTheTipForcesDirection) {
   for (const double up : {5e3, -5e3, 0.0}) {  // N along −z, up the hole
     const run::Result r = OneStepOfAHangingString(5e3, up);
@@ -446,6 +447,31 @@ TEST(DrillString, TheWeightOnBitNoteFollowsTheTipForcesDirection) {
                   std::string::npos,
               up <= 0.0)
         << up << "\n" << r.log;
+    if (up < 0.0)
+      EXPECT_NE(r.log.find("tip_force (5e+03 N down the hole here, pulling the bit off the rock)"),
+                std::string::npos)
+          << r.log;
+    if (up == 0.0) EXPECT_NE(r.log.find("tip_force (0 N up the hole here)"), std::string::npos);
+  }
+}
+
+// Pushed up past its buckling load, a hanging string's straight equilibrium is unstable, and a
+// run from it keeps it straight: the log warns. The string's free lower end buckles at
+// P = 1.0188 (EI w²)^⅓ (Airy's equation of the hanging column; the string, 100 m, is over six
+// times its bending length (EI/w)^⅓, so its length does not count): 4.47 kN here. At 0.8 P no
+// warning, at 1.25 P one.
+TEST(DrillString, ARunFromAStringPushedPastBucklingIsWarned) {
+  const double ro = 0.0635, ri = 0.0543;
+  const double EI = 207e9 * M_PI / 4 * (std::pow(ro, 4) - std::pow(ri, 4));
+  const double w = 7850 * 9.81 * M_PI * (ro * ro - ri * ri);  // N/m
+  const double critical = 1.0188 * std::cbrt(EI * w * w);
+  for (const double factor : {0.8, 1.25}) {
+    const run::Result r = OneStepOfAHangingString(1.0, factor * critical);
+    ASSERT_EQ(r.json["status"], "converged") << r.log;
+    EXPECT_EQ(r.log.find("warning: the run starts from an unstable equilibrium") !=
+                  std::string::npos,
+              factor > 1.0)
+        << factor << "\n" << r.log;
   }
 }
 

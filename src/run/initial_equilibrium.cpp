@@ -35,8 +35,10 @@ bool SingleShotResolves(const io::Problem& problem, const StaticLoads& loads) {
 /// where one shot cannot resolve it (plain rods: the statics runner takes no actuation, tendons
 /// or chambers in pieces), or on contact surfaces from the quaternion-FD equilibrium where the
 /// load steps fail (quatfd_start.hpp; the pieces' solve tries it itself). Empty if none
-/// converges.
-std::optional<RodState> StaticEquilibrium(const io::Problem& problem, const StepInput& input) {
+/// converges. *index receives the solve's count of unstable directions (−1: none).
+std::optional<RodState> StaticEquilibrium(const io::Problem& problem, const StepInput& input,
+                                          int* index) {
+  *index = -1;
   const StaticShootingOptions single = StaticOptions(problem);
   const StaticLoads statics_loads = WithTipMassWeight(problem, input.loads);
   if (!problem.has_robot && problem.rod.tendons.empty() && problem.rod.chambers.empty() &&
@@ -44,10 +46,15 @@ std::optional<RodState> StaticEquilibrium(const io::Problem& problem, const Step
     detail::StaticsInPieces solved = detail::SolveStaticsInPieces(
         problem, ColumnEnds::kClampedFree, input.base_pose, statics_loads);
     if (!solved.summary.converged()) return std::nullopt;
+    *index = solved.summary.stability_index;
     return std::move(solved.state);
   }
   StaticShootingSolver solver(problem.rod, problem.nodes, single, input.actuation);
-  if (solver.Solve(input.base_pose, statics_loads).converged()) return solver.state();
+  const StaticShootingSummary summary = solver.Solve(input.base_pose, statics_loads);
+  if (summary.converged()) {
+    *index = summary.stability_index;
+    return solver.state();
+  }
   if (input.loads.contact.count == 0) return std::nullopt;
   return detail::QuatFdEquilibriumOnGrid(problem, input.base_pose, statics_loads,
                                          input.actuation);
@@ -56,9 +63,14 @@ std::optional<RodState> StaticEquilibrium(const io::Problem& problem, const Step
 }  // namespace
 
 std::optional<RodState> StaticEquilibriumToStartFrom(const io::Problem& problem,
-                                                     const StepInput& input) {
+                                                     const StepInput& input,
+                                                     int* unstable_directions) {
+  int index = -1;
+  if (unstable_directions) *unstable_directions = -1;
   try {
-    return StaticEquilibrium(problem, input);
+    std::optional<RodState> out = StaticEquilibrium(problem, input, &index);
+    if (unstable_directions) *unstable_directions = index;
+    return out;
   } catch (const std::invalid_argument&) {
     return std::nullopt;  // a rod the statics solvers do not take
   }
@@ -77,7 +89,9 @@ std::optional<RodState> RunawayStartState(const io::Problem& problem, const Step
 }
 
 StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const StepInput& input,
-                                          Bdf2ShootingStepper* stepper) {
+                                          Bdf2ShootingStepper* stepper,
+                                          int* unstable_directions) {
+  if (unstable_directions) *unstable_directions = -1;
   const bool column = GuidedTipHold(problem.boundary) != TipHold::kFree;
   if (problem.boundary != io::Boundary::kCantilever && !column)
     return stepper->InitializeAtRest(input);
@@ -88,16 +102,20 @@ StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const Step
     ToColumnEnds(problem.boundary, &ends);
     ColumnSolver solver(problem.rod, problem.nodes, ends, StaticOptions(problem),
                         input.actuation);
-    if (solver.SolveFromUnloaded(problem.base, input.loads).converged())
+    if (solver.SolveFromUnloaded(problem.base, input.loads).converged()) {
       equilibrium = solver.state();
+      if (unstable_directions)
+        *unstable_directions = solver.StabilityIndexAtUnknowns(problem.base, input.loads);
+    }
   } else {
-    equilibrium = StaticEquilibriumToStartFrom(problem, input);
+    equilibrium = StaticEquilibriumToStartFrom(problem, input, unstable_directions);
   }
   if (equilibrium) {
     const StepSummary from_statics = stepper->InitializeAtRest(input, *equilibrium);
     if (from_statics.converged()) return from_statics;
     counted = from_statics;
   }
+  if (unstable_directions) *unstable_directions = -1;  // the stepper's own start: not counted
   StepSummary own = stepper->InitializeAtRest(input);
   own.iterations += counted.iterations;
   own.shots += counted.shots;

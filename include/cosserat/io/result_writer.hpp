@@ -47,6 +47,8 @@ void WriteNodesCsv(std::ostream& out, const RodState& state);
 struct DynamicRun {
   SolveStatus status = SolveStatus::kNotRun;  ///< converged: the initial state and every step
   bool initial_state_ok = false;  ///< false: the initial equilibrium failed, there is no state
+  /// The statics' count of the start's unstable directions (−1: not counted).
+  int initial_unstable_directions = -1;
   double failed_at_t = std::numeric_limits<double>::quiet_NaN();  ///< end time of the failed step
   int steps = 0;                                                  ///< steps that converged
   int halved_steps = 0;  ///< of those, steps that needed step halving

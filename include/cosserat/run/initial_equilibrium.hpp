@@ -18,16 +18,19 @@ namespace cosserat::run {
 /// the stepper refines it on its own equations. A column (clamped-clamped, clamped-pinned) starts
 /// from the column solver's, followed from the unloaded column. The stepper's own solve runs
 /// where the statics solvers fail or do not take the rod, and for free-free ends. The summary
-/// counts the work of every attempt; its residual is the last one's.
+/// counts the work of every attempt; its residual is the last one's. *unstable_directions, when
+/// given, receives the statics' count of the start's unstable directions (−1: not counted).
 StepSummary InitializeAtStaticEquilibrium(const io::Problem& problem, const StepInput& input,
-                                          Bdf2ShootingStepper* stepper);
+                                          Bdf2ShootingStepper* stepper,
+                                          int* unstable_directions = nullptr);
 
 /// The statics solver's equilibrium of `problem`'s cantilever under `input` (its base pose, loads
 /// and actuation, the tip mass's weight added) that InitializeAtStaticEquilibrium starts from;
 /// with contact surfaces, where the SE(3) statics fail, the quaternion-FD equilibrium on the same
-/// nodes. Empty when none converges or takes the rod.
+/// nodes. Empty when none converges or takes the rod. *unstable_directions as above.
 std::optional<RodState> StaticEquilibriumToStartFrom(const io::Problem& problem,
-                                                     const StepInput& input);
+                                                     const StepInput& input,
+                                                     int* unstable_directions = nullptr);
 
 /// After a start refused as non_finite: the single-shot statics of the same cantilever under
 /// `input` (the tip mass's weight added), when its shot ran away (RodState::RanAway); empty
