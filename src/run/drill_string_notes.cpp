@@ -17,14 +17,24 @@ std::string DrillStringNotes(const io::Problem& problem) {
   const Vec3 force = problem.loads.tip_force_frame == LoadFrame::kBody
                          ? Vec3(problem.base.R * problem.loads.tip_force)
                          : problem.loads.tip_force;
-  const double pressing = std::max(0.0, -force.dot(axis));  // N
+  const double up = 0.0 - force.dot(axis);  // N, the component up the hole (no −0)
   // Without gravity (torsion alone) there is no weight for the bit to take off the clamp.
-  if (bit.present() && !problem.loads.gravity_W.isZero() && pressing < 0.5 * bit.weight_on_bit)
+  if (bit.present() && !problem.loads.gravity_W.isZero() && up < 0.5 * bit.weight_on_bit) {
+    std::ostringstream given;
+    given.precision(3);
+    const double across = (force + up * axis).norm();  // N, across the hole
+    if (up < 0.0)
+      given << -up << " N down the hole here, pulling the bit off the rock";
+    else
+      given << up << " N up the hole here";
+    if (across > 0.0) given << ", and " << across << " N across it";
     log << "cosserat: note: loads.bit_friction.weight_on_bit (" << bit.weight_on_bit
         << " N) sets the bit's friction torque only, not the string's axial load: the hole's "
-           "bottom pushes on the bit through loads.tip_force (" << pressing
-        << " N up the hole here), and the clamp carries the string's weight less that; give "
-           "tip_force the weight on bit, pointing up the hole, for both\n";
+           "bottom pushes on the bit through loads.tip_force ("
+        << given.str()
+        << "), and the clamp carries the string's weight less that; give tip_force the weight "
+           "on bit, pointing up the hole, for both\n";
+  }
   const bool spins = problem.dynamics.base_spin != 0.0 || problem.dynamics.rotary_table.present();
   for (int i = 0; spins && i < problem.loads.contact.count; ++i) {
     if (!(problem.loads.contact.surface[i].friction > 0.0)) continue;
