@@ -261,6 +261,10 @@ void ParseRod(const ObjectReader& rod, Problem* problem) {
   problem->nodes = nodes.value_or(problem->nodes);
   if (section_object && section_object->Has("contents_density"))
     FillPipe(*section_object, rod.Has("stiffness_profile"), section, problem);
+  if (section && !rod.Has("stiffness_profile")) {
+    problem->bore_area = M_PI * section->inner_radius * section->inner_radius;
+    problem->bore_filled = section_object->Has("contents_density");
+  }
 }
 
 }  // namespace cosserat::io::detail

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "cosserat/io/json_reader.hpp"
 #include "cosserat/rod/filled_pipe_section.hpp"
 #include "cosserat/rod/section_profile.hpp"
 #include "cosserat/rod/stiffness_profiles.hpp"
@@ -186,6 +187,19 @@ void TinyBendingStiffnessWarning(const io::Problem& problem, std::ostringstream*
           "for n wires of diameter d) in rod.section\n";
 }
 
+/// A pipe in a fluid without contents_density is sealed and empty: its bore's volume is buoyant.
+/// Drill pipe and a flooded riser are open and full of the fluid: 1 000 m of 5 in drill pipe in
+/// 1.2 SG mud hung 118 kN from its table taken sealed, 226 kN full.
+void SealedPipeNote(const io::Problem& problem, std::ostringstream* log) {
+  const double rho = problem.loads.fluid.density;  // kg/m³
+  if (problem.bore_area <= 0.0 || problem.bore_filled || rho <= 0.0) return;
+  const double lift = rho * problem.loads.gravity_W.norm() * problem.bore_area;  // N/m
+  *log << "cosserat: note: rod.section is a pipe in a fluid without contents_density, so it is "
+          "taken sealed and empty: its bore's volume lifts it by "
+       << lift << " N/m; an open pipe (drill pipe, a flooded riser) is full of the fluid, "
+       << "\"contents_density\": " << io::detail::ShortestNumber(rho) << "\n";
+}
+
 /// The stretch past which the linear law is the model's answer, not the material's: kLargeStretch,
 /// or 1 % for a uniform rod as stiff as a metal (E over 20 GPa: steel, aluminium, glass and
 /// carbon fibre; polymers stay under 5 GPa). A steel stay cable stretched 2.6 % carries 5 GPa,
@@ -229,6 +243,7 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
              "section's sizes (m)\n";
     ContactSmoothingWarning(problem, d, &log);
     TinyBendingStiffnessWarning(problem, &log);
+    SealedPipeNote(problem, &log);
     // A length typed in mm makes a soft robot over 1e4 and a wire 1e5 widths long; drill
     // strings, risers and stay cables reach 4e4, but at 5 cm across or more. Said only after a
     // failed solve, where it may be the cause.

@@ -38,6 +38,10 @@ struct Problem {
   Formulation formulation = Formulation::kSe3Shooting;
   RodModel rod;    ///< length, section profile, rest strain
   int nodes = 41;  ///< grid points along s, ends included
+  /// An "annulus" rod.section's bore π r_i² (m²; 0 for other sections), and whether the file
+  /// fills it ("contents_density"); without, the pipe is sealed and empty.
+  double bore_area = 0.0;
+  bool bore_filled = false;
   lie::SE3 base;   ///< clamp pose: R_WB (body z = rod tangent), p_W
   Boundary boundary = Boundary::kCantilever;
   /// "anchor", for the boundary "anchored": the tip is pinned at `position`; the base is held at
