@@ -589,6 +589,10 @@ TEST(ProblemIo, ABoreNarrowerThanTheRodIsRefused) {
                "outer radius 0.001 m");
   j["environment"]["contact"][0]["radius"] = 0.002;
   EXPECT_TRUE(Parse(j).ok()) << AllErrors(Parse(j));
+  // A bore along x about a rod along z: the rod leaves it at once, outside the bore (it read
+  // "inside this surface", backwards for a bore).
+  j["environment"]["contact"][0]["axis"] = {1, 0, 0};
+  EXPECT_ERROR(Parse(j), "environment.contact[0]: the rod starts outside this bore: at s = ");
 }
 
 // An anchor's motion sweeps position + amplitude (1 − cos): its far end must be within the rod's

@@ -185,6 +185,13 @@ void ParseContact(const ObjectReader& o, ContactSurfaces* contact) {
   }
 }
 
+/// Where a point past surface k lies, in words: a bore holds the rod inside it, so past its wall
+/// is outside the bore; past any other surface is inside the obstacle it bounds.
+std::string PastSurface(const ContactSurface& c) {
+  return c.shape == ContactSurface::Shape::kCylinder && c.inside ? "outside this bore"
+                                                                 : "inside this surface";
+}
+
 }  // namespace
 
 void ParseEnvironment(const ObjectReader& o, Fluid* fluid, FluidGust* gust,
@@ -211,7 +218,7 @@ void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
             std::pair<const char*, Vec3>{"anchor.position", p.anchor.position}}) {
         const double distance = contact.surface[k].Distance(point, &normal);
         if (distance < 0.0)
-          report->Add(path, std::string("the line is held inside this surface: its ") + name +
+          report->Add(path, "the line is held " + PastSurface(contact.surface[k]) + ": its " + name +
                                 " is " + FormatNumber(-distance) + " m past it");
       }
     }
@@ -246,7 +253,8 @@ void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
             : "";
     if (deepest < 0.0)
       report->Add("environment.contact[" + std::to_string(k) + "]",
-                  "the rod starts inside this surface: at s = " + FormatNumber(s_deepest) +
+                  "the rod starts " + PastSurface(contact.surface[k]) +
+                      ": at s = " + FormatNumber(s_deepest) +
                       " m its centreline is " + FormatNumber(-deepest) + " m past it" + growing);
   }
   // A bore no wider than the rod cannot hold it anywhere.
