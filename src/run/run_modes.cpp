@@ -169,17 +169,39 @@ ModesGrid CheckModesGrid(const io::Problem& problem, const ModalResult& r) {
   return out;
 }
 
-/// Why no modes came from a converged equilibrium (ModalResult::declined), and what to do.
-std::string DeclinedNote(const ModalResult& r) {
+/// Whether the section has Kelvin–Voigt damping anywhere: every sixteenth of the rod, and both
+/// sides of each jump in the section (a damped band).
+bool HasSectionDamping(const io::Problem& problem) {
+  if (!problem.rod.section) return false;
+  std::vector<double> at;
+  for (int i = 0; i <= 16; ++i) at.push_back(problem.rod.length * i / 16);
+  for (const double b : problem.rod.Breakpoints())
+    for (const double side : {-1e-9, 1e-9}) at.push_back(b + side * problem.rod.length);
+  for (const double s : at)
+    if (s >= 0 && s <= problem.rod.length &&
+        problem.rod.section->At(s, problem.robot.actuation).damping.cwiseAbs().maxCoeff() > 0)
+      return true;
+  return false;
+}
+
+/// Why no modes came from a converged equilibrium (ModalResult::declined), and what to do: a
+/// coarser grid; for damped modes of a damped section, the undamped ones, which the banded path
+/// takes at any grid; the SE(3) path where it runs the rod (not an "anchored" line, which it
+/// refuses: the note once sent such a stay cable there).
+std::string DeclinedNote(const io::Problem& problem, const ModalResult& r) {
   if (r.declined.empty()) return "";
   // The dense size grows with the segments: the nodes that keep it within the limit.
   const long segments = static_cast<long>(r.s.size()) - 1;
   const long nodes = r.declined_dense_size > 0
                          ? segments * kMaxDenseModeCoordinates / r.declined_dense_size + 1
                          : kMaxDenseModeCoordinates / 6 + 1;
-  return "cosserat: no modes on this grid: " + r.declined + "; rod.nodes <= " +
-         std::to_string(nodes) +
-         " takes the dense spectrum, or \"formulation\": \"se3-shooting\"\n";
+  std::string note = "cosserat: no modes on this grid: " + r.declined + "; rod.nodes <= " +
+                     std::to_string(nodes) + " takes the dense spectrum";
+  if (r.declined.find("damped") != std::string::npos && HasSectionDamping(problem))
+    note += ", or without rod.material.damping the undamped modes come from the banded "
+            "factorisation on any grid";
+  if (problem.boundary != io::Boundary::kAnchored) note += ", or \"formulation\": \"se3-shooting\"";
+  return note + "\n";
 }
 
 /// The modes of the problem in its formulation; `progress` follows the SE(3) scan (modes found,
@@ -208,26 +230,17 @@ ModalResult ModesOf(const io::Problem& problem,
 
 /// The SE(3) modes leave the section's Kelvin–Voigt damping out: said when the rod has some.
 std::string UndampedShootingNote(const io::Problem& problem) {
-  if (problem.formulation != io::Formulation::kSe3Shooting || !problem.rod.section) return "";
-  // Every sixteenth of the rod, and both sides of each jump in the section (a damped band).
-  std::vector<double> at;
-  for (int i = 0; i <= 16; ++i) at.push_back(problem.rod.length * i / 16);
-  for (const double b : problem.rod.Breakpoints())
-    for (const double side : {-1e-9, 1e-9}) at.push_back(b + side * problem.rod.length);
-  for (const double s : at) {
-    if (s < 0 || s > problem.rod.length) continue;
-    if (problem.rod.section->At(s, problem.robot.actuation).damping.cwiseAbs().maxCoeff() > 0)
-      return std::string("cosserat: note: the se3-shooting modes are undamped "
-                         "(rod.material.damping is left out)") +
-             (problem.boundary == io::Boundary::kCantilever ||
-                      problem.boundary == io::Boundary::kAnchored
-                  ? "; \"formulation\": \"quaternion-fd\" also gives each mode's damped "
-                    "frequency and damping ratio"
-                  : "; the quaternion-FD path, which gives damped modes, runs a cantilever or "
-                    "an \"anchored\" line") +
-             "\n";
-  }
-  return "";
+  if (problem.formulation != io::Formulation::kSe3Shooting || !HasSectionDamping(problem))
+    return "";
+  return std::string("cosserat: note: the se3-shooting modes are undamped "
+                     "(rod.material.damping is left out)") +
+         (problem.boundary == io::Boundary::kCantilever ||
+                  problem.boundary == io::Boundary::kAnchored
+              ? "; \"formulation\": \"quaternion-fd\" also gives each mode's damped "
+                "frequency and damping ratio"
+              : "; the quaternion-FD path, which gives damped modes, runs a cantilever or an "
+                "\"anchored\" line") +
+         "\n";
 }
 
 /// Which modes are neutral (Mode::neutral), and what that means.
@@ -338,7 +351,7 @@ Result RunModes(const io::Problem& problem, const RunOptions& options) {
   log << SummaryLine(problem, r);
   if (r.status == ModalStatus::kUnstable && !r.instability.empty())
     log << "cosserat: unstable: " << r.instability << "\n";
-  log << DeclinedNote(r) << UndampedShootingNote(problem) << NeutralNote(r);
+  log << DeclinedNote(problem, r) << UndampedShootingNote(problem) << NeutralNote(r);
   ColumnEnds ends = ColumnEnds::kClampedFree;
   if (problem.formulation == io::Formulation::kSe3Shooting && ToColumnEnds(problem.boundary, &ends))
     log << detail::GuideTakesTipForceNote(problem, ends);
