@@ -1428,6 +1428,27 @@ TEST(HeldCable, AStayWithAVanishingBendingStiffnessKeepsItsStringModes) {
       << vanishing.log;
 }
 
+// The stay cable's slips of units: its area in mm² (6000 for 0.006 m²) and its length in mm
+// (199 320 for 199.32 m) with the anchors in m. Each is named: the first by its section's radius
+// of gyration against its width (1.5e-7), the second by its length against the anchors' span.
+TEST(HeldCable, AStaysLengthOrAreaInMillimetresIsNamed) {
+  nlohmann::json doc = testing::SourceJson("examples/stay_cable.json");
+  doc["analysis"] = "statics";
+  nlohmann::json area = doc, length = doc;
+  area["rod"]["section"]["area"] = 6000;
+  length["rod"]["length"] = 199320;
+  const run::Result a = run::Run(*io::ParseProblem(area.dump()).problem);
+  EXPECT_NE(a.log.find("1.48e-07 of its width 87.4 m"), std::string::npos) << a.log;
+  EXPECT_NE(a.log.find("an area in mm² is 1e6 times too large"), std::string::npos) << a.log;
+  const run::Result l = run::Run(*io::ParseProblem(length.dump()).problem);
+  EXPECT_NE(l.log.find("warning: rod.length (1.99e+05 m) is 997 times the anchors' distance "
+                       "(200 m): if it was meant in mm, it is in m here"),
+            std::string::npos)
+      << l.log;
+  const run::Result right = run::Run(*io::ParseProblem(doc.dump()).problem);
+  EXPECT_EQ(right.log.find("in mm"), std::string::npos) << right.log;
+}
+
 // Damped modes of a damped stay on a grid finer than the dense spectrum takes are declined, and
 // the note offers what runs: fewer nodes, or the undamped modes on the banded path. Not the SE(3)
 // path, which refuses an "anchored" line (the note once sent the stay there).

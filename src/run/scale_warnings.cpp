@@ -183,8 +183,21 @@ void TinyBendingStiffnessWarning(const io::Problem& problem, std::ostringstream*
        << " m, " << gyration / d << " of its width " << d << " m: a bending stiffness this "
        << "small leaves its sections' turning under shear (κGA/ρI) too stiff beside the rod's "
           "bending and sag for double precision, and statics or modes may fail or lose their "
-          "lowest modes; for a rope or strand that hardly bends, give its wires' own I (n π d⁴/64 "
-          "for n wires of diameter d) in rod.section\n";
+          "lowest modes; check rod.section's units (m², m⁴: an area in mm² is 1e6 times too "
+          "large), and for a rope or strand that hardly bends give its wires' own I (n π d⁴/64 "
+          "for n wires of diameter d)\n";
+}
+
+/// A line held at both ends over a hundred times longer than their distance piles up between
+/// them: a length in mm with anchors in m (a 200 m stay typed 199 320 ended under_resolved,
+/// its notes on compression and self-contact, not on the length).
+void LineLongerThanItsSpanWarning(const io::Problem& problem, std::ostringstream* log) {
+  if (problem.boundary != io::Boundary::kAnchored) return;
+  const double span = (problem.anchor.position - problem.base.p).norm();  // m
+  if (!(span > 0.0 && problem.rod.length > 100.0 * span)) return;
+  *log << "cosserat: warning: rod.length (" << problem.rod.length << " m) is "
+       << problem.rod.length / span << " times the anchors' distance (" << span
+       << " m): if it was meant in mm, it is in m here\n";
 }
 
 /// A pipe in a fluid without contents_density is sealed and empty: its bore's volume is buoyant.
@@ -235,6 +248,7 @@ void AddScaleWarnings(const io::Problem& problem, Result* result) {
   log << std::setprecision(3);
   ImpossibleLoadWarning(problem, &log);
   UnitSlipWarnings(problem, &log);
+  LineLongerThanItsSpanWarning(problem, &log);
   if (!problem.has_assembly && problem.rod.section) {
     const double d = problem.rod.section->At(0.0, problem.robot.actuation).outer_diameter;
     if (d > 0 && problem.rod.length < kSlenderness * d)
