@@ -101,7 +101,7 @@ std::vector<DampedPair> DampedPairs(const Eigen::MatrixXd& companion, bool modal
     DampedPair p;
     p.mode.omega_n = std::abs(l);
     p.mode.damped_frequency_hz = l.imag() / kTwoPi;
-    p.mode.damping_ratio = -l.real() / p.mode.omega_n;
+    p.mode.damping_ratio = 0.0 - l.real() / p.mode.omega_n;  // an undamped mode's 0, not −0
     if (modal) p.share = ModalShares(companion, l);
     pairs.push_back(std::move(p));
   }
