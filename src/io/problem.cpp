@@ -205,6 +205,7 @@ void ParseDynamics(const ObjectReader& o, int nodes, Problem::Dynamics* d) {
   }
   d->base_spin =
       ReadNumber(o, "base_spin", AnyFiniteNumber(), Presence::kOptional).value_or(d->base_spin);
+  d->base_spin_given = o.Has("base_spin") && !d->rotary_table.present();
   const auto dt = ReadNumber(o, "dt", PositiveNumber(), Presence::kOptional);
   const auto duration = ReadNumber(o, "duration", PositiveNumber(), Presence::kOptional);
   const auto interval = ReadNumber(o, "output_interval", PositiveNumber(), Presence::kOptional);

@@ -81,7 +81,8 @@ bool ConservesEnergy(const io::Problem& problem) {
 }
 
 /// Adds the stepper's current state as the frame at time t; node positions only when
-/// `all_nodes`; with a motor-driven table, its speed (rad/s) and the string's torque on it.
+/// `all_nodes`; with a motor-driven table or a given base_spin, the table's speed (rad/s) and the
+/// string's torque on it.
 void Record(const Bdf2ShootingStepper& stepper, double t, bool all_nodes, io::DynamicRun* run,
             double table_speed = 0.0) {
   const RodState& state = stepper.state();
@@ -188,7 +189,8 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
       break;
     }
     if (k % stride == 0) {
-      Record(*stepper, k * dt, all_nodes, run, table ? table->speed() : 0.0);
+      Record(*stepper, k * dt, all_nodes, run,
+             table ? table->speed() : problem.dynamics.base_spin);
       if (track_energy)  // for EnergyNote only
         run->peak_kinetic_energy =
             std::max(run->peak_kinetic_energy, RunEnergy(problem, *stepper).kinetic);
@@ -202,7 +204,8 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
   run->simulated_time_s = past_nominal ? stepper->time() : nominal;
   // The final state ends the trajectory even when it falls between two output intervals.
   if (run->frame_t.back() != run->simulated_time_s)
-    Record(*stepper, run->simulated_time_s, all_nodes, run, table ? table->speed() : 0.0);
+    Record(*stepper, run->simulated_time_s, all_nodes, run,
+           table ? table->speed() : problem.dynamics.base_spin);
 }
 
 /// The whole simulation: initial equilibrium, then round(duration / dt) steps.
@@ -213,14 +216,14 @@ io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
   const bool all_nodes = options.nodes_csv;
   io::DynamicRun run;
   run.record_states = options.frames;
-  run.report_tip_spin =
-      problem.loads.bit.present() || d.base_spin != 0.0 || d.rotary_table.present();
+  run.report_tip_spin = problem.loads.bit.present() || d.base_spin != 0.0 ||
+                        d.base_spin_given || d.rotary_table.present();
   run.step_time_s.reserve(steps);
   const std::size_t frames = steps / stride + 2;
   run.frame_t.reserve(frames);
   run.frame_tip.reserve(frames);
   if (run.report_tip_spin) run.frame_tip_spin.reserve(frames);
-  run.report_table = d.rotary_table.present();
+  run.report_table = d.rotary_table.present() || d.base_spin_given;
   if (all_nodes) run.frame_positions.reserve(frames * problem.nodes);
 
   const auto start = Clock::now();
@@ -235,7 +238,7 @@ io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
   if (!run.initial_state_ok) {
     run.failed_at_t = 0.0;
   } else {
-    Record(*stepper, 0.0, all_nodes, &run);
+    Record(*stepper, 0.0, all_nodes, &run, d.base_spin);  // a motor's table starts at rest
     // The start's energy is the balance's only under the actuation the run steps with: a change
     // at t = 0 (a chamber pressurised from the initial actuation) moves the rest strain, and
     // the work it does is in no term.

@@ -88,6 +88,9 @@ struct Problem {
     /// rad/s: the clamp turns about its own axis (base body z) at this rate from t = 0 (a
     /// drill string's rotary table); SE(3) path, cantilever.
     double base_spin = 0.0;
+    /// The file gives base_spin (0 too: a string twisted and let go): the trajectory reports the
+    /// tip's spin and the string's torque on the clamp.
+    bool base_spin_given = false;
     /// "rotary_table": the clamp turned by a motor with inertia instead (robots/rotary_table.hpp;
     /// SE(3) path, cantilever); absent: inertia 0.
     RotaryTable rotary_table;
