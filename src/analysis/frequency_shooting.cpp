@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "cosserat/constitutive/section_law.hpp"
@@ -96,6 +97,11 @@ FrequencyShooting::FrequencyShooting(const RodModel& rod, const std::vector<doub
         "linearised here)");
   const int n = static_cast<int>(grid_.size());
   if (n < 2) throw std::invalid_argument("FrequencyShooting: the grid needs at least 2 nodes");
+  if (!(std::isfinite(ends.tip_mass) && ends.tip_mass >= 0 && ends.tip_inertia.allFinite() &&
+        (ends.tip_inertia.array() >= 0).all()))
+    throw std::invalid_argument("FrequencyShooting: tip_mass and tip_inertia must be >= 0");
+  if (ends.tip_guided && (ends.tip_mass > 0 || !ends.tip_inertia.isZero()))
+    throw std::invalid_argument("FrequencyShooting: a body at the tip needs a free tip");
   const SectionProperties s0 = PrincipalAxesSectionAt(rod, 0.0, actuation);
   EI_ = s0.max_bending_stiffness();
   rhoA0_ = s0.mass(5, 5);
@@ -202,8 +208,11 @@ Mat6 FrequencyShooting::BoundaryMatrix(double omega) const {
   Mat6 B;
   const auto moments = z.middleRows<3>(6) - tip_moment_cross_ * z.topRows<3>();
   if (!ends_.tip_guided) {
-    B.topRows<3>() = moments;
-    B.bottomRows<3>() = z.bottomRows<3>() - tip_force_cross_ * z.topRows<3>();
+    // A body at the tip: its inertia's reaction −ω² [J_b θ; m_b u] joins the loads there.
+    const double w2 = sign_ * omega * omega;
+    B.topRows<3>() = moments - w2 * ends_.tip_inertia.asDiagonal() * z.topRows<3>();
+    B.bottomRows<3>() = z.bottomRows<3>() - tip_force_cross_ * z.topRows<3>() -
+                        w2 * ends_.tip_mass * z.middleRows<3>(3);
     return scale_.cwiseInverse().asDiagonal() * B;
   }
   // A guided tip: its frame held (clamped, rad) or its moments free (pinned); its displacement

@@ -76,6 +76,9 @@ bool ShootingModalOptions::IsValid(std::string* why) const {
   if (omega_max > 0 && omega_max <= omega_min) return fail("omega_max: expected > omega_min");
   if (!(relative_step > 0 && relative_step <= 0.1))
     return fail("relative_step: expected in (0, 0.1]");
+  if (!(std::isfinite(tip_mass) && tip_mass >= 0)) return fail("tip_mass: expected >= 0");
+  if (!(tip_inertia.allFinite() && (tip_inertia.array() >= 0).all()))
+    return fail("tip_inertia: expected three moments >= 0");
   return statics.IsValid(why);
 }
 

@@ -82,8 +82,10 @@ struct ShootingEquilibrium {
 };
 
 ShootingEquilibrium SolveEquilibrium(const RodModel& rod, int num_nodes, const lie::SE3& base,
-                                     const StaticLoads& loads, const StaticShootingOptions& opt,
+                                     const StaticLoads& loads,
+                                     const ShootingModalOptions& options,
                                      const Actuation& actuation, ColumnEnds ends) {
+  const StaticShootingOptions& opt = options.statics;
   ShootingEquilibrium eq;
   if (ends == ColumnEnds::kClampedFree) {
     StaticShootingSolver solver(rod, num_nodes, opt, actuation);
@@ -91,7 +93,10 @@ ShootingEquilibrium SolveEquilibrium(const RodModel& rod, int num_nodes, const l
     eq.state = solver.state();
     eq.grid = solver.grid();
     if (!eq.statics.converged()) return eq;
-    eq.linear.emplace(rod, eq.grid, base, loads, solver.base_wrench_B(), actuation);
+    ShootingEnds tip_body;
+    tip_body.tip_mass = options.tip_mass;
+    tip_body.tip_inertia = options.tip_inertia;
+    eq.linear.emplace(rod, eq.grid, base, loads, solver.base_wrench_B(), actuation, tip_body);
     eq.stability_index = solver.StabilityIndex(base, loads, solver.base_wrench_B());
     return eq;
   }
@@ -156,8 +161,10 @@ ModalResult ComputeModesShooting(const RodModel& rod, int num_nodes, const lie::
     result.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
     return result;
   };
+  if (ends != ColumnEnds::kClampedFree && (options.tip_mass > 0 || !options.tip_inertia.isZero()))
+    throw std::invalid_argument("ComputeModesShooting: a body at the tip needs a cantilever");
   const ShootingEquilibrium eq =
-      SolveEquilibrium(rod, num_nodes, base, loads, options.statics, actuation, ends);
+      SolveEquilibrium(rod, num_nodes, base, loads, options, actuation, ends);
   result.statics_status = eq.statics.status;
   result.statics_iterations = eq.statics.iterations;
   result.statics_residual = eq.statics.residual;

@@ -44,8 +44,9 @@ void DriveAndFlowFeatures(const Problem& p, std::vector<std::string>* out) {
     out->push_back("dynamics.base_spin: turns a clamped base (\"boundary\": \"cantilever\")");
 }
 
-/// A rigid body at the tip (dynamics.tip_mass, tip_inertia) is part of the SE(3) stepper's
-/// tip condition only: the quaternion-FD dynamics and the modes would leave it out.
+/// A rigid body at the tip (dynamics.tip_mass, tip_inertia) is part of the SE(3) stepper's and
+/// the SE(3) cantilever modes' tip condition only: the quaternion-FD dynamics and modes, and a
+/// column's guided tip, would leave it out.
 void TipBodyFeatures(const Problem& p, std::vector<std::string>* out) {
   if (!(p.dynamics.tip_mass > 0.0 || !p.dynamics.tip_inertia.isZero())) return;
   const char* field = p.dynamics.tip_mass > 0.0 ? "dynamics.tip_mass" : "dynamics.tip_inertia";
@@ -53,10 +54,13 @@ void TipBodyFeatures(const Problem& p, std::vector<std::string>* out) {
     out->push_back(std::string(field) +
                    ": a body at the tip runs on the \"se3-shooting\" formulation's dynamics in "
                    "this version");
-  if (p.analysis == Analysis::kModes)
+  if (p.analysis == Analysis::kModes && p.formulation == Formulation::kQuaternionFd)
     out->push_back(std::string(field) +
-                   ": the modes leave a body at the tip out in this version (\"analysis\": "
-                   "\"dynamics\" on \"se3-shooting\" runs it)");
+                   ": the quaternion-FD modes leave a body at the tip out in this version "
+                   "(\"formulation\": \"se3-shooting\" takes it on a cantilever)");
+  else if (p.analysis == Analysis::kModes && p.boundary != Boundary::kCantilever)
+    out->push_back(std::string(field) + ": a body at the tip takes a cantilever's free tip "
+                                        "(\"boundary\": \"cantilever\")");
 }
 
 /// A column's tip in dynamics slides along the axis under the loads' dead tip force: a follower

@@ -12,16 +12,14 @@
 #include "cosserat/strong/static_shooting.hpp"
 
 namespace cosserat::run {
-namespace {
 
-/// The loads of the clamped rod's statics: the file's, with the tip mass's weight as a dead tip
-/// force. A tip force that follows the section cannot take it: the weight is then left out, and
-/// the equilibrium is only the stepper's first guess.
 StaticLoads WithTipMassWeight(const io::Problem& problem, StaticLoads loads) {
   if (problem.dynamics.tip_mass > 0 && loads.tip_force_frame == LoadFrame::kWorld)
     loads.tip_force += problem.dynamics.tip_mass * loads.gravity_W;
   return loads;
 }
+
+namespace {
 
 /// Whether one shot from the clamp resolves the rod's statics (StaticShootingExponent ≤ 10), as
 /// the statics runner decides: beyond that a stiff contact foundation or a high tension needs

@@ -11,6 +11,7 @@
 #include "cosserat/analysis/modes.hpp"
 #include "cosserat/io/result_writer.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
+#include "cosserat/run/initial_equilibrium.hpp"
 #include "cosserat/run/run_quatfd.hpp"
 #include "cosserat/run/solver_options.hpp"
 #include "cosserat/strong/static_multiple_shooting.hpp"
@@ -222,9 +223,12 @@ ModalResult ModesOf(const io::Problem& problem,
   so.modal = mo;
   so.statics = StaticOptions(problem);
   so.progress = progress;
+  so.tip_mass = problem.dynamics.tip_mass;  // a body at a cantilever's tip (a drill string's BHA)
+  so.tip_inertia = problem.dynamics.tip_inertia;
   ColumnEnds ends = ColumnEnds::kClampedFree;
   ToColumnEnds(problem.boundary, &ends);  // a column's; UnsupportedFeatures let only these through
-  return ComputeModesShooting(problem.rod, problem.nodes, problem.base, problem.loads, so,
+  return ComputeModesShooting(problem.rod, problem.nodes, problem.base,
+                              WithTipMassWeight(problem, problem.loads), so,
                               problem.robot.actuation, ends);
 }
 

@@ -16,6 +16,8 @@
 /// W(L) = [R(L)ᵀ M_W; R(L)ᵀ F_W] (world loads; body loads are constant) linearises to
 ///   B(ω) δW(0) = [δm − (R₀ᵀ M_W) × θ;  δn − (R₀ᵀ F_W) × θ](L) = 0,
 /// so det B(ω) = 0 exactly at a natural frequency, and the null vectors give the mode shapes.
+/// A rigid body at the free tip (mass m_b, principal inertia J_b in the tip's body frame) adds
+/// its inertia, W(L) = loads + ω² [J_b θ; m_b u](L): B's rows get − ω² J_b θ and − ω² m_b u.
 /// RK4 on the grid, with the equilibrium re-integrated on the same stages as the statics solver.
 /// At ω = 0, B is the statics Jacobian (in rotation-vector instead of matrix coordinates).
 
@@ -42,6 +44,11 @@ struct ShootingEnds {
   bool tip_clamped = false;
   /// The column's frame, world: its third column the axis (the problem's base.rotation).
   Mat3 axes_W = Mat3::Identity();
+  /// A rigid body at a free tip (not with tip_guided): its mass, kg, and its principal moments
+  /// of inertia about the tip section's body axes, kg·m². Its weight is the loads' (a dead tip
+  /// force); here it adds its inertia only.
+  double tip_mass = 0.0;
+  Vec3 tip_inertia = Vec3::Zero();
 };
 
 class FrequencyShooting {

@@ -151,6 +151,11 @@ struct ShootingModalOptions {
   /// the recursive refinement down to 1e-10 ω (closer ones count as one multiple root).
   double relative_step = 0.005;
   StaticShootingOptions statics;
+  /// A rigid body at the cantilever's tip (ShootingEnds::tip_mass, tip_inertia: kg; kg·m² about
+  /// the tip's body axes): its inertia joins the tip condition; its weight must be in the loads
+  /// (a dead tip force). Not for a column.
+  double tip_mass = 0.0;
+  Vec3 tip_inertia = Vec3::Zero();
   /// Called during the scan with the modes found so far and `modal.count` (a progress line; it
   /// may throw to stop the run, as Ctrl-C from Python does). Empty: not called.
   std::function<void(double found, double asked)> progress;

@@ -32,6 +32,11 @@ std::optional<RodState> StaticEquilibriumToStartFrom(const io::Problem& problem,
                                                      const StepInput& input,
                                                      int* unstable_directions = nullptr);
 
+/// The loads of the clamped rod's statics: the file's, with the tip mass's weight
+/// (dynamics.tip_mass) as a dead tip force. A tip force that follows the section cannot take it:
+/// the weight is then left out, and the equilibrium is only the stepper's first guess.
+StaticLoads WithTipMassWeight(const io::Problem& problem, StaticLoads loads);
+
 /// After a start refused as non_finite: the single-shot statics of the same cantilever under
 /// `input` (the tip mass's weight added), when its shot ran away (RodState::RanAway); empty
 /// otherwise. The stepper keeps no state of a start it refused, so this is what says why.
