@@ -16,6 +16,7 @@
 #include <string>
 
 #include "cosserat/analysis/frequency_shooting.hpp"
+#include "cosserat/loads/total_load.hpp"
 #include "mode_classification.hpp"
 #include "quatfd_reduction.hpp"
 #include "damped_modes.hpp"
@@ -183,31 +184,36 @@ NodeWeights QuatFdNodeWeights(const quatfd::QuatFdModel& model, const Eigen::Vec
   return w;
 }
 
-/// The asymmetry |S_ij − S_ji| a conservative stiffness about an equilibrium may show: 1e-8 of
-/// the pair, 1e-13 of the largest entry (round-off), and 1e-6 of the pair's own scale
-/// √|S_ii S_jj| (the bound on a definite S_ij): the equilibrium's residual, left by its solve's
-/// tolerance, turns forces by its rotations. A 0.006 m² stay cable of I = 1e-12 m⁴ under 4 MN
-/// showed 1e-4 N/m (1e-13 of its largest entry, 7e-8 of √|S_ii S_jj|) and was taken for
-/// non-conservative, its lowest modes then lost to the general dense spectrum (3 % off at 1e-15
-/// m⁴). A follower load's asymmetry, the load itself against √(EI κGA)/h, stands 1e-4 or more.
-bool AsymmetryWithinRoundOff(double s_ij, double s_ji, double s_ii, double s_jj, double s_max) {
-  return std::abs(s_ij - s_ji) <= 1e-8 * std::max(std::abs(s_ij), std::abs(s_ji)) +
-                                      1e-13 * s_max + 1e-6 * std::sqrt(std::abs(s_ii * s_jj));
+/// The asymmetry |S_ij − S_ji| a stiffness about an equilibrium may show and still be taken
+/// symmetric: 1e-8 of the pair and 1e-13 of the largest entry (round-off); under loads known to
+/// be conservative (LoadsAreConservative) also 1e-6 of the pair's own scale √|S_ii S_jj|, what
+/// the equilibrium's residual, left by its solve's tolerance, turns its forces by. A 0.006 m²
+/// stay cable of I = 1e-15 m⁴ under 4 MN showed 1e-4 N/m (1e-13 of its largest entry, 4e-7 of
+/// √|S_ii S_jj|) and was taken for non-conservative, its two lowest modes 1 % and 3 % off in
+/// the general dense spectrum. Not under other loads: a follower force's asymmetry P stands
+/// against √|S_θθ S_uu| ≈ κGA (shear sets both), 0.7 λ (r/L)² of it at P = λ EI/L², under
+/// 1e-6 on a slender rod, and Beck's column of a 0.1 mm wire read 20 % low.
+bool AsymmetryWithinRoundOff(double s_ij, double s_ji, double s_ii, double s_jj, double s_max,
+                             bool conservative) {
+  const double residual = conservative ? 1e-6 * std::sqrt(std::abs(s_ii * s_jj)) : 0.0;
+  return std::abs(s_ij - s_ji) <=
+         1e-8 * std::max(std::abs(s_ij), std::abs(s_ji)) + 1e-13 * s_max + residual;
 }
 
 /// Whether the reduced stiffness S is symmetric to round-off (AsymmetryWithinRoundOff): true
 /// for conservative loads about an equilibrium.
-bool IsSymmetric(const Eigen::MatrixXd& S) {
+bool IsSymmetric(const Eigen::MatrixXd& S, bool conservative) {
   const int m = static_cast<int>(S.rows());
   const double s_max = S.cwiseAbs().maxCoeff();
   for (int i = 0; i < m; ++i)
     for (int j = 0; j < i; ++j)
-      if (!AsymmetryWithinRoundOff(S(i, j), S(j, i), S(i, i), S(j, j), s_max)) return false;
+      if (!AsymmetryWithinRoundOff(S(i, j), S(j, i), S(i, i), S(j, j), s_max, conservative))
+        return false;
   return true;
 }
 
 /// The same for a sparse S (an entry missing on one side is a zero there).
-bool IsSymmetric(const Eigen::SparseMatrix<double>& S) {
+bool IsSymmetric(const Eigen::SparseMatrix<double>& S, bool conservative) {
   const Eigen::SparseMatrix<double> St = S.transpose();
   const Eigen::SparseMatrix<double> D = S - St;
   double s_max = 0.0;
@@ -218,7 +224,8 @@ bool IsSymmetric(const Eigen::SparseMatrix<double>& S) {
   for (int j = 0; j < D.outerSize(); ++j)
     for (Eigen::SparseMatrix<double>::InnerIterator it(D, j); it; ++it) {
       const Eigen::Index r = it.row(), c = it.col();
-      if (!AsymmetryWithinRoundOff(S.coeff(r, c), St.coeff(r, c), d(r), d(c), s_max))
+      if (!AsymmetryWithinRoundOff(S.coeff(r, c), St.coeff(r, c), d(r), d(c), s_max,
+                                   conservative))
         return false;
     }
   return true;
@@ -404,15 +411,17 @@ NeutralEntries FindNeutralEntries(const Spectrum& eig, double diagonal) {
 
 /// The spectrum of the linearisation A = ∂f/∂q, B = ∂f/∂v: from the banded factorisation on a
 /// large grid without damping to resolve, when the stiffness is symmetric and definite
-/// (LowestModesSparse); else dense. Sets result->symmetric and result->sparse.
+/// (LowestModesSparse); else dense. Sets result->symmetric and result->sparse; `conservative`:
+/// the loads are (AsymmetryWithinRoundOff).
 Spectra ComputeSpectrum(const BandedMatrix& A, const BandedMatrix& B, const Reduction& red,
+                        bool conservative,
                         const ModalOptions& options, ModalResult* result) {
   Spectra out;
   out.has_damping = B.ToSparse().nonZeros() > 0;
   if (red.T.cols() > options.sparse_above && !(options.damped && out.has_damping)) {
     const Eigen::SparseMatrix<double> Ar = red.P * (A.ToSparse() * red.T);
     const Eigen::SparseMatrix<double> S = -(SparseMassPower(red, 1.0) * Ar);
-    result->symmetric = IsSymmetric(S);
+    result->symmetric = IsSymmetric(S, conservative);
     for (int j = 0; j < Ar.outerSize(); ++j)
       for (Eigen::SparseMatrix<double>::InnerIterator it(Ar, j); it; ++it)
         if (it.row() == it.col()) out.diagonal = std::max(out.diagonal, std::abs(it.value()));
@@ -433,7 +442,7 @@ Spectra ComputeSpectrum(const BandedMatrix& A, const BandedMatrix& B, const Redu
   // Stiffness S = −M Ar (at an equilibrium, where the forces vanish, the turning of an added
   // mass's block adds nothing to Ar); ω² and reduced eigenvectors, ascending.
   const Eigen::MatrixXd S = -MassTimes(red, red.mass, 1.0, out.Ar);
-  result->symmetric = IsSymmetric(S);
+  result->symmetric = IsSymmetric(S, conservative);
   out.damped = options.damped && out.Br.cwiseAbs().maxCoeff() > 0;
   out.eig = result->symmetric ? SymmetricSpectrum(S, red, out.Br, options.shapes, out.damped,
                                                   &out.companion, &out.indefinite)
@@ -484,7 +493,7 @@ ModalResult ComputeModes(quatfd::QuatFdModel* model, const StaticLoads& loads,
   BandedMatrix A, B;
   model->Jacobian(q, v, &A, &B);
   const Reduction red = Reduce(*model, q);
-  Spectra sp = ComputeSpectrum(A, B, red, options, &result);
+  Spectra sp = ComputeSpectrum(A, B, red, LoadsAreConservative(loads), options, &result);
   if (sp.too_large) {
     result.declined = DeclinedReason(options, sp, result.symmetric);
     result.declined_dense_size = sp.dense_size;
