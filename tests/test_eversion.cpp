@@ -322,6 +322,30 @@ TEST(Eversion, AVineOnAFloorGrowsPastWhatOneShotResolves) {
   EXPECT_NEAR(b.position_W[far].z(), tip_z, 1e-3 * std::abs(tip_z));
 }
 
+// A vine pushed along its axis past its Euler load π²EI/4L² (2 N on 0.9 m, 1.37 times it) is
+// unstable, and the single shot counts its unstable directions. A floor 1 m away that the body
+// never touches (βL = 7.7 on k = 1e4 N/m²) changes nothing: the robot keeps the single shot
+// and its count while it grows; only a surface it presses on sends it to the multiple-shooting
+// solver (which counts none) from βL = 6.
+TEST(Eversion, ASurfaceTheVineDoesNotTouchLeavesItsStabilityCount) {
+  const double p = 3e3;
+  StaticLoads push;  // the body grows along world +x
+  push.tip_force = Vec3(-2.0, 0, 0);
+  StaticLoads far = push;
+  far.contact.count = 1;
+  far.contact.surface[0].point_W = Vec3(0, 0, -1.0);
+  far.contact.surface[0].direction_W = Vec3::UnitZ();
+  far.contact.surface[0].stiffness = 1e4;
+  EversionRobot free_space(VineDesign(), 0.5, p), beside(VineDesign(), 0.5, p);
+  const GrowthSummary a = free_space.Grow(0.9, 4, push), b = beside.Grow(0.9, 4, far);
+  ASSERT_TRUE(a.converged() && b.converged());
+  const double euler = M_PI * M_PI * free_space.BendingStiffnessAt(0.0) / (4 * 0.81);
+  ASSERT_GT(2.0, 1.3 * euler);
+  EXPECT_GT(a.last_solve.stability_index, 0);
+  EXPECT_EQ(b.last_solve.stability_index, a.last_solve.stability_index);
+  EXPECT_EQ(beside.pieces(), 1);
+}
+
 // The pieces take the tube's section at its pressure, as the single shot does: E_eff(p) =
 // 100 MPa + 1e4 p stiffens the 3 kPa tube by 30 % over the bare film. On a floor of k = 1e4 N/m²
 // a 1.3 m body's exponent is 11, so the robot solves it in pieces; the same robot told to keep

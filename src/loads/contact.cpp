@@ -5,6 +5,14 @@
 
 namespace cosserat {
 
+bool PressesOn(const ContactSurface& surface, const RodState& state,
+               const std::function<double(double)>& outer_radius) {
+  Vec3 normal;
+  for (int i = 0; i < state.size(); ++i)
+    if (surface.Distance(state.position_W[i], &normal) < outer_radius(state.s[i])) return true;
+  return false;
+}
+
 double ContactSurface::Distance(const Vec3& p_W, Vec3* normal, Mat3* dn) const {
   const Vec3 r = p_W - point_W;
   switch (shape) {

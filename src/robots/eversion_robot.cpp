@@ -284,6 +284,12 @@ EversionSolveSummary EversionRobot::Solve(double length, const StaticLoads& load
   std::string why;
   if (!loads.IsValid(&why)) Throw("loads", why);
   const StaticLoads solver_loads = SolverLoads(loads, length);
+  // Pressed on a surface at the last solve: the contact threshold for pieces (a vine beside a
+  // wall it does not touch keeps the single shot and its stability index).
+  bool pressed = false;
+  for (int k = 0; have_solution_ && k < solver_loads.contact.count; ++k)
+    pressed = pressed || PressesOn(solver_loads.contact.surface[k], state(),
+                                   [this](double s) { return RadiusAt(s); });
 
   bool seeded = false;
   if (solver_stale_ || length != solver_length_) {
@@ -306,12 +312,11 @@ EversionSolveSummary EversionRobot::Solve(double length, const StaticLoads& load
   out.length = length;
   // Pieces first where the last solve needed them (the body a little longer needs them too),
   // from its shape, and where a single shot's exponent passes options.pieces_above_exponent (10,
-  // as for a plain rod; 6 on contact surfaces): a 1.2 m tube on a floor (βL = 10.9) took 1 300
-  // Newton iterations in one shot per growth step, 2 m 10 000.
+  // as for a plain rod; 6 where the last solve pressed on a surface): a 1.2 m tube on a floor
+  // (βL = 10.9) took 1 300 Newton iterations in one shot per growth step, 2 m 10 000.
   const bool last_in_pieces = in_pieces_;
-  const double pieces_above = solver_loads.contact.count > 0
-                                  ? options_.pieces_on_contact_above_exponent
-                                  : options_.pieces_above_exponent;
+  const double pieces_above =
+      pressed ? options_.pieces_on_contact_above_exponent : options_.pieces_above_exponent;
   const bool beyond_one_shot =
       StaticShootingExponent(ModelAt(length), solver_loads, actuation()) > pieces_above;
   in_pieces_ = false;

@@ -17,10 +17,12 @@
 /// an obstacle every step without allocating.
 
 #include <array>
+#include <functional>
 #include <string>
 
 #include "cosserat/lie/types.hpp"
 #include "cosserat/loads/load.hpp"
+#include "cosserat/state/rod_state.hpp"
 
 namespace cosserat {
 
@@ -54,6 +56,11 @@ struct ContactSurfaces {
   bool operator==(const ContactSurfaces& o) const;
   bool IsValid(std::string* why) const;
 };
+
+/// Whether the rod at `state` presses on `surface`: some node's centreline nearer to it than
+/// the section's outer radius there (`outer_radius(s)`, m), where the penalty pushes.
+bool PressesOn(const ContactSurface& surface, const RodState& state,
+               const std::function<double(double)>& outer_radius);
 
 /// The penalty contact of a rod's section with the surfaces (a load that depends on the pose and
 /// velocity, load.hpp).

@@ -110,10 +110,12 @@ struct EversionOptions {
   /// A single shot's exponent (StaticShootingExponent: a floor's β L, sqrt(T/EI) L) above which
   /// the body is solved in multiple-shooting pieces first, as a plain rod's statics are.
   double pieces_above_exponent = 10.0;
-  /// The same on contact surfaces. The penalty's Jacobian jumps as nodes touch down, and a
-  /// single shot warm-started from the last base wrench stalls well below 10: a 25 mm tube on a
-  /// floor took ~40 Newton iterations a growth step at βL = 8, ~1 000 at βL = 9.4, against 2 or 3
-  /// for the multiple-shooting solver started from the last shape (one piece up to 10).
+  /// The same where the last solve pressed on a contact surface (PressesOn; not a surface the
+  /// body does not touch, which leaves it its stability index). The penalty's Jacobian jumps as
+  /// nodes touch down, and a single shot warm-started from the last base wrench stalls well
+  /// below 10: a 25 mm tube on a floor took ~40 Newton iterations a growth step at βL = 8,
+  /// ~1 000 at βL = 9.4, against 2 or 3 for the multiple-shooting solver started from the last
+  /// shape (one piece up to 10).
   double pieces_on_contact_above_exponent = 6.0;
 };
 
