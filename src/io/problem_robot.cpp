@@ -260,6 +260,15 @@ void CheckNodesHoldChamberEnds(const ObjectReader& robot, const Problem& p) {
                             std::to_string(p.nodes));
 }
 
+/// "tail_tension" (N, >= 0): an eversion robot's tail pulled back to its base.
+void ParseTailTension(const ObjectReader& robot, Problem* p) {
+  const auto tail = ReadNumber(robot, "tail_tension", NonNegativeNumber(), Presence::kOptional);
+  if (!tail) return;
+  p->robot.tail_tension = *tail;
+  if (p->robot.kind != RobotKind::kEversion)
+    robot.report().Add(robot.PathOf("tail_tension"), "only an \"eversion\" robot has a tail");
+}
+
 }  // namespace
 
 std::optional<Vec2> ReadOffset(const ObjectReader& o, const std::string& key) {
@@ -344,12 +353,7 @@ void ParseRobot(const ObjectReader& robot, const json& top, Problem* p) {
                              FormatNumber(EversionOptions::kMaxNodes) + " nodes), got " +
                              FormatNumber(p->rod.length));
   }
-  if (const auto tail = ReadNumber(robot, "tail_tension", NonNegativeNumber(),
-                                   Presence::kOptional)) {
-    p->robot.tail_tension = *tail;
-    if (p->robot.kind != RobotKind::kEversion)
-      robot.report().Add(robot.PathOf("tail_tension"), "only an \"eversion\" robot has a tail");
-  }
+  ParseTailTension(robot, p);
   if (const auto g = ReadObject(robot, "growth", Presence::kOptional)) {
     g->AllowOnly({"initial_length", "steps"});
     const bool known = p->rod.section != nullptr;  // else the rod's errors are reported

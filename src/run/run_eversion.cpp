@@ -66,6 +66,19 @@ std::string KinkWords(const KinkReport& kink, double pressure) {
   return words.str();
 }
 
+/// The result's "robot": its kind, pressure (Pa), length (m), tip force and tail tension (N) and
+/// kink report.
+nlohmann::ordered_json RobotJson(const EversionRobot& robot, const KinkReport& kink) {
+  nlohmann::ordered_json r;
+  r["kind"] = io::ToString(io::RobotKind::kEversion);
+  r["pressure"] = robot.pressure();
+  r["length"] = robot.length();
+  r["tip_force"] = robot.TipForce();
+  r["tail_tension"] = robot.tail_tension();
+  r["kink"] = KinkJson(kink);
+  return r;
+}
+
 }  // namespace
 
 Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
@@ -116,13 +129,7 @@ Result RunEversion(const io::Problem& problem, const RunOptions& run_options) {
   if (robot.pieces() > 1) result.json["shooting_segments"] = robot.pieces();  // the last solve's
   detail::KeepStaticFrame(problem, robot.state(), run_options, &result);
   growth.MoveFramesInto(&result);  // a grown robot: every step's body
-  nlohmann::ordered_json r;
-  r["kind"] = io::ToString(io::RobotKind::kEversion);
-  r["pressure"] = pressure;
-  r["length"] = robot.length();
-  r["tip_force"] = robot.TipForce();
-  r["tail_tension"] = robot.tail_tension();
-  r["kink"] = KinkJson(kink);
+  nlohmann::ordered_json r = RobotJson(robot, kink);
   if (problem.robot.growth_initial_length) {
     r["first_kink_length"] = first_kink_length;
     r["growth"] = growth.Json();

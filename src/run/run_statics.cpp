@@ -279,6 +279,29 @@ Result RunAnchoredStatics(const io::Problem& problem, const RunOptions& options)
 }
 
 /// A cantilever, robots included, in one shot from the clamp.
+/// An unstable equilibrium of a symmetric problem: the stable one beside it, solved by *beside
+/// (left empty when not reached). *summary becomes its solve, the settling's work counted either
+/// way. Returns the log's note on it, empty when not settled.
+std::string SettleBesideSingleShot(const io::Problem& problem, const StaticShootingSolver& first,
+                                   const Actuation& actuation, StaticShootingSummary* summary,
+                                   std::optional<StaticShootingSolver>* beside) {
+  if (!(summary->converged() && summary->stability_index > 0 && detail::MaySettle(problem)))
+    return "";
+  beside->emplace(problem.rod, problem.nodes, StaticOptions(problem), actuation);
+  StaticShootingSummary settled;
+  double imperfection = 0.0;
+  if (!detail::SettleSingleShot(problem, first.state(), summary->stability_index, &**beside,
+                                &settled, &imperfection)) {
+    summary->CountWorkOf(settled);
+    beside->reset();
+    return "";
+  }
+  const std::string note = detail::SettledNote(summary->stability_index, imperfection);
+  settled.CountWorkOf(*summary);
+  *summary = settled;
+  return note;
+}
+
 Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& options) {
   Actuation actuation = problem.robot.actuation;
   StaticShootingSolver first(problem.rod, problem.nodes, StaticOptions(problem), actuation);
@@ -287,23 +310,9 @@ Result RunSingleShotStatics(const io::Problem& problem, const RunOptions& option
   if (summary.converged())
     summary.stability_index =
         detail::JudgedStabilityIndex(problem, first.state(), summary.stability_index, &unjudged);
-  // An unstable equilibrium of a symmetric problem: the stable one beside it, when reached.
   std::optional<StaticShootingSolver> beside;
-  std::string settled_note;
-  if (summary.converged() && summary.stability_index > 0 && detail::MaySettle(problem)) {
-    beside.emplace(problem.rod, problem.nodes, StaticOptions(problem), actuation);
-    StaticShootingSummary settled;
-    double imperfection = 0.0;
-    if (detail::SettleSingleShot(problem, first.state(), summary.stability_index, &*beside,
-                                 &settled, &imperfection)) {
-      settled_note = detail::SettledNote(summary.stability_index, imperfection);
-      settled.CountWorkOf(summary);
-      summary = settled;
-    } else {
-      summary.CountWorkOf(settled);  // the settling's work counts
-      beside.reset();
-    }
-  }
+  const std::string settled_note =
+      SettleBesideSingleShot(problem, first, actuation, &summary, &beside);
   StaticShootingSolver& solver = beside ? *beside : first;
   std::array<bool, Actuation::kMaxTendons> slack{};
   for (int i = 0; i < Actuation::kMaxTendons; ++i)
