@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
     EversionRobotDesign design = DesignFromTube(*tube, p.rod.length, p.base);
     if (!bands) design.bands.clear();
     EversionRobot robot(design, std::min(0.6, p.rod.length), pressure);
+    robot.SetTailTension(p.robot.tail_tension);  // the file's, if it gives one
     const BendRadiusResult r = MinimumBendRadius(robot, p.loads, steer);
     const char* name = bands ? "with bands" : "without bands";
     std::cout << name << ": minimum bend radius " << r.min_radius << " m at s = " << r.s
@@ -64,6 +65,8 @@ int main(int argc, char** argv) {
                                        ModulusLaw::Affine(0.0, 3 * EI / layer_I / jam_pressure)}};
   EversionRobot plain(plain_design, length, pressure);
   EversionRobot jammed(jam_design, length, pressure);
+  plain.SetTailTension(p.robot.tail_tension);
+  jammed.SetTailTension(p.robot.tail_tension);
   jammed.SetJammingPressure(0, jam_pressure);
   StaticLoads third_kink = p.loads;
   third_kink.tip_moment = steer.tip_moment / 6.0;  // M_w / 3

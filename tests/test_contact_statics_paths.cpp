@@ -119,6 +119,21 @@ TEST(ContactStaticsPaths, AFingerOnASphereIsUnstableInBothFormulations) {
     EXPECT_EQ(out.json["stability_index"].get<int>(), 1) << out.log;
     EXPECT_NE(out.log.find("the rod can slide off them"), std::string::npos) << out.log;
   }
+  // An SE(3) run from it: on the frictionless sphere the start is unstable, and the log says so;
+  // with friction, which may hold the finger, the frictionless count does not judge it.
+  for (const double friction : {0.0, 0.5}) {
+    io::Problem problem = *parsed.problem;
+    problem.analysis = io::Analysis::kDynamics;
+    problem.formulation = io::Formulation::kSe3Shooting;
+    problem.dynamics.dt = problem.dynamics.duration = 1e-3;
+    problem.loads.contact.surface[0].friction = friction;
+    const Result out = cosserat::run::Run(problem);
+    ASSERT_TRUE(out.converged) << out.log;
+    EXPECT_EQ(out.log.find("starts from an unstable equilibrium (1 unstable direction)") !=
+                  std::string::npos,
+              friction == 0.0)
+        << friction << ": " << out.log;
+  }
 }
 
 // A soft rod (E = 9 MPa, r = 5 mm, 1 m) clamped level 0.155 m above a floor sags onto it. At

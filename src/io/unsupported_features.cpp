@@ -32,7 +32,8 @@ void DriveAndFlowFeatures(const Problem& p, std::vector<std::string>* out) {
   const bool cantilever = p.boundary == Boundary::kCantilever;
   if (p.gust.present() && p.analysis != Analysis::kDynamics)
     out->push_back("environment.fluid.gust: a gusting flow needs \"analysis\": \"dynamics\"");
-  if (quatfd && (p.loads.bit.present() || p.dynamics.base_spin != 0.0))
+  const bool spin = p.dynamics.base_spin != 0.0 || p.dynamics.base_spin_given;  // 0 reports too
+  if (quatfd && (p.loads.bit.present() || spin))
     out->push_back(
         std::string(p.loads.bit.present() ? "loads.bit_friction" : "dynamics.base_spin") +
         ": runs on the \"se3-shooting\" formulation's dynamics in this version");
@@ -40,7 +41,7 @@ void DriveAndFlowFeatures(const Problem& p, std::vector<std::string>* out) {
     out->push_back(
         "dynamics.rotary_table: turns a clamped base (\"boundary\": \"cantilever\") on the "
         "\"se3-shooting\" formulation");
-  if (!quatfd && p.dynamics.base_spin != 0.0 && !cantilever)
+  if (!quatfd && spin && !cantilever)
     out->push_back("dynamics.base_spin: turns a clamped base (\"boundary\": \"cantilever\")");
 }
 

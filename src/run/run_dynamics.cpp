@@ -208,6 +208,19 @@ void StepToTheEnd(const io::Problem& problem, int steps, int stride, bool all_no
            table ? table->speed() : problem.dynamics.base_spin);
 }
 
+/// Whether `state` presses on a contact surface with friction, which may hold a rod the
+/// frictionless statics count unstable (a finger on a sphere).
+bool PressesOnAFrictionalSurface(const io::Problem& problem, const RodState& state) {
+  for (int k = 0; k < problem.loads.contact.count; ++k) {
+    const ContactSurface& surface = problem.loads.contact.surface[k];
+    if (surface.friction > 0.0 && PressesOn(surface, state, [&problem](double s) {
+          return 0.5 * problem.rod.section->At(s, problem.robot.actuation).outer_diameter;
+        }))
+      return true;
+  }
+  return false;
+}
+
 /// The whole simulation: initial equilibrium, then round(duration / dt) steps.
 io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
                         Bdf2ShootingStepper* stepper, detail::ObstacleCoreWatch* obstacles) {
@@ -234,6 +247,8 @@ io::DynamicRun Simulate(const io::Problem& problem, const RunOptions& options,
       InitializeAtStaticEquilibrium(problem, initial, stepper, &run.initial_unstable_directions);
   AddCounts(init, &run);
   run.initial_state_ok = init.converged();
+  if (PressesOnAFrictionalSurface(problem, stepper->state()))
+    run.initial_unstable_directions = -1;  // the statics' count is frictionless: not judged
   run.status = init.status;
   if (!run.initial_state_ok) {
     run.failed_at_t = 0.0;

@@ -54,7 +54,8 @@ std::string KinkWords(const KinkReport& kink, double pressure) {
   if (!std::isfinite(kink.max_ratio))
     words << " (at s = " << kink.s_max << " m the wall has no tension left: "
           << (kink.wrinkling_moment > 0.0 ? "uninflated (p = 0) and twisted, "
-              : pressure > 0.0            ? "pushed along its axis past the pressure's force, "
+              : pressure > 0.0 ? "pushed along its axis, or pulled back by its tail, past the "
+                                 "pressure's force, "
                                           : "uninflated (p = 0) and not pulled taut, ")
           << "and a film carries no compression)";
   else if (kink.status == KinkStatus::kCollapsed)

@@ -10,6 +10,7 @@
 
 #include "cosserat/analysis/modes.hpp"
 #include "cosserat/io/result_writer.hpp"
+#include "cosserat/loads/total_load.hpp"
 #include "cosserat/quatfd/quatfd_model.hpp"
 #include "cosserat/run/initial_equilibrium.hpp"
 #include "cosserat/run/run_quatfd.hpp"
@@ -198,7 +199,9 @@ std::string DeclinedNote(const io::Problem& problem, const ModalResult& r) {
                          : kMaxDenseModeCoordinates / 6 + 1;
   std::string note = "cosserat: no modes on this grid: " + r.declined + "; rod.nodes <= " +
                      std::to_string(nodes) + " takes the dense spectrum";
-  if (r.declined.find("damped") != std::string::npos && HasSectionDamping(problem))
+  // A flow's drag damps as well (at rest in still water its linearised drag is zero).
+  const bool flow_damps = HasDrag(problem.loads) && !problem.loads.fluid.velocity_W.isZero();
+  if (r.declined.find("damped") != std::string::npos && HasSectionDamping(problem) && !flow_damps)
     note += ", or without rod.material.damping the undamped modes come from the banded "
             "factorisation on any grid";
   if (problem.boundary != io::Boundary::kAnchored) note += ", or \"formulation\": \"se3-shooting\"";

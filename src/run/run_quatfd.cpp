@@ -164,8 +164,9 @@ quatfd::QuatFdModel MakeQuatFdModel(const io::Problem& problem) {
 // bending boundary layer, while h < ℓ (a stay cable: 0.6 % at h = 0.23 ℓ, 2.4 % at 0.45; a
 // tensioned riser: 0.8 % at 0.25, 6.5 % at 0.75), and by 20 % at 1.5 ℓ and 59 % at 4.5 ℓ. From
 // h = 0.3 ℓ (1 %) on, a warning gives h/ℓ and names the nodes for 0.25 ℓ. The modes about that
-// equilibrium miss a share of the clamps' stiffening, 2ℓ/L of each frequency (Mehrabi &
-// Tabatabai 1998), about 0.13 h/ℓ of it (a stay: 61 % at 4.5 ℓ, 15 % at 1.1, 4 % at 0.45).
+// equilibrium miss a share of the clamps' stiffening, ℓ/L of each frequency per clamped end
+// (2ℓ/L for both: Mehrabi & Tabatabai 1998), about 0.13 h/ℓ of it (a stay clamped at both
+// ends: 61 % at 4.5 ℓ, 15 % at 1.1, 4 % at 0.45; at one end 0.067 % at 4.5 ℓ, stated 0.065 %).
 std::string ClampedEndGridWarning(const io::Problem& problem, const RodState& state) {
   if (problem.boundary != io::Boundary::kAnchored ||
       !(problem.anchor.base_clamped || problem.anchor.tip_clamped))
@@ -183,10 +184,11 @@ std::string ClampedEndGridWarning(const io::Problem& problem, const RodState& st
     warning << "by about 12 (h/sqrt(EI/T))² % = " << 12.0 * ratio * ratio << " %";
   else
     warning << "by over 12 % (20 % at 1.5 times sqrt(EI/T), 59 % at 4.5; docs/cables.md)";
+  const int clamps = problem.anchor.base_clamped + problem.anchor.tip_clamped;
   if (problem.analysis == io::Analysis::kModes)
-    warning << ", and each frequency misses about " << std::min(1.0, 0.13 * ratio) * 200 * ell /
-                                                           problem.rod.length
-            << " % of itself (a share of the clamps' stiffening 2 sqrt(EI/T)/L)";
+    warning << ", and each frequency misses about "
+            << std::min(1.0, 0.13 * ratio) * 100 * clamps * ell / problem.rod.length
+            << " % of itself (a share of the clamps' stiffening, sqrt(EI/T)/L for each)";
   warning << "; rod.nodes >= " << static_cast<long>(std::ceil(problem.rod.length / (0.25 * ell))) + 1
           << " keeps the moment within 1 %\n";
   return warning.str();
@@ -272,7 +274,7 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   }
   if (options.nodes_csv) result.nodes_csv = detail::NodesCsv(state);
   std::ostringstream log;
-  log << "cosserat: " << ToString(s.status) << " (quaternion-fd), " << s.iterations
+  log << "cosserat: " << ToString(s.status) << " (quaternion-fd), " << summary.iterations
       << " iterations, residual " << std::setprecision(3) << s.residual << ", ";
   if (problem.boundary == io::Boundary::kAnchored) {
     // The force the tip's anchor exerts on the rod (N, world): the top tension of a cable.
@@ -282,7 +284,7 @@ Result RunQuatFdStatics(const io::Problem& problem, const RunOptions& options) {
   } else {
     log << TipText(state);
   }
-  log << ", " << std::setprecision(3) << s.wall_time_s * 1e3 << " ms\n";
+  log << ", " << std::setprecision(3) << summary.wall_time_s * 1e3 << " ms\n";
   if (!s.converged())
     log << ContactGridHint(problem) << SlackLineHint(problem) << SteepLineHint(problem);
   if (s.converged())

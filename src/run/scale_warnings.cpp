@@ -205,7 +205,9 @@ void LineLongerThanItsSpanWarning(const io::Problem& problem, std::ostringstream
 /// 1.2 SG mud hung 118 kN from its table taken sealed, 226 kN full.
 void SealedPipeNote(const io::Problem& problem, std::ostringstream* log) {
   const double rho = problem.loads.fluid.density;  // kg/m³
-  if (problem.bore_area <= 0.0 || problem.bore_filled || rho <= 0.0) return;
+  if (problem.bore_area <= 0.0 || problem.bore_filled || rho <= 0.0 ||
+      problem.loads.gravity_W.isZero())
+    return;
   const double lift = rho * problem.loads.gravity_W.norm() * problem.bore_area;  // N/m
   *log << "cosserat: note: rod.section is a pipe in a fluid without contents_density, so it is "
           "taken sealed and empty: its bore's volume lifts it by "

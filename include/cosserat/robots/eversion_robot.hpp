@@ -242,8 +242,8 @@ class EversionRobot {
   double tail_tension() const { return tail_tension_; }  ///< N
   const EversionRobotDesign& design() const { return design_; }
   const EversionOptions& options() const { return options_; }
-  /// The last solve's state (net wrench of wall + air in wrench_B; see the file comment). Throws
-  /// std::logic_error before the first Solve.
+  /// The last solve's state (net wrench of wall, air and tail in wrench_B; see the file
+  /// comment). Throws std::logic_error before the first Solve.
   const RodState& state() const;
   /// Axial force in the wall at node i of the state, N: W3 + p A(s) − T_tail for kClosedVessel,
   /// W3 for kTipFollowerOnly (where W already is the wall's).
