@@ -218,8 +218,8 @@ void CheckStartsOutsideSurfaces(const Problem& p, ErrorReport* report) {
             std::pair<const char*, Vec3>{"anchor.position", p.anchor.position}}) {
         const double distance = contact.surface[k].Distance(point, &normal);
         if (distance < 0.0)
-          report->Add(path, "the line is held " + PastSurface(contact.surface[k]) + ": its " + name +
-                                " is " + FormatNumber(-distance) + " m past it");
+          report->Add(path, "the line is held " + PastSurface(contact.surface[k]) + ": its " +
+                                name + " is " + FormatNumber(-distance) + " m past it");
       }
     }
   }

@@ -189,8 +189,8 @@ std::string ClampedEndGridWarning(const io::Problem& problem, const RodState& st
     warning << ", and each frequency misses about "
             << std::min(1.0, 0.13 * ratio) * 100 * clamps * ell / problem.rod.length
             << " % of itself (a share of the clamps' stiffening, sqrt(EI/T)/L for each)";
-  warning << "; rod.nodes >= " << static_cast<long>(std::ceil(problem.rod.length / (0.25 * ell))) + 1
-          << " keeps the moment within 1 %\n";
+  const long nodes = static_cast<long>(std::ceil(problem.rod.length / (0.25 * ell))) + 1;
+  warning << "; rod.nodes >= " << nodes << " keeps the moment within 1 %\n";
   return warning.str();
 }
 

@@ -48,14 +48,16 @@ bool SettleSingleShot(const io::Problem& problem, const RodState& straight, int 
                       double* imperfection);
 
 /// The same for a cantilever in `pieces` multiple-shooting pieces: *out receives the
-/// equilibrium, its solve and its index (out->summary the work spent when false). Where one shot still resolves the rod (an exponent up
-/// to 20), the single shot settles it and the pieces take up its equilibrium.
+/// equilibrium, its solve and its index (out->summary the work spent when false). Where one
+/// shot still resolves the rod (an exponent up to 20), the single shot settles it and the pieces
+/// take up its equilibrium.
 bool SettleInPieces(const io::Problem& problem, const RodState& straight, int index, int pieces,
                     StaticsInPieces* out, double* imperfection);
 
 /// The same on the quaternion-FD grid: q (and state) receive the equilibrium, *summary its
-/// solve (the work spent when false), *settled_index its unstable directions. Where its own path does not settle it and one
-/// shot resolves the rod, it starts from the SE(3) single shot's settled equilibrium.
+/// solve (the work spent when false), *settled_index its unstable directions. Where its own
+/// path does not settle it and one shot resolves the rod, it starts from the SE(3) single
+/// shot's settled equilibrium.
 bool SettleQuatFd(const io::Problem& problem, const RodState& straight, int index,
                   quatfd::QuatFdModel* model, Eigen::VectorXd* q, RodState* state,
                   quatfd::QuatFdStaticsSummary* summary, int* settled_index,
