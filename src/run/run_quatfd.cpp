@@ -211,7 +211,7 @@ namespace {
 /// The continuation from the rest shape, for a direct solve that landed on an unstable
 /// equilibrium: a column pressed past its Euler load, left straight against the lateral load
 /// that bends it, where the loaded path leads to the bent, stable shape. Kept when it is less
-/// unstable; the counts of both solves' iterations add up.
+/// unstable; the counts of both solves' iterations and wall times add up either way.
 void FollowLoadedPathIfUnstable(const io::Problem& problem, quatfd::QuatFdModel* model,
                                 quatfd::QuatFdStaticsSummary* s, StaticShootingSummary* summary,
                                 RodState* state, Eigen::VectorXd* q) {
@@ -221,11 +221,16 @@ void FollowLoadedPathIfUnstable(const io::Problem& problem, quatfd::QuatFdModel*
   model->RestState(q_path, v);
   quatfd::QuatFdStaticsSummary path = quatfd::SolveStatics(model, problem.loads, q_path, options);
   path.iterations += s->iterations;
-  if (!path.converged()) return;
+  path.wall_time_s += s->wall_time_s;
+  auto keep_the_direct_solve = [&] {  // with the discarded path's work counted
+    s->iterations = summary->iterations = path.iterations;
+    s->wall_time_s = summary->wall_time_s = path.wall_time_s;
+  };
+  if (!path.converged()) return keep_the_direct_solve();
   RodState path_state;
   model->ToRodState(q_path, v, &path_state);
   const int index = detail::QuatFdStabilityIndex(problem, q_path, path_state);
-  if (index >= summary->stability_index) return;
+  if (index >= summary->stability_index) return keep_the_direct_solve();
   *s = path;
   *summary = AsSummary(path);
   summary->stability_index = index;
